@@ -1,0 +1,153 @@
+"""Geometry of two equal elastic cylinders crossed at an angle (Eqs. 2-6).
+
+Axis convention used throughout dhfield: x is the direction of the *larger*
+principal relative radius R' (the major axis a of the contact ellipse, theta_p = 0)
+and y the direction of R'' (minor axis b, theta_p = pi/2), so that the initial gap
+is z = x^2/(2R') + y^2/(2R'') (Eq. 2) with R' >= R''.
+
+The Hertz ellipticity beta = b/a belongs to the radius ratio R'/R'' through
+
+.. math::
+
+    \\frac{R'}{R''} = \\frac{\\mathbf{E}(k)/\\beta^2 - \\mathbf{K}(k)}{\\mathbf{K}(k) - \\mathbf{E}(k)}
+                    = \\frac{R_D(0, 1, \\beta^2)}{R_D(0, \\beta^2, 1)},
+
+the ratio of the two curvature conditions behind Eq. (8) (Eqs. 14b, 14c).  The
+Carlson form on the right is exact at the circle (ratio 1).  With Eqs. (3)-(4),
+cos(theta_skew) = (rho - 1)/(rho + 1), rho = R'/R''.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy import special
+from scipy.optimize import elementwise
+
+from ._validation import check_ellipticity, check_finite, check_interval, check_positive
+
+__all__ = [
+    "principal_radii",
+    "effective_radius",
+    "reduced_modulus",
+    "radius_ratio",
+    "ellipticity_from_radius_ratio",
+    "skew_angle",
+    "ellipticity_from_skew_angle",
+    "sin_skew_angle",
+]
+
+
+def principal_radii(cylinder_radius, skew_angle):
+    """Principal relative radii R', R'' of two crossed cylinders, Eqs. (3)-(4).
+
+    Parameters
+    ----------
+    cylinder_radius : array_like
+        Radius R_c of each of the two (equal) cylinders [m].
+    skew_angle : array_like
+        Crossing angle theta_skew between the cylinder axes, in (0, pi/2] [rad].
+
+    Returns
+    -------
+    r_major, r_minor : ndarray
+        R' = R_c/(1 - cos theta_skew) and R'' = R_c/(1 + cos theta_skew) [m].
+    """
+    rc = check_positive("cylinder_radius", cylinder_radius, "m")
+    th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
+    cos = np.cos(th)
+    return rc / (1.0 - cos), rc / (1.0 + cos)  # Eq. (3), Eq. (4)
+
+
+def effective_radius(r_major, r_minor):
+    """Equivalent radius R = sqrt(R' R''), Eq. (5) [m]."""
+    r1 = check_positive("r_major", r_major, "m")
+    r2 = check_positive("r_minor", r_minor, "m")
+    return np.sqrt(r1 * r2)  # Eq. (5)
+
+
+def reduced_modulus(e1, nu1, e2, nu2):
+    """Reduced Young's modulus E* of Eq. (6) [Pa].
+
+    Parameters
+    ----------
+    e1, e2 : array_like
+        Young's moduli of the two bodies [Pa].
+    nu1, nu2 : array_like
+        Poisson's ratios, in (-1, 0.5] [-].
+    """
+    e1 = check_positive("e1", e1, "Pa")
+    e2 = check_positive("e2", e2, "Pa")
+    nu1 = check_interval("nu1", nu1, -1.0, 0.5, what="Poisson's ratio")
+    nu2 = check_interval("nu2", nu2, -1.0, 0.5, what="Poisson's ratio")
+    return 1.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)  # Eq. (6)
+
+
+def _radius_ratio(beta):
+    b2 = np.asarray(beta, dtype=float) ** 2
+    return special.elliprd(0.0, 1.0, b2) / special.elliprd(0.0, b2, 1.0)
+
+
+def radius_ratio(beta):
+    """Radius ratio R'/R'' that gives the Hertz ellipticity ``beta`` (Eqs. 8, 14).
+
+    Parameters
+    ----------
+    beta : array_like
+        Ellipticity ratio b/a in (0, 1] [-].
+
+    Returns
+    -------
+    ndarray
+        R'/R'' >= 1 [-]; exactly 1 at beta = 1.
+    """
+    return _radius_ratio(check_ellipticity("beta", beta))
+
+
+def ellipticity_from_radius_ratio(ratio):
+    """Inverse of :func:`radius_ratio`: the Hertz beta for R'/R'' >= 1.
+
+    Solved element-wise with a bracketing root finder in log(beta), to
+    ~1e-15 relative.
+    """
+    rho = check_interval("ratio", ratio, 1.0, np.inf, low_open=False, high_open=True,
+                         what="R'/R'', dimensionless")
+    rho = np.asarray(rho, dtype=float)
+    out = np.ones_like(rho)
+    mask = rho > 1.0
+    if np.any(mask):
+        # log(rho) as a function of log(beta): decreasing; beta ~ rho^(-2/3) for large rho.
+        target = np.log(rho[mask])
+
+        def f(lb, t):
+            return np.log(_radius_ratio(np.exp(lb))) - t
+
+        lo = np.full_like(target, np.log(1e-12))
+        res = elementwise.find_root(f, (lo, np.zeros_like(target)), args=(target,),
+                                    tolerances=dict(xatol=1e-16, xrtol=1e-15))
+        out[mask] = np.exp(res.x)
+    return out if out.ndim else out[()]
+
+
+def skew_angle(beta):
+    """Crossing angle theta_skew [rad] of equal cylinders giving Hertz ellipticity ``beta``.
+
+    From Eqs. (3)-(4): cos(theta_skew) = (rho - 1)/(rho + 1), rho = R'/R''.
+    """
+    rho = radius_ratio(beta)
+    return np.arccos((rho - 1.0) / (rho + 1.0))
+
+
+def sin_skew_angle(beta):
+    """sin(theta_skew) for Hertz ellipticity ``beta`` (the factor of Eqs. 34, 36) [-].
+
+    Computed as 2 sqrt(rho)/(1 + rho), which is exactly 1 at the circle.
+    """
+    rho = radius_ratio(beta)
+    return 2.0 * np.sqrt(rho) / (1.0 + rho)
+
+
+def ellipticity_from_skew_angle(skew_angle):
+    """Hertz ellipticity beta of equal cylinders crossed at ``skew_angle`` in (0, pi/2] [rad]."""
+    th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
+    cos = np.cos(th)
+    rho = (1.0 + cos) / np.maximum(1.0 - cos, np.finfo(float).tiny)
+    return ellipticity_from_radius_ratio(np.maximum(rho, 1.0))
