@@ -1,0 +1,94 @@
+"""Input/output at the edge of the library: netCDF (via xarray) and CSV.
+
+Everything here is thin: the numpy core never imports this package.  All writes
+are atomic (temporary file in the target directory, then ``os.replace``), so a
+failed or interrupted write never leaves a partial file and never clobbers an
+existing one.
+"""
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import os
+import tempfile
+from pathlib import Path
+
+from .. import PAPER_DOI, __version__
+
+__all__ = ["atomic_path", "provenance_attrs", "write_netcdf", "read_netcdf", "check_writable"]
+
+REFERENCES = (
+    "Zini N.H.M., de Rooij M.B., Bazr Afshan Fadafan M., Ismail N., Schipper D.J. (2018) "
+    "Extending the double-Hertz model to allow modeling of an adhesive elliptical contact. "
+    f"Tribology Letters 66:30. doi:{PAPER_DOI}"
+)
+
+
+def check_writable(path) -> Path:
+    """Return ``path`` as a Path; raise ValueError if its directory cannot be written."""
+    p = Path(path)
+    parent = p.parent if str(p.parent) else Path(".")
+    if p.exists() and p.is_dir():
+        raise ValueError(f"output path must be a file, not a directory; got {str(p)!r}")
+    if not parent.is_dir():
+        raise ValueError(f"output path's directory does not exist; got {str(p)!r}")
+    if not os.access(parent, os.W_OK):
+        raise ValueError(f"output path's directory is not writable; got {str(p)!r}")
+    return p
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """Yield a temporary path next to ``path``; move it into place only on success."""
+    p = check_writable(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".part", dir=p.parent if str(p.parent) else ".")
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        os.replace(tmp, p)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise
+
+
+def provenance_attrs(title: str, **parameters) -> dict:
+    """CF-style global attributes plus every input parameter as an attribute."""
+    now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    attrs = {
+        "Conventions": "CF-1.10",
+        "title": title,
+        "institution": "dhfield",
+        "source": f"dhfield {__version__}",
+        "references": REFERENCES,
+        "history": f"{now} created by dhfield {__version__}",
+    }
+    for key, value in parameters.items():
+        if value is None:
+            continue
+        if isinstance(value, bool):
+            value = int(value)
+        attrs[f"param_{key}"] = value
+    return attrs
+
+
+def write_netcdf(ds, path) -> Path:
+    """Write an xarray Dataset to netCDF4 atomically; return the final path."""
+    p = Path(path)
+    with atomic_path(p) as tmp:
+        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+    return p
+
+
+def read_netcdf(path):
+    """Read a netCDF file written by dhfield into memory; clear error if unreadable."""
+    import xarray as xr
+
+    p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"input file does not exist or is not a file; got {str(p)!r}")
+    try:
+        with xr.open_dataset(p, engine="netcdf4") as ds:
+            return ds.load()
+    except Exception as exc:  # noqa: BLE001 - any backend failure is an unreadable file
+        raise ValueError(f"input file is not a readable netCDF file: {str(p)!r} ({exc})") from None

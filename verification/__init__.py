@@ -1,0 +1,1 @@
+"""Verification report builders and benchmarks for dhfield (not part of the installed library)."""
