@@ -1,0 +1,582 @@
+"""Elastic half-space operator: surface displacement of a gridded pressure (DC-FFT).
+
+The operator maps a piecewise-constant normal pressure on a Cartesian grid of
+rectangular cells to the normal surface displacement at the cell centres.  It
+is the forward problem only (no contact solver): dhfield uses it to check the
+analytic displacement and gap fields of the Hertz and double-Hertz (DH) models
+(Eqs. 13, 21, 26, 27 of Zini et al. 2018) over the whole surface.
+
+Conventions
+-----------
+* **Grid.**  ``nx`` x ``ny`` cells of size ``dx`` x ``dy``, centred on the
+  origin: cell centres ``x_i = (i - (nx - 1)/2) dx``, ``y_j = (j - (ny - 1)/2) dy``.
+  Arrays are indexed ``[i, j]`` (``'ij'`` indexing: axis 0 is x, the major
+  axis of the ellipse; axis 1 is y).
+* **Signs.**  Pressure is positive in compression; the displacement is the
+  combined normal displacement of both bodies, positive into the bodies, as in
+  Eq. (12) and :mod:`dhfield.hertz`, so that the gap is
+  ``h = z - delta + omega``.  Tensile (adhesive) stress is negative pressure.
+* **Green's function.**  Boussinesq's point-load solution for the combined
+  compliance, ``omega = p dA / (pi E* rho)``, integrated exactly over each
+  rectangular cell with uniform pressure (Love 1929; Johnson, *Contact
+  Mechanics*, 1985, Sec. 3.2).  The influence coefficient ``K[i, j]`` is the
+  displacement at offset ``(i dx, j dy)`` from the centre of a loaded cell.
+  No regularisation or approximation is involved, so for piecewise-constant
+  pressure the operator is exact up to rounding.
+* **Convolution and padding (DC-FFT).**  Liu, Wang & Liu (Wear 2000): the
+  ``(2nx - 1) x (2ny - 1)`` influence coefficients are laid out in wrap-around
+  order on a ``2nx x 2ny`` array (offset ``-i`` at index ``2nx - i``; the unused
+  index ``nx`` is zero), the pressure is zero-padded to the same size, and the
+  first ``nx x ny`` block of the circular convolution is kept.  This is the
+  exact discrete *linear* (non-periodic) convolution: no periodic images.
+* **FFT normalisation.**  FFTW's transforms are unnormalised (forward
+  ``sum x e^{-2 pi i k n / N}``, backward with ``+``).  The kernel is even, so its
+  spectrum is real; the factor ``1/(4 nx ny)`` of the inverse transform is folded
+  into that stored real spectrum, and no other scaling is applied.
+* **Symmetry mode.**  For pressure fields even in x and in y (all Hertz and DH
+  fields here) the operator takes the quadrant ``x > 0, y > 0``
+  (``nx/2 x ny/2`` cells) and returns the displacement there.  The quadrant
+  zero-padded to ``nx x ny`` is half-sample even about ``-1/2`` and the kernel
+  whole-sample even, so the circular convolution is diagonalised by FFTW's
+  ``REDFT10`` (DCT-II, forward) and ``REDFT01`` (DCT-III, inverse), with the
+  kernel spectrum given by ``REDFT00`` (DCT-I) of ``K[0..nx, 0..ny]``.  The
+  result is the same discrete sum as the full grid.
+* **Pruning.**  The padded half of the input is zero and the padded half of the
+  output is discarded, so the row transforms are done only on the ``nx`` (or
+  ``nx/2``) rows that matter; the column transforms run over all rows.
+
+Performance
+-----------
+FFTW plans, aligned work arrays and the kernel spectrum are built once per grid
+(:func:`get_operator` caches operators) and reused.  FFTW wisdom is imported
+from, and saved to, ``$DHFIELD_CACHE`` (default ``~/.cache/dhfield``); failure to
+read or write it is silently ignored.  ``threads`` selects FFTW threads (default
+``$DHFIELD_THREADS`` or 1).
+
+References
+----------
+.. [1] Love A.E.H. (1929) The stress produced in a semi-infinite solid by
+   pressure on part of the boundary. Phil. Trans. R. Soc. A 228:377-420.
+   doi:10.1098/rsta.1929.0009
+.. [2] Liu S., Wang Q., Liu G. (2000) A versatile method of discrete
+   convolution and FFT (DC-FFT) for contact analyses. Wear 243:101-111.
+   doi:10.1016/S0043-1648(00)00427-0
+.. [3] Frigo M., Johnson S.G. (2005) The design and implementation of FFTW3.
+   Proc. IEEE 93:216-231 (real-to-real transform definitions).
+"""
+from __future__ import annotations
+
+import contextlib
+import functools
+import math
+import operator
+import os
+import pickle
+import tempfile
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pyfftw
+import scipy.fft
+
+from ._validation import check_finite, check_positive
+
+__all__ = [
+    "MIN_CELLS",
+    "Grid",
+    "love_influence",
+    "influence_coefficients",
+    "HalfSpaceOperator",
+    "get_operator",
+    "surface_displacement",
+    "quadrant",
+    "unfold_quadrant",
+    "cache_dir",
+]
+
+#: Smallest number of cells per axis accepted by :class:`Grid`.
+MIN_CELLS = 8
+
+_PLANNER_EFFORTS = ("FFTW_ESTIMATE", "FFTW_MEASURE", "FFTW_PATIENT", "FFTW_EXHAUSTIVE")
+
+
+# --------------------------------------------------------------------------- grid
+def _check_cells(name: str, value) -> int:
+    try:
+        n = operator.index(value)
+    except TypeError:
+        raise ValueError(f"{name} must be an integer >= {MIN_CELLS} (number of cells); got {value!r}") from None
+    if n < MIN_CELLS:
+        raise ValueError(f"{name} must be an integer >= {MIN_CELLS} (number of cells); got {n!r}")
+    return int(n)
+
+
+def _check_spacing(name: str, value) -> float:
+    arr = check_positive(name, value, "cell size, m or nondimensional")
+    if arr.ndim != 0:
+        raise ValueError(f"{name} must be a scalar (cell size); got array of shape {arr.shape}")
+    return float(arr)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A Cartesian grid of ``nx`` x ``ny`` rectangular cells centred on the origin.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Number of cells along x and y, each >= ``MIN_CELLS`` [-].
+    dx, dy : float
+        Cell sizes [m] (or nondimensional lengths).
+    """
+
+    nx: int
+    ny: int
+    dx: float
+    dy: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "nx", _check_cells("nx", self.nx))
+        object.__setattr__(self, "ny", _check_cells("ny", self.ny))
+        object.__setattr__(self, "dx", _check_spacing("dx", self.dx))
+        object.__setattr__(self, "dy", _check_spacing("dy", self.dy))
+
+    @classmethod
+    def centered(cls, n, half_width, ny=None, half_width_y=None) -> "Grid":
+        """Grid covering ``[-half_width, half_width] x [-half_width_y, half_width_y]``.
+
+        Parameters
+        ----------
+        n : int
+            Cells along x (and along y unless ``ny`` is given) [-].
+        half_width : float
+            Half the domain length along x [m].
+        ny : int, optional
+            Cells along y [-]; default ``n``.
+        half_width_y : float, optional
+            Half the domain length along y [m]; default ``half_width``.
+        """
+        nx = _check_cells("n", n)
+        ny = nx if ny is None else _check_cells("ny", ny)
+        lx = _check_spacing("half_width", half_width)
+        ly = lx if half_width_y is None else _check_spacing("half_width_y", half_width_y)
+        return cls(nx, ny, 2.0 * lx / nx, 2.0 * ly / ny)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (self.nx, self.ny)
+
+    @property
+    def x(self) -> np.ndarray:
+        """Cell-centre x coordinates, shape (nx,) [m]."""
+        return (np.arange(self.nx) - 0.5 * (self.nx - 1)) * self.dx
+
+    @property
+    def y(self) -> np.ndarray:
+        """Cell-centre y coordinates, shape (ny,) [m]."""
+        return (np.arange(self.ny) - 0.5 * (self.ny - 1)) * self.dy
+
+    @property
+    def x_edges(self) -> np.ndarray:
+        """Cell-edge x coordinates, shape (nx + 1,) [m]."""
+        return (np.arange(self.nx + 1) - 0.5 * self.nx) * self.dx
+
+    @property
+    def y_edges(self) -> np.ndarray:
+        """Cell-edge y coordinates, shape (ny + 1,) [m]."""
+        return (np.arange(self.ny + 1) - 0.5 * self.ny) * self.dy
+
+    def mesh(self) -> tuple[np.ndarray, np.ndarray]:
+        """Cell-centre coordinates ``X, Y`` of shape (nx, ny) ('ij' indexing) [m]."""
+        return np.meshgrid(self.x, self.y, indexing="ij")
+
+    @property
+    def is_even(self) -> bool:
+        """True when nx and ny are even, so that the symmetry mode applies."""
+        return self.nx % 2 == 0 and self.ny % 2 == 0
+
+    def quadrant_grid_shape(self) -> tuple[int, int]:
+        return (self.nx // 2, self.ny // 2)
+
+
+# --------------------------------------------------------------------------- Love
+def _w_asinh(w, t):
+    """``w * asinh(t/|w|)`` with its limit 0 at w = 0."""
+    aw = np.abs(w)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = w * np.arcsinh(t / aw)
+    return np.where(aw > 0.0, v, 0.0)
+
+
+def love_influence(x, y, half_width_x, half_width_y, reduced_modulus=1.0):
+    """Surface displacement of unit uniform pressure on a rectangle (Love 1929) [m/Pa].
+
+    Parameters
+    ----------
+    x, y : array_like
+        Field point relative to the rectangle centre [m].
+    half_width_x, half_width_y : float
+        Half-sides of the loaded rectangle ``|xi| <= half_width_x``,
+        ``|eta| <= half_width_y`` [m].
+    reduced_modulus : float, default 1
+        E* [Pa].
+
+    Returns
+    -------
+    ndarray
+        Combined normal displacement per unit pressure [m Pa^-1].
+
+    Notes
+    -----
+    With ``X+- = x +- a``, ``Y+- = y +- b``,
+
+    .. math::
+
+        \\pi E^* u/p = X_+ \\ln\\frac{Y_+ + \\rho_{++}}{Y_- + \\rho_{-+}}
+          + Y_+ \\ln\\frac{X_+ + \\rho_{++}}{X_- + \\rho_{+-}}
+          + X_- \\ln\\frac{Y_- + \\rho_{--}}{Y_+ + \\rho_{+-}}
+          + Y_- \\ln\\frac{X_- + \\rho_{--}}{X_+ + \\rho_{-+}}
+
+    (``rho`` the distance to the corner).  Each log-ratio is evaluated as a
+    difference of ``asinh(t/|w|)``, since ``ln(t + sqrt(t^2 + w^2)) =
+    asinh(t/|w|) + ln|w|``; this is free of the cancellation the printed
+    form suffers when ``t < 0``.  At the centre of a square cell of side Delta,
+    ``u = (4 Delta/pi) ln(1 + sqrt 2) p/E*``.
+    """
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    a = float(half_width_x)
+    b = float(half_width_y)
+    xp, xm, yp, ym = x + a, x - a, y + b, y - b
+    s = (_w_asinh(xp, yp) - _w_asinh(xp, ym)
+         + _w_asinh(yp, xp) - _w_asinh(yp, xm)
+         + _w_asinh(xm, ym) - _w_asinh(xm, yp)
+         + _w_asinh(ym, xm) - _w_asinh(ym, xp))
+    return s / (np.pi * reduced_modulus)
+
+
+def influence_coefficients(grid: Grid, reduced_modulus=1.0) -> np.ndarray:
+    """Influence coefficients ``K[i, j]`` for offsets ``(i dx, j dy)``, ``0 <= i <= nx`` [m/Pa].
+
+    Shape ``(nx + 1, ny + 1)``.  The kernel is even in both offsets, so these
+    cover every offset; the last row and column (offset ``nx dx`` or ``ny dy``)
+    never enter the discrete convolution and are set to zero.
+    """
+    e = _check_spacing("reduced_modulus", reduced_modulus)
+    ix = np.arange(grid.nx + 1)[:, None] * grid.dx
+    iy = np.arange(grid.ny + 1)[None, :] * grid.dy
+    k = love_influence(ix, iy, 0.5 * grid.dx, 0.5 * grid.dy, e)
+    k[grid.nx, :] = 0.0
+    k[:, grid.ny] = 0.0
+    return k
+
+
+# --------------------------------------------------------------------------- wisdom
+_WISDOM_LOCK = threading.Lock()
+_WISDOM_STATE = {"loaded": False, "saved": None}
+
+
+def cache_dir() -> Path:
+    """Directory for persistent caches: ``$DHFIELD_CACHE`` or ``~/.cache/dhfield``."""
+    env = os.environ.get("DHFIELD_CACHE")
+    return Path(env) if env else Path.home() / ".cache" / "dhfield"
+
+
+def _wisdom_path() -> Path:
+    return cache_dir() / f"fftw_wisdom_pyfftw{pyfftw.__version__}.pickle"
+
+
+def _load_wisdom() -> None:
+    with _WISDOM_LOCK:
+        if _WISDOM_STATE["loaded"]:
+            return
+        _WISDOM_STATE["loaded"] = True
+        try:
+            with open(_wisdom_path(), "rb") as fh:
+                wisdom = pickle.load(fh)
+            if isinstance(wisdom, tuple) and all(isinstance(w, bytes) for w in wisdom):
+                pyfftw.import_wisdom(wisdom)
+                _WISDOM_STATE["saved"] = wisdom
+        except Exception:  # noqa: BLE001 - a missing or corrupt cache is harmless
+            pass
+
+
+def _save_wisdom() -> None:
+    with _WISDOM_LOCK:
+        try:
+            wisdom = pyfftw.export_wisdom()
+            if wisdom == _WISDOM_STATE["saved"]:
+                return
+            path = _wisdom_path()
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=".wisdom.", suffix=".part", dir=path.parent)
+            try:
+                with os.fdopen(fd, "wb") as fh:
+                    pickle.dump(wisdom, fh)
+                os.replace(tmp, path)
+            except BaseException:
+                with contextlib.suppress(OSError):
+                    os.unlink(tmp)
+                raise
+            _WISDOM_STATE["saved"] = wisdom
+        except Exception:  # noqa: BLE001 - an unwritable cache is harmless
+            pass
+
+
+def _default_threads() -> int:
+    try:
+        return max(1, int(os.environ.get("DHFIELD_THREADS", "1")))
+    except ValueError:
+        return 1
+
+
+# --------------------------------------------------------------------------- operator
+class HalfSpaceOperator:
+    """DC-FFT surface-displacement operator of an elastic half-space on one grid.
+
+    Parameters
+    ----------
+    grid : Grid
+        The cell grid.
+    reduced_modulus : float, default 1
+        E* [Pa].
+    symmetric : bool, default False
+        If True, the operator takes and returns the quadrant ``x > 0, y > 0``
+        (shape ``(nx/2, ny/2)``) of a field even in x and y; needs even nx, ny.
+    threads : int, optional
+        FFTW threads; default ``$DHFIELD_THREADS`` or 1.
+    planner_effort : str, default "FFTW_MEASURE"
+        FFTW planner flag.
+
+    Notes
+    -----
+    Building the operator plans the transforms (using stored wisdom when
+    available) and computes the kernel spectrum once; each call then costs one
+    forward and one inverse (pruned) transform, one multiplication by the real
+    kernel spectrum and two copies.  Calls are serialised by a lock because the
+    work arrays are shared.
+    """
+
+    def __init__(self, grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
+                 planner_effort="FFTW_MEASURE"):
+        if not isinstance(grid, Grid):
+            raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
+        self.grid = grid
+        self.reduced_modulus = _check_spacing("reduced_modulus", reduced_modulus)
+        self.symmetric = bool(symmetric)
+        if threads is None:
+            threads = _default_threads()
+        try:
+            threads = operator.index(threads)
+        except TypeError:
+            raise ValueError(f"threads must be an integer >= 1; got {threads!r}") from None
+        if threads < 1:
+            raise ValueError(f"threads must be an integer >= 1; got {threads!r}")
+        self.threads = int(threads)
+        if planner_effort not in _PLANNER_EFFORTS:
+            raise ValueError(f"planner_effort must be one of {_PLANNER_EFFORTS}; got {planner_effort!r}")
+        self.planner_effort = planner_effort
+        if self.symmetric and not grid.is_even:
+            raise ValueError(f"symmetric mode needs even nx and ny; got nx={grid.nx}, ny={grid.ny}")
+        self._lock = threading.Lock()
+        _load_wisdom()
+        kernel = influence_coefficients(grid, self.reduced_modulus)
+        if self.symmetric:
+            self._build_symmetric(kernel)
+        else:
+            self._build_full(kernel)
+        _save_wisdom()
+
+    # -- construction ---------------------------------------------------------
+    def _flags(self, *extra):
+        return (self.planner_effort, *extra)
+
+    def _build_full(self, kernel):
+        nx, ny = self.grid.shape
+        thr = self.threads
+        self.input_shape = (nx, ny)
+        self._rin = pyfftw.empty_aligned((nx, 2 * ny), dtype="float64")
+        self._a = pyfftw.empty_aligned((2 * nx, ny + 1), dtype="complex128")
+        self._b = pyfftw.empty_aligned((2 * nx, ny + 1), dtype="complex128")
+        self._rout = pyfftw.empty_aligned((nx, 2 * ny), dtype="float64")
+        self._plans = (
+            pyfftw.FFTW(self._rin, self._a[:nx], axes=(1,), flags=self._flags(), threads=thr),
+            pyfftw.FFTW(self._a, self._b, axes=(0,), flags=self._flags(), threads=thr),
+            pyfftw.FFTW(self._b, self._b, axes=(0,), direction="FFTW_BACKWARD",
+                        flags=self._flags(), threads=thr),
+            pyfftw.FFTW(self._b[:nx], self._rout, axes=(1,), direction="FFTW_BACKWARD",
+                        flags=self._flags("FFTW_DESTROY_INPUT"), threads=thr),
+        )
+        # planning may scribble on the arrays: zero the permanently-zero padding now
+        self._rin[...] = 0.0
+        self._a[...] = 0.0
+        # wrap-around kernel on the 2nx x 2ny grid; K[nx, :] = K[:, ny] = 0 (unused offsets)
+        kx = np.concatenate([kernel, kernel[-2:0:-1]], axis=0)
+        kxy = np.concatenate([kx, kx[:, -2:0:-1]], axis=1)
+        spec = scipy.fft.rfft2(kxy, workers=thr)
+        # the wrap-around kernel is even, so its spectrum is real; fold in 1/(4 nx ny)
+        self._spectrum = pyfftw.empty_aligned(spec.shape, dtype="float64")
+        self._spectrum[...] = spec.real / (4.0 * nx * ny)
+        self._run = self._run_full
+
+    def _build_symmetric(self, kernel):
+        nx, ny = self.grid.shape
+        mx, my = nx // 2, ny // 2
+        thr = self.threads
+        self.input_shape = (mx, my)
+        self._rin = pyfftw.empty_aligned((mx, ny), dtype="float64")
+        self._a = pyfftw.empty_aligned((nx, ny), dtype="float64")
+        self._b = pyfftw.empty_aligned((nx, ny), dtype="float64")
+        self._rout = pyfftw.empty_aligned((mx, ny), dtype="float64")
+        self._plans = (
+            pyfftw.FFTW(self._rin, self._a[:mx], axes=(1,), direction=["FFTW_REDFT10"],
+                        flags=self._flags(), threads=thr),
+            pyfftw.FFTW(self._a, self._b, axes=(0,), direction=["FFTW_REDFT10"],
+                        flags=self._flags(), threads=thr),
+            pyfftw.FFTW(self._b, self._b, axes=(0,), direction=["FFTW_REDFT01"],
+                        flags=self._flags(), threads=thr),
+            pyfftw.FFTW(self._b[:mx], self._rout, axes=(1,), direction=["FFTW_REDFT01"],
+                        flags=self._flags("FFTW_DESTROY_INPUT"), threads=thr),
+        )
+        self._rin[...] = 0.0
+        self._a[...] = 0.0
+        # REDFT00 (DCT-I) of K[0..nx, 0..ny] is the (real) DFT of the even kernel of period 2nx, 2ny;
+        # REDFT10 followed by REDFT01 multiplies by (2 nx)(2 ny): fold it in.
+        spec = scipy.fft.dctn(kernel, type=1, workers=thr)[:nx, :ny]
+        self._spectrum = pyfftw.empty_aligned(spec.shape, dtype="float64")
+        self._spectrum[...] = spec / (4.0 * nx * ny)
+        self._run = self._run_symmetric
+
+    # -- evaluation -----------------------------------------------------------
+    def _run_full(self, p, out):
+        nx, ny = self.input_shape
+        f_row, f_col, b_col, b_row = self._plans
+        self._rin[:, :ny] = p
+        f_row.execute()
+        f_col.execute()
+        np.multiply(self._b, self._spectrum, out=self._b)
+        b_col.execute()
+        b_row.execute()
+        out[...] = self._rout[:, :ny]
+
+    def _run_symmetric(self, p, out):
+        mx, my = self.input_shape
+        f_row, f_col, b_col, b_row = self._plans
+        self._rin[:, :my] = p
+        f_row.execute()
+        f_col.execute()
+        np.multiply(self._b, self._spectrum, out=self._b)
+        b_col.execute()
+        b_row.execute()
+        out[...] = self._rout[:, :my]
+
+    def __call__(self, pressure, out=None) -> np.ndarray:
+        """Surface displacement at the cell centres [m].
+
+        Parameters
+        ----------
+        pressure : array_like
+            Cell pressures [Pa], shape ``input_shape`` (``(nx, ny)``, or the
+            quadrant ``(nx/2, ny/2)`` in symmetric mode).
+        out : ndarray, optional
+            Float64 array of shape ``input_shape`` to write the result into.
+
+        Returns
+        -------
+        ndarray
+            Displacement, same shape as ``pressure`` [m].
+        """
+        p = np.asarray(pressure, dtype=float)
+        if p.shape != self.input_shape:
+            what = "quadrant (nx/2, ny/2)" if self.symmetric else "grid (nx, ny)"
+            raise ValueError(f"pressure must have the {what} shape {self.input_shape}; got {p.shape}")
+        if not math.isfinite(float(np.add.reduce(p, axis=None))):
+            check_finite("pressure", p, "Pa")
+        if out is None:
+            out = np.empty(self.input_shape)
+        elif not (isinstance(out, np.ndarray) and out.shape == self.input_shape and out.dtype == np.float64):
+            raise ValueError(f"out must be a float64 array of shape {self.input_shape}")
+        with self._lock:
+            self._run(p, out)
+        return out
+
+    displacement = __call__
+
+
+@functools.lru_cache(maxsize=4)
+def _cached_operator(grid, reduced_modulus, symmetric, threads, planner_effort):
+    return HalfSpaceOperator(grid, reduced_modulus, symmetric=symmetric, threads=threads,
+                             planner_effort=planner_effort)
+
+
+def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
+                 planner_effort="FFTW_MEASURE") -> HalfSpaceOperator:
+    """The cached :class:`HalfSpaceOperator` for this grid (built on first use)."""
+    if threads is None:
+        threads = _default_threads()
+    e = _check_spacing("reduced_modulus", reduced_modulus)
+    return _cached_operator(grid, e, bool(symmetric), threads, planner_effort)
+
+
+def surface_displacement(pressure, dx, dy=None, reduced_modulus=1.0, *, symmetric=False,
+                         threads=None) -> np.ndarray:
+    """Surface displacement of a gridded pressure on the elastic half-space [m].
+
+    Parameters
+    ----------
+    pressure : array_like
+        Cell pressures on the full grid, shape (nx, ny), positive in
+        compression [Pa].
+    dx, dy : float
+        Cell sizes [m]; ``dy`` defaults to ``dx``.
+    reduced_modulus : float, default 1
+        E* [Pa].
+    symmetric : bool, default False
+        Use the even-even quadrant transform: the field must be even in x and y
+        (checked to a relative 1e-12), only its quadrant ``x > 0, y > 0`` is
+        transformed and the result is unfolded back to the full grid.
+    threads : int, optional
+        FFTW threads.
+
+    Returns
+    -------
+    ndarray
+        Displacement at the cell centres, shape (nx, ny) [m].
+    """
+    p = np.asarray(pressure, dtype=float)
+    if p.ndim != 2:
+        raise ValueError(f"pressure must be a 2-D array; got shape {p.shape}")
+    dy = dx if dy is None else dy
+    grid = Grid(p.shape[0], p.shape[1], dx, dy)
+    if not symmetric:
+        return get_operator(grid, reduced_modulus, threads=threads)(p)
+    if not grid.is_even:
+        raise ValueError(f"symmetric mode needs even nx and ny; got pressure of shape {p.shape}")
+    scale = float(np.max(np.abs(p))) if p.size else 0.0
+    tol = _EVEN_RTOL * scale
+    if np.max(np.abs(p - p[::-1, :])) > tol or np.max(np.abs(p - p[:, ::-1])) > tol:
+        raise ValueError("pressure must be even in x and in y for symmetric=True")
+    op = get_operator(grid, reduced_modulus, symmetric=True, threads=threads)
+    return unfold_quadrant(op(quadrant(p)))
+
+
+#: Relative tolerance of the evenness check in :func:`surface_displacement` (rounding of x^2 terms).
+_EVEN_RTOL = 1e-12
+
+
+def quadrant(field) -> np.ndarray:
+    """The ``x > 0, y > 0`` quadrant of a full-grid field with even nx, ny (a copy)."""
+    f = np.asarray(field)
+    nx, ny = f.shape[-2:]
+    if nx % 2 or ny % 2:
+        raise ValueError(f"field must have even dimensions for a quadrant; got shape {f.shape}")
+    return np.ascontiguousarray(f[..., nx // 2:, ny // 2:])
+
+
+def unfold_quadrant(q) -> np.ndarray:
+    """The full even-even field from its ``x > 0, y > 0`` quadrant."""
+    q = np.asarray(q)
+    half = np.concatenate([q[..., ::-1, :], q], axis=-2)
+    return np.concatenate([half[..., ::-1], half], axis=-1)
