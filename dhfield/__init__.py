@@ -2,6 +2,18 @@
 
 Zini, de Rooij, Bazr Afshan Fadafan, Ismail & Schipper, Tribology Letters 66 (2018) 30,
 doi:10.1007/s11249-017-0976-8, verified against a DC-FFT boundary-element solver.
+
+Quick start (nondimensional units of Eqs. 32-35)::
+
+    >>> import dhfield
+    >>> p = dhfield.pull_off(mu=1.0, beta0=0.9)
+    >>> round(float(p.W_star), 4)
+    -0.7714
 """
 __version__ = "0.1.0"
 PAPER_DOI = "10.1007/s11249-017-0976-8"
+
+from .model import LoadCurve, PullOff, load_curve, pull_off, solve_adhesive_axis  # noqa: E402
+
+__all__ = ["__version__", "PAPER_DOI", "load_curve", "pull_off", "solve_adhesive_axis", "LoadCurve",
+           "PullOff"]

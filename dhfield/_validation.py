@@ -35,7 +35,7 @@ def check_finite(name: str, value, what: str = "") -> np.ndarray:
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a finite real number{_what(what)}; got {value!r}") from None
     if not np.all(np.isfinite(arr)):
-        bad = arr[~np.isfinite(arr)].flat[0]
+        bad = float(arr[~np.isfinite(arr)].flat[0])
         raise ValueError(f"{name} must be finite{_what(what)}; got {bad!r}")
     return arr
 
@@ -51,7 +51,7 @@ def check_interval(name: str, value, low: float, high: float, *, low_open: bool 
     lo_ok = arr > low if low_open else arr >= low
     hi_ok = arr < high if high_open else arr <= high
     if not np.all(lo_ok & hi_ok):
-        bad = arr[~(lo_ok & hi_ok)].flat[0]
+        bad = float(arr[~(lo_ok & hi_ok)].flat[0])
         lb = "(" if low_open else "["
         hb = ")" if high_open else "]"
         hs = "inf" if math.isinf(high) else f"{high:g}"

@@ -1,0 +1,167 @@
+"""Command-line interface: ``dhfield <subcommand> ...``.
+
+A thin layer: each subcommand parses its options and calls one library
+function; no physics lives here.  Invalid input exits with status 2 and one line
+on stderr (``dhfield: error: ...``), never a traceback.
+
+To add a subcommand, write ``_add_<name>(subparsers)`` that creates the parser
+and sets ``func`` to a ``_run_<name>(args) -> int`` function, and list it in
+:data:`_SUBCOMMANDS`.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+__all__ = ["main"]
+
+
+class _OneLineParser(argparse.ArgumentParser):
+    """argparse with usage errors reduced to one line and exit status 2."""
+
+    def error(self, message):
+        raise _UsageError(f"{self.prog}: {message}")
+
+
+class _UsageError(Exception):
+    pass
+
+
+def _json_default(obj):
+    import numpy as np
+
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    raise TypeError(type(obj))
+
+
+def _print_json(payload) -> None:
+    # NaN is not JSON: emit null for not-applicable quantities.
+    def clean(x):
+        if isinstance(x, float) and not math.isfinite(x):
+            return None
+        if isinstance(x, dict):
+            return {k: clean(v) for k, v in x.items()}
+        if isinstance(x, list):
+            return [clean(v) for v in x]
+        return x
+
+    print(json.dumps(clean(json.loads(json.dumps(payload, default=_json_default))), sort_keys=False))
+
+
+def _add_model_arguments(p) -> None:
+    p.add_argument("--beta0", type=float, required=True, help="initial ellipticity b/a in (0, 1]")
+    p.add_argument("--mu", type=float, required=True, help="Tabor parameter (Eq. 35), > 0")
+
+
+# --- curve ---------------------------------------------------------------------------------
+
+def _add_curve(sub) -> None:
+    p = sub.add_parser("curve", help="load curve of the elliptical DH model (nondimensional, Eqs. 32-36)")
+    _add_model_arguments(p)
+    p.add_argument("--ellipticity", type=float, default=None,
+                   help="ellipticity of both ellipses if different from beta0")
+    p.add_argument("--a-min", type=float, default=None, help="smallest contact semi-major axis a* (> 0)")
+    p.add_argument("--a-max", type=float, default=None, help="largest contact semi-major axis a*")
+    p.add_argument("--n", type=int, default=200, help="number of points (default 200)")
+    p.add_argument("--out", default=None, help="write FILE.nc (netCDF) or FILE.csv; default: print a table")
+    p.set_defaults(func=_run_curve)
+
+
+def _run_curve(args) -> int:
+    import numpy as np
+
+    from .io.curves import CURVE_VARIABLES, write_load_curve
+    from .model import DEFAULT_A_STAR, load_curve
+
+    a_star = None
+    if args.a_min is not None or args.a_max is not None:
+        lo = DEFAULT_A_STAR[0] if args.a_min is None else args.a_min
+        hi = DEFAULT_A_STAR[1] if args.a_max is None else args.a_max
+        if not hi > lo:
+            raise ValueError(f"a-max must be greater than a-min; got a-min={lo!r}, a-max={hi!r}")
+        if args.n < 2:
+            raise ValueError(f"n must be an integer >= 2; got {args.n!r}")
+        a_star = np.linspace(lo, hi, args.n)
+    curve = load_curve(args.mu, args.beta0, a_star, ellipticity=args.ellipticity, n=args.n)
+    if args.out:
+        path = write_load_curve(curve, args.out)
+        print(f"wrote {path}")
+        return 0
+    names = list(CURVE_VARIABLES)
+    print("\t".join(names))
+    for row in zip(*(getattr(curve, n) for n in names)):
+        print("\t".join(f"{x:.10g}" for x in row))
+    return 0
+
+
+# --- pulloff -------------------------------------------------------------------------------
+
+def _add_pulloff(sub) -> None:
+    p = sub.add_parser("pulloff", help="pull-off force W*max of the elliptical DH model")
+    _add_model_arguments(p)
+    p.add_argument("--control", choices=("load", "displacement"), default="load",
+                   help="load control (default) or displacement control")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=_run_pulloff)
+
+
+def _pull_off_record(args) -> dict:
+    from .model import pull_off
+
+    r = pull_off(args.mu, args.beta0, control=args.control)
+    return {"model": "dh-elliptic", "beta0": float(r.beta0), "mu": float(r.mu), "control": r.control,
+            "W_star": float(r.W_star), "a_star": float(r.a_star), "c_star": float(r.c_star),
+            "v": float(r.v), "delta_star": float(r.delta_star),
+            "at_zero_contact": bool(r.at_zero_contact)}
+
+
+def _run_pulloff(args) -> int:
+    rec = _pull_off_record(args)
+    if args.json:
+        _print_json(rec)
+    else:
+        for k, v in rec.items():
+            print(f"{k:16s} {v}")
+    return 0
+
+
+# --- entry point ---------------------------------------------------------------------------
+
+_SUBCOMMANDS = [_add_curve, _add_pulloff]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from . import __version__
+
+    parser = _OneLineParser(prog="dhfield", description="Extended double-Hertz model of an adhesive "
+                            "elliptical contact (Zini et al. 2018, doi:10.1007/s11249-017-0976-8)")
+    parser.add_argument("--version", action="version", version=f"dhfield {__version__}")
+    sub = parser.add_subparsers(dest="command", parser_class=_OneLineParser, required=True)
+    for add in _SUBCOMMANDS:
+        add(sub)
+    return parser
+
+
+def main(argv=None) -> int:
+    """Run the CLI; return the exit status (0 success, 2 bad input)."""
+    try:
+        args = build_parser().parse_args(argv)
+        return int(args.func(args) or 0)
+    except _UsageError as exc:
+        print(f"dhfield: error: {exc}", file=sys.stderr)
+        return 2
+    except ValueError as exc:
+        print(f"dhfield: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:
+        print(f"dhfield: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,106 @@
+"""Derjaguin-Muller-Toporov (DMT) / Bradley limit of the adhesive sphere.
+
+Sources: B. V. Derjaguin, V. M. Muller, Yu. P. Toporov, J. Colloid Interface Sci. 53
+(1975) 314, doi:10.1016/0021-9797(75)90018-1; R. S. Bradley, Phil. Mag. 13 (1932)
+853 (rigid spheres); the Hertzian DMT form used as the lambda -> 0 limit of the
+Maugis-Dugdale model (Maugis 1992, doi:10.1016/0021-9797(92)90288-C).
+
+The contact is Hertzian and the adhesive force -2 pi R dgamma acts outside it:
+
+.. math::
+
+    W = \\frac{4E^*a^3}{3R} - 2\\pi R\\Delta\\gamma, \\qquad \\delta = \\frac{a^2}{R},
+
+i.e. ``W* = 2 a*^3/(3 pi) - 1`` and ``delta* = a*^2`` in the paper's units
+(Eqs. 32-35, :mod:`dhfield._adhesion`).  The approach is monotone in a, so under
+both load and displacement control the pull-off is W* = -1 at a = 0.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
+                        check_material, length_unit, load_unit, scalar_or_array)
+from ._validation import check_finite
+
+__all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force"]
+
+
+def _curve(a_star):
+    """Nondimensional DMT state at contact radius a* (paper units)."""
+    a = np.asarray(a_star, dtype=float)
+    w = 2.0 * a**3 / (3.0 * np.pi) - 1.0  # DMT: Hertz load - 2 pi R dgamma
+    return {"W_star": w, "a_star": a, "delta_star": a**2}  # Hertz approach
+
+
+def _pull_off(control="load"):
+    check_control(control)
+    return _curve(0.0)
+
+
+def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
+    """DMT load and approach at the given contact radius.
+
+    Parameters
+    ----------
+    contact_radius : array_like
+        Contact radius a >= 0 [m].
+    effective_radius : array_like
+        Equivalent radius R [m].
+    reduced_modulus : array_like
+        Reduced modulus E* [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+
+    Returns
+    -------
+    LoadCurve
+        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+
+    Notes
+    -----
+    .. math:: W = \\frac{4E^*a^3}{3R} - 2\\pi R\\Delta\\gamma, \\qquad \\delta = a^2/R
+    """
+    a = check_contact_size("contact_radius", contact_radius)
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    s = _curve(a / length_unit(r, e, w))
+    return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)), scalar_or_array(a),
+                     scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+
+
+def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
+    """DMT contact radius for load W >= -2 pi R dgamma [m]: a^3 = 3R(W + 2 pi R dgamma)/(4E*)."""
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    p = check_finite("load", load, "N")
+    ws = p / load_unit(r, w)
+    if np.any(ws < -1.0):
+        raise ValueError(f"load must be >= -2 pi R dgamma (the DMT pull-off force) [N]; "
+                         f"got {p[ws < -1.0].flat[0]!r}")
+    return scalar_or_array(np.cbrt(1.5 * np.pi * (ws + 1.0)) * length_unit(r, e, w))
+
+
+def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
+    """DMT state at pull-off: W = -2 pi R dgamma at a = 0, delta = 0, for both controls.
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+    control : {'load', 'displacement'}
+        Loading mode (the same result for DMT).
+
+    Returns
+    -------
+    PullOff
+        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+    """
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    s = _pull_off(control)
+    z = np.zeros(np.broadcast_shapes(r.shape, e.shape, w.shape))
+    return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w) + z), scalar_or_array(z),
+                   scalar_or_array(z))
+
+
+def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
+    """DMT pull-off force -2 pi R dgamma [N]; see :func:`pull_off`."""
+    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).load

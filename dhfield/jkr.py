@@ -1,0 +1,140 @@
+"""Johnson-Kendall-Roberts (JKR) adhesive contact of a sphere (circular contact).
+
+Source: K. L. Johnson, K. Kendall & A. D. Roberts, Proc. R. Soc. Lond. A 324 (1971)
+301-313, doi:10.1098/rspa.1971.0141; in the form of K. L. Johnson, *Contact
+Mechanics* (CUP 1985), Sec. 5.5.
+
+Nondimensionalisation: the paper's units (Eqs. 32-35, see :mod:`dhfield._adhesion`),
+``a* = a/c_r``, ``W* = W/(2 pi R dgamma)``, ``delta* = delta R/c_r^2``.  In these
+units the JKR curve is
+
+.. math::
+
+    W^* = \\frac{1}{2\\pi}\\left(\\tfrac43 a^{*3} - \\sqrt{8\\pi a^{*3}}\\right), \\qquad
+    \\delta^* = a^{*2} - \\sqrt{2\\pi a^*}.
+
+Pull-off: W* = -3/4 at a*^3 = 9 pi/8 under load control, W* = -5/12 at
+a*^3 = pi/8 under displacement control (fixed grips).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
+                        check_material, length_unit, load_unit, scalar_or_array)
+from ._validation import check_finite
+
+__all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force"]
+
+#: a*^3 at pull-off for each control mode (dW/da = 0 and d(delta)/da = 0)
+_PULL_OFF_A3 = {"load": 9.0 * np.pi / 8.0, "displacement": np.pi / 8.0}
+
+
+def _curve(a_star):
+    """Nondimensional JKR state at contact radius a* (paper units)."""
+    a = np.asarray(a_star, dtype=float)
+    w = (4.0 / 3.0 * a**3 - np.sqrt(8.0 * np.pi * a**3)) / (2.0 * np.pi)  # JKR (1971): Hertz load minus flat-punch term
+    d = a**2 - np.sqrt(2.0 * np.pi * a)  # JKR (1971): Hertz approach minus flat-punch term
+    return {"W_star": w, "a_star": a, "delta_star": d}
+
+
+def _contact_radius(w_star):
+    """a* for load W* >= -3/4 on the stable (load-controlled) branch."""
+    p = 2.0 * np.pi * np.asarray(w_star, dtype=float)  # P in units of R dgamma
+    # a^3 = (3R/4E*)[P + 3 pi dgamma R + sqrt(6 pi dgamma R P + (3 pi dgamma R)^2)]
+    disc = np.maximum(6.0 * np.pi * p + (3.0 * np.pi) ** 2, 0.0)
+    return np.cbrt(0.75 * (p + 3.0 * np.pi + np.sqrt(disc)))  # JKR (1971): inverse of the load curve
+
+
+def _pull_off(control="load"):
+    check_control(control)
+    return _curve(np.cbrt(_PULL_OFF_A3[control]))
+
+
+def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
+    """JKR load and approach at the given contact radius.
+
+    Parameters
+    ----------
+    contact_radius : array_like
+        Contact radius a >= 0 [m].
+    effective_radius : array_like
+        Equivalent radius R [m].
+    reduced_modulus : array_like
+        Reduced modulus E* of Eq. (6) [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+
+    Returns
+    -------
+    LoadCurve
+        ``load`` [N] (positive compressive), ``contact_radius`` [m], ``approach`` [m].
+
+    Notes
+    -----
+    .. math::
+
+        W = \\frac{4E^*a^3}{3R} - \\sqrt{8\\pi\\Delta\\gamma E^* a^3}, \\qquad
+        \\delta = \\frac{a^2}{R} - \\sqrt{\\frac{2\\pi a\\Delta\\gamma}{E^*}}
+
+    References
+    ----------
+    .. [1] K. L. Johnson, K. Kendall, A. D. Roberts, Proc. R. Soc. Lond. A 324 (1971)
+       301, doi:10.1098/rspa.1971.0141
+    """
+    a = check_contact_size("contact_radius", contact_radius)
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    cr = length_unit(r, e, w)
+    s = _curve(a / cr)
+    return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)), scalar_or_array(a),
+                     scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+
+
+def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
+    """JKR contact radius on the stable branch for load W >= -(3/2) pi R dgamma [m].
+
+    Notes
+    -----
+    .. math:: a^3 = \\frac{3R}{4E^*}\\left[W + 3\\pi\\Delta\\gamma R
+              + \\sqrt{6\\pi\\Delta\\gamma R W + (3\\pi\\Delta\\gamma R)^2}\\right]
+    """
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    p = check_finite("load", load, "N")
+    ws = p / load_unit(r, w)
+    if np.any(ws < -0.75):
+        raise ValueError(f"load must be >= -(3/2) pi R dgamma (the JKR pull-off force) [N]; "
+                         f"got {p[ws < -0.75].flat[0]!r}")
+    return scalar_or_array(_contact_radius(ws) * length_unit(r, e, w))
+
+
+def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
+    """JKR state at pull-off.
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+    control : {'load', 'displacement'}
+        Loading mode: pull-off is the minimum load (load control) or the load
+        where the approach is minimum, d(delta)/da = 0 (displacement control).
+
+    Returns
+    -------
+    PullOff
+        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+
+    Notes
+    -----
+    Load control: :math:`W = -\\tfrac32\\pi R\\Delta\\gamma`, :math:`a^3 = 9\\pi\\Delta\\gamma R^2/(8E^*)`.
+    Displacement control: :math:`W = -\\tfrac56\\pi R\\Delta\\gamma`, :math:`a^3 = \\pi\\Delta\\gamma R^2/(8E^*)`.
+    """
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    s = _pull_off(control)
+    return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w)),
+                   scalar_or_array(s["a_star"] * length_unit(r, e, w)),
+                   scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+
+
+def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
+    """JKR pull-off force [N] (negative, tensile); see :func:`pull_off`."""
+    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).load
