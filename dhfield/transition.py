@@ -3,7 +3,7 @@
 Definitions
 -----------
 * The paper (Eq. 35, after Tabor 1977): ``mu = sigma0 (R/(E*^2 dgamma))^(1/3)``.
-* Maugis (1992), doi:10.1016/0021-9797(92)90288-C, Eq. (6.?) / Johnson & Greenwood
+* Maugis (1992), doi:10.1016/0021-9797(92)90288-C; Johnson & Greenwood
   (1997) doi:10.1006/jcis.1997.5010: ``lambda = 2 sigma0 (R/(pi dgamma K^2))^(1/3)``
   with ``K = 4E*/3``.
 
