@@ -1,0 +1,633 @@
+"""Build the dhfield verification report: one self-contained HTML file plus a Markdown summary.
+
+Usage::
+
+    python -m verification.report [--out out] [--quick] [--sections a,b] [--no-progress]
+
+The builder
+
+* starts from a clean output directory: it removes the artefacts of a previous
+  report under ``--out`` (``report.html``, ``summary.md``, ``checks.json`` and the
+  per-section directories ``<out>/<section>/``) and nothing else;
+* discovers the section modules ``verification/sec_<name>.py`` in the fixed order
+  :data:`SECTION_ORDER` (whichever exist) and runs each one with
+  ``run(outdir=<out>/<name>, quick, progress)`` (see :mod:`verification._api`);
+  a section that fails to import or raises is reported as a FAILED check, the
+  other sections still run;
+* writes ``report.html`` (figures embedded as base64 data URIs, CSS inline, no
+  external resource), ``summary.md`` (the PASS/FAIL table with links to the
+  figure and netCDF files) and ``checks.json`` (the same table, machine-readable),
+  each atomically (temporary file, then ``os.replace``);
+* exits with status 1 if any check failed or any section crashed, else 0.
+
+The builder contains no physics: the sections call the library and return their
+checks, figures and tables.  Progress lines go to stderr as
+``[2/4] models: <message> (12.3 s)``.
+"""
+from __future__ import annotations
+
+import argparse
+import base64
+import contextlib
+import datetime as _dt
+import html
+import importlib
+import json
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from verification._api import Check, Figure, Section
+
+__all__ = ["SECTION_ORDER", "SectionResult", "main", "run_sections", "render_html", "render_summary",
+           "markdown_to_html"]
+
+#: Section modules in report order: ``verification/sec_<name>.py``.
+SECTION_ORDER = ("analytic", "models", "fields", "periphery")
+#: Files of a previous report that the builder removes from ``--out`` before running.
+REPORT_FILES = ("report.html", "summary.md", "checks.json")
+
+_ROOT = Path(__file__).resolve().parent.parent
+
+
+# --------------------------------------------------------------------------- running
+
+
+@dataclass
+class SectionResult:
+    """One section's outcome: the returned :class:`Section` (or a stand-in on failure)."""
+
+    name: str
+    section: Section
+    seconds: float
+    outdir: Path
+    crashed: bool = False
+    error: str = ""
+    checks: list[Check] = field(default_factory=list)
+
+
+def _available_sections(requested=None):
+    """Names of the section modules to run, in :data:`SECTION_ORDER`.
+
+    Parameters
+    ----------
+    requested : sequence of str, optional
+        Subset asked for on the command line; unknown names raise ValueError.
+
+    Returns
+    -------
+    list of str
+        Requested (or all) names whose module file exists.  A requested name whose
+        file is missing is kept, so that the run reports it as a failed import.
+    """
+    here = Path(__file__).resolve().parent
+    if requested:
+        unknown = [s for s in requested if s not in SECTION_ORDER]
+        if unknown:
+            raise ValueError(f"--sections must be a comma-separated subset of {','.join(SECTION_ORDER)}; "
+                             f"got {','.join(unknown)!r}")
+        return [s for s in SECTION_ORDER if s in requested]
+    return [s for s in SECTION_ORDER if (here / f"sec_{s}.py").is_file()]
+
+
+def _failed_section(name, title, message, tb):
+    text = f"**This section did not complete.** {message}\n\n```\n{tb.rstrip()}\n```"
+    check = Check(name=f"section '{name}' runs without error", value=float("nan"), tolerance=float("nan"),
+                  passed=False, reference=message, comparison="runs")
+    return Section(title=title, text=text, checks=[check])
+
+
+def _validate_section(name, sec):
+    """Return a list of contract problems of a returned Section (empty when fine)."""
+    problems = []
+    if not isinstance(sec, Section):
+        return [f"run() returned {type(sec).__name__}, not verification._api.Section"]
+    for fig in sec.figures:
+        p = Path(fig.path)
+        if not p.is_file():
+            problems.append(f"figure file missing: {p}")
+        if not str(fig.caption).strip():
+            problems.append(f"figure without caption: {p.name}")
+    for ds in sec.datasets:
+        if not Path(ds).is_file():
+            problems.append(f"dataset file missing: {ds}")
+    for chk in sec.checks:
+        if not isinstance(chk, Check):
+            problems.append(f"check of type {type(chk).__name__}, not Check")
+    return problems
+
+
+def run_sections(out: Path, names, quick: bool, progress: Callable[[str], None]):
+    """Import and run each section; never raises for a section's failure.
+
+    Parameters
+    ----------
+    out : Path
+        Report directory; section ``name`` writes under ``out/name``.
+    names : list of str
+        Section names in order.
+    quick : bool
+        Passed to every section's ``run``.
+    progress : callable
+        ``progress(line)`` prints one progress line.
+
+    Returns
+    -------
+    list of SectionResult
+    """
+    results = []
+    total = len(names)
+    for i, name in enumerate(names, 1):
+        outdir = out / name
+        outdir.mkdir(parents=True, exist_ok=True)
+        t0 = time.perf_counter()
+
+        def sec_progress(msg, _i=i, _name=name, _t0=t0):
+            progress(f"[{_i}/{total}] {_name}: {msg} ({time.perf_counter() - _t0:.1f} s)")
+
+        sec_progress("start")
+        crashed, error = False, ""
+        try:
+            module = importlib.import_module(f"verification.sec_{name}")
+        except BaseException as exc:  # noqa: BLE001 - a broken section must not stop the report
+            if isinstance(exc, KeyboardInterrupt):
+                raise
+            crashed, error = True, f"import of verification.sec_{name} failed: {exc!r}"
+            sec = _failed_section(name, f"{name} (import failed)", error, traceback.format_exc())
+        else:
+            try:
+                sec = module.run(outdir, quick, sec_progress)
+                problems = _validate_section(name, sec)
+                if problems and not isinstance(sec, Section):
+                    crashed, error = True, problems[0]
+                    sec = _failed_section(name, name, error, "")
+                elif problems:
+                    sec.checks.append(Check(f"section '{name}' follows the report contract",
+                                            float(len(problems)), 0.0, False,
+                                            "; ".join(problems)[:500], "<="))
+            except BaseException as exc:  # noqa: BLE001
+                if isinstance(exc, KeyboardInterrupt):
+                    raise
+                crashed, error = True, f"run() raised {exc!r}"
+                sec = _failed_section(name, f"{name} (crashed)", error, traceback.format_exc())
+        dt = time.perf_counter() - t0
+        n_fail = sum(not c.passed for c in sec.checks)
+        sec_progress(f"done: {len(sec.checks)} checks, {n_fail} failed, {len(sec.figures)} figures"
+                     + (f" -- {error}" if error else ""))
+        results.append(SectionResult(name, sec, dt, outdir, crashed, error, list(sec.checks)))
+    return results
+
+
+# --------------------------------------------------------------------------- cleaning
+
+
+def clean_output(out: Path):
+    """Remove a previous report's artefacts from ``out`` (and nothing else).
+
+    Removes :data:`REPORT_FILES` and the directories ``out/<section>`` for every
+    name of :data:`SECTION_ORDER`.  Symbolic links are unlinked, never followed.
+    """
+    out.mkdir(parents=True, exist_ok=True)
+    for name in REPORT_FILES:
+        p = out / name
+        if p.is_symlink() or p.is_file():
+            p.unlink()
+    for name in SECTION_ORDER:
+        p = out / name
+        if p.is_symlink() or p.is_file():
+            p.unlink()
+        elif p.is_dir():
+            shutil.rmtree(p)
+    for stale in out.glob(".report.html.*.part"):
+        stale.unlink()
+
+
+# --------------------------------------------------------------------------- metadata
+
+
+def _git_commit():
+    try:
+        rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=_ROOT, capture_output=True,
+                             text=True, timeout=10)
+        if rev.returncode != 0:
+            return "unavailable"
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=_ROOT,
+                               capture_output=True, text=True, timeout=10)
+        return rev.stdout.strip() + (" (uncommitted changes)" if dirty.stdout.strip() else "")
+    except (OSError, subprocess.SubprocessError):
+        return "unavailable"
+
+
+def collect_metadata(argv, quick):
+    """Header facts: version, date, commit, command line, machine."""
+    try:
+        import dhfield
+        version = dhfield.__version__
+        doi = getattr(dhfield, "PAPER_DOI", "")
+    except Exception:  # noqa: BLE001 - the header must not fail
+        version, doi = "unavailable", ""
+    import numpy
+    import scipy
+    return {
+        "dhfield version": version,
+        "paper": f"Zini et al., Tribology Letters 66:30 (2018), doi:{doi}" if doi else "",
+        "date (UTC)": _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S"),
+        "git commit": _git_commit(),
+        "command line": " ".join(["python -m verification.report", *argv]),
+        "mode": "quick" if quick else "default",
+        "machine": f"{platform.platform()}; {platform.machine()}; {os.cpu_count()} cores",
+        "python": f"{platform.python_version()} (numpy {numpy.__version__}, scipy {scipy.__version__})",
+    }
+
+
+# --------------------------------------------------------------------------- formatting
+
+
+def _fmt(x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        return str(x)
+    if x != x:
+        return "nan"
+    if x == 0:
+        return "0"
+    if abs(x) >= 1e4 or abs(x) < 1e-3:
+        return f"{x:.3e}"
+    return f"{x:.6g}"
+
+
+def _rel(path: Path, base: Path) -> str:
+    try:
+        return Path(os.path.relpath(Path(path).resolve(), base.resolve())).as_posix()
+    except ValueError:  # other drive on Windows
+        return Path(path).as_posix()
+
+
+_INLINE_CODE = re.compile(r"`([^`]+)`")
+_BOLD = re.compile(r"\*\*(.+?)\*\*")
+_ITALIC = re.compile(r"(?<![\*\w])\*(?!\s)(.+?)(?<!\s)\*(?![\*\w])")
+_LINK = re.compile(r"\[([^\]]+)\]\(([^)\s]+)\)")
+
+
+def _inline(text: str) -> str:
+    """Inline Markdown (code, bold, italic, links) to HTML; everything else escaped."""
+    parts = _INLINE_CODE.split(text)
+    out = []
+    for k, part in enumerate(parts):
+        if k % 2:
+            out.append(f"<code>{html.escape(part)}</code>")
+            continue
+        s = html.escape(part, quote=False)
+        s = _LINK.sub(lambda m: f'<a href="{html.escape(m.group(2))}">{m.group(1)}</a>', s)
+        s = _BOLD.sub(r"<strong>\1</strong>", s)
+        s = _ITALIC.sub(r"<em>\1</em>", s)
+        out.append(s)
+    return "".join(out)
+
+
+def _table_row(line: str):
+    line = line.strip()
+    if line.startswith("|"):
+        line = line[1:]
+    if line.endswith("|"):
+        line = line[:-1]
+    return [c.strip() for c in line.split("|")]
+
+
+_SEP = re.compile(r"^\s*\|?\s*:?-{2,}:?\s*(\|\s*:?-{2,}:?\s*)*\|?\s*$")
+
+
+def markdown_to_html(text: str) -> str:
+    """Render the Markdown subset used by the sections to HTML.
+
+    Supported: ATX headings, paragraphs, ``-``/``*``/``1.`` lists, pipe tables,
+    fenced code blocks, inline code, bold, italic and links.  Raw HTML is escaped.
+
+    Parameters
+    ----------
+    text : str
+        Markdown source.
+
+    Returns
+    -------
+    str
+        HTML fragment.
+    """
+    lines = (text or "").splitlines()
+    out, para = [], []
+    i = 0
+
+    def flush():
+        if para:
+            out.append("<p>" + _inline(" ".join(s.strip() for s in para)) + "</p>")
+            para.clear()
+
+    while i < len(lines):
+        line = lines[i]
+        stripped = line.strip()
+        if stripped.startswith("```"):
+            flush()
+            j = i + 1
+            block = []
+            while j < len(lines) and not lines[j].strip().startswith("```"):
+                block.append(lines[j])
+                j += 1
+            out.append("<pre><code>" + html.escape("\n".join(block)) + "</code></pre>")
+            i = j + 1
+            continue
+        if not stripped:
+            flush()
+            i += 1
+            continue
+        m = re.match(r"^(#{1,6})\s+(.*)$", stripped)
+        if m:
+            flush()
+            level = min(len(m.group(1)) + 2, 6)  # section titles are <h2>; text headings start at <h3>
+            out.append(f"<h{level}>{_inline(m.group(2))}</h{level}>")
+            i += 1
+            continue
+        if stripped.startswith("|") and i + 1 < len(lines) and _SEP.match(lines[i + 1]):
+            flush()
+            head = _table_row(stripped)
+            rows = []
+            j = i + 2
+            while j < len(lines) and lines[j].strip().startswith("|"):
+                rows.append(_table_row(lines[j]))
+                j += 1
+            t = ["<table><thead><tr>" + "".join(f"<th>{_inline(h)}</th>" for h in head) + "</tr></thead><tbody>"]
+            for r in rows:
+                t.append("<tr>" + "".join(f"<td>{_inline(c)}</td>" for c in r) + "</tr>")
+            t.append("</tbody></table>")
+            out.append("".join(t))
+            i = j
+            continue
+        m = re.match(r"^\s*([-*]|\d+\.)\s+(.*)$", line)
+        if m:
+            flush()
+            ordered = m.group(1)[0].isdigit()
+            tag = "ol" if ordered else "ul"
+            items = []
+            j = i
+            while j < len(lines):
+                mm = re.match(r"^\s*([-*]|\d+\.)\s+(.*)$", lines[j])
+                if mm and (mm.group(1)[0].isdigit()) == ordered:
+                    items.append(mm.group(2))
+                elif lines[j].strip() and lines[j].startswith((" ", "\t")) and items:
+                    items[-1] += " " + lines[j].strip()  # continuation line
+                else:
+                    break
+                j += 1
+            out.append(f"<{tag}>" + "".join(f"<li>{_inline(it)}</li>" for it in items) + f"</{tag}>")
+            i = j
+            continue
+        para.append(line)
+        i += 1
+    flush()
+    return "\n".join(out)
+
+
+_CSS = """
+body{font-family:-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1b1b1b;background:#fff;line-height:1.45}
+main{max-width:1100px;margin:0 auto;padding:1.5em 2em 4em}
+h1{font-size:1.7em;margin-bottom:.2em}
+h2{border-bottom:2px solid #ccd;padding-bottom:.2em;margin-top:2.2em}
+table{border-collapse:collapse;margin:.8em 0;font-size:.88em}
+th,td{border:1px solid #ccd;padding:.25em .55em;text-align:left;vertical-align:top}
+th{background:#eef0f6}
+td.num{text-align:right;font-family:ui-monospace,Menlo,Consolas,monospace;white-space:nowrap}
+.pass{background:#dff3df;color:#145214;font-weight:bold}
+.fail{background:#fadbd8;color:#8a1010;font-weight:bold}
+.verdict{font-size:1.25em;padding:.6em 1em;border-radius:4px;display:inline-block;margin:.6em 0}
+figure{margin:1.4em 0;padding:.6em;border:1px solid #e2e4ec;border-radius:4px;background:#fcfcfe}
+figure img{max-width:100%;height:auto;display:block;margin:0 auto}
+figcaption{font-size:.9em;color:#333;margin-top:.4em}
+code,pre{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:.9em;background:#f3f4f8}
+pre{padding:.6em;overflow-x:auto}
+dl.meta{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;font-size:.9em}
+dl.meta dt{font-weight:bold}dl.meta dd{margin:0}
+nav ul{columns:2}
+.small{font-size:.85em;color:#555}
+"""
+
+
+def _img_tag(path: Path, alt: str) -> str:
+    data = Path(path).read_bytes()
+    suffix = Path(path).suffix.lower()
+    mime = {".png": "image/png", ".svg": "image/svg+xml", ".jpg": "image/jpeg", ".jpeg": "image/jpeg",
+            ".gif": "image/gif"}.get(suffix, "application/octet-stream")
+    b64 = base64.b64encode(data).decode("ascii")
+    return f'<img src="data:{mime};base64,{b64}" alt="{html.escape(alt)}">'
+
+
+def _checks_table_html(rows):
+    head = ("<table><thead><tr><th>section</th><th>check</th><th>value</th><th>relation</th>"
+            "<th>tolerance</th><th>verdict</th><th>reference</th></tr></thead><tbody>")
+    body = []
+    for sec_name, c in rows:
+        cls = "pass" if c.passed else "fail"
+        body.append(
+            f"<tr><td>{html.escape(sec_name)}</td><td>{_inline(c.name)}</td><td class=num>{_fmt(c.value)}</td>"
+            f"<td>{html.escape(c.comparison)}</td><td class=num>{_fmt(c.tolerance)}</td>"
+            f"<td class={cls}>{'PASS' if c.passed else 'FAIL'}</td><td>{_inline(c.reference)}</td></tr>")
+    return head + "".join(body) + "</tbody></table>"
+
+
+def _anchor(name):
+    return "sec-" + re.sub(r"[^a-z0-9]+", "-", name.lower())
+
+
+def render_html(results, meta, out: Path, total_seconds: float) -> str:
+    """The complete, self-contained HTML report as a string."""
+    all_rows = [(r.name, c) for r in results for c in r.checks]
+    n_fail = sum(not c.passed for _, c in all_rows)
+    ok = n_fail == 0 and not any(r.crashed for r in results)
+    verdict = (f"<div class='verdict pass'>ALL {len(all_rows)} CHECKS PASS</div>" if ok else
+               f"<div class='verdict fail'>{n_fail} OF {len(all_rows)} CHECKS FAIL</div>")
+    parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+             "<meta name='viewport' content='width=device-width, initial-scale=1'>",
+             "<title>dhfield verification report</title>", f"<style>{_CSS}</style></head><body><main>",
+             "<h1>dhfield verification report</h1>",
+             "<p>Verification of the extended double-Hertz model of an adhesive elliptical contact "
+             "(Zini et al., Tribology Letters 2018) as implemented in <code>dhfield</code>.</p>",
+             "<dl class=meta>"]
+    for k, v in meta.items():
+        parts.append(f"<dt>{html.escape(k)}</dt><dd>{html.escape(str(v))}</dd>")
+    parts.append(f"<dt>wall time</dt><dd>{total_seconds:.1f} s</dd></dl>")
+    parts.append(verdict)
+    parts.append("<nav><h2>Contents</h2><ul>")
+    for r in results:
+        nf = sum(not c.passed for c in r.checks)
+        badge = "<span class=pass>PASS</span>" if nf == 0 and not r.crashed else f"<span class=fail>{nf} FAIL</span>"
+        parts.append(f"<li><a href='#{_anchor(r.name)}'>{html.escape(r.section.title)}</a> {badge} "
+                     f"<span class=small>({r.seconds:.1f} s)</span></li>")
+    parts.append("<li><a href='#summary'>Summary of checks</a></li></ul></nav>")
+    parts.append("<h2 id='summary'>Summary of checks</h2>")
+    parts.append(_checks_table_html(all_rows))
+    for r in results:
+        sec = r.section
+        parts.append(f"<section id='{_anchor(r.name)}'><h2>{html.escape(sec.title)}</h2>")
+        parts.append(f"<p class=small>Section <code>{html.escape(r.name)}</code>, {r.seconds:.1f} s; "
+                     f"files under <code>{html.escape(_rel(r.outdir, out))}/</code>.</p>")
+        parts.append(markdown_to_html(sec.text))
+        for tbl in sec.tables:
+            parts.append(markdown_to_html(tbl))
+        for k, fig in enumerate(sec.figures, 1):
+            p = Path(fig.path)
+            if p.is_file():
+                img = _img_tag(p, f"{sec.title}, figure {k}")
+            else:
+                img = f"<p class=fail>missing figure file {html.escape(str(p))}</p>"
+            parts.append(f"<figure>{img}<figcaption><strong>{html.escape(r.name)} figure {k}.</strong> "
+                         f"{_inline(fig.caption)} <span class=small>[{html.escape(_rel(p, out))}]</span>"
+                         f"</figcaption></figure>")
+        if r.checks:
+            parts.append("<h3>Checks</h3>" + _checks_table_html([(r.name, c) for c in r.checks]))
+        if sec.datasets:
+            parts.append("<h3>Datasets (netCDF)</h3><ul>")
+            for ds in sec.datasets:
+                rel = _rel(Path(ds), out)
+                parts.append(f"<li><a href='{html.escape(rel)}'><code>{html.escape(rel)}</code></a></li>")
+            parts.append("</ul>")
+        parts.append("</section>")
+    parts.append("</main></body></html>")
+    return "\n".join(parts)
+
+
+def _md_cell(s) -> str:
+    return str(s).replace("|", "\\|").replace("\n", " ")
+
+
+def render_summary(results, meta, out: Path, total_seconds: float) -> str:
+    """The Markdown summary: header, PASS/FAIL table, figure and dataset links."""
+    all_rows = [(r.name, c) for r in results for c in r.checks]
+    n_fail = sum(not c.passed for _, c in all_rows)
+    lines = ["# dhfield verification report: summary", ""]
+    for k, v in meta.items():
+        lines.append(f"- **{k}:** {_md_cell(v)}")
+    lines.append(f"- **wall time:** {total_seconds:.1f} s")
+    lines.append("")
+    lines.append(f"**Verdict: {'PASS' if n_fail == 0 and not any(r.crashed for r in results) else 'FAIL'}** "
+                 f"({len(all_rows) - n_fail} of {len(all_rows)} checks pass). Full report: [report.html](report.html)")
+    lines += ["", "| section | check | value | relation | tolerance | verdict | reference |",
+              "|---|---|---:|---|---:|---|---|"]
+    for name, c in all_rows:
+        lines.append(f"| {name} | {_md_cell(c.name)} | {_fmt(c.value)} | {_md_cell(c.comparison)} | "
+                     f"{_fmt(c.tolerance)} | {'PASS' if c.passed else '**FAIL**'} | {_md_cell(c.reference)} |")
+    lines.append("")
+    lines.append("## Sections")
+    for r in results:
+        lines += ["", f"### {r.section.title}", "",
+                  f"`{r.name}`: {r.seconds:.1f} s, {len(r.checks)} checks, "
+                  f"{sum(not c.passed for c in r.checks)} failed" + (f"; **{r.error}**" if r.error else ""), ""]
+        for k, fig in enumerate(r.section.figures, 1):
+            rel = _rel(Path(fig.path), out)
+            lines.append(f"- Figure {k}: [{rel}]({rel}) — {_md_cell(fig.caption)}")
+        for ds in r.section.datasets:
+            rel = _rel(Path(ds), out)
+            lines.append(f"- Dataset: [{rel}]({rel})")
+    lines.append("")
+    return "\n".join(lines)
+
+
+def _json_value(x):
+    x = float(x)
+    return x if x == x and abs(x) != float("inf") else str(x)
+
+
+def render_checks_json(results, meta, total_seconds) -> str:
+    return json.dumps({
+        "meta": meta, "wall_time_s": total_seconds,
+        "sections": [{"name": r.name, "title": r.section.title, "seconds": r.seconds, "crashed": r.crashed,
+                      "error": r.error} for r in results],
+        "checks": [{"section": r.name, "name": c.name, "value": _json_value(c.value),
+                    "tolerance": _json_value(c.tolerance), "comparison": c.comparison, "passed": bool(c.passed),
+                    "reference": c.reference} for r in results for c in r.checks],
+    }, indent=1)
+
+
+def _write_text_atomic(path: Path, text: str):
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.chmod(tmp, 0o644)  # mkstemp creates 0600; the report is meant to be shared
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise
+
+
+# --------------------------------------------------------------------------- CLI
+
+
+def _parser():
+    p = argparse.ArgumentParser(prog="python -m verification.report", description=__doc__.split("\n")[0])
+    p.add_argument("--out", default="out", help="output directory (default: out)")
+    p.add_argument("--quick", action="store_true", help="small resolutions: the whole report in <= 60 s")
+    p.add_argument("--sections", default="",
+                   help=f"comma-separated subset of {','.join(SECTION_ORDER)} (default: all that exist)")
+    p.add_argument("--no-progress", action="store_true", help="do not print progress lines to stderr")
+    return p
+
+
+def main(argv=None) -> int:
+    """Build the report; return the exit status (0 all pass, 1 any failure, 2 bad usage)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    args = _parser().parse_args(argv)
+    try:
+        requested = [s.strip() for s in args.sections.split(",") if s.strip()] or None
+        names = _available_sections(requested)
+    except ValueError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    import matplotlib
+    matplotlib.use("Agg")
+
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        print(f"error: --out must be a directory; got {str(out)!r}", file=sys.stderr)
+        return 2
+    clean_output(out)
+
+    def progress(line):
+        if not args.no_progress:
+            print(line, file=sys.stderr, flush=True)
+
+    t0 = time.perf_counter()
+    progress(f"dhfield report: {len(names)} sections ({', '.join(names) or 'none'}), "
+             f"{'quick' if args.quick else 'default'} mode, output in {out}/")
+    meta = collect_metadata(argv, args.quick)
+    results = run_sections(out, names, args.quick, progress)
+    total = time.perf_counter() - t0
+    _write_text_atomic(out / "report.html", render_html(results, meta, out, total))
+    _write_text_atomic(out / "summary.md", render_summary(results, meta, out, total))
+    _write_text_atomic(out / "checks.json", render_checks_json(results, meta, total))
+    n_checks = sum(len(r.checks) for r in results)
+    n_fail = sum(not c.passed for r in results for c in r.checks)
+    crashed = [r.name for r in results if r.crashed]
+    print(f"report: {out / 'report.html'}  summary: {out / 'summary.md'}  "
+          f"{n_checks - n_fail}/{n_checks} checks pass"
+          + (f"; crashed sections: {', '.join(crashed)}" if crashed else "") + f"  ({total:.1f} s)",
+          file=sys.stderr)
+    if n_fail:
+        for r in results:
+            for c in r.checks:
+                if not c.passed:
+                    print(f"FAIL [{r.name}] {c.name}: {_fmt(c.value)} {c.comparison} {_fmt(c.tolerance)}",
+                          file=sys.stderr)
+    return 1 if (n_fail or crashed or not names) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
