@@ -57,23 +57,23 @@ _A_UNIT = (3.0 * np.pi / 4.0) ** (1.0 / 3.0)  # a* per Maugis A
 _D_UNIT = (9.0 * np.pi**2 / 16.0) ** (1.0 / 3.0)  # delta* per Maugis D
 _LOG_M_RANGE = (-40.0, 40.0)  # ln M searched; A(M) spans ~1e-17 .. 1e26 there for lambda in LAMBDA_RANGE
 _SERIES_M = 0.1
+#: pull-off scan in Maugis A (descending), refined in ln M; pull-off A <= 1.145 (JKR)
+_SCAN_A = np.geomspace(20.0, 1e-7, 110)
 _SERIES_TERMS = 14
 
 
 def _bracket_adhesion(mm):
     """M + (m^2 - 2) atan M, m^2 = 1 + M^2, without cancellation at small M."""
-    mm = np.asarray(mm, dtype=float)
     direct = mm + (mm * mm - 1.0) * np.arctan(mm)
     n = np.arange(1, _SERIES_TERMS + 1)
     coef = (-1.0) ** (n - 1) * 4.0 * n / (4.0 * n * n - 1.0)
-    ms = np.minimum(mm, _SERIES_M)
+    ms = np.where(np.real(mm) < _SERIES_M, mm, _SERIES_M)  # complex-safe (complex-step derivative)
     series = ms**3 * np.polyval(coef[::-1], ms * ms)  # sum coef_n M^(2n+1) = M^3 * poly(M^2)
-    return np.where(mm < _SERIES_M, series, direct)
+    return np.where(np.real(mm) < _SERIES_M, series, direct)
 
 
 def _bracket_zone(mm):
     """M atan M - m + 1, with m - 1 = M^2/(1 + m)."""
-    mm = np.asarray(mm, dtype=float)
     m = np.sqrt(1.0 + mm * mm)
     return mm * np.arctan(mm) - mm * mm / (1.0 + m)
 
@@ -148,7 +148,9 @@ def _pull_off_maugis(lam, control="load"):
     def f(t, lm):
         return _state_maugis(t, lm)[col]
 
-    t, _ = grid_minimum(f, _LOG_M_RANGE[0], _LOG_M_RANGE[1], args=(lam,), n=96, xatol=1e-12)
+    grid = _log_m_at(np.broadcast_to(_SCAN_A, lam.shape + _SCAN_A.shape), lam[..., None])
+    t, _ = grid_minimum(f, 0.0, 0.0, args=(lam,), xatol=1e-14, first=True, grid=grid,
+                        complex_step=True)
     a, p, d, m = _state_maugis(t, lam)
     # the curve ends at A = 0 (M -> infinity); compare with that end point exactly
     p0, d0 = _zero_contact(lam)
