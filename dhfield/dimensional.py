@@ -108,7 +108,7 @@ def load_curve_si(params: ContactParameters, semi_major=None, n=200):
     c = model.load_curve(params.mu, params.beta0, a_star, n=n)
     lu = params.length_unit
     return {
-        "semi_major": c.a_star * lu, "semi_minor": c.b_star * lu,
+        "semi_major": c.a_star * lu, "semi_minor": c.b_star * lu,  # Eq. (32)
         "adhesive_semi_major": c.c_star * lu, "adhesive_semi_minor": c.d_star * lu,
         "scaling": c.v, "load": c.W_star * params.load_unit,  # Eq. (34)
         "approach": c.delta_star * params.approach_unit,

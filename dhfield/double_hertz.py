@@ -164,7 +164,7 @@ def surface_displacement(x, y, semi_major, adhesive_semi_major, beta, scaling, e
     y = check_finite("y", y, "m")
     w_ab = hertz.surface_displacement(x, y, a, beta * a, hertz.max_pressure(a, beta, r, e), e)  # Eq. (13)
     w_cd = hertz.surface_displacement(x, y, c, beta * c, hertz.max_pressure(c, beta, r, e), e)  # Eq. (13) for cd
-    return w_ab + v * (w_ab - w_cd)  # Eq. (26)
+    return w_ab + v * (w_ab - w_cd)  # Eq. (21) scaled by v: Eq. (26)
 
 
 def gap(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):

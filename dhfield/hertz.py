@@ -177,7 +177,7 @@ def displacement_coefficients(x, y, semi_major, semi_minor, peak_pressure):
     l = ellipse_root(x, y, semi_major, semi_minor)
     i1, i2, i3 = ellipsoid_integrals(l, semi_major, semi_minor)
     pref = 0.5 * np.pi * peak_pressure * semi_major * semi_minor
-    return pref * i1, pref * i2, pref * i3  # Eqs. (B4)-(B6)
+    return pref * i1, pref * i2, pref * i3  # Eq. (14), Eq. (15) via Eqs. (B4)-(B6)
 
 
 def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_modulus=1.0):
@@ -200,7 +200,7 @@ def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_mo
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     big_l, m, n = displacement_coefficients(x, y, semi_major, semi_minor, peak_pressure)
-    return (big_l - m * x**2 - n * y**2) / (np.pi * reduced_modulus)  # Eq. (13)
+    return (big_l - m * x**2 - n * y**2) / (np.pi * reduced_modulus)  # Eq. (12) as Eq. (13)
 
 
 def surface_displacement_gradient(x, y, semi_major, semi_minor, peak_pressure, reduced_modulus=1.0):

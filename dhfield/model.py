@@ -59,7 +59,7 @@ _SCAN = np.geomspace(1e-3, 4.0, 48)
 
 @dataclass(frozen=True)
 class _Shape:
-    """Constants of one ellipse shape (R = E* = 1)."""
+    """Constants of one ellipse shape (R = E* = 1), shared by both ellipses (Eq. (17))."""
     beta: np.ndarray        # ellipticity of both ellipses
     kappa: np.ndarray       # Po_ab / a, Eq. (8)
     k_complete: np.ndarray  # K(k)
@@ -184,7 +184,7 @@ def _check_inputs(mu, beta0, ellipticity):
     mu = check_positive("mu", mu, "Tabor parameter, Eq. (35)")
     beta0 = check_ellipticity("beta0", beta0)
     if ellipticity is None:
-        ell = beta0
+        ell = beta0  # Eq. (9), Eq. (19): beta = beta_(pull-off) = beta0
     else:
         ell = check_ellipticity("ellipticity", ellipticity)
     return mu, beta0, ell
