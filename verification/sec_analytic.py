@@ -446,12 +446,12 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
     from dhfield.model import load_curve, pull_off
 
     cases = [(5.0, 0.8), (5.0, 0.9), (0.5, 0.8)]
-    fig, axes = plt.subplots(1, len(cases), figsize=(13, 4.6))
+    fig, axes = plt.subplots(1, len(cases), figsize=(14, 4.6))
     jkr_note = ""
     cmap = plt.get_cmap("viridis")
     for ax, (mu, beta0) in zip(axes, cases):
         po = pull_off(mu, beta0)
-        grid = np.linspace(max(float(po.a_star), 1e-3), 3.0, 400)
+        grid = np.linspace(max(float(po.a_star), 1e-3), 6.0, 600)
         cv = load_curve(mu, beta0, grid)
         a_init = float(np.interp(1.0, cv.W_star, cv.a_star))  # W* = 1 on the stable branch
         a_states = np.linspace(a_init, max(float(po.a_star), 1e-3), n_states)
@@ -459,7 +459,7 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
         t = np.linspace(0, 2 * np.pi, 361)
         for k in range(n_states):
             col = cmap(k / max(n_states - 1, 1))
-            lab = "pull-off" if k == n_states - 1 else ("initial, W* = 1" if k == 0 else None)
+            lab = "pull-off" if k == n_states - 1 else ("initial" if k == 0 else None)
             ax.plot(st.a_star[k] * np.cos(t), st.b_star[k] * np.sin(t), "-", color=col, lw=1.5,
                     label=f"contact ellipse ({lab})" if lab else None)
             ax.plot(st.c_star[k] * np.cos(t), st.d_star[k] * np.sin(t), "--", color=col, lw=1.1,
@@ -472,6 +472,10 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
         except Exception as exc:  # noqa: BLE001 - optional overlay
             jkr_note = f"{type(exc).__name__}: {exc}"
         ax.set_aspect("equal")
+        sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, max(n_states - 1, 1)))
+        cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.8, pad=0.02)
+        cb.ax.set_yticklabels([f"{w:.2f}" for w in st.W_star], fontsize=7)
+        cb.set_label("W* of the state", fontsize=8)
         ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}: W* from 1 to {float(po.W_star):.3f}", fontsize=9)
         ax.set_xlabel("x/c_r (major axis, θp = 0)")
         ax.set_ylabel("y/c_r")
@@ -611,7 +615,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     fig10, jkr_note = _fig_evolution(outdir, cfg["dpi"], "fig10_ellipse_evolution.png")
     cap10 = ("Reproduces paper Fig. 10: evolution of the contact ellipse (solid, semi-axes a*, b* = β0 a*, "
              "Eqs. 9, 17) and the adhesive ellipse (dashed, c*, d* = β0 c*, Eqs. 17, 19) from W* = 1 to the "
-             "load-controlled pull-off, colour from early (dark) to pull-off (yellow).")
+             "load-controlled pull-off; the colour bar gives W* (Eq. 34) of each state, from W* = 1 (dark) to pull-off (yellow).")
     if jkr_note:
         cap10 += (" The elliptical-JKR contact is omitted: dhfield.jkr_elliptic is not available "
                   f"({jkr_note}).")
