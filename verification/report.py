@@ -415,7 +415,7 @@ code,pre{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:.9em;backgr
 pre{padding:.6em;overflow-x:auto}
 dl.meta{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;font-size:.9em}
 dl.meta dt{font-weight:bold}dl.meta dd{margin:0}
-nav ul{columns:2}
+nav ul{padding-left:1.2em}
 .small{font-size:.85em;color:#555}
 """
 
