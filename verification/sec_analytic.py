@@ -422,21 +422,29 @@ def _fig_quadrature(scatter, outdir, dpi, fname, caption):
 
 
 def _jkr_elliptic_contacts(w_star, beta0):
-    """Elliptical-JKR contact semi-axes at loads W*, if the library provides them.
+    """Elliptical-JKR contact semi-axes (Johnson & Greenwood 2005) at the loads ``w_star``.
 
-    Returns (a*, b*) arrays or raises (ImportError or any API mismatch).
+    Loads below the elliptical-JKR pull-off are replaced by that pull-off, and the
+    last state is always the JKR pull-off.  Raises ImportError when
+    :mod:`dhfield.jkr_elliptic` does not exist.
+
+    Returns
+    -------
+    a_star, b_star, w_used : ndarray
     """
-    import importlib
+    from dhfield import jkr_elliptic
+    from dhfield.geometry import sin_skew_angle
 
-    mod = importlib.import_module("dhfield.jkr_elliptic")
-    for name in ("contact_axes", "contact_semi_axes", "contact_at_load"):
-        fn = getattr(mod, name, None)
-        if fn is not None:
-            res = fn(w_star, beta0)
-            a = np.asarray(getattr(res, "a_star", res[0]), float)
-            b = np.asarray(getattr(res, "b_star", res[1]), float)
-            return a, b
-    raise AttributeError("dhfield.jkr_elliptic has no contact_axes/contact_semi_axes/contact_at_load(W*, beta0)")
+    sn = sin_skew_angle(beta0)
+    po = jkr_elliptic.pull_off(1.0, 1.0, 1.0, beta0=beta0)  # R = E* = dgamma = 1: lengths are a*
+    grid = np.linspace(float(po.semi_major), 8.0, 800)  # stable branch: W* increases with a*
+    lc = jkr_elliptic.load_curve(grid, 1.0, 1.0, 1.0, beta0=beta0)
+    w_grid = np.asarray(lc.load) * sn / (2 * np.pi)  # Eq. (34)
+    w = np.maximum(np.asarray(w_star, float), w_grid[0])
+    w[-1] = w_grid[0]
+    a = np.interp(w, w_grid, grid)
+    b = np.interp(w, w_grid, np.asarray(lc.semi_minor))
+    return a, b, w
 
 
 def _fig_evolution(outdir, dpi, fname, n_states=5):
@@ -464,13 +472,16 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
                     label=f"contact ellipse ({lab})" if lab else None)
             ax.plot(st.c_star[k] * np.cos(t), st.d_star[k] * np.sin(t), "--", color=col, lw=1.1,
                     label=f"adhesive ellipse ({lab})" if lab else None)
-        try:
-            ja, jb = _jkr_elliptic_contacts(st.W_star, beta0)
-            for k in range(n_states):
-                ax.plot(ja[k] * np.cos(t), jb[k] * np.sin(t), ":", color="r", lw=1.0,
-                        label="elliptical JKR contact" if k == 0 else None)
-        except Exception as exc:  # noqa: BLE001 - optional overlay
-            jkr_note = f"{type(exc).__name__}: {exc}"
+        if mu >= 5.0:  # the JKR domain, as in the paper's Fig. 10
+            try:
+                ja, jb, jw = _jkr_elliptic_contacts(st.W_star, beta0)
+                for k in range(n_states):
+                    ax.plot(ja[k] * np.cos(t), jb[k] * np.sin(t), ":", color="r", lw=1.1,
+                            label="elliptical JKR contact (same loads; innermost: its pull-off)" if k == 0 else None)
+                ax.text(0.02, 0.98, f"JKR pull-off W* = {jw[-1]:.3f},\nb/a = {jb[-1] / ja[-1]:.3f}",
+                        transform=ax.transAxes, va="top", fontsize=7, color="r")
+            except Exception as exc:  # noqa: BLE001 - optional overlay
+                jkr_note = f"{type(exc).__name__}: {exc}"
         ax.set_aspect("equal")
         sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, max(n_states - 1, 1)))
         cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.8, pad=0.02)
@@ -481,7 +492,7 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
         ax.set_ylabel("y/c_r")
         ax.grid(alpha=0.3)
     handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
+    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8, frameon=False)
     fig.tight_layout(rect=(0, 0.07, 1, 1))
     return _save(fig, outdir / fname, dpi), jkr_note
 
@@ -620,7 +631,9 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         cap10 += (" The elliptical-JKR contact is omitted: dhfield.jkr_elliptic is not available "
                   f"({jkr_note}).")
     else:
-        cap10 += " Red dotted: elliptical-JKR contact at the same loads (dhfield.jkr_elliptic)."
+        cap10 += (" Red dotted (μ = 5 panels, the JKR domain): the elliptical-JKR contact of Johnson & Greenwood "
+                  "(2005) (dhfield.jkr_elliptic) at the same loads, the innermost at its own pull-off: it grows "
+                  "rounder towards pull-off (b/a rises from β0), whereas the DH ellipses keep β0 (Eqs. 17–19).")
     figures.append(Figure(fig10, cap10))
     figures.append(_fig_quadrature(
         scatter, outdir, cfg["dpi"], "displacement_vs_quadrature.png",
