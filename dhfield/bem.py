@@ -42,8 +42,10 @@ Conventions
   kernel spectrum given by ``REDFT00`` (DCT-I) of ``K[0..nx, 0..ny]``.  The
   result is the same discrete sum as the full grid.
 * **Pruning.**  The padded half of the input is zero and the padded half of the
-  output is discarded, so the row transforms are done only on the ``nx`` (or
-  ``nx/2``) rows that matter; the column transforms run over all rows.
+  output is discarded, so the row transforms (axis 1) are done only on the
+  ``nx`` (or ``nx/2``) rows that matter; the column transforms (axis 0) run in
+  place over all ``2nx`` (or ``nx``) rows, the padding rows being re-zeroed
+  before each forward column transform.
 
 Performance
 -----------
@@ -387,90 +389,74 @@ class HalfSpaceOperator:
             self._build_symmetric(kernel)
         else:
             self._build_full(kernel)
+        del kernel
         _save_wisdom()
 
     # -- construction ---------------------------------------------------------
     def _flags(self, *extra):
         return (self.planner_effort, *extra)
 
+    def _build(self, rows, cols, padded_rows, dtype, fwd_kind, bwd_kind):
+        """Plans and aligned work arrays shared by both modes.
+
+        Work arrays: ``_rin`` (rows x 2 cols real input, right half zero), ``_work``
+        (padded_rows x spectral columns, transformed in place; its lower half is
+        re-zeroed before each forward column transform) and ``_rout``.
+        """
+        thr = self.threads
+        spec_cols = self._spectrum.shape[1]
+        self._rin = pyfftw.empty_aligned((rows, 2 * cols), dtype="float64")
+        self._work = pyfftw.empty_aligned((padded_rows, spec_cols), dtype=dtype)
+        self._rout = pyfftw.empty_aligned((rows, 2 * cols), dtype="float64")
+        fk = {} if fwd_kind is None else {"direction": [fwd_kind]}
+        bk = {"direction": "FFTW_BACKWARD"} if bwd_kind is None else {"direction": [bwd_kind]}
+        self._plans = (
+            pyfftw.FFTW(self._rin, self._work[:rows], axes=(1,), flags=self._flags(), threads=thr, **fk),
+            pyfftw.FFTW(self._work, self._work, axes=(0,), flags=self._flags(), threads=thr, **fk),
+            pyfftw.FFTW(self._work, self._work, axes=(0,), flags=self._flags(), threads=thr, **bk),
+            pyfftw.FFTW(self._work[:rows], self._rout, axes=(1,), flags=self._flags("FFTW_DESTROY_INPUT"),
+                        threads=thr, **bk),
+        )
+        # planning may scribble on the arrays: the right half of _rin must stay zero
+        self._rin[...] = 0.0
+        self._rows = rows
+
     def _build_full(self, kernel):
         nx, ny = self.grid.shape
-        thr = self.threads
         self.input_shape = (nx, ny)
-        self._rin = pyfftw.empty_aligned((nx, 2 * ny), dtype="float64")
-        self._a = pyfftw.empty_aligned((2 * nx, ny + 1), dtype="complex128")
-        self._b = pyfftw.empty_aligned((2 * nx, ny + 1), dtype="complex128")
-        self._rout = pyfftw.empty_aligned((nx, 2 * ny), dtype="float64")
-        self._plans = (
-            pyfftw.FFTW(self._rin, self._a[:nx], axes=(1,), flags=self._flags(), threads=thr),
-            pyfftw.FFTW(self._a, self._b, axes=(0,), flags=self._flags(), threads=thr),
-            pyfftw.FFTW(self._b, self._b, axes=(0,), direction="FFTW_BACKWARD",
-                        flags=self._flags(), threads=thr),
-            pyfftw.FFTW(self._b[:nx], self._rout, axes=(1,), direction="FFTW_BACKWARD",
-                        flags=self._flags("FFTW_DESTROY_INPUT"), threads=thr),
-        )
-        # planning may scribble on the arrays: zero the permanently-zero padding now
-        self._rin[...] = 0.0
-        self._a[...] = 0.0
-        # wrap-around kernel on the 2nx x 2ny grid; K[nx, :] = K[:, ny] = 0 (unused offsets)
-        kx = np.concatenate([kernel, kernel[-2:0:-1]], axis=0)
-        kxy = np.concatenate([kx, kx[:, -2:0:-1]], axis=1)
-        spec = scipy.fft.rfft2(kxy, workers=thr)
-        # the wrap-around kernel is even, so its spectrum is real; fold in 1/(4 nx ny)
-        self._spectrum = pyfftw.empty_aligned(spec.shape, dtype="float64")
-        self._spectrum[...] = spec.real / (4.0 * nx * ny)
-        self._run = self._run_full
+        # The wrap-around kernel on the 2nx x 2ny grid is even (offset -i at index 2nx - i,
+        # K[nx, :] = K[:, ny] = 0), so its DFT is real and equals the DCT-I (REDFT00) of
+        # K[0..nx, 0..ny]: S[k, l] = D[min(k, 2nx - k), l] for the rfft layout (2nx, ny + 1).
+        d = scipy.fft.dctn(kernel, type=1, workers=self.threads)
+        self._spectrum = pyfftw.empty_aligned((2 * nx, ny + 1), dtype="float64")
+        scale = 1.0 / (4.0 * nx * ny)  # inverse-DFT normalisation folded in
+        np.multiply(d, scale, out=self._spectrum[: nx + 1])
+        np.multiply(d[nx - 1:0:-1], scale, out=self._spectrum[nx + 1:])
+        self._build(nx, ny, 2 * nx, "complex128", None, None)
 
     def _build_symmetric(self, kernel):
         nx, ny = self.grid.shape
         mx, my = nx // 2, ny // 2
-        thr = self.threads
         self.input_shape = (mx, my)
-        self._rin = pyfftw.empty_aligned((mx, ny), dtype="float64")
-        self._a = pyfftw.empty_aligned((nx, ny), dtype="float64")
-        self._b = pyfftw.empty_aligned((nx, ny), dtype="float64")
-        self._rout = pyfftw.empty_aligned((mx, ny), dtype="float64")
-        self._plans = (
-            pyfftw.FFTW(self._rin, self._a[:mx], axes=(1,), direction=["FFTW_REDFT10"],
-                        flags=self._flags(), threads=thr),
-            pyfftw.FFTW(self._a, self._b, axes=(0,), direction=["FFTW_REDFT10"],
-                        flags=self._flags(), threads=thr),
-            pyfftw.FFTW(self._b, self._b, axes=(0,), direction=["FFTW_REDFT01"],
-                        flags=self._flags(), threads=thr),
-            pyfftw.FFTW(self._b[:mx], self._rout, axes=(1,), direction=["FFTW_REDFT01"],
-                        flags=self._flags("FFTW_DESTROY_INPUT"), threads=thr),
-        )
-        self._rin[...] = 0.0
-        self._a[...] = 0.0
         # REDFT00 (DCT-I) of K[0..nx, 0..ny] is the (real) DFT of the even kernel of period 2nx, 2ny;
         # REDFT10 followed by REDFT01 multiplies by (2 nx)(2 ny): fold it in.
-        spec = scipy.fft.dctn(kernel, type=1, workers=thr)[:nx, :ny]
-        self._spectrum = pyfftw.empty_aligned(spec.shape, dtype="float64")
-        self._spectrum[...] = spec / (4.0 * nx * ny)
-        self._run = self._run_symmetric
+        d = scipy.fft.dctn(kernel, type=1, workers=self.threads)
+        self._spectrum = pyfftw.empty_aligned((nx, ny), dtype="float64")
+        np.multiply(d[:nx, :ny], 1.0 / (4.0 * nx * ny), out=self._spectrum)
+        self._build(mx, my, nx, "float64", "FFTW_REDFT10", "FFTW_REDFT01")
 
     # -- evaluation -----------------------------------------------------------
-    def _run_full(self, p, out):
-        nx, ny = self.input_shape
+    def _run(self, p, out):
+        rows, cols = self.input_shape
         f_row, f_col, b_col, b_row = self._plans
-        self._rin[:, :ny] = p
-        f_row.execute()
-        f_col.execute()
-        np.multiply(self._b, self._spectrum, out=self._b)
-        b_col.execute()
-        b_row.execute()
-        out[...] = self._rout[:, :ny]
-
-    def _run_symmetric(self, p, out):
-        mx, my = self.input_shape
-        f_row, f_col, b_col, b_row = self._plans
-        self._rin[:, :my] = p
-        f_row.execute()
-        f_col.execute()
-        np.multiply(self._b, self._spectrum, out=self._b)
-        b_col.execute()
-        b_row.execute()
-        out[...] = self._rout[:, :my]
+        self._rin[:, :cols] = p
+        f_row.execute()                      # rows of the (unpadded) input only
+        self._work[rows:] = 0.0              # the zero padding, overwritten by the last call
+        f_col.execute()                      # in place, all rows
+        np.multiply(self._work, self._spectrum, out=self._work)
+        b_col.execute()                      # in place, all rows
+        b_row.execute()                      # only the rows that are kept
+        out[...] = self._rout[:, :cols]
 
     def __call__(self, pressure, out=None) -> np.ndarray:
         """Surface displacement at the cell centres [m].

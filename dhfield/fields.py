@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
-from . import bem, double_hertz, hertz
+from . import bem, double_hertz, hertz, model
 from ._validation import check_ellipticity, check_finite, check_positive
 
 __all__ = [
@@ -63,6 +63,8 @@ __all__ = [
     "hertz_case",
     "dh_case",
     "annulus_identity",
+    "adhesive_state",
+    "model_case",
 ]
 
 SAMPLINGS = ("average", "centre")
@@ -475,3 +477,41 @@ def annulus_identity(case: FieldCase, n_theta=91, n_r=64):
     scale = float(np.max(np.abs(h_ref)))
     return {"theta_p": theta, "max_error": err, "rel_error": err / scale, "worst": float(np.max(err / scale)),
             "scale": scale}
+
+
+def adhesive_state(a_star, mu, beta0):
+    """Nondimensional DH state ``(c*, v)`` at contact size ``a*`` (Eqs. 24, 31, 35).
+
+    A scalar wrapper of :func:`dhfield.model.solve_adhesive_axis`.
+
+    Parameters
+    ----------
+    a_star : float
+        Contact semi-major axis a/c_r [-].
+    mu : float
+        Tabor parameter, Eq. (35) [-].
+    beta0 : float
+        Ellipticity of both ellipses (Eqs. 17-19) [-].
+
+    Returns
+    -------
+    c_star, v : float
+        Adhesive semi-major axis c/c_r [-] and scaling factor [-].
+    """
+    c, v = model.solve_adhesive_axis(np.atleast_1d(np.asarray(a_star, dtype=float)), mu, beta0)
+    return float(np.ravel(c)[0]), float(np.ravel(v)[0])
+
+
+def model_case(n, beta0, mu, a_star, *, half_width=None, sampling="average", symmetric=True,
+               threads=None) -> FieldCase:
+    """The nondimensional DH case (R = E* = Delta gamma = 1) of :func:`dhfield.model` on the grid.
+
+    Solves for ``c*`` and ``v`` (:func:`adhesive_state`) and returns :func:`dh_case`
+    with ``beta0``, ``mu``, ``a_star`` recorded in the parameters.
+    """
+    c, v = adhesive_state(a_star, mu, beta0)
+    return dh_case(n, float(a_star), c, float(beta0), v, half_width=half_width, sampling=sampling,
+                   symmetric=symmetric, threads=threads,
+                   extra_parameters=dict(beta0=float(beta0), mu=float(mu), a_star=float(a_star),
+                                         c_star=c, units="nondimensional: lengths in c_r = (R^2 dgamma/E*)^(1/3), "
+                                               "pressures in E* c_r/R (Eqs. 32-35)"))
