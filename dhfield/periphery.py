@@ -588,7 +588,9 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
     h_ab = spline.ev(xa, ya) + trend(xa, ya)
     h_cd = spline.ev(xc, yc) + trend(xc, yc)
     # d sigma/dt = -B (dr^2/dl)(dl/dt) / (2 r_cd^2 sqrt(q)); sqrt(q) ~ cos t cancels dl/dt's cos t
-    dsigma_dt = -amp_b * dr2_dl * dl_dt / (2.0 * r_cd[:, None] ** 2 * np.sqrt(q))
+    with np.errstate(divide="ignore"):  # weightless nodes of zero-width panels sit at q = 0
+        inv_sq = np.where(q > 0, 1.0 / np.sqrt(q), 0.0)
+    dsigma_dt = -amp_b * dr2_dl * dl_dt * inv_sq / (2.0 * r_cd[:, None] ** 2)
 
     def by_parts(h_nodes, h_inner):
         # int sigma dh = [sigma h] - int h d sigma, sigma(r_cd) = 0
