@@ -182,7 +182,8 @@ def _state_u(u, beta0, rho_m1, sin_skew):
         load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # W = 2 pi a b [alpha0 + (alpha1+alpha2)/3]
         delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)
     return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,
-            "delta_star": delta, "beta": beta}  # Eq. (34)
+            "delta_star": delta, "beta": beta,  # Eq. (34)
+            "alpha": (al0, al1, al2)}
 
 
 def _circle(a_star, sin_skew=1.0):
@@ -235,6 +236,7 @@ def _curve(a_star, beta0):
             out[k] = np.array(out[k], dtype=float)
             out[k][sel] = st[k]
         out["a_star"][sel] = a_star[sel]
+        out["b_star"][sel] = st["beta"] * a_star[sel]
     return out
 
 
