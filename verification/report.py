@@ -2,7 +2,7 @@
 
 Usage::
 
-    python -m verification.report [--out out] [--quick] [--sections a,b] [--no-progress]
+    python -m verification.report [--out out] [--quick] [--sections a,b] [--no-progress] [--jobs N]
 
 The builder
 
@@ -126,7 +126,64 @@ def _validate_section(name, sec):
     return problems
 
 
-def run_sections(out: Path, names, quick: bool, progress: Callable[[str], None]):
+def _run_one(name: str, i: int, total: int, outdir: Path, quick: bool, progress: Callable[[str], None]):
+    """Import and run one section; a failure becomes a failed Section, never an exception."""
+    outdir.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+
+    def sec_progress(msg):
+        progress(f"[{i}/{total}] {name}: {msg} ({time.perf_counter() - t0:.1f} s)")
+
+    sec_progress("start")
+    crashed, error = False, ""
+    try:
+        module = importlib.import_module(f"verification.sec_{name}")
+    except BaseException as exc:  # noqa: BLE001 - a broken section must not stop the report
+        if isinstance(exc, KeyboardInterrupt):
+            raise
+        crashed, error = True, f"import of verification.sec_{name} failed: {exc!r}"
+        sec = _failed_section(name, f"{name} (import failed)", error, traceback.format_exc())
+    else:
+        try:
+            sec = module.run(outdir, quick, sec_progress)
+            problems = _validate_section(name, sec)
+            if problems and not isinstance(sec, Section):
+                crashed, error = True, problems[0]
+                sec = _failed_section(name, name, error, "")
+            elif problems:
+                sec.checks.append(Check(f"section '{name}' follows the report contract",
+                                        float(len(problems)), 0.0, False,
+                                        "; ".join(problems)[:500], "<="))
+        except BaseException as exc:  # noqa: BLE001
+            if isinstance(exc, KeyboardInterrupt):
+                raise
+            crashed, error = True, f"run() raised {exc!r}"
+            sec = _failed_section(name, f"{name} (crashed)", error, traceback.format_exc())
+    dt = time.perf_counter() - t0
+    n_fail = sum(not c.passed for c in sec.checks)
+    sec_progress(f"done: {len(sec.checks)} checks, {n_fail} failed, {len(sec.figures)} figures"
+                 + (f" -- {error}" if error else ""))
+    return SectionResult(name, sec, dt, outdir, crashed, error, list(sec.checks))
+
+
+def _stderr_progress(line):
+    print(line, file=sys.stderr, flush=True)
+
+
+def _silent_progress(line):
+    pass
+
+
+def _run_one_in_worker(name, i, total, outdir, quick, show_progress):
+    """Entry point of a worker process (picklable arguments only)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    return _run_one(name, i, total, outdir, quick, _stderr_progress if show_progress else _silent_progress)
+
+
+def run_sections(out: Path, names, quick: bool, progress: Callable[[str], None], jobs: int = 1,
+                 show_progress: bool = True):
     """Import and run each section; never raises for a section's failure.
 
     Parameters
@@ -138,53 +195,39 @@ def run_sections(out: Path, names, quick: bool, progress: Callable[[str], None])
     quick : bool
         Passed to every section's ``run``.
     progress : callable
-        ``progress(line)`` prints one progress line.
+        ``progress(line)`` prints one progress line (used when ``jobs == 1``).
+    jobs : int
+        Number of sections run at the same time, each in its own process
+        (``jobs > 1``); results keep the order of ``names``.
+    show_progress : bool
+        Whether worker processes print progress lines to stderr (``jobs > 1``).
 
     Returns
     -------
     list of SectionResult
     """
-    results = []
     total = len(names)
-    for i, name in enumerate(names, 1):
-        outdir = out / name
-        outdir.mkdir(parents=True, exist_ok=True)
-        t0 = time.perf_counter()
+    if jobs <= 1 or total <= 1:
+        return [_run_one(name, i, total, out / name, quick, progress) for i, name in enumerate(names, 1)]
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
-        def sec_progress(msg, _i=i, _name=name, _t0=t0):
-            progress(f"[{_i}/{total}] {_name}: {msg} ({time.perf_counter() - _t0:.1f} s)")
+    ctx = multiprocessing.get_context("spawn")
 
-        sec_progress("start")
-        crashed, error = False, ""
+    def isolated(i, name):
+        # one process per section: a worker that dies (signal, os._exit) only fails its own section
         try:
-            module = importlib.import_module(f"verification.sec_{name}")
-        except BaseException as exc:  # noqa: BLE001 - a broken section must not stop the report
-            if isinstance(exc, KeyboardInterrupt):
-                raise
-            crashed, error = True, f"import of verification.sec_{name} failed: {exc!r}"
-            sec = _failed_section(name, f"{name} (import failed)", error, traceback.format_exc())
-        else:
-            try:
-                sec = module.run(outdir, quick, sec_progress)
-                problems = _validate_section(name, sec)
-                if problems and not isinstance(sec, Section):
-                    crashed, error = True, problems[0]
-                    sec = _failed_section(name, name, error, "")
-                elif problems:
-                    sec.checks.append(Check(f"section '{name}' follows the report contract",
-                                            float(len(problems)), 0.0, False,
-                                            "; ".join(problems)[:500], "<="))
-            except BaseException as exc:  # noqa: BLE001
-                if isinstance(exc, KeyboardInterrupt):
-                    raise
-                crashed, error = True, f"run() raised {exc!r}"
-                sec = _failed_section(name, f"{name} (crashed)", error, traceback.format_exc())
-        dt = time.perf_counter() - t0
-        n_fail = sum(not c.passed for c in sec.checks)
-        sec_progress(f"done: {len(sec.checks)} checks, {n_fail} failed, {len(sec.figures)} figures"
-                     + (f" -- {error}" if error else ""))
-        results.append(SectionResult(name, sec, dt, outdir, crashed, error, list(sec.checks)))
-    return results
+            with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
+                return pool.submit(_run_one_in_worker, name, i, total, out / name, quick, show_progress).result()
+        except Exception as exc:  # noqa: BLE001
+            error = f"worker process failed: {exc!r}"
+            sec = _failed_section(name, f"{name} (crashed)", error, traceback.format_exc())
+            return SectionResult(name, sec, float("nan"), out / name, True, error, list(sec.checks))
+
+    with ThreadPoolExecutor(max_workers=min(jobs, total)) as threads:
+        futures = [threads.submit(isolated, i, name) for i, name in enumerate(names, 1)]
+        results = {name: fut.result() for name, fut in zip(names, futures)}
+    return [results[name] for name in names]
 
 
 # --------------------------------------------------------------------------- cleaning
@@ -578,6 +621,8 @@ def _parser():
     p.add_argument("--sections", default="",
                    help=f"comma-separated subset of {','.join(SECTION_ORDER)} (default: all that exist)")
     p.add_argument("--no-progress", action="store_true", help="do not print progress lines to stderr")
+    p.add_argument("--jobs", type=int, default=1,
+                   help="run up to this many sections at the same time, each in its own process (default 1)")
     return p
 
 
@@ -585,6 +630,9 @@ def main(argv=None) -> int:
     """Build the report; return the exit status (0 all pass, 1 any failure, 2 bad usage)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     args = _parser().parse_args(argv)
+    if args.jobs < 1:
+        print(f"error: --jobs must be an integer >= 1; got {args.jobs}", file=sys.stderr)
+        return 2
     try:
         requested = [s.strip() for s in args.sections.split(",") if s.strip()] or None
         names = _available_sections(requested)
@@ -608,7 +656,7 @@ def main(argv=None) -> int:
     progress(f"dhfield report: {len(names)} sections ({', '.join(names) or 'none'}), "
              f"{'quick' if args.quick else 'default'} mode, output in {out}/")
     meta = collect_metadata(argv, args.quick)
-    results = run_sections(out, names, args.quick, progress)
+    results = run_sections(out, names, args.quick, progress, jobs=args.jobs, show_progress=not args.no_progress)
     total = time.perf_counter() - t0
     _write_text_atomic(out / "report.html", render_html(results, meta, out, total))
     _write_text_atomic(out / "summary.md", render_summary(results, meta, out, total))
