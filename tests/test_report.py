@@ -253,3 +253,28 @@ def test_report_opens_in_headless_chromium(quick_report, chromium, tmp_path):
     total, broken = int(m.group(1)), int(m.group(2))
     assert total == len(_images(text)) > 0
     assert broken == 0, f"{broken} of {total} images are broken in Chromium"
+
+
+def test_parallel_sections_isolate_a_dying_worker(tmp_path):
+    """--jobs 2: sections run in their own processes; one that dies or fails to import fails alone."""
+    pkg = tmp_path / "verification"
+    pkg.mkdir()
+    for name in ("__init__.py", "_api.py", "report.py"):
+        shutil.copy(ROOT / "verification" / name, pkg / name)
+    (pkg / "sec_models.py").write_text(
+        "from verification._api import Section, check_le\n"
+        "def run(outdir, quick, progress):\n"
+        "    progress('working')\n"
+        "    return Section('fake models', checks=[check_le('fine', 0.0, 1.0, 'test')])\n")
+    (pkg / "sec_fields.py").write_text("import os\ndef run(outdir, quick, progress):\n    os._exit(3)\n")
+    (pkg / "sec_periphery.py").write_text("raise ImportError('broken on purpose')\n")
+    proc = subprocess.run([sys.executable, "-m", "verification.report", "--out", str(tmp_path / "out"),
+                           "--sections", "models,fields,periphery", "--jobs", "2"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=REPORT_TIMEOUT_S,
+                          env=dict(os.environ, MPLBACKEND="Agg"))
+    assert proc.returncode == 1, proc.stderr[-2000:]
+    data = json.loads((tmp_path / "out" / "checks.json").read_text())
+    verdicts = {c["section"]: c["passed"] for c in data["checks"]}
+    assert verdicts == {"models": True, "fields": False, "periphery": False}
+    assert [s["name"] for s in data["sections"]] == ["models", "fields", "periphery"]
+    assert "[1/3] models: working" in proc.stderr

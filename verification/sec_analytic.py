@@ -316,7 +316,7 @@ def _fig_axes_vs_load(curves_by, pulloffs, outdir, dpi, which, fname, caption, j
     ax.set_xlabel("normalised load W* = W sinθ_skew / (2πRΔγ)  (Eq. 34)")
     ax.set_ylabel("contact semi-major axis a*" if which == "a" else "adhesive semi-major axis c*")
     ax.set_xlim(-1.2, 2.6)
-    ax.set_ylim(0, 2.5 if which == "a" else 4.6)
+    ax.set_ylim(0, 3.1 if which == "a" else 4.6)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper left" if which == "a" else "upper right")
     ax.set_title(("Fig. 4: a* vs W*" if which == "a" else "Fig. 5: c* vs W*") + f", β0 = {BETA_FIG45}")
@@ -664,7 +664,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     jkr_curve = None
     try:
         from dhfield import jkr
-        a_j = np.linspace(1e-3, 2.4, 300)
+        a_j = np.linspace(1e-3, 3.0, 300)
         lc = jkr.load_curve(a_j, 1.0, 1.0, 1.0)  # R = E* = dgamma = 1: W* = W/(2 pi)
         jkr_curve = (np.asarray(lc.load) / (2 * np.pi), a_j)
     except Exception:  # noqa: BLE001 - optional overlay
