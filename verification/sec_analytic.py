@@ -312,7 +312,7 @@ def _fig_axes_vs_load(curves_by, pulloffs, outdir, dpi, which, fname, caption, j
         ax.plot(po.W_star, po.a_star if which == "a" else po.c_star, "o" if ls == "-" else "s",
                 color=col, mfc="none" if ls == "--" else col, ms=5)
     if jkr is not None and which == "a":
-        ax.plot(jkr[0], jkr[1], ":", color="0.3", lw=1.6, label="JKR circular")
+        ax.plot(jkr[0], jkr[1], ":", color="k", lw=1.8, label="JKR circular", zorder=5)
     ax.set_xlabel("normalised load W* = W sinθ_skew / (2πRΔγ)  (Eq. 34)")
     ax.set_ylabel("contact semi-major axis a*" if which == "a" else "adhesive semi-major axis c*")
     ax.set_xlim(-1.2, 2.6)
@@ -674,7 +674,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         "Reproduces paper Fig. 4: contact semi-major axis a* against W* (Eq. 34) for μ ∈ {0.5, 1, 5} at "
         "β0 = 0.99 (solid) and the circular DH model β0 = 1 (dashed), from the solve of Eqs. (24), (31), (35) "
         "and the load Eq. (36). Markers: load-controlled pull-off." +
-        (" Dotted: JKR circular (dhfield.jkr)." if jkr_curve is not None else "")))
+        (" Dotted: JKR circular (dhfield.jkr), close to μ = 5 as in the paper." if jkr_curve is not None
+                                                        else ""), jkr=jkr_curve))
     figures.append(_fig_axes_vs_load(
         curves_by, pulloffs, outdir, cfg["dpi"], "c", "fig05_adhesive_axis_vs_load.png",
         "Reproduces paper Fig. 5: adhesive semi-major axis c* against W* (Eq. 34) for μ ∈ {0.5, 1, 5} at "
