@@ -76,6 +76,7 @@ __all__ = [
     "annulus_identity",
     "adhesive_state",
     "model_case",
+    "analytic_fields",
 ]
 
 SAMPLINGS = ("average", "centre")
@@ -531,3 +532,25 @@ def model_case(n, beta0, mu, a_star, *, half_width=None, sampling="average", sym
                    extra_parameters=dict(beta0=float(beta0), mu=float(mu), a_star=float(a_star),
                                          c_star=c, units="nondimensional: lengths in c_r = (R^2 dgamma/E*)^(1/3), "
                                                "pressures in E* c_r/R (Eqs. 32-35)"))
+
+
+def analytic_fields(case: FieldCase, x, y) -> dict:
+    """Analytic pressure, displacement and gap of ``case`` at arbitrary points.
+
+    Returns ``{"pressure": ..., "displacement": ..., "gap": ...}`` (Eqs. 7/22,
+    13/26, 27) evaluated with the case's parameters [Pa], [m], [m].
+    """
+    prm = case.parameters
+    a, beta = prm["semi_major"], prm["beta"]
+    r, e = prm["effective_radius"], prm["reduced_modulus"]
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    if prm["model"] == "hertz":
+        po = hertz.max_pressure(a, beta, r, e)  # Eq. (8)
+        return {"pressure": hertz.pressure(x, y, a, beta * a, po),  # Eq. (7)
+                "displacement": hertz.surface_displacement(x, y, a, beta * a, po, e),  # Eq. (13)
+                "gap": hertz.gap(x, y, a, beta, r, e)}
+    c, v = prm["adhesive_semi_major"], prm["scaling"]
+    return {"pressure": double_hertz.pressure(x, y, a, c, beta, v, r, e),  # Eq. (22)
+            "displacement": double_hertz.surface_displacement(x, y, a, c, beta, v, r, e),  # Eq. (26)
+            "gap": double_hertz.gap(x, y, a, c, beta, v, r, e)}  # Eq. (27)

@@ -1,0 +1,149 @@
+"""Tests of the netCDF output of a field case (dhfield.io.field) and the ``field`` CLI."""
+from __future__ import annotations
+
+import os
+import pickle
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+from dhfield import PAPER_DOI, fields
+from dhfield.io import read_netcdf
+from dhfield.io.field import FIELD_VARIABLES, compute_and_write_case, field_dataset, write_field
+
+CASE = dict(beta0=0.9, mu=1.0, a_star=1.2)
+N = 32
+
+_READER = textwrap.dedent("""
+    import pickle, sys
+    from dhfield.io import read_netcdf
+    ds = read_netcdf(sys.argv[1])
+    out = {"attrs": dict(ds.attrs),
+           "vars": {k: (v.dims, v.values, dict(v.attrs)) for k, v in ds.variables.items()}}
+    with open(sys.argv[2], "wb") as fh:
+        pickle.dump(out, fh)
+""")
+
+
+@pytest.fixture(scope="module")
+def case():
+    return fields.model_case(N, **CASE)
+
+
+def _same(a, b) -> bool:
+    a, b = np.asarray(a), np.asarray(b)
+    if a.dtype.kind in "fc":
+        return a.shape == b.shape and np.array_equal(a, b, equal_nan=True)
+    return a.shape == b.shape and np.array_equal(a, b)
+
+
+def test_round_trip_in_a_fresh_process(case, tmp_path):
+    ds = field_dataset(case)
+    path = write_field(case, tmp_path / "case.nc")
+    dump = tmp_path / "dump.pickle"
+    res = subprocess.run([sys.executable, "-c", _READER, str(path), str(dump)], capture_output=True, text=True,
+                         timeout=120, env=dict(os.environ))
+    assert res.returncode == 0, res.stderr
+    with open(dump, "rb") as fh:
+        back = pickle.load(fh)
+    # every variable and coordinate: identical values, dims and attributes
+    assert set(back["vars"]) == set(ds.variables)
+    for name, var in ds.variables.items():
+        dims, values, attrs = back["vars"][name]
+        assert dims == var.dims, name
+        assert _same(values, var.values), name
+        assert set(attrs) == set(var.attrs), name
+        for k, v in var.attrs.items():
+            assert _same(attrs[k], v), (name, k)
+    # global attributes (history timestamp included)
+    written = field_dataset.__module__  # noqa: F841 - keep the import used
+    on_disk = read_netcdf(path).attrs
+    assert set(back["attrs"]) == set(on_disk)
+    for k in on_disk:
+        assert _same(back["attrs"][k], on_disk[k]), k
+    for k, v in ds.attrs.items():
+        if k != "history":
+            assert _same(back["attrs"][k], v), k
+
+
+def test_cf_metadata_and_every_parameter(case):
+    ds = field_dataset(case)
+    for name in ds.variables:
+        if name == "region":
+            assert "flag_meanings" in ds[name].attrs
+            continue
+        assert ds[name].attrs.get("units") is not None, name
+        assert ds[name].attrs.get("long_name"), name
+    for name in FIELD_VARIABLES:
+        assert ds[name].dims == ("x", "y")
+    assert ds.attrs["Conventions"].startswith("CF-")
+    assert ds.attrs["source"].startswith("dhfield ")
+    assert PAPER_DOI in ds.attrs["references"]
+    assert "created by dhfield" in ds.attrs["history"]
+    for key, value in dict(CASE, n=N, sampling="average", adhesive_semi_major=case.parameters["adhesive_semi_major"],
+                           scaling=case.parameters["scaling"], half_width=case.parameters["half_width"]).items():
+        assert ds.attrs[f"param_{key}"] == value, key
+    assert ds.attrs["param_length_scale"].startswith("c_r")
+    # nondimensional case: lengths in units of c_r
+    assert ds["x"].attrs["units"] == "1"
+    # differences are analytic minus numerical
+    assert np.array_equal(ds["gap_difference"].values, case.gap_analytic - case.gap_numerical)
+
+
+def test_polar_variables_match_the_cartesian_ones(case):
+    ds = field_dataset(case, n_r=41, n_theta=19)
+    assert ds["gap_numerical_polar"].dims == ("r", "theta_p")
+    assert ds["theta_p"].values[-1] == pytest.approx(np.pi / 2)
+    # analytic and numerical gaps agree to the discretisation error on the polar grid too
+    scale = np.abs(case.displacement_analytic).max()
+    assert np.nanmax(np.abs(ds["gap_difference_polar"].values)) <= 0.02 * scale
+
+
+def test_compute_and_write_case(tmp_path):
+    out = compute_and_write_case(CASE["beta0"], CASE["mu"], CASE["a_star"], 16, tmp_path / "c.nc", polar=False)
+    ds = read_netcdf(out)
+    assert ds.sizes["x"] == 16 and "gap_numerical_polar" not in ds
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.nc"]
+
+
+def test_bad_output_paths_leave_nothing_behind(tmp_path):
+    before = sorted(tmp_path.iterdir())
+    with pytest.raises(ValueError, match="output path"):
+        compute_and_write_case(0.9, 1.0, 1.2, 16, tmp_path / "missing" / "c.nc")
+    with pytest.raises(ValueError, match="output path"):
+        compute_and_write_case(0.9, 1.0, 1.2, 16, tmp_path)
+    blocker = tmp_path / "file"
+    blocker.write_text("keep")
+    with pytest.raises(ValueError, match="output path"):
+        compute_and_write_case(0.9, 1.0, 1.2, 16, blocker / "c.nc")
+    assert sorted(tmp_path.iterdir()) == sorted(before + [blocker])
+
+
+def test_bad_parameters_do_not_clobber_an_existing_file(tmp_path):
+    target = tmp_path / "c.nc"
+    target.write_bytes(b"old")
+    for kwargs, name in [(dict(beta0=1.5), "beta0"), (dict(mu=-1.0), "mu"), (dict(a_star=0.0), "a_star"),
+                         (dict(n=7), "n")]:
+        args = dict(CASE, n=16)
+        args.update(kwargs)
+        with pytest.raises(ValueError, match=name):
+            compute_and_write_case(args["beta0"], args["mu"], args["a_star"], args["n"], target)
+    assert target.read_bytes() == b"old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.nc"]
+
+
+def test_cli_field(tmp_path, capsys):
+    cli = pytest.importorskip("dhfield.cli")
+    os.chdir(tmp_path)
+    status = cli.main(["field", "--beta0", "0.9", "--mu", "1", "--a-star", "1.2", "--n", "16", "--out", "case.nc"])
+    assert status == 0
+    assert "wrote case.nc" in capsys.readouterr().out
+    ds = read_netcdf(tmp_path / "case.nc")
+    assert ds.attrs["param_beta0"] == 0.9 and ds.sizes["x"] == 16
+    status = cli.main(["field", "--beta0", "0.9", "--mu", "1", "--a-star", "1.2", "--n", "4", "--out", "bad.nc"])
+    assert status == 2
+    assert "n must be an integer >= 8" in capsys.readouterr().err
+    assert not (tmp_path / "bad.nc").exists()
