@@ -1,0 +1,575 @@
+"""The equal-beta test and alternative closures of the elliptical DH model.
+
+The paper closes the model with two assumptions: both ellipses share one fixed
+ellipticity (Eqs. 17-19), and the work of adhesion is imposed on the major axis
+only (Eq. 31).  With equal ellipticity the maximum adhesive stress is the same on
+every ray, but the work of adhesion along a ray, Delta gamma(theta_p), is not
+(:mod:`dhfield.periphery`): the fields do not realise one cohesive law.
+
+This module
+
+* quantifies the spread across theta_p of Delta gamma and of the sigma-h curves,
+  as a function of beta0 and mu (:func:`equal_beta_spread`, :func:`law_spread`);
+* implements two alternative closures and their pull-off points:
+
+  - **ray average** (:func:`solve_ray_average`, :func:`pull_off_ray_average`):
+    equal ellipticity as in the paper, but Delta gamma = 1 imposed on the
+    periphery average (weights r_ab^2 d theta_p by default, see
+    :func:`dhfield.periphery.ray_average`) instead of on theta_p = 0;
+  - **two axes** (:func:`solve_two_axis`, :func:`pull_off_two_axis`): Delta
+    gamma = 1 on both axes, theta_p = 0 and pi/2, with beta_cd != beta_ab and the
+    contact condition kept exactly.
+
+Two-axis closure: what the contact condition requires
+-------------------------------------------------------
+The pressure is p = A S_ab - B S_cd, S the unit semi-ellipsoids on the contact
+ellipse (a, b) and the adhesive ellipse (c, d).  Inside the contact ellipse each
+S gives a displacement L - M x^2 - N y^2 (Eqs. 13-14, B4-B6), so h = 0 there
+(h = z - delta + omega, Eq. 27) holds for all x, y iff the curvatures match
+Eq. (2):
+
+.. math::
+
+    A\\,ab\\,I_2^{ab}(0) - B\\,cd\\,I_2^{cd}(0) = E^*/R', \\qquad
+    A\\,ab\\,I_3^{ab}(0) - B\\,cd\\,I_3^{cd}(0) = E^*/R'',
+
+and delta = (A ab I1_ab(0) - B cd I1_cd(0))/(2E*).  A single Hertz field has
+I3/I2 = rho(beta), the curvature ratio of its own ellipticity (Eqs. 8, 14), so the
+two conditions say
+
+.. math::
+
+    A\\,ab\\,I_2^{ab}\\,[\\rho(\\beta_{ab}) - \\rho_0] = B\\,cd\\,I_2^{cd}\\,[\\rho(\\beta_{cd}) - \\rho_0],
+    \\qquad \\rho_0 = R'/R'' = \\rho(\\beta_0).
+
+With equal ellipticities the two rows are dependent (both fields have ratio
+rho0 iff beta = beta0) and v = B/Po_cd is free, to be fixed by sigma0; that is
+the paper's model.  With beta_cd != beta_ab they fix A and B, and since
+A ab I2_ab > B cd I2_cd > 0, beta_ab and beta_cd lie on the *same* side of beta0,
+the adhesive ellipse further from it: the contact ellipse is no longer the Hertz
+ellipse of the geometry.  Here (B, c, d) are the unknowns; the ratio condition
+gives beta_ab = rho^{-1}[(E*/R'' + B cd I3_cd)/(E*/R' + B cd I2_cd)], the first
+condition A.  Then sigma0 = B sqrt(1 - a^2/c^2) = mu on the major axis (Eq. 24)
+and Delta gamma(0) = Delta gamma(pi/2) = 1 (Eq. 31 on both axes) close the model
+at each a.  The gap in the annulus is (A/E*) g(x, y; a, b) and the adhesive stress
+B sqrt(1 - x^2/c^2 - y^2/d^2) (:mod:`dhfield.periphery`).  The load is
+W = (2 pi/3)(A ab - B cd) (Eq. 25), reported as W* = W sin(theta_skew)/(2 pi R Delta gamma)
+with theta_skew of beta0 (Eq. 34).
+
+Units: nondimensional throughout, R = E* = Delta gamma = 1 (Eqs. 32-35), so
+sigma0 = mu, R' = sqrt(rho0), R'' = 1/sqrt(rho0).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+from scipy.optimize import elementwise
+
+from . import hertz, model, periphery
+from ._validation import check_ellipticity, check_positive
+from .elliptic import ellipsoid_integrals
+from .geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
+
+__all__ = [
+    "CLOSURES",
+    "EqualBetaSpread",
+    "ClosureState",
+    "law_spread",
+    "rays_for",
+    "equal_beta_spread",
+    "equal_beta_spread_along_curve",
+    "solve_ray_average",
+    "solve_two_axis",
+    "pull_off_ray_average",
+    "pull_off_two_axis",
+    "pull_off_closure",
+]
+
+CLOSURES = ("paper", "ray_average", "two_axis")
+#: Rays for spreads and averages (uniform; trapezoid is spectral for these even integrands).
+N_THETA = 31
+#: Relative tolerance of the closure solves (log Delta gamma residual).
+SOLVE_TOL = 1e-12
+#: Contact sizes scanned to bracket the load-controlled pull-off (minimum of W*).
+_SCAN = np.geomspace(2e-3, 4.0, 40)
+#: Relative step of the finite-difference Jacobian of the two-axis Newton solve.
+_FD_STEP = 1e-7
+_MAX_NEWTON = 40
+
+
+# --------------------------------------------------------------------------- containers
+@dataclass(frozen=True)
+class EqualBetaSpread:
+    """How far the equal-beta DH fields are from one cohesive law around the periphery.
+
+    Attributes (arrays over the broadcast inputs)
+    ---------------------------------------------
+    work_ratio : Delta gamma(pi/2)/Delta gamma(0) [-]
+    work_spread : (max - min)/mean of Delta gamma(theta_p) over theta_p [-]
+    mean_work : periphery average of Delta gamma, weights r_ab^2 (units of Delta gamma)
+    law_spread : max over theta_p of int |sigma_theta(h) - sigma_0(h)| dh / Delta gamma(0) [-]
+    law_sup_spread : max over theta_p and h of |sigma_theta(h) - sigma_0(h)| / sigma0 [-]
+    separation_ratio : h(r_cd) on the minor axis / on the major axis [-]
+    width_ratio : (r_cd - r_ab) on the minor axis / on the major axis [-]
+    """
+
+    work_ratio: np.ndarray
+    work_spread: np.ndarray
+    mean_work: np.ndarray
+    law_spread: np.ndarray
+    law_sup_spread: np.ndarray
+    separation_ratio: np.ndarray
+    width_ratio: np.ndarray
+
+    def as_dict(self):
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+@dataclass(frozen=True)
+class ClosureState:
+    """An equilibrium state of a closure (nondimensional, R = E* = Delta gamma = 1).
+
+    Attributes
+    ----------
+    closure : str
+        "paper", "ray_average" or "two_axis".
+    mu, beta0 : ndarray
+        Tabor parameter (Eq. 35) and the geometry's Hertz ellipticity [-].
+    a_star, b_star, c_star, d_star : ndarray
+        Semi-axes of the contact and adhesive ellipses, in c_r (Eq. 33) [-].
+    contact_amplitude, adhesive_amplitude : ndarray
+        A and B of p = A S_ab - B S_cd, in E* c_r/R [-].
+    W_star : ndarray
+        Load W sin(theta_skew)/(2 pi R Delta gamma) (Eq. 34) [-].
+    delta_star : ndarray
+        Approach, in c_r^2/R [-].
+    work_major, work_minor : ndarray
+        Delta gamma(0) and Delta gamma(pi/2), in Delta gamma [-].
+    sigma0_major, sigma0_minor : ndarray
+        Adhesive stress at the contact edge on the two axes, in E* c_r/R [-].
+    at_zero_contact : ndarray
+        For pull-off states: True where the minimum sits at the smallest scanned contact.
+    """
+
+    closure: str
+    mu: np.ndarray
+    beta0: np.ndarray
+    a_star: np.ndarray
+    b_star: np.ndarray
+    c_star: np.ndarray
+    d_star: np.ndarray
+    contact_amplitude: np.ndarray
+    adhesive_amplitude: np.ndarray
+    W_star: np.ndarray
+    delta_star: np.ndarray
+    work_major: np.ndarray
+    work_minor: np.ndarray
+    sigma0_major: np.ndarray
+    sigma0_minor: np.ndarray
+    at_zero_contact: np.ndarray = None
+
+    @property
+    def beta_contact(self):
+        """Ellipticity of the contact ellipse b/a [-]."""
+        return self.b_star / self.a_star
+
+    @property
+    def beta_adhesive(self):
+        """Ellipticity of the adhesive ellipse d/c [-]."""
+        return self.d_star / self.c_star
+
+    def as_dict(self):
+        out = {f.name: getattr(self, f.name) for f in fields(self)}
+        out["beta_contact"] = self.beta_contact
+        out["beta_adhesive"] = self.beta_adhesive
+        return out
+
+
+# --------------------------------------------------------------------------- the equal-beta test
+def law_spread(law, norm="l1"):
+    """Distance between the sigma-h curves of all rays and that of the first ray.
+
+    Parameters
+    ----------
+    law : dhfield.periphery.CohesiveLaw
+        Curves with the theta axis second-to-last; the first ray is the reference
+        (theta_p = 0 by convention).  sigma = 0 beyond each ray's edge separation.
+    norm : {"l1", "sup"}
+        ``"l1"``: max over rays of int |sigma_theta(h) - sigma_0(h)| dh, relative to
+        the reference's area int sigma_0 dh = Delta gamma(0).  ``"sup"``: max over
+        rays and h of |sigma_theta(h) - sigma_0(h)|, relative to sigma_0(h = 0);
+        dominated by the square-root drop of sigma near the edge separation, where
+        a relative shift eps of the edge separation costs ~sqrt(eps).
+
+    Returns
+    -------
+    ndarray
+        Shape of the state [-].
+    """
+    if norm not in ("l1", "sup"):
+        raise ValueError(f"norm must be 'l1' or 'sup'; got {norm!r}")
+    h, s = np.asarray(law.separation), np.asarray(law.stress)
+    lead = h.shape[:-2]
+    hf = h.reshape((-1,) + h.shape[-2:])
+    sf = s.reshape((-1,) + s.shape[-2:])
+    out = np.empty(hf.shape[0])
+    for k in range(hf.shape[0]):
+        grid = np.unique(np.concatenate([hf[k].ravel(), np.linspace(0.0, hf[k].max(), 4001)]))
+        ref = np.interp(grid, hf[k, 0], sf[k, 0], right=0.0)
+        dev = 0.0
+        for j in range(1, hf.shape[1]):
+            diff = np.abs(np.interp(grid, hf[k, j], sf[k, j], right=0.0) - ref)
+            dev = max(dev, float(np.max(diff) if norm == "sup" else np.trapezoid(diff, grid)))
+        out[k] = dev / (sf[k, 0, 0] if norm == "sup" else np.trapezoid(ref, grid))
+    return out.reshape(lead) if lead else out[0]
+
+
+def rays_for(beta):
+    """Number of uniform rays on [0, pi/2] for periphery averages: 1 + 4 ceil(3/beta).
+
+    The integrands are even about both axes, so the trapezoidal rule converges
+    geometrically, more slowly as beta falls (17 rays: 1e-14 at beta = 0.8; 41 rays:
+    ~1e-9 at beta = 0.3 with a wide zone, ~1e-6 with a very narrow one).
+    """
+    return int(1 + 4 * np.ceil(3.0 / np.min(np.asarray(beta, float))))
+
+
+def _spread_from_state(a, c, beta, v, n_theta=N_THETA, n_law=129):
+    th = np.linspace(0.0, 0.5 * np.pi, int(n_theta))
+    prof = periphery.periphery(a, c, beta, v, th)
+    w = prof.work_of_adhesion
+    law = periphery.cohesive_law(a, c, beta, v, th, n_points=n_law)
+    return EqualBetaSpread(
+        work_ratio=w[..., -1] / w[..., 0],
+        work_spread=(w.max(axis=-1) - w.min(axis=-1)) / np.mean(w, axis=-1),
+        mean_work=periphery.ray_average(w, th, prof.contact_radius, "area"),
+        law_spread=law_spread(law),
+        law_sup_spread=law_spread(law, "sup"),
+        separation_ratio=prof.edge_separation[..., -1] / prof.edge_separation[..., 0],
+        width_ratio=prof.zone_width[..., -1] / prof.zone_width[..., 0],
+    )
+
+
+def equal_beta_spread(mu, beta0, *, control="load", n_theta=N_THETA):
+    """The equal-beta test at the pull-off point of the paper's model.
+
+    Parameters
+    ----------
+    mu : array_like
+        Tabor parameter, Eq. (35) [-].
+    beta0 : array_like
+        Ellipticity (Eqs. 17-19) [-]; broadcast against ``mu``.
+    control : {"load", "displacement"}
+        Pull-off control mode.
+    n_theta : int
+        Rays on [0, pi/2].
+
+    Returns
+    -------
+    EqualBetaSpread
+        With Delta gamma(0) = 1 (Eq. 31) at pull-off, ``work_ratio`` is
+        Delta gamma(pi/2) itself.
+    """
+    po = model.pull_off(mu, beta0, control=control)
+    a = np.where(np.asarray(po.a_star) > 0, po.a_star, 1e-9 * np.asarray(po.c_star))
+    return _spread_from_state(a, po.c_star, po.ellipticity, po.v, n_theta)
+
+
+def equal_beta_spread_along_curve(mu, beta0, a_star, *, n_theta=N_THETA):
+    """The equal-beta test along a load curve of the paper's model (one mu, beta0).
+
+    Returns
+    -------
+    EqualBetaSpread
+        Arrays over ``a_star``.
+    """
+    curve = model.load_curve(mu, beta0, a_star)
+    return _spread_from_state(curve.a_star, curve.c_star, curve.ellipticity, curve.v, n_theta)
+
+
+# --------------------------------------------------------------------------- shared pieces
+def _paper_solution(a, mu, beta0):
+    """dhfield.model.solve_adhesive_axis for arrays of any shape, 0-d included.
+
+    (model.solve_adhesive_axis raises on 0-d input; reported to the lead.)
+    """
+    shape = np.broadcast_shapes(np.shape(a), np.shape(mu), np.shape(beta0))
+    a1, m1, b1 = (np.atleast_1d(np.broadcast_to(q, shape)).ravel() for q in (a, mu, beta0))
+    c, v = model.solve_adhesive_axis(a1, m1, b1)
+    return np.reshape(c, shape), np.reshape(v, shape)
+
+
+def _geometry(beta0):
+    rho0 = radius_ratio(beta0)
+    return np.sqrt(rho0), 1.0 / np.sqrt(rho0), sin_skew_angle(beta0)  # R', R'' (R = 1), Eq. (34) factor
+
+
+def _two_field_state(closure, mu, beta0, a, b, c, d, amp_a, amp_b):
+    """ClosureState from the two-ellipse field (R = E* = 1)."""
+    _, _, sn = _geometry(beta0)
+    j1a = ellipsoid_integrals(0.0, a, b)[0]
+    j1c = ellipsoid_integrals(0.0, c, d)[0]
+    w_star = sn / 3.0 * (amp_a * a * b - amp_b * c * d)  # Eq. (25) -> Eq. (36)
+    delta = 0.5 * (amp_a * a * b * j1a - amp_b * c * d * j1c)  # Eq. (14a) for both fields
+    prof = periphery._profile_general(a, b, c, d, amp_a, amp_b, np.array([0.0, 0.5 * np.pi]))
+    return ClosureState(closure, *np.broadcast_arrays(mu, beta0, a, b, c, d, amp_a, amp_b, w_star, delta,
+                                                      prof.work_of_adhesion[..., 0],
+                                                      prof.work_of_adhesion[..., 1],
+                                                      prof.max_adhesive_stress[..., 0],
+                                                      prof.max_adhesive_stress[..., 1]))
+
+
+def _check(a_star, mu, beta0):
+    a = check_positive("a_star", a_star, "contact semi-major axis a/c_r")
+    mu = check_positive("mu", mu, "Tabor parameter, Eq. (35)")
+    beta0 = check_ellipticity("beta0", beta0)
+    return np.broadcast_arrays(a, mu, beta0)
+
+
+# --------------------------------------------------------------------------- closure 1: ray average
+def _ray_average_log_residual(log_s, a, mu, beta, weight, n_theta):
+    s = np.exp(log_s)
+    c = np.sqrt(a * a + s * s)
+    po_ab = hertz.max_pressure(a, beta)  # Eq. (8)
+    po_cd = hertz.max_pressure(c, beta)  # Eq. (20)
+    v = mu / (po_cd * s / c)  # Eq. (24) with sigma0 = mu: mu = v Po_cd sqrt(1 - a^2/c^2)
+    th = np.linspace(0.0, 0.5 * np.pi, n_theta)
+    prof = periphery._profile_general(a, beta * a, c, beta * c, po_ab, po_cd, th)  # v-free J(theta)
+    mean = periphery.ray_average(prof.work_of_adhesion, th, prof.contact_radius, weight)
+    return np.log(v) + np.log1p(v) + np.log(mean)  # log of the mean Delta gamma, target 0
+
+
+def solve_ray_average(a_star, mu, beta0, *, weight="area", n_theta=None):
+    """Ray-average closure: equal beta (Eq. 17), sigma0 = mu, mean Delta gamma = 1.
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact semi-major axis a* [-].
+    mu : array_like
+        Tabor parameter, Eq. (35) [-].
+    beta0 : array_like
+        Ellipticity of both ellipses (Eq. 19) [-].
+    weight : {"area", "angle"}
+        Periphery average (:func:`dhfield.periphery.ray_average`).
+    n_theta : int, optional
+        Rays of the average; default :func:`rays_for` (beta0).
+
+    Returns
+    -------
+    ClosureState
+
+    Notes
+    -----
+    .. math::
+
+        \\sigma_0 = vPo_{cd}\\sqrt{1 - a^2/c^2} = \\mu \\quad (\\text{Eq. 24}),\\qquad
+        \\frac{\\int_0^{\\pi/2}\\Delta\\gamma(\\theta_p)\\,r_{ab}^2\\,d\\theta_p}{\\int_0^{\\pi/2}r_{ab}^2\\,d\\theta_p} = 1
+
+    Since Delta gamma(theta_p) = v(1+v) J(theta_p; a, c), the second equation is
+    one equation for S = sqrt(c^2 - a^2), solved by Chandrupatla's method in log S
+    from a bracket around the paper's solution (Delta gamma(0) = 1).
+    """
+    a, mu, beta0 = _check(a_star, mu, beta0)
+    if weight not in ("area", "angle"):
+        raise ValueError(f"weight must be 'area' or 'angle'; got {weight!r}")
+    n_theta = rays_for(beta0) if n_theta is None else int(n_theta)
+    c0, _ = _paper_solution(a, mu, beta0)
+    log_s0 = np.log(np.sqrt(np.asarray(c0) ** 2 - a * a))
+    args = (a, mu, beta0)
+
+    def f(u, a_, mu_, b_):
+        return _ray_average_log_residual(u, a_, mu_, b_, weight, n_theta)
+
+    br = elementwise.bracket_root(f, log_s0, log_s0 + 0.5, args=args)
+    res = elementwise.find_root(f, (br.bracket[0], br.bracket[1]), args=args,
+                                tolerances=dict(xatol=1e-14, xrtol=1e-14, fatol=SOLVE_TOL))
+    if not np.all(res.success):
+        raise RuntimeError("ray-average closure solve failed; please report the inputs")
+    s = np.exp(res.x)
+    c = np.sqrt(a * a + s * s)
+    po_ab, po_cd = hertz.max_pressure(a, beta0), hertz.max_pressure(c, beta0)
+    v = mu / (po_cd * s / c)  # Eq. (24)
+    return _two_field_state("ray_average", mu, beta0, a, beta0 * a, c, beta0 * c, (1 + v) * po_ab,
+                            v * po_cd)  # Eq. (22)
+
+
+# --------------------------------------------------------------------------- closure 2: two axes
+def _two_axis_fields(a, log_c, log_d, mu, beta0):
+    """(b, c, d, A, B) from the unknowns (log c, log d); NaN where inadmissible."""
+    r1, r2, _ = _geometry(beta0)
+    c, d = np.exp(log_c), np.exp(log_d)
+    ok = (c > a) & (d <= c)
+    c = np.where(ok, c, np.nan)
+    amp_b = mu / np.sqrt(1.0 - (a / c) ** 2)  # Eq. (24) on the major axis: sigma0 = mu
+    _, k2, k3 = ellipsoid_integrals(0.0, c, d)
+    top = 1.0 / r2 + amp_b * c * d * k3
+    bottom = 1.0 / r1 + amp_b * c * d * k2
+    rho_ab = top / bottom  # curvature ratio the contact ellipse must have
+    ok = ok & np.isfinite(rho_ab) & (rho_ab >= 1.0)
+    beta_ab = np.full(np.shape(rho_ab), np.nan)
+    if np.any(ok):
+        beta_ab[ok] = ellipticity_from_radius_ratio(np.asarray(rho_ab)[ok])
+    b = beta_ab * a
+    _, j2, _ = ellipsoid_integrals(0.0, a, b)
+    amp_a = bottom / (a * b * j2)  # first curvature condition
+    ok = ok & (d > b)
+    nan = (lambda q: np.where(ok, q, np.nan))
+    return nan(b), nan(c), nan(d), nan(amp_a), nan(amp_b)
+
+
+def _two_axis_residual(a, log_c, log_d, mu, beta0):
+    b, c, d, amp_a, amp_b = _two_axis_fields(a, log_c, log_d, mu, beta0)
+    safe = np.isfinite(b)
+    fill = (lambda q, f: np.where(safe, q, f))
+    prof = periphery._profile_general(fill(a, 1.0), fill(b, 0.5), fill(c, 2.0), fill(d, 1.5),
+                                      fill(amp_a, 1.0), fill(amp_b, 1.0), np.array([0.0, 0.5 * np.pi]))
+    w = prof.work_of_adhesion
+    r = np.log(np.where(safe[..., None], w, np.nan))
+    return r[..., 0], r[..., 1]  # log Delta gamma on the two axes (Eq. 31 on both)
+
+
+def solve_two_axis(a_star, mu, beta0):
+    """Two-axis closure: Delta gamma = 1 on both axes, beta_cd != beta_ab, contact condition exact.
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact semi-major axis a* [-].
+    mu : array_like
+        Tabor parameter; sigma0 = mu on the major axis (Eqs. 24, 35) [-].
+    beta0 : array_like
+        Hertz ellipticity of the geometry, fixing R'/R'' [-].
+
+    Returns
+    -------
+    ClosureState
+        b* and d* are outputs: beta_contact and beta_adhesive differ from each
+        other and from beta0 (module docstring).
+
+    Notes
+    -----
+    Unknowns (c, d) at given a; B from sigma0, beta_ab and A from the curvature
+    conditions.  Damped Newton in (log c, log d) with a forward-difference
+    Jacobian (relative step :data:`_FD_STEP`), started from the paper's solution
+    (d = beta0 c); converged when both log Delta gamma are below :data:`SOLVE_TOL`.
+    """
+    a, mu, beta0 = _check(a_star, mu, beta0)
+    shape = a.shape
+    a, mu, beta0 = (np.atleast_1d(q).ravel() for q in (a, mu, beta0))
+    c0, _ = _paper_solution(a, mu, beta0)
+    u = np.stack([np.log(c0), np.log(beta0 * c0)], axis=-1).astype(float)
+    u = np.array(np.broadcast_to(u, a.shape + (2,)))
+    active = np.ones(a.shape, bool)
+    for _ in range(_MAX_NEWTON):
+        idx = np.nonzero(active)
+        ai, mi, bi, ui = a[idx], mu[idx], beta0[idx], u[idx]
+        f0 = np.stack(_two_axis_residual(ai, ui[:, 0], ui[:, 1], mi, bi), axis=-1)
+        done = np.all(np.abs(f0) < SOLVE_TOL, axis=-1)
+        jac = np.empty(f0.shape + (2,))
+        for k in range(2):
+            up = ui.copy()
+            up[:, k] += _FD_STEP
+            jac[..., k] = (np.stack(_two_axis_residual(ai, up[:, 0], up[:, 1], mi, bi), axis=-1) - f0) / _FD_STEP
+        step = -np.linalg.solve(jac, f0[..., None])[..., 0]
+        # damping: halve until the residual decreases and stays admissible
+        lam = np.ones(ai.shape)
+        norm0 = np.max(np.abs(f0), axis=-1)
+        for _ in range(20):
+            trial = ui + np.clip(lam[:, None] * step, -0.5, 0.5)
+            ft = np.stack(_two_axis_residual(ai, trial[:, 0], trial[:, 1], mi, bi), axis=-1)
+            good = np.isfinite(ft).all(axis=-1) & (np.max(np.abs(ft), axis=-1) < norm0)
+            if np.all(good | done):
+                break
+            lam = np.where(good | done, lam, 0.5 * lam)
+        new = ui + np.clip(lam[:, None] * step, -0.5, 0.5)
+        u[idx] = np.where(done[:, None], ui, new)
+        active[idx] = ~done
+        if not active.any():
+            break
+    else:
+        raise RuntimeError("two-axis closure solve did not converge; please report the inputs")
+    out = _two_axis_fields(a, u[..., 0], u[..., 1], mu, beta0)
+    mu, beta0, a, b, c, d, amp_a, amp_b = (np.reshape(q, shape) for q in (mu, beta0, a, *out))
+    return _two_field_state("two_axis", mu, beta0, a, b, c, d, amp_a, amp_b)
+
+
+# --------------------------------------------------------------------------- pull-off
+def _paper_state(a_star, mu, beta0):
+    a, mu, beta0 = _check(a_star, mu, beta0)
+    c, v = _paper_solution(a, mu, beta0)
+    c = np.asarray(c, float)
+    v = np.asarray(v, float)
+    return _two_field_state("paper", mu, beta0, a, beta0 * a, c, beta0 * c,
+                            (1 + v) * hertz.max_pressure(a, beta0), v * hertz.max_pressure(c, beta0))  # Eq. (22)
+
+
+_SOLVERS = {
+    "paper": _paper_state,
+    "ray_average": solve_ray_average,
+    "two_axis": solve_two_axis,
+}
+
+
+def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
+    """Pull-off point of a closure: the minimum of W* (load) or delta* (displacement).
+
+    Parameters
+    ----------
+    mu : array_like
+        Tabor parameter (Eq. 35) [-].
+    beta0 : array_like
+        Hertz ellipticity of the geometry [-]; broadcast against ``mu``.
+    closure : {"paper", "ray_average", "two_axis"}
+        "paper" is Eqs. (17)-(19), (24), (31) (equal to :func:`dhfield.model.pull_off`
+        to the solver tolerance; used as the like-for-like baseline).
+    control : {"load", "displacement"}
+
+    Returns
+    -------
+    ClosureState
+        At the pull-off point.  Found as the last local minimum, seen from high
+        load, of W*(a*) (or delta*(a*)) on a geometric scan of a*, refined with
+        :func:`scipy.optimize.elementwise.find_minimum`; ``at_zero_contact`` is True
+        where the scan's smallest a* is the minimum (reported there).
+    """
+    if closure not in CLOSURES:
+        raise ValueError(f"closure must be one of {CLOSURES}; got {closure!r}")
+    if control not in ("load", "displacement"):
+        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    mu = check_positive("mu", mu, "Tabor parameter, Eq. (35)")
+    beta0 = check_ellipticity("beta0", beta0)
+    mu, beta0 = np.broadcast_arrays(mu, beta0)
+    solver = _SOLVERS[closure]
+    key = "W_star" if control == "load" else "delta_star"
+
+    def objective(a, m, b):
+        return getattr(solver(a, m, b), key)
+
+    ex = (lambda q: q[..., None])
+    scan = objective(np.broadcast_to(_SCAN, mu.shape + _SCAN.shape), ex(mu), ex(beta0))
+    n = _SCAN.size
+    interior = (scan[..., 1:-1] <= scan[..., :-2]) & (scan[..., 1:-1] <= scan[..., 2:])
+    has = interior.any(axis=-1)
+    last = np.where(has, n - 2 - np.argmax(interior[..., ::-1], axis=-1), 0)  # index in scan
+    a_best = _SCAN[last]
+    if np.any(has):
+        lo, mid, hi = _SCAN[last - 1][has], _SCAN[last][has], _SCAN[last + 1][has]
+        res = elementwise.find_minimum(objective, (lo, mid, hi), args=(mu[has], beta0[has]),
+                                       tolerances=dict(xatol=1e-8, xrtol=1e-8, fatol=0.0, frtol=0.0))
+        a_best = np.array(a_best, dtype=float)
+        a_best[has] = res.x
+    state = solver(a_best, mu, beta0)
+    return ClosureState(**{**{f.name: getattr(state, f.name) for f in fields(state)},
+                           "at_zero_contact": ~has})
+
+
+def pull_off_ray_average(mu, beta0, *, control="load"):
+    """Pull-off of the ray-average closure (:func:`pull_off_closure`)."""
+    return pull_off_closure(mu, beta0, "ray_average", control=control)
+
+
+def pull_off_two_axis(mu, beta0, *, control="load"):
+    """Pull-off of the two-axis closure (:func:`pull_off_closure`)."""
+    return pull_off_closure(mu, beta0, "two_axis", control=control)

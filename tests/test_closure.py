@@ -1,0 +1,138 @@
+"""Tests of dhfield.closure: the equal-beta test and the alternative closures."""
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from dhfield import closure, hertz, model, periphery
+from dhfield.geometry import radius_ratio
+
+#: The closure solves stop at |log Delta gamma| < 1e-12; states agree to ~1e-11.
+SOLVE_RTOL = 1e-10
+#: Pull-off minima are located to 1e-8 in a*; W* is flat there (error ~1e-14), but
+#: the paper baseline comes from dhfield.model's own (different) root finder.
+PULL_OFF_RTOL = 1e-9
+#: The contact condition is linear algebra on closed forms: rounding only.
+CONTACT_ATOL = 1e-12
+
+
+def test_paper_closure_equals_model_pull_off():
+    mu, beta0 = np.array([0.5, 2.0]), 0.8
+    got = closure.pull_off_closure(mu, beta0, "paper")
+    ref = model.pull_off(mu, beta0)
+    assert_allclose(got.W_star, ref.W_star, rtol=PULL_OFF_RTOL)
+    assert_allclose(got.a_star, ref.a_star, rtol=1e-6)  # a* of a flat minimum: sqrt(tolerance)
+    assert_allclose(got.work_major, 1.0, rtol=1e-12)
+
+
+@pytest.mark.parametrize("solver", [closure.solve_ray_average, closure.solve_two_axis])
+def test_alternative_closures_reduce_to_paper_at_circle(solver):
+    a = np.array([0.05, 0.7, 1.5, 2.5])
+    got = solver(a, 1.3, 1.0)
+    c, v = model.solve_adhesive_axis(a, 1.3, 1.0)
+    assert_allclose(got.c_star, c, rtol=SOLVE_RTOL)
+    assert_allclose(got.d_star, c, rtol=SOLVE_RTOL)
+    assert_allclose(got.b_star, a, rtol=SOLVE_RTOL)
+    assert_allclose(got.adhesive_amplitude, v * hertz.max_pressure(c, 1.0), rtol=SOLVE_RTOL)
+    lc = model.load_curve(1.3, 1.0, a)
+    assert_allclose(got.W_star, lc.W_star, rtol=SOLVE_RTOL)
+    assert_allclose(got.delta_star, lc.delta_star, rtol=SOLVE_RTOL, atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["ray_average", "two_axis"])
+def test_alternative_pull_off_reduces_to_paper_at_circle(name):
+    got = closure.pull_off_closure(1.0, 1.0, name)
+    ref = model.pull_off(1.0, 1.0)
+    assert_allclose(got.W_star, ref.W_star, rtol=PULL_OFF_RTOL)
+
+
+def test_two_axis_constraints_and_contact_condition():
+    mu, beta0 = 2.0, 0.8
+    st = closure.solve_two_axis(np.array([0.4, 1.2, 2.0]), mu, beta0)
+    assert_allclose(st.work_major, 1.0, rtol=1e-11)  # Eq. (31) on theta_p = 0
+    assert_allclose(st.work_minor, 1.0, rtol=1e-11)  # ... and on theta_p = pi/2
+    assert_allclose(st.sigma0_major, mu, rtol=1e-12)  # Eq. (24) with Eq. (35)
+    # Contact condition by explicit superposition of the two Hertz displacements (Eq. 13).
+    r1, r2 = np.sqrt(radius_ratio(beta0)), 1 / np.sqrt(radius_ratio(beta0))
+    for k in range(3):
+        a, b, c, d = st.a_star[k], st.b_star[k], st.c_star[k], st.d_star[k]
+        amp_a, amp_b = st.contact_amplitude[k], st.adhesive_amplitude[k]
+        t = np.linspace(0, 2 * np.pi, 13)
+        rho = np.array([0.0, 0.3, 0.7, 0.999])[:, None]
+        x, y = rho * a * np.cos(t), rho * b * np.sin(t)
+
+        def omega(xx, yy):
+            return (hertz.surface_displacement(xx, yy, a, b, amp_a)
+                    - hertz.surface_displacement(xx, yy, c, d, amp_b))
+
+        delta = omega(0.0, 0.0)
+        h = x**2 / (2 * r1) + y**2 / (2 * r2) + omega(x, y) - delta  # Eq. (27)
+        assert np.max(np.abs(h)) < CONTACT_ATOL
+        assert_allclose(delta, st.delta_star[k], rtol=1e-12)
+        # annulus gap: (A/E*) g of dhfield.periphery, on the axes at mid-zone
+        xm = 0.5 * (a + c)
+        h_mid = xm**2 / (2 * r1) + omega(xm, 0.0) - delta
+        assert_allclose(h_mid, amp_a * periphery._gap_shape(xm, 0.0, a, b), rtol=1e-10)
+        # load: (2 pi/3)(A ab - B cd), Eq. (25), with Eq. (34)'s sin(theta_skew)
+        w = 2 * np.pi / 3 * (amp_a * a * b - amp_b * c * d)
+        sn = 2 * np.sqrt(radius_ratio(beta0)) / (1 + radius_ratio(beta0))
+        assert_allclose(st.W_star[k], w * sn / (2 * np.pi), rtol=1e-12)
+
+
+def test_two_axis_ellipticities_same_side_of_beta0():
+    # Derived in the module docstring: A ab I2_ab [rho(beta_ab) - rho0] = B cd I2_cd [rho(beta_cd) - rho0]
+    # with A ab I2_ab > B cd I2_cd > 0: same side, adhesive ellipse further from beta0.
+    st = closure.solve_two_axis(np.array([0.3, 1.0, 1.8]), np.array([[0.5], [5.0]]), 0.8)
+    assert np.all(st.beta_contact > 0.8)
+    assert np.all(st.beta_adhesive > st.beta_contact)
+
+
+def test_ray_average_constraints():
+    a, mu, beta0 = np.array([0.3, 1.0, 2.0]), 1.0, 0.8
+    st = closure.solve_ray_average(a, mu, beta0)
+    th = np.linspace(0, np.pi / 2, 41)
+    v = st.adhesive_amplitude / hertz.max_pressure(st.c_star, beta0)
+    prof = periphery.periphery(a[:, None], st.c_star[:, None], beta0, v[:, None], th)
+    mean = periphery.ray_average(prof.work_of_adhesion, th, prof.contact_radius)
+    assert_allclose(mean, 1.0, rtol=1e-11)
+    assert_allclose(prof.max_adhesive_stress, mu, rtol=1e-12)
+    assert np.all(prof.work_of_adhesion[..., 0] > 1.0)
+    assert np.all(prof.work_of_adhesion[..., -1] < 1.0)
+    angle = closure.solve_ray_average(a, mu, beta0, weight="angle")
+    assert not np.allclose(angle.c_star, st.c_star, rtol=1e-6)
+
+
+def test_equal_beta_spread():
+    mu = np.array([0.5, 1.0, 5.0])
+    s = closure.equal_beta_spread(mu, np.array([[0.8], [0.9], [1.0]]))
+    # circle: one cohesive law on every ray
+    for q in (s.work_spread[2], s.law_spread[2], s.law_sup_spread[2]):
+        assert np.all(np.abs(q) < 1e-10)
+    assert_allclose(s.work_ratio[2], 1.0, rtol=1e-12)
+    # more elliptical -> further from one law; at pull-off Delta gamma(0) = 1
+    assert np.all(s.work_ratio[0] < s.work_ratio[1])
+    assert np.all(s.law_spread[0] > s.law_spread[1])
+    po = model.pull_off(mu, 0.8)
+    w90 = periphery.periphery(po.a_star, po.c_star, 0.8, po.v, [np.pi / 2]).work_of_adhesion[..., 0]
+    assert_allclose(s.work_ratio[0], w90, rtol=1e-12)
+    assert_allclose(s.width_ratio[:2], np.array([[0.8], [0.9]]) * np.ones(3), rtol=1e-12)  # r_cd - r_ab scales as beta
+
+
+def test_spread_along_curve_and_law_spread_identity():
+    s = closure.equal_beta_spread_along_curve(1.0, 0.9, [0.5, 1.0, 2.0])
+    assert s.work_ratio.shape == (3,)
+    law = periphery.cohesive_law(1.3, 2.0, 1.0, 1.1, theta=[0.0, 0.5, 1.0])
+    assert closure.law_spread(law) < 1e-12
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: closure.pull_off_closure(1.0, 0.8, "bogus"), "closure"),
+    (lambda: closure.pull_off_closure(1.0, 0.8, control="force"), "control"),
+    (lambda: closure.solve_two_axis(-1.0, 1.0, 0.8), "a_star"),
+    (lambda: closure.solve_ray_average(1.0, 0.0, 0.8), "mu"),
+    (lambda: closure.solve_ray_average(1.0, 1.0, 0.8, weight="x"), "weight"),
+    (lambda: closure.equal_beta_spread(1.0, 1.5), "beta0"),
+    (lambda: closure.law_spread(periphery.cohesive_law(1.3, 2.0, 0.8, 1.1, theta=[0.0, 1.0]), "l2"), "norm"),
+])
+def test_bad_input(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
