@@ -63,8 +63,8 @@ _COLORS = {0.5: "tab:blue", 1.0: "tab:orange", 2.0: "tab:purple", 5.0: "tab:gree
 
 def _settings(quick):
     if quick:
-        return dict(n_curve=160, n_quad=1000, n_beta=41, dpi=72)
-    return dict(n_curve=600, n_quad=4000, n_beta=81, dpi=110)
+        return dict(n_curve=160, n_quad=1000, n_beta=41, n_eq31=4, dpi=72)
+    return dict(n_curve=600, n_quad=4000, n_beta=81, n_eq31=16, dpi=110)
 
 
 # --------------------------------------------------------------------------- helpers
@@ -195,6 +195,63 @@ def _check_displacement_quadrature(rng, n, quick):
                                    f"β = {beta:g}, {label}, max rel. error", err_p.max(), TOL_EXACT,
                                    "scipy.integrate.quad of Eq. (12b); printed form undefined (0/0) at β = 1"))
     return checks, scatter
+
+
+def _eq31_by_quadrature(a, c, beta, v):
+    """Eq. (31) by nested adaptive quadrature, independent of :mod:`dhfield.adhesion`.
+
+    Along theta_p = 0 (y = 0) the root of Eq. (12) is l = x^2 - a^2 exactly, and the
+    slope of the Hertz gap is dh_H/dx = x/R' + d(omega)/dx with, from Eq. (12b),
+    d(omega)/dx = -(Po_ab a b x/E*) I2(l), I2 of Eq. (B2) by ``quad`` of its
+    definition.  dh/dx = (1 + v) dh_H/dx in the annulus (Eq. 27) and
+    sigma_ac = v Po_cd sqrt(1 - x^2/c^2) (Eq. 23).  With x = a + (c - a) sin^2 t the
+    square-root ends become sin t, cos t and the outer ``quad`` runs over t in [0, pi/2].
+    """
+    from scipy import integrate
+
+    from dhfield import hertz
+
+    b = beta * a
+    r_major, _ = hertz.principal_radii_from_ellipticity(beta)  # R' with R = 1 (Eqs. 3-5)
+    po_ab = hertz.max_pressure(a, beta)  # Eq. (8)
+    po_cd = hertz.max_pressure(c, beta)  # Eq. (20)
+
+    def i2(l):  # Eq. (B2), w = s^2
+        f = (lambda s: 2.0 / ((a * a + s * s) ** 1.5 * np.sqrt(b * b + s * s)))
+        s0 = np.sqrt(l)
+        mid = s0 + 4.0 * max(a, s0)
+        return (integrate.quad(f, s0, mid, epsabs=0.0, epsrel=1e-13, limit=200)[0]
+                + integrate.quad(f, mid, np.inf, epsabs=0.0, epsrel=1e-13, limit=200)[0])
+
+    def integrand(t):
+        st, ct = np.sin(t), np.cos(t)
+        x = a + (c - a) * st * st
+        dh = (1.0 + v) * (x / r_major - po_ab * a * b * x * i2((c - a) * st * st * (x + a)))
+        sigma = v * po_cd * np.sqrt((c - a) * ct * ct * (c + x)) / c
+        return sigma * dh * 2.0 * (c - a) * st * ct
+
+    return integrate.quad(integrand, 0.0, np.pi / 2, epsabs=0.0, epsrel=1e-12, limit=200)[0]
+
+
+def _check_eq31_quadrature(n_per_curve, quick):
+    """dgamma = 1 by the independent nested quadrature at states of the solved load curves."""
+    from dhfield.model import load_curve
+
+    worst, n = 0.0, 0
+    cases = [(mu, b) for mu in (0.05, 0.5, 1.0, 5.0, 20.0) for b in (0.3, 0.8, 0.9, 0.99, 1.0)]
+    grid = np.geomspace(0.01, 3.0, n_per_curve)
+    for mu, beta0 in cases:
+        cv = load_curve(mu, beta0, grid)
+        for a, c, v in zip(cv.a_star, cv.c_star, cv.v):
+            worst = max(worst, abs(_eq31_by_quadrature(a, c, cv.ellipticity, v) - 1.0))
+            n += 1
+    label = f"{n} states: μ ∈ {{0.05, 0.5, 1, 5, 20}} × β0 ∈ {{0.3, 0.8, 0.9, 0.99, 1}}, a* from 0.01 to 3"
+    if quick:
+        label += " (quick mode: fewer states)"
+    return check_le(f"Δγ = 1 on the solved load curves by nested adaptive quadrature of Eq. (31) "
+                    f"({label}), max |Δγ − 1|", worst, TOL_CURVE,
+                    "scipy.integrate.quad of Eq. (31) with dh/dx from Eq. (12b) differentiated and "
+                    "I2 (Eq. B2) by quad; l = x² − a² on θp = 0")
 
 
 def _check_limits():
@@ -627,6 +684,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     checks += limit_checks
     checks += _check_curves(list(curves_by.values()))
     stat_check, _ = _check_stationary(cases)
+    checks.append(_check_eq31_quadrature(cfg["n_eq31"], quick))
     checks.append(stat_check)
     progress("closed form, limits and load-curve consistency checked")
     tq = time.perf_counter()
