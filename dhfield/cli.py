@@ -106,13 +106,30 @@ def _add_pulloff(sub) -> None:
     _add_model_arguments(p)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="load control (default) or displacement control")
+    p.add_argument("--model", choices=_model_names(), default="dh-elliptic",
+                   help="comparison model (default: dh-elliptic, the paper's model)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=_run_pulloff)
+
+
+def _model_names():
+    from .compare import MODEL_NAMES
+
+    return MODEL_NAMES
+
+
+def _compare_record(model, args) -> dict:
+    from .compare import pull_off
+
+    rec = pull_off(model, args.mu, args.beta0, args.control)
+    return {k: (v if isinstance(v, str) else float(v)) for k, v in rec.items()}
 
 
 def _pull_off_record(args) -> dict:
     from .model import pull_off
 
+    if getattr(args, "model", "dh-elliptic") != "dh-elliptic":
+        return _compare_record(args.model, args)
     r = pull_off(args.mu, args.beta0, control=args.control)
     return {"model": "dh-elliptic", "beta0": float(r.beta0), "mu": float(r.mu), "control": r.control,
             "W_star": float(r.W_star), "a_star": float(r.a_star), "c_star": float(r.c_star),
@@ -127,6 +144,41 @@ def _run_pulloff(args) -> int:
     else:
         for k, v in rec.items():
             print(f"{k:16s} {v}")
+    return 0
+
+
+# --- compare -------------------------------------------------------------------------------
+
+def _add_compare(sub) -> None:
+    p = sub.add_parser("compare", help="pull-off of every comparison model side by side (Fig. 9 axes)")
+    _add_model_arguments(p)
+    p.add_argument("--control", choices=("load", "displacement"), default="load",
+                   help="load control (default) or displacement control")
+    p.add_argument("--out", default=None, help="also write FILE.nc (netCDF, dimension 'model')")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=_run_compare)
+
+
+def _run_compare(args) -> int:
+    from .compare import MODEL_NAMES
+
+    if args.out and not str(args.out).lower().endswith(".nc"):
+        raise ValueError(f"output file must end in .nc; got {args.out!r}")
+    recs = {name: _compare_record(name, args) for name in MODEL_NAMES}
+    if args.out:
+        from .io import write_netcdf
+        from .io.compare import comparison_dataset
+
+        write_netcdf(comparison_dataset(recs), args.out)
+    if args.json:
+        _print_json({"beta0": args.beta0, "mu": args.mu, "control": args.control, "models": list(recs.values())})
+    else:
+        cols = ("W_star", "a_star", "c_star", "v", "delta_star", "ellipticity")
+        print(f"{'model':22s}" + "".join(f"{c:>13s}" for c in cols))
+        for name, r in recs.items():
+            print(f"{name:22s}" + "".join(f"{r[c]:13.6g}" for c in cols))
+        if args.out:
+            print(f"wrote {args.out}")
     return 0
 
 
@@ -152,7 +204,7 @@ def _run_field(args) -> int:
 
 # --- entry point ---------------------------------------------------------------------------
 
-_SUBCOMMANDS = [_add_curve, _add_pulloff, _add_field]
+_SUBCOMMANDS = [_add_curve, _add_pulloff, _add_field, _add_compare]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -98,3 +98,47 @@ def test_bad_input():
             compare.MODELS[name](-1.0, 0.9)
         with pytest.raises(ValueError, match="control"):
             compare.MODELS[name](1.0, 0.9, "force")
+
+
+# --- CLI: `dhfield compare` and `dhfield pulloff --model` -----------------------------------
+
+def test_cli_compare_json_and_netcdf(tmp_path, capsys):
+    import json
+
+    from dhfield.cli import main
+    from dhfield.io import read_netcdf
+
+    out = tmp_path / "cmp.nc"
+    assert main(["compare", "--beta0", "0.9", "--mu", "5", "--json", "--out", str(out)]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    names = [r["model"] for r in payload["models"]]
+    assert names == list(compare.MODELS)
+    ref = compare.compare(5.0, 0.9)
+    for r in payload["models"]:
+        assert r["W_star"] == pytest.approx(float(ref[r["model"]]["W_star"]), rel=1e-15)
+    ds = read_netcdf(out)
+    assert list(ds["model"].values) == names
+    assert_allclose(ds["W_star"].values, [float(ref[n]["W_star"]) for n in names], rtol=1e-15)
+    assert ds.attrs["param_beta0"] == 0.9
+
+
+@pytest.mark.parametrize("name", sorted(compare.MODELS))
+def test_cli_pulloff_model(name, capsys):
+    import json
+
+    from dhfield.cli import main
+
+    assert main(["pulloff", "--beta0", "0.9", "--mu", "2", "--model", name, "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["model"] == name
+    assert rec["W_star"] == pytest.approx(float(compare.pull_off(name, 2.0, 0.9)["W_star"]), rel=1e-15)
+
+
+def test_cli_bad_input(capsys, tmp_path):
+    from dhfield.cli import main
+
+    assert main(["pulloff", "--beta0", "0.9", "--mu", "2", "--model", "hertz"]) == 2
+    assert main(["compare", "--beta0", "1.5", "--mu", "2"]) == 2
+    assert "beta0" in capsys.readouterr().err
+    assert main(["compare", "--beta0", "0.9", "--mu", "2", "--out", str(tmp_path / "x.txt")]) == 2
+    assert main(["compare", "--beta0", "0.9", "--mu", "-2"]) == 2
