@@ -228,3 +228,39 @@ def test_gap_grid_full_equals_quadrant_and_trend():
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_datasets_round_trip(tmp_path):
+    from dhfield import closure, eq30
+    from dhfield.io import read_netcdf
+    from dhfield.io import periphery as iop
+
+    mu, beta0 = np.array([1.0, 5.0]), np.array([0.8, 0.99])
+    th = np.linspace(0, np.pi / 2, 5)
+    po, prof = periphery.pull_off_periphery(mu[None, :], beta0[:, None], th)
+    law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, theta=[0.0, np.pi / 2], n_points=7)
+    ds = iop.pull_off_periphery_dataset(mu, beta0, po, prof, law)
+    p = iop.write_dataset(ds, tmp_path / "periphery.nc")
+    back = read_netcdf(p)
+    assert_allclose(back["work_of_adhesion"].values, prof.work_of_adhesion, rtol=0)
+    assert back["work_of_adhesion"].attrs["units"] == "1"
+    assert back["theta"].attrs["units"] == "rad"
+    for name in back.variables:
+        assert "long_name" in back[name].attrs, name
+    assert back.attrs["references"].endswith("10.1007/s11249-017-0976-8")
+    assert_allclose(back.attrs["param_mu"], mu)
+
+    spread = closure.equal_beta_spread(mu[None, :], beta0[:, None])
+    paper = closure.pull_off_closure(mu[None, :], beta0[:, None], "paper")
+    ds2 = iop.equal_beta_dataset(mu, beta0, spread, {"paper": paper, "paper2": paper})
+    back2 = read_netcdf(iop.write_dataset(ds2, tmp_path / "equal_beta.nc"))
+    assert list(back2["closure"].values) == ["paper", "paper2"]
+    assert_allclose(back2["closure_W_star"].values[0], paper.W_star, rtol=0)
+
+    area = eq30.eq30_area(po.a_star, po.c_star, po.ellipticity, po.v)
+    ds3 = iop.eq30_dataset(mu, beta0, area, area, prof.work_of_adhesion[..., 0], prof.work_of_adhesion[..., -1],
+                           area)
+    back3 = read_netcdf(iop.write_dataset(ds3, tmp_path / "eq30.nc"))
+    assert_allclose(back3["eq30_area"].values, area, rtol=0)
+    with pytest.raises(ValueError, match="directory"):
+        iop.write_dataset(ds3, tmp_path / "missing" / "x.nc")
