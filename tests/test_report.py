@@ -278,3 +278,25 @@ def test_parallel_sections_isolate_a_dying_worker(tmp_path):
     assert verdicts == {"models": True, "fields": False, "periphery": False}
     assert [s["name"] for s in data["sections"]] == ["models", "fields", "periphery"]
     assert "[1/3] models: working" in proc.stderr
+
+
+def test_contract_violations_are_failed_checks(tmp_path):
+    """A missing figure file or a caption that cites no equation/figure fails the report."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from verification import report
+    from verification._api import Figure, Section
+
+    png = tmp_path / "f.png"
+    fig = plt.figure(figsize=(1, 1))
+    fig.savefig(png)
+    plt.close(fig)
+    good = Section("s", figures=[Figure(png, "Reproduces Fig. 4 (Eq. 31).")])
+    assert report._validate_section("x", good) == []
+    bad = Section("s", figures=[Figure(png, "a nice plot"), Figure(tmp_path / "missing.png", "Eq. (3)")])
+    problems = report._validate_section("x", bad)
+    assert len(problems) == 2
+    assert any("cites no equation" in p for p in problems) and any("missing" in p for p in problems)

@@ -106,6 +106,10 @@ def _failed_section(name, title, message, tb):
     return Section(title=title, text=text, checks=[check])
 
 
+#: A caption must cite what it reproduces: "Eq. (31)", "Eqs. 13b/15", "Fig. 4", "Figs. 4-7", "Eq. B2".
+_CITATION = re.compile(r"\b(Eqs?\.\s*\(?[AB]?\d|Figs?\.\s*\d|Equations?\s*\(?\d|Figures?\s*\d)", re.IGNORECASE)
+
+
 def _validate_section(name, sec):
     """Return a list of contract problems of a returned Section (empty when fine)."""
     problems = []
@@ -117,6 +121,8 @@ def _validate_section(name, sec):
             problems.append(f"figure file missing: {p}")
         if not str(fig.caption).strip():
             problems.append(f"figure without caption: {p.name}")
+        elif not _CITATION.search(str(fig.caption)):
+            problems.append(f"figure caption cites no equation or paper figure (issue 5): {p.name}")
     for ds in sec.datasets:
         if not Path(ds).is_file():
             problems.append(f"dataset file missing: {ds}")
