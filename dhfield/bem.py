@@ -92,6 +92,7 @@ __all__ = [
     "influence_coefficients",
     "HalfSpaceOperator",
     "get_operator",
+    "clear_operator_cache",
     "surface_displacement",
     "quadrant",
     "unfold_quadrant",
@@ -504,6 +505,11 @@ def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=No
         threads = _default_threads()
     e = _check_spacing("reduced_modulus", reduced_modulus)
     return _cached_operator(grid, e, bool(symmetric), threads, planner_effort)
+
+
+def clear_operator_cache() -> None:
+    """Release the operators (plans, work arrays, spectra) cached by :func:`get_operator`."""
+    _cached_operator.cache_clear()
 
 
 def surface_displacement(pressure, dx, dy=None, reduced_modulus=1.0, *, symmetric=False,

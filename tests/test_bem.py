@@ -193,6 +193,25 @@ def test_hertz_displacement_matches_analytic_on_moderate_grid():
     assert np.max(np.abs(u - ref)) <= RTOL_HERTZ_128 * np.max(np.abs(ref))
 
 
+def test_agrees_with_contactmechanics_when_installed():
+    # independent implementation of the same discrete operator (optional benchmark extra);
+    # ContactMechanics reports the displacement with the opposite sign for compressive forces
+    cm = pytest.importorskip("ContactMechanics")
+    grid = bem.Grid.centered(32, 2.0, ny=24, half_width_y=1.5)
+    p = _even_field(grid, seed=5)
+    hs = cm.FreeFFTElasticHalfSpace(grid.shape, 1.0, (4.0, 3.0))
+    u_cm = hs.evaluate_disp(p * grid.dx * grid.dy)
+    u = bem.surface_displacement(p, grid.dx, grid.dy)
+    assert np.max(np.abs(u + u_cm)) <= RTOL_FFT * np.max(np.abs(u))
+
+
+def test_clear_operator_cache():
+    grid = bem.Grid(16, 16, 0.1, 0.1)
+    op = bem.get_operator(grid)
+    bem.clear_operator_cache()
+    assert bem.get_operator(grid) is not op
+
+
 # --- bad input ------------------------------------------------------------------------
 @pytest.mark.parametrize("dx", [0.0, -0.1, float("nan"), float("inf")])
 def test_bad_spacing_names_parameter(dx):
