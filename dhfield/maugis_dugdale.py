@@ -90,11 +90,16 @@ def _state_maugis(log_m, lam):
     return a, p, d, m
 
 
-def _zero_contact(lam):
-    """(P, D) at A = 0, the end of the MD curve on the DMT side."""
+def _zero_contact_zone(lam):
+    """x = lim A m (the Dugdale-zone radius c in Maugis units) at A = 0."""
     qa = lam * np.pi / 4.0
     qb = 4.0 / 3.0 * lam**2 * (np.pi / 2.0 - 1.0)
-    x = 2.0 / (qb + np.sqrt(qb * qb + 4.0 * qa))  # A m at A -> 0
+    return 2.0 / (qb + np.sqrt(qb * qb + 4.0 * qa))  # root of qa x^2 + qb x - 1 = 0
+
+
+def _zero_contact(lam):
+    """(P, D) at A = 0, the end of the MD curve on the DMT side."""
+    x = _zero_contact_zone(lam)
     return -0.5 * lam * np.pi * x * x, -4.0 / 3.0 * lam * x
 
 
@@ -135,8 +140,9 @@ def _curve(a_star, mu):
     lam = maugis_parameter(mu)
     p, d, m = _curve_maugis(a_star / _A_UNIT, lam)
     a_star = np.broadcast_to(a_star, p.shape)
-    return {"W_star": 0.5 * p, "a_star": a_star, "c_star": m * a_star,
-            "delta_star": d * _D_UNIT}
+    with np.errstate(invalid="ignore"):
+        c_star = np.where(a_star > 0, m * a_star, _zero_contact_zone(lam) * _A_UNIT)
+    return {"W_star": 0.5 * p, "a_star": a_star, "c_star": c_star, "delta_star": d * _D_UNIT}
 
 
 def _pull_off_maugis(lam, control="load"):
@@ -165,9 +171,11 @@ def _pull_off_maugis(lam, control="load"):
 
 def _pull_off(mu, control="load"):
     """Nondimensional MD pull-off (paper units) for mu of Eq. (35)."""
-    a, p, d, m = _pull_off_maugis(maugis_parameter(mu), control)
-    return {"W_star": 0.5 * p, "a_star": a * _A_UNIT,
-            "c_star": np.where(a > 0, m * a * _A_UNIT, np.nan), "delta_star": d * _D_UNIT}
+    lam = maugis_parameter(mu)
+    a, p, d, m = _pull_off_maugis(lam, control)
+    with np.errstate(invalid="ignore"):
+        c_star = np.where(a > 0, m * a, _zero_contact_zone(lam)) * _A_UNIT
+    return {"W_star": 0.5 * p, "a_star": a * _A_UNIT, "c_star": c_star, "delta_star": d * _D_UNIT}
 
 
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion,

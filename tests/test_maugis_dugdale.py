@@ -38,8 +38,9 @@ def jkr_maugis(a):
 
 def test_first_equation_residual():
     a = np.geomspace(1e-3, 20, 60)
-    for lam in (0.01, 0.3, 1.0, 7.0, 100.0):
+    for lam in np.geomspace(0.01, 100, 15):  # every lambda of the stated range, A over 4 decades
         p, d, m = md._curve_maugis(a, lam)
+        assert np.all(np.isfinite(p) & np.isfinite(d) & (m > 1))
         mm = np.sqrt(m * m - 1)
         lhs = (lam * a**2 / 2 * (mm + (m * m - 2) * np.arctan(mm))
                + 4 * lam**2 * a / 3 * (mm * np.arctan(mm) - m + 1))  # Maugis (1992), first MD equation
@@ -95,6 +96,8 @@ def test_zero_contact_end_point():
         p0, d0 = md._zero_contact(lam)
         p, d, _ = md._curve_maugis(np.array([1e-9]), lam)
         assert_allclose([p[0], d[0]], [p0, d0], rtol=1e-6)
+        c = md._curve(np.array([0.0, 1e-9]), lam / 1.1272516517868267)["c_star"]
+        assert_allclose(c[0], c[1], rtol=1e-6)  # the zone radius is continuous at a = 0
 
 
 def test_paper_units_and_mapping():
