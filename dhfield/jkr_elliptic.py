@@ -78,7 +78,7 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._adhesion import (approach_unit, check_contact_size, check_control, check_material,
+from ._adhesion import (approach_unit, check_control, check_material,
                         grid_minimum, length_unit, load_unit, scalar_or_array)
 from ._validation import check_ellipticity, check_interval
 from .geometry import ellipticity_from_radius_ratio
@@ -155,9 +155,9 @@ def _shape_coefficients(beta, k2, rho_m1):
     rho = 1.0 + rho_m1
     gap_a = 0.5 / np.sqrt(rho)  # A = 1/(2R'), R' = sqrt(rho)
     gap_b = 0.5 * np.sqrt(rho)  # B = 1/(2R'')
-    m11 = 0.5 * beta * (b2 * j12 - 2.0 * j1)  # curvature match along x
+    m11 = 0.5 * beta * (b2 * j12 - 2.0 * j1)  # JG (2005): curvature match along x (derived form)
     m12 = 0.5 * beta * (j1 - b2 * j12)
-    m21 = 0.5 * beta * (j2 - j12)  # curvature match along y
+    m21 = 0.5 * beta * (j2 - j12)  # JG (2005): curvature match along y (derived form)
     m22 = 0.5 * beta * (j12 - 2.0 * j2)
     det = m11 * m22 - m12 * m21
     g2 = (gap_b * m11 - gap_a * m21) / det
@@ -175,12 +175,12 @@ def _state_u(u, beta0, rho_m1, sin_skew):
         # at u -> 0 (beta -> beta0, a -> infinity) rounding can leave dg <= 0: a = infinity
         dg = np.where(np.real(dg) > 0.0, dg, np.nan)
         root = np.expm1(-0.5 * np.log1p(-one_m_beta))  # beta^(-1/2) - 1
-        a = (np.sqrt(2.0 / np.pi) * root / dg) ** (2.0 / 3.0)  # both Griffith conditions
+        a = (np.sqrt(2.0 / np.pi) * root / dg) ** (2.0 / 3.0)  # JG (2005): K_I equal at both axis ends
         a = np.where(np.isnan(np.real(a)), np.inf, a)
         al1, al2 = a * g1, a * g2
-        al0 = -al1 - np.sqrt(2.0 / (np.pi * a))  # K_I = sqrt(2 E* dgamma) at the end of a
-        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # W = 2 pi a b [alpha0 + (alpha1+alpha2)/3]
-        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)
+        al0 = -al1 - np.sqrt(2.0 / (np.pi * a))  # JG (2005): K_I = sqrt(2 E* dgamma) at the end of a
+        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
+        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # approach (derived)
     return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,
             "delta_star": delta, "beta": beta,  # Eq. (34)
             "alpha": (al0, al1, al2)}
