@@ -13,8 +13,9 @@ TOL_EXACT = 1e-11
 TOL_QUAD = 1e-10
 #: issue 3: circular DH vs the elliptical DH core at beta0 = 1 on whole load curves
 TOL_CORE = 1e-9
-#: JKR limit at mu = 1000: the DH pull-off approaches -3/4 as O(mu^-1) (~1e-3 at mu = 1000)
-TOL_JKR_LIMIT = 2e-3
+#: JKR limit at mu = 1000: the DH pull-off approaches -3/4 as O(mu^-2) (measured 1.0e-5 at
+#: mu = 100, 1.0e-7 at mu = 1000)
+TOL_JKR_LIMIT = 1e-6
 
 R, E, DG = 1e-6, 1e9, 0.05
 
