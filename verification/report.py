@@ -446,7 +446,8 @@ def markdown_to_html(text: str) -> str:
 
 
 _CSS = """
-body{font-family:-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1b1b1b;background:#fff;line-height:1.45}
+body{font-family:-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1b1b1b;background:#fff;
+line-height:1.45}
 main{max-width:1100px;margin:0 auto;padding:1.5em 2em 4em}
 h1{font-size:1.7em;margin-bottom:.2em}
 h2{border-bottom:2px solid #ccd;padding-bottom:.2em;margin-top:2.2em}
