@@ -206,3 +206,16 @@ def test_bad_input():
         fields.hertz_case(4, 1.0, 0.5)
     with pytest.raises(ValueError, match="adhesive_semi_major"):
         fields.dh_case(16, 1.0, 0.5, 0.9, 1.0)
+
+
+def test_unit_neutrality_si_vs_nondimensional():
+    # the same Hertz problem in SI (a = 0.2 mm, R = 5 cm, E* = 2 GPa) and in R = E* = a = 1 units:
+    # pressures scale with E* a/R, displacements and gaps with a^2/R
+    a, r, e, beta = 2e-4, 0.05, 2e9, 0.75
+    si = fields.hertz_case(32, a, beta, effective_radius=r, reduced_modulus=e)
+    nd = fields.hertz_case(32, 1.0, beta)
+    p_s, u_s = e * a / r, a * a / r
+    assert np.allclose(si.pressure / p_s, nd.pressure, rtol=1e-12, atol=1e-12 * nd.pressure.max())
+    for name in ("displacement_numerical", "displacement_analytic", "gap_numerical", "gap_analytic"):
+        ref = getattr(nd, name)
+        assert np.allclose(getattr(si, name) / u_s, ref, rtol=1e-11, atol=1e-11 * np.abs(ref).max()), name
