@@ -31,8 +31,10 @@ Conventions
   exact discrete *linear* (non-periodic) convolution: no periodic images.
 * **FFT normalisation.**  FFTW's transforms are unnormalised (forward
   ``sum x e^{-2 pi i k n / N}``, backward with ``+``).  The kernel is even, so its
-  spectrum is real; the factor ``1/(4 nx ny)`` of the inverse transform is folded
-  into that stored real spectrum, and no other scaling is applied.
+  spectrum is real: it is computed directly as the DCT-I (``REDFT00``) of
+  ``K[0..nx, 0..ny]`` (scipy.fft, once per grid), and the factor ``1/(4 nx ny)``
+  of the inverse transform is folded into that stored real spectrum; no other
+  scaling is applied.
 * **Symmetry mode.**  For pressure fields even in x and in y (all Hertz and DH
   fields here) the operator takes the quadrant ``x > 0, y > 0``
   (``nx/2 x ny/2`` cells) and returns the displacement there.  The quadrant
@@ -420,7 +422,6 @@ class HalfSpaceOperator:
         )
         # planning may scribble on the arrays: the right half of _rin must stay zero
         self._rin[...] = 0.0
-        self._rows = rows
 
     def _build_full(self, kernel):
         nx, ny = self.grid.shape
