@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from verification._api import Check, Figure, Section
+from verification._api import Check, Section
 
 __all__ = ["SECTION_ORDER", "SectionResult", "main", "run_sections", "render_html", "render_summary",
            "markdown_to_html"]
