@@ -74,7 +74,9 @@ def _decode_png(data: bytes):
 
 def test_quick_report_exits_zero_and_writes_files(quick_report):
     out, proc, _, _ = quick_report
-    assert proc.returncode == 0, f"report failed (exit {proc.returncode}):\n{proc.stderr[-4000:]}"
+    failed = [ln for ln in proc.stderr.splitlines() if ln.startswith("FAIL ")]
+    assert proc.returncode == 0, (f"report exit {proc.returncode}; failed checks:\n" + "\n".join(failed)
+                                  + f"\n{proc.stderr[-3000:]}")
     assert (out / "report.html").is_file()
     assert (out / "summary.md").is_file()
     # progress lines with section counters and timings went to stderr
@@ -230,8 +232,8 @@ window.addEventListener('load', function () {
 
 def test_report_opens_in_headless_chromium(quick_report, chromium, tmp_path):
     out, proc, _, _ = quick_report
-    assert proc.returncode == 0
     report = (out / "report.html").resolve()
+    assert report.is_file(), f"no report (exit {proc.returncode}):\n{proc.stderr[-2000:]}"
 
     # 1. screenshot of the report as it is
     shot = tmp_path / "screenshot.png"
