@@ -12,6 +12,8 @@ from dhfield import bem, double_hertz, fields, hertz
 # --- tolerances -------------------------------------------------------------------
 #: hemisphere_volume vs scipy dblquad asked for 1e-13 absolute.
 ATOL_VOLUME = 1e-12
+#: V(1, 1) = pi/6 exactly in the closed form: a few rounding errors of O(1) terms.
+ATOL_QUARTER = 1e-15
 #: Sums of exact cell averages: rounding of O(N^2) corner differences of O(1) volumes.
 RTOL_LOAD = 1e-11
 #: Cubic splines reproduce a quadratic exactly except for the boundary condition, whose
@@ -30,6 +32,16 @@ MIN_ORDER = 1.5
 MIN_ORDER_LINF = 1.25
 #: Analytic identity h_DH = (1+v) h_H in the annulus (both closed forms): rounding only.
 RTOL_ANALYTIC_IDENTITY = 1e-10
+#: Cell average vs dblquad (asked for 1e-13 absolute) divided by a cell area of ~0.014.
+ATOL_CELL_AVERAGE = 1e-10
+#: Error ratio between N = 64 and 128 for an O(h^1.5) error is 2.8; 2^1.2 = 2.3 leaves margin.
+MIN_RATIO_ANNULUS = 2.0 ** 1.2
+#: Symmetry mode vs full grid (issue 4: 1e-12).
+RTOL_SYMMETRY = 1e-12
+#: SI vs nondimensional: the same floating-point operations up to scaled inputs (rounding);
+#: pressures pass through fewer operations than the FFT'd displacements.
+RTOL_UNITS_PRESSURE = 1e-12
+RTOL_UNITS_FIELD = 1e-11
 
 CASE = dict(beta0=0.9, mu=1.0, a_star=1.2)
 
@@ -50,8 +62,8 @@ def test_hemisphere_volume_matches_quadrature(x, y):
 
 
 def test_hemisphere_volume_quarter_is_pi_over_6():
-    assert fields.hemisphere_volume(1.0, 1.0) == pytest.approx(math.pi / 6.0, abs=1e-15)
-    assert fields.hemisphere_volume(5.0, 3.0) == pytest.approx(math.pi / 6.0, abs=1e-15)
+    assert fields.hemisphere_volume(1.0, 1.0) == pytest.approx(math.pi / 6.0, abs=ATOL_QUARTER)
+    assert fields.hemisphere_volume(5.0, 3.0) == pytest.approx(math.pi / 6.0, abs=ATOL_QUARTER)
 
 
 def test_cell_averages_carry_the_hertz_load():
@@ -79,7 +91,7 @@ def test_cell_average_of_an_edge_cell_matches_quadrature():
     f = lambda y, x: po * math.sqrt(max(1 - (x / a) ** 2 - (y / b) ** 2, 0.0))  # noqa: E731
     for i, j in [(8, 5), (9, 7), (5, 5), (7, 8)]:
         ref = integrate.dblquad(f, xe[i], xe[i + 1], ye[j], ye[j + 1], epsabs=1e-13)[0] / (grid.dx * grid.dy)
-        assert avg[i, j] == pytest.approx(ref, abs=1e-10)
+        assert avg[i, j] == pytest.approx(ref, abs=ATOL_CELL_AVERAGE)
 
 
 def test_centre_sampling_is_eq7_and_dh_is_the_superposition():
@@ -178,7 +190,7 @@ def test_annulus_identity(dh256):
 def test_annulus_identity_converges():
     coarse = fields.annulus_identity(fields.model_case(64, **CASE))["worst"]
     fine = fields.annulus_identity(fields.model_case(128, **CASE))["worst"]
-    assert fine < coarse / 2 ** 1.2
+    assert coarse / fine >= MIN_RATIO_ANNULUS
 
 
 def test_numerical_gap_vanishes_in_the_contact(dh256):
@@ -191,7 +203,7 @@ def test_symmetric_and_full_cases_agree():
     full = fields.hertz_case(48, 1.0, 0.8, symmetric=False)
     sym = fields.hertz_case(48, 1.0, 0.8, symmetric=True)
     scale = np.abs(full.displacement_numerical).max()
-    assert np.max(np.abs(full.displacement_numerical - sym.displacement_numerical)) <= 1e-12 * scale
+    assert np.max(np.abs(full.displacement_numerical - sym.displacement_numerical)) <= RTOL_SYMMETRY * scale
 
 
 def test_bad_input():
@@ -215,7 +227,9 @@ def test_unit_neutrality_si_vs_nondimensional():
     si = fields.hertz_case(32, a, beta, effective_radius=r, reduced_modulus=e)
     nd = fields.hertz_case(32, 1.0, beta)
     p_s, u_s = e * a / r, a * a / r
-    assert np.allclose(si.pressure / p_s, nd.pressure, rtol=1e-12, atol=1e-12 * nd.pressure.max())
+    assert np.allclose(si.pressure / p_s, nd.pressure, rtol=RTOL_UNITS_PRESSURE,
+                       atol=RTOL_UNITS_PRESSURE * nd.pressure.max())
     for name in ("displacement_numerical", "displacement_analytic", "gap_numerical", "gap_analytic"):
         ref = getattr(nd, name)
-        assert np.allclose(getattr(si, name) / u_s, ref, rtol=1e-11, atol=1e-11 * np.abs(ref).max()), name
+        assert np.allclose(getattr(si, name) / u_s, ref, rtol=RTOL_UNITS_FIELD,
+                           atol=RTOL_UNITS_FIELD * np.abs(ref).max()), name

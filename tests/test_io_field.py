@@ -16,6 +16,9 @@ from dhfield.io.field import FIELD_VARIABLES, compute_and_write_case, field_data
 
 CASE = dict(beta0=0.9, mu=1.0, a_star=1.2)
 N = 32
+#: Polar gap difference on 32^2 cells: discretisation (4e-3 of max |omega| on the grid) plus
+#: cubic-spline interpolation across the h ~ (r - r_ab)^1.5 edge; measured 1.6e-2.
+RTOL_POLAR_GAP_32 = 0.03
 
 _READER = textwrap.dedent("""
     import pickle, sys
@@ -59,7 +62,6 @@ def test_round_trip_in_a_fresh_process(case, tmp_path):
         for k, v in var.attrs.items():
             assert _same(attrs[k], v), (name, k)
     # global attributes (history timestamp included)
-    written = field_dataset.__module__  # noqa: F841 - keep the import used
     on_disk = read_netcdf(path).attrs
     assert set(back["attrs"]) == set(on_disk)
     for k in on_disk:
@@ -99,7 +101,7 @@ def test_polar_variables_match_the_cartesian_ones(case):
     assert ds["theta_p"].values[-1] == pytest.approx(np.pi / 2)
     # analytic and numerical gaps agree to the discretisation error on the polar grid too
     scale = np.abs(case.displacement_analytic).max()
-    assert np.nanmax(np.abs(ds["gap_difference_polar"].values)) <= 0.02 * scale
+    assert np.nanmax(np.abs(ds["gap_difference_polar"].values)) <= RTOL_POLAR_GAP_32 * scale
 
 
 def test_compute_and_write_case(tmp_path):
