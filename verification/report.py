@@ -486,7 +486,7 @@ def _checks_table_html(rows):
     for sec_name, c in rows:
         cls = "pass" if c.passed else "fail"
         body.append(
-            f"<tr><td>{html.escape(sec_name)}</td><td>{_inline(c.name)}</td><td class=num>{_fmt(c.value)}</td>"
+            f"<tr><td><a href='#{_anchor(sec_name)}'>{html.escape(sec_name)}</a></td><td>{_inline(c.name)}</td><td class=num>{_fmt(c.value)}</td>"
             f"<td>{html.escape(c.comparison)}</td><td class=num>{_fmt(c.tolerance)}</td>"
             f"<td class={cls}>{'PASS' if c.passed else 'FAIL'}</td><td>{_inline(c.reference)}</td></tr>")
     return head + "".join(body) + "</tbody></table>"
