@@ -93,6 +93,9 @@ N_THETA = 31
 SOLVE_TOL = 1e-12
 #: Contact sizes scanned to bracket the load-controlled pull-off (minimum of W*).
 _SCAN = np.geomspace(2e-3, 4.0, 40)
+#: Contact size that stands for the zero-contact limit a* -> 0 (DMT side): the
+#: closures' W*, delta* differ from their a* = 0 limits by O(a*^2) ~ 1e-12 there.
+A_ZERO = 1e-6
 #: Relative step of the finite-difference Jacobian of the two-axis Newton solve.
 _FD_STEP = 1e-7
 _MAX_NEWTON = 40
@@ -532,7 +535,8 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
         At the pull-off point.  Found as the last local minimum, seen from high
         load, of W*(a*) (or delta*(a*)) on a geometric scan of a*, refined with
         :func:`scipy.optimize.elementwise.find_minimum`; ``at_zero_contact`` is True
-        where the scan's smallest a* is the minimum (reported there).
+        where W* (delta*) rises monotonically from the smallest scanned a*, and the
+        state is then reported at a* = :data:`A_ZERO`, standing for a* -> 0.
     """
     if closure not in CLOSURES:
         raise ValueError(f"closure must be one of {CLOSURES}; got {closure!r}")
@@ -553,7 +557,7 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
     interior = (scan[..., 1:-1] <= scan[..., :-2]) & (scan[..., 1:-1] <= scan[..., 2:])
     has = interior.any(axis=-1)
     last = np.where(has, n - 2 - np.argmax(interior[..., ::-1], axis=-1), 0)  # index in scan
-    a_best = _SCAN[last]
+    a_best = np.where(has, _SCAN[last], A_ZERO)
     if np.any(has):
         lo, mid, hi = _SCAN[last - 1][has], _SCAN[last][has], _SCAN[last + 1][has]
         res = elementwise.find_minimum(objective, (lo, mid, hi), args=(mu[has], beta0[has]),

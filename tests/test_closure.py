@@ -136,3 +136,15 @@ def test_spread_along_curve_and_law_spread_identity():
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_displacement_control_and_zero_contact():
+    # mu = 0.5: displacement-controlled pull-off at zero contact (DMT side); mu = 5: interior minimum.
+    for mu in (0.5, 5.0):
+        got = closure.pull_off_closure(mu, 0.8, "paper", control="displacement")
+        ref = model.pull_off(mu, 0.8, control="displacement")
+        assert_allclose(got.delta_star, ref.delta_star, rtol=1e-9)
+        assert_allclose(got.W_star, ref.W_star, rtol=1e-6)
+        assert bool(got.at_zero_contact) == bool(ref.at_zero_contact)
+    two = closure.pull_off_closure(0.5, 1.0, "two_axis", control="displacement")
+    assert_allclose(two.delta_star, model.pull_off(0.5, 1.0, control="displacement").delta_star, rtol=1e-9)
