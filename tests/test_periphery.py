@@ -264,3 +264,18 @@ def test_datasets_round_trip(tmp_path):
     assert_allclose(back3["eq30_area"].values, area, rtol=0)
     with pytest.raises(ValueError, match="directory"):
         iop.write_dataset(ds3, tmp_path / "missing" / "x.nc")
+
+
+def test_load_curve_dataset(tmp_path):
+    from dhfield.io import read_netcdf
+    from dhfield.io import periphery as iop
+
+    curves, profs = {}, {}
+    for b in (0.8, 0.9):
+        lc, pr = periphery.load_curve_periphery(1.0, b, [0.5, 1.0, 2.0], THETA)
+        curves[(b, 1.0)], profs[(b, 1.0)] = lc, pr
+    ds = iop.load_curve_periphery_dataset([1.0], [0.8, 0.9], curves, profs)
+    back = read_netcdf(iop.write_dataset(ds, tmp_path / "lc.nc"))
+    assert back["work_of_adhesion"].shape == (2, 1, 3, THETA.size)
+    assert_allclose(back["work_of_adhesion"].values[1, 0], profs[(0.9, 1.0)].work_of_adhesion, rtol=0)
+    assert_allclose(back["W_star"].values[0, 0], curves[(0.8, 1.0)].W_star, rtol=0)

@@ -377,11 +377,12 @@ def _fig_curves(res, outdir, dpi, n):
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     a = np.linspace(0.1, 3.0, n)
     curves = {}
+    th = np.linspace(0.0, 0.5 * np.pi, 19)
     for b in res["beta0"]:
         for m in (1.0, 5.0):
-            lc, pr = periphery.load_curve_periphery(m, b, a, [0.0, 0.5 * np.pi])
-            ratio = pr.work_of_adhesion[:, 1] / pr.work_of_adhesion[:, 0]
-            curves[(b, m)] = (lc.W_star, ratio)
+            lc, pr = periphery.load_curve_periphery(m, b, a, th)
+            ratio = pr.work_of_adhesion[:, -1] / pr.work_of_adhesion[:, 0]
+            curves[(float(b), m)] = (lc, pr)
             ax.plot(lc.W_star, ratio, _STYLES[b], color=_COLORS[m], label=f"β0 = {b:g}, μ = {m:g}")
     ax.set_xlabel("W* (Eq. 34)")
     ax.set_ylabel("Δγ(π/2) / Δγ(0)")
@@ -614,10 +615,15 @@ def run(outdir: Path, quick: bool, progress) -> Section:
                                TOL_EQ30_GRID_QUICK if quick else TOL_EQ30_GRID,
                                "dhfield.eq30.eq30_area (analytic fields)"))
     figures = [_fig_rays(res, outdir, cfg["dpi"]), _fig_laws(res, outdir, cfg["dpi"])]
-    fig, _ = _fig_curves(res, outdir, cfg["dpi"], cfg["curve_n"])
+    fig, curves = _fig_curves(res, outdir, cfg["dpi"], cfg["curve_n"])
     figures += [fig, _fig_closures(res, outdir, cfg["dpi"]), _fig_bem(recs, outdir, cfg["dpi"])]
     progress("figures")
     datasets = _datasets(res, recs, outdir)
+    from dhfield.io import periphery as iop
+
+    ds = iop.load_curve_periphery_dataset([1.0, 5.0], res["beta0"], {k: v[0] for k, v in curves.items()},
+                                          {k: v[1] for k, v in curves.items()})
+    datasets.append(iop.write_dataset(ds, outdir / "periphery_load_curves.nc"))
     progress("netCDF")
     tables = [
         "**Δγ(π/2)/Δγ(0) at pull-off** (load control; Eq. 31 on the minor over the major axis):\n\n" + ratio_table(res),

@@ -22,6 +22,7 @@ __all__ = [
     "equal_beta_dataset",
     "eq30_dataset",
     "grid_periphery_dataset",
+    "load_curve_periphery_dataset",
     "write_dataset",
 ]
 
@@ -192,6 +193,46 @@ def grid_periphery_dataset(theta, analytic, numerical: dict, **parameters) -> xr
                                                  f"h(r_ab), residual of the contact condition ({label})")
     ds = xr.Dataset(data, coords={"theta": ("theta", np.asarray(theta, float), dict(_THETA_ATTRS))})
     ds.attrs.update(provenance_attrs("Ray work of adhesion: analytic vs gridded (BEM) gap", **parameters))
+    return ds
+
+
+def load_curve_periphery_dataset(mu, beta0, curves: dict, profiles: dict) -> xr.Dataset:
+    """Dataset of the ray quantities along load curves.
+
+    Parameters
+    ----------
+    mu, beta0 : array_like
+        1-D grids.
+    curves : dict
+        (beta0, mu) -> dhfield.model.LoadCurve, all on the same a* points.
+    profiles : dict
+        (beta0, mu) -> dhfield.periphery.PeripheryProfile of shape (len(a_star), len(theta)).
+    """
+    mu, beta0 = np.asarray(mu, float), np.asarray(beta0, float)
+    first = next(iter(profiles.values()))
+    theta = np.asarray(first.theta)[0]
+    a_star = np.asarray(next(iter(curves.values())).a_star)
+    shape = (beta0.size, mu.size, a_star.size)
+    data = {}
+    for name in ("W_star", "c_star", "v", "delta_star"):
+        arr = np.full(shape, np.nan)
+        for (b, m), cur in curves.items():
+            arr[list(beta0).index(b), list(mu).index(m)] = getattr(cur, name)
+        data[name] = _var(("beta0", "mu", "a_star"), arr, {
+            "W_star": "load W sin(theta_skew)/(2 pi R dgamma) (Eq. 34)",
+            "c_star": "adhesive semi-major axis, in c_r", "v": "double-Hertz scaling factor v (Eq. 22)",
+            "delta_star": "approach, in c_r^2/R"}[name])
+    for name, (ln, u) in PROFILE_VARIABLES.items():
+        arr = np.full(shape + (theta.size,), np.nan)
+        for (b, m), prof in profiles.items():
+            arr[list(beta0).index(b), list(mu).index(m)] = getattr(prof, name)
+        data[name] = _var(("beta0", "mu", "a_star", "theta"), arr, ln, u)
+    coords = _coords(mu, beta0, theta)
+    coords["a_star"] = ("a_star", a_star, {"long_name": "contact semi-major axis a/c_r (Eq. 32)", "units": "1"})
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(provenance_attrs(
+        "Elliptical double-Hertz model: quantities along every ray theta_p along load curves",
+        model="dh-elliptic", mu=mu, beta0=beta0, n_theta=int(theta.size), length_unit=_LENGTH_UNIT))
     return ds
 
 
