@@ -49,6 +49,14 @@ the change of variables (r, theta_p) -> (sigma, h) would need the quarter annulu
 to map one-to-one onto that area, and it does not (for a single law the image is
 the curve itself, of zero area).
 
+Two further remarks.  The factor 4 assumes the four quadrants contribute
+equally, but the integrand is odd in x and in y (it is r (sigma_x h_y -
+sigma_y h_x) and the fields are even), so the quadrants alternate in sign and the
+integral over the whole annulus is exactly zero -- as Green's theorem says, since
+the whole annulus has only the two curved edges.  And the sign: Eq. (23) prints
+sigma_ac = -P (negative in tension); read literally, Eqs. (30) and (31) both
+change sign.  Here sigma is the tensile magnitude, which makes Eq. (31) positive.
+
 The formula that is the work of adhesion is the line integral along a path
 across the zone, Eq. (31) on each ray:
 

@@ -124,3 +124,20 @@ def test_periphery_average_between_axes_and_pull_off_values():
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_whole_annulus_integrand_integrates_to_zero():
+    # The quadrants alternate in sign (integrand odd in x and y): Cartesian sum over the full grid is 0,
+    # while 4 x (first quadrant) is not.
+    a, c, beta, v = 1.3, 2.0, 0.8, 1.1
+    n = 128
+    x = (np.arange(n) - (n - 1) / 2) * (2.2 * c / n)
+    xx, yy = np.meshgrid(x, x, indexing="ij")
+    s = eq30.adhesive_stress_extended(xx, yy, c, beta, v)
+    h = double_hertz.gap(xx, yy, a, c, beta, v)
+    sx, sy = np.gradient(s, x, x)
+    hx, hy = np.gradient(h, x, x)
+    jac = sx * hy - sy * hx
+    quadrant = jac[(xx > 0) & (yy > 0)].sum()
+    assert abs(jac.sum()) < 1e-12 * abs(quadrant)
+    assert abs(jac[(xx < 0) & (yy > 0)].sum() + quadrant) < 1e-12 * abs(quadrant)

@@ -490,7 +490,9 @@ def _text(res, recs, eq30_grid, quick):
         "imposed, it vanishes at the circle, and it vanishes identically for any field with one cohesive law "
         "σ = f(h): it measures the *inconsistency* of the cohesive law between the axes, not an energy per "
         "unit area. (The dr dθp measure without the factor r is not the problem: the Jacobian is coordinate-"
-        "free, ∂(σ,h)/∂(r,θ) dr dθ = ∂(σ,h)/∂(x,y) dx dy.) The formula that is the work of adhesion is the "
+        "free, ∂(σ,h)/∂(r,θ) dr dθ = ∂(σ,h)/∂(x,y) dx dy.) The factor 4 does not hold either: the integrand is "
+        "odd in x and in y, so over the whole annulus the integral is exactly 0. The formula that is the work of "
+        "adhesion is the "
         "line integral across the zone, Δγ(θp) = ∫_{r_ab}^{r_cd} σ ∂h/∂r dr, on every ray; for the DH fields, "
         "which are not consistent, a single number must be chosen — θp = 0 (the paper), or the periphery "
         "average Δγ̄ = ∫Δγ(θp) r_ab² dθp / ∫r_ab² dθp (`dhfield.eq30.periphery_work_of_adhesion`).")
