@@ -148,3 +148,33 @@ def test_displacement_control_and_zero_contact():
         assert bool(got.at_zero_contact) == bool(ref.at_zero_contact)
     two = closure.pull_off_closure(0.5, 1.0, "two_axis", control="displacement")
     assert_allclose(two.delta_star, model.pull_off(0.5, 1.0, control="displacement").delta_star, rtol=1e-9)
+
+
+@pytest.mark.parametrize("theta", [0.0, 0.6, np.pi / 2])
+def test_two_axis_ray_work_against_quad(theta):
+    # Independent oracle for the general (beta_cd != beta_ab) field: quad of sigma dh/dr with the
+    # gap gradient built from both Hertz displacement gradients (Eq. 13) and the geometry (Eq. 2).
+    from scipy import integrate
+
+    st = closure.solve_two_axis(1.0, 2.0, 0.8)
+    a, b, c, d = (float(q) for q in (st.a_star, st.b_star, st.c_star, st.d_star))
+    amp_a, amp_b = float(st.contact_amplitude), float(st.adhesive_amplitude)
+    rho = radius_ratio(0.8)
+    r1, r2 = np.sqrt(rho), 1 / np.sqrt(rho)
+    r_ab = a * b / np.hypot(b * np.cos(theta), a * np.sin(theta))
+    r_cd = c * d / np.hypot(d * np.cos(theta), c * np.sin(theta))
+
+    def f(t):
+        r = r_ab + (r_cd - r_ab) * np.sin(t) ** 2
+        x, y = r * np.cos(theta), r * np.sin(theta)
+        ga = hertz.surface_displacement_gradient(x, y, a, b, amp_a)
+        gc = hertz.surface_displacement_gradient(x, y, c, d, amp_b)
+        hx, hy = x / r1 + ga[0] - gc[0], y / r2 + ga[1] - gc[1]
+        sigma = hertz.pressure(x, y, c, d, amp_b)
+        return sigma * (hx * np.cos(theta) + hy * np.sin(theta)) * 2 * (r_cd - r_ab) * np.sin(t) * np.cos(t)
+
+    ref, _ = integrate.quad(f, 0, np.pi / 2, epsabs=0, epsrel=1e-12, limit=200)
+    got = periphery._profile_general(a, b, c, d, amp_a, amp_b, np.array([theta])).work_of_adhesion[0]
+    assert_allclose(got, ref, rtol=1e-9)
+    if theta in (0.0, np.pi / 2):
+        assert_allclose(ref, 1.0, rtol=1e-9)
