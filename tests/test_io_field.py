@@ -102,6 +102,9 @@ def test_polar_variables_match_the_cartesian_ones(case):
     # analytic and numerical gaps agree to the discretisation error on the polar grid too
     scale = np.abs(case.displacement_analytic).max()
     assert np.nanmax(np.abs(ds["gap_difference_polar"].values)) <= RTOL_POLAR_GAP_32 * scale
+    # the annulus identity per ray is stored on the same theta_p coordinate
+    ident = fields.annulus_identity(case, n_theta=19)
+    assert np.array_equal(ds["annulus_identity_error"].values, ident["rel_error"])
 
 
 def test_compute_and_write_case(tmp_path):

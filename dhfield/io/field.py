@@ -8,7 +8,8 @@ One :class:`xarray.Dataset` per case (:class:`dhfield.fields.FieldCase`):
   analytic and numerical displacement and gap, their differences (analytic minus
   numerical) and a region flag (contact / annulus / outside);
 * on (r, theta_p): the same displacement and gap variables, numerical ones
-  interpolated from the grid (cubic splines), analytic ones evaluated directly;
+  interpolated from the grid (cubic splines), analytic ones evaluated directly,
+  and, for DH cases, the annulus-identity error along each ray theta_p;
 * CF-style ``units`` and ``long_name`` on every variable, and the global
   attributes of :func:`dhfield.io.provenance_attrs` (``Conventions``,
   ``source``, ``references``, ``history``) with every input parameter as a
@@ -102,6 +103,11 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
                                                                   "units": u["length"]})
     data["pressure_analytic_polar"] = (dims, ana["pressure"], {
         "long_name": "analytic pressure (Eqs. 7/22, compressive positive)", "units": u["pressure"]})
+    if case.parameters.get("model") == "double_hertz":
+        ident = fields.annulus_identity(case, n_theta=n_theta)
+        data["annulus_identity_error"] = ("theta_p", ident["rel_error"], {
+            "long_name": "max over the annulus ray of |h_BEM - (1+v) h_Hertz| / max (1+v) h_Hertz",
+            "units": "1"})
     coords = {"r": ("r", r, {"long_name": "radial coordinate r (Eq. A3)", "units": u["length"]}),
               "theta_p": ("theta_p", theta, {"long_name": "polar angle theta_p from the major axis (Eq. A3)",
                                              "units": "radian"})}
