@@ -94,7 +94,7 @@ def main(argv=None) -> int:
     ap.add_argument("--nmax", type=int, default=2048)
     ap.add_argument("--threads", type=int, default=1)
     args = ap.parse_args(argv)
-    ns = [n for n in (128, 256, 512, 1024, 2048) if n <= args.nmax]
+    ns = [n for n in (128, 256, 512, 1024, 2048, 4096) if n <= args.nmax]
     t0 = time.perf_counter()
     ok = True
 
