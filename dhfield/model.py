@@ -122,6 +122,8 @@ def _solve_s(a, mu, shape):
     """Solve Delta gamma(a, S) = 1 for S, element-wise (bracketed Newton in log S)."""
     fields = (shape.beta, shape.kappa, shape.k_complete, shape.r_major, shape.sin_skew)
     a, mu, *fields = np.broadcast_arrays(np.asarray(a, float), np.asarray(mu, float), *fields)
+    out_shape = a.shape
+    a, mu, *fields = (f.ravel() for f in (a, mu, *fields))
     shape = _Shape(*fields)
     # Start between the small-contact limit (closed form) and the narrow-annulus
     # estimate S^2 ~ 8a/(pi mu^2); the bracket below makes any start safe.
@@ -154,7 +156,7 @@ def _solve_s(a, mu, shape):
             break
     else:
         raise RuntimeError("adhesive-axis solve did not converge; please report the inputs")
-    return np.exp(u)
+    return np.exp(u).reshape(out_shape)
 
 
 def _state(a, mu, shape, derivatives=False):

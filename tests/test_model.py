@@ -107,6 +107,13 @@ def test_ellipticity_override_only_changes_shapes():
     assert float(q.W_star) == pytest.approx(float(model.pull_off(2.0, 0.8).W_star), rel=1e-15)
 
 
+def test_scalar_and_array_inputs_agree():
+    c0, v0 = model.solve_adhesive_axis(1.0, 1.0, 0.8)
+    assert np.ndim(c0) == 0 and np.ndim(v0) == 0
+    c1, v1 = model.solve_adhesive_axis([1.0, 2.0], 1.0, 0.8)
+    assert c1[0] == pytest.approx(float(c0), rel=1e-15) and v1[0] == pytest.approx(float(v0), rel=1e-15)
+
+
 def test_top_level_api_fields():
     p = dhfield.pull_off(mu=1.0, beta0=0.9)
     for k in ("beta0", "mu", "W_star", "a_star", "c_star", "v", "delta_star"):
