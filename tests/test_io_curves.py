@@ -38,3 +38,12 @@ def test_unknown_suffix_is_an_error(tmp_path):
     with pytest.raises(ValueError, match=r"\.nc or \.csv"):
         write_load_curve(model.load_curve(1.0, 0.9, n=3), tmp_path / "x.txt")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_written_files_get_default_permissions(tmp_path):
+    import os
+
+    path = write_load_curve(model.load_curve(1.0, 0.9, n=3), tmp_path / "x.nc")
+    umask = os.umask(0)
+    os.umask(umask)
+    assert (path.stat().st_mode & 0o777) == (0o666 & ~umask)
