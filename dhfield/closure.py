@@ -292,17 +292,6 @@ def equal_beta_spread_along_curve(mu, beta0, a_star, *, n_theta=N_THETA):
 
 
 # --------------------------------------------------------------------------- shared pieces
-def _paper_solution(a, mu, beta0):
-    """dhfield.model.solve_adhesive_axis for arrays of any shape, 0-d included.
-
-    (model.solve_adhesive_axis raises on 0-d input; reported to the lead.)
-    """
-    shape = np.broadcast_shapes(np.shape(a), np.shape(mu), np.shape(beta0))
-    a1, m1, b1 = (np.atleast_1d(np.broadcast_to(q, shape)).ravel() for q in (a, mu, beta0))
-    c, v = model.solve_adhesive_axis(a1, m1, b1)
-    return np.reshape(c, shape), np.reshape(v, shape)
-
-
 def _geometry(beta0):
     rho0 = radius_ratio(beta0)
     return np.sqrt(rho0), 1.0 / np.sqrt(rho0), sin_skew_angle(beta0)  # R', R'' (R = 1), Eq. (34) factor
@@ -378,7 +367,7 @@ def solve_ray_average(a_star, mu, beta0, *, weight="area", n_theta=None):
     if weight not in ("area", "angle"):
         raise ValueError(f"weight must be 'area' or 'angle'; got {weight!r}")
     n_theta = rays_for(beta0) if n_theta is None else int(n_theta)
-    c0, _ = _paper_solution(a, mu, beta0)
+    c0, _ = model.solve_adhesive_axis(a, mu, beta0)
     log_s0 = np.log(np.sqrt(np.asarray(c0) ** 2 - a * a))
     args = (a, mu, beta0)
 
@@ -461,7 +450,7 @@ def solve_two_axis(a_star, mu, beta0):
     a, mu, beta0 = _check(a_star, mu, beta0)
     shape = a.shape
     a, mu, beta0 = (np.atleast_1d(q).ravel() for q in (a, mu, beta0))
-    c0, _ = _paper_solution(a, mu, beta0)
+    c0, _ = model.solve_adhesive_axis(a, mu, beta0)
     u = np.stack([np.log(c0), np.log(beta0 * c0)], axis=-1).astype(float)
     u = np.array(np.broadcast_to(u, a.shape + (2,)))
     active = np.ones(a.shape, bool)
@@ -501,7 +490,7 @@ def solve_two_axis(a_star, mu, beta0):
 # --------------------------------------------------------------------------- pull-off
 def _paper_state(a_star, mu, beta0):
     a, mu, beta0 = _check(a_star, mu, beta0)
-    c, v = _paper_solution(a, mu, beta0)
+    c, v = model.solve_adhesive_axis(a, mu, beta0)
     c = np.asarray(c, float)
     v = np.asarray(v, float)
     return _two_field_state("paper", mu, beta0, a, beta0 * a, c, beta0 * c,

@@ -22,7 +22,7 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._validation import check_ellipticity, check_finite, check_interval, check_positive
+from ._validation import check_ellipticity, check_interval, check_positive
 
 __all__ = [
     "principal_radii",

@@ -42,7 +42,7 @@ from scipy.optimize import elementwise
 
 from ._validation import check_ellipticity, check_positive
 from .adhesion import graded_rule
-from .geometry import radius_ratio, sin_skew_angle
+from .geometry import sin_skew_angle
 
 __all__ = ["solve_adhesive_axis", "load_curve", "pull_off", "LoadCurve", "PullOff",
            "DEFAULT_A_STAR"]

@@ -68,7 +68,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from . import hertz, model
+from . import double_hertz, hertz, model
 from ._validation import check_ellipticity, check_finite, check_positive
 from .adhesion import graded_rule
 from .elliptic import ellipsoid_integrals
@@ -303,14 +303,8 @@ def _law_general(a, b, c, d, gap_amplitude, stress_amplitude, theta, n_points, r
 
 # --------------------------------------------------------------------------- public, equal beta
 def _check_state(semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus):
-    a = check_positive("semi_major", semi_major, "contact semi-major axis a, m")
-    c = check_positive("adhesive_semi_major", adhesive_semi_major, "adhesive semi-major axis c, m")
-    if np.any(c < a):
-        raise ValueError("adhesive_semi_major must be >= semi_major (c >= a)")
-    beta = check_ellipticity("beta", beta)
-    v = check_positive("scaling", scaling, "DH scaling factor v, dimensionless", allow_zero=True)
-    r = check_positive("effective_radius", effective_radius, "m")
-    e = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    a, c, beta, v, r, e = double_hertz._check_state(semi_major, adhesive_semi_major, beta, scaling,
+                                                    effective_radius, reduced_modulus)
     po_ab = hertz.max_pressure(a, beta, r, e)  # Eq. (8)
     po_cd = hertz.max_pressure(c, beta, r, e)  # Eq. (20)
     return a, c, beta, v, r, e, (1.0 + v) * po_ab, v * po_cd  # Eq. (22): A, B

@@ -4,7 +4,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy import integrate
 
-from dhfield import adhesion, double_hertz, hertz, model, periphery
+from dhfield import adhesion, double_hertz, hertz, periphery
 
 #: Ray quadrature is exponentially convergent (graded Gauss rule): ~1e-13 relative.
 QUAD_RTOL = 1e-11
