@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _adhesion as units
 from . import geometry, model
 from ._validation import check_positive
 
@@ -78,14 +79,13 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
                                             poisson_ratio_2))  # Eq. (6)
     r1, r2 = geometry.principal_radii(cylinder_radius, skew_angle)  # Eqs. (3)-(4)
     r = float(geometry.effective_radius(r1, r2))  # Eq. (5)
-    dgamma = float(check_positive("work_of_adhesion", work_of_adhesion, "J m^-2"))
-    sigma0 = float(check_positive("max_adhesive_stress", max_adhesive_stress, "Pa"))
     beta0 = float(geometry.ellipticity_from_radius_ratio(r1 / r2))
     sin_skew = float(np.sin(skew_angle))
-    mu = sigma0 * (r / (e_star**2 * dgamma)) ** (1.0 / 3.0)  # Eq. (35)
-    c_r = (r**2 * dgamma / e_star) ** (1.0 / 3.0)  # Eq. (33)
-    return ContactParameters(e_star, float(r1), float(r2), r, beta0, sin_skew, mu, c_r, c_r**2 / r,
-                             2.0 * np.pi * r * dgamma / sin_skew)  # Eq. (34)
+    mu = float(units.tabor_parameter(max_adhesive_stress, r, e_star, work_of_adhesion))  # Eq. (35)
+    return ContactParameters(e_star, float(r1), float(r2), r, beta0, sin_skew, mu,
+                             float(units.length_unit(r, e_star, work_of_adhesion)),  # Eq. (33)
+                             float(units.approach_unit(r, e_star, work_of_adhesion)),
+                             float(units.load_unit(r, work_of_adhesion, sin_skew)))  # Eq. (34)
 
 
 def load_curve_si(params: ContactParameters, semi_major=None, n=200):
