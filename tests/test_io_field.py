@@ -152,3 +152,13 @@ def test_cli_field(tmp_path, capsys):
     assert status == 2
     assert "n must be an integer >= 8" in capsys.readouterr().err
     assert not (tmp_path / "bad.nc").exists()
+
+
+def test_si_hertz_case_in_metres_and_pascals(tmp_path):
+    case = fields.hertz_case(16, 2e-4, 0.8, effective_radius=0.05, reduced_modulus=2e9)
+    ds = read_netcdf(write_field(case, tmp_path / "hertz.nc"))
+    assert ds["x"].attrs["units"] == "m" and ds["r"].attrs["units"] == "m"
+    assert ds["pressure"].attrs["units"] == "Pa" and ds["gap_numerical"].attrs["units"] == "m"
+    assert ds.attrs["param_model"] == "hertz" and ds.attrs["param_reduced_modulus"] == 2e9
+    assert "annulus_identity_error" not in ds and "param_length_scale" not in ds.attrs
+    assert set(np.unique(ds["region"].values)) == {0, 2}
