@@ -53,7 +53,7 @@ import numpy as np
 from scipy import ndimage
 
 from . import bem, double_hertz, hertz, model
-from ._validation import check_ellipticity, check_finite, check_positive
+from ._validation import check_ellipticity, check_positive
 
 __all__ = [
     "SAMPLINGS",
