@@ -11,9 +11,9 @@ PKG = Path(__file__).resolve().parents[1] / "dhfield"
 TESTS = Path(__file__).resolve().parent
 
 #: Equations that define the implemented model (Eq. 1 is a definition, 17-19 and 9 are
-#: assumptions cited where they are applied, 28-29 the definition behind Eq. 31).
+#: assumptions cited where they are applied, 28-29 the definitions behind Eqs. 30-31).
 REQUIRED = ({str(n) for n in range(2, 9)} | {str(n) for n in range(10, 17)} | {str(n) for n in range(20, 28)}
-            | {"31", "32", "33", "34", "35", "36", "A1", "A2", "B1", "B2", "B3"})
+            | {"30", "31", "32", "33", "34", "35", "36", "A1", "A2", "B1", "B2", "B3"})
 
 _TAG = re.compile(r"Eqs?\. \(([0-9AB]+)[a-c]?\)")
 
