@@ -34,8 +34,8 @@ import functools
 import numpy as np
 from scipy.special import roots_legendre
 
-from . import hertz
-from ._validation import check_ellipticity, check_finite, check_positive
+from . import double_hertz, hertz
+from ._validation import check_finite
 from .elliptic import ellipsoid_integrals
 
 __all__ = ["work_of_adhesion", "graded_rule"]
@@ -124,15 +124,9 @@ def work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, theta=0.0, 
     At theta_p = 0 this is Eq. (31).  For beta = 1 it equals the closed form of
     Greenwood & Johnson (1998), v (1+v) 2E*/(3 pi R^2) (c-a)^2 (c+2a).
     """
-    a = check_positive("semi_major", semi_major, "contact semi-major axis")
-    c = check_positive("adhesive_semi_major", adhesive_semi_major, "adhesive semi-major axis")
-    if np.any(c < a):
-        raise ValueError("adhesive_semi_major must be >= semi_major (c >= a)")
-    beta = check_ellipticity("beta", beta)
-    v = check_positive("scaling", scaling, "DH scaling factor v", allow_zero=True)
+    a, c, beta, v, r_eff, e = double_hertz._check_state(semi_major, adhesive_semi_major, beta, scaling,
+                                                        effective_radius, reduced_modulus)
     theta = check_finite("theta", theta, "rad")
-    r_eff = check_positive("effective_radius", effective_radius, "m")
-    e = check_positive("reduced_modulus", reduced_modulus, "Pa")
     a, c, beta, v, theta, r_eff, e = np.broadcast_arrays(a, c, beta, v, theta, r_eff, e)
     b, d = beta * a, beta * c
     cos2, sin2 = np.cos(theta) ** 2, np.sin(theta) ** 2

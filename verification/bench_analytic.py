@@ -10,24 +10,12 @@ Prints the median wall time of
 """
 from __future__ import annotations
 
-import os
-import statistics
 import sys
-import time
 
 import numpy as np
 
 from dhfield import model
-
-
-def _median_time(fn, repeats):
-    fn()  # warm-up (caches, lazy imports)
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+from verification._bench import run_cases
 
 
 def main() -> int:
@@ -41,18 +29,7 @@ def main() -> int:
         ("Fig. 9a dataset: 60 mu x 3 beta0 pull-offs", lambda: model.pull_off(mu60[:, None], beta3[None, :]),
          2.0, 5),
     ]
-    print(f"dhfield analytic benchmark on {os.cpu_count()} cores, python {sys.version.split()[0]}")
-    print(f"{'case':52s} {'median':>10s} {'target':>10s} {'ratio':>7s}  verdict")
-    ok = True
-    for name, fn, target, reps in cases:
-        t = _median_time(fn, reps)
-        if target is None:
-            print(f"{name:52s} {t * 1e3:8.2f}ms {'-':>10s} {'-':>7s}  (reported)")
-            continue
-        passed = t <= target
-        ok &= passed
-        print(f"{name:52s} {t * 1e3:8.2f}ms {target * 1e3:8.0f}ms {t / target:7.3f}  {'PASS' if passed else 'FAIL'}")
-    return 0 if ok else 1
+    return run_cases("dhfield analytic benchmark", cases, width=52)
 
 
 if __name__ == "__main__":
