@@ -47,3 +47,15 @@ class Section:
     figures: list[Figure] = field(default_factory=list)
     tables: list[str] = field(default_factory=list)         # Markdown tables
     datasets: list[Path] = field(default_factory=list)
+
+
+def save_figure(fig, path, dpi) -> Path:
+    """Write a matplotlib figure as PNG atomically (dhfield.io.atomic_path) and close it."""
+    import matplotlib.pyplot as plt
+
+    from dhfield.io import atomic_path
+
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=dpi)
+    plt.close(fig)
+    return Path(path)

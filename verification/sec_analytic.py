@@ -21,13 +21,12 @@ share its code path:
 """
 from __future__ import annotations
 
-import os
 import time
 from pathlib import Path
 
 import numpy as np
 
-from verification._api import Check, Figure, Section, check_le
+from verification._api import Check, Figure, Section, check_le, save_figure
 
 TITLE = "Analytic elliptical double-Hertz model (θp = 0): Figs. 4–7, 10, load curves and pull-off"
 
@@ -75,16 +74,6 @@ def _curve_grid(n):
     return np.unique(np.concatenate([np.geomspace(2e-3, 0.3, n // 3), np.linspace(0.3, 3.0, n - n // 3)]))
 
 
-def _save(fig, path, dpi):
-    from dhfield.io import atomic_path
-
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
-        os.chmod(tmp, 0o644)  # mkstemp creates 0600
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
-    return path
 
 
 def _label_beta(b):
@@ -384,7 +373,7 @@ def _fig_axes_vs_load(curves_by, pulloffs, outdir, dpi, which, fname, caption, j
     ax.legend(fontsize=8, loc="upper left" if which == "a" else "upper right")
     ax.set_title(("Fig. 4: a* vs W*" if which == "a" else "Fig. 5: c* vs W*") + f", β0 = {BETA_FIG45}")
     fig.tight_layout()
-    return Figure(_save(fig, outdir / fname, dpi), caption)
+    return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
 def _fig_beta_family(curves_by, pulloffs, mu, outdir, dpi, fname, caption):
@@ -406,7 +395,7 @@ def _fig_beta_family(curves_by, pulloffs, mu, outdir, dpi, fname, caption):
     ax.legend(fontsize=8, ncol=2)
     ax.set_title(f"Fig. {6 if mu < 1 else 7}: a*, c* vs W* at μ = {mu:g}")
     fig.tight_layout()
-    return Figure(_save(fig, outdir / fname, dpi), caption)
+    return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
 def _fig_load_approach(curves_by, outdir, dpi, fname, caption):
@@ -442,7 +431,7 @@ def _fig_load_approach(curves_by, outdir, dpi, fname, caption):
         p = pull_off(mu, np.asarray(BETA_FIG67), control="displacement")
         axes[1].plot(p.delta_star, p.W_star, "v", color="k", ms=4)
     fig.tight_layout()
-    return Figure(_save(fig, outdir / fname, dpi), caption)
+    return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
 def _fig_continuity(betas, mus, po, outdir, dpi, fname, caption):
@@ -462,7 +451,7 @@ def _fig_continuity(betas, mus, po, outdir, dpi, fname, caption):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
-    return Figure(_save(fig, outdir / fname, dpi), caption)
+    return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
 def _fig_quadrature(scatter, outdir, dpi, fname, caption):
@@ -483,7 +472,7 @@ def _fig_quadrature(scatter, outdir, dpi, fname, caption):
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=6, ncol=2)
     fig.tight_layout()
-    return Figure(_save(fig, outdir / fname, dpi), caption)
+    return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
 def _fig3_state(mu, beta0):
@@ -532,7 +521,7 @@ def _fig_pressure_displacement(outdir, dpi, fname, mu=1.0, beta0=0.99):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     fig.tight_layout()
-    return _save(fig, outdir / fname, dpi)
+    return save_figure(fig, outdir / fname, dpi)
 
 
 def _check_gap(rng, n):
@@ -634,7 +623,7 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8, frameon=False)
     fig.tight_layout(rect=(0, 0.07, 1, 1))
-    return _save(fig, outdir / fname, dpi), jkr_note
+    return save_figure(fig, outdir / fname, dpi), jkr_note
 
 
 # --------------------------------------------------------------------------- the section

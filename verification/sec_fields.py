@@ -24,13 +24,12 @@ Checks (each with its tolerance and reason):
 from __future__ import annotations
 
 import math
-import os
 import time
 from pathlib import Path
 
 import numpy as np
 
-from verification._api import Figure, Section, check_ge, check_le
+from verification._api import Figure, Section, check_ge, check_le, save_figure
 
 TITLE = "Full-field verification: analytic DH fields vs DC-FFT boundary elements (2-D, all θp)"
 
@@ -75,16 +74,6 @@ def _settings(quick):
     return dict(n_case=512, ns=(128, 256, 512, 1024, 2048), dpi=110, n_theta=91)
 
 
-def _save(fig, path, dpi):
-    from dhfield.io import atomic_path
-
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
-        os.chmod(tmp, 0o644)
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
-    return path
 
 
 def _ellipse(ax, a, beta, **kw):
@@ -123,7 +112,7 @@ def _fig_maps(case, path, dpi):
         fig.colorbar(im, ax=ax, shrink=0.85)
     fig.suptitle(f"β0 = {prm['beta0']:g}, μ = {prm['mu']:g}, a* = {prm['a_star']:g} "
                  f"(c* = {prm['adhesive_semi_major']:.4f}, v = {prm['scaling']:.4f}), {g.nx}×{g.ny} cells")
-    return _save(fig, path, dpi)
+    return save_figure(fig, path, dpi)
 
 
 def _fig_profiles(cases, path, dpi):
@@ -163,7 +152,7 @@ def _fig_profiles(cases, path, dpi):
         ax.set_xlabel("r / a along θp = 0")
         ax.set_title(t, fontsize=10)
         ax.legend(fontsize=7)
-    return _save(fig, path, dpi)
+    return save_figure(fig, path, dpi)
 
 
 def _fig_annulus(results, path, dpi):
@@ -177,7 +166,7 @@ def _fig_annulus(results, path, dpi):
     ax.set_ylabel("max over r of |h_BEM − (1+v) h_H| / max (1+v) h_H", fontsize=9)
     ax.set_title("Annulus identity along every ray (Eq. 27 ⇒ h = (1+v) h_H)", fontsize=10)
     ax.legend()
-    return _save(fig, path, dpi)
+    return save_figure(fig, path, dpi)
 
 
 def _fig_convergence(arr, path, dpi):
@@ -199,7 +188,7 @@ def _fig_convergence(arr, path, dpi):
     ax.set_ylabel("error / max |ω|")
     ax.set_title("BEM vs Eq. (13), Hertz ellipse β = 0.7 (× = issue targets)", fontsize=10)
     ax.legend(fontsize=8)
-    return _save(fig, path, dpi)
+    return save_figure(fig, path, dpi)
 
 
 # --------------------------------------------------------------------------- run

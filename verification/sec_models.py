@@ -20,12 +20,11 @@ Checks, each against a reference that does not share the code path:
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
 
-from verification._api import Figure, Section, check_le
+from verification._api import Figure, Section, check_le, save_figure
 
 TITLE = "Comparison models (JKR, DMT, Maugis–Dugdale, circular DH, elliptical JKR): Figs. 8–9"
 
@@ -64,16 +63,6 @@ def _settings(quick):
     return dict(n_mu=60, n_curve=500, dpi=110)
 
 
-def _save(fig, path, dpi):
-    from dhfield.io import atomic_path
-
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
-        os.chmod(tmp, 0o644)
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
-    return path
 
 
 def _plt():
@@ -273,7 +262,7 @@ def _fig8(outdir, dpi, n):
            "for β0 = 0.8, 0.9, 0.99; solid: elliptical DH (Eqs. 31–36, β = β0), dashed: approximate elliptical "
            "JKR (Johnson & Greenwood 2005, same normalisation with sinθ_skew(β0)), dotted: circular JKR. "
            "Circles and squares mark the load-controlled pull-off.")
-    return Figure(_save(fig, outdir / "fig8_a_vs_W_mu5.png", dpi), cap)
+    return Figure(save_figure(fig, outdir / "fig8_a_vs_W_mu5.png", dpi), cap)
 
 
 def _fig9(outdir, dpi, mu, res):
@@ -314,7 +303,7 @@ def _fig9(outdir, dpi, mu, res):
            "approximate elliptical JKR (Johnson & Greenwood 2005), and the circular models (DH of Greenwood & "
            "Johnson 1998, JKR, DMT, Maugis–Dugdale at λ = 1.1272 μ). (b) Relative error of both DH "
            "assumptions against elliptical JKR, in %; the comparison is meaningful in the JKR domain (large μ).")
-    return Figure(_save(fig, outdir / "fig9_pull_off_vs_mu.png", dpi), cap)
+    return Figure(save_figure(fig, outdir / "fig9_pull_off_vs_mu.png", dpi), cap)
 
 
 def _table(tab):

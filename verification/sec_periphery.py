@@ -14,14 +14,13 @@ from the BEM gap field (:mod:`dhfield.fields`) against the analytic one.
 """
 from __future__ import annotations
 
-import os
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from verification._api import Figure, Section, check_ge, check_le
+from verification._api import Figure, Section, check_ge, check_le, save_figure
 
 TITLE = "θp dependence, Eq. (30) and the equal-β test"
 
@@ -74,14 +73,6 @@ def _plt():
     return plt
 
 
-def _save(fig, path, dpi):
-    from dhfield.io import atomic_path
-
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
-        os.chmod(tmp, 0o644)
-    _plt().close(fig)
-    return path
 
 
 # --------------------------------------------------------------------------- computations
@@ -343,7 +334,7 @@ def _fig_rays(res, outdir, dpi):
            "Δγ(θp) = ∫σ dh (Eq. 31 evaluated on every ray), σ0(θp) (Eq. 24 on the ray: flat, equal β), the zone "
            "width and the edge separation h(r_cd) (Eq. 27), the last two relative to θp = 0. Colour: μ; line "
            "style: β0 = 0.8 solid, 0.9 dashed, 0.99 dotted.")
-    return Figure(_save(fig, outdir / "periphery_rays_pull_off.png", dpi), cap)
+    return Figure(save_figure(fig, outdir / "periphery_rays_pull_off.png", dpi), cap)
 
 
 def _fig_laws(res, outdir, dpi):
@@ -367,7 +358,7 @@ def _fig_laws(res, outdir, dpi):
     cap = ("The cohesive law each ray sees: σ (Eq. 23) against the gap h (Eq. 27) along rays θp = 0°, 30°, 60°, "
            "90°, at pull-off, β0 = 0.8. Equal β gives the same σ0 on every ray but a shorter law (smaller edge "
            "separation) towards the minor axis, so the area under it, Δγ(θp) (Eq. 31 on the ray), falls.")
-    return Figure(_save(fig, outdir / "periphery_sigma_h_laws.png", dpi), cap)
+    return Figure(save_figure(fig, outdir / "periphery_sigma_h_laws.png", dpi), cap)
 
 
 def _fig_curves(res, outdir, dpi, n):
@@ -392,7 +383,7 @@ def _fig_curves(res, outdir, dpi, n):
     fig.tight_layout()
     cap = ("Ratio of the ray works of adhesion on the minor and major axes (Eq. 31 on θp = π/2 and 0) along the "
            "load curves of the paper's model (Figs. 4–5 states, a* ∈ [0.1, 3]), μ = 1 and 5.")
-    return Figure(_save(fig, outdir / "periphery_ratio_load_curves.png", dpi), cap), curves
+    return Figure(save_figure(fig, outdir / "periphery_ratio_load_curves.png", dpi), cap), curves
 
 
 def _fig_closures(res, outdir, dpi):
@@ -419,7 +410,7 @@ def _fig_closures(res, outdir, dpi):
     cap = ("Load-controlled pull-off W*max (Eq. 34, as in Fig. 9a) of the paper's closure (Eqs. 17–19, 31) and of "
            "two alternatives: Δγ = 1 imposed on the periphery average, and on both axes with β_cd ≠ β_ab and "
            "the contact condition kept exactly; elliptical JKR (Johnson & Greenwood 2005) for reference.")
-    return Figure(_save(fig, outdir / "closure_pull_off.png", dpi), cap)
+    return Figure(save_figure(fig, outdir / "closure_pull_off.png", dpi), cap)
 
 
 def _fig_bem(recs, outdir, dpi):
@@ -441,7 +432,7 @@ def _fig_bem(recs, outdir, dpi):
            "domain 2.1c, cell-averaged DH pressure of Eq. 22) against the analytic fields, at pull-off. The gap is "
            "interpolated along each ray with a bicubic spline and integrated by parts against the analytic σ "
            "(Eq. 23). Horizontal line: the 1e-3 target.")
-    return Figure(_save(fig, outdir / "periphery_bem_vs_analytic.png", dpi), cap)
+    return Figure(save_figure(fig, outdir / "periphery_bem_vs_analytic.png", dpi), cap)
 
 
 # --------------------------------------------------------------------------- text
