@@ -34,7 +34,7 @@ is the zero-contact limit, which has a closed form (a quadratic in S).
 """
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, astuple, dataclass, field
 
 import numpy as np
 from scipy import special
@@ -79,7 +79,7 @@ def _shape(beta, sin_skew=None):
     return _Shape(beta, kappa, special.elliprf(0.0, b2, 1.0), np.sqrt(rho), np.asarray(sin_skew, float))
 
 
-def _axis_integrals(a, b, s):
+def _axis_integrals(a, b, s, with_a=True):
     """T0, T1, Ta of the exchanged Eq. (31) for contact (a, b) and S.
 
     With w = S^2 sin^2 t and q = (a^2 + S^2 sin^2 t)^{3/2} (b^2 + S^2 sin^2 t)^{1/2}:
@@ -95,20 +95,22 @@ def _axis_integrals(a, b, s):
     c2 = np.cos(t) ** 2
     t0 = np.sum(w * c2 * c2 * inv_q, axis=-1)
     t1 = np.sum(w * c2 * inv_q, axis=-1)
+    if not with_a:
+        return t0, t1, None
     beta2 = (b / a) ** 2
     ta = np.sum(w * c2 * c2 * inv_q * (-3.0 * ex(a) / a2s - ex(beta2 * a) / b2s), axis=-1)
     return t0, t1, ta
 
 
-def _adhesion_terms(a, s, shape):
-    """J with Delta gamma = v (1 + v) J, and dJ/dS, dJ/da (R = E* = 1)."""
+def _adhesion_terms(a, s, shape, with_a=True):
+    """J with Delta gamma = v (1 + v) J, and dJ/dS, dJ/da (None unless ``with_a``) (R = E* = 1)."""
     kappa, beta = shape.kappa, shape.beta
     c_pref = kappa**2 * beta * a**3 / 3.0  # (Po_cd/c)(Po_ab ab)/(3E*)
-    t0, t1, ta = _axis_integrals(a, beta * a, s)
+    t0, t1, ta = _axis_integrals(a, beta * a, s, with_a)
     s4 = s**4
     j = c_pref * 2.0 * s4 * t0  # Eq. (31), exchanged order
     j_s = 6.0 * c_pref * s**3 * t1
-    j_a = 3.0 * j / a + c_pref * 2.0 * s4 * ta
+    j_a = 3.0 * j / a + c_pref * 2.0 * s4 * ta if with_a else None
     return j, j_s, j_a
 
 
@@ -120,7 +122,7 @@ def _zero_contact_s(mu, shape):
 
 def _solve_s(a, mu, shape):
     """Solve Delta gamma(a, S) = 1 for S, element-wise (bracketed Newton in log S)."""
-    fields = (shape.beta, shape.kappa, shape.k_complete, shape.r_major, shape.sin_skew)
+    fields = astuple(shape)
     a, mu, *fields = np.broadcast_arrays(np.asarray(a, float), np.asarray(mu, float), *fields)
     out_shape = a.shape
     a, mu, *fields = (f.ravel() for f in (a, mu, *fields))
@@ -136,10 +138,9 @@ def _solve_s(a, mu, shape):
     for _ in range(_MAX_NEWTON):
         idx = np.nonzero(active)
         s = np.exp(u[idx])
-        sh = _Shape(*(f[idx] for f in (shape.beta, shape.kappa, shape.k_complete, shape.r_major,
-                                       shape.sin_skew)))
+        sh = _Shape(*(f[idx] for f in fields))
         v = mu[idx] / (sh.kappa * s)  # Eq. (24) with sigma0 = mu
-        j, j_s, _ = _adhesion_terms(a[idx], s, sh)
+        j, j_s, _ = _adhesion_terms(a[idx], s, sh, with_a=False)
         g = np.log(v) + np.log1p(v) + np.log(j)  # log Delta gamma, target 0
         dg = -1.0 - v / (1.0 + v) + s * j_s / j
         ui = u[idx]
@@ -345,26 +346,23 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     shape = _shape(ell, sin_skew_angle(beta0))
     key = "dW" if control == "load" else "ddelta"
     ex = (lambda q: q[..., None])
-    grid_shape = _Shape(*(ex(f) for f in (shape.beta, shape.kappa, shape.k_complete, shape.r_major,
-                                          shape.sin_skew)))
-    scan = _state(_SCAN, ex(mu), grid_shape, derivatives=True)[key]
+    fields = astuple(shape)  # in _Shape's field order
+    scan = _state(_SCAN, ex(mu), _Shape(*(ex(f) for f in fields)), derivatives=True)[key]
     # Largest a* where the derivative crosses from negative to positive.
     up = (scan[..., :-1] < 0) & (scan[..., 1:] >= 0)
     has = up.any(axis=-1)
     last = np.where(has, up.shape[-1] - 1 - np.argmax(up[..., ::-1], axis=-1), 0)
     lo, hi = _SCAN[last], _SCAN[last + 1]
 
-    def f(a, mu_, beta_, kk_, kap_, rm_, sn_):
-        return _state(a, mu_, _Shape(beta_, kap_, kk_, rm_, sn_), derivatives=True)[key]
+    def f(a, mu_, *fields_):
+        return _state(a, mu_, _Shape(*fields_), derivatives=True)[key]
 
-    zero = _zero_contact_state(mu, shape)
-    res = {k: np.array(v, dtype=float) for k, v in zero.items()}
+    res = {k: np.array(v, dtype=float) for k, v in _zero_contact_state(mu, shape).items()}
     if has.any():
-        args = tuple(np.broadcast_to(q, mu.shape)[has] for q in
-                     (mu, shape.beta, shape.k_complete, shape.kappa, shape.r_major, shape.sin_skew))
+        args = tuple(np.broadcast_to(q, mu.shape)[has] for q in (mu, *fields))
         root = elementwise.find_root(f, (lo[has], hi[has]), args=args,
                                      tolerances=dict(xatol=1e-13, xrtol=1e-13))
-        sub = _state(root.x, args[0], _Shape(args[1], args[3], args[2], args[4], args[5]))
+        sub = _state(root.x, args[0], _Shape(*args[1:]))
         for k in res:
             res[k][has] = sub[k]
     return PullOff(_scalar(mu), _scalar(beta0), _scalar(ell), control, _scalar(res["W"]),
