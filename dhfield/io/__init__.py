@@ -24,16 +24,21 @@ REFERENCES = (
 )
 
 
-def check_writable(path) -> Path:
-    """Return ``path`` as a Path; raise ValueError if its directory cannot be written."""
+def check_writable(path, name: str = "out") -> Path:
+    """Return ``path`` as a Path; raise ValueError naming ``name`` if it cannot be written.
+
+    Valid: a file path (not a directory) whose directory exists and is writable.
+    """
     p = Path(path)
     parent = p.parent if str(p.parent) else Path(".")
+    valid = "a file path in an existing, writable directory"
+    name = f"{name} (output path)"
     if p.exists() and p.is_dir():
-        raise ValueError(f"output path must be a file, not a directory; got {str(p)!r}")
+        raise ValueError(f"{name} must be {valid}; got the directory {str(p)!r}")
     if not parent.is_dir():
-        raise ValueError(f"output path's directory does not exist; got {str(p)!r}")
+        raise ValueError(f"{name} must be {valid}; directory {str(parent)!r} does not exist")
     if not os.access(parent, os.W_OK):
-        raise ValueError(f"output path's directory is not writable; got {str(p)!r}")
+        raise ValueError(f"{name} must be {valid}; directory {str(parent)!r} is not writable")
     return p
 
 
