@@ -104,3 +104,20 @@ def test_unreadable_file_is_a_clear_error(tmp_path):
     bad.write_text("not netcdf")
     with pytest.raises(ValueError, match="not a readable netCDF"):
         read_netcdf(bad)
+
+
+def test_periphery_subcommand(tmp_path, capsys):
+    from dhfield.adhesion import work_of_adhesion
+
+    nc = tmp_path / "p.nc"
+    assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--n-theta", "3", "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    p = model.pull_off(3.0, 0.85)
+    assert rec["W_star"] == pytest.approx(float(p.W_star), rel=1e-12)
+    # Delta gamma on each ray from the independent Eq. (31) routine; 1 on the major axis.
+    ref = work_of_adhesion(float(p.a_star), float(p.c_star), 0.85, float(p.v), np.array(rec["rays"]["theta"]))
+    np.testing.assert_allclose(rec["rays"]["work_of_adhesion"], ref, rtol=1e-11)
+    assert rec["rays"]["work_of_adhesion"][0] == pytest.approx(1.0, rel=1e-11)
+    assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--out", str(nc)]) == 0
+    assert read_netcdf(nc)["work_ratio"].shape == (1, 1)
+    assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--n-theta", "1"]) == 2
