@@ -1,6 +1,14 @@
 """Shared test configuration."""
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
+
+# verification/ (report sections, oracles) is not installed; plain `pytest` does not add the root.
+ROOT = Path(__file__).resolve().parent.parent
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
 
 
 def pytest_sessionfinish(session, exitstatus):

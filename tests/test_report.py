@@ -28,9 +28,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
-if str(ROOT) not in sys.path:  # verification/ is not installed; plain `pytest` does not add the root
-    sys.path.insert(0, str(ROOT))
+ROOT = Path(__file__).resolve().parent.parent  # sys.path holds it: tests/conftest.py
 #: The quick report must finish in <= 60 s (issue 5); the subprocess gets a generous
 #: timeout so that a hang fails the test instead of blocking the suite.
 REPORT_TIMEOUT_S = 600

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from verification._api import Figure, Section, check_le, save_figure
+from verification._oracles import boussinesq_displacement
 
 TITLE = "Comparison models (JKR, DMT, Maugis–Dugdale, circular DH, elliptical JKR): Figs. 8–9"
 
@@ -116,26 +117,6 @@ def _checks_md():
     return out
 
 
-def _boussinesq(x0, y0, a, b, alpha, n_t=40, n_phi=256):
-    """Displacement (E* = 1) of p = (al0 + al1 X^2 + al2 Y^2)/sqrt(1 - X^2 - Y^2) at (x0, y0)."""
-    from scipy import special
-
-    al0, al1, al2 = alpha
-    phi = 2 * np.pi * np.arange(n_phi) / n_phi
-    t, w = special.roots_legendre(n_t)
-    t, w = 0.5 * (t + 1), 0.5 * w
-    c, s = np.cos(phi)[:, None], np.sin(phi)[:, None]
-    q2 = (c / a) ** 2 + (s / b) ** 2
-    q1 = -2 * (x0 * c / a**2 + y0 * s / b**2)
-    q0 = 1 - (x0 / a) ** 2 - (y0 / b) ** 2
-    rho_e = (q1 + np.sqrt(q1 * q1 + 4 * q2 * q0)) / (2 * q2)
-    rho_m = q0 / (q2 * rho_e)
-    rho = rho_e * (1 - t * t)
-    x, y = x0 + rho * c, y0 + rho * s
-    f = (al0 + al1 * (x / a) ** 2 + al2 * (y / b) ** 2) * 2 * rho_e / np.sqrt(q2 * rho_e * (rho + rho_m))
-    return (f @ w).sum() * (2 * np.pi / n_phi) / np.pi
-
-
 def _checks_jkr_elliptic():
     from dhfield import jkr, jkr_elliptic as je
 
@@ -153,7 +134,7 @@ def _checks_jkr_elliptic():
         for x0, y0 in ((0.0, 0.0), (0.3 * s["a_star"], 0.0), (0.0, 0.5 * s["b_star"]),
                        (0.4 * s["a_star"], -0.3 * s["b_star"])):
             refd = s["delta_star"] - x0**2 / (2 * r1) - y0**2 * r1 / 2
-            worst = max(worst, abs(_boussinesq(x0, y0, s["a_star"], s["b_star"], s["alpha"]) - refd)
+            worst = max(worst, abs(boussinesq_displacement(x0, y0, s["a_star"], s["b_star"], s["alpha"]) - refd)
                         / max(1.0, abs(refd)))
         al0, al1, al2 = s["alpha"]
         worst = max(worst, abs(-(al0 + al1) * np.sqrt(np.pi * s["a_star"]) / np.sqrt(2) - 1),
