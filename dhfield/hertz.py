@@ -28,6 +28,7 @@ from scipy import special
 
 from ._validation import check_ellipticity, check_finite, check_positive
 from .elliptic import complete_k, ellipsoid_integrals
+from .geometry import radius_ratio
 
 __all__ = [
     "max_pressure",
@@ -217,8 +218,6 @@ def surface_displacement_gradient(x, y, semi_major, semi_minor, peak_pressure, r
 
 def principal_radii_from_ellipticity(beta, effective_radius=1.0):
     """R', R'' that give Hertz ellipticity ``beta`` at equivalent radius R [m]."""
-    from .geometry import radius_ratio
-
     rho = radius_ratio(beta)
     s = np.sqrt(rho)
     return effective_radius * s, effective_radius / s
