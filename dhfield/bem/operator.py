@@ -85,7 +85,7 @@ import numpy as np
 import pyfftw
 import scipy.fft
 
-from ._validation import check_finite, check_positive
+from .._validation import check_finite, check_positive
 
 __all__ = [
     "MIN_CELLS",

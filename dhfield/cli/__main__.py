@@ -1,0 +1,6 @@
+"""``python -m dhfield.cli``."""
+import sys
+
+from . import main
+
+sys.exit(main())

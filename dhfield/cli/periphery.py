@@ -1,0 +1,50 @@
+"""``dhfield periphery``."""
+from __future__ import annotations
+
+from ._common import add_model_arguments, print_json
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("periphery", help="sigma0, zone width, edge separation and work of adhesion along "
+                       "every ray theta_p at pull-off (the equal-beta test)")
+    add_model_arguments(p)
+    p.add_argument("--control", choices=("load", "displacement"), default="load",
+                   help="pull-off under load control (default) or displacement control")
+    p.add_argument("--n-theta", type=int, default=10, help="rays in [0, pi/2] (default 10, >= 2)")
+    p.add_argument("--out", default=None, help="also write FILE.nc (netCDF)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    import numpy as np
+
+    from ..io.periphery import pull_off_periphery_dataset, write_dataset
+    from ..periphery import pull_off_periphery
+
+    if args.n_theta < 2:
+        raise ValueError(f"n-theta must be an integer >= 2 (number of rays); got {args.n_theta!r}")
+    if args.out and not str(args.out).lower().endswith(".nc"):
+        raise ValueError(f"output file must end in .nc; got {args.out!r}")
+    theta = np.linspace(0.0, 0.5 * np.pi, args.n_theta)
+    beta0, mu = np.array([[args.beta0]]), np.array([[args.mu]])
+    po, prof = pull_off_periphery(mu, beta0, theta, control=args.control)
+    if args.out:
+        ds = pull_off_periphery_dataset(mu[0], beta0[:, 0], po, prof, control=args.control)
+        write_dataset(ds, args.out)
+    cols = ("theta", "contact_radius", "adhesive_radius", "zone_width", "max_adhesive_stress",
+            "edge_separation", "work_of_adhesion")
+    rows = {c: np.asarray(getattr(prof, c))[0, 0] for c in cols}
+    if args.json:
+        print_json({"beta0": args.beta0, "mu": args.mu, "control": args.control,
+                     "W_star": float(po.W_star[0, 0]), "a_star": float(po.a_star[0, 0]),
+                     "c_star": float(po.c_star[0, 0]), "v": float(po.v[0, 0]), "rays": rows})
+        return 0
+    print(f"pull-off ({args.control} control): W* = {float(po.W_star[0, 0]):.6g}, "
+          f"a* = {float(po.a_star[0, 0]):.6g}, c* = {float(po.c_star[0, 0]):.6g}, v = {float(po.v[0, 0]):.6g}")
+    print("".join(f"{c:>20s}" for c in cols))
+    for i in range(theta.size):
+        print("".join(f"{rows[c][i]:20.10g}" for c in cols))
+    if args.out:
+        print(f"wrote {args.out}")
+    return 0
