@@ -47,6 +47,9 @@ class Section:
     figures: list[Figure] = field(default_factory=list)
     tables: list[str] = field(default_factory=list)         # Markdown tables
     datasets: list[Path] = field(default_factory=list)
+    # Scientific conclusions in words and numbers, most important first; the report puts every
+    # section's verdict at the top of report.html and summary.md, before the checks table.
+    verdict: list[str] = field(default_factory=list)
 
 
 def save_figure(fig, path, dpi) -> Path:
