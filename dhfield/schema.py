@@ -1,0 +1,260 @@
+"""One table of variable metadata for every dhfield record, Dataset and file.
+
+Pure Python (no numpy, no xarray): the writers in :mod:`dhfield.io`, the JSON
+records of the command line and the sweeps all take their names, units and
+descriptions from here, so that a quantity is called the same thing, in the
+same unit, wherever it appears.
+
+Conventions
+-----------
+* ``units`` are CF/UDUNITS strings; ``"1"`` is dimensionless.
+* Loads and forces are positive compressive: a pull-off force is negative.
+* Nondimensional quantities use the paper's units (Eqs. 32-35): lengths in
+  c_r = (R^2 dgamma/E*)^(1/3), approach in c_r^2/R, stresses in E* c_r/R, load
+  as W* = W sin(theta_skew)/(2 pi R dgamma), with R = sqrt(R'R'').
+* A quantity that exists both in SI and in the paper's units has one entry with
+  its SI unit and a ``scale``; :func:`attrs` with ``nondimensional=True`` gives
+  units ``"1"`` and names the scale in ``long_name``.
+* Every Dataset orders its dimensions by :data:`DIM_ORDER`; grids of the two
+  model parameters are always ``GRID_DIMS = ("beta0", "mu")``.
+
+Records
+-------
+:data:`PULL_OFF_KEYS` (nondimensional) and :data:`PULL_OFF_SI_KEYS` (physical
+inputs) are the keys, in order, of a pull-off record of every model: a value
+that does not apply to a model is NaN (JSON ``null``), never missing.
+:data:`LOAD_CURVE_KEYS` and :data:`LOAD_CURVE_SI_KEYS` are the array keys of a
+load curve, after the scalar header :data:`LOAD_CURVE_HEADER_KEYS`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = [
+    "Variable",
+    "VARIABLES",
+    "GRID_DIMS",
+    "DIM_ORDER",
+    "PULL_OFF_KEYS",
+    "PULL_OFF_SI_KEYS",
+    "LOAD_CURVE_HEADER_KEYS",
+    "LOAD_CURVE_KEYS",
+    "LOAD_CURVE_SI_KEYS",
+    "BEM_ADHESIVE_KEYS",
+    "attrs",
+    "units",
+    "units_of",
+    "order_dims",
+]
+
+
+@dataclass(frozen=True)
+class Variable:
+    """Metadata of one named quantity.
+
+    Attributes
+    ----------
+    units : str
+        CF/UDUNITS unit of the quantity in SI ("1": dimensionless).
+    long_name : str
+        Short human-readable name (CF ``long_name``).
+    standard_name : str or None
+        CF standard name, where CF defines one.
+    description : str
+        Definition, sign convention and equation of the paper.
+    scale : str or None
+        The paper's unit of the quantity when it is given nondimensionally
+        (e.g. "c_r"); None when the quantity is dimensionless anyway.
+    """
+
+    units: str
+    long_name: str
+    standard_name: str | None = None
+    description: str = ""
+    scale: str | None = None
+
+
+_CR = "c_r = (R^2 dgamma/E*)^(1/3)"
+_APPROACH = "c_r^2/R"
+_STRESS = "E* c_r/R"
+_DGAMMA = "dgamma"
+
+#: name -> :class:`Variable`.  One entry per quantity, whatever writes it.
+VARIABLES: dict[str, Variable] = {
+    # ----------------------------------------------------------------- identifiers and flags
+    "model": Variable("1", "model name", description="one of dhfield.compare.MODEL_NAMES"),
+    "control": Variable("1", "loading mode", description="'load' (dead load) or 'displacement' (fixed grips)"),
+    "geometry": Variable("1", "contact geometry of the model",
+                         description="'ellipse' or 'circle' (the circular models use R = sqrt(R'R''), "
+                                     "sin(theta_skew) = 1)"),
+    "warning": Variable("1", "model-choice warning",
+                        description="empty, or why the result should not be trusted (e.g. the paper's "
+                                    "closure departs from the two-axis closure by more than 2 %)"),
+    "at_zero_contact": Variable("1", "pull-off at vanishing contact",
+                                description="True where the pull-off minimum is reached as a* -> 0"),
+    "converged": Variable("1", "solver converged"),
+    "n_steps": Variable("1", "number of load or displacement steps"),
+    "iterations": Variable("1", "solver iterations"),
+    # ----------------------------------------------------------------- model parameters (grid dims)
+    "beta0": Variable("1", "initial (Hertz) ellipticity b/a",
+                      description="Hertz ellipticity of the geometry, in (0, 1] (Eq. 9)"),
+    "mu": Variable("1", "Tabor parameter", description="mu = sigma0 (R/(E*^2 dgamma))^(1/3) (Eq. 35)"),
+    "sin_skew": Variable("1", "sine of the skew angle",
+                         description="sin(theta_skew) of the load normalisation of Eq. (34); 1 for the "
+                                     "circular models"),
+    "skew_angle": Variable("rad", "skew angle of the crossed cylinders",
+                           description="crossing angle theta_skew in (0, pi/2]"),
+    "skew_angle_deg": Variable("degree", "skew angle of the crossed cylinders",
+                               description="crossing angle theta_skew in (0, 90]"),
+    "ellipticity": Variable("1", "contact ellipticity b/a", description="at the state reported (Eq. 19)"),
+    "adhesive_ellipticity": Variable("1", "adhesive-zone ellipticity d/c",
+                                     description="equal to the contact ellipticity in the paper's closure "
+                                                 "(Eq. 19); NaN where the model has no adhesive zone"),
+    "beta_ab": Variable("1", "contact ellipticity b/a", description="BEM: of the contact ellipse fitted"),
+    "beta_cd": Variable("1", "adhesive-zone ellipticity d/c", description="BEM: of the adhesive ellipse fitted"),
+    # ----------------------------------------------------------------- nondimensional state (Eqs. 32-36)
+    "W_star": Variable("1", "normalised load W sin(theta_skew)/(2 pi R dgamma)",
+                       description="Eq. (34); positive compressive, negative at pull-off"),
+    "a_star": Variable("1", "contact semi-major axis a/c_r", description="Eq. (32); radius for a circle"),
+    "b_star": Variable("1", "contact semi-minor axis b/c_r", description="Eq. (32)"),
+    "c_star": Variable("1", "adhesive semi-major axis c/c_r",
+                       description="outer edge of the adhesive zone (Eq. 32); NaN where the model has none"),
+    "d_star": Variable("1", "adhesive semi-minor axis d/c_r",
+                       description="Eq. (32); NaN where the model has none"),
+    "v": Variable("1", "double-Hertz scaling factor v", description="Eq. (22); NaN for non-DH models"),
+    "delta_star": Variable("1", "normalised approach delta R/c_r^2", description="Eq. (33)"),
+    # ----------------------------------------------------------------- SI outputs
+    "force": Variable("N", "normal force", description="W (Eq. 34), positive compressive; the pull-off "
+                                                       "force is negative (tensile)"),
+    "semi_major": Variable("m", "contact semi-major axis a", scale=_CR),
+    "semi_minor": Variable("m", "contact semi-minor axis b", scale=_CR),
+    "adhesive_semi_major": Variable("m", "adhesive-zone semi-major axis c", scale=_CR,
+                                    description="NaN where the model has no adhesive zone"),
+    "adhesive_semi_minor": Variable("m", "adhesive-zone semi-minor axis d", scale=_CR,
+                                    description="NaN where the model has no adhesive zone"),
+    "approach": Variable("m", "approach delta", scale=_APPROACH,
+                         description="mutual approach of distant points, positive compressive"),
+    # ----------------------------------------------------------------- SI inputs and derived scales
+    "work_of_adhesion": Variable("J m-2", "work of adhesion dgamma", scale=_DGAMMA,
+                                 description="Dupre work of adhesion; per ray, the integral of sigma dh "
+                                             "(Eq. 31)"),
+    "max_adhesive_stress": Variable("Pa", "maximum adhesive stress sigma0", scale=_STRESS,
+                                    description="Dugdale/double-Hertz stress at the contact edge (Eqs. 24, 35)"),
+    "adhesive_stress": Variable("Pa", "tensile adhesive stress", scale=_STRESS,
+                                description="positive tensile (Eq. 23)"),
+    "youngs_modulus": Variable("Pa", "Young's modulus E1 of the first body"),
+    "youngs_modulus_2": Variable("Pa", "Young's modulus E2 of the second body"),
+    "poisson_ratio": Variable("1", "Poisson's ratio nu1 of the first body"),
+    "poisson_ratio_2": Variable("1", "Poisson's ratio nu2 of the second body"),
+    "reduced_modulus": Variable("Pa", "reduced modulus E*", description="1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (Eq. 6)"),
+    "cylinder_radius": Variable("m", "cylinder radius", description="of both cylinders"),
+    "r_major": Variable("m", "principal relative radius R'", description="larger principal radius (Eqs. 3-4)"),
+    "r_minor": Variable("m", "principal relative radius R''", description="smaller principal radius (Eqs. 3-4)"),
+    "effective_radius": Variable("m", "effective radius R = sqrt(R'R'')", description="Eq. (5)"),
+    # ----------------------------------------------------------------- periphery (ray) quantities
+    "contact_radius": Variable("m", "contact-ellipse radius r_ab on the ray", scale=_CR, description="Eq. (A1)"),
+    "adhesive_radius": Variable("m", "adhesive-ellipse radius r_cd on the ray", scale=_CR, description="Eq. (A2)"),
+    "zone_width": Variable("m", "adhesive-zone width r_cd - r_ab on the ray", scale=_CR),
+    "edge_separation": Variable("m", "gap at the adhesive edge h(r_cd)", scale=_APPROACH, description="Eq. (27)"),
+    "contact_edge_gap": Variable("m", "gap at the contact edge h(r_ab)", scale=_APPROACH),
+    "work_ratio": Variable("1", "dgamma(pi/2)/dgamma(0) at pull-off", description="paper's model (Eq. 31 on both axes)"),
+    "mean_work": Variable("1", "ray-averaged work of adhesion, in dgamma"),
+    "work_major": Variable("1", "dgamma(0), in dgamma", description="Eq. (31)"),
+    "work_minor": Variable("1", "dgamma(pi/2), in dgamma", description="Eq. (31) on the minor axis"),
+    # ----------------------------------------------------------------- field (BEM) quantities
+    "pressure": Variable("Pa", "contact pressure", scale=_STRESS, description="compressive positive (Eqs. 7/22)"),
+    "displacement": Variable("m", "combined surface displacement", scale=_APPROACH,
+                             description="into the bodies (Eqs. 13/26)"),
+    "gap": Variable("m", "gap h = z - delta + omega", scale=_APPROACH, description="Eq. (27)"),
+    # ----------------------------------------------------------------- coordinates
+    "point": Variable("1", "curve point index"),
+    "theta": Variable("rad", "polar angle theta_p of the ray", description="0 on the major axis (Eqs. A3-A4)"),
+    "theta_p": Variable("rad", "polar angle theta_p from the major axis", description="Eq. (A3)"),
+    "r": Variable("m", "radial coordinate r", scale=_CR, description="Eq. (A3)"),
+    "x": Variable("m", "x, along the major axis a", scale=_CR),
+    "y": Variable("m", "y, along the minor axis b", scale=_CR),
+    "closure": Variable("1", "closure of the elliptical DH model",
+                        description="paper = Eqs. 17-19, 31; ray_average = mean dgamma = 1; two_axis = "
+                                    "dgamma = 1 on both axes"),
+}
+
+#: The two model parameters, in the one order every grid Dataset uses.
+GRID_DIMS = ("beta0", "mu")
+
+#: Canonical order of every dimension a dhfield Dataset may carry.
+DIM_ORDER = ("model", "closure", "skew_angle_deg", "skew_angle", "beta0", "mu", "a_star", "point",
+             "theta", "law_theta", "sample", "r", "theta_p", "x", "y")
+
+_HEAD = ("model", "control", "geometry", "beta0", "mu", "sin_skew")
+_NONDIM = ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star", "ellipticity",
+           "adhesive_ellipticity")
+_SI_OUT = ("force", "semi_major", "semi_minor", "adhesive_semi_major", "adhesive_semi_minor", "approach")
+_SI_IN = ("work_of_adhesion", "max_adhesive_stress", "reduced_modulus", "r_major", "r_minor",
+          "effective_radius")
+_TAIL = ("at_zero_contact", "warning")
+
+#: Keys, in order, of a nondimensional pull-off record (every model).
+PULL_OFF_KEYS = _HEAD + _NONDIM + _TAIL
+#: Keys, in order, of a pull-off record from physical inputs (every model).
+PULL_OFF_SI_KEYS = _HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL
+#: Scalar keys that head a load-curve record.
+LOAD_CURVE_HEADER_KEYS = ("model", "control", "geometry", "beta0", "mu", "sin_skew")
+#: Array keys of a nondimensional load curve, in order.
+LOAD_CURVE_KEYS = ("a_star", "b_star", "c_star", "d_star", "v", "W_star", "delta_star")
+#: Array keys of a load curve from physical inputs, in order.
+LOAD_CURVE_SI_KEYS = ("semi_major", "semi_minor", "adhesive_semi_major", "adhesive_semi_minor", "v", "force",
+                      "approach")
+#: Outputs of the adhesive BEM solve at one state.
+BEM_ADHESIVE_KEYS = ("a_star", "b_star", "c_star", "d_star", "beta_ab", "beta_cd", "W_star", "delta_star",
+                     "converged", "n_steps", "iterations")
+
+
+def _get(name: str) -> Variable:
+    try:
+        return VARIABLES[name]
+    except KeyError:
+        raise ValueError(f"name must be one of the variables of dhfield.schema.VARIABLES; got {name!r}") from None
+
+
+def attrs(name: str, nondimensional: bool = False) -> dict:
+    """xarray-ready attributes of a named quantity.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`VARIABLES`.
+    nondimensional : bool
+        True for the quantity in the paper's units: ``units`` becomes "1" and
+        the scale is named in ``long_name`` (no effect on dimensionless names).
+
+    Returns
+    -------
+    dict
+        ``long_name``, ``units``, and ``standard_name``/``description`` where set.
+    """
+    var = _get(name)
+    out = {"long_name": var.long_name, "units": var.units}
+    if nondimensional and var.scale is not None:
+        out = {"long_name": f"{var.long_name}, in {var.scale}", "units": "1"}
+    if var.standard_name:
+        out["standard_name"] = var.standard_name
+    if var.description:
+        out["description"] = var.description
+    return out
+
+
+def units(name: str, nondimensional: bool = False) -> str:
+    """CF/UDUNITS unit string of a named quantity ("1": dimensionless)."""
+    return attrs(name, nondimensional)["units"]
+
+
+def units_of(keys, nondimensional: bool = False) -> dict:
+    """name -> unit string for a sequence of names (e.g. a record's keys)."""
+    return {k: units(k, nondimensional) for k in keys}
+
+
+def order_dims(dims) -> tuple:
+    """``dims`` sorted into :data:`DIM_ORDER` (unknown names keep their order, last)."""
+    dims = tuple(dims)
+    known = [d for d in DIM_ORDER if d in dims]
+    return tuple(known) + tuple(d for d in dims if d not in DIM_ORDER)
