@@ -1,0 +1,221 @@
+"""Pull-off search: one place for the two ways dhfield locates a pull-off point.
+
+A pull-off point is where an unloading path leaves its stable branch: the minimum
+of the load W (load control) or of the approach delta (displacement control)
+reached from the high-load end of the path.  dhfield meets it in two forms:
+
+* **a smooth family with an analytic derivative** (the analytic DH model and its
+  closures): the pull-off is the *largest* contact size a at which dW/da (or
+  d delta/da) crosses from negative to non-negative.
+  :func:`stable_branch_end` brackets that crossing on a scan (one row of
+  contact sizes per problem, so the scan can be scaled with the problem) and
+  refines it with Chandrupatla's bracketing root finder
+  (:func:`scipy.optimize.elementwise.find_root`), vectorised over problems and
+  evaluated in bounded chunks;
+* **a discretely sampled path** (the BEM unloading path): the pull-off is the
+  minimum of sampled values; :func:`refine_sampled_minimum` takes the first
+  (or global) discrete minimum and refines it with the parabola through the
+  three samples around it.
+
+Both are pure numpy/scipy functions with no knowledge of the physics.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import elementwise
+
+__all__ = ["SampledMinimum", "BranchEnd", "refine_sampled_minimum", "stable_branch_end",
+           "DEFAULT_CHUNK_BYTES"]
+
+#: Default working-memory budget of one chunk of :func:`stable_branch_end`
+#: (the scan holds ``chunk * n_scan`` states with a quadrature axis each).
+DEFAULT_CHUNK_BYTES = 64 * 2**20
+
+
+@dataclass(frozen=True)
+class SampledMinimum:
+    """Minimum of a sampled path (see :func:`refine_sampled_minimum`).
+
+    Attributes
+    ----------
+    x : float
+        Abscissa of the refined minimum (the vertex of the parabola, or the sample
+        itself on a boundary or a degenerate parabola).
+    y : float
+        Refined minimum value (never above the best sample).
+    index : int
+        Index of the discrete minimum among the samples.
+    at_boundary : bool
+        True where the discrete minimum is the first or the last finite sample
+        (no interior minimum was bracketed; no refinement is done).
+    """
+
+    x: float
+    y: float
+    index: int
+    at_boundary: bool
+
+
+@dataclass(frozen=True)
+class BranchEnd:
+    """End of the stable branch found by :func:`stable_branch_end`.
+
+    Attributes
+    ----------
+    x : ndarray
+        Root of the derivative (the pull-off contact size); NaN where not ``found``.
+    found : ndarray of bool
+        False where the derivative is non-negative on the whole scan (no crossing:
+        the minimum is at the small end of the scan, e.g. the zero-contact limit).
+    """
+
+    x: np.ndarray
+    found: np.ndarray
+
+
+def refine_sampled_minimum(x, y, *, first=True):
+    """Minimum of a sampled path, refined by the parabola through three samples.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Path parameter of the samples (e.g. approach or step number), strictly
+        monotone (increasing or decreasing) [any unit].
+    y : array_like, shape (n,)
+        Sampled values (e.g. the load) [any unit].  Non-finite samples (failed
+        states) are ignored.
+    first : bool, default True
+        Take the first discrete local minimum met from ``x[0]`` (put the high-load
+        end of an unloading path first: this is the end of the stable branch);
+        otherwise the global minimum of the samples.
+
+    Returns
+    -------
+    SampledMinimum
+
+    Notes
+    -----
+    With the discrete minimum at sample i and its finite neighbours (x0, y0),
+    (x1, y1), (x2, y2), the vertex of the interpolating parabola is
+
+    .. math::
+
+        x^* = x_1 - \\frac{1}{2}\\frac{(x_1-x_0)^2 (y_1-y_2) - (x_1-x_2)^2 (y_1-y_0)}
+                                    {(x_1-x_0)(y_1-y_2) - (x_1-x_2)(y_1-y_0)},
+
+    kept only when it lies between x0 and x2 and its value is not above y1 (else the
+    sample itself is returned).  The error is O(h^3) in the sample spacing h for a
+    smooth path (O(h^2) in the location).
+    """
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    if x.ndim != 1 or y.shape != x.shape:
+        raise ValueError(f"x and y must be 1-d arrays of equal length; got shapes {x.shape} and {y.shape}")
+    ok = np.isfinite(x) & np.isfinite(y)
+    idx = np.nonzero(ok)[0]
+    if idx.size == 0:
+        raise ValueError("y must contain at least one finite sample (with a finite x); got none")
+    xs, ys = x[idx], y[idx]
+    dx = np.diff(xs)
+    if xs.size > 1 and not (np.all(dx > 0) or np.all(dx < 0)):
+        raise ValueError("x must be strictly monotone over the finite samples")
+    n = xs.size
+    i = int(np.argmin(ys))
+    if first and n >= 3:
+        loc = (ys[1:-1] <= ys[:-2]) & (ys[1:-1] < ys[2:])
+        if loc.any():
+            i = int(np.argmax(loc)) + 1
+        elif ys[-1] <= ys[-2]:
+            i = n - 1
+        else:
+            i = 0
+    if i == 0 or i == n - 1:
+        return SampledMinimum(float(xs[i]), float(ys[i]), int(idx[i]), True)
+    (x0, x1, x2), (y0, y1, y2) = xs[i - 1:i + 2], ys[i - 1:i + 2]
+    p = (x1 - x0) * (y1 - y2)
+    q = (x1 - x2) * (y1 - y0)
+    den = p - q
+    xv, yv = x1, y1
+    if den != 0.0:
+        cand = x1 - 0.5 * ((x1 - x0) * p - (x1 - x2) * q) / den
+        if min(x0, x2) <= cand <= max(x0, x2):
+            # Lagrange interpolation at the vertex.
+            l0 = (cand - x1) * (cand - x2) / ((x0 - x1) * (x0 - x2))
+            l1 = (cand - x0) * (cand - x2) / ((x1 - x0) * (x1 - x2))
+            l2 = (cand - x0) * (cand - x1) / ((x2 - x0) * (x2 - x1))
+            val = l0 * y0 + l1 * y1 + l2 * y2
+            if np.isfinite(val) and val <= y1:
+                xv, yv = cand, val
+    return SampledMinimum(float(xv), float(yv), int(idx[i]), False)
+
+
+def stable_branch_end(derivative, scan, args=(), *, xatol=1e-13, xrtol=1e-13,
+                      chunk_bytes=DEFAULT_CHUNK_BYTES, bytes_per_state=2048):
+    """Largest contact size where ``derivative`` crosses from negative to non-negative.
+
+    Vectorised over problems: ``scan`` has shape ``(m, n)`` (or ``(n,)`` shared by
+    all problems), increasing along the last axis; ``args`` are arrays of shape
+    ``(m,)`` (or broadcastable to it) passed to ``derivative``.
+
+    Parameters
+    ----------
+    derivative : callable
+        ``derivative(a, *args)`` -> dW/da (or d delta/da) at contact size ``a``;
+        broadcasts ``a`` of shape ``(k, n)`` against args of shape ``(k, 1)`` and
+        ``a`` of shape ``(k,)`` against args of shape ``(k,)``.
+    scan : array_like, shape (m, n) or (n,)
+        Scan of contact sizes per problem, increasing.  It must reach past the
+        largest crossing (the end of the stable branch) for every problem.
+    args : tuple of array_like
+        Per-problem parameters.
+    xatol, xrtol : float
+        Tolerances of Chandrupatla's method on the root.
+    chunk_bytes : int
+        Working-memory budget of one chunk of problems.
+    bytes_per_state : int
+        Memory one evaluation of ``derivative`` at one contact size needs (the
+        caller's estimate; used to size the chunks).
+
+    Returns
+    -------
+    BranchEnd
+        Flat arrays of length m.
+
+    Notes
+    -----
+    The crossing is bracketed by the last pair of scan points with
+    ``derivative < 0`` then ``>= 0``; a non-finite derivative counts as no sign
+    information (the pair is skipped).  Between scan points, crossings that come
+    and go (two roots inside one scan interval) are not seen: the scan must
+    resolve the path.
+    """
+    args = tuple(np.atleast_1d(np.asarray(q, dtype=float)) for q in args)
+    scan = np.asarray(scan, dtype=float)
+    m = max([q.shape[0] for q in args] + [scan.shape[0] if scan.ndim == 2 else 1])
+    args = tuple(np.broadcast_to(q, (m,)) for q in args)
+    scan = np.broadcast_to(scan, (m, scan.shape[-1]))
+    n = scan.shape[-1]
+    chunk = max(1, int(chunk_bytes // max(1, n * bytes_per_state)))
+    x = np.full(m, np.nan)
+    found = np.zeros(m, bool)
+    for start in range(0, m, chunk):
+        sl = slice(start, min(m, start + chunk))
+        sub_scan = scan[sl]
+        sub_args = tuple(q[sl] for q in args)
+        d = np.asarray(derivative(sub_scan, *(q[:, None] for q in sub_args)), dtype=float)
+        up = (d[:, :-1] < 0) & (d[:, 1:] >= 0)
+        has = up.any(axis=-1)
+        if not has.any():
+            continue
+        last = n - 2 - np.argmax(up[:, ::-1], axis=-1)
+        rows = np.nonzero(has)[0]
+        lo = sub_scan[rows, last[rows]]
+        hi = sub_scan[rows, last[rows] + 1]
+        root = elementwise.find_root(derivative, (lo, hi), args=tuple(q[rows] for q in sub_args),
+                                     tolerances=dict(xatol=xatol, xrtol=xrtol))
+        xr = np.where(np.isfinite(root.x), root.x, 0.5 * (lo + hi))
+        x[start + rows] = xr
+        found[start + rows] = True
+    return BranchEnd(x, found)

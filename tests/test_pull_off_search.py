@@ -1,0 +1,89 @@
+"""The shared pull-off search (dhfield.pull_off_search) on functions with known minima."""
+import numpy as np
+import pytest
+
+from dhfield.pull_off_search import refine_sampled_minimum, stable_branch_end
+
+#: A parabola is reproduced exactly by the three-point vertex: rounding only.
+EXACT_RTOL = 1e-12
+#: Chandrupatla's tolerance is 1e-13 in x; roots of O(1) to a few ulps more.
+ROOT_ATOL = 1e-12
+
+
+def test_parabola_vertex_is_exact_on_nonuniform_samples():
+    x = np.array([0.0, 0.1, 0.25, 0.5, 0.9, 1.4])
+    y = 2.0 * (x - 0.31) ** 2 - 1.5
+    m = refine_sampled_minimum(x, y)
+    assert not m.at_boundary and m.index == 2
+    assert m.x == pytest.approx(0.31, rel=EXACT_RTOL)
+    assert m.y == pytest.approx(-1.5, rel=EXACT_RTOL)
+
+
+def test_sampled_minimum_converges_at_least_cubically_in_value():
+    # y = -cos(x - 0.3137) (vertex off the grid): the error of the refined value is O(h^3)
+    # (the interpolation error of a parabola); quartering h must gain more than 4^3 / 2.
+    errs = []
+    for n in (11, 41, 161):
+        x = np.linspace(-1.0, 1.0, n)
+        m = refine_sampled_minimum(x, -np.cos(x - 0.3137))
+        errs.append(abs(m.y + 1.0))
+    assert errs[1] < errs[0] / 32 and errs[2] < errs[1] / 32
+
+
+def test_first_local_minimum_from_the_start_vs_global():
+    x = np.linspace(0.0, 4.0, 81)
+    y = np.cos(2 * np.pi * x) - 0.1 * x  # minima near x = 0.5, 1.5, 2.5, 3.5 (deepest last)
+    first = refine_sampled_minimum(x, y)
+    glob = refine_sampled_minimum(x, y, first=False)
+    assert abs(first.x - 0.5) < 0.02 and abs(glob.x - 3.5) < 0.02
+
+
+def test_boundary_minimum_and_failed_samples():
+    x = np.arange(6.0)
+    m = refine_sampled_minimum(x, x.copy())  # increasing: minimum at the first sample
+    assert m.at_boundary and m.index == 0 and m.x == 0.0
+    m = refine_sampled_minimum(x[::-1], x[::-1].copy())  # decreasing x is allowed
+    assert m.at_boundary
+    y = (x - 2.0) ** 2
+    y[2] = np.nan  # the failed state at the minimum is skipped, not reported
+    m = refine_sampled_minimum(x, y)
+    assert np.isfinite(m.y) and m.index in (1, 3)
+
+
+def test_bad_samples_are_rejected_with_names():
+    with pytest.raises(ValueError, match="x and y"):
+        refine_sampled_minimum([0, 1, 2], [0, 1])
+    with pytest.raises(ValueError, match="finite sample"):
+        refine_sampled_minimum([0, 1], [np.nan, np.nan])
+    with pytest.raises(ValueError, match="monotone"):
+        refine_sampled_minimum([0, 2, 1], [1, 0, 1])
+
+
+def test_stable_branch_end_finds_largest_crossing_per_problem():
+    # d(a) = (a - r1)(a - r2)(a - r3) with r1 < r2 < r3: crossings neg -> pos at r1 and r3;
+    # the stable branch (from large a) ends at r3.
+    r3 = np.array([0.7, 1.3, 2.9])
+
+    def deriv(a, r):
+        return (a - 0.1) * (a - 0.4) * (a - r)
+
+    scan = np.geomspace(1e-3, 4.0, 60)
+    end = stable_branch_end(deriv, scan, (r3,))
+    assert end.found.all()
+    np.testing.assert_allclose(end.x, r3, atol=ROOT_ATOL)
+
+
+def test_stable_branch_end_chunks_give_the_same_answer_and_flag_no_crossing():
+    rng = np.random.default_rng(7)
+    r = rng.uniform(0.5, 3.0, 50)
+    r[::7] = 10.0  # beyond the scan: derivative negative everywhere -> not found
+
+    def deriv(a, r_):
+        return a - r_
+
+    scan = np.broadcast_to(np.linspace(0.01, 4.0, 30), (50, 30))
+    one = stable_branch_end(deriv, scan, (r,))
+    many = stable_branch_end(deriv, scan, (r,), chunk_bytes=1, bytes_per_state=1)
+    np.testing.assert_array_equal(one.found, r < 4.0)
+    np.testing.assert_array_equal(one.x, many.x)
+    np.testing.assert_allclose(one.x[one.found], r[one.found], atol=ROOT_ATOL)
