@@ -1,31 +1,48 @@
 """All comparison models behind one interface, on the axes of the paper's Figs. 8-9.
 
-Every entry of :data:`MODELS` is a callable ``(mu, beta0, control="load") -> dict``
-returning the pull-off in the paper's normalisation (Eqs. 32-35):
-
-``model, beta0, mu, control, W_star, a_star, c_star, v, delta_star, ellipticity,
-sin_skew, geometry``
+Every model is reached by name (:data:`MODEL_NAMES`) through :func:`pull_off`,
+:func:`compare`, :func:`load_curve` and :func:`load_curve_at_load`; the SI front
+end (:mod:`dhfield.dimensional`) and the command line (``--model``) take the same
+names.  Every pull-off record has the keys of :data:`dhfield.schema.PULL_OFF_KEYS`,
+in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 
 * ``W_star = W sin(theta_skew)/(2 pi R dgamma)`` (Eq. 34), with sin(theta_skew) of
   beta0 for the elliptical models and 1 for the circular ones (``sin_skew`` says
-  which); R = sqrt(R'R'').
-* ``a_star`` is the contact semi-major axis (the radius for the circle) in
-  c_r = (R^2 dgamma/E*)^(1/3); ``delta_star`` the approach in c_r^2/R.
-* ``c_star`` (outer edge of the adhesive zone) and ``v`` (DH factor) are NaN where
-  the model has none (JKR, DMT, elliptical JKR; ``v`` for MD).
-* ``ellipticity`` is the contact b/a at pull-off (1 for the circle).
+  which); R = sqrt(R'R'').  Positive compressive: pull-off is negative.
+* ``a_star``, ``b_star`` are the contact semi-axes (the radius for the circle) in
+  c_r = (R^2 dgamma/E*)^(1/3); ``c_star``, ``d_star`` the adhesive-zone semi-axes,
+  NaN where the model has none (JKR, DMT, elliptical JKR); ``delta_star`` the
+  approach in c_r^2/R.
+* ``v`` is the double-Hertz factor of Eq. (22), NaN outside the equal-beta DH
+  models (the closures have two independent amplitudes, MD has none).
+* ``ellipticity`` b/a and ``adhesive_ellipticity`` d/c at pull-off.
+* ``at_zero_contact``: the pull-off is reached as the contact vanishes.
+* ``warning``: empty, except for ``dh-elliptic`` where its pull-off departs from
+  the two-axis closure by more than :data:`WARNING_THRESHOLD` (2 %).
 * mu is the paper's Eq. (35); MD is evaluated at lambda = 1.1272 mu
   (:mod:`dhfield.transition`, same sigma0).  JKR, DMT and elliptical JKR do not
   depend on mu.
 
 Models
 ------
-``dh-elliptic``           the paper's model, beta = beta0 throughout (Eq. 19) — :mod:`dhfield.model`
-``dh-elliptic-jkr-beta``  the paper's second assumption (Fig. 9): beta_(pull-off) = beta_JKR(pull-off)
-``dh-circular``           Greenwood & Johnson (1998) — :mod:`dhfield.dh_circular`
-``jkr``, ``dmt``          :mod:`dhfield.jkr`, :mod:`dhfield.dmt`
-``md``                    Maugis (1992) — :mod:`dhfield.maugis_dugdale`
-``jkr-elliptic``          Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
+``dh-elliptic``              the paper's model, beta = beta0 throughout, dgamma on the major axis
+                             (Eqs. 17-19, 31) — :mod:`dhfield.model`; the default
+``dh-elliptic-two-axis``     dgamma = 1 on both axes, beta_cd != beta_ab, contact condition exact —
+                             :func:`dhfield.closure.pull_off_two_axis`
+``dh-elliptic-ray-average``  equal beta, dgamma = 1 on the periphery average —
+                             :func:`dhfield.closure.pull_off_ray_average`
+``dh-elliptic-jkr-beta``     the paper's second assumption (Fig. 9): beta_(pull-off) = beta_JKR(pull-off)
+``dh-circular``              Greenwood & Johnson (1998) — :mod:`dhfield.dh_circular`
+``jkr``, ``dmt``             :mod:`dhfield.jkr`, :mod:`dhfield.dmt`
+``md``                       Maugis (1992) — :mod:`dhfield.maugis_dugdale`
+``jkr-elliptic``             Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
+
+Every model except ``dh-elliptic-jkr-beta`` (whose ellipticity is defined at
+pull-off only) has a load curve (:data:`CURVE_MODEL_NAMES`).
+
+Which model to use when
+-----------------------
+__WHEN__
 
 The JKR-beta variant
 --------------------
@@ -53,14 +70,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import dh_circular, dmt, jkr, jkr_elliptic, maugis_dugdale
+from . import closure, dh_circular, dmt, jkr, jkr_elliptic, maugis_dugdale
 from ._adhesion import approach_unit, check_control, check_material, length_unit, load_unit
 from ._validation import check_ellipticity, check_positive
 from .geometry import sin_skew_angle
+from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
 
-__all__ = ["MODELS", "MODEL_NAMES", "compare", "pull_off", "to_dimensional"]
+__all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "WARNING_THRESHOLD",
+           "closure_departure", "compare", "load_curve", "load_curve_at_load", "pull_off", "to_dimensional"]
 
 _NAN = float("nan")
+#: The paper's model, the default everywhere a model is chosen.
+DEFAULT_MODEL = "dh-elliptic"
+#: Relative departure of the paper's pull-off force from the two-axis closure above which the
+#: paper's model carries a warning (issue 10: "more than 2 %").
+WARNING_THRESHOLD = 0.02
+#: Default contact semi-major axes a* of a load curve, where a model has no default of its own.
+_DEFAULT_A_STAR = (0.05, 5.0)
 
 
 def _check(mu, beta0, control):
@@ -70,32 +96,94 @@ def _check(mu, beta0, control):
     return np.broadcast_arrays(mu, beta0)
 
 
-def _record(name, mu, beta0, control, st, ellipticity, sin_skew, geometry):
+def _arr(x, shape, dtype=float):
+    out = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
+    return out[()] if out.ndim == 0 else out
+
+
+def _record(name, mu, beta0, control, st, sin_skew, geometry, warning=""):
+    """A pull-off record with the keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in order."""
     shape = np.broadcast_shapes(mu.shape, beta0.shape)
-
-    def arr(x):
-        out = np.broadcast_to(np.asarray(x, dtype=float), shape).copy()
-        return out[()] if out.ndim == 0 else out
-
-    return {"model": name, "beta0": arr(beta0), "mu": arr(mu), "control": control,
-            "W_star": arr(st["W_star"]), "a_star": arr(st["a_star"]),
-            "c_star": arr(st.get("c_star", _NAN)), "v": arr(st.get("v", _NAN)),
-            "delta_star": arr(st["delta_star"]), "ellipticity": arr(ellipticity),
-            "sin_skew": arr(sin_skew), "geometry": geometry}
+    a = np.asarray(st["a_star"], float)
+    b = np.asarray(st.get("b_star", a), float)
+    c = np.asarray(st.get("c_star", _NAN), float)
+    d = np.asarray(st.get("d_star", c * np.divide(b, a, out=np.ones_like(b), where=a > 0)), float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ell = np.asarray(st.get("ellipticity", np.divide(b, a, out=np.ones_like(b), where=a > 0)), float)
+        adh = np.where(np.isfinite(c) & (c > 0), d / np.where(c > 0, c, 1.0), _NAN)
+    zero = st.get("at_zero_contact", a == 0)
+    rec = {"model": name, "control": control, "geometry": geometry, "beta0": _arr(beta0, shape),
+           "mu": _arr(mu, shape), "sin_skew": _arr(sin_skew, shape), "W_star": _arr(st["W_star"], shape),
+           "a_star": _arr(a, shape), "b_star": _arr(b, shape), "c_star": _arr(c, shape),
+           "d_star": _arr(d, shape), "v": _arr(st.get("v", _NAN), shape),
+           "delta_star": _arr(st["delta_star"], shape), "ellipticity": _arr(ell, shape),
+           "adhesive_ellipticity": _arr(adh, shape),
+           "at_zero_contact": _arr(zero, shape, bool), "warning": _arr(warning, shape, object)}
+    assert tuple(rec) == PULL_OFF_KEYS
+    return rec
 
 
 def _from_model(res):
-    return {"W_star": res.W_star, "a_star": res.a_star, "c_star": res.c_star, "v": res.v,
-            "delta_star": res.delta_star}
+    return {"W_star": res.W_star, "a_star": res.a_star, "b_star": res.a_star * res.ellipticity,
+            "c_star": res.c_star, "d_star": res.c_star * res.ellipticity, "v": res.v,
+            "delta_star": res.delta_star, "at_zero_contact": res.at_zero_contact}
 
 
-def _dh_elliptic(mu, beta0, control="load"):
+def _from_closure(st):
+    return {"W_star": st.W_star, "a_star": st.a_star, "b_star": st.b_star, "c_star": st.c_star,
+            "d_star": st.d_star, "delta_star": st.delta_star, "at_zero_contact": st.at_zero_contact}
+
+
+def _departure_warning(w_paper, w_two_axis):
+    dep = np.asarray(w_paper, float) / np.asarray(w_two_axis, float) - 1.0
+
+    def one(x):
+        if not abs(x) > WARNING_THRESHOLD:
+            return ""
+        return (f"dh-elliptic pull-off departs from the two-axis closure by {100 * x:+.1f} % "
+                f"(> {100 * WARNING_THRESHOLD:g} %): prefer the model dh-elliptic-two-axis")
+
+    out = np.array([one(x) for x in dep.ravel()], dtype=object).reshape(dep.shape)
+    return out[()] if out.ndim == 0 else out
+
+
+def closure_departure(mu, beta0, control="load"):
+    """Relative departure of the paper's pull-off from the two-axis closure.
+
+    Parameters
+    ----------
+    mu : array_like
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : array_like
+        Hertz ellipticity b/a of the geometry, in (0, 1] [-].
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    ndarray or float
+        W*_paper / W*_two-axis - 1 at pull-off [-]; negative where the paper's
+        model predicts less adhesion.  0 at beta0 = 1, where both are the circle.
+    """
+    from .model import pull_off as dh_pull_off
+
+    mu, beta0 = _check(mu, beta0, control)
+    w = dh_pull_off(mu, beta0, control=control).W_star
+    ref = closure.pull_off_two_axis(mu, beta0, control=control).W_star
+    out = np.asarray(w, float) / np.asarray(ref, float) - 1.0
+    return out[()] if out.ndim == 0 else out
+
+
+def _dh_elliptic(mu, beta0, control="load", *, check_closure=True, two_axis=None):
     from .model import pull_off as dh_pull_off
 
     mu, beta0 = _check(mu, beta0, control)
     res = dh_pull_off(mu, beta0, control=control)
-    return _record("dh-elliptic", mu, beta0, control, _from_model(res), beta0, sin_skew_angle(beta0),
-                   "ellipse")
+    warning = ""
+    if check_closure:
+        ref = two_axis if two_axis is not None else _two_axis(mu, beta0, control)
+        warning = _departure_warning(res.W_star, ref["W_star"])
+    return _record("dh-elliptic", mu, beta0, control, _from_model(res), sin_skew_angle(beta0), "ellipse",
+                   warning)
 
 
 def _dh_elliptic_jkr_beta(mu, beta0, control="load"):
@@ -104,41 +192,57 @@ def _dh_elliptic_jkr_beta(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
     beta_jkr = jkr_elliptic._pull_off(beta0, control)["beta"]
     res = dh_pull_off(mu, beta0, control=control, ellipticity=beta_jkr)
-    return _record("dh-elliptic-jkr-beta", mu, beta0, control, _from_model(res), beta_jkr,
-                   sin_skew_angle(beta0), "ellipse")
+    return _record("dh-elliptic-jkr-beta", mu, beta0, control, _from_model(res), sin_skew_angle(beta0),
+                   "ellipse")
+
+
+def _two_axis(mu, beta0, control="load"):
+    mu, beta0 = _check(mu, beta0, control)
+    st = closure.pull_off_two_axis(mu, beta0, control=control)
+    return _record("dh-elliptic-two-axis", mu, beta0, control, _from_closure(st), sin_skew_angle(beta0),
+                   "ellipse")
+
+
+def _ray_average(mu, beta0, control="load"):
+    mu, beta0 = _check(mu, beta0, control)
+    st = closure.pull_off_ray_average(mu, beta0, control=control)
+    return _record("dh-elliptic-ray-average", mu, beta0, control, _from_closure(st), sin_skew_angle(beta0),
+                   "ellipse")
 
 
 def _dh_circular(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("dh-circular", mu, beta0, control, dh_circular._pull_off(mu, control), 1.0, 1.0,
-                   "circle")
+    return _record("dh-circular", mu, beta0, control, dh_circular._pull_off(mu, control), 1.0, "circle")
 
 
 def _jkr(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("jkr", mu, beta0, control, jkr._pull_off(control), 1.0, 1.0, "circle")
+    return _record("jkr", mu, beta0, control, jkr._pull_off(control), 1.0, "circle")
 
 
 def _dmt(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("dmt", mu, beta0, control, dmt._pull_off(control), 1.0, 1.0, "circle")
+    return _record("dmt", mu, beta0, control, dmt._pull_off(control), 1.0, "circle")
 
 
 def _md(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("md", mu, beta0, control, maugis_dugdale._pull_off(mu, control), 1.0, 1.0,
-                   "circle")
+    return _record("md", mu, beta0, control, maugis_dugdale._pull_off(mu, control), 1.0, "circle")
 
 
 def _jkr_elliptic(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
     st = jkr_elliptic._pull_off(beta0, control)
-    return _record("jkr-elliptic", mu, beta0, control, st, st["beta"], sin_skew_angle(beta0), "ellipse")
+    st = {**st, "ellipticity": st["beta"]}
+    return _record("jkr-elliptic", mu, beta0, control, st, sin_skew_angle(beta0), "ellipse")
 
 
-#: name -> callable (mu, beta0, control="load") -> dict (see the module docstring)
+#: name -> callable (mu, beta0, control="load") -> dict with the keys of
+#: :data:`dhfield.schema.PULL_OFF_KEYS` (see the module docstring).
 MODELS = {
     "dh-elliptic": _dh_elliptic,
+    "dh-elliptic-two-axis": _two_axis,
+    "dh-elliptic-ray-average": _ray_average,
     "dh-elliptic-jkr-beta": _dh_elliptic_jkr_beta,
     "dh-circular": _dh_circular,
     "jkr": _jkr,
@@ -147,9 +251,17 @@ MODELS = {
     "jkr-elliptic": _jkr_elliptic,
 }
 MODEL_NAMES = tuple(MODELS)
+#: Models of a circular contact (R = sqrt(R'R''), sin(theta_skew) = 1 in Eq. 34), whatever beta0.
+CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
 
 
-def pull_off(model, mu, beta0, control="load"):
+def _check_model(model):
+    if model not in MODELS:
+        raise ValueError(f"model must be one of {', '.join(MODEL_NAMES)}; got {model!r}")
+    return model
+
+
+def pull_off(model, mu, beta0, control="load", *, check_closure=True):
     """Pull-off of one model, in the paper's normalisation (Eq. 34).
 
     Parameters
@@ -163,17 +275,27 @@ def pull_off(model, mu, beta0, control="load"):
     control : {'load', 'displacement'}
         Loading mode.
 
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic`` only: also solve the two-axis closure (about 1 s per
+        point) and fill ``warning`` where the two depart by more than
+        :data:`WARNING_THRESHOLD`.  False leaves ``warning`` empty.
+
     Returns
     -------
     dict
-        See the module docstring.
+        The keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in that order, for every
+        model; NaN where a quantity does not apply (module docstring).  Arrays
+        broadcast over ``mu`` and ``beta0``; scalars in give scalars out.
     """
-    if model not in MODELS:
-        raise ValueError(f"model must be one of {MODEL_NAMES}; got {model!r}")
+    _check_model(model)
+    if model == "dh-elliptic":
+        return _dh_elliptic(mu, beta0, control, check_closure=check_closure)
     return MODELS[model](mu, beta0, control)
 
 
-def compare(mu, beta0, control="load", models=None):
+def compare(mu, beta0, control="load", models=None, *, check_closure=True):
     """Pull-off of every model side by side, on the axes of Fig. 9.
 
     All models apply to any beta0: the circular ones (dh-circular, jkr, dmt, md)
@@ -183,10 +305,205 @@ def compare(mu, beta0, control="load", models=None):
     Returns
     -------
     dict
-        model name -> record (see the module docstring).
+        model name -> record (see :func:`pull_off`).  The two-axis closure is
+        solved once and also serves the warning of ``dh-elliptic``.
     """
-    names = MODEL_NAMES if models is None else tuple(models)
-    return {name: pull_off(name, mu, beta0, control) for name in names}
+    names = MODEL_NAMES if models is None else tuple(_check_model(m) for m in models)
+    out = {}
+    two_axis = None
+    if "dh-elliptic-two-axis" in names or ("dh-elliptic" in names and check_closure):
+        two_axis = _two_axis(mu, beta0, control)
+    for name in names:
+        if name == "dh-elliptic":
+            out[name] = _dh_elliptic(mu, beta0, control, check_closure=check_closure, two_axis=two_axis)
+        elif name == "dh-elliptic-two-axis":
+            out[name] = two_axis
+        else:
+            out[name] = MODELS[name](mu, beta0, control)
+    return out
+
+
+# --------------------------------------------------------------------------- load curves
+def _curve_paper(a, mu, beta0):
+    from .model import load_curve as dh_load_curve
+
+    c = dh_load_curve(mu, beta0, a)
+    return {"a_star": c.a_star, "b_star": c.b_star, "c_star": c.c_star, "d_star": c.d_star, "v": c.v,
+            "W_star": c.W_star, "delta_star": c.delta_star}
+
+
+def _curve_closure(solver):
+    def curve(a, mu, beta0):
+        st = solver(a, mu, beta0)
+        return {"a_star": st.a_star, "b_star": st.b_star, "c_star": st.c_star, "d_star": st.d_star,
+                "v": np.full(np.shape(st.a_star), _NAN), "W_star": st.W_star, "delta_star": st.delta_star}
+    return curve
+
+
+def _curve_circle(module, with_stress):
+    # the public SI curve with R = E* = dgamma = 1: lengths in c_r, load in 2 pi R dgamma, sigma0 = mu
+    def curve(a, mu, beta0):
+        args = (a, 1.0, 1.0, 1.0) + ((mu,) if with_stress else ())
+        c = module.load_curve(*args)
+        a = np.asarray(c.contact_radius, float)
+        return {"a_star": a, "b_star": a, "c_star": np.full(a.shape, _NAN), "d_star": np.full(a.shape, _NAN),
+                "v": np.full(a.shape, _NAN), "W_star": np.asarray(c.load) / (2 * np.pi),  # Eq. (34), sin = 1
+                "delta_star": np.asarray(c.approach, float)}
+    return curve
+
+
+def _curve_jkr_elliptic(a, mu, beta0):
+    c = jkr_elliptic.load_curve(a, 1.0, 1.0, 1.0, beta0=beta0)
+    shape = np.shape(c.semi_major)
+    return {"a_star": np.asarray(c.semi_major, float), "b_star": np.asarray(c.semi_minor, float),
+            "c_star": np.full(shape, _NAN), "d_star": np.full(shape, _NAN), "v": np.full(shape, _NAN),
+            "W_star": np.asarray(c.load) * sin_skew_angle(beta0) / (2 * np.pi),  # Eq. (34)
+            "delta_star": np.asarray(c.approach, float)}
+
+
+#: name -> (a*, mu, beta0) -> dict of the curve arrays, for the models that have a load curve.
+_CURVES = {
+    "dh-elliptic": _curve_paper,
+    "dh-elliptic-two-axis": _curve_closure(closure.solve_two_axis),
+    "dh-elliptic-ray-average": _curve_closure(closure.solve_ray_average),
+    "dh-circular": _curve_circle(dh_circular, True),
+    "jkr": _curve_circle(jkr, False),
+    "dmt": _curve_circle(dmt, False),
+    "md": _curve_circle(maugis_dugdale, True),
+    "jkr-elliptic": _curve_jkr_elliptic,
+}
+#: Models with a load curve.  ``dh-elliptic-jkr-beta`` has none: its ellipticity is defined
+#: at pull-off only.
+CURVE_MODEL_NAMES = tuple(n for n in MODEL_NAMES if n in _CURVES)
+
+
+def _check_curve_model(model):
+    _check_model(model)
+    if model not in _CURVES:
+        raise ValueError(f"model must be one with a load curve ({', '.join(CURVE_MODEL_NAMES)}); got "
+                         f"{model!r}, whose ellipticity is defined at pull-off only")
+    return model
+
+
+def _curve_arrays(model, a_star, mu, beta0):
+    st = _CURVES[model](a_star, mu, beta0)
+    return {k: np.asarray(st[k], float) for k in LOAD_CURVE_KEYS}
+
+
+def _curve_record(model, mu, beta0, arrays):
+    circle = model in CIRCULAR_MODEL_NAMES
+    head = {"model": model, "geometry": "circle" if circle else "ellipse",
+            "beta0": float(beta0), "mu": float(mu),
+            "sin_skew": 1.0 if circle else float(sin_skew_angle(beta0))}
+    assert tuple(head) == LOAD_CURVE_HEADER_KEYS
+    return {**head, **{k: arrays[k] for k in LOAD_CURVE_KEYS}}
+
+
+def load_curve(model, mu, beta0, a_star=None, *, n=200):
+    """Load curve of one model at given contact semi-major axes (nondimensional).
+
+    Parameters
+    ----------
+    model : str
+        One of :data:`CURVE_MODEL_NAMES`.
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Hertz ellipticity of the geometry, in (0, 1] [-].
+    a_star : array_like, optional
+        Contact semi-major axes a/c_r > 0 (Eq. 32) [-]; default ``n`` points
+        evenly spaced over [0.05, 5].
+    n : int
+        Number of points of the default grid (>= 2).
+
+    Returns
+    -------
+    dict
+        The scalar keys of :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
+        arrays of :data:`dhfield.schema.LOAD_CURVE_KEYS` (NaN where a model has no
+        such quantity: ``c_star``, ``d_star`` outside the DH models, ``v`` outside the
+        paper's and the circular DH models where the DH factor is not reported).
+    """
+    _check_curve_model(model)
+    mu, beta0 = (float(x) for x in _check_scalar(mu, beta0))
+    if a_star is None:
+        if not (isinstance(n, (int, np.integer)) and n >= 2):
+            raise ValueError(f"n must be an integer >= 2; got {n!r}")
+        a_star = np.linspace(*_DEFAULT_A_STAR, n)
+    a_star = np.atleast_1d(check_positive("a_star", a_star, "contact semi-major axis a/c_r (Eq. 32)"))
+    return _curve_record(model, mu, beta0, _curve_arrays(model, a_star, mu, beta0))
+
+
+def _check_scalar(mu, beta0):
+    mu, beta0 = _check(mu, beta0, "load")
+    if mu.ndim or beta0.ndim:
+        raise ValueError("mu and beta0 of a load curve must be scalars; got arrays of shape "
+                         f"{np.shape(mu)} and {np.shape(beta0)}")
+    return mu, beta0
+
+
+def load_curve_at_load(model, mu, beta0, w_star):
+    """Load curve of one model at given loads, on its stable branch under load control.
+
+    Parameters
+    ----------
+    model : str
+        One of :data:`CURVE_MODEL_NAMES`.
+    mu, beta0 : float
+        Tabor parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    w_star : array_like
+        Loads W* = W sin(theta_skew)/(2 pi R dgamma) (Eq. 34) [-], each at least the
+        pull-off load of the model (the stable branch starts there).
+
+    Returns
+    -------
+    dict
+        As :func:`load_curve`, at the contact sizes whose load is ``w_star``.
+
+    Notes
+    -----
+    Under load control the pull-off is the last minimum of W*(a*) seen from high
+    load, so W* rises monotonically for a* above it; each a* is the root of
+    W*(a*) = w_star bracketed there (:func:`scipy.optimize.elementwise.find_root`,
+    relative tolerance :data:`_ROOT_RTOL`).
+    """
+    from scipy.optimize import elementwise
+
+    _check_curve_model(model)
+    mu, beta0 = (float(x) for x in _check_scalar(mu, beta0))
+    w = np.atleast_1d(np.asarray(w_star, dtype=float))
+    if not np.all(np.isfinite(w)):
+        raise ValueError(f"load must be finite; got {w_star!r}")
+    po = MODELS[model](mu, beta0, "load") if model != "dh-elliptic" else _dh_elliptic(
+        mu, beta0, "load", check_closure=False)
+    w_po, a_po = float(po["W_star"]), float(po["a_star"])
+    if np.any(w < w_po):
+        raise ValueError(f"load must be at least the pull-off load W* = {w_po:.6g} of {model} "
+                         f"(the stable branch starts there); got min {w.min():.6g}")
+    lo = max(a_po, 1e-6)
+    hi = max(2.0 * lo, 1.0)
+
+    def f(a, target):
+        return _curve_arrays(model, a, mu, beta0)["W_star"] - target
+
+    for _ in range(60):
+        if f(np.array([hi]), 0.0)[0] >= w.max():
+            break
+        hi *= 2.0
+    else:
+        raise ValueError(f"load must be below the largest load this model reaches; got {w.max():.6g}")
+    flo = f(np.full(w.shape, lo), w)
+    a = np.full(w.shape, lo)
+    inside = flo < 0
+    if np.any(inside):
+        res = elementwise.find_root(f, (np.full(int(inside.sum()), lo), np.full(int(inside.sum()), hi)),
+                                    args=(w[inside],), tolerances=dict(xrtol=_ROOT_RTOL, xatol=0.0))
+        a[inside] = res.x
+    return _curve_record(model, mu, beta0, _curve_arrays(model, a, mu, beta0))
+
+
+#: Relative tolerance on a* of the load inversion (well below plotting or fitting needs).
+_ROOT_RTOL = 1e-12
 
 
 def to_dimensional(record, effective_radius, reduced_modulus, work_of_adhesion):
@@ -203,7 +520,8 @@ def to_dimensional(record, effective_radius, reduced_modulus, work_of_adhesion):
     Notes
     -----
     Inverts Eqs. (32)-(34): W = W* 2 pi R dgamma/sin(theta_skew), a = a* c_r,
-    delta = delta* c_r^2/R.
+    delta = delta* c_r^2/R.  The full SI record of every model is
+    :func:`dhfield.dimensional.pull_off_force`.
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     cr = length_unit(r, e, w)

@@ -1,15 +1,33 @@
-"""Dimensional front end: materials and crossed-cylinder geometry in SI units.
+"""Dimensional front end: materials and contact geometry in SI units, every model.
 
-The nondimensional model (:mod:`dhfield.model`) is scaled back with
+The nondimensional models (:mod:`dhfield.compare`) are scaled back with
 
 * lengths in the contact plane: c_r = (R^2 dgamma/E*)^(1/3)          (Eq. 33)
 * approach: c_r^2/R
 * stresses: E* c_r/R = (E*^2 dgamma/R)^(1/3), so sigma0 = mu times it (Eq. 35)
 * load: W = 2 pi R dgamma W*/sin(theta_skew)                          (Eq. 34)
 
+with R = sqrt(R'R'') (Eq. 5) and sin(theta_skew) that of the Hertz ellipticity
+beta0 of the geometry (:func:`dhfield.geometry.sin_skew_angle`), 1 for the
+circular models: the same factor the nondimensional models divide by, so that
+the force in newtons does not depend on the convention.
+
+Geometry
+--------
+Three ways to give the undeformed gap z = x^2/(2R') + y^2/(2R''):
+
+* two equal cylinders of radius R_c crossed at theta_skew (Eqs. 3-4):
+  :func:`contact_parameters`;
+* two cylinders of radii R1, R2 crossed at theta_skew:
+  :func:`crossed_cylinder_radii`, then :func:`contact_parameters_from_principal_radii`;
+* any paraboloid, by its principal relative radii R', R'':
+  :func:`contact_parameters_from_principal_radii`.
+
 Paper note: for equal cylinders R = R_c/sin(theta_skew), so Eq. (34) may also be
 written W = 2 pi R_c dgamma W*/sin^2(theta_skew).  dhfield follows Eq. (34) as
 printed, consistently with Eq. (36).
+
+Every function broadcasts over arrays; a scalar in gives a scalar out.
 """
 from __future__ import annotations
 
@@ -18,27 +36,33 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _adhesion as units
-from . import geometry, model
-from ._validation import check_positive
+from . import compare, geometry
+from ._validation import check_interval, check_positive
+from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_SI_KEYS
 
-__all__ = ["ContactParameters", "contact_parameters", "load_curve_si", "pull_off_force"]
+__all__ = ["ContactParameters", "contact_parameters", "contact_parameters_from_principal_radii",
+           "crossed_cylinder_radii", "load_curve_si", "pull_off_force"]
+
+_s = units.scalar_or_array
 
 
 @dataclass(frozen=True)
 class ContactParameters:
-    """Derived parameters of a crossed-cylinder adhesive contact (SI).
+    """Derived parameters of an adhesive elliptical contact (SI); floats or arrays.
 
     Attributes
     ----------
     reduced_modulus : E* [Pa] (Eq. 6)
-    r_major, r_minor : R', R'' [m] (Eqs. 3-4)
+    r_major, r_minor : R' >= R'' [m] (Eqs. 3-4)
     effective_radius : R [m] (Eq. 5)
     beta0 : Hertz ellipticity [-] (Eq. 9)
-    sin_skew : sin(theta_skew) [-]
+    sin_skew : sin(theta_skew) of beta0 [-]
     mu : Tabor parameter [-] (Eq. 35)
     length_unit : c_r [m] (Eq. 33)
     approach_unit : c_r^2/R [m]
     load_unit : 2 pi R dgamma / sin(theta_skew) [N] (Eq. 34)
+    work_of_adhesion : dgamma [J m^-2]
+    max_adhesive_stress : sigma0 [Pa]
     """
     reduced_modulus: float
     r_major: float
@@ -50,85 +74,232 @@ class ContactParameters:
     length_unit: float
     approach_unit: float
     load_unit: float
+    work_of_adhesion: float = float("nan")
+    max_adhesive_stress: float = float("nan")
+
+
+def _reduced_modulus(e1, nu1, e2, nu2):
+    e1 = check_positive("youngs_modulus_1", e1, "Pa")
+    e2 = check_positive("youngs_modulus_2", e2, "Pa")
+    nu1 = check_interval("poisson_ratio_1", nu1, -1.0, 0.5, what="Poisson's ratio")
+    nu2 = check_interval("poisson_ratio_2", nu2, -1.0, 0.5, what="Poisson's ratio")
+    return geometry.reduced_modulus(e1, nu1, e2, nu2)  # Eq. (6)
+
+
+def crossed_cylinder_radii(radius_1, radius_2, skew_angle):
+    """Principal relative radii R' >= R'' of two cylinders of radii R1, R2 crossed at an angle.
+
+    Parameters
+    ----------
+    radius_1, radius_2 : array_like
+        Radii of the two cylinders, > 0 [m].
+    skew_angle : array_like
+        Angle theta_skew between the cylinder axes, in (0, pi/2] [rad].
+
+    Returns
+    -------
+    r_major, r_minor : ndarray or float
+        R' >= R'' [m].
+
+    Notes
+    -----
+    Johnson (1985) [1]_, Sec. 4.2, Eqs. (4.2)-(4.3), with 1/R1'' = 1/R2'' = 0 for
+    cylinders and A = 1/(2R'), B = 1/(2R''):
+
+    .. math::
+
+        \\frac{1}{R'} + \\frac{1}{R''} = \\frac{1}{R_1} + \\frac{1}{R_2}, \\qquad
+        \\frac{1}{R''} - \\frac{1}{R'} = \\sqrt{\\frac{1}{R_1^2} + \\frac{1}{R_2^2}
+            + \\frac{2\\cos 2\\theta}{R_1 R_2}}
+
+    For R1 = R2 = R_c this is the paper's Eqs. (3)-(4), R' = R_c/(1 - cos theta),
+    R'' = R_c/(1 + cos theta); at theta = pi/2, R' = max(R1, R2), R'' = min(R1, R2).
+
+    References
+    ----------
+    .. [1] K. L. Johnson, Contact Mechanics, Cambridge University Press (1985),
+       doi:10.1017/CBO9781139171731
+    """
+    k1 = 1.0 / check_positive("radius_1", radius_1, "m")
+    k2 = 1.0 / check_positive("radius_2", radius_2, "m")
+    th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
+    total = k1 + k2  # Johnson (4.2): 2(A + B)
+    diff = np.sqrt(np.maximum(k1 * k1 + k2 * k2 + 2.0 * k1 * k2 * np.cos(2.0 * th), 0.0))  # (4.3): 2(B - A)
+    with np.errstate(divide="ignore"):
+        r_major = 2.0 / (total - diff)  # 1/R' = 2A; infinite for parallel equal cylinders
+    r_minor = 2.0 / (total + diff)  # 1/R'' = 2B
+    return _s(r_major), _s(r_minor)
+
+
+def contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
+                                            poisson_ratio_2, r_major, r_minor, work_of_adhesion,
+                                            max_adhesive_stress):
+    """Nondimensional groups and scales of a contact of principal relative radii R', R''.
+
+    Parameters
+    ----------
+    youngs_modulus_1, youngs_modulus_2 : array_like
+        Young's moduli E1, E2 > 0 [Pa].
+    poisson_ratio_1, poisson_ratio_2 : array_like
+        Poisson's ratios in (-1, 0.5] [-].
+    r_major, r_minor : array_like
+        Principal relative radii R', R'' > 0 of the gap z = x^2/(2R') + y^2/(2R'')
+        [m]; given in either order (the larger is R').
+    work_of_adhesion : array_like
+        Delta gamma > 0 [J m^-2].
+    max_adhesive_stress : array_like
+        sigma0 > 0 [Pa].
+
+    Returns
+    -------
+    ContactParameters
+        Floats for scalar inputs, arrays broadcast over all inputs otherwise.
+    """
+    e_star = _reduced_modulus(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2)
+    r1 = check_positive("r_major", r_major, "m")
+    r2 = check_positive("r_minor", r_minor, "m")
+    w = check_positive("work_of_adhesion", work_of_adhesion, "J m^-2")
+    s0 = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
+    r1, r2 = np.maximum(r1, r2), np.minimum(r1, r2)
+    r = geometry.effective_radius(r1, r2)  # Eq. (5)
+    beta0 = geometry.ellipticity_from_radius_ratio(r1 / r2)  # Eq. (9)
+    sin_skew = geometry.sin_skew_angle(beta0)
+    e_star, r1, r2, r, beta0, sin_skew, w, s0 = np.broadcast_arrays(e_star, r1, r2, r, beta0, sin_skew, w, s0)
+    mu = units.tabor_parameter(s0, r, e_star, w)  # Eq. (35)
+    return ContactParameters(
+        _s(e_star), _s(r1), _s(r2), _s(r), _s(beta0), _s(sin_skew), _s(mu),
+        _s(units.length_unit(r, e_star, w)),  # Eq. (33)
+        _s(units.approach_unit(r, e_star, w)),
+        _s(units.load_unit(r, w, sin_skew)),  # Eq. (34)
+        _s(w), _s(s0))
 
 
 def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2,
                        cylinder_radius, skew_angle, work_of_adhesion, max_adhesive_stress):
-    """Nondimensional groups and scales of a crossed-cylinder contact.
+    """Nondimensional groups and scales of two equal crossed cylinders.
 
     Parameters
     ----------
-    youngs_modulus_1, youngs_modulus_2 : float
+    youngs_modulus_1, youngs_modulus_2 : array_like
         Young's moduli E1, E2 [Pa].
-    poisson_ratio_1, poisson_ratio_2 : float
+    poisson_ratio_1, poisson_ratio_2 : array_like
         Poisson's ratios in (-1, 0.5] [-].
-    cylinder_radius : float
+    cylinder_radius : array_like
         Radius R_c of both cylinders [m].
-    skew_angle : float
+    skew_angle : array_like
         Crossing angle theta_skew in (0, pi/2] [rad].
-    work_of_adhesion : float
+    work_of_adhesion : array_like
         Delta gamma > 0 [J m^-2].
-    max_adhesive_stress : float
+    max_adhesive_stress : array_like
         sigma0 > 0 [Pa].
 
     Returns
     -------
     ContactParameters
     """
-    e_star = float(geometry.reduced_modulus(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
-                                            poisson_ratio_2))  # Eq. (6)
     r1, r2 = geometry.principal_radii(cylinder_radius, skew_angle)  # Eqs. (3)-(4)
-    r = float(geometry.effective_radius(r1, r2))  # Eq. (5)
-    beta0 = float(geometry.ellipticity_from_radius_ratio(r1 / r2))
-    sin_skew = float(np.sin(skew_angle))
-    mu = float(units.tabor_parameter(max_adhesive_stress, r, e_star, work_of_adhesion))  # Eq. (35)
-    return ContactParameters(e_star, float(r1), float(r2), r, beta0, sin_skew, mu,
-                             float(units.length_unit(r, e_star, work_of_adhesion)),  # Eq. (33)
-                             float(units.approach_unit(r, e_star, work_of_adhesion)),
-                             float(units.load_unit(r, work_of_adhesion, sin_skew)))  # Eq. (34)
+    return contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
+                                                   poisson_ratio_2, r1, r2, work_of_adhesion,
+                                                   max_adhesive_stress)
 
 
-def load_curve_si(params: ContactParameters, semi_major=None, n=200):
-    """Dimensional load curve of the elliptical DH model.
+def _si_inputs(params):
+    return {"work_of_adhesion": params.work_of_adhesion, "max_adhesive_stress": params.max_adhesive_stress,
+            "reduced_modulus": params.reduced_modulus, "r_major": params.r_major, "r_minor": params.r_minor,
+            "effective_radius": params.effective_radius}
+
+
+def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, control="load", *,
+                   check_closure=True):
+    """Pull-off of a contact in SI units, for any model.
 
     Parameters
     ----------
     params : ContactParameters
-        From :func:`contact_parameters`.
-    semi_major : array_like, optional
-        Contact semi-major axes a [m]; default the nondimensional default grid.
+        From :func:`contact_parameters` or :func:`contact_parameters_from_principal_radii`
+        (scalars or arrays).
+    model : str
+        One of :data:`dhfield.compare.MODEL_NAMES`; default the paper's ``dh-elliptic``.
+    control : {'load', 'displacement'}
+        Loading mode.
 
-    Returns
-    -------
-    dict of ndarray
-        ``semi_major``, ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor`` [m],
-        ``scaling`` v [-], ``load`` W [N] (positive compressive), ``approach`` delta [m].
-    """
-    a_star = None if semi_major is None else check_positive("semi_major", semi_major, "m") / params.length_unit
-    c = model.load_curve(params.mu, params.beta0, a_star, n=n)
-    lu = params.length_unit
-    return {
-        "semi_major": c.a_star * lu, "semi_minor": c.b_star * lu,  # Eq. (32)
-        "adhesive_semi_major": c.c_star * lu, "adhesive_semi_minor": c.d_star * lu,
-        "scaling": c.v, "load": c.W_star * params.load_unit,  # Eq. (34)
-        "approach": c.delta_star * params.approach_unit,
-    }
-
-
-def pull_off_force(params: ContactParameters, control="load"):
-    """Pull-off of the crossed-cylinder contact in SI units.
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic``: compare with the two-axis closure and fill ``warning``
+        (:func:`dhfield.compare.pull_off`).
 
     Returns
     -------
     dict
-        ``force`` [N] (negative: tensile), ``semi_major``, ``adhesive_semi_major`` [m],
-        ``approach`` [m], ``scaling`` v [-], and the nondimensional ``mu``, ``beta0``.
+        The keys of :data:`dhfield.schema.PULL_OFF_SI_KEYS`, in that order, for
+        every model: ``force`` [N] (negative: tensile), ``semi_major``,
+        ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor``,
+        ``approach`` [m] (NaN where the model has no such quantity), the SI
+        inputs, and the nondimensional record of the model.
     """
-    p = model.pull_off(params.mu, params.beta0, control=control)
-    return {
-        "force": float(p.W_star) * params.load_unit,  # Eq. (34)
-        "semi_major": float(p.a_star) * params.length_unit,
-        "adhesive_semi_major": float(p.c_star) * params.length_unit,
-        "approach": float(p.delta_star) * params.approach_unit,
-        "scaling": float(p.v), "mu": params.mu, "beta0": params.beta0,
+    rec = compare.pull_off(model, params.mu, params.beta0, control, check_closure=check_closure)
+    lu, au = params.length_unit, params.approach_unit
+    si = {
+        "force": rec["W_star"] * units.load_unit(params.effective_radius, params.work_of_adhesion,
+                                                 rec["sin_skew"]),  # Eq. (34)
+        "semi_major": rec["a_star"] * lu, "semi_minor": rec["b_star"] * lu,  # Eq. (32)
+        "adhesive_semi_major": rec["c_star"] * lu, "adhesive_semi_minor": rec["d_star"] * lu,
+        "approach": rec["delta_star"] * au,
     }
+    shape = np.shape(rec["W_star"])
+    si = {k: _s(np.broadcast_to(v, shape)) for k, v in {**si, **_si_inputs(params)}.items()}
+    out = {k: (si[k] if k in si else rec[k]) for k in PULL_OFF_SI_KEYS}
+    return out
+
+
+def load_curve_si(params: ContactParameters, semi_major=None, n=200, *, model=compare.DEFAULT_MODEL,
+                  force=None):
+    """Load curve of a contact in SI units, over contact sizes or over loads.
+
+    Parameters
+    ----------
+    params : ContactParameters
+        From :func:`contact_parameters` (scalar parameters).
+    semi_major : array_like, optional
+        Contact semi-major axes a > 0 [m]; default ``n`` points of the model's
+        default grid.
+    n : int
+        Number of points of the default grid.
+    model : str
+        One of :data:`dhfield.compare.CURVE_MODEL_NAMES`; default ``dh-elliptic``.
+    force : array_like, optional
+        Loads W [N] (positive compressive), each at least the pull-off force:
+        the curve is then evaluated on its stable branch at these loads
+        (:func:`dhfield.compare.load_curve_at_load`).  Give ``semi_major`` or
+        ``force``, not both.
+
+    Returns
+    -------
+    dict
+        The scalar keys of :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
+        arrays of :data:`dhfield.schema.LOAD_CURVE_SI_KEYS`: ``semi_major``,
+        ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor`` [m], ``v``
+        [-], ``force`` W [N] (positive compressive), ``approach`` delta [m].
+    """
+    if semi_major is not None and force is not None:
+        raise ValueError("semi_major and force are alternatives: give one of them, not both")
+    if np.ndim(params.mu) or np.ndim(params.beta0):
+        raise ValueError("params of a load curve must be scalars; got array-valued ContactParameters")
+    lu = params.length_unit
+    if force is not None:
+        f = np.asarray(force, dtype=float)
+        sin_skew = 1.0 if model in compare.CIRCULAR_MODEL_NAMES else params.sin_skew
+        unit = units.load_unit(params.effective_radius, params.work_of_adhesion, sin_skew)  # Eq. (34)
+        c = compare.load_curve_at_load(model, params.mu, params.beta0, f / unit)
+    else:
+        a_star = None if semi_major is None else check_positive("semi_major", semi_major, "m") / lu
+        c = compare.load_curve(model, params.mu, params.beta0, a_star, n=n)
+    unit = units.load_unit(params.effective_radius, params.work_of_adhesion, c["sin_skew"])
+    arrays = {
+        "semi_major": c["a_star"] * lu, "semi_minor": c["b_star"] * lu,  # Eq. (32)
+        "adhesive_semi_major": c["c_star"] * lu, "adhesive_semi_minor": c["d_star"] * lu,
+        "v": c["v"], "force": c["W_star"] * unit,  # Eq. (34)
+        "approach": c["delta_star"] * params.approach_unit,
+    }
+    return {**{k: c[k] for k in LOAD_CURVE_HEADER_KEYS}, **{k: arrays[k] for k in LOAD_CURVE_SI_KEYS}}

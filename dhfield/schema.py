@@ -176,6 +176,20 @@ VARIABLES: dict[str, Variable] = {
     "closure": Variable("1", "closure of the elliptical DH model",
                         description="paper = Eqs. 17-19, 31; ray_average = mean dgamma = 1; two_axis = "
                                     "dgamma = 1 on both axes"),
+    # ----------------------------------------------------------------- diagnostics of the writers (H7)
+    "region": Variable("1", "region of the surface", description="contact ellipse, adhesive annulus or outside"),
+    "annulus_identity_error": Variable("1", "annulus-identity error on the ray",
+                                       description="max over the annulus of |h_BEM - (1+v) h_Hertz| / "
+                                                   "max (1+v) h_Hertz"),
+    "law_theta": Variable("rad", "ray angle theta_p of the sigma-h curves"),
+    "sample": Variable("1", "sample index along the ray, contact edge to adhesive edge"),
+    "work_spread": Variable("1", "(max - min)/mean of dgamma(theta_p) at pull-off"),
+    "law_spread": Variable("1", "max over theta_p of int |sigma_theta(h) - sigma_0(h)| dh / dgamma(0)"),
+    "law_sup_spread": Variable("1", "max over theta_p and h of |sigma_theta(h) - sigma_0(h)| / sigma0"),
+    "separation_ratio": Variable("1", "edge separation h(r_cd), minor axis / major axis"),
+    "width_ratio": Variable("1", "adhesive-zone width, minor axis / major axis"),
+    "eq30": Variable("1", "Eq. (30) at pull-off, in dgamma",
+                     description="equals 4 [dgamma(0) - dgamma(pi/2)], not dgamma"),
 }
 
 #: The two model parameters, in the one order every grid Dataset uses.
@@ -198,7 +212,7 @@ PULL_OFF_KEYS = _HEAD + _NONDIM + _TAIL
 #: Keys, in order, of a pull-off record from physical inputs (every model).
 PULL_OFF_SI_KEYS = _HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL
 #: Scalar keys that head a load-curve record.
-LOAD_CURVE_HEADER_KEYS = ("model", "control", "geometry", "beta0", "mu", "sin_skew")
+LOAD_CURVE_HEADER_KEYS = ("model", "geometry", "beta0", "mu", "sin_skew")
 #: Array keys of a nondimensional load curve, in order.
 LOAD_CURVE_KEYS = ("a_star", "b_star", "c_star", "d_star", "v", "W_star", "delta_star")
 #: Array keys of a load curve from physical inputs, in order.
