@@ -6,7 +6,8 @@ import json
 import math
 
 __all__ = ["OneLineParser", "UsageError", "print_json", "add_model_arguments", "model_names",
-           "compare_record"]
+           "compare_record", "plain_record", "add_physical_arguments", "contact_parameters_from_args",
+           "print_warning", "PHYSICAL_FLAGS"]
 
 
 class UsageError(Exception):
@@ -44,10 +45,14 @@ def print_json(payload) -> None:
     print(json.dumps(clean(json.loads(json.dumps(payload, default=_json_default))), sort_keys=False))
 
 
-def add_model_arguments(p) -> None:
-    """The dimensionless model inputs every analytic subcommand takes."""
-    p.add_argument("--beta0", type=float, required=True, help="initial ellipticity b/a in (0, 1]")
-    p.add_argument("--mu", type=float, required=True, help="Tabor parameter (Eq. 35), > 0")
+def add_model_arguments(p, required=True) -> None:
+    """The dimensionless model inputs every analytic subcommand takes.
+
+    ``required=False`` where physical inputs (:func:`add_physical_arguments`) may
+    replace them; :func:`contact_parameters_from_args` then checks the choice.
+    """
+    p.add_argument("--beta0", type=float, required=required, help="initial ellipticity b/a in (0, 1]")
+    p.add_argument("--mu", type=float, required=required, help="Tabor parameter (Eq. 35), > 0")
 
 
 def model_names():
@@ -56,9 +61,114 @@ def model_names():
     return MODEL_NAMES
 
 
+def _plain(v):
+    import numpy as np
+
+    if isinstance(v, (str, bool, np.bool_)):
+        return bool(v) if isinstance(v, np.bool_) else v
+    return float(v)
+
+
+def plain_record(rec) -> dict:
+    """A scalar record with numpy scalars turned into str, bool or float (key order kept)."""
+    return {k: _plain(v) for k, v in rec.items()}
+
+
 def compare_record(model, args) -> dict:
     """Pull-off record of one registry model for ``args.mu``, ``args.beta0``, ``args.control``."""
     from ..compare import pull_off
 
-    rec = pull_off(model, args.mu, args.beta0, args.control)
-    return {k: (v if isinstance(v, str) else float(v)) for k, v in rec.items()}
+    return plain_record(pull_off(model, args.mu, args.beta0, args.control))
+
+
+# --------------------------------------------------------------------------- physical (SI) inputs
+#: dest -> flag of every physical input, in the order of the help text.
+PHYSICAL_FLAGS = {
+    "youngs_modulus": "--youngs-modulus", "poisson_ratio": "--poisson-ratio",
+    "youngs_modulus_2": "--youngs-modulus-2", "poisson_ratio_2": "--poisson-ratio-2",
+    "cylinder_radius": "--cylinder-radius", "radii": "--radii", "principal_radii": "--principal-radii",
+    "skew_angle_deg": "--skew-angle-deg", "work_of_adhesion": "--work-of-adhesion",
+    "adhesive_stress": "--adhesive-stress",
+}
+
+
+def add_physical_arguments(p) -> None:
+    """Physical inputs in SI units, an alternative to ``--beta0/--mu``."""
+    g = p.add_argument_group("physical inputs (SI units; instead of --beta0/--mu)")
+    g.add_argument("--youngs-modulus", type=float, metavar="E1", help="Young's modulus of body 1 [Pa]")
+    g.add_argument("--poisson-ratio", type=float, metavar="NU1", help="Poisson's ratio of body 1, in (-1, 0.5]")
+    g.add_argument("--youngs-modulus-2", type=float, metavar="E2", help="Young's modulus of body 2 [Pa] "
+                   "(default: body 1)")
+    g.add_argument("--poisson-ratio-2", type=float, metavar="NU2", help="Poisson's ratio of body 2 "
+                   "(default: body 1)")
+    g.add_argument("--cylinder-radius", type=float, metavar="RC", help="radius of two equal crossed "
+                   "cylinders [m] (with --skew-angle-deg)")
+    g.add_argument("--radii", type=float, nargs=2, metavar=("R1", "R2"), help="radii of two unequal "
+                   "crossed cylinders [m] (with --skew-angle-deg)")
+    g.add_argument("--principal-radii", type=float, nargs=2, metavar=("R'", "R''"),
+                   help="principal relative radii of any paraboloidal gap [m]")
+    g.add_argument("--skew-angle-deg", type=float, metavar="DEG", help="angle between the cylinder axes, "
+                   "in (0, 90] degrees (90: perpendicular)")
+    g.add_argument("--work-of-adhesion", type=float, metavar="DGAMMA", help="work of adhesion [J/m^2]")
+    g.add_argument("--adhesive-stress", type=float, metavar="SIGMA0", help="maximum adhesive stress "
+                   "sigma0 [Pa]")
+
+
+def contact_parameters_from_args(args):
+    """``ContactParameters`` from the physical inputs, or None for ``--beta0/--mu``.
+
+    Raises :class:`UsageError` (one line, exit status 2) for a mixed or incomplete choice.
+    """
+    import math
+
+    given = [f for d, f in PHYSICAL_FLAGS.items() if getattr(args, d, None) is not None]
+    nondim = [f for d, f in (("beta0", "--beta0"), ("mu", "--mu")) if getattr(args, d, None) is not None]
+    if given and nondim:
+        raise UsageError(f"give either --beta0/--mu or physical inputs, not both; got {' '.join(nondim)} "
+                         f"with {' '.join(given)}")
+    if not given:
+        missing = [f for f in ("--beta0", "--mu") if f not in nondim]
+        if missing:
+            raise UsageError(f"the following arguments are required: {', '.join(missing)} (or physical "
+                             "inputs: --youngs-modulus ... --adhesive-stress)")
+        return None
+    need = [f for d, f in PHYSICAL_FLAGS.items()
+            if d in ("youngs_modulus", "poisson_ratio", "work_of_adhesion", "adhesive_stress")
+            and getattr(args, d) is None]
+    if need:
+        raise UsageError(f"physical inputs need {', '.join(need)}")
+    shapes = [f for d, f in PHYSICAL_FLAGS.items() if d in ("cylinder_radius", "radii", "principal_radii")
+              and getattr(args, d) is not None]
+    if len(shapes) != 1:
+        raise UsageError("give exactly one of --cylinder-radius, --radii R1 R2, --principal-radii R' R''; "
+                         f"got {', '.join(shapes) or 'none'}")
+    from .. import dimensional
+
+    e1, nu1 = args.youngs_modulus, args.poisson_ratio
+    e2 = e1 if args.youngs_modulus_2 is None else args.youngs_modulus_2
+    nu2 = nu1 if args.poisson_ratio_2 is None else args.poisson_ratio_2
+    if args.principal_radii is not None:
+        if args.skew_angle_deg is not None:
+            raise UsageError("--skew-angle-deg goes with --cylinder-radius or --radii, not --principal-radii")
+        r1, r2 = args.principal_radii
+    else:
+        if args.skew_angle_deg is None:
+            raise UsageError(f"{shapes[0]} needs --skew-angle-deg")
+        if not 0.0 < args.skew_angle_deg <= 90.0:
+            raise ValueError(f"skew-angle-deg must be in (0, 90] degrees; got {args.skew_angle_deg!r}")
+        theta = math.radians(args.skew_angle_deg)
+        if args.radii is not None:
+            r1, r2 = dimensional.crossed_cylinder_radii(args.radii[0], args.radii[1], theta)
+        else:
+            return dimensional.contact_parameters(e1, nu1, e2, nu2, args.cylinder_radius, theta,
+                                                  args.work_of_adhesion, args.adhesive_stress)
+    return dimensional.contact_parameters_from_principal_radii(e1, nu1, e2, nu2, r1, r2, args.work_of_adhesion,
+                                                               args.adhesive_stress)
+
+
+def print_warning(rec) -> None:
+    """One line on stderr if the record carries a warning."""
+    import sys
+
+    if rec.get("warning"):
+        print(f"dhfield: warning: {rec['warning']}", file=sys.stderr)

@@ -1,7 +1,7 @@
-"""``dhfield compare``."""
+"""``dhfield compare``: the pull-off of every model side by side."""
 from __future__ import annotations
 
-from ._common import add_model_arguments, compare_record, print_json
+from ._common import add_model_arguments, plain_record, print_json, print_warning
 
 
 def add_parser(sub) -> None:
@@ -15,23 +15,27 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from ..compare import MODEL_NAMES
+    from ..compare import compare
+    from ..schema import PULL_OFF_KEYS, units
 
     if args.out and not str(args.out).lower().endswith(".nc"):
         raise ValueError(f"output file must end in .nc; got {args.out!r}")
-    recs = {name: compare_record(name, args) for name in MODEL_NAMES}
+    recs = {name: plain_record(r) for name, r in compare(args.mu, args.beta0, args.control).items()}
+    for r in recs.values():
+        print_warning(r)
     if args.out:
         from ..io import write_netcdf
         from ..io.compare import comparison_dataset
 
         write_netcdf(comparison_dataset(recs), args.out)
     if args.json:
-        print_json({"beta0": args.beta0, "mu": args.mu, "control": args.control, "models": list(recs.values())})
+        print_json({"beta0": args.beta0, "mu": args.mu, "control": args.control, "models": list(recs.values()),
+                    "units": {k: units(k, nondimensional=True) for k in PULL_OFF_KEYS}})
     else:
-        cols = ("W_star", "a_star", "c_star", "v", "delta_star", "ellipticity")
-        print(f"{'model':22s}" + "".join(f"{c:>13s}" for c in cols))
+        cols = ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star")
+        print(f"{'model':24s}" + "".join(f"{c:>13s}" for c in cols))
         for name, r in recs.items():
-            print(f"{name:22s}" + "".join(f"{r[c]:13.6g}" for c in cols))
+            print(f"{name:24s}" + "".join(f"{r[c]:13.6g}" for c in cols))
         if args.out:
             print(f"wrote {args.out}")
     return 0

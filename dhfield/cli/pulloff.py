@@ -1,37 +1,48 @@
-"""``dhfield pulloff``."""
+"""``dhfield pulloff``: the pull-off of any model, from --beta0/--mu or from physical inputs."""
 from __future__ import annotations
 
-from ._common import add_model_arguments, compare_record, model_names, print_json
+from ._common import (add_model_arguments, add_physical_arguments, contact_parameters_from_args, model_names,
+                      plain_record, print_json, print_warning)
+
+_MODEL_HELP = ("model (default: dh-elliptic, the paper's; dh-elliptic-two-axis agrees with elliptical JKR "
+               "at high mu, where dh-elliptic under-predicts adhesion and warns)")
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("pulloff", help="pull-off force W*max of the elliptical DH model")
-    add_model_arguments(p)
+    p = sub.add_parser("pulloff", help="pull-off force of any model (nondimensional W* or SI newtons)",
+                       description="Pull-off of one model.  Inputs: --beta0 and --mu (nondimensional, "
+                       "Eqs. 32-35), or physical inputs in SI units (output then in N and m).  Every model "
+                       "gives the same keys; n/a values are null (JSON) or nan.")
+    add_model_arguments(p, required=False)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="load control (default) or displacement control")
-    p.add_argument("--model", choices=model_names(), default="dh-elliptic",
-                   help="comparison model (default: dh-elliptic, the paper's model)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--model", choices=model_names(), default="dh-elliptic", help=_MODEL_HELP)
+    p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
+    add_physical_arguments(p)
     p.set_defaults(func=run)
 
 
-def _pull_off_record(args) -> dict:
-    from ..model import pull_off
+def pull_off_record(args) -> dict:
+    """The pull-off record (schema PULL_OFF_KEYS or PULL_OFF_SI_KEYS) the arguments ask for."""
+    from ..compare import pull_off
+    from ..dimensional import pull_off_force
 
-    if getattr(args, "model", "dh-elliptic") != "dh-elliptic":
-        return compare_record(args.model, args)
-    r = pull_off(args.mu, args.beta0, control=args.control)
-    return {"model": "dh-elliptic", "beta0": float(r.beta0), "mu": float(r.mu), "control": r.control,
-            "W_star": float(r.W_star), "a_star": float(r.a_star), "c_star": float(r.c_star),
-            "v": float(r.v), "delta_star": float(r.delta_star),
-            "at_zero_contact": bool(r.at_zero_contact)}
+    params = contact_parameters_from_args(args)
+    if params is None:
+        return plain_record(pull_off(args.model, args.mu, args.beta0, args.control))
+    return plain_record(pull_off_force(params, model=args.model, control=args.control))
 
 
 def run(args) -> int:
-    rec = _pull_off_record(args)
+    from ..schema import units
+
+    rec = pull_off_record(args)
+    nondim = args.beta0 is not None
+    unit = {k: units(k, nondimensional=nondim) for k in rec}
+    print_warning(rec)
     if args.json:
-        print_json(rec)
+        print_json({**rec, "units": unit})
     else:
         for k, v in rec.items():
-            print(f"{k:16s} {v}")
+            print(f"{k:22s} {v!s:24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
     return 0
