@@ -81,8 +81,15 @@ def provenance_attrs(title: str, **parameters) -> dict:
 
 
 def write_netcdf(ds, path) -> Path:
-    """Write an xarray Dataset to netCDF4 atomically; return the final path."""
+    """Write an xarray Dataset to netCDF4 atomically; return the final path.
+
+    The Dataset first goes through :func:`dhfield.io.cf.finalize` (canonical
+    dimension order, no ``_FillValue`` on coordinates), so every file is CF-clean.
+    """
+    from .cf import finalize
+
     p = Path(path)
+    ds = finalize(ds)
     with atomic_path(p) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
     return p

@@ -1,36 +1,61 @@
-"""xarray Dataset of a side-by-side model comparison (thin wrapper of :mod:`dhfield.compare`)."""
+"""xarray Dataset of a side-by-side model comparison (thin wrapper of :mod:`dhfield.compare`).
+
+One record per model (the keys of :data:`dhfield.schema.PULL_OFF_KEYS`) on the
+dimension ``model`` (string labels).  Numeric quantities carry the schema's
+units and names; ``geometry`` and ``at_zero_contact`` are CF flag variables;
+``warning`` is a string; the scalar inputs (``beta0``, ``mu``, ``control``) are
+global ``param_*`` attributes.
+"""
 from __future__ import annotations
 
 import numpy as np
 import xarray as xr
 
+from .. import schema
 from . import provenance_attrs
+from .cf import finalize, flag_variable, label_coordinate, variable
 
-__all__ = ["comparison_dataset", "COMPARISON_VARIABLES"]
+__all__ = ["comparison_dataset", "COMPARISON_VARIABLES", "GEOMETRIES"]
 
-#: name -> (long_name, units) of the per-model pull-off variables (Eqs. 32-35)
-COMPARISON_VARIABLES = {
-    "W_star": ("pull-off load W sin(theta_skew)/(2 pi R dgamma) (Eq. 34)", "1"),
-    "a_star": ("contact semi-major axis (radius for the circle) at pull-off, a/c_r (Eq. 32)", "1"),
-    "c_star": ("outer adhesive semi-major axis at pull-off, c/c_r (NaN: none in the model)", "1"),
-    "v": ("double-Hertz scaling factor v at pull-off (NaN: not a DH model)", "1"),
-    "delta_star": ("approach at pull-off, delta R/c_r^2", "1"),
-    "ellipticity": ("contact ellipticity b/a at pull-off", "1"),
-    "sin_skew": ("sin(theta_skew) used in the load normalisation of Eq. (34)", "1"),
-}
+#: Numeric per-model variables, in schema order (the nondimensional pull-off of Eqs. 32-35).
+COMPARISON_VARIABLES = tuple(k for k in schema.PULL_OFF_KEYS
+                             if k not in ("model", "control", "geometry", "beta0", "mu", "at_zero_contact",
+                                          "warning"))
+#: Codes of the ``geometry`` flag variable: 0 ellipse, 1 circle.
+GEOMETRIES = ("ellipse", "circle")
 
 
 def comparison_dataset(records: dict, **extra_attrs) -> xr.Dataset:
-    """Dataset on the dimension ``model`` from :func:`dhfield.compare.compare` (scalar mu, beta0)."""
+    """Dataset on the dimension ``model`` from :func:`dhfield.compare.compare` (scalar mu, beta0).
+
+    Parameters
+    ----------
+    records : dict
+        model name -> pull-off record (:func:`dhfield.compare.pull_off`).
+    **extra_attrs
+        Recorded as ``param_*`` global attributes.
+    """
     names = list(records)
+    if not names:
+        raise ValueError("records must hold at least one model; got none")
     first = records[names[0]]
-    data = {k: ("model", np.array([float(records[n][k]) for n in names]), {"long_name": ln, "units": u})
-            for k, (ln, u) in COMPARISON_VARIABLES.items()}
-    data["geometry"] = ("model", np.array([records[n]["geometry"] for n in names]),
-                        {"long_name": "contact geometry of the model (circle or ellipse)"})
-    ds = xr.Dataset(data, coords={"model": ("model", np.array(names), {"long_name": "comparison model"})})
+    data = {}
+    for k in COMPARISON_VARIABLES:
+        if k in first:
+            data[k] = variable(k, "model", [float(records[n][k]) for n in names], nondimensional=True,
+                               qualifier="at pull-off")
+    data["geometry"] = flag_variable("geometry", "model", [records[n]["geometry"] for n in names], GEOMETRIES)
+    if "at_zero_contact" in first:
+        data["at_zero_contact"] = flag_variable("at_zero_contact", "model",
+                                                [int(bool(records[n]["at_zero_contact"])) for n in names],
+                                                ("false", "true"))
+    if "warning" in first:
+        attrs = schema.attrs("warning")
+        attrs.pop("units", None)
+        data["warning"] = ("model", np.array([str(records[n]["warning"]) for n in names], dtype=str), attrs)
+    ds = xr.Dataset(data, coords={"model": label_coordinate("model", names)})
     ds.attrs.update(provenance_attrs("Pull-off of the comparison models side by side (Zini et al. 2018, Fig. 9)",
                                      mu=float(first["mu"]), beta0=float(first["beta0"]),
                                      control=first["control"],
                                      mu_to_lambda="lambda = 2 (9/(16 pi))^(1/3) mu", **extra_attrs))
-    return ds
+    return finalize(ds)

@@ -1,78 +1,138 @@
-"""xarray Datasets and files for load curves and pull-off tables (thin wrappers)."""
+"""xarray Datasets and files for load curves and pull-off tables (thin wrappers).
+
+Names, units and descriptions come from :mod:`dhfield.schema` (through
+:mod:`dhfield.io.cf`); grids of the model parameters are on ``(beta0, mu)``.
+CSV output is a plain table with a JSON sidecar (:mod:`dhfield.io.table`).
+"""
 from __future__ import annotations
 
-import csv
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from . import atomic_path, provenance_attrs, write_netcdf
+from .. import schema
+from . import provenance_attrs, write_netcdf
+from .cf import coordinate, finalize, variable
+from .table import write_table
 
-__all__ = ["load_curve_dataset", "pull_off_dataset", "write_load_curve", "CURVE_VARIABLES"]
+__all__ = ["load_curve_dataset", "pull_off_dataset", "write_load_curve", "load_curve_columns", "CURVE_VARIABLES"]
 
-#: name -> (long_name, units) of the nondimensional curve variables (Eqs. 32-36).
-CURVE_VARIABLES = {
-    "a_star": ("contact semi-major axis a/c_r (Eq. 32)", "1"),
-    "b_star": ("contact semi-minor axis b/c_r (Eq. 32)", "1"),
-    "c_star": ("adhesive semi-major axis c/c_r (Eq. 32)", "1"),
-    "d_star": ("adhesive semi-minor axis d/c_r (Eq. 32)", "1"),
-    "v": ("double-Hertz scaling factor v (Eq. 22)", "1"),
-    "W_star": ("normalised load W sin(theta_skew)/(2 pi R dgamma) (Eq. 34)", "1"),
-    "delta_star": ("normalised approach delta R/c_r^2", "1"),
-}
+#: Array variables of a nondimensional load curve, in order (:data:`dhfield.schema.LOAD_CURVE_KEYS`).
+CURVE_VARIABLES = schema.LOAD_CURVE_KEYS
+
+_TITLE = "Load curve of an adhesive contact (Zini et al. 2018, Eqs. 31-36)"
+
+
+def load_curve_columns(curve):
+    """The array columns and scalar header of a load curve.
+
+    Parameters
+    ----------
+    curve : dhfield.model.LoadCurve or mapping
+        A nondimensional curve (attributes or keys
+        :data:`dhfield.schema.LOAD_CURVE_KEYS`), or an SI curve (keys
+        :data:`dhfield.schema.LOAD_CURVE_SI_KEYS`, recognised by ``force``).
+
+    Returns
+    -------
+    columns : dict
+        name -> 1-D array, in schema order.
+    header : dict
+        Scalar parameters of the curve (model, beta0, mu, ...).
+    nondimensional : bool
+        True for a curve in the paper's units.
+    """
+    get = (lambda k: curve.get(k)) if isinstance(curve, Mapping) else (lambda k: getattr(curve, k, None))
+    nondimensional = get("force") is None
+    keys = schema.LOAD_CURVE_KEYS if nondimensional else schema.LOAD_CURVE_SI_KEYS
+    missing = [k for k in keys if get(k) is None]
+    if missing:
+        raise ValueError(f"curve must have the load-curve keys {keys}; missing {missing}")
+    columns = {k: np.atleast_1d(np.asarray(get(k), dtype=float)) for k in keys}
+    header = {}
+    for k in schema.LOAD_CURVE_HEADER_KEYS + ("control", "ellipticity"):
+        v = get(k)
+        if v is None:
+            continue
+        if not isinstance(v, str):
+            v = np.asarray(v)
+            if v.ndim:
+                continue
+            v = v.item()
+        header[k] = v
+    header.setdefault("model", "dh-elliptic")
+    return columns, header, nondimensional
 
 
 def load_curve_dataset(curve, **extra_attrs) -> xr.Dataset:
-    """Dataset of a :class:`dhfield.model.LoadCurve` on the dimension ``point``."""
-    data = {}
-    for name, (long_name, units) in CURVE_VARIABLES.items():
-        data[name] = ("point", np.asarray(getattr(curve, name)), {"long_name": long_name, "units": units})
-    ds = xr.Dataset(data, coords={"point": ("point", np.arange(len(curve.a_star)),
-                                            {"long_name": "curve point index", "units": "1"})})
-    ds.attrs.update(provenance_attrs("Elliptical double-Hertz load curve (Zini et al. 2018, Eqs. 31-36)",
-                                     model="dh-elliptic", mu=curve.mu, beta0=curve.beta0,
-                                     ellipticity=curve.ellipticity,
-                                     length_unit="c_r = (R^2 dgamma/E*)^(1/3)", **extra_attrs))
-    return ds
+    """Dataset of a load curve on the dimension ``point``.
 
-
-def pull_off_dataset(mu, beta0, results: dict, **extra_attrs) -> xr.Dataset:
-    """Dataset of pull-off results on a (mu, beta0) grid.
-
-    ``results`` maps variable name -> array of shape (len(mu), len(beta0)); names
-    in :data:`CURVE_VARIABLES` get their metadata.
+    Parameters
+    ----------
+    curve : dhfield.model.LoadCurve or mapping
+        See :func:`load_curve_columns`.
+    **extra_attrs
+        Recorded as ``param_*`` global attributes.
     """
-    coords = {
-        "mu": ("mu", np.asarray(mu, float), {"long_name": "Tabor parameter (Eq. 35)", "units": "1"}),
-        "beta0": ("beta0", np.asarray(beta0, float), {"long_name": "initial ellipticity b/a (Eq. 9)", "units": "1"}),
-    }
+    columns, header, nondim = load_curve_columns(curve)
+    n = len(next(iter(columns.values())))
+    data = {k: variable(k, "point", v, nondimensional=nondim) for k, v in columns.items()}
+    ds = xr.Dataset(data, coords={"point": coordinate("point", np.arange(n))})
+    scales = {"length_unit": "c_r = (R^2 dgamma/E*)^(1/3) (Eq. 33)"} if nondim else {}
+    ds.attrs.update(provenance_attrs(_TITLE, **header, **scales, **extra_attrs))
+    return finalize(ds)
+
+
+def pull_off_dataset(mu, beta0, results: dict, *, input_dims=("mu", "beta0"), **extra_attrs) -> xr.Dataset:
+    """Dataset of pull-off results on a ``(beta0, mu)`` grid.
+
+    Parameters
+    ----------
+    mu, beta0 : array_like
+        1-D grids [-].
+    results : dict
+        name -> array on the two grids, laid out as ``input_dims`` says.  A
+        name is a key of :data:`dhfield.schema.VARIABLES`, optionally followed
+        by ``_<qualifier>`` (e.g. ``W_star_displacement_control``), which is
+        added to the ``long_name``.
+    input_dims : tuple
+        Layout of the arrays of ``results``: ``("mu", "beta0")`` (shape
+        (len(mu), len(beta0)), the default) or ``("beta0", "mu")``.  The
+        Dataset is always on ``(beta0, mu)`` (:data:`dhfield.schema.GRID_DIMS`).
+    **extra_attrs
+        Recorded as ``param_*`` global attributes.
+    """
+    if tuple(input_dims) not in (("mu", "beta0"), ("beta0", "mu")):
+        raise ValueError(f"input_dims must be ('mu', 'beta0') or ('beta0', 'mu'); got {input_dims!r}")
+    coords = {"beta0": coordinate("beta0", beta0), "mu": coordinate("mu", mu)}
     data = {}
     for name, arr in results.items():
-        long_name, units = CURVE_VARIABLES.get(name, (name, "1"))
-        data[name] = (("mu", "beta0"), np.asarray(arr, float), {"long_name": f"{long_name} at pull-off",
-                                                               "units": units})
+        quantity, qualifier = _split(name)
+        qual = "at pull-off" + (f", {qualifier.replace('_', ' ')}" if qualifier else "")
+        data[name] = variable(name, tuple(input_dims), arr, nondimensional=True, quantity=quantity, qualifier=qual)
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(provenance_attrs("Pull-off of the elliptical double-Hertz model", **extra_attrs))
-    return ds
+    ds.attrs.update(provenance_attrs("Pull-off of an adhesive contact on a (beta0, mu) grid", **extra_attrs))
+    return finalize(ds)
+
+
+def _split(name):
+    if name in schema.VARIABLES:
+        return name, ""
+    for key in sorted(schema.VARIABLES, key=len, reverse=True):
+        if name.startswith(key + "_"):
+            return key, name[len(key) + 1:]
+    raise ValueError(f"result name must be a dhfield.schema variable, optionally with a _suffix; got {name!r}")
 
 
 def write_load_curve(curve, path, **extra_attrs) -> Path:
-    """Write a load curve to ``.nc`` (netCDF4 via xarray) or ``.csv``, atomically."""
+    """Write a load curve to ``.nc`` (netCDF4) or ``.csv`` (with a ``.csv.json`` sidecar), atomically."""
     p = Path(path)
     suffix = p.suffix.lower()
     if suffix == ".nc":
         return write_netcdf(load_curve_dataset(curve, **extra_attrs), p)
     if suffix == ".csv":
-        names = list(CURVE_VARIABLES)
-        with atomic_path(p) as tmp:
-            with open(tmp, "w", newline="") as fh:
-                fh.write(f"# dhfield elliptical double-Hertz load curve; mu={curve.mu!r} beta0={curve.beta0!r} "
-                         f"ellipticity={curve.ellipticity!r}; nondimensional (Eqs. 32-36)\n")
-                w = csv.writer(fh)
-                w.writerow(names)
-                cols = [np.asarray(getattr(curve, n)) for n in names]
-                for row in zip(*cols):
-                    w.writerow([repr(float(x)) for x in row])
-        return p
+        columns, header, nondim = load_curve_columns(curve)
+        return write_table(columns, p, title=_TITLE, nondimensional=nondim, **header, **extra_attrs)
     raise ValueError(f"output file must end in .nc or .csv; got {str(p)!r}")

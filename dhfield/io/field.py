@@ -10,7 +10,10 @@ One :class:`xarray.Dataset` per case (:class:`dhfield.fields.FieldCase`):
 * on (r, theta_p): the same displacement and gap variables, numerical ones
   interpolated from the grid (cubic splines), analytic ones evaluated directly,
   and, for DH cases, the annulus-identity error along each ray theta_p;
-* CF-style ``units`` and ``long_name`` on every variable, and the global
+* ``units``, ``long_name`` (and ``description``) from :mod:`dhfield.schema` on
+  every variable (``region`` is a CF flag variable), no ``_FillValue`` on the
+  coordinates, dimensions in the order of :data:`dhfield.schema.DIM_ORDER`
+  (:mod:`dhfield.io.cf`), and the global
   attributes of :func:`dhfield.io.provenance_attrs` (``Conventions``,
   ``source``, ``references``, ``history``) with every input parameter as a
   ``param_*`` attribute and the error summary as ``error_*`` attributes.
@@ -28,28 +31,27 @@ import xarray as xr
 
 from .. import fields
 from . import check_writable, provenance_attrs, write_netcdf
+from .cf import coordinate, finalize, flag_variable, variable
 
 __all__ = ["field_dataset", "polar_dataset", "write_field", "compute_and_write_case", "FIELD_VARIABLES"]
 
-#: name -> (long_name, kind) of the Cartesian variables; kind selects the unit.
+#: name -> (schema quantity, qualifier of its long_name) of the Cartesian variables.
 FIELD_VARIABLES = {
-    "pressure": ("cell pressure fed to the BEM (cell averages of Eqs. 7/22, compressive positive)", "pressure"),
-    "pressure_analytic": ("analytic pressure at the cell centres (Eqs. 7/22, compressive positive)", "pressure"),
-    "displacement_analytic": ("analytic combined surface displacement (Eqs. 13/26, into the bodies)", "length"),
-    "displacement_numerical": ("DC-FFT BEM combined surface displacement (Love coefficients)", "length"),
-    "displacement_difference": ("analytic minus numerical displacement", "length"),
-    "gap_analytic": ("analytic gap h = z - delta + omega (Eq. 27)", "length"),
-    "gap_numerical": ("gap from the BEM displacement, h = z - delta + omega_BEM", "length"),
-    "gap_difference": ("analytic minus numerical gap", "length"),
+    "pressure": ("pressure", "cell averages fed to the BEM (Eqs. 7/22)"),
+    "pressure_analytic": ("pressure", "analytic at the cell centres (Eqs. 7/22)"),
+    "displacement_analytic": ("displacement", "analytic (Eqs. 13/26)"),
+    "displacement_numerical": ("displacement", "DC-FFT BEM (Love coefficients)"),
+    "displacement_difference": ("displacement", "analytic minus numerical"),
+    "gap_analytic": ("gap", "analytic (Eq. 27)"),
+    "gap_numerical": ("gap", "from the BEM displacement, h = z - delta + omega_BEM"),
+    "gap_difference": ("gap", "analytic minus numerical"),
 }
+#: Codes of the ``region`` flag variable.
+REGIONS = ("contact_ellipse", "adhesive_annulus", "outside")
 
-_NONDIM = "nondimensional"
 
-
-def _units(case) -> dict:
-    if "a_star" in case.parameters:
-        return {"length": "1", "pressure": "1"}
-    return {"length": "m", "pressure": "Pa"}
+def _nondim(case) -> bool:
+    return "a_star" in case.parameters
 
 
 def _scale_attrs(case) -> dict:
@@ -90,37 +92,35 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
     x = r[:, None] * np.cos(theta)[None, :]
     y = r[:, None] * np.sin(theta)[None, :]
     ana = fields.analytic_fields(case, x, y)
-    u = _units(case)
+    nd = _nondim(case)
     dims = ("r", "theta_p")
     data = {}
     for qty in ("displacement", "gap"):
         num = fields.to_polar(getattr(case, f"{qty}_numerical"), g, r, theta)
-        data[f"{qty}_analytic_polar"] = (dims, ana[qty], {"long_name": FIELD_VARIABLES[f"{qty}_analytic"][0],
-                                                           "units": u["length"]})
-        data[f"{qty}_numerical_polar"] = (dims, num, {"long_name": FIELD_VARIABLES[f"{qty}_numerical"][0]
-                                                      + ", cubic-spline interpolated", "units": u["length"]})
-        data[f"{qty}_difference_polar"] = (dims, ana[qty] - num, {"long_name": f"analytic minus numerical {qty}",
-                                                                  "units": u["length"]})
-    data["pressure_analytic_polar"] = (dims, ana["pressure"], {
-        "long_name": "analytic pressure (Eqs. 7/22, compressive positive)", "units": u["pressure"]})
+        data[f"{qty}_analytic_polar"] = variable(f"{qty}_analytic_polar", dims, ana[qty], nondimensional=nd,
+                                                 quantity=qty, qualifier=FIELD_VARIABLES[f"{qty}_analytic"][1])
+        data[f"{qty}_numerical_polar"] = variable(
+            f"{qty}_numerical_polar", dims, num, nondimensional=nd, quantity=qty,
+            qualifier=FIELD_VARIABLES[f"{qty}_numerical"][1] + ", cubic-spline interpolated")
+        data[f"{qty}_difference_polar"] = variable(f"{qty}_difference_polar", dims, ana[qty] - num,
+                                                   nondimensional=nd, quantity=qty,
+                                                   qualifier="analytic minus numerical")
+    data["pressure_analytic_polar"] = variable("pressure_analytic_polar", dims, ana["pressure"], nondimensional=nd,
+                                               quantity="pressure", qualifier="analytic (Eqs. 7/22)")
     if case.parameters.get("model") == "double_hertz":
         ident = fields.annulus_identity(case, n_theta=n_theta)
-        data["annulus_identity_error"] = ("theta_p", ident["rel_error"], {
-            "long_name": "max over the annulus ray of |h_BEM - (1+v) h_Hertz| / max (1+v) h_Hertz",
-            "units": "1"})
-    coords = {"r": ("r", r, {"long_name": "radial coordinate r (Eq. A3)", "units": u["length"]}),
-              "theta_p": ("theta_p", theta, {"long_name": "polar angle theta_p from the major axis (Eq. A3)",
-                                             "units": "radian"})}
+        data["annulus_identity_error"] = variable("annulus_identity_error", "theta_p", ident["rel_error"])
+    coords = {"r": coordinate("r", r, nondimensional=nd), "theta_p": coordinate("theta_p", theta)}
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(provenance_attrs("dhfield polar resampling of the BEM cross-check",
                                      **case.parameters, **_scale_attrs(case)))
-    return ds
+    return finalize(ds)
 
 
 def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
     """The Dataset of one case (Cartesian maps, plus the polar resampling if ``polar``)."""
     g = case.grid
-    u = _units(case)
+    nd = _nondim(case)
     dims = ("x", "y")
     arrays = {
         "pressure": case.pressure,
@@ -132,18 +132,15 @@ def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
         "gap_numerical": case.gap_numerical,
         "gap_difference": case.gap_analytic - case.gap_numerical,
     }
-    data = {name: (dims, np.asarray(arr, dtype=float), {"long_name": FIELD_VARIABLES[name][0],
-                                                        "units": u[FIELD_VARIABLES[name][1]]})
+    data = {name: variable(name, dims, arr, nondimensional=nd, quantity=FIELD_VARIABLES[name][0],
+                           qualifier=FIELD_VARIABLES[name][1])
             for name, arr in arrays.items()}
     region = np.full(g.shape, 2, dtype=np.int8)
     region[case.masks["annulus"]] = 1
     region[case.masks["contact"]] = 0
-    data["region"] = (dims, region, {"long_name": "region of the surface", "flag_values": np.array([0, 1, 2], np.int8),
-                                     "flag_meanings": "contact_ellipse adhesive_annulus outside"})
-    coords = {
-        "x": ("x", g.x, {"long_name": "cell-centre x, along the major axis a", "units": u["length"], "axis": "X"}),
-        "y": ("y", g.y, {"long_name": "cell-centre y, along the minor axis b", "units": u["length"], "axis": "Y"}),
-    }
+    data["region"] = flag_variable("region", dims, region, REGIONS)
+    # no axis="X"/"Y": the CF checker would read x and y as longitude and latitude
+    coords = {"x": coordinate("x", g.x, nondimensional=nd), "y": coordinate("y", g.y, nondimensional=nd)}
     ds = xr.Dataset(data, coords=coords)
     if polar:
         pol = polar_dataset(case, **polar_options)
@@ -154,7 +151,7 @@ def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
         + " contact", **case.parameters, cell_size_x=g.dx, cell_size_y=g.dy, approach=case.approach,
         **_scale_attrs(case)))
     ds.attrs.update(_error_attrs(case))
-    return ds
+    return finalize(ds)
 
 
 def write_field(case, path, **options) -> Path:

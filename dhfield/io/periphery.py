@@ -2,10 +2,13 @@
 
 Thin wrappers around the numpy results of :mod:`dhfield.periphery`,
 :mod:`dhfield.eq30` and :mod:`dhfield.closure`.  Every variable and coordinate
-carries ``long_name`` and ``units`` (CF; ``"1"`` for dimensionless), the global
-attributes carry the provenance (:func:`dhfield.io.provenance_attrs`) and every
-input parameter.  All quantities are nondimensional in the paper's units
-(R = E* = Delta gamma = 1, Eqs. 32-35) unless a ``units`` attribute says otherwise.
+carries ``long_name`` and ``units`` from :mod:`dhfield.schema` (CF; ``"1"`` for
+dimensionless, the paper's scale named in ``long_name``), the global attributes
+carry the provenance (:func:`dhfield.io.provenance_attrs`) and every input
+parameter.  All quantities are nondimensional in the paper's units
+(R = E* = Delta gamma = 1, Eqs. 32-35).  Grids are on ``(beta0, mu)`` and every
+Dataset goes through :func:`dhfield.io.cf.finalize` (canonical dimension order,
+no fill value on coordinates).
 """
 from __future__ import annotations
 
@@ -15,6 +18,7 @@ import numpy as np
 import xarray as xr
 
 from . import provenance_attrs, write_netcdf
+from .cf import coordinate, finalize, label_coordinate, variable
 
 __all__ = [
     "PROFILE_VARIABLES",
@@ -26,34 +30,22 @@ __all__ = [
     "write_dataset",
 ]
 
-#: name -> (long_name, units) of the ray quantities of dhfield.periphery.PeripheryProfile.
-PROFILE_VARIABLES = {
-    "contact_radius": ("contact-ellipse radius r_ab on the ray (Eq. A1), in c_r", "1"),
-    "adhesive_radius": ("adhesive-ellipse radius r_cd on the ray (Eq. A2), in c_r", "1"),
-    "zone_width": ("adhesive-zone width r_cd - r_ab on the ray, in c_r", "1"),
-    "max_adhesive_stress": ("adhesive stress at the contact edge sigma0(theta_p) (Eq. 24), in E* c_r/R", "1"),
-    "edge_separation": ("gap at the adhesive edge h(r_cd, theta_p) (Eq. 27), in c_r^2/R", "1"),
-    "work_of_adhesion": ("work of adhesion along the ray int sigma dh (Eq. 31 on every ray), in dgamma", "1"),
-    "contact_edge_gap": ("gap at the contact edge h(r_ab, theta_p), in c_r^2/R", "1"),
-}
-
-_THETA_ATTRS = {"long_name": "polar angle theta_p of the ray, 0 on the major axis (Eqs. A3-A4)",
-                "units": "rad"}
-_MU_ATTRS = {"long_name": "Tabor parameter mu (Eq. 35)", "units": "1"}
-_BETA0_ATTRS = {"long_name": "initial (Hertz) ellipticity beta0 = b/a (Eq. 19)", "units": "1"}
+#: Ray quantities of dhfield.periphery.PeripheryProfile (schema names; nondimensional).
+PROFILE_VARIABLES = ("contact_radius", "adhesive_radius", "zone_width", "max_adhesive_stress", "edge_separation",
+                     "work_of_adhesion", "contact_edge_gap")
 _LENGTH_UNIT = "c_r = (R^2 dgamma/E*)^(1/3) (Eq. 33)"
 
 
 def _coords(mu, beta0, theta=None):
-    c = {"beta0": ("beta0", np.asarray(beta0, float), dict(_BETA0_ATTRS)),
-         "mu": ("mu", np.asarray(mu, float), dict(_MU_ATTRS))}
+    c = {"beta0": coordinate("beta0", beta0), "mu": coordinate("mu", mu)}
     if theta is not None:
-        c["theta"] = ("theta", np.asarray(theta, float), dict(_THETA_ATTRS))
+        c["theta"] = coordinate("theta", theta)
     return c
 
 
-def _var(dims, arr, long_name, units="1"):
-    return (dims, np.asarray(arr, float), {"long_name": long_name, "units": units})
+def _var(dims, arr, quantity, qualifier=None):
+    """A nondimensional variable of the schema quantity ``quantity``."""
+    return variable(quantity, dims, arr, nondimensional=True, qualifier=qualifier)
 
 
 def pull_off_periphery_dataset(mu, beta0, pull_off, profile, law=None, *, control="load") -> xr.Dataset:
@@ -72,34 +64,26 @@ def pull_off_periphery_dataset(mu, beta0, pull_off, profile, law=None, *, contro
         Pull-off control mode (recorded).
     """
     theta = np.asarray(profile.theta)[0, 0]
-    data = {name: _var(("beta0", "mu", "theta"), getattr(profile, name), ln, u)
-            for name, (ln, u) in PROFILE_VARIABLES.items()}
-    data["W_star"] = _var(("beta0", "mu"), pull_off.W_star,
-                          "pull-off load W sin(theta_skew)/(2 pi R dgamma) (Eq. 34)")
-    data["a_star"] = _var(("beta0", "mu"), pull_off.a_star, "contact semi-major axis at pull-off, in c_r")
-    data["c_star"] = _var(("beta0", "mu"), pull_off.c_star, "adhesive semi-major axis at pull-off, in c_r")
-    data["v"] = _var(("beta0", "mu"), pull_off.v, "double-Hertz scaling factor v at pull-off (Eq. 22)")
+    data = {name: _var(("beta0", "mu", "theta"), getattr(profile, name), name, "on the ray theta_p")
+            for name in PROFILE_VARIABLES}
+    for name in ("W_star", "a_star", "c_star", "v"):
+        data[name] = _var(("beta0", "mu"), getattr(pull_off, name), name, "at pull-off")
     w = np.asarray(profile.work_of_adhesion)
-    data["work_ratio"] = _var(("beta0", "mu"), w[..., -1] / w[..., 0],
-                              "work of adhesion ratio dgamma(pi/2)/dgamma(0) at pull-off")
+    data["work_ratio"] = _var(("beta0", "mu"), w[..., -1] / w[..., 0], "work_ratio")
     coords = _coords(mu, beta0, theta)
     if law is not None:
-        lt = np.asarray(law.theta)[0, 0, :, 0]
-        coords["law_theta"] = ("law_theta", lt, {"long_name": "ray angle of the sigma-h curves",
-                                                 "units": "rad"})
-        coords["sample"] = ("sample", np.arange(np.shape(law.separation)[-1]),
-                            {"long_name": "sample index along the ray, contact edge to adhesive edge",
-                             "units": "1"})
+        coords["law_theta"] = coordinate("law_theta", np.asarray(law.theta)[0, 0, :, 0])
+        coords["sample"] = coordinate("sample", np.arange(np.shape(law.separation)[-1]))
         dims = ("beta0", "mu", "law_theta", "sample")
-        data["law_separation"] = _var(dims, law.separation, "gap h along the ray (Eq. 27), in c_r^2/R")
-        data["law_stress"] = _var(dims, law.stress, "tensile adhesive stress along the ray (Eq. 23), in E* c_r/R")
-        data["law_radius"] = _var(dims, law.radius, "radius r along the ray, in c_r")
+        data["law_separation"] = _var(dims, law.separation, "gap", "along the ray")
+        data["law_stress"] = _var(dims, law.stress, "adhesive_stress", "along the ray")
+        data["law_radius"] = _var(dims, law.radius, "r", "along the ray")
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(provenance_attrs(
         "Elliptical double-Hertz model: quantities along every ray theta_p at pull-off (Zini et al. 2018)",
         model="dh-elliptic", control=control, mu=np.asarray(mu, float), beta0=np.asarray(beta0, float),
         n_theta=int(theta.size), length_unit=_LENGTH_UNIT))
-    return ds
+    return finalize(ds)
 
 
 def equal_beta_dataset(mu, beta0, spread, closures: dict, *, control="load") -> xr.Dataset:
@@ -115,59 +99,50 @@ def equal_beta_dataset(mu, beta0, spread, closures: dict, *, control="load") -> 
         "ray_average", "two_axis").
     """
     names = list(closures)
-    data = {
-        "work_ratio": _var(("beta0", "mu"), spread.work_ratio, "dgamma(pi/2)/dgamma(0) at pull-off, paper's model"),
-        "work_spread": _var(("beta0", "mu"), spread.work_spread, "(max - min)/mean of dgamma(theta_p) at pull-off"),
-        "mean_work": _var(("beta0", "mu"), spread.mean_work,
-                          "periphery average of dgamma(theta_p), weights r_ab^2, in dgamma"),
-        "law_spread": _var(("beta0", "mu"), spread.law_spread,
-                           "max over theta_p of int |sigma_theta(h) - sigma_0(h)| dh / dgamma(0)"),
-        "law_sup_spread": _var(("beta0", "mu"), spread.law_sup_spread,
-                               "max over theta_p, h of |sigma_theta(h) - sigma_0(h)| / sigma0"),
-        "separation_ratio": _var(("beta0", "mu"), spread.separation_ratio,
-                                 "edge separation h(r_cd) minor axis / major axis"),
-        "width_ratio": _var(("beta0", "mu"), spread.width_ratio, "zone width minor axis / major axis"),
-    }
+    grid = ("beta0", "mu")
+    data = {name: _var(grid, getattr(spread, name), name, "at pull-off, paper's model")
+            for name in ("work_ratio", "work_spread", "mean_work", "law_spread", "law_sup_spread",
+                         "separation_ratio", "width_ratio")}
+    #: closure field -> (schema quantity, qualifier)
     fields = {
-        "W_star": "pull-off load W sin(theta_skew(beta0))/(2 pi R dgamma) (Eq. 34)",
-        "a_star": "contact semi-major axis at pull-off, in c_r",
-        "c_star": "adhesive semi-major axis at pull-off, in c_r",
-        "beta_contact": "contact ellipticity b/a at pull-off",
-        "beta_adhesive": "adhesive ellipticity d/c at pull-off",
-        "work_major": "dgamma(0) at pull-off, in dgamma",
-        "work_minor": "dgamma(pi/2) at pull-off, in dgamma",
-        "sigma0_minor": "adhesive stress at the contact edge on the minor axis, in E* c_r/R",
+        "W_star": ("W_star", None),
+        "a_star": ("a_star", None),
+        "c_star": ("c_star", None),
+        "beta_contact": ("ellipticity", None),
+        "beta_adhesive": ("adhesive_ellipticity", None),
+        "work_major": ("work_major", None),
+        "work_minor": ("work_minor", None),
+        "sigma0_minor": ("max_adhesive_stress", "on the minor axis"),
     }
-    for key, ln in fields.items():
+    for key, (quantity, qual) in fields.items():
         arr = np.stack([np.asarray(getattr(closures[n], key), float) for n in names], axis=0)
-        data[f"closure_{key}"] = _var(("closure", "beta0", "mu"), arr, ln)
+        data[f"closure_{key}"] = _var(("closure", "beta0", "mu"), arr, quantity,
+                                      "at pull-off" + (f", {qual}" if qual else ""))
     coords = _coords(mu, beta0)
-    coords["closure"] = ("closure", np.array(names, dtype=str),
-                         {"long_name": "closure: paper = Eqs. 17-19, 31; ray_average = mean dgamma = 1; "
-                                       "two_axis = dgamma = 1 on both axes, beta_cd != beta_ab"})
+    coords["closure"] = label_coordinate("closure", names)
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(provenance_attrs(
         "Equal-beta test and alternative closures of the elliptical double-Hertz model",
         control=control, mu=np.asarray(mu, float), beta0=np.asarray(beta0, float),
         closures=",".join(names), length_unit=_LENGTH_UNIT))
-    return ds
+    return finalize(ds)
 
 
 def eq30_dataset(mu, beta0, area, boundary, work_major, work_minor, mean_work) -> xr.Dataset:
     """Dataset of Eq. (30) (area and Green's forms) next to the ray works, at pull-off."""
+    grid = ("beta0", "mu")
     data = {
-        "eq30_area": _var(("beta0", "mu"), area, "Eq. (30) as printed, area integral on the polar grid"),
-        "eq30_boundary": _var(("beta0", "mu"), boundary, "Eq. (30) by Green's theorem (boundary integral)"),
-        "work_major": _var(("beta0", "mu"), work_major, "dgamma(0), Eq. (31), in dgamma"),
-        "work_minor": _var(("beta0", "mu"), work_minor, "dgamma(pi/2), Eq. (31) on the minor axis, in dgamma"),
-        "mean_work": _var(("beta0", "mu"), mean_work,
-                          "periphery average of dgamma(theta_p), weights r_ab^2 (erratum form), in dgamma"),
+        "eq30_area": _var(grid, area, "eq30", "as printed, area integral on the polar grid"),
+        "eq30_boundary": _var(grid, boundary, "eq30", "by Green's theorem (boundary integral)"),
+        "work_major": _var(grid, work_major, "work_major", "at pull-off"),
+        "work_minor": _var(grid, work_minor, "work_minor", "at pull-off"),
+        "mean_work": _var(grid, mean_work, "mean_work", "weights r_ab^2 (erratum form), at pull-off"),
     }
     ds = xr.Dataset(data, coords=_coords(mu, beta0))
     ds.attrs.update(provenance_attrs(
         "Eq. (30) of Zini et al. (2018): area vs boundary evaluation; it equals 4[dgamma(0) - dgamma(pi/2)]",
         mu=np.asarray(mu, float), beta0=np.asarray(beta0, float), length_unit=_LENGTH_UNIT))
-    return ds
+    return finalize(ds)
 
 
 def grid_periphery_dataset(theta, analytic, numerical: dict, **parameters) -> xr.Dataset:
@@ -183,17 +158,18 @@ def grid_periphery_dataset(theta, analytic, numerical: dict, **parameters) -> xr
     **parameters
         Recorded as attributes (state, grid size, ...).
     """
-    data = {"work_analytic": _var("theta", analytic.work_of_adhesion, "dgamma(theta_p), analytic (Eq. 31)"),
-            "edge_separation_analytic": _var("theta", analytic.edge_separation, "h(r_cd), analytic (Eq. 27)")}
+    data = {"work_analytic": _var("theta", analytic.work_of_adhesion, "work_of_adhesion", "analytic (Eq. 31)"),
+            "edge_separation_analytic": _var("theta", analytic.edge_separation, "edge_separation", "analytic")}
     for label, prof in numerical.items():
-        data[f"work_{label}"] = _var("theta", prof.work_of_adhesion, f"dgamma(theta_p) from the gridded gap ({label})")
-        data[f"edge_separation_{label}"] = _var("theta", prof.edge_separation,
-                                                f"h(r_cd) from the gridded gap ({label})")
-        data[f"contact_edge_gap_{label}"] = _var("theta", prof.contact_edge_gap,
-                                                 f"h(r_ab), residual of the contact condition ({label})")
-    ds = xr.Dataset(data, coords={"theta": ("theta", np.asarray(theta, float), dict(_THETA_ATTRS))})
+        data[f"work_{label}"] = _var("theta", prof.work_of_adhesion, "work_of_adhesion",
+                                     f"from the gridded gap ({label})")
+        data[f"edge_separation_{label}"] = _var("theta", prof.edge_separation, "edge_separation",
+                                                f"from the gridded gap ({label})")
+        data[f"contact_edge_gap_{label}"] = _var("theta", prof.contact_edge_gap, "contact_edge_gap",
+                                                 f"residual of the contact condition ({label})")
+    ds = xr.Dataset(data, coords={"theta": coordinate("theta", theta)})
     ds.attrs.update(provenance_attrs("Ray work of adhesion: analytic vs gridded (BEM) gap", **parameters))
-    return ds
+    return finalize(ds)
 
 
 def load_curve_periphery_dataset(mu, beta0, curves: dict, profiles: dict) -> xr.Dataset:
@@ -218,22 +194,19 @@ def load_curve_periphery_dataset(mu, beta0, curves: dict, profiles: dict) -> xr.
         arr = np.full(shape, np.nan)
         for (b, m), cur in curves.items():
             arr[list(beta0).index(b), list(mu).index(m)] = getattr(cur, name)
-        data[name] = _var(("beta0", "mu", "a_star"), arr, {
-            "W_star": "load W sin(theta_skew)/(2 pi R dgamma) (Eq. 34)",
-            "c_star": "adhesive semi-major axis, in c_r", "v": "double-Hertz scaling factor v (Eq. 22)",
-            "delta_star": "approach, in c_r^2/R"}[name])
-    for name, (ln, u) in PROFILE_VARIABLES.items():
+        data[name] = _var(("beta0", "mu", "a_star"), arr, name)
+    for name in PROFILE_VARIABLES:
         arr = np.full(shape + (theta.size,), np.nan)
         for (b, m), prof in profiles.items():
             arr[list(beta0).index(b), list(mu).index(m)] = getattr(prof, name)
-        data[name] = _var(("beta0", "mu", "a_star", "theta"), arr, ln, u)
+        data[name] = _var(("beta0", "mu", "a_star", "theta"), arr, name, "on the ray theta_p")
     coords = _coords(mu, beta0, theta)
-    coords["a_star"] = ("a_star", a_star, {"long_name": "contact semi-major axis a/c_r (Eq. 32)", "units": "1"})
+    coords["a_star"] = coordinate("a_star", a_star, nondimensional=True)
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(provenance_attrs(
         "Elliptical double-Hertz model: quantities along every ray theta_p along load curves",
         model="dh-elliptic", mu=mu, beta0=beta0, n_theta=int(theta.size), length_unit=_LENGTH_UNIT))
-    return ds
+    return finalize(ds)
 
 
 def write_dataset(ds, path) -> Path:
