@@ -1,0 +1,94 @@
+"""``dhfield sweep``: a study over a grid of model inputs, on dask, resumable.
+
+Two forms::
+
+    dhfield sweep CONFIG.toml [--scheduler ADDRESS] [--workers N] [--out PATH] [--quiet]
+    dhfield sweep --beta0 0.8 0.9 1 --mu-geomspace 0.1 10 200 --models dh-elliptic md --out s.nc
+
+The TOML layout is documented in :mod:`dhfield.sweep.config`.  Flags given with
+a config file override its ``[run]`` table only.
+"""
+from __future__ import annotations
+
+import sys
+
+_AXIS_FLAGS = (("beta0", float), ("skew_angle_deg", float), ("mu", float), ("a_star", float), ("n", int),
+               ("law", str))
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("sweep", help="sweep a grid of inputs (pull-offs, BEM checks) on dask; resumable")
+    p.add_argument("config", nargs="?", default=None, help="TOML sweep file (see dhfield.sweep.config)")
+    for name, typ in _AXIS_FLAGS:
+        flag = name.replace("_", "-")
+        p.add_argument(f"--{flag}", dest=name, nargs="+", type=typ, default=None, metavar="V",
+                       help=f"values of the {name} axis")
+        if typ is float:
+            for kind in ("linspace", "geomspace"):
+                p.add_argument(f"--{flag}-{kind}", dest=f"{name}_{kind}", nargs=3, type=float, default=None,
+                               metavar=("START", "STOP", "NUM"), help=f"{name} axis as numpy.{kind}")
+    p.add_argument("--quantities", nargs="+", default=None, help="pull_off (default), bem_field, adhesive")
+    p.add_argument("--models", nargs="+", default=None, help="comparison models of pull_off")
+    p.add_argument("--control", choices=("load", "displacement"), default=None)
+    p.add_argument("--chunk-points", type=int, default=None, help="analytic grid points per task (256)")
+    p.add_argument("--half-width", type=float, default=None, help="fixed BEM domain half-width [c_r]")
+    p.add_argument("--scheduler", default=None,
+                   help="dask.distributed scheduler address tcp://host:port, or 'synchronous'/'processes'")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: every core)")
+    p.add_argument("--out", default=None, help="output FILE.nc (cases in FILE.nc.cases/) or DIR")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=run)
+
+
+def _flag_mapping(args) -> dict:
+    axes = {}
+    for name, typ in _AXIS_FLAGS:
+        given = [(k, getattr(args, k, None)) for k in (name, f"{name}_linspace", f"{name}_geomspace")]
+        given = [(k, v) for k, v in given if v is not None]
+        if len(given) > 1:
+            raise ValueError(f"give the {name} axis once (one of --{name.replace('_', '-')}, "
+                             f"--{name.replace('_', '-')}-linspace, --{name.replace('_', '-')}-geomspace)")
+        if given:
+            k, v = given[0]
+            if k == name:
+                axes[name] = list(v)
+            else:
+                start, stop, num = v
+                if num != int(num):
+                    raise ValueError(f"--{k.replace('_', '-')} NUM must be an integer >= 1; got {num!r}")
+                axes[name] = {k.rsplit("_", 1)[1]: [start, stop, int(num)]}
+    sweep = {}
+    for key in ("quantities", "models", "control", "chunk_points"):
+        if getattr(args, key) is not None:
+            sweep[key] = getattr(args, key)
+    bem = {} if args.half_width is None else {"half_width": args.half_width}
+    return {"axes": axes, "sweep": sweep, "bem": bem}
+
+
+def run(args) -> int:
+    from ..sweep import config_from_mapping, load_config, run_sweep
+    from ..sweep.config import check_scheduler_address
+
+    flag_mapping = _flag_mapping(args)
+    if args.config is not None:
+        if flag_mapping["axes"] or flag_mapping["sweep"] or flag_mapping["bem"]:
+            raise ValueError("give the axes and quantities either in CONFIG.toml or as flags, not both")
+        config = load_config(args.config)
+    else:
+        if not flag_mapping["axes"]:
+            raise ValueError("give a CONFIG.toml or the axes as flags (e.g. --beta0 0.9 1 --mu-geomspace 0.1 10 50)")
+        config = config_from_mapping(flag_mapping)
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be an integer >= 1; got {args.workers}")
+    scheduler = args.scheduler if args.scheduler is not None else config.scheduler
+    if scheduler not in (None, "synchronous", "processes"):
+        check_scheduler_address(scheduler)
+    out = args.out if args.out is not None else config.out
+    if out is None:
+        raise ValueError("--out is required (an output FILE.nc or DIR), or run.out in the config")
+    res = run_sweep(config, out=out, scheduler=scheduler, workers=args.workers,
+                    progress=False if args.quiet else None)
+    if not args.quiet:
+        print(f"wrote {res.path}: {len(res.computed)} cases computed, {len(res.reused)} reused, "
+              f"{len(res.failed)} failed", file=sys.stderr)
+    return 1 if res.failed else 0

@@ -1,0 +1,373 @@
+"""Sweep configuration: one validated, immutable description of a study.
+
+A sweep is a grid of model inputs (the *axes*) and a list of *quantities*
+computed at every grid point.  It is read from a TOML file
+(:func:`load_config`), from a mapping of the same shape
+(:func:`config_from_mapping`), or built by the command line's flag form.
+Everything is validated here, before any work starts: an unknown key, an
+out-of-range value or an empty axis raises one ``ValueError`` naming the key
+and its valid range.
+
+TOML layout (every table and key optional except ``[axes]``)::
+
+    [sweep]
+    quantities = ["pull_off"]          # pull_off, bem_field, adhesive
+    models = ["dh-elliptic", "md"]     # pull_off: any of dhfield.compare.MODEL_NAMES
+    control = "load"                   # or "displacement"
+    chunk_points = 256                 # analytic grid points per dask task
+
+    [axes]                             # a list, or {linspace|geomspace = [start, stop, num]}
+    beta0 = [0.8, 0.9, 1.0]            # or skew_angle_deg = {linspace = [30, 90, 7]}
+    mu = {geomspace = [0.1, 10, 200]}
+    a_star = [0.5, 1.0]                # bem_field: contact semi-major axis a/c_r
+    n = [256]                          # bem_field, adhesive: BEM cells per side
+    law = ["dugdale"]                  # adhesive: cohesive law
+
+    [bem]
+    half_width = 3.0                   # fixed domain half-width [c_r] (default 1.5 c* per case)
+    sampling = "average"               # or "centre"
+
+    [run]
+    workers = 2                        # default: every core
+    scheduler = "tcp://127.0.0.1:8786" # a dask.distributed scheduler (default: local processes)
+    out = "sweep.nc"
+
+Axes and quantities
+-------------------
+=============  ==========================================  ==========================
+axis           meaning                                     used by
+=============  ==========================================  ==========================
+beta0          Hertz ellipticity b/a in (0, 1] (Eq. 9)     every quantity
+skew_angle_deg crossing angle in (0, 90] degrees (replaces  every quantity
+               beta0; beta0 from Eqs. 3-4)
+mu             Tabor parameter > 0 (Eq. 35)                every quantity
+a_star         contact semi-major axis a/c_r > 0 (Eq. 32)  bem_field
+n              BEM cells per side, even, in [16, 8192]     bem_field, adhesive
+law            cohesive law of the adhesive BEM solver     adhesive
+=============  ==========================================  ==========================
+
+``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
+reports ``a_star`` (the contact size at pull-off) as an output variable, so it
+cannot share a sweep with an ``a_star`` axis.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapping", "axis_values",
+           "check_scheduler_address", "MAX_POINTS"]
+
+#: Quantities a sweep can compute.
+QUANTITIES = ("pull_off", "bem_field", "adhesive")
+#: Axes a sweep can span, in the canonical order of the output (:data:`dhfield.schema.DIM_ORDER`).
+AXES = ("skew_angle_deg", "beta0", "mu", "a_star", "n", "law")
+#: Axes each quantity depends on (other axes broadcast).
+QUANTITY_AXES = {
+    "pull_off": ("skew_angle_deg", "beta0", "mu"),
+    "bem_field": ("skew_angle_deg", "beta0", "mu", "a_star", "n"),
+    "adhesive": ("skew_angle_deg", "beta0", "mu", "n", "law"),
+}
+#: Largest number of grid points of one sweep (guards against a typo like 1e9 points).
+MAX_POINTS = 10_000_000
+#: Largest BEM grid (cells per side) a sweep accepts; 8192^2 cells need ~4 GiB per worker.
+MAX_BEM_CELLS = 8192
+_MIN_BEM_CELLS = 16
+_SAMPLINGS = ("average", "centre")
+_CONTROLS = ("load", "displacement")
+
+_TOP_KEYS = {"sweep", "axes", "bem", "run"}
+_SWEEP_KEYS = {"quantities", "models", "control", "chunk_points"}
+_BEM_KEYS = {"half_width", "sampling"}
+_RUN_KEYS = {"workers", "scheduler", "out"}
+_SPACE_KEYS = ("linspace", "geomspace")
+
+
+@dataclass(frozen=True)
+class SweepConfig:
+    """A validated sweep.
+
+    Attributes
+    ----------
+    axes : dict
+        Axis name -> tuple of values, in :data:`AXES` order; every axis non-empty.
+    quantities : tuple of str
+        Subset of :data:`QUANTITIES`.
+    models : tuple of str
+        Comparison models of the ``pull_off`` quantity.
+    control : str
+        "load" or "displacement".
+    chunk_points : int
+        Grid points per analytic dask task (bounds memory per worker).
+    half_width : float or None
+        Fixed BEM domain half-width [c_r]; None: 1.5 c* per case.
+    sampling : str
+        BEM pressure sampling ("average" or "centre").
+    workers : int or None
+        Local worker processes (None: every core).
+    scheduler : str or None
+        Address of a dask.distributed scheduler.
+    out : str or None
+        Output path (see :func:`dhfield.sweep.store.output_paths`).
+    """
+
+    axes: dict
+    quantities: tuple = ("pull_off",)
+    models: tuple = ("dh-elliptic",)
+    control: str = "load"
+    chunk_points: int = 256
+    half_width: float | None = None
+    sampling: str = "average"
+    workers: int | None = None
+    scheduler: str | None = None
+    out: str | None = None
+    extra: dict = field(default_factory=dict)
+
+    def fingerprint(self) -> str:
+        """Hash of everything that determines the results (not workers, scheduler, out)."""
+        payload = {"axes": {k: list(v) for k, v in self.axes.items()}, "quantities": list(self.quantities),
+                   "models": list(self.models), "control": self.control, "chunk_points": self.chunk_points,
+                   "half_width": self.half_width, "sampling": self.sampling}
+        return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
+
+    def as_dict(self) -> dict:
+        """The TOML-shaped mapping of this config (round-trips through :func:`config_from_mapping`)."""
+        out = {"sweep": {"quantities": list(self.quantities), "models": list(self.models),
+                         "control": self.control, "chunk_points": self.chunk_points},
+               "axes": {k: list(v) for k, v in self.axes.items()},
+               "bem": {"sampling": self.sampling}, "run": {}}
+        if self.half_width is not None:
+            out["bem"]["half_width"] = self.half_width
+        for k in ("workers", "scheduler", "out"):
+            if getattr(self, k) is not None:
+                out["run"][k] = getattr(self, k)
+        return out
+
+    @property
+    def beta0(self) -> np.ndarray:
+        """beta0 of every point of the ellipticity axis (converted from the skew angle if given)."""
+        if "beta0" in self.axes:
+            return np.asarray(self.axes["beta0"], dtype=float)
+        from ..geometry import ellipticity_from_skew_angle
+
+        return np.asarray(ellipticity_from_skew_angle(np.radians(self.axes["skew_angle_deg"])), dtype=float)
+
+    @property
+    def ellipticity_axis(self) -> str:
+        """Name of the ellipticity axis: "beta0" or "skew_angle_deg"."""
+        return "beta0" if "beta0" in self.axes else "skew_angle_deg"
+
+
+def _fail(key, valid, got):
+    raise ValueError(f"{key} must be {valid}; got {got!r}")
+
+
+def _check_keys(table, allowed, where):
+    if not isinstance(table, dict):
+        _fail(where, "a table", table)
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        name = f"{where}.{unknown[0]}" if where else unknown[0]
+        raise ValueError(f"unknown config key {name!r}; valid keys{' of ' + where if where else ''}: "
+                         f"{', '.join(sorted(allowed))}")
+
+
+def axis_values(name: str, spec) -> tuple:
+    """Values of one axis from its spec: a list, a scalar, or ``{linspace|geomspace = [a, b, n]}``.
+
+    Raises ValueError (naming ``axes.<name>``) if the axis is empty or a value is out of range.
+    """
+    key = f"axes.{name}"
+    if isinstance(spec, dict):
+        _check_keys(spec, _SPACE_KEYS, key)
+        if len(spec) != 1:
+            _fail(key, "one of {linspace = [start, stop, num]} or {geomspace = [start, stop, num]}", spec)
+        kind, args = next(iter(spec.items()))
+        if not (isinstance(args, (list, tuple)) and len(args) == 3):
+            _fail(f"{key}.{kind}", "[start, stop, num]", args)
+        start, stop, num = args
+        if isinstance(num, bool) or not isinstance(num, (int, float)) or num != int(num) or num < 1:
+            _fail(f"{key}.{kind} num", "an integer >= 1 (an axis must not be empty)", num)
+        for v in (start, stop):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                _fail(f"{key}.{kind} start/stop", "finite numbers", v)
+        if kind == "geomspace" and (start <= 0 or stop <= 0):
+            _fail(f"{key}.geomspace start/stop", "> 0", [start, stop])
+        values = (np.linspace if kind == "linspace" else np.geomspace)(start, stop, int(num)).tolist()
+    elif isinstance(spec, (list, tuple)):
+        values = list(spec)
+    else:
+        values = [spec]
+    if len(values) == 0:
+        raise ValueError(f"{key} must not be empty (give at least one value)")
+    return _check_axis(name, values)
+
+
+def _check_axis(name, values):
+    key = f"axes.{name}"
+    if name == "law":
+        from .tasks import cohesive_laws
+
+        laws = cohesive_laws()
+        for v in values:
+            if v not in laws:
+                _fail(key, f"cohesive law names from {laws}", v)
+        out = tuple(values)
+    elif name == "n":
+        out = []
+        for v in values:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or v != int(v) or int(v) % 2 \
+                    or not _MIN_BEM_CELLS <= v <= MAX_BEM_CELLS:
+                _fail(key, f"even integers in [{_MIN_BEM_CELLS}, {MAX_BEM_CELLS}] (BEM cells per side)", v)
+            out.append(int(v))
+        out = tuple(out)
+    else:
+        from .._validation import CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE
+
+        ranges = {"beta0": (ELLIPTICITY_RANGE, "in (1e-4, 1] (ellipticity b/a)", False),
+                  "mu": (TABOR_RANGE, "in [1e-6, 1e12] (Tabor parameter, Eq. 35)", True),
+                  "a_star": (CONTACT_SIZE_RANGE, "in [1e-6, 1e6] (contact semi-major axis a/c_r)", True),
+                  "skew_angle_deg": ((0.0, 90.0), "in (0, 90] (crossing angle in degrees)", False)}
+        (lo, hi), valid, closed_low = ranges[name]
+        out = []
+        for v in values:
+            ok = not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v)
+            ok = ok and (lo <= v if closed_low else lo < v) and v <= hi
+            if not ok:
+                _fail(key, f"numbers {valid}", v)
+            out.append(float(v))
+        out = tuple(out)
+    if len(set(out)) != len(out):
+        _fail(key, "distinct values", list(values))
+    return out
+
+
+def _int_at_least(key, value, low):
+    if isinstance(value, bool) or not isinstance(value, int) or value < low:
+        _fail(key, f"an integer >= {low}", value)
+    return value
+
+
+_ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx|ws|wss)://[^\s/]+(:\d+)?$")
+
+
+def check_scheduler_address(address):
+    """Validate the form of a dask.distributed scheduler address (``tcp://host:port``)."""
+    if address is None:
+        return None
+    if not isinstance(address, str) or not _ADDRESS.match(address):
+        _fail("scheduler", "a dask.distributed address such as tcp://127.0.0.1:8786", address)
+    return address
+
+
+def config_from_mapping(mapping: dict) -> SweepConfig:
+    """Validate a TOML-shaped mapping (see the module docstring) into a :class:`SweepConfig`."""
+    from ..compare import MODEL_NAMES
+
+    _check_keys(mapping, _TOP_KEYS, "")
+    sweep = mapping.get("sweep", {})
+    _check_keys(sweep, _SWEEP_KEYS, "sweep")
+    bem = mapping.get("bem", {})
+    _check_keys(bem, _BEM_KEYS, "bem")
+    run = mapping.get("run", {})
+    _check_keys(run, _RUN_KEYS, "run")
+    axes_in = mapping.get("axes")
+    if not axes_in:
+        raise ValueError("axes must be a table with at least the axes beta0 (or skew_angle_deg) and mu")
+    _check_keys(axes_in, AXES, "axes")
+
+    quantities = sweep.get("quantities", ["pull_off"])
+    if isinstance(quantities, str):
+        quantities = [quantities]
+    if not isinstance(quantities, list) or not quantities:
+        _fail("sweep.quantities", f"a non-empty list from {QUANTITIES}", quantities)
+    for q in quantities:
+        if q not in QUANTITIES:
+            _fail("sweep.quantities", f"names from {QUANTITIES}", q)
+    models = sweep.get("models", ["dh-elliptic"])
+    if isinstance(models, str):
+        models = [models]
+    if not isinstance(models, list) or not models:
+        _fail("sweep.models", f"a non-empty list from {MODEL_NAMES}", models)
+    for m in models:
+        if m not in MODEL_NAMES:
+            _fail("sweep.models", f"names from {MODEL_NAMES}", m)
+    control = sweep.get("control", "load")
+    if control not in _CONTROLS:
+        _fail("sweep.control", "'load' or 'displacement'", control)
+    chunk = _int_at_least("sweep.chunk_points", sweep.get("chunk_points", 256), 1)
+
+    axes = {name: axis_values(name, axes_in[name]) for name in AXES if name in axes_in}
+    if "beta0" in axes and "skew_angle_deg" in axes:
+        raise ValueError("axes: give beta0 or skew_angle_deg, not both (one determines the other, Eqs. 3-4)")
+    if "beta0" not in axes and "skew_angle_deg" not in axes:
+        raise ValueError("axes must include beta0 (or skew_angle_deg)")
+    if "mu" not in axes:
+        raise ValueError("axes must include mu (Tabor parameter, Eq. 35)")
+    needed = {"bem_field": ("a_star", "n"), "adhesive": ("n",)}
+    for q in quantities:
+        for ax in needed.get(q, ()):
+            if ax not in axes:
+                raise ValueError(f"axes.{ax} is needed by the quantity {q!r}")
+    if "adhesive" in quantities and "law" not in axes:
+        axes["law"] = (cohesive_default(),)
+    used = set().union(*(QUANTITY_AXES[q] for q in quantities))
+    for ax in axes:
+        if ax not in used:
+            raise ValueError(f"axes.{ax} is not used by the quantities {quantities}; remove it")
+    if "pull_off" in quantities and "a_star" in axes:
+        raise ValueError("axes.a_star cannot be swept together with the quantity 'pull_off' (a_star is "
+                         "also its output, the contact size at pull-off); run two sweeps")
+    npts = int(np.prod([len(v) for v in axes.values()]))
+    if npts > MAX_POINTS:
+        _fail("axes", f"at most {MAX_POINTS} grid points in all", npts)
+
+    half_width = bem.get("half_width")
+    if half_width is not None and (isinstance(half_width, bool) or not isinstance(half_width, (int, float))
+                                   or not math.isfinite(half_width) or half_width <= 0):
+        _fail("bem.half_width", "a number > 0 (domain half-width in c_r)", half_width)
+    sampling = bem.get("sampling", "average")
+    if sampling not in _SAMPLINGS:
+        _fail("bem.sampling", f"one of {_SAMPLINGS}", sampling)
+    workers = run.get("workers")
+    if workers is not None:
+        _int_at_least("run.workers", workers, 1)
+    scheduler = check_scheduler_address(run.get("scheduler"))
+    out = run.get("out")
+    if out is not None and not isinstance(out, str):
+        _fail("run.out", "a path", out)
+    return SweepConfig(axes=axes, quantities=tuple(dict.fromkeys(quantities)), models=tuple(dict.fromkeys(models)),
+                       control=control, chunk_points=chunk,
+                       half_width=None if half_width is None else float(half_width), sampling=sampling,
+                       workers=workers, scheduler=scheduler, out=out)
+
+
+def cohesive_default() -> str:
+    from .tasks import cohesive_laws
+
+    laws = cohesive_laws()
+    return laws[0] if laws else "dugdale"
+
+
+def load_config(path) -> SweepConfig:
+    """Read and validate a TOML sweep file (see the module docstring)."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"config must be an existing TOML file; got {str(p)!r}")
+    try:
+        with open(p, "rb") as fh:
+            mapping = tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"config {str(p)!r} is not valid TOML: {exc}") from None
+    return config_from_mapping(mapping)

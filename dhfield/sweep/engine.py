@@ -1,0 +1,522 @@
+"""Run a sweep on dask: chunked analytic maps and BEM cases as tasks, resumable.
+
+Engine
+------
+* **Analytic pull-offs** (:func:`dhfield.sweep.tasks.pull_off_block`) run through
+  ``xarray.apply_ufunc(..., dask="parallelized")`` on a (beta0, mu) grid chunked
+  into blocks of about ``chunk_points`` points, so a worker holds one block at a
+  time and memory stays bounded whatever the grid size.  Each block is a case
+  of the store: it is written when it finishes and read back, not recomputed,
+  by a rerun.  The chunking depends only on the config, never on the
+  scheduler, so every scheduler evaluates the same blocks and gives
+  bit-identical results.
+* **BEM cases** (:func:`~dhfield.sweep.tasks.bem_field_case`,
+  :func:`~dhfield.sweep.tasks.adhesive_case`) are ``dask.delayed`` tasks.  The
+  cases of one load path (the contact sizes of one forward-BEM state family;
+  the whole path of an adhesive pull-off) stay in one task.  The half-space
+  operator is built inside the worker on first use and cached there
+  (:func:`dhfield.bem.get_operator`): it holds a lock and is never pickled.
+* **Schedulers.** ``"synchronous"`` (serial, in this process), ``"processes"``
+  (local worker processes, the default, ``workers`` of them, default every
+  core), or the address of a dask.distributed scheduler
+  (``tcp://host:port``; the workers must see the output directory).
+* **Resumable.** Cases are written to a :class:`~dhfield.sweep.store.CaseStore`
+  as they finish; a case that raises is recorded with its message (status
+  "failed", NaN values) and retried by the next run; a non-converged adhesive
+  case is recorded with its message (status "not_converged") and kept.  The
+  consolidated Dataset is written atomically at the end.
+"""
+from __future__ import annotations
+
+import os
+import sys
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .config import SweepConfig, check_scheduler_address
+from .store import CaseStore, output_paths
+from .tasks import (ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, PULL_OFF_FIELDS, adhesive_case,
+                    adhesive_solver, bem_field_case, pull_off_block)
+
+__all__ = ["SweepResult", "Executor", "connect", "run_sweep", "Progress", "STATUS_MEANINGS",
+           "CONNECT_TIMEOUT"]
+
+#: Seconds to wait for a dask.distributed scheduler before reporting it unreachable.
+CONNECT_TIMEOUT = 5.0
+#: Case status codes (CF flag_values) and their meanings.
+STATUS_MEANINGS = {0: "ok", 1: "not_converged", 2: "failed"}
+_STATUS = {v: k for k, v in STATUS_MEANINGS.items()}
+_LOCAL = ("synchronous", "processes")
+
+
+# --------------------------------------------------------------------------- progress
+class Progress:
+    """A one-line progress bar with ETA on ``stream`` (stderr), redrawn at most 5 times a second."""
+
+    def __init__(self, total: int, enabled: bool, label: str = "sweep", stream=None):
+        self.total, self.enabled, self.label = int(total), bool(enabled), label
+        self.stream = sys.stderr if stream is None else stream
+        self.done = 0
+        self.start = time.monotonic()
+        self._last = 0.0
+
+    def advance(self, n: int = 1) -> None:
+        self.done += n
+        if self.enabled and (time.monotonic() - self._last > 0.2 or self.done >= self.total):
+            self._draw()
+
+    def _draw(self):
+        self._last = time.monotonic()
+        elapsed = self._last - self.start
+        frac = self.done / self.total if self.total else 1.0
+        eta = elapsed * (1.0 - frac) / frac if frac > 0 else float("nan")
+        bar = "#" * int(30 * frac)
+        fmt = (lambda s: "--:--" if not np.isfinite(s) else f"{int(s) // 60}:{int(s) % 60:02d}")
+        self.stream.write(f"\r{self.label} [{bar:<30s}] {self.done}/{self.total} {100 * frac:3.0f}% "
+                          f"elapsed {fmt(elapsed)} ETA {fmt(eta)}")
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self.enabled:
+            self._draw()
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+# --------------------------------------------------------------------------- schedulers
+@dataclass
+class Executor:
+    """Where tasks run: ``kind`` is "synchronous", "processes" or "distributed"."""
+
+    kind: str
+    workers: int
+    client: object = None
+    _own_client: bool = False
+
+    def close(self):
+        if self._own_client and self.client is not None:
+            self.client.close()
+            self.client = None
+
+
+def connect(scheduler=None, workers=None) -> Executor:
+    """Resolve the scheduler before any work starts.
+
+    Parameters
+    ----------
+    scheduler : str or distributed.Client, optional
+        None (local processes, or serial when ``workers == 1``), "synchronous",
+        "processes", a ``tcp://host:port`` address, or a connected Client.
+    workers : int, optional
+        Local worker processes, >= 1 (default: every core).
+
+    Raises
+    ------
+    ValueError
+        Bad ``workers`` or an unreachable scheduler (after :data:`CONNECT_TIMEOUT` s).
+    """
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise ValueError(f"workers must be an integer >= 1 (local worker processes); got {workers!r}")
+    if scheduler is not None and not isinstance(scheduler, str):  # a distributed.Client
+        return Executor("distributed", len(scheduler.scheduler_info()["workers"]), scheduler)
+    if scheduler is None:
+        w = workers or os.cpu_count() or 1
+        return Executor("synchronous" if w == 1 else "processes", w)
+    if scheduler in _LOCAL:
+        w = 1 if scheduler == "synchronous" else (workers or os.cpu_count() or 1)
+        return Executor(scheduler, w)
+    check_scheduler_address(scheduler)
+    from distributed import Client
+
+    try:
+        client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+    except (OSError, TimeoutError) as exc:
+        raise ValueError(f"scheduler {scheduler} is unreachable ({type(exc).__name__} after "
+                         f"{CONNECT_TIMEOUT:g} s); start one with 'dask scheduler' or omit --scheduler") from None
+    return Executor("distributed", len(client.scheduler_info()["workers"]), client, True)
+
+
+def _output_keys(collection):
+    keys = collection.__dask_keys__()
+    out = []
+
+    def walk(k):
+        if isinstance(k, list):
+            for x in k:
+                walk(x)
+        else:
+            out.append(k)
+
+    walk(keys)
+    return out
+
+
+def _compute(collections, executor: Executor, progress: Progress):
+    import dask
+    from dask.callbacks import Callback
+
+    if executor.kind == "distributed":
+        from distributed import as_completed, futures_of
+
+        persisted = executor.client.persist(list(collections))
+        for _ in as_completed(futures_of(persisted)):
+            progress.advance()
+        return dask.compute(*persisted, scheduler=executor.client)
+    keys = set()
+    for c in collections:
+        keys.update(_output_keys(c))
+
+    def posttask(key, result, dsk, state, worker_id):
+        if key in keys:
+            progress.advance()
+
+    kwargs = {"num_workers": executor.workers} if executor.kind == "processes" else {}
+    with Callback(posttask=posttask):
+        return dask.compute(*collections, scheduler=executor.kind, **kwargs)
+
+
+# --------------------------------------------------------------------------- case records
+def _case_dataset(values: dict, status: str, message: str, dims=()):
+    import xarray as xr
+
+    ds = xr.Dataset({k: (dims, np.asarray(v, dtype=float), {"units": "1"}) for k, v in values.items()})
+    ds.attrs.update(status=status, message=message)
+    return ds
+
+
+def _failure(exc) -> str:
+    last = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
+    where = f" ({Path(last.filename).name}:{last.lineno})" if last else ""
+    return f"{type(exc).__name__}: {exc}{where}"
+
+
+def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, fingerprint):
+    """apply_ufunc kernel: one block of the analytic map, read from the store if done."""
+    store = CaseStore(store_dir, fingerprint)
+    key = f"pull_off__{model}__{int(i_ell.flat[0]):05d}_{int(i_mu.flat[0]):05d}"
+    if store.is_done(key):
+        ds = store.read(key)
+        return np.stack([ds[k].values for k in PULL_OFF_FIELDS], axis=-1)
+    try:
+        out = pull_off_block(model, control, mu, beta0)
+        status, message = "ok", ""
+    except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
+        out = np.full(mu.shape + (len(PULL_OFF_FIELDS),), np.nan)
+        status, message = "failed", _failure(exc)
+    store.write(key, _case_dataset({k: out[..., i] for i, k in enumerate(PULL_OFF_FIELDS)}, status, message,
+                                   ("i", "j")))
+    return out
+
+
+def _run_cases(quantity, cases, store_dir, fingerprint):
+    """One task: the cases of one load path, in order; each written as it finishes."""
+    store = CaseStore(store_dir, fingerprint)
+    fields = BEM_FIELD_FIELDS if quantity == "bem_field" else ADHESIVE_FIELDS
+    out = {}
+    for key, params in cases:
+        if store.is_done(key):
+            ds = store.read(key)
+            out[key] = ({k: float(ds[k].values) for k in fields}, ds.attrs["status"], ds.attrs["message"], False)
+            continue
+        try:
+            if quantity == "bem_field":
+                rec = bem_field_case(**params)
+                status, message = "ok", ""
+            else:
+                rec = adhesive_case(**params)
+                status = "ok" if rec.pop("converged") else "not_converged"
+                message = rec.pop("message")
+        except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
+            rec = {k: np.nan for k in fields}
+            status, message = "failed", _failure(exc)
+        store.write(key, _case_dataset({k: rec[k] for k in fields}, status, message))
+        out[key] = ({k: float(rec[k]) for k in fields}, status, message, True)
+    return out
+
+
+# --------------------------------------------------------------------------- planning
+def _chunks(shape, target):
+    """Chunk sizes of a 2-D (ell, mu) grid with about ``target`` points per block."""
+    n_ell, n_mu = shape
+    c_mu = min(n_mu, target)
+    c_ell = max(1, min(n_ell, target // c_mu))
+    return c_ell, c_mu
+
+
+def _pull_off_collections(config: SweepConfig, store_dir, fingerprint):
+    import xarray as xr
+
+    beta0 = config.beta0
+    mu = np.asarray(config.axes["mu"], dtype=float)
+    c_ell, c_mu = _chunks((beta0.size, mu.size), config.chunk_points)
+    g_mu = xr.DataArray(mu, dims="mu").chunk({"mu": c_mu})
+    g_b = xr.DataArray(beta0, dims="ell").chunk({"ell": c_ell})
+    i_mu = xr.DataArray(np.arange(mu.size), dims="mu").chunk({"mu": c_mu})
+    i_b = xr.DataArray(np.arange(beta0.size), dims="ell").chunk({"ell": c_ell})
+    g_mu, g_b, i_mu, i_b = xr.broadcast(g_mu, g_b, i_mu, i_b)
+    out = {}
+    for model in config.models:
+        out[model] = xr.apply_ufunc(
+            _pull_off_ufunc, g_mu, g_b, i_b, i_mu,
+            kwargs=dict(model=model, control=config.control, store_dir=str(store_dir), fingerprint=fingerprint),
+            output_core_dims=[["field"]], dask="parallelized", output_dtypes=[float],
+            dask_gufunc_kwargs={"output_sizes": {"field": len(PULL_OFF_FIELDS)}}).transpose("ell", "mu", "field")
+    return out
+
+
+def _case_index(config: SweepConfig, quantity):
+    """(index tuple, params) of every case of a BEM quantity, grouped by load path."""
+    beta0 = config.beta0
+    mu = config.axes["mu"]
+    groups = []
+    if quantity == "bem_field":
+        a_star, ns = config.axes["a_star"], config.axes["n"]
+        for ib, b in enumerate(beta0):
+            for im, m in enumerate(mu):
+                for i_n, n in enumerate(ns):
+                    groups.append([((ib, im, ia, i_n), dict(beta0=float(b), mu=float(m), a_star=float(a), n=int(n),
+                                                            half_width=config.half_width, sampling=config.sampling))
+                                   for ia, a in enumerate(a_star)])
+    else:
+        ns, laws = config.axes["n"], config.axes["law"]
+        for ib, b in enumerate(beta0):
+            for im, m in enumerate(mu):
+                for i_n, n in enumerate(ns):
+                    for il, law in enumerate(laws):
+                        groups.append([((ib, im, i_n, il), dict(beta0=float(b), mu=float(m), n=int(n), law=law,
+                                                                control=config.control))])
+    return groups
+
+
+def _key(quantity, idx):
+    return f"{quantity}__" + "_".join(f"{i:05d}" for i in idx)
+
+
+# --------------------------------------------------------------------------- result
+@dataclass
+class SweepResult:
+    """Outcome of :func:`run_sweep`.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        The consolidated sweep (dims: the swept axes).
+    path : pathlib.Path or None
+        Where it was written.
+    computed, reused : list of str
+        Keys of the cases computed by this run and of those read back from the store.
+    failed : list of str
+        Keys of the cases that raised (recorded with their message).
+    """
+
+    dataset: object
+    path: Path | None
+    computed: list = field(default_factory=list)
+    reused: list = field(default_factory=list)
+    failed: list = field(default_factory=list)
+
+
+def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, progress=None) -> SweepResult:
+    """Run (or resume) a sweep and write the consolidated Dataset.
+
+    Parameters
+    ----------
+    config : SweepConfig
+    out : path, optional
+        Output (see :func:`dhfield.sweep.store.output_paths`); default ``config.out``.
+    scheduler : str or distributed.Client, optional
+        See :func:`connect`; default ``config.scheduler``.
+    workers : int, optional
+        Local worker processes; default ``config.workers`` or every core.
+    progress : bool, optional
+        Progress bar on stderr; default: when stderr is a terminal.
+
+    Returns
+    -------
+    SweepResult
+    """
+    out = out if out is not None else config.out
+    if out is None:
+        raise ValueError("out must be given (an output .nc file or directory)")
+    final, store_dir = output_paths(out)
+    from ..io import check_writable
+
+    if Path(out).suffix.lower() != ".nc" and Path(out).parent.is_dir() and not Path(out).exists():
+        Path(out).mkdir()
+    check_writable(final)
+    if "adhesive" in config.quantities:
+        adhesive_solver()
+    executor = connect(scheduler if scheduler is not None else config.scheduler,
+                       workers if workers is not None else config.workers)
+    try:
+        fp = config.fingerprint()
+        store = CaseStore(store_dir, fp, manifest={"config": config.as_dict()})
+        return _run(config, executor, store, final, progress)
+    finally:
+        executor.close()
+
+
+def _run(config, executor, store, final, progress):
+    from ..io import write_netcdf
+
+    fp = store.fingerprint
+    collections, kinds = [], []
+    if "pull_off" in config.quantities:
+        maps = _pull_off_collections(config, store.directory, fp)
+        for model, arr in maps.items():
+            collections.append(arr.data)
+            kinds.append(("pull_off", model))
+    import dask
+
+    for q in ("bem_field", "adhesive"):
+        if q in config.quantities:
+            for group in _case_index(config, q):
+                cases = [(_key(q, idx), params) for idx, params in group]
+                collections.append(dask.delayed(_run_cases, pure=False)(q, cases, str(store.directory), fp))
+                kinds.append((q, [idx for idx, _ in group]))
+    total = sum(len(_output_keys(c)) for c in collections)
+    enabled = sys.stderr.isatty() if progress is None else bool(progress)
+    bar = Progress(total, enabled)
+    before = set(store.keys())
+    try:
+        results = _compute(collections, executor, bar)
+    finally:
+        bar.close()
+    ds = _consolidate(config, kinds, results, store)
+    after = set(store.keys())
+    failed = sorted(p.name[:-len(".failed.nc")] for p in store.directory.glob("*.failed.nc"))
+    write_netcdf(ds, final)
+    return SweepResult(ds, final, computed=sorted(after - before), reused=sorted(before), failed=failed)
+
+
+# --------------------------------------------------------------------------- consolidation
+_N_ATTRS = {"long_name": "BEM cells per side", "units": "1"}
+_LAW_ATTRS = {"long_name": "cohesive law of the adhesive BEM solver"}  # a string label has no units
+_BEM_ATTRS = {
+    "bem_displacement_error": ("max |omega_BEM - omega_Eq26| over the grid / max |omega| (forward BEM check)", "1"),
+    "bem_gap_error": ("max |h_BEM - h_Eq27| over the grid / max |omega| (forward BEM check)", "1"),
+    "bem_annulus_error": ("worst relative error of h = (1 + v) h_Hertz in the adhesive annulus (Eq. 27)", "1"),
+    "bem_c_star": ("adhesive semi-major axis c/c_r of the checked DH state (Eqs. 24, 31)", "1"),
+    "bem_v": ("double-Hertz scaling factor v of the checked DH state (Eq. 24)", "1"),
+}
+
+
+def _status_attrs(what):
+    return {"long_name": f"status of the {what} case",  # CF flags (section 3.5): no units
+            "flag_values": np.array(list(STATUS_MEANINGS), dtype=np.int8),
+            "flag_meanings": " ".join(STATUS_MEANINGS.values())}
+
+
+def _consolidate(config: SweepConfig, kinds, results, store):
+    import xarray as xr
+
+    from .. import schema
+    from ..io import provenance_attrs
+
+    ell = config.ellipticity_axis
+    beta0 = config.beta0
+    coords = {"mu": ("mu", np.asarray(config.axes["mu"]), schema.attrs("mu"))}
+    if ell == "beta0":
+        coords["beta0"] = ("beta0", beta0, schema.attrs("beta0"))
+    else:
+        coords["skew_angle_deg"] = ("skew_angle_deg", np.asarray(config.axes["skew_angle_deg"]),
+                                    schema.attrs("skew_angle_deg"))
+        coords["beta0"] = ("skew_angle_deg", beta0, schema.attrs("beta0"))
+    if "a_star" in config.axes:
+        coords["a_star"] = ("a_star", np.asarray(config.axes["a_star"]), schema.attrs("a_star", True))
+    if "n" in config.axes:
+        coords["n"] = ("n", np.asarray(config.axes["n"], dtype=np.int32), _N_ATTRS)
+    if "law" in config.axes:
+        coords["law"] = ("law", np.asarray(config.axes["law"], dtype=object), _LAW_ATTRS)
+    models = list(config.models) if "pull_off" in config.quantities else []
+    if "adhesive" in config.quantities:
+        models.append(ADHESIVE_MODEL)
+    if models:
+        coords["model"] = ("model", np.asarray(models, dtype=object),
+                           {k: v for k, v in schema.attrs("model").items() if k != "units"})
+    n_ell, n_mu = beta0.size, len(config.axes["mu"])
+    data = {}
+    extra = ("n", "law") if "adhesive" in config.quantities else ()
+    ex_shape = tuple(len(config.axes[d]) for d in extra)
+    if models:
+        mdims = ("model", ell, "mu") + extra
+        mvars = {k: np.full((len(models), n_ell, n_mu) + ex_shape, np.nan) for k in PULL_OFF_FIELDS}
+        mstatus = np.zeros((len(models), n_ell, n_mu) + ex_shape, dtype=np.int8)
+    blocks_msgs = []
+    cases = {q: {} for q in ("bem_field", "adhesive")}
+    for (kind, what), res in zip(kinds, results):
+        if kind == "pull_off":
+            m = models.index(what)
+            arr = np.asarray(res)
+            for i, k in enumerate(PULL_OFF_FIELDS):
+                mvars[k][m] = arr[..., i].reshape((n_ell, n_mu) + (1,) * len(extra))
+        else:
+            cases[kind].update(res)
+    if "pull_off" in config.quantities:
+        for p in sorted(store.directory.glob("pull_off__*.failed.nc")):
+            ds = store.read(p.name[:-len(".failed.nc")])
+            key = p.name[:-len(".failed.nc")]
+            _, model, idx = key.split("__")
+            i0, j0 = (int(t) for t in idx.split("_"))
+            shp = ds["W_star"].shape
+            mstatus[models.index(model), i0:i0 + shp[0], j0:j0 + shp[1]] = _STATUS["failed"]
+            blocks_msgs.append(f"{model} block {ell}[{i0}:{i0 + shp[0]}] mu[{j0}:{j0 + shp[1]}]: "
+                               f"{ds.attrs['message']}")
+    if "adhesive" in config.quantities:
+        m = models.index(ADHESIVE_MODEL)
+        adims = (ell, "mu", "n", "law")
+        ashape = (n_ell, n_mu) + ex_shape
+        iters = np.full(ashape, np.nan)
+        amsg = np.full(ashape, "", dtype=object)
+        for key, (rec, status, message, _) in cases["adhesive"].items():
+            idx = tuple(int(t) for t in key.split("__")[1].split("_"))
+            for k in ADHESIVE_FIELDS:
+                if k in mvars:
+                    mvars[k][(m,) + idx] = rec[k]
+            iters[idx] = rec["iterations"]
+            mstatus[(m,) + idx] = _STATUS[status]
+            amsg[idx] = message
+        from ..geometry import sin_skew_angle
+
+        mvars["sin_skew"][m] = np.asarray(sin_skew_angle(beta0), dtype=float).reshape((n_ell,) + (1,) * (
+            1 + len(extra)))
+        data["iterations"] = (adims, iters, schema.attrs("iterations"))
+        data["adhesive_message"] = (adims, amsg, {"long_name": "message of the adhesive BEM solve (empty: ok)"})
+    if models:
+        for k in PULL_OFF_FIELDS:
+            data[k] = (mdims, mvars[k], schema.attrs(k, nondimensional=True))
+        st_attrs = _status_attrs("pull-off")
+        if blocks_msgs:
+            st_attrs["messages"] = "; ".join(blocks_msgs)
+        data["status"] = (mdims, mstatus, st_attrs)
+    if "bem_field" in config.quantities:
+        bdims = (ell, "mu", "a_star", "n")
+        bshape = (n_ell, n_mu, len(config.axes["a_star"]), len(config.axes["n"]))
+        bvars = {k: np.full(bshape, np.nan) for k in BEM_FIELD_FIELDS}
+        bstatus = np.zeros(bshape, dtype=np.int8)
+        bmsg = np.full(bshape, "", dtype=object)
+        for key, (rec, status, message, _) in cases["bem_field"].items():
+            idx = tuple(int(t) for t in key.split("__")[1].split("_"))
+            for k in BEM_FIELD_FIELDS:
+                bvars[k][idx] = rec[k]
+            bstatus[idx] = _STATUS[status]
+            bmsg[idx] = message
+        for k, (ln, u) in _BEM_ATTRS.items():
+            data[k] = (bdims, bvars[k], {"long_name": ln, "units": u})
+        data["bem_field_status"] = (bdims, bstatus, _status_attrs("forward BEM"))
+        data["bem_field_message"] = (bdims, bmsg, {"long_name": "message of the forward BEM case (empty: ok)"})
+    ds = xr.Dataset(data, coords=coords)
+    for name in ds.variables:
+        ds[name] = ds[name].transpose(*schema.order_dims(ds[name].dims))
+    for c in ds.coords:
+        ds[c].encoding["_FillValue"] = None
+    ds.attrs.update(provenance_attrs("dhfield sweep (Zini et al. 2018 extended double-Hertz model)",
+                                     sweep_fingerprint=config.fingerprint(),
+                                     sweep_quantities=" ".join(config.quantities), control=config.control,
+                                     chunk_points=config.chunk_points,
+                                     bem_half_width=config.half_width, bem_sampling=config.sampling))
+    return ds

@@ -1,0 +1,104 @@
+"""Resumable per-case store of a sweep: one netCDF file per finished case.
+
+Layout of a store directory::
+
+    manifest.json              the sweep's config and fingerprint (written first)
+    <key>.nc                   a finished case (status "ok" or "not_converged")
+    <key>.failed.nc            a case that raised; retried by the next run
+
+Every file is written atomically (:func:`dhfield.io.write_netcdf`), so a sweep
+killed at any instant leaves only whole files: a rerun reads the manifest,
+skips every ``<key>.nc`` and computes the rest.  A store belongs to one config:
+opening it with a different one is an error (use another output path).
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+__all__ = ["CaseStore", "output_paths"]
+
+_MANIFEST = "manifest.json"
+
+
+def output_paths(out) -> tuple[Path, Path]:
+    """Consolidated file and store directory of an output path.
+
+    ``out`` ending in ``.nc`` is the consolidated file, its store is
+    ``<out>.cases/`` beside it; otherwise ``out`` is a directory holding
+    ``sweep.nc`` and ``cases/``.
+    """
+    p = Path(out)
+    if p.suffix.lower() == ".nc":
+        return p, p.with_name(p.name + ".cases")
+    return p / "sweep.nc", p / "cases"
+
+
+class CaseStore:
+    """A directory of finished cases, tied to one config fingerprint.
+
+    Parameters
+    ----------
+    directory : path
+        Store directory (created with its parents if missing).
+    fingerprint : str
+        :meth:`dhfield.sweep.SweepConfig.fingerprint` of the sweep.
+    manifest : dict, optional
+        Written to ``manifest.json`` when the store is new.
+    """
+
+    def __init__(self, directory, fingerprint: str, manifest: dict | None = None):
+        self.directory = Path(directory)
+        self.fingerprint = fingerprint
+        mpath = self.directory / _MANIFEST
+        if mpath.is_file():
+            try:
+                old = json.loads(mpath.read_text()).get("fingerprint")
+            except (OSError, ValueError):
+                old = None
+            if old != fingerprint:
+                raise ValueError(f"out: the case store {str(self.directory)!r} belongs to a different sweep "
+                                 "config; choose another output path or delete that directory")
+            return
+        if self.directory.exists() and not self.directory.is_dir():
+            raise ValueError(f"out: {str(self.directory)!r} exists and is not a directory")
+        try:
+            self.directory.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ValueError(f"out: cannot create the case store {str(self.directory)!r} ({exc.strerror})") \
+                from None
+        from ..io import atomic_path
+
+        with atomic_path(mpath) as tmp:
+            tmp.write_text(json.dumps({"fingerprint": fingerprint, **(manifest or {})}, indent=1))
+
+    def path(self, key: str, failed: bool = False) -> Path:
+        """File of case ``key`` (``failed``: the record of a case that raised)."""
+        return self.directory / (f"{key}.failed.nc" if failed else f"{key}.nc")
+
+    def is_done(self, key: str) -> bool:
+        """True if case ``key`` finished (successfully or not converged) in an earlier run."""
+        return self.path(key).is_file()
+
+    def write(self, key: str, ds) -> Path:
+        """Write case ``key`` atomically; a ``status`` attribute "failed" goes to the failed file."""
+        from ..io import write_netcdf
+
+        failed = ds.attrs.get("status") == "failed"
+        path = write_netcdf(ds, self.path(key, failed))
+        if not failed:
+            self.path(key, True).unlink(missing_ok=True)
+        return path
+
+    def read(self, key: str):
+        """The Dataset of case ``key`` (its failed record if it has no finished file), or None."""
+        from ..io import read_netcdf
+
+        for p in (self.path(key), self.path(key, True)):
+            if p.is_file():
+                return read_netcdf(p)
+        return None
+
+    def keys(self) -> list[str]:
+        """Keys of the finished cases."""
+        return sorted(p.name[:-3] for p in self.directory.glob("*.nc") if not p.name.endswith(".failed.nc"))

@@ -1,0 +1,143 @@
+"""What a sweep computes at its grid points: pure numpy, no dask, no xarray.
+
+Each quantity is a public function of plain numbers or arrays:
+
+* :func:`pull_off_block` -- the analytic pull-off of one comparison model over a
+  block of (mu, beta0) points (vectorised; :func:`dhfield.compare.pull_off`).
+* :func:`bem_field_case` -- the forward BEM check of one DH state
+  (:func:`dhfield.fields.model_case`, :func:`dhfield.fields.annulus_identity`).
+* :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off, through
+  the solver registered in :data:`ADHESIVE_SOLVERS` (default
+  ``dhfield.bem.adhesive.adhesive_pull_off`` when that module exists).
+
+The BEM cases run inside dask workers: the half-space operator they use is
+built there on first use and cached per process by
+:func:`dhfield.bem.get_operator`; it is never pickled.
+"""
+from __future__ import annotations
+
+import importlib
+
+import numpy as np
+
+__all__ = ["PULL_OFF_FIELDS", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_SOLVERS", "ADHESIVE_MODEL",
+           "pull_off_block", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver"]
+
+#: Output fields of the analytic pull-off, in the order of the stacked block (names of
+#: :data:`dhfield.io.compare.COMPARISON_VARIABLES`, metadata from :mod:`dhfield.schema`).
+PULL_OFF_FIELDS = ("W_star", "a_star", "c_star", "v", "delta_star", "ellipticity", "sin_skew")
+#: Output fields of the forward BEM check of one state.
+BEM_FIELD_FIELDS = ("bem_displacement_error", "bem_gap_error", "bem_annulus_error", "bem_c_star", "bem_v")
+#: Output fields of the adhesive BEM ground truth at pull-off (nondimensional).
+ADHESIVE_FIELDS = ("W_star", "a_star", "c_star", "ellipticity", "delta_star", "iterations")
+#: Name of the adhesive ground truth on the ``model`` dimension of a sweep.
+ADHESIVE_MODEL = "bem-adhesive"
+#: name -> "module:function" of adhesive BEM solvers
+#: ``f(mu, beta0, n, *, law, control) -> result`` with attributes ``W_star``, ``a_star``,
+#: ``converged`` and, where available, ``c_star``, ``ellipticity``/``beta_ab``, ``delta_star``,
+#: ``iterations``, ``message``.
+ADHESIVE_SOLVERS = {"default": "dhfield.bem.adhesive:adhesive_pull_off"}
+
+
+def cohesive_laws() -> tuple:
+    """Names of the cohesive laws of the adhesive BEM solver."""
+    try:
+        from ..bem.laws import LAWS
+    except ImportError:  # pragma: no cover - laws module always ships
+        return ("dugdale",)
+    return tuple(LAWS)
+
+
+def pull_off_block(model: str, control: str, mu, beta0) -> np.ndarray:
+    """Analytic pull-off of one model on a block of points, stacked on a last axis.
+
+    Parameters
+    ----------
+    model : str
+        One of :data:`dhfield.compare.MODEL_NAMES`.
+    control : {"load", "displacement"}
+    mu, beta0 : array_like
+        Tabor parameter (Eq. 35) [-] and Hertz ellipticity [-], broadcast together.
+
+    Returns
+    -------
+    ndarray
+        Shape ``broadcast(mu, beta0).shape + (len(PULL_OFF_FIELDS),)``, fields in
+        the order of :data:`PULL_OFF_FIELDS` (NaN where the model has none).
+    """
+    from ..compare import pull_off
+
+    mu, beta0 = np.broadcast_arrays(np.asarray(mu, float), np.asarray(beta0, float))
+    shape = mu.shape
+    out = np.empty(shape + (len(PULL_OFF_FIELDS),))
+    if mu.size == 0:
+        return out
+    rec = pull_off(model, mu.ravel(), beta0.ravel(), control)
+    for i, k in enumerate(PULL_OFF_FIELDS):
+        out[..., i] = np.broadcast_to(np.asarray(rec[k], dtype=float), (mu.size,)).reshape(shape)
+    return out
+
+
+def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width=None,
+                   sampling="average") -> dict:
+    """Forward BEM check of the DH state at contact size ``a_star`` (one case).
+
+    The DH pressure of :func:`dhfield.model.solve_adhesive_axis` is put on an
+    ``n`` x ``n`` grid, its displacement computed with the DC-FFT operator and
+    compared with Eq. (26); the gap with Eq. (27); the annulus identity
+    h = (1 + v) h_Hertz is checked along every ray.
+
+    Returns
+    -------
+    dict
+        :data:`BEM_FIELD_FIELDS`: maximum displacement and gap errors over the
+        grid relative to max |omega| [-], worst relative annulus-identity error
+        [-], and the solved c* and v of the state.
+    """
+    from ..fields import annulus_identity, model_case
+
+    case = model_case(int(n), float(beta0), float(mu), float(a_star), half_width=half_width,
+                      sampling=sampling, threads=1)
+    prm = case.parameters
+    return {"bem_displacement_error": case.displacement_errors()["all"]["rel_max"],
+            "bem_gap_error": case.gap_errors()["all"]["rel_max"],
+            "bem_annulus_error": annulus_identity(case)["worst"],
+            "bem_c_star": float(prm["c_star"]), "bem_v": float(prm["scaling"])}
+
+
+def adhesive_solver(name: str = "default"):
+    """The adhesive BEM solver registered under ``name``; ValueError if it is not available."""
+    try:
+        target = ADHESIVE_SOLVERS[name]
+    except KeyError:
+        raise ValueError(f"adhesive solver must be one of {tuple(ADHESIVE_SOLVERS)}; got {name!r}") from None
+    mod, _, func = target.partition(":")
+    try:
+        return getattr(importlib.import_module(mod), func)
+    except (ImportError, AttributeError):
+        raise ValueError(f"quantity 'adhesive' needs the adhesive BEM solver {target}, which is not "
+                         "available in this installation") from None
+
+
+def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "load", *,
+                  solver: str = "default") -> dict:
+    """Adhesive BEM ground truth at pull-off of one (beta0, mu, n, law) case.
+
+    The whole load path runs in this one call (each step warm-starts from the
+    last).  Returns :data:`ADHESIVE_FIELDS` (NaN where the solver gives none)
+    plus ``converged`` (bool) and ``message`` (str).
+    """
+    res = adhesive_solver(solver)(float(mu), float(beta0), int(n), law=law, control=control)
+
+    def get(*names):
+        for nm in names:
+            if getattr(res, nm, None) is not None:
+                return float(getattr(res, nm))
+        return float("nan")
+
+    out = {"W_star": get("W_star"), "a_star": get("a_star"), "c_star": get("c_star"),
+           "ellipticity": get("ellipticity", "beta_ab"), "delta_star": get("delta_star"),
+           "iterations": get("iterations")}
+    out["converged"] = bool(getattr(res, "converged", True))
+    out["message"] = str(getattr(res, "message", "") or "")
+    return out
