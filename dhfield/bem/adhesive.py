@@ -1,0 +1,982 @@
+"""Self-consistent adhesive normal contact on the elastic half-space (DC-FFT BEM).
+
+This is the ground truth the analytic closures are checked against: a
+free-boundary (non-periodic) boundary-element solver for the adhesive normal
+contact of two elastic bodies with an arbitrary initial gap z(x, y), under
+displacement control, with a Dugdale (Maugis) or an exponential traction law
+(:mod:`dhfield.bem.laws`).
+
+Problem
+-------
+Unknowns are the repulsive (contact) pressure ``p >= 0`` and the adhesive
+stress ``s`` per cell.  With the DC-FFT operator K (:mod:`dhfield.bem.operator`)
+and the approach delta,
+
+.. math::
+
+    h = z - \\delta + K(p - s) \\ge 0, \\quad p \\ge 0, \\quad p\\,h = 0,
+    \\qquad s = \\sigma(h),
+
+the traction law acting over the whole surface (also inside the contact, where
+h = 0 and s = sigma0, as in Maugis' model).  The total pressure is ``p - s``
+and the load ``W = sum (p - s) dx dy``.
+
+Algorithm
+---------
+* **Inner problem** (convex): for a given adhesive stress s, the non-adhesive
+  contact with the modified gap ``g0 = z - delta - K s``, solved for the
+  pressure by the Polonsky-Keer constrained conjugate gradient (displacement
+  control: the gradient is the gap on the active set; cells that overlap are
+  added, cells that go tensile are released and conjugacy is reset; Polonsky &
+  Keer 1999).  The pressure is the unknown, so no inverse of the non-periodic
+  operator is needed.  An empty active set (no contact) is the linear case
+  ``h = g0``, returned at once.
+* **Outer problem**: a fixed point on the adhesive stress, accelerated by
+  Anderson mixing (type II, memory 6), warm-started from the previous state
+  of a path.  For the Dugdale law the unknown is the cell fraction chi in the
+  zone h < h0, so ``s = sigma0 chi``.
+* **Sub-cell zone edge** (Dugdale): a cell-wise law pins the zone edge to the
+  cell boundaries (lattice trapping: jagged load curves, pull-off biased
+  towards stronger adhesion).  Here chi of a cell is the exact area fraction
+  of the cell where the *linearly interpolated* gap is below h0
+  (:func:`dhfield.bem.laws.cell_fraction_below`, with the central-difference
+  gradient of h), so the edge moves continuously through the cells and the
+  fixed-point map is continuous.  Contact cells have chi = 1.
+* **Symmetry**: when z is even in x and y (and nx, ny are even) the solver
+  works on the quadrant ``x > 0, y > 0`` with the operator's symmetry mode
+  (a quarter of the unknowns, the same discrete sum); the returned state is
+  always on the full grid.
+
+Path and pull-off
+-----------------
+:func:`unloading_path` loads under displacement control to a given approach
+and unloads with warm starts until contact is lost, then re-solves the
+bracket of the pull-off with finer steps (``refine_levels`` times).  The
+load-control pull-off is the minimum of the unloading load (refined by
+:func:`dhfield.pull_off_search.refine_sampled_minimum`); the
+displacement-control pull-off is the last contact state before the jump.
+:func:`adhesive_pull_off` runs it in the paper's nondimensional units.
+
+Units
+-----
+Any consistent units: lengths (z, delta, grid cells), stresses (E*, the law's
+sigma0) and forces (load = stress x area).  :func:`adhesive_pull_off` uses the
+paper's (R = E* = Delta gamma = 1, Eqs. 32-35).
+
+References
+----------
+.. [1] I. A. Polonsky, L. M. Keer (1999) A numerical method for solving rough
+   contact problems based on the multi-level multi-summation and conjugate
+   gradient techniques. Wear 231:206-219. doi:10.1016/S0043-1648(99)00113-1
+.. [2] D. Maugis (1992) Adhesion of spheres: the JKR-DMT transition using a
+   Dugdale model. J. Colloid Interface Sci. 150:243-269.
+   doi:10.1016/0021-9797(92)90288-C
+.. [3] H. F. Walker, P. Ni (2011) Anderson acceleration for fixed-point
+   iterations. SIAM J. Numer. Anal. 49:1715-1735. doi:10.1137/10078356X
+.. [4] N. H. M. Zini et al. (2018) Tribol. Lett. 66:30. doi:10.1007/s11249-017-0976-8
+"""
+from __future__ import annotations
+
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validation import check_ellipticity, check_finite, check_positive
+from .laws import DugdaleLaw, ExponentialLaw, cell_fraction_below, law_from_name
+from .operator import Grid, get_operator, quadrant, unfold_quadrant
+from .state import ContactState
+
+__all__ = ["solve_adhesive", "unloading_path", "adhesive_pull_off", "richardson_extrapolation",
+           "nondimensional_problem", "UnloadingPath", "AdhesivePullOff", "NondimensionalProblem",
+           "DEFAULT_TOL", "DEFAULT_MAX_ITER", "DOMAIN_MARGIN", "DEFAULT_STEPS"]
+
+#: Default solver tolerance: complementarity error of the contact problem relative to
+#: the law's range (or |delta| without adhesion), and largest change of the zone
+#: fraction between outer iterations [-].
+DEFAULT_TOL = 1e-6
+#: Default cap on the inner (conjugate-gradient) iterations of one state.
+DEFAULT_MAX_ITER = 20000
+#: Cap on outer (zone) iterations of one state.
+MAX_OUTER = 300
+#: Inner tolerance per outer iteration = INNER_FACTOR x the last outer residual.
+INNER_FACTOR = 0.1
+#: Anderson memory (number of previous iterates mixed).
+ANDERSON_MEMORY = 6
+#: Evenness tolerance for the automatic symmetry mode (relative to max |z|).
+_EVEN_RTOL = 1e-12
+
+
+# ============================================================================ helpers
+def _check_law(law):
+    if law is None or isinstance(law, (DugdaleLaw, ExponentialLaw)):
+        return law
+    raise ValueError(f"law must be a DugdaleLaw, an ExponentialLaw or None (no adhesion); got {law!r}")
+
+
+def _is_even_even(z):
+    nx, ny = z.shape
+    if nx % 2 or ny % 2:
+        return False
+    tol = _EVEN_RTOL * max(float(np.max(np.abs(z))), 1e-300)
+    return bool(np.max(np.abs(z - z[::-1, :])) <= tol and np.max(np.abs(z - z[:, ::-1])) <= tol)
+
+
+class _Problem:
+    """Working arrays of one (grid, z, law) problem: full grid or even-even quadrant."""
+
+    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus):
+        if not isinstance(grid, Grid):
+            raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
+        z = check_finite("initial_gap", initial_gap, "initial gap z(x, y), length")
+        if z.shape != grid.shape:
+            raise ValueError(f"initial_gap must have the grid shape {grid.shape}; got {z.shape}")
+        self.law = _check_law(law)
+        even = _is_even_even(z)
+        if symmetric is None:
+            symmetric = even
+        elif symmetric and not even:
+            raise ValueError("symmetric=True needs even nx, ny and an initial_gap even in x and in y")
+        self.symmetric = bool(symmetric)
+        self.grid = grid
+        self.op = get_operator(grid, reduced_modulus, symmetric=self.symmetric, threads=threads)
+        self.z = quadrant(z) if self.symmetric else np.ascontiguousarray(z)
+        self.z_full = z
+        # self-influence K00 (centre of a loaded cell), for the cold-start pressure
+        e = float(reduced_modulus)
+        dx, dy = grid.dx, grid.dy
+        d = math.hypot(dx, dy)
+        self.k0 = (dx * math.log((dy + d) / (d - dy)) + dy * math.log((dx + d) / (d - dx))) / (math.pi * e)
+        self.weight = (4.0 if self.symmetric else 1.0) * grid.dx * grid.dy
+
+    def to_full(self, q):
+        return unfold_quadrant(q) if self.symmetric else q
+
+    def to_work(self, f):
+        return quadrant(f) if self.symmetric else np.ascontiguousarray(f)
+
+    def gradient_spreads(self, h):
+        """|dh/dx| dx and |dh/dy| dy per cell (central differences; mirrored at symmetry axes)."""
+        if self.symmetric:
+            hp = np.pad(h, ((1, 0), (1, 0)), mode="symmetric")
+            hp = np.pad(hp, ((0, 1), (0, 1)), mode="edge")
+            sx = 0.5 * np.abs(hp[2:, 1:-1] - hp[:-2, 1:-1])
+            sy = 0.5 * np.abs(hp[1:-1, 2:] - hp[1:-1, :-2])
+            # one-sided at the outer edge (the padded value repeats the edge)
+            sx[-1] *= 2.0
+            sy[:, -1] *= 2.0
+            return sx, sy
+        gx, gy = np.gradient(h)
+        return np.abs(gx), np.abs(gy)
+
+    def stress_from_gap(self, h, contact):
+        """Adhesive stress per cell for the gap h (the fixed-point map) [stress]."""
+        law = self.law
+        if isinstance(law, DugdaleLaw):
+            sx, sy = self.gradient_spreads(h)
+            chi = cell_fraction_below(law.range - h, sx, sy)
+            chi[contact] = 1.0
+            return law.max_stress * chi
+        return law.stress(np.maximum(h, 0.0))
+
+    def zone_fraction(self, h, contact):
+        """Fraction of each cell in contact U zone (h below the law's zone gap)."""
+        sx, sy = self.gradient_spreads(h)
+        chi = cell_fraction_below(self.law.zone_gap - h, sx, sy)
+        chi[contact] = 1.0
+        return chi
+
+
+def _complementarity(h, active):
+    err_a = float(np.max(np.abs(h[active]))) if np.any(active) else 0.0
+    neg = -h[~active]
+    err_i = float(np.max(neg)) if neg.size else 0.0
+    return max(err_a, err_i, 0.0)
+
+
+def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
+    """Polonsky-Keer CG for min 1/2 p.Kp + g0.p, p >= 0 (displacement control).
+
+    Returns (p, h, iterations, error) with error the complementarity error / scale.
+    """
+    p = np.array(p, dtype=float, copy=True)
+    p[p < 0] = 0.0
+    if np.any(p > 0):
+        h = g0 + op(p)
+    else:
+        h = g0.copy()
+        neg = h < 0
+        if not np.any(neg):
+            return p, h, 0, 0.0          # empty active set: linear, done
+        p[neg] = -h[neg] / k0            # cold start: local (Jacobi) estimate
+        h = g0 + op(p)
+    t = np.zeros_like(p)
+    g_old = 1.0
+    conj = False
+    it = 0
+    since_full = 0
+    err = _complementarity(h, p > 0) / scale
+    while err > tol and it < max_iter:
+        it += 1
+        active = p > 0
+        r = np.where(active, h, 0.0)
+        g = float(np.vdot(r, r))
+        if conj and g_old > 0.0:
+            t *= g / g_old
+            t += r
+        else:
+            t[...] = r
+        t[~active] = 0.0
+        g_old = g
+        kt = op(t)
+        den = float(np.vdot(kt[active], t[active]))
+        if not den > 0.0:
+            break
+        tau = float(np.vdot(h[active], t[active])) / den
+        p -= tau * t
+        released = p < 0.0
+        p[released] = 0.0
+        overlap = (~active) & (h < 0.0)
+        if np.any(overlap):
+            p[overlap] -= tau * h[overlap]
+            conj = False
+        else:
+            conj = True
+        since_full += 1
+        if np.any(released) or np.any(overlap) or since_full >= 25:
+            h = g0 + op(p)
+            since_full = 0
+        else:
+            h -= tau * kt
+        err = _complementarity(h, p > 0) / scale
+    if since_full:
+        h = g0 + op(p)
+        err = _complementarity(h, p > 0) / scale
+    return p, h, it, err
+
+
+class _Anderson:
+    """Anderson mixing (type II) for x = F(x); residual f = F(x) - x."""
+
+    def __init__(self, memory=ANDERSON_MEMORY, mixing=1.0):
+        self.m = memory
+        self.beta = mixing
+        self.dx = []
+        self.df = []
+        self.x_prev = None
+        self.f_prev = None
+
+    def reset(self):
+        self.dx.clear()
+        self.df.clear()
+        self.x_prev = self.f_prev = None
+
+    def step(self, x, f):
+        xf, ff = x.ravel(), f.ravel()
+        if self.x_prev is not None:
+            self.dx.append(xf - self.x_prev)
+            self.df.append(ff - self.f_prev)
+            if len(self.dx) > self.m:
+                self.dx.pop(0)
+                self.df.pop(0)
+        self.x_prev, self.f_prev = xf.copy(), ff.copy()
+        new = xf + self.beta * ff
+        if self.df:
+            dfm = np.stack(self.df, axis=1)
+            dxm = np.stack(self.dx, axis=1)
+            # small normal equations (m x m), Tikhonov-regularised relative to their scale
+            gram = dfm.T @ dfm
+            reg = 1e-12 * max(float(np.trace(gram)), 1e-300)
+            try:
+                gamma = np.linalg.solve(gram + reg * np.eye(gram.shape[0]), dfm.T @ ff)
+            except np.linalg.LinAlgError:
+                self.reset()
+                return (xf + self.beta * ff).reshape(x.shape)
+            new = new - (dxm + self.beta * dfm) @ gamma
+        return new.reshape(x.shape)
+
+
+# ============================================================================ solver
+def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_TOL,
+                   max_iter=DEFAULT_MAX_ITER, symmetric=None, threads=None,
+                   reduced_modulus=1.0) -> ContactState:
+    """Adhesive normal contact at a given approach (displacement control), by BEM.
+
+    Parameters
+    ----------
+    initial_gap : array_like, shape (nx, ny)
+        Initial gap z(x, y) >= its minimum at the cell centres of ``grid``
+        (e.g. x^2/(2R') + y^2/(2R'') for the crossed cylinders, Eq. 2) [length].
+    grid : dhfield.bem.Grid
+        Cell grid; the domain must contain the whole cohesive zone (the load is
+        the integral over the grid; nothing acts outside it).
+    approach : float
+        Approach of distant points delta [length]; ``h = z - delta + omega``.
+    law : DugdaleLaw, ExponentialLaw or None
+        Traction-separation law (:mod:`dhfield.bem.laws`); None for non-adhesive
+        (Hertz-type) contact.
+    guess : ContactState, optional
+        Warm start (a state on the same grid, e.g. the previous state of a path).
+        Along a path always warm-start: the adhesive states are multistable.
+    symmetric : bool, optional
+        Solve on the even-even quadrant (default: when z is even in x and y and
+        nx, ny are even).
+    threads : int, optional
+        FFTW threads.
+    reduced_modulus : float, default 1
+        E* [stress].
+
+    Returns
+    -------
+    ContactState
+        On the full grid, with ``converged``, ``iterations``, ``residual``.  An
+        unconverged state is returned flagged, never silently.
+
+    Other Parameters
+    ----------------
+    tol : float
+        Tolerance on the complementarity error (relative to the law's range,
+        or to |delta| and max z without adhesion) and on the largest change of
+        the zone fraction (Dugdale) or of the stress relative to sigma0
+        (exponential) between outer iterations.
+    max_iter : int
+        Cap on the total inner conjugate-gradient iterations.
+
+    Notes
+    -----
+    See the module docstring for the algorithm: Polonsky-Keer CG for the
+    repulsive pressure inside an Anderson-accelerated fixed point on the
+    adhesive stress, with the sub-cell Dugdale zone edge.
+    """
+    prob = _Problem(initial_gap, grid, law, symmetric, threads, reduced_modulus)
+    delta = float(check_finite("approach", approach, "approach of distant points, length"))
+    tol = float(check_positive("tol", tol, "solver tolerance, dimensionless"))
+    if int(max_iter) < 1:
+        raise ValueError(f"max_iter must be an integer >= 1; got {max_iter!r}")
+    if guess is not None and not (isinstance(guess, ContactState) and guess.grid == grid):
+        raise ValueError("guess must be a ContactState on the same grid")
+    return _solve(prob, delta, guess, tol, int(max_iter))
+
+
+def _solve(prob, delta, guess, tol, max_iter):
+    law = prob.law
+    op = prob.op
+    zd = prob.z - delta
+    if law is None:
+        scale = max(abs(delta), float(np.max(np.abs(prob.z))) * 1e-3, 1e-300)
+    else:
+        scale = law.range
+    inner_tol = 0.1 * tol
+    if guess is not None and guess.repulsive_pressure is not None:
+        p = prob.to_work(guess.repulsive_pressure).copy()
+    else:
+        p = np.zeros_like(prob.z)
+    total_it = 0
+    if law is None:
+        p, h, it, err = _polonsky_keer(op, zd, p, scale, inner_tol, max_iter, prob.k0)
+        total_it += it
+        s = np.zeros_like(p)
+        converged = err <= tol
+        return _state(prob, delta, p, s, h, total_it, err, converged, 1)
+    sigma0 = law.max_stress
+    # initial adhesive stress
+    if guess is not None:
+        if isinstance(law, DugdaleLaw):
+            s = sigma0 * prob.to_work(guess.adhesive_zone)
+        else:
+            s = law.stress(np.maximum(prob.to_work(guess.gap), 0.0))
+    else:
+        h_rigid = zd.copy()
+        s = prob.stress_from_gap(np.maximum(h_rigid, 0.0), h_rigid <= 0)
+    acc = _Anderson()
+    res = np.inf
+    err = np.inf
+    outer = 0
+    h = None
+    best = None
+    while outer < MAX_OUTER and total_it < max_iter:
+        outer += 1
+        g0 = zd - op(s)
+        # inexact inner solves: tighten with the outer residual (Anderson tolerates it)
+        itol = 1e-3 if not np.isfinite(res) else min(max(INNER_FACTOR * res, inner_tol), 1e-2)
+        p, h, it, err = _polonsky_keer(op, g0, p, scale, itol, max_iter - total_it, prob.k0)
+        total_it += it
+        f = prob.stress_from_gap(h, p > 0) - s
+        res = float(np.max(np.abs(f))) / sigma0
+        if best is None or res < best[0]:
+            best = (res, s.copy(), p.copy(), h.copy(), err)
+        if res <= tol and err <= tol:
+            if err <= inner_tol or itol <= inner_tol:
+                break
+        s = np.clip(acc.step(s, f), 0.0, sigma0)
+        if outer % 40 == 0:
+            acc.reset()
+    else:
+        # out of iterations: report the best iterate, flagged
+        res, s, p, h, err = best
+    converged = res <= tol and err <= tol
+    return _state(prob, delta, p, s, h, total_it, max(res, err), converged, outer)
+
+
+def _state(prob, delta, p, s, h, iterations, residual, converged, outer):
+    contact_w = p > 0
+    law = prob.law
+    if law is None:
+        coh = np.zeros_like(p)
+    else:
+        coh = prob.zone_fraction(h, contact_w)
+        coh[contact_w] = 0.0
+    load = float(np.sum(p - s)) * prob.weight
+    full = prob.to_full
+    return ContactState(
+        grid=prob.grid, pressure=full(p - s), gap=full(h), approach=float(delta), load=load,
+        contact=full(contact_w), cohesive=full(coh), law=law, converged=bool(converged),
+        iterations=int(iterations), residual=float(residual), outer_iterations=int(outer),
+        repulsive_pressure=full(p))
+
+
+# ============================================================================ path
+@dataclass(frozen=True, eq=False)
+class UnloadingPath:
+    """A displacement-controlled loading-unloading path and its pull-off.
+
+    Attributes
+    ----------
+    approach, load : ndarray
+        Approach delta [length] and load W [force] of every solved state, in
+        solve order (loading, unloading, then the refinements of the pull-off
+        bracket).
+    a, b, c, d : ndarray
+        Second-moment semi-axes of contact and of contact U cohesive zone
+        [length] per state.
+    contact_area : ndarray
+        Contact area per state [length^2].
+    phase : ndarray of str
+        'loading', 'unloading' or 'refine' per state.
+    converged : ndarray of bool
+    iterations : ndarray of int
+        Inner CG iterations per state.
+    outer_iterations : ndarray of int
+    residual : ndarray of float
+    control : str
+        'load' or 'displacement': which pull-off is reported.
+    pull_off_load, pull_off_approach : float
+        Load-control: the minimum of the unloading load, refined by a parabola
+        through the three finest samples around it.  Displacement control: the
+        load and approach of the last contact state before contact is lost
+        (the jump), located to the finest step.
+    pull_off_state : ContactState
+        The solved state nearest to the pull-off (its semi-axes are reported).
+    failures : tuple of dict
+        Every state that did not converge: approach, residual, iterations,
+        phase.  Unconverged states are kept in the arrays (flagged) and
+        excluded from the pull-off search.
+    states : tuple of ContactState
+        All states when requested (``keep_states=True``), else empty.
+    """
+
+    approach: np.ndarray
+    load: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
+    d: np.ndarray
+    contact_area: np.ndarray
+    phase: np.ndarray
+    converged: np.ndarray
+    iterations: np.ndarray
+    outer_iterations: np.ndarray
+    residual: np.ndarray
+    control: str
+    pull_off_load: float
+    pull_off_approach: float
+    pull_off_state: ContactState
+    failures: tuple = ()
+    states: tuple = field(default=(), repr=False)
+    elapsed: float = 0.0
+
+    @property
+    def n_steps(self) -> int:
+        """Number of solved states."""
+        return int(self.approach.size)
+
+    @property
+    def all_converged(self) -> bool:
+        return bool(np.all(self.converged))
+
+    @property
+    def unloading_order(self) -> np.ndarray:
+        """Indices of the unloading and refinement states by decreasing approach."""
+        idx = np.nonzero(self.phase != "loading")[0]
+        return idx[np.argsort(-self.approach[idx], kind="stable")]
+
+
+class _Progress:
+    def __init__(self, enabled, label):
+        if enabled is None:
+            enabled = bool(getattr(sys.stderr, "isatty", lambda: False)())
+        self.enabled = enabled
+        self.label = label
+        self.t0 = time.perf_counter()
+
+    def update(self, k, st, phase):
+        if self.enabled:
+            el = time.perf_counter() - self.t0
+            sys.stderr.write(f"\r{self.label} {phase:9s} state {k:3d}  delta={st.approach:+.5f}  "
+                             f"W={st.load:+.5f}  it={st.iterations:5d}  {el:6.1f}s ")
+            sys.stderr.flush()
+
+    def close(self):
+        if self.enabled:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, control="load",
+                   n_loading=3, refine_levels=2, refine_factor=4, max_steps=200,
+                   tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, symmetric=None, threads=None,
+                   reduced_modulus=1.0, keep_states=False, progress=None) -> UnloadingPath:
+    """Displacement-controlled loading and unloading path to pull-off, with warm starts.
+
+    Parameters
+    ----------
+    initial_gap : array_like, shape (nx, ny)
+        Initial gap z(x, y) [length].
+    grid : Grid
+        Cell grid; must contain the cohesive zone of every state.
+    law : DugdaleLaw or ExponentialLaw
+        Traction law.
+    approach_max : float
+        Largest approach, reached at the end of loading [length].
+    approach_step : float
+        Unloading step in approach (> 0) [length]; the pull-off bracket is then
+        re-solved ``refine_levels`` times with steps ``refine_factor`` times
+        smaller.
+    control : {'load', 'displacement'}
+        Which pull-off to report (both come from the same path).
+    n_loading : int
+        Loading steps from approach 0 (first touch) to ``approach_max``.
+    max_steps : int
+        Cap on unloading states.
+
+    Returns
+    -------
+    UnloadingPath
+
+    Other Parameters
+    ----------------
+    tol, max_iter, symmetric, threads, reduced_modulus
+        As in :func:`solve_adhesive`.
+    keep_states : bool
+        Keep every ContactState (memory: three full-grid arrays per state).
+    progress : bool, optional
+        Progress line on stderr (default: when stderr is a terminal).
+
+    Notes
+    -----
+    Loading runs from delta = 0 to ``approach_max`` in ``n_loading`` steps,
+    unloading by ``approach_step`` until the first state without contact.
+    Every state is warm-started from the previous one (never a cold start
+    part-way: the states are multistable).  The bracket of the pull-off (the
+    states on either side of the discrete load minimum, or of the contact loss
+    for displacement control) is re-solved from its upper end with finer steps.
+    The load minimum is refined by
+    :func:`dhfield.pull_off_search.refine_sampled_minimum` on the finest
+    samples.  Under displacement control the contact branch is stable until
+    the jump, so no state is lost by stepping past it.
+    """
+    from ..pull_off_search import refine_sampled_minimum
+
+    if control not in ("load", "displacement"):
+        raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
+    if law is None:
+        raise ValueError("law must be a DugdaleLaw or an ExponentialLaw for an unloading path; got None")
+    prob = _Problem(initial_gap, grid, law, symmetric, threads, reduced_modulus)
+    dmax = float(check_finite("approach_max", approach_max, "length"))
+    step = float(check_positive("approach_step", approach_step, "length"))
+    tol = float(check_positive("tol", tol, "solver tolerance, dimensionless"))
+    for name, v, lo in (("n_loading", n_loading, 1), ("refine_levels", refine_levels, 0),
+                        ("refine_factor", refine_factor, 2), ("max_steps", max_steps, 2)):
+        if int(v) != v or int(v) < lo:
+            raise ValueError(f"{name} must be an integer >= {lo}; got {v!r}")
+    t0 = time.perf_counter()
+    prog = _Progress(progress, "path")
+    records = []          # (state summary dict, phase)
+    kept = []
+    failures = []
+    by_index = {}
+
+    def run(delta, guess, phase):
+        st = _solve(prob, float(delta), guess, tol, int(max_iter))
+        rec = st.summary()
+        rec["phase"] = phase
+        rec["in_contact"] = st.in_contact
+        records.append(rec)
+        k = len(records) - 1
+        by_index[k] = st
+        if not st.converged:
+            failures.append({"approach": float(delta), "residual": float(st.residual),
+                             "iterations": int(st.iterations), "phase": phase})
+        prog.update(k, st, phase)
+        return k, st
+
+    # loading
+    st = None
+    for delta in np.linspace(0.0, dmax, int(n_loading) + 1)[1:] if dmax > 0 else [dmax]:
+        _, st = run(delta, st, "loading")
+    # unloading until contact is lost
+    unload = []
+    delta = dmax
+    k, st = run(delta, st, "unloading")
+    unload.append(k)
+    while st.in_contact and len(unload) < max_steps:
+        delta -= step
+        k, st = run(delta, st, "unloading")
+        unload.append(k)
+
+    def bracket(indices):
+        """Indices (upper, lower) in approach of the pull-off bracket among ``indices``."""
+        ds = np.array([records[i]["approach"] for i in indices])
+        order = np.argsort(-ds, kind="stable")
+        idx = [indices[j] for j in order]
+        contact = [records[i]["in_contact"] and records[i]["converged"] for i in idx]
+        last = max((j for j, c in enumerate(contact) if c), default=None)
+        if last is None:
+            return None
+        if control == "displacement":
+            return idx[last], (idx[last + 1] if last + 1 < len(idx) else None), idx
+        w = np.array([records[i]["load"] if (records[i]["converged"] and records[i]["in_contact"])
+                      else np.nan for i in idx])
+        sm = refine_sampled_minimum(np.array([records[i]["approach"] for i in idx]), w, first=False)
+        j = sm.index
+        up = idx[max(j - 1, 0)]
+        lo = idx[j + 1] if j + 1 < len(idx) else None
+        return up, lo, idx
+
+    def prune(keep):
+        if not keep_states:
+            for i in list(by_index):
+                if i not in keep:
+                    del by_index[i]
+
+    current = list(unload)
+    prune(set(current))
+    h = step
+    for _level in range(int(refine_levels)):
+        br = bracket(current)
+        if br is None or br[1] is None:
+            break
+        up, lo, _ = br
+        d_up, d_lo = records[up]["approach"], records[lo]["approach"]
+        h = h / int(refine_factor)
+        n_sub = max(2, int(round((d_up - d_lo) / h)))
+        sub = [up]
+        st = by_index[up]
+        for dd in np.linspace(d_up, d_lo, n_sub + 1)[1:-1]:
+            k, st = run(dd, st, "refine")
+            sub.append(k)
+        sub.append(lo)
+        current = sub
+        prune(set(current))
+    prog.close()
+    # pull-off
+    br = bracket(current)
+    if br is None:
+        raise RuntimeError("unloading path has no converged contact state: raise approach_max or check the grid")
+    up, lo, idx = br
+    if control == "displacement":
+        k_po = up
+        w_po = records[k_po]["load"]
+        d_po = records[k_po]["approach"]
+    else:
+        x = np.array([records[i]["approach"] for i in idx])
+        w = np.array([records[i]["load"] if (records[i]["converged"] and records[i]["in_contact"])
+                      else np.nan for i in idx])
+        sm = refine_sampled_minimum(x, w, first=False)
+        k_po = idx[sm.index]
+        w_po, d_po = sm.y, sm.x
+    arr = {key: np.array([r[key] for r in records]) for key in
+           ("approach", "load", "a", "b", "c", "d", "contact_area", "phase", "converged", "iterations",
+            "outer_iterations", "residual")}
+    states = tuple(by_index[i] for i in range(len(records))) if keep_states else ()
+    return UnloadingPath(arr["approach"], arr["load"], arr["a"], arr["b"], arr["c"], arr["d"],
+                         arr["contact_area"], arr["phase"], arr["converged"].astype(bool),
+                         arr["iterations"].astype(int), arr["outer_iterations"].astype(int),
+                         arr["residual"], control, float(w_po), float(d_po), by_index[k_po],
+                         tuple(failures), states, time.perf_counter() - t0)
+
+
+# ============================================================================ paper units
+#: Half-width of the domain per expected semi-axis of the largest cohesive zone of
+#: the path (the zone must lie inside the grid; DC-FFT needs no margin beyond it).
+DOMAIN_MARGIN = 1.2
+#: Default number of unloading steps from the start of unloading to the expected jump.
+DEFAULT_STEPS = 20
+
+
+@dataclass(frozen=True)
+class NondimensionalProblem:
+    """The crossed-cylinder problem in the paper's units (R = E* = Delta gamma = 1).
+
+    Attributes
+    ----------
+    mu, beta0 : float
+        Tabor parameter (Eq. 35) and initial ellipticity (Hertz b/a) [-].
+    grid : Grid
+        n x n cells over ``[-half_width_x, half_width_x] x [-half_width_y, half_width_y]``
+        (rectangular cells when beta0 < 1: as many cells across the minor axis
+        as across the major one).
+    initial_gap : ndarray
+        z = x^2/(2R') + y^2/(2R''), Eq. (2), with R' = sqrt(rho), R'' = 1/sqrt(rho),
+        rho = R'/R'' of beta0 (so R = sqrt(R'R'') = 1) [c_r].
+    law : DugdaleLaw or ExponentialLaw
+        sigma0 = mu, range 1/mu (Delta gamma = 1).
+    sin_skew : float
+        sin(theta_skew) of beta0, the factor of Eq. (34).
+    approach_max, approach_step : float
+        Start of unloading and unloading step [c_r^2/R], from the analytic DH
+        model (:func:`dhfield.model.pull_off`, :func:`dhfield.model.load_curve`).
+    """
+
+    mu: float
+    beta0: float
+    grid: Grid
+    initial_gap: np.ndarray = field(repr=False)
+    law: DugdaleLaw | ExponentialLaw
+    sin_skew: float
+    approach_max: float
+    approach_step: float
+
+
+def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS,
+                           margin=DOMAIN_MARGIN) -> NondimensionalProblem:
+    """Grid, initial gap, law and path range of the paper's problem at (mu, beta0).
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-]; sigma0 = mu in these units.
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    n : int
+        Cells along each axis (even, >= 8) [-].
+    law : {'dugdale', 'exponential'}
+        Traction law with sigma0 = mu and Delta gamma = 1.
+    n_steps : int
+        Unloading steps from the start of unloading to the expected jump.
+    margin : float
+        Domain half-width per expected zone semi-axis.
+
+    Notes
+    -----
+    The analytic DH model gives the expected pull-off (a_po, delta_po).  Unloading
+    starts at a* = 1.2 a_po + 0.3 (a state well on the stable branch), whose DH
+    approach is ``approach_max`` and whose adhesive semi-axis c* sets the domain:
+    half-widths ``margin c*`` along x and ``margin c* beta0^(3/4)`` along y (the
+    adhesive ellipse is rounder than the contact ellipse).  The step takes the
+    path in ``n_steps`` from ``approach_max`` to 20 % beyond the analytic
+    displacement-control pull-off.
+    """
+    from .. import model
+    from ..geometry import radius_ratio, sin_skew_angle
+
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    if int(n) != n or int(n) < 8 or int(n) % 2:
+        raise ValueError(f"n must be an even integer >= 8 (cells per axis); got {n!r}")
+    n = int(n)
+    if int(n_steps) != n_steps or n_steps < 4:
+        raise ValueError(f"n_steps must be an integer >= 4 (unloading steps); got {n_steps!r}")
+    margin = float(check_positive("margin", margin, "domain half-width per zone semi-axis"))
+    law_obj = law_from_name(law, mu, 1.0) if isinstance(law, str) else _check_law(law)
+    if law_obj is None:
+        raise ValueError("law must be 'dugdale' or 'exponential'; got None")
+    rho = float(radius_ratio(beta0))
+    r_major, r_minor = math.sqrt(rho), 1.0 / math.sqrt(rho)
+    po = model.pull_off(mu, beta0)
+    pod = model.pull_off(mu, beta0, control="displacement")
+    a_start = 1.2 * float(po.a_star) + 0.3
+    cur = model.load_curve(mu, beta0, [a_start])
+    c_start = float(cur.c_star[0])
+    d_max = float(cur.delta_star[0])
+    d_end = float(pod.delta_star) - 0.2 * (d_max - float(pod.delta_star))
+    lx = margin * c_start
+    ly = margin * c_start * beta0 ** 0.75
+    grid = Grid.centered(n, lx, half_width_y=ly)
+    x, y = grid.mesh()
+    z = x * x / (2.0 * r_major) + y * y / (2.0 * r_minor)  # Eq. (2)
+    return NondimensionalProblem(mu, beta0, grid, z, law_obj, float(sin_skew_angle(beta0)), d_max,
+                                 (d_max - d_end) / int(n_steps))
+
+
+@dataclass(frozen=True)
+class AdhesivePullOff:
+    """Pull-off of the BEM adhesive contact in the paper's units (Eqs. 32-35).
+
+    Attributes
+    ----------
+    mu, beta0 : float
+        Tabor parameter (Eq. 35) and initial ellipticity [-].
+    n : int
+        Cells per axis.
+    law, control : str
+        Traction law name; 'load' or 'displacement'.
+    W_star : float
+        W sin(theta_skew(beta0))/(2 pi R Delta gamma), Eq. (34) (negative: tensile).
+    a_star, b_star, c_star, d_star : float
+        Second-moment semi-axes of the contact and of contact U cohesive zone
+        at pull-off [c_r].
+    beta_ab, beta_cd : float
+        b/a and d/c at pull-off (NaN without contact).
+    delta_star : float
+        Approach at pull-off [c_r^2/R].
+    converged : bool
+        True when every state of the path converged.
+    n_steps : int
+        Solved states on the path.
+    iterations : int
+        Inner CG iterations over the whole path.
+    residual : float
+        Largest residual over the path.
+    failures : tuple of dict
+        Unconverged states (approach, residual, iterations, phase).
+    half_width_x, half_width_y : float
+        Domain half-widths [c_r].
+    elapsed : float
+        Wall time of the path [s].
+    path : UnloadingPath
+        The whole path.
+    """
+
+    mu: float
+    beta0: float
+    n: int
+    law: str
+    control: str
+    W_star: float
+    a_star: float
+    b_star: float
+    c_star: float
+    d_star: float
+    beta_ab: float
+    beta_cd: float
+    delta_star: float
+    converged: bool
+    n_steps: int
+    iterations: int
+    residual: float
+    failures: tuple
+    half_width_x: float
+    half_width_y: float
+    elapsed: float
+    path: UnloadingPath = field(repr=False, compare=False)
+
+    def as_dict(self) -> dict:
+        """JSON-ready scalars (the path and failures summarised)."""
+        out = {k: getattr(self, k) for k in (
+            "mu", "beta0", "n", "law", "control", "W_star", "a_star", "b_star", "c_star", "d_star",
+            "beta_ab", "beta_cd", "delta_star", "converged", "n_steps", "iterations", "residual",
+            "half_width_x", "half_width_y", "elapsed")}
+        out["failures"] = [dict(f) for f in self.failures]
+        out["iterations_per_step"] = self.iterations / max(self.n_steps, 1)
+        return out
+
+
+def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
+                      refine_levels=2, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER,
+                      margin=DOMAIN_MARGIN, threads=None, keep_states=False,
+                      progress=None) -> AdhesivePullOff:
+    """BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
+    beta0 : float
+        Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
+    n : int
+        Cells per axis (even) [-].
+    law : {'dugdale', 'exponential'}
+        Traction law (:mod:`dhfield.bem.laws`).
+    control : {'load', 'displacement'}
+        Load control: the minimum of the unloading load.  Displacement control:
+        the last contact state before the jump.
+
+    Returns
+    -------
+    AdhesivePullOff
+        W* in the normalisation of Eq. (34) with sin(theta_skew) of beta0, like
+        every other model of :mod:`dhfield.compare`; semi-axes in c_r.
+
+    Other Parameters
+    ----------------
+    n_steps, refine_levels, tol, max_iter, threads, keep_states, progress
+        See :func:`nondimensional_problem`, :func:`unloading_path` and
+        :func:`solve_adhesive`.
+    margin : float
+        Domain half-width per expected zone semi-axis.
+
+    Notes
+    -----
+    With R = E* = Delta gamma = 1 (Eqs. 32-35): the initial gap is Eq. (2) with
+    R' R'' = 1, the law has sigma0 = mu and range 1/mu, and
+
+    .. math:: W^* = \\frac{W \\sin\\theta_{skew}}{2\\pi R\\Delta\\gamma}
+
+    (Eq. 34).  The domain and the path come from :func:`nondimensional_problem`.
+    """
+    prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
+    path = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
+                          control=control, refine_levels=refine_levels, tol=tol, max_iter=max_iter,
+                          threads=threads, keep_states=keep_states, progress=progress)
+    st = path.pull_off_state
+    a, b = st.contact_semi_axes()
+    c, d = st.cohesive_semi_axes()
+    w_star = path.pull_off_load * prob.sin_skew / (2.0 * math.pi)  # Eq. (34)
+    return AdhesivePullOff(
+        mu=prob.mu, beta0=prob.beta0, n=int(n), law=prob.law.name, control=control, W_star=float(w_star),
+        a_star=a, b_star=b, c_star=c, d_star=d, beta_ab=b / a if a > 0 else float("nan"),
+        beta_cd=d / c if c > 0 else float("nan"), delta_star=float(path.pull_off_approach),
+        converged=path.all_converged, n_steps=path.n_steps, iterations=int(path.iterations.sum()),
+        residual=float(path.residual.max()), failures=path.failures,
+        half_width_x=0.5 * prob.grid.nx * prob.grid.dx, half_width_y=0.5 * prob.grid.ny * prob.grid.dy,
+        elapsed=path.elapsed, path=path)
+
+
+def richardson_extrapolation(n, values):
+    """Richardson extrapolation of a quantity computed at three grid sizes.
+
+    Parameters
+    ----------
+    n : sequence of 3 int
+        Cells per axis, in geometric progression (e.g. 256, 512, 1024) [-].
+    values : sequence of 3 float
+        The quantity at each n.
+
+    Returns
+    -------
+    (float, float)
+        The extrapolated value and the observed order q of the error ~ n^-q
+        (NaN order and the finest value when the differences are not monotone).
+
+    Notes
+    -----
+    With ratio r = n2/n1 = n3/n2 and differences e1 = f2 - f1, e2 = f3 - f2:
+    q = ln(e1/e2)/ln r and f_inf = f3 + e2/(r^q - 1).
+    """
+    n = [float(v) for v in n]
+    f = [float(v) for v in values]
+    if len(n) != 3 or len(f) != 3:
+        raise ValueError("n and values must each have 3 entries")
+    r = n[1] / n[0]
+    if not math.isclose(n[2] / n[1], r, rel_tol=1e-9) or r <= 1.0:
+        raise ValueError(f"n must be increasing in geometric progression; got {n}")
+    e1, e2 = f[1] - f[0], f[2] - f[1]
+    if e2 == 0.0:
+        return f[2], float("inf")
+    if e1 == 0.0 or e1 / e2 <= 1.0:
+        return f[2], float("nan")
+    q = math.log(e1 / e2) / math.log(r)
+    return f[2] + e2 / (r**q - 1.0), q
