@@ -18,7 +18,37 @@ __all__ = [
     "check_interval",
     "check_positive",
     "check_ellipticity",
+    "check_array_input",
+    "check_count",
+    "check_tabor",
+    "check_model_ellipticity",
+    "check_contact_size_star",
+    "TABOR_RANGE",
+    "ELLIPTICITY_RANGE",
+    "CONTACT_SIZE_RANGE",
 ]
+
+#: Accepted Tabor parameter mu of Eq. (35) for every nondimensional model.  Below
+#: 1e-6 every model is at its DMT limit to < 1e-3 relative and above 1e12 at its
+#: JKR limit to < 1e-6; outside, the adhesive zone (~mu^-1/2 wide on the DMT side,
+#: ~mu^-2 on the JKR side) is no longer resolved in double precision.
+TABOR_RANGE = (1e-6, 1e12)
+#: Accepted Hertz ellipticity beta0 = b/a of the nondimensional models: below 1e-4
+#: R'/R'' > 3e3 (a line contact) and the elliptic integrals of Eq. (8) lose accuracy.
+ELLIPTICITY_RANGE = (1e-4, 1.0)
+#: Accepted nondimensional contact size a* = a/c_r (Eq. 32): below 1e-6 the state
+#: equals the zero-contact limit to ~1e-6; above 1e6 the load W* ~ a*^3 nears 1e18
+#: and the adhesive correction is below rounding.
+CONTACT_SIZE_RANGE = (1e-6, 1e6)
+
+
+def check_array_input(name: str, value) -> None:
+    """Reject numpy masked arrays (their mask would be silently dropped) and empty arrays."""
+    if isinstance(value, np.ma.MaskedArray):
+        raise ValueError(f"{name} must not be a masked array (the mask would be ignored); "
+                         f"pass {name}.compressed() or fill the masked values")
+    if np.size(value) == 0:
+        raise ValueError(f"{name} must contain at least one value; got an empty array")
 
 
 def _describe(value) -> str:
@@ -29,7 +59,12 @@ def _describe(value) -> str:
 
 
 def check_finite(name: str, value, what: str = "") -> np.ndarray:
-    """Return ``value`` as a float array; raise if any element is NaN or infinite."""
+    """Return ``value`` as a float array; raise if any element is NaN or infinite.
+
+    Masked arrays are rejected: their mask would be silently dropped.
+    """
+    if isinstance(value, np.ma.MaskedArray):
+        check_array_input(name, value)
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -68,3 +103,31 @@ def check_positive(name: str, value, what: str = "", *, allow_zero: bool = False
 def check_ellipticity(name: str, value) -> np.ndarray:
     """Check an ellipticity ratio beta = b/a in (0, 1]."""
     return check_interval(name, value, 0.0, 1.0, what="ellipticity ratio b/a, dimensionless")
+
+
+def check_count(name: str, value, low: int, high: int, what: str = "") -> int:
+    """Check an integer count ``low <= value <= high`` (no floats with a fraction, no bools)."""
+    ok = isinstance(value, (int, np.integer)) and not isinstance(value, bool)
+    if not ok and isinstance(value, (float, np.floating)) and float(value).is_integer():
+        ok = True
+    if not ok or not (low <= int(value) <= high):
+        raise ValueError(f"{name} must be an integer in [{low}, {high}]{_what(what)}; got {value!r}")
+    return int(value)
+
+
+def check_tabor(name: str, value) -> np.ndarray:
+    """Check a Tabor parameter mu (Eq. 35) against :data:`TABOR_RANGE`."""
+    return check_interval(name, value, *TABOR_RANGE, low_open=False,
+                          what="Tabor parameter of Eq. (35), dimensionless")
+
+
+def check_model_ellipticity(name: str, value) -> np.ndarray:
+    """Check a model ellipticity beta0 against :data:`ELLIPTICITY_RANGE`."""
+    return check_interval(name, value, *ELLIPTICITY_RANGE, low_open=False,
+                          what="ellipticity ratio b/a, dimensionless")
+
+
+def check_contact_size_star(name: str, value) -> np.ndarray:
+    """Check a nondimensional contact size a* against :data:`CONTACT_SIZE_RANGE`."""
+    return check_interval(name, value, *CONTACT_SIZE_RANGE, low_open=False,
+                          what="contact semi-axis in units of c_r, Eq. (32)")

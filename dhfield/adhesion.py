@@ -45,6 +45,10 @@ NODES_PER_PANEL = 16
 #: Geometric ratio of successive panels; 2/(q-1) = 1 keeps the Bernstein-ellipse
 #: parameter of each panel at 1 + sqrt(2), i.e. ~1e-12 error with 16 nodes.
 PANEL_RATIO = 3.0
+#: Smallest first-panel end t1: the near-singularity scale b/sqrt(l_cd) reaches ~1e-20
+#: over the accepted model domain (beta0 >= 1e-4, a* >= 1e-6, mu >= 1e-6); the rule
+#: then has at most 64 panels.
+T1_MIN = 1e-30
 
 
 @functools.lru_cache(maxsize=8)
@@ -72,7 +76,7 @@ def graded_rule(t1, n_panels=None, nodes=NODES_PER_PANEL, t_end=np.pi / 2):
     t, w : ndarray
         Nodes and weights.
     """
-    t1 = np.clip(np.asarray(t1, dtype=float), 1e-12, t_end)
+    t1 = np.clip(np.asarray(t1, dtype=float), T1_MIN, t_end)
     if n_panels is None:
         n_panels = int(np.ceil(np.log(t_end / t1.min()) / np.log(PANEL_RATIO))) if t1.size else 0
     x, w = _legendre(nodes)

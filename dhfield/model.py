@@ -40,12 +40,15 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._validation import check_ellipticity, check_positive
+from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star,
+                          check_count, check_model_ellipticity, check_tabor)
 from .adhesion import graded_rule
 from .geometry import sin_skew_angle
+from .pull_off_search import stable_branch_end
 
-__all__ = ["solve_adhesive_axis", "load_curve", "pull_off", "LoadCurve", "PullOff",
-           "DEFAULT_A_STAR"]
+__all__ = ["solve_adhesive_axis", "load_curve", "pull_off", "jkr_limit_pull_off", "LoadCurve",
+           "PullOff", "DEFAULT_A_STAR", "MAX_CURVE_POINTS", "TABOR_RANGE", "ELLIPTICITY_RANGE",
+           "CONTACT_SIZE_RANGE"]
 
 #: Default contact semi-major axes of a load curve: covers pull-off (a* <~ 2 for
 #: mu <= 20) up to W* ~ 10 at every beta0 in (0.3, 1].
@@ -53,8 +56,20 @@ DEFAULT_A_STAR = (0.02, 3.0)
 #: Relative tolerance of the Newton solve for S (Delta gamma = 1 to this accuracy).
 SOLVE_RTOL = 1e-14
 _MAX_NEWTON = 60
-#: Scan used to bracket the pull-off: geometric grid in a* (the minimum is refined after).
-_SCAN = np.geomspace(1e-3, 4.0, 48)
+#: Largest number of points of one load curve (the output alone is ~80 bytes a point).
+MAX_CURVE_POINTS = 1_000_000
+#: Points per chunk of state evaluations (each carries a quadrature axis of <= ~1000
+#: nodes and ~10 work arrays: <= ~100 MB a chunk).
+CHUNK_POINTS = 1024
+#: Noise floor of the pull-off derivative, relative to |W*| (|delta*|) at zero contact:
+#: the analytic derivative carries ~1e-12 relative rounding noise at a* ~ 1e-5.
+DERIVATIVE_FLOOR = 1e-9
+#: Pull-off scan: from a* = _SCAN_LOW (times max(1, a_JKR)) to _SCAN_TOP_FACTOR times
+#: the JKR-limit pull-off contact a_JKR, geometric (see :func:`_pull_off_scan`).
+_SCAN_LOW, _SCAN_TOP_FACTOR, _SCAN_POINTS = 1e-4, 8.0, 48
+#: Working memory of one state with derivatives (quadrature of <= 66 panels x 16
+#: nodes, ~12 arrays): sizes the chunks of the pull-off search.
+_BYTES_PER_STATE = 16 * 66 * 8 * 12
 
 
 @dataclass(frozen=True)
@@ -84,113 +99,170 @@ def _axis_integrals(a, b, s, with_a=True):
 
     With w = S^2 sin^2 t and q = (a^2 + S^2 sin^2 t)^{3/2} (b^2 + S^2 sin^2 t)^{1/2}:
     T0 = int cos^4 t / q dt, T1 = int cos^2 t / q dt and
-    Ta = d T0/da at fixed S and beta (b = beta a).
+    Ta = d T0/da at fixed S and beta (b = beta a).  S may underflow to 0 (the
+    narrow-annulus limit, T0 = 3 pi/(16 a^3 b)).
     """
-    scale = np.minimum(1.0, b / s)
+    with np.errstate(divide="ignore"):
+        scale = np.minimum(1.0, b / s)
     t, w = graded_rule(np.arcsin(scale))
     ex = (lambda q: q[..., None])
-    s2 = (ex(s) * np.sin(t)) ** 2
-    a2s, b2s = ex(a) ** 2 + s2, ex(b) ** 2 + s2
-    inv_q = 1.0 / (a2s * np.sqrt(a2s * b2s))
-    c2 = np.cos(t) ** 2
-    t0 = np.sum(w * c2 * c2 * inv_q, axis=-1)
-    t1 = np.sum(w * c2 * inv_q, axis=-1)
+    sin2 = np.sin(t) ** 2
+    s2 = ex(s * s) * sin2
+    a2s, b2s = ex(a * a) + s2, ex(b * b) + s2
+    c2 = 1.0 - sin2
+    wc2q = w * c2 / (a2s * np.sqrt(a2s * b2s))  # w cos^2 t / q
+    t0 = np.einsum("...i,...i->...", wc2q, c2)
+    t1 = np.sum(wc2q, axis=-1)
     if not with_a:
         return t0, t1, None
     beta2 = (b / a) ** 2
-    ta = np.sum(w * c2 * c2 * inv_q * (-3.0 * ex(a) / a2s - ex(beta2 * a) / b2s), axis=-1)
+    ta = np.sum(wc2q * c2 * (-3.0 * ex(a) / a2s - ex(beta2 * a) / b2s), axis=-1)
     return t0, t1, ta
 
 
-def _adhesion_terms(a, s, shape, with_a=True):
-    """J with Delta gamma = v (1 + v) J, and dJ/dS, dJ/da (None unless ``with_a``) (R = E* = 1)."""
+def _log_adhesion_terms(a, u, shape, with_a=True):
+    """log J (Delta gamma = v (1 + v) J), S dJ/dS / J and dJ/da / J, in log S = u (R = E* = 1).
+
+    J = (Po_cd/c)(Po_ab ab)/(3E*) 2 S^4 T0 (Eq. 31, exchanged order) is formed in logs
+    so that neither S^4 nor a^3 under- or overflows.
+    """
     kappa, beta = shape.kappa, shape.beta
-    c_pref = kappa**2 * beta * a**3 / 3.0  # (Po_cd/c)(Po_ab ab)/(3E*)
-    t0, t1, ta = _axis_integrals(a, beta * a, s, with_a)
-    s4 = s**4
-    j = c_pref * 2.0 * s4 * t0  # Eq. (31), exchanged order
-    j_s = 6.0 * c_pref * s**3 * t1
-    j_a = 3.0 * j / a + c_pref * 2.0 * s4 * ta if with_a else None
-    return j, j_s, j_a
+    t0, t1, ta = _axis_integrals(a, beta * a, np.exp(u), with_a)
+    log_j = np.log(2.0 / 3.0 * kappa**2 * beta) + 3.0 * np.log(a) + 4.0 * u + np.log(t0)  # Eq. (31)
+    s_js_j = 3.0 * t1 / t0
+    ja_j = 3.0 / a + ta / t0 if with_a else None
+    return log_j, s_js_j, ja_j
+
+
+def _zero_contact_log_s(mu, shape):
+    """log S, S = c at a = 0: mu S^2 + mu^2 S/kappa - 3 R' = 0 (Eqs. 24, 31 with a -> 0)."""
+    p = mu**2 / shape.kappa
+    return np.log(6.0 * shape.r_major) - np.log(p + np.sqrt(p * p + 12.0 * mu * shape.r_major))
 
 
 def _zero_contact_s(mu, shape):
-    """S = c at a = 0: mu S^2 + mu^2 S/kappa - 3 R' = 0 (Eqs. 24, 31 with a -> 0)."""
-    p = mu**2 / shape.kappa
-    return 2.0 * 3.0 * shape.r_major / (p + np.sqrt(p * p + 12.0 * mu * shape.r_major))
+    return np.exp(_zero_contact_log_s(mu, shape))
 
 
-def _solve_s(a, mu, shape):
-    """Solve Delta gamma(a, S) = 1 for S, element-wise (bracketed Newton in log S)."""
+def _log_residual(a, u, log_mu, shape):
+    """log Delta gamma (target 0) and its u-derivative, with log v of Eq. (24)."""
+    log_v = log_mu - np.log(shape.kappa) - u  # Eq. (24) with sigma0 = mu
+    log_j, s_js_j, _ = _log_adhesion_terms(a, u, shape, with_a=False)
+    g = log_v + np.logaddexp(0.0, log_v) + log_j  # log[v (1 + v) J]
+    dg = -1.0 - special.expit(log_v) + s_js_j
+    scale = np.abs(log_v) + np.abs(log_j) + 1.0
+    return g, dg, scale
+
+
+def _solve_log_s(a, mu, shape):
+    """Solve Delta gamma(a, S) = 1 for u = log S, element-wise (bracketed Newton in u)."""
     fields = astuple(shape)
     a, mu, *fields = np.broadcast_arrays(np.asarray(a, float), np.asarray(mu, float), *fields)
     out_shape = a.shape
     a, mu, *fields = (f.ravel() for f in (a, mu, *fields))
     shape = _Shape(*fields)
+    log_mu = np.log(mu)
     # Start between the small-contact limit (closed form) and the narrow-annulus
     # estimate S^2 ~ 8a/(pi mu^2); the bracket below makes any start safe.
-    s0 = _zero_contact_s(mu, shape)
-    s1 = np.sqrt(8.0 * a / (np.pi * mu**2))
-    u = np.log(np.minimum(s0, np.maximum(s1, 1e-3 * s0)))
+    u0 = _zero_contact_log_s(mu, shape)
+    u1 = 0.5 * np.log(8.0 * a / np.pi) - log_mu
+    u = -0.5 * np.logaddexp(-2.0 * u0, -2.0 * u1)  # S^-2 = S0^-2 + S1^-2
     lo = np.full(a.shape, -np.inf)
     hi = np.full(a.shape, np.inf)
     active = np.ones(a.shape, bool)
+    eps = np.finfo(float).eps
     for _ in range(_MAX_NEWTON):
         idx = np.nonzero(active)
-        s = np.exp(u[idx])
         sh = _Shape(*(f[idx] for f in fields))
-        v = mu[idx] / (sh.kappa * s)  # Eq. (24) with sigma0 = mu
-        j, j_s, _ = _adhesion_terms(a[idx], s, sh, with_a=False)
-        g = np.log(v) + np.log1p(v) + np.log(j)  # log Delta gamma, target 0
-        dg = -1.0 - v / (1.0 + v) + s * j_s / j
         ui = u[idx]
+        g, dg, scale = _log_residual(a[idx], ui, log_mu[idx], sh)
         lo_i = np.where(g < 0, ui, lo[idx])
         hi_i = np.where(g > 0, ui, hi[idx])
-        done = np.abs(g) < SOLVE_RTOL
-        new = ui + np.clip(-g / dg, -2.0, 2.0)
+        # Converged: residual at the solve tolerance, or at the rounding level of its terms.
+        done = (np.abs(g) < SOLVE_RTOL) | (np.abs(g) < 8.0 * eps * scale)
+        new = ui + np.clip(-g / dg, -20.0, 20.0)
         # Newton step leaving the bracket: bisect instead.
         bad = ((new <= lo_i) | (new >= hi_i)) & np.isfinite(lo_i) & np.isfinite(hi_i)
-        new = np.where(bad, 0.5 * (lo_i + hi_i), new)
+        with np.errstate(invalid="ignore"):
+            new = np.where(bad, 0.5 * (lo_i + hi_i), new)
+        # A bracket collapsed to rounding is converged too.
+        done |= (hi_i - lo_i) <= 4.0 * eps * np.maximum(1.0, np.abs(ui))
         lo[idx], hi[idx], u[idx] = lo_i, hi_i, np.where(done, ui, new)
         active[idx] = ~done
         if not active.any():
             break
     else:
         raise RuntimeError("adhesive-axis solve did not converge; please report the inputs")
-    return np.exp(u).reshape(out_shape)
+    return u.reshape(out_shape)
+
+
+def _solve_s(a, mu, shape):
+    """S = sqrt(c^2 - a^2) solving Delta gamma(a, S) = 1 (see :func:`_solve_log_s`)."""
+    return np.exp(_solve_log_s(a, mu, shape))
 
 
 def _state(a, mu, shape, derivatives=False):
-    """Full state at contact semi-major axis a (arrays broadcast)."""
-    s = _solve_s(a, mu, shape)
+    """Full state at contact semi-major axis a (arrays broadcast).
+
+    Written without cancellation or overflow at large mu: with m = v S^2 = mu S/kappa
+    (Eq. 24) and c^3 - a^3 = S^2 (c^2 + ca + a^2)/(c + a), Eq. (36) is
+    W* = sin/3 kappa beta [a^3 - m r], r = (c^2 + ca + a^2)/(c + a), and the approach
+    (1+v) delta_ab - v delta_cd = kappa beta K (a^2 - m).
+    """
+    u = _solve_log_s(a, mu, shape)
     a, mu = np.broadcast_arrays(np.asarray(a, float), np.asarray(mu, float))
     kappa, beta, kk, sn = shape.kappa, shape.beta, shape.k_complete, shape.sin_skew
-    v = mu / (kappa * s)  # Eq. (24)
-    c = np.sqrt(a * a + s * s)
-    w_star = sn / 3.0 * kappa * beta * ((1.0 + v) * a**3 - v * c**3)  # Eq. (36)
-    delta = kappa * beta * kk * ((1.0 + v) * a**2 - v * c**2)  # (1+v) delta_ab - v delta_cd, Eq. (14a)
+    s = np.exp(u)
+    log_v = np.log(mu) - np.log(kappa) - u
+    with np.errstate(over="ignore"):
+        v = np.exp(log_v)  # Eq. (24)
+    m = np.exp(np.log(mu) + u) / kappa  # v S^2
+    c = np.hypot(a, s)
+    r = (c * c + c * a + a * a) / (c + a)  # (c^3 - a^3)/S^2
+    w_star = sn / 3.0 * kappa * beta * (a**3 - m * r)  # Eq. (36): (1+v) a^3 - v c^3
+    delta = kappa * beta * kk * (a * a - m)  # (1+v) delta_ab - v delta_cd, Eq. (14a)
     out = dict(a=a, s=s, c=c, v=v, W=w_star, delta=delta)
     if derivatives:
-        j, j_s, j_a = _adhesion_terms(a, s, shape)
-        g_s = (-1.0 - v / (1.0 + v)) / s + j_s / j
-        g_a = j_a / j
-        s_a = -g_a / g_s  # implicit function theorem
-        v_a = -v * s_a / s
-        c_a = (a + s * s_a) / c
-        out["dW"] = sn / 3.0 * kappa * beta * (3.0 * (1.0 + v) * a**2 + v_a * (a**3 - c**3)
-                                               - 3.0 * v * c**2 * c_a)
-        out["ddelta"] = kappa * beta * kk * (2.0 * a - v_a * s * s - 2.0 * v * s * s_a)
+        _, s_js_j, ja_j = _log_adhesion_terms(a, u, shape)
+        g_u = -1.0 - special.expit(log_v) + s_js_j
+        u_a = -ja_j / g_u  # implicit function theorem, d(log S)/da
+        m_a = m * u_a
+        c_a = (a + s * s * u_a) / c
+        cpa2 = (c + a) ** 2
+        r_a = (c * c + 2.0 * c * a) / cpa2 * c_a + (2.0 * c * a + a * a) / cpa2
+        out["dW"] = sn / 3.0 * kappa * beta * (3.0 * a * a - m_a * r - m * r_a)
+        out["ddelta"] = kappa * beta * kk * (2.0 * a - m_a)
     return out
 
 
 def _check_inputs(mu, beta0, ellipticity):
-    mu = check_positive("mu", mu, "Tabor parameter, Eq. (35)")
-    beta0 = check_ellipticity("beta0", beta0)
+    mu = check_tabor("mu", mu)
+    beta0 = check_model_ellipticity("beta0", beta0)
     if ellipticity is None:
         ell = beta0  # Eq. (9), Eq. (19): beta = beta_(pull-off) = beta0
     else:
-        ell = check_ellipticity("ellipticity", ellipticity)
+        ell = check_model_ellipticity("ellipticity", ellipticity)
     return mu, beta0, ell
+
+
+def _state_chunked(a, mu, shape, derivatives=False):
+    """:func:`_state` over broadcast inputs, evaluated in chunks of :data:`CHUNK_POINTS`.
+
+    Each state carries a quadrature axis of up to ~1000 nodes: chunks bound the
+    working memory (~100 MB) whatever the number of points.
+    """
+    fields = astuple(shape)
+    a, mu, *fields = np.broadcast_arrays(np.asarray(a, float), np.asarray(mu, float), *fields)
+    out_shape = a.shape
+    a, mu, *fields = (np.ravel(f) for f in (a, mu, *fields))
+    keys = ("a", "s", "c", "v", "W", "delta") + (("dW", "ddelta") if derivatives else ())
+    out = {k: np.empty(a.size) for k in keys}
+    for i in range(0, a.size, CHUNK_POINTS):
+        sl = slice(i, i + CHUNK_POINTS)
+        st = _state(a[sl], mu[sl], _Shape(*(f[sl] for f in fields)), derivatives)
+        for k in keys:
+            out[k][sl] = st[k]
+    return {k: v.reshape(out_shape) for k, v in out.items()}
 
 
 def solve_adhesive_axis(a_star, mu, beta0, *, ellipticity=None):
@@ -199,22 +271,23 @@ def solve_adhesive_axis(a_star, mu, beta0, *, ellipticity=None):
     Parameters
     ----------
     a_star : array_like
-        Contact semi-major axis a* = a/c_r > 0 [-].
+        Contact semi-major axis a* = a/c_r in :data:`CONTACT_SIZE_RANGE` [-].
     mu : array_like
-        Tabor parameter, Eq. (35), > 0 [-].
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     beta0 : array_like
-        Initial (Hertz) ellipticity in (0, 1] [-].
+        Initial (Hertz) ellipticity in :data:`ELLIPTICITY_RANGE` [-].
     ellipticity : array_like, optional
         Ellipticity of both ellipses if different from beta0 (see :func:`pull_off`).
 
     Returns
     -------
     c_star, v : ndarray
-        Adhesive semi-major axis [-] and DH scaling factor [-].
+        Adhesive semi-major axis [-] and DH scaling factor [-].  Empty inputs give
+        empty outputs; masked arrays are rejected.
     """
-    a = check_positive("a_star", a_star, "contact semi-major axis a/c_r")
+    a = check_contact_size_star("a_star", a_star)
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
-    st = _state(a, mu, _shape(ell, sin_skew_angle(beta0)))
+    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)))
     return _scalar(st["c"]), _scalar(st["v"])
 
 
@@ -282,39 +355,108 @@ def load_curve(mu, beta0, a_star=None, *, ellipticity=None, n=200):
     Parameters
     ----------
     mu : float
-        Tabor parameter, Eq. (35), > 0 [-].
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     beta0 : float
-        Initial ellipticity beta0 = b/a in (0, 1] (Eq. 9) [-].
+        Initial ellipticity beta0 = b/a (Eq. 9) in :data:`ELLIPTICITY_RANGE` [-].
     a_star : array_like, optional
-        Contact semi-major axes a* > 0 [-]; default ``n`` points evenly spaced over
-        :data:`DEFAULT_A_STAR`.
+        Contact semi-major axes a* in :data:`CONTACT_SIZE_RANGE` [-], at most
+        :data:`MAX_CURVE_POINTS` of them; default ``n`` points evenly spaced over
+        :data:`DEFAULT_A_STAR`.  An empty array gives an empty curve; masked
+        arrays are rejected (the mask would be lost).
     ellipticity : float, optional
         Ellipticity of both ellipses if it differs from beta0; the normalisation of
         Eq. (34) keeps sin(theta_skew) of beta0.
     n : int
-        Number of points of the default a* grid.
+        Number of points of the default a* grid, an integer in [2, :data:`MAX_CURVE_POINTS`].
 
     Returns
     -------
     LoadCurve
     """
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
+    for name, val in (("mu", mu), ("beta0", beta0), ("ellipticity", ell)):
+        if np.ndim(val) != 0:
+            raise ValueError(f"{name} must be a scalar for a load curve; got an array of shape {np.shape(val)}")
     if a_star is None:
-        if int(n) < 2:
-            raise ValueError(f"n must be an integer >= 2 (number of curve points); got {n!r}")
-        a_star = np.linspace(*DEFAULT_A_STAR, int(n))
-    a = check_positive("a_star", a_star, "contact semi-major axis a/c_r")
-    st = _state(a, mu, _shape(ell, sin_skew_angle(beta0)))
+        n = check_count("n", n, 2, MAX_CURVE_POINTS, "number of curve points")
+        a_star = np.linspace(*DEFAULT_A_STAR, n)
+    a = check_contact_size_star("a_star", a_star)
+    if a.size > MAX_CURVE_POINTS:
+        raise ValueError(f"a_star must have at most {MAX_CURVE_POINTS} points (MAX_CURVE_POINTS); "
+                         f"got {a.size}")
+    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)))
     return LoadCurve(float(mu), float(beta0), float(ell), st["a"], ell * st["a"], st["c"], ell * st["c"],
                      st["v"], st["W"], st["delta"])
 
 
 def _zero_contact_state(mu, shape):
     s = _zero_contact_s(mu, shape)
-    v = mu / (shape.kappa * s)
-    w_star = -shape.sin_skew / 3.0 * shape.kappa * shape.beta * v * s**3  # Eq. (36) at a = 0
-    delta = -shape.kappa * shape.beta * shape.k_complete * v * s**2
+    v = mu / (shape.kappa * s)  # Eq. (24) at a = 0
+    m = mu * s / shape.kappa  # v S^2
+    w_star = -shape.sin_skew / 3.0 * shape.kappa * shape.beta * m * s  # Eq. (36) at a = 0
+    delta = -shape.kappa * shape.beta * shape.k_complete * m
     return dict(a=np.zeros_like(s), c=s, v=v, W=w_star, delta=delta)
+
+
+def jkr_limit_pull_off(beta0, *, control="load", ellipticity=None):
+    """Pull-off of the elliptical DH model in its JKR limit mu -> infinity (derived here).
+
+    Parameters
+    ----------
+    beta0 : array_like
+        Initial ellipticity in :data:`ELLIPTICITY_RANGE` [-].
+    control : {"load", "displacement"}
+    ellipticity : array_like, optional
+        Ellipticity of both ellipses if different from beta0 (as in :func:`pull_off`).
+
+    Returns
+    -------
+    W_star, a_star : ndarray
+        Pull-off load W* (Eq. 34) [-] and contact semi-major axis a* [-].
+
+    Notes
+    -----
+    As mu -> infinity the annulus narrows, S^2 = c^2 - a^2 -> 8a/(pi mu^2) (Eqs. 24,
+    31 with T0 -> 3 pi/(16 a^3 b)), and v S^2 = mu S/kappa -> sqrt(8a/pi)/kappa, so
+    Eq. (36) tends to
+
+    .. math::
+
+        W^*_\\infty(a) = \\beta\\sin\\theta_{skew}\\left[\\frac{\\kappa a^3}{3}
+                         - \\sqrt{\\frac{2}{\\pi}}\\,a^{3/2}\\right],
+        \\qquad \\kappa = Po_{ab}/a \\ \\text{(Eq. 8)},
+
+    with minimum W* = -3 beta sin(theta_skew)/(2 pi kappa) at
+    a^{3/2} = (3/(2 kappa)) sqrt(2/pi) (load control), and the approach
+    delta_inf = beta K(k) (kappa a^2 - sqrt(8a/pi)) with minimum at a third of that
+    a^{3/2}, W* = -5 beta sin(theta_skew)/(6 pi kappa) (displacement control).  At
+    beta = 1 (kappa = 2/pi) these are JKR's -3/4 and -5/12.  For beta < 1 this is
+    *not* elliptical JKR (Johnson & Greenwood 2005): the DH ellipses keep beta0 and
+    the Griffith condition holds on the major axis only.  The finite-mu pull-off
+    approaches it as 1/mu^2 (relative 1.4e-5 at mu = 100, beta0 = 1).
+    """
+    if control not in ("load", "displacement"):
+        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    beta0 = check_model_ellipticity("beta0", beta0)
+    ell = beta0 if ellipticity is None else check_model_ellipticity("ellipticity", ellipticity)
+    sh = _shape(ell, sin_skew_angle(beta0))
+    k = 3.0 if control == "load" else 1.0
+    a32 = k / (2.0 * sh.kappa) * np.sqrt(2.0 / np.pi)
+    w_star = sh.sin_skew * sh.beta * (sh.kappa * a32**2 / 3.0 - np.sqrt(2.0 / np.pi) * a32)
+    return _scalar(w_star), _scalar(np.cbrt(a32 * a32))
+
+
+def _pull_off_scan(shape):
+    """Per-problem scan of a* for the pull-off search, scaled with the ellipse shape.
+
+    From a* = :data:`_SCAN_LOW` to :data:`_SCAN_TOP_FACTOR` times the JKR-limit
+    pull-off contact (3 sqrt(2/pi)/(2 kappa))^(2/3); the search extends it where the
+    derivative is still negative at the top (small beta0 at mu ~ 1-100 pulls off
+    at up to ~6 times the JKR-limit contact).
+    """
+    a_jkr = np.cbrt((1.5 / shape.kappa * np.sqrt(2.0 / np.pi)) ** 2)
+    unit = np.geomspace(1.0, _SCAN_TOP_FACTOR / _SCAN_LOW, _SCAN_POINTS)
+    return _SCAN_LOW * np.maximum(a_jkr, 1.0)[..., None] * unit
 
 
 def pull_off(mu, beta0, *, control="load", ellipticity=None):
@@ -323,9 +465,9 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     Parameters
     ----------
     mu : array_like
-        Tabor parameter, Eq. (35), > 0 [-].
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     beta0 : array_like
-        Initial ellipticity in (0, 1] [-].
+        Initial ellipticity in :data:`ELLIPTICITY_RANGE` [-].
     control : {"load", "displacement"}
         Load control: the minimum of W*(a*) at the end of the stable branch.
         Displacement control: the minimum of delta*(a*).
@@ -338,33 +480,43 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     -------
     PullOff
         W_star is W*max of Eq. (34) (negative: tensile), with a*, c*, v, delta* there.
+        Empty inputs give empty results; masked arrays are rejected.
+
+    Notes
+    -----
+    The end of the stable branch is found by :func:`dhfield.pull_off_search.stable_branch_end`
+    (scan in a* scaled with the shape, then Chandrupatla's method on the analytic
+    derivative), in chunks of problems so that memory stays bounded (a 200 x 200
+    map takes < 1 GiB).  The derivative is trusted only above a noise floor
+    :data:`DERIVATIVE_FLOOR` times |W*(a* = 0)| (for delta*: |delta*(0)|): below it,
+    W* is flat to ~1e-15 and the pull-off is the zero-contact limit.
     """
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
     mu, beta0, ell = np.broadcast_arrays(mu, beta0, ell)
+    out_shape = mu.shape
+    mu, beta0, ell = (np.ravel(q) for q in (mu, beta0, ell))
     shape = _shape(ell, sin_skew_angle(beta0))
     key = "dW" if control == "load" else "ddelta"
-    ex = (lambda q: q[..., None])
     fields = astuple(shape)  # in _Shape's field order
-    scan = _state(_SCAN, ex(mu), _Shape(*(ex(f) for f in fields)), derivatives=True)[key]
-    # Largest a* where the derivative crosses from negative to positive.
-    up = (scan[..., :-1] < 0) & (scan[..., 1:] >= 0)
-    has = up.any(axis=-1)
-    last = np.where(has, up.shape[-1] - 1 - np.argmax(up[..., ::-1], axis=-1), 0)
-    lo, hi = _SCAN[last], _SCAN[last + 1]
+    zero = _zero_contact_state(mu, shape)
+    floor = DERIVATIVE_FLOOR * np.abs(zero["W"] if control == "load" else zero["delta"])
 
-    def f(a, mu_, *fields_):
+    def deriv(a, mu_, *fields_):
         return _state(a, mu_, _Shape(*fields_), derivatives=True)[key]
 
-    res = {k: np.array(v, dtype=float) for k, v in _zero_contact_state(mu, shape).items()}
+    end = stable_branch_end(deriv, _pull_off_scan(shape), (mu, *fields), floor=floor,
+                            bytes_per_state=_BYTES_PER_STATE)
+    has = end.found
+    res = {k: np.array(v, dtype=float) for k, v in zero.items()}
     if has.any():
-        args = tuple(np.broadcast_to(q, mu.shape)[has] for q in (mu, *fields))
-        root = elementwise.find_root(f, (lo[has], hi[has]), args=args,
-                                     tolerances=dict(xatol=1e-13, xrtol=1e-13))
-        sub = _state(root.x, args[0], _Shape(*args[1:]))
+        sub = _state_chunked(end.x[has], mu[has], _Shape(*(f[has] for f in fields)))
         for k in res:
             res[k][has] = sub[k]
-    return PullOff(_scalar(mu), _scalar(beta0), _scalar(ell), control, _scalar(res["W"]),
-                   _scalar(res["a"]), _scalar(res["c"]), _scalar(res["v"]), _scalar(res["delta"]),
-                   _scalar(~has))
+
+    def out(x):
+        return _scalar(np.reshape(x, out_shape))
+
+    return PullOff(out(mu), out(beta0), out(ell), control, out(res["W"]), out(res["a"]), out(res["c"]),
+                   out(res["v"]), out(res["delta"]), out(~has))

@@ -151,8 +151,9 @@ def refine_sampled_minimum(x, y, *, first=True):
     return SampledMinimum(float(xv), float(yv), int(idx[i]), False)
 
 
-def stable_branch_end(derivative, scan, args=(), *, xatol=1e-13, xrtol=1e-13,
-                      chunk_bytes=DEFAULT_CHUNK_BYTES, bytes_per_state=2048):
+def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_extend=6,
+                      xatol=1e-13, xrtol=1e-13, chunk_bytes=None,
+                      bytes_per_state=2048):
     """Largest contact size where ``derivative`` crosses from negative to non-negative.
 
     Vectorised over problems: ``scan`` has shape ``(m, n)`` (or ``(n,)`` shared by
@@ -166,14 +167,21 @@ def stable_branch_end(derivative, scan, args=(), *, xatol=1e-13, xrtol=1e-13,
         broadcasts ``a`` of shape ``(k, n)`` against args of shape ``(k, 1)`` and
         ``a`` of shape ``(k,)`` against args of shape ``(k,)``.
     scan : array_like, shape (m, n) or (n,)
-        Scan of contact sizes per problem, increasing.  It must reach past the
-        largest crossing (the end of the stable branch) for every problem.
+        Scan of contact sizes per problem, increasing and positive.
     args : tuple of array_like
         Per-problem parameters.
+    floor : array_like, default 0
+        Noise floor of the derivative per problem: only ``derivative < -floor``
+        counts as negative (rounding noise of a flat path makes no minimum).
+    extend : float
+        Where the derivative is still negative at the top of the scan (the stable
+        branch is not reached), the problem's scan is multiplied by ``extend`` and
+        evaluated again, at most ``max_extend`` times.
     xatol, xrtol : float
         Tolerances of Chandrupatla's method on the root.
-    chunk_bytes : int
-        Working-memory budget of one chunk of problems.
+    chunk_bytes : int, optional
+        Working-memory budget of one chunk of problems; default
+        :data:`DEFAULT_CHUNK_BYTES` (read at call time).
     bytes_per_state : int
         Memory one evaluation of ``derivative`` at one contact size needs (the
         caller's estimate; used to size the chunks).
@@ -183,39 +191,63 @@ def stable_branch_end(derivative, scan, args=(), *, xatol=1e-13, xrtol=1e-13,
     BranchEnd
         Flat arrays of length m.
 
+    Raises
+    ------
+    RuntimeError
+        If some problem's derivative is still negative at the top of its scan after
+        ``max_extend`` extensions.
+
     Notes
     -----
-    The crossing is bracketed by the last pair of scan points with
-    ``derivative < 0`` then ``>= 0``; a non-finite derivative counts as no sign
-    information (the pair is skipped).  Between scan points, crossings that come
-    and go (two roots inside one scan interval) are not seen: the scan must
-    resolve the path.
+    The crossing is bracketed by the last scan point with ``derivative < -floor``
+    and the next one with ``derivative >= 0`` (if the derivative stays in
+    [-floor, 0) up to the top, the next scan point is returned unrefined).
+    Crossings that come and go inside one scan interval are not seen: the scan
+    must resolve the path.
     """
     args = tuple(np.atleast_1d(np.asarray(q, dtype=float)) for q in args)
     scan = np.asarray(scan, dtype=float)
-    m = max([q.shape[0] for q in args] + [scan.shape[0] if scan.ndim == 2 else 1])
+    floor = np.atleast_1d(np.asarray(floor, dtype=float))
+    m = max([q.shape[0] for q in args] + [floor.shape[0], scan.shape[0] if scan.ndim == 2 else 1])
     args = tuple(np.broadcast_to(q, (m,)) for q in args)
+    floor = np.broadcast_to(floor, (m,))
     scan = np.broadcast_to(scan, (m, scan.shape[-1]))
     n = scan.shape[-1]
-    chunk = max(1, int(chunk_bytes // max(1, n * bytes_per_state)))
+    budget = DEFAULT_CHUNK_BYTES if chunk_bytes is None else chunk_bytes
+    chunk = max(1, int(budget // max(1, n * bytes_per_state)))
     x = np.full(m, np.nan)
     found = np.zeros(m, bool)
     for start in range(0, m, chunk):
         sl = slice(start, min(m, start + chunk))
-        sub_scan = scan[sl]
+        sub_scan = np.array(scan[sl])
         sub_args = tuple(q[sl] for q in args)
         d = np.asarray(derivative(sub_scan, *(q[:, None] for q in sub_args)), dtype=float)
-        up = (d[:, :-1] < 0) & (d[:, 1:] >= 0)
-        has = up.any(axis=-1)
+        for _ in range(max_extend):
+            low = d[:, -1] < 0
+            if not low.any():
+                break
+            sub_scan[low] *= extend
+            d[low] = derivative(sub_scan[low], *(q[low][:, None] for q in sub_args))
+        if np.any(d[:, -1] < 0):
+            raise RuntimeError("stable_branch_end: the derivative is still negative at the top of "
+                               f"the scan (a = {sub_scan[d[:, -1] < 0, -1][0]:g}); please report the inputs")
+        neg = d < -floor[sl][:, None]
+        has = neg[:, :-1].any(axis=-1)
         if not has.any():
             continue
-        last = n - 2 - np.argmax(up[:, ::-1], axis=-1)
         rows = np.nonzero(has)[0]
-        lo = sub_scan[rows, last[rows]]
-        hi = sub_scan[rows, last[rows] + 1]
-        root = elementwise.find_root(derivative, (lo, hi), args=tuple(q[rows] for q in sub_args),
-                                     tolerances=dict(xatol=xatol, xrtol=xrtol))
-        xr = np.where(np.isfinite(root.x), root.x, 0.5 * (lo + hi))
+        last = n - 1 - np.argmax(neg[rows, ::-1], axis=-1)  # last negative index (< n - 1)
+        pos = (d[rows] >= 0) & (np.arange(n) > last[:, None])
+        got = pos.any(axis=-1)
+        nxt = np.where(got, np.argmax(pos, axis=-1), last + 1)
+        lo = sub_scan[rows, last]
+        hi = sub_scan[rows, nxt]
+        xr = np.array(hi)
+        if got.any():
+            r = rows[got]
+            root = elementwise.find_root(derivative, (lo[got], hi[got]), args=tuple(q[r] for q in sub_args),
+                                         tolerances=dict(xatol=xatol, xrtol=xrtol))
+            xr[got] = np.where(np.isfinite(root.x), root.x, 0.5 * (lo[got] + hi[got]))
         x[start + rows] = xr
         found[start + rows] = True
     return BranchEnd(x, found)

@@ -73,10 +73,10 @@ def test_stable_branch_end_finds_largest_crossing_per_problem():
     np.testing.assert_allclose(end.x, r3, atol=ROOT_ATOL)
 
 
-def test_stable_branch_end_chunks_give_the_same_answer_and_flag_no_crossing():
+def test_stable_branch_end_chunks_and_extends_the_scan():
     rng = np.random.default_rng(7)
     r = rng.uniform(0.5, 3.0, 50)
-    r[::7] = 10.0  # beyond the scan: derivative negative everywhere -> not found
+    r[::7] = 10.0  # beyond the scan top 4: the scan of those rows is extended (x 8)
 
     def deriv(a, r_):
         return a - r_
@@ -84,6 +84,21 @@ def test_stable_branch_end_chunks_give_the_same_answer_and_flag_no_crossing():
     scan = np.broadcast_to(np.linspace(0.01, 4.0, 30), (50, 30))
     one = stable_branch_end(deriv, scan, (r,))
     many = stable_branch_end(deriv, scan, (r,), chunk_bytes=1, bytes_per_state=1)
-    np.testing.assert_array_equal(one.found, r < 4.0)
+    assert one.found.all()
     np.testing.assert_array_equal(one.x, many.x)
-    np.testing.assert_allclose(one.x[one.found], r[one.found], atol=ROOT_ATOL)
+    np.testing.assert_allclose(one.x, r, atol=ROOT_ATOL)
+    with pytest.raises(RuntimeError, match="still negative"):
+        stable_branch_end(deriv, scan, (np.array([1e9]),), max_extend=2)
+
+
+def test_noise_floor_hides_rounding_minima_but_not_real_ones():
+    # d = a - 1 plus +-1e-12 noise near a -> 0 on an otherwise positive derivative.
+    scan = np.geomspace(1e-6, 4.0, 80)
+
+    def noisy(a, s):
+        return s * np.where(a < 1e-4, 1e-12 * np.cos(1e7 * a), 1.0)
+
+    end = stable_branch_end(noisy, scan, (np.array([1.0]),), floor=1e-9)
+    assert not end.found[0]
+    end = stable_branch_end(noisy, scan, (np.array([1.0]),), floor=0.0)
+    assert end.found[0]  # without the floor the noise makes a spurious minimum
