@@ -1,0 +1,421 @@
+"""Adhesive ground truth: BEM pull-off of the elliptical Dugdale contact over (beta0, mu, N).
+
+For every case (beta0, mu) of the grid of issue 8,
+
+    beta0 in {0.5, 0.6, 0.8, 0.9, 0.99, 1},  mu in {0.3, 0.5, 1, 2, 5},
+
+and every N of a ladder (cells per axis, doubling), the self-consistent adhesive
+BEM (:func:`dhfield.bem.adhesive_pull_off`, Dugdale law sigma0 = mu,
+h0 = 1/mu in the paper's units) gives W*max (Eq. 34 normalisation), the
+second-moment semi-axes a*, b*, c*, d* and beta_ab = b/a, beta_cd = d/c at the
+pull-off.  The three finest N are Richardson-extrapolated
+(:func:`dhfield.bem.richardson_extrapolation`); the result is stored next to
+every analytic model of :mod:`dhfield.compare` at the same (beta0, mu): the
+paper's closure (``dh-elliptic``), its JKR-beta variant, the ray-average and
+two-axis closures, elliptical JKR (Johnson & Greenwood 2005) and Maugis-Dugdale
+(a sphere with R = sqrt(R'R''), lambda = 1.1272 mu).
+
+Resumable
+---------
+Every finished (beta0, mu, N) case is written at once, atomically, as a small
+JSON file under ``--work-dir`` (one file per case, named by its parameters);
+a rerun skips the cases already there.  A case that raises, or whose path has
+unconverged states, is recorded with its status and message, never dropped.
+The cases run N by N (all of the coarsest N first), so an interrupted run still
+covers the whole (beta0, mu) grid at the coarser grids.
+
+Consolidation
+-------------
+``data/adhesive_ground_truth.nc`` (small: scalars per case, no fields), dims
+``(beta0, mu, n)`` plus ``model`` for the analytic references, with
+provenance: git commit, command line, per-case wall times, the N ladder, the
+solver tolerances, and per case a status flag (ok / unconverged / failed /
+missing) and message.  :func:`read_ground_truth` reads it back.
+
+Usage::
+
+    .venv/bin/python -m verification.study_adhesive                     # the whole study
+    .venv/bin/python -m verification.study_adhesive --beta0 1 --mu 1 --n 64 128 256
+    .venv/bin/python -m verification.study_adhesive --consolidate-only   # rebuild the .nc
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import shlex
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+#: The (beta0, mu) grid of issue 8.
+BETA0 = (0.5, 0.6, 0.8, 0.9, 0.99, 1.0)
+MU = (0.3, 0.5, 1.0, 2.0, 5.0)
+#: Default N ladder (cells per axis): 3 levels for Richardson extrapolation, affordable
+#: for all 30 cases in about an hour on 2 cores.
+N_LADDER = (64, 128, 256)
+DEFAULT_WORK_DIR = ROOT / "out" / "adhesive_study"
+DEFAULT_OUT = ROOT / "data" / "adhesive_ground_truth.nc"
+#: Analytic models stored next to the BEM (names of dhfield.compare.MODEL_NAMES).
+REFERENCE_MODELS = ("dh-elliptic", "dh-elliptic-jkr-beta", "dh-elliptic-ray-average",
+                    "dh-elliptic-two-axis", "jkr-elliptic", "md", "dmt")
+#: Status codes of a case (CF flag values in the dataset).  "unconverged_after_pull_off":
+#: every unconverged state of the path lies beyond the pull-off (smaller approach, after
+#: detachment), where it cannot move the reported minimum; such levels are used.
+STATUSES = ("ok", "unconverged_after_pull_off", "unconverged", "failed", "missing")
+#: Statuses whose values enter the extrapolation and the verdict.
+USABLE = ("ok", "unconverged_after_pull_off")
+#: Scalars of a case record that go into the dataset.
+CASE_FLOATS = ("W_star", "a_star", "b_star", "c_star", "d_star", "beta_ab", "beta_cd", "delta_star",
+               "residual", "elapsed", "iterations", "n_steps", "half_width_x", "half_width_y")
+
+
+# --------------------------------------------------------------------------- one case
+def case_name(beta0: float, mu: float, n: int, law: str = "dugdale", control: str = "load") -> str:
+    """File stem of one case, e.g. ``b0.8_m1_n256_dugdale_load``."""
+    return f"b{beta0:g}_m{mu:g}_n{int(n)}_{law}_{control}"
+
+
+def _write_json(record: dict, path: Path) -> Path:
+    from dhfield.io import atomic_path
+
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(record, indent=1, default=_json_default))
+    return path
+
+
+def _json_default(obj):
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    raise TypeError(type(obj))
+
+
+def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **options) -> dict:
+    """Solve one case; return its record (never raises for a solver failure).
+
+    Parameters
+    ----------
+    beta0, mu : float
+        Initial ellipticity and Tabor parameter (Eq. 35) [-].
+    n : int
+        Cells per axis [-].
+    solver : callable, optional
+        ``solver(mu, beta0, n, law=..., control=..., **options) -> AdhesivePullOff``;
+        default :func:`dhfield.bem.adhesive_pull_off` (tests pass a stand-in).
+
+    Returns
+    -------
+    dict
+        The parameters, ``status`` ('ok', 'unconverged' or 'failed'), ``message``
+        (empty when ok: otherwise the parameters and the reason), and the
+        scalars of the pull-off (NaN when failed).
+    """
+    if solver is None:
+        from dhfield.bem import adhesive_pull_off as solver
+    rec = {"beta0": float(beta0), "mu": float(mu), "n": int(n), "law": law, "control": control}
+    where = f"beta0={beta0:g}, mu={mu:g}, n={int(n)}, law={law}, control={control}"
+    t0 = time.perf_counter()
+    try:
+        res = solver(float(mu), float(beta0), int(n), law=law, control=control, progress=False, **options)
+    except Exception as exc:  # noqa: BLE001 - a failed case is recorded, never dropped
+        rec.update({k: float("nan") for k in CASE_FLOATS})
+        rec.update(status="failed", message=f"{where}: {type(exc).__name__}: {exc}",
+                   elapsed=time.perf_counter() - t0, converged=False, failures=[])
+        return rec
+    d = res.as_dict()
+    rec.update({k: float(d[k]) for k in CASE_FLOATS if k in d})
+    rec["converged"] = bool(d["converged"])
+    rec["failures"] = d.get("failures", [])
+    rec["solver_source"] = _solver_source()
+    if rec["converged"]:
+        rec.update(status="ok", message="")
+    else:
+        worst = max((f.get("residual", float("nan")) for f in rec["failures"]), default=float("nan"))
+        after = all(float(f.get("approach", np.inf)) < rec["delta_star"] for f in rec["failures"])
+        rec.update(status="unconverged_after_pull_off" if after else "unconverged",
+                   message=f"{where}: {len(rec['failures'])} unconverged state(s) on the path"
+                           f"{' (all beyond the pull-off approach)' if after else ''}, "
+                           f"worst residual {worst:.3g}")
+    return rec
+
+
+def cases(beta0s, mus, ns):
+    """The cases in run order: N ascending outermost, then beta0, then mu."""
+    return [(b, m, int(n)) for n in sorted(ns) for b in beta0s for m in mus]
+
+
+def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, law="dugdale",
+              control="load", solver=None, progress=None, **options) -> list[dict]:
+    """Run every case not yet in ``work_dir``; return all records of the requested cases.
+
+    Each finished case is written at once to ``work_dir/<case_name>.json``
+    (atomic); existing files are read, not recomputed (resume).
+    """
+    work_dir = Path(work_dir)
+    work_dir.mkdir(parents=True, exist_ok=True)
+    if progress is None:
+        progress = sys.stderr.isatty()
+    todo = cases(beta0s, mus, ns)
+    out = []
+    t0 = time.perf_counter()
+    for k, (b, m, n) in enumerate(todo, 1):
+        path = work_dir / f"{case_name(b, m, n, law, control)}.json"
+        if path.is_file():
+            out.append(json.loads(path.read_text()))
+            continue
+        rec = run_case(b, m, n, law=law, control=control, solver=solver, **options)
+        _write_json(rec, path)
+        out.append(rec)
+        msg = (f"[{k}/{len(todo)}] beta0={b:g} mu={m:g} n={n}: {rec['status']} W*={rec['W_star']:.5f} "
+               f"beta_ab={rec['beta_ab']:.4f} beta_cd={rec['beta_cd']:.4f} ({rec['elapsed']:.1f} s; "
+               f"total {time.perf_counter() - t0:.0f} s)")
+        print(msg, file=sys.stderr, flush=True)
+        if rec["status"] != "ok":
+            print(f"  {rec['message']}", file=sys.stderr, flush=True)
+    return out
+
+
+def load_records(work_dir=DEFAULT_WORK_DIR, law="dugdale", control="load") -> list[dict]:
+    """Every case record stored in ``work_dir`` for ``law`` and ``control``."""
+    out = []
+    for p in sorted(Path(work_dir).glob(f"*_{law}_{control}.json")):
+        out.append(json.loads(p.read_text()))
+    return out
+
+
+# --------------------------------------------------------------------------- consolidation
+def _git_commit() -> str:
+    try:
+        return subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True,
+                              check=True).stdout.strip()
+    except Exception:  # noqa: BLE001 - provenance is best effort outside a checkout
+        return "unknown"
+
+
+def _solver_source() -> str:
+    """Commit of the solver and whether dhfield/bem has uncommitted changes (provenance)."""
+    try:
+        dirty = subprocess.run(["git", "status", "--porcelain", "--", "dhfield/bem"], cwd=ROOT,
+                               capture_output=True, text=True, check=True).stdout.strip()
+    except Exception:  # noqa: BLE001
+        dirty = ""
+    return _git_commit() + (" (dhfield/bem modified)" if dirty else "")
+
+
+def extrapolate(ns, values):
+    """Richardson value over the three finest *converged* levels of one case.
+
+    Returns ``(value, order, levels)``: with fewer than three finite levels the
+    finest finite value, NaN order, and the number of levels used.
+    """
+    from dhfield.bem import richardson_extrapolation
+
+    ns = np.asarray(ns, dtype=float)
+    v = np.asarray(values, dtype=float)
+    ok = np.isfinite(v)
+    ns, v = ns[ok], v[ok]
+    if v.size == 0:
+        return float("nan"), float("nan"), 0
+    if v.size < 3:
+        return float(v[-1]), float("nan"), int(v.size)
+    n3, v3 = ns[-3:], v[-3:]
+    if not math.isclose(n3[2] / n3[1], n3[1] / n3[0], rel_tol=1e-9):
+        return float(v3[-1]), float("nan"), 1
+    val, q = richardson_extrapolation(n3, v3)
+    return float(val), float(q), 3
+
+
+def reference_table(beta0s, mus, models=REFERENCE_MODELS, control="load") -> dict:
+    """model -> {'W_star', 'ellipticity', 'adhesive_ellipticity'} arrays of shape (beta0, mu)."""
+    from dhfield import compare
+
+    b = np.asarray(beta0s, float)[:, None]
+    m = np.asarray(mus, float)[None, :]
+    out = {}
+    for name in models:
+        rec = compare.pull_off(name, m, b, control)
+        out[name] = {k: np.broadcast_to(np.asarray(rec.get(k, np.nan), float), (b.size, m.size)).copy()
+                     for k in ("W_star", "ellipticity", "adhesive_ellipticity")}
+    return out
+
+
+def ground_truth_dataset(records, *, ns=None, references=None, command="", tolerances=None):
+    """Consolidate case records into one small Dataset (no fields).
+
+    Parameters
+    ----------
+    records : list of dict
+        From :func:`run_study` / :func:`load_records`.
+    ns : sequence of int, optional
+        The N ladder (default: every n in the records).
+    references : dict, optional
+        :func:`reference_table` output; computed when None.
+    command : str
+        The command line, stored as provenance.
+    tolerances : dict, optional
+        Solver tolerances to store (default: dhfield.bem.adhesive defaults).
+
+    Returns
+    -------
+    xarray.Dataset
+        dims (beta0, mu, n) and (model, beta0, mu); see the module docstring.
+    """
+    import xarray as xr
+
+    from dhfield.io import cf, provenance_attrs
+
+    if not records:
+        raise ValueError("records must hold at least one case; got none")
+    beta0s = sorted({float(r["beta0"]) for r in records})
+    mus = sorted({float(r["mu"]) for r in records})
+    ns = sorted({int(r["n"]) for r in records}) if ns is None else sorted(int(n) for n in ns)
+    laws = {r.get("law", "dugdale") for r in records}
+    controls = {r.get("control", "load") for r in records}
+    if len(laws) > 1 or len(controls) > 1:
+        raise ValueError(f"records must share one law and one control; got {sorted(laws)}, {sorted(controls)}")
+    shape = (len(beta0s), len(mus), len(ns))
+    val = {k: np.full(shape, np.nan) for k in CASE_FLOATS}
+    status = np.full(shape, STATUSES.index("missing"), dtype=np.int8)
+    message = np.full(shape, "", dtype=object)
+    for r in records:
+        if int(r["n"]) not in ns:
+            continue
+        i, j, k = beta0s.index(float(r["beta0"])), mus.index(float(r["mu"])), ns.index(int(r["n"]))
+        for key in CASE_FLOATS:
+            val[key][i, j, k] = float(r.get(key, np.nan))
+        status[i, j, k] = STATUSES.index(r["status"])
+        message[i, j, k] = r.get("message", "")
+    dims = ("beta0", "mu", "n")
+    data = {}
+    for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "beta_ab", "beta_cd", "delta_star"):
+        data[key] = cf.variable(key, dims, val[key], nondimensional=True, qualifier="BEM at pull-off")
+    data["residual"] = (dims, val["residual"], {"long_name": "largest solver residual on the path",
+                                                "units": "1"})
+    data["iterations"] = (dims, val["iterations"], {"long_name": "conjugate-gradient iterations on the path",
+                                                    "units": "1"})
+    data["n_steps"] = (dims, val["n_steps"], {"long_name": "solved states on the path", "units": "1"})
+    data["elapsed"] = (dims, val["elapsed"], {"long_name": "wall time of the case", "units": "s"})
+    for key in ("half_width_x", "half_width_y"):
+        data[key] = (dims, val[key], {"long_name": f"domain {key.replace('_', ' ')}, in c_r", "units": "1"})
+    data["status"] = (dims, status, {"long_name": "case status", "flag_values": np.arange(len(STATUSES),
+                                                                                          dtype=np.int8),
+                                     "flag_meanings": " ".join(STATUSES)})
+    data["message"] = (dims, message.astype(str), {"long_name": "failure message naming the parameters"})
+    # Richardson over the finest three levels, per (beta0, mu); unconverged/failed levels excluded
+    usable = np.isin(status, [STATUSES.index(s) for s in USABLE])
+    for key in ("W_star", "beta_ab", "beta_cd", "a_star", "c_star"):
+        ext = np.full(shape[:2], np.nan)
+        order = np.full(shape[:2], np.nan)
+        levels = np.zeros(shape[:2], dtype=np.int8)
+        for i in range(shape[0]):
+            for j in range(shape[1]):
+                v = np.where(usable[i, j], val[key][i, j], np.nan)
+                ext[i, j], order[i, j], levels[i, j] = extrapolate(ns, v)
+        data[f"{key}_extrapolated"] = cf.variable(key, ("beta0", "mu"), ext, nondimensional=True,
+                                                  qualifier="BEM, Richardson-extrapolated over n")
+        data[f"{key}_order"] = (("beta0", "mu"), order, {
+            "long_name": f"observed order of convergence of {key} in n (error ~ n^-order)", "units": "1"})
+        data[f"{key}_levels"] = (("beta0", "mu"), levels, {
+            "long_name": f"converged levels of n used for {key}_extrapolated (3: Richardson; "
+                         "fewer: finest value)", "units": "1"})
+    if references is None:
+        references = reference_table(beta0s, mus, control=next(iter(controls)))
+    models = list(references)
+    data["W_star_model"] = cf.variable("W_star", ("model", "beta0", "mu"),
+                                       np.stack([references[m]["W_star"] for m in models]),
+                                       nondimensional=True, qualifier="analytic model at pull-off")
+    data["ellipticity_model"] = cf.variable("ellipticity", ("model", "beta0", "mu"),
+                                            np.stack([references[m]["ellipticity"] for m in models]),
+                                            qualifier="analytic model at pull-off")
+    data["adhesive_ellipticity_model"] = cf.variable(
+        "adhesive_ellipticity", ("model", "beta0", "mu"),
+        np.stack([references[m]["adhesive_ellipticity"] for m in models]), qualifier="analytic model at pull-off")
+    coords = {"beta0": cf.coordinate("beta0", beta0s), "mu": cf.coordinate("mu", mus),
+              "n": ("n", np.asarray(ns, dtype=np.int32), {"long_name": "cells per axis of the BEM grid",
+                                                         "units": "1"}),
+              "model": cf.label_coordinate("model", models)}
+    ds = xr.Dataset(data, coords=coords)
+    if tolerances is None:
+        from dhfield.bem import adhesive
+
+        tolerances = {"tol": adhesive.DEFAULT_TOL, "max_iter": adhesive.DEFAULT_MAX_ITER,
+                      "domain_margin": adhesive.DOMAIN_MARGIN, "unloading_steps": adhesive.DEFAULT_STEPS}
+    ds.attrs.update(provenance_attrs(
+        "dhfield adhesive ground truth: BEM (Dugdale) pull-off of the elliptical contact vs analytic closures",
+        law=next(iter(laws)), control=next(iter(controls)), n_ladder=" ".join(str(n) for n in ns),
+        git_commit=_git_commit(), command=command,
+        **{f"solver_{k}": v for k, v in tolerances.items()}))
+    ds.attrs["nondimensionalisation"] = ("R = E* = dgamma = 1 (Eqs. 32-35): lengths in c_r, W* = W sin(theta_skew)"
+                                         "/(2 pi R dgamma) (Eq. 34), sigma0 = mu, h0 = 1/mu")
+    ds.attrs["extrapolation"] = ("Richardson over the three finest converged n of the ladder "
+                                 "(dhfield.bem.richardson_extrapolation); fewer levels: finest value, NaN order")
+    ds.attrs["case_seconds_total"] = float(np.nansum(val["elapsed"]))
+    return cf.finalize(ds)
+
+
+def consolidate(work_dir=DEFAULT_WORK_DIR, out=DEFAULT_OUT, *, ns=None, law="dugdale", control="load",
+                command="", references=None) -> Path:
+    """Write :func:`ground_truth_dataset` of the records in ``work_dir`` to ``out`` (atomic)."""
+    from dhfield.io import check_writable, write_netcdf
+
+    check_writable(out)
+    ds = ground_truth_dataset(load_records(work_dir, law, control), ns=ns, references=references,
+                              command=command)
+    return write_netcdf(ds, out)
+
+
+def read_ground_truth(path=DEFAULT_OUT):
+    """Read the consolidated dataset; ValueError naming ``path`` if it is not one."""
+    from dhfield.io import read_netcdf
+
+    ds = read_netcdf(path)
+    missing = [v for v in ("W_star", "beta_ab", "beta_cd", "status", "W_star_model") if v not in ds]
+    if missing:
+        raise ValueError(f"path must be an adhesive ground-truth dataset; {str(path)!r} lacks {missing}")
+    return ds
+
+
+# --------------------------------------------------------------------------- command line
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="python -m verification.study_adhesive", description=__doc__.split("\n")[0])
+    p.add_argument("--beta0", type=float, nargs="+", default=list(BETA0), help="initial ellipticities (0, 1]")
+    p.add_argument("--mu", type=float, nargs="+", default=list(MU), help="Tabor parameters (Eq. 35), > 0")
+    p.add_argument("--n", type=int, nargs="+", default=list(N_LADDER), help="N ladder, cells per axis (even)")
+    p.add_argument("--law", default="dugdale", choices=("dugdale", "exponential"))
+    p.add_argument("--control", default="load", choices=("load", "displacement"))
+    p.add_argument("--work-dir", type=Path, default=DEFAULT_WORK_DIR, help="per-case JSON files (resume)")
+    p.add_argument("--out", type=Path, default=DEFAULT_OUT, help="consolidated netCDF")
+    p.add_argument("--consolidate-only", action="store_true", help="only rebuild --out from --work-dir")
+    args = p.parse_args(argv)
+    for b in args.beta0:
+        if not 0 < b <= 1:
+            p.error(f"--beta0 must be in (0, 1]; got {b}")
+    for m in args.mu:
+        if not m > 0:
+            p.error(f"--mu must be > 0; got {m}")
+    for n in args.n:
+        if n < 8 or n % 2:
+            p.error(f"--n must be even integers >= 8; got {n}")
+    from dhfield.io import check_writable
+
+    try:
+        check_writable(args.out)
+    except ValueError as exc:
+        p.error(str(exc))
+    command = " ".join(shlex.quote(a) for a in [sys.executable, "-m", "verification.study_adhesive",
+                                                 *(sys.argv[1:] if argv is None else argv)])
+    if not args.consolidate_only:
+        run_study(args.beta0, args.mu, args.n, work_dir=args.work_dir, law=args.law, control=args.control)
+    path = consolidate(args.work_dir, args.out, law=args.law, control=args.control, command=command)
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
