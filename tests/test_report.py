@@ -300,3 +300,215 @@ def test_contract_violations_are_failed_checks(tmp_path):
     problems = report._validate_section("x", bad)
     assert len(problems) == 2
     assert any("cites no equation" in p for p in problems) and any("missing" in p for p in problems)
+
+
+# --------------------------------------------------------------------------- the verdict leads
+
+
+class _Outline(__import__("html.parser").parser.HTMLParser):
+    """Top-level children of <main>: (tag, id, class, text) in document order."""
+
+    def __init__(self):
+        super().__init__()
+        self.depth_in_main = None
+        self.children = []
+        self.depth = 0
+
+    def handle_starttag(self, tag, attrs):
+        if tag in ("meta", "img", "br", "link", "hr", "input"):
+            if self.depth_in_main is not None and self.depth == self.depth_in_main + 1:
+                self.children.append([tag, "", "", ""])
+            return
+        self.depth += 1
+        a = dict(attrs)
+        if tag == "main":
+            self.depth_in_main = self.depth
+        elif self.depth_in_main is not None and self.depth == self.depth_in_main + 1:
+            self.children.append([tag, a.get("id") or "", a.get("class") or "", ""])
+
+    def handle_endtag(self, tag):
+        if tag in ("meta", "img", "br", "link", "hr", "input"):
+            return
+        if self.depth_in_main is not None and self.depth == self.depth_in_main:
+            self.depth_in_main = None
+        self.depth -= 1
+
+    def handle_data(self, data):
+        if self.depth_in_main is not None and self.depth > self.depth_in_main and self.children:
+            self.children[-1][3] += data
+
+
+def _verdict_text(out):
+    return " ".join(v["text"] for v in json.loads((out / "checks.json").read_text())["verdict"])
+
+
+def test_verdict_is_the_first_content_of_report_html(quick_report):
+    out, _, _, _ = quick_report
+    parser = _Outline()
+    parser.feed((out / "report.html").read_text(encoding="utf-8"))
+    kids = parser.children
+    assert kids[0][0] == "h1"
+    assert kids[1][0] == "section" and kids[1][1] == "verdict", kids[:3]
+    lead = kids[1][3]
+    assert "Verdict" in lead and "Which model to use when" in lead
+    assert re.search(r"\d+(\.\d+)? %", lead), "the verdict states no number"
+    # the PASS/FAIL count comes after the verdict, the checks table further down
+    i_count = next(k for k, c in enumerate(kids) if "verdict" in c[2].split() and "CHECKS" in c[3])
+    i_table = next(k for k, c in enumerate(kids) if c[1] == "summary")
+    assert 1 < i_count < i_table
+
+
+def test_verdict_is_the_first_content_of_summary_md(quick_report):
+    out, _, _, _ = quick_report
+    lines = (out / "summary.md").read_text(encoding="utf-8").splitlines()
+    heads = [k for k, ln in enumerate(lines) if ln.startswith("## ")]
+    assert lines[heads[0]].startswith("## Verdict") and heads[0] <= 2
+    assert lines[heads[1]] == "## Which model to use when"
+    first_item = next(ln for ln in lines[heads[0]:] if ln.startswith("- "))
+    assert first_item in lines[heads[0] + 1:heads[0] + 3]
+    i_count = next(k for k, ln in enumerate(lines) if ln.startswith("**Checks:"))
+    i_table = next(k for k, ln in enumerate(lines) if ln.startswith("| section | check |"))
+    assert heads[1] < i_count < i_table
+
+
+def test_verdict_numbers_equal_what_the_sections_saved(quick_report):
+    """The lead's numbers are the sections' own results, re-derived here from their netCDF files."""
+    import xarray as xr
+
+    out, _, _, _ = quick_report
+    text = _verdict_text(out)
+    with xr.open_dataset(out / "models" / "fig9_pull_off.nc") as fig9:
+        at = fig9.sel(mu=5.0)
+        for b0, digits in ((0.8, 1), (0.9, 1), (0.99, 2)):
+            rel = float(at["dh-elliptic"].sel(beta0=b0) / at["jkr-elliptic"].sel(beta0=b0) - 1)
+            word = "weaker" if rel < 0 else "stronger"
+            assert f"{abs(100 * rel):.{digits}f} % {word} than elliptical JKR at β0 = {b0:g}" in text or \
+                   f"{abs(100 * rel):.{digits}f} % {word} at β0 = {b0:g}" in text, (b0, rel)
+        jkr08 = float(at["jkr-elliptic"].sel(beta0=0.8))
+    with xr.open_dataset(out / "periphery" / "eq30.nc") as eq:
+        ratio = (eq["work_minor"] / eq["work_major"]).sel(beta0=0.8)
+        assert f"{float(ratio.min()):.3f}–{float(ratio.max()):.3f} at β0 = 0.8" in text
+        area = eq["eq30_area"]
+        assert f"{float(area.min()):.3f}–{float(area.max()):.3f} where Δγ = 1 is imposed" in text
+    with xr.open_dataset(out / "periphery" / "equal_beta_closures.nc") as cl:
+        w = cl["closure_W_star"].sel(beta0=0.8, mu=5.0)
+        two = abs(float(w.sel(closure="two_axis")) / jkr08 - 1)
+        ray = abs(float(w.sel(closure="ray_average")) / jkr08 - 1)
+    assert f"two-axis closure (`dh-elliptic-two-axis`: Δγ on both axes, β_cd ≠ β_ab) is within {100 * two:.2f} %" \
+        in text
+    assert f"within {100 * ray:.2f} %, against" in text
+    # the three renderings carry the same lines
+    summary = (out / "summary.md").read_text(encoding="utf-8")
+    page = (out / "report.html").read_text(encoding="utf-8")
+    for v in json.loads((out / "checks.json").read_text())["verdict"]:
+        key = re.sub(r"[`*\[\]()]", "", v["text"])[:60]
+        assert key in re.sub(r"[`*\[\]()]", "", summary)
+        assert v["text"].split("**")[-1][-30:].replace("`", "") in re.sub(r"<[^>]+>", "", page).replace("&#x27;", "'")
+
+
+def test_every_figure_has_an_svg_sibling(quick_report):
+    import xml.etree.ElementTree as ET
+
+    out, _, _, _ = quick_report
+    pngs = sorted(out.glob("*/*.png"))
+    assert pngs
+    for png in pngs:
+        svg = png.with_suffix(".svg")
+        assert svg.is_file(), f"no SVG next to {png.name}"
+        root = ET.parse(svg).getroot()
+        assert root.tag.endswith("svg")
+        assert "<dc:date>" not in svg.read_text(encoding="utf-8"), "the SVG carries a date (not reproducible)"
+
+
+def test_check_references_point_to_things_a_reader_can_open(quick_report):
+    out, _, _, _ = quick_report
+    checks = json.loads((out / "checks.json").read_text())["checks"]
+    for c in checks:
+        assert not re.search(r"\bissue\s*\d|notes\s*§", c["reference"] + c["name"], re.IGNORECASE), c
+    summary = (out / "summary.md").read_text(encoding="utf-8")
+    assert "(https://doi.org/10.1088/0022-3727/38/7/012)" in summary  # Johnson & Greenwood (2005)
+    assert "[Eq. (31)](https://doi.org/10.1007/s11249-017-0976-8)" in summary
+
+
+def test_link_references():
+    from verification.report import link_references
+
+    assert link_references("DMT closed form (Derjaguin et al. 1975)") == \
+        "DMT closed form ([Derjaguin et al. 1975](https://doi.org/10.1016/0021-9797%2875%2990018-1))"
+    assert link_references("Eq. (27) rearranged (report section fields)") == \
+        ("[Eq. (27)](https://doi.org/10.1007/s11249-017-0976-8) rearranged "
+         "([report section fields](report.html#sec-fields))")
+    # existing links and code are left alone; equations optional
+    assert link_references("see [x](http://a) and `Eq. (3)`") == "see [x](http://a) and `Eq. (3)`"
+    assert link_references("Eq. (3)", equations=False) == "Eq. (3)"
+
+
+def _result(name, verdict=(), guide=(), crashed=False, passed=True):
+    from verification._api import Check, Section
+    from verification.report import SectionResult
+
+    checks = [Check("c", 0.0, 1.0, passed)]
+    return SectionResult(name, Section(name, verdict=list(verdict), guide=list(guide)), 0.0, Path("."),
+                         crashed, "boom" if crashed else "", checks)
+
+
+def test_ground_truth_leads_the_verdict_and_failures_are_flagged():
+    from verification.report import collect_verdict
+
+    res = [_result("analytic", ["A"]), _result("models", ["M"], ["use m"]),
+           _result("periphery", ["P"], passed=False), _result("adhesive", ["G1", "G2"], ["use g"])]
+    verdict, guide = collect_verdict(res)
+    assert [t for _, t in verdict][:4] == ["G1", "G2", "M", verdict[3][1]]
+    assert "failed check" in verdict[3][1] and verdict[3][0] == "periphery"
+    assert [t for _, t in guide] == ["use g", "use m"]
+    # without the ground truth the slot says so; a crashed section says its conclusions are missing
+    verdict, _ = collect_verdict([_result("models", ["M"]), _result("fields", ["F"], crashed=True)])
+    assert verdict[0][0] == "adhesive" and "no self-consistent adhesive solution" in verdict[0][1]
+    assert any(n == "fields" and "did not complete" in t for n, t in verdict)
+    assert "F" not in [t for _, t in verdict]
+
+
+def test_legends_that_hide_curves_are_moved():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from verification._api import fix_legends, hidden_by_legends
+
+    fig, axes = plt.subplots(1, 2, figsize=(6, 3))
+    x = np.linspace(0.0, 1.0, 60)
+    for ax in axes:
+        for k in range(6):
+            ax.plot(x, np.sin(6 * x + k), label=f"curve {k}")
+    axes[0].legend(loc="center")
+    assert hidden_by_legends(fig), "a centred legend over six sine waves must hide something"
+    assert fix_legends(fig) == []
+    assert hidden_by_legends(fig) == []
+    n_entries = sum(len(leg.get_texts()) for leg in [a.get_legend() for a in axes if a.get_legend()] + fig.legends)
+    assert n_entries == 6, "moving the legend lost entries"
+    plt.close(fig)
+    # reference lines in axes coordinates (axhline) are not data curves
+    fig, ax = plt.subplots()
+    ax.plot(x, x, label="data")
+    ax.axhline(0.5, label="tolerance")
+    ax.legend(loc="center left")
+    assert hidden_by_legends(fig) == []
+    plt.close(fig)
+
+
+def test_save_figure_writes_png_and_svg(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from verification._api import save_figure
+
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1], label="line")
+    ax.legend()
+    p = save_figure(fig, tmp_path / "f.png", 50)
+    assert p.read_bytes().startswith(PNG_SIGNATURE)
+    assert p.with_suffix(".svg").read_text(encoding="utf-8").lstrip().startswith("<?xml")
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["f.png", "f.svg"]  # no temporary file left

@@ -4,8 +4,8 @@ Each section module ``verification/sec_<name>.py`` exposes::
 
     def run(outdir: pathlib.Path, quick: bool, progress: Callable[[str], None]) -> Section
 
-It writes its figures (PNG) and datasets (netCDF, via dhfield.io.write_netcdf) under
-``outdir`` and returns a :class:`Section`.  ``quick=True`` must finish in a few
+It writes its figures (PNG, with an SVG sibling: :func:`save_figure`) and datasets
+(netCDF, via dhfield.io.write_netcdf) under ``outdir`` and returns a :class:`Section`.  ``quick=True`` must finish in a few
 seconds (the test suite runs it).  Every check carries a tolerance and a one-line
 justification; the report exits non-zero if any check fails.
 """
@@ -49,16 +49,199 @@ class Section:
     datasets: list[Path] = field(default_factory=list)
     # Scientific conclusions in words and numbers, most important first; the report puts every
     # section's verdict at the top of report.html and summary.md, before the checks table.
+    # Each line is Markdown and every number in it is computed by the section, never typed in.
     verdict: list[str] = field(default_factory=list)
+    # "Which model to use when": one Markdown line per recommendation, naming the model
+    # (`--model` name) and the range of beta0 and mu, with the evidence in numbers.
+    guide: list[str] = field(default_factory=list)
+
+
+#: The vector sibling of every PNG figure (issue 10: figures also as SVG or PDF).
+VECTOR_FORMAT = "svg"
+#: A legend may touch a curve by this many pixels (anti-aliasing, frame line) without hiding it.
+LEGEND_SLACK_PX = 1.5
+#: In-axes legend positions tried, in order, when a legend hides data.
+_IN_AXES_LOCS = ("upper right", "upper left", "lower left", "lower right", "center right", "center left",
+                 "lower center", "upper center", "center")
+
+
+def _is_drawn(style):
+    return style not in (None, "None", "none", "", " ")
+
+
+def _data_artists(ax):
+    """(label, display-space vertices, draws segments) of the data an axes shows.
+
+    Lines and scatter collections in data coordinates; axhline/axvline-style
+    reference lines (axes-coordinate transforms) and images are not data curves.
+    """
+    import numpy as np
+
+    out = []
+    for line in ax.get_lines():
+        if not line.get_visible() or line.get_transform() is not ax.transData:
+            continue
+        xy = np.asarray(line.get_xydata(), dtype=float)
+        if xy.size == 0:
+            continue
+        with np.errstate(all="ignore"):
+            disp = ax.transData.transform(xy)
+        segs = _is_drawn(line.get_linestyle()) and line.get_linewidth() > 0
+        out.append((line.get_label(), disp, bool(segs), _is_drawn(line.get_marker())))
+    for coll in ax.collections:
+        if not coll.get_visible() or not hasattr(coll, "get_offsets"):
+            continue
+        offs = np.asarray(coll.get_offsets(), dtype=float)
+        if offs.size == 0 or coll.get_offset_transform() is not ax.transData:
+            continue
+        with np.errstate(all="ignore"):
+            out.append((coll.get_label(), ax.transData.transform(offs), False, True))
+    return out
+
+
+def _hits(bbox, disp, segments, markers):
+    """Whether the display-space polyline/markers ``disp`` enter ``bbox``."""
+    import numpy as np
+    from matplotlib.path import Path as MplPath
+
+    ok = np.all(np.isfinite(disp), axis=1)
+    if markers:
+        p = disp[ok]
+        if np.any((p[:, 0] > bbox.x0) & (p[:, 0] < bbox.x1) & (p[:, 1] > bbox.y0) & (p[:, 1] < bbox.y1)):
+            return True
+    if segments:
+        # contiguous finite runs (NaN breaks a line, as matplotlib draws it)
+        breaks = np.flatnonzero(~ok)
+        start = 0
+        for stop in list(breaks) + [len(disp)]:
+            run = disp[start:stop]
+            if len(run) >= 2 and MplPath(run).intersects_bbox(bbox, filled=False):
+                return True
+            if len(run) == 1 and bbox.contains(*run[0]):
+                return True
+            start = stop + 1
+    return False
+
+
+def _overlaps(fig, draw=True):
+    """(legend, label of the hidden curve) for every curve a legend covers.
+
+    ``draw=False`` reuses the layout of the last draw (legend extents are computed
+    without drawing; the axes must not have moved since).
+    """
+    from matplotlib.transforms import Bbox
+
+    if draw:
+        fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None] + list(fig.legends)
+    out = []
+    for leg in legends:
+        if not leg.get_visible():
+            continue
+        box = leg.get_window_extent(renderer)
+        box = Bbox.from_extents(box.x0 + LEGEND_SLACK_PX, box.y0 + LEGEND_SLACK_PX,
+                                box.x1 - LEGEND_SLACK_PX, box.y1 - LEGEND_SLACK_PX)
+        for ax in fig.axes:
+            inter = Bbox.intersection(box, ax.bbox)
+            if inter is None or inter.width <= 0 or inter.height <= 0:
+                continue
+            out += [(leg, label) for label, disp, segs, marks in _data_artists(ax) if _hits(inter, disp, segs, marks)]
+    return out
+
+
+def hidden_by_legends(fig):
+    """Data curves of ``fig`` that a legend covers, as ``"legend hides <label>"`` strings.
+
+    A legend hides a curve when a drawn segment or marker of the curve passes under
+    the legend box (shrunk by :data:`LEGEND_SLACK_PX`) inside the visible plot area.
+    Reference lines drawn in axes coordinates (``axhline``) and images are ignored.
+    """
+    return [f"legend hides {label!r}" for _, label in _overlaps(fig)]
+
+
+def _clear_of(boxes, leg, renderer):
+    """Whether the legend's box stays off every bbox of ``boxes`` (the other axes, with labels)."""
+    box = leg.get_window_extent(renderer)
+    for other in boxes:
+        inter = box.intersection(box, other)
+        if inter is not None and inter.width > 0 and inter.height > 0:
+            return False
+    return True
+
+
+def fix_legends(fig):
+    """Move every legend that hides a data curve to a place where it hides none.
+
+    Tries, for each offending axes legend, the in-axes corners and edges, then
+    outside the axes to the right of it or below it (clear of the other axes), then
+    one figure legend under all axes.  Font size, columns and entries are kept.
+    Save with ``bbox_inches="tight"`` so that a legend outside the axes is not cut.
+
+    Returns
+    -------
+    list of str
+        What still hides data after the moves (empty when every legend is clear).
+    """
+    bad = {id(leg) for leg, _ in _overlaps(fig)}
+    if not bad:
+        return []
+    renderer = fig.canvas.get_renderer()
+    for ax in list(fig.axes):
+        leg = ax.get_legend()
+        if leg is None or id(leg) not in bad:
+            continue
+        handles, labels = leg.legend_handles, [t.get_text() for t in leg.get_texts()]
+        kw = dict(fontsize=leg.prop.get_size_in_points(), ncols=getattr(leg, "_ncols", 1),
+                  title=leg.get_title().get_text() or None)
+
+        others = [o.get_tightbbox(renderer) or o.bbox for o in fig.axes if o is not ax and o.get_visible()]
+
+        def clear(new):
+            return not any(hit is new for hit, _ in _overlaps(fig, draw=False)) and _clear_of(others, new, renderer)
+
+        candidates = [dict(loc=loc) for loc in _IN_AXES_LOCS]
+        candidates += [dict(loc="upper left", bbox_to_anchor=(1.02, 1.0), ncols=1),
+                       dict(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncols=max(kw["ncols"], 2))]
+        if not any(clear(ax.legend(handles, labels, **dict(kw, **c))) for c in candidates):
+            ax.get_legend().remove()
+            fig.canvas.draw()
+            bottom = min(a.get_tightbbox(renderer).y0 for a in fig.axes)
+            fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, bottom / fig.bbox.height),
+                       bbox_transform=fig.transFigure, **dict(kw, ncols=min(4, max(1, len(labels)))))
+    return hidden_by_legends(fig)
 
 
 def save_figure(fig, path, dpi) -> Path:
-    """Write a matplotlib figure as PNG atomically (dhfield.io.atomic_path) and close it."""
+    """Write a matplotlib figure as PNG and as an SVG sibling, atomically, and close it.
+
+    Legends that hide a data curve are moved first (:func:`fix_legends`); both
+    files are written through :func:`dhfield.io.atomic_path` with
+    ``bbox_inches="tight"`` so that a legend moved outside the axes stays in the
+    picture.  The SVG (``path`` with suffix ``.svg``) carries no date, so that it is
+    reproducible.
+
+    Returns
+    -------
+    Path
+        The PNG path (the SVG is ``Path(path).with_suffix(".svg")``).
+    """
+    import warnings
+
     import matplotlib.pyplot as plt
 
     from dhfield.io import atomic_path
 
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
-    plt.close(fig)
-    return Path(path)
+    path = Path(path)
+    try:
+        still = fix_legends(fig)
+        if still:
+            warnings.warn(f"{path.name}: {'; '.join(still)}", stacklevel=2)
+        kw = dict(bbox_inches="tight", pad_inches=0.05)
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, format="png", dpi=dpi, **kw)
+        with atomic_path(path.with_suffix("." + VECTOR_FORMAT)) as tmp:
+            fig.savefig(tmp, format=VECTOR_FORMAT, metadata={"Date": None}, **kw)
+    finally:
+        plt.close(fig)
+    return path

@@ -18,6 +18,13 @@ The builder
   external resource), ``summary.md`` (the PASS/FAIL table with links to the
   figure and netCDF files) and ``checks.json`` (the same table, machine-readable),
   each atomically (temporary file, then ``os.replace``);
+* opens both ``report.html`` and ``summary.md`` with the **verdict**: what the
+  checks conclude about the paper, in words and numbers, gathered from every
+  section's ``Section.verdict`` in :data:`VERDICT_ORDER` (the adhesive ground truth
+  first when it is present), then "which model to use when" (``Section.guide``);
+  the PASS/FAIL count and the checks table come after it;
+* turns the literature and equation references of the checks table into links a
+  reader can open (:func:`link_references`: DOIs, report-section anchors);
 * exits with status 1 if any check failed or any section crashed, else 0.
 
 The builder contains no physics: the sections call the library and return their
@@ -46,13 +53,19 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from verification._api import Check, Section
+from verification._api import VECTOR_FORMAT, Check, Section
 
-__all__ = ["SECTION_ORDER", "SectionResult", "main", "run_sections", "render_html", "render_summary",
-           "markdown_to_html"]
+__all__ = ["SECTION_ORDER", "VERDICT_ORDER", "SectionResult", "main", "run_sections", "render_html",
+           "render_summary", "markdown_to_html", "link_references", "collect_verdict"]
 
 #: Section modules in report order: ``verification/sec_<name>.py``.
 SECTION_ORDER = ("analytic", "models", "fields", "periphery")
+#: Whose verdict leads: the self-consistent adhesive solution (ground truth) first, then the
+#: closures against elliptical JKR, the periphery/Eq. (30) analysis, the analytic core, the BEM.
+#: Sections not named here follow in :data:`SECTION_ORDER`.
+VERDICT_ORDER = ("adhesive", "models", "periphery", "analytic", "fields")
+#: The section whose verdict is the ground truth; the verdict says so when it is absent.
+GROUND_TRUTH_SECTION = "adhesive"
 #: Files of a previous report that the builder removes from ``--out`` before running.
 REPORT_FILES = ("report.html", "summary.md", "checks.json")
 
@@ -122,7 +135,7 @@ def _validate_section(name, sec):
         if not str(fig.caption).strip():
             problems.append(f"figure without caption: {p.name}")
         elif not _CITATION.search(str(fig.caption)):
-            problems.append(f"figure caption cites no equation or paper figure (issue 5): {p.name}")
+            problems.append(f"figure caption cites no equation or paper figure: {p.name}")
     for ds in sec.datasets:
         if not Path(ds).is_file():
             problems.append(f"dataset file missing: {ds}")
@@ -445,6 +458,83 @@ def markdown_to_html(text: str) -> str:
     return "\n".join(out)
 
 
+#: Literature cited by the checks, with the DOI a reader can open (percent-encoded parentheses,
+#: so that the Markdown link syntax survives).
+REFERENCE_LINKS = (
+    (r"Zini et al\.?,? (?:\(2018\)|2018)", "10.1007/s11249-017-0976-8"),
+    (r"Greenwood\s*(?:&|–|-|and)\s*Johnson\s*(?:\(1998\)|1998)|\bGJ98\b", "10.1088/0022-3727/31/22/017"),
+    (r"Johnson\s*(?:&|and)\s*Greenwood\s*(?:\(2005\)|2005)|\bJG05\b", "10.1088/0022-3727/38/7/012"),
+    (r"Johnson,?\s*Kendall\s*(?:&|and)\s*Roberts\s*(?:\(1971\)|1971)|\bJKR \(1971\)", "10.1098/rspa.1971.0141"),
+    (r"Derjaguin et al\.?\s*(?:\(1975\)|1975)|\bDMT \(1975\)", "10.1016/0021-9797%2875%2990018-1"),
+    (r"Maugis\s*(?:\(1992\)|1992)", "10.1016/0021-9797%2892%2990285-T"),
+    (r"Johnson\s*(?:\(1985\)|1985)", "10.1017/CBO9781139171731"),
+)
+#: "Eq. (31)", "Eqs. (13b)/(15)", "Eq. 27": equations of Zini et al. (2018), linked to the paper.
+_EQ_REF = re.compile(r"\bEqs?\.\s*(?:\(\s*[AB]?\d+[a-z]?\s*\)|[AB]?\d+[a-z]?)")
+#: "report section periphery": an anchor in this report.
+_SECTION_REF = re.compile(r"report section (\w+)")
+_MD_LINK_OR_CODE = re.compile(r"(\[[^\]]*\]\([^)]*\)|`[^`]*`)")
+
+
+def link_references(text: str, equations: bool = True) -> str:
+    """Markdown links for the references of a check: DOIs of the cited papers and section anchors.
+
+    "Johnson & Greenwood (2005)" becomes a link to its DOI, "Eq. (31)" a link to the
+    paper (Zini et al. 2018; only when ``equations``) and "report section fields" a
+    link to that section of report.html.  Existing links and inline code are left alone.
+    """
+    def outside_links(text, pattern, repl):
+        pieces = _MD_LINK_OR_CODE.split(text)
+        return "".join(p if k % 2 else re.sub(pattern, repl, p) for k, p in enumerate(pieces))
+
+    text = str(text)
+    for pattern, doi in REFERENCE_LINKS:
+        text = outside_links(text, pattern, lambda m, d=doi: f"[{m.group(0)}](https://doi.org/{d})")
+    if equations:
+        text = outside_links(text, _EQ_REF, lambda m: f"[{m.group(0)}](https://doi.org/{REFERENCE_LINKS[0][1]})")
+    return outside_links(text, _SECTION_REF,
+                         lambda m: f"[report section {m.group(1)}](report.html#{_anchor(m.group(1))})")
+
+
+def collect_verdict(results):
+    """The report's lead: ``(verdict, guide)``, lists of ``(section name, Markdown line)``.
+
+    Verdict lines come from ``Section.verdict`` in :data:`VERDICT_ORDER`; a section
+    that crashed or has failed checks is flagged in place of (or before) its lines,
+    and the absence of the ground-truth section is said, not hidden.
+    """
+    rank = {name: k for k, name in enumerate(VERDICT_ORDER)}
+    order = sorted(results, key=lambda r: (rank.get(r.name, len(rank)), SECTION_ORDER.index(r.name)
+                                           if r.name in SECTION_ORDER else len(SECTION_ORDER)))
+    verdict, guide = [], []
+    names = {r.name for r in results}
+    if GROUND_TRUTH_SECTION not in names:
+        verdict.append((GROUND_TRUTH_SECTION,
+                        "*Ground truth:* no self-consistent adhesive solution in this run (report section "
+                        f"`{GROUND_TRUTH_SECTION}` absent), so the closures below are judged against elliptical "
+                        "JKR (Johnson & Greenwood 2005), which is exact only as μ → ∞."))
+    for r in order:
+        n_fail = sum(not c.passed for c in r.checks)
+        if r.crashed:
+            verdict.append((r.name, f"**Section `{r.name}` did not complete** ({r.error}): its conclusions are "
+                                    "missing from this verdict."))
+            continue
+        lines = list(getattr(r.section, "verdict", []) or [])
+        if n_fail and lines:
+            verdict.append((r.name, f"**Section `{r.name}` has {n_fail} failed check(s)**: its conclusions "
+                                    "below are not verified."))
+        verdict += [(r.name, line) for line in lines]
+        guide += [(r.name, line) for line in (getattr(r.section, "guide", []) or [])]
+    return verdict, guide
+
+
+def _checks_status(results):
+    rows = [c for r in results for c in r.checks]
+    n_fail = sum(not c.passed for c in rows)
+    ok = n_fail == 0 and not any(r.crashed for r in results)
+    return ok, n_fail, len(rows)
+
+
 _CSS = """
 body{font-family:-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1b1b1b;background:#fff;
 line-height:1.45}
@@ -467,6 +557,9 @@ dl.meta{display:grid;grid-template-columns:max-content auto;gap:.15em 1em;font-s
 dl.meta dt{font-weight:bold}dl.meta dd{margin:0}
 nav ul{padding-left:1.2em}
 .small{font-size:.85em;color:#555}
+section.lead{border-left:5px solid #3b5b9a;background:#f5f7fc;padding:.4em 1.2em .8em;margin:.6em 0 1.2em}
+section.lead h2{margin-top:.4em;border:none}
+section.lead li{margin:.35em 0}
 """
 
 
@@ -488,7 +581,7 @@ def _checks_table_html(rows):
         body.append(
             f"<tr><td><a href='#{_anchor(sec_name)}'>{html.escape(sec_name)}</a></td><td>{_inline(c.name)}</td><td class=num>{_fmt(c.value)}</td>"
             f"<td>{html.escape(c.comparison)}</td><td class=num>{_fmt(c.tolerance)}</td>"
-            f"<td class={cls}>{'PASS' if c.passed else 'FAIL'}</td><td>{_inline(c.reference)}</td></tr>")
+            f"<td class={cls}>{'PASS' if c.passed else 'FAIL'}</td><td>{_inline(link_references(c.reference))}</td></tr>")
     return head + "".join(body) + "</tbody></table>"
 
 
@@ -496,25 +589,45 @@ def _anchor(name):
     return "sec-" + re.sub(r"[^a-z0-9]+", "-", name.lower())
 
 
+def _lead_html(results):
+    """The verdict and "which model to use when", as the first content of the report."""
+    verdict, guide = collect_verdict(results)
+
+    def items(rows):
+        return "".join(f"<li>{_inline(link_references(line, equations=False))} <a class=small href='#{_anchor(name)}'>"
+                       f"[{html.escape(name)}]</a></li>" for name, line in rows)
+
+    parts = ["<section id='verdict' class='lead'><h2>Verdict: what the checks conclude about the paper</h2>",
+             "<p class=small>Zini et al. (2018), doi:10.1007/s11249-017-0976-8, extended double-Hertz model of "
+             "an adhesive elliptical contact. Every number below is computed by the report section named in "
+             "brackets.</p>",
+             f"<ul>{items(verdict)}</ul>" if verdict else "<p>No section stated a verdict.</p>"]
+    if guide:
+        parts.append(f"<h3 id='guide'>Which model to use when</h3><ul>{items(guide)}</ul>")
+    parts.append("</section>")
+    return "".join(parts)
+
+
 def render_html(results, meta, out: Path, total_seconds: float) -> str:
-    """The complete, self-contained HTML report as a string."""
+    """The complete, self-contained HTML report as a string: the verdict first, then the checks."""
     all_rows = [(r.name, c) for r in results for c in r.checks]
-    n_fail = sum(not c.passed for _, c in all_rows)
-    ok = n_fail == 0 and not any(r.crashed for r in results)
-    verdict = (f"<div class='verdict pass'>ALL {len(all_rows)} CHECKS PASS</div>" if ok else
-               f"<div class='verdict fail'>{n_fail} OF {len(all_rows)} CHECKS FAIL</div>")
+    ok, n_fail, n_all = _checks_status(results)
+    verdict = (f"<div class='verdict pass'>ALL {n_all} CHECKS PASS</div>" if ok else
+               f"<div class='verdict fail'>{n_fail} OF {n_all} CHECKS FAIL"
+               + (" (a section crashed)" if not n_fail else "") + "</div>")
     parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
              "<meta name='viewport' content='width=device-width, initial-scale=1'>",
              "<title>dhfield verification report</title>", f"<style>{_CSS}</style></head><body><main>",
              "<h1>dhfield verification report</h1>",
+             _lead_html(results),
+             verdict,
              "<p>Verification of the extended double-Hertz model of an adhesive elliptical contact "
              "(Zini et al., Tribology Letters 2018) as implemented in <code>dhfield</code>.</p>",
              "<dl class=meta>"]
     for k, v in meta.items():
         parts.append(f"<dt>{html.escape(k)}</dt><dd>{html.escape(str(v))}</dd>")
     parts.append(f"<dt>wall time</dt><dd>{total_seconds:.1f} s</dd></dl>")
-    parts.append(verdict)
-    parts.append("<nav><h2>Contents</h2><ul>")
+    parts.append("<nav><h2>Contents</h2><ul><li><a href='#verdict'>Verdict</a></li>")
     for r in results:
         nf = sum(not c.passed for c in r.checks)
         badge = "<span class=pass>PASS</span>" if nf == 0 and not r.crashed else f"<span class=fail>{nf} FAIL</span>"
@@ -537,8 +650,11 @@ def render_html(results, meta, out: Path, total_seconds: float) -> str:
                 img = _img_tag(p, f"{sec.title}, figure {k}")
             else:
                 img = f"<p class=fail>missing figure file {html.escape(str(p))}</p>"
+            vec = p.with_suffix("." + VECTOR_FORMAT)
+            files = html.escape(_rel(p, out)) + (f", <a href='{html.escape(_rel(vec, out))}'>"
+                                                 f"{html.escape(_rel(vec, out))}</a>" if vec.is_file() else "")
             parts.append(f"<figure>{img}<figcaption><strong>{html.escape(r.name)} figure {k}.</strong> "
-                         f"{_inline(fig.caption)} <span class=small>[{html.escape(_rel(p, out))}]</span>"
+                         f"{_inline(fig.caption)} <span class=small>[{files}]</span>"
                          f"</figcaption></figure>")
         if r.checks:
             parts.append("<h3>Checks</h3>" + _checks_table_html([(r.name, c) for c in r.checks]))
@@ -558,21 +674,30 @@ def _md_cell(s) -> str:
 
 
 def render_summary(results, meta, out: Path, total_seconds: float) -> str:
-    """The Markdown summary: header, PASS/FAIL table, figure and dataset links."""
+    """The Markdown summary: the verdict and model guide first, then header, PASS/FAIL table, links."""
     all_rows = [(r.name, c) for r in results for c in r.checks]
-    n_fail = sum(not c.passed for _, c in all_rows)
-    lines = ["# dhfield verification report: summary", ""]
+    ok, n_fail, n_all = _checks_status(results)
+    verdict, guide = collect_verdict(results)
+    lines = ["# dhfield verification report: summary", "", "## Verdict: what the checks conclude about the paper",
+             ""]
+    lines += [f"- {link_references(line, False)} ([{name}](report.html#{_anchor(name)}))" for name, line in verdict]
+    if not verdict:
+        lines.append("- No section stated a verdict.")
+    if guide:
+        lines += ["", "## Which model to use when", ""]
+        lines += [f"- {link_references(line, False)} ([{name}](report.html#{_anchor(name)}))" for name, line in guide]
+    lines += ["", f"**Checks: {'PASS' if ok else 'FAIL'}** ({n_all - n_fail} of {n_all} checks pass"
+              + ("; a section crashed" if any(r.crashed for r in results) else "")
+              + "). Full report: [report.html](report.html)", ""]
     for k, v in meta.items():
         lines.append(f"- **{k}:** {_md_cell(v)}")
     lines.append(f"- **wall time:** {total_seconds:.1f} s")
-    lines.append("")
-    lines.append(f"**Verdict: {'PASS' if n_fail == 0 and not any(r.crashed for r in results) else 'FAIL'}** "
-                 f"({len(all_rows) - n_fail} of {len(all_rows)} checks pass). Full report: [report.html](report.html)")
     lines += ["", "| section | check | value | relation | tolerance | verdict | reference |",
               "|---|---|---:|---|---:|---|---|"]
     for name, c in all_rows:
         lines.append(f"| {name} | {_md_cell(c.name)} | {_fmt(c.value)} | {_md_cell(c.comparison)} | "
-                     f"{_fmt(c.tolerance)} | {'PASS' if c.passed else '**FAIL**'} | {_md_cell(c.reference)} |")
+                     f"{_fmt(c.tolerance)} | {'PASS' if c.passed else '**FAIL**'} | "
+                     f"{_md_cell(link_references(c.reference))} |")
     lines.append("")
     lines.append("## Sections")
     for r in results:
@@ -581,7 +706,9 @@ def render_summary(results, meta, out: Path, total_seconds: float) -> str:
                   f"{sum(not c.passed for c in r.checks)} failed" + (f"; **{r.error}**" if r.error else ""), ""]
         for k, fig in enumerate(r.section.figures, 1):
             rel = _rel(Path(fig.path), out)
-            lines.append(f"- Figure {k}: [{rel}]({rel}) — {_md_cell(fig.caption)}")
+            vec = Path(fig.path).with_suffix("." + VECTOR_FORMAT)
+            alt = f" ([{VECTOR_FORMAT.upper()}]({_rel(vec, out)}))" if vec.is_file() else ""
+            lines.append(f"- Figure {k}: [{rel}]({rel}){alt} — {_md_cell(fig.caption)}")
         for ds in r.section.datasets:
             rel = _rel(Path(ds), out)
             lines.append(f"- Dataset: [{rel}]({rel})")
@@ -595,8 +722,11 @@ def _json_value(x):
 
 
 def render_checks_json(results, meta, total_seconds) -> str:
+    verdict, guide = collect_verdict(results)
     return json.dumps({
         "meta": meta, "wall_time_s": total_seconds,
+        "verdict": [{"section": name, "text": line} for name, line in verdict],
+        "guide": [{"section": name, "text": line} for name, line in guide],
         "sections": [{"name": r.name, "title": r.section.title, "seconds": r.seconds, "crashed": r.crashed,
                       "error": r.error} for r in results],
         "checks": [{"section": r.name, "name": c.name, "value": _json_value(c.value),
