@@ -90,17 +90,46 @@ class Progress:
 # --------------------------------------------------------------------------- schedulers
 @dataclass
 class Executor:
-    """Where tasks run: ``kind`` is "synchronous", "processes" or "distributed"."""
+    """Where tasks run: ``kind`` is "synchronous", "processes" or "distributed".
+
+    An Executor from :func:`connect` can be passed to several :func:`run_sweep`
+    calls: local worker processes are started once, on first use, and kept
+    (with the operators they built) until :meth:`close`.
+    """
 
     kind: str
     workers: int
     client: object = None
     _own_client: bool = False
+    _pool: object = None
+
+    @property
+    def pool(self):
+        """The local process pool (spawned workers), started on first use."""
+        if self._pool is None:
+            import multiprocessing
+            from concurrent.futures import ProcessPoolExecutor
+
+            import dask
+
+            ctx = multiprocessing.get_context(dask.config.get("multiprocessing.context", "spawn"))
+            self._pool = ProcessPoolExecutor(self.workers, mp_context=ctx)
+        return self._pool
 
     def close(self):
+        """Stop the worker processes and the client this Executor started."""
+        if self._pool is not None:
+            self._pool.shutdown(cancel_futures=True)
+            self._pool = None
         if self._own_client and self.client is not None:
             self.client.close()
             self.client = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
 
 
 def connect(scheduler=None, workers=None) -> Executor:
@@ -108,9 +137,10 @@ def connect(scheduler=None, workers=None) -> Executor:
 
     Parameters
     ----------
-    scheduler : str or distributed.Client, optional
+    scheduler : str, distributed.Client or Executor, optional
         None (local processes, or serial when ``workers == 1``), "synchronous",
-        "processes", a ``tcp://host:port`` address, or a connected Client.
+        "processes", a ``tcp://host:port`` address, a connected Client, or an
+        Executor (returned as is).
     workers : int, optional
         Local worker processes, >= 1 (default: every core).
 
@@ -121,6 +151,8 @@ def connect(scheduler=None, workers=None) -> Executor:
     """
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ValueError(f"workers must be an integer >= 1 (local worker processes); got {workers!r}")
+    if isinstance(scheduler, Executor):
+        return scheduler
     if scheduler is not None and not isinstance(scheduler, str):  # a distributed.Client
         return Executor("distributed", len(scheduler.scheduler_info()["workers"]), scheduler)
     if scheduler is None:
@@ -174,7 +206,7 @@ def _compute(collections, executor: Executor, progress: Progress):
         if key in keys:
             progress.advance()
 
-    kwargs = {"num_workers": executor.workers} if executor.kind == "processes" else {}
+    kwargs = {"pool": executor.pool} if executor.kind == "processes" else {}
     with Callback(posttask=posttask):
         return dask.compute(*collections, scheduler=executor.kind, **kwargs)
 
@@ -328,8 +360,9 @@ def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, pr
     config : SweepConfig
     out : path, optional
         Output (see :func:`dhfield.sweep.store.output_paths`); default ``config.out``.
-    scheduler : str or distributed.Client, optional
-        See :func:`connect`; default ``config.scheduler``.
+    scheduler : str, distributed.Client or Executor, optional
+        See :func:`connect`; default ``config.scheduler``.  An Executor is
+        left running (its owner closes it); anything else is closed on return.
     workers : int, optional
         Local worker processes; default ``config.workers`` or every core.
     progress : bool, optional
@@ -352,12 +385,14 @@ def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, pr
         adhesive_solver()
     executor = connect(scheduler if scheduler is not None else config.scheduler,
                        workers if workers is not None else config.workers)
+    owned = executor is not scheduler
     try:
         fp = config.fingerprint()
         store = CaseStore(store_dir, fp, manifest={"config": config.as_dict()})
         return _run(config, executor, store, final, progress)
     finally:
-        executor.close()
+        if owned:
+            executor.close()
 
 
 def _run(config, executor, store, final, progress):

@@ -14,11 +14,15 @@ opening it with a different one is an error (use another output path).
 from __future__ import annotations
 
 import json
+import threading
 from pathlib import Path
 
 __all__ = ["CaseStore", "output_paths"]
 
 _MANIFEST = "manifest.json"
+#: HDF5 (under netCDF4) is not thread-safe: cases finishing in threads of one process
+#: (a distributed worker with several threads, or processes=False) take turns.
+_HDF5_LOCK = threading.Lock()
 
 
 def output_paths(out) -> tuple[Path, Path]:
@@ -85,7 +89,8 @@ class CaseStore:
         from ..io import write_netcdf
 
         failed = ds.attrs.get("status") == "failed"
-        path = write_netcdf(ds, self.path(key, failed))
+        with _HDF5_LOCK:
+            path = write_netcdf(ds, self.path(key, failed))
         if not failed:
             self.path(key, True).unlink(missing_ok=True)
         return path
@@ -96,7 +101,8 @@ class CaseStore:
 
         for p in (self.path(key), self.path(key, True)):
             if p.is_file():
-                return read_netcdf(p)
+                with _HDF5_LOCK:
+                    return read_netcdf(p)
         return None
 
     def keys(self) -> list[str]:

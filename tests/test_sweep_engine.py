@@ -1,0 +1,158 @@
+"""Sweep engine: values against closed forms and the single-case functions, schedulers, failures."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from dhfield import compare, schema
+from dhfield.geometry import ellipticity_from_skew_angle
+from dhfield.sweep import config_from_mapping, engine, run_sweep, tasks
+
+#: The analytic pull-off of a block equals the one-call evaluation to rounding: the
+#: quadrature's panel count follows the smallest adhesive-zone scale of the batch, so
+#: blocks and the whole grid differ in the last digits only (solve tolerance 1e-14).
+BLOCK_RTOL = 1e-10
+
+SMALL = {"axes": {"beta0": [0.6, 1.0], "mu": {"geomspace": [0.2, 5, 3]}},
+         "sweep": {"models": ["dh-elliptic", "md", "jkr", "dmt"], "chunk_points": 3}}
+#: Forward BEM cases on one fixed grid (one operator per worker).
+BEM = {"axes": {"beta0": [0.8], "mu": [1.0], "a_star": [0.9, 1.2], "n": [32]},
+       "sweep": {"quantities": ["bem_field"]}, "bem": {"half_width": 3.0}}
+
+
+def _values(ds):
+    """Every data variable, for bit-for-bit comparison (attrs such as history excluded)."""
+    return {k: ds[k].values for k in ds.data_vars}
+
+
+def _assert_bit_identical(a, b):
+    va, vb = _values(a), _values(b)
+    assert va.keys() == vb.keys()
+    for k in va:
+        if va[k].dtype.kind == "f":
+            np.testing.assert_array_equal(va[k], vb[k], err_msg=k)  # NaN == NaN here, bits otherwise
+        else:
+            assert (va[k] == vb[k]).all(), k
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    d = tmp_path_factory.mktemp("serial")
+    return (run_sweep(config_from_mapping(SMALL), out=d / "s.nc", scheduler="synchronous", progress=False),
+            run_sweep(config_from_mapping(BEM), out=d / "b.nc", scheduler="synchronous", progress=False))
+
+
+def test_closed_forms(serial):
+    w = serial[0].dataset["W_star"]
+    # JKR: W_max = -3/2 pi R dgamma (Johnson, Kendall & Roberts 1971); DMT: -2 pi R dgamma (Derjaguin,
+    # Muller & Toporov 1975); in W* = W/(2 pi R dgamma) (Eq. 34 with sin = 1): -3/4 and -1.
+    assert np.all(w.sel(model="jkr").values == -0.75)
+    np.testing.assert_allclose(w.sel(model="dmt").values, -1.0, rtol=1e-15)
+
+
+def test_matches_single_case_functions(serial):
+    ds = serial[0].dataset
+    mu, b0 = np.meshgrid(ds["mu"].values, ds["beta0"].values)
+    for model in ("dh-elliptic", "md"):
+        ref = compare.pull_off(model, mu, b0, check_closure=False)
+        for k in tasks.PULL_OFF_FIELDS:
+            np.testing.assert_allclose(ds[k].sel(model=model).values, ref[k], rtol=BLOCK_RTOL, err_msg=k)
+
+
+def test_dataset_layout_and_metadata(serial):
+    ds = serial[0].dataset
+    assert ds["W_star"].dims == ("model", "beta0", "mu")  # schema.DIM_ORDER
+    for k in tasks.PULL_OFF_FIELDS:
+        assert ds[k].attrs["units"] == schema.attrs(k, nondimensional=True)["units"]
+        assert ds[k].attrs["long_name"] == schema.attrs(k, nondimensional=True)["long_name"]
+    assert (ds["status"].values == 0).all()
+    assert "doi:10.1007/s11249-017-0976-8" in ds.attrs["references"]
+    for c in ds.coords:
+        assert ds[c].encoding.get("_FillValue", None) is None
+
+
+def test_bem_field_cases_match_single_case(serial):
+    from dhfield.fields import model_case
+
+    ds = serial[1].dataset
+    assert ds["bem_displacement_error"].dims == ("beta0", "mu", "a_star", "n")
+    case = model_case(32, 0.8, 1.0, 1.2, half_width=3.0, threads=1)
+    assert ds["bem_displacement_error"].sel(a_star=1.2).item() == case.displacement_errors()["all"]["rel_max"]
+    assert (ds["bem_field_status"].values == 0).all()
+
+
+def test_skew_angle_axis(tmp_path):
+    cfg = config_from_mapping({"axes": {"skew_angle_deg": [40.0, 90.0], "mu": [1.0]},
+                               "sweep": {"models": ["jkr-elliptic"]}})
+    ds = run_sweep(cfg, out=tmp_path / "k.nc", scheduler="synchronous", progress=False).dataset
+    assert ds["W_star"].dims == ("model", "skew_angle_deg", "mu")
+    np.testing.assert_array_equal(ds["beta0"].values, ellipticity_from_skew_angle(np.radians([40.0, 90.0])))
+
+
+def test_same_bits_on_every_scheduler(serial, tmp_path):
+    """Serial, local processes and a dask.distributed LocalCluster on loopback agree bit for bit."""
+    from distributed import LocalCluster
+
+    with engine.connect("processes", workers=2) as pool:  # one pool of 2 worker processes for both sweeps
+        procs = [run_sweep(config_from_mapping(c), out=tmp_path / f"p{i}.nc", scheduler=pool, progress=False)
+                 for i, c in enumerate((SMALL, BEM))]
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=False, protocol="tcp", host="127.0.0.1",
+                      dashboard_address=None) as cluster:
+        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+        dist = [run_sweep(config_from_mapping(c), out=tmp_path / f"d{i}.nc", scheduler=cluster.scheduler_address,
+                          progress=False) for i, c in enumerate((SMALL, BEM))]
+    for s, p, d in zip(serial, procs, dist):
+        _assert_bit_identical(s.dataset, p.dataset)
+        _assert_bit_identical(s.dataset, d.dataset)
+
+
+def test_failed_case_is_recorded_and_retried(tmp_path, monkeypatch):
+    real = engine.bem_field_case
+
+    def flaky(**params):
+        if params["a_star"] == 1.2:
+            raise FloatingPointError("injected failure")
+        return real(**params)
+
+    monkeypatch.setattr(engine, "bem_field_case", flaky)
+    cfg = config_from_mapping(BEM)
+    first = run_sweep(cfg, out=tmp_path / "f.nc", scheduler="synchronous", progress=False)
+    ds = first.dataset
+    bad = ds.sel(a_star=1.2, beta0=0.8, mu=1.0, n=32)
+    assert int(bad["bem_field_status"]) == engine._STATUS["failed"]
+    assert "FloatingPointError: injected failure" in str(bad["bem_field_message"].values)
+    assert np.isnan(float(bad["bem_displacement_error"]))
+    good = ds.sel(a_star=0.9, beta0=0.8, mu=1.0, n=32)
+    assert int(good["bem_field_status"]) == 0 and np.isfinite(float(good["bem_displacement_error"]))
+    assert len(first.failed) == 1
+    monkeypatch.setattr(engine, "bem_field_case", real)
+    second = run_sweep(cfg, out=tmp_path / "f.nc", scheduler="synchronous", progress=False)
+    assert second.failed == [] and second.computed == first.failed  # only the failed case is redone
+    assert (second.dataset["bem_field_status"].values == 0).all()
+
+
+def test_pluggable_adhesive_ground_truth(tmp_path, monkeypatch):
+    """The adhesive quantity goes on the model dimension; a non-converged case keeps its message."""
+
+    class Result:
+        def __init__(self, mu, beta0):
+            self.W_star, self.a_star, self.c_star, self.beta_ab = -mu * beta0, 1.0, 2.0, beta0
+            self.delta_star, self.iterations = -0.5, 7
+            self.converged = mu < 2.0
+            self.message = "" if self.converged else "stalled"
+
+    def fake_solver(mu, beta0, n, *, law, control, threads):
+        return Result(mu, beta0)
+
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": fake_solver)
+    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": fake_solver)
+    cfg = config_from_mapping({"axes": {"beta0": [0.9], "mu": [1.0, 3.0], "n": [32, 64]},
+                               "sweep": {"quantities": ["pull_off", "adhesive"], "models": ["jkr"]}})
+    ds = run_sweep(cfg, out=tmp_path / "a.nc", scheduler="synchronous", progress=False).dataset
+    assert list(ds["model"].values) == ["jkr", tasks.ADHESIVE_MODEL]
+    assert ds["W_star"].dims == ("model", "beta0", "mu", "n", "law")
+    adh = ds.sel(model=tasks.ADHESIVE_MODEL, beta0=0.9, n=64).isel(law=0)
+    np.testing.assert_array_equal(adh["W_star"].values, [-0.9, -2.7])
+    assert list(adh["status"].values) == [0, engine._STATUS["not_converged"]]
+    assert str(ds["adhesive_message"].sel(beta0=0.9, mu=3.0, n=64).isel(law=0).values) == "stalled"
+    assert (ds["W_star"].sel(model="jkr").values == -0.75).all()  # analytic models broadcast over n, law
