@@ -1,0 +1,432 @@
+"""The inverse problem: work of adhesion and adhesive stress from measurements.
+
+Two estimators, on the SI front end :mod:`dhfield.dimensional` (so that what is
+fitted is exactly what ``dhfield pulloff`` and ``dhfield curve`` compute):
+
+* :func:`fit_work_of_adhesion` -- the work of adhesion dgamma from a measured
+  pull-off force, for a known adhesive stress sigma0 (one root in one unknown).
+* :func:`fit_curve` -- dgamma and sigma0 from a measured load curve (load
+  against contact size, optionally approach), by nonlinear least squares, with
+  standard errors.
+
+Both take the geometry and the material as a
+:class:`dhfield.dimensional.ContactParameters` (from
+:func:`dhfield.dimensional.contact_parameters` or
+:func:`dhfield.dimensional.contact_parameters_from_principal_radii`): its
+reduced modulus E* and principal radii R', R'' are used; its work of adhesion
+and adhesive stress only serve as defaults or starting values.
+
+Scaling (Eqs. 33-35): with R = sqrt(R'R''),
+
+.. math::
+
+    \\mu = \\sigma_0 \\left(\\frac{R}{E^{*2} \\Delta\\gamma}\\right)^{1/3}, \\qquad
+    W_{\\max} = \\frac{2 \\pi R \\Delta\\gamma}{\\sin\\theta_{skew}} W^*_{\\max}(\\mu, \\beta_0),
+
+so at fixed sigma0 the pull-off force depends on dgamma both directly and
+through mu.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import optimize
+
+from . import _adhesion as units
+from . import compare, dimensional
+from ._validation import TABOR_RANGE, check_finite, check_positive
+
+__all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve", "FIT_MU_RANGE",
+           "CURVE_FIT_MODEL_NAMES"]
+
+#: Tabor parameters mu (Eq. 35) the pull-off fit searches: the range every model
+#: accepts (:data:`dhfield._validation.TABOR_RANGE`, DMT limit to 1e-3 at the low
+#: end, JKR limit to 1e-6 at the high end).  A force that needs mu outside it is
+#: rejected, with the attainable range of forces in the message.
+FIT_MU_RANGE = TABOR_RANGE
+#: Convergence of the root in ln(dgamma): the fitted dgamma is exact to this
+#: relative error for the forward model (round trip).
+_LOG_XTOL = 1e-13
+#: Models whose load curve depends on sigma0 (mu), so that :func:`fit_curve` can
+#: identify it; JKR, DMT and elliptical JKR have no adhesive stress.
+CURVE_FIT_MODEL_NAMES = tuple(m for m in compare.CURVE_MODEL_NAMES if m not in ("jkr", "dmt", "jkr-elliptic"))
+
+
+@dataclass(frozen=True)
+class WorkOfAdhesionFit:
+    """Work of adhesion that reproduces a measured pull-off force.
+
+    Attributes
+    ----------
+    work_of_adhesion : float
+        dgamma [J m^-2].
+    mu : float
+        Tabor parameter of Eq. (35) at the fitted dgamma [-].
+    beta0 : float
+        Hertz ellipticity of the geometry [-].
+    max_adhesive_stress : float
+        sigma0 used [Pa].
+    pull_off_force : float
+        The measured force fitted [N] (negative).
+    model, control : str
+    evaluations : int
+        Forward pull-off evaluations used.
+    """
+    work_of_adhesion: float
+    mu: float
+    beta0: float
+    max_adhesive_stress: float
+    pull_off_force: float
+    model: str
+    control: str
+    evaluations: int
+
+    def as_record(self) -> dict:
+        """Plain dict (for ``--json``), keys named as in :mod:`dhfield.schema`."""
+        return {"model": self.model, "control": self.control, "work_of_adhesion": self.work_of_adhesion,
+                "mu": self.mu, "beta0": self.beta0, "max_adhesive_stress": self.max_adhesive_stress,
+                "force": self.pull_off_force, "evaluations": self.evaluations}
+
+
+@dataclass(frozen=True)
+class CurveFit:
+    """Least-squares estimates of dgamma and sigma0 from a load curve.
+
+    Attributes
+    ----------
+    work_of_adhesion, max_adhesive_stress : float
+        Estimates of dgamma [J m^-2] and sigma0 [Pa].
+    work_of_adhesion_stderr, max_adhesive_stress_stderr : float
+        Their standard errors [J m^-2], [Pa] (delta method from the log
+        parameters; see :func:`fit_curve`).
+    correlation : float
+        Correlation of the two estimates (of their logarithms) [-].
+    mu, beta0 : float
+        Tabor parameter (Eq. 35) at the estimates, Hertz ellipticity [-].
+    contact_size, load, approach : ndarray
+        The data [m], [N], [m] (``approach`` None if not given).
+    load_fitted, approach_fitted : ndarray
+        The model at the estimates [N], [m].
+    load_residuals, approach_residuals : ndarray
+        Data minus model [N], [m].
+    load_noise, approach_noise : float
+        Residual standard deviations (the weights of each block) [N], [m].
+    model : str
+    success : bool
+    message : str
+    evaluations : int
+        Forward load-curve evaluations.
+    """
+    work_of_adhesion: float
+    max_adhesive_stress: float
+    work_of_adhesion_stderr: float
+    max_adhesive_stress_stderr: float
+    correlation: float
+    mu: float
+    beta0: float
+    contact_size: np.ndarray
+    load: np.ndarray
+    approach: np.ndarray | None
+    load_fitted: np.ndarray
+    approach_fitted: np.ndarray | None
+    load_residuals: np.ndarray
+    approach_residuals: np.ndarray | None
+    load_noise: float
+    approach_noise: float
+    model: str
+    success: bool
+    message: str
+    evaluations: int
+    covariance_log: np.ndarray = field(repr=False, default=None)
+
+    def as_record(self) -> dict:
+        """Plain dict of the scalar results (for ``--json``)."""
+        return {"model": self.model, "work_of_adhesion": self.work_of_adhesion,
+                "work_of_adhesion_stderr": self.work_of_adhesion_stderr,
+                "max_adhesive_stress": self.max_adhesive_stress,
+                "max_adhesive_stress_stderr": self.max_adhesive_stress_stderr,
+                "correlation": self.correlation, "mu": self.mu, "beta0": self.beta0,
+                "n_points": int(self.load.size), "load_noise": self.load_noise,
+                "approach_noise": self.approach_noise, "success": self.success, "message": self.message,
+                "evaluations": self.evaluations}
+
+
+def _with(params, work_of_adhesion, max_adhesive_stress):
+    """``params`` with another dgamma and sigma0 (the scales of Eqs. 33-35 recomputed)."""
+    e, r, sin_skew = params.reduced_modulus, params.effective_radius, params.sin_skew
+    return dimensional.ContactParameters(
+        e, params.r_major, params.r_minor, r, params.beta0, sin_skew,
+        float(units.tabor_parameter(max_adhesive_stress, r, e, work_of_adhesion)),  # Eq. (35)
+        float(units.length_unit(r, e, work_of_adhesion)),  # Eq. (33)
+        float(units.approach_unit(r, e, work_of_adhesion)),
+        float(units.load_unit(r, work_of_adhesion, sin_skew)),  # Eq. (34)
+        float(work_of_adhesion), float(max_adhesive_stress))
+
+
+def _check_params(params):
+    if not isinstance(params, dimensional.ContactParameters):
+        raise ValueError("params must be a dhfield.dimensional.ContactParameters (from contact_parameters or "
+                         f"contact_parameters_from_principal_radii); got {type(params).__name__}")
+    if np.ndim(params.mu) or np.ndim(params.beta0):
+        raise ValueError("params must be scalar ContactParameters (one geometry and material); got arrays")
+
+
+def _work_at_mu(mu, max_adhesive_stress, params):
+    """dgamma at which the Tabor parameter is mu, for fixed sigma0: inverts Eq. (35)."""
+    r, e = params.effective_radius, params.reduced_modulus
+    return max_adhesive_stress ** 3 * r / (mu ** 3 * e * e)  # Eq. (35) solved for dgamma
+
+
+def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, model=compare.DEFAULT_MODEL,
+                         control="load"):
+    """Work of adhesion dgamma that gives a measured pull-off force.
+
+    Parameters
+    ----------
+    pull_off_force : float
+        Measured pull-off force, negative (tensile) [N].
+    params : dhfield.dimensional.ContactParameters
+        Geometry and material (E*, R', R''); its ``work_of_adhesion`` is ignored.
+    max_adhesive_stress : float, optional
+        Adhesive stress sigma0 > 0 [Pa]; default ``params.max_adhesive_stress``.
+    model : str
+        One of :data:`dhfield.compare.MODEL_NAMES`; default the paper's model.
+    control : {'load', 'displacement'}
+        Loading mode of the measurement.
+
+    Returns
+    -------
+    WorkOfAdhesionFit
+
+    Raises
+    ------
+    ValueError
+        ``pull_off_force`` not negative, or outside the forces the model attains
+        for Tabor parameters in :data:`FIT_MU_RANGE` (the range is in the message).
+
+    Notes
+    -----
+    Solves :math:`\\ln(-W_{\\max}(\\Delta\\gamma)) = \\ln(-F)` in
+    :math:`x = \\ln \\Delta\\gamma` with Eqs. (34)-(35):
+
+    .. math::
+
+        \\frac{d \\ln(-W_{\\max})}{d x} = 1 - \\frac{1}{3}
+            \\frac{d \\ln(-W^*_{\\max})}{d \\ln \\mu},
+
+    because mu is proportional to dgamma^(-1/3).  The root is unique as long as
+    the log-slope of |W*max| in mu stays below 3; it lies between 0 and
+    -0.1 for every model (|W*max| goes from the DMT value at small mu to the JKR
+    value at large mu), so the function is monotone with slope close to 1.
+    The iteration is a secant method started from two fixed-point steps
+    ``x <- x - f(x)``, which converges in a few evaluations (exactly in one
+    for the mu-independent models JKR, DMT and elliptical JKR); Brent's method
+    on the bracket of :data:`FIT_MU_RANGE` is the fallback.
+    """
+    _check_params(params)
+    f_meas = float(check_finite("pull_off_force", pull_off_force, "N"))
+    if not f_meas < 0.0:
+        raise ValueError(f"pull_off_force must be negative (tensile, N); got {f_meas!r}")
+    s0 = params.max_adhesive_stress if max_adhesive_stress is None else max_adhesive_stress
+    s0 = float(check_positive("max_adhesive_stress", s0, "Pa"))
+    if model not in compare.MODEL_NAMES:
+        raise ValueError(f"model must be one of {', '.join(compare.MODEL_NAMES)}; got {model!r}")
+    target = math.log(-f_meas)
+    count = [0]
+
+    def force(work):
+        count[0] += 1
+        rec = dimensional.pull_off_force(_with(params, work, s0), model, control, check_closure=False)
+        return float(rec["force"])
+
+    def f(x):
+        w = force(math.exp(x))
+        if not w < 0.0:
+            raise ValueError(f"model {model!r} gives a non-negative pull-off force {w!r} N at "
+                             f"work_of_adhesion={math.exp(x)!r}; cannot fit")
+        return math.log(-w) - target
+
+    x_lo = math.log(_work_at_mu(FIT_MU_RANGE[1], s0, params))  # large mu: small dgamma
+    x_hi = math.log(_work_at_mu(FIT_MU_RANGE[0], s0, params))
+
+    def attainable():
+        try:
+            rng = f"[{force(math.exp(x_hi)):.6g}, {force(math.exp(x_lo)):.6g}] N"
+        except (ValueError, RuntimeError):  # the model fails at an end: state the range of dgamma
+            rng = (f"the forces of work_of_adhesion in [{math.exp(x_lo):.6g}, {math.exp(x_hi):.6g}] J/m^2")
+        return (f"pull_off_force must be in {rng} for model {model!r} at max_adhesive_stress={s0:.6g} Pa "
+                f"(Tabor parameter mu in [{FIT_MU_RANGE[0]:g}, {FIT_MU_RANGE[1]:g}]); got {f_meas!r}")
+
+    # start at mu = 1: dgamma from Eq. (35), then two fixed-point steps x <- x - f(x)
+    x0 = min(max(math.log(_work_at_mu(1.0, s0, params)), x_lo), x_hi)
+    f0 = f(x0)
+    x1 = x0 - f0
+    root = None
+    if x_lo - 1.0 <= x1 <= x_hi + 1.0:
+        f1 = f(x1)
+        for _ in range(30):
+            if abs(f1) == 0.0 or (abs(x1 - x0) < _LOG_XTOL and abs(f1) < 10 * _LOG_XTOL):
+                root = x1
+                break
+            slope = (f1 - f0) / (x1 - x0) if x1 != x0 else 1.0
+            if not 0.1 < slope < 10.0:  # the function is monotone with slope ~1 (Notes)
+                slope = 1.0
+            x0, f0 = x1, f1
+            x1 = x1 - f1 / slope
+            if not x_lo - 1.0 <= x1 <= x_hi + 1.0:
+                break
+            f1 = f(x1)
+    if root is None:  # fallback: bracketed Brent
+        f_a, f_b = f(x_lo), f(x_hi)
+        if not f_a <= 0.0 <= f_b:
+            raise ValueError(attainable())
+        root = optimize.brentq(f, x_lo, x_hi, xtol=_LOG_XTOL, rtol=4 * np.finfo(float).eps)
+    if not x_lo <= root <= x_hi:
+        raise ValueError(attainable())
+    work = math.exp(root)
+    p = _with(params, work, s0)
+    return WorkOfAdhesionFit(work, float(p.mu), float(p.beta0), s0, f_meas, model, control, count[0])
+
+
+def _curve(params, semi_major, model):
+    c = dimensional.load_curve_si(params, semi_major=semi_major, model=model)
+    return np.asarray(c["force"], float), np.asarray(c["approach"], float)
+
+
+def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAULT_MODEL, initial=None):
+    """Work of adhesion and adhesive stress from a measured load curve, by least squares.
+
+    Parameters
+    ----------
+    load : array_like
+        Measured loads W, positive compressive [N].
+    contact_size : array_like
+        Contact semi-major axes a at those loads, > 0 [m] (the radius for a
+        circular contact).
+    params : dhfield.dimensional.ContactParameters
+        Geometry and material (E*, R', R'').  Its ``work_of_adhesion`` and
+        ``max_adhesive_stress`` are the starting values unless ``initial`` is
+        given.
+    approach : array_like, optional
+        Measured approaches delta [m], fitted together with the loads.
+    model : str
+        One of :data:`CURVE_FIT_MODEL_NAMES`; default the paper's model.
+    initial : (float, float), optional
+        Starting (dgamma [J m^-2], sigma0 [Pa]).
+
+    Returns
+    -------
+    CurveFit
+
+    Notes
+    -----
+    Unknowns are :math:`\\theta = (\\ln\\Delta\\gamma, \\ln\\sigma_0)` (both stay
+    positive).  The residuals are the load misfits, and the approach misfits if
+    given, each block divided by its noise level :math:`s_k`; the model is the
+    load curve of :func:`dhfield.dimensional.load_curve_si` at the measured
+    contact sizes.  ``scipy.optimize.least_squares`` (trust-region reflective)
+    minimises them; with approaches, a first fit with unit-range weights sets
+    :math:`s_k` to each block's residual standard deviation and a second fit
+    uses them.  The covariance of :math:`\\theta` is
+
+    .. math::
+
+        C = s^2 (J^T J)^{-1}, \\qquad s^2 = \\frac{\\sum r_i^2}{m - 2},
+
+    with J the Jacobian of the weighted residuals at the solution, and the
+    standard errors of dgamma and sigma0 follow by the delta method,
+    :math:`\\mathrm{se}(\\Delta\\gamma) = \\Delta\\gamma \\sqrt{C_{11}}`.
+    They assume independent, equal-variance errors within each block, and are
+    meaningful only when the data reach the adhesive part of the curve (near
+    pull-off), where the load depends on sigma0.
+    """
+    _check_params(params)
+    if model not in CURVE_FIT_MODEL_NAMES:
+        raise ValueError(f"model must be one of {', '.join(CURVE_FIT_MODEL_NAMES)} (models whose load curve "
+                         f"depends on the adhesive stress); got {model!r}")
+    w_data = np.atleast_1d(check_finite("load", load, "N")).astype(float).ravel()
+    a_data = np.atleast_1d(check_positive("contact_size", contact_size, "m")).astype(float).ravel()
+    if w_data.size != a_data.size:
+        raise ValueError(f"load and contact_size must have the same length; got {w_data.size} and {a_data.size}")
+    d_data = None
+    if approach is not None:
+        d_data = np.atleast_1d(check_finite("approach", approach, "m")).astype(float).ravel()
+        if d_data.size != a_data.size:
+            raise ValueError(f"approach must have the length of contact_size ({a_data.size}); got {d_data.size}")
+    n_res = w_data.size + (0 if d_data is None else d_data.size)
+    if n_res < 3:
+        raise ValueError(f"load must have at least 3 points to fit 2 parameters with an error estimate; "
+                         f"got {w_data.size}")
+    if initial is None:
+        initial = (params.work_of_adhesion, params.max_adhesive_stress)
+    w0 = float(check_positive("initial work_of_adhesion", initial[0], "J m^-2"))
+    s0 = float(check_positive("initial max_adhesive_stress", initial[1], "Pa"))
+    count = [0]
+
+    def model_at(theta):
+        count[0] += 1
+        return _curve(_with(params, math.exp(theta[0]), math.exp(theta[1])), a_data, model)
+
+    def span(x):
+        s = float(np.ptp(x)) if x.size > 1 else 0.0
+        return s if s > 0 else max(float(np.max(np.abs(x))), 1e-300)
+
+    scales = [span(w_data), span(d_data) if d_data is not None else 1.0]
+
+    def residuals(theta):
+        try:
+            w, d = model_at(theta)
+        except ValueError:  # a trial (dgamma, sigma0) outside the model's accepted range
+            return np.full(n_res, 1e3)
+        r = [(w - w_data) / scales[0]]
+        if d_data is not None:
+            r.append((d - d_data) / scales[1])
+        out = np.concatenate(r)
+        return np.where(np.isfinite(out), out, 1e6)
+
+    theta = np.log([w0, s0])
+    # keep mu inside FIT_MU_RANGE's neighbourhood: search within 4 decades of the start
+    bounds = (theta - math.log(1e4), theta + math.log(1e4))
+    opts = dict(method="trf", x_scale=1.0, xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=200, bounds=bounds)
+    sol = optimize.least_squares(residuals, theta, **opts)
+    if d_data is not None:  # reweight each block by its own residual scatter, refit
+        w, d = model_at(sol.x)
+        dof = max(n_res - 2, 1)
+        for k, (res, x) in enumerate(((w - w_data, w_data), (d - d_data, d_data))):
+            sd = math.sqrt(float(np.sum(res ** 2)) / dof * n_res / x.size)
+            scales[k] = sd if sd > 1e-12 * span(x) else scales[k]
+        sol = optimize.least_squares(residuals, sol.x, **opts)
+    jac = sol.jac
+    dof = n_res - 2
+    s2 = float(np.sum(sol.fun ** 2)) / dof if dof > 0 else float("nan")
+    try:
+        cov = s2 * np.linalg.inv(jac.T @ jac)
+    except np.linalg.LinAlgError:
+        cov = np.full((2, 2), np.nan)
+    work, stress = (float(v) for v in np.exp(sol.x))
+    se = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    success, message = bool(sol.success), str(sol.message)
+    if np.any(sol.active_mask != 0):  # ran into the search bounds: the data do not determine it
+        names = [n for n, m in zip(("work_of_adhesion", "max_adhesive_stress"), sol.active_mask) if m != 0]
+        se = np.where(sol.active_mask != 0, np.inf, se)
+        success = False
+        message = (f"{' and '.join(names)} not identifiable from these data: the estimate ran to the search "
+                   "bound (4 decades from the start); data near pull-off, in the JKR-DMT transition, are needed")
+    ok = bool(np.all(np.isfinite(se)) and np.all(se > 0))
+    corr = float(cov[0, 1] / (se[0] * se[1])) if ok else float("nan")
+    w_fit, d_fit = model_at(sol.x)
+    p = _with(params, work, stress)
+    return CurveFit(
+        work_of_adhesion=work, max_adhesive_stress=stress,
+        work_of_adhesion_stderr=work * float(se[0]), max_adhesive_stress_stderr=stress * float(se[1]),
+        correlation=corr, mu=float(p.mu), beta0=float(p.beta0),
+        contact_size=a_data, load=w_data, approach=d_data,
+        load_fitted=w_fit, approach_fitted=None if d_data is None else d_fit,
+        load_residuals=w_data - w_fit, approach_residuals=None if d_data is None else d_data - d_fit,
+        load_noise=float(np.sqrt(np.sum((w_data - w_fit) ** 2) / max(w_data.size - (2 if d_data is None else 1), 1))),
+        approach_noise=float("nan") if d_data is None else
+        float(np.sqrt(np.sum((d_data - d_fit) ** 2) / max(d_data.size - 1, 1))),
+        model=model, success=success, message=message, evaluations=count[0],
+        covariance_log=cov)
