@@ -283,6 +283,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
     val = {k: np.full(shape, np.nan) for k in CASE_FLOATS}
     status = np.full(shape, STATUSES.index("missing"), dtype=np.int8)
     message = np.full(shape, "", dtype=object)
+    source = np.full(shape, "", dtype=object)
     for r in records:
         if int(r["n"]) not in ns:
             continue
@@ -291,6 +292,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
             val[key][i, j, k] = float(r.get(key, np.nan))
         status[i, j, k] = STATUSES.index(r["status"])
         message[i, j, k] = r.get("message", "")
+        source[i, j, k] = r.get("solver_source", "")
     dims = ("beta0", "mu", "n")
     data = {}
     for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "beta_ab", "beta_cd", "delta_star"):
@@ -307,6 +309,8 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
                                                                                           dtype=np.int8),
                                      "flag_meanings": " ".join(STATUSES)})
     data["message"] = (dims, message.astype(str), {"long_name": "failure message naming the parameters"})
+    data["solver_source"] = (dims, source.astype(str), {
+        "long_name": "git commit of the solver that computed the case (and whether dhfield/bem was modified)"})
     # Richardson over the finest three levels, per (beta0, mu); unconverged/failed levels excluded
     usable = np.isin(status, [STATUSES.index(s) for s in USABLE])
     for key in ("W_star", "beta_ab", "beta_cd", "a_star", "c_star"):

@@ -1,0 +1,237 @@
+"""netCDF output of an adhesive BEM solution: its fields, its path and its pull-off.
+
+In the style of :mod:`dhfield.io.field`, one :class:`xarray.Dataset` per solution:
+
+* coordinates ``x``, ``y`` (cell centres of the full grid);
+* on (x, y): the total ``pressure`` (compressive positive, the adhesive traction
+  negative), the ``gap`` h = z - delta + omega, the ``cohesive_fraction`` of
+  each cell in the cohesive zone (sub-cell, in [0, 1]) and the categorical
+  ``region`` (contact / cohesive_zone / outside, CF flags: a cell is in the
+  zone when more than half of it is);
+* scalars of the state: ``approach``, ``load``, the second-moment semi-axes
+  ``a``, ``b``, ``c``, ``d``, ``beta_ab``, ``beta_cd``, and the solver record
+  ``converged``, ``iterations``, ``outer_iterations``, ``residual``;
+* for a path (:class:`dhfield.bem.UnloadingPath`), on the dimension ``step``
+  (solve order): approach, load, semi-axes, contact area, phase (CF flags),
+  converged (CF flags), iterations, residual per step, and the pull-off;
+* for a nondimensional pull-off (:class:`dhfield.bem.AdhesivePullOff`), the
+  paper's quantities W*, a*, b*, c*, d*, delta* (Eqs. 32-34) per step and at
+  pull-off, with ``units = "1"`` and the scale in ``long_name``;
+* the global attributes of :func:`dhfield.io.provenance_attrs` with every input
+  parameter (``param_*``, including the traction law).
+
+Metadata of the quantities come from the one table :mod:`dhfield.schema`
+(via :mod:`dhfield.io.cf`); the few that it does not list (the raw solver
+``load``, ``cohesive_fraction``, ``residual``, ``phase``, ``step``) are defined
+here in :data:`LOCAL_VARIABLES`.  Writes go through :func:`dhfield.io.write_netcdf`
+(atomic).
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from . import cf, check_writable, provenance_attrs, read_netcdf, write_netcdf
+
+__all__ = ["state_dataset", "path_dataset", "pull_off_dataset", "write_solution", "read_solution",
+           "REGIONS", "PHASES", "LOCAL_VARIABLES"]
+
+#: Categories of the ``region`` flag variable, code = position.
+REGIONS = ("contact", "cohesive_zone", "outside")
+#: Categories of the per-step ``phase`` flag variable.
+PHASES = ("loading", "unloading", "refine")
+#: name -> (long_name, kind) of the variables not in :mod:`dhfield.schema`; kind
+#: is "length", "length2", "stress", "force" or "1".
+LOCAL_VARIABLES = {
+    "load": ("total normal load, sum of pressure x cell area, positive compressive", "force"),
+    "cohesive_fraction": ("fraction of the cell in the cohesive zone (0 < h < h0), sub-cell", "1"),
+    "residual": ("solver residual: complementarity error and last change of the zone fraction", "1"),
+    "outer_iterations": ("outer (cohesive-zone) iterations", "1"),
+    "contact_area": ("contact area", "length2"),
+    "a": ("contact semi-major axis from second moments of the contact mask", "length"),
+    "b": ("contact semi-minor axis from second moments of the contact mask", "length"),
+    "c": ("adhesive semi-major axis from second moments of contact + cohesive zone", "length"),
+    "d": ("adhesive semi-minor axis from second moments of contact + cohesive zone", "length"),
+    "step": ("solved state index, in solve order", "1"),
+}
+_SI = {"length": "m", "length2": "m2", "stress": "Pa", "force": "N", "1": "1"}
+_NONDIM_SCALE = {"length": "c_r", "length2": "c_r^2", "stress": "E* c_r/R", "force": "R dgamma", "1": None}
+
+
+def _local(name, dims, values, nondimensional, qualifier=None):
+    long_name, kind = LOCAL_VARIABLES[name]
+    if nondimensional and _NONDIM_SCALE[kind]:
+        attrs = {"long_name": f"{long_name}, in {_NONDIM_SCALE[kind]}", "units": "1"}
+    else:
+        attrs = {"long_name": long_name, "units": _SI[kind]}
+    if qualifier:
+        attrs["long_name"] += f", {qualifier}"
+    return (dims, np.asarray(values, dtype=float), attrs)
+
+
+def _flag(name, dims, codes, meanings, long_name):
+    return (dims, np.asarray(codes, dtype=np.int8), {
+        "long_name": long_name, "flag_values": np.arange(len(meanings), dtype=np.int8),
+        "flag_meanings": " ".join(meanings)})
+
+
+def _law_parameters(law) -> dict:
+    if law is None:
+        return {"law": "none"}
+    return {"law": law.name, "law_max_stress": float(law.max_stress), "law_range": float(law.range)}
+
+
+def _region_codes(state):
+    region = np.full(state.grid.shape, REGIONS.index("outside"), dtype=np.int8)
+    region[np.asarray(state.cohesive) > 0.5] = REGIONS.index("cohesive_zone")
+    region[np.asarray(state.contact, dtype=bool)] = REGIONS.index("contact")
+    return region
+
+
+def state_dataset(state, *, nondimensional: bool = False, title: str | None = None, **parameters) -> xr.Dataset:
+    """The Dataset of one :class:`dhfield.bem.ContactState` (fields and scalars).
+
+    Parameters
+    ----------
+    state : dhfield.bem.ContactState
+    nondimensional : bool
+        True when the state is in the paper's units (R = E* = dgamma = 1): units
+        become "1" and the scales are named in ``long_name``; else SI.
+    title : str, optional
+        Global ``title``.
+    **parameters
+        Input parameters stored as ``param_*`` attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+    """
+    g = state.grid
+    nd = nondimensional
+    dims = ("x", "y")
+    a, b = state.contact_semi_axes()
+    c, d = state.cohesive_semi_axes()
+    data = {
+        "pressure": cf.variable("pressure", dims, state.pressure, nondimensional=nd,
+                                qualifier="total (contact minus adhesive traction)"),
+        "gap": cf.variable("gap", dims, state.gap, nondimensional=nd),
+        "cohesive_fraction": _local("cohesive_fraction", dims, state.cohesive, nd),
+        "region": _flag("region", dims, _region_codes(state), REGIONS,
+                        "region of the surface (cohesive zone: more than half of the cell)"),
+        "approach": cf.variable("approach", (), state.approach, nondimensional=nd),
+        "load": _local("load", (), state.load, nd),
+        "beta_ab": cf.variable("beta_ab", (), state.beta_ab),
+        "beta_cd": cf.variable("beta_cd", (), state.beta_cd),
+        "converged": _flag("converged", (), int(bool(state.converged)), ("false", "true"), "solver converged"),
+        "outer_iterations": _local("outer_iterations", (), state.outer_iterations, nd),
+        "residual": _local("residual", (), state.residual, nd),
+    }
+    data["iterations"] = ((), np.int64(state.iterations), {"long_name": "inner conjugate-gradient iterations",
+                                                           "units": "1"})
+    for name, val in (("a", a), ("b", b), ("c", c), ("d", d)):
+        data[name] = _local(name, (), val, nd)
+    coords = {"x": cf.coordinate("x", g.x, nondimensional=nd), "y": cf.coordinate("y", g.y, nondimensional=nd)}
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(provenance_attrs(
+        title or "dhfield: self-consistent adhesive BEM contact state (DC-FFT, free boundary)",
+        **_law_parameters(state.law), cell_size_x=g.dx, cell_size_y=g.dy, nx=g.nx, ny=g.ny,
+        nondimensional=bool(nd), **parameters))
+    return cf.finalize(ds)
+
+
+def path_dataset(path, *, nondimensional: bool = False, sin_skew: float | None = None) -> xr.Dataset:
+    """The per-step arrays of a :class:`dhfield.bem.UnloadingPath` on the dimension ``step``.
+
+    With ``sin_skew`` (and ``nondimensional``), the load is also given as
+    W* = W sin(theta_skew)/(2 pi) (Eq. 34, R = dgamma = 1) and the approach as delta*.
+    """
+    nd = nondimensional
+    n = int(np.size(path.approach))
+    dims = ("step",)
+    phase = [PHASES.index(str(p)) if str(p) in PHASES else len(PHASES) for p in path.phase]
+    data = {
+        "approach_path": cf.variable("approach", dims, path.approach, nondimensional=nd, qualifier="per step"),
+        "load_path": _local("load", dims, path.load, nd, "per step"),
+        "contact_area_path": _local("contact_area", dims, path.contact_area, nd, "per step"),
+        "phase": _flag("phase", dims, phase, PHASES, "phase of the path"),
+        "converged_path": _flag("converged", dims, np.asarray(path.converged, dtype=int), ("false", "true"),
+                                "solver converged, per step"),
+        "iterations_path": (dims, np.asarray(path.iterations, dtype=np.int64),
+                            {"long_name": "inner conjugate-gradient iterations, per step", "units": "1"}),
+        "outer_iterations_path": _local("outer_iterations", dims, path.outer_iterations, nd, "per step"),
+        "residual_path": _local("residual", dims, path.residual, nd, "per step"),
+    }
+    for name in ("a", "b", "c", "d"):
+        data[f"{name}_path"] = _local(name, dims, getattr(path, name), nd, "per step")
+    if nd and sin_skew is not None:
+        w_star = np.asarray(path.load, float) * sin_skew / (2.0 * math.pi)  # Eq. (34)
+        data["W_star_path"] = cf.variable("W_star", dims, w_star, nondimensional=True, qualifier="per step")
+    data["pull_off_load"] = _local("load", (), path.pull_off_load, nd, f"at pull-off ({path.control} control)")
+    data["pull_off_approach"] = cf.variable("approach", (), path.pull_off_approach, nondimensional=nd,
+                                            qualifier=f"at pull-off ({path.control} control)")
+    ds = xr.Dataset(data, coords={"step": ("step", np.arange(n, dtype=np.int32),
+                                           {"long_name": LOCAL_VARIABLES["step"][0], "units": "1"})})
+    ds.attrs["control"] = path.control
+    ds.attrs["n_failures"] = len(path.failures)
+    ds.attrs["failures"] = "; ".join(
+        f"step at approach {f.get('approach', float('nan')):.6g} ({f.get('phase', '?')}): residual "
+        f"{f.get('residual', float('nan')):.3g} after {f.get('iterations', '?')} iterations"
+        for f in path.failures) or "none"
+    ds.attrs["elapsed_seconds"] = float(path.elapsed)
+    return ds
+
+
+def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
+    """Dataset of a nondimensional :class:`dhfield.bem.AdhesivePullOff`.
+
+    The pull-off scalars (W*, a*, b*, c*, d*, beta_ab, beta_cd, delta*, Eqs.
+    32-34), the whole path, and (``fields=True``) the fields of the pull-off
+    state, all in the paper's units.
+    """
+    from ..geometry import sin_skew_angle
+
+    sin_skew = float(sin_skew_angle(result.beta0))
+    params = dict(beta0=result.beta0, mu=result.mu, n=result.n, control=result.control,
+                  half_width_x=result.half_width_x, half_width_y=result.half_width_y, sin_skew=sin_skew)
+    if fields:
+        ds = state_dataset(result.path.pull_off_state, nondimensional=True,
+                           title="dhfield: self-consistent adhesive BEM pull-off of the elliptical contact "
+                                 "(DC-FFT, free boundary)", **params)
+    else:
+        ds = xr.Dataset()
+        ds.attrs.update(provenance_attrs("dhfield: self-consistent adhesive BEM pull-off of the elliptical "
+                                         "contact (DC-FFT, free boundary)", law=result.law, **params))
+    ds = ds.merge(path_dataset(result.path, nondimensional=True, sin_skew=sin_skew), combine_attrs="override")
+    q = "BEM at pull-off"
+    for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star"):
+        ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), nondimensional=True, qualifier=q)
+    for key in ("beta_ab", "beta_cd"):
+        ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), qualifier=q)
+    ds.attrs.update({"converged": int(bool(result.converged)), "n_steps": int(result.n_steps),
+                     "iterations": int(result.iterations), "residual": float(result.residual),
+                     "control": result.control, "elapsed_seconds": float(result.elapsed)})
+    return cf.finalize(ds)
+
+
+def write_solution(result, path, *, fields: bool = True) -> Path:
+    """Write a pull-off (:class:`AdhesivePullOff`) or a ContactState to netCDF atomically.
+
+    ``path`` is checked before the Dataset is built; the write is atomic.
+    """
+    check_writable(path)
+    if hasattr(result, "path") and hasattr(result, "W_star"):
+        ds = pull_off_dataset(result, fields=fields)
+    else:
+        ds = state_dataset(result)
+    return write_netcdf(ds, path)
+
+
+def read_solution(path) -> xr.Dataset:
+    """Read a file written by :func:`write_solution` (ValueError naming the file otherwise)."""
+    ds = read_netcdf(path)
+    if "gap" not in ds and "W_star_pull_off" not in ds:
+        raise ValueError(f"input file is not a dhfield BEM solution (no gap, no W_star_pull_off): {str(path)!r}")
+    return ds
