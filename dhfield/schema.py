@@ -96,9 +96,9 @@ VARIABLES: dict[str, Variable] = {
     "n_steps": Variable("1", "number of load or displacement steps"),
     "iterations": Variable("1", "solver iterations"),
     # ----------------------------------------------------------------- model parameters (grid dims)
-    "beta0": Variable("1", "initial (Hertz) ellipticity b/a",
+    "beta0": Variable("1", "initial (Hertz) ellipticity b/a (Eq. 9)",
                       description="Hertz ellipticity of the geometry, in (0, 1] (Eq. 9)"),
-    "mu": Variable("1", "Tabor parameter", description="mu = sigma0 (R/(E*^2 dgamma))^(1/3) (Eq. 35)"),
+    "mu": Variable("1", "Tabor parameter (Eq. 35)", description="mu = sigma0 (R/(E*^2 dgamma))^(1/3) (Eq. 35)"),
     "sin_skew": Variable("1", "sine of the skew angle",
                          description="sin(theta_skew) of the load normalisation of Eq. (34); 1 for the "
                                      "circular models"),
@@ -113,18 +113,18 @@ VARIABLES: dict[str, Variable] = {
     "beta_ab": Variable("1", "contact ellipticity b/a", description="BEM: of the contact ellipse fitted"),
     "beta_cd": Variable("1", "adhesive-zone ellipticity d/c", description="BEM: of the adhesive ellipse fitted"),
     # ----------------------------------------------------------------- nondimensional state (Eqs. 32-36)
-    "W_star": Variable("1", "normalised load W sin(theta_skew)/(2 pi R dgamma)",
+    "W_star": Variable("1", "normalised load W sin(theta_skew)/(2 pi R dgamma) (Eq. 34)",
                        description="Eq. (34); positive compressive, negative at pull-off"),
-    "a_star": Variable("1", "contact semi-major axis a/c_r", description="Eq. (32); radius for a circle"),
-    "b_star": Variable("1", "contact semi-minor axis b/c_r", description="Eq. (32)"),
-    "c_star": Variable("1", "adhesive semi-major axis c/c_r",
+    "a_star": Variable("1", "contact semi-major axis a/c_r (Eq. 32)", description="Eq. (32); radius for a circle"),
+    "b_star": Variable("1", "contact semi-minor axis b/c_r (Eq. 32)", description="Eq. (32)"),
+    "c_star": Variable("1", "adhesive semi-major axis c/c_r (Eq. 32)",
                        description="outer edge of the adhesive zone (Eq. 32); NaN where the model has none"),
-    "d_star": Variable("1", "adhesive semi-minor axis d/c_r",
+    "d_star": Variable("1", "adhesive semi-minor axis d/c_r (Eq. 32)",
                        description="Eq. (32); NaN where the model has none"),
-    "v": Variable("1", "double-Hertz scaling factor v", description="Eq. (22); NaN for non-DH models"),
+    "v": Variable("1", "double-Hertz scaling factor v (Eq. 22)", description="Eq. (22); NaN for non-DH models"),
     "delta_star": Variable("1", "normalised approach delta R/c_r^2", description="Eq. (33)"),
     # ----------------------------------------------------------------- SI outputs
-    "force": Variable("N", "normal force", description="W (Eq. 34), positive compressive; the pull-off "
+    "force": Variable("N", "normal force W (Eq. 34)", description="W (Eq. 34), positive compressive; the pull-off "
                                                        "force is negative (tensile)"),
     "semi_major": Variable("m", "contact semi-major axis a", scale=_CR),
     "semi_minor": Variable("m", "contact semi-minor axis b", scale=_CR),
@@ -146,11 +146,11 @@ VARIABLES: dict[str, Variable] = {
     "youngs_modulus_2": Variable("Pa", "Young's modulus E2 of the second body"),
     "poisson_ratio": Variable("1", "Poisson's ratio nu1 of the first body"),
     "poisson_ratio_2": Variable("1", "Poisson's ratio nu2 of the second body"),
-    "reduced_modulus": Variable("Pa", "reduced modulus E*", description="1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (Eq. 6)"),
+    "reduced_modulus": Variable("Pa", "reduced modulus E* (Eq. 6)", description="1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (Eq. 6)"),
     "cylinder_radius": Variable("m", "cylinder radius", description="of both cylinders"),
     "r_major": Variable("m", "principal relative radius R'", description="larger principal radius (Eqs. 3-4)"),
     "r_minor": Variable("m", "principal relative radius R''", description="smaller principal radius (Eqs. 3-4)"),
-    "effective_radius": Variable("m", "effective radius R = sqrt(R'R'')", description="Eq. (5)"),
+    "effective_radius": Variable("m", "effective radius R = sqrt(R'R'') (Eq. 5)", description="Eq. (5)"),
     # ----------------------------------------------------------------- periphery (ray) quantities
     "contact_radius": Variable("m", "contact-ellipse radius r_ab on the ray", scale=_CR, description="Eq. (A1)"),
     "adhesive_radius": Variable("m", "adhesive-ellipse radius r_cd on the ray", scale=_CR, description="Eq. (A2)"),
