@@ -39,12 +39,12 @@ def _plane(da):
     return da
 
 
-def _check(ds, model):
+def _check(ds, model, name="model"):
     if "W_star" not in ds or "model" not in ds.dims:
         raise ValueError("sweep must hold the pull_off quantity (variables W_star on the dimension model)")
     models = [str(m) for m in ds["model"].values]
     if model not in models:
-        raise ValueError(f"model must be one of the sweep's models {models}; got {model!r}")
+        raise ValueError(f"{name} must be one of the sweep's models {models}; got {model!r}")
 
 
 def _draw(ax, da, ds, title, label, cmap="viridis", symmetric=False):
@@ -82,7 +82,7 @@ def pull_off_map(ds, model, ax):
 def error_map(ds, model, reference, ax):
     """Draw (W*max_model - W*max_reference)/|W*max_reference| on ``ax``."""
     _check(ds, model)
-    _check(ds, reference)
+    _check(ds, reference, "reference")
     w = ds["W_star"]
     rel = (w.sel(model=model) - w.sel(model=reference)) / np.abs(w.sel(model=reference))
     _draw(ax, rel, ds, f"{model} vs {reference}: relative W*max difference", "relative difference",
@@ -151,7 +151,7 @@ def standard_maps(ds, out_dir, *, reference=None, stem="sweep") -> list:
         raise ValueError("sweep must hold the pull_off quantity (variables W_star on the dimension model)")
     models = [str(m) for m in ds["model"].values]
     ref = default_reference(ds) if reference is None else reference
-    _check(ds, ref)
+    _check(ds, ref, "reference")
     written = []
     fig, axes = _grid_figure(len(models))
     for ax, m in zip(axes, models):
