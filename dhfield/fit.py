@@ -248,8 +248,9 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
                              f"work_of_adhesion={math.exp(x)!r}; cannot fit")
         return math.log(-w) - target
 
-    x_lo = math.log(_work_at_mu(FIT_MU_RANGE[1], s0, params))  # large mu: small dgamma
-    x_hi = math.log(_work_at_mu(FIT_MU_RANGE[0], s0, params))
+    # ends of the search, nudged inside FIT_MU_RANGE so that rounding stays within the models' range
+    x_lo = math.log(_work_at_mu(FIT_MU_RANGE[1] * (1 - 1e-9), s0, params))  # large mu: small dgamma
+    x_hi = math.log(_work_at_mu(FIT_MU_RANGE[0] * (1 + 1e-9), s0, params))
 
     def attainable():
         try:
@@ -259,32 +260,35 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
         return (f"pull_off_force must be in {rng} for model {model!r} at max_adhesive_stress={s0:.6g} Pa "
                 f"(Tabor parameter mu in [{FIT_MU_RANGE[0]:g}, {FIT_MU_RANGE[1]:g}]); got {f_meas!r}")
 
-    # start at mu = 1: dgamma from Eq. (35), then two fixed-point steps x <- x - f(x)
-    x0 = min(max(math.log(_work_at_mu(1.0, s0, params)), x_lo), x_hi)
+    def clip(x):
+        return min(max(x, x_lo), x_hi)
+
+    # start at mu = 1 (dgamma from Eq. 35), one fixed-point step x <- x - f(x), then secant steps;
+    # f increases with x (Notes), so f > 0 at x_lo or f < 0 at x_hi means no root in the range
+    x0 = clip(math.log(_work_at_mu(1.0, s0, params)))
     f0 = f(x0)
-    x1 = x0 - f0
+    x1 = clip(x0 - f0)
     root = None
-    if x_lo - 1.0 <= x1 <= x_hi + 1.0:
-        f1 = f(x1)
-        for _ in range(30):
-            if abs(f1) == 0.0 or (abs(x1 - x0) < _LOG_XTOL and abs(f1) < 10 * _LOG_XTOL):
-                root = x1
-                break
-            slope = (f1 - f0) / (x1 - x0) if x1 != x0 else 1.0
-            if not 0.1 < slope < 10.0:  # the function is monotone with slope ~1 (Notes)
-                slope = 1.0
-            x0, f0 = x1, f1
-            x1 = x1 - f1 / slope
-            if not x_lo - 1.0 <= x1 <= x_hi + 1.0:
-                break
+    for _ in range(40):
+        if x1 == x0:
+            f1 = f0
+        else:
             f1 = f(x1)
+        if f1 == 0.0 or (abs(x1 - x0) < _LOG_XTOL and abs(f1) < 10 * _LOG_XTOL):
+            root = x1
+            break
+        if (x1 == x_lo and f1 > 0.0) or (x1 == x_hi and f1 < 0.0):
+            raise ValueError(attainable())
+        slope = (f1 - f0) / (x1 - x0) if x1 != x0 else 1.0
+        if not 0.1 < slope < 10.0:  # the function is monotone with slope ~1 (Notes)
+            slope = 1.0
+        x0, f0 = x1, f1
+        x1 = clip(x1 - f1 / slope)
     if root is None:  # fallback: bracketed Brent
         f_a, f_b = f(x_lo), f(x_hi)
         if not f_a <= 0.0 <= f_b:
             raise ValueError(attainable())
         root = optimize.brentq(f, x_lo, x_hi, xtol=_LOG_XTOL, rtol=4 * np.finfo(float).eps)
-    if not x_lo <= root <= x_hi:
-        raise ValueError(attainable())
     work = math.exp(root)
     p = _with(params, work, s0)
     return WorkOfAdhesionFit(work, float(p.mu), float(p.beta0), s0, f_meas, model, control, count[0])
@@ -408,12 +412,16 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     work, stress = (float(v) for v in np.exp(sol.x))
     se = np.sqrt(np.maximum(np.diag(cov), 0.0))
     success, message = bool(sol.success), str(sol.message)
-    if np.any(sol.active_mask != 0):  # ran into the search bounds: the data do not determine it
-        names = [n for n, m in zip(("work_of_adhesion", "max_adhesive_stress"), sol.active_mask) if m != 0]
-        se = np.where(sol.active_mask != 0, np.inf, se)
+    # not identifiable: ran to the search bounds (within 1 %), or a standard error above the estimate
+    at_bound = (np.abs(sol.x - bounds[0]) < 0.01) | (np.abs(sol.x - bounds[1]) < 0.01)
+    vague = at_bound | ~(se < 1.0)
+    if np.any(vague):
+        names = [n for n, m in zip(("work_of_adhesion", "max_adhesive_stress"), vague) if m]
+        se = np.where(at_bound, np.inf, se)
         success = False
-        message = (f"{' and '.join(names)} not identifiable from these data: the estimate ran to the search "
-                   "bound (4 decades from the start); data near pull-off, in the JKR-DMT transition, are needed")
+        message = (f"{' and '.join(names)} not identifiable from these data (standard error above the estimate, "
+                   "or the search bound 4 decades from the start reached): data near pull-off, in the JKR-DMT "
+                   "transition, are needed")
     ok = bool(np.all(np.isfinite(se)) and np.all(se > 0))
     corr = float(cov[0, 1] / (se[0] * se[1])) if ok else float("nan")
     w_fit, d_fit = model_at(sol.x)
