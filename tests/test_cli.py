@@ -69,12 +69,12 @@ def test_unwritable_path_leaves_nothing(tmp_path, capsys):
 def test_failed_write_keeps_previous_file(tmp_path, monkeypatch):
     target = tmp_path / "c.nc"
     target.write_bytes(b"previous")
-    import xarray as xr
+    import dhfield.io
 
-    def boom(self, *a, **k):
-        raise OSError("disk full")
+    def boom(*a, **k):
+        raise RuntimeError("NetCDF: HDF error")  # what netCDF4 raises when the disk fills up
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", boom)
+    monkeypatch.setattr(dhfield.io, "_write_encoded", boom)
     assert main(["curve", "--beta0", "0.9", "--mu", "1", "--out", str(target)]) == 2
     assert target.read_bytes() == b"previous"
     assert [p.name for p in tmp_path.iterdir()] == ["c.nc"]  # no temporary left behind

@@ -53,9 +53,15 @@ Performance
 -----------
 FFTW plans, aligned work arrays and the kernel spectrum are built once per grid
 (:func:`get_operator` caches operators) and reused.  FFTW wisdom is imported
-from, and saved to, ``$DHFIELD_CACHE`` (default ``~/.cache/dhfield``); failure to
-read or write it is silently ignored.  ``threads`` selects FFTW threads (default
-``$DHFIELD_THREADS`` or 1).
+from, and saved to, ``$DHFIELD_CACHE/fftw_wisdom.bin`` (default directory
+``~/.cache/dhfield``).  The file is plain bytes (:func:`encode_wisdom`: magic
+and format version, pyfftw version, the three wisdom strings with their
+lengths, SHA-256), never a pickle: a file that is corrupt, foreign, not a
+regular file, not owned by this user or writable by others is ignored with a
+:class:`WisdomCacheWarning` and rewritten; failure to write it is ignored.
+``threads`` selects FFTW threads (default ``$DHFIELD_THREADS`` or 1), an integer
+in ``1 .. max_threads()`` (4 per CPU); a bad ``DHFIELD_THREADS`` is a
+ValueError naming it.
 
 References
 ----------
@@ -74,10 +80,12 @@ import contextlib
 import functools
 import math
 import operator
+import hashlib
 import os
-import pickle
+import stat
 import tempfile
 import threading
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -99,6 +107,14 @@ __all__ = [
     "quadrant",
     "unfold_quadrant",
     "cache_dir",
+    "encode_wisdom",
+    "decode_wisdom",
+    "WisdomCacheWarning",
+    "WISDOM_MAGIC",
+    "THREADS_PER_CPU",
+    "max_threads",
+    "check_threads",
+    "default_threads",
 ]
 
 #: Smallest number of cells per axis accepted by :class:`Grid`.
@@ -282,6 +298,16 @@ def influence_coefficients(grid: Grid, reduced_modulus=1.0) -> np.ndarray:
 _WISDOM_LOCK = threading.Lock()
 _WISDOM_STATE = {"loaded": False, "saved": None}
 
+#: First bytes of a wisdom cache file; the digit is the format version.
+WISDOM_MAGIC = b"DHFIELD-FFTW-WISDOM-1\n"
+#: Largest wisdom cache file read [bytes] (real ones are a few kB).
+_WISDOM_MAX_BYTES = 4 * 2**20
+_WISDOM_PARTS = 3  # pyfftw: double, single, long-double wisdom
+
+
+class WisdomCacheWarning(UserWarning):
+    """The FFTW wisdom cache file was ignored (corrupt, foreign or unsafe); it is rewritten."""
+
 
 def cache_dir() -> Path:
     """Directory for persistent caches: ``$DHFIELD_CACHE`` or ``~/.cache/dhfield``."""
@@ -290,7 +316,74 @@ def cache_dir() -> Path:
 
 
 def _wisdom_path() -> Path:
-    return cache_dir() / f"fftw_wisdom_pyfftw{pyfftw.__version__}.pickle"
+    return cache_dir() / "fftw_wisdom.bin"
+
+
+def _wisdom_header() -> bytes:
+    return WISDOM_MAGIC + f"pyfftw {pyfftw.__version__}\n".encode("ascii")
+
+
+def encode_wisdom(wisdom) -> bytes:
+    """The cache-file bytes of ``pyfftw.export_wisdom()``: plain bytes, never a pickle.
+
+    Layout: :data:`WISDOM_MAGIC`, a ``pyfftw <version>`` line, then for each of
+    the three wisdom strings its length (8 bytes, little-endian) and its bytes,
+    then the SHA-256 of everything before.
+    """
+    parts = tuple(wisdom)
+    if len(parts) != _WISDOM_PARTS or not all(isinstance(w, bytes) for w in parts):
+        raise ValueError("wisdom must be the 3-tuple of bytes of pyfftw.export_wisdom()")
+    body = _wisdom_header() + b"".join(len(w).to_bytes(8, "little") + w for w in parts)
+    return body + hashlib.sha256(body).digest()
+
+
+def decode_wisdom(data: bytes) -> tuple:
+    """The wisdom tuple stored by :func:`encode_wisdom`; ValueError saying why if ``data`` is not one."""
+    header = _wisdom_header()
+    if not data.startswith(WISDOM_MAGIC):
+        raise ValueError("not a dhfield wisdom file (bad magic)")
+    if not data.startswith(header):
+        raise ValueError("written by another pyfftw version")
+    if len(data) < len(header) + 32 or hashlib.sha256(data[:-32]).digest() != data[-32:]:
+        raise ValueError("checksum mismatch (corrupt or truncated)")
+    body, pos, parts = data[:-32], len(header), []
+    for _ in range(_WISDOM_PARTS):
+        if pos + 8 > len(body):
+            raise ValueError("truncated")
+        n = int.from_bytes(body[pos:pos + 8], "little")
+        pos += 8
+        if pos + n > len(body):
+            raise ValueError("truncated")
+        part = bytes(body[pos:pos + n])
+        pos += n
+        if part and not part.startswith(b"(fftw-3"):
+            raise ValueError("not FFTW wisdom text")
+        parts.append(part)
+    if pos != len(body):
+        raise ValueError("trailing bytes")
+    return tuple(parts)
+
+
+def _read_wisdom_file(path: Path):
+    """The decoded wisdom of ``path``, None if absent; ValueError saying why it is unusable."""
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        raise ValueError(f"cannot be opened ({exc.strerror})") from None
+    with os.fdopen(fd, "rb") as fh:
+        st = os.fstat(fh.fileno())
+        if not stat.S_ISREG(st.st_mode):
+            raise ValueError("not a regular file")
+        if hasattr(os, "getuid") and st.st_uid != os.getuid():
+            raise ValueError("owned by another user")
+        if st.st_mode & 0o022:
+            raise ValueError("writable by other users")
+        data = fh.read(_WISDOM_MAX_BYTES + 1)
+    if len(data) > _WISDOM_MAX_BYTES:
+        raise ValueError(f"larger than {_WISDOM_MAX_BYTES} bytes")
+    return decode_wisdom(data)
 
 
 def _load_wisdom() -> None:
@@ -298,14 +391,18 @@ def _load_wisdom() -> None:
         if _WISDOM_STATE["loaded"]:
             return
         _WISDOM_STATE["loaded"] = True
+        path = _wisdom_path()
         try:
-            with open(_wisdom_path(), "rb") as fh:
-                wisdom = pickle.load(fh)
-            if isinstance(wisdom, tuple) and all(isinstance(w, bytes) for w in wisdom):
-                pyfftw.import_wisdom(wisdom)
-                _WISDOM_STATE["saved"] = wisdom
-        except Exception:  # noqa: BLE001 - a missing or corrupt cache is harmless
-            pass
+            wisdom = _read_wisdom_file(path)
+        except ValueError as exc:
+            warnings.warn(f"ignoring the FFTW wisdom cache {str(path)!r}: {exc}; it will be rewritten",
+                          WisdomCacheWarning, stacklevel=3)
+            return
+        except Exception:  # noqa: BLE001 - an unreadable cache is harmless
+            return
+        if wisdom is not None:
+            pyfftw.import_wisdom(wisdom)
+            _WISDOM_STATE["saved"] = wisdom
 
 
 def _save_wisdom() -> None:
@@ -315,11 +412,11 @@ def _save_wisdom() -> None:
             if wisdom == _WISDOM_STATE["saved"]:
                 return
             path = _wisdom_path()
-            path.parent.mkdir(parents=True, exist_ok=True)
-            fd, tmp = tempfile.mkstemp(prefix=".wisdom.", suffix=".part", dir=path.parent)
+            path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=".wisdom.", suffix=".part", dir=path.parent)  # mode 0600
             try:
                 with os.fdopen(fd, "wb") as fh:
-                    pickle.dump(wisdom, fh)
+                    fh.write(encode_wisdom(wisdom))
                 os.replace(tmp, path)
             except BaseException:
                 with contextlib.suppress(OSError):
@@ -330,11 +427,49 @@ def _save_wisdom() -> None:
             pass
 
 
-def _default_threads() -> int:
+#: Threads per CPU accepted at most: FFTW gains nothing beyond the cores; the
+#: factor leaves room for hyper-threading and oversubscription experiments,
+#: while a typo such as 1000000 is refused instead of spawning that many threads.
+THREADS_PER_CPU = 4
+
+
+def max_threads() -> int:
+    """Largest accepted FFTW thread count, ``THREADS_PER_CPU * os.cpu_count()``."""
+    return THREADS_PER_CPU * (os.cpu_count() or 1)
+
+
+def check_threads(value, name: str = "threads") -> int:
+    """``value`` as an int in ``1 .. max_threads()``; ValueError naming ``name`` otherwise."""
+    valid = f"an integer in 1..{max_threads()} (at most {THREADS_PER_CPU} per CPU)"
+    if isinstance(value, bool):
+        raise ValueError(f"{name} must be {valid}; got {value!r}")
     try:
-        return max(1, int(os.environ.get("DHFIELD_THREADS", "1")))
-    except ValueError:
+        n = operator.index(value)
+    except TypeError:
+        raise ValueError(f"{name} must be {valid}; got {value!r}") from None
+    if not 1 <= n <= max_threads():
+        raise ValueError(f"{name} must be {valid}; got {n!r}")
+    return int(n)
+
+
+def default_threads() -> int:
+    """FFTW threads when none are given: ``$DHFIELD_THREADS``, else 1.
+
+    Raises ValueError naming ``DHFIELD_THREADS`` if it is set but not an integer
+    in ``1 .. max_threads()``.
+    """
+    env = os.environ.get("DHFIELD_THREADS")
+    if env is None or env.strip() == "":
         return 1
+    try:
+        value = int(env.strip())
+    except ValueError:
+        raise ValueError(f"DHFIELD_THREADS (environment) must be an integer in 1..{max_threads()}; "
+                         f"got {env!r}") from None
+    return check_threads(value, "DHFIELD_THREADS (environment)")
+
+
+_default_threads = default_threads  # the name used before
 
 
 # --------------------------------------------------------------------------- operator
@@ -371,15 +506,7 @@ class HalfSpaceOperator:
         self.grid = grid
         self.reduced_modulus = _check_spacing("reduced_modulus", reduced_modulus)
         self.symmetric = bool(symmetric)
-        if threads is None:
-            threads = _default_threads()
-        try:
-            threads = operator.index(threads)
-        except TypeError:
-            raise ValueError(f"threads must be an integer >= 1; got {threads!r}") from None
-        if threads < 1:
-            raise ValueError(f"threads must be an integer >= 1; got {threads!r}")
-        self.threads = int(threads)
+        self.threads = default_threads() if threads is None else check_threads(threads)
         if planner_effort not in _PLANNER_EFFORTS:
             raise ValueError(f"planner_effort must be one of {_PLANNER_EFFORTS}; got {planner_effort!r}")
         self.planner_effort = planner_effort
@@ -502,8 +629,7 @@ def _cached_operator(grid, reduced_modulus, symmetric, threads, planner_effort):
 def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
                  planner_effort="FFTW_MEASURE") -> HalfSpaceOperator:
     """The cached :class:`HalfSpaceOperator` for this grid (built on first use)."""
-    if threads is None:
-        threads = _default_threads()
+    threads = default_threads() if threads is None else check_threads(threads)
     e = _check_spacing("reduced_modulus", reduced_modulus)
     return _cached_operator(grid, e, bool(symmetric), threads, planner_effort)
 

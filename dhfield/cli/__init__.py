@@ -34,18 +34,45 @@ def build_parser() -> OneLineParser:
     return parser
 
 
-def main(argv=None) -> int:
-    """Run the CLI; return the exit status (0 success, 2 bad input)."""
-    try:
-        args = build_parser().parse_args(argv)
-        return int(args.func(args) or 0)
-    except UsageError as exc:
-        print(f"dhfield: error: {exc}", file=sys.stderr)
-        return 2
-    except ValueError as exc:
-        print(f"dhfield: error: {exc}", file=sys.stderr)
-        return 2
-    except OSError as exc:
-        print(f"dhfield: error: {exc}", file=sys.stderr)
-        return 2
+def _one_line(exc: BaseException) -> str:
+    text = " ".join(str(exc).split())
+    return text or type(exc).__name__
 
+
+def main(argv=None) -> int:
+    """Run the CLI; return the exit status.
+
+    0 success; 2 bad input (one line on stderr: usage, ``ValueError``, ``OSError``
+    such as a full disk, ``MemoryError``); 1 an unexpected internal error (one
+    line; set ``DHFIELD_DEBUG=1`` for the traceback); 128 + n when signal n
+    stopped the run (130 for Ctrl-C, 143 for SIGTERM, 129 for SIGHUP), after any
+    temporary file was removed.  ``--out`` is validated before anything is
+    computed (:func:`dhfield.cli._common.check_output_argument`).
+    """
+    import os
+
+    from ..io import SignalExit
+    from ._common import check_output_argument, termination_signals_as_exceptions
+
+    def fail(message: str, status: int) -> int:
+        print(f"dhfield: {message}", file=sys.stderr)
+        return status
+
+    with termination_signals_as_exceptions():
+        try:
+            args = build_parser().parse_args(argv)
+            check_output_argument(args)
+            return int(args.func(args) or 0)
+        except (UsageError, ValueError, OSError) as exc:
+            return fail(f"error: {_one_line(exc)}", 2)
+        except MemoryError as exc:
+            return fail(f"error: out of memory ({_one_line(exc)}); choose a smaller problem", 2)
+        except KeyboardInterrupt:
+            return fail("interrupted (SIGINT); no output was written", 130)
+        except SignalExit as exc:
+            return fail(f"{exc}; no output was written", exc.exit_status)
+        except Exception as exc:  # noqa: BLE001 - one line instead of a traceback
+            if os.environ.get("DHFIELD_DEBUG"):
+                raise
+            return fail(f"internal error: {type(exc).__name__}: {_one_line(exc)} (please report it; "
+                        "DHFIELD_DEBUG=1 shows the traceback)", 1)

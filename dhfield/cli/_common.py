@@ -7,7 +7,8 @@ import math
 
 __all__ = ["OneLineParser", "UsageError", "print_json", "add_model_arguments", "model_names",
            "compare_record", "plain_record", "add_physical_arguments", "contact_parameters_from_args",
-           "print_warning", "PHYSICAL_FLAGS"]
+           "print_warning", "PHYSICAL_FLAGS", "OUTPUT_SUFFIXES", "check_output_argument", "thread_count",
+           "max_threads", "termination_signals_as_exceptions"]
 
 
 class UsageError(Exception):
@@ -172,3 +173,95 @@ def print_warning(rec) -> None:
 
     if rec.get("warning"):
         print(f"dhfield: warning: {rec['warning']}", file=sys.stderr)
+
+
+# --------------------------------------------------------------------------- hardening (paths, threads, signals)
+#: Output suffixes of the subcommands whose ``--out`` is one file.  A subcommand may
+#: instead declare its own with ``parser.set_defaults(out_suffixes=(".nc",))``; the
+#: ``--out`` of any other subcommand (possibly a directory) gets the generic checks only.
+OUTPUT_SUFFIXES = {"curve": (".nc", ".csv"), "compare": (".nc",), "periphery": (".nc",), "field": (".nc",)}
+
+
+def check_output_argument(args) -> None:
+    """Validate ``args.out`` before anything is computed (called by :func:`dhfield.cli.main`).
+
+    A file output (see :data:`OUTPUT_SUFFIXES`) goes through
+    :func:`dhfield.io.validate_output_path`.  Any other ``--out`` must be non-empty
+    and, if it exists and is not a directory, a writable regular file (no
+    symbolic link, device, FIFO or socket).
+    """
+    import os
+    import stat
+
+    from ..io import validate_output_path
+
+    out = getattr(args, "out", None)
+    if out is None:
+        return
+    suffixes = getattr(args, "out_suffixes", None) or OUTPUT_SUFFIXES.get(getattr(args, "command", None))
+    if suffixes:
+        validate_output_path(out, suffixes, "out")
+        return
+    if not str(out).strip():
+        raise ValueError(f"out (output path) must be a non-empty path; got {out!r}")
+    try:
+        st = os.stat(out)
+    except OSError:
+        return
+    if not stat.S_ISDIR(st.st_mode):
+        validate_output_path(out, None, "out")
+
+
+def max_threads() -> int:
+    """Largest accepted thread count: 4 x the CPUs (see :func:`dhfield.bem.operator.max_threads`)."""
+    from ..bem.operator import max_threads as _max
+
+    return _max()
+
+
+def thread_count(text: str) -> int:
+    """argparse type of ``--threads``: an integer in ``1 .. max_threads()``."""
+    try:
+        n = int(text)
+    except (TypeError, ValueError):
+        raise argparse.ArgumentTypeError(f"must be an integer in 1..{max_threads()}; got {text!r}") from None
+    if not 1 <= n <= max_threads():
+        raise argparse.ArgumentTypeError(f"must be an integer in 1..{max_threads()} (at most 4 threads per CPU; "
+                                         f"more only slows FFTW down); got {n}")
+    return n
+
+
+class termination_signals_as_exceptions:
+    """Within the block, SIGTERM and SIGHUP raise :class:`dhfield.io.SignalExit`.
+
+    SIGINT keeps Python's ``KeyboardInterrupt`` (or stays ignored, e.g. in a
+    background job).  Signals already ignored stay ignored.  Previous handlers
+    are restored on exit.  Only in the main thread; elsewhere it does nothing.
+    """
+
+    def __enter__(self):
+        import signal
+        import threading
+
+        self._previous = {}
+        if threading.current_thread() is not threading.main_thread():
+            return self
+        for name in ("SIGTERM", "SIGHUP"):
+            s = getattr(signal, name, None)
+            if s is None or signal.getsignal(s) is signal.SIG_IGN:
+                continue
+            self._previous[s] = signal.signal(s, _raise_signal_exit)
+        return self
+
+    def __exit__(self, *exc):
+        import signal
+
+        for s, prev in self._previous.items():
+            signal.signal(s, prev)
+        return False
+
+
+def _raise_signal_exit(signum, frame):  # noqa: ARG001 - signal handler signature
+    from ..io import SignalExit
+
+    raise SignalExit(signum)

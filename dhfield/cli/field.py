@@ -1,22 +1,31 @@
 """``dhfield field``."""
 from __future__ import annotations
 
-from ._common import add_model_arguments
+from ._common import add_model_arguments, thread_count
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("field", help="full-field BEM cross-check of one DH case, written to netCDF")
     add_model_arguments(p)
     p.add_argument("--a-star", type=float, required=True, help="contact semi-major axis a* (> 0)")
-    p.add_argument("--n", type=int, default=512, help="cells per axis (>= 8, default 512)")
-    p.add_argument("--threads", type=int, default=None, help="FFTW threads (default $DHFIELD_THREADS or 1)")
-    p.add_argument("--out", required=True, help="output netCDF file")
-    p.set_defaults(func=run)
+    p.add_argument("--n", type=int, default=512,
+                   help="cells per axis (>= 8, default 512; refused if the case would not fit in memory)")
+    p.add_argument("--threads", type=thread_count, default=None,
+                   help="FFTW threads, 1..4 per CPU (default $DHFIELD_THREADS or 1)")
+    p.add_argument("--out", required=True, help="output netCDF file (.nc)")
+    p.set_defaults(func=run, out_suffixes=(".nc",))
 
 
 def run(args) -> int:
+    from ..bem import default_threads
+    from ..fields import check_case_memory
+    from ..io import validate_output_path
     from ..io.field import compute_and_write_case
 
-    path = compute_and_write_case(args.beta0, args.mu, args.a_star, args.n, args.out, threads=args.threads)
+    # everything that can be checked is checked before the computation
+    validate_output_path(args.out, (".nc",), "out")
+    threads = default_threads() if args.threads is None else args.threads
+    check_case_memory(args.n)
+    path = compute_and_write_case(args.beta0, args.mu, args.a_star, args.n, args.out, threads=threads)
     print(f"wrote {path}")
     return 0

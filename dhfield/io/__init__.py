@@ -1,21 +1,57 @@
-"""Input/output at the edge of the library: netCDF (via xarray) and CSV.
+"""Input/output at the edge of the library: netCDF and CSV.
 
-Everything here is thin: the numpy core never imports this package.  All writes
-are atomic (temporary file in the target directory, then ``os.replace``), so a
+Everything here is thin: the numpy core never imports this package.
+
+Atomic writes
+-------------
+Every file is written to a temporary file in the target directory
+(``.<name>.<random>.part``; at most 47 bytes, so any legal target name works)
+and moved into place with ``os.replace`` only when the write succeeded.  A
 failed or interrupted write never leaves a partial file and never clobbers an
 existing one.
+
+Which targets are accepted (:func:`validate_output_path`, called before any
+computation):
+
+* a regular file or a new name, in an existing, writable directory, with a
+  name of at most ``NAME_MAX`` bytes (255 on Linux); an existing file keeps its
+  permission bits;
+* **symbolic links are refused**, not written through: replacing the link
+  would break it, and writing through it would let a planted link redirect
+  the output anywhere (name the link's target instead);
+* non-regular files (directories, devices such as ``/dev/null``, FIFOs,
+  sockets) are refused: a rename would replace the node itself;
+* an existing read-only file (no write bit, or not writable by this user) is
+  refused: the rename would otherwise replace it despite its mode.
+
+Signals
+-------
+While a file is being written in the main thread, SIGINT, SIGTERM and SIGHUP
+(unless ignored) are caught: the temporary file is removed and the signal is
+then re-delivered to the handler that was in place before (so SIGINT still
+raises ``KeyboardInterrupt`` and an unhandled SIGTERM still terminates the
+process, only without a ``.part`` left behind).  netCDF files are written with
+netCDF4 directly (no xarray file locks, which deadlock when an interrupt lands
+inside them), in slabs of at most 16 MiB with the signals deferred to the slab
+boundaries, so an interrupted write stops within one slab.
 """
 from __future__ import annotations
 
 import contextlib
 import datetime as _dt
+import errno
 import os
+import shutil
+import signal
+import stat
 import tempfile
+import threading
 from pathlib import Path
 
 from .. import PAPER_DOI, __version__
 
-__all__ = ["atomic_path", "provenance_attrs", "write_netcdf", "read_netcdf", "check_writable"]
+__all__ = ["atomic_path", "provenance_attrs", "write_netcdf", "read_netcdf", "check_writable",
+           "validate_output_path", "SignalExit", "CAUGHT_SIGNALS"]
 
 REFERENCES = (
     "Zini N.H.M., de Rooij M.B., Bazr Afshan Fadafan M., Ismail N., Schipper D.J. (2018) "
@@ -23,41 +59,231 @@ REFERENCES = (
     f"Tribology Letters 66:30. doi:{PAPER_DOI}"
 )
 
+#: Signals caught while a file is written (then re-delivered after the cleanup).
+CAUGHT_SIGNALS = tuple(s for s in (getattr(signal, n, None) for n in ("SIGINT", "SIGTERM", "SIGHUP"))
+                       if s is not None)
 
-def check_writable(path, name: str = "out") -> Path:
-    """Return ``path`` as a Path; raise ValueError naming ``name`` if it cannot be written.
+#: Largest slab written to netCDF between two signal checks [bytes].
+_SLAB_BYTES = 16 * 2**20
 
-    Valid: a file path (not a directory) whose directory exists and is writable.
+#: Characters of the target name kept in the temporary name (bounds its length to 47 bytes).
+_TEMP_NAME_CHARS = 32
+
+_FALLBACK_NAME_MAX = 255
+_FALLBACK_PATH_MAX = 4096
+
+
+class SignalExit(BaseException):
+    """A termination signal (SIGTERM, SIGHUP, ...) turned into an exception.
+
+    A ``BaseException`` like ``KeyboardInterrupt``, so ``except Exception``
+    does not swallow it.  ``exit_status`` is the shell convention 128 + signal.
     """
-    p = Path(path)
-    parent = p.parent if str(p.parent) else Path(".")
+
+    def __init__(self, signum: int):
+        self.signum = int(signum)
+        super().__init__(f"terminated by {signal.Signals(self.signum).name}")
+
+    @property
+    def exit_status(self) -> int:
+        return 128 + self.signum
+
+
+class _Caught(BaseException):
+    """Raised by :class:`_SignalGuard` to unwind a write; never escapes it."""
+
+
+class _SignalGuard:
+    """Catch :data:`CAUGHT_SIGNALS` for a block; re-deliver the first one after it.
+
+    ``defer=False``: the first signal raises :class:`_Caught` at once (the
+    block's cleanup runs).  ``defer=True``: the signal is only recorded and
+    :meth:`check` raises at a point of the caller's choosing.  Either way, on
+    leaving the block the previous handlers are restored and the signal is
+    raised again for them.  Outside the main thread the guard does nothing.
+    """
+
+    def __init__(self, defer: bool = False):
+        self.defer = defer
+        self.caught = None
+        self._previous = {}
+
+    def _handler(self, signum, frame):  # noqa: ARG002 - signal handler signature
+        if self.caught is not None:
+            return  # already unwinding: never interrupt the cleanup
+        self.caught = signum
+        if not self.defer:
+            raise _Caught(signum)
+
+    def check(self) -> None:
+        if self.caught is not None:
+            raise _Caught(self.caught)
+
+    def __enter__(self):
+        if threading.current_thread() is not threading.main_thread():
+            return self
+        for s in CAUGHT_SIGNALS:
+            prev = signal.getsignal(s)
+            if prev in (signal.SIG_IGN, None):
+                continue  # an ignored signal stays ignored (e.g. SIGINT of a background job)
+            self._previous[s] = prev
+            signal.signal(s, self._handler)
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        for s, prev in self._previous.items():
+            signal.signal(s, prev)
+        if self.caught is None:
+            return False
+        signum = self.caught
+        signal.raise_signal(signum)  # the previous handler acts now (raises, or terminates the process)
+        # it returned: a handler that only records the signal; the write is abandoned all the same
+        if signum == getattr(signal, "SIGINT", None):
+            raise KeyboardInterrupt from None
+        raise SignalExit(signum) from None
+
+
+# --------------------------------------------------------------------------- paths
+def _limit(parent: Path, key: str, fallback: int) -> int:
+    try:
+        return int(os.pathconf(parent, key))
+    except (OSError, ValueError):
+        return fallback
+
+
+def _kind(mode: int) -> str:
+    for test, what in ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
+                       (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISSOCK, "a socket"), (stat.S_ISLNK, "a symbolic link")):
+        if test(mode):
+            return what
+    return "not a regular file"
+
+
+def _check_target(p: Path, label: str):
+    """The lstat of an existing target, or None; ValueError if it must not be replaced."""
+    try:
+        st = os.lstat(p)
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        raise ValueError(f"{label} cannot be examined: {str(p)!r} ({exc.strerror})") from None
+    if stat.S_ISLNK(st.st_mode):
+        raise ValueError(f"{label} must not be a symbolic link (dhfield does not write through links; "
+                         f"name its target {os.path.realpath(p)!r} instead); got {str(p)!r}")
+    if not stat.S_ISREG(st.st_mode):
+        raise ValueError(f"{label} must be a regular file or a new name; {str(p)!r} is {_kind(st.st_mode)}")
+    if not st.st_mode & 0o222 or not os.access(p, os.W_OK):
+        raise ValueError(f"{label} {str(p)!r} is read-only (mode {stat.S_IMODE(st.st_mode):04o}); dhfield "
+                         "does not replace read-only files: make it writable or choose another name")
+    return st
+
+
+def validate_output_path(path, suffixes=None, name: str = "out") -> Path:
+    """Check that ``path`` can be written by dhfield; return it as a Path.
+
+    Call it before computing anything, so that a bad path fails at once.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output file.
+    suffixes : sequence of str, optional
+        Accepted file-name suffixes (compared case-insensitively), e.g.
+        ``(".nc", ".csv")``; default: any.
+    name : str, default "out"
+        The parameter name used in error messages.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    ValueError
+        Naming ``name`` and the valid range, if the path is empty, has the wrong
+        suffix, a file name longer than ``NAME_MAX`` bytes (255 on Linux) or a
+        path longer than ``PATH_MAX``; if its directory does not exist or is not
+        writable; or if it names a symbolic link, a non-regular file (directory,
+        device, FIFO, socket) or a read-only file.  A ``.csv`` path's JSON
+        sidecar (``.csv.json``) is checked in the same way.
+    """
+    label = f"{name} (output path)"
+    text = os.fsdecode(path) if path is not None else ""
     valid = "a file path in an existing, writable directory"
-    name = f"{name} (output path)"
-    if p.exists() and p.is_dir():
-        raise ValueError(f"{name} must be {valid}; got the directory {str(p)!r}")
+    if not text.strip():
+        raise ValueError(f"{label} must be {valid}; got an empty path {text!r}")
+    if "\x00" in text:
+        raise ValueError(f"{label} must not contain a NUL character; got {text!r}")
+    if text.endswith(os.sep) or Path(text).name in ("", ".", ".."):
+        raise ValueError(f"{label} must name a file, not a directory; got {text!r}")
+    p = Path(text)
+    if suffixes:
+        suffixes = tuple(s.lower() for s in suffixes)
+        if p.suffix.lower() not in suffixes:
+            raise ValueError(f"{label} must end in {' or '.join(suffixes)}; got {text!r}")
+    parent = p.parent if str(p.parent) else Path(".")
     if not parent.is_dir():
-        raise ValueError(f"{name} must be {valid}; directory {str(parent)!r} does not exist")
-    if not os.access(parent, os.W_OK):
-        raise ValueError(f"{name} must be {valid}; directory {str(parent)!r} is not writable")
+        raise ValueError(f"{label} must be {valid}; directory {str(parent)!r} does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise ValueError(f"{label} must be {valid}; directory {str(parent)!r} is not writable")
+    name_max = _limit(parent, "PC_NAME_MAX", _FALLBACK_NAME_MAX)
+    path_max = _limit(parent, "PC_PATH_MAX", _FALLBACK_PATH_MAX)
+    targets = [p]
+    if p.suffix.lower() == ".csv":
+        targets.append(p.with_name(p.name + ".json"))  # the sidecar of dhfield.io.table
+    for t in targets:
+        n = len(os.fsencode(t.name))
+        if n > name_max:
+            raise ValueError(f"{label} file name must be at most {name_max} bytes here; "
+                             f"{t.name[:20]!r}... has {n}")
+        if len(os.fsencode(os.path.abspath(t))) >= path_max:
+            raise ValueError(f"{label} must be shorter than {path_max} bytes (PATH_MAX); got "
+                             f"{len(os.fsencode(os.path.abspath(t)))} bytes")
+        _check_target(t, label)
     return p
 
 
+def check_writable(path, name: str = "out") -> Path:
+    """:func:`validate_output_path` without a suffix check (kept for existing callers)."""
+    return validate_output_path(path, None, name)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 @contextlib.contextmanager
-def atomic_path(path):
-    """Yield a temporary path next to ``path``; move it into place only on success."""
-    p = check_writable(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".part", dir=p.parent if str(p.parent) else ".")
-    os.close(fd)
-    umask = os.umask(0)
-    os.umask(umask)
-    try:
-        yield Path(tmp)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual permissions
-        os.replace(tmp, p)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        raise
+def atomic_path(path, name: str = "out"):
+    """Yield a temporary path next to ``path``; move it into place only on success.
+
+    The target is checked with :func:`validate_output_path` (symbolic links,
+    non-regular and read-only files are refused) and checked again just before
+    the rename.  The new file gets the permission bits of the file it replaces,
+    or ``0666 & ~umask`` for a new name.  If the block raises, or SIGINT,
+    SIGTERM or SIGHUP arrives, the temporary file is removed; the signal is
+    then re-delivered to the previous handler.
+    """
+    p = validate_output_path(path, None, name)
+    parent = p.parent if str(p.parent) else Path(".")
+    with _SignalGuard() as guard:
+        tmp = None
+        try:
+            fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:_TEMP_NAME_CHARS]}.", suffix=".part", dir=parent)
+            os.close(fd)
+            yield Path(tmp)
+            guard.check()
+            st = _check_target(p, f"{name} (output path)")  # the target may have changed meanwhile
+            os.chmod(tmp, stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~_umask())
+            os.replace(tmp, p)
+            tmp = None
+        finally:
+            if tmp is not None:
+                with contextlib.suppress(FileNotFoundError):
+                    os.unlink(tmp)
+    # a signal caught in the block was re-raised by the guard; _Caught never gets here
 
 
 def provenance_attrs(title: str, **parameters) -> dict:
@@ -80,30 +306,142 @@ def provenance_attrs(title: str, **parameters) -> dict:
     return attrs
 
 
-def write_netcdf(ds, path) -> Path:
+# --------------------------------------------------------------------------- netCDF
+_NC4_ENCODING_KEYS = ("zlib", "complevel", "shuffle", "fletcher32", "contiguous", "chunksizes",
+                      "compression", "least_significant_digit")
+
+
+def _encoded_variables(ds):
+    """CF-encoded variables and global attributes of ``ds`` (xarray's own encoder)."""
+    from xarray import conventions
+
+    variables, attrs = conventions.encode_dataset_coordinates(ds)
+    return conventions.cf_encoder(variables, attrs)
+
+
+def _set_attrs(target, attrs: dict, where: str) -> None:
+    for key, value in attrs.items():
+        if isinstance(value, bool):
+            value = int(value)
+        try:
+            target.setncattr(key, value)
+        except Exception as exc:  # noqa: BLE001 - netCDF4 raises several types for bad values
+            raise ValueError(f"attribute {key!r} of {where} cannot be stored in netCDF: {value!r} ({exc})") \
+                from None
+
+
+def _write_encoded(nc, ds, variables, attrs, guard) -> None:
+    import numpy as np
+
+    sizes = dict(ds.sizes)
+    for var in variables.values():  # the encoder may add dimensions (e.g. string lengths)
+        sizes.update(zip(var.dims, var.shape))
+    for dim, size in sizes.items():
+        nc.createDimension(dim, size)
+    _set_attrs(nc, attrs, "the dataset")
+    for vname, var in variables.items():
+        vattrs = dict(var.attrs)
+        fill = vattrs.pop("_FillValue", None)
+        data = np.asarray(var.values)
+        if data.dtype.kind in "UO":
+            dtype, data = str, data.astype(object)
+        elif data.dtype.kind in "iufcS":
+            dtype = data.dtype
+        else:
+            raise ValueError(f"variable {vname!r} has a dtype netCDF4 cannot store: {data.dtype}")
+        enc = {k: var.encoding[k] for k in _NC4_ENCODING_KEYS if k in var.encoding}
+        # no _FillValue: no pre-fill either (every element is written below)
+        ncv = nc.createVariable(vname, dtype, var.dims, fill_value=False if fill is None else fill, **enc)
+        ncv.set_auto_maskandscale(False)
+        _set_attrs(ncv, vattrs, f"variable {vname!r}")
+        if data.ndim == 0:
+            ncv.assignValue(data.item() if dtype is str else data)
+            continue
+        row_bytes = max(1, data.nbytes // max(1, data.shape[0]))
+        step = max(1, _SLAB_BYTES // row_bytes)
+        for i in range(0, data.shape[0], step):
+            guard.check()
+            ncv[i:i + step] = data[i:i + step]
+    guard.check()
+
+
+def _write_failed(exc, final: Path, tmp: Path) -> OSError:
+    """An OSError in one line for a failed netCDF write (disk full is the usual cause)."""
+    free = None
+    with contextlib.suppress(OSError):
+        free = shutil.disk_usage(tmp.parent).free
+    detail = " ".join(str(exc).split()) or type(exc).__name__
+    hint = ""
+    if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG):
+        hint = f" ({os.strerror(exc.errno)})"
+    elif free is not None and free < 2**20:
+        hint = " (no space left on device)"
+    return OSError(f"could not write the netCDF file {str(final)!r}: {detail}{hint}; nothing was written")
+
+
+def write_netcdf(ds, path, name: str = "out") -> Path:
     """Write an xarray Dataset to netCDF4 atomically; return the final path.
 
     The Dataset first goes through :func:`dhfield.io.cf.finalize` (canonical
     dimension order, no ``_FillValue`` on coordinates), so every file is CF-clean.
+    It is then CF-encoded by xarray's encoder and written with netCDF4 directly,
+    slab by slab, with SIGINT/SIGTERM/SIGHUP deferred to the slab boundaries
+    (see the module docstring).  A failed write (disk full, ...) raises a
+    one-line ``OSError``; an interrupted one removes its temporary file.
     """
+    import netCDF4
+
     from .cf import finalize
 
-    p = Path(path)
+    p = validate_output_path(path, None, name)
     ds = finalize(ds)
-    with atomic_path(p) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+    variables, attrs = _encoded_variables(ds)
+    need = sum(int(v.values.nbytes) for v in variables.values())
+    parent = p.parent if str(p.parent) else Path(".")
+    free = None
+    with contextlib.suppress(OSError):
+        free = shutil.disk_usage(parent).free
+    if free is not None and need > free:
+        raise OSError(f"could not write the netCDF file {str(p)!r}: it needs about {need / 2**20:.1f} MiB "
+                      f"and the device has {free / 2**20:.1f} MiB free; nothing was written")
+    with atomic_path(p, name) as tmp:
+        with _SignalGuard(defer=True) as guard:
+            try:
+                nc = netCDF4.Dataset(tmp, "w", format="NETCDF4")
+            except (OSError, RuntimeError) as exc:
+                raise _write_failed(exc, p, tmp) from None
+            try:
+                _write_encoded(nc, ds, variables, attrs, guard)
+            except (OSError, RuntimeError) as exc:
+                with contextlib.suppress(Exception):
+                    nc.close()
+                raise _write_failed(exc, p, tmp) from None
+            except BaseException:
+                with contextlib.suppress(Exception):
+                    nc.close()
+                raise
+            try:
+                nc.close()
+            except (OSError, RuntimeError) as exc:
+                raise _write_failed(exc, p, tmp) from None
     return p
 
 
 def read_netcdf(path):
-    """Read a netCDF file written by dhfield into memory; clear error if unreadable."""
+    """Read a netCDF file written by dhfield into memory; clear error if unreadable.
+
+    SIGINT, SIGTERM and SIGHUP are deferred until the file is closed (xarray's
+    file locks would deadlock if an interrupt landed inside them).
+    """
     import xarray as xr
 
     p = Path(path)
     if not p.is_file():
         raise ValueError(f"input file does not exist or is not a file; got {str(p)!r}")
-    try:
-        with xr.open_dataset(p, engine="netcdf4") as ds:
-            return ds.load()
-    except Exception as exc:  # noqa: BLE001 - any backend failure is an unreadable file
-        raise ValueError(f"input file is not a readable netCDF file: {str(p)!r} ({exc})") from None
+    with _SignalGuard(defer=True):
+        try:
+            with xr.open_dataset(p, engine="netcdf4") as ds:
+                return ds.load()
+        except Exception as exc:  # noqa: BLE001 - any backend failure is an unreadable file
+            raise ValueError(f"input file is not a readable netCDF file: {str(p)!r} "
+                             f"({' '.join(str(exc).split())})") from None
