@@ -17,8 +17,9 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
   models (the closures have two independent amplitudes, MD has none).
 * ``ellipticity`` b/a and ``adhesive_ellipticity`` d/c at pull-off.
 * ``at_zero_contact``: the pull-off is reached as the contact vanishes.
-* ``warning``: empty, except for ``dh-elliptic`` where its pull-off departs from
-  the two-axis closure by more than :data:`WARNING_THRESHOLD` (2 %).
+* ``warning``: empty, except outside the model's validated range
+  (:data:`VALIDITY_RANGES`) and, for ``dh-elliptic``, where its pull-off departs
+  from the two-axis closure by more than :data:`WARNING_THRESHOLD` (2 %).
 * mu is the paper's Eq. (35); MD is evaluated at lambda = 1.1272 mu
   (:mod:`dhfield.transition`, same sigma0).  JKR, DMT and elliptical JKR do not
   depend on mu.
@@ -109,7 +110,8 @@ from .geometry import sin_skew_angle
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
 
 __all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "WARNING_THRESHOLD",
-           "closure_departure", "compare", "load_curve", "load_curve_at_load", "pull_off", "to_dimensional"]
+           "closure_departure", "compare", "load_curve", "load_curve_at_load", "validity_message", "validity_table",
+           "VALIDITY_RANGES", "pull_off", "to_dimensional"]
 
 _NAN = float("nan")
 #: The paper's model, the default everywhere a model is chosen.
@@ -133,9 +135,88 @@ def _arr(x, shape, dtype=float):
     return out[()] if out.ndim == 0 else out
 
 
+_INF = float("inf")
+#: name -> ((beta0_min, beta0_max), (mu_min, mu_max)) where each model is validated; outside, its
+#: results are still computed and carry a ``warning``.  Provenance:
+#:
+#: * dh-elliptic, dh-elliptic-jkr-beta: the paper's own range, "beta0 ranging from 0.8 to 0.99" and
+#:   "0.5 <= mu <= 5" (Zini et al. 2018, Sec. 1); beta0 = 1 is the circular DH model;
+#: * the closures: the grid of the table above (beta0 = 0.3-1, mu = 0.1-30), where they were solved
+#:   and compared with elliptical JKR (mu -> infinity) and the circular DH model (beta0 = 1);
+#: * jkr-elliptic and jkr: the JKR side of the adhesion map, mu >= 10 for the ellipse (within 0.3 %
+#:   of the two-axis closure, table above) and lambda = 1.1272 mu >= 5 for the circle (Johnson &
+#:   Greenwood 1997, doi:10.1006/jcis.1997.4984); dmt: lambda <= 0.1 (same map);
+#: * the circular models at beta0 = 1 only (elsewhere they are the circle of R = sqrt(R'R'')).
+VALIDITY_RANGES = {
+    "dh-elliptic": ((0.8, 1.0), (0.5, 5.0)),
+    "dh-elliptic-two-axis": ((0.3, 1.0), (0.1, 30.0)),
+    "dh-elliptic-ray-average": ((0.3, 1.0), (0.1, 30.0)),
+    "dh-elliptic-jkr-beta": ((0.8, 1.0), (0.5, 5.0)),
+    "dh-circular": ((1.0, 1.0), (0.0, _INF)),
+    "jkr": ((1.0, 1.0), (4.4, _INF)),
+    "dmt": ((1.0, 1.0), (0.0, 0.09)),
+    "md": ((1.0, 1.0), (0.0, _INF)),
+    "jkr-elliptic": ((0.0, 1.0), (10.0, _INF)),
+}
+
+
+def validity_table() -> str:
+    """One line per model: its validated beta0 and mu (for ``--help`` and the README)."""
+    return "\n".join(f"  {name:24s} beta0 {_interval(*b):14s} mu {_interval(*m)}"
+                     for name, (b, m) in VALIDITY_RANGES.items())
+
+
+def _interval(lo, hi):
+    if lo == 0.0 and hi == _INF:
+        return "any"
+    if lo == hi:
+        return f"= {lo:g}"
+    if hi == _INF:
+        return f">= {lo:g}"
+    if lo == 0.0:
+        return f"<= {hi:g}"
+    return f"in [{lo:g}, {hi:g}]"
+
+
+def validity_message(model, mu, beta0):
+    """The validated range of a model and where (mu, beta0) leaves it ("" inside).
+
+    Parameters
+    ----------
+    model : str
+        One of :data:`MODEL_NAMES`.
+    mu, beta0 : array_like
+        Tabor parameter (Eq. 35) and Hertz ellipticity [-].
+
+    Returns
+    -------
+    str or ndarray of str
+        Empty where (mu, beta0) lies in :data:`VALIDITY_RANGES`.
+    """
+    (b_lo, b_hi), (m_lo, m_hi) = VALIDITY_RANGES[_check_model(model)]
+    mu, beta0 = np.broadcast_arrays(np.asarray(mu, float), np.asarray(beta0, float))
+
+    def one(m, b):
+        if b_lo <= b <= b_hi and m_lo <= m <= m_hi:
+            return ""
+        return (f"{model} is validated for beta0 {_interval(b_lo, b_hi)} and mu {_interval(m_lo, m_hi)}; "
+                f"got beta0 = {b:.4g}, mu = {m:.4g}")
+
+    out = np.array([one(m, b) for m, b in zip(mu.ravel(), beta0.ravel())], dtype=object).reshape(mu.shape)
+    return out[()] if out.ndim == 0 else out
+
+
+def _join(*messages):
+    parts = np.broadcast_arrays(*(np.asarray(m, dtype=object) for m in messages))
+    out = np.array(["; ".join(p for p in ps if p) for ps in zip(*(q.ravel() for q in parts))],
+                   dtype=object).reshape(parts[0].shape)
+    return out[()] if out.ndim == 0 else out
+
+
 def _record(name, mu, beta0, control, st, sin_skew, geometry, warning=""):
     """A pull-off record with the keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in order."""
     shape = np.broadcast_shapes(mu.shape, beta0.shape)
+    warning = _join(warning, validity_message(name, mu, beta0))
     a = np.asarray(st["a_star"], float)
     b = np.asarray(st.get("b_star", a), float)
     c = np.asarray(st.get("c_star", _NAN), float)

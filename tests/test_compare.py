@@ -236,3 +236,17 @@ def test_curve_bad_input():
         compare.load_curve("jkr", 1.0, 0.9, [-1.0])
     with pytest.raises(ValueError, match="mu"):
         compare.load_curve("jkr", [1.0, 2.0], 0.9)
+
+
+def test_validity_ranges_warn_without_refusing():
+    """Outside its validated range a model still computes and says so (issue 10)."""
+    assert set(compare.VALIDITY_RANGES) == set(compare.MODELS)
+    rec = compare.pull_off("jkr", [1.0, 10.0], [0.9, 1.0])
+    assert np.all(np.isfinite(rec["W_star"]))
+    assert "jkr is validated for beta0 = 1" in rec["warning"][0] and rec["warning"][1] == ""
+    assert compare.pull_off("dmt", 0.05, 1.0)["warning"] == ""
+    assert "mu <= 0.09" in compare.pull_off("dmt", 1.0, 1.0)["warning"]
+    only_range = compare.pull_off("dh-elliptic", 1.0, 0.5, check_closure=False)["warning"]
+    assert only_range.startswith("dh-elliptic is validated for beta0 in [0.8, 1]") and "two-axis" not in only_range
+    for name in compare.MODELS:
+        assert name in compare.validity_table()

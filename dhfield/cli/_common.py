@@ -167,6 +167,14 @@ def contact_parameters_from_args(args):
                                                                args.adhesive_stress)
 
 
+def validity_epilog() -> str:
+    """The ``--help`` epilog: each model's validated range (outside it, results carry a warning)."""
+    from ..compare import validity_table
+
+    return ("validated ranges (outside them the result is computed and a warning printed):\n"
+            + validity_table())
+
+
 def print_warning(rec) -> None:
     """One line on stderr if the record carries a warning."""
     import sys

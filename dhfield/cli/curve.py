@@ -1,8 +1,11 @@
 """``dhfield curve``: the load curve of a model, over contact sizes or (SI) over loads."""
 from __future__ import annotations
 
-from ._common import (UsageError, add_model_arguments, add_physical_arguments, contact_parameters_from_args,
-                      print_json)
+import argparse
+
+from ._common import UsageError, add_model_arguments, add_physical_arguments, contact_parameters_from_args
+from ._common import print_json, print_warning
+from ._common import validity_epilog as _epilog
 
 
 def add_parser(sub) -> None:
@@ -11,7 +14,8 @@ def add_parser(sub) -> None:
     p = sub.add_parser("curve", help="load curve of a model (nondimensional, Eqs. 32-36, or SI)",
                        description="Load curve of one model.  Inputs: --beta0 and --mu (nondimensional; range "
                        "--a-min/--a-max in c_r), or physical inputs in SI units (range --semi-major-min/"
-                       "--semi-major-max [m] or --load-min/--load-max [N] on the stable branch).")
+                       "--semi-major-max [m] or --load-min/--load-max [N] on the stable branch).",
+                       epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
     p.add_argument("--model", choices=CURVE_MODEL_NAMES, default="dh-elliptic",
                    help="model (default: dh-elliptic, the paper's); dh-elliptic-jkr-beta has no curve")
@@ -94,7 +98,10 @@ def run(args) -> int:
 
     from ..schema import LOAD_CURVE_HEADER_KEYS, units
 
+    from ..compare import validity_message
+
     rec = curve_record(args)
+    print_warning({"warning": validity_message(rec["model"], rec["mu"], rec["beta0"])})
     nondim = "force" not in rec
     cols = [k for k in rec if k not in LOAD_CURVE_HEADER_KEYS and np.ndim(rec[k]) == 1]
     if args.out:

@@ -1,6 +1,9 @@
 """``dhfield pulloff``: the pull-off of any model, from --beta0/--mu or from physical inputs."""
 from __future__ import annotations
 
+import argparse
+
+from ._common import validity_epilog as _epilog
 from ._common import (add_model_arguments, add_physical_arguments, contact_parameters_from_args, model_names,
                       plain_record, print_json, print_warning)
 
@@ -12,7 +15,8 @@ def add_parser(sub) -> None:
     p = sub.add_parser("pulloff", help="pull-off force of any model (nondimensional W* or SI newtons)",
                        description="Pull-off of one model.  Inputs: --beta0 and --mu (nondimensional, "
                        "Eqs. 32-35), or physical inputs in SI units (output then in N and m).  Every model "
-                       "gives the same keys; n/a values are null (JSON) or nan.")
+                       "gives the same keys; n/a values are null (JSON) or nan.",
+                       epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="load control (default) or displacement control")
