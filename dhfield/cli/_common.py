@@ -7,7 +7,7 @@ import math
 
 __all__ = ["OneLineParser", "UsageError", "print_json", "add_model_arguments", "model_names",
            "compare_record", "plain_record", "add_physical_arguments", "contact_parameters_from_args",
-           "print_warning", "PHYSICAL_FLAGS", "OUTPUT_SUFFIXES", "check_output_argument", "thread_count",
+           "print_warning", "validity_epilog", "PHYSICAL_FLAGS", "OUTPUT_SUFFIXES", "check_output_argument", "thread_count",
            "max_threads", "termination_signals_as_exceptions"]
 
 
