@@ -14,6 +14,10 @@ __version__ = "0.1.0"
 PAPER_DOI = "10.1007/s11249-017-0976-8"
 
 from .model import LoadCurve, PullOff, load_curve, pull_off, solve_adhesive_axis  # noqa: E402
+from .compare import MODEL_NAMES  # noqa: E402
+from .dimensional import (contact_parameters, contact_parameters_from_principal_radii,  # noqa: E402
+                          crossed_cylinder_radii, load_curve_si, pull_off_force)
 
 __all__ = ["__version__", "PAPER_DOI", "load_curve", "pull_off", "solve_adhesive_axis", "LoadCurve",
-           "PullOff"]
+           "PullOff", "MODEL_NAMES", "contact_parameters", "contact_parameters_from_principal_radii",
+           "crossed_cylinder_radii", "pull_off_force", "load_curve_si"]
