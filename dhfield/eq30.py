@@ -98,6 +98,8 @@ __all__ = [
     "eq30_boundary",
     "eq30_cartesian",
     "eq30_boundary_from_grid",
+    "eq30_cartesian_from_state",
+    "eq30_boundary_from_state",
     "periphery_work_of_adhesion",
     "adhesive_stress_extended",
 ]
@@ -396,3 +398,26 @@ def periphery_work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, e
                                reduced_modulus)
     out = periphery.ray_average(prof.work_of_adhesion, prof.theta, prof.contact_radius, weight)
     return out if np.ndim(out) else out[()]
+
+
+def eq30_cartesian_from_state(state):
+    """Eq. (30) as printed, the area integral, on a BEM :class:`dhfield.bem.ContactState` [J m^-2].
+
+    :func:`eq30_cartesian` of the state's adhesive traction
+    (:func:`dhfield.periphery.adhesive_traction`, which continues the law's
+    stress at zero gap over the contact) and its gap, on the full grid.
+    """
+    g = state.grid
+    return eq30_cartesian(g.x, g.y, periphery.adhesive_traction(state), state.gap)
+
+
+def eq30_boundary_from_state(state, **kwargs):
+    """Green's form of Eq. (30) on a BEM state: 4 [Delta gamma(0) - Delta gamma(pi/2)] [J m^-2].
+
+    The two ray works come from :func:`dhfield.periphery.periphery_from_state`
+    (keyword arguments are passed on).  For a self-consistent solution with one
+    traction law both rays give the law's work of adhesion, so this vanishes up
+    to the discretisation.
+    """
+    prof = periphery.periphery_from_state(state, [0.0, 0.5 * np.pi], **kwargs)
+    return float(4.0 * (prof.work_of_adhesion[0] - prof.work_of_adhesion[1]))

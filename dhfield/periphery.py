@@ -85,6 +85,8 @@ __all__ = [
     "pull_off_periphery",
     "load_curve_periphery",
     "periphery_from_gap_grid",
+    "adhesive_traction",
+    "periphery_from_state",
 ]
 
 #: Default rays: 91 angles, 1 degree apart, from the major (0) to the minor (pi/2) axis.
@@ -602,3 +604,111 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
         work = trend_work + np.sum(w * sigma * dh_dr * dr_dt, axis=-1)  # Eq. (31)
     return PeripheryProfile(prof.theta, prof.contact_radius, prof.adhesive_radius, prof.zone_width,
                             prof.max_adhesive_stress, h_cd, work, h_ab)
+
+
+# --------------------------------------------------------------------------- BEM states
+#: Samples per ray of :func:`periphery_from_state` (the traction is piecewise constant per
+#: cell, so the Stieltjes sum converges like 1/samples once samples >> cells per ray).
+STATE_RAY_SAMPLES = 4001
+
+
+def adhesive_traction(state) -> np.ndarray:
+    """Tensile adhesive stress of a BEM :class:`dhfield.bem.ContactState` per cell [Pa].
+
+    The BEM pressure is the repulsive contact pressure minus the adhesive
+    traction, so the adhesive part is ``repulsive_pressure - pressure`` when the
+    state carries its repulsive part.  Otherwise it is ``-pressure`` outside the
+    contact and the law's stress at zero gap (sigma0 of Eq. 24 for the Dugdale
+    law, as in Maugis' model) inside it; zero without a law.
+    """
+    p = np.asarray(state.pressure, dtype=float)
+    contact = np.asarray(state.contact, dtype=bool)
+    rep = getattr(state, "repulsive_pressure", None)
+    if rep is not None:
+        return np.maximum(np.asarray(rep, dtype=float) - p, 0.0)
+    if state.law is None:
+        return np.zeros_like(p)
+    at_contact = float(np.asarray(state.law.stress(0.0)))
+    return np.where(contact, at_contact, np.maximum(-p, 0.0))
+
+
+def periphery_from_state(state, theta=None, *, n_samples=STATE_RAY_SAMPLES) -> PeripheryProfile:
+    """Periphery quantities of a BEM solution, from its own gap and traction fields.
+
+    The analytic counterpart is :func:`periphery`; here nothing is assumed about
+    the shape of the zone: along each ray theta_p from the centre,
+
+    * r_ab is where the ray leaves the contact mask, r_cd where it leaves the
+      cohesive zone (first cell without adhesive traction beyond r_ab);
+    * Delta gamma(theta_p) = int sigma dh along the ray (Eq. 31 on the ray),
+      with sigma the cell's adhesive traction (:func:`adhesive_traction`:
+      piecewise constant, exactly what the BEM applied) and h the gap
+      interpolated by a bicubic spline, as a Stieltjes sum over
+      ``n_samples`` points;
+    * sigma0(theta_p) is the traction just outside the contact, h(r_cd) the
+      edge separation and h(r_ab) the contact-edge gap.
+
+    For a self-consistent solution with one traction law, Delta gamma(theta_p)
+    is the law's work of adhesion on every ray (for the Dugdale law,
+    sigma0 h(r_cd) = sigma0 h0), up to the discretisation; the analytic DH
+    fields are not (see :func:`periphery`).
+
+    Parameters
+    ----------
+    state : dhfield.bem.ContactState
+        Full-grid BEM state (any consistent units).
+    theta : array_like, optional
+        Ray angles in [0, pi/2], 1-D [rad]; default :data:`DEFAULT_THETA`.
+    n_samples : int
+        Points per ray, from the centre to 98 % of the way to the grid edge.
+
+    Returns
+    -------
+    PeripheryProfile
+        Every array has the ``theta`` axis only; radii [m], stresses [Pa],
+        gaps [m], Delta gamma [J m^-2] (or the state's units).
+    """
+    th = _check_theta(theta)
+    if int(n_samples) != n_samples or n_samples < 16:
+        raise ValueError(f"n_samples must be an integer >= 16 (points per ray); got {n_samples!r}")
+    g = state.grid
+    x_e, y_e = g.x_edges, g.y_edges
+    gap = np.asarray(state.gap, dtype=float)
+    contact = np.asarray(state.contact, dtype=bool)
+    traction = adhesive_traction(state)
+    spline = _grid_spline(g.x, g.y, gap)
+    c, s = np.cos(th), np.sin(th)
+    with np.errstate(divide="ignore"):
+        r_max = 0.98 * np.minimum(np.where(c > 1e-12, x_e[-1] / np.maximum(c, 1e-300), np.inf),
+                                  np.where(s > 1e-12, y_e[-1] / np.maximum(s, 1e-300), np.inf))
+    t = np.linspace(0.0, 1.0, int(n_samples))
+    r = r_max[:, None] * t[None, :]
+    xs, ys = r * c[:, None], r * s[:, None]
+
+    def cell(xq, yq):
+        i = np.clip(np.floor((xq - x_e[0]) / g.dx).astype(int), 0, g.nx - 1)
+        j = np.clip(np.floor((yq - y_e[0]) / g.dy).astype(int), 0, g.ny - 1)
+        return i, j
+
+    h = spline.ev(xs.ravel(), ys.ravel()).reshape(xs.shape)
+    i, j = cell(xs, ys)
+    in_contact = contact[i, j]
+    xm, ym = 0.5 * (xs[:, 1:] + xs[:, :-1]), 0.5 * (ys[:, 1:] + ys[:, :-1])
+    im, jm = cell(xm, ym)
+    t_mid = traction[im, jm]
+    n_th = th.size
+    out = {k: np.full(n_th, np.nan) for k in ("r_ab", "r_cd", "s0", "h_cd", "work", "h_ab")}
+    for k in range(n_th):
+        outside = np.nonzero(~in_contact[k])[0]
+        k0 = int(outside[0]) if outside.size else n_samples - 1
+        no_traction = np.nonzero(traction[i[k, k0:], j[k, k0:]] <= 0.0)[0]
+        k1 = k0 + int(no_traction[0]) if no_traction.size else n_samples - 1
+        out["r_ab"][k] = r[k, k0] if k0 > 0 else 0.0
+        out["r_cd"][k] = r[k, k1]
+        out["s0"][k] = traction[i[k, k0], j[k, k0]]
+        out["h_ab"][k] = h[k, k0]
+        out["h_cd"][k] = h[k, k1]
+        m0 = max(k0 - 1, 0)  # the segment that straddles the contact edge
+        out["work"][k] = np.sum(t_mid[k, m0:] * np.diff(h[k, m0:]))  # Eq. (31), Stieltjes sum of sigma dh
+    return PeripheryProfile(th, out["r_ab"], out["r_cd"], out["r_cd"] - out["r_ab"], out["s0"], out["h_cd"],
+                            out["work"], out["h_ab"])

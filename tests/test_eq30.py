@@ -141,3 +141,19 @@ def test_whole_annulus_integrand_integrates_to_zero():
     quadrant = jac[(xx > 0) & (yy > 0)].sum()
     assert abs(jac.sum()) < 1e-12 * abs(quadrant)
     assert abs(jac[(xx < 0) & (yy > 0)].sum() + quadrant) < 1e-12 * abs(quadrant)
+
+
+def test_eq30_from_state_vanishes_for_radial_fields():
+    """Radially symmetric sigma and h are functionally dependent: the Jacobian of Eq. (30)
+    vanishes, and on a square grid the quadrant sum cancels exactly under x <-> y
+    (the integrand is antisymmetric under the transpose); both forms give 0."""
+    from test_periphery import _radial_dugdale_state
+
+    state, work, rel_bound = _radial_dugdale_state(64)
+    assert abs(eq30.eq30_cartesian_from_state(state)) <= ROUND_OFF * work
+    # the boundary form: two rays of the same staircase, equal by the x <-> y symmetry
+    assert abs(eq30.eq30_boundary_from_state(state)) <= ROUND_OFF * work
+
+
+#: Round-off of sums of O(1e4) terms of order one.
+ROUND_OFF = 1e-10

@@ -279,3 +279,61 @@ def test_load_curve_dataset(tmp_path):
     assert back["work_of_adhesion"].shape == (2, 1, 3, THETA.size)
     assert_allclose(back["work_of_adhesion"].values[1, 0], profs[(0.9, 1.0)].work_of_adhesion, rtol=0)
     assert_allclose(back["W_star"].values[0, 0], curves[(0.8, 1.0)].W_star, rtol=0)
+
+
+# --------------------------------------------------------------------------- BEM states
+def _radial_dugdale_state(n, a=1.0, c=1.5, h0=0.4, sigma0=2.5, half_width=2.0):
+    """A synthetic full-grid ContactState with a known Dugdale zone (closed form).
+
+    Contact r < a (gap 0), gap h = h0 (r^2 - a^2)/(c^2 - a^2) outside it, so h(c) = h0;
+    traction sigma0 on cells with centre r < c (piecewise constant, as a BEM applies it).
+    Every ray's work of adhesion is sigma0 h0 up to where the staircase of cells leaves
+    the zone, at most one cell diagonal from r = c.
+    """
+    from dhfield.bem import ContactState, DugdaleLaw, Grid
+
+    grid = Grid.centered(n, half_width)
+    x, y = grid.mesh()
+    r2 = x * x + y * y
+    gap = np.where(r2 < a * a, 0.0, h0 * (r2 - a * a) / (c * c - a * a))
+    contact = r2 < a * a
+    zone = (r2 < c * c) & ~contact
+    pressure = np.where(zone, -sigma0, 0.0) + np.where(contact, 1.0, 0.0)
+    state = ContactState(grid, pressure, gap, 0.0, float(pressure.sum() * grid.dx * grid.dy), contact,
+                         zone.astype(float), DugdaleLaw(sigma0, h0), True, 0, 0.0)
+    slope = 2.0 * h0 * c / (c * c - a * a)  # dh/dr at r = c
+    return state, sigma0 * h0, slope * np.hypot(grid.dx, grid.dy) / h0
+
+
+#: Staircase bound of the synthetic state, relative: one cell diagonal times max dh/dr at the
+#: zone edge (in h0), plus 20 % for the spline across the contact-edge kink of the gap.
+STATE_STAIRCASE_FACTOR = 1.2
+
+
+@pytest.mark.parametrize("n", [64, 256])
+def test_periphery_from_state_dugdale_closed_form(n):
+    state, work, rel_bound = _radial_dugdale_state(n)
+    prof = periphery.periphery_from_state(state, THETA)
+    assert np.all(np.abs(prof.work_of_adhesion / work - 1.0) <= STATE_STAIRCASE_FACTOR * rel_bound)
+    cell = np.hypot(state.grid.dx, state.grid.dy)
+    assert np.all(np.abs(prof.contact_radius - 1.0) <= cell)
+    assert np.all(np.abs(prof.adhesive_radius - 1.5) <= cell)
+    assert_allclose(prof.max_adhesive_stress, 2.5, rtol=0)
+
+
+def test_periphery_from_state_converges():
+    """The staircase error falls at least like the cell size (4x finer grid: >= 2x smaller)."""
+    errs = []
+    for n in (64, 256):
+        state, work, _ = _radial_dugdale_state(n)
+        errs.append(np.max(np.abs(periphery.periphery_from_state(state, THETA).work_of_adhesion / work - 1.0)))
+    assert errs[1] <= 0.5 * errs[0]
+
+
+def test_adhesive_traction_without_repulsive_part():
+    state, _, _ = _radial_dugdale_state(32)
+    t = periphery.adhesive_traction(state)
+    assert_allclose(t[np.asarray(state.contact)], 2.5, rtol=0)  # sigma0 continued over the contact (Maugis)
+    assert np.all(t[~np.asarray(state.contact) & (state.cohesive == 0)] == 0.0)
+    with pytest.raises(ValueError, match="n_samples"):
+        periphery.periphery_from_state(state, THETA, n_samples=3)
