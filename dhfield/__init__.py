@@ -20,4 +20,13 @@ from .dimensional import (contact_parameters, contact_parameters_from_principal_
 
 __all__ = ["__version__", "PAPER_DOI", "load_curve", "pull_off", "solve_adhesive_axis", "LoadCurve",
            "PullOff", "MODEL_NAMES", "contact_parameters", "contact_parameters_from_principal_radii",
-           "crossed_cylinder_radii", "pull_off_force", "load_curve_si"]
+           "crossed_cylinder_radii", "pull_off_force", "load_curve_si", "fit_work_of_adhesion", "fit_curve"]
+
+
+def __getattr__(name):
+    # the inverse problem (dhfield.fit) is imported on first use: it pulls in every model
+    if name in ("fit_work_of_adhesion", "fit_curve"):
+        from . import fit
+
+        return getattr(fit, name)
+    raise AttributeError(f"module 'dhfield' has no attribute {name!r}")

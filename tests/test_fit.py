@@ -208,3 +208,10 @@ def test_cli_usage_errors(capsys, tmp_path, monkeypatch, argv, match):
     monkeypatch.chdir(tmp_path)
     code, out, err = _run(capsys, ["fit", *argv])
     assert code == 2 and err.count("\n") == 1 and match in err, err
+
+
+def test_exported_at_the_top_level():
+    import dhfield
+
+    assert dhfield.fit_work_of_adhesion is fit_work_of_adhesion and dhfield.fit_curve is fit_curve
+    assert {"fit_work_of_adhesion", "fit_curve"} <= set(dhfield.__all__)
