@@ -162,3 +162,21 @@ def test_si_hertz_case_in_metres_and_pascals(tmp_path):
     assert ds.attrs["param_model"] == "hertz" and ds.attrs["param_reduced_modulus"] == 2e9
     assert "annulus_identity_error" not in ds and "param_length_scale" not in ds.attrs
     assert set(np.unique(ds["region"].values)) == {0, 2}
+
+
+def test_metadata_from_the_schema_and_cf_rules(case, tmp_path):
+    from dhfield import schema
+    from dhfield.io.field import REGIONS
+
+    ds = field_dataset(case, n_r=9, n_theta=5)
+    for name, (quantity, qualifier) in FIELD_VARIABLES.items():
+        ref = schema.attrs(quantity, nondimensional=True)
+        assert ds[name].attrs["units"] == ref["units"] == "1"
+        assert ds[name].attrs["long_name"] == f"{ref['long_name']}, {qualifier}"
+    assert ds["x"].attrs["long_name"] == schema.attrs("x", nondimensional=True)["long_name"]
+    assert ds["theta_p"].attrs["units"] == "rad"
+    assert ds["region"].attrs["flag_meanings"] == " ".join(REGIONS) and "units" not in ds["region"].attrs
+    assert set(np.unique(ds["region"].values)) <= {0, 1, 2}
+    back = read_netcdf(write_field(case, tmp_path / "c.nc", n_r=9, n_theta=5))
+    for name in ("x", "y", "r", "theta_p"):
+        assert "axis" not in back[name].attrs and "_FillValue" not in back[name].encoding, name
