@@ -760,6 +760,9 @@ def _parser():
     p.add_argument("--no-progress", action="store_true", help="do not print progress lines to stderr")
     p.add_argument("--jobs", type=int, default=1,
                    help="run up to this many sections at the same time, each in its own process (default 1)")
+    p.add_argument("--scheduler", default=None,
+                   help="run the heavy BEM loops as tasks of the sweep engine: 'processes' (local worker "
+                        "processes) or a dask.distributed address tcp://host:port (default: serial)")
     return p
 
 
@@ -770,6 +773,16 @@ def main(argv=None) -> int:
     if args.jobs < 1:
         print(f"error: --jobs must be an integer >= 1; got {args.jobs}", file=sys.stderr)
         return 2
+    if args.scheduler is not None:  # read by dhfield.sweep.map_cases, in this process and the section processes
+        from dhfield.sweep.engine import SCHEDULER_ENV, check_scheduler_address
+
+        if args.scheduler not in ("synchronous", "processes"):
+            try:
+                check_scheduler_address(args.scheduler)
+            except ValueError as exc:
+                print(f"error: --{exc}", file=sys.stderr)
+                return 2
+        os.environ[SCHEDULER_ENV] = args.scheduler
     try:
         requested = [s.strip() for s in args.sections.split(",") if s.strip()] or None
         names = _available_sections(requested)

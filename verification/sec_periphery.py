@@ -113,55 +113,71 @@ def bem_comparison(cases, ns, progress=print, theta=None):
     """Δγ(θp) from the BEM gap (dhfield.fields.dh_case) vs analytic, per case and N.
 
     Returns a list of dicts (beta0, mu, n, error, profile, analytic, order) and the
-    Eq. (30) area sum on the finest BEM field of the first case.
+    Eq. (30) area sum on the finest BEM field of the first case.  The cases run as
+    tasks of the sweep engine (:func:`dhfield.sweep.map_cases`; the refinements of
+    one case stay in one task), on the scheduler of ``$DHFIELD_SCHEDULER``
+    (``report.py --scheduler``), serially in this process by default.
     """
-    from dhfield import double_hertz, eq30, fields, model, periphery
+    from dhfield.sweep import map_cases
 
     theta = np.linspace(0.0, 0.5 * np.pi, 19) if theta is None else theta
+    results = map_cases(_bem_case, [(b0, m, tuple(ns), theta, i == 0) for i, (b0, m) in enumerate(cases)])
     out = []
     eq30_grid = None
-    for (b0, m) in cases:
-        po = model.pull_off(m, b0)
-        a, c, v = float(po.a_star), float(po.c_star), float(po.v)
-        ref = periphery.periphery(a, c, b0, v, theta)
-        errs = []
-        for n in ns:
-            t0 = time.perf_counter()
-            case = fields.dh_case(n, a, c, b0, v, half_width=1.05 * c)
-            g = case.grid
-            prof = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, a, c, b0, v, theta)
-            err = np.abs(prof.work_of_adhesion / ref.work_of_adhesion - 1.0)
-            errs.append(float(err.max()))
-            # the two sources apart: spline of the analytic gap sampled on the same grid (interpolation only),
-            # and the BEM gap with the analytic gap as interpolation trend (BEM only)
-            interp = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_analytic, a, c, b0, v, theta)
-            xx, yy = g.mesh()
-            known = {"grid": case.gap_analytic}
+    for recs, grid_sum in results:
+        for rec in recs:
+            progress(f"BEM Δγ(θp): β0 = {rec['beta0']:g}, μ = {rec['mu']:g}, N = {rec['n']}: max rel. error "
+                     f"{rec['max_error']:.2e} ({rec.pop('seconds'):.1f} s)")
+        out.extend(recs)
+        eq30_grid = grid_sum if eq30_grid is None else eq30_grid
+    return out, eq30_grid
 
-            def trend(px, py, a=a, c=c, b0=b0, v=v, known=known, shape=xx.shape):
-                if np.shape(px) == shape and np.array_equal(px, xx) and np.array_equal(py, yy):
-                    return known["grid"]
-                return double_hertz.gap(px, py, a, c, b0, v)
 
-            bem_only = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, a, c, b0, v, theta,
-                                                         trend=trend)
-            rel = (lambda p: float(np.max(np.abs(p.work_of_adhesion / ref.work_of_adhesion - 1.0))))
-            rec = dict(beta0=b0, mu=m, n=n, error=err, max_error=float(err.max()), profile=prof, analytic=ref,
-                       state=(a, c, b0, v), half_width=1.05 * c, zone_cells=float((c - a) / g.dx),
-                       interp_error=rel(interp), bem_error=rel(bem_only))
-            out.append(rec)
-            if eq30_grid is None and n == ns[-1]:
-                x, y = g.x, g.y
-                xx, yy = g.mesh()
-                s = eq30.adhesive_stress_extended(xx, yy, c, b0, v)
-                eq30_grid = dict(value=eq30.eq30_cartesian(x, y, s, case.gap_numerical),
-                                 boundary=eq30.eq30_boundary_from_grid(x, y, case.gap_numerical, a, c, b0, v),
-                                 exact=float(eq30.eq30_area(a, c, b0, v)), beta0=b0, mu=m, n=n)
-            progress(f"BEM Δγ(θp): β0 = {b0:g}, μ = {m:g}, N = {n}: max rel. error {errs[-1]:.2e} "
-                     f"({time.perf_counter() - t0:.1f} s)")
-        order = float(np.log(errs[0] / errs[-1]) / np.log(ns[-1] / ns[0])) if len(ns) > 1 else float("nan")
-        for rec in out[-len(ns):]:
-            rec["order"] = order
+def _bem_case(b0, m, ns, theta, with_eq30):
+    """One case of :func:`bem_comparison` at every N (a task of the sweep engine)."""
+    from dhfield import double_hertz, eq30, fields, model, periphery
+
+    out = []
+    eq30_grid = None
+    po = model.pull_off(m, b0)
+    a, c, v = float(po.a_star), float(po.c_star), float(po.v)
+    ref = periphery.periphery(a, c, b0, v, theta)
+    errs = []
+    for n in ns:
+        t0 = time.perf_counter()
+        case = fields.dh_case(n, a, c, b0, v, half_width=1.05 * c)
+        g = case.grid
+        prof = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, a, c, b0, v, theta)
+        err = np.abs(prof.work_of_adhesion / ref.work_of_adhesion - 1.0)
+        errs.append(float(err.max()))
+        # the two sources apart: spline of the analytic gap sampled on the same grid (interpolation only),
+        # and the BEM gap with the analytic gap as interpolation trend (BEM only)
+        interp = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_analytic, a, c, b0, v, theta)
+        xx, yy = g.mesh()
+        known = {"grid": case.gap_analytic}
+
+        def trend(px, py, a=a, c=c, b0=b0, v=v, known=known, shape=xx.shape):
+            if np.shape(px) == shape and np.array_equal(px, xx) and np.array_equal(py, yy):
+                return known["grid"]
+            return double_hertz.gap(px, py, a, c, b0, v)
+
+        bem_only = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, a, c, b0, v, theta,
+                                                     trend=trend)
+        rel = (lambda p: float(np.max(np.abs(p.work_of_adhesion / ref.work_of_adhesion - 1.0))))
+        rec = dict(beta0=b0, mu=m, n=n, error=err, max_error=float(err.max()), profile=prof, analytic=ref,
+                   state=(a, c, b0, v), half_width=1.05 * c, zone_cells=float((c - a) / g.dx),
+                   interp_error=rel(interp), bem_error=rel(bem_only))
+        out.append(rec)
+        if with_eq30 and n == ns[-1]:
+            x, y = g.x, g.y
+            s = eq30.adhesive_stress_extended(xx, yy, c, b0, v)
+            eq30_grid = dict(value=eq30.eq30_cartesian(x, y, s, case.gap_numerical),
+                             boundary=eq30.eq30_boundary_from_grid(x, y, case.gap_numerical, a, c, b0, v),
+                             exact=float(eq30.eq30_area(a, c, b0, v)), beta0=b0, mu=m, n=n)
+        rec["seconds"] = time.perf_counter() - t0
+    order = float(np.log(errs[0] / errs[-1]) / np.log(ns[-1] / ns[0])) if len(ns) > 1 else float("nan")
+    for rec in out:
+        rec["order"] = order
     return out, eq30_grid
 
 

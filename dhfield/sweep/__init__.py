@@ -16,8 +16,8 @@ Example::
     ds = run_sweep(cfg, out="s.nc").dataset      # ds.W_star: (model, beta0, mu)
 """
 from .config import QUANTITIES, SweepConfig, config_from_mapping, load_config
-from .engine import SweepResult, connect, run_sweep
+from .engine import SweepResult, connect, map_cases, run_sweep
 from .store import CaseStore, output_paths
 
 __all__ = ["SweepConfig", "QUANTITIES", "config_from_mapping", "load_config", "run_sweep", "SweepResult",
-           "connect", "CaseStore", "output_paths"]
+           "connect", "map_cases", "CaseStore", "output_paths"]

@@ -42,8 +42,8 @@ from .store import CaseStore, output_paths
 from .tasks import (ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, PULL_OFF_FIELDS, adhesive_case,
                     adhesive_solver, bem_field_case, pull_off_block)
 
-__all__ = ["SweepResult", "Executor", "connect", "run_sweep", "Progress", "STATUS_MEANINGS",
-           "CONNECT_TIMEOUT"]
+__all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
+           "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV"]
 
 #: Seconds to wait for a dask.distributed scheduler before reporting it unreachable.
 CONNECT_TIMEOUT = 5.0
@@ -51,6 +51,10 @@ CONNECT_TIMEOUT = 5.0
 STATUS_MEANINGS = {0: "ok", 1: "not_converged", 2: "failed"}
 _STATUS = {v: k for k, v in STATUS_MEANINGS.items()}
 _LOCAL = ("synchronous", "processes")
+#: Environment variables giving :func:`map_cases` its default scheduler and worker count
+#: (set by ``python -m verification.report --scheduler ...``; inherited by section processes).
+SCHEDULER_ENV = "DHFIELD_SCHEDULER"
+WORKERS_ENV = "DHFIELD_WORKERS"
 
 
 # --------------------------------------------------------------------------- progress
@@ -209,6 +213,46 @@ def _compute(collections, executor: Executor, progress: Progress):
     kwargs = {"pool": executor.pool} if executor.kind == "processes" else {}
     with Callback(posttask=posttask):
         return dask.compute(*collections, scheduler=executor.kind, **kwargs)
+
+
+def map_cases(fn, arguments, *, scheduler=None, workers=None, progress=False) -> list:
+    """``[fn(*args) for args in arguments]`` as dask tasks on a scheduler; results in order.
+
+    For studies whose results are Python objects rather than store records (the
+    report's BEM loops): one task per argument tuple, so keep the cases of one
+    load path in one call of ``fn``.  ``fn`` must be importable by the workers
+    (a module-level function).  Nothing is stored: use :func:`run_sweep` for
+    resumable studies.
+
+    Parameters
+    ----------
+    fn : callable
+    arguments : iterable of tuple
+    scheduler, workers
+        See :func:`connect`; defaults from ``$DHFIELD_SCHEDULER`` (else
+        "synchronous": in this process) and ``$DHFIELD_WORKERS``.
+    progress : bool
+        Progress bar on stderr.
+    """
+    import dask
+
+    if scheduler is None:
+        scheduler = os.environ.get(SCHEDULER_ENV) or "synchronous"
+    if workers is None and os.environ.get(WORKERS_ENV):
+        try:
+            workers = int(os.environ[WORKERS_ENV])
+        except ValueError:
+            raise ValueError(f"${WORKERS_ENV} must be an integer >= 1; got {os.environ[WORKERS_ENV]!r}") from None
+    executor = connect(scheduler, workers)
+    owned = executor is not scheduler
+    tasks = [dask.delayed(fn, pure=False)(*args) for args in arguments]
+    bar = Progress(len(tasks), progress)
+    try:
+        return list(_compute(tasks, executor, bar))
+    finally:
+        bar.close()
+        if owned:
+            executor.close()
 
 
 # --------------------------------------------------------------------------- case records
