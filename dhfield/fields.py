@@ -427,6 +427,15 @@ def check_case_memory(n, ny=None) -> None:
     memory available now (:func:`dhfield._memory.memory_limit`).  Raises
     ValueError naming ``n`` (and ``ny``), the estimate and the limit.
     """
+    from .bem.operator import MIN_CELLS
+
+    for name, value in (("n", n), ("ny", ny)):  # name the input the user gave (Grid says nx)
+        try:
+            ok = value is None or (not isinstance(value, bool) and int(value) == value and value >= MIN_CELLS)
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ValueError(f"{name} must be an integer >= {MIN_CELLS} (cells per axis); got {value!r}")
     grid = bem.Grid(n, n if ny is None else ny, 1.0, 1.0)  # validates the cell counts; allocates nothing
     what = f"n={grid.nx}" + (f", ny={grid.ny}" if grid.ny != grid.nx else "") + \
         f" (a {grid.nx} x {grid.ny} grid, about {CASE_BYTES_PER_CELL} bytes per cell)"

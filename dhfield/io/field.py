@@ -190,5 +190,9 @@ def compute_and_write_case(beta0, mu, a_star, n, out, *, half_width=None, sampli
     pathlib.Path
     """
     check_writable(out)
+    from ..bem.operator import MIN_CELLS
+
+    if isinstance(n, bool) or int(n) != n or n < MIN_CELLS:
+        raise ValueError(f"n must be an integer >= {MIN_CELLS} (cells per axis); got {n!r}")
     case = fields.model_case(n, beta0, mu, a_star, half_width=half_width, sampling=sampling, threads=threads)
     return write_field(case, out, polar=polar)
