@@ -192,6 +192,15 @@ def _fig_convergence(arr, path, dpi):
 
 
 # --------------------------------------------------------------------------- run
+def _hertz_refinement_row(n):
+    """(N, h, rel. L-inf, rel. L-inf off the edge, rel. RMS) of the Hertz case on N x N cells
+    (a row of :func:`verification.convergence_bem.study`, as one task of the sweep engine)."""
+    from dhfield import fields
+    from verification.convergence_bem import errors
+
+    case = fields.hertz_case(n, HERTZ["semi_major"], HERTZ["beta"])
+    return (n, case.grid.dx, *errors(case))
+
 
 
 def run(outdir: Path, quick: bool, progress) -> Section:
@@ -216,7 +225,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
 
     from dhfield import bem, fields
     from dhfield.io.field import write_field
-    from verification.convergence_bem import format_table, study
+    from dhfield.sweep import map_cases
+    from verification.convergence_bem import format_table
 
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -239,7 +249,10 @@ def run(outdir: Path, quick: bool, progress) -> Section:
              f"v = {case.parameters['scaling']:.6f}")
 
     # ---- accuracy and convergence (Hertz ellipse, cell averages)
-    arr, orders = study(lambda m: fields.hertz_case(m, HERTZ["semi_major"], HERTZ["beta"]), cfg["ns"])
+    # one sweep-engine task per N (report.py --scheduler runs them in parallel; serial by default)
+    arr = np.array(map_cases(_hertz_refinement_row, [(m,) for m in cfg["ns"]]))
+    orders = np.array([np.concatenate([[np.nan], fields.observed_orders(arr[:, 1], arr[:, k])])
+                       for k in (2, 3, 4)]).T
     progress(f"refinement study N = {cfg['ns']}")
     tables.append("**Accuracy of the BEM against Eq. (13)**: Hertz ellipse a = 1, β = 0.7 (R = E* = 1), "
                   "domain [−2a, 2a]², N × N cells, pressure by exact cell averages; errors at the cell centres "
