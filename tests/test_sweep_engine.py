@@ -156,3 +156,24 @@ def test_pluggable_adhesive_ground_truth(tmp_path, monkeypatch):
     assert list(adh["status"].values) == [0, engine._STATUS["not_converged"]]
     assert str(ds["adhesive_message"].sel(beta0=0.9, mu=3.0, n=64).isel(law=0).values) == "stalled"
     assert (ds["W_star"].sel(model="jkr").values == -0.75).all()  # analytic models broadcast over n, law
+
+
+def test_progress_bar_with_eta():
+    import io
+
+    out = io.StringIO()
+    bar = engine.Progress(4, True, stream=out)
+    for _ in range(4):
+        bar.advance()
+    bar.close()
+    text = out.getvalue()
+    assert "4/4 100%" in text and "ETA" in text and text.endswith("\n")
+    quiet = io.StringIO()
+    bar = engine.Progress(4, False, stream=quiet)
+    bar.advance(4)
+    bar.close()
+    assert quiet.getvalue() == ""
+
+
+def test_map_cases_keeps_order():
+    assert engine.map_cases(divmod, [(7, 2), (9, 4), (1, 1)], scheduler="synchronous") == [(3, 1), (2, 1), (1, 0)]
