@@ -21,8 +21,8 @@ Every finished (beta0, mu, N) case is written at once, atomically, as a small
 JSON file under ``--work-dir`` (one file per case, named by its parameters);
 a rerun skips the cases already there.  A case that raises, or whose path has
 unconverged states, is recorded with its status and message, never dropped.
-The cases run N by N (all of the coarsest N first), so an interrupted run still
-covers the whole (beta0, mu) grid at the coarser grids.
+The cases run N by N (all of the coarsest N first; mu = 5, the costly column, after
+everything else), so an interrupted run still covers the grid at the coarser N.
 
 Consolidation
 -------------
@@ -41,6 +41,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
 import shlex
@@ -58,6 +59,10 @@ MU = (0.3, 0.5, 1.0, 2.0, 5.0)
 #: Default N ladder (cells per axis): 3 levels for Richardson extrapolation, affordable
 #: for all 30 cases in about an hour on 2 cores.
 N_LADDER = (64, 128, 256)
+#: CG iterations per state in the study: converged states take ~50 (measured: 1647 over 35
+#: states at beta0 = 1, mu = 1, N = 128); the solver default (20000) lets a failing state
+#: cost minutes.
+STUDY_MAX_ITER = 3000
 DEFAULT_WORK_DIR = ROOT / "out" / "adhesive_study"
 DEFAULT_OUT = ROOT / "data" / "adhesive_ground_truth.nc"
 #: Analytic models stored next to the BEM (names of dhfield.compare.MODEL_NAMES).
@@ -145,9 +150,16 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **opti
     return rec
 
 
+#: Cases with mu >= DEFER_MU run after all the others (at mu = 5 the zone spans few cells of
+#: the coarse grids and a path costs minutes: measured 100-290 s at N = 64 against 1-25 s
+#: for mu <= 2), so a run cut short still covers the rest of the grid over the whole ladder.
+DEFER_MU = 5.0
+
+
 def cases(beta0s, mus, ns):
-    """The cases in run order: N ascending outermost, then beta0, then mu."""
-    return [(b, m, int(n)) for n in sorted(ns) for b in beta0s for m in mus]
+    """The cases in run order: mu < DEFER_MU first, then by N ascending, mu, beta0."""
+    todo = [(b, m, int(n)) for n in ns for b in beta0s for m in mus]
+    return sorted(todo, key=lambda c: (c[1] >= DEFER_MU, c[2], c[1], c[0]))
 
 
 def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, law="dugdale",
@@ -198,8 +210,13 @@ def _git_commit() -> str:
         return "unknown"
 
 
+@functools.lru_cache(maxsize=1)
 def _solver_source() -> str:
-    """Commit of the solver and whether dhfield/bem has uncommitted changes (provenance)."""
+    """Commit of the solver and whether dhfield/bem had uncommitted changes (provenance).
+
+    Taken once per process: the solver is imported once, so later edits of the
+    tree do not change the code that runs.
+    """
     try:
         dirty = subprocess.run(["git", "status", "--porcelain", "--", "dhfield/bem"], cwd=ROOT,
                                capture_output=True, text=True, check=True).stdout.strip()
@@ -242,6 +259,31 @@ def reference_table(beta0s, mus, models=REFERENCE_MODELS, control="load") -> dic
         rec = compare.pull_off(name, m, b, control)
         out[name] = {k: np.broadcast_to(np.asarray(rec.get(k, np.nan), float), (b.size, m.size)).copy()
                      for k in ("W_star", "ellipticity", "adhesive_ellipticity")}
+    return out
+
+
+def cached_reference_table(work_dir, beta0s, mus, control="load") -> dict:
+    """:func:`reference_table`, cached per (model, beta0, mu) in ``work_dir/references_<control>.json``.
+
+    The closures cost seconds per point, so each point is computed once and
+    stored (atomically) as soon as its row of models is done.
+    """
+    path = Path(work_dir) / f"references_{control}.json"
+    cache = json.loads(path.read_text()) if path.is_file() else {}
+    out = {m: {k: np.full((len(beta0s), len(mus)), np.nan) for k in ("W_star", "ellipticity",
+                                                                      "adhesive_ellipticity")}
+           for m in REFERENCE_MODELS}
+    for i, b in enumerate(beta0s):
+        for j, m in enumerate(mus):
+            key = f"{float(b)!r},{float(m)!r}"
+            if key not in cache:
+                tab = reference_table([b], [m], control=control)
+                cache[key] = {name: {k: float(v[0, 0]) for k, v in rec.items()} for name, rec in tab.items()}
+                Path(work_dir).mkdir(parents=True, exist_ok=True)
+                _write_json(cache, path)
+            for name in REFERENCE_MODELS:
+                for k in out[name]:
+                    out[name][k][i, j] = cache[key][name][k]
     return out
 
 
@@ -364,13 +406,23 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
 
 
 def consolidate(work_dir=DEFAULT_WORK_DIR, out=DEFAULT_OUT, *, ns=None, law="dugdale", control="load",
-                command="", references=None) -> Path:
+                command="", references=None, max_iter=None) -> Path:
     """Write :func:`ground_truth_dataset` of the records in ``work_dir`` to ``out`` (atomic)."""
     from dhfield.io import check_writable, write_netcdf
 
     check_writable(out)
-    ds = ground_truth_dataset(load_records(work_dir, law, control), ns=ns, references=references,
-                              command=command)
+    records = load_records(work_dir, law, control)
+    if references is None and records:
+        beta0s = sorted({float(r["beta0"]) for r in records})
+        mus = sorted({float(r["mu"]) for r in records})
+        references = cached_reference_table(work_dir, beta0s, mus, control)
+    tolerances = None
+    if max_iter is not None:
+        from dhfield.bem import adhesive
+
+        tolerances = {"tol": adhesive.DEFAULT_TOL, "max_iter": int(max_iter),
+                      "domain_margin": adhesive.DOMAIN_MARGIN, "unloading_steps": adhesive.DEFAULT_STEPS}
+    ds = ground_truth_dataset(records, ns=ns, references=references, command=command, tolerances=tolerances)
     return write_netcdf(ds, out)
 
 
@@ -395,7 +447,11 @@ def main(argv=None) -> int:
     p.add_argument("--control", default="load", choices=("load", "displacement"))
     p.add_argument("--work-dir", type=Path, default=DEFAULT_WORK_DIR, help="per-case JSON files (resume)")
     p.add_argument("--out", type=Path, default=DEFAULT_OUT, help="consolidated netCDF")
+    p.add_argument("--max-iter", type=int, default=STUDY_MAX_ITER,
+                   help=f"CG iterations per state before it is flagged unconverged (default {STUDY_MAX_ITER})")
     p.add_argument("--consolidate-only", action="store_true", help="only rebuild --out from --work-dir")
+    p.add_argument("--references-only", action="store_true",
+                   help="only compute (and cache in --work-dir) the analytic references of the grid")
     args = p.parse_args(argv)
     for b in args.beta0:
         if not 0 < b <= 1:
@@ -414,9 +470,14 @@ def main(argv=None) -> int:
         p.error(str(exc))
     command = " ".join(shlex.quote(a) for a in [sys.executable, "-m", "verification.study_adhesive",
                                                  *(sys.argv[1:] if argv is None else argv)])
+    if args.references_only:
+        cached_reference_table(args.work_dir, sorted(args.beta0), sorted(args.mu), args.control)
+        return 0
     if not args.consolidate_only:
-        run_study(args.beta0, args.mu, args.n, work_dir=args.work_dir, law=args.law, control=args.control)
-    path = consolidate(args.work_dir, args.out, law=args.law, control=args.control, command=command)
+        run_study(args.beta0, args.mu, args.n, work_dir=args.work_dir, law=args.law, control=args.control,
+                  max_iter=args.max_iter)
+    path = consolidate(args.work_dir, args.out, law=args.law, control=args.control, command=command,
+                       max_iter=args.max_iter)
     print(f"wrote {path}")
     return 0
 

@@ -50,8 +50,13 @@ def run(args) -> int:
         check_writable(args.out)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
-    res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
-                            threads=args.threads, progress=None)
+    where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={args.n}, law={args.law}, control={args.control}")
+    try:
+        res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
+                                threads=args.threads, progress=None)
+    except RuntimeError as exc:  # the solver found no converged state to report
+        print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
+        return EXIT_UNCONVERGED
     if args.out is not None:
         from ..io.solution import write_solution
 

@@ -204,7 +204,9 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
         ds = xr.Dataset()
         ds.attrs.update(provenance_attrs("dhfield: self-consistent adhesive BEM pull-off of the elliptical "
                                          "contact (DC-FFT, free boundary)", law=result.law, **params))
-    ds = ds.merge(path_dataset(result.path, nondimensional=True, sin_skew=sin_skew), combine_attrs="override")
+    path_ds = path_dataset(result.path, nondimensional=True, sin_skew=sin_skew)
+    ds = ds.merge(path_ds, combine_attrs="override")
+    ds.attrs.update(path_ds.attrs)
     q = "BEM at pull-off"
     for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star"):
         ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), nondimensional=True, qualifier=q)

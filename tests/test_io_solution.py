@@ -1,0 +1,74 @@
+"""netCDF of adhesive BEM solutions: round trip of values, units, long_name and CF flags."""
+import numpy as np
+import pytest
+from numpy.testing import assert_array_equal
+
+from dhfield.bem import adhesive_pull_off
+from dhfield.io.solution import (PHASES, REGIONS, pull_off_dataset, read_solution, state_dataset,
+                                 write_solution)
+
+
+@pytest.fixture(scope="module")
+def small_result():
+    # N = 16: a coarse but complete path (loading, unloading, refinement); 300 CG iterations
+    # per state bound the cost of the states that do not converge on so coarse a grid.
+    return adhesive_pull_off(1.0, 0.8, 16, progress=False, max_iter=300)
+
+
+def _attrs_round_trip(ds, back):
+    for name in ds.variables:
+        for key in ("units", "long_name", "flag_meanings"):
+            if key in ds[name].attrs:
+                assert back[name].attrs[key] == ds[name].attrs[key], (name, key)
+
+
+def test_pull_off_round_trip(tmp_path, small_result):
+    res = small_result
+    ds = pull_off_dataset(res)
+    back = read_solution(write_solution(res, tmp_path / "po.nc"))
+    _attrs_round_trip(ds, back)
+    for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star", "beta_ab", "beta_cd"):
+        assert float(back[f"{key}_pull_off"]) == getattr(res, key)
+    assert back["W_star_pull_off"].attrs["units"] == "1" and "Eq. (34)" in back["W_star_pull_off"].attrs["description"]
+    st = res.path.pull_off_state
+    assert_array_equal(back["pressure"].values, st.pressure)
+    assert_array_equal(back["gap"].values, st.gap)
+    # the region flags are the contact mask and the majority cohesive cells
+    assert_array_equal(back["region"].values == REGIONS.index("contact"), st.contact)
+    assert_array_equal(back["region"].values == REGIONS.index("cohesive_zone"), (st.cohesive > 0.5) & ~st.contact)
+    assert list(back["region"].attrs["flag_values"]) == [0, 1, 2]
+    # the path, step by step, with its flags
+    assert back.sizes["step"] == res.n_steps
+    assert_array_equal(back["approach_path"].values, res.path.approach)
+    assert_array_equal(back["converged_path"].values.astype(bool), res.path.converged)
+    assert_array_equal(np.array(PHASES)[back["phase"].values], res.path.phase)
+    assert_array_equal(back["residual_path"].values, res.path.residual)
+    # W* per step is the load in the normalisation of Eq. (34) (R = dgamma = 1)
+    sin_skew = back.attrs["param_sin_skew"]
+    assert_array_equal(back["W_star_path"].values, res.path.load * sin_skew / (2 * np.pi))
+    assert back.attrs["param_beta0"] == 0.8 and back.attrs["converged"] == int(res.converged)
+    assert back.attrs["n_failures"] == len(res.failures)
+
+
+def test_state_dataset_si_units():
+    from test_periphery import _radial_dugdale_state
+
+    state, _, _ = _radial_dugdale_state(16)
+    ds = state_dataset(state)
+    assert ds["pressure"].attrs["units"] == "Pa" and ds["gap"].attrs["units"] == "m"
+    assert ds["load"].attrs["units"] == "N" and ds["x"].attrs["units"] == "m"
+    assert ds.attrs["param_law"] == "dugdale" and ds.attrs["param_law_range"] == 0.4
+    nd = state_dataset(state, nondimensional=True)
+    assert nd["gap"].attrs["units"] == "1" and "c_r^2/R" in nd["gap"].attrs["long_name"]
+
+
+def test_write_is_checked_and_atomic(tmp_path, small_result):
+    with pytest.raises(ValueError, match="out"):
+        write_solution(small_result, tmp_path / "missing" / "x.nc")
+    with pytest.raises(ValueError, match="out"):
+        write_solution(small_result, tmp_path)
+    assert list(tmp_path.iterdir()) == []
+    bad = tmp_path / "not.nc"
+    bad.write_text("no")
+    with pytest.raises(ValueError, match="not.nc"):
+        read_solution(bad)

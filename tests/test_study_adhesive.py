@@ -1,0 +1,121 @@
+"""The adhesive ground-truth study: resume, recorded failures, Richardson over N, the dataset reader.
+
+A stand-in solver with a known closed-form dependence on N keeps these tests fast;
+the solver itself is tested in tests/test_bem_adhesive.py.
+"""
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from verification import study_adhesive as sa
+
+#: W*(N) = W_INF + C N^-ORDER: Richardson over three doubling levels is exact for a pure
+#: power law, so the extrapolation must return W_INF to round-off.
+W_INF, C, ORDER = -0.8, 3.0, 1.5
+#: Round-off of the three-level Richardson formula on O(1) values.
+RICHARDSON_RTOL = 1e-12
+
+
+def _stand_in(calls, fail=None, unconverged=None):
+    def solver(mu, beta0, n, law, control, progress, **options):
+        calls.append((beta0, mu, n))
+        if fail == (beta0, mu, n):
+            raise RuntimeError("unloading path has no converged contact state")
+        w = W_INF * mu ** 0.1 + C * n ** -ORDER
+        failures = []
+        if unconverged == (beta0, mu, n):
+            failures = [{"approach": 5.0, "residual": 0.3, "iterations": 300, "phase": "unloading"}]
+        d = dict(W_star=w, a_star=1.0, b_star=beta0, c_star=1.5, d_star=1.5 * beta0, beta_ab=beta0,
+                 beta_cd=beta0 + 1.0 / n, delta_star=-1.0, residual=1e-7, elapsed=0.01, iterations=100,
+                 n_steps=30, half_width_x=2.0, half_width_y=2.0, converged=not failures, failures=failures)
+        return SimpleNamespace(as_dict=lambda: d)
+    return solver
+
+
+def _refs(beta0s, mus):
+    shape = (len(beta0s), len(mus))
+    return {m: {"W_star": np.full(shape, -0.79), "ellipticity": np.full(shape, 0.8),
+                "adhesive_ellipticity": np.full(shape, 0.8)} for m in ("dh-elliptic", "md")}
+
+
+def test_resume_failures_and_extrapolation(tmp_path):
+    calls = []
+    solver = _stand_in(calls, fail=(0.8, 2.0, 32), unconverged=(1.0, 2.0, 64))
+    recs = sa.run_study([0.8, 1.0], [1.0, 2.0], [16, 32, 64], work_dir=tmp_path, solver=solver, progress=False)
+    assert len(recs) == len(calls) == 12
+    # resume: nothing is recomputed, every record is read back
+    again = sa.run_study([0.8, 1.0], [1.0, 2.0], [16, 32, 64], work_dir=tmp_path, solver=solver, progress=False)
+    assert len(calls) == 12 and len(again) == 12
+    failed = [r for r in again if r["status"] == "failed"]
+    assert len(failed) == 1 and "beta0=0.8, mu=2, n=32" in failed[0]["message"]
+    assert math.isnan(failed[0]["W_star"])
+    bad = [r for r in again if r["status"] == "unconverged"]
+    assert len(bad) == 1 and "beta0=1, mu=2, n=64" in bad[0]["message"]
+
+    ds = sa.ground_truth_dataset(sa.load_records(tmp_path), references=_refs([0.8, 1.0], [1.0, 2.0]))
+    st = ds["status"].sel(beta0=0.8, mu=2.0, n=32)
+    assert sa.STATUSES[int(st)] == "failed" and "mu=2" in str(ds["message"].sel(beta0=0.8, mu=2.0, n=32).values)
+    # a complete ladder: Richardson recovers the N -> infinity limit of the power law exactly
+    ext = float(ds["W_star_extrapolated"].sel(beta0=1.0, mu=1.0))
+    assert ext == pytest.approx(W_INF, rel=RICHARDSON_RTOL)
+    assert float(ds["W_star_order"].sel(beta0=1.0, mu=1.0)) == pytest.approx(ORDER, rel=1e-9)
+    assert int(ds["W_star_levels"].sel(beta0=1.0, mu=1.0)) == 3
+    # failed or unconverged levels are not used: the finest usable value, flagged by its level count
+    assert int(ds["W_star_levels"].sel(beta0=0.8, mu=2.0)) == 2
+    assert float(ds["W_star_extrapolated"].sel(beta0=0.8, mu=2.0)) == float(ds["W_star"].sel(beta0=0.8, mu=2.0,
+                                                                                             n=64))
+    assert int(ds["W_star_levels"].sel(beta0=1.0, mu=2.0)) == 2
+
+
+def test_unconverged_after_pull_off_is_usable(tmp_path):
+    calls = []
+    rec = sa.run_case(0.9, 1.0, 32, solver=_stand_in(calls, unconverged=(0.9, 1.0, 32)))
+    assert rec["status"] == "unconverged"  # approach 5.0 lies before (above) the pull-off approach -1
+    solver = _stand_in(calls)
+
+    def after(*args, **kw):
+        res = solver(*args, **kw).as_dict()
+        res.update(converged=False, failures=[{"approach": -3.0, "residual": 0.2, "iterations": 9,
+                                               "phase": "unloading"}])
+        return SimpleNamespace(as_dict=lambda: res)
+
+    rec = sa.run_case(0.9, 1.0, 32, solver=after)
+    assert rec["status"] == "unconverged_after_pull_off" and "beyond the pull-off" in rec["message"]
+    assert "unconverged_after_pull_off" in sa.USABLE
+
+
+def test_consolidated_file_round_trip(tmp_path):
+    work, out = tmp_path / "work", tmp_path / "gt.nc"
+    sa.run_study([1.0], [1.0], [16, 32, 64], work_dir=work, solver=_stand_in([]), progress=False)
+    path = sa.consolidate(work, out, references=_refs([1.0], [1.0]), command="test")
+    ds = sa.read_ground_truth(path)
+    assert ds["W_star"].attrs["units"] == "1" and "2 pi R dgamma" in ds["W_star"].attrs["long_name"]
+    assert ds["elapsed"].attrs["units"] == "s"
+    assert ds["status"].attrs["flag_meanings"].split() == list(sa.STATUSES)
+    assert ds.attrs["param_n_ladder"] == "16 32 64" and ds.attrs["param_command"] == "test"
+    assert "param_git_commit" in ds.attrs and "param_solver_tol" in ds.attrs
+    assert list(ds["model"].values) == ["dh-elliptic", "md"]
+    assert ds["W_star_model"].dims == ("model", "beta0", "mu")
+    with pytest.raises(ValueError, match="path"):
+        sa.read_ground_truth(_not_a_ground_truth(tmp_path))
+
+
+def _not_a_ground_truth(tmp_path):
+    import xarray as xr
+
+    from dhfield.io import write_netcdf
+
+    return write_netcdf(xr.Dataset({"a": ("x", np.zeros(2))}), tmp_path / "other.nc")
+
+
+def test_cli_validates_before_running(tmp_path):
+    with pytest.raises(SystemExit) as exc:
+        sa.main(["--beta0", "1.5", "--work-dir", str(tmp_path)])
+    assert exc.value.code == 2
+    with pytest.raises(SystemExit):
+        sa.main(["--n", "33", "--work-dir", str(tmp_path)])
+    with pytest.raises(SystemExit):
+        sa.main(["--out", str(tmp_path / "missing" / "x.nc"), "--work-dir", str(tmp_path)])
+    assert list(tmp_path.iterdir()) == []
