@@ -41,7 +41,7 @@ from ._validation import check_interval, check_positive
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_SI_KEYS
 
 __all__ = ["ContactParameters", "contact_parameters", "contact_parameters_from_principal_radii",
-           "crossed_cylinder_radii", "load_curve_si", "pull_off_force"]
+           "crossed_cylinder_radii", "load_curve_si", "pull_off_force", "pull_off_record_si"]
 
 _s = units.scalar_or_array
 
@@ -238,7 +238,31 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
         ``approach`` [m] (NaN where the model has no such quantity), the SI
         inputs, and the nondimensional record of the model.
     """
-    rec = compare.pull_off(model, params.mu, params.beta0, control, check_closure=check_closure)
+    return pull_off_record_si(compare.pull_off(model, params.mu, params.beta0, control,
+                                               check_closure=check_closure), params)
+
+
+def pull_off_record_si(rec, params: ContactParameters):
+    """A nondimensional pull-off record of :mod:`dhfield.compare` in SI units.
+
+    Parameters
+    ----------
+    rec : dict
+        From :func:`dhfield.compare.pull_off` or :func:`dhfield.compare.compare`, at
+        ``params.mu`` and ``params.beta0``.
+    params : ContactParameters
+        The contact the record was computed for.
+
+    Returns
+    -------
+    dict
+        The keys of :data:`dhfield.schema.PULL_OFF_SI_KEYS` (see :func:`pull_off_force`).
+
+    Notes
+    -----
+    Inverts Eqs. (32)-(34): W = W* 2 pi R dgamma/sin(theta_skew), a = a* c_r,
+    delta = delta* c_r^2/R, with the record's own sin(theta_skew).
+    """
     lu, au = params.length_unit, params.approach_unit
     si = {
         "force": rec["W_star"] * units.load_unit(params.effective_radius, params.work_of_adhesion,

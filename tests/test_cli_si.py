@@ -143,3 +143,17 @@ def test_curve_si_writes_netcdf(tmp_path, capsys):
     assert rc == 0, err
     ds = read_netcdf(out)
     assert ds["force"].attrs["units"] == "N" and ds["semi_major"].attrs["units"] == "m"
+
+
+def test_compare_si_equals_pulloff_si(capsys):
+    """`compare` with physical inputs: every model in SI, the same record as `pulloff --model`."""
+    payload, err = _json(capsys, ["compare", *PDMS_ARGS, "--json"])
+    assert [r["model"] for r in payload["models"]] == list(compare.MODEL_NAMES)
+    assert all(list(r) == list(PULL_OFF_SI_KEYS) for r in payload["models"])
+    assert payload["units"]["force"] == "N"
+    assert len([ln for ln in err.splitlines() if ln]) == 2  # dh-elliptic's line, then one for the others
+    by_name = {r["model"]: r for r in payload["models"]}
+    p = dim.contact_parameters(2e6, 0.5, 2e6, 0.5, 5e-3, math.radians(60), 0.04, 0.5e6)
+    for name in ("jkr-elliptic", "md", "dmt"):
+        api = dim.pull_off_force(p, model=name)
+        assert by_name[name]["force"] == pytest.approx(float(api["force"]), rel=TOL_CLI_API), name

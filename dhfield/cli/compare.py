@@ -1,41 +1,57 @@
 """``dhfield compare``: the pull-off of every model side by side."""
 from __future__ import annotations
 
-from ._common import add_model_arguments, plain_record, print_json, print_warning
+from ._common import add_model_arguments, add_physical_arguments, contact_parameters_from_args, plain_record
+from ._common import print_json, print_warning
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("compare", help="pull-off of every comparison model side by side (Fig. 9 axes)")
-    add_model_arguments(p)
+    add_model_arguments(p, required=False)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="load control (default) or displacement control")
     p.add_argument("--out", default=None, help="also write FILE.nc (netCDF, dimension 'model')")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_physical_arguments(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from ..compare import compare
-    from ..schema import PULL_OFF_KEYS, units
+    from ..dimensional import pull_off_record_si
+    from ..schema import PULL_OFF_KEYS, PULL_OFF_SI_KEYS, units
 
     if args.out and not str(args.out).lower().endswith(".nc"):
         raise ValueError(f"output file must end in .nc; got {args.out!r}")
-    recs = {name: plain_record(r) for name, r in compare(args.mu, args.beta0, args.control).items()}
-    for r in recs.values():
-        print_warning(r)
+    params = contact_parameters_from_args(args)
+    if params is None:
+        recs = {name: plain_record(r) for name, r in compare(args.mu, args.beta0, args.control).items()}
+        keys, nondim = PULL_OFF_KEYS, True
+    else:
+        recs = {name: plain_record(pull_off_record_si(r, params))
+                for name, r in compare(params.mu, params.beta0, args.control).items()}
+        keys, nondim = PULL_OFF_SI_KEYS, False
+    first = next(iter(recs.values()))
+    print_warning(recs.get("dh-elliptic", {}))
+    others = [n for n, r in recs.items() if n != "dh-elliptic" and r["warning"]]
+    if others:
+        print_warning({"warning": f"outside their validated range (see --help of pulloff; 'warning' in --json): "
+                                  f"{', '.join(others)}"})
     if args.out:
         from ..io import write_netcdf
         from ..io.compare import comparison_dataset
 
         write_netcdf(comparison_dataset(recs), args.out)
     if args.json:
-        print_json({"beta0": args.beta0, "mu": args.mu, "control": args.control, "models": list(recs.values()),
-                    "units": {k: units(k, nondimensional=True) for k in PULL_OFF_KEYS}})
+        print_json({"beta0": first["beta0"], "mu": first["mu"], "control": args.control,
+                    "models": list(recs.values()), "units": {k: units(k, nondimensional=nondim) for k in keys}})
     else:
-        cols = ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star")
-        print(f"{'model':24s}" + "".join(f"{c:>13s}" for c in cols))
+        cols = ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star") if nondim else \
+            ("force", "semi_major", "semi_minor", "adhesive_semi_major", "approach", "W_star")
+        w = 13 if nondim else 21
+        print(f"{'model':24s}" + "".join(f"{c:>{w}s}" for c in cols))
         for name, r in recs.items():
-            print(f"{name:24s}" + "".join(f"{r[c]:13.6g}" for c in cols))
+            print(f"{name:24s}" + "".join(f"{r[c]:{w}.6g}" for c in cols))
         if args.out:
             print(f"wrote {args.out}")
     return 0
