@@ -73,6 +73,10 @@ class WorkOfAdhesionFit:
     model, control : str
     evaluations : int
         Forward pull-off evaluations used.
+    warning : str
+        Empty, or (``dh-elliptic``) why the fitted state should not be trusted:
+        the paper's model departs from the two-axis closure there by more than
+        :data:`dhfield.compare.WARNING_THRESHOLD`, so dgamma is biased.
     """
     work_of_adhesion: float
     mu: float
@@ -82,12 +86,13 @@ class WorkOfAdhesionFit:
     model: str
     control: str
     evaluations: int
+    warning: str = ""
 
     def as_record(self) -> dict:
         """Plain dict (for ``--json``), keys named as in :mod:`dhfield.schema`."""
         return {"model": self.model, "control": self.control, "work_of_adhesion": self.work_of_adhesion,
                 "mu": self.mu, "beta0": self.beta0, "max_adhesive_stress": self.max_adhesive_stress,
-                "force": self.pull_off_force, "evaluations": self.evaluations}
+                "force": self.pull_off_force, "evaluations": self.evaluations, "warning": self.warning}
 
 
 @dataclass(frozen=True)
@@ -180,7 +185,7 @@ def _work_at_mu(mu, max_adhesive_stress, params):
 
 
 def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, model=compare.DEFAULT_MODEL,
-                         control="load"):
+                         control="load", check_closure=True):
     """Work of adhesion dgamma that gives a measured pull-off force.
 
     Parameters
@@ -195,6 +200,13 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
         One of :data:`dhfield.compare.MODEL_NAMES`; default the paper's model.
     control : {'load', 'displacement'}
         Loading mode of the measurement.
+
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic``: solve the two-axis closure once at the fitted
+        state (a few seconds) and fill ``warning`` as
+        :func:`dhfield.compare.pull_off` does.  False leaves it empty.
 
     Returns
     -------
@@ -291,7 +303,10 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
         root = optimize.brentq(f, x_lo, x_hi, xtol=_LOG_XTOL, rtol=4 * np.finfo(float).eps)
     work = math.exp(root)
     p = _with(params, work, s0)
-    return WorkOfAdhesionFit(work, float(p.mu), float(p.beta0), s0, f_meas, model, control, count[0])
+    warning = ""
+    if model == "dh-elliptic" and check_closure:
+        warning = str(compare.pull_off(model, p.mu, p.beta0, control, check_closure=True)["warning"])
+    return WorkOfAdhesionFit(work, float(p.mu), float(p.beta0), s0, f_meas, model, control, count[0], warning)
 
 
 def _curve(params, semi_major, model):

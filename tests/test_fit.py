@@ -45,7 +45,7 @@ def test_pull_off_round_trip_every_model(params, model):
     force = dim.pull_off_force(params, model, check_closure=False)["force"]
     # start the fit from a wrong dgamma: only the geometry, material and sigma0 of params may be used
     other = dim.contact_parameters(**PDMS, work_of_adhesion=7 * WORK, max_adhesive_stress=STRESS)
-    res = fit_work_of_adhesion(force, other, model=model)
+    res = fit_work_of_adhesion(force, other, model=model, check_closure=False)
     assert res.work_of_adhesion == pytest.approx(WORK, rel=RTOL_ROUND_TRIP)
     assert res.mu == pytest.approx(params.mu, rel=RTOL_ROUND_TRIP)
     assert res.beta0 == params.beta0 and res.model == model
@@ -62,7 +62,7 @@ def test_pull_off_closed_forms(params, model, w_star):
 
 
 def test_larger_force_needs_more_work_of_adhesion(params):
-    works = [fit_work_of_adhesion(f, params).work_of_adhesion for f in (-1e-4, -1e-3, -1e-2)]
+    works = [fit_work_of_adhesion(f, params, check_closure=False).work_of_adhesion for f in (-1e-4, -1e-3, -1e-2)]
     assert works[0] < works[1] < works[2]
 
 
@@ -164,7 +164,9 @@ def test_cli_pull_off_round_trip(params, capsys):
     assert code == 0, err
     rec = json.loads(out)
     assert rec["work_of_adhesion"] == pytest.approx(WORK, rel=RTOL_ROUND_TRIP)
-    assert {"work_of_adhesion", "mu", "beta0"} <= set(rec)
+    assert {"work_of_adhesion", "mu", "beta0", "warning"} <= set(rec)
+    # mu ~ 1.08, beta0 = 0.48: the paper's closure departs from the two-axis one by > 2 % (issue 10)
+    assert "two-axis" in rec["warning"] and err.startswith("dhfield: warning: ") and err.count("\n") == 1
     assert rec["units"]["work_of_adhesion"] == "J m-2" and rec["units"]["force"] == "N"
 
 

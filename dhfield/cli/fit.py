@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import re
 
-from ._common import UsageError, add_physical_arguments, model_names, print_json
+from ._common import UsageError, add_physical_arguments, model_names, print_json, print_warning
 
 #: Columns of ``--data``: schema name -> accepted aliases.
 DATA_COLUMNS = {"force": ("force", "load"), "semi_major": ("semi_major", "contact_size"),
@@ -87,6 +87,7 @@ def run(args) -> int:
         res = fit.fit_work_of_adhesion(args.pull_off_force, params, max_adhesive_stress=args.adhesive_stress,
                                        model=args.model, control=args.control)
         rec = res.as_record()
+        print_warning(rec)
     else:
         data = _read_data(args.data)
         params = _params(args)
@@ -102,7 +103,8 @@ def run(args) -> int:
     unit = {k: units(k.removesuffix("_stderr")) if k.removesuffix("_stderr") in _SCHEMA_KEYS else
             _EXTRA_UNITS.get(k, "1") for k in rec}
     if args.json:
-        print_json({**rec, "units": {k: u for k, u in unit.items() if isinstance(rec[k], float)}})
+        print_json({**rec, "units": {k: u for k, u in unit.items() if isinstance(rec[k], (float, int))
+                                     and not isinstance(rec[k], bool)}})
     else:
         for k, v in rec.items():
             print(f"{k:28s} {v!s:24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
