@@ -105,8 +105,9 @@ import numpy as np
 
 from . import closure, dh_circular, dmt, jkr, jkr_elliptic, maugis_dugdale
 from ._adhesion import approach_unit, check_control, check_material, length_unit, load_unit
-from ._validation import check_ellipticity, check_positive
+from ._validation import check_contact_size_star, check_count, check_ellipticity, check_positive
 from .geometry import sin_skew_angle
+from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
 
 __all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "WARNING_THRESHOLD",
@@ -119,8 +120,6 @@ DEFAULT_MODEL = "dh-elliptic"
 #: Relative departure of the paper's pull-off force from the two-axis closure above which the
 #: paper's model carries a warning (issue 10: "more than 2 %").
 WARNING_THRESHOLD = 0.02
-#: Default contact semi-major axes a* of a load curve, where a model has no default of its own.
-_DEFAULT_A_STAR = (0.05, 5.0)
 
 
 def _check(mu, beta0, control):
@@ -529,7 +528,7 @@ def load_curve(model, mu, beta0, a_star=None, *, n=200):
         Hertz ellipticity of the geometry, in (0, 1] [-].
     a_star : array_like, optional
         Contact semi-major axes a/c_r > 0 (Eq. 32) [-]; default ``n`` points
-        evenly spaced over [0.05, 5].
+        evenly spaced over :data:`dhfield.model.DEFAULT_A_STAR`.
     n : int
         Number of points of the default grid (>= 2).
 
@@ -544,10 +543,11 @@ def load_curve(model, mu, beta0, a_star=None, *, n=200):
     _check_curve_model(model)
     mu, beta0 = (float(x) for x in _check_scalar(mu, beta0))
     if a_star is None:
-        if not (isinstance(n, (int, np.integer)) and n >= 2):
-            raise ValueError(f"n must be an integer >= 2; got {n!r}")
-        a_star = np.linspace(*_DEFAULT_A_STAR, n)
-    a_star = np.atleast_1d(check_positive("a_star", a_star, "contact semi-major axis a/c_r (Eq. 32)"))
+        n = check_count("n", n, 2, MAX_CURVE_POINTS, "number of curve points")
+        a_star = np.linspace(*DEFAULT_A_STAR, n)
+    a_star = np.atleast_1d(check_contact_size_star("a_star", a_star))
+    if a_star.size > MAX_CURVE_POINTS:
+        raise ValueError(f"a_star must have at most {MAX_CURVE_POINTS} points; got {a_star.size}")
     return _curve_record(model, mu, beta0, _curve_arrays(model, a_star, mu, beta0))
 
 

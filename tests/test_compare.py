@@ -207,7 +207,7 @@ def test_curve_through_the_pull_off_state(name):
     mu, beta0 = 2.0, 0.8
     po = compare.pull_off(name, mu, beta0, check_closure=False)
     if po["a_star"] == 0:  # DMT: pull-off at vanishing contact; the curve starts there
-        a = 1e-12
+        a = 1e-6  # the smallest accepted contact size (dhfield._validation.CONTACT_SIZE_RANGE)
     else:
         a = float(po["a_star"])
     c = compare.load_curve(name, mu, beta0, [a, 2 * a + 0.1])

@@ -74,8 +74,6 @@ def curve_record(args) -> dict:
                                                     "delta_star")})
             rec["ellipticity"] = float(args.ellipticity)
             return rec
-        if a_star is None and args.model == "dh-elliptic":
-            a_star = load_curve(args.mu, args.beta0, n=args.n).a_star  # the paper model's default grid
         return compare.load_curve(args.model, args.mu, args.beta0, a_star, n=args.n)
     if args.a_min is not None or args.a_max is not None or args.ellipticity is not None:
         raise UsageError("--a-min/--a-max/--ellipticity go with --beta0/--mu; with physical inputs use "
