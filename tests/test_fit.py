@@ -217,3 +217,12 @@ def test_exported_at_the_top_level():
 
     assert dhfield.fit_work_of_adhesion is fit_work_of_adhesion and dhfield.fit_curve is fit_curve
     assert {"fit_work_of_adhesion", "fit_curve"} <= set(dhfield.__all__)
+
+
+@pytest.mark.parametrize("model, beta0", [("dh-elliptic", 0.05), ("dh-elliptic", 1.0), ("md", 1.0)])
+def test_uniqueness_condition_holds(model, beta0):
+    # fit_work_of_adhesion's root is unique if d ln|W*max| / d ln mu < 3 (Notes); it is far below
+    mu = np.geomspace(1e-4, 1e6, 21)
+    w = np.abs(np.asarray(compare.pull_off(model, mu, beta0, check_closure=False)["W_star"], float))
+    slope = np.diff(np.log(w)) / np.diff(np.log(mu))
+    assert np.all(slope < 0.01) and np.all(slope > -1.0), slope
