@@ -45,8 +45,8 @@ def write_residual_plot(fit, path, *, dpi=120) -> tuple[Path, Path]:
     ax.plot(a_mm, 1e3 * np.asarray(fit.load), "o", ms=4, label="data")
     ax.plot(a_mm[order], 1e3 * np.asarray(fit.load_fitted)[order], "-", label=f"{fit.model} fit")
     ax.set_ylabel("load W [mN]")
-    ax.set_title(f"dgamma = {fit.work_of_adhesion:.4g} ± {fit.work_of_adhesion_stderr:.2g} J/m², "
-                 f"sigma0 = {fit.max_adhesive_stress:.4g} ± {fit.max_adhesive_stress_stderr:.2g} Pa", fontsize=9)
+    ax.set_title(f"Δγ = {fit.work_of_adhesion:.4g} ± {fit.work_of_adhesion_stderr:.2g} J/m², "
+                 f"σ₀ = {fit.max_adhesive_stress:.4g} ± {fit.max_adhesive_stress_stderr:.2g} Pa (±1 s.e.)", fontsize=9)
     ax.legend(fontsize=8, loc="best")
     ax = axes[1]
     ax.axhline(0.0, color="0.6", lw=0.8)
