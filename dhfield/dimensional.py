@@ -161,8 +161,13 @@ def contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, y
     w = check_positive("work_of_adhesion", work_of_adhesion, "J m^-2")
     s0 = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
     r1, r2 = np.maximum(r1, r2), np.minimum(r1, r2)
+    with np.errstate(over="ignore"):
+        ratio = r1 / r2
+    if not np.all(np.isfinite(ratio)):
+        raise ValueError(f"r_major/r_minor must be finite (principal radii of one contact); got R' = {float(np.max(r1)):g}, "
+                         f"R'' = {float(np.min(r2)):g}")
     r = geometry.effective_radius(r1, r2)  # Eq. (5)
-    beta0 = geometry.ellipticity_from_radius_ratio(r1 / r2)  # Eq. (9)
+    beta0 = geometry.ellipticity_from_radius_ratio(ratio)  # Eq. (9)
     sin_skew = geometry.sin_skew_angle(beta0)
     e_star, r1, r2, r, beta0, sin_skew, w, s0 = np.broadcast_arrays(e_star, r1, r2, r, beta0, sin_skew, w, s0)
     mu = units.tabor_parameter(s0, r, e_star, w)  # Eq. (35)
@@ -197,7 +202,8 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
     -------
     ContactParameters
     """
-    r1, r2 = geometry.principal_radii(cylinder_radius, skew_angle)  # Eqs. (3)-(4)
+    with np.errstate(divide="ignore"):  # R' = inf for a vanishing angle: rejected below, by name
+        r1, r2 = geometry.principal_radii(cylinder_radius, skew_angle)  # Eqs. (3)-(4)
     return contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
                                                    poisson_ratio_2, r1, r2, work_of_adhesion,
                                                    max_adhesive_stress)
