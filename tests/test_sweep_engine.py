@@ -177,3 +177,26 @@ def test_progress_bar_with_eta():
 
 def test_map_cases_keeps_order():
     assert engine.map_cases(divmod, [(7, 2), (9, 4), (1, 1)], scheduler="synchronous") == [(3, 1), (2, 1), (1, 0)]
+
+
+#: The JKR load curve is a closed form evaluated to rounding.
+JKR_CURVE_RTOL = 1e-12
+
+
+def test_load_curves(tmp_path):
+    cfg = config_from_mapping({"axes": {"beta0": [0.8, 1.0], "mu": [0.5, 2.0]},
+                               "sweep": {"quantities": ["load_curve"], "models": ["jkr", "md"],
+                                         "curve_a_star": [0.1, 2.0], "curve_points": 12}})
+    ds = run_sweep(cfg, out=tmp_path / "c.nc", scheduler="synchronous", progress=False).dataset
+    assert ds["curve_W_star"].dims == ("model", "beta0", "mu", "point")
+    a = ds["curve_a_star"].values
+    np.testing.assert_array_equal(a, np.linspace(0.1, 2.0, 12))
+    # JKR (Johnson, Kendall & Roberts 1971) with R = E* = dgamma = 1: W = 4a^3/3 - sqrt(8 pi a^3),
+    # W* = W/(2 pi) (Eq. 34, circle).
+    jkr = (4.0 * a**3 / 3.0 - np.sqrt(8.0 * np.pi * a**3)) / (2.0 * np.pi)
+    for b in (0.8, 1.0):
+        np.testing.assert_allclose(ds["curve_W_star"].sel(model="jkr", beta0=b, mu=2.0).values, jkr,
+                                   rtol=JKR_CURVE_RTOL)
+    ref = compare.load_curve("md", 0.5, 0.8, a)
+    np.testing.assert_array_equal(ds["curve_W_star"].sel(model="md", beta0=0.8, mu=0.5).values, ref["W_star"])
+    assert (ds["load_curve_status"].values == 0).all()

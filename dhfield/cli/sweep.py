@@ -27,10 +27,14 @@ def add_parser(sub) -> None:
             for kind in ("linspace", "geomspace"):
                 p.add_argument(f"--{flag}-{kind}", dest=f"{name}_{kind}", nargs=3, type=float, default=None,
                                metavar=("START", "STOP", "NUM"), help=f"{name} axis as numpy.{kind}")
-    p.add_argument("--quantities", nargs="+", default=None, help="pull_off (default), bem_field, adhesive")
+    p.add_argument("--quantities", nargs="+", default=None,
+                   help="pull_off (default), load_curve, bem_field, adhesive")
     p.add_argument("--models", nargs="+", default=None, help="comparison models of pull_off")
     p.add_argument("--control", choices=("load", "displacement"), default=None)
     p.add_argument("--chunk-points", type=int, default=None, help="analytic grid points per task (256)")
+    p.add_argument("--curve-a-star", nargs=2, type=float, default=None, metavar=("FROM", "TO"),
+                   help="load_curve: contact sizes a/c_r, evenly spaced (default 0.02 3)")
+    p.add_argument("--curve-points", type=int, default=None, help="load_curve: points per curve (200)")
     p.add_argument("--half-width", type=float, default=None, help="fixed BEM domain half-width [c_r]")
     p.add_argument("--scheduler", default=None,
                    help="dask.distributed scheduler address tcp://host:port, or 'synchronous'/'processes'")
@@ -58,7 +62,7 @@ def _flag_mapping(args) -> dict:
                     raise ValueError(f"--{k.replace('_', '-')} NUM must be an integer >= 1; got {num!r}")
                 axes[name] = {k.rsplit("_", 1)[1]: [start, stop, int(num)]}
     sweep = {}
-    for key in ("quantities", "models", "control", "chunk_points"):
+    for key in ("quantities", "models", "control", "chunk_points", "curve_a_star", "curve_points"):
         if getattr(args, key) is not None:
             sweep[key] = getattr(args, key)
     bem = {} if args.half_width is None else {"half_width": args.half_width}

@@ -11,8 +11,10 @@ and its valid range.
 TOML layout (every table and key optional except ``[axes]``)::
 
     [sweep]
-    quantities = ["pull_off"]          # pull_off, bem_field, adhesive
-    models = ["dh-elliptic", "md"]     # pull_off: any of dhfield.compare.MODEL_NAMES
+    quantities = ["pull_off"]          # pull_off, load_curve, bem_field, adhesive
+    models = ["dh-elliptic", "md"]     # pull_off, load_curve: any of dhfield.compare.MODEL_NAMES
+    curve_a_star = [0.02, 3.0]         # load_curve: contact sizes a/c_r from, to (evenly spaced)
+    curve_points = 200                 # load_curve: points per curve
     control = "load"                   # or "displacement"
     chunk_points = 256                 # analytic grid points per dask task
 
@@ -48,7 +50,10 @@ law            cohesive law of the adhesive BEM solver     adhesive
 
 ``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
-cannot share a sweep with an ``a_star`` axis.
+cannot share a sweep with an ``a_star`` axis.  ``load_curve`` (every model of
+:data:`dhfield.compare.CURVE_MODEL_NAMES`) gives ``curve_W_star``,
+``curve_delta_star``, ``curve_c_star``, ``curve_v`` on the dimension ``point``
+of the shared contact sizes ``curve_a_star``.
 """
 from __future__ import annotations
 
@@ -65,12 +70,13 @@ __all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapp
            "check_scheduler_address", "MAX_POINTS"]
 
 #: Quantities a sweep can compute.
-QUANTITIES = ("pull_off", "bem_field", "adhesive")
+QUANTITIES = ("pull_off", "load_curve", "bem_field", "adhesive")
 #: Axes a sweep can span, in the canonical order of the output (:data:`dhfield.schema.DIM_ORDER`).
 AXES = ("skew_angle_deg", "beta0", "mu", "a_star", "n", "law")
 #: Axes each quantity depends on (other axes broadcast).
 QUANTITY_AXES = {
     "pull_off": ("skew_angle_deg", "beta0", "mu"),
+    "load_curve": ("skew_angle_deg", "beta0", "mu"),
     "bem_field": ("skew_angle_deg", "beta0", "mu", "a_star", "n"),
     "adhesive": ("skew_angle_deg", "beta0", "mu", "n", "law"),
 }
@@ -83,7 +89,7 @@ _SAMPLINGS = ("average", "centre")
 _CONTROLS = ("load", "displacement")
 
 _TOP_KEYS = {"sweep", "axes", "bem", "run"}
-_SWEEP_KEYS = {"quantities", "models", "control", "chunk_points"}
+_SWEEP_KEYS = {"quantities", "models", "control", "chunk_points", "curve_a_star", "curve_points"}
 _BEM_KEYS = {"half_width", "sampling"}
 _RUN_KEYS = {"workers", "scheduler", "out"}
 _SPACE_KEYS = ("linspace", "geomspace")
@@ -122,6 +128,8 @@ class SweepConfig:
     models: tuple = ("dh-elliptic",)
     control: str = "load"
     chunk_points: int = 256
+    curve_a_star: tuple = (0.02, 3.0)
+    curve_points: int = 200
     half_width: float | None = None
     sampling: str = "average"
     workers: int | None = None
@@ -134,12 +142,15 @@ class SweepConfig:
         payload = {"axes": {k: list(v) for k, v in self.axes.items()}, "quantities": list(self.quantities),
                    "models": list(self.models), "control": self.control, "chunk_points": self.chunk_points,
                    "half_width": self.half_width, "sampling": self.sampling}
+        if "load_curve" in self.quantities:
+            payload.update(curve_a_star=list(self.curve_a_star), curve_points=self.curve_points)
         return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
 
     def as_dict(self) -> dict:
         """The TOML-shaped mapping of this config (round-trips through :func:`config_from_mapping`)."""
         out = {"sweep": {"quantities": list(self.quantities), "models": list(self.models),
-                         "control": self.control, "chunk_points": self.chunk_points},
+                         "control": self.control, "chunk_points": self.chunk_points,
+                         "curve_a_star": list(self.curve_a_star), "curve_points": self.curve_points},
                "axes": {k: list(v) for k, v in self.axes.items()},
                "bem": {"sampling": self.sampling}, "run": {}}
         if self.half_width is not None:
@@ -302,6 +313,20 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     if control not in _CONTROLS:
         _fail("sweep.control", "'load' or 'displacement'", control)
     chunk = _int_at_least("sweep.chunk_points", sweep.get("chunk_points", 256), 1)
+    curve_points = _int_at_least("sweep.curve_points", sweep.get("curve_points", 200), 2)
+    if curve_points > 100_000:
+        _fail("sweep.curve_points", "an integer in [2, 100000]", curve_points)
+    curve_a = sweep.get("curve_a_star", [0.02, 3.0])
+    if (not isinstance(curve_a, list) or len(curve_a) != 2
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and
+                       1e-6 <= v <= 1e6 for v in curve_a) or curve_a[0] >= curve_a[1]):
+        _fail("sweep.curve_a_star", "[from, to] with 1e-6 <= from < to <= 1e6 (contact sizes a/c_r)", curve_a)
+    if "load_curve" in quantities:
+        from ..compare import CURVE_MODEL_NAMES
+
+        for m in models:
+            if m not in CURVE_MODEL_NAMES:
+                _fail("sweep.models", f"models with load curves {CURVE_MODEL_NAMES} (quantity load_curve)", m)
 
     axes = {name: axis_values(name, axes_in[name]) for name in AXES if name in axes_in}
     if "beta0" in axes and "skew_angle_deg" in axes:
@@ -344,6 +369,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
         _fail("run.out", "a path", out)
     return SweepConfig(axes=axes, quantities=tuple(dict.fromkeys(quantities)), models=tuple(dict.fromkeys(models)),
                        control=control, chunk_points=chunk,
+                       curve_a_star=(float(curve_a[0]), float(curve_a[1])), curve_points=curve_points,
                        half_width=None if half_width is None else float(half_width), sampling=sampling,
                        workers=workers, scheduler=scheduler, out=out)
 

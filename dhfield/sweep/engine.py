@@ -39,8 +39,10 @@ import numpy as np
 
 from .config import SweepConfig, check_scheduler_address
 from .store import CaseStore, output_paths
-from .tasks import (ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, PULL_OFF_FIELDS, adhesive_case,
-                    adhesive_solver, bem_field_case, pull_off_block)
+from .tasks import (ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
+                    adhesive_case, adhesive_solver, bem_field_case, load_curve_case, pull_off_block)
+
+_FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS, "load_curve": CURVE_FIELDS}
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
            "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV"]
@@ -291,26 +293,31 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
 def _run_cases(quantity, cases, store_dir, fingerprint):
     """One task: the cases of one load path, in order; each written as it finishes."""
     store = CaseStore(store_dir, fingerprint)
-    fields = BEM_FIELD_FIELDS if quantity == "bem_field" else ADHESIVE_FIELDS
+    fields = _FIELDS[quantity]
+    dims = ("point",) if quantity == "load_curve" else ()
     out = {}
     for key, params in cases:
         if store.is_done(key):
             ds = store.read(key)
-            out[key] = ({k: float(ds[k].values) for k in fields}, ds.attrs["status"], ds.attrs["message"], False)
+            out[key] = ({k: ds[k].values for k in fields}, ds.attrs["status"], ds.attrs["message"], False)
             continue
         try:
             if quantity == "bem_field":
                 rec = bem_field_case(**params)
+                status, message = "ok", ""
+            elif quantity == "load_curve":
+                rec = load_curve_case(**params)
                 status, message = "ok", ""
             else:
                 rec = adhesive_case(**params)
                 status = "ok" if rec.pop("converged") else "not_converged"
                 message = rec.pop("message")
         except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
-            rec = {k: np.nan for k in fields}
+            shape = (len(params["a_star"]),) if dims else ()
+            rec = {k: np.full(shape, np.nan) for k in fields}
             status, message = "failed", _failure(exc)
-        store.write(key, _case_dataset({k: rec[k] for k in fields}, status, message))
-        out[key] = ({k: float(rec[k]) for k in fields}, status, message, True)
+        store.write(key, _case_dataset({k: rec[k] for k in fields}, status, message, dims))
+        out[key] = ({k: np.asarray(rec[k], dtype=float) for k in fields}, status, message, True)
     return out
 
 
@@ -349,7 +356,13 @@ def _case_index(config: SweepConfig, quantity):
     beta0 = config.beta0
     mu = config.axes["mu"]
     groups = []
-    if quantity == "bem_field":
+    if quantity == "load_curve":
+        a_star = np.linspace(*config.curve_a_star, config.curve_points)
+        for i_m, model in enumerate(config.models):
+            for ib, b in enumerate(beta0):
+                groups.append([((i_m, ib, im), dict(model=model, beta0=float(b), mu=float(m), a_star=a_star))
+                               for im, m in enumerate(mu)])
+    elif quantity == "bem_field":
         a_star, ns = config.axes["a_star"], config.axes["n"]
         for ib, b in enumerate(beta0):
             for im, m in enumerate(mu):
@@ -451,7 +464,7 @@ def _run(config, executor, store, final, progress):
             kinds.append(("pull_off", model))
     import dask
 
-    for q in ("bem_field", "adhesive"):
+    for q in ("load_curve", "bem_field", "adhesive"):
         if q in config.quantities:
             for group in _case_index(config, q):
                 cases = [(_key(q, idx), params) for idx, params in group]
@@ -511,7 +524,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         coords["n"] = ("n", np.asarray(config.axes["n"], dtype=np.int32), _N_ATTRS)
     if "law" in config.axes:
         coords["law"] = ("law", np.asarray(config.axes["law"], dtype=object), _LAW_ATTRS)
-    models = list(config.models) if "pull_off" in config.quantities else []
+    models = list(config.models) if {"pull_off", "load_curve"} & set(config.quantities) else []
     if "adhesive" in config.quantities:
         models.append(ADHESIVE_MODEL)
     if models:
@@ -526,7 +539,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         mvars = {k: np.full((len(models), n_ell, n_mu) + ex_shape, np.nan) for k in PULL_OFF_FIELDS}
         mstatus = np.zeros((len(models), n_ell, n_mu) + ex_shape, dtype=np.int8)
     blocks_msgs = []
-    cases = {q: {} for q in ("bem_field", "adhesive")}
+    cases = {q: {} for q in ("load_curve", "bem_field", "adhesive")}
     for (kind, what), res in zip(kinds, results):
         if kind == "pull_off":
             m = models.index(what)
@@ -565,7 +578,28 @@ def _consolidate(config: SweepConfig, kinds, results, store):
             1 + len(extra)))
         data["iterations"] = (adims, iters, schema.attrs("iterations"))
         data["adhesive_message"] = (adims, amsg, {"long_name": "message of the adhesive BEM solve (empty: ok)"})
-    if models:
+    if "load_curve" in config.quantities:
+        cdims = ("model", ell, "mu", "point")
+        cshape = (len(models), n_ell, n_mu, config.curve_points)
+        cvars = {k: np.full(cshape, np.nan) for k in CURVE_FIELDS}
+        cstatus = np.zeros(cshape[:-1], dtype=np.int8)
+        cmsg = np.full(cshape[:-1], "", dtype=object)
+        for key, (rec, status, message, _) in cases["load_curve"].items():
+            idx = tuple(int(t) for t in key.split("__")[1].split("_"))
+            for k in CURVE_FIELDS:
+                cvars[k][idx] = rec[k]
+            cstatus[idx] = _STATUS[status]
+            cmsg[idx] = message
+        coords["curve_a_star"] = ("point", np.linspace(*config.curve_a_star, config.curve_points),
+                                  {**schema.attrs("a_star", True), "long_name": "contact semi-major axis a/c_r "
+                                   "of the load-curve points"})
+        for k in CURVE_FIELDS:
+            attrs = schema.attrs(k, nondimensional=True)
+            data[f"curve_{k}"] = (cdims, cvars[k], {**attrs, "long_name": f"{attrs['long_name']}, along the "
+                                                    "load curve"})
+        data["load_curve_status"] = (cdims[:-1], cstatus, _status_attrs("load-curve"))
+        data["load_curve_message"] = (cdims[:-1], cmsg, {"long_name": "message of the load-curve case (empty: ok)"})
+    if {"pull_off", "adhesive"} & set(config.quantities):
         for k in PULL_OFF_FIELDS:
             data[k] = (mdims, mvars[k], schema.attrs(k, nondimensional=True))
         st_attrs = _status_attrs("pull-off")

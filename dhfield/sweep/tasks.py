@@ -20,12 +20,14 @@ import importlib
 
 import numpy as np
 
-__all__ = ["PULL_OFF_FIELDS", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_SOLVERS", "ADHESIVE_MODEL",
+__all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_SOLVERS", "ADHESIVE_MODEL",
            "pull_off_block", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver"]
 
 #: Output fields of the analytic pull-off, in the order of the stacked block (names of
 #: :data:`dhfield.io.compare.COMPARISON_VARIABLES`, metadata from :mod:`dhfield.schema`).
 PULL_OFF_FIELDS = ("W_star", "a_star", "c_star", "v", "delta_star", "ellipticity", "sin_skew")
+#: Output fields of a load curve (arrays over the contact sizes), named ``curve_<field>`` in a sweep.
+CURVE_FIELDS = ("W_star", "delta_star", "c_star", "v")
 #: Output fields of the forward BEM check of one state.
 BEM_FIELD_FIELDS = ("bem_displacement_error", "bem_gap_error", "bem_annulus_error", "bem_c_star", "bem_v")
 #: Output fields of the adhesive BEM ground truth at pull-off (nondimensional).
@@ -78,6 +80,20 @@ def pull_off_block(model: str, control: str, mu, beta0) -> np.ndarray:
     for i, k in enumerate(PULL_OFF_FIELDS):
         out[..., i] = np.broadcast_to(np.asarray(rec[k], dtype=float), (mu.size,)).reshape(shape)
     return out
+
+
+def load_curve_case(model: str, beta0: float, mu: float, a_star) -> dict:
+    """Load curve of one model at the contact sizes ``a_star`` (:func:`dhfield.compare.load_curve`).
+
+    Returns
+    -------
+    dict
+        :data:`CURVE_FIELDS` -> arrays over ``a_star`` (NaN where the model has none).
+    """
+    from ..compare import load_curve
+
+    rec = load_curve(model, float(mu), float(beta0), np.asarray(a_star, dtype=float))
+    return {k: np.asarray(rec[k], dtype=float) for k in CURVE_FIELDS}
 
 
 def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width=None,
