@@ -226,3 +226,15 @@ def test_uniqueness_condition_holds(model, beta0):
     w = np.abs(np.asarray(compare.pull_off(model, mu, beta0, check_closure=False)["W_star"], float))
     slope = np.diff(np.log(w)) / np.diff(np.log(mu))
     assert np.all(slope < 0.01) and np.all(slope > -1.0), slope
+
+
+def test_cli_fits_the_csv_that_curve_writes(capsys, tmp_path):
+    # 'dhfield curve' with physical inputs writes force [N], semi_major [m], approach [m]: fit reads it back
+    si = ["--work-of-adhesion", str(WORK), "--adhesive-stress", str(STRESS)]
+    code, _, err = _run(capsys, ["curve", *PDMS_FLAGS, *si, "--n", "20", "--out", str(tmp_path / "c.csv")])
+    assert code == 0, err
+    code, out, err = _run(capsys, ["fit", "--data", str(tmp_path / "c.csv"), *PDMS_FLAGS, "--json"])
+    assert code == 0, err
+    rec = json.loads(out)
+    assert rec["work_of_adhesion"] == pytest.approx(WORK, rel=RTOL_CURVE_EXACT)
+    assert rec["max_adhesive_stress"] == pytest.approx(STRESS, rel=RTOL_CURVE_EXACT)
