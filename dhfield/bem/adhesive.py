@@ -101,6 +101,14 @@ DEFAULT_TOL = 1e-6
 DEFAULT_MAX_ITER = 20000
 #: Cap on outer (zone) iterations of one state.
 MAX_OUTER = 300
+#: Smallest width (in gap) of the sub-cell Dugdale edge, as a multiple of
+#: kappa_n sigma0 dx/E* with kappa_n = 1 + (2/pi) ln n (n cells per axis): the cell
+#: fraction is taken over at least this gap spread.  Energy stability of a discrete
+#: state needs the spectral radius of |d sigma/dh| K below 1; for a ring of edge cells
+#: K sums to ~(2/pi) ln(c/dx) dx/E*, so an edge narrower than that makes every discrete
+#: state unstable (lattice trapping: no converged state, jumps).  The regularisation is
+#: symmetric about h0 (the work of adhesion is unchanged) and vanishes like dx ln(1/dx).
+EDGE_WIDTH_FACTOR = 1.25
 #: Inner tolerance per outer iteration = INNER_FACTOR x the last outer residual.
 INNER_FACTOR = 0.1
 #: Anderson memory (number of previous iterates mixed).
@@ -150,6 +158,12 @@ class _Problem:
         d = math.hypot(dx, dy)
         self.k0 = (dx * math.log((dy + d) / (d - dy)) + dy * math.log((dx + d) / (d - dx))) / (math.pi * e)
         self.weight = (4.0 if self.symmetric else 1.0) * grid.dx * grid.dy
+        # smallest edge width of the Dugdale zone (see EDGE_WIDTH_FACTOR)
+        self.min_spread = 0.0
+        if isinstance(self.law, DugdaleLaw):
+            cells = math.sqrt(grid.nx * grid.ny)
+            kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(cells))
+            self.min_spread = kappa * self.law.max_stress * math.sqrt(dx * dy) / e
 
     def to_full(self, q):
         return unfold_quadrant(q) if self.symmetric else q
@@ -167,9 +181,17 @@ class _Problem:
             # one-sided at the outer edge (the padded value repeats the edge)
             sx[-1] *= 2.0
             sy[:, -1] *= 2.0
-            return sx, sy
-        gx, gy = np.gradient(h)
-        return np.abs(gx), np.abs(gy)
+        else:
+            gx, gy = np.gradient(h)
+            sx, sy = np.abs(gx), np.abs(gy)
+        if self.min_spread > 0.0:
+            tot = sx + sy
+            low = tot < self.min_spread
+            if np.any(low):
+                f = self.min_spread / np.maximum(tot[low], 1e-300)
+                sx[low] = np.where(tot[low] > 0, sx[low] * f, self.min_spread)
+                sy[low] = np.where(tot[low] > 0, sy[low] * f, 0.0)
+        return sx, sy
 
     def stress_from_gap(self, h, contact):
         """Adhesive stress per cell for the gap h (the fixed-point map) [stress]."""
@@ -190,10 +212,11 @@ class _Problem:
 
 
 def _complementarity(h, active):
-    err_a = float(np.max(np.abs(h[active]))) if np.any(active) else 0.0
-    neg = -h[~active]
-    err_i = float(np.max(neg)) if neg.size else 0.0
-    return max(err_a, err_i, 0.0)
+    """max of |h| on the active set and of max(-h, 0) off it."""
+    if h.size == 0:
+        return 0.0
+    v = np.where(active, np.abs(h), -h)
+    return max(float(v.max()), 0.0)
 
 
 def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
@@ -202,7 +225,7 @@ def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
     Returns (p, h, iterations, error) with error the complementarity error / scale.
     """
     p = np.array(p, dtype=float, copy=True)
-    p[p < 0] = 0.0
+    np.maximum(p, 0.0, out=p)
     if np.any(p > 0):
         h = g0 + op(p)
     else:
@@ -213,44 +236,47 @@ def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
         p[neg] = -h[neg] / k0            # cold start: local (Jacobi) estimate
         h = g0 + op(p)
     t = np.zeros_like(p)
+    r = np.empty_like(p)
+    kt = np.empty_like(p)
     g_old = 1.0
     conj = False
     it = 0
     since_full = 0
-    err = _complementarity(h, p > 0) / scale
+    active = p > 0
+    err = _complementarity(h, active) / scale
     while err > tol and it < max_iter:
         it += 1
-        active = p > 0
-        r = np.where(active, h, 0.0)
+        np.multiply(h, active, out=r)
         g = float(np.vdot(r, r))
         if conj and g_old > 0.0:
             t *= g / g_old
             t += r
         else:
             t[...] = r
-        t[~active] = 0.0
         g_old = g
-        kt = op(t)
-        den = float(np.vdot(kt[active], t[active]))
+        op(t, out=kt)
+        den = float(np.vdot(kt, t))
         if not den > 0.0:
             break
-        tau = float(np.vdot(h[active], t[active])) / den
+        tau = float(np.vdot(h, t)) / den
         p -= tau * t
         released = p < 0.0
-        p[released] = 0.0
+        any_rel = bool(released.any())
+        if any_rel:
+            p[released] = 0.0
         overlap = (~active) & (h < 0.0)
-        if np.any(overlap):
+        any_ol = bool(overlap.any())
+        if any_ol:
             p[overlap] -= tau * h[overlap]
-            conj = False
-        else:
-            conj = True
+        conj = not any_ol
         since_full += 1
-        if np.any(released) or np.any(overlap) or since_full >= 25:
+        if any_rel or any_ol or since_full >= 25:
             h = g0 + op(p)
             since_full = 0
         else:
             h -= tau * kt
-        err = _complementarity(h, p > 0) / scale
+        active = p > 0
+        err = _complementarity(h, active) / scale
     if since_full:
         h = g0 + op(p)
         err = _complementarity(h, p > 0) / scale
@@ -263,38 +289,39 @@ class _Anderson:
     def __init__(self, memory=ANDERSON_MEMORY, mixing=1.0):
         self.m = memory
         self.beta = mixing
-        self.dx = []
-        self.df = []
-        self.x_prev = None
-        self.f_prev = None
+        self.reset()
 
     def reset(self):
-        self.dx.clear()
-        self.df.clear()
+        self.dx = None
+        self.df = None
+        self.count = 0
         self.x_prev = self.f_prev = None
 
     def step(self, x, f):
         xf, ff = x.ravel(), f.ravel()
+        if self.dx is None:
+            self.dx = np.empty((self.m, xf.size))
+            self.df = np.empty((self.m, xf.size))
         if self.x_prev is not None:
-            self.dx.append(xf - self.x_prev)
-            self.df.append(ff - self.f_prev)
-            if len(self.dx) > self.m:
-                self.dx.pop(0)
-                self.df.pop(0)
+            k = self.count % self.m
+            np.subtract(xf, self.x_prev, out=self.dx[k])
+            np.subtract(ff, self.f_prev, out=self.df[k])
+            self.count += 1
         self.x_prev, self.f_prev = xf.copy(), ff.copy()
         new = xf + self.beta * ff
-        if self.df:
-            dfm = np.stack(self.df, axis=1)
-            dxm = np.stack(self.dx, axis=1)
-            # small normal equations (m x m), Tikhonov-regularised relative to their scale
-            gram = dfm.T @ dfm
+        n = min(self.count, self.m)
+        if n:
+            dfm = self.df[:n]
+            dxm = self.dx[:n]
+            # small normal equations (n x n), Tikhonov-regularised relative to their scale
+            gram = dfm @ dfm.T
             reg = 1e-12 * max(float(np.trace(gram)), 1e-300)
             try:
-                gamma = np.linalg.solve(gram + reg * np.eye(gram.shape[0]), dfm.T @ ff)
+                gamma = np.linalg.solve(gram + reg * np.eye(n), dfm @ ff)
             except np.linalg.LinAlgError:
                 self.reset()
-                return (xf + self.beta * ff).reshape(x.shape)
-            new = new - (dxm + self.beta * dfm) @ gamma
+                return new.reshape(x.shape)
+            new -= gamma @ dxm + self.beta * (gamma @ dfm)
         return new.reshape(x.shape)
 
 
@@ -472,9 +499,16 @@ class UnloadingPath:
     failures : tuple of dict
         Every state that did not converge: approach, residual, iterations,
         phase.  Unconverged states are kept in the arrays (flagged) and
-        excluded from the pull-off search.
+        excluded from the pull-off search.  When a warm-started state does not
+        converge on unloading the branch has ended (the jump): the state at
+        that approach is re-solved from separation (phase 'jump').
     states : tuple of ContactState
         All states when requested (``keep_states=True``), else empty.
+    elapsed : float
+        Wall time [s].
+    pull_off_converged : bool
+        True when every state from the start of the path down to the pull-off
+        converged (failures beyond the jump do not count).
     """
 
     approach: np.ndarray
@@ -496,6 +530,7 @@ class UnloadingPath:
     failures: tuple = ()
     states: tuple = field(default=(), repr=False)
     elapsed: float = 0.0
+    pull_off_converged: bool = True
 
     @property
     def n_steps(self) -> int:
@@ -633,22 +668,30 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     unload.append(k)
     while st.in_contact and len(unload) < max_steps:
         delta -= step
-        k, st = run(delta, st, "unloading")
+        k, new = run(delta, st, "unloading")
         unload.append(k)
+        if not new.converged:
+            # no state on the branch any more (the jump): the state reached from separation
+            k, new = run(delta, None, "jump")
+            unload.append(k)
+        st = new
 
     def bracket(indices):
-        """Indices (upper, lower) in approach of the pull-off bracket among ``indices``."""
-        ds = np.array([records[i]["approach"] for i in indices])
-        order = np.argsort(-ds, kind="stable")
-        idx = [indices[j] for j in order]
-        contact = [records[i]["in_contact"] and records[i]["converged"] for i in idx]
-        last = max((j for j, c in enumerate(contact) if c), default=None)
-        if last is None:
+        """(upper, lower, ordered indices) of the pull-off bracket among ``indices``."""
+        idx = [i for i in indices if records[i]["phase"] != "jump"]
+        ds = np.array([records[i]["approach"] for i in idx])
+        idx = [idx[j] for j in np.argsort(-ds, kind="stable")]
+        good = [bool(records[i]["in_contact"] and records[i]["converged"]) for i in idx]
+        if not any(good):
             return None
         if control == "displacement":
-            return idx[last], (idx[last + 1] if last + 1 < len(idx) else None), idx
-        w = np.array([records[i]["load"] if (records[i]["converged"] and records[i]["in_contact"])
-                      else np.nan for i in idx])
+            # the last good contact state before the branch ends (contact lost or no state)
+            first_bad = next((j for j, g in enumerate(good) if not g and j > 0 and good[j - 1]), None)
+            if first_bad is None:
+                last = max(j for j, g in enumerate(good) if g)
+                return idx[last], (idx[last + 1] if last + 1 < len(idx) else None), idx
+            return idx[first_bad - 1], idx[first_bad], idx
+        w = np.array([records[i]["load"] if g else np.nan for i, g in zip(idx, good)])
         sm = refine_sampled_minimum(np.array([records[i]["approach"] for i in idx]), w, first=False)
         j = sm.index
         up = idx[max(j - 1, 0)]
@@ -697,6 +740,10 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         sm = refine_sampled_minimum(x, w, first=False)
         k_po = idx[sm.index]
         w_po, d_po = sm.y, sm.x
+    # the pull-off is trusted when every state from the start down to it converged
+    reached = [i for i in range(len(records)) if records[i]["phase"] != "jump"
+               and records[i]["approach"] >= records[k_po]["approach"]]
+    po_converged = all(records[i]["converged"] for i in reached)
     arr = {key: np.array([r[key] for r in records]) for key in
            ("approach", "load", "a", "b", "c", "d", "contact_area", "phase", "converged", "iterations",
             "outer_iterations", "residual")}
@@ -705,13 +752,13 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
                          arr["contact_area"], arr["phase"], arr["converged"].astype(bool),
                          arr["iterations"].astype(int), arr["outer_iterations"].astype(int),
                          arr["residual"], control, float(w_po), float(d_po), by_index[k_po],
-                         tuple(failures), states, time.perf_counter() - t0)
+                         tuple(failures), states, time.perf_counter() - t0, po_converged)
 
 
 # ============================================================================ paper units
 #: Half-width of the domain per expected semi-axis of the largest cohesive zone of
 #: the path (the zone must lie inside the grid; DC-FFT needs no margin beyond it).
-DOMAIN_MARGIN = 1.2
+DOMAIN_MARGIN = 1.15
 #: Default number of unloading steps from the start of unloading to the expected jump.
 DEFAULT_STEPS = 20
 
@@ -772,7 +819,7 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     Notes
     -----
     The analytic DH model gives the expected pull-off (a_po, delta_po).  Unloading
-    starts at a* = 1.2 a_po + 0.3 (a state well on the stable branch), whose DH
+    starts at a* = 1.1 a_po + 0.15 (a state on the stable branch, above pull-off), whose DH
     approach is ``approach_max`` and whose adhesive semi-axis c* sets the domain:
     half-widths ``margin c*`` along x and ``margin c* beta0^(3/4)`` along y (the
     adhesive ellipse is rounder than the contact ellipse).  The step takes the
@@ -797,7 +844,7 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     r_major, r_minor = math.sqrt(rho), 1.0 / math.sqrt(rho)
     po = model.pull_off(mu, beta0)
     pod = model.pull_off(mu, beta0, control="displacement")
-    a_start = 1.2 * float(po.a_star) + 0.3
+    a_start = 1.1 * float(po.a_star) + 0.15
     cur = model.load_curve(mu, beta0, [a_start])
     c_start = float(cur.c_star[0])
     d_max = float(cur.delta_star[0])
@@ -833,7 +880,8 @@ class AdhesivePullOff:
     delta_star : float
         Approach at pull-off [c_r^2/R].
     converged : bool
-        True when every state of the path converged.
+        True when every state of the path down to the pull-off converged
+        (:attr:`UnloadingPath.pull_off_converged`); ``failures`` lists all.
     n_steps : int
         Solved states on the path.
     iterations : int
@@ -939,7 +987,7 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         mu=prob.mu, beta0=prob.beta0, n=int(n), law=prob.law.name, control=control, W_star=float(w_star),
         a_star=a, b_star=b, c_star=c, d_star=d, beta_ab=b / a if a > 0 else float("nan"),
         beta_cd=d / c if c > 0 else float("nan"), delta_star=float(path.pull_off_approach),
-        converged=path.all_converged, n_steps=path.n_steps, iterations=int(path.iterations.sum()),
+        converged=path.pull_off_converged, n_steps=path.n_steps, iterations=int(path.iterations.sum()),
         residual=float(path.residual.max()), failures=path.failures,
         half_width_x=0.5 * prob.grid.nx * prob.grid.dx, half_width_y=0.5 * prob.grid.ny * prob.grid.dy,
         elapsed=path.elapsed, path=path)
