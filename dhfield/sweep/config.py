@@ -61,7 +61,7 @@ import hashlib
 import json
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -111,6 +111,10 @@ class SweepConfig:
         "load" or "displacement".
     chunk_points : int
         Grid points per analytic dask task (bounds memory per worker).
+    curve_a_star : tuple of float
+        Contact sizes (from, to) of the ``load_curve`` quantity [-].
+    curve_points : int
+        Points per load curve.
     half_width : float or None
         Fixed BEM domain half-width [c_r]; None: 1.5 c* per case.
     sampling : str
@@ -135,7 +139,6 @@ class SweepConfig:
     workers: int | None = None
     scheduler: str | None = None
     out: str | None = None
-    extra: dict = field(default_factory=dict)
 
     def fingerprint(self) -> str:
         """Hash of everything that determines the results (not workers, scheduler, out)."""
