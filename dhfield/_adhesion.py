@@ -25,6 +25,7 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from ._validation import check_interval, check_positive
+from ._validation import check_tabor as _check_tabor_range
 
 CONTROLS = ("load", "displacement")
 
@@ -61,8 +62,8 @@ def check_material(effective_radius, reduced_modulus, work_of_adhesion):
 
 
 def check_tabor(mu):
-    """Validate the transition parameter mu of Eq. (35)."""
-    return check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
+    """Validate the transition parameter mu of Eq. (35) against :data:`dhfield._validation.TABOR_RANGE`."""
+    return _check_tabor_range("mu", mu)
 
 
 def check_contact_size(name, value):

@@ -67,12 +67,14 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from . import hertz, model, periphery
-from ._validation import check_ellipticity, check_positive
+from ._validation import check_contact_size_star, check_ellipticity, check_interval, check_positive
 from .elliptic import ellipsoid_integrals
 from .geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
 
 __all__ = [
     "CLOSURES",
+    "CLOSURE_MU_RANGE",
+    "CLOSURE_BETA0_RANGE",
     "EqualBetaSpread",
     "ClosureState",
     "law_spread",
@@ -87,6 +89,15 @@ __all__ = [
 ]
 
 CLOSURES = ("paper", "ray_average", "two_axis")
+#: Accepted Tabor parameter of the closures.  Above mu ~ 50 the two-axis Newton solve
+#: in (log c, log d) fails (the annulus, ~mu^-2 wide, is below its finite-difference
+#: step); 20 is the largest value verified for beta0 in [0.3, 1] and both controls.
+#: At mu = 20 the closures are within ~1e-4 of their JKR limits.
+CLOSURE_MU_RANGE = (1e-6, 20.0)
+#: Accepted beta0 of the closures: the periphery averages need 1 + 4 ceil(3/beta0) rays
+#: (120 001 at 1e-4, out of memory), and the ray-average load-control search returns
+#: a spurious zero-contact minimum at beta0 <= 0.1 (mu = 50); verified down to 0.3.
+CLOSURE_BETA0_RANGE = (0.3, 1.0)
 #: Rays for spreads and averages (uniform; trapezoid is spectral for these even integrands).
 N_THETA = 31
 #: Relative tolerance of the closure solves (log Delta gamma residual).
@@ -312,10 +323,18 @@ def _two_field_state(closure, mu, beta0, a, b, c, d, amp_a, amp_b):
                                                       prof.max_adhesive_stress[..., 1]))
 
 
+def _check_domain(mu, beta0):
+    """Validate (mu, beta0) against the closures' accepted domain (see :data:`CLOSURE_MU_RANGE`)."""
+    mu = check_interval("mu", mu, *CLOSURE_MU_RANGE, low_open=False,
+                        what="Tabor parameter of Eq. (35) for the closures")
+    beta0 = check_interval("beta0", beta0, *CLOSURE_BETA0_RANGE, low_open=False,
+                           what="ellipticity ratio b/a for the closures")
+    return mu, beta0
+
+
 def _check(a_star, mu, beta0):
-    a = check_positive("a_star", a_star, "contact semi-major axis a/c_r")
-    mu = check_positive("mu", mu, "Tabor parameter, Eq. (35)")
-    beta0 = check_ellipticity("beta0", beta0)
+    a = check_contact_size_star("a_star", a_star)
+    mu, beta0 = _check_domain(mu, beta0)
     return np.broadcast_arrays(a, mu, beta0)
 
 
@@ -531,8 +550,7 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
         raise ValueError(f"closure must be one of {CLOSURES}; got {closure!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
-    mu = check_positive("mu", mu, "Tabor parameter, Eq. (35)")
-    beta0 = check_ellipticity("beta0", beta0)
+    mu, beta0 = _check_domain(mu, beta0)
     mu, beta0 = np.broadcast_arrays(mu, beta0)
     solver = _SOLVERS[closure]
     key = "W_star" if control == "load" else "delta_star"

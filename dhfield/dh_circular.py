@@ -71,8 +71,11 @@ def _state(log_v, mu):
     sig = 2.0 * np.sin(np.arcsin(kappa) / 3.0)
     a = 0.5 * q * (1.0 / sig - sig)
     c = 0.5 * q * (1.0 / sig + sig)
-    w_star = 2.0 / (3.0 * np.pi) * (a**3 - v * (c**3 - a**3))  # Eq. (36) at beta = 1
-    delta = a * a - v * q * q  # approach (1+v) a^2 - v c^2
+    # c - a = q sig exactly and v q = pi mu/2 (Eq. 24): no cancellation in v (c^3 - a^3)
+    # or v q^2 at large mu, where c - a is below the rounding of c.
+    vq = 0.5 * np.pi * mu
+    w_star = 2.0 / (3.0 * np.pi) * (a**3 - vq * sig * (c * c + c * a + a * a))  # Eq. (36) at beta = 1
+    delta = a * a - vq * q  # approach (1+v) a^2 - v c^2
     return {"W_star": w_star, "a_star": a, "c_star": c, "v": v, "delta_star": delta}
 
 

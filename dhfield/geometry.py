@@ -53,8 +53,8 @@ def principal_radii(cylinder_radius, skew_angle):
     """
     rc = check_positive("cylinder_radius", cylinder_radius, "m")
     th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
-    cos = np.cos(th)
-    return rc / (1.0 - cos), rc / (1.0 + cos)  # Eq. (3), Eq. (4)
+    # 1 - cos = 2 sin^2(theta/2): no cancellation at small crossing angles.
+    return rc / (2.0 * np.sin(0.5 * th) ** 2), rc / (1.0 + np.cos(th))  # Eq. (3), Eq. (4)
 
 
 def effective_radius(r_major, r_minor):
