@@ -37,7 +37,7 @@ import numpy as np
 
 from . import _adhesion as units
 from . import compare, geometry
-from ._validation import check_interval, check_positive
+from ._validation import ELLIPTICITY_RANGE, TABOR_RANGE, check_interval, check_positive
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_SI_KEYS
 
 __all__ = ["ContactParameters", "contact_parameters", "contact_parameters_from_principal_radii",
@@ -171,12 +171,28 @@ def contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, y
     sin_skew = geometry.sin_skew_angle(beta0)
     e_star, r1, r2, r, beta0, sin_skew, w, s0 = np.broadcast_arrays(e_star, r1, r2, r, beta0, sin_skew, w, s0)
     mu = units.tabor_parameter(s0, r, e_star, w)  # Eq. (35)
+    _check_model_domain(ratio, beta0, mu, s0)
     return ContactParameters(
         _s(e_star), _s(r1), _s(r2), _s(r), _s(beta0), _s(sin_skew), _s(mu),
         _s(units.length_unit(r, e_star, w)),  # Eq. (33)
         _s(units.approach_unit(r, e_star, w)),
         _s(units.load_unit(r, w, sin_skew)),  # Eq. (34)
         _s(w), _s(s0))
+
+
+def _check_model_domain(ratio, beta0, mu, s0):
+    """Name the SI input behind a beta0 or mu outside the models' domain (H3, issue 9)."""
+    if np.any(beta0 < ELLIPTICITY_RANGE[0]):
+        raise ValueError(f"r_major/r_minor must be at most {float(geometry.radius_ratio(ELLIPTICITY_RANGE[0])):.6g} "
+                         f"(beta0 >= {ELLIPTICITY_RANGE[0]:g}; longer contacts are line contacts); "
+                         f"got {float(np.max(ratio)):.6g}")
+    lo, hi = TABOR_RANGE
+    bad = (mu < lo) | (mu > hi)
+    if np.any(bad):
+        scale = np.broadcast_to(s0 / mu, np.shape(bad))[bad].flat[0]  # sigma0 per unit mu [Pa]
+        raise ValueError(f"max_adhesive_stress must be in [{lo * scale:.6g}, {hi * scale:.6g}] Pa here "
+                         f"(Tabor parameter mu of Eq. (35) in [{lo:g}, {hi:g}]); "
+                         f"got {float(np.broadcast_to(s0, np.shape(bad))[bad].flat[0])!r}")
 
 
 def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2,
@@ -202,6 +218,9 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
     -------
     ContactParameters
     """
+    th_min = float(geometry.skew_angle(ELLIPTICITY_RANGE[0]))  # beta0 >= 1e-4 (H3, issue 9)
+    check_interval("skew_angle", skew_angle, th_min, np.pi / 2, low_open=False,
+                   what=f"rad; below {th_min:.4g} rad the contact is a line contact, beta0 < {ELLIPTICITY_RANGE[0]:g}")
     with np.errstate(divide="ignore"):  # R' = inf for a vanishing angle: rejected below, by name
         r1, r2 = geometry.principal_radii(cylinder_radius, skew_angle)  # Eqs. (3)-(4)
     return contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
