@@ -265,25 +265,25 @@ def reference_table(beta0s, mus, models=REFERENCE_MODELS, control="load") -> dic
 def cached_reference_table(work_dir, beta0s, mus, control="load") -> dict:
     """:func:`reference_table`, cached per (model, beta0, mu) in ``work_dir/references_<control>.json``.
 
-    The closures cost seconds per point, so each point is computed once and
-    stored (atomically) as soon as its row of models is done.
+    The closures cost minutes over the grid, so the table is computed once,
+    vectorised over the whole grid, and stored atomically.
     """
     path = Path(work_dir) / f"references_{control}.json"
     cache = json.loads(path.read_text()) if path.is_file() else {}
     out = {m: {k: np.full((len(beta0s), len(mus)), np.nan) for k in ("W_star", "ellipticity",
                                                                       "adhesive_ellipticity")}
            for m in REFERENCE_MODELS}
-    for i, b in enumerate(beta0s):
-        for j, m in enumerate(mus):
-            key = f"{float(b)!r},{float(m)!r}"
-            if key not in cache:
-                tab = reference_table([b], [m], control=control)
-                cache[key] = {name: {k: float(v[0, 0]) for k, v in rec.items()} for name, rec in tab.items()}
-                Path(work_dir).mkdir(parents=True, exist_ok=True)
-                _write_json(cache, path)
-            for name in REFERENCE_MODELS:
-                for k in out[name]:
-                    out[name][k][i, j] = cache[key][name][k]
+    keys = {(i, j): f"{float(b)!r},{float(m)!r}" for i, b in enumerate(beta0s) for j, m in enumerate(mus)}
+    if any(k not in cache for k in keys.values()):
+        tab = reference_table(beta0s, mus, control=control)  # vectorised over the grid: one call per model
+        for (i, j), key in keys.items():
+            cache[key] = {name: {k: float(v[i, j]) for k, v in rec.items()} for name, rec in tab.items()}
+        Path(work_dir).mkdir(parents=True, exist_ok=True)
+        _write_json(cache, path)
+    for (i, j), key in keys.items():
+        for name in REFERENCE_MODELS:
+            for k in out[name]:
+                out[name][k][i, j] = cache[key][name][k]
     return out
 
 
