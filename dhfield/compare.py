@@ -105,7 +105,8 @@ import numpy as np
 
 from . import closure, dh_circular, dmt, jkr, jkr_elliptic, maugis_dugdale
 from ._adhesion import approach_unit, check_control, check_material, length_unit, load_unit
-from ._validation import check_contact_size_star, check_count, check_ellipticity, check_positive
+from ._validation import (check_contact_size_star, check_count, check_ellipticity, check_model_ellipticity,
+                          check_positive, check_tabor)
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
@@ -123,8 +124,8 @@ WARNING_THRESHOLD = 0.02
 
 
 def _check(mu, beta0, control):
-    mu = check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
-    beta0 = check_ellipticity("beta0", beta0)
+    mu = check_tabor("mu", mu)  # _validation.TABOR_RANGE: every model's accepted domain
+    beta0 = check_model_ellipticity("beta0", beta0)
     check_control(control)
     return np.broadcast_arrays(mu, beta0)
 
@@ -135,21 +136,24 @@ def _arr(x, shape, dtype=float):
 
 
 _INF = float("inf")
+#: Largest mu of the closures: the grid of the table above, capped by the closures' own accepted domain.
+_CLOSURE_MU_MAX = min(30.0, getattr(closure, "CLOSURE_MU_RANGE", (0.0, _INF))[1])
 #: name -> ((beta0_min, beta0_max), (mu_min, mu_max)) where each model is validated; outside, its
 #: results are still computed and carry a ``warning``.  Provenance:
 #:
 #: * dh-elliptic, dh-elliptic-jkr-beta: the paper's own range, "beta0 ranging from 0.8 to 0.99" and
 #:   "0.5 <= mu <= 5" (Zini et al. 2018, Sec. 1); beta0 = 1 is the circular DH model;
 #: * the closures: the grid of the table above (beta0 = 0.3-1, mu = 0.1-30), where they were solved
-#:   and compared with elliptical JKR (mu -> infinity) and the circular DH model (beta0 = 1);
+#:   and compared with elliptical JKR (mu -> infinity) and the circular DH model (beta0 = 1), capped
+#:   by the domain :mod:`dhfield.closure` accepts (``CLOSURE_MU_RANGE``);
 #: * jkr-elliptic and jkr: the JKR side of the adhesion map, mu >= 10 for the ellipse (within 0.3 %
 #:   of the two-axis closure, table above) and lambda = 1.1272 mu >= 5 for the circle (Johnson &
 #:   Greenwood 1997, doi:10.1006/jcis.1997.4984); dmt: lambda <= 0.1 (same map);
 #: * the circular models at beta0 = 1 only (elsewhere they are the circle of R = sqrt(R'R'')).
 VALIDITY_RANGES = {
     "dh-elliptic": ((0.8, 1.0), (0.5, 5.0)),
-    "dh-elliptic-two-axis": ((0.3, 1.0), (0.1, 30.0)),
-    "dh-elliptic-ray-average": ((0.3, 1.0), (0.1, 30.0)),
+    "dh-elliptic-two-axis": ((0.3, 1.0), (0.1, _CLOSURE_MU_MAX)),
+    "dh-elliptic-ray-average": ((0.3, 1.0), (0.1, _CLOSURE_MU_MAX)),
     "dh-elliptic-jkr-beta": ((0.8, 1.0), (0.5, 5.0)),
     "dh-circular": ((1.0, 1.0), (0.0, _INF)),
     "jkr": ((1.0, 1.0), (4.4, _INF)),
@@ -296,6 +300,8 @@ def _dh_elliptic(mu, beta0, control="load", *, check_closure=True, two_axis=None
             ref = two_axis if two_axis is not None else _two_axis(mu, beta0, control)
         except RuntimeError:  # the closure's Newton solve failed: say so, keep the paper's result
             warning = "dh-elliptic could not be checked against the two-axis closure (its solve did not converge)"
+        except ValueError as exc:  # outside closure.CLOSURE_MU_RANGE / CLOSURE_BETA0_RANGE
+            warning = f"dh-elliptic could not be checked against the two-axis closure ({exc})"
         else:
             warning = _departure_warning(res.W_star, ref["W_star"])
     return _record("dh-elliptic", mu, beta0, control, _from_model(res), sin_skew_angle(beta0), "ellipse",
@@ -422,20 +428,38 @@ def compare(mu, beta0, control="load", models=None, *, check_closure=True):
     -------
     dict
         model name -> record (see :func:`pull_off`).  The two-axis closure is
-        solved once and also serves the warning of ``dh-elliptic``.
+        solved once and also serves the warning of ``dh-elliptic``.  A model that
+        refuses the inputs (a narrower domain of its own) or fails to converge
+        gets NaN values and says why in ``warning``; invalid ``mu``, ``beta0`` or
+        ``control`` raise ValueError as in :func:`pull_off`.
     """
     names = MODEL_NAMES if models is None else tuple(_check_model(m) for m in models)
+    mu, beta0 = _check(mu, beta0, control)  # bad input is an error for every model
+
+    def guarded(name, func):
+        # a model that refuses these inputs (a narrower domain of its own) or fails to converge gets a
+        # NaN record that says why, instead of taking the other models down with it
+        try:
+            return func()
+        except (ValueError, RuntimeError) as exc:
+            nan = np.full(mu.shape, _NAN)
+            st = {"W_star": nan, "a_star": nan, "c_star": nan, "delta_star": nan}
+            circle = name in CIRCULAR_MODEL_NAMES
+            return _record(name, mu, beta0, control, st, 1.0 if circle else sin_skew_angle(beta0),
+                           "circle" if circle else "ellipse", f"{name} failed: {exc}")
+
     out = {}
-    two_axis = None
+    two_axis = shown = None
     if "dh-elliptic-two-axis" in names:
-        two_axis = _two_axis(mu, beta0, control)
+        shown = guarded("dh-elliptic-two-axis", lambda: _two_axis(mu, beta0, control))
+        two_axis = None if np.all(np.isnan(shown["W_star"])) else shown
     for name in names:
         if name == "dh-elliptic":
             out[name] = _dh_elliptic(mu, beta0, control, check_closure=check_closure, two_axis=two_axis)
         elif name == "dh-elliptic-two-axis":
-            out[name] = two_axis
+            out[name] = shown
         else:
-            out[name] = MODELS[name](mu, beta0, control)
+            out[name] = guarded(name, lambda name=name: MODELS[name](mu, beta0, control))
     return out
 
 

@@ -48,7 +48,9 @@ def test_pdms_one_command_equals_api(capsys):
 
 
 def test_pdms_two_axis_no_warning(capsys):
-    rec, err = _json(capsys, ["pulloff", *PDMS_ARGS, "--model", "dh-elliptic-two-axis", "--json"])
+    # sigma0 = 0.45 MPa (mu = 19.5): inside the closures' accepted mu <= 20 (dhfield.closure.CLOSURE_MU_RANGE)
+    args = PDMS_ARGS[:-1] + ["0.45e6"]
+    rec, err = _json(capsys, ["pulloff", *args, "--model", "dh-elliptic-two-axis", "--json"])
     assert err == "" and rec["warning"] == ""
     assert rec["model"] == "dh-elliptic-two-axis" and rec["v"] is None  # n/a is null, not missing
 

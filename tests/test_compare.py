@@ -260,3 +260,18 @@ def test_warning_when_the_closure_check_fails(monkeypatch):
     monkeypatch.setattr(compare.closure, "pull_off_two_axis", fail)
     rec = compare.pull_off("dh-elliptic", 1.0, 0.9)
     assert np.isfinite(rec["W_star"]) and "could not be checked" in rec["warning"]
+
+
+def test_compare_survives_a_model_that_refuses(monkeypatch):
+    """A model with a narrower domain of its own gets a NaN record saying why; the others stand."""
+    def refuse(*args, **kwargs):
+        raise ValueError("mu must be in [1e-06, 20] (closure domain); got 22.0")
+
+    monkeypatch.setattr(compare.closure, "pull_off_two_axis", refuse)
+    res = compare.compare(1.0, 0.9, models=["dh-elliptic", "dh-elliptic-two-axis", "jkr"])
+    assert np.isnan(res["dh-elliptic-two-axis"]["W_star"]) and "failed" in res["dh-elliptic-two-axis"]["warning"]
+    assert tuple(res["dh-elliptic-two-axis"]) == PULL_OFF_KEYS
+    assert "could not be checked" in res["dh-elliptic"]["warning"] and np.isfinite(res["dh-elliptic"]["W_star"])
+    assert res["jkr"]["W_star"] == -0.75
+    with pytest.raises(ValueError, match="beta0"):
+        compare.compare(1.0, 1.5)

@@ -35,8 +35,8 @@ def run(args) -> int:
     print_warning(recs.get("dh-elliptic", {}))
     others = [n for n, r in recs.items() if n != "dh-elliptic" and r["warning"]]
     if others:
-        print_warning({"warning": f"outside their validated range (see --help of pulloff; 'warning' in --json): "
-                                  f"{', '.join(others)}"})
+        print_warning({"warning": f"outside their validated range or failed (see 'warning' in --json, ranges in "
+                                  f"pulloff --help): {', '.join(others)}"})
     if args.out:
         from ..io import write_netcdf
         from ..io.compare import comparison_dataset
