@@ -59,11 +59,13 @@ beta0        dh-elliptic                 dh-elliptic-ray-average     jkr-ellipti
 0.3          -25 % to -47 %              -3.9 % to +5.8 %            -0.03 % (mu 30) .. -30 % (mu 0.1)
 ===========  ==========================  ==========================  ==========================
 
-* **dh-elliptic-two-axis** for an elliptical contact at any mu: it imposes the
-  work of adhesion on both axes and keeps the contact condition exact; it is the
-  circular DH model at beta0 = 1 and tends to elliptical JKR at high mu (within
-  0.3 % for mu >= 10, 0.03 % at mu = 30, for every beta0 above; PDMS crossed at
-  60 deg, beta0 = 0.48, mu = 22: W* = -0.6247 against -0.6244).
+* **dh-elliptic-two-axis** for an elliptical contact across the transition: it
+  imposes the work of adhesion on both axes and keeps the contact condition
+  exact; it is the circular DH model at beta0 = 1 and tends to elliptical JKR at
+  high mu (within 0.3 % for mu >= 10, 0.03 % at mu = 30, for every beta0 above;
+  PDMS crossed at 60 deg, beta0 = 0.4826, mu = 21.65: W* = -0.6263 against
+  -0.6261).  :mod:`dhfield.closure` accepts mu <= 20 (``CLOSURE_MU_RANGE``);
+  above, use **jkr-elliptic**, which the closure has converged to there.
 * **dh-elliptic** (the paper's, the default) to reproduce the paper, or where
   beta0 >= 0.99 (within 0.5 % of the two-axis closure).  It under-predicts the
   adhesion increasingly as the contact gets more elliptical and mu larger: by
