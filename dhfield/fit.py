@@ -361,7 +361,13 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     :math:`\\mathrm{se}(\\Delta\\gamma) = \\Delta\\gamma \\sqrt{C_{11}}`.
     They assume independent, equal-variance errors within each block, and are
     meaningful only when the data reach the adhesive part of the curve (near
-    pull-off), where the load depends on sigma0.
+    pull-off), where the load depends on sigma0; a parameter whose standard
+    error exceeds its estimate, or that runs to the search bound, is reported
+    as not identifiable (``success`` False).  On 40 seeded noisy PDMS curves the
+    truth was within 2 standard errors 38/40 (dgamma) and 39/40 (sigma0)
+    times (``python -m verification.fit_round_trip``).  A fit takes 20-35
+    load-curve evaluations: under a second for dh-elliptic, MD and DH circular,
+    15-35 s for the two closures.
     """
     _check_params(params)
     if model not in CURVE_FIT_MODEL_NAMES:

@@ -6,7 +6,9 @@ dgamma = 40 mJ/m^2) with sigma0 = 25 kPa (mu ~ 1.08):
 1. for every model of :data:`dhfield.compare.MODEL_NAMES`: the pull-off force, the work of
    adhesion fitted back from it (started from 7 x the truth), its relative error (target
    1e-8), the forward evaluations and the time;
-2. for ``--seeds`` seeded noisy load curves (25 points, Gaussian noise of 1 % of the load
+2. for every model of :data:`dhfield.fit.CURVE_FIT_MODEL_NAMES`: dgamma and sigma0 fitted
+   back from a noiseless load curve (25 points, started at dgamma/2, 2 sigma0);
+3. for ``--seeds`` seeded noisy load curves (25 points, Gaussian noise of 1 % of the load
    range): how often dgamma and sigma0 fall within 2 reported standard errors of the truth
    (about 95 % if the standard errors are right).
 
@@ -24,7 +26,7 @@ import numpy as np
 
 from dhfield import compare
 from dhfield import dimensional as dim
-from dhfield.fit import fit_curve, fit_work_of_adhesion
+from dhfield.fit import CURVE_FIT_MODEL_NAMES, fit_curve, fit_work_of_adhesion
 
 PDMS = dict(youngs_modulus_1=2e6, poisson_ratio_1=0.5, youngs_modulus_2=2e6, poisson_ratio_2=0.5,
             cylinder_radius=5e-3, skew_angle=math.pi / 3)
@@ -46,6 +48,24 @@ def round_trips(models):
         worst = max(worst, abs(err))
         print(f"{m:26s}{force:16.9e}{res.work_of_adhesion:22.16g}{err:12.2e}{res.evaluations:7d}{dt:10.2f}")
     print(f"largest |relative error|: {worst:.2e} (target 1e-8)")
+    return worst
+
+
+def curve_round_trips(models):
+    params = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    start = dim.contact_parameters(**PDMS, work_of_adhesion=WORK / 2, max_adhesive_stress=2 * STRESS)
+    a = params.length_unit * np.linspace(0.3, 3.0, 25)
+    print(f"\nnoiseless curve round trip (25 points, start dgamma/2, 2 sigma0):")
+    print(f"{'model':26s}{'dgamma rel. err':>17s}{'sigma0 rel. err':>17s}{'evals':>7s}{'time [s]':>10s}")
+    worst = 0.0
+    for m in models:
+        w = np.asarray(dim.load_curve_si(params, semi_major=a, model=m)["force"])
+        t = time.perf_counter()
+        r = fit_curve(w, a, start, model=m)
+        e1, e2 = r.work_of_adhesion / WORK - 1, r.max_adhesive_stress / STRESS - 1
+        worst = max(worst, abs(e1), abs(e2))
+        print(f"{m:26s}{e1:17.2e}{e2:17.2e}{r.evaluations:7d}{time.perf_counter() - t:10.2f}")
+    print(f"largest |relative error|: {worst:.2e}")
     return worst
 
 
@@ -76,6 +96,7 @@ def main(argv=None) -> int:
     p.add_argument("--models", nargs="+", default=list(compare.MODEL_NAMES), choices=compare.MODEL_NAMES)
     args = p.parse_args(argv)
     worst = round_trips(args.models)
+    curve_round_trips([m for m in args.models if m in CURVE_FIT_MODEL_NAMES])
     if args.seeds > 0:
         coverage(args.seeds)
     return 0 if worst <= 1e-8 else 1
