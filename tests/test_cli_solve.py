@@ -25,7 +25,7 @@ def test_solve_json_and_netcdf(tmp_path, capsys):
     for key in BEM_ADHESIVE_KEYS:
         assert key in rec
     assert rc == (0 if rec["converged"] else EXIT_UNCONVERGED)
-    if rc:
+    if rc or rec["failures"]:  # a failure, or a note on states beyond the pull-off: one line naming the case
         assert len(captured.err.strip().splitlines()) == 1 and "beta0=1, mu=1, n=32" in captured.err
     md = compare.pull_off("md", 1.0, 1.0)["W_star"]  # Maugis-Dugdale at lambda = 1.1272 mu
     assert rec["W_star"] == pytest.approx(md, rel=COARSE_MD_RTOL)
@@ -63,4 +63,5 @@ def test_solve_bad_input(argv, word, capsys):
 def test_help_documents_exit_status(capsys):
     with pytest.raises(SystemExit):
         main(["solve", "--help"])
-    assert f"{EXIT_UNCONVERGED} a state of the path did not converge" in " ".join(capsys.readouterr().out.split())
+    assert f"{EXIT_UNCONVERGED} a state of the path up to the pull-off did not converge" in " ".join(
+        capsys.readouterr().out.split())

@@ -59,7 +59,7 @@ __all__ = ["SECTION_ORDER", "VERDICT_ORDER", "SectionResult", "main", "run_secti
            "render_summary", "markdown_to_html", "link_references", "collect_verdict"]
 
 #: Section modules in report order: ``verification/sec_<name>.py``.
-SECTION_ORDER = ("analytic", "models", "fields", "periphery")
+SECTION_ORDER = ("analytic", "models", "fields", "periphery", "adhesive")
 #: Whose verdict leads: the self-consistent adhesive solution (ground truth) first, then the
 #: closures against elliptical JKR, the periphery/Eq. (30) analysis, the analytic core, the BEM.
 #: Sections not named here follow in :data:`SECTION_ORDER`.

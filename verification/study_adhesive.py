@@ -138,14 +138,15 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **opti
     rec["converged"] = bool(d["converged"])
     rec["failures"] = d.get("failures", [])
     rec["solver_source"] = _solver_source()
-    if rec["converged"]:
+    if not rec["failures"]:
         rec.update(status="ok", message="")
     else:
         worst = max((f.get("residual", float("nan")) for f in rec["failures"]), default=float("nan"))
-        after = all(float(f.get("approach", np.inf)) < rec["delta_star"] for f in rec["failures"])
+        after = rec["converged"] or all(float(f.get("approach", np.inf)) < rec["delta_star"]
+                                        for f in rec["failures"])
         rec.update(status="unconverged_after_pull_off" if after else "unconverged",
                    message=f"{where}: {len(rec['failures'])} unconverged state(s) on the path"
-                           f"{' (all beyond the pull-off approach)' if after else ''}, "
+                           f"{' (all beyond the pull-off)' if after else ''}, "
                            f"worst residual {worst:.3g}")
     return rec
 

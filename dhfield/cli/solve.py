@@ -8,9 +8,10 @@ from ._common import add_model_arguments, print_json
 #: Exit status when a state of the path did not converge (the result is still printed/written, flagged).
 EXIT_UNCONVERGED = 3
 
-_EPILOG = (f"exit status: 0 success; 2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the "
-           "path did not converge (one line on stderr naming the parameters; the result is still printed "
-           "and written, with converged = false)")
+_EPILOG = (f"exit status: 0 success (a note on stderr if states beyond the pull-off did not converge); "
+           f"2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the path up to the pull-off "
+           "did not converge (one line on stderr naming the parameters; the result is still printed and "
+           "written, with converged = false)")
 
 
 def add_parser(sub) -> None:
@@ -79,4 +80,7 @@ def run(args) -> int:
               f"law={res.law}, control={res.control}: {len(res.failures)} unconverged state(s), "
               f"worst residual {worst:.3g}", file=sys.stderr)
         return EXIT_UNCONVERGED
+    if res.failures:
+        print(f"dhfield: note: {len(res.failures)} state(s) beyond the pull-off did not converge for {where} "
+              "(the pull-off is not affected; listed under failures)", file=sys.stderr)
     return 0
