@@ -1,0 +1,220 @@
+"""Atomic writes under signals and failures (issue 9, items 3, 4, 6, 9).
+
+The signal tests run a child Python and send it a real signal while it writes
+(or computes), then check that it ended promptly, removed its temporary file
+and left no output.
+"""
+from __future__ import annotations
+
+import os
+import signal
+import stat
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from dhfield import io as dio
+
+#: Seconds a child may take to import dhfield and build its data on a loaded 2-core machine.
+START_TIMEOUT = 120
+#: Seconds an interrupted child may take to stop: one 16 MiB slab and the cleanup take well under 1 s;
+#: the old code never stopped (deadlock on xarray's lock), so any finite bound separates them.
+STOP_TIMEOUT = 20
+#: Size of the temporary file at which the child is surely writing data, not only the header [bytes].
+WRITING_BYTES = 2 * 2**20
+
+_WRITER = textwrap.dedent("""
+    import sys
+    import numpy as np
+    import xarray as xr
+    from dhfield.io import write_netcdf
+    n = 1024
+    ds = xr.Dataset({f"v{i}": (("x", "y"), np.full((n, n), float(i))) for i in range(8)},
+                    coords={"x": np.arange(n) * 1.0, "y": np.arange(n) * 1.0})
+    print("ready", flush=True)
+    write_netcdf(ds, sys.argv[1])
+    print("done", flush=True)
+""")
+
+
+def _default_signals():
+    # a child of a non-interactive shell may inherit SIGINT ignored: give it Python's default
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def _wait_for(predicate, timeout, proc):
+    t0 = time.monotonic()
+    while not predicate():
+        if proc.poll() is not None or time.monotonic() - t0 > timeout:
+            return False
+        time.sleep(0.01)
+    return True
+
+
+def _parts(d: Path):
+    return sorted(p.name for p in d.iterdir() if p.name.endswith(".part"))
+
+
+@pytest.mark.parametrize("signame", ["SIGINT", "SIGTERM", "SIGHUP"])
+def test_signal_during_netcdf_write_stops_promptly_and_leaves_nothing(tmp_path, signame):
+    """Issue 9 item 3: SIGINT hung on xarray's lock; SIGTERM/SIGHUP left the .part behind."""
+    target = tmp_path / "t.nc"
+    proc = subprocess.Popen([sys.executable, "-c", _WRITER, str(target)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_default_signals)
+    try:
+        assert proc.stdout.readline().strip() == "ready"
+
+        def writing():
+            return any(p.stat().st_size > WRITING_BYTES for p in tmp_path.glob(".t.nc.*.part"))
+
+        assert _wait_for(writing, START_TIMEOUT, proc), "the child never started writing"
+        proc.send_signal(getattr(signal, signame))
+        try:
+            out, err = proc.communicate(timeout=STOP_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            pytest.fail(f"{signame} during the netCDF write: no exit within {STOP_TIMEOUT} s (hang)")
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert "done" not in out
+    assert proc.returncode == -getattr(signal, signame)  # re-delivered: the default action ended it
+    assert _parts(tmp_path) == [] and not target.exists()
+
+
+def test_sigint_during_computation_is_one_line_and_130(tmp_path):
+    """Issue 9 item 6: Ctrl-C during a computation printed a KeyboardInterrupt traceback."""
+    target = tmp_path / "f.nc"
+    proc = subprocess.Popen([sys.executable, "-m", "dhfield.cli", "field", "--beta0", "0.9", "--mu", "1",
+                             "--a-star", "1.2", "--n", "1024", "--out", str(target)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_default_signals,
+                            env=dict(os.environ, DHFIELD_CACHE=str(tmp_path / "cache")))
+    maps = Path(f"/proc/{proc.pid}/maps")
+    try:
+        if not maps.parent.exists():
+            proc.kill()
+            pytest.skip("needs /proc to see when the child is computing")
+
+        def computing():  # the FFT library is loaded inside `field`'s run(), after parsing
+            try:
+                return "pyfftw" in maps.read_text()
+            except OSError:
+                return False
+
+        assert _wait_for(computing, START_TIMEOUT, proc), "the child never started computing"
+        time.sleep(0.3)
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=STOP_TIMEOUT)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 130, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("dhfield: interrupted"), err
+    assert not target.exists() and _parts(tmp_path) == []
+
+
+_DISK_FULL = textwrap.dedent("""
+    import resource, signal, sys
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # writes past the limit fail with EFBIG instead
+    resource.setrlimit(resource.RLIMIT_FSIZE, (int(sys.argv[1]), int(sys.argv[1])))
+    from dhfield.cli import main
+    sys.exit(main(sys.argv[2:]))
+""")
+
+
+def test_disk_full_during_netcdf_write_is_one_line(tmp_path):
+    """Issue 9 item 6: a full disk during a netCDF write gave ~50 lines ending `NetCDF: HDF error`.
+
+    The file-size limit (RLIMIT_FSIZE) makes every write past 256 kB fail the way a full disk does.
+    """
+    target = tmp_path / "f.nc"
+    res = subprocess.run([sys.executable, "-c", _DISK_FULL, str(256 * 1024), "field", "--beta0", "0.9", "--mu", "1",
+                          "--a-star", "1.2", "--n", "32", "--out", str(target)], capture_output=True, text=True,
+                         timeout=START_TIMEOUT, env=dict(os.environ, DHFIELD_CACHE=str(tmp_path / "cache")))
+    lines = res.stderr.strip().splitlines()
+    assert res.returncode == 2, res.stderr
+    assert len(lines) == 1 and lines[0].startswith("dhfield: error: could not write the netCDF file"), res.stderr
+    assert not target.exists() and _parts(tmp_path) == []
+
+
+def test_failed_write_keeps_the_previous_file_and_its_mode(tmp_path):
+    target = tmp_path / "c.nc"
+    target.write_bytes(b"previous")
+    os.chmod(target, 0o640)
+    with pytest.raises(RuntimeError, match="boom"):
+        with dio.atomic_path(target) as tmp:
+            tmp.write_bytes(b"partial")
+            raise RuntimeError("boom")
+    assert target.read_bytes() == b"previous" and _parts(tmp_path) == []
+    with dio.atomic_path(target) as tmp:
+        tmp.write_bytes(b"new")
+    assert target.read_bytes() == b"new"
+    assert stat.S_IMODE(target.stat().st_mode) == 0o640  # the replaced file's mode is kept
+
+
+def test_new_file_gets_umask_permissions(tmp_path):
+    old = os.umask(0o027)
+    try:
+        with dio.atomic_path(tmp_path / "n.csv") as tmp:
+            tmp.write_text("x")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE((tmp_path / "n.csv").stat().st_mode) == 0o640
+
+
+def test_longest_file_name_can_be_written(tmp_path):
+    """Issue 9 item 9: names of 241-255 bytes failed because the temporary name was longer."""
+    name_max = os.pathconf(tmp_path, "PC_NAME_MAX")
+    target = tmp_path / ("a" * (name_max - 3) + ".nc")
+    with dio.atomic_path(target) as tmp:
+        assert len(tmp.name) <= 47
+        tmp.write_bytes(b"ok")
+    assert target.read_bytes() == b"ok"
+    with pytest.raises(ValueError, match=f"at most {name_max} bytes"):
+        dio.validate_output_path(tmp_path / ("a" * (name_max - 2) + ".nc"))
+
+
+def test_netcdf_round_trip_of_the_writer(tmp_path, rng):
+    """The netCDF4 writer keeps values, dtypes, attributes, strings and booleans."""
+    import xarray as xr
+
+    ds = xr.Dataset(
+        {"p": (("x", "y"), rng.random((40, 3)), {"units": "Pa", "long_name": "pressure"}),
+         "flag": (("x",), (np.arange(40) % 3).astype(np.int8), {"flag_values": np.array([0, 1, 2], np.int8),
+                                                              "flag_meanings": "a b c"}),
+         "ok": (("y",), np.array([True, False, True])),
+         "label": (("m",), np.array(["dh-elliptic", "jkr"])),
+         "scalar": ((), 2.5)},
+        coords={"x": ("x", np.linspace(0, 1, 40), {"units": "m"}), "y": np.arange(3.0), "m": ["a", "b"]},
+        attrs={"title": "t", "param_n": 3, "param_flag": 1, "vector": np.array([1.0, 2.0])})
+    ds["p"][0, 0] = np.nan
+    path = dio.write_netcdf(ds, tmp_path / "r.nc")
+    back = dio.read_netcdf(path)
+    np.testing.assert_array_equal(back["p"].values, ds["p"].values)  # NaN in the same place
+    np.testing.assert_array_equal(back["flag"].values, ds["flag"].values)
+    assert back["flag"].dtype == np.int8 and back["ok"].dtype == bool
+    assert list(back["label"].values) == ["dh-elliptic", "jkr"] and float(back["scalar"]) == 2.5
+    assert back["p"].attrs["units"] == "Pa" and back.attrs["param_n"] == 3
+    np.testing.assert_array_equal(back.attrs["vector"], [1.0, 2.0])
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        for coord in ("x", "y"):
+            assert "_FillValue" not in nc[coord].ncattrs()  # CF: coordinates have no missing values
+
+
+def test_unreadable_input_is_one_line_value_error(tmp_path):
+    bad = tmp_path / "bad.nc"
+    bad.write_bytes(b"not netcdf\n" * 10)
+    for path, word in ((bad, "not a readable netCDF file"), (tmp_path / "missing.nc", "does not exist"),
+                       (tmp_path, "not a file")):
+        with pytest.raises(ValueError, match=word) as info:
+            dio.read_netcdf(path)
+        assert "\n" not in str(info.value)

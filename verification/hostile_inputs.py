@@ -1,0 +1,661 @@
+"""Hostile-input campaign: try hundreds of bad inputs on the dhfield CLI and Python API (issue 9).
+
+Every numeric option of every subcommand (found in the argparse parser, so new
+subcommands are covered), bad output paths (directories, device nodes, FIFOs,
+symbolic links, read-only files, missing directories, over-long and empty
+names), bad environment variables, signals in the middle of a run, and bad
+arguments to the public Python functions.  Each case runs in a forked child of
+this process (dhfield is imported once) in its own temporary directory, with a
+timeout.  Outcomes:
+
+* ``clean error``     exit 2 and exactly one line on stderr, ``dhfield: error: ...``;
+                      for the API, a ValueError naming the parameter;
+* ``accepted``        exit 0 with a sane output (finite numbers; pull-off in [DMT, 0));
+* ``clean signal``    exit 128 + n after signal n, one line, nothing left behind;
+* ``noisy error``     exit 2 but more than one line on stderr (e.g. warnings first);
+* ``unnamed error``   API ValueError that does not name the parameter;
+* ``traceback``       a traceback, or an exception other than ValueError from the API;
+* ``internal error``  the CLI's one-line report of an unexpected exception (exit 1);
+* ``hang``            no exit within the timeout;
+* ``silent wrong``    exit 0 (or a return value) with a non-finite or unphysical result;
+* ``clobbered``       the target changed although it must not have, or a ``.part`` was left.
+
+Usage::
+
+    python verification/hostile_inputs.py            # the whole campaign (a few minutes)
+    python verification/hostile_inputs.py --quick     # a subset (about a minute)
+
+It prints the counts per outcome and lists every case that is not clean.
+Exit status 0 when there is no traceback, hang, silent wrong output or
+clobbered file, else 1.
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import io
+import json
+import math
+import os
+import pickle
+import signal
+import stat
+import sys
+import tempfile
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+
+CLEAN = ("clean error", "accepted", "clean signal")
+DEFECTS = ("traceback", "hang", "silent wrong", "clobbered")
+TRACEBACK_STATUS = 99  # exit status of a child whose main() raised
+
+#: Bad values for float options ("" and "abc" are not numbers; 1e400 overflows to inf).
+FLOAT_VALUES = ("nan", "inf", "-inf", "1e308", "-1e308", "1e-308", "0", "-1", "abc", "", "1e400", "0x10")
+#: Bad values for integer options.
+INT_VALUES = ("0", "-1", "2.5", "abc", "", "1e3", "99999999999", "-99999999999", "nan")
+QUICK_FLOAT_VALUES = ("nan", "-1", "abc", "1e308", "1e-308")
+QUICK_INT_VALUES = ("0", "abc", "99999999999")
+
+#: Small, fast valid invocations; the numeric options are mutated one at a time from these.
+SI = ["--youngs-modulus", "1e6", "--poisson-ratio", "0.5", "--cylinder-radius", "0.01", "--skew-angle-deg",
+      "60", "--work-of-adhesion", "0.05", "--adhesive-stress", "1e6"]
+BASELINES = {
+    "curve": [["--beta0", "0.9", "--mu", "1", "--n", "5"], [*SI, "--n", "5"]],
+    "pulloff": [["--beta0", "0.9", "--mu", "1", "--json"], [*SI, "--json"]],
+    "compare": [["--beta0", "0.9", "--mu", "1", "--json"], [*SI, "--json"]],
+    "periphery": [["--beta0", "0.9", "--mu", "1", "--n-theta", "3", "--json"]],
+    "field": [["--beta0", "0.9", "--mu", "1", "--a-star", "1.2", "--n", "16", "--out", "f.nc"]],
+    "solve": [["--beta0", "0.9", "--mu", "1", "--n", "32", "--json"]],
+    "fit": [["--pull-off-force", "-0.002", *SI, "--json"]],
+    "sweep": [["--beta0", "0.9", "--mu", "1", "--models", "jkr", "--workers", "1", "--out", "s.nc", "--quiet"]],
+}
+#: Values used for required options of subcommands without a baseline, by option name.
+GENERIC_VALUES = {"beta0": "0.9", "mu": "1", "a_star": "1.2", "n": "16", "n_theta": "3"}
+FILE_SUFFIX = {"curve": ".nc", "compare": ".nc", "periphery": ".nc", "field": ".nc", "solve": ".nc", "sweep": ".nc"}
+SIGNALS = ("SIGINT", "SIGTERM", "SIGHUP")
+
+
+@dataclass
+class Case:
+    kind: str                 # "cli", "path", "env", "signal", "api"
+    label: str
+    argv: list = field(default_factory=list)
+    env: dict = field(default_factory=dict)
+    setup: object = None      # f(workdir) -> dict of facts to check afterwards
+    expect: str = "reject"    # "reject", "ok", "either", "signal"
+    signal_after: tuple = ()  # (signal name, seconds)
+    api: object = None        # f() for API cases
+    param: str = ""           # the parameter an API rejection must name
+    outcome: str = ""
+    detail: str = ""
+
+
+# --------------------------------------------------------------------------- running a case in a fork
+def _child(case: Case, workdir: Path, out_fd: int, err_fd: int) -> None:
+    os.dup2(out_fd, 1)
+    os.dup2(err_fd, 2)
+    sys.stdout = io.TextIOWrapper(os.fdopen(1, "wb", closefd=False), line_buffering=True)
+    sys.stderr = io.TextIOWrapper(os.fdopen(2, "wb", closefd=False), line_buffering=True)
+    status = 0
+    try:
+        os.chdir(workdir)
+        for k, v in case.env.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        if case.kind == "api":
+            try:
+                value = case.api()
+            except ValueError as exc:
+                print(json.dumps({"raised": "ValueError", "message": str(exc)}))
+            except Exception as exc:  # noqa: BLE001 - classified by the parent
+                print(json.dumps({"raised": type(exc).__name__, "message": str(exc)}))
+                traceback.print_exc()
+            else:
+                print(json.dumps({"returned": _summary(value)}))
+        else:
+            from dhfield.cli import main
+
+            status = int(main(case.argv) or 0)
+    except SystemExit as exc:
+        status = exc.code if isinstance(exc.code, int) else 1
+    except BaseException:  # noqa: BLE001 - a traceback is an outcome here
+        traceback.print_exc()
+        status = TRACEBACK_STATUS
+    finally:
+        with contextlib.suppress(Exception):
+            sys.stdout.flush()
+            sys.stderr.flush()
+        os._exit(status)
+
+
+def _summary(value):
+    """Finite-ness and the numbers of an API return value, for the parent to judge."""
+    nums = []
+
+    def walk(v, depth=0):
+        if depth > 3:
+            return
+        if isinstance(v, (int, float, np.number)) and not isinstance(v, bool):
+            nums.append(float(v))
+        elif isinstance(v, np.ndarray) and v.dtype.kind in "iuf":
+            nums.extend(np.asarray(v, dtype=float).ravel()[:10000].tolist())
+        elif isinstance(v, dict):
+            for x in v.values():
+                walk(x, depth + 1)
+        elif isinstance(v, (list, tuple)):
+            for x in v:
+                walk(x, depth + 1)
+        elif hasattr(v, "__dataclass_fields__"):
+            for k in v.__dataclass_fields__:
+                walk(getattr(v, k), depth + 1)
+
+    walk(value)
+    arr = np.asarray(nums, dtype=float)
+    return {"n": int(arr.size), "finite": bool(np.all(np.isfinite(arr))),
+            "W_star": _w_star(value)}
+
+
+def _w_star(value):
+    w = getattr(value, "W_star", None)
+    if w is None and isinstance(value, dict):
+        w = value.get("W_star")
+    try:
+        return [float(x) for x in np.ravel(w)] if w is not None else None
+    except (TypeError, ValueError):
+        return None
+
+
+def run_case(case: Case, timeout: float) -> None:
+    with tempfile.TemporaryDirectory(prefix="dhf-hostile-") as tmp:
+        workdir = Path(tmp)
+        (workdir / "cache").mkdir()
+        case.env.setdefault("DHFIELD_CACHE", str(workdir / "cache"))
+        facts = case.setup(workdir) if case.setup else {}
+        with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+            pid = os.fork()
+            if pid == 0:
+                _child(case, workdir, out.fileno(), err.fileno())
+            t0 = time.monotonic()
+            sent = False
+            status = None
+            while True:
+                done, wstatus = os.waitpid(pid, os.WNOHANG)
+                if done:
+                    status = os.waitstatus_to_exitcode(wstatus)
+                    break
+                elapsed = time.monotonic() - t0
+                if case.signal_after and not sent and elapsed >= case.signal_after[1]:
+                    os.kill(pid, getattr(signal, case.signal_after[0]))
+                    sent = True
+                if elapsed > timeout:
+                    os.kill(pid, signal.SIGKILL)
+                    os.waitpid(pid, 0)
+                    break
+                time.sleep(0.005)
+            out.seek(0)
+            err.seek(0)
+            stdout = out.read().decode(errors="replace")
+            stderr = err.read().decode(errors="replace")
+        classify(case, status, stdout, stderr, workdir, facts, sent)
+
+
+# --------------------------------------------------------------------------- classification
+def _state(path: Path):
+    """What a target is, to tell whether it was replaced or modified."""
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        return None
+    link = os.readlink(path) if stat.S_ISLNK(st.st_mode) else None
+    data = path.read_bytes() if stat.S_ISREG(st.st_mode) else None
+    return (stat.S_IFMT(st.st_mode), stat.S_IMODE(st.st_mode), st.st_ino, link, data)
+
+
+def _left_behind(workdir: Path):
+    return [str(p.relative_to(workdir)) for p in workdir.rglob("*") if p.name.endswith(".part")]
+
+
+_NONFINITE = ("nan", "inf", "null")
+
+
+def _sane_stdout(case: Case, stdout: str):
+    """None if the accepted output looks right, else the reason."""
+    text = stdout.strip()
+    if text.startswith("{"):
+        try:
+            rec = json.loads(text)
+        except ValueError:
+            return "unparsable JSON"
+        return _sane_record(case, rec)
+    low = text.lower()
+    for word in _NONFINITE:
+        for tok in low.replace(",", " ").split():
+            if tok.strip("[]()") in (word, "-" + word):
+                return f"non-finite number ({tok}) in the output"
+    return None
+
+
+def _sane_record(case, rec):
+    """Every pull-off record: W* finite and in [DMT, 0) = [-1, 0) (Eq. 34 normalisation), or a stated failure.
+
+    Other nulls are fields a model does not have (e.g. c* of JKR) and are fine.
+    """
+    records = rec.get("models", [rec]) if isinstance(rec, dict) else []
+    for m in records if isinstance(records, list) else []:
+        if not isinstance(m, dict) or "W_star" not in m:
+            continue
+        w = m["W_star"]
+        name = m.get("model", "")
+        if w is None:
+            if not (m.get("warning") or m.get("error")):
+                return f"W* is null (non-finite) without a stated reason ({name})"
+        elif not -1.0 - 1e-9 <= w < 0.0:
+            return f"pull-off W* = {w} outside [DMT = -1, 0) ({name})"
+    return None
+
+
+def classify(case: Case, status, stdout: str, stderr: str, workdir: Path, facts: dict, sent: bool) -> None:
+    lines = [ln for ln in stderr.strip().splitlines() if ln.strip()]
+    left = _left_behind(workdir)
+    changed = [name for name, before in facts.get("targets", {}).items() if _state(workdir / name) != before]
+    if status is None:
+        case.outcome, case.detail = "hang", "killed after the timeout"
+        return
+    if left:
+        case.outcome, case.detail = "clobbered", f"left behind: {left}"
+        return
+    if "Traceback (most recent call last)" in stderr or status == TRACEBACK_STATUS:
+        case.outcome, case.detail = "traceback", (lines[-1] if lines else "")[:160]
+        if case.kind == "api" and stdout.strip().startswith("{"):
+            with contextlib.suppress(ValueError):
+                rec = json.loads(stdout.strip().splitlines()[0])
+                case.detail = f"{rec.get('raised')}: {rec.get('message', '')}"[:160]
+        return
+    if case.kind == "api":
+        return _classify_api(case, stdout)
+    if changed and (case.expect in ("reject", "signal") or status != 0):
+        case.outcome, case.detail = "clobbered", f"changed: {changed} (exit {status})"
+        return
+    if case.kind == "signal":
+        if not sent:
+            case.outcome, case.detail = "accepted", "finished before the signal"
+            return
+        want = 128 + getattr(signal, case.signal_after[0])
+        if status == want and len(lines) == 1 and lines[0].startswith("dhfield: "):
+            outputs = [p for p in workdir.iterdir() if p.name not in ("cache",)]
+            case.outcome = "clean signal" if not outputs else "clobbered"
+            case.detail = "" if not outputs else f"output present after the signal: {outputs}"
+        elif status == 0:
+            case.outcome, case.detail = "accepted", "finished before the signal took effect"
+        else:
+            case.outcome, case.detail = "traceback", f"exit {status}: {' | '.join(lines[-2:])[:160]}"
+        return
+    if status == 2:
+        if lines and lines[-1].startswith("dhfield: error:"):
+            case.outcome = "clean error" if len(lines) == 1 else "noisy error"
+            case.detail = lines[-1][:160] if len(lines) == 1 else f"{len(lines)} lines: {lines[0][:100]}"
+        else:
+            case.outcome, case.detail = "traceback", f"exit 2 without the one-line error: {stderr[:160]}"
+        return
+    if status == 1 and lines and lines[-1].startswith("dhfield: internal error"):
+        case.outcome, case.detail = "internal error", lines[-1][:200]
+        return
+    if status == 0:
+        reason = _sane_stdout(case, stdout)
+        if reason:
+            case.outcome, case.detail = "silent wrong", reason
+        elif case.kind == "path" and case.expect == "reject":
+            case.outcome, case.detail = "clobbered", "a path that must be refused was accepted"
+        else:
+            case.outcome = "accepted"
+            case.detail = f"{len(lines)} warning line(s)" if lines else ""
+        return
+    case.outcome, case.detail = "traceback", f"exit {status}: {' | '.join(lines[-2:])[:160]}"
+
+
+def _classify_api(case: Case, stdout: str) -> None:
+    try:
+        rec = json.loads(stdout.strip().splitlines()[0])
+    except (ValueError, IndexError):
+        case.outcome, case.detail = "traceback", "no result from the child"
+        return
+    if rec.get("raised") == "ValueError":
+        msg = rec.get("message", "")
+        named = case.param.lower() in msg.lower().replace("-", "_") or case.param.lower() in msg.lower()
+        case.outcome = "clean error" if named and "\n" not in msg else "unnamed error"
+        case.detail = msg[:160]
+    elif "raised" in rec:
+        case.outcome, case.detail = "traceback", f"{rec['raised']}: {rec.get('message', '')}"[:160]
+    else:
+        summ = rec["returned"]
+        if not summ["finite"]:
+            case.outcome, case.detail = "silent wrong", "non-finite number in the result"
+        elif summ.get("W_star") and any(not (-1.0 - 1e-9 <= w < 0.0) for w in summ["W_star"]):
+            case.outcome, case.detail = "silent wrong", f"W* = {summ['W_star'][:3]} outside [DMT = -1, 0)"
+        elif case.expect == "reject":
+            case.outcome, case.detail = "silent wrong", "accepted an input that must be refused"
+        else:
+            case.outcome, case.detail = "accepted", ""
+
+
+# --------------------------------------------------------------------------- building the cases
+def subcommand_parsers():
+    from dhfield.cli import build_parser
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return dict(sub.choices)
+
+
+def _numeric_actions(sp):
+    out = []
+    for a in sp._actions:
+        if not a.option_strings or a.dest == "help":
+            continue
+        t = a.type
+        kind = "float" if t is float else "int" if t is int else getattr(t, "__name__", "") if t else ""
+        if kind in ("float", "int", "thread_count"):
+            out.append((a, "int" if kind == "thread_count" else kind))
+    return out
+
+
+def _baselines(name, sp):
+    if name in BASELINES:
+        return [[name, *b] for b in BASELINES[name]]
+    argv = [name]
+    for a in sp._actions:
+        if a.required and a.option_strings:
+            if a.dest not in GENERIC_VALUES and a.dest != "out":
+                return []
+            argv += [a.option_strings[0], GENERIC_VALUES.get(a.dest, f"o{FILE_SUFFIX.get(name, '.nc')}")]
+        elif a.required:
+            return []  # a positional we cannot invent
+    return [argv]
+
+
+def _with_value(baseline, action, value):
+    opt = action.option_strings[0]
+    nargs = action.nargs if isinstance(action.nargs, int) else 1
+    argv = list(baseline)
+    if opt in argv:
+        i = argv.index(opt)
+        j = i + 1
+        while j < len(argv) and not argv[j].startswith("--"):
+            j += 1
+        vals = argv[i + 1:j] or ["1"] * nargs
+        vals[0] = value
+        return argv[:i + 1] + vals + argv[j:]
+    return argv + [opt, value] + ["1"] * (nargs - 1)
+
+
+def numeric_cases(parsers, quick):
+    cases = []
+    for name, sp in parsers.items():
+        bases = _baselines(name, sp)
+        if not bases:
+            continue
+        si_flags = {"--youngs-modulus", "--poisson-ratio", "--youngs-modulus-2", "--poisson-ratio-2",
+                    "--cylinder-radius", "--radii", "--principal-radii", "--skew-angle-deg",
+                    "--work-of-adhesion", "--adhesive-stress"}
+        for action, kind in _numeric_actions(sp):
+            opt = action.option_strings[0]
+            base = bases[-1] if (opt in si_flags and len(bases) > 1) else bases[0]
+            if opt in si_flags and len(bases) == 1 and not any(f in base for f in si_flags):
+                continue  # this subcommand has no SI baseline
+            values = (QUICK_INT_VALUES if quick else INT_VALUES) if kind == "int" else \
+                (QUICK_FLOAT_VALUES if quick else FLOAT_VALUES)
+            for v in values:
+                cases.append(Case("cli", f"{name} {opt} {v!r}", _with_value(base, action, v), expect="either"))
+    return cases
+
+
+def _path_setups(suffix):
+    """(label, out argument, setup, expectation) for hostile output paths."""
+    def plain(name, content=b"previous\n", mode=0o644):
+        def setup(w):
+            (w / name).write_bytes(content)
+            os.chmod(w / name, mode)
+            return {"targets": {name: _state(w / name)}}
+        return setup
+
+    def directory(w):
+        (w / f"d{suffix}").mkdir()
+        return {"targets": {f"d{suffix}": _state(w / f"d{suffix}")}}
+
+    def fifo(w):
+        os.mkfifo(w / f"p{suffix}")
+        return {"targets": {f"p{suffix}": _state(w / f"p{suffix}")}}
+
+    def device(w):
+        os.mknod(w / f"null{suffix}", stat.S_IFCHR | 0o666, os.makedev(1, 3))
+        return {"targets": {f"null{suffix}": _state(w / f"null{suffix}")}}
+
+    def symlink(w):
+        (w / f"real{suffix}").write_bytes(b"keep\n")
+        (w / f"link{suffix}").symlink_to(w / f"real{suffix}")
+        return {"targets": {f"link{suffix}": _state(w / f"link{suffix}"), f"real{suffix}": _state(w / f"real{suffix}")}}
+
+    def dangling(w):
+        (w / f"dang{suffix}").symlink_to(w / f"nowhere{suffix}")
+        return {"targets": {f"dang{suffix}": _state(w / f"dang{suffix}"), f"nowhere{suffix}": None}}
+
+    def missing(w):
+        return {"targets": {"nodir": None}}
+
+    name_max = os.pathconf(tempfile.gettempdir(), "PC_NAME_MAX")
+    longest = "a" * (name_max - len(suffix)) + suffix
+    too_long = "b" * (name_max + 1 - len(suffix)) + suffix
+    rows = [
+        ("directory", f"d{suffix}", directory, "reject"),
+        ("FIFO", f"p{suffix}", fifo, "reject"),
+        ("symlink to a file", f"link{suffix}", symlink, "reject"),
+        ("dangling symlink", f"dang{suffix}", dangling, "reject"),
+        ("read-only file 0444", f"ro{suffix}", plain(f"ro{suffix}", mode=0o444), "reject"),
+        ("missing directory", f"nodir/x{suffix}", missing, "reject"),
+        ("empty path", "", None, "reject"),
+        ("trailing slash", f"x{suffix}/", None, "reject"),
+        (f"name of {name_max + 1} bytes", too_long, None, "reject"),
+        (f"name of {name_max} bytes", longest, None, "ok"),
+        ("existing writable file", f"old{suffix}", plain(f"old{suffix}", mode=0o640), "ok"),
+        ("wrong suffix .txt", "x.txt", None, "reject"),
+    ]
+    if os.geteuid() == 0:
+        rows.insert(1, ("device node (as /dev/null)", f"null{suffix}", device, "reject"))
+    return rows
+
+
+def path_cases(parsers, quick):
+    cases = []
+    for name, sp in parsers.items():
+        if name not in FILE_SUFFIX or not any("--out" in a.option_strings for a in sp._actions):
+            continue
+        bases = _baselines(name, sp)
+        if not bases:
+            continue
+        base = [a for a in bases[0]]
+        if "--out" in base:
+            i = base.index("--out")
+            base = base[:i] + base[i + 2:]
+        rows = _path_setups(FILE_SUFFIX[name])
+        if quick:
+            rows = rows[:4]
+        for label, out, setup, expect in rows:
+            if name == "sweep" and label in ("wrong suffix .txt", "directory"):
+                continue  # sweep writes FILE.nc or a directory
+            cases.append(Case("path", f"{name} --out <{label}>", [*base, "--out", out], setup=setup, expect=expect))
+    return cases
+
+
+def env_cases(quick):
+    base = ["field", "--beta0", "0.9", "--mu", "1", "--a-star", "1.2", "--n", "16", "--out", "f.nc"]
+    cases = []
+    for v in ("abc", "0", "-1", "1000000", "1.5", "", " 2 ", "1e3", "nan"):
+        expect = "ok" if v.strip() in ("", "2") else "reject"
+        cases.append(Case("env", f"DHFIELD_THREADS={v!r} field", base, env={"DHFIELD_THREADS": v}, expect=expect))
+
+    def bomb(w):
+        marker = w / "PWNED"
+        blob = pickle.dumps(_Bomb(str(marker)))
+        (w / "cache" / "fftw_wisdom.bin").write_bytes(blob)
+        import pyfftw
+
+        (w / "cache" / f"fftw_wisdom_pyfftw{pyfftw.__version__}.pickle").write_bytes(blob)
+        return {"targets": {"PWNED": None}}
+
+    def garbage(w):
+        (w / "cache" / "fftw_wisdom.bin").write_bytes(os.urandom(4096))
+        return {}
+
+    def cache_is_file(w):
+        (w / "cachefile").write_text("x")
+        return {}
+
+    specs = [("DHFIELD_CACHE with a pickle bomb", {}, bomb), ("DHFIELD_CACHE with garbage", {}, garbage),
+             ("DHFIELD_CACHE is a file", {"DHFIELD_CACHE": "cachefile"}, cache_is_file),
+             ("DHFIELD_CACHE under a file", {"DHFIELD_CACHE": "cachefile/sub"}, cache_is_file),
+             ("DHFIELD_CACHE empty", {"DHFIELD_CACHE": ""}, None),
+             ("HOME missing, no DHFIELD_CACHE", {"DHFIELD_CACHE": None, "HOME": "/nonexistent-home"}, None),
+             ("DHFIELD_DEBUG=1 with a bad input", {"DHFIELD_DEBUG": "1"}, None)]
+    for label, env, setup in specs:
+        argv = base if "DEBUG" not in label else ["pulloff", "--beta0", "7", "--mu", "1"]
+        cases.append(Case("env", label, argv, env=dict(env), setup=setup,
+                          expect="reject" if "DEBUG" in label else "ok"))
+    return cases[:4] + cases[-3:] if quick else cases
+
+
+class _Bomb:
+    def __init__(self, marker):
+        self.marker = marker
+
+    def __reduce__(self):
+        return (exec, (f"open({self.marker!r}, 'w').write('pwned')",))
+
+
+def signal_cases(quick):
+    cases = []
+    heavy = ["field", "--beta0", "0.9", "--mu", "1", "--a-star", "1.2", "--n", "1024", "--out", "f.nc"]
+    times = (0.3, 2.0, 5.0) if quick else (0.3, 1.0, 2.5, 4.0, 6.0, 9.0)
+    for sig in SIGNALS:
+        for t in times:
+            cases.append(Case("signal", f"{sig} after {t} s of field --n 1024", heavy, signal_after=(sig, t),
+                              expect="signal"))
+    for cmd in (["periphery", "--beta0", "0.9", "--mu", "1", "--n-theta", "50", "--out", "p.nc"],
+                ["curve", "--beta0", "0.9", "--mu", "1", "--out", "c.nc"]):
+        for sig in SIGNALS[: 1 if quick else 3]:
+            cases.append(Case("signal", f"{sig} after 0.2 s of {cmd[0]}", cmd, signal_after=(sig, 0.2),
+                              expect="signal"))
+    return cases
+
+
+def api_cases(quick):
+    """Bad arguments to the public Python functions."""
+    from dhfield import bem, compare, dimensional, fields, model
+    from dhfield import io as dio
+
+    bad_scalars = [("nan", float("nan")), ("inf", float("inf")), ("-1", -1.0), ("0", 0.0), ("'abc'", "abc"),
+                   ("None", None), ("1e308", 1e308), ("1e-308", 1e-308), ("[]", []),
+                   ("masked", np.ma.masked_array([1.0, 2.0], mask=[False, True])), ("True", True)]
+    if quick:
+        bad_scalars = bad_scalars[:6]
+    cases = []
+
+    def add(label, fn, param, expect="either"):
+        cases.append(Case("api", label, api=fn, param=param, expect=expect))
+
+    for lab, v in bad_scalars:
+        must = "reject" if lab in ("nan", "inf", "-1", "0", "'abc'", "None", "[]", "True") else "either"
+        add(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(v, 0.9), "mu", must)
+        add(f"model.pull_off(beta0={lab})", lambda v=v: model.pull_off(1.0, v), "beta0", must)
+        add(f"model.load_curve(mu={lab})", lambda v=v: model.load_curve(v, 0.9, n=5), "mu", must)
+        add(f"model.load_curve(beta0={lab})", lambda v=v: model.load_curve(1.0, v, n=5), "beta0", must)
+        for name in ("jkr", "dmt", "md", "dh-circular", "jkr-elliptic"):
+            add(f"compare.pull_off({name!r}, mu={lab})", lambda v=v, n=name: compare.pull_off(n, v, 0.9), "mu", must)
+        add(f"fields.model_case(n={lab})", lambda v=v: fields.model_case(v, 0.9, 1.0, 1.2), "n",
+            "reject" if lab != "1e-308" else "reject")
+        add(f"bem.Grid(nx={lab})", lambda v=v: bem.Grid(v, 16, 0.1, 0.1), "nx", "reject")
+        add(f"bem.Grid(dx={lab})", lambda v=v: bem.Grid(16, 16, v, 0.1), "dx",
+            "reject" if lab not in ("1e308", "1e-308") else "either")
+    for n in (2.5, 0, -3, 1, "5"):
+        add(f"model.load_curve(n={n!r})", lambda n=n: model.load_curve(1.0, 0.9, n=n), "n", "reject")
+    add("model.pull_off(mu=array with nan)", lambda: model.pull_off(np.array([1.0, np.nan]), 0.9), "mu", "reject")
+    add("model.pull_off(empty arrays)", lambda: model.pull_off(np.array([]), np.array([])), "mu", "either")
+    add("bem.surface_displacement(nan pressure)",
+        lambda: bem.surface_displacement(np.full((16, 16), np.nan), 0.1), "pressure", "reject")
+    add("bem.surface_displacement(1-D)", lambda: bem.surface_displacement(np.ones(16), 0.1), "pressure", "reject")
+    add("fields.check_case_memory(100000)", lambda: fields.check_case_memory(100000), "n=100000", "reject")
+    add("dimensional.contact_parameters(skew_angle=1e-12)",
+        lambda: dimensional.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1e-12, 0.05, 1e6), "skew_angle", "either")
+    add("dimensional.contact_parameters(youngs_modulus=-1)",
+        lambda: dimensional.contact_parameters(-1.0, 0.5, 1e6, 0.5, 0.01, 1.0, 0.05, 1e6), "youngs_modulus",
+        "reject")
+    add("dimensional.contact_parameters(poisson=0.7)",
+        lambda: dimensional.contact_parameters(1e6, 0.7, 1e6, 0.5, 0.01, 1.0, 0.05, 1e6), "poisson", "reject")
+
+    def write_to(target):
+        import xarray as xr
+
+        return lambda: dio.write_netcdf(xr.Dataset({"a": ("x", np.arange(3.0))}), target)
+
+    for target in ("", "missing/x.nc", ".", "/proc/version", "x\0.nc"):
+        add(f"io.write_netcdf(path={target!r})", write_to(target), "out", "reject")
+    add("io.read_netcdf(path=/etc/passwd)", lambda: dio.read_netcdf("/etc/passwd"), "input file", "reject")
+    add("io.read_netcdf(path=missing)", lambda: dio.read_netcdf("missing.nc"), "input file", "reject")
+    return cases
+
+
+# --------------------------------------------------------------------------- main
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="a subset (about a minute)")
+    ap.add_argument("--timeout", type=float, default=60.0, help="seconds per case before it counts as a hang")
+    ap.add_argument("--only", default=None, help="run only cases whose label contains this text")
+    args = ap.parse_args(argv)
+
+    parsers = subcommand_parsers()
+    cases = (numeric_cases(parsers, args.quick) + path_cases(parsers, args.quick) + env_cases(args.quick)
+             + signal_cases(args.quick) + api_cases(args.quick))
+    if args.only:
+        cases = [c for c in cases if args.only in c.label]
+    tty = sys.stderr.isatty()
+    t0 = time.monotonic()
+    for i, case in enumerate(cases, 1):
+        run_case(case, args.timeout)
+        if tty:
+            print(f"\r[{i}/{len(cases)}] {time.monotonic() - t0:6.0f} s  {case.label[:60]:60s}", end="",
+                  file=sys.stderr, flush=True)
+    if tty:
+        print(file=sys.stderr)
+
+    counts = {}
+    for c in cases:
+        counts[c.outcome] = counts.get(c.outcome, 0) + 1
+    kinds = {}
+    for c in cases:
+        kinds[c.kind] = kinds.get(c.kind, 0) + 1
+    print(f"hostile inputs tried: {len(cases)} in {time.monotonic() - t0:.0f} s "
+          f"({', '.join(f'{k} {v}' for k, v in kinds.items())}); subcommands: {', '.join(parsers)}")
+    order = ["clean error", "accepted", "clean signal", "noisy error", "unnamed error", "internal error",
+             "traceback", "hang", "silent wrong", "clobbered"]
+    for name in order + sorted(set(counts) - set(order)):
+        print(f"  {name:16s} {counts.get(name, 0):5d}")
+    bad = [c for c in cases if c.outcome not in CLEAN]
+    if bad:
+        print("\nnot clean:")
+        for c in sorted(bad, key=lambda c: (order.index(c.outcome) if c.outcome in order else 99, c.label)):
+            print(f"  [{c.outcome}] {c.label}: {c.detail}")
+    return 1 if any(c.outcome in DEFECTS for c in cases) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
