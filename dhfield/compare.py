@@ -113,7 +113,7 @@ from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
 
-__all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "WARNING_THRESHOLD",
+__all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "WARNING_THRESHOLD", "JKR_PROXY_MU",
            "closure_departure", "compare", "load_curve", "load_curve_at_load", "validity_message", "validity_table",
            "VALIDITY_RANGES", "pull_off", "to_dimensional"]
 
@@ -252,16 +252,55 @@ def _from_closure(st):
             "d_star": st.d_star, "delta_star": st.delta_star, "at_zero_contact": st.at_zero_contact}
 
 
-def _departure_warning(w_paper, w_two_axis):
-    dep = np.asarray(w_paper, float) / np.asarray(w_two_axis, float) - 1.0
+#: Smallest mu at which elliptical JKR stands in for the two-axis closure where the closure does not
+#: accept the inputs (within 0.3 % of it for mu >= 10 over beta0 = 0.3-0.99, table above).
+JKR_PROXY_MU = 10.0
+_TWO_AXIS = "the two-axis closure"
+_JKR_PROXY = f"elliptical JKR (the two-axis closure's limit, mu >= {JKR_PROXY_MU:g})"
 
-    def one(x):
+
+def _reference(mu, beta0, control):
+    """W* of the two-axis closure where it accepts (mu, beta0), elliptical JKR above it at mu >= 10.
+
+    Returns the reference W* (NaN where neither applies), its label per point, and the
+    reason where it is NaN.
+    """
+    mu_lo, mu_hi = getattr(closure, "CLOSURE_MU_RANGE", (0.0, _INF))
+    b_lo, b_hi = getattr(closure, "CLOSURE_BETA0_RANGE", (0.0, 1.0))
+    mu, beta0 = np.broadcast_arrays(np.atleast_1d(mu), np.atleast_1d(beta0))
+    inside = (mu >= mu_lo) & (mu <= mu_hi) & (beta0 >= b_lo) & (beta0 <= b_hi)
+    ref = np.full(mu.shape, _NAN)
+    label = np.full(mu.shape, _TWO_AXIS, dtype=object)
+    reason = f"outside mu in [{mu_lo:g}, {mu_hi:g}], beta0 in [{b_lo:g}, {b_hi:g}] of dhfield.closure"
+    if inside.any():
+        try:
+            ref[inside] = closure.pull_off_two_axis(mu[inside], beta0[inside], control=control).W_star
+        except RuntimeError:
+            reason = "its solve did not converge"
+        except ValueError as exc:  # a narrower domain than the one published in dhfield.closure
+            reason = str(exc)
+    proxy = ~inside & (mu >= JKR_PROXY_MU)
+    if proxy.any():
+        ref[proxy] = jkr_elliptic._pull_off(beta0[proxy], control)["W_star"]
+        label[proxy] = _JKR_PROXY
+    return ref, label, reason
+
+
+def _departure_warning(w_paper, w_ref, label=_TWO_AXIS, reason=""):
+    w_paper, w_ref, label = np.broadcast_arrays(np.asarray(w_paper, float), np.asarray(w_ref, float),
+                                                np.asarray(label, dtype=object))
+    dep = w_paper / w_ref - 1.0
+
+    def one(x, lab):
+        if np.isnan(x):
+            return f"dh-elliptic could not be checked against {_TWO_AXIS} ({reason})"
         if not abs(x) > WARNING_THRESHOLD:
             return ""
-        return (f"dh-elliptic pull-off departs from the two-axis closure by {100 * x:+.1f} % "
-                f"(> {100 * WARNING_THRESHOLD:g} %): prefer the model dh-elliptic-two-axis")
+        return (f"dh-elliptic pull-off departs from {lab} by {100 * x:+.1f} % "
+                f"(> {100 * WARNING_THRESHOLD:g} %): prefer the model "
+                + ("dh-elliptic-two-axis" if lab == _TWO_AXIS else "jkr-elliptic"))
 
-    out = np.array([one(x) for x in dep.ravel()], dtype=object).reshape(dep.shape)
+    out = np.array([one(x, lab) for x, lab in zip(dep.ravel(), label.ravel())], dtype=object).reshape(dep.shape)
     return out[()] if out.ndim == 0 else out
 
 
@@ -298,14 +337,12 @@ def _dh_elliptic(mu, beta0, control="load", *, check_closure=True, two_axis=None
     res = dh_pull_off(mu, beta0, control=control)
     warning = ""
     if check_closure:
-        try:
-            ref = two_axis if two_axis is not None else _two_axis(mu, beta0, control)
-        except RuntimeError:  # the closure's Newton solve failed: say so, keep the paper's result
-            warning = "dh-elliptic could not be checked against the two-axis closure (its solve did not converge)"
-        except ValueError as exc:  # outside closure.CLOSURE_MU_RANGE / CLOSURE_BETA0_RANGE
-            warning = f"dh-elliptic could not be checked against the two-axis closure ({exc})"
-        else:
-            warning = _departure_warning(res.W_star, ref["W_star"])
+        if two_axis is not None:
+            warning = _departure_warning(res.W_star, two_axis["W_star"])
+        else:  # the closure where it accepts the inputs, elliptical JKR above its mu cap
+            ref, label, reason = _reference(mu, beta0, control)
+            warning = _departure_warning(res.W_star, ref.reshape(np.shape(res.W_star)),
+                                         label.reshape(np.shape(res.W_star)), reason)
     return _record("dh-elliptic", mu, beta0, control, _from_model(res), sin_skew_angle(beta0), "ellipse",
                    warning)
 
@@ -404,7 +441,10 @@ def pull_off(model, mu, beta0, control="load", *, check_closure=True):
     check_closure : bool
         For ``dh-elliptic`` only: also solve the two-axis closure (about 1 s per
         point) and fill ``warning`` where the two depart by more than
-        :data:`WARNING_THRESHOLD`.  False leaves ``warning`` empty.
+        :data:`WARNING_THRESHOLD`.  Where :mod:`dhfield.closure` does not accept
+        the inputs (mu above its cap) and mu >= :data:`JKR_PROXY_MU`, elliptical
+        JKR, the closure's high-mu limit, stands in.  False leaves ``warning``
+        empty of this check.
 
     Returns
     -------

@@ -275,3 +275,12 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
     assert res["jkr"]["W_star"] == -0.75
     with pytest.raises(ValueError, match="beta0"):
         compare.compare(1.0, 1.5)
+
+
+def test_jkr_stands_in_above_the_closure_cap(monkeypatch):
+    """Above the closures' mu cap (mu >= 10), elliptical JKR, their high-mu limit, is the reference."""
+    monkeypatch.setattr(compare.closure, "CLOSURE_MU_RANGE", (1e-6, 20.0), raising=False)
+    rec = compare.pull_off("dh-elliptic", 25.0, 0.9)
+    w_jkr = compare.pull_off("jkr-elliptic", 25.0, 0.9)["W_star"]
+    assert "elliptical JKR" in rec["warning"] and f"{100 * (rec['W_star'] / w_jkr - 1):+.1f} %" in rec["warning"]
+    assert "prefer the model jkr-elliptic" in rec["warning"]
