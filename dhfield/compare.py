@@ -19,7 +19,8 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 * ``at_zero_contact``: the pull-off is reached as the contact vanishes.
 * ``warning``: empty, except outside the model's validated range
   (:data:`VALIDITY_RANGES`) and, for ``dh-elliptic``, where its pull-off departs
-  from the two-axis closure by more than :data:`WARNING_THRESHOLD` (2 %).
+  from the two-axis closure by more than :data:`WARNING_THRESHOLD` (2 %) (from
+  elliptical JKR, the closure's limit, where mu exceeds the closures' cap).
 * mu is the paper's Eq. (35); MD is evaluated at lambda = 1.1272 mu
   (:mod:`dhfield.transition`, same sigma0).  JKR, DMT and elliptical JKR do not
   depend on mu.
