@@ -108,6 +108,10 @@ MAX_OUTER = 300
 #: K sums to ~(2/pi) ln(c/dx) dx/E*, so an edge narrower than that makes every discrete
 #: state unstable (lattice trapping: no converged state, jumps).  The regularisation is
 #: symmetric about h0 (the work of adhesion is unchanged) and vanishes like dx ln(1/dx).
+#: It is capped at 2 h0; a grid that would need more is under-resolved
+#: (``resolved=False`` in the results: the process zone c - a is not resolved, expect
+#: unconverged states), which needs roughly dx < 2 E* h0/(kappa_n sigma0), i.e.
+#: dx < 2/(kappa_n mu^2) in the paper's units.
 EDGE_WIDTH_FACTOR = 1.25
 #: Inner tolerance per outer iteration = INNER_FACTOR x the last outer residual.
 INNER_FACTOR = 0.1
@@ -160,10 +164,14 @@ class _Problem:
         self.weight = (4.0 if self.symmetric else 1.0) * grid.dx * grid.dy
         # smallest edge width of the Dugdale zone (see EDGE_WIDTH_FACTOR)
         self.min_spread = 0.0
+        self.resolved = True
         if isinstance(self.law, DugdaleLaw):
             cells = math.sqrt(grid.nx * grid.ny)
             kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(cells))
-            self.min_spread = kappa * self.law.max_stress * math.sqrt(dx * dy) / e
+            want = kappa * self.law.max_stress * math.sqrt(dx * dy) / e
+            # at most 2 h0: the smeared edge stays within h >= 0 and keeps the work of adhesion
+            self.min_spread = min(want, 2.0 * self.law.range)
+            self.resolved = want <= 2.0 * self.law.range
 
     def to_full(self, q):
         return unfold_quadrant(q) if self.symmetric else q
@@ -509,6 +517,9 @@ class UnloadingPath:
     pull_off_converged : bool
         True when every state from the start of the path down to the pull-off
         converged (failures beyond the jump do not count).
+    resolved : bool
+        False when the grid is too coarse for the Dugdale edge (see
+        ``EDGE_WIDTH_FACTOR``): the results are then not trustworthy.
     """
 
     approach: np.ndarray
@@ -531,6 +542,7 @@ class UnloadingPath:
     states: tuple = field(default=(), repr=False)
     elapsed: float = 0.0
     pull_off_converged: bool = True
+    resolved: bool = True
 
     @property
     def n_steps(self) -> int:
@@ -727,23 +739,30 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     # pull-off
     br = bracket(current)
     if br is None:
-        raise RuntimeError("unloading path has no converged contact state: raise approach_max or check the grid")
-    up, lo, idx = br
-    if control == "displacement":
+        # no converged contact state at all: report the failure (NaN pull-off), never raise
+        k_po = len(records) - 1
+        w_po = d_po = float("nan")
+        po_converged = False
+    elif control == "displacement":
+        up, lo, idx = br
         k_po = up
         w_po = records[k_po]["load"]
         d_po = records[k_po]["approach"]
     else:
+        up, lo, idx = br
         x = np.array([records[i]["approach"] for i in idx])
         w = np.array([records[i]["load"] if (records[i]["converged"] and records[i]["in_contact"])
                       else np.nan for i in idx])
         sm = refine_sampled_minimum(x, w, first=False)
         k_po = idx[sm.index]
         w_po, d_po = sm.y, sm.x
-    # the pull-off is trusted when every state from the start down to it converged
-    reached = [i for i in range(len(records)) if records[i]["phase"] != "jump"
-               and records[i]["approach"] >= records[k_po]["approach"]]
-    po_converged = all(records[i]["converged"] for i in reached)
+    if br is not None:
+        # the pull-off is trusted when every state from the start down to it converged
+        reached = [i for i in range(len(records)) if records[i]["phase"] != "jump"
+                   and records[i]["approach"] >= records[k_po]["approach"]]
+        po_converged = all(records[i]["converged"] for i in reached)
+    if k_po not in by_index:
+        k_po = max(by_index)
     arr = {key: np.array([r[key] for r in records]) for key in
            ("approach", "load", "a", "b", "c", "d", "contact_area", "phase", "converged", "iterations",
             "outer_iterations", "residual")}
@@ -752,7 +771,7 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
                          arr["contact_area"], arr["phase"], arr["converged"].astype(bool),
                          arr["iterations"].astype(int), arr["outer_iterations"].astype(int),
                          arr["residual"], control, float(w_po), float(d_po), by_index[k_po],
-                         tuple(failures), states, time.perf_counter() - t0, po_converged)
+                         tuple(failures), states, time.perf_counter() - t0, po_converged, prob.resolved)
 
 
 # ============================================================================ paper units
@@ -890,6 +909,9 @@ class AdhesivePullOff:
         Largest residual over the path.
     failures : tuple of dict
         Unconverged states (approach, residual, iterations, phase).
+    resolved : bool
+        False when the grid is too coarse to resolve the Dugdale edge
+        (dx > 2 E* h0/(kappa_n sigma0), see ``EDGE_WIDTH_FACTOR``): increase n.
     half_width_x, half_width_y : float
         Domain half-widths [c_r].
     elapsed : float
@@ -916,6 +938,7 @@ class AdhesivePullOff:
     iterations: int
     residual: float
     failures: tuple
+    resolved: bool
     half_width_x: float
     half_width_y: float
     elapsed: float
@@ -925,7 +948,7 @@ class AdhesivePullOff:
         """JSON-ready scalars (the path and failures summarised)."""
         out = {k: getattr(self, k) for k in (
             "mu", "beta0", "n", "law", "control", "W_star", "a_star", "b_star", "c_star", "d_star",
-            "beta_ab", "beta_cd", "delta_star", "converged", "n_steps", "iterations", "residual",
+            "beta_ab", "beta_cd", "delta_star", "converged", "resolved", "n_steps", "iterations", "residual",
             "half_width_x", "half_width_y", "elapsed")}
         out["failures"] = [dict(f) for f in self.failures]
         out["iterations_per_step"] = self.iterations / max(self.n_steps, 1)
@@ -988,7 +1011,7 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         a_star=a, b_star=b, c_star=c, d_star=d, beta_ab=b / a if a > 0 else float("nan"),
         beta_cd=d / c if c > 0 else float("nan"), delta_star=float(path.pull_off_approach),
         converged=path.pull_off_converged, n_steps=path.n_steps, iterations=int(path.iterations.sum()),
-        residual=float(path.residual.max()), failures=path.failures,
+        residual=float(path.residual.max()), failures=path.failures, resolved=path.resolved,
         half_width_x=0.5 * prob.grid.nx * prob.grid.dx, half_width_y=0.5 * prob.grid.ny * prob.grid.dy,
         elapsed=path.elapsed, path=path)
 
