@@ -1,0 +1,140 @@
+"""Accuracy of the adhesive BEM solver (dhfield.bem.adhesive): the "must show" figures of issue 8.
+
+Prints, side by side in one run:
+
+1. **Sphere against Maugis-Dugdale** (beta0 = 1, Dugdale law, lambda = 1.1272 mu in
+   {0.3, 1, 3}): the load-control pull-off W* (Eq. 34) at each N, its error against
+   MD (Maugis 1992, :mod:`dhfield.maugis_dugdale`), the Richardson extrapolation over
+   the three N (with the observed order), the largest error of the contact radius
+   along the unloading curve (BEM second-moment radius against the MD radius at the
+   same approach, on the stable branch), seconds per path and CG iterations per state.
+   Targets: 1 % at N = 256 for lambda <= 1, 2 % at lambda = 3; Richardson within
+   0.5 %; contact radius within 2 %.
+2. **Elliptical Hertz** (no adhesion, beta = 0.6, a = 1, domain 1.25 a x 1.25 b):
+   semi-axes and peak pressure against Eqs. (8), (10) at N = 256 (target 0.5 %).
+
+Usage::
+
+    .venv/bin/python verification/convergence_adhesive.py            # N = 256, 512, 1024 (long)
+    .venv/bin/python verification/convergence_adhesive.py --quick    # N = 64, 128, 256
+
+The full run takes hours on one core at N = 1024 (one path is ~35 states); ``--n``
+selects the grids, e.g. ``--n 128 256 512``.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+import numpy as np
+from scipy.optimize import brentq
+
+from dhfield import hertz, maugis_dugdale, transition
+from dhfield.bem import Grid, adhesive_pull_off, richardson_extrapolation, solve_adhesive
+from dhfield.geometry import radius_ratio
+
+LAMBDAS = (0.3, 1.0, 3.0)
+#: Targets of issue 8.
+TARGET_PULL_OFF = {0.3: 0.01, 1.0: 0.01, 3.0: 0.02}   # at N = 256
+TARGET_RICHARDSON = 0.005
+TARGET_RADIUS = 0.02
+TARGET_HERTZ = 0.005
+
+
+def _md_radius_at_approach(delta, mu, a_lo, a_hi=6.0):
+    """MD contact radius a* at approach delta* on the stable branch a >= a_lo."""
+    def f(a):
+        return float(maugis_dugdale._curve(a, mu)["delta_star"]) - delta
+
+    lo = max(a_lo, 1e-6)
+    if f(lo) > 0 or f(a_hi) < 0:
+        return float("nan")
+    return brentq(f, lo, a_hi, xtol=1e-12)
+
+
+def sphere_row(lam, n):
+    mu = float(transition.tabor_from_maugis(lam))
+    t0 = time.perf_counter()
+    res = adhesive_pull_off(mu, 1.0, n, progress=None)
+    el = time.perf_counter() - t0
+    ref = maugis_dugdale._pull_off(mu)
+    ref_d = maugis_dugdale._pull_off(mu, "displacement")
+    w_ref = float(ref["W_star"])
+    path = res.path
+    # contact radius along the stable branch (states converged, in contact, above the MD fold)
+    errs = []
+    for i in range(path.n_steps):
+        if not path.converged[i] or path.a[i] <= 0 or path.phase[i] == "jump":
+            continue
+        a_md = _md_radius_at_approach(path.approach[i], mu, float(ref_d["a_star"]))
+        if np.isfinite(a_md) and a_md > 0.25:   # very small contacts: a few cells, O(h) noise
+            errs.append(abs(path.a[i] / a_md - 1.0))
+    return {"lam": lam, "mu": mu, "n": n, "W": res.W_star, "W_md": w_ref, "err": res.W_star / w_ref - 1.0,
+            "radius_err": max(errs) if errs else float("nan"), "seconds": el, "states": res.n_steps,
+            "it_per_state": res.iterations / max(res.n_steps, 1), "converged": res.converged,
+            "resolved": res.resolved, "failures": len(res.failures)}
+
+
+def hertz_row(n, beta=0.6):
+    rho = float(radius_ratio(beta))
+    r1, r2 = np.sqrt(rho), 1.0 / np.sqrt(rho)
+    grid = Grid.centered(n, 1.25, half_width_y=1.25 * beta)
+    x, y = grid.mesh()
+    z = x * x / (2 * r1) + y * y / (2 * r2)                      # Eq. (2), R = 1
+    t0 = time.perf_counter()
+    st = solve_adhesive(z, grid, float(hertz.approach(1.0, beta)), None, tol=1e-10)
+    el = time.perf_counter() - t0
+    a, b = st.contact_semi_axes()
+    p0 = float(hertz.max_pressure(1.0, beta))                    # Eq. (8)
+    return {"n": n, "a_err": a - 1.0, "b_err": b / beta - 1.0, "p0_err": st.peak_pressure / p0 - 1.0,
+            "W_err": st.load / float(hertz.load(1.0, beta)) - 1.0, "seconds": el, "it": st.iterations}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--quick", action="store_true", help="N = 64, 128, 256 instead of 256, 512, 1024")
+    ap.add_argument("--n", type=int, nargs=3, default=None, help="three grid sizes (geometric)")
+    ap.add_argument("--lam", type=float, nargs="+", default=list(LAMBDAS), help="Maugis lambdas")
+    args = ap.parse_args(argv)
+    ns = args.n or ([64, 128, 256] if args.quick else [256, 512, 1024])
+    print("Adhesive BEM vs Maugis-Dugdale sphere (Dugdale law, load-control pull-off, W* of Eq. 34)")
+    print(f"{'lambda':>6} {'N':>5} {'W*_BEM':>10} {'W*_MD':>10} {'err %':>8} {'max|da/a| %':>11} "
+          f"{'s/path':>7} {'states':>6} {'CG it/state':>11} {'conv':>5} {'resolved':>8}")
+    ok = True
+    for lam in args.lam:
+        rows = []
+        for n in ns:
+            r = sphere_row(lam, n)
+            rows.append(r)
+            print(f"{lam:6.2f} {n:5d} {r['W']:10.6f} {r['W_md']:10.6f} {100 * r['err']:8.3f} "
+                  f"{100 * r['radius_err']:11.3f} {r['seconds']:7.1f} {r['states']:6d} "
+                  f"{r['it_per_state']:11.1f} {str(r['converged']):>5} {str(r['resolved']):>8}", flush=True)
+        val, order = richardson_extrapolation(ns, [r["W"] for r in rows])
+        err = val / rows[0]["W_md"] - 1.0
+        print(f"{lam:6.2f}  Richardson over N = {ns}: W* = {val:.6f}, err {100 * err:+.3f} % "
+              f"(target {100 * TARGET_RICHARDSON:.1f} %), observed order {order:.2f}")
+        at256 = [r for r in rows if r["n"] == 256]
+        if at256:
+            tgt = TARGET_PULL_OFF.get(lam, 0.02)
+            good = abs(at256[0]["err"]) <= tgt
+            ok &= good
+            print(f"{lam:6.2f}  N = 256: |err| {100 * abs(at256[0]['err']):.3f} % <= {100 * tgt:.0f} %: "
+                  f"{'PASS' if good else 'FAIL'}; contact radius {100 * at256[0]['radius_err']:.2f} % <= 2 %: "
+                  f"{'PASS' if at256[0]['radius_err'] <= TARGET_RADIUS else 'FAIL'}")
+        ok &= abs(err) <= TARGET_RICHARDSON or not np.isfinite(err)
+    print("\nElliptical Hertz (no adhesion), beta = 0.6, a = 1: relative errors")
+    print(f"{'N':>5} {'a':>10} {'b':>10} {'p0':>10} {'W':>10} {'s':>6} {'CG it':>6}")
+    for n in sorted(set([128, 256] + ([] if args.quick else [512]))):
+        h = hertz_row(n)
+        print(f"{n:5d} {h['a_err']:10.2e} {h['b_err']:10.2e} {h['p0_err']:10.2e} {h['W_err']:10.2e} "
+              f"{h['seconds']:6.2f} {h['it']:6d}")
+        if n == 256:
+            good = max(abs(h["a_err"]), abs(h["b_err"]), abs(h["p0_err"])) <= TARGET_HERTZ
+            ok &= good
+            print(f"      N = 256 within 0.5 %: {'PASS' if good else 'FAIL'}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
