@@ -35,17 +35,20 @@ import numpy as np
 from scipy import optimize
 
 from . import _adhesion as units
-from . import compare, dimensional
+from . import closure, compare, dimensional
 from ._validation import TABOR_RANGE, check_finite, check_positive
 
-__all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve", "FIT_MU_RANGE",
+__all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve", "FIT_MU_RANGE", "fit_mu_range",
            "CURVE_FIT_MODEL_NAMES"]
 
 #: Tabor parameters mu (Eq. 35) the pull-off fit searches: the range every model
 #: accepts (:data:`dhfield._validation.TABOR_RANGE`, DMT limit to 1e-3 at the low
-#: end, JKR limit to 1e-6 at the high end).  A force that needs mu outside it is
-#: rejected, with the attainable range of forces in the message.
+#: end, JKR limit to 1e-6 at the high end), narrowed for the two closures to
+#: :data:`dhfield.closure.CLOSURE_MU_RANGE` (mu <= 20) by :func:`fit_mu_range`.  A
+#: force that needs mu outside it is rejected, with the attainable range of
+#: forces in the message.
 FIT_MU_RANGE = TABOR_RANGE
+_CLOSURE_MODELS = ("dh-elliptic-two-axis", "dh-elliptic-ray-average")
 #: Convergence of the root in ln(dgamma): the fitted dgamma is exact to this
 #: relative error for the forward model (round trip).
 _LOG_XTOL = 1e-13
@@ -178,6 +181,14 @@ def _check_params(params):
         raise ValueError("params must be scalar ContactParameters (one geometry and material); got arrays")
 
 
+def fit_mu_range(model) -> tuple:
+    """The Tabor parameters (Eq. 35) :func:`fit_work_of_adhesion` searches for ``model``."""
+    if model in _CLOSURE_MODELS:
+        lo, hi = closure.CLOSURE_MU_RANGE
+        return (max(lo, FIT_MU_RANGE[0]), min(hi, FIT_MU_RANGE[1]))
+    return FIT_MU_RANGE
+
+
 def _work_at_mu(mu, max_adhesive_stress, params):
     """dgamma at which the Tabor parameter is mu, for fixed sigma0: inverts Eq. (35)."""
     r, e = params.effective_radius, params.reduced_modulus
@@ -263,16 +274,21 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
         return math.log(-w) - target
 
     # ends of the search, nudged inside FIT_MU_RANGE so that rounding stays within the models' range
-    x_lo = math.log(_work_at_mu(FIT_MU_RANGE[1] * (1 - 1e-9), s0, params))  # large mu: small dgamma
-    x_hi = math.log(_work_at_mu(FIT_MU_RANGE[0] * (1 + 1e-9), s0, params))
+    mu_range = fit_mu_range(model)
+    x_lo = math.log(_work_at_mu(mu_range[1] * (1 - 1e-9), s0, params))  # large mu: small dgamma
+    x_hi = math.log(_work_at_mu(mu_range[0] * (1 + 1e-9), s0, params))
 
     def attainable():
         try:
-            rng = f"[{force(math.exp(x_hi)):.6g}, {force(math.exp(x_lo)):.6g}] N"
-        except (ValueError, RuntimeError):  # the model fails at an end: state the range of dgamma
-            rng = (f"the forces of work_of_adhesion in [{math.exp(x_lo):.6g}, {math.exp(x_hi):.6g}] J/m^2")
+            ends = (force(math.exp(x_hi)), force(math.exp(x_lo)))
+        except (ValueError, RuntimeError):  # the model fails at an end
+            ends = (float("nan"), float("nan"))
+        if all(math.isfinite(e) for e in ends):
+            rng = f"[{ends[0]:.6g}, {ends[1]:.6g}] N"
+        else:  # state the range of dgamma instead
+            rng = f"the forces of work_of_adhesion in [{math.exp(x_lo):.6g}, {math.exp(x_hi):.6g}] J/m^2"
         return (f"pull_off_force must be in {rng} for model {model!r} at max_adhesive_stress={s0:.6g} Pa "
-                f"(Tabor parameter mu in [{FIT_MU_RANGE[0]:g}, {FIT_MU_RANGE[1]:g}]); got {f_meas!r}")
+                f"(Tabor parameter mu in [{mu_range[0]:g}, {mu_range[1]:g}]); got {f_meas!r}")
 
     def clip(x):
         return min(max(x, x_lo), x_hi)

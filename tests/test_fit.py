@@ -238,3 +238,12 @@ def test_cli_fits_the_csv_that_curve_writes(capsys, tmp_path):
     rec = json.loads(out)
     assert rec["work_of_adhesion"] == pytest.approx(WORK, rel=RTOL_CURVE_EXACT)
     assert rec["max_adhesive_stress"] == pytest.approx(STRESS, rel=RTOL_CURVE_EXACT)
+
+
+def test_closure_models_search_their_own_mu_range(params):
+    from dhfield.closure import CLOSURE_MU_RANGE
+    from dhfield.fit import FIT_MU_RANGE, fit_mu_range
+
+    assert fit_mu_range("dh-elliptic-two-axis") == (FIT_MU_RANGE[0], CLOSURE_MU_RANGE[1])
+    assert fit_mu_range("md") == FIT_MU_RANGE
+    # (the rejection path itself costs four closure solves, ~20 s: verification.fit_round_trip shows it)
