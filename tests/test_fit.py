@@ -246,4 +246,5 @@ def test_closure_models_search_their_own_mu_range(params):
 
     assert fit_mu_range("dh-elliptic-two-axis") == (FIT_MU_RANGE[0], CLOSURE_MU_RANGE[1])
     assert fit_mu_range("md") == FIT_MU_RANGE
-    # (the rejection path itself costs four closure solves, ~20 s: verification.fit_round_trip shows it)
+    # (the rejection path itself costs four closure solves, ~20 s: python -m verification.fit_round_trip
+    # --models dh-elliptic-two-axis --seeds 0 prints it)

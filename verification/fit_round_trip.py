@@ -69,6 +69,17 @@ def curve_round_trips(models):
     return worst
 
 
+def closure_rejection():
+    """The issue's PDMS force with sigma0 = 0.5 MPa needs mu = 22 > 20: the closures refuse it by range."""
+    p = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=5e5)
+    print("\nclosure domain: two-axis fit of -1.05 mN at sigma0 = 0.5 MPa (needs mu ~ 22 > 20):")
+    try:
+        fit_work_of_adhesion(-1.05e-3, p, model="dh-elliptic-two-axis")
+        print("  accepted (unexpected)")
+    except ValueError as exc:
+        print(f"  ValueError: {exc}")
+
+
 def coverage(seeds):
     params = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
     start = dim.contact_parameters(**PDMS, work_of_adhesion=WORK / 2, max_adhesive_stress=2 * STRESS)
@@ -97,6 +108,8 @@ def main(argv=None) -> int:
     args = p.parse_args(argv)
     worst = round_trips(args.models)
     curve_round_trips([m for m in args.models if m in CURVE_FIT_MODEL_NAMES])
+    if "dh-elliptic-two-axis" in args.models:
+        closure_rejection()
     if args.seeds > 0:
         coverage(args.seeds)
     return 0 if worst <= 1e-8 else 1
