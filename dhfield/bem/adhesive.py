@@ -501,7 +501,9 @@ class UnloadingPath:
         Load-control: the minimum of the unloading load, refined by a parabola
         through the three finest samples around it.  Displacement control: the
         load and approach of the last contact state before contact is lost
-        (the jump), located to the finest step.
+        (the jump), located to the finest step, and extrapolated to the fold
+        (vertex of delta(W) through the last three states) when one is
+        bracketed within a sample span.
     pull_off_state : ContactState
         The solved state nearest to the pull-off (its semi-axes are reported).
     failures : tuple of dict
@@ -558,6 +560,30 @@ class UnloadingPath:
         """Indices of the unloading and refinement states by decreasing approach."""
         idx = np.nonzero(self.phase != "loading")[0]
         return idx[np.argsort(-self.approach[idx], kind="stable")]
+
+
+def _fold_vertex(loads, approaches):
+    """Fold of the branch from its last three states: vertex of delta(W) as a parabola.
+
+    Near the displacement-control jump (a fold, d delta/dW = 0) the load varies like
+    the square root of the distance to the fold in delta, but delta is a smooth
+    function of W: the vertex of the parabola through the last three (W, delta)
+    samples is the fold, accurate to O(h^3).  Returned only when the parabola has a
+    minimum in delta beyond the last sample and within one sample span of it.
+    """
+    w = np.asarray(loads, dtype=float)
+    d = np.asarray(approaches, dtype=float)
+    if not (np.all(np.isfinite(w)) and np.all(np.isfinite(d))) or len(set(w.tolist())) < 3:
+        return None
+    c2, c1, c0 = np.polyfit(w, d, 2)
+    if not c2 > 0:
+        return None
+    wv = -c1 / (2.0 * c2)
+    span = abs(w[-1] - w[0])
+    beyond = (wv - w[-1]) * (w[-1] - w[0]) >= 0.0
+    if not beyond or abs(wv - w[-1]) > span:
+        return None
+    return float(wv), float(c0 + c1 * wv + c2 * wv * wv)
 
 
 class _Progress:
@@ -748,6 +774,12 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         k_po = up
         w_po = records[k_po]["load"]
         d_po = records[k_po]["approach"]
+        j = idx.index(up)
+        if j >= 2:
+            fold = _fold_vertex([records[i]["load"] for i in idx[j - 2:j + 1]],
+                                [records[i]["approach"] for i in idx[j - 2:j + 1]])
+            if fold is not None:
+                w_po, d_po = fold
     else:
         up, lo, idx = br
         x = np.array([records[i]["approach"] for i in idx])

@@ -86,7 +86,7 @@ def cell_fraction_below(excess, spread_x, spread_y):
     tiny = np.finfo(float).tiny
     ab2 = np.maximum(2.0 * a * b, tiny)
     inner = 0.5 * (a - b)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         lin = 0.5 + s / np.maximum(a, tiny)
         low = (s + h) ** 2 / ab2
         high = 1.0 - (h - s) ** 2 / ab2
