@@ -26,8 +26,11 @@ selects the grids, e.g. ``--n 128 256 512``.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # before numpy: threaded BLAS stalls on a loaded machine
 
 import numpy as np
 from scipy.optimize import brentq

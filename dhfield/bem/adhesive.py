@@ -227,6 +227,11 @@ def _complementarity(h, active):
     return max(float(v.max()), 0.0)
 
 
+def _dot(a, b):
+    """Inner product without BLAS (a threaded BLAS ddot is very slow on a loaded machine)."""
+    return float(np.einsum("ij,ij->", a, b))
+
+
 def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
     """Polonsky-Keer CG for min 1/2 p.Kp + g0.p, p >= 0 (displacement control).
 
@@ -255,7 +260,7 @@ def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
     while err > tol and it < max_iter:
         it += 1
         np.multiply(h, active, out=r)
-        g = float(np.vdot(r, r))
+        g = _dot(r, r)
         if conj and g_old > 0.0:
             t *= g / g_old
             t += r
@@ -263,10 +268,10 @@ def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
             t[...] = r
         g_old = g
         op(t, out=kt)
-        den = float(np.vdot(kt, t))
+        den = _dot(kt, t)
         if not den > 0.0:
             break
-        tau = float(np.vdot(h, t)) / den
+        tau = _dot(h, t) / den
         p -= tau * t
         released = p < 0.0
         any_rel = bool(released.any())
