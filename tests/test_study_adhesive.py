@@ -119,3 +119,22 @@ def test_cli_validates_before_running(tmp_path):
     with pytest.raises(SystemExit):
         sa.main(["--out", str(tmp_path / "missing" / "x.nc"), "--work-dir", str(tmp_path)])
     assert list(tmp_path.iterdir()) == []
+
+
+def test_verdict_names_the_closest_closure(tmp_path):
+    """The report's verdict is computed from the stored numbers: with references placed at
+    known distances from the (stand-in) ground truth, it names the closest closure and its error."""
+    from verification import sec_adhesive
+
+    sa.run_study([0.8, 1.0], [1.0], [16, 32, 64], work_dir=tmp_path, solver=_stand_in([]), progress=False)
+    truth = W_INF * 1.0 ** 0.1  # stand-in ground truth at mu = 1 after extrapolation
+    refs = {m: {"W_star": np.full((2, 1), truth * (1 + d)), "ellipticity": np.full((2, 1), 0.8),
+                "adhesive_ellipticity": np.full((2, 1), 0.8)}
+            for m, d in (("dh-elliptic", -0.20), ("dh-elliptic-two-axis", 0.013), ("md", 0.05))}
+    ds = sa.ground_truth_dataset(sa.load_records(tmp_path), references=refs)
+    tab = sec_adhesive.truth_table(ds)
+    lines = sec_adhesive.verdict_lines(tab, "test coverage")
+    assert "two-axis" in lines[0] and "1.3 %" in lines[0]
+    assert any("paper's closure" in ln and "-20.0 %" in ln for ln in lines)
+    # the stand-in has beta_cd - beta_ab = 1/N -> 0: shared beta after extrapolation
+    assert any("share β" in ln for ln in lines)
