@@ -124,11 +124,18 @@ _PLANNER_EFFORTS = ("FFTW_ESTIMATE", "FFTW_MEASURE", "FFTW_PATIENT", "FFTW_EXHAU
 
 
 # --------------------------------------------------------------------------- grid
+def _short_repr(value, limit: int = 80) -> str:
+    """``repr(value)`` on one line, at most ``limit`` characters (for error messages)."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
 def _check_cells(name: str, value) -> int:
     try:
         n = operator.index(value)
     except TypeError:
-        raise ValueError(f"{name} must be an integer >= {MIN_CELLS} (number of cells); got {value!r}") from None
+        raise ValueError(f"{name} must be an integer >= {MIN_CELLS} (number of cells); got {_short_repr(value)}") \
+            from None
     if n < MIN_CELLS:
         raise ValueError(f"{name} must be an integer >= {MIN_CELLS} (number of cells); got {n!r}")
     return int(n)
@@ -446,7 +453,7 @@ def check_threads(value, name: str = "threads") -> int:
     try:
         n = operator.index(value)
     except TypeError:
-        raise ValueError(f"{name} must be {valid}; got {value!r}") from None
+        raise ValueError(f"{name} must be {valid}; got {_short_repr(value)}") from None
     if not 1 <= n <= max_threads():
         raise ValueError(f"{name} must be {valid}; got {n!r}")
     return int(n)

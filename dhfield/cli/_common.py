@@ -187,7 +187,8 @@ def print_warning(rec) -> None:
 #: Output suffixes of the subcommands whose ``--out`` is one file.  A subcommand may
 #: instead declare its own with ``parser.set_defaults(out_suffixes=(".nc",))``; the
 #: ``--out`` of any other subcommand (possibly a directory) gets the generic checks only.
-OUTPUT_SUFFIXES = {"curve": (".nc", ".csv"), "compare": (".nc",), "periphery": (".nc",), "field": (".nc",)}
+OUTPUT_SUFFIXES = {"curve": (".nc", ".csv"), "compare": (".nc",), "periphery": (".nc",), "field": (".nc",),
+                   "solve": (".nc",)}
 
 
 def check_output_argument(args) -> None:
