@@ -42,6 +42,18 @@ Algorithm
   (:func:`dhfield.bem.laws.cell_fraction_below`, with the central-difference
   gradient of h), so the edge moves continuously through the cells and the
   fixed-point map is continuous.  Contact cells have chi = 1.
+* **Stable discrete edge** (found here): a discrete state is energy-stable
+  only if the spectral radius of ``|d sigma/dh| K`` is below 1, and for a
+  ring of edge cells K sums to ~(2/pi) ln(c/dx) dx/E*.  With the bare sub-cell
+  fraction the edge's gap spread |grad h| dx can be smaller than
+  sigma0 (2/pi) ln(c/dx) dx/E* (lambda >~ 2): then no discrete state is
+  stable, the outer iteration wanders and the path jumps (lattice trapping in
+  another guise; damping cannot cure it).  The fraction is therefore taken
+  over a gap spread of at least ``EDGE_WIDTH_FACTOR (1 + (2/pi) ln n) sigma0 dx/E*``
+  (capped at 2 h0, symmetric about h0 so the work of adhesion is unchanged;
+  it vanishes like dx ln(1/dx)).  Grids that would need more than 2 h0 are
+  flagged ``resolved=False``: in the paper's units that is roughly
+  dx > 2/(kappa_n mu^2), i.e. mu = 5 needs n >~ 512.
 * **Symmetry**: when z is even in x and y (and nx, ny are even) the solver
   works on the quadrant ``x > 0, y > 0`` with the operator's symmetry mode
   (a quarter of the unknowns, the same discrete sum); the returned state is
