@@ -41,7 +41,9 @@ def test_pull_off_round_trip(tmp_path, small_result):
     assert back.sizes["step"] == res.n_steps
     assert_array_equal(back["approach_path"].values, res.path.approach)
     assert_array_equal(back["converged_path"].values.astype(bool), res.path.converged)
-    assert_array_equal(np.array(PHASES)[back["phase"].values], res.path.phase)
+    meanings = back["phase"].attrs["flag_meanings"].split()
+    assert meanings[:len(PHASES)] == list(PHASES)
+    assert_array_equal(np.array(meanings)[back["phase"].values], res.path.phase)
     assert_array_equal(back["residual_path"].values, res.path.residual)
     # W* per step is the load in the normalisation of Eq. (34) (R = dgamma = 1)
     sin_skew = back.attrs["param_sin_skew"]

@@ -41,8 +41,9 @@ __all__ = ["state_dataset", "path_dataset", "pull_off_dataset", "write_solution"
 
 #: Categories of the ``region`` flag variable, code = position.
 REGIONS = ("contact", "cohesive_zone", "outside")
-#: Categories of the per-step ``phase`` flag variable.
-PHASES = ("loading", "unloading", "refine")
+#: Categories of the per-step ``phase`` flag variable (a phase the path names that is not
+#: listed here is appended to the flag meanings of that file, never dropped).
+PHASES = ("loading", "unloading", "refine", "jump")
 #: name -> (long_name, kind) of the variables not in :mod:`dhfield.schema`; kind
 #: is "length", "length2", "stress", "force" or "1".
 LOCAL_VARIABLES = {
@@ -151,12 +152,13 @@ def path_dataset(path, *, nondimensional: bool = False, sin_skew: float | None =
     nd = nondimensional
     n = int(np.size(path.approach))
     dims = ("step",)
-    phase = [PHASES.index(str(p)) if str(p) in PHASES else len(PHASES) for p in path.phase]
+    meanings = list(PHASES) + sorted({str(p) for p in path.phase} - set(PHASES))
+    phase = [meanings.index(str(p)) for p in path.phase]
     data = {
         "approach_path": cf.variable("approach", dims, path.approach, nondimensional=nd, qualifier="per step"),
         "load_path": _local("load", dims, path.load, nd, "per step"),
         "contact_area_path": _local("contact_area", dims, path.contact_area, nd, "per step"),
-        "phase": _flag("phase", dims, phase, PHASES, "phase of the path"),
+        "phase": _flag("phase", dims, phase, meanings, "phase of the path"),
         "converged_path": _flag("converged", dims, np.asarray(path.converged, dtype=int), ("false", "true"),
                                 "solver converged, per step"),
         "iterations_path": (dims, np.asarray(path.iterations, dtype=np.int64),
