@@ -557,7 +557,48 @@ def signal_cases(quick):
         for sig in SIGNALS[: 1 if quick else 3]:
             cases.append(Case("signal", f"{sig} after 0.2 s of {cmd[0]}", cmd, signal_after=(sig, 0.2),
                               expect="signal"))
+    for sig in SIGNALS:  # a real process: the signal lands while Python still imports dhfield
+        cases.append(Case("process", f"{sig} after 0.3 s of a fresh `python -m dhfield.cli pulloff`",
+                          [sys.executable, "-m", "dhfield.cli", "pulloff", "--beta0", "0.9", "--mu", "1"],
+                          signal_after=(sig, 0.3), expect="signal"))
     return cases
+
+
+def run_process(case: Case, timeout: float) -> None:
+    """Run ``case.argv`` as a real process (not a fork) and send its signal."""
+    import subprocess
+
+    with tempfile.TemporaryDirectory(prefix="dhf-hostile-") as tmp:
+        workdir = Path(tmp)
+        env = dict(os.environ, DHFIELD_CACHE=str(workdir / "cache"))
+        proc = subprocess.Popen(case.argv, cwd=workdir, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+        time.sleep(case.signal_after[1])
+        sent = proc.poll() is None
+        if sent:
+            proc.send_signal(getattr(signal, case.signal_after[0]))
+        try:
+            _, stderr = proc.communicate(timeout=timeout)
+            status = proc.returncode
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.communicate()
+            status, stderr = None, ""
+        signum = getattr(signal, case.signal_after[0])
+        lines = [ln for ln in stderr.strip().splitlines() if ln.strip()]
+        if status is None:
+            case.outcome, case.detail = "hang", "killed after the timeout"
+        elif _left_behind(workdir):
+            case.outcome, case.detail = "clobbered", f"left behind: {_left_behind(workdir)}"
+        elif "Traceback (most recent call last)" in stderr:
+            case.outcome, case.detail = "traceback", f"exit {status}: {lines[-1][:120] if lines else ''}"
+        elif status in (-signum, 128 + signum) and len(lines) <= 1:
+            case.outcome = "clean signal"
+            case.detail = "ended by the signal's default action" if status < 0 else ""
+        elif not sent or status == 0:
+            case.outcome, case.detail = "accepted", "finished before the signal"
+        else:
+            case.outcome, case.detail = "traceback", f"exit {status}: {' | '.join(lines[-2:])[:120]}"
 
 
 def api_cases(quick):
@@ -633,7 +674,7 @@ def main(argv=None) -> int:
     tty = sys.stderr.isatty()
     t0 = time.monotonic()
     for i, case in enumerate(cases, 1):
-        run_case(case, args.timeout)
+        (run_process if case.kind == "process" else run_case)(case, args.timeout)
         if tty:
             print(f"\r[{i}/{len(cases)}] {time.monotonic() - t0:6.0f} s  {case.label[:60]:60s}", end="",
                   file=sys.stderr, flush=True)

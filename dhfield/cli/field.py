@@ -1,6 +1,8 @@
 """``dhfield field``."""
 from __future__ import annotations
 
+import sys
+
 from ._common import add_model_arguments, thread_count
 
 
@@ -26,6 +28,8 @@ def run(args) -> int:
     validate_output_path(args.out, (".nc",), "out")
     threads = default_threads() if args.threads is None else args.threads
     check_case_memory(args.n)
+    if sys.stderr.isatty():  # progress only for a person watching
+        print(f"dhfield field: computing the {args.n} x {args.n} case and writing {args.out} ...", file=sys.stderr)
     path = compute_and_write_case(args.beta0, args.mu, args.a_star, args.n, args.out, threads=threads)
     print(f"wrote {path}")
     return 0
