@@ -113,6 +113,8 @@ def bench_bem(repeats: int) -> bool:
 
     from distributed import Client, LocalCluster
 
+    logging.getLogger("distributed").setLevel(logging.ERROR)  # no INFO lines at cluster close
+
     n_cases = 8
     print(f"BEM sweep: {n_cases} forward-BEM cases at N = 256 (8 load paths, one grid), medians of {repeats}")
     times = {1: [], 2: []}
@@ -121,12 +123,15 @@ def bench_bem(repeats: int) -> bool:
         try:
             for w in (1, 2):
                 clusters[w] = LocalCluster(n_workers=w, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                           dashboard_address=None, silence_logs=logging.ERROR)
+                                           dashboard_address=":0", silence_logs=logging.ERROR)
                 with Client(clusters[w]) as client:  # warm workers: imports done, one operator built in each
                     client.run(_warm_worker)
             for r in range(repeats):
                 for w in (1, 2):
                     times[w].append(_sweep_once(clusters[w].scheduler_address, None, tmp, f"d{w}_{r}"))
+            with Client(clusters[2]) as client:  # both workers took part (tasks per worker, last round)
+                per_worker = client.run(lambda dask_worker: len(dask_worker.data) + len(dask_worker.state.log))
+            print("  tasks seen per worker of the 2-worker cluster (log entries):", list(per_worker.values()))
         finally:
             for c in clusters.values():
                 c.close()
