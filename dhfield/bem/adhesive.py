@@ -813,8 +813,13 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         sub = [up]
         st = by_index[up]
         prev = None
+        known = {records[i]["approach"]: i for i in current if i in by_index and records[i]["converged"]}
         for dd in np.linspace(d_up, d_lo, n_sub + 1)[1:-1]:
-            k, new = run(dd, _predict(prob, prev, st, dd) if predict else st, "refine")
+            same = [i for d0, i in known.items() if math.isclose(d0, dd, rel_tol=1e-12, abs_tol=1e-14)]
+            if same:                      # already solved at this approach: reuse it
+                k, new = same[0], by_index[same[0]]
+            else:
+                k, new = run(dd, _predict(prob, prev, st, dd) if predict else st, "refine")
             prev, st = st, new
             sub.append(k)
         sub.append(lo)
