@@ -499,6 +499,48 @@ def path_cases(parsers, quick):
     return cases
 
 
+def input_cases(parsers, quick):
+    """Bad input files: missing, garbage, a directory, a FIFO (must not block), an empty file."""
+    def garbage(name):
+        def setup(w):
+            (w / name).write_bytes(b"\x89HDF garbage " * 50)
+            return {}
+        return setup
+
+    def empty(name):
+        def setup(w):
+            (w / name).write_bytes(b"")
+            return {}
+        return setup
+
+    def fifo(name):
+        def setup(w):
+            os.mkfifo(w / name)
+            return {}
+        return setup
+
+    def directory(name):
+        def setup(w):
+            (w / name).mkdir()
+            return {}
+        return setup
+
+    specs = [("missing", None), ("garbage", garbage), ("empty", empty), ("FIFO", fifo), ("directory", directory)]
+    commands = []
+    if "plot" in parsers:
+        commands.append(("plot", lambda f: ["plot", f], "in.nc"))
+    if "fit" in parsers and any("--data" in a.option_strings for a in parsers["fit"]._actions):
+        commands.append(("fit --data", lambda f: ["fit", "--data", f, *SI, "--json"], "in.csv"))
+    if "sweep" in parsers:
+        commands.append(("sweep CONFIG", lambda f: ["sweep", f, "--out", "s.nc", "--quiet"], "in.toml"))
+    cases = []
+    for label, build, name in commands:
+        for what, setup in specs[: 3 if quick else 5]:
+            cases.append(Case("cli", f"{label} <{what} input file>", build(name),
+                              setup=setup(name) if setup else None, expect="reject"))
+    return cases
+
+
 def env_cases(quick):
     base = ["field", "--beta0", "0.9", "--mu", "1", "--a-star", "1.2", "--n", "16", "--out", "f.nc"]
     cases = []
@@ -667,7 +709,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     parsers = subcommand_parsers()
-    cases = (numeric_cases(parsers, args.quick) + path_cases(parsers, args.quick) + env_cases(args.quick)
+    cases = (numeric_cases(parsers, args.quick) + path_cases(parsers, args.quick)
+             + input_cases(parsers, args.quick) + env_cases(args.quick)
              + signal_cases(args.quick) + api_cases(args.quick))
     if args.only:
         cases = [c for c in cases if args.only in c.label]

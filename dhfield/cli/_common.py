@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 
@@ -240,34 +241,29 @@ def thread_count(text: str) -> int:
     return n
 
 
-class termination_signals_as_exceptions:
+@contextlib.contextmanager
+def termination_signals_as_exceptions():
     """Within the block, SIGTERM and SIGHUP raise :class:`dhfield.io.SignalExit`.
 
     SIGINT keeps Python's ``KeyboardInterrupt`` (or stays ignored, e.g. in a
     background job).  Signals already ignored stay ignored.  Previous handlers
     are restored on exit.  Only in the main thread; elsewhere it does nothing.
     """
+    import signal
+    import threading
 
-    def __enter__(self):
-        import signal
-        import threading
-
-        self._previous = {}
-        if threading.current_thread() is not threading.main_thread():
-            return self
+    previous = {}
+    if threading.current_thread() is threading.main_thread():
         for name in ("SIGTERM", "SIGHUP"):
             s = getattr(signal, name, None)
             if s is None or signal.getsignal(s) is signal.SIG_IGN:
                 continue
-            self._previous[s] = signal.signal(s, _raise_signal_exit)
-        return self
-
-    def __exit__(self, *exc):
-        import signal
-
-        for s, prev in self._previous.items():
+            previous[s] = signal.signal(s, _raise_signal_exit)
+    try:
+        yield
+    finally:
+        for s, prev in previous.items():
             signal.signal(s, prev)
-        return False
 
 
 def _raise_signal_exit(signum, frame):  # noqa: ARG001 - signal handler signature
