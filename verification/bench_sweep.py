@@ -13,7 +13,9 @@ Prints:
   operator per worker), timed (a) on a warm dask.distributed LocalCluster of
   1 and of 2 single-threaded worker processes (imports done and the operator
   built in every worker beforehand, as in a long study) and (b) with the local-process
-  scheduler, ``--workers 1`` vs ``--workers 2``, process start-up included.
+  scheduler, ``--workers 1`` vs ``--workers 2``, process start-up included;
+  (c) a control without dask: the same cases in one plain process and in two
+  at once, i.e. the speed-up the (shared) machine offers at that moment.
   The 1- and 2-worker runs alternate round by round so that both see the same
   machine state; medians of ``--repeats`` rounds.  Target for (a): >= 1.7.
 
@@ -108,6 +110,32 @@ def _warm_worker():
     bem.get_operator(grid, 1.0, symmetric=True, threads=1)
 
 
+def _raw_cases(seed):
+    """Control without dask: warm up, then time 4 of the benchmark's cases in this process."""
+    from dhfield.sweep import tasks
+
+    half_width, n = BEM_CONFIG["bem"]["half_width"], BEM_CONFIG["axes"]["n"][0]
+    tasks.bem_field_case(0.8, 1.0, 1.0, n, half_width=half_width)
+    t0 = time.perf_counter()
+    for mu in BEM_CONFIG["axes"]["mu"]:
+        tasks.bem_field_case(BEM_CONFIG["axes"]["beta0"][seed % 2], mu, 1.0, n, half_width=half_width)
+    return time.perf_counter() - t0
+
+
+def raw_parallelism() -> float:
+    """Speed-up the machine offers right now: 4 cases in 1 process vs 4 + 4 in 2 processes at once."""
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("spawn")
+    with ctx.Pool(1) as pool:
+        t1 = 2 * pool.map(_raw_cases, [0])[0]  # 8 cases, one after the other
+    with ctx.Pool(2) as pool:
+        t2 = max(pool.map(_raw_cases, [0, 1]))  # 8 cases, two processes
+    print(f"  (c) control, plain multiprocessing, no dask: 8 cases in 1 process {t1:6.2f} s, in 2 processes "
+          f"{t2:6.2f} s: the machine offers a speed-up of {t1 / t2:5.2f} now")
+    return t1 / t2
+
+
 def bench_bem(repeats: int) -> bool:
     import logging
 
@@ -149,6 +177,7 @@ def bench_bem(repeats: int) -> bool:
         c1, c2 = statistics.median(cold[1]), statistics.median(cold[2])
         print(f"  (b) local processes CLI 1 worker {c1:7.2f} s   2 workers {c2:7.2f} s   speed-up {c1 / c2:5.2f}  "
               "(start-up of the worker processes included; reported)")
+    raw_parallelism()
     return ok
 
 
