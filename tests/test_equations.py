@@ -40,8 +40,8 @@ def test_every_module_citing_equations_has_a_test_module():
     lacking = []
     for p in modules:
         name = p.stem.lstrip("_")
-        if p.parent.name == "io":
-            name = f"io_{name}" if name != "__init__" else "io"
+        if p.parent.name in ("io", "bem", "sweep"):  # subpackages: tests/test_<package>_<module>.py
+            name = f"{p.parent.name}_{name}" if p.stem != "__init__" else p.parent.name
         if not (TESTS / f"test_{name}.py").exists():
             lacking.append(str(p.relative_to(PKG.parent)))
     assert not lacking, f"modules without tests/test_<module>.py: {sorted(lacking)}"
