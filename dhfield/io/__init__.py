@@ -396,7 +396,7 @@ def write_netcdf(ds, path, name: str = "out") -> Path:
     p = validate_output_path(path, None, name)
     ds = finalize(ds)
     variables, attrs = _encoded_variables(ds)
-    need = sum(int(v.values.nbytes) for v in variables.values())
+    need = sum(int(v.nbytes) for v in ds.variables.values())  # not the encoded ones: no second encoding pass
     parent = p.parent if str(p.parent) else Path(".")
     free = None
     with contextlib.suppress(OSError):
