@@ -142,3 +142,111 @@ def test_bad_a_star_and_control():
         model.solve_adhesive_axis(0.0, 1.0, 0.9)
     with pytest.raises(ValueError, match="control"):
         model.pull_off(1.0, 0.9, control="force")
+
+
+# --------------------------------------------------------------------------- issue 9 regressions
+#: The large-mu states are formed without cancellation: the JKR limit to rounding (~1e-14 observed).
+LIMIT_RTOL = 1e-12
+
+
+@pytest.mark.parametrize("beta0", [1.0, 0.5, 0.05])
+@pytest.mark.parametrize("mu", [1e8, 1e9, 1e12])
+def test_issue9_item1_large_mu_is_the_derived_jkr_limit(mu, beta0):
+    # Before: mu = 1e8 gave W* = +1.698 at beta0 = 1, 1e9 gave 0, 3e6-1e10 raised RuntimeError.
+    for control in ("load", "displacement"):
+        p = model.pull_off(mu, beta0, control=control)
+        w_inf, a_inf = model.jkr_limit_pull_off(beta0, control=control)
+        assert float(p.W_star) == pytest.approx(float(w_inf), rel=LIMIT_RTOL)
+        assert float(p.a_star) == pytest.approx(float(a_inf), rel=1e-10)
+
+
+def test_jkr_limit_is_jkr_at_the_circle():
+    # JKR (Maugis 2000): load control -3/4 at a^3 = 9 pi/8; fixed grips -5/12 at a^3 = 9 pi/8 / 9.
+    w, a = model.jkr_limit_pull_off(1.0)
+    assert w == pytest.approx(-0.75, rel=1e-14) and a**3 == pytest.approx(9 * np.pi / 8, rel=1e-14)
+    w, a = model.jkr_limit_pull_off(1.0, control="displacement")
+    assert w == pytest.approx(-5 / 12, rel=1e-14) and a**3 == pytest.approx(np.pi / 8, rel=1e-14)
+
+
+def test_finite_mu_approaches_the_jkr_limit_as_mu_squared():
+    # The annulus width ~ mu^-2 (Eqs. 24, 31): the departure falls 100x per decade of mu.
+    w_inf = float(model.jkr_limit_pull_off(0.7)[0])
+    d = [float(model.pull_off(mu, 0.7).W_star) / w_inf - 1.0 for mu in (100.0, 1000.0)]
+    assert 80.0 < d[0] / d[1] < 120.0
+
+
+def test_issue9_item2_small_beta0_finds_the_stable_branch_end():
+    # Before: beta0 = 0.001, mu = 100 reported the zero-contact limit W* = -7.6e-8 while the
+    # curve's minimum is W* = -3.94e-5 near a* = 4.4 (the fixed scan stopped at a* = 4).
+    p = model.pull_off(100.0, 0.001)
+    c = model.load_curve(100.0, 0.001, np.linspace(3.0, 6.0, 601))
+    assert not bool(p.at_zero_contact)
+    assert float(p.W_star) <= c.W_star.min()  # the refined minimum is below every sample
+    assert float(p.W_star) == pytest.approx(c.W_star.min(), rel=1e-5)  # grid step 5e-3: O(h^2)
+    disp = model.pull_off(100.0, 0.001, control="displacement")
+    assert abs(float(p.W_star)) >= abs(float(disp.W_star))
+
+
+def test_pull_off_at_a_pull_off_contact_six_times_the_jkr_limit():
+    # beta0 = 1e-4, mu = 10 pulls off at a* ~ 21 (JKR limit: 3.8): the scan must extend.
+    p = model.pull_off(10.0, 1e-4)
+    assert float(p.a_star) > 15.0
+    c = model.load_curve(10.0, 1e-4, float(p.a_star) * np.array([0.98, 1.0, 1.02]))
+    assert c.W_star[1] <= c.W_star[0] and c.W_star[1] <= c.W_star[2]
+
+
+def test_issue9_item7_chunked_search_equals_one_chunk(monkeypatch):
+    from dhfield import pull_off_search
+
+    mu = np.geomspace(0.05, 50.0, 7)[:, None]
+    beta0 = np.array([0.4, 0.8, 1.0])[None, :]
+    whole = model.pull_off(mu, beta0)
+    monkeypatch.setattr(pull_off_search, "DEFAULT_CHUNK_BYTES", 1)  # one problem per chunk
+    monkeypatch.setattr(model, "CHUNK_POINTS", 5)
+    parts = model.pull_off(mu, beta0)
+    # The quadrature's panel count follows the smallest scale in a chunk: rounding-level changes only.
+    np.testing.assert_allclose(whole.W_star, parts.W_star, rtol=1e-12)
+    assert whole.W_star.shape == (7, 3)
+
+
+def test_issue9_item7_huge_curve_is_refused_by_name():
+    # Before: curve --n 10000000 was OOM-killed.
+    with pytest.raises(ValueError, match=r"n must be an integer in \[2, 1000000\]"):
+        model.load_curve(1.0, 0.8, n=10_000_000)
+
+
+@pytest.mark.parametrize("name", ["mu", "beta0", "a_star"])
+@pytest.mark.parametrize("value", [1e-308, 1e308, np.inf, np.nan, -1.0, 0.0])
+def test_issue9_item8_extreme_inputs_name_the_parameter(name, value):
+    # Before: screens of RuntimeWarnings, then "cannot convert float NaN to integer".
+    kw = {"mu": 1.0, "beta0": 0.8, "a_star": [1.0]}
+    kw[name] = value if name != "a_star" else [value]
+    with pytest.raises(ValueError, match=rf"^{name} must be"):
+        model.load_curve(kw["mu"], kw["beta0"], kw["a_star"])
+    if name != "a_star":
+        with pytest.raises(ValueError, match=rf"^{name} must be"):
+            model.pull_off(kw["mu"], kw["beta0"])
+
+
+def test_issue9_tiny_mu_is_rejected_by_name():
+    # Before: pulloff --beta0 0.9 --mu 1e-30 gave a traceback.
+    with pytest.raises(ValueError, match=r"^mu must be in \[1e-06, 1e\+12\]"):
+        model.pull_off(1e-30, 0.9)
+
+
+@pytest.mark.parametrize("n", [2.5, "10", True, 1])
+def test_issue9_item9_non_integer_n_is_rejected(n):
+    with pytest.raises(ValueError, match=r"^n must be an integer"):
+        model.load_curve(1.0, 0.8, n=n)
+
+
+def test_issue9_item9_masked_arrays_are_rejected_and_empty_arrays_give_empty_results():
+    masked = np.ma.masked_array([0.5, 1.0], mask=[False, True])
+    with pytest.raises(ValueError, match="^a_star must not be a masked array"):
+        model.load_curve(1.0, 0.8, masked)
+    with pytest.raises(ValueError, match="^mu must not be a masked array"):
+        model.pull_off(np.ma.masked_array([1.0]), 0.8)
+    c = model.load_curve(1.0, 0.8, np.array([]))
+    assert c.W_star.shape == (0,) and c.c_star.shape == (0,)
+    p = model.pull_off(np.zeros((0, 3)) + 1.0, 0.8)
+    assert np.shape(p.W_star) == (0, 3)
