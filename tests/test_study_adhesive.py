@@ -138,3 +138,11 @@ def test_verdict_names_the_closest_closure(tmp_path):
     assert any("paper's closure" in ln and "-20.0 %" in ln for ln in lines)
     # the stand-in has beta_cd - beta_ab = 1/N -> 0: shared beta after extrapolation
     assert any("share β" in ln for ln in lines)
+
+
+def test_implausible_order_keeps_the_finest_value():
+    """Three levels whose differences shrink too slowly (order 0.1) are noise, not convergence."""
+    ns = [64, 128, 256]
+    vals = [1.0, 1.0 + 0.01, 1.0 + 0.01 + 0.01 * 2 ** -0.1]
+    v, q, levels = sa.extrapolate(ns, vals)
+    assert levels == 1 and v == vals[-1] and q == pytest.approx(0.1, rel=1e-9)

@@ -128,6 +128,9 @@ def verdict_lines(tab, coverage):
         f"**Best closure against the BEM ground truth: {CLOSURES[best]}**, within "
         f"{100 * stats[best][0]:.1f} % of W*max in every one of the {n_ok} (β0, μ) cases solved "
         f"(median {100 * stats[best][1]:.1f} %; worst at β0 = {tab['beta0'][b_i]:g}, μ = {tab['mu'][b_j]:g}).")
+    if n_ok < total:
+        lines.append(f"**No converged BEM pull-off** (recorded, with the solver's message, in the dataset) at "
+                     f"{_where(tab, ~ok)}: the closures are not judged there.")
     for m, (mx, med, (i, j)) in sorted(stats.items(), key=lambda kv: kv[1][0]):
         if m == best:
             continue
@@ -186,7 +189,8 @@ def _coverage(ds):
         per_n.append(f"N = {int(n)}: " + ", ".join(f"{v} {s.replace('_', ' ')}" for s, v in counts.items() if v))
     lv = ds["W_star_levels"].values
     return (f"{int(np.sum(lv == 3))} of {lv.size} (β0, μ) cases Richardson-extrapolated over three N, "
-            f"{int(np.sum((lv > 0) & (lv < 3)))} at their finest converged N only, {int(np.sum(lv == 0))} "
+            f"{int(np.sum((lv > 0) & (lv < 3)))} at their finest converged N (non-monotone or implausible "
+            f"order over N, or fewer levels), {int(np.sum(lv == 0))} "
             f"without a usable BEM value; " + "; ".join(per_n))
 
 
