@@ -13,10 +13,17 @@ Quick start (nondimensional units of Eqs. 32-35)::
 __version__ = "0.1.0"
 PAPER_DOI = "10.1007/s11249-017-0976-8"
 
-from .model import LoadCurve, PullOff, load_curve, pull_off, solve_adhesive_axis  # noqa: E402
-from .compare import MODEL_NAMES  # noqa: E402
-from .dimensional import (contact_parameters, contact_parameters_from_principal_radii,  # noqa: E402
-                          crossed_cylinder_radii, load_curve_si, pull_off_force)
+import importlib as _importlib  # noqa: E402
+
+#: Public names and the module each comes from.  They are imported on first use, so that
+#: ``import dhfield.cli`` stays light: a Ctrl-C while the CLI starts then reaches its
+#: one-line handler instead of printing a traceback from inside scipy's import.
+_LAZY = {"LoadCurve": "model", "PullOff": "model", "load_curve": "model", "pull_off": "model",
+         "solve_adhesive_axis": "model", "MODEL_NAMES": "compare", "contact_parameters": "dimensional",
+         "contact_parameters_from_principal_radii": "dimensional", "crossed_cylinder_radii": "dimensional",
+         "load_curve_si": "dimensional", "pull_off_force": "dimensional",
+         # the inverse problem pulls in every model
+         "fit_work_of_adhesion": "fit", "fit_curve": "fit"}
 
 __all__ = ["__version__", "PAPER_DOI", "load_curve", "pull_off", "solve_adhesive_axis", "LoadCurve",
            "PullOff", "MODEL_NAMES", "contact_parameters", "contact_parameters_from_principal_radii",
@@ -24,9 +31,16 @@ __all__ = ["__version__", "PAPER_DOI", "load_curve", "pull_off", "solve_adhesive
 
 
 def __getattr__(name):
-    # the inverse problem (dhfield.fit) is imported on first use: it pulls in every model
-    if name in ("fit_work_of_adhesion", "fit_curve"):
-        from . import fit
-
-        return getattr(fit, name)
+    if name in _LAZY:
+        return getattr(_importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    if not name.startswith("__"):
+        try:  # submodules as attributes (dhfield.model, dhfield.bem, ...), as when they were imported eagerly
+            return _importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
     raise AttributeError(f"module 'dhfield' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
