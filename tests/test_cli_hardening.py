@@ -197,3 +197,18 @@ def test_signals_in_main_give_their_exit_status(capsys, monkeypatch):
     monkeypatch.setattr(pulloff, "run", ctrl_c)
     assert main(["pulloff", *PULLOFF]) == 130
     _one_error_line(capsys, "SIGINT", prefix="dhfield: interrupted")
+
+
+def test_cli_starts_without_the_heavy_imports():
+    """Ctrl-C in the first 2.6 s (scipy's import, before main() runs) printed a traceback.
+
+    Importing the CLI must not import scipy, numpy's linear algebra users or the models: they are
+    imported inside main(), where a KeyboardInterrupt becomes one line and exit 130.
+    """
+    import subprocess
+    import sys
+
+    code = "import sys, dhfield.cli; print(sorted(m for m in ('scipy', 'dhfield.model', 'xarray') if m in sys.modules))"
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.strip() == "[]"
