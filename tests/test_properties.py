@@ -32,7 +32,7 @@ from dhfield.geometry import radius_ratio, sin_skew_angle
 
 settings.register_profile("ci", max_examples=12, derandomize=True, deadline=None,
                           suppress_health_check=[HealthCheck.too_slow])
-settings.register_profile("long", max_examples=400, deadline=None,
+settings.register_profile("long", max_examples=int(os.environ.get("DHFIELD_LONG_EXAMPLES", "400")), deadline=None,
                           suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
