@@ -178,3 +178,13 @@ def test_two_axis_ray_work_against_quad(theta):
     assert_allclose(got, ref, rtol=1e-9)
     if theta in (0.0, np.pi / 2):
         assert_allclose(ref, 1.0, rtol=1e-9)
+
+
+@pytest.mark.parametrize("mu, beta0, name", [(50.0, 0.8, "mu"), (1e12, 0.9, "mu"), (1.0, 0.1, "beta0")])
+def test_issue9_closures_reject_outside_their_domain_by_name(mu, beta0, name):
+    # Before: the two-axis solve raised RuntimeError from mu ~ 100 and rays_for(1e-4) ran out of memory.
+    from dhfield import closure as cl
+
+    for f in (cl.pull_off_two_axis, cl.pull_off_ray_average):
+        with pytest.raises(ValueError, match=rf"^{name} must be in"):
+            f(mu, beta0)

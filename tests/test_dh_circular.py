@@ -104,3 +104,13 @@ def test_bad_input():
         dh_circular.pull_off(R, E, DG, 1e8, control="grips")
     with pytest.raises(ValueError, match="adhesive_radius"):
         dh_circular.work_of_adhesion(2.0, 1.0, 1.0, 1.0, 1.0)
+
+
+@pytest.mark.parametrize("mu", [1e6, 1e9, 1e12])
+def test_issue9_large_mu_is_jkr_without_cancellation(mu):
+    # Before: dh-circular at mu = 1e8 gave -1.50 and at 1e12 ~0 (c^3 - a^3 lost to rounding).
+    # JKR: load control -3/4, fixed grips -5/12 (Maugis 2000); the departure is O(mu^-2).
+    from dhfield import dh_circular as dc
+
+    assert float(dc._pull_off(np.array(mu))["W_star"]) == pytest.approx(-0.75, rel=1e-11)
+    assert float(dc._pull_off(np.array(mu), "displacement")["W_star"]) == pytest.approx(-5 / 12, rel=1e-11)

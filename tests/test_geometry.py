@@ -65,3 +65,12 @@ def test_sin_skew_consistent_with_principal_radii():
 def test_bad_input_names_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_issue9_principal_radii_at_tiny_angles_are_finite():
+    # Before: skew_angle = 1e-12 gave R' = inf (1 - cos lost to rounding), reported as r_major.
+    # 1 - cos(t) = 2 sin^2(t/2) ~ t^2/2: R' = 2 R_c/t^2.
+    from dhfield import geometry as g
+
+    r1, r2 = g.principal_radii(1.0, 1e-12)
+    assert float(r1) == pytest.approx(2e24, rel=1e-12) and float(r2) == pytest.approx(0.5, rel=1e-12)
