@@ -129,7 +129,8 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **opti
     """
     if solver is None:
         from dhfield.bem import adhesive_pull_off as solver
-    rec = {"beta0": float(beta0), "mu": float(mu), "n": int(n), "law": law, "control": control}
+    rec = {"beta0": float(beta0), "mu": float(mu), "n": int(n), "law": law, "control": control,
+           "max_iter": int(options.get("max_iter", -1))}
     where = f"beta0={beta0:g}, mu={mu:g}, n={int(n)}, law={law}, control={control}"
     t0 = time.perf_counter()
     try:
