@@ -31,6 +31,16 @@ d delta*/da* = 0; both derivatives are analytic (implicit function theorem), the
 roots are found with Chandrupatla's bracketing method to 1e-12 in a*.  When the
 derivative is positive all the way down to a* -> 0 (the DMT side), the pull-off
 is the zero-contact limit, which has a closed form (a quadratic in S).
+
+Accepted domain (issue 9): mu in :data:`TABOR_RANGE`, beta0 in
+:data:`ELLIPTICITY_RANGE`, a* in :data:`CONTACT_SIZE_RANGE`; anything else is a
+ValueError naming the parameter and its range.  The solve works in u = log S and
+forms v S^2 = mu S/kappa and c^3 - a^3 = S^2 (c^2 + ca + a^2)/(c + a) directly, so
+there is no cancellation as the annulus narrows (c - a ~ mu^-2): the pull-off
+tends to the model's own JKR limit (:func:`jkr_limit_pull_off`) as 1/mu^2 and
+equals it to ~1e-14 from mu ~ 1e7 up.  The pull-off scan is scaled with the shape
+and extended where needed (:func:`dhfield.pull_off_search.stable_branch_end`);
+states are evaluated in bounded chunks.
 """
 from __future__ import annotations
 
