@@ -1,0 +1,37 @@
+"""Input validation helpers (dhfield._validation): names, ranges, masked/empty arrays, counts."""
+import numpy as np
+import pytest
+
+from dhfield import _validation as v
+
+
+def test_interval_message_names_parameter_range_and_value():
+    with pytest.raises(ValueError, match=r"^mu must be in \[1e-06, 1e\+12\] \(Tabor parameter of Eq\. \(35\), "
+                                         r"dimensionless\); got 1e\+308$"):
+        v.check_tabor("mu", 1e308)
+    with pytest.raises(ValueError, match=r"^beta0 must be in \[0\.0001, 1\]"):
+        v.check_model_ellipticity("beta0", 1e-308)
+    with pytest.raises(ValueError, match=r"^a_star must be finite"):
+        v.check_contact_size_star("a_star", [1.0, np.inf])
+
+
+def test_domain_edges_are_accepted():
+    assert v.check_tabor("mu", v.TABOR_RANGE[0]) == v.TABOR_RANGE[0]
+    assert v.check_model_ellipticity("beta0", 1.0) == 1.0
+    assert v.check_contact_size_star("a_star", v.CONTACT_SIZE_RANGE[1]) == v.CONTACT_SIZE_RANGE[1]
+
+
+def test_masked_arrays_are_rejected_by_name():
+    with pytest.raises(ValueError, match="^x must not be a masked array"):
+        v.check_finite("x", np.ma.masked_array([1.0, 2.0], mask=[True, False]))
+
+
+@pytest.mark.parametrize("good, expect", [(3, 3), (np.int64(4), 4), (5.0, 5)])
+def test_count_accepts_integers(good, expect):
+    assert v.check_count("n", good, 2, 10) == expect
+
+
+@pytest.mark.parametrize("bad", [2.5, True, "3", 1, 11, None, float("nan")])
+def test_count_rejects_non_integers_and_out_of_range(bad):
+    with pytest.raises(ValueError, match=r"^n must be an integer in \[2, 10\]"):
+        v.check_count("n", bad, 2, 10)
