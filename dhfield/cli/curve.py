@@ -39,8 +39,12 @@ def add_parser(sub) -> None:
 def _range(lo, hi, n, name_lo, name_hi):
     import numpy as np
 
+    from .._validation import check_finite
+
     if lo is None or hi is None:
         raise UsageError(f"give both --{name_lo} and --{name_hi}")
+    check_finite(name_lo, lo)  # name the option the user gave, not the grid (issue 9, item 8)
+    check_finite(name_hi, hi)
     if not hi > lo:
         raise ValueError(f"{name_hi} must be greater than {name_lo}; got {name_lo}={lo!r}, {name_hi}={hi!r}")
     if n < 2:
@@ -64,6 +68,9 @@ def curve_record(args) -> dict:
         if args.a_min is not None or args.a_max is not None:
             lo = DEFAULT_A_STAR[0] if args.a_min is None else args.a_min
             hi = DEFAULT_A_STAR[1] if args.a_max is None else args.a_max
+            from .._validation import check_contact_size_star
+            check_contact_size_star("a-min", lo)
+            check_contact_size_star("a-max", hi)
             a_star = _range(lo, hi, args.n, "a-min", "a-max")
         if args.ellipticity is not None:
             if args.model != "dh-elliptic":
