@@ -132,7 +132,7 @@ def _overlaps(fig, draw=True):
     from matplotlib.transforms import Bbox
 
     if draw:
-        fig.canvas.draw()
+        fig.draw_without_rendering()  # layout (tight/constrained) and legend positions, no pixels
     renderer = fig.canvas.get_renderer()
     legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None] + list(fig.legends)
     out = []
@@ -156,6 +156,7 @@ def hidden_by_legends(fig):
     A legend hides a curve when a drawn segment or marker of the curve passes under
     the legend box (shrunk by :data:`LEGEND_SLACK_PX`) inside the visible plot area.
     Reference lines drawn in axes coordinates (``axhline``) and images are ignored.
+    Lays the figure out once (no rendering).
     """
     return [f"legend hides {label!r}" for _, label in _overlaps(fig)]
 
@@ -170,7 +171,7 @@ def _clear_of(boxes, leg, renderer):
     return True
 
 
-def fix_legends(fig):
+def fix_legends(fig, draw=True):
     """Move every legend that hides a data curve to a place where it hides none.
 
     Tries, for each offending axes legend, the in-axes corners and edges, then
@@ -178,12 +179,14 @@ def fix_legends(fig):
     one figure legend under all axes.  Font size, columns and entries are kept.
     Save with ``bbox_inches="tight"`` so that a legend outside the axes is not cut.
 
+    ``draw=False`` trusts the layout of the last draw (e.g. right after a savefig).
+
     Returns
     -------
     list of str
         What still hides data after the moves (empty when every legend is clear).
     """
-    bad = {id(leg) for leg, _ in _overlaps(fig)}
+    bad = {id(leg) for leg, _ in _overlaps(fig, draw=draw)}
     if not bad:
         return []
     renderer = fig.canvas.get_renderer()
@@ -205,20 +208,31 @@ def fix_legends(fig):
                        dict(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncols=max(kw["ncols"], 2))]
         if not any(clear(ax.legend(handles, labels, **dict(kw, **c))) for c in candidates):
             ax.get_legend().remove()
-            fig.canvas.draw()
+            fig.draw_without_rendering()
             bottom = min(a.get_tightbbox(renderer).y0 for a in fig.axes)
             fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, bottom / fig.bbox.height),
                        bbox_transform=fig.transFigure, **dict(kw, ncols=min(4, max(1, len(labels)))))
     return hidden_by_legends(fig)
 
 
+def _legends(fig):
+    return [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None] + list(fig.legends)
+
+
+def _legend_outside_canvas(fig):
+    renderer = fig.canvas.get_renderer()
+    return any(not (fig.bbox.contains(*box.p0) and fig.bbox.contains(*box.p1))
+               for box in (leg.get_window_extent(renderer) for leg in _legends(fig)))
+
+
 def save_figure(fig, path, dpi) -> Path:
     """Write a matplotlib figure as PNG and as an SVG sibling, atomically, and close it.
 
-    Legends that hide a data curve are moved first (:func:`fix_legends`); both
-    files are written through :func:`dhfield.io.atomic_path` with
-    ``bbox_inches="tight"`` so that a legend moved outside the axes stays in the
-    picture.  The SVG (``path`` with suffix ``.svg``) carries no date, so that it is
+    Legends that hide a data curve are moved (:func:`fix_legends`, checked on the
+    layout of the PNG's own draw, so that a figure whose legends are clear costs no
+    extra pass); a legend that then reaches outside the canvas is kept in the
+    picture by ``bbox_inches="tight"``.  Both files are written through
+    :func:`dhfield.io.atomic_path`; the SVG carries no date, so that it is
     reproducible.
 
     Returns
@@ -234,12 +248,16 @@ def save_figure(fig, path, dpi) -> Path:
 
     path = Path(path)
     try:
-        still = fix_legends(fig)
-        if still:
-            warnings.warn(f"{path.name}: {'; '.join(still)}", stacklevel=2)
-        kw = dict(bbox_inches="tight", pad_inches=0.05)
         with atomic_path(path) as tmp:
-            fig.savefig(tmp, format="png", dpi=dpi, **kw)
+            fig.savefig(tmp, format="png", dpi=dpi)  # draws: the layout below is this one
+        kw = {}
+        if _legends(fig) and _overlaps(fig, draw=False):
+            still = fix_legends(fig, draw=False)
+            if still:
+                warnings.warn(f"{path.name}: {'; '.join(still)}", stacklevel=2)
+            kw = dict(bbox_inches="tight", pad_inches=0.05) if _legend_outside_canvas(fig) else {}
+            with atomic_path(path) as tmp:
+                fig.savefig(tmp, format="png", dpi=dpi, **kw)
         with atomic_path(path.with_suffix("." + VECTOR_FORMAT)) as tmp:
             fig.savefig(tmp, format=VECTOR_FORMAT, metadata={"Date": None}, **kw)
     finally:

@@ -370,7 +370,7 @@ def _fig_axes_vs_load(curves_by, pulloffs, outdir, dpi, which, fname, caption, j
     ax.set_xlim(-1.2, 2.6)
     ax.set_ylim(0, 3.1 if which == "a" else 4.6)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left" if which == "a" else "upper right")
+    ax.legend(fontsize=8, loc="lower right")  # the curves run through the upper corners
     ax.set_title(("Fig. 4: a* vs W*" if which == "a" else "Fig. 5: c* vs W*") + f", β0 = {BETA_FIG45}")
     fig.tight_layout()
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
@@ -462,9 +462,11 @@ def _fig_quadrature(scatter, outdir, dpi, fname, caption):
     for beta, (gap, err, err_p) in scatter.items():
         gap, err = gap[:1000], err[:1000]  # every point is checked; 1000 per series are drawn
         err_p = None if err_p is None else err_p[:1000]
-        ax.loglog(gap, np.maximum(err, floor), ".", ms=2.5, label=f"library (Carlson), β = {beta:g}")
+        # thousands of markers: rasterized inside the SVG (the axes, labels and legend stay vector)
+        ax.loglog(gap, np.maximum(err, floor), ".", ms=2.5, label=f"library (Carlson), β = {beta:g}", rasterized=True)
         if err_p is not None:
-            ax.loglog(gap, np.maximum(err_p, floor), "x", ms=2.5, alpha=0.5, label=f"printed (Legendre), β = {beta:g}")
+            ax.loglog(gap, np.maximum(err_p, floor), "x", ms=2.5, alpha=0.5, label=f"printed (Legendre), β = {beta:g}",
+                      rasterized=True)
     ax.axhline(TOL_EXACT, color="r", lw=1, label="tolerance 1e-10")
     ax.set_xlabel("relative distance outside the contact ellipse, r/r_ab − 1")
     ax.set_ylabel("relative error vs quad of Eq. (12b)")
@@ -519,7 +521,8 @@ def _fig_pressure_displacement(outdir, dpi, fname, mu=1.0, beta0=0.99):
     for ax in axes:
         ax.set_xlabel("x/c_r (θp = 0); grey lines: a*, c*")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncols=2)  # below: no curve hidden
+    axes[1].legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     return save_figure(fig, outdir / fname, dpi)
 

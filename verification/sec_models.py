@@ -272,13 +272,13 @@ def _fig9(outdir, dpi, mu, res):
     ax.set_xlabel("Tabor parameter μ (Eq. 35)")
     ax.set_ylabel("normalised pull-off force W*max (Eq. 34)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=6, ncol=2)
+    ax.legend(fontsize=6, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.14))  # below: hides no curve
     ax.set_title("Fig. 9a: W*max vs μ")
     bx.axhline(0, color="0.5", lw=0.8)
     bx.set_xlabel("Tabor parameter μ (Eq. 35)")
     bx.set_ylabel("relative error vs JKR elliptical  (W*_DH/W*_JKR − 1) [%]")
     bx.grid(alpha=0.3, which="both")
-    bx.legend(fontsize=7)
+    bx.legend(fontsize=7, loc="upper right")
     bx.set_title("Fig. 9b: relative error of both DH assumptions")
     fig.tight_layout()
     cap = ("Reproduces Fig. 9a/9b of Zini et al. (2018). (a) Load-controlled pull-off W*max (Eq. 34) against μ "
