@@ -69,8 +69,8 @@ def curve_record(args) -> dict:
             lo = DEFAULT_A_STAR[0] if args.a_min is None else args.a_min
             hi = DEFAULT_A_STAR[1] if args.a_max is None else args.a_max
             from .._validation import check_contact_size_star
-            check_contact_size_star("a-min", lo)
-            check_contact_size_star("a-max", hi)
+            check_contact_size_star("--a-min (smallest a_star)", lo)
+            check_contact_size_star("--a-max (largest a_star)", hi)
             a_star = _range(lo, hi, args.n, "a-min", "a-max")
         if args.ellipticity is not None:
             if args.model != "dh-elliptic":
