@@ -127,6 +127,8 @@ MAX_OUTER = 300
 EDGE_WIDTH_FACTOR = 1.25
 #: Inner tolerance per outer iteration = INNER_FACTOR x the last outer residual.
 INNER_FACTOR = 0.1
+#: Outer iterations between Anderson restarts.
+ANDERSON_RESTART = 40
 #: Anderson memory (number of previous iterates mixed).
 ANDERSON_MEMORY = 6
 #: Evenness tolerance for the automatic symmetry mode (relative to max |z|).
@@ -467,7 +469,7 @@ def _solve(prob, delta, guess, tol, max_iter):
             if err <= inner_tol or itol <= inner_tol:
                 break
         s = np.clip(acc.step(s, f), 0.0, sigma0)
-        if outer % 40 == 0:
+        if outer % ANDERSON_RESTART == 0:
             acc.reset()
     else:
         # out of iterations: report the best iterate, flagged
