@@ -343,6 +343,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
     shape = (len(beta0s), len(mus), len(ns))
     val = {k: np.full(shape, np.nan) for k in CASE_FLOATS}
     status = np.full(shape, STATUSES.index("missing"), dtype=np.int8)
+    cap = np.zeros(shape, dtype=np.int32)  # records without the field were run with STUDY_MAX_ITER
     message = np.full(shape, "", dtype=object)
     source = np.full(shape, "", dtype=object)
     for r in records:
@@ -351,6 +352,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
         i, j, k = beta0s.index(float(r["beta0"])), mus.index(float(r["mu"])), ns.index(int(r["n"]))
         for key in CASE_FLOATS:
             val[key][i, j, k] = float(r.get(key, np.nan))
+        cap[i, j, k] = int(r.get("max_iter", -1)) if int(r.get("max_iter", -1)) > 0 else STUDY_MAX_ITER
         status[i, j, k] = STATUSES.index(r["status"])
         message[i, j, k] = r.get("message", "")
         source[i, j, k] = r.get("solver_source", "")
@@ -364,6 +366,8 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
                                                     "units": "1"})
     data["n_steps"] = (dims, val["n_steps"], {"long_name": "solved states on the path", "units": "1"})
     data["elapsed"] = (dims, val["elapsed"], {"long_name": "wall time of the case", "units": "s"})
+    data["max_iter"] = (dims, cap, {"long_name": "CG iteration cap per state of the case (0: not run)",
+                                    "units": "1"})
     for key in ("half_width_x", "half_width_y"):
         data[key] = (dims, val[key], {"long_name": f"domain {key.replace('_', ' ')}, in c_r", "units": "1"})
     data["status"] = (dims, status, {"long_name": "case status", "flag_values": np.arange(len(STATUSES),
