@@ -232,7 +232,7 @@ def _checks_md(tab):
         checks.append(check_le(
             f"sphere (β0 = 1), μ = {mu:g} (λ = {1.1272 * mu:.2f}): |W*_BEM/W*_MD − 1| ({how})",
             abs(tab["dev"]["md"][i, j]) if "md" in tab["dev"] else np.nan, tol,
-            "Maugis (1992) via dhfield.maugis_dugdale; issue 8 targets (1 % at λ ≤ 1, 2 % at λ ≤ 3)"))
+            "Maugis (1992) via dhfield.maugis_dugdale; targets 1 % at λ ≤ 1, 2 % at λ ≤ 3"))
     return checks
 
 
