@@ -91,9 +91,11 @@ __all__ = [
 CLOSURES = ("paper", "ray_average", "two_axis")
 #: Accepted Tabor parameter of the closures.  Above mu ~ 50 the two-axis Newton solve
 #: in (log c, log d) fails (the annulus, ~mu^-2 wide, is below its finite-difference
-#: step); 20 is the largest value verified for beta0 in [0.3, 1] and both controls.
-#: At mu = 20 the closures are within ~1e-4 of their JKR limits.
-CLOSURE_MU_RANGE = (1e-6, 20.0)
+#: step); 30 is the largest value verified for beta0 in {0.3, 0.35, 0.48, 0.6, 0.8, 0.9,
+#: 0.99, 1} and both controls (two-axis and ray-average; the solves also converge at 50).
+#: It covers the PDMS example of the README (mu = 21.65).  At mu = 30 the closures are
+#: within ~1e-4 of their JKR limits.
+CLOSURE_MU_RANGE = (1e-6, 30.0)
 #: Accepted beta0 of the closures: the periphery averages need 1 + 4 ceil(3/beta0) rays
 #: (120 001 at 1e-4, out of memory), and the ray-average load-control search returns
 #: a spurious zero-contact minimum at beta0 <= 0.1 (mu = 50); verified down to 0.3.

@@ -65,7 +65,7 @@ beta0        dh-elliptic                 dh-elliptic-ray-average     jkr-ellipti
   exact; it is the circular DH model at beta0 = 1 and tends to elliptical JKR at
   high mu (within 0.3 % for mu >= 10, 0.03 % at mu = 30, for every beta0 above;
   PDMS crossed at 60 deg, beta0 = 0.4826, mu = 21.65: W* = -0.6263 against
-  -0.6261).  :mod:`dhfield.closure` accepts mu <= 20 (``CLOSURE_MU_RANGE``);
+  -0.6261).  :mod:`dhfield.closure` accepts mu <= 30 (``CLOSURE_MU_RANGE``);
   above, use **jkr-elliptic**, which the closure has converged to there.
 * **dh-elliptic** (the paper's, the default) to reproduce the paper, or where
   beta0 >= 0.99 (within 0.5 % of the two-axis closure).  It under-predicts the

@@ -44,7 +44,7 @@ __all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve",
 #: Tabor parameters mu (Eq. 35) the pull-off fit searches: the range every model
 #: accepts (:data:`dhfield._validation.TABOR_RANGE`, DMT limit to 1e-3 at the low
 #: end, JKR limit to 1e-6 at the high end), narrowed for the two closures to
-#: :data:`dhfield.closure.CLOSURE_MU_RANGE` (mu <= 20) by :func:`fit_mu_range`.  A
+#: :data:`dhfield.closure.CLOSURE_MU_RANGE` (mu <= 30) by :func:`fit_mu_range`.  A
 #: force that needs mu outside it is rejected, with the attainable range of
 #: forces in the message.
 FIT_MU_RANGE = TABOR_RANGE

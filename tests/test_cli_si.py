@@ -48,7 +48,7 @@ def test_pdms_one_command_equals_api(capsys):
 
 
 def test_pdms_two_axis_no_warning(capsys):
-    # sigma0 = 0.45 MPa (mu = 19.5): inside the closures' accepted mu <= 20 (dhfield.closure.CLOSURE_MU_RANGE)
+    # sigma0 = 0.45 MPa (mu = 19.5): inside the closures' accepted mu <= 30 (dhfield.closure.CLOSURE_MU_RANGE)
     args = PDMS_ARGS[:-1] + ["0.45e6"]
     rec, err = _json(capsys, ["pulloff", *args, "--model", "dh-elliptic-two-axis", "--json"])
     assert err == "" and rec["warning"] == ""
