@@ -1,5 +1,10 @@
 """Shared test configuration."""
+import os
 import sys
+
+# One BLAS thread: the adhesive solver's small dense products stall when OpenBLAS threads
+# compete with the test process on the 2-core CI machine (the study and benchmarks pin it too).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from pathlib import Path
 
 import numpy as np

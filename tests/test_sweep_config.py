@@ -125,6 +125,9 @@ def test_cli_bad_flags(tmp_path, capsys):
                                                                        "--models", "hertz"])
     assert "--workers" in _cli_fails_before_work(tmp_path, capsys, ["--beta0", "0.9", "--mu", "1",
                                                                      "--workers", "0"])
+    # issue 9 (hostile-input campaign): an absurd worker count overflowed inside dask ("internal error").
+    assert "--workers" in _cli_fails_before_work(tmp_path, capsys, ["--beta0", "0.9", "--mu", "1",
+                                                                     "--workers", "99999999999"])
 
 
 def test_cli_unreachable_scheduler(tmp_path, capsys, monkeypatch):

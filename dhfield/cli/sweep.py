@@ -10,6 +10,8 @@ a config file override its ``[run]`` table only.
 """
 from __future__ import annotations
 
+import os
+
 import sys
 
 _AXIS_FLAGS = (("beta0", float), ("skew_angle_deg", float), ("mu", float), ("a_star", float), ("n", int),
@@ -82,8 +84,10 @@ def run(args) -> int:
         if not flag_mapping["axes"]:
             raise ValueError("give a CONFIG.toml or the axes as flags (e.g. --beta0 0.9 1 --mu-geomspace 0.1 10 50)")
         config = config_from_mapping(flag_mapping)
-    if args.workers is not None and args.workers < 1:
-        raise ValueError(f"--workers must be an integer >= 1; got {args.workers}")
+    max_workers = 4 * (os.cpu_count() or 1)  # local processes beyond a few per core only cost memory
+    if args.workers is not None and not 1 <= args.workers <= max_workers:
+        raise ValueError(f"--workers must be an integer in 1..{max_workers} (4 local processes per CPU); "
+                         f"got {args.workers}")
     scheduler = args.scheduler if args.scheduler is not None else config.scheduler
     if scheduler not in (None, "synchronous", "processes"):
         check_scheduler_address(scheduler)
