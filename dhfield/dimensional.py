@@ -189,7 +189,14 @@ def _check_model_domain(ratio, beta0, mu, s0):
     lo, hi = TABOR_RANGE
     bad = (mu < lo) | (mu > hi)
     if np.any(bad):
-        scale = np.broadcast_to(s0 / mu, np.shape(bad))[bad].flat[0]  # sigma0 per unit mu [Pa]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            scale = np.broadcast_to(s0 / mu, np.shape(bad))[bad].flat[0]  # sigma0 per unit mu [Pa]
+        if not (np.isfinite(scale) and 0.0 < scale < np.inf and np.isfinite(hi * scale) and lo * scale > 0.0):
+            # No sigma0 can help: E*, the work of adhesion or the radii are themselves extreme.
+            raise ValueError(f"youngs_modulus, work_of_adhesion and the radii give a Tabor parameter mu "
+                             f"(Eq. (35)) outside [{lo:g}, {hi:g}] for every max_adhesive_stress; got mu = "
+                             f"{float(np.broadcast_to(mu, np.shape(bad))[bad].flat[0]):.6g} "
+                             f"(check the inputs' units: Pa, J m^-2, m)")
         raise ValueError(f"max_adhesive_stress must be in [{lo * scale:.6g}, {hi * scale:.6g}] Pa here "
                          f"(Tabor parameter mu of Eq. (35) in [{lo:g}, {hi:g}]); "
                          f"got {float(np.broadcast_to(s0, np.shape(bad))[bad].flat[0])!r}")
@@ -223,6 +230,9 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
                    what=f"rad; below {th_min:.4g} rad the contact is a line contact, beta0 < {ELLIPTICITY_RANGE[0]:g}")
     with np.errstate(divide="ignore"):  # R' = inf for a vanishing angle: rejected below, by name
         r1, r2 = geometry.principal_radii(cylinder_radius, skew_angle)  # Eqs. (3)-(4)
+    if not np.all(np.isfinite(r1)):
+        raise ValueError(f"cylinder_radius must be finite after Eq. (3), R' = R_c/(1 - cos theta_skew) < "
+                         f"{np.finfo(float).max:.4g} m; got {float(np.max(cylinder_radius))!r}")
     return contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
                                                    poisson_ratio_2, r1, r2, work_of_adhesion,
                                                    max_adhesive_stress)

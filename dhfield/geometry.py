@@ -54,7 +54,8 @@ def principal_radii(cylinder_radius, skew_angle):
     rc = check_positive("cylinder_radius", cylinder_radius, "m")
     th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
     # 1 - cos = 2 sin^2(theta/2): no cancellation at small crossing angles.
-    return rc / (2.0 * np.sin(0.5 * th) ** 2), rc / (1.0 + np.cos(th))  # Eq. (3), Eq. (4)
+    with np.errstate(over="ignore"):  # R' = inf for extreme inputs: the caller's range check names them
+        return rc / (2.0 * np.sin(0.5 * th) ** 2), rc / (1.0 + np.cos(th))  # Eq. (3), Eq. (4)
 
 
 def effective_radius(r_major, r_minor):
@@ -83,7 +84,8 @@ def reduced_modulus(e1, nu1, e2, nu2):
 
 def _radius_ratio(beta):
     b2 = np.asarray(beta, dtype=float) ** 2
-    return special.elliprd(0.0, 1.0, b2) / special.elliprd(0.0, b2, 1.0)
+    with np.errstate(invalid="ignore", divide="ignore", under="ignore"):  # beta -> 0: inf/inf, rejected by callers
+        return special.elliprd(0.0, 1.0, b2) / special.elliprd(0.0, b2, 1.0)
 
 
 def radius_ratio(beta):

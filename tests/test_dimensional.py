@@ -159,3 +159,25 @@ def test_bad_model():
         dim.pull_off_force(dim.contact_parameters(**SI), model="hertz")
     with pytest.raises(ValueError, match="radius_2"):
         dim.crossed_cylinder_radii(1e-3, 0.0, 1.0)
+
+
+PDMS = dict(youngs_modulus_1=2e6, poisson_ratio_1=0.5, youngs_modulus_2=2e6, poisson_ratio_2=0.5,
+            cylinder_radius=5e-3, skew_angle=np.pi / 3, work_of_adhesion=0.04, max_adhesive_stress=5e5)
+
+
+@pytest.mark.parametrize("key, value, words", [
+    ("both_moduli", 1e308, "youngs_modulus"), ("youngs_modulus_1", 1e-308, "youngs_modulus"),
+    ("youngs_modulus_2", 1e-308, "youngs_modulus"), ("work_of_adhesion", 1e308, "work_of_adhesion"),
+    ("cylinder_radius", 1e308, "cylinder_radius")])
+def test_extreme_si_inputs_are_named_without_runtime_warnings(key, value, words):
+    # Issue 9 (hostile-input campaign): these printed numpy RuntimeWarnings and then blamed
+    # max_adhesive_stress with a range of [inf, inf] Pa, or r_major, which the user never gave.
+    import warnings
+
+    # One rigid body (E1 = 1e308) is a valid input; both rigid is not.
+    kwargs = {**PDMS, "youngs_modulus_1": value, "youngs_modulus_2": value} if key == "both_moduli" \
+        else {**PDMS, key: value}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match=words):
+            dim.contact_parameters(**kwargs)
