@@ -137,6 +137,7 @@ def test_pluggable_adhesive_ground_truth(tmp_path, monkeypatch):
     class Result:
         def __init__(self, mu, beta0):
             self.W_star, self.a_star, self.c_star, self.beta_ab = -mu * beta0, 1.0, 2.0, beta0
+            self.b_star, self.d_star, self.beta_cd = beta0, 2.0 * mu, mu  # distinct per case
             self.delta_star, self.iterations = -0.5, 7
             self.converged = mu < 2.0
             self.message = "" if self.converged else "stalled"
@@ -156,6 +157,12 @@ def test_pluggable_adhesive_ground_truth(tmp_path, monkeypatch):
     assert list(adh["status"].values) == [0, engine._STATUS["not_converged"]]
     assert str(ds["adhesive_message"].sel(beta0=0.9, mu=3.0, n=64).isel(law=0).values) == "stalled"
     assert (ds["W_star"].sel(model="jkr").values == -0.75).all()  # analytic models broadcast over n, law
+    # The BEM-only outputs of `dhfield solve --json` are in the sweep too (same names and metadata).
+    np.testing.assert_array_equal(adh["b_star"].values, [0.9, 0.9])
+    np.testing.assert_array_equal(adh["d_star"].values, [2.0, 6.0])
+    np.testing.assert_array_equal(adh["beta_cd"].values, [1.0, 3.0])
+    np.testing.assert_array_equal(adh["beta_ab"].values, [0.9, 0.9])
+    assert ds["beta_cd"].attrs["long_name"] == schema.attrs("beta_cd", nondimensional=True)["long_name"]
 
 
 def test_progress_bar_with_eta():

@@ -39,10 +39,11 @@ import numpy as np
 
 from .config import SweepConfig, check_scheduler_address
 from .store import CaseStore, output_paths
-from .tasks import (ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
+from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
                     adhesive_case, adhesive_solver, bem_field_case, load_curve_case, pull_off_block)
 
-_FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS, "load_curve": CURVE_FIELDS}
+_FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS + ADHESIVE_BEM_FIELDS,
+           "load_curve": CURVE_FIELDS}
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
            "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV"]
@@ -299,7 +300,9 @@ def _run_cases(quantity, cases, store_dir, fingerprint):
     for key, params in cases:
         if store.is_done(key):
             ds = store.read(key)
-            out[key] = ({k: ds[k].values for k in fields}, ds.attrs["status"], ds.attrs["message"], False)
+            # A field added after the case was stored reads as NaN (the case is not recomputed).
+            out[key] = ({k: ds[k].values if k in ds else np.nan for k in fields}, ds.attrs["status"],
+                        ds.attrs["message"], False)
             continue
         try:
             if quantity == "bem_field":
@@ -563,6 +566,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         adims = (ell, "mu", "n", "law")
         ashape = (n_ell, n_mu) + ex_shape
         iters = np.full(ashape, np.nan)
+        bem_only = {k: np.full(ashape, np.nan) for k in ADHESIVE_BEM_FIELDS}
         amsg = np.full(ashape, "", dtype=object)
         for key, (rec, status, message, _) in cases["adhesive"].items():
             idx = tuple(int(t) for t in key.split("__")[1].split("_"))
@@ -570,6 +574,8 @@ def _consolidate(config: SweepConfig, kinds, results, store):
                 if k in mvars:
                     mvars[k][(m,) + idx] = rec[k]
             iters[idx] = rec["iterations"]
+            for k in ADHESIVE_BEM_FIELDS:  # absent from case files written before these fields existed
+                bem_only[k][idx] = rec.get(k, np.nan)
             mstatus[(m,) + idx] = _STATUS[status]
             amsg[idx] = message
         from ..geometry import sin_skew_angle
@@ -577,6 +583,8 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         mvars["sin_skew"][m] = np.asarray(sin_skew_angle(beta0), dtype=float).reshape((n_ell,) + (1,) * (
             1 + len(extra)))
         data["iterations"] = (adims, iters, schema.attrs("iterations"))
+        for k in ADHESIVE_BEM_FIELDS:
+            data[k] = (adims, bem_only[k], schema.attrs(k, nondimensional=True))
         data["adhesive_message"] = (adims, amsg, {"long_name": "message of the adhesive BEM solve (empty: ok)"})
     if "load_curve" in config.quantities:
         cdims = ("model", ell, "mu", "point")

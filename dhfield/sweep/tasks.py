@@ -20,7 +20,7 @@ import importlib
 
 import numpy as np
 
-__all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_SOLVERS", "ADHESIVE_MODEL",
+__all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_BEM_FIELDS", "ADHESIVE_SOLVERS", "ADHESIVE_MODEL",
            "pull_off_block", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver"]
 
 #: Output fields of the analytic pull-off, in the order of the stacked block (names of
@@ -32,6 +32,9 @@ CURVE_FIELDS = ("W_star", "delta_star", "c_star", "v")
 BEM_FIELD_FIELDS = ("bem_displacement_error", "bem_gap_error", "bem_annulus_error", "bem_c_star", "bem_v")
 #: Output fields of the adhesive BEM ground truth at pull-off (nondimensional).
 ADHESIVE_FIELDS = ("W_star", "a_star", "c_star", "ellipticity", "delta_star", "iterations")
+#: Outputs only the adhesive BEM has (the semi-minor axes and both ellipticities from second
+#: moments of the masks), stored per case beside :data:`ADHESIVE_FIELDS`, as `dhfield solve --json`.
+ADHESIVE_BEM_FIELDS = ("b_star", "d_star", "beta_ab", "beta_cd")
 #: Name of the adhesive ground truth on the ``model`` dimension of a sweep.
 ADHESIVE_MODEL = "bem-adhesive"
 #: name -> "module:function" of adhesive BEM solvers
@@ -142,7 +145,8 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
     """Adhesive BEM ground truth at pull-off of one (beta0, mu, n, law) case.
 
     The whole load path runs in this one call (each step warm-starts from the
-    last).  Returns :data:`ADHESIVE_FIELDS` (NaN where the solver gives none)
+    last).  Returns :data:`ADHESIVE_FIELDS` and :data:`ADHESIVE_BEM_FIELDS` (NaN where the
+    solver gives none)
     plus ``converged`` (bool) and ``message`` (str).
     """
     res = adhesive_solver(solver)(float(mu), float(beta0), int(n), law=law, control=control, threads=1)
@@ -156,6 +160,7 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
     out = {"W_star": get("W_star"), "a_star": get("a_star"), "c_star": get("c_star"),
            "ellipticity": get("ellipticity", "beta_ab"), "delta_star": get("delta_star"),
            "iterations": get("iterations")}
+    out.update({k: get(k) for k in ADHESIVE_BEM_FIELDS})
     out["converged"] = bool(getattr(res, "converged", True))
     message = str(getattr(res, "message", "") or "")
     if not out["converged"] and not message:
