@@ -101,8 +101,37 @@ def cell_fraction_below(excess, spread_x, spread_y):
     return np.clip(out, 0.0, 1.0)
 
 
+class _TwoParameterLaw:
+    """What both laws share: a peak stress sigma0 [Pa] and a length scale [m] whose
+    product is the work of adhesion.  Subclasses name the two in ``_labels``."""
+
+    _labels = ("sigma0, Pa", "length, m")
+
+    def __post_init__(self):
+        stress_label, range_label = self._labels
+        object.__setattr__(self, "max_stress", _positive_scalar("max_stress", self.max_stress, stress_label))
+        object.__setattr__(self, "range", _positive_scalar("range", self.range, range_label))
+
+    @classmethod
+    def from_work_of_adhesion(cls, max_stress, work_of_adhesion):
+        """The law with sigma0 = ``max_stress`` [Pa] and range = Delta gamma/sigma0 [m]."""
+        s = _positive_scalar("max_stress", max_stress, cls._labels[0])
+        w = _positive_scalar("work_of_adhesion", work_of_adhesion, "Delta gamma, J/m^2")
+        return cls(s, w / s)
+
+    @property
+    def work_of_adhesion(self) -> float:
+        """Delta gamma = sigma0 x range [J/m^2]."""
+        return self.max_stress * self.range
+
+    @property
+    def zone_gap(self) -> float:
+        """Gap bounding the reported cohesive zone: the range (h0, or rho) [m]."""
+        return self.range
+
+
 @dataclass(frozen=True)
-class DugdaleLaw:
+class DugdaleLaw(_TwoParameterLaw):
     """Dugdale (Maugis) law: uniform tensile stress sigma0 up to the gap h0.
 
     Parameters
@@ -128,28 +157,7 @@ class DugdaleLaw:
 
     name = "dugdale"
     smooth = False
-
-    def __post_init__(self):
-        object.__setattr__(self, "max_stress",
-                           _positive_scalar("max_stress", self.max_stress, "Dugdale stress sigma0, Pa"))
-        object.__setattr__(self, "range", _positive_scalar("range", self.range, "cut-off gap h0, m"))
-
-    @classmethod
-    def from_work_of_adhesion(cls, max_stress, work_of_adhesion) -> "DugdaleLaw":
-        """The law with sigma0 = ``max_stress`` [Pa] and h0 = Delta gamma/sigma0 [m]."""
-        s = _positive_scalar("max_stress", max_stress, "Dugdale stress sigma0, Pa")
-        w = _positive_scalar("work_of_adhesion", work_of_adhesion, "Delta gamma, J/m^2")
-        return cls(s, w / s)
-
-    @property
-    def work_of_adhesion(self) -> float:
-        """Delta gamma = sigma0 h0 [J/m^2]."""
-        return self.max_stress * self.range
-
-    @property
-    def zone_gap(self) -> float:
-        """Gap at the outer edge of the cohesive zone, h0 [m]."""
-        return self.range
+    _labels = ("Dugdale stress sigma0, Pa", "cut-off gap h0, m")
 
     def stress(self, gap):
         """Tensile adhesive stress sigma(h) >= 0 at gap ``gap`` >= 0 [Pa]."""
@@ -167,7 +175,7 @@ class DugdaleLaw:
 
 
 @dataclass(frozen=True)
-class ExponentialLaw:
+class ExponentialLaw(_TwoParameterLaw):
     """Exponential law: tensile stress sigma0 exp(-h/rho).
 
     Parameters
@@ -193,28 +201,7 @@ class ExponentialLaw:
 
     name = "exponential"
     smooth = True
-
-    def __post_init__(self):
-        object.__setattr__(self, "max_stress",
-                           _positive_scalar("max_stress", self.max_stress, "peak stress sigma0, Pa"))
-        object.__setattr__(self, "range", _positive_scalar("range", self.range, "decay length rho, m"))
-
-    @classmethod
-    def from_work_of_adhesion(cls, max_stress, work_of_adhesion) -> "ExponentialLaw":
-        """The law with sigma0 = ``max_stress`` [Pa] and rho = Delta gamma/sigma0 [m]."""
-        s = _positive_scalar("max_stress", max_stress, "peak stress sigma0, Pa")
-        w = _positive_scalar("work_of_adhesion", work_of_adhesion, "Delta gamma, J/m^2")
-        return cls(s, w / s)
-
-    @property
-    def work_of_adhesion(self) -> float:
-        """Delta gamma = sigma0 rho [J/m^2]."""
-        return self.max_stress * self.range
-
-    @property
-    def zone_gap(self) -> float:
-        """Gap that bounds the reported cohesive zone, rho [m]."""
-        return self.range
+    _labels = ("peak stress sigma0, Pa", "decay length rho, m")
 
     def stress(self, gap):
         """Tensile adhesive stress sigma(h) >= 0 at gap ``gap`` >= 0 [Pa]."""
