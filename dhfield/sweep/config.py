@@ -182,6 +182,19 @@ def _fail(key, valid, got):
     raise ValueError(f"{key} must be {valid}; got {got!r}")
 
 
+def _name_list(sweep, key, allowed, default):
+    """``sweep[key]`` as a non-empty list of names from ``allowed`` (one name may stand alone)."""
+    names = sweep.get(key, [default])
+    if isinstance(names, str):
+        names = [names]
+    if not isinstance(names, list) or not names:
+        _fail(f"sweep.{key}", f"a non-empty list from {allowed}", names)
+    for name in names:
+        if name not in allowed:
+            _fail(f"sweep.{key}", f"names from {allowed}", name)
+    return names
+
+
 def _check_keys(table, allowed, where):
     if not isinstance(table, dict):
         _fail(where, "a table", table)
@@ -296,22 +309,8 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
         raise ValueError("axes must be a table with at least the axes beta0 (or skew_angle_deg) and mu")
     _check_keys(axes_in, AXES, "axes")
 
-    quantities = sweep.get("quantities", ["pull_off"])
-    if isinstance(quantities, str):
-        quantities = [quantities]
-    if not isinstance(quantities, list) or not quantities:
-        _fail("sweep.quantities", f"a non-empty list from {QUANTITIES}", quantities)
-    for q in quantities:
-        if q not in QUANTITIES:
-            _fail("sweep.quantities", f"names from {QUANTITIES}", q)
-    models = sweep.get("models", ["dh-elliptic"])
-    if isinstance(models, str):
-        models = [models]
-    if not isinstance(models, list) or not models:
-        _fail("sweep.models", f"a non-empty list from {MODEL_NAMES}", models)
-    for m in models:
-        if m not in MODEL_NAMES:
-            _fail("sweep.models", f"names from {MODEL_NAMES}", m)
+    quantities = _name_list(sweep, "quantities", QUANTITIES, "pull_off")
+    models = _name_list(sweep, "models", MODEL_NAMES, "dh-elliptic")
     control = sweep.get("control", "load")
     if control not in _CONTROLS:
         _fail("sweep.control", "'load' or 'displacement'", control)

@@ -291,6 +291,26 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
     return out
 
 
+def _gather(records, fields, shape, status_shape=None):
+    """Arrays of ``fields`` (NaN where no case), status codes and messages of finished cases.
+
+    ``records`` maps a case key ``<quantity>__<i>_<j>_...`` to ``(record, status, message,
+    computed)``; the indices in the key place each case.  The status and messages have
+    ``status_shape`` (default ``shape``; a load curve's points share one status).
+    """
+    status_shape = shape if status_shape is None else status_shape
+    values = {k: np.full(shape, np.nan) for k in fields}
+    status = np.zeros(status_shape, dtype=np.int8)
+    messages = np.full(status_shape, "", dtype=object)
+    for key, (rec, st, message, _) in records.items():
+        idx = tuple(int(t) for t in key.split("__")[1].split("_"))
+        for k in fields:
+            values[k][idx] = rec[k]
+        status[idx] = _STATUS[st]
+        messages[idx] = message
+    return values, status, messages
+
+
 def _run_cases(quantity, cases, store_dir, fingerprint):
     """One task: the cases of one load path, in order; each written as it finishes."""
     store = CaseStore(store_dir, fingerprint)
@@ -565,39 +585,22 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         m = models.index(ADHESIVE_MODEL)
         adims = (ell, "mu", "n", "law")
         ashape = (n_ell, n_mu) + ex_shape
-        iters = np.full(ashape, np.nan)
-        bem_only = {k: np.full(ashape, np.nan) for k in ADHESIVE_BEM_FIELDS}
-        amsg = np.full(ashape, "", dtype=object)
-        for key, (rec, status, message, _) in cases["adhesive"].items():
-            idx = tuple(int(t) for t in key.split("__")[1].split("_"))
-            for k in ADHESIVE_FIELDS:
-                if k in mvars:
-                    mvars[k][(m,) + idx] = rec[k]
-            iters[idx] = rec["iterations"]
-            for k in ADHESIVE_BEM_FIELDS:  # absent from case files written before these fields existed
-                bem_only[k][idx] = rec.get(k, np.nan)
-            mstatus[(m,) + idx] = _STATUS[status]
-            amsg[idx] = message
+        avars, mstatus[m], amsg = _gather(cases["adhesive"], ADHESIVE_FIELDS + ADHESIVE_BEM_FIELDS, ashape)
+        for k in ADHESIVE_FIELDS:
+            if k in mvars:
+                mvars[k][m] = avars[k]
         from ..geometry import sin_skew_angle
 
         mvars["sin_skew"][m] = np.asarray(sin_skew_angle(beta0), dtype=float).reshape((n_ell,) + (1,) * (
             1 + len(extra)))
-        data["iterations"] = (adims, iters, schema.attrs("iterations"))
+        data["iterations"] = (adims, avars["iterations"], schema.attrs("iterations"))
         for k in ADHESIVE_BEM_FIELDS:
-            data[k] = (adims, bem_only[k], schema.attrs(k, nondimensional=True))
+            data[k] = (adims, avars[k], schema.attrs(k, nondimensional=True))
         data["adhesive_message"] = (adims, amsg, {"long_name": "message of the adhesive BEM solve (empty: ok)"})
     if "load_curve" in config.quantities:
         cdims = ("model", ell, "mu", "point")
         cshape = (len(models), n_ell, n_mu, config.curve_points)
-        cvars = {k: np.full(cshape, np.nan) for k in CURVE_FIELDS}
-        cstatus = np.zeros(cshape[:-1], dtype=np.int8)
-        cmsg = np.full(cshape[:-1], "", dtype=object)
-        for key, (rec, status, message, _) in cases["load_curve"].items():
-            idx = tuple(int(t) for t in key.split("__")[1].split("_"))
-            for k in CURVE_FIELDS:
-                cvars[k][idx] = rec[k]
-            cstatus[idx] = _STATUS[status]
-            cmsg[idx] = message
+        cvars, cstatus, cmsg = _gather(cases["load_curve"], CURVE_FIELDS, cshape, cshape[:-1])
         coords["curve_a_star"] = ("point", np.linspace(*config.curve_a_star, config.curve_points),
                                   {**schema.attrs("a_star", True), "long_name": "contact semi-major axis a/c_r "
                                    "of the load-curve points"})
@@ -617,15 +620,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
     if "bem_field" in config.quantities:
         bdims = (ell, "mu", "a_star", "n")
         bshape = (n_ell, n_mu, len(config.axes["a_star"]), len(config.axes["n"]))
-        bvars = {k: np.full(bshape, np.nan) for k in BEM_FIELD_FIELDS}
-        bstatus = np.zeros(bshape, dtype=np.int8)
-        bmsg = np.full(bshape, "", dtype=object)
-        for key, (rec, status, message, _) in cases["bem_field"].items():
-            idx = tuple(int(t) for t in key.split("__")[1].split("_"))
-            for k in BEM_FIELD_FIELDS:
-                bvars[k][idx] = rec[k]
-            bstatus[idx] = _STATUS[status]
-            bmsg[idx] = message
+        bvars, bstatus, bmsg = _gather(cases["bem_field"], BEM_FIELD_FIELDS, bshape)
         for k, (ln, u) in _BEM_ATTRS.items():
             data[k] = (bdims, bvars[k], {"long_name": ln, "units": u})
         data["bem_field_status"] = (bdims, bstatus, _status_attrs("forward BEM"))
