@@ -52,7 +52,7 @@ from scipy.optimize import elementwise
 
 from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star,
                           check_count, check_model_ellipticity, check_tabor)
-from .adhesion import graded_rule
+from .adhesion import NODES_PER_PANEL, PANEL_RATIO, T1_MIN, graded_rule
 from .geometry import sin_skew_angle
 from .pull_off_search import stable_branch_end
 
@@ -77,9 +77,13 @@ DERIVATIVE_FLOOR = 1e-9
 #: Pull-off scan: from a* = _SCAN_LOW (times max(1, a_JKR)) to _SCAN_TOP_FACTOR times
 #: the JKR-limit pull-off contact a_JKR, geometric (see :func:`_pull_off_scan`).
 _SCAN_LOW, _SCAN_TOP_FACTOR, _SCAN_POINTS = 1e-4, 8.0, 48
-#: Working memory of one state with derivatives (quadrature of <= 66 panels x 16
-#: nodes, ~12 arrays): sizes the chunks of the pull-off search.
-_BYTES_PER_STATE = 16 * 66 * 8 * 12
+#: Quadrature nodes (states x nodes) per slice of :func:`_axis_integrals`: ~12 work
+#: arrays of this size (~6 MB) bound its memory whatever the number of states.
+_NODES_PER_SLICE = 1 << 16
+#: Working memory of one state of the pull-off search outside the quadrature (~40
+#: per-state arrays): sizes its chunks.
+_BYTES_PER_STATE = 40 * 8
+_T_END = np.pi / 2  # upper end of the quadrature in t (w = S^2)
 
 
 @dataclass(frozen=True)
@@ -104,6 +108,20 @@ def _shape(beta, sin_skew=None):
     return _Shape(beta, kappa, special.elliprf(0.0, b2, 1.0), np.sqrt(rho), np.asarray(sin_skew, float))
 
 
+def _panel_counts(t1):
+    """Panels of the graded rule for each first-panel end ``t1`` (as :func:`graded_rule` for one t1)."""
+    t1 = np.clip(t1, T1_MIN, _T_END)
+    return np.ceil(np.log(_T_END / t1) / np.log(PANEL_RATIO)).astype(int)
+
+
+def _bounded_groups(starts, ends, panels):
+    """Slices of the groups of equal panel count, each of at most :data:`_NODES_PER_SLICE` nodes."""
+    for lo, hi in zip(starts, ends):
+        step = max(1, _NODES_PER_SLICE // (NODES_PER_PANEL * (int(panels[lo]) + 1)))
+        for i in range(lo, hi, step):
+            yield i, min(hi, i + step)
+
+
 def _axis_integrals(a, b, s, with_a=True):
     """T0, T1, Ta of the exchanged Eq. (31) for contact (a, b) and S.
 
@@ -111,23 +129,39 @@ def _axis_integrals(a, b, s, with_a=True):
     T0 = int cos^4 t / q dt, T1 = int cos^2 t / q dt and
     Ta = d T0/da at fixed S and beta (b = beta a).  S may underflow to 0 (the
     narrow-annulus limit, T0 = 3 pi/(16 a^3 b)).
+
+    Every element gets the panels its own near-singularity scale needs (elements
+    are grouped by panel count), so a result does not depend on the other
+    elements of the batch.
     """
+    a, b, s = np.broadcast_arrays(*(np.asarray(q, dtype=float) for q in (a, b, s)))
+    out_shape = a.shape
+    a, b, s = (q.ravel() for q in (a, b, s))
     with np.errstate(divide="ignore"):
-        scale = np.minimum(1.0, b / s)
-    t, w = graded_rule(np.arcsin(scale))
-    ex = (lambda q: q[..., None])
-    sin2 = np.sin(t) ** 2
-    s2 = ex(s * s) * sin2
-    a2s, b2s = ex(a * a) + s2, ex(b * b) + s2
-    c2 = 1.0 - sin2
-    wc2q = w * c2 / (a2s * np.sqrt(a2s * b2s))  # w cos^2 t / q
-    t0 = np.einsum("...i,...i->...", wc2q, c2)
-    t1 = np.sum(wc2q, axis=-1)
-    if not with_a:
-        return t0, t1, None
-    beta2 = (b / a) ** 2
-    ta = np.sum(wc2q * c2 * (-3.0 * ex(a) / a2s - ex(beta2 * a) / b2s), axis=-1)
-    return t0, t1, ta
+        t1 = np.arcsin(np.minimum(1.0, b / s))
+    panels = _panel_counts(t1)
+    t0, t1_sum = np.empty(a.size), np.empty(a.size)
+    ta = np.empty(a.size) if with_a else None
+    order = np.argsort(panels, kind="stable")
+    sorted_panels = panels[order]
+    starts = np.flatnonzero(np.r_[True, sorted_panels[1:] != sorted_panels[:-1]]) if a.size else []
+    ends = np.r_[starts[1:], a.size] if a.size else []
+    for lo, hi in _bounded_groups(starts, ends, sorted_panels):
+        idx = order[lo:hi]
+        t, w = graded_rule(t1[idx], n_panels=int(sorted_panels[lo]))
+        ai, bi, si = a[idx, None], b[idx, None], s[idx, None]
+        sin2 = np.sin(t) ** 2
+        s2 = (si * si) * sin2
+        a2s, b2s = ai * ai + s2, bi * bi + s2
+        c2 = 1.0 - sin2
+        wc2q = w * c2 / (a2s * np.sqrt(a2s * b2s))  # w cos^2 t / q
+        t0[idx] = np.einsum("...i,...i->...", wc2q, c2)
+        t1_sum[idx] = np.sum(wc2q, axis=-1)
+        if with_a:
+            beta2 = (bi / ai) ** 2
+            ta[idx] = np.sum(wc2q * c2 * (-3.0 * ai / a2s - (beta2 * ai) / b2s), axis=-1)
+    t0, t1_sum = t0.reshape(out_shape), t1_sum.reshape(out_shape)
+    return t0, t1_sum, (ta.reshape(out_shape) if with_a else None)
 
 
 def _log_adhesion_terms(a, u, shape, with_a=True):
@@ -212,18 +246,29 @@ def _solve_s(a, mu, shape):
 
 
 def _state(a, mu, shape, derivatives=False):
-    """Full state at contact semi-major axis a (arrays broadcast).
+    """Full state at contact semi-major axis a (arrays broadcast): S from the Newton solve."""
+    u = _solve_log_s(a, mu, shape)
+    a, mu = np.broadcast_arrays(np.asarray(a, float), np.asarray(mu, float))
+    log_v = np.log(mu) - np.log(shape.kappa) - u  # Eq. (24) with sigma0 = mu
+    out = _state_from_solution(a, u, log_v, mu, shape)
+    if derivatives:
+        _, s_js_j, ja_j = _log_adhesion_terms(a, u, shape)
+        g_u = -1.0 - special.expit(log_v) + s_js_j
+        u_a = -ja_j / g_u  # implicit function theorem, d(log S)/da
+        out.update(_derivatives(a, out, u_a, 1.0, shape))
+    return out
+
+
+def _state_from_solution(a, u, log_v, mu, shape):
+    """W*, delta*, c, v of a solved state (a, u = log S, log v).
 
     Written without cancellation or overflow at large mu: with m = v S^2 = mu S/kappa
     (Eq. 24) and c^3 - a^3 = S^2 (c^2 + ca + a^2)/(c + a), Eq. (36) is
     W* = sin/3 kappa beta [a^3 - m r], r = (c^2 + ca + a^2)/(c + a), and the approach
     (1+v) delta_ab - v delta_cd = kappa beta K (a^2 - m).
     """
-    u = _solve_log_s(a, mu, shape)
-    a, mu = np.broadcast_arrays(np.asarray(a, float), np.asarray(mu, float))
     kappa, beta, kk, sn = shape.kappa, shape.beta, shape.k_complete, shape.sin_skew
     s = np.exp(u)
-    log_v = np.log(mu) - np.log(kappa) - u
     with np.errstate(over="ignore"):
         v = np.exp(log_v)  # Eq. (24)
     m = np.exp(np.log(mu) + u) / kappa  # v S^2
@@ -231,17 +276,57 @@ def _state(a, mu, shape, derivatives=False):
     r = (c * c + c * a + a * a) / (c + a)  # (c^3 - a^3)/S^2
     w_star = sn / 3.0 * kappa * beta * (a**3 - m * r)  # Eq. (36): (1+v) a^3 - v c^3
     delta = kappa * beta * kk * (a * a - m)  # (1+v) delta_ab - v delta_cd, Eq. (14a)
-    out = dict(a=a, s=s, c=c, v=v, W=w_star, delta=delta)
+    return dict(a=a, s=s, c=c, v=v, W=w_star, delta=delta, _m=m, _r=r)
+
+
+def _derivatives(a, st, u_p, a_p, shape):
+    """dW*/da and d delta*/da from the derivatives of log S (u_p) and a (a_p) in one parameter p."""
+    kappa, beta, kk, sn = shape.kappa, shape.beta, shape.k_complete, shape.sin_skew
+    s, c, m, r = st["s"], st["c"], st["_m"], st["_r"]
+    m_p = m * u_p
+    c_p = (a * a_p + s * s * u_p) / c
+    cpa2 = (c + a) ** 2
+    r_p = (c * c + 2.0 * c * a) / cpa2 * c_p + (2.0 * c * a + a * a) / cpa2 * a_p
+    w_p = sn / 3.0 * kappa * beta * (3.0 * a * a * a_p - m_p * r - m * r_p)  # d/dp of Eq. (36)
+    delta_p = kappa * beta * kk * (2.0 * a * a_p - m_p)
+    return dict(dW=w_p / a_p, ddelta=delta_p / a_p)
+
+
+def _state_at_ratio(x, mu, shape, derivatives=False):
+    """Full state at the ratio x = a/S of contact semi-axis to S = sqrt(c^2 - a^2), no iteration.
+
+    At fixed x, T0(a, beta a, S) = a^-4 T0(1, beta, 1/x) and Eqs. (24), (31) with
+    Delta gamma = 1 become v (1 + v) A a^3 = 1 with v = mu x/(kappa a) and
+    A = (2/3) kappa^2 beta x^-4 T0(1, beta, 1/x): in v, Q v^2 = 1 + v with
+    Q = (kappa/(mu x))^3 / A, solved in closed form (positive root) and in logs, so
+    one quadrature gives the state.  a(x) is increasing (d log a/d log x >= 1,
+    because T1 >= T0), so the search for the pull-off can run in x.
+    """
+    x, mu = np.broadcast_arrays(np.asarray(x, float), np.asarray(mu, float))
+    kappa, beta = shape.kappa, shape.beta
+    log_x = np.log(x)
+    log_mu = np.log(mu)
+    t0, t1, _ = _axis_integrals(1.0, beta, np.exp(-log_x), with_a=False)
+    log_a3 = np.log(2.0 / 3.0 * kappa**2 * beta) - 4.0 * log_x + np.log(t0)  # log A, Eq. (31)
+    log_q = 3.0 * (np.log(kappa) - log_mu - log_x) - log_a3
+    # Positive root of Q v^2 - v - 1 = 0 in logs: v = y (y + sqrt(y^2 + 4))/2 with y = Q^-1/2
+    # for Q >= 1, v = (1 + sqrt(1 + 4Q))/(2Q) for Q < 1.
+    big = log_q >= 0.0
+    y = np.exp(-0.5 * np.where(big, log_q, 0.0))
+    q = np.exp(np.where(big, 0.0, log_q))
+    log_v = np.where(big, np.log(y) + np.log(0.5 * (y + np.sqrt(y * y + 4.0))),
+                     -log_q + np.log(0.5 * (1.0 + np.sqrt(1.0 + 4.0 * q))))
+    u = log_mu - np.log(kappa) - log_v  # log S, Eq. (24) with sigma0 = mu
+    a = np.exp(u + log_x)
+    out = _state_from_solution(a, u, log_v, mu, shape)
     if derivatives:
-        _, s_js_j, ja_j = _log_adhesion_terms(a, u, shape)
-        g_u = -1.0 - special.expit(log_v) + s_js_j
-        u_a = -ja_j / g_u  # implicit function theorem, d(log S)/da
-        m_a = m * u_a
-        c_a = (a + s * s * u_a) / c
-        cpa2 = (c + a) ** 2
-        r_a = (c * c + 2.0 * c * a) / cpa2 * c_a + (2.0 * c * a + a * a) / cpa2
-        out["dW"] = sn / 3.0 * kappa * beta * (3.0 * a * a - m_a * r - m * r_a)
-        out["ddelta"] = kappa * beta * kk * (2.0 * a - m_a)
+        # d/d log x: d log A = -3 T1/T0 (S dJ/dS = 3 J T1/T0, see _log_adhesion_terms),
+        # d log Q = -3 - d log A >= 0 (T1 >= T0), d log v = -(1 + v)/(2 + v) d log Q;
+        # then u = log S = log(mu/kappa) - log v and log a = u + log x.
+        dlog_q = -3.0 + 3.0 * t1 / t0
+        frac = 1.0 - special.expit(-np.logaddexp(0.0, log_v))  # (1 + v)/(2 + v)
+        u_x = frac * dlog_q
+        out.update(_derivatives(a, out, u_x, a * (u_x + 1.0), shape))
     return out
 
 
@@ -469,6 +554,19 @@ def _pull_off_scan(shape):
     return _SCAN_LOW * np.maximum(a_jkr, 1.0)[..., None] * unit
 
 
+def _pull_off_ratio_scan(mu, shape):
+    """The scan of :func:`_pull_off_scan` in the ratio x = a/S (geometric between its ends).
+
+    Only the two ends are solved for S (Newton); x(a) is increasing, so the scan
+    covers the same contact sizes and the search can run in x, where a state needs
+    one quadrature and no iteration (:func:`_state_at_ratio`).
+    """
+    ends = _pull_off_scan(shape)[..., [0, -1]]
+    x_ends = ends / _solve_s(ends, mu[..., None], _Shape(*(f[..., None] for f in astuple(shape))))
+    unit = np.linspace(0.0, 1.0, _SCAN_POINTS)
+    return x_ends[..., :1] * (x_ends[..., 1:] / x_ends[..., :1]) ** unit
+
+
 def pull_off(mu, beta0, *, control="load", ellipticity=None):
     """Pull-off point of the elliptical DH model, vectorised over ``mu`` and ``beta0``.
 
@@ -513,15 +611,15 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     zero = _zero_contact_state(mu, shape)
     floor = DERIVATIVE_FLOOR * np.abs(zero["W"] if control == "load" else zero["delta"])
 
-    def deriv(a, mu_, *fields_):
-        return _state(a, mu_, _Shape(*fields_), derivatives=True)[key]
+    def deriv(x, mu_, *fields_):
+        return _state_at_ratio(x, mu_, _Shape(*fields_), derivatives=True)[key]
 
-    end = stable_branch_end(deriv, _pull_off_scan(shape), (mu, *fields), floor=floor,
+    end = stable_branch_end(deriv, _pull_off_ratio_scan(mu, shape), (mu, *fields), floor=floor,
                             bytes_per_state=_BYTES_PER_STATE)
     has = end.found
     res = {k: np.array(v, dtype=float) for k, v in zero.items()}
     if has.any():
-        sub = _state_chunked(end.x[has], mu[has], _Shape(*(f[has] for f in fields)))
+        sub = _state_at_ratio(end.x[has], mu[has], _Shape(*(f[has] for f in fields)))
         for k in res:
             res[k][has] = sub[k]
 

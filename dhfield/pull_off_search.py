@@ -27,11 +27,14 @@ import numpy as np
 from scipy.optimize import elementwise
 
 __all__ = ["SampledMinimum", "BranchEnd", "refine_sampled_minimum", "stable_branch_end",
-           "DEFAULT_CHUNK_BYTES"]
+           "DEFAULT_CHUNK_BYTES", "SCAN_BLOCK"]
 
 #: Default working-memory budget of one chunk of :func:`stable_branch_end`
-#: (the scan holds ``chunk * n_scan`` states with a quadrature axis each).
+#: (one step of the scan evaluates ``chunk * SCAN_BLOCK`` states).
 DEFAULT_CHUNK_BYTES = 64 * 2**20
+#: Scan points evaluated per problem and step when :func:`stable_branch_end` walks its
+#: scan from the top down (the stable-branch end is usually within a few points of the top).
+SCAN_BLOCK = 8
 
 
 @dataclass(frozen=True)
@@ -153,7 +156,7 @@ def refine_sampled_minimum(x, y, *, first=True):
 
 def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_extend=6,
                       xatol=1e-13, xrtol=1e-13, chunk_bytes=None,
-                      bytes_per_state=2048):
+                      bytes_per_state=2048, block=SCAN_BLOCK):
     """Largest contact size where ``derivative`` crosses from negative to non-negative.
 
     Vectorised over problems: ``scan`` has shape ``(m, n)`` (or ``(n,)`` shared by
@@ -164,8 +167,10 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
     ----------
     derivative : callable
         ``derivative(a, *args)`` -> dW/da (or d delta/da) at contact size ``a``;
-        broadcasts ``a`` of shape ``(k, n)`` against args of shape ``(k, 1)`` and
-        ``a`` of shape ``(k,)`` against args of shape ``(k,)``.
+        broadcasts ``a`` of shape ``(k, j)`` against args of shape ``(k, 1)`` and
+        ``a`` of shape ``(k,)`` against args of shape ``(k,)``.  Only its sign and
+        its zero matter, so ``a`` may be any increasing function of the contact
+        size (e.g. a ratio that parametrises the states without iteration).
     scan : array_like, shape (m, n) or (n,)
         Scan of contact sizes per problem, increasing and positive.
     args : tuple of array_like
@@ -185,6 +190,8 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
     bytes_per_state : int
         Memory one evaluation of ``derivative`` at one contact size needs (the
         caller's estimate; used to size the chunks).
+    block : int
+        Scan points evaluated per problem and step of the walk down the scan.
 
     Returns
     -------
@@ -203,7 +210,10 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
     and the next one with ``derivative >= 0`` (if the derivative stays in
     [-floor, 0) up to the top, the next scan point is returned unrefined).
     Crossings that come and go inside one scan interval are not seen: the scan
-    must resolve the path.
+    must resolve the path.  The scan is walked from its top down, ``block``
+    points at a time, and a problem stops at its first block with a point below
+    ``-floor``: the bracket is the one the whole scan gives, at a fraction of the
+    evaluations where the pull-off is near the top of the scan.
     """
     args = tuple(np.atleast_1d(np.asarray(q, dtype=float)) for q in args)
     scan = np.asarray(scan, dtype=float)
@@ -213,30 +223,45 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
     floor = np.broadcast_to(floor, (m,))
     scan = np.broadcast_to(scan, (m, scan.shape[-1]))
     n = scan.shape[-1]
+    block = max(1, int(block))
     budget = DEFAULT_CHUNK_BYTES if chunk_bytes is None else chunk_bytes
-    chunk = max(1, int(budget // max(1, n * bytes_per_state)))
+    chunk = max(1, int(budget // max(1, min(n, block) * bytes_per_state)))
     x = np.full(m, np.nan)
     found = np.zeros(m, bool)
     for start in range(0, m, chunk):
         sl = slice(start, min(m, start + chunk))
         sub_scan = np.array(scan[sl])
         sub_args = tuple(q[sl] for q in args)
-        d = np.asarray(derivative(sub_scan, *(q[:, None] for q in sub_args)), dtype=float)
+        sub_floor = floor[sl]
+        k = sub_scan.shape[0]
+        d = np.full((k, n), np.nan)
+        d[:, -1] = derivative(sub_scan[:, -1], *sub_args)
         for _ in range(max_extend):
             low = d[:, -1] < 0
             if not low.any():
                 break
             sub_scan[low] *= extend
-            d[low] = derivative(sub_scan[low], *(q[low][:, None] for q in sub_args))
+            d[low, -1] = derivative(sub_scan[low, -1], *(q[low] for q in sub_args))
         if np.any(d[:, -1] < 0):
             raise RuntimeError("stable_branch_end: the derivative is still negative at the top of "
                                f"the scan (a = {sub_scan[d[:, -1] < 0, -1][0]:g}); please report the inputs")
-        neg = d < -floor[sl][:, None]
-        has = neg[:, :-1].any(axis=-1)
-        if not has.any():
+        # Walk down: the last index with d < -floor (below the top), -1 where there is none.
+        last = np.full(k, -1)
+        active = np.ones(k, bool)
+        top = n - 1
+        while top > 0 and active.any():
+            bottom = max(0, top - block)
+            rows = np.nonzero(active)[0]
+            d[rows, bottom:top] = derivative(sub_scan[rows, bottom:top], *(q[rows][:, None] for q in sub_args))
+            neg = d[rows, bottom:top] < -sub_floor[rows][:, None]
+            hit = neg.any(axis=-1)
+            last[rows[hit]] = top - 1 - np.argmax(neg[hit, ::-1], axis=-1)
+            active[rows[hit]] = False
+            top = bottom
+        rows = np.nonzero(last >= 0)[0]
+        if rows.size == 0:
             continue
-        rows = np.nonzero(has)[0]
-        last = n - 1 - np.argmax(neg[rows, ::-1], axis=-1)  # last negative index (< n - 1)
+        last = last[rows]
         pos = (d[rows] >= 0) & (np.arange(n) > last[:, None])
         got = pos.any(axis=-1)
         nxt = np.where(got, np.argmax(pos, axis=-1), last + 1)
