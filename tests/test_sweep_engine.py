@@ -89,13 +89,29 @@ def test_skew_angle_axis(tmp_path):
     np.testing.assert_array_equal(ds["beta0"].values, ellipticity_from_skew_angle(np.radians([40.0, 90.0])))
 
 
+def _worker_threads():
+    import os
+
+    from threadpoolctl import threadpool_info
+
+    return os.getpid(), {i["internal_api"]: i["num_threads"] for i in threadpool_info()}
+
+
 def test_same_bits_on_every_scheduler(serial, tmp_path):
     """Serial, local processes and a dask.distributed LocalCluster on loopback agree bit for bit."""
     from distributed import LocalCluster
 
+    import os
+
+    env = {k: os.environ.get(k) for k in engine.SINGLE_THREAD_ENV}
     with engine.connect("processes", workers=2) as pool:  # one pool of 2 worker processes for both sweeps
+        assert pool.start() > 0.0 and pool.start() == 0.0  # every worker up before the sweeps, once
         procs = [run_sweep(config_from_mapping(c), out=tmp_path / f"p{i}.nc", scheduler=pool, progress=False)
                  for i, c in enumerate((SMALL, BEM))]
+        threads = [pool.pool.submit(_worker_threads).result() for _ in range(4)]
+    # Each local worker runs one BLAS/OpenMP thread; this process's environment is untouched.
+    assert all(t and set(t.values()) == {1} for _, t in threads), threads
+    assert {k: os.environ.get(k) for k in engine.SINGLE_THREAD_ENV} == env
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=False, protocol="tcp", host="127.0.0.1",
                       dashboard_address=None) as cluster:
         assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
@@ -207,3 +223,52 @@ def test_load_curves(tmp_path):
     ref = compare.load_curve("md", 0.5, 0.8, a)
     np.testing.assert_array_equal(ds["curve_W_star"].sel(model="md", beta0=0.8, mu=0.5).values, ref["W_star"])
     assert (ds["load_curve_status"].values == 0).all()
+
+
+def test_costliest_tasks_start_first(tmp_path, monkeypatch):
+    """Longest-processing-time order: tasks start in decreasing expected cost (grid order breaks ties)."""
+    calls = []
+
+    class Result:
+        W_star = a_star = c_star = beta_ab = b_star = d_star = beta_cd = delta_star = iterations = 1.0
+        converged, message = True, ""
+
+    def recording_solver(mu, beta0, n, *, law, control, threads):
+        calls.append((mu, beta0, n))
+        return Result()
+
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": recording_solver)
+    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": recording_solver)
+    cfg = config_from_mapping({"axes": {"beta0": [0.8, 1.0], "mu": [0.3, 2.0, 1.0], "n": [32, 64]},
+                               "sweep": {"quantities": ["adhesive"]}})
+    run_sweep(cfg, out=tmp_path / "o.nc", scheduler="synchronous", progress=False)
+    expected = [tasks.expected_seconds("adhesive", {"mu": m, "beta0": b, "n": n}) for m, b, n in calls]
+    assert len(calls) == 12
+    assert expected == sorted(expected, reverse=True)
+    assert calls[0] == (2.0, 0.8, 64) and calls[-1] == (0.3, 1.0, 32)
+
+
+def test_cost_model_orders_what_is_dearer():
+    """More cells, a larger mu (narrower zone: more CG iterations) and beta0 < 1 cost more."""
+    cost = tasks.expected_seconds
+    assert cost("adhesive", {"mu": 1.0, "beta0": 1.0, "n": 256}) > cost("adhesive", {"mu": 1.0, "beta0": 1.0,
+                                                                                      "n": 128})
+    assert cost("adhesive", {"mu": 2.0, "beta0": 1.0, "n": 128}) > cost("adhesive", {"mu": 0.5, "beta0": 1.0,
+                                                                                      "n": 128})
+    assert cost("adhesive", {"mu": 1.0, "beta0": 0.8, "n": 128}) > cost("adhesive", {"mu": 1.0, "beta0": 1.0,
+                                                                                      "n": 128})
+    assert cost("bem_field", {"n": 512}) > cost("bem_field", {"n": 256})
+    assert cost("load_curve", {"a_star": np.ones(20)}) > cost("load_curve", {"a_star": np.ones(10)})
+    with pytest.raises(ValueError, match="quantity"):
+        cost("pull_off", {})
+
+
+def test_case_files_record_their_wall_time(serial):
+    from dhfield.io import read_netcdf
+    from dhfield.sweep.store import output_paths
+
+    _, store_dir = output_paths(serial[1].path)
+    for p in store_dir.glob("bem_field__*.nc"):
+        seconds = read_netcdf(p).attrs["seconds"]
+        assert 0.0 < seconds < 600.0
+    assert "seconds" not in serial[1].dataset.attrs

@@ -40,16 +40,22 @@ import numpy as np
 from .config import SweepConfig, check_scheduler_address
 from .store import CaseStore, output_paths
 from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
-                    adhesive_case, adhesive_solver, bem_field_case, load_curve_case, pull_off_block)
+                    adhesive_case, adhesive_solver, bem_field_case, expected_seconds, load_curve_case, pull_off_block)
 
 _FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS + ADHESIVE_BEM_FIELDS,
            "load_curve": CURVE_FIELDS}
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
-           "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV"]
+           "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV", "SINGLE_THREAD_ENV", "WORKER_START_TIMEOUT"]
 
 #: Seconds to wait for a dask.distributed scheduler before reporting it unreachable.
 CONNECT_TIMEOUT = 5.0
+#: Seconds a starting local worker waits for its siblings (:meth:`Executor.start`).
+WORKER_START_TIMEOUT = 300.0
+#: Thread counts of the numerical libraries, set to 1 in every local worker process
+#: (as dask.distributed's nanny does) and, through threadpoolctl, while a sweep runs serially.
+SINGLE_THREAD_ENV = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "VECLIB_MAXIMUM_THREADS",
+                     "NUMEXPR_NUM_THREADS")
 #: Case status codes (CF flag_values) and their meanings.
 STATUS_MEANINGS = {0: "ok", 1: "not_converged", 2: "failed"}
 _STATUS = {v: k for k, v in STATUS_MEANINGS.items()}
@@ -112,16 +118,47 @@ class Executor:
 
     @property
     def pool(self):
-        """The local process pool (spawned workers), started on first use."""
+        """The local process pool, started on first use (see :meth:`start`)."""
         if self._pool is None:
-            import multiprocessing
-            from concurrent.futures import ProcessPoolExecutor
-
-            import dask
-
-            ctx = multiprocessing.get_context(dask.config.get("multiprocessing.context", "spawn"))
-            self._pool = ProcessPoolExecutor(self.workers, mp_context=ctx)
+            self.start()
         return self._pool
+
+    def start(self) -> float:
+        """Start the local worker processes now, ready to work; return the seconds it took.
+
+        Every worker is spawned with one BLAS/OpenMP thread (:data:`SINGLE_THREAD_ENV`;
+        the BEM tasks also ask FFTW for one thread), so W workers use W cores and
+        one worker never secretly uses two.  Each imports the numerical modules of
+        the tasks, then waits for the others: when this returns, all are up, and a
+        sweep timed afterwards excludes the start-up.  Nothing to do (0.0) for the
+        other kinds or when the pool is already running.
+        """
+        if self.kind != "processes" or self._pool is not None:
+            return 0.0
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        import dask
+
+        t0 = time.perf_counter()
+        ctx = multiprocessing.get_context(dask.config.get("multiprocessing.context", "spawn"))
+        ready = ctx.Barrier(self.workers)
+        saved = {k: os.environ.get(k) for k in SINGLE_THREAD_ENV}
+        os.environ.update(dict.fromkeys(SINGLE_THREAD_ENV, "1"))  # inherited by the spawned workers
+        try:
+            pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start_worker, initargs=(ready,))
+            # One submit per worker spawns them all now (a spawn pool grows on demand).
+            started = [pool.submit(os.getpid) for _ in range(self.workers)]
+        finally:
+            for k, v in saved.items():
+                if v is None:
+                    os.environ.pop(k, None)
+                else:
+                    os.environ[k] = v
+        for f in started:
+            f.result()
+        self._pool = pool
+        return time.perf_counter() - t0
 
     def close(self):
         """Stop the worker processes and the client this Executor started."""
@@ -137,6 +174,22 @@ class Executor:
 
     def __exit__(self, *exc):
         self.close()
+
+
+def _start_worker(ready) -> None:
+    """Initializer of a local worker process: import what the tasks use, then wait for the others."""
+    import importlib
+    import threading
+
+    for name in ("dhfield.sweep.tasks", "dhfield.fields", "dhfield.compare", "dhfield.bem.adhesive"):
+        try:
+            importlib.import_module(name)
+        except ImportError:  # pragma: no cover - a missing optional solver fails in its task, with a message
+            pass
+    try:
+        ready.wait(WORKER_START_TIMEOUT)
+    except threading.BrokenBarrierError:  # a slow sibling: start anyway
+        pass
 
 
 def connect(scheduler=None, workers=None) -> Executor:
@@ -213,9 +266,13 @@ def _compute(collections, executor: Executor, progress: Progress):
         if key in keys:
             progress.advance()
 
-    kwargs = {"pool": executor.pool} if executor.kind == "processes" else {}
-    with Callback(posttask=posttask):
-        return dask.compute(*collections, scheduler=executor.kind, **kwargs)
+    if executor.kind == "processes":
+        with Callback(posttask=posttask):
+            return dask.compute(*collections, scheduler="processes", pool=executor.pool)
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(1), Callback(posttask=posttask):  # serial: one core, like one worker
+        return dask.compute(*collections, scheduler="synchronous")
 
 
 def map_cases(fn, arguments, *, scheduler=None, workers=None, progress=False) -> list:
@@ -259,11 +316,12 @@ def map_cases(fn, arguments, *, scheduler=None, workers=None, progress=False) ->
 
 
 # --------------------------------------------------------------------------- case records
-def _case_dataset(values: dict, status: str, message: str, dims=()):
+def _case_dataset(values: dict, status: str, message: str, dims=(), seconds=float("nan")):
+    """One case record; ``seconds`` (its wall time) is kept in the case file only, never in the sweep."""
     import xarray as xr
 
     ds = xr.Dataset({k: (dims, np.asarray(v, dtype=float), {"units": "1"}) for k, v in values.items()})
-    ds.attrs.update(status=status, message=message)
+    ds.attrs.update(status=status, message=message, seconds=float(seconds))
     return ds
 
 
@@ -324,6 +382,7 @@ def _run_cases(quantity, cases, store_dir, fingerprint):
             out[key] = ({k: ds[k].values if k in ds else np.nan for k in fields}, ds.attrs["status"],
                         ds.attrs["message"], False)
             continue
+        t0 = time.perf_counter()
         try:
             if quantity == "bem_field":
                 rec = bem_field_case(**params)
@@ -339,7 +398,8 @@ def _run_cases(quantity, cases, store_dir, fingerprint):
             shape = (len(params["a_star"]),) if dims else ()
             rec = {k: np.full(shape, np.nan) for k in fields}
             status, message = "failed", _failure(exc)
-        store.write(key, _case_dataset({k: rec[k] for k in fields}, status, message, dims))
+        store.write(key, _case_dataset({k: rec[k] for k in fields}, status, message, dims,
+                                       time.perf_counter() - t0))
         out[key] = ({k: np.asarray(rec[k], dtype=float) for k in fields}, status, message, True)
     return out
 
@@ -487,12 +547,21 @@ def _run(config, executor, store, final, progress):
             kinds.append(("pull_off", model))
     import dask
 
+    tasks = []
     for q in ("load_curve", "bem_field", "adhesive"):
         if q in config.quantities:
             for group in _case_index(config, q):
                 cases = [(_key(q, idx), params) for idx, params in group]
-                collections.append(dask.delayed(_run_cases, pure=False)(q, cases, str(store.directory), fp))
-                kinds.append((q, [idx for idx, _ in group]))
+                tasks.append((sum(expected_seconds(q, params) for _, params in group), q, cases))
+    # Longest-processing-time order: dask's schedulers start ready tasks of equal standing in
+    # decreasing key order, so each task's key leads with its rank by expected cost (costliest
+    # first), and dask hands them to workers as they free up.  Ties keep the grid order.
+    by_cost = sorted(range(len(tasks)), key=lambda i: -tasks[i][0])
+    rank = {i: len(tasks) - 1 - r for r, i in enumerate(by_cost)}
+    for i, (_, q, cases) in enumerate(tasks):
+        collections.append(dask.delayed(_run_cases, pure=False)(
+            q, cases, str(store.directory), fp, dask_key_name=f"case-{rank[i]:07d}-{cases[0][0]}"))
+        kinds.append((q, [key for key, _ in cases]))
     total = sum(len(_output_keys(c)) for c in collections)
     enabled = sys.stderr.isatty() if progress is None else bool(progress)
     bar = Progress(total, enabled)

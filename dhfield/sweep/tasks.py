@@ -9,6 +9,8 @@ Each quantity is a public function of plain numbers or arrays:
 * :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off, through
   the solver registered in :data:`ADHESIVE_SOLVERS` (default
   ``dhfield.bem.adhesive.adhesive_pull_off`` when that module exists).
+* :func:`expected_seconds` -- a cost model of one case, used by the engine only
+  to hand out the costliest tasks first.
 
 The BEM cases run inside dask workers: the half-space operator they use is
 built there on first use and cached per process by
@@ -21,7 +23,8 @@ import importlib
 import numpy as np
 
 __all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_BEM_FIELDS", "ADHESIVE_SOLVERS", "ADHESIVE_MODEL",
-           "pull_off_block", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver"]
+           "pull_off_block", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver",
+           "expected_seconds"]
 
 #: Output fields of the analytic pull-off, in the order of the stacked block (names of
 #: :data:`dhfield.io.compare.COMPARISON_VARIABLES`, metadata from :mod:`dhfield.schema`).
@@ -169,3 +172,56 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
         message = f"{len(failures)} state(s) of the load path did not converge; largest residual {residual:.3g}"
     out["message"] = message
     return out
+
+
+#: Cost model of :func:`expected_seconds`, calibrated on one core of the 2-core development
+#: machine at N = 256 (2026-11-23).  Forward BEM: ~0.15 s a state (Eq. 26 on the grid, dominated
+#: by the ellipsoid integrals, O(N^2)).  Adhesive pull-off: 4.1, 5.2, 11.0, 27.7 s at
+#: beta0 = 0.8 and mu = 0.3, 0.5, 1, 2 (3.7, 5.4, 9.8, 20.3 s at beta0 = 1): the CG iterations
+#: over the path grow like mu^1.1 (807 -> 6435), about 14 (mu^1.1 + 0.06) s; beta0 < 1 costs a
+#: little more.  Load curve: ~1 ms a point.  Only the ranking matters to the schedule.
+_SECONDS_BEM_FIELD_256 = 0.15
+_SECONDS_ADHESIVE_256 = 14.0
+_ADHESIVE_MU_EXPONENT = 1.1
+_ADHESIVE_MU_OFFSET = 0.06
+_SECONDS_CURVE_POINT = 1e-3
+
+
+def _grid_scale(n) -> float:
+    """FFT work of an n x n grid relative to n = 256: n^2 log n (padded 2n x 2n transforms)."""
+    n = float(n)
+    return (n / 256.0) ** 2 * np.log(2.0 * n) / np.log(512.0)
+
+
+def expected_seconds(quantity: str, params: dict) -> float:
+    """Rough single-core wall time of one case [s]: the engine's cost model.
+
+    The engine sorts its tasks by this estimate so that the costliest start
+    first (longest-processing-time order) while dask hands tasks to workers as
+    they free up.  A wrong estimate costs load balance, never correctness: every
+    case is independent, so results are identical in any order.
+
+    Parameters
+    ----------
+    quantity : {"bem_field", "adhesive", "load_curve"}
+    params : dict
+        The case's keyword arguments (:func:`bem_field_case`,
+        :func:`adhesive_case`, :func:`load_curve_case`).
+
+    Notes
+    -----
+    Forward BEM and adhesive cases scale with the FFT work n^2 log n; an
+    adhesive pull-off also with its CG iterations, which grow like mu^1.1 with
+    the Tabor parameter (a narrower cohesive zone on the same grid), and by
+    ~20 % for beta0 < 1.  Constants: ``_SECONDS_*`` in this module, with their
+    provenance.
+    """
+    if quantity == "bem_field":
+        return _SECONDS_BEM_FIELD_256 * _grid_scale(params["n"])
+    if quantity == "adhesive":
+        ellipse = 1.2 if float(params["beta0"]) < 1.0 else 1.0
+        mu_work = float(params["mu"]) ** _ADHESIVE_MU_EXPONENT + _ADHESIVE_MU_OFFSET
+        return _SECONDS_ADHESIVE_256 * _grid_scale(params["n"]) * mu_work * ellipse
+    if quantity == "load_curve":
+        return _SECONDS_CURVE_POINT * len(params["a_star"])
+    raise ValueError(f"quantity must be 'bem_field', 'adhesive' or 'load_curve'; got {quantity!r}")
