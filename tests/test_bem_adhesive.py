@@ -145,3 +145,42 @@ def test_richardson_extrapolation_recovers_power_law():
     val, order = richardson_extrapolation(n, f)
     assert val == pytest.approx(2.0, rel=1e-12)
     assert order == pytest.approx(1.5, rel=1e-12)
+
+
+# ============================================================================ H4: coarse to fine, mu = 5, fold
+#: States solved at the same approach by the full path and by the coarse-to-fine window are
+#: the same discrete equilibrium: they agree to the solver tolerance (1e-6 on the zone
+#: fraction and on the gap relative to h0; measured 1e-7 relative at N = 256).
+RTOL_SAME_STATE = 1e-5
+#: When the window of the coarse-to-fine route holds the full marching path's three finest
+#: samples (lambda = 1, 64 -> 128: it does), both take the parabola through the same states.
+RTOL_REFINE_VS_FULL = 1e-5
+
+
+def test_coarse_to_fine_equals_the_full_path():
+    from dhfield.bem import refine_pull_off
+
+    mu = float(transition.tabor_from_maugis(1.0))
+    coarse = adhesive_pull_off(mu, 1.0, 64, progress=False, search="march")
+    fine = refine_pull_off(coarse, 128)
+    full = adhesive_pull_off(mu, 1.0, 128, progress=False, search="march")
+    assert fine.converged and full.converged
+    assert fine.n == 128 and fine.n_steps < full.n_steps / 2          # only the window is solved
+    assert fine.W_star == pytest.approx(full.W_star, rel=RTOL_REFINE_VS_FULL)
+    loads = {round(d, 9): w for d, w in zip(full.path.approach, full.path.load)}
+    common = [(w, loads[round(d, 9)]) for d, w in zip(fine.path.approach, fine.path.load) if round(d, 9) in loads]
+    assert len(common) >= 2                                           # the same approach lattice
+    for w_fine, w_full in common:
+        assert w_fine == pytest.approx(w_full, rel=RTOL_SAME_STATE)
+
+
+def test_refine_pull_off_rejects_bad_input():
+    from dhfield.bem import refine_pull_off
+
+    coarse = adhesive_pull_off(1.0, 1.0, 16, progress=False, n_steps=4, refine_levels=0)
+    with pytest.raises(ValueError, match="n must be an integer > coarse.n"):
+        refine_pull_off(coarse, 16)
+    with pytest.raises(ValueError, match="coarse must be an AdhesivePullOff"):
+        refine_pull_off(coarse.path, 32)
+    with pytest.raises(ValueError, match="window"):
+        refine_pull_off(coarse, 32, window=0)

@@ -15,13 +15,20 @@ Prints, side by side in one run:
 2. **Elliptical Hertz** (no adhesion, beta = 0.6, a = 1, domain 1.25 a x 1.25 b):
    semi-axes and peak pressure against Eqs. (8), (10) at N = 256 (target 0.5 %).
 
+3. **Coarse to fine** (``--check-refine``): :func:`dhfield.bem.refine_pull_off` from
+   N = 128 against the full path at N = 256, per lambda (target: equal to 1e-5).
+
+Coarse to fine: only the coarsest N runs the whole path (and gives the contact radius
+along the curve); each finer N solves only the states around the pull-off
+(:func:`dhfield.bem.refine_pull_off`, ~7 states instead of ~31), warm-started from the
+previous N interpolated onto the finer grid.  ``--full`` runs the whole path at every N.
+
 Usage::
 
-    .venv/bin/python verification/convergence_adhesive.py            # N = 256, 512, 1024 (long)
+    .venv/bin/python verification/convergence_adhesive.py            # N = 256, 512, 1024
     .venv/bin/python verification/convergence_adhesive.py --quick    # N = 64, 128, 256
 
-The full run takes hours on one core at N = 1024 (one path is ~35 states); ``--n``
-selects the grids, e.g. ``--n 128 256 512``.
+``--n`` selects the grids, e.g. ``--n 128 256 512``; ``--lam`` the lambdas.
 """
 from __future__ import annotations
 
@@ -36,7 +43,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from dhfield import hertz, maugis_dugdale, transition
-from dhfield.bem import Grid, adhesive_pull_off, richardson_extrapolation, solve_adhesive
+from dhfield.bem import Grid, adhesive_pull_off, refine_pull_off, richardson_extrapolation, solve_adhesive
 from dhfield.geometry import radius_ratio
 
 LAMBDAS = (0.3, 1.0, 3.0)
@@ -45,6 +52,9 @@ TARGET_PULL_OFF = {0.3: 0.01, 1.0: 0.01, 3.0: 0.02}   # at N = 256
 TARGET_RICHARDSON = 0.005
 TARGET_RADIUS = 0.02
 TARGET_HERTZ = 0.005
+#: Coarse to fine against the full path (same finest approach lattice: the same samples
+#: up to the solver tolerance 1e-6).
+TARGET_REFINE = 1e-5
 
 
 def _md_radius_at_approach(delta, mu, a_lo, a_hi=6.0):
@@ -58,10 +68,11 @@ def _md_radius_at_approach(delta, mu, a_lo, a_hi=6.0):
     return brentq(f, lo, a_hi, xtol=1e-12)
 
 
-def sphere_row(lam, n):
+def sphere_row(lam, n, start=None):
+    """One N of the sphere at lambda: the full path, or coarse to fine from ``start``."""
     mu = float(transition.tabor_from_maugis(lam))
     t0 = time.perf_counter()
-    res = adhesive_pull_off(mu, 1.0, n, progress=None)
+    res = adhesive_pull_off(mu, 1.0, n, progress=None) if start is None else refine_pull_off(start, n)
     el = time.perf_counter() - t0
     ref = maugis_dugdale._pull_off(mu)
     ref_d = maugis_dugdale._pull_off(mu, "displacement")
@@ -70,7 +81,7 @@ def sphere_row(lam, n):
     # contact radius along the stable branch (states converged, in contact, above the MD fold)
     errs = []
     a_top = float(np.max(path.a))
-    for i in range(path.n_steps):
+    for i in range(path.n_steps if start is None else 0):     # along the curve: full paths only
         if not path.converged[i] or path.a[i] <= 0 or path.phase[i] == "jump":
             continue
         a_md = _md_radius_at_approach(path.approach[i], mu, float(ref_d["a_star"]))
@@ -79,7 +90,7 @@ def sphere_row(lam, n):
     return {"lam": lam, "mu": mu, "n": n, "W": res.W_star, "W_md": w_ref, "err": res.W_star / w_ref - 1.0,
             "radius_err": max(errs) if errs else float("nan"), "seconds": el, "states": res.n_steps,
             "it_per_state": res.iterations / max(res.n_steps, 1), "converged": res.converged,
-            "resolved": res.resolved, "failures": len(res.failures)}
+            "resolved": res.resolved, "failures": len(res.failures), "result": res}
 
 
 def hertz_row(n, beta=0.6):
@@ -97,12 +108,36 @@ def hertz_row(n, beta=0.6):
             "W_err": st.load / float(hertz.load(1.0, beta)) - 1.0, "seconds": el, "it": st.iterations}
 
 
+def check_refine(lams, coarse_n=128, fine_n=256):
+    """Coarse to fine (coarse_n -> fine_n) against the full path at fine_n; prints PASS/FAIL."""
+    print(f"Coarse to fine {coarse_n} -> {fine_n} vs the full path at {fine_n} (sphere, load control)")
+    print(f"{'lambda':>6} {'W*_full':>12} {'W*_refined':>12} {'rel diff':>10} {'states full':>11} "
+          f"{'states refine':>13} {'s full':>7} {'s refine':>8}")
+    ok = True
+    for lam in lams:
+        coarse = sphere_row(lam, coarse_n)["result"]
+        full = sphere_row(lam, fine_n)
+        fine = sphere_row(lam, fine_n, coarse)
+        rel = fine["W"] / full["W"] - 1.0
+        good = abs(rel) <= TARGET_REFINE and fine["converged"]
+        ok &= good
+        print(f"{lam:6.2f} {full['W']:12.8f} {fine['W']:12.8f} {rel:10.2e} {full['states']:11d} "
+              f"{fine['states']:13d} {full['seconds']:7.1f} {fine['seconds']:8.1f}  "
+              f"{'PASS' if good else 'FAIL'} (<= {TARGET_REFINE:.0e})", flush=True)
+    return 0 if ok else 1
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="N = 64, 128, 256 instead of 256, 512, 1024")
     ap.add_argument("--n", type=int, nargs=3, default=None, help="three grid sizes (geometric)")
     ap.add_argument("--lam", type=float, nargs="+", default=list(LAMBDAS), help="Maugis lambdas")
+    ap.add_argument("--full", action="store_true", help="the whole path at every N (no coarse to fine)")
+    ap.add_argument("--check-refine", action="store_true",
+                    help="only compare coarse to fine (128 -> 256) with the full path at 256")
     args = ap.parse_args(argv)
+    if args.check_refine:
+        return check_refine(args.lam)
     ns = args.n or ([64, 128, 256] if args.quick else [256, 512, 1024])
     print("Adhesive BEM vs Maugis-Dugdale sphere (Dugdale law, load-control pull-off, W* of Eq. 34)")
     print(f"{'lambda':>6} {'N':>5} {'W*_BEM':>10} {'W*_MD':>10} {'err %':>8} {'max|da/a| %':>11} "
@@ -111,7 +146,7 @@ def main(argv=None) -> int:
     for lam in args.lam:
         rows = []
         for n in ns:
-            r = sphere_row(lam, n)
+            r = sphere_row(lam, n, None if (args.full or not rows) else rows[-1]["result"])
             rows.append(r)
             print(f"{lam:6.2f} {n:5d} {r['W']:10.6f} {r['W_md']:10.6f} {100 * r['err']:8.3f} "
                   f"{100 * r['radius_err']:11.3f} {r['seconds']:7.1f} {r['states']:6d} "

@@ -16,8 +16,8 @@ from .operator import _save_wisdom  # noqa: F401  (used by verification/bench_be
 from .laws import DugdaleLaw, ExponentialLaw, cell_fraction_below  # noqa: E402
 from .state import ContactState, mask_semi_axes  # noqa: E402
 from .adhesive import (AdhesivePullOff, UnloadingPath, adhesive_pull_off,  # noqa: E402
-                       richardson_extrapolation, solve_adhesive, unloading_path)
+                       refine_pull_off, richardson_extrapolation, solve_adhesive, unloading_path)
 
 __all__ = list(_operator_all) + ["DugdaleLaw", "ExponentialLaw", "cell_fraction_below", "ContactState",
                                  "mask_semi_axes", "AdhesivePullOff", "UnloadingPath", "adhesive_pull_off",
-                                 "richardson_extrapolation", "solve_adhesive", "unloading_path"]
+                                 "refine_pull_off", "richardson_extrapolation", "solve_adhesive", "unloading_path"]

@@ -103,7 +103,7 @@ from .state import ContactState
 
 __all__ = ["solve_adhesive", "unloading_path", "adhesive_pull_off", "richardson_extrapolation",
            "nondimensional_problem", "UnloadingPath", "AdhesivePullOff", "NondimensionalProblem",
-           "DEFAULT_TOL", "DEFAULT_MAX_ITER", "DOMAIN_MARGIN", "DEFAULT_STEPS"]
+           "refine_pull_off", "interpolate_state", "DEFAULT_TOL", "DEFAULT_MAX_ITER", "DOMAIN_MARGIN", "DEFAULT_STEPS"]
 
 #: Default solver tolerance: complementarity error of the contact problem relative to
 #: the law's range (or |delta| without adhesion), and largest change of the zone
@@ -246,22 +246,28 @@ def _dot(a, b):
     return float(np.einsum("ij,ij->", a, b))
 
 
-def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
-    """Polonsky-Keer CG for min 1/2 p.Kp + g0.p, p >= 0 (displacement control).
+def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0, stress=None):
+    """Polonsky-Keer CG for min 1/2 p.Kp + (g0 - K stress).p, p >= 0 (displacement control).
 
+    The gap is ``h = g0 + K(p - stress)`` (``stress`` is a known tensile load, e.g. the
+    adhesive stress; one operator call per gap evaluation instead of two).
     Returns (p, h, iterations, error) with error the complementarity error / scale.
     """
     p = np.array(p, dtype=float, copy=True)
     np.maximum(p, 0.0, out=p)
+
+    def gap(p):
+        return g0 + op(p if stress is None else p - stress)
+
     if np.any(p > 0):
-        h = g0 + op(p)
+        h = gap(p)
     else:
-        h = g0.copy()
+        h = gap(p)
         neg = h < 0
         if not np.any(neg):
             return p, h, 0, 0.0          # empty active set: linear, done
         p[neg] = -h[neg] / k0            # cold start: local (Jacobi) estimate
-        h = g0 + op(p)
+        h = gap(p)
     t = np.zeros_like(p)
     r = np.empty_like(p)
     kt = np.empty_like(p)
@@ -298,14 +304,14 @@ def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0):
         conj = not any_ol
         since_full += 1
         if any_rel or any_ol or since_full >= 25:
-            h = g0 + op(p)
+            h = gap(p)
             since_full = 0
         else:
             h -= tau * kt
         active = p > 0
         err = _complementarity(h, active) / scale
     if since_full:
-        h = g0 + op(p)
+        h = gap(p)
         err = _complementarity(h, p > 0) / scale
     return p, h, it, err
 
@@ -456,10 +462,9 @@ def _solve(prob, delta, guess, tol, max_iter):
     best = None
     while outer < MAX_OUTER and total_it < max_iter:
         outer += 1
-        g0 = zd - op(s)
         # inexact inner solves: tighten with the outer residual (Anderson tolerates it)
         itol = 1e-3 if not np.isfinite(res) else min(max(INNER_FACTOR * res, inner_tol), 1e-2)
-        p, h, it, err = _polonsky_keer(op, g0, p, scale, itol, max_iter - total_it, prob.k0)
+        p, h, it, err = _polonsky_keer(op, zd, p, scale, itol, max_iter - total_it, prob.k0, stress=s)
         total_it += it
         f = prob.stress_from_gap(h, p > 0) - s
         res = float(np.max(np.abs(f))) / sigma0
@@ -664,7 +669,8 @@ class _Progress:
 def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, control="load",
                    n_loading=3, refine_levels=2, refine_factor=4, max_steps=200,
                    tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, symmetric=None, threads=None,
-                   reduced_modulus=1.0, keep_states=False, progress=None, predict=True) -> UnloadingPath:
+                   reduced_modulus=1.0, keep_states=False, progress=None, predict=True,
+                   approach_guess=None, start_stress=None) -> UnloadingPath:
     """Displacement-controlled loading and unloading path to pull-off, with warm starts.
 
     Parameters
@@ -703,10 +709,34 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     predict : bool, default True
         Warm-start each state from the secant extrapolation of the two previous
         states of the same branch (fewer outer iterations), else from the last.
+    approach_guess : float, optional
+        Expected approach of the load minimum (e.g. the analytic DH model's
+        load-control pull-off) [length].  With ``control='load'`` the path then
+        *brackets* the minimum instead of marching to it (see Notes).
+    start_stress : array_like, shape (nx, ny), optional
+        Adhesive stress to cold-start the first state of the bracket search from
+        (e.g. sigma0 on the analytic cohesive zone at pull-off) [stress];
+        default: from the rigid gap.
 
     Notes
     -----
-    Loading runs from delta = 0 to ``approach_max`` in ``n_loading`` steps,
+    **Bracket search** (``control='load'`` with ``approach_guess``): the first
+    state is solved at ``approach_guess`` from ``start_stress`` (a cold start on
+    the contact branch: the analytic zone puts it in that branch's basin; when
+    it is not a converged contact state it is kept, flagged 'discarded', and
+    the marching path below is run instead).  Then steps of ``approach_step``
+    (warm-started, secant predictor) go up or down until the discrete load
+    minimum is interior to the samples; nothing beyond the bracket is solved
+    (load control needs nothing past the minimum).  The minimum is then located
+    by successive parabolic interpolation: at most ``refine_levels + 1`` states
+    at the vertex of the parabola through the best sample and its neighbours,
+    each warm-started from the nearest sample, stopping when the vertex is
+    within ``approach_step / refine_factor**refine_levels`` (the spacing the
+    marching refinement reaches) of a solved state.  When the minimum is at the
+    end of the contact branch (the jump comes first), the bracket is refined
+    with uniform sub-steps as below.
+
+    **Marching path** (otherwise): loading runs from delta = 0 to ``approach_max`` in ``n_loading`` steps,
     unloading by ``approach_step`` until the first state without contact.
     Every state is warm-started from the previous one (never a cold start
     part-way: the states are multistable).  The bracket of the pull-off (the
@@ -731,6 +761,14 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
                         ("refine_factor", refine_factor, 2), ("max_steps", max_steps, 2)):
         if int(v) != v or int(v) < lo:
             raise ValueError(f"{name} must be an integer >= {lo}; got {v!r}")
+    guess_d = None if approach_guess is None else float(
+        check_finite("approach_guess", approach_guess, "expected approach of the load minimum, length"))
+    start_gap_stress = None
+    if start_stress is not None:
+        s_full = check_finite("start_stress", start_stress, "adhesive stress of the cold start, stress")
+        if s_full.shape != grid.shape:
+            raise ValueError(f"start_stress must have the grid shape {grid.shape}; got {s_full.shape}")
+        start_gap_stress = np.clip(prob.to_work(s_full), 0.0, law.max_stress)
     t0 = time.perf_counter()
     prog = _Progress(progress, "path")
     records = []          # (state summary dict, phase)
@@ -752,30 +790,81 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         prog.update(k, st, phase)
         return k, st
 
-    # loading
-    st = None
-    for delta in np.linspace(0.0, dmax, int(n_loading) + 1)[1:] if dmax > 0 else [dmax]:
-        _, st = run(delta, st, "loading")
-    # unloading until contact is lost
-    unload = []
-    delta = dmax
-    k, st = run(delta, st, "unloading")
-    unload.append(k)
-    prev = None
-    while st.in_contact and len(unload) < max_steps:
-        delta -= step
-        k, new = run(delta, _predict(prob, prev, st, delta) if predict else st, "unloading")
-        prev = st
+    def usable(i):
+        r = records[i]
+        return bool(r["converged"] and r["in_contact"] and r["phase"] not in ("jump", "discarded"))
+
+    def by_approach(indices):
+        return sorted(indices, key=lambda i: -records[i]["approach"])
+
+    def search_minimum():
+        """Bracket the load minimum around ``guess_d``: ('bracket' | 'branch end' | 'failed', indices)."""
+        guess = None
+        if start_gap_stress is not None:
+            guess = _Prediction(np.zeros_like(start_gap_stress), start_gap_stress.copy())
+        k, st = run(guess_d, guess, "unloading")
+        if not (st.converged and st.in_contact):
+            records[k]["phase"] = "discarded"
+            return "failed", []
+        idx = [k]
+        while len(idx) < max_steps:
+            order = by_approach(idx)
+            j = int(np.argmin([records[i]["load"] for i in order]))
+            if 0 < j < len(order) - 1:
+                return "bracket", order
+            up = j == 0               # the minimum is above the samples: extend upwards
+            end, nxt = (order[0], order[1:2]) if up else (order[-1], order[-2:-1])
+            d_new = records[end]["approach"] + (step if up else -step)
+            last = by_index[end]
+            g = _predict(prob, by_index[nxt[0]], last, d_new) if (predict and nxt) else last
+            k, new = run(d_new, g, "unloading")
+            idx.append(k)
+            if not (new.converged and new.in_contact):
+                if not new.converged:
+                    # no state on the branch any more (the jump): the state reached from separation
+                    idx.append(run(d_new, None, "jump")[0])
+                return ("branch end" if not up else "failed"), by_approach(idx)
+            prune(set(order[max(j - 1, 0):j + 2]) | {k})
+        return "failed", by_approach(idx)
+
+    def prune(keep):
+        if not keep_states:
+            for i in list(by_index):
+                if i not in keep:
+                    del by_index[i]
+
+    outcome, unload = ("none", [])
+    if control == "load" and guess_d is not None:
+        outcome, unload = search_minimum()
+        if outcome == "failed":
+            for i in unload:
+                if records[i]["phase"] == "unloading":
+                    records[i]["phase"] = "discarded"
+            unload = []
+    if not unload:
+        # loading
+        st = None
+        for delta in np.linspace(0.0, dmax, int(n_loading) + 1)[1:] if dmax > 0 else [dmax]:
+            _, st = run(delta, st, "loading")
+        # unloading until contact is lost
+        delta = dmax
+        k, st = run(delta, st, "unloading")
         unload.append(k)
-        if not new.converged:
-            # no state on the branch any more (the jump): the state reached from separation
-            k, new = run(delta, None, "jump")
+        prev = None
+        while st.in_contact and len(unload) < max_steps:
+            delta -= step
+            k, new = run(delta, _predict(prob, prev, st, delta) if predict else st, "unloading")
+            prev = st
             unload.append(k)
-        st = new
+            if not new.converged:
+                # no state on the branch any more (the jump): the state reached from separation
+                k, new = run(delta, None, "jump")
+                unload.append(k)
+            st = new
 
     def bracket(indices):
         """(upper, lower, ordered indices) of the pull-off bracket among ``indices``."""
-        idx = [i for i in indices if records[i]["phase"] != "jump"]
+        idx = [i for i in indices if records[i]["phase"] not in ("jump", "discarded")]
         ds = np.array([records[i]["approach"] for i in idx])
         idx = [idx[j] for j in np.argsort(-ds, kind="stable")]
         good = [bool(records[i]["in_contact"] and records[i]["converged"]) for i in idx]
@@ -795,16 +884,25 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         lo = idx[j + 1] if j + 1 < len(idx) else None
         return up, lo, idx
 
-    def prune(keep):
-        if not keep_states:
-            for i in list(by_index):
-                if i not in keep:
-                    del by_index[i]
-
     current = list(unload)
     prune(set(current))
     h = step
-    for _level in range(int(refine_levels)):
+    if outcome == "bracket":
+        # successive parabolic interpolation on the samples around the discrete minimum
+        xtol = step / int(refine_factor) ** int(refine_levels)
+        for _level in range(int(refine_levels) + 1):
+            order = [i for i in by_approach(current) if usable(i)]
+            x = np.array([records[i]["approach"] for i in order])
+            sm = refine_sampled_minimum(x, np.array([records[i]["load"] for i in order]), first=False)
+            if sm.at_boundary or float(np.min(np.abs(x - sm.x))) <= xtol:
+                break
+            near = sorted(order, key=lambda i: abs(records[i]["approach"] - sm.x))
+            k, new = run(sm.x, by_index[near[0]] if near[0] in by_index else None, "refine")
+            current.append(k)
+            if not (new.converged and new.in_contact):
+                break
+            prune(set(order[max(sm.index - 1, 0):sm.index + 2]) | {k})
+    for _level in range(int(refine_levels) if outcome != "bracket" else 0):
         br = bracket(current)
         if br is None or br[1] is None:
             break
@@ -856,7 +954,7 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         w_po, d_po = sm.y, sm.x
     if br is not None:
         # the pull-off is trusted when every state from the start down to it converged
-        reached = [i for i in range(len(records)) if records[i]["phase"] != "jump"
+        reached = [i for i in range(len(records)) if records[i]["phase"] not in ("jump", "discarded")
                    and records[i]["approach"] >= records[k_po]["approach"]]
         po_converged = all(records[i]["converged"] for i in reached)
     if k_po not in by_index:
@@ -902,6 +1000,12 @@ class NondimensionalProblem:
     approach_max, approach_step : float
         Start of unloading and unloading step [c_r^2/R], from the analytic DH
         model (:func:`dhfield.model.pull_off`, :func:`dhfield.model.load_curve`).
+    pull_off_approach : float
+        Approach at the analytic DH load-control pull-off [c_r^2/R]: where the
+        bracket search of :func:`unloading_path` starts.
+    pull_off_zone : (float, float)
+        Semi-axes (c, d) of the analytic DH cohesive zone at that pull-off [c_r]:
+        the zone of the bracket search's cold start.
     """
 
     mu: float
@@ -912,6 +1016,14 @@ class NondimensionalProblem:
     sin_skew: float
     approach_max: float
     approach_step: float
+    pull_off_approach: float = float("nan")
+    pull_off_zone: tuple = (float("nan"), float("nan"))
+
+    def start_stress(self) -> np.ndarray:
+        """sigma0 on the analytic cohesive zone at pull-off, full grid [stress] (a cold start)."""
+        c, d = self.pull_off_zone
+        x, y = self.grid.mesh()
+        return self.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
 
 
 def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS,
@@ -971,8 +1083,11 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     grid = Grid.centered(n, lx, half_width_y=ly)
     x, y = grid.mesh()
     z = x * x / (2.0 * r_major) + y * y / (2.0 * r_minor)  # Eq. (2)
+    # the analytic cohesive zone at the load-control pull-off (cold start of the bracket search)
+    at_po = model.load_curve(mu, beta0, [max(float(po.a_star), 1e-3 * a_start)])
+    zone = (float(at_po.c_star[0]), float(at_po.d_star[0]))
     return NondimensionalProblem(mu, beta0, grid, z, law_obj, float(sin_skew_angle(beta0)), d_max,
-                                 (d_max - d_end) / int(n_steps))
+                                 (d_max - d_end) / int(n_steps), float(po.delta_star), zone)
 
 
 @dataclass(frozen=True)
@@ -1056,7 +1171,7 @@ class AdhesivePullOff:
 def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
                       refine_levels=2, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER,
                       margin=DOMAIN_MARGIN, threads=None, keep_states=False,
-                      progress=None) -> AdhesivePullOff:
+                      progress=None, search="bracket") -> AdhesivePullOff:
     """BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
 
     Parameters
@@ -1086,6 +1201,13 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         :func:`solve_adhesive`.
     margin : float
         Domain half-width per expected zone semi-axis.
+    search : {'bracket', 'march'}
+        Load control only.  'bracket' (default): cold-start at the analytic DH
+        pull-off approach from the DH cohesive zone and bracket the load minimum
+        there (a handful of states; :func:`unloading_path` with
+        ``approach_guess``).  'march': unload from ``approach_max`` in uniform
+        steps to the jump and refine the minimum's bracket (the path of
+        dhfield <= the first session; ~5x more states, same pull-off).
 
     Notes
     -----
@@ -1096,10 +1218,15 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
 
     (Eq. 34).  The domain and the path come from :func:`nondimensional_problem`.
     """
+    if search not in ("bracket", "march"):
+        raise ValueError(f"search must be one of ('bracket', 'march') (load-control path); got {search!r}")
     prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
+    guess = {}
+    if control == "load" and search == "bracket" and np.all(np.isfinite(prob.pull_off_zone)):
+        guess = dict(approach_guess=prob.pull_off_approach, start_stress=prob.start_stress())
     path = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
                           control=control, refine_levels=refine_levels, tol=tol, max_iter=max_iter,
-                          threads=threads, keep_states=keep_states, progress=progress)
+                          threads=threads, keep_states=keep_states, progress=progress, **guess)
     st = path.pull_off_state
     a, b = st.contact_semi_axes()
     c, d = st.cohesive_semi_axes()
@@ -1149,3 +1276,196 @@ def richardson_extrapolation(n, values):
         return f[2], float("nan")
     q = math.log(e1 / e2) / math.log(r)
     return f[2] + e2 / (r**q - 1.0), q
+
+
+# ============================================================================ coarse to fine
+#: Half-width, in finest path steps, of the window of approaches solved around the
+#: coarse pull-off by :func:`refine_pull_off` (the fine minimum moves by O(error) of
+#: the coarse one: a fraction of a step at N >= 128).
+REFINE_WINDOW = 3
+#: Cap on window extensions when the fine minimum sits on the window's edge.
+REFINE_MAX_EXTEND = 12
+
+
+def interpolate_state(state, grid):
+    """A path state carried onto another grid of the same domain (a warm start).
+
+    Parameters
+    ----------
+    state : ContactState
+        A solved state (with its repulsive pressure).
+    grid : Grid
+        Target grid (same physical domain, any cell counts).
+
+    Returns
+    -------
+    ContactState
+        Repulsive pressure and adhesive zone fraction bilinearly interpolated
+        (clipped to p >= 0 and [0, 1]); gap and masks follow from them.  It is a
+        *guess* for :func:`solve_adhesive` (``converged=False``), not a solution.
+    """
+    from scipy.interpolate import RegularGridInterpolator
+
+    if not isinstance(state, ContactState) or state.repulsive_pressure is None:
+        raise ValueError("state must be a solved ContactState with its repulsive pressure")
+    if not isinstance(grid, Grid):
+        raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
+    src = state.grid
+    if not (math.isclose(src.nx * src.dx, grid.nx * grid.dx, rel_tol=1e-9)
+            and math.isclose(src.ny * src.dy, grid.ny * grid.dy, rel_tol=1e-9)):
+        raise ValueError("grid must cover the same domain as the state's grid")
+    xf, yf = grid.mesh()
+    pts = np.stack([xf.ravel(), yf.ravel()], axis=-1)
+
+    def carry(f):
+        it = RegularGridInterpolator((src.x, src.y), np.asarray(f, float), bounds_error=False, fill_value=None)
+        return it(pts).reshape(grid.shape)
+
+    p = np.maximum(carry(state.repulsive_pressure), 0.0)
+    zone = np.clip(carry(state.adhesive_zone), 0.0, 1.0) if state.law is not None else np.zeros(grid.shape)
+    contact = p > 0
+    law = state.law
+    sigma0 = law.max_stress if law is not None else 0.0
+    cohesive = np.where(contact, 0.0, zone)
+    return ContactState(grid=grid, pressure=p - sigma0 * zone, gap=np.maximum(carry(state.gap), 0.0),
+                        approach=state.approach, load=float("nan"), contact=contact, cohesive=cohesive,
+                        law=law, converged=False, iterations=0, residual=float("inf"),
+                        repulsive_pressure=p)
+
+
+def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine_factor=4,
+                    window=REFINE_WINDOW, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None,
+                    keep_states=False, progress=None) -> AdhesivePullOff:
+    """Load-control pull-off on a finer grid, started from a coarser solution (coarse to fine).
+
+    Parameters
+    ----------
+    coarse : AdhesivePullOff
+        A pull-off of the same (mu, beta0, law) on a coarser grid (load
+        control), e.g. from :func:`adhesive_pull_off` at N = 256 or from a
+        previous call of this function.
+    n : int
+        Cells per axis of the fine grid (even, > ``coarse.n``) [-].
+    window : int
+        Half-width of the window of fine states around the coarse pull-off, in
+        finest path steps (extended while the fine minimum sits on its edge).
+
+    Returns
+    -------
+    AdhesivePullOff
+        As :func:`adhesive_pull_off`, with ``path.phase == 'refine'`` for every
+        state.  ``converged`` is True when every state of the window converged.
+
+    Other Parameters
+    ----------------
+    n_steps, refine_levels, refine_factor
+        The path settings of the full path (:func:`adhesive_pull_off`): the fine
+        states sit on its finest approach lattice, ``approach_max - j h`` with
+        ``h = approach_step / refine_factor**refine_levels``, so that the fine
+        pull-off equals the full fine path's wherever both bracket the same
+        samples.
+    tol, max_iter, threads, keep_states, progress
+        As in :func:`unloading_path`.
+
+    Notes
+    -----
+    Only the states around the load minimum are solved on the fine grid.  The
+    first is warm-started from the coarse pull-off state interpolated onto the
+    fine grid (:func:`interpolate_state`), the others from their neighbours
+    (secant predictor), descending in approach like an unloading path; the
+    minimum is refined by :func:`dhfield.pull_off_search.refine_sampled_minimum`
+    over the window.  The load-control pull-off lies on the stable branch of
+    displacement control, so the warm start stays on the branch of the full
+    path; multistability after the jump does not enter.
+    """
+    from ..pull_off_search import refine_sampled_minimum
+
+    if not isinstance(coarse, AdhesivePullOff):
+        raise ValueError(f"coarse must be an AdhesivePullOff; got {type(coarse).__name__}")
+    if coarse.control != "load":
+        raise ValueError(f"coarse must be a load-control pull-off; got control={coarse.control!r}")
+    if not np.isfinite(coarse.delta_star):
+        raise ValueError("coarse must hold a pull-off (its delta_star is NaN: no converged contact state)")
+    if int(n) != n or int(n) <= coarse.n:
+        raise ValueError(f"n must be an integer > coarse.n = {coarse.n} (cells per axis); got {n!r}")
+    for name, v, lo in (("window", window, 1), ("refine_levels", refine_levels, 0),
+                        ("refine_factor", refine_factor, 2)):
+        if int(v) != v or int(v) < lo:
+            raise ValueError(f"{name} must be an integer >= {lo}; got {v!r}")
+    prob_nd = nondimensional_problem(coarse.mu, coarse.beta0, int(n), law=coarse.law, n_steps=n_steps)
+    grid = prob_nd.grid
+    if not (math.isclose(0.5 * grid.nx * grid.dx, coarse.half_width_x, rel_tol=1e-9)
+            and math.isclose(0.5 * grid.ny * grid.dy, coarse.half_width_y, rel_tol=1e-9)):
+        raise ValueError("coarse must come from the same domain (adhesive_pull_off with the default margin)")
+    prob = _Problem(prob_nd.initial_gap, grid, prob_nd.law, None, threads, 1.0)
+    tol = float(check_positive("tol", tol, "solver tolerance, dimensionless"))
+    h = prob_nd.approach_step / int(refine_factor) ** int(refine_levels)
+    top = prob_nd.approach_max
+    j_c = int(round((top - coarse.delta_star) / h))
+    t0 = time.perf_counter()
+    prog = _Progress(progress, f"refine N={int(n)}")
+    solved = {}                       # lattice index -> ContactState
+
+    def run(j, guess):
+        st = _solve(prob, top - j * h, guess, tol, int(max_iter))
+        solved[j] = st
+        prog.update(len(solved), st, "refine")
+        return st
+
+    # downwards from the top of the window: warm start from the coarse state, then secant
+    first = interpolate_state(coarse.path.pull_off_state, grid)
+    lo_j, hi_j = j_c - int(window), j_c + int(window)
+    prev, st = None, first
+    for j in range(lo_j, hi_j + 1):
+        new = run(j, first if st is first else _predict(prob, prev, st, top - j * h))
+        prev, st = (None if st is first else st), new
+
+    def minimum():
+        js = sorted(solved)
+        w = np.array([solved[j].load if (solved[j].converged and solved[j].in_contact) else np.nan for j in js])
+        if not np.any(np.isfinite(w)):
+            return js, w, None
+        return js, w, refine_sampled_minimum(np.array([top - j * h for j in js]), w, first=False)
+
+    for _ in range(REFINE_MAX_EXTEND):
+        js, w, sm = minimum()
+        if sm is None or not sm.at_boundary:
+            break
+        if sm.index == 0:             # minimum at the top: extend upwards (back along the branch)
+            j = js[0] - 1
+            run(j, _predict(prob, solved[js[1]], solved[js[0]], top - j * h))
+        else:                         # at the bottom: continue unloading
+            j = js[-1] + 1
+            run(j, _predict(prob, solved[js[-2]], solved[js[-1]], top - j * h))
+    prog.close()
+    js, w, sm = minimum()
+    states = [solved[j] for j in js]
+    if sm is None:
+        k_po, w_po, d_po = len(states) - 1, float("nan"), float("nan")
+    else:
+        k_po, w_po, d_po = sm.index, sm.y, sm.x
+    recs = [s.summary() for s in states]
+    failures = tuple({"approach": r["approach"], "residual": r["residual"], "iterations": r["iterations"],
+                      "phase": "refine"} for r in recs if not r["converged"])
+    arr = {key: np.array([r[key] for r in recs]) for key in
+           ("approach", "load", "a", "b", "c", "d", "contact_area", "iterations", "outer_iterations",
+            "residual")}
+    path = UnloadingPath(arr["approach"], arr["load"], arr["a"], arr["b"], arr["c"], arr["d"],
+                         arr["contact_area"], np.array(["refine"] * len(states)),
+                         np.array([r["converged"] for r in recs], dtype=bool),
+                         arr["iterations"].astype(int), arr["outer_iterations"].astype(int), arr["residual"],
+                         "load", float(w_po), float(d_po), states[k_po], failures,
+                         tuple(states) if keep_states else (), time.perf_counter() - t0,
+                         not failures and sm is not None and not sm.at_boundary, prob.resolved)
+    st = path.pull_off_state
+    a, b = st.contact_semi_axes()
+    c, d = st.cohesive_semi_axes()
+    w_star = path.pull_off_load * prob_nd.sin_skew / (2.0 * math.pi)  # Eq. (34)
+    return AdhesivePullOff(
+        mu=prob_nd.mu, beta0=prob_nd.beta0, n=int(n), law=prob_nd.law.name, control="load",
+        W_star=float(w_star), a_star=a, b_star=b, c_star=c, d_star=d,
+        beta_ab=b / a if a > 0 else float("nan"), beta_cd=d / c if c > 0 else float("nan"),
+        delta_star=float(path.pull_off_approach), converged=path.pull_off_converged, n_steps=path.n_steps,
+        iterations=int(path.iterations.sum()), residual=float(path.residual.max()), failures=failures,
+        resolved=path.resolved, half_width_x=0.5 * grid.nx * grid.dx, half_width_y=0.5 * grid.ny * grid.dy,
+        elapsed=path.elapsed, path=path)
