@@ -16,10 +16,20 @@ Engine
   the whole path of an adhesive pull-off) stay in one task.  The half-space
   operator is built inside the worker on first use and cached there
   (:func:`dhfield.bem.get_operator`): it holds a lock and is never pickled.
+* **Costliest first.** Every BEM task carries an estimate of its cost
+  (:func:`dhfield.sweep.tasks.expected_seconds`: n^2 log n, times mu^1.1 for an
+  adhesive path); the task keys rank them so that dask starts the costliest
+  first, and hands the rest to workers as they free up (longest-processing-time
+  list scheduling, within 4/3 of the best split).  A poor estimate costs balance,
+  never results: the cases are independent.
 * **Schedulers.** ``"synchronous"`` (serial, in this process), ``"processes"``
   (local worker processes, the default, ``workers`` of them, default every
   core), or the address of a dask.distributed scheduler
-  (``tcp://host:port``; the workers must see the output directory).
+  (``tcp://host:port``; the workers must see the output directory).  Every
+  worker uses one core: local workers are spawned with one BLAS/OpenMP thread
+  (:data:`SINGLE_THREAD_ENV`), a serial sweep runs under
+  ``threadpoolctl.threadpool_limits(1)``, and the BEM tasks ask FFTW for one
+  thread.
 * **Resumable.** Cases are written to a :class:`~dhfield.sweep.store.CaseStore`
   as they finish; a case that raises is recorded with its message (status
   "failed", NaN values) and retried by the next run; a non-converged adhesive
