@@ -189,10 +189,10 @@ def bench_bem_cli() -> None:
           "worker spawn included; --workers 1 runs in the command's own process)")
 
 
-def bench_adhesive(repeats: int) -> bool:
-    """The adhesive ground-truth sweep of 8 cases at N = 256 on started pools of 1 and 2 workers."""
-    cfg = ADHESIVE_CONFIG
-    print(f"adhesive sweep: 8 ground-truth cases at N = 256 (beta0 {cfg['axes']['beta0']} x mu "
+def bench_adhesive(repeats: int, n: int = 256) -> bool:
+    """The adhesive ground-truth sweep of 8 cases at N = ``n`` on started pools of 1 and 2 workers."""
+    cfg = {**ADHESIVE_CONFIG, "axes": {**ADHESIVE_CONFIG["axes"], "n": [n]}}
+    print(f"adhesive sweep: 8 ground-truth cases at N = {n} (beta0 {cfg['axes']['beta0']} x mu "
           f"{cfg['axes']['mu']}), local worker processes, costliest first; {repeats} round(s)")
     print("  timed: the whole run_sweep call; not timed: the worker-pool start-up, printed apart and added "
           "back in the last line")
@@ -212,7 +212,11 @@ def bench_adhesive(repeats: int) -> bool:
     t1, t2 = statistics.median(times[1]), statistics.median(times[2])
     costs = sorted(cases.values(), reverse=True)
     best = _best_two_way(costs)
-    print("  case seconds (1 worker): " + ", ".join(f"{k.split('__')[1]} {v:.1f}" for k, v in cases.items()))
+    def label(key):  # adhesive__<i_beta0>_<i_mu>_<i_n>_<i_law>
+        ib, im = (int(t) for t in key.split("__")[1].split("_")[:2])
+        return f"({cfg['axes']['beta0'][ib]:g}, {cfg['axes']['mu'][im]:g})"
+
+    print("  case seconds, 1 worker, (beta0, mu): " + ", ".join(f"{label(k)} {v:.1f}" for k, v in cases.items()))
     print(f"  sum {sum(costs):.1f} s, largest {costs[0]:.1f} s: the best 2-worker split of these cases takes "
           f"{best:.1f} s, a speed-up of at most {sum(costs) / best:.2f}")
     print(f"  pool start-up       1 worker {start[1]:7.2f} s   2 workers {start[2]:7.2f} s")
@@ -295,6 +299,8 @@ def main(argv=None) -> int:
     p.add_argument("--bem-only", action="store_true", help="the BEM speed-ups only (same as --skip-map)")
     p.add_argument("--adhesive-repeats", type=int, default=1, help="rounds of the adhesive speed-up (1)")
     p.add_argument("--skip-adhesive", action="store_true", help="no adhesive sweep (saves ~2 min)")
+    p.add_argument("--adhesive-n", type=int, default=256, help="cells per side of the adhesive sweep (256; "
+                   "smaller for a quick check of this script, not for the record)")
     p.add_argument("--distributed", action="store_true",
                    help="also time the forward-BEM sweep on a dask.distributed LocalCluster")
     args = p.parse_args(argv)
@@ -313,7 +319,7 @@ def main(argv=None) -> int:
         if args.distributed:
             _distributed(args.repeats)
         if not args.skip_adhesive:
-            ok &= bench_adhesive(args.adhesive_repeats)
+            ok &= bench_adhesive(args.adhesive_repeats, args.adhesive_n)
         print(f"BEM part of the benchmark: {time.perf_counter() - t0:.0f} s")
     print("load average at the end " + " ".join(f"{x:.2f}" for x in os.getloadavg()))
     return 0 if ok else 1
