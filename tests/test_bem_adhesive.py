@@ -184,3 +184,25 @@ def test_refine_pull_off_rejects_bad_input():
         refine_pull_off(coarse.path, 32)
     with pytest.raises(ValueError, match="window"):
         refine_pull_off(coarse, 32, window=0)
+
+
+#: Fold of delta(W) extrapolated by a parabola through three states 15-45 % above the
+#: fold's contact radius (Maugis-Dugdale curve, lambda = 1): O(h^3), measured 8.4e-4.
+RTOL_FOLD = 2e-3
+
+
+def test_fold_of_branch_recovers_the_maugis_dugdale_jump():
+    from dhfield.bem.adhesive import fold_of_branch
+
+    mu = float(transition.tabor_from_maugis(1.0))
+    ref = maugis_dugdale._pull_off(mu, "displacement")     # Maugis (1992): the fold of delta(a)
+    a = float(ref["a_star"]) * (1.0 + 0.15 * np.array([4.0, 3.0, 2.0, 1.0]))   # stable branch, towards the fold
+    curve = maugis_dugdale._curve(a, mu)
+    w, d, err = fold_of_branch(curve["W_star"], curve["delta_star"])
+    assert w == pytest.approx(float(ref["W_star"]), rel=RTOL_FOLD)
+    assert d == pytest.approx(float(ref["delta_star"]), abs=RTOL_FOLD * abs(float(ref["delta_star"])))
+    actual = abs(w - float(ref["W_star"]))
+    assert actual / 3.0 <= err <= 3.0 * actual                # the estimate has the right size
+    # the last state is returned (and no estimate) when no fold lies within a span beyond it
+    w2, d2, err2 = fold_of_branch(curve["W_star"][:2], curve["delta_star"][:2])
+    assert (w2, d2) == (float(curve["W_star"][1]), float(curve["delta_star"][1])) and np.isnan(err2)

@@ -72,7 +72,9 @@ def sphere_row(lam, n, start=None):
     """One N of the sphere at lambda: the full path, or coarse to fine from ``start``."""
     mu = float(transition.tabor_from_maugis(lam))
     t0 = time.perf_counter()
-    res = adhesive_pull_off(mu, 1.0, n, progress=None) if start is None else refine_pull_off(start, n)
+    # the whole marching path at the coarsest N: the contact radius along the curve needs it
+    res = adhesive_pull_off(mu, 1.0, n, progress=None, search="march") if start is None else \
+        refine_pull_off(start, n)
     el = time.perf_counter() - t0
     ref = maugis_dugdale._pull_off(mu)
     ref_d = maugis_dugdale._pull_off(mu, "displacement")
