@@ -107,7 +107,7 @@ def _json_default(obj):
     raise TypeError(type(obj))
 
 
-def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **options) -> dict:
+def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=None, **options) -> dict:
     """Solve one case; return its record (never raises for a solver failure).
 
     Parameters
@@ -119,6 +119,9 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **opti
     solver : callable, optional
         ``solver(mu, beta0, n, law=..., control=..., **options) -> AdhesivePullOff``;
         default :func:`dhfield.bem.adhesive_pull_off` (tests pass a stand-in).
+    start : AdhesivePullOff, optional
+        The same case at a coarser N: then only the states around its pull-off are
+        solved at ``n`` (:func:`dhfield.bem.refine_pull_off`, coarse to fine).
 
     Returns
     -------
@@ -127,19 +130,30 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **opti
         (empty when ok: otherwise the parameters and the reason), and the
         scalars of the pull-off (NaN when failed).
     """
+    return _solve_case(beta0, mu, n, law=law, control=control, solver=solver, start=start, **options)[0]
+
+
+def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=None, **options):
+    """(record, result or None) of one case: :func:`run_case` keeping the solver's result."""
     if solver is None:
         from dhfield.bem import adhesive_pull_off as solver
     rec = {"beta0": float(beta0), "mu": float(mu), "n": int(n), "law": law, "control": control,
-           "max_iter": int(options.get("max_iter", -1))}
+           "max_iter": int(options.get("max_iter", -1)),
+           "route": "full path" if start is None else f"coarse to fine from n={int(start.n)}"}
     where = f"beta0={beta0:g}, mu={mu:g}, n={int(n)}, law={law}, control={control}"
     t0 = time.perf_counter()
     try:
-        res = solver(float(mu), float(beta0), int(n), law=law, control=control, progress=False, **options)
+        if start is None:
+            res = solver(float(mu), float(beta0), int(n), law=law, control=control, progress=False, **options)
+        else:
+            from dhfield.bem import refine_pull_off
+
+            res = refine_pull_off(start, int(n), progress=False, **options)
     except Exception as exc:  # noqa: BLE001 - a failed case is recorded, never dropped
         rec.update({k: float("nan") for k in CASE_FLOATS})
         rec.update(status="failed", message=f"{where}: {type(exc).__name__}: {exc}",
                    elapsed=time.perf_counter() - t0, converged=False, failures=[])
-        return rec
+        return rec, None
     d = res.as_dict()
     rec.update({k: float(d[k]) for k in CASE_FLOATS if k in d})
     rec["converged"] = bool(d["converged"])
@@ -155,7 +169,10 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, **opti
                    message=f"{where}: {len(rec['failures'])} unconverged state(s) on the path"
                            f"{' (all beyond the pull-off)' if after else ''}, "
                            f"worst residual {worst:.3g}")
-    return rec
+    if not d.get("resolved", True):
+        rec["message"] = (rec["message"] + "; " if rec["message"] else f"{where}: ") + \
+            "grid too coarse for the Dugdale edge (resolved=False)"
+    return rec, res
 
 
 #: Cases with mu >= DEFER_MU run after all the others (at mu = 5 the zone spans few cells of
@@ -171,11 +188,15 @@ def cases(beta0s, mus, ns):
 
 
 def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, law="dugdale",
-              control="load", solver=None, progress=None, **options) -> list[dict]:
+              control="load", solver=None, progress=None, coarse_to_fine=None, **options) -> list[dict]:
     """Run every case not yet in ``work_dir``; return all records of the requested cases.
 
     Each finished case is written at once to ``work_dir/<case_name>.json``
-    (atomic); existing files are read, not recomputed (resume).
+    (atomic); existing files are read, not recomputed (resume).  With
+    ``coarse_to_fine=N0`` every n > N0 of the ladder is solved coarse to fine
+    (:func:`dhfield.bem.refine_pull_off`) from the next coarser level solved in
+    this run (the level N0 is re-solved in memory when its file already exists);
+    the record's ``route`` says which.
     """
     work_dir = Path(work_dir)
     work_dir.mkdir(parents=True, exist_ok=True)
@@ -184,12 +205,23 @@ def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, l
     todo = cases(beta0s, mus, ns)
     out = []
     t0 = time.perf_counter()
+    solved = {}                                   # (beta0, mu) -> result at the last n (coarse to fine)
     for k, (b, m, n) in enumerate(todo, 1):
         path = work_dir / f"{case_name(b, m, n, law, control)}.json"
+        fine = coarse_to_fine is not None and n > int(coarse_to_fine) and control == "load"
         if path.is_file():
             out.append(json.loads(path.read_text()))
             continue
-        rec = run_case(b, m, n, law=law, control=control, solver=solver, **options)
+        start = solved.get((b, m)) if fine else None
+        if fine and start is None:
+            # the coarsest level of the route, solved again in memory (its file is kept)
+            _, start = _solve_case(b, m, int(coarse_to_fine), law=law, control=control, solver=solver,
+                                   **options)
+        rec, res = _solve_case(b, m, n, law=law, control=control, solver=solver,
+                               start=start if (start is not None and np.isfinite(start.delta_star)) else None,
+                               **options)
+        if coarse_to_fine is not None and res is not None and n >= int(coarse_to_fine):
+            solved[(b, m)] = res
         _write_json(rec, path)
         out.append(rec)
         msg = (f"[{k}/{len(todo)}] beta0={b:g} mu={m:g} n={n}: {rec['status']} W*={rec['W_star']:.5f} "
@@ -346,6 +378,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
     cap = np.zeros(shape, dtype=np.int32)  # records without the field were run with STUDY_MAX_ITER
     message = np.full(shape, "", dtype=object)
     source = np.full(shape, "", dtype=object)
+    route = np.full(shape, "", dtype=object)
     for r in records:
         if int(r["n"]) not in ns:
             continue
@@ -356,6 +389,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
         status[i, j, k] = STATUSES.index(r["status"])
         message[i, j, k] = r.get("message", "")
         source[i, j, k] = r.get("solver_source", "")
+        route[i, j, k] = r.get("route", "full path")
     dims = ("beta0", "mu", "n")
     data = {}
     for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "beta_ab", "beta_cd", "delta_star"):
@@ -374,6 +408,9 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
                                                                                           dtype=np.int8),
                                      "flag_meanings": " ".join(STATUSES)})
     data["message"] = (dims, message.astype(str), {"long_name": "failure message naming the parameters"})
+    data["route"] = (dims, route.astype(str), {
+        "long_name": "how the case was solved: the full path, or coarse to fine from a coarser n "
+                     "(dhfield.bem.refine_pull_off: only the states around the pull-off)"})
     data["solver_source"] = (dims, source.astype(str), {
         "long_name": "git commit of the solver that computed the case (and whether dhfield/bem was modified)"})
     # Richardson over the finest three levels, per (beta0, mu); unconverged/failed levels excluded
@@ -474,6 +511,9 @@ def main(argv=None) -> int:
     p.add_argument("--out", type=Path, default=DEFAULT_OUT, help="consolidated netCDF")
     p.add_argument("--max-iter", type=int, default=STUDY_MAX_ITER,
                    help=f"CG iterations per state before it is flagged unconverged (default {STUDY_MAX_ITER})")
+    p.add_argument("--coarse-to-fine", type=int, default=None, metavar="N0",
+                   help="solve every n > N0 of the ladder only around the pull-off, from the next coarser n "
+                        "(dhfield.bem.refine_pull_off)")
     p.add_argument("--consolidate-only", action="store_true", help="only rebuild --out from --work-dir")
     p.add_argument("--references-only", action="store_true",
                    help="only compute (and cache in --work-dir) the analytic references of the grid")
@@ -500,7 +540,7 @@ def main(argv=None) -> int:
         return 0
     if not args.consolidate_only:
         run_study(args.beta0, args.mu, args.n, work_dir=args.work_dir, law=args.law, control=args.control,
-                  max_iter=args.max_iter)
+                  max_iter=args.max_iter, coarse_to_fine=args.coarse_to_fine)
     path = consolidate(args.work_dir, args.out, law=args.law, control=args.control, command=command,
                        max_iter=args.max_iter)
     print(f"wrote {path}")
