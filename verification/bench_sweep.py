@@ -330,8 +330,8 @@ def main(argv=None) -> int:
     p.add_argument("--skip-bem", action="store_true")
     p.add_argument("--map-only", action="store_true", help="the analytic map only (same as --skip-bem)")
     p.add_argument("--bem-only", action="store_true", help="the BEM speed-ups only (same as --skip-map)")
-    p.add_argument("--adhesive-repeats", type=int, default=1, help="rounds of the adhesive speed-up (1)")
-    p.add_argument("--skip-adhesive", action="store_true", help="no adhesive sweep (saves ~2 min)")
+    p.add_argument("--adhesive-repeats", type=int, default=2, help="rounds of the adhesive speed-up (2)")
+    p.add_argument("--skip-adhesive", action="store_true", help="no adhesive sweep (saves ~1-2 min)")
     p.add_argument("--adhesive-n", type=int, default=256, help="cells per side of the adhesive sweep (256; "
                    "smaller for a quick check of this script, not for the record)")
     p.add_argument("--distributed", action="store_true",
