@@ -480,7 +480,8 @@ def _solve(prob, delta, guess, tol, max_iter):
         p = np.zeros_like(prob.z)
     total_it = 0
     if law is None:
-        p, h, it, err = _polonsky_keer(op, zd, p, scale, inner_tol, max_iter, prob.k0)
+        # no outer loop to feed: the contact problem itself is solved to tol (converged iff err <= tol)
+        p, h, it, err = _polonsky_keer(op, zd, p, scale, tol, max_iter, prob.k0)
         total_it += it
         s = np.zeros_like(p)
         converged = err <= tol
