@@ -44,6 +44,7 @@ states are evaluated in bounded chunks.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import asdict, astuple, dataclass, field
 
 import numpy as np
@@ -52,7 +53,7 @@ from scipy.optimize import elementwise
 
 from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star,
                           check_count, check_model_ellipticity, check_tabor)
-from .adhesion import NODES_PER_PANEL, PANEL_RATIO, T1_MIN, graded_rule
+from .adhesion import NODES_PER_PANEL, PANEL_RATIO, T1_MIN
 from .geometry import sin_skew_angle
 from .pull_off_search import stable_branch_end
 
@@ -66,6 +67,8 @@ DEFAULT_A_STAR = (0.02, 3.0)
 #: Relative tolerance of the Newton solve for S (Delta gamma = 1 to this accuracy).
 SOLVE_RTOL = 1e-14
 _MAX_NEWTON = 60
+#: Contact sizes of the ends of the pull-off scan, relative (they only bound the scan).
+_RATIO_RTOL = 1e-6
 #: Largest number of points of one load curve (the output alone is ~80 bytes a point).
 MAX_CURVE_POINTS = 1_000_000
 #: Points per chunk of state evaluations (each carries a quadrature axis of <= ~1000
@@ -114,12 +117,43 @@ def _panel_counts(t1):
     return np.ceil(np.log(_T_END / t1) / np.log(PANEL_RATIO)).astype(int)
 
 
-def _bounded_groups(starts, ends, panels):
-    """Slices of the groups of equal panel count, each of at most :data:`_NODES_PER_SLICE` nodes."""
-    for lo, hi in zip(starts, ends):
-        step = max(1, _NODES_PER_SLICE // (NODES_PER_PANEL * (int(panels[lo]) + 1)))
-        for i in range(lo, hi, step):
-            yield i, min(hi, i + step)
+@functools.lru_cache(maxsize=4)
+def _gauss_legendre(n):
+    return special.roots_legendre(n)
+
+
+def _ragged_graded_rule(t1):
+    """:func:`dhfield.adhesion.graded_rule` for many t1, each with its own panel count, as flat panels.
+
+    Returns the nodes and weights, shape (panels, :data:`NODES_PER_PANEL`), and the
+    index of the first panel of each element (for ``np.add.reduceat``).  Element i
+    gets the P_i + 1 panels [0, t1], [t1, t1 r], ..., [t1 r^(P_i - 1), pi/2] with
+    r = (pi/2/t1)^(1/P_i) that ``graded_rule(t1_i)`` gives it alone.
+    """
+    t1 = np.clip(t1, T1_MIN, _T_END)
+    n_panels = _panel_counts(t1)
+    count = n_panels + 1
+    first = np.cumsum(count) - count
+    owner = np.repeat(np.arange(t1.size), count)
+    j = np.arange(owner.size) - first[owner]  # panel index within its element
+    ratio = (_T_END / t1) ** (1.0 / np.maximum(n_panels, 1))
+    hi = t1[owner] * ratio[owner] ** j
+    lo = np.where(j == 0, 0.0, hi / ratio[owner])
+    x, w = _gauss_legendre(NODES_PER_PANEL)
+    half = 0.5 * (hi - lo)
+    t = (0.5 * (hi + lo))[:, None] + half[:, None] * x
+    return t, half[:, None] * w, first, owner
+
+
+def _slices_by_nodes(t1):
+    """Element slices whose graded rules have at most :data:`_NODES_PER_SLICE` nodes together."""
+    nodes = np.cumsum((_panel_counts(t1) + 1) * NODES_PER_PANEL)  # nodes up to each element
+    start = 0
+    while start < t1.size:
+        before = nodes[start - 1] if start else 0
+        stop = max(start + 1, int(np.searchsorted(nodes, before + _NODES_PER_SLICE, side="right")))
+        yield slice(start, stop)
+        start = stop
 
 
 def _axis_integrals(a, b, s, with_a=True):
@@ -130,36 +164,30 @@ def _axis_integrals(a, b, s, with_a=True):
     Ta = d T0/da at fixed S and beta (b = beta a).  S may underflow to 0 (the
     narrow-annulus limit, T0 = 3 pi/(16 a^3 b)).
 
-    Every element gets the panels its own near-singularity scale needs (elements
-    are grouped by panel count), so a result does not depend on the other
-    elements of the batch.
+    Every element gets the panels its own near-singularity scale needs
+    (:func:`_ragged_graded_rule`), so a result does not depend on the other
+    elements of the batch; memory is bounded by :data:`_NODES_PER_SLICE`.
     """
     a, b, s = np.broadcast_arrays(*(np.asarray(q, dtype=float) for q in (a, b, s)))
     out_shape = a.shape
     a, b, s = (q.ravel() for q in (a, b, s))
     with np.errstate(divide="ignore"):
         t1 = np.arcsin(np.minimum(1.0, b / s))
-    panels = _panel_counts(t1)
     t0, t1_sum = np.empty(a.size), np.empty(a.size)
     ta = np.empty(a.size) if with_a else None
-    order = np.argsort(panels, kind="stable")
-    sorted_panels = panels[order]
-    starts = np.flatnonzero(np.r_[True, sorted_panels[1:] != sorted_panels[:-1]]) if a.size else []
-    ends = np.r_[starts[1:], a.size] if a.size else []
-    for lo, hi in _bounded_groups(starts, ends, sorted_panels):
-        idx = order[lo:hi]
-        t, w = graded_rule(t1[idx], n_panels=int(sorted_panels[lo]))
-        ai, bi, si = a[idx, None], b[idx, None], s[idx, None]
+    for sl in _slices_by_nodes(t1):
+        t, w, first, owner = _ragged_graded_rule(t1[sl])
+        ai, bi, si = a[sl][owner, None], b[sl][owner, None], s[sl][owner, None]
         sin2 = np.sin(t) ** 2
         s2 = (si * si) * sin2
         a2s, b2s = ai * ai + s2, bi * bi + s2
         c2 = 1.0 - sin2
         wc2q = w * c2 / (a2s * np.sqrt(a2s * b2s))  # w cos^2 t / q
-        t0[idx] = np.einsum("...i,...i->...", wc2q, c2)
-        t1_sum[idx] = np.sum(wc2q, axis=-1)
+        t0[sl] = np.add.reduceat(np.einsum("pi,pi->p", wc2q, c2), first)
+        t1_sum[sl] = np.add.reduceat(np.sum(wc2q, axis=-1), first)
         if with_a:
             beta2 = (bi / ai) ** 2
-            ta[idx] = np.sum(wc2q * c2 * (-3.0 * ai / a2s - (beta2 * ai) / b2s), axis=-1)
+            ta[sl] = np.add.reduceat(np.sum(wc2q * c2 * (-3.0 * ai / a2s - (beta2 * ai) / b2s), axis=-1), first)
     t0, t1_sum = t0.reshape(out_shape), t1_sum.reshape(out_shape)
     return t0, t1_sum, (ta.reshape(out_shape) if with_a else None)
 
@@ -327,6 +355,7 @@ def _state_at_ratio(x, mu, shape, derivatives=False):
         frac = 1.0 - special.expit(-np.logaddexp(0.0, log_v))  # (1 + v)/(2 + v)
         u_x = frac * dlog_q
         out.update(_derivatives(a, out, u_x, a * (u_x + 1.0), shape))
+        out["_dlog_a"] = u_x + 1.0  # d log a/d log x >= 1
     return out
 
 
@@ -554,15 +583,40 @@ def _pull_off_scan(shape):
     return _SCAN_LOW * np.maximum(a_jkr, 1.0)[..., None] * unit
 
 
+def _ratio_at(a, mu, shape):
+    """The ratio x = a/S of the state of contact size a: Newton in log x on log a(x).
+
+    Starts from the closed-form estimate of S of :func:`_solve_log_s` and uses
+    d log a/d log x >= 1 of :func:`_state_at_ratio` (one quadrature a step);
+    a(x) matches a to :data:`_RATIO_RTOL` (a few steps).
+    """
+    log_a = np.log(a)
+    u0 = _zero_contact_log_s(mu, shape)
+    u1 = 0.5 * np.log(8.0 * a / np.pi) - np.log(mu)
+    log_x = log_a + 0.5 * np.logaddexp(-2.0 * u0, -2.0 * u1)
+    active = np.ones(log_x.shape, bool)
+    for _ in range(_MAX_NEWTON):
+        idx = np.nonzero(active)
+        st = _state_at_ratio(np.exp(log_x[idx]), mu[idx], _Shape(*(f[idx] for f in astuple(shape))),
+                             derivatives=True)
+        err = np.log(st["a"]) - log_a[idx]
+        log_x[idx] -= err / st["_dlog_a"]
+        active[idx] = np.abs(err) > _RATIO_RTOL
+        if not active.any():
+            return np.exp(log_x)
+    raise RuntimeError("pull-off scan: the contact size did not converge in the ratio; please report the inputs")
+
+
 def _pull_off_ratio_scan(mu, shape):
     """The scan of :func:`_pull_off_scan` in the ratio x = a/S (geometric between its ends).
 
-    Only the two ends are solved for S (Newton); x(a) is increasing, so the scan
-    covers the same contact sizes and the search can run in x, where a state needs
-    one quadrature and no iteration (:func:`_state_at_ratio`).
+    Only the two ends are solved for x (:func:`_ratio_at`); x(a) is increasing, so the
+    scan covers the same contact sizes and the search can run in x, where a state
+    needs one quadrature and no iteration (:func:`_state_at_ratio`).
     """
     ends = _pull_off_scan(shape)[..., [0, -1]]
-    x_ends = ends / _solve_s(ends, mu[..., None], _Shape(*(f[..., None] for f in astuple(shape))))
+    x_ends = _ratio_at(ends, np.broadcast_to(mu[..., None], ends.shape),
+                       _Shape(*(np.broadcast_to(f[..., None], ends.shape) for f in astuple(shape))))
     unit = np.linspace(0.0, 1.0, _SCAN_POINTS)
     return x_ends[..., :1] * (x_ends[..., 1:] / x_ends[..., :1]) ** unit
 
