@@ -33,6 +33,10 @@ from verification._api import Figure, Section, check_le, save_figure
 TITLE = "Adhesive ground truth: BEM pull-off of the elliptical contact vs the closures"
 ROOT = Path(__file__).resolve().parent.parent
 DATASET = ROOT / "data" / "adhesive_ground_truth.nc"
+#: Sphere vs MD over N = 256/512/1024 (written by verification/convergence_adhesive.py --out).
+SPHERE_CONVERGENCE = ROOT / "data" / "adhesive_sphere_convergence.json"
+#: issue 8: Richardson-extrapolated sphere pull-off within 0.5 % of Maugis-Dugdale.
+TOL_MD_RICHARDSON = 0.005
 
 #: Closures judged by the verdict, with the words the report uses.
 CLOSURES = {
@@ -236,6 +240,27 @@ def _checks_md(tab):
     return checks
 
 
+def _sphere_convergence():
+    """Checks and a text line from the stored sphere convergence run (none when absent)."""
+    import json
+
+    if not SPHERE_CONVERGENCE.is_file():
+        return [], []
+    doc = json.loads(SPHERE_CONVERGENCE.read_text())
+    checks, parts = [], []
+    for case in doc["cases"]:
+        err = float(case["richardson_err"])
+        checks.append(check_le(
+            f"sphere (β0 = 1), λ = {case['lam']:g}: Richardson over N = {'/'.join(map(str, doc['n']))} "
+            f"|W*/W*_MD − 1|", abs(err) if np.isfinite(err) else np.inf, TOL_MD_RICHARDSON,
+            f"Maugis (1992) via dhfield.maugis_dugdale; {SPHERE_CONVERGENCE.relative_to(ROOT)}"))
+        per_n = ", ".join(f"N = {r['n']}: {100 * r['err']:+.3f} %" for r in case["rows"])
+        parts.append(f"λ = {case['lam']:g}: {per_n}; Richardson {100 * err:+.3f} % (order {case['order']:.2f})")
+    line = (f"Sphere against Maugis–Dugdale (`{SPHERE_CONVERGENCE.relative_to(ROOT)}`, command "
+            f"`{doc['command']}`, solver commit {doc['git_commit'][:10]}; {doc['route']}): " + "; ".join(parts) + ".")
+    return checks, [line]
+
+
 def _rerun(ds, quick, progress):
     """Re-solve the cheap cases at the coarsest stored N; return checks and a text line."""
     from dhfield.bem import adhesive_pull_off
@@ -251,7 +276,10 @@ def _rerun(ds, quick, progress):
             continue
         stored = float(ds["W_star"].sel(**sel))
         t0 = time.perf_counter()
-        res = adhesive_pull_off(m, b, n0, max_iter=STUDY_MAX_ITER, progress=False)
+        # the same load-minimum search as the stored case (march for cases stored before 'search')
+        search = str(ds["search"].sel(**sel).values) if "search" in ds else "march"
+        res = adhesive_pull_off(m, b, n0, max_iter=STUDY_MAX_ITER, progress=False,
+                                search=search if search in ("march", "bracket") else "bracket")
         el = time.perf_counter() - t0
         progress(f"re-run β0 = {b:g}, μ = {m:g}, N = {n0}: {el:.1f} s")
         err = abs(res.W_star / stored - 1.0)
@@ -325,6 +353,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     checks = _checks_md(tab)
     rerun_checks, rerun_lines = _rerun(ds, quick, progress)
     checks += rerun_checks
+    sphere_checks, sphere_lines = _sphere_convergence()
+    checks += sphere_checks
     verdict = verdict_lines(tab, coverage)
     from verification.study_adhesive import STATUSES
 
@@ -340,7 +370,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         f"solver commit {ds.attrs.get('param_git_commit', '?')[:10]}, "
         f"command `{ds.attrs.get('param_command', '?')}`). {coverage}.",
         "Re-run here: " + ("; ".join(rerun_lines) if rerun_lines else "no usable cheap case stored") + ".",
-    ]
+    ] + sphere_lines
     if bad:
         text.append("Cases flagged unconverged or failed (kept in the dataset with their message): "
                     + "; ".join(f"β0 = {b:g}, μ = {m:g}, N = {n}" for b, m, n, _ in bad) + ".")

@@ -139,7 +139,8 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
         from dhfield.bem import adhesive_pull_off as solver
     rec = {"beta0": float(beta0), "mu": float(mu), "n": int(n), "law": law, "control": control,
            "max_iter": int(options.get("max_iter", -1)),
-           "route": "full path" if start is None else f"coarse to fine from n={int(start.n)}"}
+           "route": "full path" if start is None else f"coarse to fine from n={int(start.n)}",
+           "search": str(options.get("search", "bracket")) if start is None else "refine"}
     where = f"beta0={beta0:g}, mu={mu:g}, n={int(n)}, law={law}, control={control}"
     t0 = time.perf_counter()
     try:
@@ -379,6 +380,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
     message = np.full(shape, "", dtype=object)
     source = np.full(shape, "", dtype=object)
     route = np.full(shape, "", dtype=object)
+    search = np.full(shape, "", dtype=object)
     for r in records:
         if int(r["n"]) not in ns:
             continue
@@ -390,6 +392,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
         message[i, j, k] = r.get("message", "")
         source[i, j, k] = r.get("solver_source", "")
         route[i, j, k] = r.get("route", "full path")
+        search[i, j, k] = r.get("search", "march")      # records before the bracket search marched
     dims = ("beta0", "mu", "n")
     data = {}
     for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "beta_ab", "beta_cd", "delta_star"):
@@ -411,6 +414,9 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
     data["route"] = (dims, route.astype(str), {
         "long_name": "how the case was solved: the full path, or coarse to fine from a coarser n "
                      "(dhfield.bem.refine_pull_off: only the states around the pull-off)"})
+    data["search"] = (dims, search.astype(str), {
+        "long_name": "load-minimum search of the path: march (unload from approach_max in uniform steps), "
+                     "bracket (from the analytic pull-off) or refine (coarse to fine)"})
     data["solver_source"] = (dims, source.astype(str), {
         "long_name": "git commit of the solver that computed the case (and whether dhfield/bem was modified)"})
     # Richardson over the finest three levels, per (beta0, mu); unconverged/failed levels excluded
