@@ -299,3 +299,18 @@ def test_direct_gap_correction_equals_the_convolution(symmetric):
     q = p.copy()
     np.add.at(q, cells, amounts)
     np.testing.assert_allclose(h, op(q), rtol=0, atol=RTOL_DIRECT_SUM * float(np.max(np.abs(h))))
+
+
+def test_nested_warm_starts_reach_the_same_states():
+    mu = float(transition.tabor_from_maugis(3.0))
+    plain = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=False)
+    nested = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=True)
+    assert plain.converged and nested.converged
+    assert nested.path.coarse_states >= nested.n_steps and plain.path.coarse_states == 0
+    # the bracket: the same approaches, hence the same discrete states, found from other warm starts
+    # (the vertex states then sit at approaches that move with the loads' last digits)
+    np.testing.assert_array_equal(nested.path.approach[:3], plain.path.approach[:3])
+    np.testing.assert_allclose(nested.path.load[:3], plain.path.load[:3], rtol=RTOL_COLD_VS_WARM)
+    assert nested.W_star == pytest.approx(plain.W_star, rel=RTOL_COLD_VS_WARM)
+    # fewer outer (zone) iterations per fine state from the coarse state at the same approach
+    assert nested.path.outer_iterations.sum() < plain.path.outer_iterations.sum()
