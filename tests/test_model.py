@@ -204,8 +204,8 @@ def test_issue9_item7_chunked_search_equals_one_chunk(monkeypatch):
     monkeypatch.setattr(pull_off_search, "DEFAULT_CHUNK_BYTES", 1)  # one problem per chunk
     monkeypatch.setattr(model, "CHUNK_POINTS", 5)
     parts = model.pull_off(mu, beta0)
-    # The quadrature's panel count follows the smallest scale in a chunk: rounding-level changes only.
-    np.testing.assert_allclose(whole.W_star, parts.W_star, rtol=1e-12)
+    # Each problem has its own quadrature panels, scan and root (issue 11): chunking changes nothing.
+    np.testing.assert_array_equal(whole.W_star, parts.W_star)
     assert whole.W_star.shape == (7, 3)
 
 
@@ -250,3 +250,85 @@ def test_issue9_item9_masked_arrays_are_rejected_and_empty_arrays_give_empty_res
     assert c.W_star.shape == (0,) and c.c_star.shape == (0,)
     p = model.pull_off(np.zeros((0, 3)) + 1.0, 0.8)
     assert np.shape(p.W_star) == (0, 3)
+
+
+# --- issue 11: the pull-off search runs in the ratio x = a/S (one quadrature a state) --------------
+
+#: Brute-force reference (below): two nested grids; the fine step is ~1e-5 a*, so W*(a*) of the
+#: grid minimum is within W'' h^2 ~ 1e-10 |W*| of the true minimum, and a* within ~2 fine steps.
+BRUTE_W_RTOL, BRUTE_A_RTOL = 1e-9, 5e-5
+#: A state at ratio x satisfies Eqs. (24), (31) to the quadrature's accuracy (~1e-12).
+RATIO_STATE_RTOL = 1e-10
+#: Central differences of W*(a*) with h = 1e-5 a*: truncation ~h^2, rounding ~1e-16/h.
+FD_RTOL = 1e-7
+
+
+def _brute_force_minimum(mu, beta0, key):
+    """Minimum of W*(a*) or delta*(a*) from load curves on nested grids (Newton solve at each a*)."""
+    a = np.geomspace(1e-3, 40.0, 1500)
+    f = getattr(model.load_curve(mu, beta0, a), key)
+    i = int(np.argmin(f))
+    fine = np.linspace(a[max(i - 1, 0)], a[min(i + 1, a.size - 1)], 2001)
+    c = model.load_curve(mu, beta0, fine)
+    j = int(np.argmin(getattr(c, key)))
+    assert 0 < j < fine.size - 1  # an interior minimum
+    return c, j
+
+
+@pytest.mark.parametrize("control, key", [("load", "W_star"), ("displacement", "delta_star")])
+@pytest.mark.parametrize("mu, beta0", [(1.0, 0.8), (5.0, 0.3), (2.0, 1.0), (300.0, 0.05), (30.0, 0.6)])
+def test_issue11_pull_off_equals_brute_force_minimum_of_the_load_curve(control, key, mu, beta0):
+    # Independent of the search: the load curve solves S at each a* by Newton (no ratio, no scan,
+    # no root finder); its grid minimum is the pull-off where that minimum is the global one.
+    p = model.pull_off(mu, beta0, control=control)
+    c, j = _brute_force_minimum(mu, beta0, key)
+    assert not bool(p.at_zero_contact)
+    assert float(getattr(p, key)) <= getattr(c, key)[j] * (1 - 1e-15)  # below every sample (negative)
+    assert float(getattr(p, key)) == pytest.approx(getattr(c, key)[j], rel=BRUTE_W_RTOL)
+    assert float(p.a_star) == pytest.approx(c.a_star[j], rel=BRUTE_A_RTOL)
+
+
+@pytest.mark.parametrize("mu, beta0", [(1e-5, 0.3), (0.3, 0.8), (1.0, 1.0), (1e4, 0.01), (1e10, 0.9)])
+def test_issue11_state_at_ratio_satisfies_eqs_24_31_and_its_derivative(mu, beta0):
+    shape = model._shape(np.array(beta0), sin_skew_angle(beta0))
+    x = np.geomspace(1e-2, 1e2, 7) * max(1.0, mu)  # a ~ (x/mu)^2 at large mu: a* ~ 1e-4 to 1e4
+    st = model._state_at_ratio(x, mu, shape, derivatives=True)
+    a, c, v = st["a"], st["c"], st["v"]
+    np.testing.assert_allclose(a / st["s"], x, rtol=1e-14)
+    if mu <= 100.0:  # the direct Eq. (31) loses c - a ~ mu^-2 to rounding beyond
+        np.testing.assert_allclose(work_of_adhesion(a, c, beta0, v), 1.0, rtol=RATIO_STATE_RTOL)  # Eq. (31)
+        np.testing.assert_allclose(dh.max_adhesive_stress(a, c, beta0, v), mu, rtol=RATIO_STATE_RTOL)  # Eq. (24)
+    # The Newton solve in S at the same a* (load_curve) gives the same state.
+    curve = model.load_curve(mu, beta0, a)
+    np.testing.assert_allclose(v, curve.v, rtol=RATIO_STATE_RTOL)
+    np.testing.assert_allclose(st["W"], curve.W_star, rtol=RATIO_STATE_RTOL)
+    for key, d in (("W_star", "dW"), ("delta_star", "ddelta")):
+        h = 1e-5 * a
+        fd = (getattr(model.load_curve(mu, beta0, a + h), key) - getattr(model.load_curve(mu, beta0, a - h), key)) / (2 * h)
+        scale = np.abs(getattr(model.load_curve(mu, beta0, a), key)) / a  # |f|/a: the derivative's natural size
+        np.testing.assert_allclose(st[d], fd, rtol=0, atol=FD_RTOL * np.max(scale))
+
+
+def test_issue11_ragged_rule_is_graded_rule_per_element():
+    from dhfield.adhesion import graded_rule
+
+    t1 = np.array([1e-30, 1e-7, 0.01, 0.3, 1.2, np.pi / 2])
+    t, w, first, owner = model._ragged_graded_rule(t1)
+    assert np.array_equal(first, np.flatnonzero(np.r_[True, np.diff(owner) != 0]))
+    for i, t1_i in enumerate(t1):
+        ti, wi = graded_rule(np.array([t1_i]))
+        np.testing.assert_allclose(t[owner == i].ravel(), ti.ravel(), rtol=1e-15, atol=0)
+        np.testing.assert_allclose(w[owner == i].ravel(), wi.ravel(), rtol=1e-14, atol=0)
+
+
+def test_issue11_pull_off_does_not_depend_on_the_batch():
+    # Every problem gets its own quadrature panels and its own scan and root: a point alone gives
+    # bit-identical results to the same point in any batch (the sweep's blocks may be cut anyhow).
+    rng = np.random.default_rng(3)
+    mu = 10.0 ** rng.uniform(-2, 3, 12)
+    beta0 = rng.uniform(0.05, 1.0, 12)
+    for control in ("load", "displacement"):
+        batch = model.pull_off(mu, beta0, control=control)
+        for i in (0, 5, 11):
+            one = model.pull_off(mu[i], beta0[i], control=control)
+            assert float(one.W_star) == batch.W_star[i] and float(one.a_star) == batch.a_star[i]

@@ -102,3 +102,26 @@ def test_noise_floor_hides_rounding_minima_but_not_real_ones():
     assert not end.found[0]
     end = stable_branch_end(noisy, scan, (np.array([1.0]),), floor=0.0)
     assert end.found[0]  # without the floor the noise makes a spurious minimum
+
+
+def test_walk_down_the_scan_gives_the_whole_scan_bracket_with_fewer_evaluations():
+    # Issue 11: the scan is walked from the top, `block` points at a time.  Any block size gives
+    # the bracket (hence the root) of evaluating the whole scan at once (block = n), bit for bit;
+    # a crossing near the top costs a few scan points, not the whole scan.
+    r3 = np.array([0.7, 1.3, 2.9, 3.9])
+    scan_points = []
+
+    def deriv(a, r):
+        if np.ndim(a) == 2:  # scan blocks are 2-d; the top point and the root finder's are 1-d
+            scan_points.append(np.size(a))
+        return (a - 0.1) * (a - 0.4) * (a - r)
+
+    scan = np.geomspace(1e-3, 4.0, 60)
+    whole = stable_branch_end(deriv, scan, (r3,), block=60)
+    for block in (1, 3, 8, 59):
+        end = stable_branch_end(deriv, scan, (r3,), block=block)
+        np.testing.assert_array_equal(end.x, whole.x)
+    scan_points.clear()
+    end = stable_branch_end(deriv, scan, (np.array([3.9]),), block=3)
+    assert scan_points == [3]  # the first block below the top holds a negative point: done
+    np.testing.assert_allclose(end.x, 3.9, atol=ROOT_ATOL)
