@@ -148,8 +148,12 @@ def _best_two_way(costs):
 
 
 def _warm_parent(tmp: Path) -> None:
-    """A tiny serial sweep, so that this process's own imports (xarray, netCDF) fall outside every timing."""
+    """A tiny serial sweep, so that this process's own imports (xarray, netCDF, the adhesive solver that
+    run_sweep checks for) fall outside every timing: else the first timed run, with 1 worker, pays them."""
     from dhfield.sweep import config_from_mapping, run_sweep
+    from dhfield.sweep.tasks import adhesive_solver
+
+    adhesive_solver()
 
     run_sweep(config_from_mapping({"axes": {"beta0": [1.0], "mu": [1.0]}, "sweep": {"models": ["jkr"]}}),
               out=tmp / "warm-up.nc", scheduler="synchronous", progress=False)
@@ -286,6 +290,32 @@ def raw_parallelism() -> float:
     return t1 / t2
 
 
+def _raw_adhesive(case):
+    """Control without dask: one adhesive case (beta0, mu, n) in this process, after a small warm-up; seconds."""
+    from dhfield.sweep import tasks
+
+    tasks.adhesive_case(1.0, 1.0, 32, "dugdale")
+    t0 = time.perf_counter()
+    tasks.adhesive_case(*case, "dugdale")
+    return time.perf_counter() - t0
+
+
+def raw_adhesive_parallelism(n: int) -> float:
+    """Speed-up the machine offers for adhesive cases: 2 cases one after the other vs in 2 processes at once."""
+    import multiprocessing
+
+    cases = [(0.8, 1.0, n), (1.0, 1.0, n)]
+    ctx = multiprocessing.get_context("spawn")
+    with ctx.Pool(1) as pool:
+        t1 = sum(pool.map(_raw_adhesive, cases, chunksize=1))
+    with ctx.Pool(2) as pool:
+        t2 = max(pool.map(_raw_adhesive, cases, chunksize=1))
+    print(f"  (f) control, plain multiprocessing, no dask: adhesive (beta0, mu) = (0.8, 1) and (1, 1) at N = {n} "
+          f"in 1 process {t1:6.2f} s, in 2 at once {t2:6.2f} s (slower of the two): the machine offers "
+          f"{t1 / t2:5.2f} now")
+    return t1 / t2
+
+
 def _distributed(repeats: int) -> None:
     """The forward-BEM sweep on a dask.distributed LocalCluster of 1 and 2 single-threaded workers (reported)."""
     import logging
@@ -354,6 +384,7 @@ def main(argv=None) -> int:
             _distributed(args.repeats)
         if not args.skip_adhesive:
             ok &= bench_adhesive(args.adhesive_repeats, args.adhesive_n)
+            raw_adhesive_parallelism(args.adhesive_n)
         print(f"BEM part of the benchmark: {time.perf_counter() - t0:.0f} s")
     print("load average at the end " + " ".join(f"{x:.2f}" for x in os.getloadavg()))
     return 0 if ok else 1
