@@ -118,14 +118,15 @@ def _verdict(s):
     return f"target >= {TARGET_SPEEDUP}  {'PASS' if s >= TARGET_SPEEDUP else 'FAIL'}"
 
 
-def _pools(workers=(1, 2)):
+def _pools(quantity, workers=(1, 2)):
     """Started local pools (same scheduler, same code path for 1 and 2 workers) and their start-up [s]."""
     from dhfield.sweep import connect
+    from dhfield.sweep.engine import QUANTITY_MODULES
 
     pools, start = {}, {}
     for w in workers:
         pools[w] = connect("processes", w)
-        start[w] = pools[w].start()
+        start[w] = pools[w].start(preload=QUANTITY_MODULES[quantity])  # as run_sweep would
     return pools, start
 
 
@@ -166,7 +167,7 @@ def bench_bem(repeats: int) -> bool:
           f"medians of {repeats} rounds, 1 and 2 workers alternating")
     print("  timed: the whole run_sweep call (graph, tasks, per-case netCDF store, consolidation, final "
           "netCDF); not timed: the worker-pool start-up, printed apart")
-    pools, start = _pools()
+    pools, start = _pools("bem_field")
     times = {1: [], 2: []}
     try:
         with tempfile.TemporaryDirectory() as tmp:
@@ -209,7 +210,7 @@ def bench_adhesive(repeats: int, n: int = 256) -> bool:
           f"{cfg['axes']['mu']}), local worker processes, costliest first; {repeats} round(s)")
     print("  timed: the whole run_sweep call; not timed: the worker-pool start-up, printed apart and added "
           "back in the last line")
-    pools, start = _pools()
+    pools, start = _pools("adhesive")
     times = {1: [], 2: []}
     try:
         with tempfile.TemporaryDirectory() as tmp:

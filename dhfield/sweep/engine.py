@@ -56,10 +56,15 @@ _FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS + ADHESIVE
            "load_curve": CURVE_FIELDS}
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
-           "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV", "SINGLE_THREAD_ENV", "WORKER_START_TIMEOUT"]
+           "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV", "SINGLE_THREAD_ENV", "WORKER_START_TIMEOUT",
+           "QUANTITY_MODULES"]
 
 #: Seconds to wait for a dask.distributed scheduler before reporting it unreachable.
 CONNECT_TIMEOUT = 5.0
+#: Modules the tasks of each quantity import: preloaded by the local workers of a sweep
+#: (:meth:`Executor.start`), so that only what the sweep uses is imported, once, at start-up.
+QUANTITY_MODULES = {"pull_off": ("dhfield.compare",), "load_curve": ("dhfield.compare",),
+                    "bem_field": ("dhfield.fields",), "adhesive": ("dhfield.bem.adhesive",)}
 #: Seconds a starting local worker waits for its siblings (:meth:`Executor.start`).
 WORKER_START_TIMEOUT = 300.0
 #: Thread counts of the numerical libraries, set to 1 in every local worker process
@@ -133,15 +138,16 @@ class Executor:
             self.start()
         return self._pool
 
-    def start(self) -> float:
+    def start(self, preload=()) -> float:
         """Start the local worker processes now, ready to work; return the seconds it took.
 
         Every worker is spawned with one BLAS/OpenMP thread (:data:`SINGLE_THREAD_ENV`;
         the BEM tasks also ask FFTW for one thread), so W workers use W cores and
-        one worker never secretly uses two.  Each imports the numerical modules of
-        the tasks, then waits for the others: when this returns, all are up, and a
-        sweep timed afterwards excludes the start-up.  Nothing to do (0.0) for the
-        other kinds or when the pool is already running.
+        one worker never secretly uses two.  Each imports the modules ``preload``
+        (names, e.g. :data:`QUANTITY_MODULES` values), then waits for the others:
+        when this returns, all are up, and a sweep timed afterwards excludes the
+        start-up.  Nothing to do (0.0) for the other kinds or when the pool is
+        already running.
         """
         if self.kind != "processes" or self._pool is not None:
             return 0.0
@@ -156,7 +162,8 @@ class Executor:
         saved = {k: os.environ.get(k) for k in SINGLE_THREAD_ENV}
         os.environ.update(dict.fromkeys(SINGLE_THREAD_ENV, "1"))  # inherited by the spawned workers
         try:
-            pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start_worker, initargs=(ready,))
+            pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start_worker,
+                                       initargs=(ready, tuple(preload)))
             # One submit per worker spawns them all now (a spawn pool grows on demand).
             started = [pool.submit(os.getpid) for _ in range(self.workers)]
         finally:
@@ -186,12 +193,12 @@ class Executor:
         self.close()
 
 
-def _start_worker(ready) -> None:
-    """Initializer of a local worker process: import what the tasks use, then wait for the others."""
+def _start_worker(ready, preload) -> None:
+    """Initializer of a local worker process: import ``preload``, then wait for the other workers."""
     import importlib
     import threading
 
-    for name in ("dhfield.sweep.tasks", "dhfield.fields", "dhfield.compare", "dhfield.bem.adhesive"):
+    for name in preload:
         try:
             importlib.import_module(name)
         except ImportError:  # pragma: no cover - a missing optional solver fails in its task, with a message
@@ -574,6 +581,7 @@ def _run(config, executor, store, final, progress):
         kinds.append((q, [key for key, _ in cases]))
     total = sum(len(_output_keys(c)) for c in collections)
     enabled = sys.stderr.isatty() if progress is None else bool(progress)
+    executor.start(preload=[m for q in config.quantities for m in QUANTITY_MODULES.get(q, ())])
     bar = Progress(total, enabled)
     before = set(store.keys())
     try:
