@@ -172,8 +172,12 @@ class Executor:
                     os.environ.pop(k, None)
                 else:
                     os.environ[k] = v
-        for f in started:
-            f.result()
+        try:
+            for f in started:
+                f.result()
+        except BaseException:  # Ctrl-C or a worker that died: leave no process behind
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
         self._pool = pool
         return time.perf_counter() - t0
 
@@ -569,10 +573,12 @@ def _run(config, executor, store, final, progress):
         if q in config.quantities:
             for group in _case_index(config, q):
                 cases = [(_key(q, idx), params) for idx, params in group]
-                tasks.append((sum(expected_seconds(q, params) for _, params in group), q, cases))
+                cost = sum(0.0 if store.is_done(key) else expected_seconds(q, params) for key, params in cases)
+                tasks.append((cost, q, cases))
     # Longest-processing-time order: dask's schedulers start ready tasks of equal standing in
     # decreasing key order, so each task's key leads with its rank by expected cost (costliest
-    # first), and dask hands them to workers as they free up.  Ties keep the grid order.
+    # first; cases finished by an earlier run cost nothing), and dask hands them to workers as
+    # they free up.  Ties keep the grid order.
     by_cost = sorted(range(len(tasks)), key=lambda i: -tasks[i][0])
     rank = {i: len(tasks) - 1 - r for r, i in enumerate(by_cost)}
     for i, (_, q, cases) in enumerate(tasks):
