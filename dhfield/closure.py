@@ -70,6 +70,7 @@ from . import hertz, model, periphery
 from ._validation import check_contact_size_star, check_ellipticity, check_interval, check_positive
 from .elliptic import ellipsoid_integrals
 from .geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
+from .pull_off_search import last_local_minimum
 
 __all__ = [
     "CLOSURES",
@@ -544,7 +545,8 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
     ClosureState
         At the pull-off point.  Found as the last local minimum, seen from high
         load, of W*(a*) (or delta*(a*)) on a geometric scan of a*, refined with
-        :func:`scipy.optimize.elementwise.find_minimum`; ``at_zero_contact`` is True
+        :func:`scipy.optimize.elementwise.find_minimum`
+        (:func:`dhfield.pull_off_search.last_local_minimum`); ``at_zero_contact`` is True
         where W* (delta*) rises monotonically from the smallest scanned a*, and the
         state is then reported at a* = :data:`A_ZERO`, standing for a* -> 0.
     """
@@ -560,19 +562,9 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
     def objective(a, m, b):
         return getattr(solver(a, m, b), key)
 
-    ex = (lambda q: q[..., None])
-    scan = objective(np.broadcast_to(_SCAN, mu.shape + _SCAN.shape), ex(mu), ex(beta0))
-    n = _SCAN.size
-    interior = (scan[..., 1:-1] <= scan[..., :-2]) & (scan[..., 1:-1] <= scan[..., 2:])
-    has = interior.any(axis=-1)
-    last = np.where(has, n - 2 - np.argmax(interior[..., ::-1], axis=-1), 0)  # index in scan
-    a_best = np.where(has, _SCAN[last], A_ZERO)
-    if np.any(has):
-        lo, mid, hi = _SCAN[last - 1][has], _SCAN[last][has], _SCAN[last + 1][has]
-        res = elementwise.find_minimum(objective, (lo, mid, hi), args=(mu[has], beta0[has]),
-                                       tolerances=dict(xatol=1e-8, xrtol=1e-8, fatol=0.0, frtol=0.0))
-        a_best = np.array(a_best, dtype=float)
-        a_best[has] = res.x
+    end = last_local_minimum(objective, _SCAN, (np.ravel(mu), np.ravel(beta0)))
+    has = end.found.reshape(mu.shape)
+    a_best = np.where(has, end.x.reshape(mu.shape), A_ZERO)
     state = solver(a_best, mu, beta0)
     return ClosureState(**{**{f.name: getattr(state, f.name) for f in fields(state)},
                            "at_zero_contact": ~has})

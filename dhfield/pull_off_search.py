@@ -2,7 +2,7 @@
 
 A pull-off point is where an unloading path leaves its stable branch: the minimum
 of the load W (load control) or of the approach delta (displacement control)
-reached from the high-load end of the path.  dhfield meets it in two forms:
+reached from the high-load end of the path.  dhfield meets it in three forms:
 
 * **a smooth family with an analytic derivative** (the analytic DH model and its
   closures): the pull-off is the *largest* contact size a at which dW/da (or
@@ -12,6 +12,10 @@ reached from the high-load end of the path.  dhfield meets it in two forms:
   refines it with Chandrupatla's bracketing root finder
   (:func:`scipy.optimize.elementwise.find_root`), vectorised over problems and
   evaluated in bounded chunks;
+* **a smooth family without a derivative** (the two-axis and ray-average
+  closures): :func:`last_local_minimum` takes the local minimum of the values
+  on a scan nearest its high end and refines it with
+  :func:`scipy.optimize.elementwise.find_minimum`;
 * **a discretely sampled path** (the BEM unloading path): the pull-off is the
   minimum of sampled values; :func:`refine_sampled_minimum` takes the first
   (or global) discrete minimum and refines it with the parabola through the
@@ -27,7 +31,7 @@ import numpy as np
 from scipy.optimize import elementwise
 
 __all__ = ["SampledMinimum", "BranchEnd", "refine_sampled_minimum", "stable_branch_end",
-           "DEFAULT_CHUNK_BYTES", "SCAN_BLOCK"]
+           "last_local_minimum", "DEFAULT_CHUNK_BYTES", "SCAN_BLOCK"]
 
 #: Default working-memory budget of one chunk of :func:`stable_branch_end`
 #: (one step of the scan evaluates ``chunk * SCAN_BLOCK`` states).
@@ -275,4 +279,72 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
             xr[got] = np.where(np.isfinite(root.x), root.x, 0.5 * (lo[got] + hi[got]))
         x[start + rows] = xr
         found[start + rows] = True
+    return BranchEnd(x, found)
+
+
+def last_local_minimum(objective, scan, args=(), *, block=SCAN_BLOCK, xatol=1e-8, xrtol=1e-8):
+    """Local minimum of ``objective`` nearest the top of a scan, refined; vectorised over problems.
+
+    Parameters
+    ----------
+    objective : callable
+        ``objective(a, *args)`` -> W (or delta) at contact size ``a``; broadcasts ``a`` of
+        shape ``(k, j)`` against args of shape ``(k, 1)`` and ``a`` of shape ``(k,)``
+        against args of shape ``(k,)``.
+    scan : array_like, shape (n,)
+        Contact sizes, increasing and positive, shared by all problems.
+    args : tuple of array_like
+        Per-problem parameters, shape ``(m,)``.
+    block : int
+        Scan points evaluated per problem and step of the walk down the scan.
+    xatol, xrtol : float
+        Tolerances of :func:`scipy.optimize.elementwise.find_minimum` on the abscissa.
+
+    Returns
+    -------
+    BranchEnd
+        ``x`` is the refined minimum (NaN where not ``found``); ``found`` is False where
+        no interior scan point is a local minimum (the values rise from the smallest
+        scanned a: the zero-contact side).
+
+    Notes
+    -----
+    Scan point i is a local minimum when f_i <= f_(i-1) and f_i <= f_(i+1); the largest
+    such i is refined on the bracket (a_(i-1), a_i, a_(i+1)).  The scan is walked from
+    its top down, ``block`` points at a time, and a problem stops as soon as its
+    largest local minimum is known: the result of evaluating the whole scan, at a
+    fraction of the evaluations where the pull-off is near the top.
+    """
+    scan = np.asarray(scan, dtype=float)
+    args = tuple(np.atleast_1d(np.asarray(q, dtype=float)) for q in args)
+    m = max([q.shape[0] for q in args] + [1])
+    args = tuple(np.broadcast_to(q, (m,)) for q in args)
+    n = scan.size
+    block = max(1, int(block))
+    f = np.full((m, n), np.nan)
+    last = np.full(m, -1)
+    active = np.ones(m, bool)
+    top = n
+    while top > 0 and active.any():
+        bottom = max(0, top - block)
+        rows = np.nonzero(active)[0]
+        f[rows, bottom:top] = objective(np.broadcast_to(scan[bottom:top], (rows.size, top - bottom)),
+                                        *(q[rows][:, None] for q in args))
+        # Interior points whose neighbours are known now: i in [bottom + 1, n - 2].
+        fr = f[rows]
+        i = np.arange(bottom + 1, n - 1)
+        if i.size:
+            interior = (fr[:, i] <= fr[:, i - 1]) & (fr[:, i] <= fr[:, i + 1])
+            hit = interior.any(axis=-1)
+            last[rows[hit]] = i[-1] - np.argmax(interior[hit, ::-1], axis=-1)
+            active[rows[hit]] = False
+        top = bottom
+    found = last >= 0
+    x = np.full(m, np.nan)
+    if found.any():
+        r = np.nonzero(found)[0]
+        i = last[r]
+        res = elementwise.find_minimum(objective, (scan[i - 1], scan[i], scan[i + 1]), args=tuple(q[r] for q in args),
+                                       tolerances=dict(xatol=xatol, xrtol=xrtol, fatol=0.0, frtol=0.0))
+        x[r] = res.x
     return BranchEnd(x, found)

@@ -125,3 +125,28 @@ def test_walk_down_the_scan_gives_the_whole_scan_bracket_with_fewer_evaluations(
     end = stable_branch_end(deriv, scan, (np.array([3.9]),), block=3)
     assert scan_points == [3]  # the first block below the top holds a negative point: done
     np.testing.assert_allclose(end.x, 3.9, atol=ROOT_ATOL)
+
+
+def test_last_local_minimum_is_the_one_nearest_the_top_whatever_the_block():
+    # f = cos(2 pi x / p) - 0.05 x: minima near x = p/2 + k p; the one nearest the top of the scan
+    # [0.05, 3] is refined to find_minimum's tolerance.  A rising f has none (zero-contact side).
+    from dhfield.pull_off_search import last_local_minimum
+    from scipy.optimize import minimize_scalar
+
+    period = np.array([0.9, 1.3, 2.2])
+
+    def f(x, p):
+        return np.cos(2 * np.pi * x / p) - 0.05 * x
+
+    scan = np.geomspace(0.05, 3.0, 40)
+    whole = last_local_minimum(f, scan, (period,), block=40)
+    for block in (1, 4, 8):
+        end = last_local_minimum(f, scan, (period,), block=block)
+        np.testing.assert_array_equal(end.x, whole.x)
+    for p, x in zip(period, whole.x):
+        k = np.floor((3.0 - p / 2) / p)  # last minimum below the top
+        ref = minimize_scalar(lambda t: f(t, p), bounds=(p / 2 + k * p - 0.2, p / 2 + k * p + 0.2), method="bounded",
+                              options=dict(xatol=1e-12))
+        assert x == pytest.approx(ref.x, abs=1e-7)
+    rising = last_local_minimum(lambda x, s: s * x, scan, (np.array([1.0]),))
+    assert not rising.found[0] and np.isnan(rising.x[0])
