@@ -23,12 +23,16 @@ At a given contact semi-major axis a* the unknowns are c* and v (Eqs. 24, 31):
   closed form).  With w = S^2 sin^2 t it is evaluated by the graded Gauss rule of
   :func:`dhfield.adhesion.graded_rule`, with analytic derivatives in S and a.
 
-The equation for S is solved by a vectorised, bracketed Newton iteration in log S
-(monotone: d log(Delta gamma)/d log S lies between 1 and 3).  The load-controlled
-pull-off is the largest a* where dW*/da* = 0 (the end of the stable branch, reached
-from high load), the displacement-controlled pull-off the largest a* where
-d delta*/da* = 0; both derivatives are analytic (implicit function theorem), the
-roots are found with Chandrupatla's bracketing method to 1e-12 in a*.  When the
+At a given a* the equation for S is solved by a vectorised, bracketed Newton
+iteration in log S (monotone: d log(Delta gamma)/d log S lies between 1 and 3).
+The load-controlled pull-off is the largest a* where dW*/da* = 0 (the end of the
+stable branch, reached from high load), the displacement-controlled pull-off the
+largest a* where d delta*/da* = 0; both derivatives are analytic (implicit
+function theorem).  The pull-off search runs in the ratio x = a/S instead of a*
+(:func:`_state_at_ratio`): T0 scales as a^-4 at fixed x, so Eqs. (24), (31)
+become a quadratic in v with a closed-form root, each state costs one quadrature
+and no iteration, and a*(x) is increasing (d log a/d log x >= 1).  The roots are
+found with Chandrupatla's bracketing method to 1e-13 in x.  When the
 derivative is positive all the way down to a* -> 0 (the DMT side), the pull-off
 is the zero-contact limit, which has a closed form (a quadratic in S).
 
@@ -647,9 +651,12 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     Notes
     -----
     The end of the stable branch is found by :func:`dhfield.pull_off_search.stable_branch_end`
-    (scan in a* scaled with the shape, then Chandrupatla's method on the analytic
-    derivative), in chunks of problems so that memory stays bounded (a 200 x 200
-    map takes < 1 GiB).  The derivative is trusted only above a noise floor
+    (a scan covering a* from 1e-4 max(1, a_JKR) to 8 a_JKR, walked from its top,
+    then Chandrupatla's method on the analytic derivative), in the ratio
+    x = a/S of the contact semi-axis to S = sqrt(c^2 - a^2), where a state needs
+    one quadrature and no Newton solve.  Every problem has its own quadrature
+    panels, scan and root, so a result does not depend on the other inputs of the
+    call (bit for bit); memory stays bounded (a 200 x 200 map takes < 1 GiB).  The derivative is trusted only above a noise floor
     :data:`DERIVATIVE_FLOOR` times |W*(a* = 0)| (for delta*: |delta*(0)|): below it,
     W* is flat to ~1e-15 and the pull-off is the zero-contact limit.
     """
