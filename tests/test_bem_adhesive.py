@@ -314,3 +314,16 @@ def test_nested_warm_starts_reach_the_same_states():
     assert nested.W_star == pytest.approx(plain.W_star, rel=RTOL_COLD_VS_WARM)
     # fewer outer (zone) iterations per fine state from the coarse state at the same approach
     assert nested.path.outer_iterations.sum() < plain.path.outer_iterations.sum()
+
+
+def test_nested_cold_start_solves_the_same_hertz_problem(monkeypatch):
+    from dhfield.bem import adhesive
+
+    grid, z, delta = _hertz_problem(0.7, 128)
+    nested = solve_adhesive(z, grid, delta, None)
+    monkeypatch.setattr(adhesive, "NESTED_COLD_MIN_N", 10**9)        # no coarser grid
+    plain = solve_adhesive(z, grid, delta, None)
+    assert nested.converged and plain.converged
+    assert nested.load == pytest.approx(plain.load, rel=RTOL_COLD_VS_WARM)
+    assert nested.peak_pressure == pytest.approx(plain.peak_pressure, rel=RTOL_COLD_VS_WARM)
+    np.testing.assert_array_equal(nested.contact, plain.contact)

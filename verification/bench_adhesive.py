@@ -5,7 +5,9 @@
     quadrant): a cold start at the analytic DH pull-off approach from the DH
     cohesive zone, steps of the path's approach step until the load minimum is
     bracketed, then parabolic vertex states (``search='bracket'``, 3-6 states).
-    Its wall time includes the analytic DH prediction.
+    Every state starts from the same approach solved on the grid half as fine
+    (recursively to N = 64, :class:`dhfield.bem.adhesive.NestedWarmStart`).
+    Its wall time includes the analytic DH prediction and the coarse solves.
     tamaas 2.9: ``PolonskyKeerRey`` with the gap as primal and dual variable plus
     ``MaugisAdhesionFunctional`` (Rey, Anciaux & Molinari 2017) on a *periodic*
     N x N domain of side 8 c_MD (c_MD: Maugis-Dugdale zone radius at pull-off);
@@ -262,6 +264,9 @@ def bench_path(n, lambdas, tm, march=False):
         t_ours = time.perf_counter() - t0
         flag = "" if res.converged else f"  (unconverged states: {len(res.failures)})"
         row("dhfield bracket (free boundary)", t_ours, res.n_steps, res.iterations / res.n_steps, res.W_star)
+        if res.path.coarse_states:
+            print(f"           (+ {res.path.coarse_states} states, {res.path.coarse_iterations} CG iterations in all, "
+                  f"on the N/2, N/4, ... grids of the nested warm starts; included in the seconds)")
         if flag:
             print("          " + flag)
         if march:
