@@ -33,7 +33,7 @@ def add_parser(sub) -> None:
                    help="pull_off (default), load_curve, bem_field, adhesive")
     p.add_argument("--models", nargs="+", default=None, help="comparison models of pull_off")
     p.add_argument("--control", choices=("load", "displacement"), default=None)
-    p.add_argument("--chunk-points", type=int, default=None, help="analytic grid points per task (256)")
+    p.add_argument("--chunk-points", type=int, default=None, help="analytic grid points per task (2048)")
     p.add_argument("--curve-a-star", nargs=2, type=float, default=None, metavar=("FROM", "TO"),
                    help="load_curve: contact sizes a/c_r, evenly spaced (default 0.02 3)")
     p.add_argument("--curve-points", type=int, default=None, help="load_curve: points per curve (200)")

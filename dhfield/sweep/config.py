@@ -16,7 +16,7 @@ TOML layout (every table and key optional except ``[axes]``)::
     curve_a_star = [0.02, 3.0]         # load_curve: contact sizes a/c_r from, to (evenly spaced)
     curve_points = 200                 # load_curve: points per curve
     control = "load"                   # or "displacement"
-    chunk_points = 256                 # analytic grid points per dask task
+    chunk_points = 2048                # analytic grid points per dask task
 
     [axes]                             # a list, or {linspace|geomspace = [start, stop, num]}
     beta0 = [0.8, 0.9, 1.0]            # or skew_angle_deg = {linspace = [30, 90, 7]}
@@ -131,7 +131,7 @@ class SweepConfig:
     quantities: tuple = ("pull_off",)
     models: tuple = ("dh-elliptic",)
     control: str = "load"
-    chunk_points: int = 256
+    chunk_points: int = 2048
     curve_a_star: tuple = (0.02, 3.0)
     curve_points: int = 200
     half_width: float | None = None
@@ -314,7 +314,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     control = sweep.get("control", "load")
     if control not in _CONTROLS:
         _fail("sweep.control", "'load' or 'displacement'", control)
-    chunk = _int_at_least("sweep.chunk_points", sweep.get("chunk_points", 256), 1)
+    chunk = _int_at_least("sweep.chunk_points", sweep.get("chunk_points", 2048), 1)
     curve_points = _int_at_least("sweep.curve_points", sweep.get("curve_points", 200), 2)
     if curve_points > 100_000:
         _fail("sweep.curve_points", "an integer in [2, 100000]", curve_points)
