@@ -53,7 +53,6 @@ from dataclasses import asdict, astuple, dataclass, field
 
 import numpy as np
 from scipy import special
-from scipy.optimize import elementwise
 
 from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star,
                           check_count, check_model_ellipticity, check_tabor)
@@ -75,14 +74,15 @@ _MAX_NEWTON = 60
 _RATIO_RTOL = 1e-6
 #: Largest number of points of one load curve (the output alone is ~80 bytes a point).
 MAX_CURVE_POINTS = 1_000_000
-#: Points per chunk of state evaluations (each carries a quadrature axis of <= ~1000
-#: nodes and ~10 work arrays: <= ~100 MB a chunk).
+#: Points per chunk of state evaluations by Newton in S (load curves; the quadrature
+#: bounds its own memory, :data:`_NODES_PER_SLICE`).
 CHUNK_POINTS = 1024
 #: Noise floor of the pull-off derivative, relative to |W*| (|delta*|) at zero contact:
 #: the analytic derivative carries ~1e-12 relative rounding noise at a* ~ 1e-5.
 DERIVATIVE_FLOOR = 1e-9
 #: Pull-off scan: from a* = _SCAN_LOW (times max(1, a_JKR)) to _SCAN_TOP_FACTOR times
-#: the JKR-limit pull-off contact a_JKR, geometric (see :func:`_pull_off_scan`).
+#: the JKR-limit pull-off contact a_JKR (see :func:`_pull_off_scan`), geometric in the
+#: ratio x = a/S between those ends (:func:`_pull_off_ratio_scan`).
 _SCAN_LOW, _SCAN_TOP_FACTOR, _SCAN_POINTS = 1e-4, 8.0, 48
 #: Quadrature nodes (states x nodes) per slice of :func:`_axis_integrals`: ~12 work
 #: arrays of this size (~6 MB) bound its memory whatever the number of states.
