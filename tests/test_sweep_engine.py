@@ -103,12 +103,26 @@ def test_same_bits_on_every_scheduler(serial, tmp_path):
 
     import os
 
+    from dask.callbacks import Callback
+
     env = {k: os.environ.get(k) for k in engine.SINGLE_THREAD_ENV}
+    in_flight = [0, 0]  # now, most
+
+    def pretask(key, dsk, state):
+        in_flight[0] += 1
+        in_flight[1] = max(in_flight)
+
+    def posttask(key, result, dsk, state, worker_id):
+        in_flight[0] -= 1
+
     with engine.connect("processes", workers=2) as pool:  # one pool of 2 worker processes for both sweeps
         assert pool.start() > 0.0 and pool.start() == 0.0  # every worker up before the sweeps, once
-        procs = [run_sweep(config_from_mapping(c), out=tmp_path / f"p{i}.nc", scheduler=pool, progress=False)
-                 for i, c in enumerate((SMALL, BEM))]
+        with Callback(pretask=pretask, posttask=posttask):
+            procs = [run_sweep(config_from_mapping(c), out=tmp_path / f"p{i}.nc", scheduler=pool, progress=False)
+                     for i, c in enumerate((SMALL, BEM))]
         threads = [pool.pool.submit(_worker_threads).result() for _ in range(4)]
+    # Tasks go out one per free worker (SMALL has 8 pull-off blocks), never in batches to one worker.
+    assert in_flight[1] == 2
     # Each local worker runs one BLAS/OpenMP thread; this process's environment is untouched.
     assert all(t and set(t.values()) == {1} for _, t in threads), threads
     assert {k: os.environ.get(k) for k in engine.SINGLE_THREAD_ENV} == env

@@ -288,8 +288,10 @@ def _compute(collections, executor: Executor, progress: Progress):
             progress.advance()
 
     if executor.kind == "processes":
+        # chunksize=1: one task per free worker at a time.  dask's multiprocessing default (6)
+        # sends tasks in batches of 6 to one worker: of 8 tasks on 2 workers, 6 went to one.
         with Callback(posttask=posttask):
-            return dask.compute(*collections, scheduler="processes", pool=executor.pool)
+            return dask.compute(*collections, scheduler="processes", pool=executor.pool, chunksize=1)
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(1), Callback(posttask=posttask):  # serial: one core, like one worker
