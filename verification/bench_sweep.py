@@ -26,7 +26,12 @@ Prints:
   forward-BEM sweep on a dask.distributed LocalCluster (reported).
 
 The machine is shared during development: the load average is printed with
-the figures; rerun on a quiet machine for the record.
+the figures; rerun on a quiet machine for the record.  With the kernel's
+autogroup scheduling (``/proc/sys/kernel/sched_autogroup_enabled`` = 1) every
+session gets one fair share of the CPUs, so while others run, 2 workers of one
+session get no more CPU than 1: the controls (d) and (f) show what the machine
+offers at that moment, and the adhesive part also prints the makespan of the
+engine's order simulated from the measured case times.
 
 Usage::
 
@@ -167,6 +172,22 @@ def _warm_parent(tmp: Path) -> None:
               out=tmp / "warm-up.nc", scheduler="synchronous", progress=False)
 
 
+def _list_schedule(cfg, cases, workers=2):
+    """Makespan [s] of the measured adhesive cases handed out in the engine's order to ``workers``."""
+    from dhfield.sweep.tasks import expected_seconds
+
+    def cost(key):
+        ib, im, i_n = (int(t) for t in key.split("__")[1].split("_")[:3])
+        ax = cfg["axes"]
+        return expected_seconds("adhesive", {"beta0": ax["beta0"][ib], "mu": ax["mu"][im], "n": ax["n"][i_n]})
+
+    free = [0.0] * workers
+    for key in sorted(cases, key=cost, reverse=True):
+        i = free.index(min(free))
+        free[i] += cases[key]
+    return max(free)
+
+
 def bench_bem(repeats: int) -> bool:
     """Forward-BEM sweep of 8 cases at N = 256 on started pools of 1 and 2 workers, rounds alternating."""
     n_cases = 8
@@ -241,6 +262,10 @@ def bench_adhesive(repeats: int, n: int = 256) -> bool:
     print("  case seconds, 1 worker, (beta0, mu): " + ", ".join(f"{label(k)} {v:.1f}" for k, v in cases.items()))
     print(f"  sum {sum(costs):.1f} s, largest {costs[0]:.1f} s: the best 2-worker split of these cases takes "
           f"{best:.1f} s, a speed-up of at most {sum(costs) / best:.2f}")
+    lpt = _list_schedule(cfg, cases)
+    print(f"  the engine's order (costliest first by tasks.expected_seconds, next case to the first free "
+          f"worker) on 2 free cores: {lpt:.1f} s, speed-up {sum(costs) / lpt:.2f} (simulated from these case "
+          "seconds; no overheads)")
     print(f"  pool start-up       1 worker {start[1]:7.2f} s   2 workers {start[2]:7.2f} s")
     print(f"  (c) warm workers    1 worker {t1:7.2f} s   2 workers {t2:7.2f} s   speed-up {t1 / t2:5.2f}  "
           f"{_verdict(t1 / t2)}")
