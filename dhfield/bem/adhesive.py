@@ -66,7 +66,9 @@ and unloads with warm starts until contact is lost, then re-solves the
 bracket of the pull-off with finer steps (``refine_levels`` times).  The
 load-control pull-off is the minimum of the unloading load (refined by
 :func:`dhfield.pull_off_search.refine_sampled_minimum`); the
-displacement-control pull-off is the last contact state before the jump.
+displacement-control pull-off is the fold of delta(W) extrapolated from the
+converged states of the branch (:func:`fold_of_branch`; the last states before
+the jump hold few contact cells and do not converge).
 :func:`adhesive_pull_off` runs it in the paper's nondimensional units.  Under
 load control it *brackets* the minimum instead (``search='bracket'``): a cold
 start at the analytic DH pull-off approach from the DH cohesive zone, steps
@@ -74,6 +76,10 @@ until the load minimum is interior, and parabolic vertex states (3-6 states
 instead of ~32, the same pull-off to the jaggedness of the discrete load
 curve); every state starts from the same approach solved on the grid half as
 fine (:class:`NestedWarmStart`), which cuts the outer iterations ~4x.
+:func:`refine_pull_off` carries a pull-off to a finer grid (coarse to fine):
+only ~7 states around the coarse pull-off are solved, warm-started from the
+coarse state interpolated onto the fine grid (:func:`interpolate_state`); this
+is what makes N = 1024 affordable for Richardson extrapolation.
 
 Units
 -----
