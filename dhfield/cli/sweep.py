@@ -40,7 +40,8 @@ def add_parser(sub) -> None:
     p.add_argument("--half-width", type=float, default=None, help="fixed BEM domain half-width [c_r]")
     p.add_argument("--scheduler", default=None,
                    help="dask.distributed scheduler address tcp://host:port, or 'synchronous'/'processes'")
-    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: every core)")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes, one core each (default: every core; 1 runs in this "
+                   "process, which is quicker for sweeps of a few seconds: workers take a few seconds to start)")
     p.add_argument("--out", default=None, help="output FILE.nc (cases in FILE.nc.cases/) or DIR")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
