@@ -167,7 +167,6 @@ def _warm_parent(tmp: Path) -> None:
     from dhfield.sweep.tasks import adhesive_solver
 
     adhesive_solver()
-
     run_sweep(config_from_mapping({"axes": {"beta0": [1.0], "mu": [1.0]}, "sweep": {"models": ["jkr"]}}),
               out=tmp / "warm-up.nc", scheduler="synchronous", progress=False)
 
@@ -255,6 +254,7 @@ def bench_adhesive(repeats: int, n: int = 256) -> bool:
     t1, t2 = statistics.median(times[1]), statistics.median(times[2])
     costs = sorted(cases.values(), reverse=True)
     best = _best_two_way(costs)
+
     def label(key):  # adhesive__<i_beta0>_<i_mu>_<i_n>_<i_law>
         ib, im = (int(t) for t in key.split("__")[1].split("_")[:2])
         return f"({cfg['axes']['beta0'][ib]:g}, {cfg['axes']['mu'][im]:g})"
