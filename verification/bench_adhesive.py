@@ -50,7 +50,10 @@
     Hertz, ratios ours/peer (target <= 0.25).
 
 Every timing is one solve after an untimed warm-up (FFT plans, wisdom, caches),
-all in this process, one after the other, with one OpenBLAS thread.  The peers
+all in this process, one after the other, with one OpenBLAS thread; tamaas gets
+the same single thread (``--tamaas-threads 0`` gives it every core).  Wall
+seconds are the measure; the process CPU seconds are printed beside them (on a
+loaded machine they are the steadier figure).  The peers
 are optional (``pip install -e '.[bench]'``); a missing one is skipped with a note.
 Runtime: ~1-2 min on a quiet 2-core machine (``--march`` adds ~1 min per lambda).
 
@@ -102,6 +105,24 @@ def _import(name):
 
 def _verdict(ratio, target):
     return "PASS" if ratio <= target else "FAIL"
+
+
+class _Seconds:
+    """Wall and CPU (this process, all threads) seconds of one timed run."""
+
+    def __init__(self, wall, cpu):
+        self.wall, self.cpu = wall, cpu
+
+    def __str__(self):
+        return f"{self.wall:8.2f} {self.cpu:7.2f}"
+
+
+def _now():
+    return time.perf_counter(), time.process_time()
+
+
+def _since(t0):
+    return _Seconds(time.perf_counter() - t0[0], time.process_time() - t0[1])
 
 
 @contextlib.contextmanager
@@ -174,13 +195,13 @@ class _TamaasAdhesive:
 def tamaas_same_states(tm, mu, n, zone_radius, approaches, log=False):
     """tamaas at our path's approaches, in our order; returns (loads, seconds)."""
     run = _TamaasAdhesive(tm, mu, n, zone_radius, log=log)
-    t0 = time.perf_counter()
+    t0 = _now()
     loads = [run.load(d) for d in approaches]
-    return np.array(loads), time.perf_counter() - t0
+    return np.array(loads), _since(t0)
 
 
 def tamaas_bracket(tm, mu, n, zone_radius, approach_guess, approach_step, log=False, refine_levels=2,
-                   refine_factor=4, max_states=40):
+                   refine_factor=4, max_states=16):
     """tamaas with our load-control search: start at the DH guess, step until the load minimum is
     interior, then parabolic vertex states (the logic of ``unloading_path`` with ``approach_guess``).
 
@@ -189,7 +210,7 @@ def tamaas_bracket(tm, mu, n, zone_radius, approach_guess, approach_step, log=Fa
     from dhfield.pull_off_search import refine_sampled_minimum
 
     run = _TamaasAdhesive(tm, mu, n, zone_radius, log=log)
-    t0 = time.perf_counter()
+    t0 = _now()
     xs, ws = [approach_guess], [run.load(approach_guess)]
     valid = ws[0] < 0
     while valid and len(xs) < max_states:
@@ -211,21 +232,21 @@ def tamaas_bracket(tm, mu, n, zone_radius, approach_guess, approach_step, log=Fa
             break
         xs.append(sm.x)
         ws.append(run.load(sm.x))
-    return np.array(xs), np.array(ws), time.perf_counter() - t0, valid
+    return np.array(xs), np.array(ws), _since(t0), valid
 
 
 def tamaas_march(tm, mu, n, zone_radius, approach_max, approach_step, log=False, max_states=120):
     """tamaas from approach_max down by approach_step to two steps past the load minimum."""
     run = _TamaasAdhesive(tm, mu, n, zone_radius, log=log)
     loads, approaches = [], []
-    t0 = time.perf_counter()
+    t0 = _now()
     for k in range(max_states):
         approaches.append(approach_max - k * approach_step)
         loads.append(run.load(approaches[-1]))
         i = int(np.argmin(loads))
         if loads[i] < 0 and len(loads) - 1 - i >= 2:
             break
-    return np.array(approaches), np.array(loads), time.perf_counter() - t0
+    return np.array(approaches), np.array(loads), _since(t0)
 
 
 def _w_star(approaches, loads):
@@ -239,11 +260,11 @@ def _w_star(approaches, loads):
 
 def bench_path(n, lambdas, tm, march=False):
     from dhfield import compare
-    from dhfield.bem import adhesive_pull_off, get_operator
+    from dhfield.bem import adhesive_pull_off
     from dhfield.bem.adhesive import nondimensional_problem
 
     print(f"(a) path to the load-control pull-off, sphere, Dugdale, N = {n}")
-    head = (f"    {'lambda':>6s} {'solver / setup':36s} {'seconds':>8s} {'states':>6s} {'CG it/state':>11s} "
+    head = (f"    {'lambda':>6s} {'solver / setup':36s} {'wall s':>8s} {'cpu s':>7s} {'states':>6s} {'CG it/state':>11s} "
             f"{'W*max':>9s} {'vs MD':>8s}")
     print(head)
     ratios = []
@@ -251,17 +272,16 @@ def bench_path(n, lambdas, tm, march=False):
         mu = lam / LAMBDA_PER_MU
         md = compare.pull_off("md", mu, 1.0)
         prob = nondimensional_problem(mu, 1.0, n)
-        get_operator(prob.grid, symmetric=True)            # warm-up: FFT plans of this grid
-        adhesive_pull_off(mu, 1.0, 16, progress=False)      # warm-up: imports, analytic model
+        adhesive_pull_off(mu, 1.0, n, progress=False)       # warm-up: FFT plans of every grid, imports
 
         def row(label, seconds, states, its, w):
             err = f"{100 * (w / md['W_star'] - 1):+7.3f}%" if np.isfinite(w) else "    n/a"
             its_s = f"{its:11.1f}" if its is not None else f"{'n/a':>11s}"
-            print(f"    {lam:6.2f} {label:36s} {seconds:8.2f} {states:6d} {its_s} {w:9.5f} {err}")
+            print(f"    {lam:6.2f} {label:36s} {seconds} {states:6d} {its_s} {w:9.5f} {err}")
 
-        t0 = time.perf_counter()
+        t0 = _now()
         res = adhesive_pull_off(mu, 1.0, n, progress=False)
-        t_ours = time.perf_counter() - t0
+        t_ours = _since(t0)
         flag = "" if res.converged else f"  (unconverged states: {len(res.failures)})"
         row("dhfield bracket (free boundary)", t_ours, res.n_steps, res.iterations / res.n_steps, res.W_star)
         if res.path.coarse_states:
@@ -270,9 +290,9 @@ def bench_path(n, lambdas, tm, march=False):
         if flag:
             print("          " + flag)
         if march:
-            t0 = time.perf_counter()
+            t0 = _now()
             old = adhesive_pull_off(mu, 1.0, n, progress=False, search="march")
-            row("dhfield march (first session)", time.perf_counter() - t0, old.n_steps,
+            row("dhfield march (first session)", _since(t0), old.n_steps,
                 old.iterations / old.n_steps, old.W_star)
             print(f"           bracket vs march W*: {res.W_star / old.W_star - 1:+.2e} relative")
         if tm is None:
@@ -305,13 +325,14 @@ def bench_path(n, lambdas, tm, march=False):
         d_m, loads_m, t_march = tamaas_march(tm, mu, n, zone, prob.approach_max, prob.approach_step)
         row("tamaas march (periodic 8 c_MD)", t_march, len(d_m),
             float(np.mean(it_march)) if it_march else None, _w_star(d_m, loads_m))
-        best, which = (t_bracket, "bracket") if (valid_b and t_bracket <= t_march) else (t_march, "march")
-        r = t_ours / best
+        best, which = ((t_bracket, "bracket") if (valid_b and t_bracket.wall <= t_march.wall)
+                       else (t_march, "march"))
+        r = t_ours.wall / best.wall
         ratios.append(r)
-        per_state = (t_ours / res.n_steps) / (t_same / len(approaches))
+        per_state = (t_ours.wall / res.n_steps) / (t_same.wall / len(approaches))
         print(f"    {lam:6.2f} time ratio dhfield/tamaas (tamaas' best: {which}) = {r:.3f}  "
-              f"(target <= {TARGET_PATH})  {_verdict(r, TARGET_PATH)};  per state, same approaches: "
-              f"{per_state:.3f};  vs tamaas march {t_ours / t_march:.3f}")
+              f"(target <= {TARGET_PATH})  {_verdict(r, TARGET_PATH)};  cpu ratio {t_ours.cpu / best.cpu:.3f};  "
+              f"per state, same approaches: {per_state:.3f};  vs tamaas march {t_ours.wall / t_march.wall:.3f}")
     return ratios
 
 
@@ -352,14 +373,14 @@ def _ours_hertz(hp):
         return solve_adhesive(hp["z"], hp["grid"], hp["delta"], None)
 
     run()  # warm-up: plans of this grid
-    t0 = time.perf_counter()
+    t0 = _now()
     st = run()
-    return st, time.perf_counter() - t0
+    return st, _since(t0)
 
 
 def bench_hertz(n, cm_mod, tm):
     print(f"(b) non-adhesive elliptical Hertz, beta = {HERTZ_BETA}, N = {n}")
-    print(f"    {'grid':13s} {'solver':38s} {'seconds':>8s} {'CG it':>6s} {'a err':>8s} {'b err':>8s} "
+    print(f"    {'grid':13s} {'solver':38s} {'wall s':>8s} {'cpu s':>7s} {'CG it':>6s} {'a err':>8s} {'b err':>8s} "
           f"{'p0 err':>8s}")
     ratios = {}
     hp = _hertz_problem(n)
@@ -367,7 +388,7 @@ def bench_hertz(n, cm_mod, tm):
     st, t_ours = _ours_hertz(hp)
     a, b = st.contact_semi_axes()
     fine = f"{HERTZ_HALF_WIDTH:g}a x {HERTZ_HALF_WIDTH:g}b"
-    print(f"    {fine:13s} {'dhfield (free, quadrant)':38s} {t_ours:8.3f} {st.iterations:6d} "
+    print(f"    {fine:13s} {'dhfield (free, quadrant)':38s} {t_ours} {st.iterations:6d} "
           f"{_errors(hp, a, b, st.peak_pressure)}")
     if cm_mod is not None:
         from ContactMechanics import make_system
@@ -382,9 +403,9 @@ def bench_hertz(n, cm_mod, tm):
             return system
 
         run_cm()
-        t0 = time.perf_counter()
+        t0 = _now()
         system = run_cm()
-        t_cm = time.perf_counter() - t0
+        t_cm = _since(t0)
         p = system.substrate.force / (g.dx * g.dy) if hasattr(system.substrate, "force") else None
         if p is not None:
             p = np.asarray(p)[: g.nx, : g.ny]
@@ -392,14 +413,14 @@ def bench_hertz(n, cm_mod, tm):
             acc = _errors(hp, ca, cb, p.max())
         else:
             acc = "(fields not exposed)"
-        print(f"    {fine:13s} {'ContactMechanics (free, same grid)':38s} {t_cm:8.3f} {'n/a':>6s} {acc}")
-        ratios["ContactMechanics (same grid)"] = t_ours / t_cm
+        print(f"    {fine:13s} {'ContactMechanics (free, same grid)':38s} {t_cm} {'n/a':>6s} {acc}")
+        ratios["ContactMechanics (same grid)"] = (t_ours.wall / t_cm.wall, t_ours.cpu / t_cm.cpu)
     if tm is not None:
         hp8 = _hertz_problem(n, HERTZ_PERIODIC_SIDE / 2.0)
         st8, t_ours8 = _ours_hertz(hp8)
         a8, b8 = st8.contact_semi_axes()
         coarse = f"{HERTZ_PERIODIC_SIDE:g}a x {HERTZ_PERIODIC_SIDE:g}b"
-        print(f"    {coarse:13s} {'dhfield (free, quadrant)':38s} {t_ours8:8.3f} {st8.iterations:6d} "
+        print(f"    {coarse:13s} {'dhfield (free, quadrant)':38s} {t_ours8} {st8.iterations:6d} "
               f"{_errors(hp8, a8, b8, st8.peak_pressure)}")
         lx, ly = HERTZ_PERIODIC_SIDE * hp["a"], HERTZ_PERIODIC_SIDE * hp["b"]
         xx, yy = np.meshgrid((np.arange(n) - n / 2) * lx / n, (np.arange(n) - n / 2) * ly / n, indexing="ij")
@@ -419,16 +440,17 @@ def bench_hertz(n, cm_mod, tm):
             run_tm(log=True)                   # untimed: iteration count, and the warm-up
         tm.set_log_level(tm.LogLevel.error)
         its = _tamaas_iterations(cap["text"])
-        t0 = time.perf_counter()
+        t0 = _now()
         p = run_tm()
-        t_tm = time.perf_counter() - t0
+        t_tm = _since(t0)
         ta, tb = _axes_from_pressure(p, xx[:, 0], yy[0], 1.0)
-        print(f"    {coarse:13s} {'tamaas (periodic, same cells, same load)':38s} {t_tm:8.3f} "
+        print(f"    {coarse:13s} {'tamaas (periodic, same cells, same load)':38s} {t_tm} "
               f"{(its[0] if its else 0):6d} {_errors(hp, ta, tb, p.max())}")
-        ratios["tamaas (same grid)"] = t_ours8 / t_tm
-        print(f"    (first session's pairing, ours on {fine} vs tamaas on {coarse}: ratio {t_ours / t_tm:.3f})")
-    for name, r in ratios.items():
-        print(f"    time ratio dhfield/{name} = {r:.3f}  (target <= {TARGET_HERTZ})  {_verdict(r, TARGET_HERTZ)}")
+        ratios["tamaas (same grid)"] = (t_ours8.wall / t_tm.wall, t_ours8.cpu / t_tm.cpu)
+        print(f"    (first session's pairing, ours on {fine} vs tamaas on {coarse}: ratio {t_ours.wall / t_tm.wall:.3f})")
+    for name, (r, rc) in ratios.items():
+        print(f"    time ratio dhfield/{name} = {r:.3f}  (target <= {TARGET_HERTZ})  {_verdict(r, TARGET_HERTZ)};  "
+              f"cpu ratio {rc:.3f}")
     return ratios
 
 
@@ -440,19 +462,25 @@ def main(argv=None) -> int:
     p.add_argument("--lambdas", type=float, nargs="+", default=list(LAMBDAS))
     p.add_argument("--march", action="store_true", help="also time our marching path (search='march')")
     p.add_argument("--skip", nargs="*", default=[], choices=["path", "hertz"], help="parts to skip")
+    p.add_argument("--tamaas-threads", type=int, default=1,
+                   help="tamaas threads (default 1, like ours: one FFTW and one OpenBLAS thread; 0 = tamaas' default, "
+                        "all cores)")
     args = p.parse_args(argv)
     if args.quick:
         args.n_path, args.n_hertz, args.lambdas = 128, 256, [1.0]
     tm = _import("tamaas")
     if tm is not None:
         tm.set_log_level(tm.LogLevel.error)
+        tm.initialize(args.tamaas_threads)
+    print(f"threads: dhfield 1 (FFTW, OpenBLAS); tamaas {args.tamaas_threads or 'all cores'}; "
+          f"{os.cpu_count()} cores; wall s is the measure, cpu s (this process) is printed beside it")
     cm_mod = _import("ContactMechanics")
-    t0 = time.perf_counter()
+    t_start = time.perf_counter()
     if "path" not in args.skip:
         bench_path(args.n_path, args.lambdas, tm, march=args.march)
     if "hertz" not in args.skip:
         bench_hertz(args.n_hertz, cm_mod, tm)
-    print(f"(benchmark wall time {time.perf_counter() - t0:.0f} s)")
+    print(f"(benchmark wall time {time.perf_counter() - t_start:.0f} s)")
     return 0
 
 
