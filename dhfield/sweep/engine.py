@@ -130,6 +130,7 @@ class Executor:
     client: object = None
     _own_client: bool = False
     _pool: object = None
+    _starting: tuple = None  # (pool, futures, t0) of workers spawned by start(wait=False)
 
     @property
     def pool(self):
@@ -138,19 +139,37 @@ class Executor:
             self.start()
         return self._pool
 
-    def start(self, preload=()) -> float:
-        """Start the local worker processes now, ready to work; return the seconds it took.
+    def start(self, preload=(), wait=True) -> float:
+        """Start the local worker processes now; return the seconds it took until all were ready.
 
         Every worker is spawned with one BLAS/OpenMP thread (:data:`SINGLE_THREAD_ENV`;
         the BEM tasks also ask FFTW for one thread), so W workers use W cores and
         one worker never secretly uses two.  Each imports the modules ``preload``
         (names, e.g. :data:`QUANTITY_MODULES` values), then waits for the others:
         when this returns, all are up, and a sweep timed afterwards excludes the
-        start-up.  Nothing to do (0.0) for the other kinds or when the pool is
-        already running.
+        start-up.  ``wait=False`` spawns them and returns at once (0.0), so that
+        they start while this process prepares the sweep; the next ``start()``
+        or use of :attr:`pool` waits for them.  Nothing to do (0.0) for the
+        other kinds or when the pool is already running.
         """
         if self.kind != "processes" or self._pool is not None:
             return 0.0
+        if self._starting is None:
+            self._starting = self._spawn(tuple(preload))
+        if not wait:
+            return 0.0
+        pool, started, t0 = self._starting
+        self._starting = None
+        try:
+            for f in started:
+                f.result()
+        except BaseException:  # Ctrl-C or a worker that died: leave no process behind
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+        self._pool = pool
+        return time.perf_counter() - t0
+
+    def _spawn(self, preload):
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
 
@@ -163,7 +182,7 @@ class Executor:
         os.environ.update(dict.fromkeys(SINGLE_THREAD_ENV, "1"))  # inherited by the spawned workers
         try:
             pool = ProcessPoolExecutor(self.workers, mp_context=ctx, initializer=_start_worker,
-                                       initargs=(ready, tuple(preload)))
+                                       initargs=(ready, preload))
             # One submit per worker spawns them all now (a spawn pool grows on demand).
             started = [pool.submit(os.getpid) for _ in range(self.workers)]
         finally:
@@ -172,17 +191,13 @@ class Executor:
                     os.environ.pop(k, None)
                 else:
                     os.environ[k] = v
-        try:
-            for f in started:
-                f.result()
-        except BaseException:  # Ctrl-C or a worker that died: leave no process behind
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
-        self._pool = pool
-        return time.perf_counter() - t0
+        return pool, started, t0
 
     def close(self):
         """Stop the worker processes and the client this Executor started."""
+        if self._starting is not None:
+            self._starting[0].shutdown(cancel_futures=True)
+            self._starting = None
         if self._pool is not None:
             self._pool.shutdown(cancel_futures=True)
             self._pool = None
@@ -202,15 +217,18 @@ def _start_worker(ready, preload) -> None:
     import importlib
     import threading
 
-    for name in preload:
-        try:
-            importlib.import_module(name)
-        except ImportError:  # pragma: no cover - a missing optional solver fails in its task, with a message
-            pass
     try:
-        ready.wait(WORKER_START_TIMEOUT)
-    except threading.BrokenBarrierError:  # a slow sibling: start anyway
-        pass
+        for name in preload:
+            try:
+                importlib.import_module(name)
+            except ImportError:  # pragma: no cover - a missing optional solver fails in its task, with a message
+                pass
+        try:
+            ready.wait(WORKER_START_TIMEOUT)
+        except threading.BrokenBarrierError:  # a slow sibling: start anyway
+            pass
+    except KeyboardInterrupt:  # Ctrl-C reaches the whole process group: the parent reports it, in one line
+        os._exit(130)
 
 
 def connect(scheduler=None, workers=None) -> Executor:
@@ -544,18 +562,24 @@ def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, pr
     if Path(out).suffix.lower() != ".nc" and Path(out).parent.is_dir() and not Path(out).exists():
         Path(out).mkdir()
     check_writable(final)
-    if "adhesive" in config.quantities:
-        adhesive_solver()
     executor = connect(scheduler if scheduler is not None else config.scheduler,
                        workers if workers is not None else config.workers)
     owned = executor is not scheduler
     try:
+        executor.start(preload=_preload(config), wait=False)  # workers start while this process prepares
+        if "adhesive" in config.quantities:
+            adhesive_solver()
         fp = config.fingerprint()
         store = CaseStore(store_dir, fp, manifest={"config": config.as_dict()})
         return _run(config, executor, store, final, progress)
     finally:
         if owned:
             executor.close()
+
+
+def _preload(config) -> tuple:
+    """Modules the workers of ``config``'s sweep import at start-up (:data:`QUANTITY_MODULES`)."""
+    return tuple(dict.fromkeys(m for q in config.quantities for m in QUANTITY_MODULES.get(q, ())))
 
 
 def _run(config, executor, store, final, progress):
@@ -589,7 +613,7 @@ def _run(config, executor, store, final, progress):
         kinds.append((q, [key for key, _ in cases]))
     total = sum(len(_output_keys(c)) for c in collections)
     enabled = sys.stderr.isatty() if progress is None else bool(progress)
-    executor.start(preload=[m for q in config.quantities for m in QUANTITY_MODULES.get(q, ())])
+    executor.start(preload=_preload(config))
     bar = Progress(total, enabled)
     before = set(store.keys())
     try:
