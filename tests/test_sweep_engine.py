@@ -116,6 +116,7 @@ def test_same_bits_on_every_scheduler(serial, tmp_path):
         in_flight[0] -= 1
 
     with engine.connect("processes", workers=2) as pool:  # one pool of 2 worker processes for both sweeps
+        assert pool.start(wait=False) == 0.0  # spawned, starting in the background
         assert pool.start() > 0.0 and pool.start() == 0.0  # every worker up before the sweeps, once
         with Callback(pretask=pretask, posttask=posttask):
             procs = [run_sweep(config_from_mapping(c), out=tmp_path / f"p{i}.nc", scheduler=pool, progress=False)
