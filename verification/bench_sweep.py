@@ -117,12 +117,28 @@ ADHESIVE_CONFIG = {"axes": {"beta0": [0.8, 1.0], "mu": [0.3, 0.5, 1.0, 2.0], "n"
                    "sweep": {"quantities": ["adhesive"]}}
 
 
+#: Most tasks in flight at once in the last timed local sweep (one per worker when tasks go out one by one).
+IN_FLIGHT = {"now": 0, "most": 0}
+
+
 def _timed_sweep(config, executor, out):
     """Wall time of one ``run_sweep`` on a started Executor: everything but the pool start-up."""
+    from dask.callbacks import Callback
+
     from dhfield.sweep import config_from_mapping, run_sweep
 
+    IN_FLIGHT.update(now=0, most=0)
+
+    def pretask(key, dsk, state):
+        IN_FLIGHT["now"] += 1
+        IN_FLIGHT["most"] = max(IN_FLIGHT["most"], IN_FLIGHT["now"])
+
+    def posttask(key, result, dsk, state, worker_id):
+        IN_FLIGHT["now"] -= 1
+
     t0 = time.perf_counter()
-    run_sweep(config_from_mapping(config), out=out, scheduler=executor, progress=False)
+    with Callback(pretask=pretask, posttask=posttask):  # parent-side bookkeeping of dask's local scheduler
+        run_sweep(config_from_mapping(config), out=out, scheduler=executor, progress=False)
     return time.perf_counter() - t0
 
 
@@ -252,6 +268,7 @@ def bench_adhesive(repeats: int, n: int = 256) -> bool:
         for ex in pools.values():
             ex.close()
     t1, t2 = statistics.median(times[1]), statistics.median(times[2])
+    in_flight = IN_FLIGHT["most"]
     costs = sorted(cases.values(), reverse=True)
     best = _best_two_way(costs)
 
@@ -266,7 +283,8 @@ def bench_adhesive(repeats: int, n: int = 256) -> bool:
     print(f"  the engine's order (costliest first by tasks.expected_seconds, next case to the first free "
           f"worker) on 2 free cores: {lpt:.1f} s, speed-up {sum(costs) / lpt:.2f} (simulated from these case "
           "seconds; no overheads)")
-    print(f"  pool start-up       1 worker {start[1]:7.2f} s   2 workers {start[2]:7.2f} s")
+    print(f"  pool start-up       1 worker {start[1]:7.2f} s   2 workers {start[2]:7.2f} s;  tasks in flight "
+          f"at once with 2 workers: at most {in_flight} (one per worker)")
     print(f"  (c) warm workers    1 worker {t1:7.2f} s   2 workers {t2:7.2f} s   speed-up {t1 / t2:5.2f}  "
           f"{_verdict(t1 / t2)}")
     s_cold = (t1 + start[1]) / (t2 + start[2])
