@@ -657,7 +657,10 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     x = a/S of the contact semi-axis to S = sqrt(c^2 - a^2), where a state needs
     one quadrature and no Newton solve.  Every problem has its own quadrature
     panels, scan and root, so a result does not depend on the other inputs of the
-    call (bit for bit); memory stays bounded (a 200 x 200 map takes < 1 GiB).  The derivative is trusted only above a noise floor
+    call (bit for bit); memory stays bounded (a 200 x 200 map takes < 1 GiB).
+    Where the load-controlled minimum is very flat (the DMT side, mu <~ 0.1,
+    |W*|/(W*'' a*^2) up to ~1e11) a* is fixed only to the derivative's rounding
+    noise over the curvature, ~1e-4 relative, while W* holds to ~1e-13.  The derivative is trusted only above a noise floor
     :data:`DERIVATIVE_FLOOR` times |W*(a* = 0)| (for delta*: |delta*(0)|): below it,
     W* is flat to ~1e-15 and the pull-off is the zero-contact limit.
     """
