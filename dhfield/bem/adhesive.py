@@ -748,7 +748,7 @@ def _fold_vertex(loads, approaches):
     return float(wv), float(c0 + c1 * wv + c2 * wv * wv)
 
 
-def fold_of_branch(loads, approaches):
+def fold_of_branch(loads, approaches, *, points=5):
     """Displacement-control pull-off: the fold of a sampled unloading branch, with an error estimate.
 
     Parameters
@@ -756,15 +756,17 @@ def fold_of_branch(loads, approaches):
     loads, approaches : sequence of float
         Load W [force] and approach delta [length] of the converged contact states
         of the branch, by decreasing approach (the last one nearest the jump).
+    points : int, default 5
+        States used: the last ``points`` (at least 3).
 
     Returns
     -------
     (float, float, float)
         Load and approach of the fold, and an error estimate of the load [force]:
-        the vertex of delta(W) as a parabola through the last three states
-        (:func:`_fold_vertex`), its error estimated by the change of the vertex
-        from the parabola through the three states before the last.  When no fold is bracketed
-        within one sample span beyond the last state, the last state and NaN.
+        the vertex of the least-squares parabola delta(W) through the last
+        ``points`` states, its error estimated by the change of the vertex when
+        the last state is left out.  When no fold is bracketed within the span of
+        those states beyond the last one, the last state and NaN.
 
     Notes
     -----
@@ -772,21 +774,39 @@ def fold_of_branch(loads, approaches):
     with a minimum at the fold, delta ~ delta_f + k (W - W_f)^2, while W(delta)
     has a square-root branch point there.  The last states before the jump carry
     few contact cells and do not converge (the discrete contact set flips), so
-    the fold is extrapolated from the converged ones.
+    the fold is extrapolated from the converged ones; a least-squares fit over
+    five states averages the lattice jaggedness of the load (a three-point
+    parabola amplified it: -3.50 instead of -2.80 at lambda = 1, N = 128).
     """
     w = np.asarray(loads, dtype=float)
     d = np.asarray(approaches, dtype=float)
     if w.size == 0:
         return float("nan"), float("nan"), float("nan")
     last = (float(w[-1]), float(d[-1]), float("nan"))
-    if w.size < 3:
+    m = min(max(int(points), 3), w.size)
+    if m < 3:
         return last
-    fold = _fold_vertex(w[-3:], d[-3:])
+
+    def vertex(k):
+        ww, dd = w[-k:], d[-k:]
+        if not (np.all(np.isfinite(ww)) and np.all(np.isfinite(dd))) or len(set(ww.tolist())) < 3:
+            return None
+        c2, c1, c0 = np.polyfit(ww, dd, 2)
+        if not c2 > 0:
+            return None
+        wv = -c1 / (2.0 * c2)
+        span = abs(ww[-1] - ww[0])
+        if (wv - ww[-1]) * (ww[-1] - ww[0]) < 0.0 or abs(wv - ww[-1]) > span:
+            return None
+        return float(wv), float(c0 + c1 * wv + c2 * wv * wv)
+
+    fold = vertex(m)
     if fold is None:
         return last
     err = float("nan")
-    if w.size >= 4 and len(set(w[-4:-1].tolist())) == 3:
-        c2, c1, _ = np.polyfit(w[-4:-1], d[-4:-1], 2)     # the same parabola one state earlier
+    if m > 3:
+        w_, d_ = w[:-1], d[:-1]
+        c2, c1, _ = np.polyfit(w_[-(m - 1):], d_[-(m - 1):], 2)   # the same fit without the last state
         if c2 > 0:
             err = abs(-c1 / (2.0 * c2) - fold[0])
     return fold[0], fold[1], err
