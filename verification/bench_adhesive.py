@@ -14,15 +14,19 @@
     tamaas controls the mean gap, which plays the approach.  Two setups, and the
     ratio is taken against the faster *valid* one (tamaas' best equivalent):
 
-    * ``bracket``: our search with tamaas as the state solver (cold start at
-      the DH pull-off approach, steps until the load minimum is interior,
-      parabolic vertex states); valid when the cold start is in contact;
+    * ``bracket``: our search with tamaas as the state solver (one state at our
+      ``approach_max`` to get onto the contact branch -- tamaas has no initial
+      zone, and its cold start at the DH pull-off approach lands on the
+      separated branch after 5000 iterations at lambda = 3 -- then the DH
+      pull-off approach, steps until the load minimum is interior, parabolic
+      vertex states);
     * ``march``: from our ``approach_max`` down by our approach step until two
       steps past the load minimum (the setup of the first session; no
       refinement: its pull-off is the discrete minimum).
 
-    A third run, ``same states``, solves tamaas at exactly the approaches our
-    path solved, in our order (timing per state only: on the periodic domain the
+    A third run, ``same states``, solves tamaas at ``approach_max`` and then at
+    exactly the approaches our path solved, in our order (timing per state
+    only: on the periodic domain the
     load minimum sits at another mean gap, so these samples do not bracket it
     and no pull-off is printed).
 
@@ -192,25 +196,30 @@ class _TamaasAdhesive:
         return float(self.model.traction.mean()) * self.side * self.side
 
 
-def tamaas_same_states(tm, mu, n, zone_radius, approaches, log=False):
-    """tamaas at our path's approaches, in our order; returns (loads, seconds)."""
+def tamaas_same_states(tm, mu, n, zone_radius, approach_max, approaches, log=False):
+    """tamaas at approach_max (its way onto the contact branch), then at our path's approaches in
+    our order; returns (loads, seconds)."""
     run = _TamaasAdhesive(tm, mu, n, zone_radius, log=log)
     t0 = _now()
-    loads = [run.load(d) for d in approaches]
+    loads = [run.load(d) for d in [approach_max, *approaches]]
     return np.array(loads), _since(t0)
 
 
-def tamaas_bracket(tm, mu, n, zone_radius, approach_guess, approach_step, log=False, refine_levels=2,
-                   refine_factor=4, max_states=16):
-    """tamaas with our load-control search: start at the DH guess, step until the load minimum is
-    interior, then parabolic vertex states (the logic of ``unloading_path`` with ``approach_guess``).
+def tamaas_bracket(tm, mu, n, zone_radius, approach_max, approach_guess, approach_step, log=False,
+                   refine_levels=2, refine_factor=4, max_states=16):
+    """tamaas with our load-control search: onto the contact branch at approach_max (a cold start
+    at the guess lands on the separated branch at lambda = 3, after 5000 iterations), then at the
+    DH guess, steps until the load minimum is interior, and parabolic vertex states (the logic of
+    ``unloading_path`` with ``approach_guess``).
 
-    Returns (approaches, loads, seconds, valid); not valid when the cold start lands off contact.
+    Returns (approaches, loads, seconds, valid); not valid when the guess' state is off contact.
+    The state at approach_max is solved and timed but not returned among the samples.
     """
     from dhfield.pull_off_search import refine_sampled_minimum
 
     run = _TamaasAdhesive(tm, mu, n, zone_radius, log=log)
     t0 = _now()
+    run.load(approach_max)
     xs, ws = [approach_guess], [run.load(approach_guess)]
     valid = ws[0] < 0
     while valid and len(xs) < max_states:
@@ -302,21 +311,22 @@ def bench_path(n, lambdas, tm, march=False):
         # untimed replicas with the iteration log (also the warm-up of tamaas' FFT plans)
         tm.set_log_level(tm.LogLevel.info)
         with _captured_fds() as cap:
-            tamaas_same_states(tm, mu, n, zone, approaches, log=True)
+            tamaas_same_states(tm, mu, n, zone, prob.approach_max, approaches, log=True)
         it_same = _tamaas_iterations(cap["text"])
         with _captured_fds() as cap:
-            tamaas_bracket(tm, mu, n, zone, prob.pull_off_approach, prob.approach_step, log=True)
+            tamaas_bracket(tm, mu, n, zone, prob.approach_max, prob.pull_off_approach, prob.approach_step,
+                           log=True)
         it_bracket = _tamaas_iterations(cap["text"])
         with _captured_fds() as cap:
             tamaas_march(tm, mu, n, zone, prob.approach_max, prob.approach_step, log=True)
         it_march = _tamaas_iterations(cap["text"])
         tm.set_log_level(tm.LogLevel.error)
-        loads_s, t_same = tamaas_same_states(tm, mu, n, zone, approaches)
-        row("tamaas same states (periodic 8 c_MD)", t_same, len(approaches),
+        loads_s, t_same = tamaas_same_states(tm, mu, n, zone, prob.approach_max, approaches)
+        row("tamaas same states (periodic 8 c_MD)", t_same, len(loads_s),
             float(np.mean(it_same)) if it_same else None, float("nan"))
-        d_b, loads_b, t_bracket, valid_b = tamaas_bracket(tm, mu, n, zone, prob.pull_off_approach,
-                                                          prob.approach_step)
-        row("tamaas bracket (periodic 8 c_MD)", t_bracket, len(d_b),
+        d_b, loads_b, t_bracket, valid_b = tamaas_bracket(tm, mu, n, zone, prob.approach_max,
+                                                          prob.pull_off_approach, prob.approach_step)
+        row("tamaas bracket (periodic 8 c_MD)", t_bracket, len(d_b) + 1,
             float(np.mean(it_bracket)) if it_bracket else None,
             _w_star(d_b, loads_b) if valid_b else float("nan"))
         if not valid_b:
@@ -329,7 +339,7 @@ def bench_path(n, lambdas, tm, march=False):
                        else (t_march, "march"))
         r = t_ours.wall / best.wall
         ratios.append(r)
-        per_state = (t_ours.wall / res.n_steps) / (t_same.wall / len(approaches))
+        per_state = (t_ours.wall / res.n_steps) / (t_same.wall / len(loads_s))
         print(f"    {lam:6.2f} time ratio dhfield/tamaas (tamaas' best: {which}) = {r:.3f}  "
               f"(target <= {TARGET_PATH})  {_verdict(r, TARGET_PATH)};  cpu ratio {t_ours.cpu / best.cpu:.3f};  "
               f"per state, same approaches: {per_state:.3f};  vs tamaas march {t_ours.wall / t_march.wall:.3f}")
