@@ -198,14 +198,17 @@ def test_fold_of_branch_recovers_the_maugis_dugdale_jump():
     ref = maugis_dugdale._pull_off(mu, "displacement")     # Maugis (1992): the fold of delta(a)
     a = float(ref["a_star"]) * (1.0 + 0.15 * np.array([4.0, 3.0, 2.0, 1.0]))   # stable branch, towards the fold
     curve = maugis_dugdale._curve(a, mu)
-    w, d, err = fold_of_branch(curve["W_star"], curve["delta_star"])
+    fold = fold_of_branch(curve["W_star"], curve["delta_star"])
+    w, d, err = fold.load, fold.approach, fold.load_error
+    assert fold.found
     assert w == pytest.approx(float(ref["W_star"]), rel=RTOL_FOLD)
     assert d == pytest.approx(float(ref["delta_star"]), abs=RTOL_FOLD * abs(float(ref["delta_star"])))
     actual = abs(w - float(ref["W_star"]))
     assert actual / 3.0 <= err <= 3.0 * actual                # the estimate has the right size
     # the last state is returned (and no estimate) when no fold lies within a span beyond it
-    w2, d2, err2 = fold_of_branch(curve["W_star"][:2], curve["delta_star"][:2])
-    assert (w2, d2) == (float(curve["W_star"][1]), float(curve["delta_star"][1])) and np.isnan(err2)
+    last = fold_of_branch(curve["W_star"][:2], curve["delta_star"][:2])
+    assert (last.load, last.approach) == (float(curve["W_star"][1]), float(curve["delta_star"][1]))
+    assert np.isnan(last.load_error) and not last.found
 
 
 # ============================================================================ H3: bracket search, direct gap correction
@@ -327,3 +330,15 @@ def test_nested_cold_start_solves_the_same_hertz_problem(monkeypatch):
     assert nested.load == pytest.approx(plain.load, rel=RTOL_COLD_VS_WARM)
     assert nested.peak_pressure == pytest.approx(plain.peak_pressure, rel=RTOL_COLD_VS_WARM)
     np.testing.assert_array_equal(nested.contact, plain.contact)
+
+
+# ============================================================================ coordinator: displacement-control caveats
+def test_displacement_control_above_the_validated_mu_carries_a_note():
+    """Above DISPLACEMENT_VALIDATED_MU the fold extrapolation failed its MD check: the result says so."""
+    from dhfield.bem.adhesive import DISPLACEMENT_VALIDATED_MU
+
+    mu = 2.0 * DISPLACEMENT_VALIDATED_MU
+    disp = adhesive_pull_off(mu, 1.0, 32, control="displacement", progress=False)
+    assert "validated only up to mu" in disp.note and disp.as_dict()["note"] == disp.note
+    load = adhesive_pull_off(mu, 1.0, 32, control="load", progress=False)
+    assert load.note == "" and np.isnan(load.W_star_error)

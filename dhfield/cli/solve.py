@@ -39,7 +39,8 @@ def _record(res) -> dict:
     d = res.as_dict()
     out = {"beta0": d["beta0"], "mu": d["mu"], "n": d["n"], "law": d["law"], "control": d["control"]}
     out.update({k: d[k] for k in BEM_ADHESIVE_KEYS})
-    out.update(residual=d["residual"], elapsed=d["elapsed"], failures=d["failures"])
+    out.update(W_star_error=d["W_star_error"], residual=d["residual"], elapsed=d["elapsed"],
+               failures=d["failures"], note=d["note"])
     return out
 
 
@@ -67,7 +68,8 @@ def run(args) -> int:
         print_json(rec)
     else:
         print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {res.n}, {res.law}, {res.control} control")
-        print(f"W* = {res.W_star:.6f}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
+        err = f" (fold extrapolation error ~{res.W_star_error:.2g})" if res.W_star_error == res.W_star_error else ""
+        print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
         print(f"converged = {res.converged}  states = {res.n_steps}  CG iterations = {res.iterations}  "
@@ -76,10 +78,12 @@ def run(args) -> int:
             print(f"wrote {args.out}")
     if not res.converged:
         worst = max((f.get("residual", float("nan")) for f in res.failures), default=res.residual)
-        print(f"dhfield: solve did not converge for beta0={res.beta0:g}, mu={res.mu:g}, n={res.n}, "
-              f"law={res.law}, control={res.control}: {len(res.failures)} unconverged state(s), "
-              f"worst residual {worst:.3g}", file=sys.stderr)
+        why = (f"{len(res.failures)} unconverged state(s), worst residual {worst:.3g}" if res.failures
+               else res.note)
+        print(f"dhfield: solve did not converge for {where}: {why}", file=sys.stderr)
         return EXIT_UNCONVERGED
+    if res.note:
+        print(f"dhfield: note: {where}: {res.note}", file=sys.stderr)
     if res.failures:
         print(f"dhfield: note: {len(res.failures)} state(s) beyond the pull-off did not converge for {where} "
               "(the pull-off is not affected; listed under failures)", file=sys.stderr)
