@@ -158,6 +158,26 @@ def _pools(quantity, workers=(1, 2)):
     return pools, start
 
 
+def _alternating_rounds(config, quantity, rounds, tag, after=None):
+    """Wall times {workers: [s per round]} of ``rounds`` sweeps on started pools of 1 and 2 workers,
+    alternating, and the pools' start-up [s]; ``after(workers, round, out)`` sees each output file."""
+    pools, start = _pools(quantity)
+    times = {1: [], 2: []}
+    try:
+        with tempfile.TemporaryDirectory() as tmp:
+            _warm_parent(Path(tmp))
+            for r in range(rounds):
+                for w in (1, 2):
+                    out = Path(tmp) / f"{tag}{w}_{r}.nc"
+                    times[w].append(_timed_sweep(config, pools[w], out))
+                    if after is not None:
+                        after(w, r, out)
+    finally:
+        for ex in pools.values():
+            ex.close()
+    return times, start
+
+
 def _case_seconds(out):
     """Wall time [s] of every case, from the case files of a finished sweep (attribute ``seconds``)."""
     from dhfield.io import read_netcdf
@@ -210,17 +230,8 @@ def bench_bem(repeats: int) -> bool:
           f"medians of {repeats} rounds, 1 and 2 workers alternating")
     print("  timed: the whole run_sweep call (graph, tasks, per-case netCDF store, consolidation, final "
           "netCDF); not timed: the worker-pool start-up, printed apart")
-    pools, start = _pools("bem_field")
-    times = {1: [], 2: []}
-    try:
-        with tempfile.TemporaryDirectory() as tmp:
-            _warm_parent(Path(tmp))
-            for r in range(repeats + 1):  # round 0: each worker builds its operator (reported, not in the median)
-                for w in (1, 2):
-                    times[w].append(_timed_sweep(BEM_CONFIG, pools[w], Path(tmp) / f"f{w}_{r}.nc"))
-    finally:
-        for ex in pools.values():
-            ex.close()
+    # round 0: each worker builds its operator (reported, not in the median)
+    times, start = _alternating_rounds(BEM_CONFIG, "bem_field", repeats + 1, "f")
     t1, t2 = statistics.median(times[1][1:]), statistics.median(times[2][1:])
     print(f"  pool start-up       1 worker {start[1]:7.2f} s   2 workers {start[2]:7.2f} s   (spawn + imports)")
     print(f"  first round         1 worker {times[1][0]:7.2f} s   2 workers {times[2][0]:7.2f} s   speed-up "
@@ -253,20 +264,14 @@ def bench_adhesive(repeats: int, n: int = 256) -> bool:
           f"{cfg['axes']['mu']}), local worker processes, costliest first; {repeats} round(s)")
     print("  timed: the whole run_sweep call; not timed: the worker-pool start-up, printed apart and added "
           "back in the last line")
-    pools, start = _pools("adhesive")
-    times = {1: [], 2: []}
-    try:
-        with tempfile.TemporaryDirectory() as tmp:
-            _warm_parent(Path(tmp))
-            for r in range(repeats):
-                for w in (1, 2):
-                    out = Path(tmp) / f"a{w}_{r}.nc"
-                    times[w].append(_timed_sweep(cfg, pools[w], out))
-                    if w == 1 and r == 0:
-                        cases = _case_seconds(out)
-    finally:
-        for ex in pools.values():
-            ex.close()
+    first = {}
+
+    def keep_case_seconds(w, r, out):
+        if w == 1 and r == 0:
+            first.update(_case_seconds(out))
+
+    times, start = _alternating_rounds(cfg, "adhesive", repeats, "a", after=keep_case_seconds)
+    cases = first
     t1, t2 = statistics.median(times[1]), statistics.median(times[2])
     in_flight = IN_FLIGHT["most"]
     costs = sorted(cases.values(), reverse=True)
