@@ -38,7 +38,7 @@ from . import double_hertz, hertz
 from ._validation import check_finite
 from .elliptic import ellipsoid_integrals
 
-__all__ = ["work_of_adhesion", "graded_rule"]
+__all__ = ["work_of_adhesion", "graded_rule", "graded_panel_counts", "ragged_graded_rule"]
 
 #: Gauss-Legendre nodes per panel of the graded rule.
 NODES_PER_PANEL = 16
@@ -78,7 +78,7 @@ def graded_rule(t1, n_panels=None, nodes=NODES_PER_PANEL, t_end=np.pi / 2):
     """
     t1 = np.clip(np.asarray(t1, dtype=float), T1_MIN, t_end)
     if n_panels is None:
-        n_panels = int(np.ceil(np.log(t_end / t1.min()) / np.log(PANEL_RATIO))) if t1.size else 0
+        n_panels = int(graded_panel_counts(t1.min(), t_end)) if t1.size else 0
     x, w = _legendre(nodes)
     ratio = (t_end / t1) ** (1.0 / max(n_panels, 1))
     j = np.arange(n_panels + 1)
@@ -92,6 +92,48 @@ def graded_rule(t1, n_panels=None, nodes=NODES_PER_PANEL, t_end=np.pi / 2):
     t = (mid[..., None] + half[..., None] * x).reshape(t1.shape + (-1,))
     wt = (half[..., None] * w).reshape(t1.shape + (-1,))
     return t, wt
+
+
+def graded_panel_counts(t1, t_end=np.pi / 2):
+    """Geometric panels P of :func:`graded_rule` for each first-panel end ``t1``.
+
+    Just enough panels from ``t1`` to ``t_end`` at ratio :data:`PANEL_RATIO`:
+    P = ceil(log(t_end/t1)/log(PANEL_RATIO)), with t1 clipped to [T1_MIN, t_end].
+    """
+    t1 = np.clip(np.asarray(t1, dtype=float), T1_MIN, t_end)
+    return np.ceil(np.log(t_end / t1) / np.log(PANEL_RATIO)).astype(int)
+
+
+def ragged_graded_rule(t1, nodes=NODES_PER_PANEL, t_end=np.pi / 2):
+    """:func:`graded_rule` for many ``t1``, each with its own panel count, as flat panels.
+
+    Element i gets the P_i + 1 panels [0, t1], [t1 r], ..., [t1 r^(P_i - 1), t_end]
+    with r = (t_end/t1)^(1/P_i) and P_i = :func:`graded_panel_counts` (t1_i), the
+    rule ``graded_rule(t1_i)`` gives it alone; so a result does not depend on the
+    other elements of a batch.
+
+    Returns
+    -------
+    t, w : ndarray, shape (panels, nodes)
+        Nodes and weights of every panel.
+    first : ndarray of int
+        Index of the first panel of each element (for ``np.add.reduceat``).
+    owner : ndarray of int
+        Element of each panel.
+    """
+    t1 = np.clip(np.asarray(t1, dtype=float), T1_MIN, t_end)
+    n_panels = graded_panel_counts(t1, t_end)
+    count = n_panels + 1
+    first = np.cumsum(count) - count
+    owner = np.repeat(np.arange(t1.size), count)
+    j = np.arange(owner.size) - first[owner]  # panel index within its element
+    ratio = (t_end / t1) ** (1.0 / np.maximum(n_panels, 1))
+    hi = t1[owner] * ratio[owner] ** j
+    lo = np.where(j == 0, 0.0, hi / ratio[owner])
+    x, w = _legendre(nodes)
+    half = 0.5 * (hi - lo)
+    t = (0.5 * (hi + lo))[:, None] + half[:, None] * x
+    return t, half[:, None] * w, first, owner
 
 
 def work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, theta=0.0, effective_radius=1.0,

@@ -48,7 +48,6 @@ states are evaluated in bounded chunks.
 """
 from __future__ import annotations
 
-import functools
 from dataclasses import asdict, astuple, dataclass, field
 
 import numpy as np
@@ -56,7 +55,7 @@ from scipy import special
 
 from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star,
                           check_count, check_model_ellipticity, check_tabor)
-from .adhesion import NODES_PER_PANEL, PANEL_RATIO, T1_MIN
+from .adhesion import NODES_PER_PANEL, graded_panel_counts, ragged_graded_rule
 from .geometry import sin_skew_angle
 from .pull_off_search import stable_branch_end
 
@@ -90,7 +89,6 @@ _NODES_PER_SLICE = 1 << 16
 #: Working memory of one state of the pull-off search outside the quadrature (~40
 #: per-state arrays): sizes its chunks.
 _BYTES_PER_STATE = 40 * 8
-_T_END = np.pi / 2  # upper end of the quadrature in t (w = S^2)
 
 
 @dataclass(frozen=True)
@@ -115,43 +113,9 @@ def _shape(beta, sin_skew=None):
     return _Shape(beta, kappa, special.elliprf(0.0, b2, 1.0), np.sqrt(rho), np.asarray(sin_skew, float))
 
 
-def _panel_counts(t1):
-    """Panels of the graded rule for each first-panel end ``t1`` (as :func:`graded_rule` for one t1)."""
-    t1 = np.clip(t1, T1_MIN, _T_END)
-    return np.ceil(np.log(_T_END / t1) / np.log(PANEL_RATIO)).astype(int)
-
-
-@functools.lru_cache(maxsize=4)
-def _gauss_legendre(n):
-    return special.roots_legendre(n)
-
-
-def _ragged_graded_rule(t1):
-    """:func:`dhfield.adhesion.graded_rule` for many t1, each with its own panel count, as flat panels.
-
-    Returns the nodes and weights, shape (panels, :data:`NODES_PER_PANEL`), and the
-    index of the first panel of each element (for ``np.add.reduceat``).  Element i
-    gets the P_i + 1 panels [0, t1], [t1, t1 r], ..., [t1 r^(P_i - 1), pi/2] with
-    r = (pi/2/t1)^(1/P_i) that ``graded_rule(t1_i)`` gives it alone.
-    """
-    t1 = np.clip(t1, T1_MIN, _T_END)
-    n_panels = _panel_counts(t1)
-    count = n_panels + 1
-    first = np.cumsum(count) - count
-    owner = np.repeat(np.arange(t1.size), count)
-    j = np.arange(owner.size) - first[owner]  # panel index within its element
-    ratio = (_T_END / t1) ** (1.0 / np.maximum(n_panels, 1))
-    hi = t1[owner] * ratio[owner] ** j
-    lo = np.where(j == 0, 0.0, hi / ratio[owner])
-    x, w = _gauss_legendre(NODES_PER_PANEL)
-    half = 0.5 * (hi - lo)
-    t = (0.5 * (hi + lo))[:, None] + half[:, None] * x
-    return t, half[:, None] * w, first, owner
-
-
 def _slices_by_nodes(t1):
     """Element slices whose graded rules have at most :data:`_NODES_PER_SLICE` nodes together."""
-    nodes = np.cumsum((_panel_counts(t1) + 1) * NODES_PER_PANEL)  # nodes up to each element
+    nodes = np.cumsum((graded_panel_counts(t1) + 1) * NODES_PER_PANEL)  # nodes up to each element
     start = 0
     while start < t1.size:
         before = nodes[start - 1] if start else 0
@@ -169,7 +133,7 @@ def _axis_integrals(a, b, s, with_a=True):
     narrow-annulus limit, T0 = 3 pi/(16 a^3 b)).
 
     Every element gets the panels its own near-singularity scale needs
-    (:func:`_ragged_graded_rule`), so a result does not depend on the other
+    (:func:`dhfield.adhesion.ragged_graded_rule`), so a result does not depend on the other
     elements of the batch; memory is bounded by :data:`_NODES_PER_SLICE`.
     """
     a, b, s = np.broadcast_arrays(*(np.asarray(q, dtype=float) for q in (a, b, s)))
@@ -180,7 +144,7 @@ def _axis_integrals(a, b, s, with_a=True):
     t0, t1_sum = np.empty(a.size), np.empty(a.size)
     ta = np.empty(a.size) if with_a else None
     for sl in _slices_by_nodes(t1):
-        t, w, first, owner = _ragged_graded_rule(t1[sl])
+        t, w, first, owner = ragged_graded_rule(t1[sl])
         ai, bi, si = a[sl][owner, None], b[sl][owner, None], s[sl][owner, None]
         sin2 = np.sin(t) ** 2
         s2 = (si * si) * sin2

@@ -77,3 +77,15 @@ def test_bad_input():
         work_of_adhesion(1.0, 0.5, 0.8, 1.0)
     with pytest.raises(ValueError, match="theta"):
         work_of_adhesion(1.0, 1.5, 0.8, 1.0, np.nan)
+
+
+def test_issue11_ragged_rule_is_graded_rule_per_element():
+    from dhfield.adhesion import graded_rule, ragged_graded_rule
+
+    t1 = np.array([1e-30, 1e-7, 0.01, 0.3, 1.2, np.pi / 2])
+    t, w, first, owner = ragged_graded_rule(t1)
+    assert np.array_equal(first, np.flatnonzero(np.r_[True, np.diff(owner) != 0]))
+    for i, t1_i in enumerate(t1):
+        ti, wi = graded_rule(np.array([t1_i]))
+        np.testing.assert_allclose(t[owner == i].ravel(), ti.ravel(), rtol=1e-15, atol=0)
+        np.testing.assert_allclose(w[owner == i].ravel(), wi.ravel(), rtol=1e-14, atol=0)

@@ -309,18 +309,6 @@ def test_issue11_state_at_ratio_satisfies_eqs_24_31_and_its_derivative(mu, beta0
         np.testing.assert_allclose(st[d], fd, rtol=0, atol=FD_RTOL * np.max(scale))
 
 
-def test_issue11_ragged_rule_is_graded_rule_per_element():
-    from dhfield.adhesion import graded_rule
-
-    t1 = np.array([1e-30, 1e-7, 0.01, 0.3, 1.2, np.pi / 2])
-    t, w, first, owner = model._ragged_graded_rule(t1)
-    assert np.array_equal(first, np.flatnonzero(np.r_[True, np.diff(owner) != 0]))
-    for i, t1_i in enumerate(t1):
-        ti, wi = graded_rule(np.array([t1_i]))
-        np.testing.assert_allclose(t[owner == i].ravel(), ti.ravel(), rtol=1e-15, atol=0)
-        np.testing.assert_allclose(w[owner == i].ravel(), wi.ravel(), rtol=1e-14, atol=0)
-
-
 def test_issue11_pull_off_does_not_depend_on_the_batch():
     # Every problem gets its own quadrature panels and its own scan and root: a point alone gives
     # bit-identical results to the same point in any batch (the sweep's blocks may be cut anyhow).
