@@ -289,7 +289,7 @@ def test_bracket_search_rejects_bad_input():
 @pytest.mark.parametrize("symmetric", [True, False])
 def test_direct_gap_correction_equals_the_convolution(symmetric):
     from dhfield.bem import get_operator
-    from dhfield.bem.adhesive import _add_point_loads
+    from dhfield.bem.solver import _add_point_loads
 
     grid = Grid.centered(24, 1.3, half_width_y=0.8)
     op = get_operator(grid, symmetric=symmetric)
@@ -320,11 +320,11 @@ def test_nested_warm_starts_reach_the_same_states():
 
 
 def test_nested_cold_start_solves_the_same_hertz_problem(monkeypatch):
-    from dhfield.bem import adhesive
+    from dhfield.bem import solver as adhesive_solver
 
     grid, z, delta = _hertz_problem(0.7, 128)
     nested = solve_adhesive(z, grid, delta, None)
-    monkeypatch.setattr(adhesive, "NESTED_COLD_MIN_N", 10**9)        # no coarser grid
+    monkeypatch.setattr(adhesive_solver, "NESTED_COLD_MIN_N", 10**9)        # no coarser grid
     plain = solve_adhesive(z, grid, delta, None)
     assert nested.converged and plain.converged
     assert nested.load == pytest.approx(plain.load, rel=RTOL_COLD_VS_WARM)

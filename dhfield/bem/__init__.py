@@ -4,8 +4,10 @@
   coefficients, DC-FFT convolution on pyfftw, cached plans, symmetry mode.
 * :mod:`dhfield.bem.laws` -- traction-separation laws (Dugdale, exponential).
 * :mod:`dhfield.bem.state` -- :class:`ContactState`, the one typed BEM solution.
-* :mod:`dhfield.bem.adhesive` -- the self-consistent adhesive contact solver,
-  the unloading path and the pull-off in the paper's units.
+* :mod:`dhfield.bem.solver` -- the self-consistent adhesive contact solver (one state).
+* :mod:`dhfield.bem.path` -- loading-unloading paths, the pull-off and the fold.
+* :mod:`dhfield.bem.pull_off` -- the pull-off in the paper's units, coarse to fine.
+* :mod:`dhfield.bem.adhesive` -- the public names of the three, in one place.
 
 The public names of :mod:`dhfield.bem.operator` are re-exported here, so
 ``from dhfield import bem; bem.get_operator(...)`` keeps working.

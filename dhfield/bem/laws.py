@@ -239,3 +239,13 @@ def law_from_name(name: str, max_stress, work_of_adhesion=1.0):
 
 
 __all__ += ["LAWS", "law_from_name"]
+
+
+def check_law(law):
+    """Return ``law`` if it is a Dugdale or exponential law or None (no adhesion), else raise ValueError."""
+    if law is None or isinstance(law, (DugdaleLaw, ExponentialLaw)):
+        return law
+    raise ValueError(f"law must be a DugdaleLaw, an ExponentialLaw or None (no adhesion); got {law!r}")
+
+
+__all__ += ["check_law"]

@@ -3,7 +3,7 @@
 One object carries everything a BEM solution has: the grid, the full-grid
 pressure and gap fields, the approach and load, the contact and cohesive-zone
 masks, the traction law and the solver's convergence record.  The adhesive
-solver (:func:`dhfield.bem.adhesive.solve_adhesive`) returns it, and the
+solver (:func:`dhfield.bem.solver.solve_adhesive`) returns it, and the
 analysis modules (periphery, Eq. 30, I/O) accept it, so a BEM solution can be
 analysed like an analytic one.
 
