@@ -627,7 +627,7 @@ class HalfSpaceOperator:
     displacement = __call__
 
 
-@functools.lru_cache(maxsize=4)
+@functools.lru_cache(maxsize=16)
 def _cached_operator(grid, reduced_modulus, symmetric, threads, planner_effort):
     return HalfSpaceOperator(grid, reduced_modulus, symmetric=symmetric, threads=threads,
                              planner_effort=planner_effort)

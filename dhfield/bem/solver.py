@@ -89,7 +89,7 @@ import numpy as np
 
 from .._validation import check_finite, check_positive
 from .laws import DugdaleLaw, cell_fraction_below, check_law
-from .operator import Grid, get_operator, influence_coefficients, quadrant, unfold_quadrant
+from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, quadrant, unfold_quadrant
 from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "Prediction", "solve_problem", "secant_prediction",
@@ -287,15 +287,103 @@ def _nested_cold_start(op, g0, scale, tol, max_iter, k0):
     return np.repeat(np.repeat(pc, 2, axis=0), 2, axis=1), it
 
 
+#: The CG runs on the box of cells that can touch when that box (rounded up to an
+#: FFT-friendly size) holds at most this fraction of the working cells: below it the
+#: smaller transforms and vectors outweigh the two working-grid convolutions that
+#: frame the cropped solve (measured, Hertz N = 512: box 0.13 of the cells, ~6x faster).
+CROP_MAX_FRACTION = 0.5
+#: Cells added around the box of negative free gap (rounding of the free gap's convolution).
+CROP_MARGIN = 2
+
+
+@functools.lru_cache(maxsize=1)
+def _fft_friendly_sizes(limit=1 << 14):
+    """Even 5-smooth numbers up to ``limit`` (cells per axis of a cropped quadrant or box)."""
+    sizes = set()
+    p2 = 2
+    while p2 <= limit:
+        p3 = p2
+        while p3 <= limit:
+            p5 = p3
+            while p5 <= limit:
+                sizes.add(p5)
+                p5 *= 5
+            p3 *= 3
+        p2 *= 2
+    return tuple(sorted(sizes))
+
+
+def _crop_size(cells, available):
+    """Smallest FFT-friendly size >= cells, or ``available`` if none fits below it."""
+    for k in _fft_friendly_sizes():
+        if k >= cells:
+            return k if k < available else available
+    return available
+
+
+def _contact_box(op, free_gap):
+    """(operator, index box) of the cells that can touch, or None when cropping does not pay.
+
+    Every influence coefficient is positive (Love's solution), so for p >= 0 the gap
+    ``free_gap + K p >= free_gap``: no cell with a non-negative free gap ever touches.
+    The contact problem restricted to the box of cells with a negative free gap is
+    therefore the same discrete problem (the operator is translation invariant: the box's
+    own DC-FFT operator applies the same influence coefficients).  In symmetric mode the
+    box is the quadrant's corner at the origin, i.e. a centred sub-grid.
+    """
+    neg = free_gap < 0.0
+    rows = np.flatnonzero(neg.any(axis=1))
+    if rows.size == 0:
+        return None
+    cols = np.flatnonzero(neg.any(axis=0))
+    mx, my = free_gap.shape
+    grid = op.grid
+    if op.symmetric:
+        kx = _crop_size(int(rows[-1]) + 1 + CROP_MARGIN, mx)
+        ky = _crop_size(int(cols[-1]) + 1 + CROP_MARGIN, my)
+        i0 = j0 = 0
+        sub = (2 * kx, 2 * ky)
+    else:
+        kx = _crop_size(int(rows[-1] - rows[0]) + 1 + 2 * CROP_MARGIN, mx)
+        ky = _crop_size(int(cols[-1] - cols[0]) + 1 + 2 * CROP_MARGIN, my)
+        i0 = min(max(int(rows[0]) - CROP_MARGIN, 0), mx - kx)
+        j0 = min(max(int(cols[0]) - CROP_MARGIN, 0), my - ky)
+        sub = (kx, ky)
+    if kx * ky > CROP_MAX_FRACTION * mx * my or min(sub) < MIN_CELLS:
+        return None
+    sub_op = get_operator(Grid(sub[0], sub[1], grid.dx, grid.dy), op.reduced_modulus,
+                          symmetric=op.symmetric, threads=op.threads)
+    return sub_op, (slice(i0, i0 + kx), slice(j0, j0 + ky))
+
+
 def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0, stress=None):
     """Polonsky-Keer CG for min 1/2 p.Kp + (g0 - K stress).p, p >= 0 (displacement control).
 
     The gap is ``h = g0 + K(p - stress)`` (``stress`` is a known tensile load, e.g. the
-    adhesive stress; one operator call per gap evaluation instead of two).
+    adhesive stress; one operator call per gap evaluation instead of two).  Without a
+    stress the CG runs on the box of cells with ``g0 < 0`` when that box is small
+    (:func:`_contact_box`: the same discrete problem), and the gap is completed on the
+    working grid by one convolution.  (With an adhesive stress the bound ``g0 - K stress``
+    is negative over about the whole cohesive zone: measured at lambda = 3, N = 256, the
+    box is the whole quadrant, so it is not tried.)
     Returns (p, h, iterations, error) with error the complementarity error / scale.
     """
     p = np.array(p, dtype=float, copy=True)
     np.maximum(p, 0.0, out=p)
+    box = _contact_box(op, g0) if stress is None else None
+    if box is None:
+        return _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress)
+    sub_op, sl = box
+    pc, _, it, _ = _constrained_cg(sub_op, np.ascontiguousarray(g0[sl]), np.ascontiguousarray(p[sl]),
+                                   scale, tol, max_iter, k0, None)
+    p = np.zeros_like(g0)
+    p[sl] = pc
+    h = g0 + op(p)
+    return p, h, it, _complementarity(h, p > 0) / scale
+
+
+def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress):
+    """The Polonsky-Keer iteration for ``h = g0 + K(p - stress)`` on ``op``'s grid (p >= 0, owned)."""
 
     def gap(p):
         return g0 + op(p if stress is None else p - stress)
@@ -304,7 +392,7 @@ def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0, stress=None):
     if np.any(p > 0):
         h = gap(p)
     else:
-        h = gap(p)
+        h = gap(p) if stress is not None else g0.copy()
         neg = h < 0
         if not np.any(neg):
             return p, h, 0, 0.0          # empty active set: linear, done
