@@ -17,7 +17,7 @@ This module re-exports their public names, so ``from dhfield.bem.adhesive
 import adhesive_pull_off`` keeps working.
 """
 from .path import Fold, PathProgress, UnloadingPath, fold_of_branch, unloading_path  # noqa: F401
-from .pull_off import (DEFAULT_STEPS, DISPLACEMENT_CONTROL_NOTE, DOMAIN_MARGIN,  # noqa: F401
+from .pull_off import (DEFAULT_STEPS, DISPLACEMENT_CONTROL_NOTE, DOMAIN_MARGIN, SEARCHES,  # noqa: F401
                        AdhesivePullOff, NestedWarmStart, NondimensionalProblem, adhesive_pull_off,
                        interpolate_state, nondimensional_problem, refine_pull_off,
                        richardson_extrapolation)
@@ -27,4 +27,4 @@ __all__ = ["solve_adhesive", "unloading_path", "adhesive_pull_off", "richardson_
            "nondimensional_problem", "UnloadingPath", "AdhesivePullOff", "NondimensionalProblem",
            "refine_pull_off", "interpolate_state", "NestedWarmStart", "fold_of_branch", "Fold",
            "DISPLACEMENT_CONTROL_NOTE", "DEFAULT_TOL", "DEFAULT_MAX_ITER", "DOMAIN_MARGIN",
-           "DEFAULT_STEPS"]
+           "DEFAULT_STEPS", "SEARCHES"]
