@@ -282,7 +282,7 @@ def _reference(mu, beta0, control):
             reason = str(exc)
     proxy = ~inside & (mu >= JKR_PROXY_MU)
     if proxy.any():
-        ref[proxy] = jkr_elliptic._pull_off(beta0[proxy], control)["W_star"]
+        ref[proxy] = jkr_elliptic.pull_off_nondimensional(beta0[proxy], control)["W_star"]
         label[proxy] = _JKR_PROXY
     return ref, label, reason
 
@@ -352,7 +352,7 @@ def _dh_elliptic_jkr_beta(mu, beta0, control="load"):
     from .model import pull_off as dh_pull_off
 
     mu, beta0 = _check(mu, beta0, control)
-    beta_jkr = jkr_elliptic._pull_off(beta0, control)["beta"]
+    beta_jkr = jkr_elliptic.pull_off_nondimensional(beta0, control)["beta"]
     res = dh_pull_off(mu, beta0, control=control, ellipticity=beta_jkr)
     return _record("dh-elliptic-jkr-beta", mu, beta0, control, _from_model(res), sin_skew_angle(beta0),
                    "ellipse")
@@ -374,27 +374,27 @@ def _ray_average(mu, beta0, control="load"):
 
 def _dh_circular(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("dh-circular", mu, beta0, control, dh_circular._pull_off(mu, control), 1.0, "circle")
+    return _record("dh-circular", mu, beta0, control, dh_circular.pull_off_nondimensional(mu, control), 1.0, "circle")
 
 
 def _jkr(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("jkr", mu, beta0, control, jkr._pull_off(control), 1.0, "circle")
+    return _record("jkr", mu, beta0, control, jkr.pull_off_nondimensional(control), 1.0, "circle")
 
 
 def _dmt(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("dmt", mu, beta0, control, dmt._pull_off(control), 1.0, "circle")
+    return _record("dmt", mu, beta0, control, dmt.pull_off_nondimensional(control), 1.0, "circle")
 
 
 def _md(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    return _record("md", mu, beta0, control, maugis_dugdale._pull_off(mu, control), 1.0, "circle")
+    return _record("md", mu, beta0, control, maugis_dugdale.pull_off_nondimensional(mu, control), 1.0, "circle")
 
 
 def _jkr_elliptic(mu, beta0, control="load"):
     mu, beta0 = _check(mu, beta0, control)
-    st = jkr_elliptic._pull_off(beta0, control)
+    st = jkr_elliptic.pull_off_nondimensional(beta0, control)
     st = {**st, "ellipticity": st["beta"]}
     return _record("jkr-elliptic", mu, beta0, control, st, sin_skew_angle(beta0), "ellipse")
 

@@ -47,8 +47,10 @@ from scipy.optimize import elementwise
 from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
                         check_material, check_tabor, grid_minimum, length_unit, load_unit,
                         scalar_or_array, tabor_parameter)
+from ._validation import check_positive
 
-__all__ = ["load_curve", "pull_off", "pull_off_force", "work_of_adhesion"]
+__all__ = ["load_curve", "pull_off", "pull_off_force", "work_of_adhesion", "load_curve_nondimensional",
+           "pull_off_nondimensional"]
 
 _LOG_V_SPAN = 60.0  # root bracket below ln v0: a ~ pi^3 mu^4/(32 v^3) spans > e^150 there
 #: pull-off scan in a* (descending, i.e. ascending v), then refined in ln v; the
@@ -95,22 +97,63 @@ def _log_v_at(a_star, mu):
     return out
 
 
-def _curve(a_star, mu):
-    """Nondimensional DH circle at contact radius a* >= 0 (paper units)."""
+def load_curve_nondimensional(a_star, mu):
+    """Circular DH state at contact radius a*, in the paper's units (Eqs. 32-35).
+
+    The nondimensional core of :func:`load_curve` (R = E* = dgamma = 1).
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact radius a* = a/c_r >= 0, Eq. (32) [-].
+    mu : array_like
+        Transition parameter, Eq. (35), > 0 [-]; broadcasts with ``a_star``.
+
+    Returns
+    -------
+    dict
+        ``W_star`` (Eq. 36), ``a_star``, ``c_star`` (adhesive radius c/c_r),
+        ``delta_star`` (delta R/c_r^2) and the scaling factor ``v`` [-].
+
+    Notes
+    -----
+    The closed form of the module docstring: Eqs. (24) and (31) at beta = 1 fix
+    c and v for each a, then
+
+    .. math:: W^* = \\frac{2}{3\\pi}\\left[a^3 - v(c^3-a^3)\\right], \\qquad
+              \\delta^* = a^2 - v(c^2-a^2)
+    """
+    check_contact_size("a_star", a_star)
+    check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
     st = _state(_log_v_at(a_star, mu), np.asarray(mu, float))
     a_star = np.broadcast_to(np.asarray(a_star, float), st["a_star"].shape)
     st["a_star"] = a_star.copy()  # exact input (the solve reproduces it to ~1e-15)
     return st
 
 
-def _pull_off(mu, control="load"):
-    """Nondimensional DH circle at pull-off (paper units), vectorised over mu.
+def pull_off_nondimensional(mu, control="load"):
+    """Circular DH state at pull-off in the paper's units (Eqs. 32-35), vectorised over mu.
 
-    Load control: the first minimum of W* met on unloading from high load (the end
-    of the stable branch); displacement control: the same for delta*.  Either may
-    be the end point a = 0 (then W* = -1/(1 + v0)).
+    The nondimensional core of :func:`pull_off`.  Load control: the first minimum
+    of W* (Eq. 36) met on unloading from high load (the end of the stable branch);
+    displacement control: the same for delta*.  Either may be the end point a = 0
+    (then W* = -1/(1 + v0)).
+
+    Parameters
+    ----------
+    mu : array_like
+        Transition parameter, Eq. (35), > 0 [-].
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dict
+        ``W_star``, ``a_star``, ``c_star``, ``delta_star``, ``v`` as in
+        :func:`load_curve_nondimensional`, and ``at_zero_contact`` (bool: the
+        pull-off is the end point a = 0).
     """
     check_control(control)
+    check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
     mu = np.asarray(mu, dtype=float)
     key = "W_star" if control == "load" else "delta_star"
     top = np.log(_v_zero_contact(mu))
@@ -206,7 +249,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    st = _curve(a / length_unit(r, e, w), mu)
+    st = load_curve_nondimensional(a / length_unit(r, e, w), mu)
     load, _, approach = _dimensional(st, r, e, w)
     return LoadCurve(scalar_or_array(load), scalar_or_array(np.broadcast_to(a, load.shape)),
                      scalar_or_array(approach))
@@ -234,7 +277,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
     check_tabor(mu)
-    return PullOff(*(scalar_or_array(x) for x in _dimensional(_pull_off(mu, control), r, e, w)))
+    return PullOff(*(scalar_or_array(x) for x in _dimensional(pull_off_nondimensional(mu, control), r, e, w)))
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

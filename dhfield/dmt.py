@@ -23,19 +23,54 @@ from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, c
                         check_material, length_unit, load_unit, scalar_or_array)
 from ._validation import check_finite
 
-__all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force"]
+__all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
+           "pull_off_nondimensional"]
 
 
-def _curve(a_star):
-    """Nondimensional DMT state at contact radius a* (paper units)."""
+def load_curve_nondimensional(a_star):
+    """DMT load and approach at contact radius a*, in the paper's units (Eqs. 32-35).
+
+    The nondimensional core of :func:`load_curve`.
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact radius a* = a/c_r >= 0, Eq. (32) [-].
+
+    Returns
+    -------
+    dict
+        ``W_star`` (W/(2 pi R dgamma), Eq. 34), ``a_star``, ``delta_star``
+        (delta R/c_r^2, Eq. 33) [-].
+
+    Notes
+    -----
+    .. math:: W^* = \\frac{2 a^{*3}}{3\\pi} - 1, \\qquad \\delta^* = a^{*2}
+
+    (Hertz load minus 2 pi R dgamma; Hertz approach.)
+    """
     a = np.asarray(a_star, dtype=float)
     w = 2.0 * a**3 / (3.0 * np.pi) - 1.0  # DMT: Hertz load - 2 pi R dgamma
     return {"W_star": w, "a_star": a, "delta_star": a**2}  # Hertz approach
 
 
-def _pull_off(control="load"):
+def pull_off_nondimensional(control="load"):
+    """DMT state at pull-off in the paper's units: W* = -1 at a* = 0 for either control.
+
+    The nondimensional core of :func:`pull_off`.
+
+    Parameters
+    ----------
+    control : {'load', 'displacement'}
+        Both give the same state (the approach is monotone in a).
+
+    Returns
+    -------
+    dict
+        ``W_star``, ``a_star``, ``delta_star`` [-] of :func:`load_curve_nondimensional`.
+    """
     check_control(control)
-    return _curve(0.0)
+    return load_curve_nondimensional(0.0)
 
 
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
@@ -63,7 +98,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     """
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = _curve(a / length_unit(r, e, w))
+    s = load_curve_nondimensional(a / length_unit(r, e, w))
     return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)), scalar_or_array(a),
                      scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
 
@@ -95,7 +130,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
         ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = _pull_off(control)
+    s = pull_off_nondimensional(control)
     z = np.zeros(np.broadcast_shapes(r.shape, e.shape, w.shape))
     return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w) + z), scalar_or_array(z),
                    scalar_or_array(z))

@@ -24,14 +24,38 @@ from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, c
                         check_material, length_unit, load_unit, scalar_or_array)
 from ._validation import check_finite
 
-__all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force"]
+__all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
+           "pull_off_nondimensional"]
 
 #: a*^3 at pull-off for each control mode (dW/da = 0 and d(delta)/da = 0)
 _PULL_OFF_A3 = {"load": 9.0 * np.pi / 8.0, "displacement": np.pi / 8.0}
 
 
-def _curve(a_star):
-    """Nondimensional JKR state at contact radius a* (paper units)."""
+def load_curve_nondimensional(a_star):
+    """JKR load and approach at contact radius a*, in the paper's units (Eqs. 32-35).
+
+    The nondimensional core of :func:`load_curve`.
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact radius a* = a/c_r >= 0, Eq. (32) [-].
+
+    Returns
+    -------
+    dict
+        ``W_star`` (load W/(2 pi R dgamma), Eq. 34), ``a_star``, ``delta_star``
+        (approach delta R/c_r^2, Eq. 33) [-], arrays of the shape of ``a_star``.
+
+    Notes
+    -----
+    .. math::
+
+        W^* = \\frac{1}{2\\pi}\\left(\\tfrac43 a^{*3} - \\sqrt{8\\pi a^{*3}}\\right), \\qquad
+        \\delta^* = a^{*2} - \\sqrt{2\\pi a^*}
+
+    (Johnson, Kendall & Roberts 1971: Hertz minus the flat-punch term.)
+    """
     a = np.asarray(a_star, dtype=float)
     w = (4.0 / 3.0 * a**3 - np.sqrt(8.0 * np.pi * a**3)) / (2.0 * np.pi)  # JKR (1971): Hertz load minus flat-punch term
     d = a**2 - np.sqrt(2.0 * np.pi * a)  # JKR (1971): Hertz approach minus flat-punch term
@@ -46,9 +70,22 @@ def _contact_radius(w_star):
     return np.cbrt(0.75 * (p + 3.0 * np.pi + np.sqrt(disc)))  # JKR (1971): inverse of the load curve
 
 
-def _pull_off(control="load"):
+def pull_off_nondimensional(control="load"):
+    """JKR state at pull-off in the paper's units (Eqs. 32-35); the core of :func:`pull_off`.
+
+    Parameters
+    ----------
+    control : {'load', 'displacement'}
+        Load control: the minimum of W* (a*^3 = 9 pi/8, W* = -3/4); displacement
+        control: the minimum of delta* (a*^3 = pi/8, W* = -5/12).
+
+    Returns
+    -------
+    dict
+        ``W_star``, ``a_star``, ``delta_star`` [-] of :func:`load_curve_nondimensional`.
+    """
     check_control(control)
-    return _curve(np.cbrt(_PULL_OFF_A3[control]))
+    return load_curve_nondimensional(np.cbrt(_PULL_OFF_A3[control]))
 
 
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
@@ -85,7 +122,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     cr = length_unit(r, e, w)
-    s = _curve(a / cr)
+    s = load_curve_nondimensional(a / cr)
     return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)), scalar_or_array(a),
                      scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
 
@@ -129,7 +166,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
     Displacement control: :math:`W = -\\tfrac56\\pi R\\Delta\\gamma`, :math:`a^3 = \\pi\\Delta\\gamma R^2/(8E^*)`.
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = _pull_off(control)
+    s = pull_off_nondimensional(control)
     return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w)),
                    scalar_or_array(s["a_star"] * length_unit(r, e, w)),
                    scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))

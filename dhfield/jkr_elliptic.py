@@ -80,7 +80,7 @@ from scipy.optimize import elementwise
 
 from ._adhesion import (approach_unit, check_control, check_material,
                         grid_minimum, length_unit, load_unit, scalar_or_array)
-from ._validation import check_ellipticity, check_interval
+from ._validation import check_ellipticity, check_finite, check_interval
 from .geometry import ellipticity_from_radius_ratio
 
 __all__ = [
@@ -92,6 +92,9 @@ __all__ = [
     "pull_off_force_ratio",
     "pull_off_ellipticity",
     "ellipticity_at_load",
+    "load_curve_nondimensional",
+    "pull_off_nondimensional",
+    "state_at_ellipticity",
 ]
 
 _SERIES_K2 = 0.25  # below this k^2 = 1 - beta^2, J12 from its series (terms ~ k^(2n))
@@ -222,8 +225,65 @@ def _u_at_contact(a_star, beta0, rho_m1, sin_skew):
     return res.x
 
 
-def _curve(a_star, beta0):
-    """Elliptical JKR state at contact semi-major axis a* > 0 (paper units)."""
+def state_at_ellipticity(beta, beta0):
+    """Elliptical JKR state whose contact ellipse has ellipticity beta (closed form, paper units).
+
+    Parameters
+    ----------
+    beta : array_like
+        Contact ellipticity b/a in (beta0, 1) [-]: beta runs from beta0 (a -> infinity,
+        high load) to 1 (a -> 0) on unloading.
+    beta0 : array_like
+        Hertz ellipticity of the geometry, in (0, 1) [-] (beta0 = 1 is circular
+        JKR, :func:`dhfield.jkr.load_curve_nondimensional`).
+
+    Returns
+    -------
+    dict
+        ``W_star`` (W sin(theta_skew)/(2 pi R dgamma), Eq. 34), ``a_star``, ``b_star``
+        (semi-axes / c_r), ``delta_star``, ``beta`` [-] and ``alpha``, the
+        coefficients (alpha0, alpha1, alpha2) of the pressure
+        ``(alpha0 + alpha1 X^2 + alpha2 Y^2)/sqrt(1 - X^2 - Y^2)`` [E* = 1].
+
+    Notes
+    -----
+    The closed-form parametrisation of the module docstring (Johnson & Greenwood
+    2005, Griffith's criterion at both axis ends):
+
+    .. math:: a^{3/2} = \\sqrt{\\frac{2\\Delta\\gamma}{\\pi E^*}}\\,
+              \\frac{\\beta^{-1/2} - 1}{g_1(\\beta) - g_2(\\beta)}
+    """
+    b0 = check_interval("beta0", beta0, 0.0, 1.0, high_open=True, what="Hertz ellipticity, dimensionless")
+    b = np.asarray(check_finite("beta", beta, "contact ellipticity b/a, dimensionless"), dtype=float)
+    if np.any((b <= b0) | (b >= 1.0)):
+        raise ValueError("beta must lie in (beta0, 1) (contact ellipticity b/a, dimensionless)")
+    b0, rho_m1, sn = _geometry(b0)
+    return _state_u((b - b0) / (1.0 - b0), b0, rho_m1, sn)
+
+
+def load_curve_nondimensional(a_star, beta0):
+    """Elliptical JKR state at contact semi-major axis a*, in the paper's units (Eqs. 32-35).
+
+    The nondimensional core of :func:`load_curve`.
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact semi-major axis a* = a/c_r > 0, Eq. (32) [-].
+    beta0 : array_like
+        Hertz ellipticity of the geometry in (0, 1] [-]; broadcasts with ``a_star``.
+
+    Returns
+    -------
+    dict
+        ``W_star`` (Eq. 34, with sin(theta_skew) of beta0), ``a_star``, ``b_star``,
+        ``delta_star`` and the contact ellipticity ``beta`` [-].
+
+    Notes
+    -----
+    The contact ellipticity is found by a root finder on the closed-form curve of
+    :func:`state_at_ellipticity`; beta0 = 1 is circular JKR.
+    """
     beta0, rho_m1, sn = _geometry(beta0)
     a_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(a_star, float), beta0, rho_m1, sn)
     circ = beta0 == 1.0
@@ -240,11 +300,24 @@ def _curve(a_star, beta0):
     return out
 
 
-def _pull_off(beta0, control="load"):
-    """Elliptical JKR pull-off (paper units), vectorised over beta0.
+def pull_off_nondimensional(beta0, control="load"):
+    """Elliptical JKR state at pull-off in the paper's units (Eqs. 32-35), vectorised over beta0.
 
-    The first minimum of W* (load control) or delta* (displacement control) met
-    on unloading from high load, i.e. from beta = beta0 towards beta = 1.
+    The nondimensional core of :func:`pull_off`: the first minimum of W* (load
+    control) or delta* (displacement control) met on unloading from high load,
+    i.e. from beta = beta0 towards beta = 1.
+
+    Parameters
+    ----------
+    beta0 : array_like
+        Hertz ellipticity of the geometry in (0, 1] [-].
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dict
+        ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] as in
+        :func:`load_curve_nondimensional`.
     """
     check_control(control)
     beta0, rho_m1, sn = _geometry(beta0)
@@ -274,7 +347,7 @@ def _beta_at_load(w_star, beta0):
     out = np.ones(w_star.shape)
     sel = beta0 < 1.0
     if np.any(sel):
-        po = _pull_off(beta0[sel])
+        po = pull_off_nondimensional(beta0[sel])
         u_po = (po["beta"] - beta0[sel]) / (1.0 - beta0[sel])
 
         def f(u, w, b0, r, s):
@@ -338,7 +411,7 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     cr = length_unit(r, e, w)
-    st = _curve(a / cr, b0)
+    st = load_curve_nondimensional(a / cr, b0)
     sn = _geometry(b0)[2]
     return EllipticLoadCurve(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
                              scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
@@ -368,7 +441,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
     """
     b0 = _check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    st = _pull_off(b0, control)
+    st = pull_off_nondimensional(b0, control)
     cr = length_unit(r, e, w)
     sn = _geometry(b0)[2]
     return EllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
@@ -391,7 +464,7 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
     under displacement control, the circular fixed-grips value).
     """
     b0 = _check_geometry(radius_ratio, beta0)
-    st = _pull_off(b0, control)
+    st = pull_off_nondimensional(b0, control)
     return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
 
 
@@ -411,7 +484,7 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
         beta at pull-off, in [beta0, 1] [-]; 1 at the circle.
     """
     b0 = _check_geometry(radius_ratio, beta0)
-    return scalar_or_array(_pull_off(b0, control)["beta"])
+    return scalar_or_array(pull_off_nondimensional(b0, control)["beta"])
 
 
 def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
@@ -423,7 +496,7 @@ def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
     b0 = _check_geometry(radius_ratio, beta0)
     w = check_interval("load_star", load_star, -1.0, np.inf, high_open=True,
                        what="W* of Eq. (34), above the pull-off load")
-    po = _pull_off(b0)["W_star"]
+    po = pull_off_nondimensional(b0)["W_star"]
     if np.any(w < po):
         raise ValueError(f"load_star must be >= the pull-off load W* = {np.min(po):.6g}; "
                          f"got {np.min(w)!r}")

@@ -40,15 +40,20 @@ Paper units
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from scipy.optimize import elementwise
 
 from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
                         check_material, grid_minimum, length_unit, load_unit, scalar_or_array,
                         tabor_parameter)
+from ._validation import check_positive
 from .transition import maugis_parameter
 
-__all__ = ["load_curve", "pull_off", "pull_off_force", "LAMBDA_RANGE"]
+__all__ = ["load_curve", "pull_off", "pull_off_force", "LAMBDA_RANGE", "load_curve_nondimensional",
+           "pull_off_nondimensional", "load_curve_maugis_units", "pull_off_maugis_units", "MaugisCurve",
+           "MaugisPullOff"]
 
 #: lambda range over which the solver is tested (DMT side, JKR side)
 LAMBDA_RANGE = (1e-3, 1e3)
@@ -117,8 +122,48 @@ def _log_m_at(a_maugis, lam):
     return res.x
 
 
-def _curve_maugis(a_maugis, lam):
-    """MD load P and approach D (Maugis units) at A >= 0, vectorised."""
+class MaugisCurve(NamedTuple):
+    """MD states in Maugis units: ``load`` P = W/(pi R dgamma), ``approach`` D and
+    ``zone_ratio`` m = c/a (inf at A = 0) [-]."""
+
+    load: np.ndarray
+    approach: np.ndarray
+    zone_ratio: np.ndarray
+
+
+class MaugisPullOff(NamedTuple):
+    """MD pull-off in Maugis units: ``contact_radius`` A, ``load`` P, ``approach`` D,
+    ``zone_ratio`` m = c/a [-]."""
+
+    contact_radius: np.ndarray
+    load: np.ndarray
+    approach: np.ndarray
+    zone_ratio: np.ndarray
+
+
+def load_curve_maugis_units(a_maugis, lam):
+    """MD load and approach at contact radius A, in Maugis' own units, vectorised.
+
+    Parameters
+    ----------
+    a_maugis : array_like
+        Contact radius A = a/(pi dgamma R^2/K)^(1/3) >= 0, K = 4E*/3 [-].
+    lam : array_like
+        Maugis parameter lambda = 2 sigma0 (R/(pi dgamma K^2))^(1/3) > 0 [-]
+        (tested over :data:`LAMBDA_RANGE`).
+
+    Returns
+    -------
+    MaugisCurve
+        P, D and m = c/a [-].
+
+    Notes
+    -----
+    Maugis (1992), the three equations of the module docstring, solved for
+    ln M at the given A; at A = 0 the closed-form end point.
+    """
+    check_contact_size("a_maugis", a_maugis)
+    check_positive("lam", lam, "Maugis parameter lambda, dimensionless")
     a_maugis, lam = np.broadcast_arrays(np.asarray(a_maugis, dtype=float),
                                         np.asarray(lam, dtype=float))
     p = np.empty(a_maugis.shape)
@@ -131,23 +176,60 @@ def _curve_maugis(a_maugis, lam):
     if np.any(pos):
         t = _log_m_at(a_maugis[pos], lam[pos])
         _, p[pos], d[pos], m[pos] = _state_maugis(t, lam[pos])
-    return p, d, m
+    return MaugisCurve(p, d, m)
 
 
-def _curve(a_star, mu):
-    """Nondimensional MD state at contact radius a* (paper units) for mu of Eq. (35)."""
+def load_curve_nondimensional(a_star, mu):
+    """MD state at contact radius a*, in the paper's units (Eqs. 32-35).
+
+    The nondimensional core of :func:`load_curve` (R = E* = dgamma = 1,
+    sigma0 = mu, lambda = 1.1272 mu of :mod:`dhfield.transition`).
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact radius a* = a/c_r >= 0, Eq. (32) [-].
+    mu : array_like
+        Transition parameter, Eq. (35), > 0 [-].
+
+    Returns
+    -------
+    dict
+        ``W_star`` = P/2 (Eq. 34), ``a_star``, ``c_star`` (Dugdale zone radius
+        c/c_r) and ``delta_star`` [-].
+
+    Notes
+    -----
+    ``a* = A (3 pi/4)^(1/3)``, ``W* = P/2``, ``delta* = D (9 pi^2/16)^(1/3)`` from
+    :func:`load_curve_maugis_units`.
+    """
     a_star = np.asarray(a_star, dtype=float)
     lam = maugis_parameter(mu)
-    p, d, m = _curve_maugis(a_star / _A_UNIT, lam)
+    p, d, m = load_curve_maugis_units(a_star / _A_UNIT, lam)
     a_star = np.broadcast_to(a_star, p.shape)
     with np.errstate(invalid="ignore"):
         c_star = np.where(a_star > 0, m * a_star, _zero_contact_zone(lam) * _A_UNIT)
     return {"W_star": 0.5 * p, "a_star": a_star, "c_star": c_star, "delta_star": d * _D_UNIT}
 
 
-def _pull_off_maugis(lam, control="load"):
-    """MD pull-off (A, P, D, m) in Maugis units, vectorised over lambda."""
+def pull_off_maugis_units(lam, control="load"):
+    """MD pull-off in Maugis' own units, vectorised over lambda.
+
+    Parameters
+    ----------
+    lam : array_like
+        Maugis parameter lambda > 0 [-] (tested over :data:`LAMBDA_RANGE`).
+    control : {'load', 'displacement'}
+        The first minimum of P (load) or D (displacement) on unloading; the end
+        point A = 0 when the curve has no interior minimum.
+
+    Returns
+    -------
+    MaugisPullOff
+        A, P, D and m = c/a (inf at A = 0) [-].
+    """
     check_control(control)
+    check_positive("lam", lam, "Maugis parameter lambda, dimensionless")
     lam = np.asarray(lam, dtype=float)
     col = 1 if control == "load" else 2
 
@@ -166,13 +248,28 @@ def _pull_off_maugis(lam, control="load"):
     p = np.where(end, p0, p)
     d = np.where(end, d0, d)
     m = np.where(end, np.inf, m)
-    return a, p, d, m
+    return MaugisPullOff(a, p, d, m)
 
 
-def _pull_off(mu, control="load"):
-    """Nondimensional MD pull-off (paper units) for mu of Eq. (35)."""
+def pull_off_nondimensional(mu, control="load"):
+    """MD state at pull-off in the paper's units (Eqs. 32-35), vectorised over mu.
+
+    The nondimensional core of :func:`pull_off` (see :func:`pull_off_maugis_units`).
+
+    Parameters
+    ----------
+    mu : array_like
+        Transition parameter, Eq. (35), > 0 [-].
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dict
+        ``W_star``, ``a_star``, ``c_star``, ``delta_star`` [-] as in
+        :func:`load_curve_nondimensional`.
+    """
     lam = maugis_parameter(mu)
-    a, p, d, m = _pull_off_maugis(lam, control)
+    a, p, d, m = pull_off_maugis_units(lam, control)
     with np.errstate(invalid="ignore"):
         c_star = np.where(a > 0, m * a, _zero_contact_zone(lam)) * _A_UNIT
     return {"W_star": 0.5 * p, "a_star": a * _A_UNIT, "c_star": c_star, "delta_star": d * _D_UNIT}
@@ -213,7 +310,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    s = _curve(a / length_unit(r, e, w), mu)
+    s = load_curve_nondimensional(a / length_unit(r, e, w), mu)
     return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)),
                      scalar_or_array(np.broadcast_to(a, s["W_star"].shape)),
                      scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
@@ -240,7 +337,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    s = _pull_off(mu, control)
+    s = pull_off_nondimensional(mu, control)
     return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w)),
                    scalar_or_array(s["a_star"] * length_unit(r, e, w)),
                    scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))

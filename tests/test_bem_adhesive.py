@@ -80,7 +80,7 @@ def test_dugdale_sphere_pull_off_matches_maugis_dugdale():
     lam = 1.0
     mu = float(transition.tabor_from_maugis(lam))
     res = adhesive_pull_off(mu, 1.0, 64, progress=False)
-    ref = maugis_dugdale._pull_off(mu)  # Maugis (1992) in the paper's units
+    ref = maugis_dugdale.pull_off_nondimensional(mu)  # Maugis (1992) in the paper's units
     assert res.converged
     assert res.W_star == pytest.approx(float(ref["W_star"]), rel=RTOL_MD_64)
     assert res.beta_ab == pytest.approx(1.0, abs=1e-12)   # the symmetric sphere stays round
@@ -97,7 +97,7 @@ def test_small_mu_tends_to_dmt_force():
 
 def test_large_mu_tends_to_elliptical_jkr():
     beta0 = 0.8
-    ref = float(jkr_elliptic._pull_off(np.asarray(beta0))["W_star"])
+    ref = float(jkr_elliptic.pull_off_nondimensional(np.asarray(beta0))["W_star"])
     near = adhesive_pull_off(2.5, beta0, 96, progress=False)
     far = adhesive_pull_off(1.0, beta0, 64, progress=False)
     assert near.resolved and near.converged
@@ -195,9 +195,9 @@ def test_fold_of_branch_recovers_the_maugis_dugdale_jump():
     from dhfield.bem.adhesive import fold_of_branch
 
     mu = float(transition.tabor_from_maugis(1.0))
-    ref = maugis_dugdale._pull_off(mu, "displacement")     # Maugis (1992): the fold of delta(a)
+    ref = maugis_dugdale.pull_off_nondimensional(mu, "displacement")     # Maugis (1992): the fold of delta(a)
     a = float(ref["a_star"]) * (1.0 + 0.15 * np.array([4.0, 3.0, 2.0, 1.0]))   # stable branch, towards the fold
-    curve = maugis_dugdale._curve(a, mu)
+    curve = maugis_dugdale.load_curve_nondimensional(a, mu)
     fold = fold_of_branch(curve["W_star"], curve["delta_star"])
     w, d, err = fold.load, fold.approach, fold.load_error
     assert fold.found
@@ -334,7 +334,7 @@ def test_nested_cold_start_solves_the_same_hertz_problem(monkeypatch):
 
 # ============================================================================ coordinator: displacement-control caveats
 def test_displacement_control_results_carry_their_measured_caveat():
-    """The fold extrapolation misses MD by up to ~18 % (DISPLACEMENT_CONTROL_NOTE): every result says so."""
+    """Every displacement-control result carries its measured accuracy (DISPLACEMENT_CONTROL_NOTE)."""
     from dhfield.bem.adhesive import DISPLACEMENT_CONTROL_NOTE
 
     disp = adhesive_pull_off(2.0, 1.0, 32, control="displacement", progress=False)

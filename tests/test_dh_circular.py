@@ -41,7 +41,7 @@ def test_work_of_adhesion_closed_form_vs_quadrature(rng):
 @pytest.mark.parametrize("mu", [0.05, 0.5, 1.0, 5.0, 50.0])
 def test_curve_satisfies_eqs_24_31(mu):
     a = np.concatenate([[0.0], np.geomspace(1e-3, 5.0, 40)])
-    st = dh_circular._curve(a, mu)
+    st = dh_circular.load_curve_nondimensional(a, mu)
     c, v = st["c_star"], st["v"]
     assert_allclose(2 * v / np.pi * np.sqrt(c * c - a * a), mu, rtol=TOL_EXACT)  # Eq. (24)
     assert_allclose(dh_circular.work_of_adhesion(a, c, v, 1.0, 1.0), 1.0, rtol=TOL_EXACT)  # Eq. (31)
@@ -52,12 +52,12 @@ def test_curve_satisfies_eqs_24_31(mu):
 
 
 def test_jkr_and_dmt_limits():
-    assert abs(dh_circular._pull_off(1000.0)["W_star"] + 0.75) < TOL_JKR_LIMIT
-    po = dh_circular._pull_off(1e-3)
+    assert abs(dh_circular.pull_off_nondimensional(1000.0)["W_star"] + 0.75) < TOL_JKR_LIMIT
+    po = dh_circular.pull_off_nondimensional(1e-3)
     assert abs(po["W_star"] + 1.0) < 1e-3  # DMT side: -1/(1+v), v = O(mu^1.5)
     # the curve approaches JKR at large mu
     a = np.linspace(0.5, 3.0, 6)
-    assert_allclose(dh_circular._curve(a, 1000.0)["W_star"], jkr._curve(a)["W_star"], atol=5e-3)
+    assert_allclose(dh_circular.load_curve_nondimensional(a, 1000.0)["W_star"], jkr.load_curve_nondimensional(a)["W_star"], atol=5e-3)
 
 
 @pytest.mark.parametrize("mu", [0.3, 1.0, 5.0])
@@ -65,20 +65,20 @@ def test_agrees_with_elliptical_core_at_circle(mu):
     model = pytest.importorskip("dhfield.model")
     a = np.linspace(*model.DEFAULT_A_STAR, 200)
     ref = model.load_curve(mu, 1.0, a)
-    st = dh_circular._curve(a, mu)
+    st = dh_circular.load_curve_nondimensional(a, mu)
     for key in ("W_star", "c_star", "v", "delta_star"):
         assert_allclose(st[key], getattr(ref, key), rtol=TOL_CORE, atol=TOL_CORE, err_msg=key)
     for control in ("load", "displacement"):
-        po, pref = dh_circular._pull_off(mu, control), model.pull_off(mu, 1.0, control=control)
+        po, pref = dh_circular.pull_off_nondimensional(mu, control), model.pull_off(mu, 1.0, control=control)
         assert_allclose([po["W_star"], po["a_star"], po["delta_star"]],
                         [pref.W_star, pref.a_star, pref.delta_star], atol=TOL_CORE)
 
 
 def test_pull_off_is_first_minimum_on_unloading():
     mu = 1.0
-    po = dh_circular._pull_off(mu)
+    po = dh_circular.pull_off_nondimensional(mu)
     a = np.linspace(po["a_star"], 4.0, 2000)
-    w = dh_circular._curve(a, mu)["W_star"]
+    w = dh_circular.load_curve_nondimensional(a, mu)["W_star"]
     assert np.all(np.diff(w) > 0)  # the load rises monotonically above the pull-off point
 
 
@@ -86,10 +86,10 @@ def test_dimensional_wrapper():
     sigma0 = 2e8
     mu = sigma0 * np.cbrt(R / (E * E * DG))
     po = dh_circular.pull_off(R, E, DG, sigma0)
-    assert_allclose(po.load, dh_circular._pull_off(mu)["W_star"] * 2 * np.pi * R * DG, rtol=1e-12)
+    assert_allclose(po.load, dh_circular.pull_off_nondimensional(mu)["W_star"] * 2 * np.pi * R * DG, rtol=1e-12)
     cr = np.cbrt(R * R * DG / E)
     c = dh_circular.load_curve(np.array([0.5, 1.0]) * cr, R, E, DG, sigma0)
-    assert_allclose(c.load, dh_circular._curve(np.array([0.5, 1.0]), mu)["W_star"] * 2 * np.pi * R * DG,
+    assert_allclose(c.load, dh_circular.load_curve_nondimensional(np.array([0.5, 1.0]), mu)["W_star"] * 2 * np.pi * R * DG,
                     rtol=1e-12)
 
 
@@ -112,5 +112,5 @@ def test_issue9_large_mu_is_jkr_without_cancellation(mu):
     # JKR: load control -3/4, fixed grips -5/12 (Maugis 2000); the departure is O(mu^-2).
     from dhfield import dh_circular as dc
 
-    assert float(dc._pull_off(np.array(mu))["W_star"]) == pytest.approx(-0.75, rel=1e-11)
-    assert float(dc._pull_off(np.array(mu), "displacement")["W_star"]) == pytest.approx(-5 / 12, rel=1e-11)
+    assert float(dc.pull_off_nondimensional(np.array(mu))["W_star"]) == pytest.approx(-0.75, rel=1e-11)
+    assert float(dc.pull_off_nondimensional(np.array(mu), "displacement")["W_star"]) == pytest.approx(-5 / 12, rel=1e-11)

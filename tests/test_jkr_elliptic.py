@@ -74,19 +74,19 @@ def test_contact_condition_and_griffith(beta0, u):
 
 def test_circle_is_jkr():
     a = np.linspace(0.02, 4.0, 300)
-    st, ref = je._curve(a, 1.0), jkr._curve(a)
+    st, ref = je.load_curve_nondimensional(a, 1.0), jkr.load_curve_nondimensional(a)
     for key in ("W_star", "delta_star"):
         assert_allclose(st[key], ref[key], rtol=TOL_CIRCLE, atol=TOL_CIRCLE)
     assert np.all(st["beta"] == 1.0)
     for control in ("load", "displacement"):
-        po, pj = je._pull_off(1.0, control), jkr._pull_off(control)
+        po, pj = je.pull_off_nondimensional(1.0, control), jkr.pull_off_nondimensional(control)
         assert_allclose([po["W_star"], po["a_star"]], [pj["W_star"], pj["a_star"]], rtol=TOL_CIRCLE)
 
 
 def test_continuous_at_the_circle():
     """Near beta0 = 1 the curve leaves JKR linearly in 1 - beta0 (a is the x semi-axis)."""
     a = np.linspace(0.05, 3.0, 50)
-    slopes = [np.max(np.abs(je._curve(a, 1 - e)["W_star"] - jkr._curve(a)["W_star"])) / e
+    slopes = [np.max(np.abs(je.load_curve_nondimensional(a, 1 - e)["W_star"] - jkr.load_curve_nondimensional(a)["W_star"])) / e
               for e in (1e-4, 1e-7, 1e-10)]
     assert_allclose(slopes, slopes[0], rtol=1e-3)
 
@@ -114,7 +114,7 @@ def test_pull_off_mild_ellipticity():
     assert np.all(f < 1)
     assert_allclose(coef, coef[-1], rtol=0.02)
     beta0 = je._check_geometry(rho, None)
-    w = je._pull_off(beta0)["W_star"]
+    w = je.pull_off_nondimensional(beta0)["W_star"]
     assert_allclose(w, -0.75 * f * sin_skew_angle(beta0), rtol=1e-12)
     # the notes' reconstruction (not literature): 0.985, 0.944, 0.861 at R'/R'' = 2, 4, 10
     assert_allclose(je.pull_off_force_ratio(radius_ratio=[2.0, 4.0, 10.0]), [0.985, 0.944, 0.861],
@@ -125,7 +125,7 @@ def test_pull_off_shape():
     beta0 = np.array([0.8, 0.9, 0.99])
     bpo = je.pull_off_ellipticity(beta0=beta0)
     assert np.all((bpo > beta0) & (bpo < 1))
-    po = je._pull_off(beta0)
+    po = je.pull_off_nondimensional(beta0)
     for b0, w in zip(beta0, po["W_star"]):  # the pull-off is the minimum of a dense scan
         u = np.linspace(1e-4, 1 - 1e-4, 4000)
         _, rm, sn = je._geometry(b0)
@@ -135,7 +135,7 @@ def test_pull_off_shape():
 def test_dimensional():
     r, e, dg = 1e-6, 1e9, 0.05
     po = je.pull_off(r, e, dg, beta0=0.9)
-    assert_allclose(po.load, je._pull_off(0.9)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
+    assert_allclose(po.load, je.pull_off_nondimensional(0.9)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
                     rtol=1e-12)
     assert_allclose(po.ellipticity, je.pull_off_ellipticity(beta0=0.9))
     rho = radius_ratio(0.9)
@@ -162,3 +162,14 @@ def test_bad_input():
         je.pull_off_ellipticity(beta0=0.9, control="both")
     with pytest.raises(ValueError, match="work_of_adhesion"):
         je.pull_off(r, e, -dg, beta0=0.9)
+
+
+def test_state_at_ellipticity_is_the_curve_at_its_contact_size():
+    """The closed-form state at a given beta lies on the load curve (root-finder route) at its a*."""
+    st = je.state_at_ellipticity(np.array([0.7, 0.85, 0.95]), 0.6)
+    curve = je.load_curve_nondimensional(st["a_star"], 0.6)
+    np.testing.assert_allclose(curve["beta"], st["beta"], rtol=1e-10)
+    np.testing.assert_allclose(curve["W_star"], st["W_star"], rtol=1e-10)
+    for bad in (dict(beta=0.5, beta0=0.6), dict(beta=1.0, beta0=0.6), dict(beta=0.9, beta0=1.0)):
+        with pytest.raises(ValueError, match="beta"):
+            je.state_at_ellipticity(**bad)

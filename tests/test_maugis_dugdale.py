@@ -39,7 +39,7 @@ def jkr_maugis(a):
 def test_first_equation_residual():
     a = np.geomspace(1e-3, 20, 60)
     for lam in np.geomspace(0.01, 100, 15):  # every lambda of the stated range, A over 4 decades
-        p, d, m = md._curve_maugis(a, lam)
+        p, d, m = md.load_curve_maugis_units(a, lam)
         assert np.all(np.isfinite(p) & np.isfinite(d) & (m > 1))
         mm = np.sqrt(m * m - 1)
         lhs = (lam * a**2 / 2 * (mm + (m * m - 2) * np.arctan(mm))
@@ -57,24 +57,24 @@ def test_series_branch_matches_direct_form():
 
 @pytest.mark.parametrize("control,jkr_value", [("load", -1.5), ("displacement", -5 / 6)])
 def test_pull_off_limits(control, jkr_value):
-    _, p_dmt, _, _ = md._pull_off_maugis(0.01, control)
-    _, p_jkr, _, _ = md._pull_off_maugis(100.0, control)
+    _, p_dmt, _, _ = md.pull_off_maugis_units(0.01, control)
+    _, p_jkr, _, _ = md.pull_off_maugis_units(100.0, control)
     assert abs(p_dmt / -2.0 - 1) <= TOL_PULL_OFF
     assert abs(p_jkr / jkr_value - 1) <= TOL_PULL_OFF
 
 
 def test_pull_off_monotone_in_lambda():
     lam = np.geomspace(0.01, 100, 41)
-    _, p, _, _ = md._pull_off_maugis(lam)
+    _, p, _, _ = md.pull_off_maugis_units(lam)
     assert np.all(np.diff(p) > 0)  # from -2 (DMT) up to -1.5 (JKR)
 
 
 def test_load_curves_jkr_side():
     a = np.concatenate([[0.0], np.geomspace(1e-4, 10, 400)])
     pj, dj = jkr_maugis(a)
-    p, d, _ = md._curve_maugis(a, 100.0)
+    p, d, _ = md.load_curve_maugis_units(a, 100.0)
     assert np.max(np.abs(p - pj) / np.maximum(1, np.abs(pj))) <= TOL_CURVE_JKR_100
-    p, d, _ = md._curve_maugis(a, 1000.0)
+    p, d, _ = md.load_curve_maugis_units(a, 1000.0)
     assert np.max(np.abs(p - pj) / np.maximum(1, np.abs(pj))) <= TOL_CURVE
     big = a >= 0.3  # the approach converges non-uniformly: D(A = 0) = -(4/3) lambda x = O(1/lambda)
     assert np.max(np.abs(d - dj)[big] / np.maximum(1, np.abs(dj[big]))) <= TOL_CURVE
@@ -82,45 +82,45 @@ def test_load_curves_jkr_side():
 
 def test_load_curves_dmt_side():
     a = np.concatenate([[0.0], np.geomspace(1e-4, 0.3, 200)])
-    p, d, _ = md._curve_maugis(a, 0.01)
+    p, d, _ = md.load_curve_maugis_units(a, 0.01)
     assert np.max(np.abs(p - (a**3 - 2))) <= TOL_CURVE_DMT_001
     offset = -8 / 3 * np.sqrt(0.01 / np.pi)  # D - A^2 -> -(4/3) lambda (A m), A m -> 2/sqrt(pi lambda)
     assert_allclose(d - a**2, offset, rtol=TOL_DMT_OFFSET)
     small = a <= 0.1
-    p, _, _ = md._curve_maugis(a, 0.001)
+    p, _, _ = md.load_curve_maugis_units(a, 0.001)
     assert np.max(np.abs(p - (a**3 - 2))[small]) <= TOL_CURVE
 
 
 def test_zero_contact_end_point():
     for lam in (0.05, 1.0, 20.0):
         p0, d0 = md._zero_contact(lam)
-        p, d, _ = md._curve_maugis(np.array([1e-9]), lam)
+        p, d, _ = md.load_curve_maugis_units(np.array([1e-9]), lam)
         assert_allclose([p[0], d[0]], [p0, d0], rtol=1e-6)
-        c = md._curve(np.array([0.0, 1e-9]), lam / 1.1272516517868267)["c_star"]
+        c = md.load_curve_nondimensional(np.array([0.0, 1e-9]), lam / 1.1272516517868267)["c_star"]
         assert_allclose(c[0], c[1], rtol=1e-6)  # the zone radius is continuous at a = 0
 
 
 def test_paper_units_and_mapping():
     mu = np.array([0.5, 1.0, 5.0])
-    st = md._pull_off(mu)
-    _, p, _, _ = md._pull_off_maugis(maugis_parameter(mu))
+    st = md.pull_off_nondimensional(mu)
+    _, p, _, _ = md.pull_off_maugis_units(maugis_parameter(mu))
     assert_allclose(st["W_star"], p / 2, rtol=1e-14)
 
 
 def test_vectorised_and_fast():
     lam = np.geomspace(0.01, 100, 25)
-    a, p, d, m = md._pull_off_maugis(lam)
+    a, p, d, m = md.pull_off_maugis_units(lam)
     for i in (0, 12, 24):
-        assert_allclose(md._pull_off_maugis(lam[i])[1], p[i], rtol=1e-12)
+        assert_allclose(md.pull_off_maugis_units(lam[i])[1], p[i], rtol=1e-12)
     t0 = time.perf_counter()
-    md._pull_off(1.0)
+    md.pull_off_nondimensional(1.0)
     assert time.perf_counter() - t0 < 0.2  # loose here; verification/bench_models.py measures <= 20 ms
 
 
 def test_dimensional():
     r, e, dg, s0 = 1e-6, 1e9, 0.05, 3e8
     mu = s0 * np.cbrt(r / (e * e * dg))
-    assert_allclose(md.pull_off_force(r, e, dg, s0), md._pull_off(mu)["W_star"] * 2 * np.pi * r * dg,
+    assert_allclose(md.pull_off_force(r, e, dg, s0), md.pull_off_nondimensional(mu)["W_star"] * 2 * np.pi * r * dg,
                     rtol=1e-12)
     c = md.load_curve(np.array([1e-8, 3e-8]), r, e, dg, s0)
     assert c.load.shape == (2,) and np.all(np.isfinite(c.approach))

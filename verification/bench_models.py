@@ -30,7 +30,7 @@ def main() -> int:
          lambda: maugis_dugdale.pull_off(R, E, W, SIGMA_LAM1), 0.020, 30),
         ("MD pull-off, displacement control (lambda ~ 1)",
          lambda: maugis_dugdale.pull_off(R, E, W, SIGMA_LAM1, control="displacement"), None, 30),
-        ("MD pull-off, 100 lambda in [0.01, 100], vectorised", lambda: maugis_dugdale._pull_off_maugis(lam100),
+        ("MD pull-off, 100 lambda in [0.01, 100], vectorised", lambda: maugis_dugdale.pull_off_maugis_units(lam100),
          None, 10),
         ("elliptical JKR pull-off, load control (beta0 = 0.9)",
          lambda: jkr_elliptic.pull_off(R, E, W, beta0=0.9), 0.050, 30),

@@ -61,7 +61,7 @@ TARGET_REFINE = 1e-5
 def _md_radius_at_approach(delta, mu, a_lo, a_hi=6.0):
     """MD contact radius a* at approach delta* on the stable branch a >= a_lo."""
     def f(a):
-        return float(maugis_dugdale._curve(a, mu)["delta_star"]) - delta
+        return float(maugis_dugdale.load_curve_nondimensional(a, mu)["delta_star"]) - delta
 
     lo = max(a_lo, 1e-6)
     if f(lo) > 0 or f(a_hi) < 0:
@@ -77,8 +77,8 @@ def sphere_row(lam, n, start=None):
     res = adhesive_pull_off(mu, 1.0, n, progress=None, search="march") if start is None else \
         refine_pull_off(start, n)
     el = time.perf_counter() - t0
-    ref = maugis_dugdale._pull_off(mu)
-    ref_d = maugis_dugdale._pull_off(mu, "displacement")
+    ref = maugis_dugdale.pull_off_nondimensional(mu)
+    ref_d = maugis_dugdale.pull_off_nondimensional(mu, "displacement")
     w_ref = float(ref["W_star"])
     path = res.path
     # contact radius along the stable branch (states converged, in contact, above the MD fold)

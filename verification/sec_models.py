@@ -85,8 +85,8 @@ def _checks_md():
 
     out = []
     for control, jkr_value in (("load", -1.5), ("displacement", -5.0 / 6.0)):
-        p_dmt = md._pull_off_maugis(0.01, control)[1]
-        p_jkr = md._pull_off_maugis(100.0, control)[1]
+        p_dmt = md.pull_off_maugis_units(0.01, control)[1]
+        p_jkr = md.pull_off_maugis_units(100.0, control)[1]
         out.append(check_le(f"MD pull-off ({control} control) at λ = 0.01 vs DMT −2πRΔγ, rel. error",
                             abs(p_dmt / -2.0 - 1), TOL_MD_PULL_OFF, "DMT closed form (Derjaguin et al. 1975)"))
         out.append(check_le(f"MD pull-off ({control} control) at λ = 100 vs JKR {jkr_value:.4g} πRΔγ, "
@@ -95,11 +95,11 @@ def _checks_md():
     a = np.concatenate([[0.0], np.geomspace(1e-4, 10, 400)])
     pj, dj = a**3 - np.sqrt(6 * a**3), a**2 - 2 / 3 * np.sqrt(6 * a)
     for lam, tol in ((100.0, TOL_MD_CURVE_100), (1000.0, TOL_MD_CURVE)):
-        p, d, _ = md._curve_maugis(a, lam)
+        p, d, _ = md.load_curve_maugis_units(a, lam)
         err = np.max(np.abs(p - pj) / np.maximum(1, np.abs(pj)))
         out.append(check_le(f"MD load curve at λ = {lam:g} vs JKR, Ā ∈ [0, 10], max abs(ΔP̄)/max(1, abs(P̄))", err, tol,
                             "JKR in Maugis units P̄ = Ā³ − √(6Ā³); deviation O(λ⁻²)"))
-    p, d, _ = md._curve_maugis(a, 1000.0)
+    p, d, _ = md.load_curve_maugis_units(a, 1000.0)
     big = a >= 0.3
     out.append(check_le("MD approach at λ = 1000 vs JKR, Ā ∈ [0.3, 10], max abs(ΔΔ̄)/max(1, abs(Δ̄))",
                         np.max(np.abs(d - dj)[big] / np.maximum(1, np.abs(dj[big]))), TOL_MD_CURVE,
@@ -107,11 +107,11 @@ def _checks_md():
     small = a <= 0.3
     for lam, tol, amax in ((0.01, TOL_MD_CURVE_001, 0.3), (0.001, TOL_MD_CURVE, 0.1)):
         sel = a <= amax
-        p, d, _ = md._curve_maugis(a[sel], lam)
+        p, d, _ = md.load_curve_maugis_units(a[sel], lam)
         out.append(check_le(f"MD load curve at λ = {lam:g} vs DMT, Ā ∈ [0, {amax:g}], max abs(ΔP̄)",
                             np.max(np.abs(p - (a[sel] ** 3 - 2))), tol,
                             "DMT P̄ = Ā³ − 2; deviation O(λ^1.5)"))
-    p, d, _ = md._curve_maugis(a[small], 0.01)
+    p, d, _ = md.load_curve_maugis_units(a[small], 0.01)
     off = -8 / 3 * np.sqrt(0.01 / np.pi)
     out.append(check_le("MD approach at λ = 0.01: (Δ̄ − Ā²) vs the DMT-side offset −(8/3)√(λ/π), rel. error",
                         np.max(np.abs((d - a[small] ** 2) / off - 1)), 0.05,
@@ -121,18 +121,18 @@ def _checks_md():
 
 def _checks_jkr_elliptic():
     from dhfield import jkr, jkr_elliptic as je
+    from dhfield.geometry import radius_ratio
 
     out = []
     a = np.linspace(0.02, 4.0, 300)
-    st, ref = je._curve(a, 1.0), jkr._curve(a)
+    st, ref = je.load_curve_nondimensional(a, 1.0), jkr.load_curve_nondimensional(a)
     err = max(np.max(np.abs(st["W_star"] - ref["W_star"])), np.max(np.abs(st["delta_star"] - ref["delta_star"])))
     out.append(check_le("elliptical JKR at β0 = 1 vs circular JKR, W* and δ* on a* ∈ [0.02, 4], max abs. error",
                         err, TOL_CIRCLE, "JKR closed form"))
     worst = 0.0
     for beta0, u in ((0.8, 0.3), (0.6, 0.7), (0.95, 0.5)):
-        _, rm, sn = je._geometry(beta0)
-        s = je._state_u(u, beta0, rm, sn)
-        r1 = np.sqrt(1 + rm)
+        s = je.state_at_ellipticity(beta0 + (1.0 - beta0) * u, beta0)
+        r1 = np.sqrt(radius_ratio(beta0))  # R' of R = sqrt(R'R'') = 1
         for x0, y0 in ((0.0, 0.0), (0.3 * s["a_star"], 0.0), (0.0, 0.5 * s["b_star"]),
                        (0.4 * s["a_star"], -0.3 * s["b_star"])):
             refd = s["delta_star"] - x0**2 / (2 * r1) - y0**2 * r1 / 2
@@ -171,11 +171,11 @@ def _checks_dh_circular():
     a = np.linspace(*model.DEFAULT_A_STAR, 200)
     for mu in MU_TABLE:
         ref = model.load_curve(mu, 1.0, a)
-        st = dh_circular._curve(a, mu)
+        st = dh_circular.load_curve_nondimensional(a, mu)
         for key in ("W_star", "c_star", "v", "delta_star"):
             worst = max(worst, np.max(np.abs(st[key] - getattr(ref, key)) / np.maximum(1, np.abs(getattr(ref, key)))))
         for control in ("load", "displacement"):
-            po, pr = dh_circular._pull_off(mu, control), model.pull_off(mu, 1.0, control=control)
+            po, pr = dh_circular.pull_off_nondimensional(mu, control), model.pull_off(mu, 1.0, control=control)
             worst = max(worst, abs(po["W_star"] - pr.W_star), abs(po["a_star"] - pr.a_star))
     out.append(check_le("circular DH (closed form) vs elliptical DH core at β0 = 1: W*, c*, v, δ* on a* ∈ "
                         f"[{model.DEFAULT_A_STAR[0]:g}, {model.DEFAULT_A_STAR[1]:g}] and the pull-off (both "
@@ -227,11 +227,11 @@ def _fig8(outdir, dpi, n):
         ax.plot(cv.W_star, cv.a_star, "-", color=col, lw=1.6, label=f"DH elliptic β0 = {b0:g}, μ = {MU_FIG8:g}")
         po = pull_off(MU_FIG8, b0)
         ax.plot(po.W_star, po.a_star, "o", color=col, ms=5)
-        st = je._curve(a, b0)
+        st = je.load_curve_nondimensional(a, b0)
         ax.plot(st["W_star"], st["a_star"], "--", color=col, lw=1.2, label=f"JKR elliptical β0 = {b0:g}")
-        pj = je._pull_off(b0)
+        pj = je.pull_off_nondimensional(b0)
         ax.plot(pj["W_star"], pj["a_star"], "s", color=col, mfc="none", ms=5)
-    j = jkr._curve(a)
+    j = jkr.load_curve_nondimensional(a)
     ax.plot(j["W_star"], j["a_star"], ":", color="0.3", lw=1.5, label="JKR circular")
     ax.set_xlabel("normalised load W* = W sinθ_skew / (2πRΔγ)  (Eq. 34)")
     ax.set_ylabel("contact semi-major axis a* (Eq. 32)")

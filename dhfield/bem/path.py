@@ -1,27 +1,25 @@
-"""Displacement-controlled loading-unloading paths of the adhesive BEM solver, and the fold.
+"""Loading-unloading paths of the adhesive BEM solver, and their pull-off.
 
-and unloads with warm starts until contact is lost, then re-solves the
-bracket of the pull-off with finer steps (``refine_levels`` times).  The
-load-control pull-off is the minimum of the unloading load (refined by
-:func:`dhfield.pull_off_search.refine_sampled_minimum`); the
-displacement-control pull-off is the fold of delta(W) extrapolated from the
-converged states of the branch (:func:`fold_of_branch`; the last states before
-the jump hold few contact cells and do not converge).
-:func:`adhesive_pull_off` runs it in the paper's nondimensional units.  Under
-load control it *brackets* the minimum instead (``search='bracket'``): a cold
-start at the analytic DH pull-off approach from the DH cohesive zone, steps
-until the load minimum is interior, and parabolic vertex states (3-6 states
-instead of ~32, the same pull-off to the jaggedness of the discrete load
-curve); every state starts from the same approach solved on the grid half as
-fine (:class:`NestedWarmStart`), which cuts the outer iterations ~4x.
-:func:`refine_pull_off` carries a pull-off to a finer grid (coarse to fine):
-only ~7 states around the coarse pull-off are solved, warm-started from the
-coarse state interpolated onto the fine grid (:func:`interpolate_state`); this
-is what makes N = 1024 affordable for Richardson extrapolation.
+:func:`unloading_path` follows the states of one adhesive contact problem
+(:mod:`dhfield.bem.solver`), each warm-started from the previous ones (the
+states are multistable: never a cold start part-way).
 
+* **Load control** (the minimum of the unloading load): either the marching
+  path (loading steps to ``approach_max``, unloading by ``approach_step`` until
+  contact is lost, the bracket of the minimum re-solved ``refine_levels`` times
+  with finer steps) or, given ``approach_guess``, a *bracket search* around it
+  (a handful of states, parabolic vertex refinement).  The minimum is refined
+  by :func:`dhfield.pull_off_search.refine_sampled_minimum`.
+* **Displacement control** (the jump: the minimum of the approach, i.e. the
+  fold of the contact branch, or the loss of contact when the approach still
+  falls there): the branch is followed by prescribed adhesive force with the
+  approach as an unknown (:mod:`dhfield.bem.continuation`), which is monotone
+  through the fold, so the fold is interpolated between converged states on
+  both sides.  :func:`fold_of_branch` (the older extrapolation of delta(W) from
+  states before the fold) remains as the fallback when nothing is bracketed.
 
-The single-state solver is :mod:`dhfield.bem.solver`; the paper-unit pull-off
-(bracket search, nested warm starts, coarse to fine) is :mod:`dhfield.bem.pull_off`.
+The pull-off in the paper's units (bracket search, nested warm starts, coarse
+to fine) is :mod:`dhfield.bem.pull_off`.
 """
 from __future__ import annotations
 
@@ -32,7 +30,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validation import check_finite, check_positive
+from .._validation import check_count, check_finite, check_positive
+from .continuation import FOLD_STEPS, fold_by_adhesive_force
 from .state import ContactState
 from .solver import (DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction,
                      solve_problem)
@@ -56,9 +55,11 @@ class UnloadingPath:
     contact_area : ndarray
         Contact area per state [length^2].
     phase : ndarray of str
-        'loading', 'unloading', 'refine', 'jump' (re-solved from separation) or
+        'loading', 'unloading', 'refine', 'jump' (re-solved from separation),
         'discarded' (a cold start of the bracket search that gave no converged
-        contact state; kept, flagged, excluded from the pull-off) per state.
+        contact state; kept, flagged, excluded from the pull-off), and under
+        displacement control 'continuation' and 'fold' (states at a prescribed
+        adhesive force: the coarse steps and the window around the fold) per state.
     converged : ndarray of bool
     iterations : ndarray of int
         Inner CG iterations per state.
@@ -69,9 +70,12 @@ class UnloadingPath:
     pull_off_load, pull_off_approach : float
         Load-control: the minimum of the unloading load, refined by a parabola
         through the three finest samples around it.  Displacement control: the
-        fold of delta(W) extrapolated from the converged contact states of the
-        branch (:func:`fold_of_branch`); when no fold is bracketed, the last
-        converged contact state (said in ``pull_off_note``).
+        minimum of the approach along the branch followed by adhesive force
+        (:func:`dhfield.bem.continuation.fold_by_adhesive_force`): the fold, or
+        the loss of contact when the approach still falls there (said in
+        ``pull_off_note``); when neither is bracketed, the fold of delta(W)
+        extrapolated from the converged states (:func:`fold_of_branch`, said in
+        ``pull_off_note``).
     pull_off_state : ContactState
         The solved state nearest to the pull-off (its semi-axes are reported).
     failures : tuple of dict
@@ -94,12 +98,12 @@ class UnloadingPath:
         States and CG iterations solved on coarser grids for the warm starts
         (``warm_start``; 0 without), not counted in the arrays above.
     pull_off_error : float
-        Displacement control: error estimate of ``pull_off_load`` from the fold
-        extrapolation [force] (NaN when it cannot be estimated, and under load
-        control).
+        Displacement control: error estimate of ``pull_off_load`` from the fit
+        around the fold [force], without the grid's discretisation error (NaN
+        when it cannot be estimated, and under load control).
     pull_off_note : str
         Caveats on the pull-off (empty if none): under displacement control, a
-        fold that is not bracketed.
+        branch that ends by loss of contact, or a fold that is not bracketed.
     """
 
     approach: np.ndarray
@@ -299,7 +303,9 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     approach_guess : float, optional
         Expected approach of the load minimum (e.g. the analytic DH model's
         load-control pull-off) [length].  With ``control='load'`` the path then
-        *brackets* the minimum instead of marching to it (see Notes).
+        *brackets* the minimum instead of marching to it; with
+        ``control='displacement'`` the branch is followed from a state solved
+        there instead of from ``approach_max`` (see Notes).
     start_stress : array_like, shape (nx, ny), optional
         Adhesive stress to cold-start the first state of the bracket search from
         (e.g. sigma0 on the analytic cohesive zone at pull-off) [stress];
@@ -340,6 +346,16 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     :func:`dhfield.pull_off_search.refine_sampled_minimum` on the finest
     samples.  Under displacement control the contact branch is stable until
     the jump, so no state is lost by stepping past it.
+
+    **Displacement control**: the first state is solved at ``approach_guess``
+    as above (else the loading steps end at ``approach_max``), and the branch
+    is followed from it by decreasing *adhesive force* with the approach as an
+    unknown (:func:`dhfield.bem.continuation.fold_by_adhesive_force`): that
+    control is monotone through the fold of the approach, where a prescribed
+    approach stops converging, so the fold (the jump) is interpolated between
+    states on both sides of it.  ``refine_factor`` divides the force step in
+    the window fitted around the fold; ``approach_step``, ``refine_levels`` and
+    ``max_steps`` are not used.
     """
     from ..pull_off_search import refine_sampled_minimum
 
@@ -351,10 +367,10 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     dmax = float(check_finite("approach_max", approach_max, "length"))
     step = float(check_positive("approach_step", approach_step, "length"))
     tol = float(check_positive("tol", tol, "solver tolerance, dimensionless"))
-    for name, v, lo in (("n_loading", n_loading, 1), ("refine_levels", refine_levels, 0),
-                        ("refine_factor", refine_factor, 2), ("max_steps", max_steps, 2)):
-        if int(v) != v or int(v) < lo:
-            raise ValueError(f"{name} must be an integer >= {lo}; got {v!r}")
+    n_loading = check_count("n_loading", n_loading, 1, 10_000, "loading steps")
+    refine_levels = check_count("refine_levels", refine_levels, 0, 20, "refinements of the pull-off bracket")
+    refine_factor = check_count("refine_factor", refine_factor, 2, 100, "step division per refinement")
+    max_steps = check_count("max_steps", max_steps, 2, 100_000, "cap on unloading states")
     guess_d = None if approach_guess is None else float(
         check_finite("approach_guess", approach_guess, "expected approach of the load minimum, length"))
     start_gap_stress = None
@@ -370,7 +386,9 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     by_index = {}
 
     def run(delta, guess, phase):
-        st = solve_problem(prob, float(delta), guess, tol, int(max_iter))
+        return keep(solve_problem(prob, float(delta), guess, tol, int(max_iter)), phase)
+
+    def keep(st, phase):
         rec = st.summary()
         rec["phase"] = phase
         rec["in_contact"] = st.in_contact
@@ -378,7 +396,7 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         k = len(records) - 1
         by_index[k] = st
         if not st.converged:
-            failures.append({"approach": float(delta), "residual": float(st.residual),
+            failures.append({"approach": float(st.approach), "residual": float(st.residual),
                              "iterations": int(st.iterations), "phase": phase})
         prog.update(k, st, phase)
         return k, st
@@ -432,6 +450,10 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
                 if i not in keep:
                     del by_index[i]
 
+    if control == "displacement":
+        return _displacement_pull_off(prob, keep, run, records, by_index, failures, prog, t0, external,
+                                      guess_d, start_gap_stress, dmax, n_loading, refine_factor, tol,
+                                      max_iter, keep_states, warm_start)
     outcome, unload = ("none", [])
     if control == "load" and guess_d is not None:
         outcome, unload = search_minimum()
@@ -562,6 +584,12 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         reached = [i for i in range(len(records)) if records[i]["phase"] not in ("jump", "discarded")
                    and records[i]["approach"] >= records[k_po]["approach"]]
         po_converged = all(records[i]["converged"] for i in reached)
+    return _path_result(prob, records, by_index, failures, control, w_po, d_po, k_po, po_converged, t0,
+                        keep_states, warm_start, w_po_error, po_note)
+
+
+def _path_result(prob, records, by_index, failures, control, w_po, d_po, k_po, po_converged, t0, keep_states,
+                 warm_start, w_po_error, po_note) -> UnloadingPath:
     if k_po not in by_index:
         k_po = max(by_index)
     arr = {key: np.array([r[key] for r in records]) for key in
@@ -575,3 +603,62 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
                          tuple(failures), states, time.perf_counter() - t0, po_converged, prob.resolved,
                          int(getattr(warm_start, "states_solved", 0)), int(getattr(warm_start, "iterations", 0)),
                          pull_off_error=float(w_po_error), pull_off_note=po_note)
+
+
+#: Notes of a displacement-control pull-off by how the contact branch ends (:func:`fold_by_adhesive_force`).
+CONTACT_LOSS_NOTE = ("the contact branch ends where its last contact cell opens, before a fold of the "
+                     "approach (the end a = 0 of the Maugis-Dugdale curve): the pull-off is the load there; "
+                     "the Dugdale contact then continues on the separated branch without a jump")
+FOLD_NOT_FOUND_NOTE = ("no fold of the approach (nor a loss of contact) was bracketed along the adhesive "
+                       "force: the pull-off is extrapolated from the converged states (fold_of_branch)")
+
+
+def _displacement_pull_off(prob, keep, run, records, by_index, failures, prog, t0, external, guess_d,
+                           start_gap_stress, dmax, n_loading, refine_factor, tol, max_iter, keep_states,
+                           warm_start) -> UnloadingPath:
+    """Displacement control: a start state, then the branch by adhesive force through its fold."""
+    start = None
+    if guess_d is not None:
+        guess = external(guess_d)
+        if guess is None and start_gap_stress is not None:
+            guess = Prediction(np.zeros_like(start_gap_stress), start_gap_stress.copy())
+        k, st = run(guess_d, guess, "unloading")
+        if st.converged and st.in_contact:
+            start = st
+        else:
+            records[k]["phase"] = "discarded"
+    if start is None:
+        st = None
+        for delta in np.linspace(0.0, dmax, int(n_loading) + 1)[1:] if dmax > 0 else [dmax]:
+            _, st = run(delta, st, "loading")
+        if st.converged and st.in_contact:
+            start = st
+    if start is None:
+        prog.close()
+        # no converged contact state to start from: report the failure (NaN pull-off), never raise
+        return _path_result(prob, records, by_index, failures, "displacement", float("nan"), float("nan"),
+                            len(records) - 1, False, t0, keep_states, warm_start, float("nan"), "")
+    index_of = {id(start): len(records) - 1}
+
+    def record(state, phase):
+        keep(state, phase)
+        index_of[id(state)] = len(records) - 1
+
+    fold = fold_by_adhesive_force(prob, start, steps=FOLD_STEPS, refine_factor=refine_factor, tol=tol,
+                                  max_iter=int(max_iter), record=record)
+    prog.close()
+    k_po = index_of.get(id(fold.nearest), len(records) - 1)
+    if not keep_states:               # the summaries stay; of the states only the reported one
+        for i in [i for i in by_index if i != k_po]:
+            del by_index[i]
+    branch = [i for i in range(len(records)) if records[i]["phase"] in ("unloading", "continuation", "fold")]
+    if fold.kind == "failed":
+        good = sorted((i for i in branch if records[i]["converged"] and records[i]["in_contact"]),
+                      key=lambda i: -records[i]["approach"])
+        old = fold_of_branch([records[i]["load"] for i in good], [records[i]["approach"] for i in good])
+        return _path_result(prob, records, by_index, failures, "displacement", old.load, old.approach, k_po,
+                            False, t0, keep_states, warm_start, old.load_error, FOLD_NOT_FOUND_NOTE)
+    po_converged = all(records[i]["converged"] for i in branch if records[i]["phase"] != "discarded")
+    note = CONTACT_LOSS_NOTE if fold.kind == "contact loss" else ""
+    return _path_result(prob, records, by_index, failures, "displacement", fold.load, fold.approach, k_po,
+                        po_converged, t0, keep_states, warm_start, fold.load_error, note)

@@ -1,0 +1,391 @@
+"""Adhesive states at a prescribed adhesive force: a path through the fold of the approach.
+
+Under displacement control the contact branch of an adhesive contact ends at
+its *fold*, where the approach delta is smallest (d delta/da = 0, a the contact
+radius; Maugis 1992 [1]_).  Near the fold the fixed point at a prescribed
+approach slows down critically (two states, the stable and the unstable one,
+merge there) and, on the cell lattice, stops converging: at lambda = 3,
+N = 128 the last converged state was 0.12 in contact radius (3.5 cells) short
+of the fold and the fold had to be extrapolated (-13.6 % vs Maugis-Dugdale).
+
+Here the *adhesive force* is prescribed instead,
+
+.. math:: F_a = \\int \\sigma(h)\\, dA
+
+(for the Dugdale law sigma0 times the area of contact U cohesive zone), and the
+approach is an extra unknown.  F_a decreases monotonically along the whole
+unloading branch, through the fold and past the loss of contact, so every
+state on it is reached with a bounded number of outer iterations (measured on
+the sphere at lambda = 3, N = 128: 20-27 per state, through the fold), and the
+displacement-control pull-off is *interpolated* between states on both sides
+of the minimum of delta(F_a) instead of extrapolated.
+
+Algorithm (:func:`solve_at_adhesive_force`): the outer fixed point of
+:mod:`dhfield.bem.solver` (Polonsky-Keer inner problem with the adhesive stress
+as a load, Anderson mixing) on the augmented unknown (s, delta).  After each
+inner solve the gap h is shifted rigidly by the D that makes the adhesive force
+of the updated stress equal to the target (a monotone scalar root of the
+sub-cell zone fractions, no extra inner solve); D is the residual of delta.
+The fixed point is the same state as :func:`dhfield.bem.solver.solve_problem`
+gives at the returned approach.
+
+References
+----------
+.. [1] D. Maugis (1992) Adhesion of spheres: the JKR-DMT transition using a
+   Dugdale model. J. Colloid Interface Sci. 150:243-269.
+   doi:10.1016/0021-9797(92)90288-C
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .._validation import check_count, check_finite, check_positive
+from .laws import DugdaleLaw, cell_fraction_below
+from .solver import (ANDERSON_RESTART, MAX_OUTER, STALL_OUTER, AdhesiveProblem, Prediction, _Anderson,
+                     _polonsky_keer, _state)
+from .state import ContactState
+
+__all__ = ["solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force", "FoldSearch",
+           "FOLD_STEPS", "FOLD_WINDOW"]
+
+#: Default number of adhesive-force steps from the start state to zero force.
+FOLD_STEPS = 16
+#: Half-width of the window fitted around the fold, in coarse force steps: +-2 steps
+#: spans ~+-25 % of the fold's adhesive force at lambda = 3 (a cubic over it averages
+#: the lattice jaggedness of the approach; measured at N = 128: within 0.2 % of MD).
+FOLD_WINDOW = 2
+#: Largest rigid shift D of the gap per outer iteration, in units of the law's range
+#: (bounds the root search; a larger mismatch is corrected over several iterations).
+MAX_SHIFT_RANGES = 4.0
+
+
+def adhesive_force(state: ContactState) -> float:
+    """Adhesive force of a solved state, the integral of the adhesive stress [force].
+
+    For the Dugdale law sigma0 x (area of contact U cohesive zone); for the
+    exponential law the integral of sigma(h) (sigma0 in contact).
+    """
+    if not isinstance(state, ContactState) or state.law is None:
+        raise ValueError("state must be a ContactState with a traction law (adhesive)")
+    law = state.law
+    if isinstance(law, DugdaleLaw):
+        return law.max_stress * state.adhesive_area
+    s = np.where(state.contact, law.max_stress, law.stress(np.maximum(state.gap, 0.0)))
+    return float(s.sum()) * state.cell_area
+
+
+def _stress_of(prob, st):
+    law = prob.law
+    if isinstance(law, DugdaleLaw):
+        return law.max_stress * prob.to_work(st.adhesive_zone)
+    return np.where(prob.to_work(st.contact), law.max_stress,
+                    law.stress(np.maximum(prob.to_work(st.gap), 0.0)))
+
+
+def _shift_for_force(prob, h, contact, target):
+    """Rigid shift D of the gap (h -> h - D) that gives the adhesive force ``target``."""
+    law = prob.law
+    if isinstance(law, DugdaleLaw):
+        sx, sy = prob.gradient_spreads(h)          # a rigid shift leaves the gradients alone
+
+        def force(shift):
+            chi = cell_fraction_below(law.range - h + shift, sx, sy)
+            chi[contact] = 1.0
+            return law.max_stress * float(chi.sum()) * prob.weight
+    else:
+        def force(shift):
+            s = np.where(contact, law.max_stress, law.stress(np.maximum(h - shift, 0.0)))
+            return float(s.sum()) * prob.weight
+    lim = MAX_SHIFT_RANGES * law.range
+    lo, hi = force(-lim) - target, force(lim) - target
+    if lo >= 0.0:
+        return -lim
+    if hi <= 0.0:
+        return lim
+    return brentq(lambda d: force(d) - target, -lim, lim, xtol=1e-12 * law.range, rtol=1e-12)
+
+
+def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, max_iter) -> ContactState:
+    """Adhesive state at a prescribed adhesive force, the approach being an unknown.
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem (grid, initial gap, law); an adhesive law is required.
+    force : float
+        Adhesive force F_a = integral of the adhesive stress, > 0 [force].
+    guess : ContactState or Prediction
+        Warm start (a state of the same branch, e.g. the previous one).
+    approach : float
+        First guess of the approach [length].
+    tol, max_iter
+        As in :func:`dhfield.bem.solver.solve_problem`; the approach is
+        converged when the rigid shift of the gap that restores the force is
+        below ``tol`` times the law's range.
+
+    Returns
+    -------
+    ContactState
+        At the approach found (``state.approach``), flagged ``converged``.
+    """
+    law = prob.law
+    if law is None:
+        raise ValueError("prob must have an adhesive law (DugdaleLaw or ExponentialLaw); got None")
+    target = float(check_positive("force", force, "adhesive force, force"))
+    delta = float(check_finite("approach", approach, "first guess of the approach, length"))
+    sigma0, h0 = law.max_stress, law.range
+    if isinstance(guess, Prediction):
+        p, s = guess.pressure.copy(), guess.stress.copy()
+    elif isinstance(guess, ContactState) and guess.repulsive_pressure is not None:
+        p, s = prob.to_work(guess.repulsive_pressure).copy(), _stress_of(prob, guess)
+    else:
+        raise ValueError("guess must be a solved ContactState or a Prediction of the same problem")
+    gain = min(1.0, prob.min_spread / h0) if prob.min_spread > 0.0 else 1.0
+    inner_tol = 0.1 * tol * gain
+    # weight of the approach among the stress unknowns in Anderson's least squares
+    w_delta = math.sqrt(max(np.count_nonzero(s), 1))
+    acc = _Anderson()
+    res = err = np.inf
+    total_it = outer = best_outer = 0
+    best = None
+    while outer < MAX_OUTER and total_it < max_iter and outer - best_outer <= STALL_OUTER:
+        outer += 1
+        itol = gain * (1e-3 if not np.isfinite(res) else min(max(0.1 * res, 0.1 * tol), 1e-2))
+        p, h, it, err = _polonsky_keer(prob.op, prob.z - delta, p, h0, itol, max_iter - total_it, prob.k0,
+                                       stress=s)
+        total_it += it
+        contact = p > 0
+        f = prob.stress_from_gap(h, contact) - s
+        shift = _shift_for_force(prob, h, contact, target)
+        res = max(float(np.max(np.abs(f))) / sigma0, abs(shift) / h0)
+        if best is None or res < best[0]:
+            best = (res, s.copy(), p.copy(), h.copy(), err, delta)
+            best_outer = outer
+        if res <= tol and err <= tol and (err <= inner_tol or itol <= inner_tol):
+            break
+        x = np.append(s.ravel() / sigma0, delta / h0 * w_delta)
+        fx = np.append(f.ravel() / sigma0, shift / h0 * w_delta)
+        new = acc.step(x, fx)
+        s = np.clip(new[:-1].reshape(s.shape) * sigma0, 0.0, sigma0)
+        delta = float(new[-1]) * h0 / w_delta
+        if outer % ANDERSON_RESTART == 0:
+            acc.reset()
+    else:
+        res, s, p, h, err, delta = best
+    return _state(prob, delta, p, s, h, total_it, max(res, err), res <= tol and err <= tol, outer)
+
+
+def _secant(prob, prev, last, t):
+    """Warm start extrapolated by t (in units of the last force step) from two states."""
+    if prev is None or not (prev.converged and last.converged) or prev.in_contact != last.in_contact:
+        return last, last.approach
+    s1, s0 = _stress_of(prob, last), _stress_of(prob, prev)
+    p1, p0 = prob.to_work(last.repulsive_pressure), prob.to_work(prev.repulsive_pressure)
+    return (Prediction(np.maximum(p1 + t * (p1 - p0), 0.0), np.clip(s1 + t * (s1 - s0), 0.0,
+                                                                     prob.law.max_stress)),
+            last.approach + t * (last.approach - prev.approach))
+
+
+@dataclass(frozen=True)
+class FoldSearch:
+    """The end of a contact branch found along the adhesive force.
+
+    Attributes
+    ----------
+    kind : str
+        'fold' (interior minimum of the approach: the jump under displacement
+        control), 'contact loss' (the approach still decreases when the last
+        contact cell opens: the Maugis-Dugdale curve ends at a = 0, lambda <~ 0.94)
+        or 'failed' (a state did not converge before either was bracketed).
+    load, approach, adhesive_force : float
+        Load W [force], approach delta [length] and adhesive force [force] at
+        the fold or at the loss of contact (NaN when failed).
+    load_error : float
+        Error estimate of ``load`` from the fit [force]: the larger change of
+        the result with a quartic over the window or a quadratic over its
+        inner half (NaN when neither gives a result).  It does not include the
+        discretisation error of the grid.
+    nearest : ContactState
+        The solved contact state nearest to the fold (its semi-axes are reported).
+    """
+
+    kind: str
+    load: float
+    approach: float
+    adhesive_force: float
+    load_error: float
+    nearest: ContactState
+
+
+def _fold_fit(forces, approaches, loads, f_loss, deg):
+    """(force, approach, load, kind) at the smallest approach of least-squares fits over the samples.
+
+    delta(F_a) is fitted with a polynomial of degree ``deg``, W(F_a) with one of
+    degree min(deg, 3).  The smallest approach is an interior minimum ('fold')
+    or, when the contact is lost at ``f_loss`` (NaN: not lost) while the approach
+    still falls, that end ('contact loss'); None when neither is bracketed.
+    """
+    x, d, w = (np.asarray(v, dtype=float) for v in (forces, approaches, loads))
+    deg = min(deg, x.size - 1)
+    if deg < 2:
+        return None
+    x0, sc = 0.5 * (x.min() + x.max()), max(0.5 * (x.max() - x.min()), 1e-300)
+    t = (x - x0) / sc                 # centred, scaled abscissa: well-conditioned least squares
+    pd = np.polyfit(t, d, deg)
+    pw = np.polyfit(t, w, min(deg, 3))
+    lost = bool(np.isfinite(f_loss))
+    lo, hi = ((f_loss - x0) / sc if lost else t.min()), t.max()
+    crit = np.roots(np.polyder(pd))
+    crit = crit[np.abs(crit.imag) < 1e-9].real
+    crit = [c for c in crit if lo < c < hi and np.polyval(np.polyder(pd, 2), c) > 0.0]
+    if crit:
+        tv, kind = min(crit, key=lambda c: np.polyval(pd, c)), "fold"
+    elif lost and np.polyval(np.polyder(pd), lo) >= 0.0:
+        tv, kind = lo, "contact loss"
+    else:
+        return None
+    return float(x0 + sc * tv), float(np.polyval(pd, tv)), float(np.polyval(pw, tv)), kind
+
+
+def _contact_loss_force(forces, areas):
+    """Force where the contact area, linear in the force near a = 0, extrapolates to zero."""
+    f, a = np.asarray(forces), np.asarray(areas)
+    if f.size < 2 or np.ptp(f) == 0.0:
+        return float("nan")
+    slope, icpt = np.polyfit(f, a, 1)
+    return float(-icpt / slope) if slope > 0 else float("nan")
+
+
+def fold_by_adhesive_force(prob: AdhesiveProblem, start: ContactState, *, steps=FOLD_STEPS, window=FOLD_WINDOW,
+                           refine_factor=4, tol=1e-6, max_iter=20000, record=None) -> FoldSearch:
+    """Follow a contact branch by decreasing adhesive force to its fold (or loss of contact).
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem; an adhesive law is required.
+    start : ContactState
+        A converged contact state of the branch above the fold (e.g. near the
+        load-control pull-off).
+    steps : int
+        Force steps from the start state's adhesive force to zero (>= 4): the
+        coarse step dF = F_a(start)/steps.
+    window : int
+        Half-width of the fitting window around the smallest sampled approach,
+        in coarse steps (>= 1).
+    refine_factor : int
+        The window is sampled with steps dF/refine_factor (>= 1).
+    tol, max_iter
+        As in :func:`solve_at_adhesive_force`.
+    record : callable, optional
+        ``record(state, phase)`` is called for every solved state (phase
+        'continuation' for the coarse steps, 'fold' for the window).
+
+    Returns
+    -------
+    FoldSearch
+
+    Notes
+    -----
+    Along the branch delta(F_a) and W(F_a) are smooth; delta has its minimum
+    at the fold.  The branch is followed in coarse steps dF until the
+    smallest approach lies ``window`` steps behind (or the contact is lost),
+    the window of +-``window`` dF around it is sampled with steps
+    dF/``refine_factor``, and the fold is the minimum of a least-squares cubic
+    delta(F_a) over the contact states of the window, its load the cubic
+    least-squares W(F_a) there.  The fit averages the lattice jaggedness of
+    delta (+-0.005 at lambda = 3, N = 128, where W(F_a) is within 0.0015 of
+    Maugis-Dugdale): near the fold delta - delta_f ~ (F_a - F_f)^2, so a
+    three-point vertex moves with the square root of that noise.  When the
+    window holds separated states (no contact cell), the contact area, linear
+    in F_a near a = 0 (Maugis-Dugdale: F_a - F_0 ~ a^2), is extrapolated to
+    zero over the last contact states; when delta still falls there, the
+    pull-off is the end of the contact branch (kind 'contact loss', the end
+    a = 0 of the Maugis-Dugdale curve, lambda <~ 0.94).  The error estimate is
+    the spread of the result over a quadratic on the inner half window and a
+    quartic on the whole window.
+    """
+    if not (isinstance(start, ContactState) and start.converged and start.in_contact):
+        raise ValueError("start must be a converged ContactState in contact")
+    steps = check_count("steps", steps, 4, 10_000, "force steps to zero")
+    window = check_count("window", window, 1, 100, "coarse steps each side of the fold")
+    refine_factor = check_count("refine_factor", refine_factor, 1, 100, "window sub-steps per coarse step")
+    f0 = adhesive_force(start)
+    df = f0 / steps
+    samples = {f0: start}            # adhesive force -> converged state
+
+    def solve(force, guess, approach, phase):
+        st = solve_at_adhesive_force(prob, force, guess, approach, tol, max_iter)
+        if record is not None:
+            record(st, phase)
+        if st.converged:
+            samples[force] = st
+        return st
+
+    def contact_min():
+        fs = [k for k in samples if samples[k].in_contact]
+        return min(fs, key=lambda k: samples[k].approach)
+
+    prev, last, force = None, start, f0
+    ended = False                     # contact lost or a state failed
+    while force - df > 0.25 * df:
+        force -= df
+        guess, d_guess = _secant(prob, prev, last, 1.0)
+        st = solve(force, guess, d_guess, "continuation")
+        if not (st.converged and st.in_contact):
+            ended = True
+            break
+        if contact_min() - force >= window * df - 1e-9 * df:
+            break
+        prev, last = last, st
+    f_min = contact_min()
+    # the window, sampled with steps df/refine_factor (on the coarse lattice f0 - j df/refine_factor)
+    h = df / refine_factor
+    j_min = int(round((f0 - f_min) / h))
+    lattice = [f0 - j * h for j in range(max(j_min - window * refine_factor, 0), j_min + window * refine_factor + 1)]
+    lattice = [f for f in lattice if f > 0.25 * h]
+    lowest_separated = max((k for k in samples if not samples[k].in_contact), default=-np.inf)
+    failed_below = force if (ended and not st.converged) else -np.inf
+    for f in sorted(lattice, reverse=True):
+        if any(math.isclose(f, k, rel_tol=0.0, abs_tol=1e-9 * df) for k in samples):
+            continue
+        if f <= max(lowest_separated, failed_below) - 0.5 * h:
+            continue                  # beyond a separated or failed state: not on the contact branch
+        near = samples[min(samples, key=lambda k: abs(k - f) + (0 if samples[k].in_contact else df))]
+        new = solve(f, near, near.approach, "fold")
+        if not new.converged:
+            failed_below = max(failed_below, f)
+        elif not new.in_contact:
+            lowest_separated = max(lowest_separated, f)
+    lo_f, hi_f = min(lattice) - 1e-9 * df, max(lattice) + 1e-9 * df
+    sep = [k for k in samples if not samples[k].in_contact]
+    con = sorted(k for k in samples if samples[k].in_contact and lo_f <= k <= hi_f
+                 and k > max(sep, default=-np.inf) and k > failed_below)
+    if len(con) < 3:
+        return FoldSearch("failed", float("nan"), float("nan"), float("nan"), float("nan"), last)
+    f_loss = float("nan")
+    if sep and max(sep) >= lo_f:
+        near_loss = con[:max(3, refine_factor + 1)]
+        f_loss = _contact_loss_force(near_loss, [samples[k].contact_area for k in near_loss])
+        f_loss = min(max(f_loss, max(sep)), con[0]) if np.isfinite(f_loss) else 0.5 * (max(sep) + con[0])
+    d = [samples[k].approach for k in con]
+    w = [samples[k].load for k in con]
+    best = _fold_fit(con, d, w, f_loss, 3)
+    if best is None:
+        return FoldSearch("failed", float("nan"), float("nan"), float("nan"), float("nan"), samples[f_min])
+    # error estimate: a quartic on the window, a quadratic on its inner half around the result
+    alts = [_fold_fit(con, d, w, f_loss, 4)]
+    inner = [i for i, k in enumerate(con) if abs(k - best[0]) <= 0.25 * (con[-1] - con[0]) + 0.5 * h]
+    if len(inner) >= 4:
+        alts.append(_fold_fit([con[i] for i in inner], [d[i] for i in inner], [w[i] for i in inner],
+                              f_loss, 2))
+    if best[3] == "contact loss":
+        # the loss of contact is located within its bracket [first separated, last contact state]
+        alts += [_fold_fit(con, d, w, f_end, 3) for f_end in (max(sep), con[0])]
+    err = max((abs(alt[2] - best[2]) for alt in alts if alt is not None), default=float("nan"))
+    nearest = samples[min((k for k in samples if samples[k].in_contact), key=lambda k: abs(k - best[0]))]
+    return FoldSearch(best[3], best[2], best[1], best[0], float(err), nearest)
