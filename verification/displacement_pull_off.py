@@ -9,7 +9,7 @@ Prints one table, the sphere (beta0 = 1, Dugdale law) at lambda = 1.1272 mu in
   the branch ends ('fold', or 'contact loss' when the approach still falls as the
   last contact cell opens);
 * the reference: Maugis (1992), the minimum of delta(a) along the MD curve, or
-  its end a = 0 (``dhfield.maugis_dugdale.pull_off_nondimensional(mu, "displacement")``);
+  its end a = 0 (``dhfield.maugis_dugdale.pull_off(..., control="displacement")``);
 * the error, whether the estimate bounds it (|error| <= W_star_error), seconds,
   states, and PASS/FAIL against the self-set target: within 2 % of MD at
   N = 256 for lambda in {0.6, 1, 1.5, 2, 3} (lambda = 0.3 and other N are shown
@@ -57,7 +57,8 @@ def main(argv=None) -> int:
     t_all = time.perf_counter()
     for lam in args.lam:
         mu = float(transition.tabor_from_maugis(lam))
-        ref = float(maugis_dugdale.pull_off_nondimensional(mu, "displacement")["W_star"])
+        # Maugis (1992) in the paper's units R = E* = Delta gamma = 1, sigma0 = mu: W* = W/(2 pi) (Eq. 34)
+        ref = float(maugis_dugdale.pull_off(1.0, 1.0, 1.0, mu, control="displacement").load) / (2.0 * np.pi)
         for n in args.n:
             t0 = time.perf_counter()
             res = adhesive_pull_off(mu, 1.0, n, control="displacement", progress=False)
