@@ -131,3 +131,14 @@ def check_contact_size_star(name: str, value) -> np.ndarray:
     """Check a nondimensional contact size a* against :data:`CONTACT_SIZE_RANGE`."""
     return check_interval(name, value, *CONTACT_SIZE_RANGE, low_open=False,
                           what="contact semi-axis in units of c_r, Eq. (32)")
+
+
+def check_sequence(name: str, value, what: str = "") -> np.ndarray:
+    """Check a 1-d sequence of numbers (NaN allowed) and return it as a float array."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a sequence of numbers{_what(what)}; got {value!r}") from None
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be a 1-d sequence of numbers{_what(what)}; got shape {arr.shape}")
+    return arr

@@ -19,7 +19,7 @@ The solver is split by concept:
 This module re-exports their public names, so ``from dhfield.bem.adhesive
 import adhesive_pull_off`` keeps working.
 """
-from .continuation import (FoldSearch, adhesive_force, fold_by_adhesive_force,  # noqa: F401
+from .continuation import (FoldSearch, adhesive_force, fit_fold, fold_by_adhesive_force,  # noqa: F401
                            solve_at_adhesive_force)
 from .path import Fold, PathProgress, UnloadingPath, fold_of_branch, unloading_path  # noqa: F401
 from .pull_off import (DEFAULT_STEPS, DISPLACEMENT_CONTROL_NOTE, DOMAIN_MARGIN, SEARCHES,  # noqa: F401
@@ -33,4 +33,4 @@ __all__ = ["solve_adhesive", "unloading_path", "adhesive_pull_off", "richardson_
            "refine_pull_off", "interpolate_state", "NestedWarmStart", "fold_of_branch", "Fold",
            "DISPLACEMENT_CONTROL_NOTE", "DEFAULT_TOL", "DEFAULT_MAX_ITER", "DOMAIN_MARGIN",
            "DEFAULT_STEPS", "SEARCHES", "solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force",
-           "FoldSearch"]
+           "fit_fold", "FoldSearch"]

@@ -43,13 +43,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from .._validation import check_count, check_finite, check_positive
+from .._validation import check_count, check_finite, check_positive, check_sequence
 from .laws import DugdaleLaw, cell_fraction_below
 from .solver import (ANDERSON_RESTART, MAX_OUTER, STALL_OUTER, AdhesiveProblem, Prediction, _Anderson,
                      _polonsky_keer, _state)
 from .state import ContactState
 
-__all__ = ["solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force", "FoldSearch",
+__all__ = ["solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force", "fit_fold", "FoldSearch",
            "FOLD_STEPS", "FOLD_WINDOW"]
 
 #: Default number of adhesive-force steps from the start state to zero force.
@@ -209,8 +209,9 @@ class FoldSearch:
         the result with a quartic over the window or a quadratic over its
         inner half (NaN when neither gives a result).  It does not include the
         discretisation error of the grid.
-    nearest : ContactState
-        The solved contact state nearest to the fold (its semi-axes are reported).
+    nearest : ContactState or None
+        The solved contact state nearest to the fold (its semi-axes are
+        reported); None from :func:`fit_fold`.
     """
 
     kind: str
@@ -218,7 +219,7 @@ class FoldSearch:
     approach: float
     adhesive_force: float
     load_error: float
-    nearest: ContactState
+    nearest: ContactState | None = None
 
 
 def _fold_fit(forces, approaches, loads, f_loss, deg):
@@ -249,6 +250,66 @@ def _fold_fit(forces, approaches, loads, f_loss, deg):
     else:
         return None
     return float(x0 + sc * tv), float(np.polyval(pd, tv)), float(np.polyval(pw, tv)), kind
+
+
+def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSearch:
+    """The smallest approach of a sampled contact branch and its load, by least squares, with an error estimate.
+
+    Parameters
+    ----------
+    adhesive_forces, approaches, loads : sequence of float
+        Adhesive force F_a [force], approach delta [length] and load W [force]
+        of converged contact states of one branch around its fold (at least 4).
+    contact_loss : (float, float), optional
+        When the contact is lost among the samples: the adhesive force of the
+        first separated state and the estimated force of the loss of contact
+        (at or below the smallest sampled force) [force].
+
+    Returns
+    -------
+    FoldSearch
+        kind 'fold' (interior minimum of delta), 'contact loss' (delta still
+        falls at the loss of contact) or 'failed'; ``nearest`` is None.
+
+    Notes
+    -----
+    delta(F_a) is fitted by a least-squares cubic and W(F_a) by a cubic; the
+    fold is the interior minimum of the first, its load the second there.  The
+    error estimate is the largest change of that load with a quartic over all
+    samples, a quadratic over the inner half around the result and, at a
+    loss of contact, the loss put at either end of its bracket.
+    """
+    x = check_sequence("adhesive_forces", adhesive_forces, "adhesive force of each state, force")
+    d = check_sequence("approaches", approaches, "approach of each state, length")
+    w = check_sequence("loads", loads, "load of each state, force")
+    if not (x.size == d.size == w.size) or x.size < 4:
+        raise ValueError("adhesive_forces, approaches and loads must have the same length >= 4; got "
+                         f"{x.size}, {d.size}, {w.size}")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(d)) and np.all(np.isfinite(w))):
+        raise ValueError("adhesive_forces, approaches and loads must be finite (converged states only)")
+    f_sep = f_loss = float("nan")
+    if contact_loss is not None:
+        try:
+            f_sep, f_loss = (float(v) for v in contact_loss)
+        except (TypeError, ValueError):
+            raise ValueError("contact_loss must be (force of the first separated state, force of the loss); "
+                             f"got {contact_loss!r}") from None
+        if not (f_sep <= f_loss <= x.min()):
+            raise ValueError("contact_loss must satisfy first separated force <= loss force <= smallest "
+                             f"sampled force {x.min():g}; got {contact_loss!r}")
+    order = np.argsort(x)
+    x, d, w = x[order], d[order], w[order]
+    best = _fold_fit(x, d, w, f_loss, 3)
+    if best is None:
+        return FoldSearch("failed", float("nan"), float("nan"), float("nan"), float("nan"), None)
+    alts = [_fold_fit(x, d, w, f_loss, 4)]
+    inner = np.abs(x - best[0]) <= 0.25 * (x[-1] - x[0])
+    if np.count_nonzero(inner) >= 4:
+        alts.append(_fold_fit(x[inner], d[inner], w[inner], f_loss, 2))
+    if best[3] == "contact loss":
+        alts += [_fold_fit(x, d, w, f_end, 3) for f_end in (f_sep, x[0])]
+    err = max((abs(alt[2] - best[2]) for alt in alts if alt is not None), default=float("nan"))
+    return FoldSearch(best[3], best[2], best[1], best[0], float(err), None)
 
 
 def _contact_loss_force(forces, areas):
@@ -372,20 +433,9 @@ def fold_by_adhesive_force(prob: AdhesiveProblem, start: ContactState, *, steps=
         near_loss = con[:max(3, refine_factor + 1)]
         f_loss = _contact_loss_force(near_loss, [samples[k].contact_area for k in near_loss])
         f_loss = min(max(f_loss, max(sep)), con[0]) if np.isfinite(f_loss) else 0.5 * (max(sep) + con[0])
-    d = [samples[k].approach for k in con]
-    w = [samples[k].load for k in con]
-    best = _fold_fit(con, d, w, f_loss, 3)
-    if best is None:
+    fit = fit_fold(con, [samples[k].approach for k in con], [samples[k].load for k in con],
+                   contact_loss=None if not np.isfinite(f_loss) else (max(sep), f_loss))
+    if fit.kind == "failed":
         return FoldSearch("failed", float("nan"), float("nan"), float("nan"), float("nan"), samples[f_min])
-    # error estimate: a quartic on the window, a quadratic on its inner half around the result
-    alts = [_fold_fit(con, d, w, f_loss, 4)]
-    inner = [i for i, k in enumerate(con) if abs(k - best[0]) <= 0.25 * (con[-1] - con[0]) + 0.5 * h]
-    if len(inner) >= 4:
-        alts.append(_fold_fit([con[i] for i in inner], [d[i] for i in inner], [w[i] for i in inner],
-                              f_loss, 2))
-    if best[3] == "contact loss":
-        # the loss of contact is located within its bracket [first separated, last contact state]
-        alts += [_fold_fit(con, d, w, f_end, 3) for f_end in (max(sep), con[0])]
-    err = max((abs(alt[2] - best[2]) for alt in alts if alt is not None), default=float("nan"))
-    nearest = samples[min((k for k in samples if samples[k].in_contact), key=lambda k: abs(k - best[0]))]
-    return FoldSearch(best[3], best[2], best[1], best[0], float(err), nearest)
+    nearest = samples[min((k for k in samples if samples[k].in_contact), key=lambda k: abs(k - fit.adhesive_force))]
+    return FoldSearch(fit.kind, fit.load, fit.approach, fit.adhesive_force, fit.load_error, nearest)

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validation import check_count, check_finite, check_positive
+from .._validation import check_count, check_finite, check_positive, check_sequence
 from .continuation import FOLD_STEPS, fold_by_adhesive_force
 from .state import ContactState
 from .solver import (DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction,
@@ -181,7 +181,7 @@ def fold_of_branch(loads, approaches, *, points=5) -> Fold:
         Load W [force] and approach delta [length] of the converged contact states
         of the branch, by decreasing approach (the last one nearest the jump).
     points : int, default 5
-        States used: the last ``points`` (at least 3).
+        States used: the last ``points`` (3 to 1000).
 
     Returns
     -------
@@ -202,12 +202,15 @@ def fold_of_branch(loads, approaches, *, points=5) -> Fold:
     five states averages the lattice jaggedness of the load (a three-point
     parabola amplified it: -3.50 instead of -2.80 at lambda = 1, N = 128).
     """
-    w = np.asarray(loads, dtype=float)
-    d = np.asarray(approaches, dtype=float)
+    w = check_sequence("loads", loads, "load W of each state, force")
+    d = check_sequence("approaches", approaches, "approach delta of each state, length")
+    if w.shape != d.shape:
+        raise ValueError(f"loads and approaches must have the same length; got {w.size} and {d.size}")
+    points = check_count("points", points, 3, 1000, "states in the fit")
     if w.size == 0:
         return Fold(float("nan"), float("nan"), float("nan"), False)
     last = Fold(float(w[-1]), float(d[-1]), float("nan"), False)
-    m = min(max(int(points), 3), w.size)
+    m = min(points, w.size)
     if m < 3:
         return last
 
