@@ -170,8 +170,8 @@ def work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, theta=0.0, 
     At theta_p = 0 this is Eq. (31).  For beta = 1 it equals the closed form of
     Greenwood & Johnson (1998), v (1+v) 2E*/(3 pi R^2) (c-a)^2 (c+2a).
     """
-    a, c, beta, v, r_eff, e = double_hertz._check_state(semi_major, adhesive_semi_major, beta, scaling,
-                                                        effective_radius, reduced_modulus)
+    a, c, beta, v, r_eff, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+                                                            effective_radius, reduced_modulus)
     theta = check_finite("theta", theta, "rad")
     a, c, beta, v, theta, r_eff, e = np.broadcast_arrays(a, c, beta, v, theta, r_eff, e)
     b, d = beta * a, beta * c

@@ -318,7 +318,7 @@ def _two_field_state(closure, mu, beta0, a, b, c, d, amp_a, amp_b):
     j1c = ellipsoid_integrals(0.0, c, d)[0]
     w_star = sn / 3.0 * (amp_a * a * b - amp_b * c * d)  # Eq. (25) -> Eq. (36)
     delta = 0.5 * (amp_a * a * b * j1a - amp_b * c * d * j1c)  # Eq. (14a) for both fields
-    prof = periphery._profile_general(a, b, c, d, amp_a, amp_b, np.array([0.0, 0.5 * np.pi]))
+    prof = periphery.periphery_two_ellipses(a, b, c, d, amp_a, amp_b, np.array([0.0, 0.5 * np.pi]))
     return ClosureState(closure, *np.broadcast_arrays(mu, beta0, a, b, c, d, amp_a, amp_b, w_star, delta,
                                                       prof.work_of_adhesion[..., 0],
                                                       prof.work_of_adhesion[..., 1],
@@ -349,7 +349,7 @@ def _ray_average_log_residual(log_s, a, mu, beta, weight, n_theta):
     po_cd = hertz.max_pressure(c, beta)  # Eq. (20)
     v = mu / (po_cd * s / c)  # Eq. (24) with sigma0 = mu: mu = v Po_cd sqrt(1 - a^2/c^2)
     th = np.linspace(0.0, 0.5 * np.pi, n_theta)
-    prof = periphery._profile_general(a, beta * a, c, beta * c, po_ab, po_cd, th)  # v-free J(theta)
+    prof = periphery.periphery_two_ellipses(a, beta * a, c, beta * c, po_ab, po_cd, th)  # v-free J(theta)
     mean = periphery.ray_average(prof.work_of_adhesion, th, prof.contact_radius, weight)
     return np.log(v) + np.log1p(v) + np.log(mean)  # log of the mean Delta gamma, target 0
 
@@ -437,8 +437,8 @@ def _two_axis_residual(a, log_c, log_d, mu, beta0):
     b, c, d, amp_a, amp_b = _two_axis_fields(a, log_c, log_d, mu, beta0)
     safe = np.isfinite(b)
     fill = (lambda q, f: np.where(safe, q, f))
-    prof = periphery._profile_general(fill(a, 1.0), fill(b, 0.5), fill(c, 2.0), fill(d, 1.5),
-                                      fill(amp_a, 1.0), fill(amp_b, 1.0), np.array([0.0, 0.5 * np.pi]))
+    prof = periphery.periphery_two_ellipses(fill(a, 1.0), fill(b, 0.5), fill(c, 2.0), fill(d, 1.5),
+                                            fill(amp_a, 1.0), fill(amp_b, 1.0), np.array([0.0, 0.5 * np.pi]))
     w = prof.work_of_adhesion
     r = np.log(np.where(safe[..., None], w, np.nan))
     return r[..., 0], r[..., 1]  # log Delta gamma on the two axes (Eq. 31 on both)

@@ -36,6 +36,8 @@ Paper notes
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from . import hertz
@@ -49,10 +51,47 @@ __all__ = [
     "approach",
     "surface_displacement",
     "gap",
+    "check_parameters",
+    "DoubleHertzParameters",
 ]
 
 
-def _check_state(semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus):
+class DoubleHertzParameters(NamedTuple):
+    """Checked parameters of a DH state: semi-axes a, c [m], ellipticity beta [-], scaling v [-],
+    effective radius R [m] and reduced modulus E* [Pa] (arrays)."""
+
+    semi_major: np.ndarray
+    adhesive_semi_major: np.ndarray
+    beta: np.ndarray
+    scaling: np.ndarray
+    effective_radius: np.ndarray
+    reduced_modulus: np.ndarray
+
+
+def check_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
+                     reduced_modulus=1.0) -> DoubleHertzParameters:
+    """Validate the parameters of a DH state; a ValueError names the first bad one.
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Ellipticity b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    DoubleHertzParameters
+        The parameters as float arrays.
+    """
     a = check_positive("semi_major", semi_major, "contact semi-major axis a")
     c = check_positive("adhesive_semi_major", adhesive_semi_major, "adhesive semi-major axis c")
     if np.any(c < a):
@@ -61,7 +100,7 @@ def _check_state(semi_major, adhesive_semi_major, beta, scaling, effective_radiu
     v = check_positive("scaling", scaling, "DH scaling factor v, dimensionless", allow_zero=True)
     r = check_positive("effective_radius", effective_radius, "m")
     e = check_positive("reduced_modulus", reduced_modulus, "Pa")
-    return a, c, beta, v, r, e
+    return DoubleHertzParameters(a, c, beta, v, r, e)
 
 
 def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
@@ -86,7 +125,7 @@ def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_rad
     effective_radius, reduced_modulus : float
         R [m] and E* [Pa].
     """
-    a, c, beta, v, r, e = _check_state(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
     po_ab = hertz.max_pressure(a, beta, r, e)  # Eq. (8)
     po_cd = hertz.max_pressure(c, beta, r, e)  # Eq. (20)
@@ -102,7 +141,7 @@ def adhesive_stress(x, y, semi_major, adhesive_semi_major, beta, scaling, effect
     sigma_ac = v Po_cd sqrt(1 - (x/c)^2 - (y/d)^2) for points outside the contact
     ellipse and inside the adhesive ellipse.
     """
-    a, c, beta, v, r, e = _check_state(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -118,7 +157,7 @@ def max_adhesive_stress(semi_major, adhesive_semi_major, beta, scaling, effectiv
     With equal ellipticities this is the stress at the contact edge for every
     theta_p (see module docstring).
     """
-    a, c, beta, v, r, e = _check_state(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
     po_cd = hertz.max_pressure(c, beta, r, e)  # Eq. (20)
     return v * po_cd * np.sqrt(1.0 - (a / c) ** 2)  # Eq. (24)
@@ -131,7 +170,7 @@ def load(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, r
     -----
     .. math:: W = \\frac{4E^*}{3RF_1^3}\\{(ab)^{3/2} - v[(cd)^{3/2} - (ab)^{3/2}]\\}
     """
-    a, c, beta, v, r, e = _check_state(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
     f13 = hertz.load_factor(beta) ** 3  # Eq. (11)
     ab, cd = beta * a * a, beta * c * c
@@ -144,7 +183,7 @@ def approach(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.
     delta = (1 + v) delta_ab - v delta_cd with delta_i = Po_i b_i K(k)/E* (Eq. 14a);
     the sum delta_ab + omega_0ab of Eqs. (26a)-(27).
     """
-    a, c, beta, v, r, e = _check_state(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
     d_ab = hertz.approach(a, beta, r, e)  # Eq. (14a)
     d_cd = hertz.approach(c, beta, r, e)  # Eq. (14a) for the adhesive ellipse
@@ -158,7 +197,7 @@ def surface_displacement(x, y, semi_major, adhesive_semi_major, beta, scaling, e
     omega = omega_ab + v (omega_ab - omega_cd), valid over the whole surface (inside
     the contact, in the annulus and outside the adhesive ellipse).
     """
-    a, c, beta, v, r, e = _check_state(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
     x = check_finite("x", x, "m")
     y = check_finite("y", y, "m")
@@ -173,7 +212,7 @@ def gap(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1
     h = z + omega - delta with the total displacement and approach above; zero
     inside the contact ellipse, (1 + v) times the Hertz gap in the annulus.
     """
-    a, c, beta, v, r, e = _check_state(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
     x = check_finite("x", x, "m")
     y = check_finite("y", y, "m")

@@ -88,7 +88,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 from scipy.special import roots_legendre
 
-from . import hertz, periphery
+from . import _rays, hertz, periphery
 from ._validation import check_finite, check_positive
 from .elliptic import ellipsoid_integrals
 
@@ -146,11 +146,11 @@ def _area_general(a, b, c, d, gap_amplitude, stress_amplitude, reduced_modulus=1
     xg, wg = roots_legendre(int(n_theta))
     theta = 0.25 * np.pi * (xg + 1.0)
     w_theta = 0.25 * np.pi * wg
-    a_, b_, c_, d_, th, cos2, sin2, r_ab, r_cd = periphery._rays(a, b, c, d, theta)
+    a_, b_, c_, d_, th, cos2, sin2, r_ab, r_cd = _rays.ray_geometry(a, b, c, d, theta)
     shape = np.broadcast_shapes(r_ab.shape, r_cd.shape)
     bc = (lambda q: np.broadcast_to(q, shape))
     a_, b_, c_, d_, th, cos2, sin2, r_ab, r_cd = map(bc, (a_, b_, c_, d_, th, cos2, sin2, r_ab, r_cd))
-    t, w, l, r2, dr2_dl, dl_dt, _ = periphery._ray_nodes(a_, b_, r_cd, th, cos2, sin2)
+    t, w, l, r2, dr2_dl, dl_dt, _ = _rays.ray_nodes(a_, b_, r_cd, th, cos2, sin2)
     ex = (lambda q: q[..., None])
     r = np.sqrt(r2)
     cs, sn = ex(np.cos(th)), ex(np.sin(th))
@@ -215,7 +215,7 @@ def eq30_area(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1
     :func:`dhfield.adhesion.graded_rule`, which makes the integrand analytic
     (sigma_r ~ (r_cd - r)^(-1/2), h_r ~ (r - r_ab)^(1/2)).
     """
-    a, c, beta, v, r, e, amp_a, amp_b = periphery._check_state(
+    a, c, beta, v, r, e, amp_a, amp_b = periphery.field_parameters(
         semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus)
     n = _check_nodes(n_theta)
     out = _area_general(a, beta * a, c, beta * c, amp_a, amp_b, e, n)
@@ -230,7 +230,7 @@ def _check_nodes(n):
 
 def _boundary_general(a, b, c, d, gap_amplitude, stress_amplitude, reduced_modulus=1.0, n_edge=64):
     th = np.array([0.0, 0.5 * np.pi])
-    prof = periphery._profile_general(a, b, c, d, gap_amplitude, stress_amplitude, th, reduced_modulus)
+    prof = periphery.periphery_two_ellipses(a, b, c, d, gap_amplitude, stress_amplitude, th, reduced_modulus)
     major = 4.0 * prof.work_of_adhesion[..., 0]
     minor = -4.0 * prof.work_of_adhesion[..., 1]
     # The two curved edges, evaluated rather than assumed: sigma dh along r_ab(theta)
@@ -245,7 +245,7 @@ def _boundary_general(a, b, c, d, gap_amplitude, stress_amplitude, reduced_modul
     edges = []
     for (p, q) in ((a, b), (c, d)):
         cos, sin = np.cos(tt), np.sin(tt)
-        rr = periphery._edge_radius(ex(p), ex(q), cos**2, sin**2)
+        rr = _rays.edge_radius(ex(p), ex(q), cos**2, sin**2)
         # d r/d theta of the ellipse r(theta) = pq / sqrt(q^2 cos^2 + p^2 sin^2)
         dr = -rr**3 * cos * sin * (ex(p) ** 2 - ex(q) ** 2) / (ex(p) * ex(q)) ** 2
         x, y = rr * cos, rr * sin
@@ -255,7 +255,7 @@ def _boundary_general(a, b, c, d, gap_amplitude, stress_amplitude, reduced_modul
         _, j2, j3 = ellipsoid_integrals(0.0, a, b)
         hx = ex(amp_a / e * a * b) * x * (ex(j2) - i2)
         hy = ex(amp_a / e * a * b) * y * (ex(j3) - i3)
-        r_cd = periphery._edge_radius(ex(c), ex(d), cos**2, sin**2)  # Eq. (A2)
+        r_cd = _rays.edge_radius(ex(c), ex(d), cos**2, sin**2)  # Eq. (A2)
         sigma = ex(amp_b) * np.sqrt(np.maximum(1.0 - (rr / r_cd) ** 2, 0.0))  # Eq. (23) on the ray
         edges.append(4.0 * np.sum(wt * sigma * (hx * dx + hy * dy), axis=-1))
     inner = -edges[0]  # the inner edge is run from pi/2 to 0
@@ -283,7 +283,7 @@ def eq30_boundary(semi_major, adhesive_semi_major, beta, scaling, effective_radi
     .. math:: I_{30} = 4\\oint_{\\partial D}\\sigma\\,dh
               = 4\\Delta\\gamma(0) - 4\\Delta\\gamma(\\pi/2) + 0 + 0
     """
-    a, c, beta, v, r, e, amp_a, amp_b = periphery._check_state(
+    a, c, beta, v, r, e, amp_a, amp_b = periphery.field_parameters(
         semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus)
     out = _boundary_general(a, beta * a, c, beta * c, amp_a, amp_b, e)
     return Eq30Boundary(*(q if np.ndim(q) else q[()] for q in (out.major_axis, out.minor_axis, out.inner_edge,

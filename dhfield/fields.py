@@ -189,8 +189,8 @@ def dh_pressure(grid: bem.Grid, semi_major, adhesive_semi_major, beta, scaling, 
     ``sampling``.  Cell averages are exact because the field is linear in the two
     Hertz pressures.
     """
-    a, c, beta, v, r, e = double_hertz._check_state(semi_major, adhesive_semi_major, beta, scaling,
-                                                    effective_radius, reduced_modulus)
+    a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+                                                        effective_radius, reduced_modulus)
     po_ab = hertz.max_pressure(a, beta, r, e)  # Eq. (8)
     po_cd = hertz.max_pressure(c, beta, r, e)  # Eq. (20)
     h_ab = ellipsoid_pressure(grid, a, beta * a, po_ab, sampling)  # Eq. (7)
@@ -476,8 +476,8 @@ def dh_case(n, semi_major, adhesive_semi_major, beta, scaling, *, half_width=Non
     ``z - delta + omega_BEM`` with the analytic approach
     ``delta = (1 + v) delta_ab - v delta_cd``.  See :class:`FieldCase`.
     """
-    a, c, beta, v, r, e = double_hertz._check_state(semi_major, adhesive_semi_major, beta, scaling,
-                                                    effective_radius, reduced_modulus)
+    a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+                                                        effective_radius, reduced_modulus)
     a, c, beta, v, r, e = (float(t) for t in (a, c, beta, v, r, e))
     L = 1.5 * c if half_width is None else half_width
     grid = bem.Grid.centered(n, L, ny=ny)

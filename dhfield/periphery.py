@@ -65,12 +65,13 @@ References
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from typing import NamedTuple
 
 import numpy as np
 
 from . import double_hertz, hertz, model
 from ._validation import check_ellipticity, check_finite, check_positive
-from .adhesion import graded_rule
+from ._rays import edge_radius as _edge_radius, ray_geometry as _rays, ray_nodes as _ray_nodes
 from .elliptic import ellipsoid_integrals
 
 __all__ = [
@@ -87,6 +88,9 @@ __all__ = [
     "periphery_from_gap_grid",
     "adhesive_traction",
     "periphery_from_state",
+    "periphery_two_ellipses",
+    "field_parameters",
+    "FieldParameters",
 ]
 
 #: Default rays: 91 angles, 1 degree apart, from the major (0) to the minor (pi/2) axis.
@@ -167,10 +171,6 @@ class CohesiveLaw:
 
 
 # --------------------------------------------------------------------------- geometry
-def _edge_radius(major, minor, cos2, sin2):
-    return major * minor / np.sqrt(minor**2 * cos2 + major**2 * sin2)  # Eqs. (A1), (A2)
-
-
 def contact_edge_radius(semi_major, beta, theta):
     """Radius of the contact ellipse along the ray theta_p, Eq. (A1) [m].
 
@@ -220,37 +220,39 @@ def _gap_shape(x, y, a, b):
     return 0.5 * a * b * (i1 - j1 + (j2 - i2) * x * x + (j3 - i3) * y * y)  # Eqs. (13)-(15), (27)
 
 
-def _rays(a, b, c, d, theta):
-    """Common ray geometry; theta is appended as the last axis."""
-    ex = (lambda q: np.asarray(q, float)[..., None])
-    a, b, c, d = ex(a), ex(b), ex(c), ex(d)
-    theta = np.asarray(theta, float)
-    cos2, sin2 = np.cos(theta) ** 2, np.sin(theta) ** 2
-    r_ab = _edge_radius(a, b, cos2, sin2)  # Eq. (A1)
-    r_cd = _edge_radius(c, d, cos2, sin2)  # Eq. (A2)
-    return a, b, c, d, theta, cos2, sin2, r_ab, r_cd
+def periphery_two_ellipses(a, b, c, d, gap_amplitude, stress_amplitude, theta, reduced_modulus=1.0):
+    """Periphery of the general two-ellipse field p = A S_ab - B S_cd, any two ellipticities.
 
+    The core of :func:`periphery` (equal ellipticities, A and B of Eq. 22), also used by
+    the closures of :mod:`dhfield.closure` and by :mod:`dhfield.eq30`.  An unchecked
+    array core: the callers validate, and NaN inputs propagate.
 
-def _ray_nodes(a, b, r_cd, theta, cos2, sin2, nodes=None):
-    """Graded nodes t on each ray and the quantities of l = l_cd sin^2 t there."""
-    l_cd = hertz.ellipse_root(r_cd * np.cos(theta), r_cd * np.sin(theta), a, b)
-    t1 = np.arcsin(np.minimum(1.0, b / np.sqrt(np.maximum(l_cd, 1e-300))))
-    kw = {} if nodes is None else dict(nodes=nodes)
-    t, w = graded_rule(t1, **kw)
-    ex = (lambda q: np.broadcast_to(q, l_cd.shape)[..., None])
-    l = ex(l_cd) * np.sin(t) ** 2
-    a2l, b2l = ex(a) ** 2 + l, ex(b) ** 2 + l
-    c2, s2 = ex(cos2), ex(sin2)
-    r2 = 1.0 / (c2 / a2l + s2 / b2l)
-    dr2_dl = r2**2 * (c2 / a2l**2 + s2 / b2l**2)
-    dl_dt = 2.0 * ex(l_cd) * np.sin(t) * np.cos(t)
-    return t, w, l, r2, dr2_dl, dl_dt, l_cd
+    Parameters
+    ----------
+    a, b : array_like
+        Contact semi-axes [m].
+    c, d : array_like
+        Adhesive semi-axes (c along a, d along b) [m].
+    gap_amplitude : array_like
+        A, the amplitude of the semi-ellipsoidal pressure on the contact ellipse [Pa].
+    stress_amplitude : array_like
+        B, the amplitude of the subtracted pressure on the adhesive ellipse [Pa].
+    theta : array_like, 1-D
+        Ray angles theta_p, 0 on the major axis [rad].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
 
+    Returns
+    -------
+    PeripheryProfile
+        Arrays of shape ``broadcast(a, b, c, d, A, B, E*) + theta.shape``.
 
-def _profile_general(a, b, c, d, gap_amplitude, stress_amplitude, theta, reduced_modulus=1.0):
-    """PeripheryProfile of the two-ellipse field p = A S_ab - B S_cd (module docstring).
-
-    gap_amplitude is A [Pa] and stress_amplitude B [Pa]; arrays broadcast; theta 1-D.
+    Notes
+    -----
+    On each ray, r_ab and r_cd from Eqs. (A1), (A2); sigma0 = B sqrt(1 - r_ab^2/r_cd^2)
+    (Eq. 24 on the ray); h(r_cd) from the annulus gap (Eq. 27 with the curvature
+    terms of Eqs. 13-15); Delta gamma(theta_p) = int sigma dh (Eq. 31 on the ray) by
+    the graded rule of the module docstring.
     """
     a, b, c, d, gap_amplitude, stress_amplitude, reduced_modulus = np.broadcast_arrays(
         *(np.asarray(q, float) for q in (a, b, c, d, gap_amplitude, stress_amplitude, reduced_modulus)))
@@ -304,12 +306,45 @@ def _law_general(a, b, c, d, gap_amplitude, stress_amplitude, theta, n_points, r
 
 
 # --------------------------------------------------------------------------- public, equal beta
-def _check_state(semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus):
-    a, c, beta, v, r, e = double_hertz._check_state(semi_major, adhesive_semi_major, beta, scaling,
-                                                    effective_radius, reduced_modulus)
+class FieldParameters(NamedTuple):
+    """Checked DH parameters (see :class:`dhfield.double_hertz.DoubleHertzParameters`) and the
+    amplitudes ``gap_amplitude`` A = (1 + v) Po_ab and ``stress_amplitude`` B = v Po_cd [Pa]
+    of the two-ellipse field (Eq. 22)."""
+
+    semi_major: np.ndarray
+    adhesive_semi_major: np.ndarray
+    beta: np.ndarray
+    scaling: np.ndarray
+    effective_radius: np.ndarray
+    reduced_modulus: np.ndarray
+    gap_amplitude: np.ndarray
+    stress_amplitude: np.ndarray
+
+
+def field_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus):
+    """Validate a DH state (equal ellipticities) and give its two-ellipse amplitudes, Eq. (22).
+
+    Parameters
+    ----------
+    semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus
+        As in :func:`periphery` ([m], [m], [-], [-], [m], [Pa]).
+
+    Returns
+    -------
+    FieldParameters
+        The checked arrays and A = (1 + v) Po_ab, B = v Po_cd [Pa].
+
+    Notes
+    -----
+    .. math:: A = (1+v)P_{o,ab}, \\qquad B = v P_{o,cd}  \\quad (Eq.\\ 22)
+
+    with the Hertz peak pressures of Eqs. (8) and (20).
+    """
+    a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+                                                        effective_radius, reduced_modulus)
     po_ab = hertz.max_pressure(a, beta, r, e)  # Eq. (8)
     po_cd = hertz.max_pressure(c, beta, r, e)  # Eq. (20)
-    return a, c, beta, v, r, e, (1.0 + v) * po_ab, v * po_cd  # Eq. (22): A, B
+    return FieldParameters(a, c, beta, v, r, e, (1.0 + v) * po_ab, v * po_cd)  # Eq. (22): A, B
 
 
 def _check_theta(theta):
@@ -357,10 +392,10 @@ def periphery(semi_major, adhesive_semi_major, beta, scaling, theta=None, effect
 
     depend on theta_p (Eq. 31 at theta_p = 0).
     """
-    a, c, beta, v, r, e, amp_a, amp_b = _check_state(semi_major, adhesive_semi_major, beta, scaling,
-                                                     effective_radius, reduced_modulus)
+    a, c, beta, v, r, e, amp_a, amp_b = field_parameters(semi_major, adhesive_semi_major, beta, scaling,
+                                                         effective_radius, reduced_modulus)
     th = _check_theta(theta)
-    return _profile_general(a, beta * a, c, beta * c, amp_a, amp_b, th, e)
+    return periphery_two_ellipses(a, beta * a, c, beta * c, amp_a, amp_b, th, e)
 
 
 def cohesive_law(semi_major, adhesive_semi_major, beta, scaling, theta=None, n_points=65,
@@ -383,8 +418,8 @@ def cohesive_law(semi_major, adhesive_semi_major, beta, scaling, theta=None, n_p
     """
     if int(n_points) != n_points or n_points < 2:
         raise ValueError(f"n_points must be an integer >= 2 (samples per ray); got {n_points!r}")
-    a, c, beta, v, r, e, amp_a, amp_b = _check_state(semi_major, adhesive_semi_major, beta, scaling,
-                                                     effective_radius, reduced_modulus)
+    a, c, beta, v, r, e, amp_a, amp_b = field_parameters(semi_major, adhesive_semi_major, beta, scaling,
+                                                         effective_radius, reduced_modulus)
     th = _check_theta(theta)
     return _law_general(a, beta * a, c, beta * c, amp_a, amp_b, th, int(n_points), e)
 
@@ -558,8 +593,8 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
     """
     if method not in ("parts", "slope"):
         raise ValueError(f"method must be 'parts' or 'slope'; got {method!r}")
-    a, c, beta, v, r, e, amp_a, amp_b = _check_state(semi_major, adhesive_semi_major, beta, scaling,
-                                                     effective_radius, reduced_modulus)
+    a, c, beta, v, r, e, amp_a, amp_b = field_parameters(semi_major, adhesive_semi_major, beta, scaling,
+                                                         effective_radius, reduced_modulus)
     if np.ndim(a) or np.ndim(c) or np.ndim(beta) or np.ndim(v):
         raise ValueError("periphery_from_gap_grid takes one (scalar) DH state")
     th = _check_theta(theta)
@@ -569,7 +604,7 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
     else:
         trend = (lambda xx, yy: np.zeros(np.broadcast_shapes(np.shape(xx), np.shape(yy))))
     spline = _grid_spline(x, y, gap)
-    prof = _profile_general(a, beta * a, c, beta * c, amp_a, amp_b, th, e)
+    prof = periphery_two_ellipses(a, beta * a, c, beta * c, amp_a, amp_b, th, e)
     a_, b_ = a, beta * a
     r_cd = prof.adhesive_radius
     cos2, sin2 = np.cos(th) ** 2, np.sin(th) ** 2

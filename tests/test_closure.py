@@ -174,7 +174,7 @@ def test_two_axis_ray_work_against_quad(theta):
         return sigma * (hx * np.cos(theta) + hy * np.sin(theta)) * 2 * (r_cd - r_ab) * np.sin(t) * np.cos(t)
 
     ref, _ = integrate.quad(f, 0, np.pi / 2, epsabs=0, epsrel=1e-12, limit=200)
-    got = periphery._profile_general(a, b, c, d, amp_a, amp_b, np.array([theta])).work_of_adhesion[0]
+    got = periphery.periphery_two_ellipses(a, b, c, d, amp_a, amp_b, np.array([theta])).work_of_adhesion[0]
     assert_allclose(got, ref, rtol=1e-9)
     if theta in (0.0, np.pi / 2):
         assert_allclose(ref, 1.0, rtol=1e-9)
