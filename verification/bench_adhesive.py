@@ -93,6 +93,8 @@ import numpy as np
 TARGET_PATH = 0.2
 TARGET_HERTZ = 0.25
 LAMBDAS = (1.0, 3.0)
+#: Our load-control search in (a) (dhfield.bem.adhesive_pull_off); 'bracket' is timed beside it.
+SEARCH = "located"
 #: lambda = 1.1272 mu (dhfield.transition; same sigma0 in both models).
 LAMBDA_PER_MU = 1.1272
 #: Periodic side per MD zone radius for tamaas (issue 8: "a periodic domain 8x the zone").
@@ -283,36 +285,44 @@ def bench_path(n, lambdas, tm, march=False):
 
     print(f"(a) path to the load-control pull-off, sphere, Dugdale, N = {n}")
     head = (f"    {'lambda':>6s} {'solver / setup':36s} {'wall s':>8s} {'cpu s':>7s} {'states':>6s} {'CG it/state':>11s} "
-            f"{'W*max':>9s} {'vs MD':>8s}")
+            f"{'outer/st':>9s} {'W*max':>9s} {'vs MD':>8s}")
     print(head)
     ratios = []
     for lam in lambdas:
         mu = lam / LAMBDA_PER_MU
         md = compare.pull_off("md", mu, 1.0)
         prob = nondimensional_problem(mu, 1.0, n)
-        adhesive_pull_off(mu, 1.0, n, progress=False)       # warm-up: FFT plans of every grid, imports
+        adhesive_pull_off(mu, 1.0, n, progress=False, search=SEARCH)   # warm-up: FFT plans, imports
+        adhesive_pull_off(mu, 1.0, n, progress=False, search="bracket")
 
-        def row(label, seconds, states, its, w):
+        def row(label, seconds, states, its, w, outer=None):
             err = f"{100 * (w / md['W_star'] - 1):+7.3f}%" if np.isfinite(w) else "    n/a"
             its_s = f"{its:11.1f}" if its is not None else f"{'n/a':>11s}"
-            print(f"    {lam:6.2f} {label:36s} {seconds} {states:6d} {its_s} {w:9.5f} {err}")
+            out_s = f"{outer:9.1f}" if outer is not None else f"{'n/a':>9s}"
+            print(f"    {lam:6.2f} {label:36s} {seconds} {states:6d} {its_s} {out_s} {w:9.5f} {err}")
 
-        t0 = _now()
-        res = adhesive_pull_off(mu, 1.0, n, progress=False)
-        t_ours = _since(t0)
-        flag = "" if res.converged else f"  (unconverged states: {len(res.failures)})"
-        row("dhfield bracket (free boundary)", t_ours, res.n_steps, res.iterations / res.n_steps, res.W_star)
-        if res.path.coarse_states:
-            print(f"           (+ {res.path.coarse_states} states, {res.path.coarse_iterations} CG iterations in all, "
-                  f"on the N/2, N/4, ... grids of the nested warm starts; included in the seconds)")
-        if flag:
-            print("          " + flag)
+        def ours(label, search):
+            t0 = _now()
+            r = adhesive_pull_off(mu, 1.0, n, progress=False, search=search)
+            t = _since(t0)
+            row(label, t, r.n_steps, r.iterations / r.n_steps, r.W_star, float(np.mean(r.path.outer_iterations)))
+            if r.path.coarse_states:
+                print(f"           (+ {r.path.coarse_states} states, {r.path.coarse_iterations} CG iterations in all, "
+                      f"on the N/2, N/4, ... grids; included in the seconds)")
+            if not r.converged:
+                print(f"           (unconverged states: {len(r.failures)})")
+            return r, t
+
+        res, t_ours = ours(f"dhfield {SEARCH} (free boundary)", SEARCH)
+        ref, t_ref = ours("dhfield bracket (previous default)", "bracket")
+        print(f"           {SEARCH} vs bracket: W* {res.W_star / ref.W_star - 1:+.2e} relative, "
+              f"time ratio {t_ours.wall / t_ref.wall:.3f} (cpu {t_ours.cpu / t_ref.cpu:.3f})")
         if march:
             t0 = _now()
             old = adhesive_pull_off(mu, 1.0, n, progress=False, search="march")
             row("dhfield march (first session)", _since(t0), old.n_steps,
-                old.iterations / old.n_steps, old.W_star)
-            print(f"           bracket vs march W*: {res.W_star / old.W_star - 1:+.2e} relative")
+                old.iterations / old.n_steps, old.W_star, float(np.mean(old.path.outer_iterations)))
+            print(f"           {SEARCH} vs march W*: {res.W_star / old.W_star - 1:+.2e} relative")
         if tm is None:
             continue
         zone = float(md["c_star"])

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -276,6 +276,8 @@ class NestedWarmStart:
             raise ValueError(f"n must be even and >= {2 * NESTED_MIN_N} for nested warm starts; got {n!r}")
         coarse = nondimensional_problem(mu, beta0, nc, law=law, margin=margin)
         self.fine_grid = fine.grid
+        self._fine_nd = fine
+        self._fine_prob = None
         self._nd = coarse
         self._threads = threads
         self._prob = AdhesiveProblem(coarse.initial_gap, coarse.grid, coarse.law, None, threads, 1.0)
@@ -310,11 +312,28 @@ class NestedWarmStart:
         return self._states[d]
 
     def __call__(self, approach):
-        """Warm start on the fine grid, or None when the coarse state is not a converged contact state."""
+        """Warm start on the fine grid, or None when the coarse state is not a converged contact state.
+
+        The coarse state interpolated onto the fine grid (:func:`interpolate_state`); for the
+        Dugdale law its zone fraction is then the fine grid's own sub-cell fraction of the
+        interpolated gap (the fine edge is sharper: its width scales with the cell), which
+        starts the fine state ~10 % fewer outer and ~20 % fewer CG iterations from its
+        solution (measured, lambda = 3, N = 256).
+        """
         st = self.coarse_state(approach)
         if not (st.converged and st.in_contact):
             return None
-        return interpolate_state(st, self.fine_grid)
+        guess = interpolate_state(st, self.fine_grid)
+        law = guess.law
+        if not isinstance(law, DugdaleLaw):
+            return guess
+        if self._fine_prob is None:
+            fine = self._fine_nd
+            self._fine_prob = AdhesiveProblem(fine.initial_gap, fine.grid, fine.law, None, self._threads, 1.0)
+        fp = self._fine_prob
+        zone = fp.to_full(fp.stress_from_gap(fp.to_work(guess.gap), fp.to_work(guess.contact)) / law.max_stress)
+        return replace(guess, pressure=guess.repulsive_pressure - law.max_stress * zone,
+                       cohesive=np.where(guess.contact, 0.0, zone))
 
     def locate_pull_off(self, spacing):
         """Approach of the load-control pull-off on the coarse grid (NaN when not found).
@@ -328,7 +347,8 @@ class NestedWarmStart:
         nd = self._nd
         if self._inner is None:
             path = unloading_path(nd.initial_gap, nd.grid, nd.law, nd.approach_max, nd.approach_step,
-                                  control="load", tol=self._tol, max_iter=self._max_iter, threads=self._threads,
+                                  control="load", refine_levels=LOCATE_BOTTOM_REFINE, tol=self._tol,
+                                  max_iter=self._max_iter, threads=self._threads,
                                   keep_states=True, progress=False, approach_guess=nd.pull_off_approach,
                                   start_stress=nd.start_stress())
             for st in path.states:
@@ -353,6 +373,15 @@ LOCATE_DIVISIONS = 2
 LOCATE_MAX_EXTEND = 6
 #: Cap on the parabola-vertex states solved on the fine grid after the lattice samples.
 LOCATE_VERTEX_STATES = 1
+#: Vertex refinements of the bracket search on the coarsest grid of the located search: none,
+#: the next grid's lattice samples re-locate the minimum anyway (measured over 4 cases at
+#: N = 256: the same pull-offs, 10 % less CPU than 2).
+LOCATE_BOTTOM_REFINE = 0
+#: Solver tolerance of the coarse grids of the located search (the fine grid keeps ``tol``).
+#: Their states only locate the minimum and start the fine states: a zone-fraction error of
+#: 1e-4 moves a coarse load by ~3e-5 relative (measured), far below the lattice jaggedness of
+#: the load (~5e-4), and far below the coarse-to-fine interpolation error of a warm start.
+LOCATE_COARSE_TOL = 1e-4
 
 
 def _usable(st):
@@ -531,7 +560,9 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         if nested is None or search == "located":
             nested = int(n) >= 2 * NESTED_MIN_N and int(n) % 4 == 0
         if nested:
-            guess["warm_start"] = NestedWarmStart(mu, beta0, n, law=law, margin=margin, tol=tol,
+            # the located search's coarse states only locate the minimum and start the fine states
+            coarse_tol = max(tol, LOCATE_COARSE_TOL) if search == "located" else tol
+            guess["warm_start"] = NestedWarmStart(mu, beta0, n, law=law, margin=margin, tol=coarse_tol,
                                                   max_iter=max_iter, threads=threads)
         if search == "located" and nested:
             path = _located_path(prob, n, guess["warm_start"], refine_levels=refine_levels, refine_factor=4,
