@@ -68,7 +68,7 @@ def run(args) -> int:
         print_json(rec)
     else:
         print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {res.n}, {res.law}, {res.control} control")
-        err = f" (fold extrapolation error ~{res.W_star_error:.2g})" if res.W_star_error == res.W_star_error else ""
+        err = f" (fold fit error ~{res.W_star_error:.2g})" if res.W_star_error == res.W_star_error else ""
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
