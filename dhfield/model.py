@@ -59,7 +59,7 @@ from .adhesion import NODES_PER_PANEL, graded_panel_counts, ragged_graded_rule
 from .geometry import sin_skew_angle
 from .pull_off_search import stable_branch_end
 
-__all__ = ["solve_adhesive_axis", "load_curve", "pull_off", "jkr_limit_pull_off", "LoadCurve",
+__all__ = ["solve_adhesive_axis", "load_curve", "load_curve_nondimensional", "pull_off", "jkr_limit_pull_off", "LoadCurve",
            "PullOff", "DEFAULT_A_STAR", "MAX_CURVE_POINTS", "TABOR_RANGE", "ELLIPTICITY_RANGE",
            "CONTACT_SIZE_RANGE"]
 
@@ -479,6 +479,48 @@ def load_curve(mu, beta0, a_star=None, *, ellipticity=None, n=200):
     st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)))
     return LoadCurve(float(mu), float(beta0), float(ell), st["a"], ell * st["a"], st["c"], ell * st["c"],
                      st["v"], st["W"], st["delta"])
+
+
+def load_curve_nondimensional(a_star, mu, beta0, *, ellipticity=None, derivatives=False):
+    """Elliptical DH states at contact semi-major axes a*, vectorised, with their slopes.
+
+    The nondimensional core of :func:`load_curve` (paper units, R = E* = dgamma = 1):
+    unlike it, ``mu`` and ``beta0`` broadcast with ``a_star``, and the exact
+    derivatives along the curve are available.
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact semi-major axes a* in :data:`CONTACT_SIZE_RANGE` [-].
+    mu : array_like
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
+    beta0 : array_like
+        Initial ellipticity (Eq. 9) in :data:`ELLIPTICITY_RANGE` [-].
+    ellipticity : array_like, optional
+        Ellipticity of both ellipses if it differs from beta0 (Eq. 34 keeps
+        sin(theta_skew) of beta0).
+    derivatives : bool, default False
+        Also return ``dW`` = dW*/da* and ``ddelta`` = d delta*/da* (implicit
+        differentiation of Eq. 31 at fixed mu) as ``dW_star``, ``ddelta_star``.
+
+    Returns
+    -------
+    dict
+        ``a_star``, ``c_star``, ``v`` (scaling, Eq. 24), ``W_star`` (Eq. 36),
+        ``delta_star`` [-], and with ``derivatives`` ``dW_star`` and
+        ``ddelta_star``; arrays of the broadcast shape.
+
+    Notes
+    -----
+    S = sqrt(c^2 - a^2) solves Delta gamma(a, S) = 1 (Eq. 31 with v of Eq. 24 at
+    sigma0 = mu) by a bracketed Newton iteration in log S; W* from Eq. (36).
+    """
+    mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
+    a = check_contact_size_star("a_star", a_star)
+    a, mu, beta0, ell = np.broadcast_arrays(a, mu, beta0, ell)
+    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)), derivatives)
+    names = dict(a="a_star", c="c_star", v="v", W="W_star", delta="delta_star", dW="dW_star", ddelta="ddelta_star")
+    return {names[k]: val for k, val in st.items() if k in names}
 
 
 def _zero_contact_state(mu, shape):

@@ -320,3 +320,23 @@ def test_issue11_pull_off_does_not_depend_on_the_batch():
         for i in (0, 5, 11):
             one = model.pull_off(mu[i], beta0[i], control=control)
             assert float(one.W_star) == batch.W_star[i] and float(one.a_star) == batch.a_star[i]
+
+
+#: Central difference of W*(a*) with step h = 1e-4 a* (a* <= 1.5): truncation h^2 f'''/6 ~ 1e-8,
+#: rounding ~1e-11; absolute, since dW*/da* vanishes near the pull-off (a* = 1.5 at mu = 5).
+ATOL_SLOPE_FD = 1e-7
+
+
+def test_load_curve_nondimensional_slopes_are_the_derivative_of_the_curve():
+    """dW*/da* and d delta*/da* (implicit differentiation) against a central difference, broadcast over mu, beta0."""
+    a = np.array([0.3, 0.8, 1.5])
+    mu, beta0 = np.array([0.5, 1.0, 5.0]), np.array([0.6, 0.9, 1.0])
+    st = model.load_curve_nondimensional(a, mu, beta0, derivatives=True)
+    h = 1e-4 * a
+    up, dn = (model.load_curve_nondimensional(a + s * h, mu, beta0) for s in (1.0, -1.0))
+    np.testing.assert_allclose(st["dW_star"], (up["W_star"] - dn["W_star"]) / (2 * h), rtol=0,
+                               atol=ATOL_SLOPE_FD)
+    np.testing.assert_allclose(st["ddelta_star"], (up["delta_star"] - dn["delta_star"]) / (2 * h),
+                               rtol=0, atol=ATOL_SLOPE_FD)
+    with pytest.raises(ValueError, match="a_star"):
+        model.load_curve_nondimensional(-1.0, 1.0, 0.8)

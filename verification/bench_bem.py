@@ -105,7 +105,7 @@ def main(argv=None) -> int:
     fwd = pyfftw.FFTW(rin, cplx, axes=(0, 1), flags=(effort,), threads=thr)
     bwd = pyfftw.FFTW(cplx, rout, axes=(0, 1), direction="FFTW_BACKWARD", flags=(effort, "FFTW_DESTROY_INPUT"),
                       threads=thr)
-    bem._save_wisdom()
+    bem.save_wisdom()
     rin[...] = 0.0
     rin[:n, :n] = p
 

@@ -100,14 +100,16 @@ def condition(p, control):
     f'' by a central difference of the analytic derivative at a* (1 +- 1e-3), with today's model.
     """
     from dhfield import model
-    from dhfield.geometry import sin_skew_angle
 
     a = np.asarray(p.a_star, float)
     beta0 = np.asarray(p.beta0, float)
-    shape = model._shape(beta0, sin_skew_angle(beta0))
-    key, val = ("dW", p.W_star) if control == "load" else ("ddelta", p.delta_star)
+    key, val = ("dW_star", p.W_star) if control == "load" else ("ddelta_star", p.delta_star)
     h = 1e-3 * a
-    d2 = (model._state(a + h, p.mu, shape, True)[key] - model._state(a - h, p.mu, shape, True)[key]) / (2 * h)
+
+    def slope(x):
+        return model.load_curve_nondimensional(x, p.mu, beta0, derivatives=True)[key]
+
+    d2 = (slope(a + h) - slope(a - h)) / (2 * h)
     return np.abs(np.asarray(val)) / (np.abs(d2) * a * a)
 
 

@@ -14,7 +14,6 @@ The public names of :mod:`dhfield.bem.operator` are re-exported here, so
 """
 from .operator import *  # noqa: F401,F403
 from .operator import __all__ as _operator_all
-from .operator import _save_wisdom  # noqa: F401  (used by verification/bench_bem.py)
 from .laws import DugdaleLaw, ExponentialLaw, cell_fraction_below  # noqa: E402
 from .state import ContactState, mask_semi_axes  # noqa: E402
 from .adhesive import (AdhesivePullOff, UnloadingPath, adhesive_pull_off,  # noqa: E402

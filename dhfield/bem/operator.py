@@ -108,6 +108,7 @@ __all__ = [
     "unfold_quadrant",
     "cache_dir",
     "encode_wisdom",
+    "save_wisdom",
     "decode_wisdom",
     "WisdomCacheWarning",
     "WISDOM_MAGIC",
@@ -412,7 +413,13 @@ def _load_wisdom() -> None:
             _WISDOM_STATE["saved"] = wisdom
 
 
-def _save_wisdom() -> None:
+def save_wisdom() -> None:
+    """Write the FFTW wisdom gathered so far to ``$DHFIELD_CACHE/fftw_wisdom.bin`` (atomically).
+
+    Operators save it when they are built; call this after planning outside them
+    (e.g. a benchmark's own pyfftw plans).  Nothing is written when the wisdom is
+    unchanged, and a failure to write is ignored (the cache is an optimisation).
+    """
     with _WISDOM_LOCK:
         try:
             wisdom = pyfftw.export_wisdom()
@@ -527,7 +534,7 @@ class HalfSpaceOperator:
         else:
             self._build_full(kernel)
         del kernel
-        _save_wisdom()
+        save_wisdom()
 
     # -- construction ---------------------------------------------------------
     def _flags(self, *extra):
