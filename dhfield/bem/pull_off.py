@@ -261,6 +261,9 @@ class NestedWarmStart:
         As in :func:`nondimensional_problem` (``n`` is the *fine* grid).
     tol, max_iter, threads
         As in :func:`solve_adhesive`.
+    problem : NondimensionalProblem, optional
+        The fine grid's problem when already built (its grid must have ``n`` cells per
+        axis); saves its analytic set-up.
 
     Attributes
     ----------
@@ -269,8 +272,13 @@ class NestedWarmStart:
     """
 
     def __init__(self, mu, beta0, n, *, law="dugdale", margin=DOMAIN_MARGIN, tol=DEFAULT_TOL,
-                 max_iter=DEFAULT_MAX_ITER, threads=None):
-        fine = nondimensional_problem(mu, beta0, n, law=law, margin=margin)
+                 max_iter=DEFAULT_MAX_ITER, threads=None, problem=None):
+        if problem is None:
+            fine = nondimensional_problem(mu, beta0, n, law=law, margin=margin)
+        elif isinstance(problem, NondimensionalProblem) and problem.grid.nx == n:
+            fine = problem
+        else:
+            raise ValueError(f"problem must be the NondimensionalProblem of the fine grid (n = {n!r} cells)")
         nc = int(n) // 2
         if nc < NESTED_MIN_N or nc % 2:
             raise ValueError(f"n must be even and >= {2 * NESTED_MIN_N} for nested warm starts; got {n!r}")
@@ -284,7 +292,8 @@ class NestedWarmStart:
         self._cold = Prediction(np.zeros_like(self._prob.z), self._prob.to_work(coarse.start_stress()))
         self._tol, self._max_iter = float(tol), int(max_iter)
         self._inner = (NestedWarmStart(mu, beta0, nc, law=law, margin=margin, tol=tol, max_iter=max_iter,
-                                       threads=threads) if nc // 2 >= NESTED_MIN_N and nc % 4 == 0 else None)
+                                       threads=threads, problem=coarse)
+                       if nc // 2 >= NESTED_MIN_N and nc % 4 == 0 else None)
         self._states = {}
         self._n_solved = 0
         self._own_iterations = 0
@@ -563,7 +572,7 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
             # the located search's coarse states only locate the minimum and start the fine states
             coarse_tol = max(tol, LOCATE_COARSE_TOL) if search == "located" else tol
             guess["warm_start"] = NestedWarmStart(mu, beta0, n, law=law, margin=margin, tol=coarse_tol,
-                                                  max_iter=max_iter, threads=threads)
+                                                  max_iter=max_iter, threads=threads, problem=prob)
         if search == "located" and nested:
             path = _located_path(prob, n, guess["warm_start"], refine_levels=refine_levels, refine_factor=4,
                                  tol=tol, max_iter=max_iter, threads=threads, keep_states=keep_states,
