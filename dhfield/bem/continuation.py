@@ -58,6 +58,8 @@ FOLD_STEPS = 16
 #: spans ~+-25 % of the fold's adhesive force at lambda = 3 (a cubic over it averages
 #: the lattice jaggedness of the approach; measured at N = 128: within 0.2 % of MD).
 FOLD_WINDOW = 2
+#: Standard deviations of the fold's load from the scatter of delta counted in its error estimate.
+FOLD_SCATTER_SIGMAS = 2.0
 #: Largest rigid shift D of the gap per outer iteration, in units of the law's range
 #: (bounds the root search; a larger mismatch is corrected over several iterations).
 MAX_SHIFT_RANGES = 4.0
@@ -252,6 +254,32 @@ def _fold_fit(forces, approaches, loads, f_loss, deg):
     return float(x0 + sc * tv), float(np.polyval(pd, tv)), float(np.polyval(pw, tv)), kind
 
 
+def _fold_scatter(forces, approaches, loads, fold_force, deg=3):
+    """Standard deviation of the fold's load from the scatter of delta about its fit [force].
+
+    The fold t_f solves p'(t_f) = 0 for the least-squares polynomial p of delta; an
+    error dp' of the slope there moves it by dp'/p''(t_f), and the load by W'(t_f) times
+    that.  dp' follows from the coefficients' covariance, scaled by the residual
+    variance (the lattice jaggedness of delta is the noise).
+    """
+    x, d, w = (np.asarray(v, dtype=float) for v in (forces, approaches, loads))
+    if x.size <= deg + 1:
+        return float("nan")
+    x0, sc = 0.5 * (x.min() + x.max()), max(0.5 * (x.max() - x.min()), 1e-300)
+    t = (x - x0) / sc
+    pd, cov = np.polyfit(t, d, deg, cov="unscaled")
+    res = d - np.polyval(pd, t)
+    cov = cov * float(res @ res) / (x.size - deg - 1)
+    tf = (fold_force - x0) / sc
+    grad = np.array([(deg - i) * tf ** (deg - i - 1) if i < deg else 0.0 for i in range(deg + 1)])
+    curv = np.polyval(np.polyder(pd, 2), tf)
+    if not curv > 0.0:
+        return float("nan")
+    sigma_t = math.sqrt(max(float(grad @ cov @ grad), 0.0)) / curv
+    slope_w = np.polyval(np.polyder(np.polyfit(t, w, min(deg, 3))), tf)
+    return abs(float(slope_w)) * sigma_t
+
+
 def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSearch:
     """The smallest approach of a sampled contact branch and its load, by least squares, with an error estimate.
 
@@ -277,7 +305,10 @@ def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSe
     fold is the interior minimum of the first, its load the second there.  The
     error estimate is the largest change of that load with a quartic over all
     samples, a quadratic over the inner half around the result and, at a
-    loss of contact, the loss put at either end of its bracket.
+    loss of contact, the loss put at either end of its bracket; at a fold at
+    least ``FOLD_SCATTER_SIGMAS`` standard deviations of the load from the
+    scatter of delta about its cubic (the slope error at the vertex divided by
+    the curvature moves the fold, times dW/dF_a).
     """
     x = check_sequence("adhesive_forces", adhesive_forces, "adhesive force of each state, force")
     d = check_sequence("approaches", approaches, "approach of each state, length")
@@ -309,6 +340,9 @@ def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSe
     if best[3] == "contact loss":
         alts += [_fold_fit(x, d, w, f_end, 3) for f_end in (f_sep, x[0])]
     err = max((abs(alt[2] - best[2]) for alt in alts if alt is not None), default=float("nan"))
+    if best[3] == "fold":
+        # the vertex moves with the scatter of delta (the lattice jaggedness): two standard deviations
+        err = np.nanmax([err, FOLD_SCATTER_SIGMAS * _fold_scatter(x, d, w, best[0])])
     return FoldSearch(best[3], best[2], best[1], best[0], float(err), None)
 
 
@@ -391,51 +425,69 @@ def fold_by_adhesive_force(prob: AdhesiveProblem, start: ContactState, *, steps=
         fs = [k for k in samples if samples[k].in_contact]
         return min(fs, key=lambda k: samples[k].approach)
 
-    prev, last, force = None, start, f0
-    ended = False                     # contact lost or a state failed
-    while force - df > 0.25 * df:
+    prev, last, force, f_last = None, start, f0, f0
+    misses = 0                        # unconverged states in a row (each one a hole in the samples)
+    while force - df > 0.25 * df and misses < 2:
         force -= df
-        guess, d_guess = _secant(prob, prev, last, 1.0)
+        # secant predictor in units of the last step (2 after a hole)
+        guess, d_guess = _secant(prob, prev, last, (f_last - force) / df)
         st = solve(force, guess, d_guess, "continuation")
-        if not (st.converged and st.in_contact):
-            ended = True
+        if not st.converged:
+            misses += 1
+            continue
+        misses = 0
+        if not st.in_contact or contact_min() - force >= window * df - 1e-9 * df:
             break
-        if contact_min() - force >= window * df - 1e-9 * df:
-            break
-        prev, last = last, st
+        prev, last, f_last = last, st, force
     f_min = contact_min()
+
+    def fill(lattice):
+        """Solve the states of ``lattice`` (forces, descending) on the contact branch."""
+        for f in sorted(lattice, reverse=True):
+            if any(math.isclose(f, k, rel_tol=0.0, abs_tol=1e-9 * df) for k in samples):
+                continue
+            lowest_separated = max((k for k in samples if not samples[k].in_contact), default=-np.inf)
+            if f <= lowest_separated - 1e-9 * df:
+                continue              # beyond a separated state: not on the contact branch
+            near = samples[min(samples, key=lambda k: abs(k - f) + (0 if samples[k].in_contact else df))]
+            solve(f, near, near.approach, "fold")     # an unconverged state is left out (a hole)
+
+    def fit_between(lo, hi, step):
+        """fit_fold over the contact states in [lo, hi] (the loss of contact located when in it)."""
+        sep = [k for k in samples if not samples[k].in_contact]
+        con = sorted(k for k in samples if samples[k].in_contact and lo - 1e-9 * df <= k <= hi + 1e-9 * df
+                     and k > max(sep, default=-np.inf))
+        if len(con) < 4:
+            return None, None
+        loss = None
+        if sep and max(sep) >= lo - step:
+            # the contact area is linear in F_a near a = 0: extrapolate it to zero
+            near_loss = con[:4]
+            f_loss = _contact_loss_force(near_loss, [samples[k].contact_area for k in near_loss])
+            f_loss = min(max(f_loss, max(sep)), con[0]) if np.isfinite(f_loss) else 0.5 * (max(sep) + con[0])
+            loss = (max(sep), f_loss)
+        return fit_fold(con, [samples[k].approach for k in con], [samples[k].load for k in con],
+                        contact_loss=loss), loss
+
     # the window, sampled with steps df/refine_factor (on the coarse lattice f0 - j df/refine_factor)
     h = df / refine_factor
     j_min = int(round((f0 - f_min) / h))
-    lattice = [f0 - j * h for j in range(max(j_min - window * refine_factor, 0), j_min + window * refine_factor + 1)]
+    lattice = [f0 - j * h for j in range(j_min - window * refine_factor, j_min + window * refine_factor + 1)]
     lattice = [f for f in lattice if f > 0.25 * h]
-    lowest_separated = max((k for k in samples if not samples[k].in_contact), default=-np.inf)
-    failed_below = force if (ended and not st.converged) else -np.inf
-    for f in sorted(lattice, reverse=True):
-        if any(math.isclose(f, k, rel_tol=0.0, abs_tol=1e-9 * df) for k in samples):
-            continue
-        if f <= max(lowest_separated, failed_below) - 0.5 * h:
-            continue                  # beyond a separated or failed state: not on the contact branch
-        near = samples[min(samples, key=lambda k: abs(k - f) + (0 if samples[k].in_contact else df))]
-        new = solve(f, near, near.approach, "fold")
-        if not new.converged:
-            failed_below = max(failed_below, f)
-        elif not new.in_contact:
-            lowest_separated = max(lowest_separated, f)
-    lo_f, hi_f = min(lattice) - 1e-9 * df, max(lattice) + 1e-9 * df
-    sep = [k for k in samples if not samples[k].in_contact]
-    con = sorted(k for k in samples if samples[k].in_contact and lo_f <= k <= hi_f
-                 and k > max(sep, default=-np.inf) and k > failed_below)
-    if len(con) < 3:
-        return FoldSearch("failed", float("nan"), float("nan"), float("nan"), float("nan"), last)
-    f_loss = float("nan")
-    if sep and max(sep) >= lo_f:
-        near_loss = con[:max(3, refine_factor + 1)]
-        f_loss = _contact_loss_force(near_loss, [samples[k].contact_area for k in near_loss])
-        f_loss = min(max(f_loss, max(sep)), con[0]) if np.isfinite(f_loss) else 0.5 * (max(sep) + con[0])
-    fit = fit_fold(con, [samples[k].approach for k in con], [samples[k].load for k in con],
-                   contact_loss=None if not np.isfinite(f_loss) else (max(sep), f_loss))
-    if fit.kind == "failed":
+    fill(lattice)
+    fit, loss = fit_between(min(lattice), max(lattice), h)
+    if fit is not None and loss is not None:
+        # the contact is lost in the window: the end of the branch is sampled again, steps
+        # h/refine_factor over [loss, loss + window h] (near lambda = 1 the fold lies within
+        # 0.1 dF of the loss, 7e-4 deep in delta: measured at N = 256 the window fit took
+        # the loss (+2.1 % vs MD), the finer end finds the fold)
+        hz = h / refine_factor
+        zoom = [loss[1] + window * h - j * hz for j in range(window * refine_factor * refine_factor + 1)]
+        fill([f for f in zoom if f > 0.25 * hz])
+        fit_z, _ = fit_between(loss[0], loss[1] + window * h, hz)
+        if fit_z is not None and fit_z.kind != "failed":
+            fit = fit_z
+    if fit is None or fit.kind == "failed":
         return FoldSearch("failed", float("nan"), float("nan"), float("nan"), float("nan"), samples[f_min])
     nearest = samples[min((k for k in samples if samples[k].in_contact), key=lambda k: abs(k - fit.adhesive_force))]
     return FoldSearch(fit.kind, fit.load, fit.approach, fit.adhesive_force, fit.load_error, nearest)
