@@ -26,11 +26,12 @@ from .pull_off import (DEFAULT_STEPS, DISPLACEMENT_CONTROL_NOTE, DOMAIN_MARGIN, 
                        AdhesivePullOff, NestedWarmStart, NondimensionalProblem, adhesive_pull_off,
                        interpolate_state, nondimensional_problem, refine_pull_off,
                        richardson_extrapolation)
-from .solver import DEFAULT_MAX_ITER, DEFAULT_TOL, solve_adhesive  # noqa: F401
+from .solver import (DEFAULT_MAX_ITER, DEFAULT_TOL, ContactPressureSolution, solve_adhesive,  # noqa: F401
+                     solve_contact_pressure)
 
 __all__ = ["solve_adhesive", "unloading_path", "adhesive_pull_off", "richardson_extrapolation",
            "nondimensional_problem", "UnloadingPath", "AdhesivePullOff", "NondimensionalProblem",
            "refine_pull_off", "interpolate_state", "NestedWarmStart", "fold_of_branch", "Fold",
            "DISPLACEMENT_CONTROL_NOTE", "DEFAULT_TOL", "DEFAULT_MAX_ITER", "DOMAIN_MARGIN",
            "DEFAULT_STEPS", "SEARCHES", "solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force",
-           "fit_fold", "FoldSearch"]
+           "fit_fold", "FoldSearch", "solve_contact_pressure", "ContactPressureSolution"]

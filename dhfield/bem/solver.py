@@ -84,6 +84,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -93,7 +94,7 @@ from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, qua
 from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "Prediction", "solve_problem", "secant_prediction",
-           "DEFAULT_TOL", "DEFAULT_MAX_ITER"]
+           "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution"]
 
 #: Default solver tolerance: complementarity error of the contact problem relative to
 #: the law's range (or |delta| without adhesion), and largest change of the zone
@@ -276,7 +277,7 @@ def _add_point_loads(op, h, cells, amounts):
             h += a * ext[nx - 1 - i:2 * nx - 1 - i, ny - 1 - j:2 * ny - 1 - j]
 
 
-#: Smallest grid (cells per axis) of the nested cold start of :func:`_polonsky_keer`.
+#: Smallest grid (cells per axis) of the nested cold start of :func:`solve_contact_pressure`.
 NESTED_COLD_MIN_N = 64
 
 
@@ -294,7 +295,7 @@ def _nested_cold_start(op, g0, scale, tol, max_iter, k0):
     cop = get_operator(coarse, op.reduced_modulus, symmetric=op.symmetric, threads=op.threads)
     gc = 0.25 * (g0[0::2, 0::2] + g0[1::2, 0::2] + g0[0::2, 1::2] + g0[1::2, 1::2])
     # the self-influence of a cell scales with its size
-    pc, _, it, _ = _polonsky_keer(cop, gc, np.zeros_like(gc), scale, tol, max_iter, 2.0 * k0)
+    pc, _, it, _ = solve_contact_pressure(cop, gc, np.zeros_like(gc), scale, tol, max_iter, 2.0 * k0)
     return np.repeat(np.repeat(pc, 2, axis=0), 2, axis=1), it
 
 
@@ -386,19 +387,65 @@ def _contact_box(op, free_gap):
     return _box(op, free_gap < 0.0, CROP_MARGIN, CROP_MAX_FRACTION)
 
 
-def _polonsky_keer(op, g0, p, scale, tol, max_iter, k0, stress=None):
-    """Polonsky-Keer CG for min 1/2 p.Kp + (g0 - K stress).p, p >= 0 (displacement control).
+class ContactPressureSolution(NamedTuple):
+    """Result of :func:`solve_contact_pressure` (working arrays of the operator's shape)."""
 
-    The gap is ``h = g0 + K(p - stress)`` (``stress`` is a known tensile load, e.g. the
-    adhesive stress; one operator call per gap evaluation instead of two).  Without a
-    stress the CG runs on the box of cells with ``g0 < 0`` when that box is small
-    (:func:`_contact_box`: the same discrete problem), and the gap is completed on the
-    working grid by one convolution.  With an adhesive stress the bound ``g0 - K stress``
-    is negative over about the whole cohesive zone (measured at lambda = 3, N = 256: the
-    whole quadrant), so the CG runs instead on a box around the warm start's contact and
-    is checked on the whole grid (:func:`_active_box_cg`).
-    Returns (p, h, iterations, error) with error the complementarity error / scale.
+    pressure: np.ndarray     #: repulsive pressure p >= 0 [stress]
+    gap: np.ndarray          #: gap h = g0 + K(p - stress) [length]
+    iterations: int          #: CG iterations, on every grid (coarse and box ones included)
+    error: float             #: complementarity error / scale [-]
+
+
+def solve_contact_pressure(op, free_gap, pressure, scale, tol, max_iter, self_influence,
+                           stress=None) -> ContactPressureSolution:
+    """Repulsive pressure of the contact problem with a known tensile stress (Polonsky-Keer CG).
+
+    Solves, on the working grid of ``op`` (the quadrant in symmetric mode),
+
+    .. math:: h = g_0 + K(p - s) \\ge 0, \\quad p \\ge 0, \\quad p\\,h = 0,
+
+    i.e. min 1/2 p.Kp + (g0 - K s).p over p >= 0, by the constrained conjugate gradient
+    of Polonsky & Keer (1999) under displacement control.  Without a stress the CG runs
+    on the box of cells with ``g0 < 0`` when that box is small (:func:`_contact_box`:
+    every influence coefficient is positive, so no other cell can touch; the same
+    discrete problem), and the gap is completed on the working grid by one convolution.
+    With an adhesive stress the bound ``g0 - K s`` is negative over about the whole
+    cohesive zone (measured at lambda = 3, N = 256: the whole quadrant), so the CG runs
+    instead on a box around the warm start's contact and is checked on the whole grid
+    (:func:`_active_box_cg`).  A cold start without stress begins from the same problem
+    on the grid half as fine (:func:`_nested_cold_start`).
+
+    Parameters
+    ----------
+    op : HalfSpaceOperator
+        The DC-FFT operator K of the working grid.
+    free_gap : ndarray
+        g0 = z - delta on the working grid [length].
+    pressure : ndarray
+        Warm start p (clipped at 0; zeros for a cold start) [stress].
+    scale : float
+        Gap scale of the complementarity error (e.g. h0 or |delta|) [length].
+    tol : float
+        Tolerance on the complementarity error / scale [-].
+    max_iter : int
+        Cap on the CG iterations.
+    self_influence : float
+        K00, the displacement of a cell under its own unit pressure (cold starts)
+        [length/stress].
+    stress : ndarray, optional
+        Known tensile (adhesive) stress s on the working grid [stress].
+
+    Returns
+    -------
+    ContactPressureSolution
+        Pressure, gap, iterations and the complementarity error / scale.
     """
+    return ContactPressureSolution(*_contact_pressure(op, free_gap, pressure, scale, tol, max_iter,
+                                                      self_influence, stress))
+
+
+def _contact_pressure(op, g0, p, scale, tol, max_iter, k0, stress):
+    """The body of :func:`solve_contact_pressure`: (p, h, iterations, error)."""
     p = np.array(p, dtype=float, copy=True)
     np.maximum(p, 0.0, out=p)
     if stress is not None:
@@ -531,6 +578,10 @@ def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=
     return p, h, it + coarse_it, err   # CG iterations on every grid (coarse ones are cheaper)
 
 
+#: The private name used before the CG was public (dhfield.bem.continuation imports it).
+_polonsky_keer = solve_contact_pressure
+
+
 class _Anderson:
     """Anderson mixing (type II) for x = F(x); residual f = F(x) - x."""
 
@@ -657,7 +708,7 @@ def solve_problem(prob, delta, guess, tol, max_iter):
     total_it = 0
     if law is None:
         # no outer loop to feed: the contact problem itself is solved to tol (converged iff err <= tol)
-        p, h, it, err = _polonsky_keer(op, zd, p, scale, tol, max_iter, prob.k0)
+        p, h, it, err = solve_contact_pressure(op, zd, p, scale, tol, max_iter, prob.k0)
         total_it += it
         s = np.zeros_like(p)
         converged = err <= tol
@@ -687,7 +738,7 @@ def solve_problem(prob, delta, guess, tol, max_iter):
         # of the zone fraction (gain): a looser inner solve feeds the fixed point noise larger
         # than its residual (measured at N = 1024: the contact set flipped by 3 % every iteration)
         itol = gain * (1e-3 if not np.isfinite(res) else min(max(INNER_FACTOR * res, 0.1 * tol), 1e-2))
-        p, h, it, err = _polonsky_keer(op, zd, p, scale, itol, max_iter - total_it, prob.k0, stress=s)
+        p, h, it, err = solve_contact_pressure(op, zd, p, scale, itol, max_iter - total_it, prob.k0, stress=s)
         total_it += it
         f = prob.stress_from_gap(h, p > 0) - s
         res = float(np.max(np.abs(f))) / sigma0
