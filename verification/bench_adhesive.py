@@ -2,12 +2,19 @@
 
 (a) **Path to the load-control pull-off, sphere (beta0 = 1), Dugdale, N = 256.**
     Ours: :func:`dhfield.bem.adhesive_pull_off` (free boundary, DC-FFT, symmetric
-    quadrant): a cold start at the analytic DH pull-off approach from the DH
-    cohesive zone, steps of the path's approach step until the load minimum is
-    bracketed, then parabolic vertex states (``search='bracket'``, 3-6 states).
-    Every state starts from the same approach solved on the grid half as fine
-    (recursively to N = 64, :class:`dhfield.bem.adhesive.NestedWarmStart`).
-    Its wall time includes the analytic DH prediction and the coarse solves.
+    quadrant) with ``search='located'``: the load minimum is located on the
+    N/2, N/4, ... grids (the bracket search at N = 64 -- a cold start at the
+    analytic DH pull-off approach from the DH cohesive zone, steps until the
+    minimum is bracketed -- then three approaches of the lattice
+    ``approach_max - j approach_step/2`` around the coarser minimum on every
+    finer grid), and only 3-4 states are solved on the N grid.  Every state
+    starts from the same approach solved on the grid half as fine
+    (:class:`dhfield.bem.adhesive.NestedWarmStart`).  Its wall time includes
+    the analytic DH prediction and the coarse solves.  ``search='bracket'``
+    (the default of ``adhesive_pull_off``: the bracket search on the N grid
+    itself, 4-6 states) is timed beside it.  Printed per run: wall and CPU
+    seconds, states on the N grid, CG iterations and outer (zone) iterations
+    per state, W*max and its error against Maugis-Dugdale.
     tamaas 2.9: ``PolonskyKeerRey`` with the gap as primal and dual variable plus
     ``MaugisAdhesionFunctional`` (Rey, Anciaux & Molinari 2017) on a *periodic*
     N x N domain of side 8 c_MD (c_MD: Maugis-Dugdale zone radius at pull-off);
@@ -66,7 +73,7 @@ the same single thread (``--tamaas-threads 0`` gives it every core).  Wall
 seconds are the measure; the process CPU seconds are printed beside them (on a
 loaded machine they are the steadier figure).  The peers
 are optional (``pip install -e '.[bench]'``); a missing one is skipped with a note.
-Runtime: ~1-2 min on a quiet 2-core machine (``--march`` adds ~1 min per lambda).
+Runtime: (a) ~2 min on a quiet 2-core machine, nearly all of it tamaas (``--march`` adds ~1 min per lambda).
 
 Usage::
 
