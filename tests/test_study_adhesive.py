@@ -146,3 +146,27 @@ def test_implausible_order_keeps_the_finest_value():
     vals = [1.0, 1.0 + 0.01, 1.0 + 0.01 + 0.01 * 2 ** -0.1]
     v, q, levels = sa.extrapolate(ns, vals)
     assert levels == 1 and v == vals[-1] and q == pytest.approx(0.1, rel=1e-9)
+
+
+#: The study's coarse-to-fine record and a direct refine_pull_off call run the same solves;
+#: FFTW plans may change the round-off, which the fixed-point termination (tol 1e-6) can
+#: amplify to ~1e-7 relative in W*.
+RTOL_SAME_ROUTE = 1e-6
+
+
+def test_coarse_to_fine_from_a_stored_coarse_level(tmp_path):
+    """The route that made beta0 = 0.5, mu = 5 converge at N = 512 (`--n 256 512 --coarse-to-fine 256`
+    with the N = 256 record already stored): the coarse level is read for the record but re-solved in
+    memory as the start, and the fine record says it was refined from it."""
+    from dhfield.bem import adhesive_pull_off, refine_pull_off
+
+    opts = dict(n_steps=4, refine_levels=0, max_iter=sa.STUDY_MAX_ITER)
+    first = sa.run_study([1.0], [1.0], [16], work_dir=tmp_path, progress=False, **opts)
+    assert [r["route"] for r in first] == ["full path"]
+    recs = sa.run_study([1.0], [1.0], [16, 32], work_dir=tmp_path, progress=False, coarse_to_fine=16, **opts)
+    fine = next(r for r in recs if r["n"] == 32)
+    assert fine["route"] == "coarse to fine from n=16" and fine["search"] == "refine"
+    assert fine["status"] == "ok" and fine["converged"]
+    direct = refine_pull_off(adhesive_pull_off(1.0, 1.0, 16, progress=False, **opts), 32, progress=False, **opts)
+    assert fine["W_star"] == pytest.approx(direct.W_star, rel=RTOL_SAME_ROUTE)
+    assert fine["n_steps"] == direct.n_steps

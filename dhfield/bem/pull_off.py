@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._validation import check_ellipticity, check_positive
+from .._validation import check_count, check_ellipticity, check_positive
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
 from .state import ContactState
@@ -34,6 +34,10 @@ __all__ = ["adhesive_pull_off", "AdhesivePullOff", "nondimensional_problem", "No
 DOMAIN_MARGIN = 1.15
 #: Default number of unloading steps from the start of unloading to the expected jump.
 DEFAULT_STEPS = 20
+#: Largest grid accepted (cells per axis): 2^16 x 2^16 cells already need ~100 GB of working arrays.
+MAX_CELLS = 2 ** 16
+#: Largest count of path steps (n_steps, window, refine_factor) accepted.
+MAX_STEPS = 10 ** 6
 
 
 @dataclass(frozen=True)
@@ -118,11 +122,10 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
 
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
-    if int(n) != n or int(n) < 8 or int(n) % 2:
-        raise ValueError(f"n must be an even integer >= 8 (cells per axis); got {n!r}")
-    n = int(n)
-    if int(n_steps) != n_steps or n_steps < 4:
-        raise ValueError(f"n_steps must be an integer >= 4 (unloading steps); got {n_steps!r}")
+    n = check_count("n", n, 8, MAX_CELLS, "cells per axis, even")
+    if n % 2:
+        raise ValueError(f"n must be an even integer in [8, {MAX_CELLS}] (cells per axis); got {n!r}")
+    n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
     margin = float(check_positive("margin", margin, "domain half-width per zone semi-axis"))
     law_obj = law_from_name(law, mu, 1.0) if isinstance(law, str) else check_law(law)
     if law_obj is None:
@@ -770,12 +773,12 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
         raise ValueError(f"coarse must be a load-control pull-off; got control={coarse.control!r}")
     if not np.isfinite(coarse.delta_star):
         raise ValueError("coarse must hold a pull-off (its delta_star is NaN: no converged contact state)")
-    if int(n) != n or int(n) <= coarse.n:
+    n = check_count("n", n, 8, MAX_CELLS, "cells per axis")
+    if n <= coarse.n:
         raise ValueError(f"n must be an integer > coarse.n = {coarse.n} (cells per axis); got {n!r}")
-    for name, v, lo in (("window", window, 1), ("refine_levels", refine_levels, 0),
-                        ("refine_factor", refine_factor, 2)):
-        if int(v) != v or int(v) < lo:
-            raise ValueError(f"{name} must be an integer >= {lo}; got {v!r}")
+    window = check_count("window", window, 1, MAX_STEPS, "finest path steps")
+    refine_levels = check_count("refine_levels", refine_levels, 0, 16, "bracket refinements")
+    refine_factor = check_count("refine_factor", refine_factor, 2, MAX_STEPS, "step division per refinement")
     prob_nd = nondimensional_problem(coarse.mu, coarse.beta0, int(n), law=coarse.law, n_steps=n_steps)
     grid = prob_nd.grid
     if not (math.isclose(0.5 * grid.nx * grid.dx, coarse.half_width_x, rel_tol=1e-9)
