@@ -455,7 +455,7 @@ def _contact_pressure(op, g0, p, scale, tol, max_iter, k0, stress):
         return _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress)
     sub_op, sl = box
     pc, _, it, _ = _constrained_cg(sub_op, np.ascontiguousarray(g0[sl]), np.ascontiguousarray(p[sl]),
-                                   scale, tol, max_iter, k0, None)
+                                   scale, tol, max_iter, k0, None, exact_gap=False)
     p = np.zeros_like(g0)
     p[sl] = pc
     h = g0 + op(p)
@@ -481,7 +481,7 @@ def _active_box_cg(op, g0, p, scale, tol, max_iter, k0, stress):
     pb = np.ascontiguousarray(p[sl])
     hb = np.ascontiguousarray(h[sl])
     pc, _, it, _ = _constrained_cg(sub_op, hb - sub_op(pb), pb.copy(), scale, tol, max_iter, k0, None,
-                                   h=hb.copy(), nested=False)   # (the CG updates its p in place)
+                                   h=hb.copy(), nested=False, exact_gap=False)   # (p is updated in place)
     dp = np.zeros_like(p)
     dp[sl] = pc - pb
     p[sl] = pc
@@ -494,11 +494,13 @@ def _active_box_cg(op, g0, p, scale, tol, max_iter, k0, stress):
     return p, h, it + it2, err
 
 
-def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=True):
+def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=True, exact_gap=True):
     """The Polonsky-Keer iteration for ``h = g0 + K(p - stress)`` on ``op``'s grid (p >= 0, owned).
 
     ``h``: the gap of ``p`` if already known; ``nested``: a cold start without stress
-    may start from the coarser grid (:func:`_nested_cold_start`).
+    may start from the coarser grid (:func:`_nested_cold_start`); ``exact_gap``: end with a
+    fresh convolution of the gap (False when the caller completes the gap itself: the
+    box solves, whose returned gap is discarded).
     """
 
     def gap(p):
@@ -572,7 +574,7 @@ def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=
                 _add_point_loads(op, h, ol_cells, ol_amounts)
         active = p > 0
         err = _complementarity(h, active) / scale
-    if since_full:
+    if since_full and exact_gap:
         h = gap(p)
         err = _complementarity(h, p > 0) / scale
     return p, h, it + coarse_it, err   # CG iterations on every grid (coarse ones are cheaper)
