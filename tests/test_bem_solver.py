@@ -90,3 +90,21 @@ def test_nested_warm_start_rejects_a_problem_of_another_grid():
     with pytest.raises(ValueError, match="problem"):
         NestedWarmStart(1.0, 1.0, 256, problem=nd)
 
+
+
+@pytest.mark.parametrize("mu, beta0, n", [(2.66, 1.0, 256), (1.0, 0.5, 256), (5.0, 0.6, 384)])
+def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n):
+    # the nested levels reuse the fine grid's analytic set-up: every field equals a fresh set-up, bit for bit
+    import dataclasses
+
+    fine = nondimensional_problem(mu, beta0, n)
+    for k in (2, 4):
+        derived = pull_off_module._coarser_problem(fine, n // k)
+        fresh = nondimensional_problem(mu, beta0, n // k)
+        assert derived.grid == fresh.grid
+        for f in dataclasses.fields(fresh):
+            a, b = getattr(derived, f.name), getattr(fresh, f.name)
+            if isinstance(b, np.ndarray):
+                np.testing.assert_array_equal(a, b)
+            else:
+                assert a == b, f.name
