@@ -60,6 +60,10 @@ FOLD_STEPS = 16
 FOLD_WINDOW = 2
 #: Standard deviations of the fold's load from the scatter of delta counted in its error estimate.
 FOLD_SCATTER_SIGMAS = 2.0
+#: A fold above a loss of contact counts as told apart from it when the cubic delta(F_a)
+#: is deeper there than this many residual standard deviations (else the error estimate
+#: spans the load of both).
+FOLD_RESOLVED_SIGMAS = 3.0
 #: Largest rigid shift D of the gap per outer iteration, in units of the law's range
 #: (bounds the root search; a larger mismatch is corrected over several iterations).
 MAX_SHIFT_RANGES = 4.0
@@ -280,6 +284,29 @@ def _fold_scatter(forces, approaches, loads, fold_force, deg=3):
     return abs(float(slope_w)) * sigma_t
 
 
+def _shallow_fold_spread(forces, approaches, loads, fold_force, loss_force, deg=3):
+    """|W(fold) - W(loss)| when the fold is not deeper than the scatter of delta, else 0 [force].
+
+    Near lambda ~ 1 the fold lies just above the loss of contact, at most ~1e-3 deeper
+    in delta; when the cubic's depth delta(loss) - delta(fold) is below
+    ``FOLD_RESOLVED_SIGMAS`` residual standard deviations, the lattice cannot tell the
+    fold from the loss of contact, and the spread of W between the two is the error.
+    """
+    x, d, w = (np.asarray(v, dtype=float) for v in (forces, approaches, loads))
+    if x.size <= deg + 1:
+        return 0.0
+    x0, sc = 0.5 * (x.min() + x.max()), max(0.5 * (x.max() - x.min()), 1e-300)
+    t = (x - x0) / sc
+    pd = np.polyfit(t, d, deg)
+    pw = np.polyfit(t, w, min(deg, 3))
+    sigma = math.sqrt(float(np.sum((d - np.polyval(pd, t)) ** 2)) / (x.size - deg - 1))
+    tf, tl = (fold_force - x0) / sc, (loss_force - x0) / sc
+    depth = float(np.polyval(pd, tl) - np.polyval(pd, tf))
+    if depth >= FOLD_RESOLVED_SIGMAS * sigma:
+        return 0.0
+    return abs(float(np.polyval(pw, tl) - np.polyval(pw, tf)))
+
+
 def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSearch:
     """The smallest approach of a sampled contact branch and its load, by least squares, with an error estimate.
 
@@ -308,7 +335,9 @@ def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSe
     loss of contact, the loss put at either end of its bracket; at a fold at
     least ``FOLD_SCATTER_SIGMAS`` standard deviations of the load from the
     scatter of delta about its cubic (the slope error at the vertex divided by
-    the curvature moves the fold, times dW/dF_a).
+    the curvature moves the fold, times dW/dF_a), and, when the fold lies above
+    a loss of contact by less than ``FOLD_RESOLVED_SIGMAS`` such deviations in
+    delta, the spread of W between the fold and the loss.
     """
     x = check_sequence("adhesive_forces", adhesive_forces, "adhesive force of each state, force")
     d = check_sequence("approaches", approaches, "approach of each state, length")
@@ -343,6 +372,9 @@ def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSe
     if best[3] == "fold":
         # the vertex moves with the scatter of delta (the lattice jaggedness): two standard deviations
         err = np.nanmax([err, FOLD_SCATTER_SIGMAS * _fold_scatter(x, d, w, best[0])])
+        if np.isfinite(f_loss):
+            # a fold above the loss of contact, not deeper than that scatter: either could be the end
+            err = max(err, _shallow_fold_spread(x, d, w, best[0], f_loss))
     return FoldSearch(best[3], best[2], best[1], best[0], float(err), None)
 
 
@@ -484,7 +516,8 @@ def fold_by_adhesive_force(prob: AdhesiveProblem, start: ContactState, *, steps=
         hz = h / refine_factor
         zoom = [loss[1] + window * h - j * hz for j in range(window * refine_factor * refine_factor + 1)]
         fill([f for f in zoom if f > 0.25 * hz])
-        fit_z, _ = fit_between(loss[0], loss[1] + window * h, hz)
+        # the fit spans the finer end and the window's fold (which may lie above it)
+        fit_z, _ = fit_between(loss[0], max(loss[1], fit.adhesive_force) + window * h, hz)
         if fit_z is not None and fit_z.kind != "failed":
             fit = fit_z
     if fit is None or fit.kind == "failed":

@@ -90,7 +90,10 @@ class UnloadingPath:
         Wall time [s].
     pull_off_converged : bool
         True when every state from the start of the path down to the pull-off
-        converged (failures beyond the jump do not count).
+        converged (failures beyond the jump do not count).  Under displacement
+        control: a fold or loss of contact was located and the states before the
+        branch (loading, start) converged; an unconverged state along the branch
+        is left out of the fit (listed in ``failures``).
     resolved : bool
         False when the grid is too coarse for the Dugdale edge (see
         ``EDGE_WIDTH_FACTOR``): the results are then not trustworthy.
@@ -661,7 +664,11 @@ def _displacement_pull_off(prob, keep, run, records, by_index, failures, prog, t
         old = fold_of_branch([records[i]["load"] for i in good], [records[i]["approach"] for i in good])
         return _path_result(prob, records, by_index, failures, "displacement", old.load, old.approach, k_po,
                             False, t0, keep_states, warm_start, old.load_error, FOLD_NOT_FOUND_NOTE)
-    po_converged = all(records[i]["converged"] for i in branch if records[i]["phase"] != "discarded")
+    # the fit uses converged states only: an unconverged state along the adhesive force is a hole
+    # in the samples (listed in failures), not a failure of the pull-off; the states before
+    # the branch (loading, the start) must have converged
+    po_converged = all(records[i]["converged"] for i in range(len(records))
+                       if records[i]["phase"] in ("loading", "unloading"))
     note = CONTACT_LOSS_NOTE if fold.kind == "contact loss" else ""
     return _path_result(prob, records, by_index, failures, "displacement", fold.load, fold.approach, k_po,
                         po_converged, t0, keep_states, warm_start, fold.load_error, note)
