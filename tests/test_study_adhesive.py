@@ -170,3 +170,16 @@ def test_coarse_to_fine_from_a_stored_coarse_level(tmp_path):
     direct = refine_pull_off(adhesive_pull_off(1.0, 1.0, 16, progress=False, **opts), 32, progress=False, **opts)
     assert fine["W_star"] == pytest.approx(direct.W_star, rel=RTOL_SAME_ROUTE)
     assert fine["n_steps"] == direct.n_steps
+
+
+def test_report_lists_the_cases_solved_coarse_to_fine(tmp_path):
+    from verification import sec_adhesive
+
+    sa.run_study([0.5, 1.0], [5.0], [16, 32], work_dir=tmp_path, solver=_stand_in([]), progress=False)
+    recs = sa.load_records(tmp_path)
+    for r in recs:
+        if (r["beta0"], r["n"]) == (0.5, 32):
+            r.update(route="coarse to fine from n=16", search="refine")
+    ds = sa.ground_truth_dataset(recs, references=_refs([0.5, 1.0], [5.0]))
+    assert sec_adhesive.coarse_to_fine_cases(ds) == [(0.5, 5.0, 32, "coarse to fine from n=16")]
+    assert sec_adhesive.coarse_to_fine_cases(ds.drop_vars("route")) == []

@@ -183,6 +183,15 @@ def verdict_lines(tab, coverage):
     return lines
 
 
+def coarse_to_fine_cases(ds):
+    """(beta0, mu, n, route) of every stored case solved coarse to fine, in dataset order."""
+    if "route" not in ds:
+        return []
+    routes = ds["route"].values.astype(str)
+    return [(float(ds["beta0"][i]), float(ds["mu"][j]), int(ds["n"][k]), str(routes[i, j, k]))
+            for i, j, k in zip(*np.nonzero(np.char.startswith(routes, "coarse to fine")))]
+
+
 def _coverage(ds):
     from verification.study_adhesive import STATUSES
 
@@ -371,6 +380,11 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         f"command `{ds.attrs.get('param_command', '?')}`). {coverage}.",
         "Re-run here: " + ("; ".join(rerun_lines) if rerun_lines else "no usable cheap case stored") + ".",
     ] + sphere_lines
+    c2f = coarse_to_fine_cases(ds)
+    if c2f:
+        text.append("Solved coarse to fine (`dhfield.bem.refine_pull_off`: only the states around the pull-off, "
+                    "started from the coarser N; the route is stored per case): "
+                    + "; ".join(f"β0 = {b:g}, μ = {m:g}, N = {n} ({r})" for b, m, n, r in c2f) + ".")
     if bad:
         text.append("Cases flagged unconverged or failed (kept in the dataset with their message): "
                     + "; ".join(f"β0 = {b:g}, μ = {m:g}, N = {n}" for b, m, n, _ in bad) + ".")

@@ -369,19 +369,24 @@ class NestedWarmStart:
     def locate_pull_off(self, spacing):
         """Approach of the load-control pull-off on the coarse grid (NaN when not found).
 
-        The coarsest level runs the bracket search (:func:`unloading_path` with the
-        analytic DH guess); every finer level solves the approaches of the lattice
+        The coarsest level whose Dugdale edge is (nearly) resolved
+        (:data:`LOCATE_MAX_EDGE_RATIO`) runs the bracket search (:func:`unloading_path` with the analytic DH guess, and
+        the coarser levels as warm starts); every finer level solves the approaches of the lattice
         ``approach_max - j spacing`` next to the pull-off of the level below
         (:func:`_lattice_minimum`, warm-started from that level) and returns the
-        vertex of their parabola.  The states are kept for the warm starts.
+        vertex of their parabola.  The states are kept for the warm starts.  NaN
+        when this grid is too coarse for the Dugdale edge.
         """
         nd = self._nd
-        if self._inner is None:
+        if self._prob.edge_width_ratio > LOCATE_MAX_EDGE_RATIO:
+            return float("nan")           # the Dugdale edge is far from resolved here: no reliable minimum
+        if self._inner is None or self._inner._prob.edge_width_ratio > LOCATE_MAX_EDGE_RATIO:
+            # the coarsest resolved grid: the bracket search (warm starts from the grid below, if any)
             path = unloading_path(nd.initial_gap, nd.grid, nd.law, nd.approach_max, nd.approach_step,
                                   control="load", refine_levels=LOCATE_BOTTOM_REFINE, tol=self._tol,
                                   max_iter=self._max_iter, threads=self._threads,
                                   keep_states=True, progress=False, approach_guess=nd.pull_off_approach,
-                                  start_stress=nd.start_stress())
+                                  start_stress=nd.start_stress(), warm_start=self._inner)
             for st in path.states:
                 if st.converged and st.in_contact and st.approach not in self._states:
                     self._states[st.approach] = st
@@ -408,6 +413,11 @@ LOCATE_VERTEX_STATES = 1
 #: the next grid's lattice samples re-locate the minimum anyway (measured over 4 cases at
 #: N = 256: the same pull-offs, 10 % less CPU than 2).
 LOCATE_BOTTOM_REFINE = 0
+#: Coarse grids of the located search must have an ``AdhesiveProblem.edge_width_ratio`` (edge
+#: width wanted / its cap 2 h0; > 1 is flagged unresolved) of at most this.  Measured: the
+#: states converge at 1.10 (lambda = 3, N = 64) and 1.18 (mu = 5, N = 256), and not at 2.1-3.8
+#: (mu = 5, N = 64-128: 35 s of unconverged coarse states before the fall-back to 'bracket').
+LOCATE_MAX_EDGE_RATIO = 1.25
 #: Solver tolerance of the coarse grids of the located search (the fine grid keeps ``tol``).
 #: Their states only locate the minimum and start the fine states: a zone-fraction error of
 #: 1e-4 moves a coarse load by ~3e-5 relative (measured), far below the lattice jaggedness of
@@ -566,8 +576,9 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         grid half as fine: 3-4 fine states instead of 4-6 (measured at
         N = 256), the same pull-off to the jaggedness of the discrete load
         curve (~5e-4).  Falls back to 'bracket' (keeping the coarse
-        states) when ``n < 2 NESTED_MIN_N``, when the located minimum is not
-        interior, or when a fine state does not converge.
+        states) when ``n < 2 NESTED_MIN_N``, when the grid half as fine is too
+        coarse for the Dugdale edge (:data:`LOCATE_MAX_EDGE_RATIO`), when the
+        located minimum is not interior, or when a fine state does not converge.
     nested : bool, optional
         Bracket search only: start every state from the same approach solved
         on a grid half as fine (:class:`NestedWarmStart`).  Default: when

@@ -167,6 +167,7 @@ class AdhesiveProblem:
         # smallest edge width of the Dugdale zone (see EDGE_WIDTH_FACTOR)
         self.min_spread = 0.0
         self.resolved = True
+        self.edge_width_ratio = 0.0
         if isinstance(self.law, DugdaleLaw):
             cells = math.sqrt(grid.nx * grid.ny)
             kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(cells))
@@ -174,6 +175,8 @@ class AdhesiveProblem:
             # at most 2 h0: the smeared edge stays within h >= 0 and keeps the work of adhesion
             self.min_spread = min(want, 2.0 * self.law.range)
             self.resolved = want <= 2.0 * self.law.range
+            # wanted edge width per its cap 2 h0 (resolved iff <= 1)
+            self.edge_width_ratio = want / (2.0 * self.law.range)
 
     def to_full(self, q):
         return unfold_quadrant(q) if self.symmetric else q
