@@ -108,3 +108,12 @@ def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n)
                 np.testing.assert_array_equal(a, b)
             else:
                 assert a == b, f.name
+
+
+def test_located_search_does_not_locate_on_a_grid_too_coarse_for_the_edge():
+    # mu = 5 at N = 64: the edge wants ~3.8x its cap 2 h0 (unconverged states): no location, nothing solved
+    nd = nondimensional_problem(5.0, 1.0, 128)
+    ws = NestedWarmStart(5.0, 1.0, 128, problem=nd)
+    assert ws._prob.edge_width_ratio > pull_off_module.LOCATE_MAX_EDGE_RATIO
+    assert np.isnan(ws.locate_pull_off(nd.approach_step / 2))
+    assert ws.states_solved == 0
