@@ -508,16 +508,20 @@ def fold_by_adhesive_force(prob: AdhesiveProblem, start: ContactState, *, steps=
     lattice = [f for f in lattice if f > 0.25 * h]
     fill(lattice)
     fit, loss = fit_between(min(lattice), max(lattice), h)
-    if fit is not None and loss is not None:
-        # the contact is lost in the window: the end of the branch is sampled again, steps
-        # h/refine_factor over [loss, loss + window h] (near lambda = 1 the fold lies within
-        # 0.1 dF of the loss, 7e-4 deep in delta: measured at N = 256 the window fit took
-        # the loss (+2.1 % vs MD), the finer end finds the fold)
+    near_end = fit is not None and loss is not None and (
+        fit.kind != "fold" or fit.adhesive_force <= loss[1] + window * h)
+    if near_end:
+        # the window's result is at (or within window h of) the loss of contact: the end of
+        # the branch is sampled again, steps h/refine_factor over [loss, loss + window h], and
+        # fitted alone.  Near lambda = 1 the fold lies within 0.1 dF of the loss and 7e-4 deep
+        # in delta: at N = 256 the window fit took the loss (+2.1 % vs MD), the finer end finds
+        # the fold (-0.4 %).  A fold further up is left to the window fit (the finer end, fitted
+        # alone, then shows a spurious minimum at its top: lambda = 1.2, N = 96, +11 %).
         hz = h / refine_factor
-        zoom = [loss[1] + window * h - j * hz for j in range(window * refine_factor * refine_factor + 1)]
+        top = max(loss[1], fit.adhesive_force if fit.kind != "failed" else loss[1]) + window * h
+        zoom = [top - j * hz for j in range(int(round((top - loss[1]) / hz)) + 1)]
         fill([f for f in zoom if f > 0.25 * hz])
-        # the fit spans the finer end and the window's fold (which may lie above it)
-        fit_z, _ = fit_between(loss[0], max(loss[1], fit.adhesive_force) + window * h, hz)
+        fit_z, _ = fit_between(loss[0], top, hz)
         if fit_z is not None and fit_z.kind != "failed":
             fit = fit_z
     if fit is None or fit.kind == "failed":
