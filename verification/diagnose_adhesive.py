@@ -6,9 +6,10 @@ this script.  It prints
 * the grid (cells per axis, dx, dy), the smallest Dugdale edge spread and ``resolved``;
 * for each cold start of the bracket search's first state, at the approach and
   with the cohesive zone (sigma0 on an ellipse c x d) of an analytic model: the
-  analytic DH model (what :func:`dhfield.bem.adhesive_pull_off` uses), the same
-  approach with the adhesive ellipticity of the two-axis closure, and the two-axis
-  closure's own pull-off approach and zone -- converged flag, outer and CG
+  paper's DH model (the start until commit 713551f), the same approach with the
+  adhesive ellipticity of the two-axis closure, and the two-axis closure's own
+  pull-off approach and zone (the start of :func:`dhfield.bem.adhesive_pull_off`
+  for beta0 < 1 since then) -- converged flag, outer and CG
   iterations, residual, load and semi-axes reached, and the cells across the
   cohesive zone along x ((c - a)/dx) and y ((d - b)/dy);
 * with ``--path``: every state of the load-control path (phase, approach, load,
@@ -33,9 +34,11 @@ import numpy as np
 
 #: Cold starts of the first bracket state: name -> what the zone and approach come from.
 STARTS = {
-    "dh": "analytic DH pull-off: its approach and cohesive zone (c, d) (what adhesive_pull_off uses)",
+    "dh": "the paper's DH pull-off: its approach and cohesive zone (c, d = beta0 c) (adhesive_pull_off "
+          "before commit 713551f)",
     "dh-approach-two-axis-ellipticity": "DH approach and c, d = c x the two-axis closure's adhesive ellipticity",
-    "two-axis": "two-axis closure's pull-off: its approach and cohesive zone",
+    "two-axis": "two-axis closure's pull-off: its approach and cohesive zone (adhesive_pull_off since 713551f, "
+                "beta0 < 1)",
 }
 
 
@@ -52,12 +55,13 @@ def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
     from dhfield.bem.solver import AdhesiveProblem, Prediction, solve_problem
 
     nd = nondimensional_problem(mu, beta0, n)
-    approach, (c, d) = nd.pull_off_approach, nd.pull_off_zone
-    if start != "dh":
-        ta = compare.pull_off("dh-elliptic-two-axis", mu, beta0, "load")
-        if start == "two-axis":
-            approach, c, d = float(ta["delta_star"]), float(ta["c_star"]), float(ta["d_star"])
-        else:
+    dh = compare.pull_off("dh-elliptic", mu, beta0, "load")
+    ta = compare.pull_off("dh-elliptic-two-axis", mu, beta0, "load")
+    if start == "two-axis":
+        approach, c, d = float(ta["delta_star"]), float(ta["c_star"]), float(ta["d_star"])
+    else:
+        approach, c, d = float(dh["delta_star"]), float(dh["c_star"]), float(dh["d_star"])
+        if start != "dh":
             d = c * float(ta["adhesive_ellipticity"])
     prob = AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, None, 1.0)
     x, y = nd.grid.mesh()
