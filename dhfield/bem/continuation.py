@@ -45,8 +45,8 @@ from scipy.optimize import brentq
 
 from .._validation import check_count, check_finite, check_positive, check_sequence
 from .laws import DugdaleLaw, cell_fraction_below
-from .solver import (ANDERSON_RESTART, MAX_OUTER, STALL_OUTER, AdhesiveProblem, Prediction, _Anderson,
-                     _polonsky_keer, _state)
+from .solver import (ANDERSON_RESTART, MAX_OUTER, STALL_OUTER, AdhesiveProblem, AndersonMixing, Prediction,
+                     assemble_state, solve_contact_pressure)
 from .state import ContactState
 
 __all__ = ["solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force", "fit_fold", "FoldSearch",
@@ -154,14 +154,14 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
     inner_tol = 0.1 * tol * gain
     # weight of the approach among the stress unknowns in Anderson's least squares
     w_delta = math.sqrt(max(np.count_nonzero(s), 1))
-    acc = _Anderson()
+    acc = AndersonMixing()
     res = err = np.inf
     total_it = outer = best_outer = 0
     best = None
     while outer < MAX_OUTER and total_it < max_iter and outer - best_outer <= STALL_OUTER:
         outer += 1
         itol = gain * (1e-3 if not np.isfinite(res) else min(max(0.1 * res, 0.1 * tol), 1e-2))
-        p, h, it, err = _polonsky_keer(prob.op, prob.z - delta, p, h0, itol, max_iter - total_it, prob.k0,
+        p, h, it, err = solve_contact_pressure(prob.op, prob.z - delta, p, h0, itol, max_iter - total_it, prob.k0,
                                        stress=s)
         total_it += it
         contact = p > 0
@@ -182,7 +182,7 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
             acc.reset()
     else:
         res, s, p, h, err, delta = best
-    return _state(prob, delta, p, s, h, total_it, max(res, err), res <= tol and err <= tol, outer)
+    return assemble_state(prob, delta, p, s, h, total_it, max(res, err), res <= tol and err <= tol, outer)
 
 
 def _secant(prob, prev, last, t):

@@ -94,7 +94,8 @@ from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, qua
 from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "Prediction", "solve_problem", "secant_prediction",
-           "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution"]
+           "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution",
+           "AndersonMixing", "assemble_state"]
 
 #: Default solver tolerance: complementarity error of the contact problem relative to
 #: the law's range (or |delta| without adhesion), and largest change of the zone
@@ -583,11 +584,7 @@ def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=
     return p, h, it + coarse_it, err   # CG iterations on every grid (coarse ones are cheaper)
 
 
-#: The private name used before the CG was public (dhfield.bem.continuation imports it).
-_polonsky_keer = solve_contact_pressure
-
-
-class _Anderson:
+class AndersonMixing:
     """Anderson mixing (type II) for x = F(x); residual f = F(x) - x."""
 
     def __init__(self, memory=ANDERSON_MEMORY, mixing=1.0):
@@ -717,7 +714,7 @@ def solve_problem(prob, delta, guess, tol, max_iter):
         total_it += it
         s = np.zeros_like(p)
         converged = err <= tol
-        return _state(prob, delta, p, s, h, total_it, err, converged, 1)
+        return assemble_state(prob, delta, p, s, h, total_it, err, converged, 1)
     sigma0 = law.max_stress
     # initial adhesive stress
     if isinstance(guess, Prediction):
@@ -730,7 +727,7 @@ def solve_problem(prob, delta, guess, tol, max_iter):
     else:
         h_rigid = zd.copy()
         s = prob.stress_from_gap(np.maximum(h_rigid, 0.0), h_rigid <= 0)
-    acc = _Anderson()
+    acc = AndersonMixing()
     res = np.inf
     err = np.inf
     outer = 0
@@ -760,7 +757,7 @@ def solve_problem(prob, delta, guess, tol, max_iter):
         # out of iterations: report the best iterate, flagged
         res, s, p, h, err = best
     converged = res <= tol and err <= tol
-    return _state(prob, delta, p, s, h, total_it, max(res, err), converged, outer)
+    return assemble_state(prob, delta, p, s, h, total_it, max(res, err), converged, outer)
 
 
 @dataclass
@@ -794,7 +791,7 @@ def secant_prediction(prob, prev, last, delta):
     return Prediction(pressure, stress)
 
 
-def _state(prob, delta, p, s, h, iterations, residual, converged, outer):
+def assemble_state(prob, delta, p, s, h, iterations, residual, converged, outer):
     contact_w = p > 0
     law = prob.law
     if law is None:
