@@ -226,9 +226,10 @@ RTOL_DIRECT_SUM = 1e-12
 
 @pytest.mark.parametrize("mu, beta0, n", [(float(transition.tabor_from_maugis(1.0)), 1.0, 64), (1.0, 0.5, 48)])
 def test_bracket_search_equals_the_marching_path_with_a_fifth_of_the_states(mu, beta0, n):
-    new = adhesive_pull_off(mu, beta0, n, progress=False)
+    new = adhesive_pull_off(mu, beta0, n, progress=False, search="bracket")
     old = adhesive_pull_off(mu, beta0, n, progress=False, search="march")
     assert new.converged and old.converged
+    assert (new.search, old.search) == ("bracket", "march")
     assert new.W_star == pytest.approx(old.W_star, rel=RTOL_BRACKET_VS_MARCH)
     assert new.n_steps <= old.n_steps / 5
     assert set(new.path.phase) <= {"unloading", "refine"}      # no loading, nothing past the bracket
@@ -306,8 +307,8 @@ def test_direct_gap_correction_equals_the_convolution(symmetric):
 
 def test_nested_warm_starts_reach_the_same_states():
     mu = float(transition.tabor_from_maugis(3.0))
-    plain = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=False)
-    nested = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=True)
+    plain = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=False, search="bracket")
+    nested = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=True, search="bracket")
     assert plain.converged and nested.converged
     assert nested.path.coarse_states >= nested.n_steps and plain.path.coarse_states == 0
     # the bracket: the same approaches, hence the same discrete states, found from other warm starts

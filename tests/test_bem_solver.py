@@ -35,6 +35,7 @@ def test_located_search_equals_the_bracket_search(lam, beta0, mu):
     located = adhesive_pull_off(mu, beta0, 128, progress=False, search="located")
     bracket = adhesive_pull_off(mu, beta0, 128, progress=False, search="bracket")
     assert located.converged and bracket.converged
+    assert (located.search, bracket.search) == ("located", "bracket")    # the route taken is recorded
     assert located.W_star == pytest.approx(bracket.W_star, rel=RTOL_LOCATED_VS_BRACKET)
     # only lattice samples (and vertex states) on the fine grid, nothing past the minimum's bracket
     assert set(located.path.phase) <= {"unloading", "refine"}
@@ -53,6 +54,7 @@ def test_located_search_falls_back_to_the_bracket_search_below_two_levels():
     located = adhesive_pull_off(mu, 1.0, 64, progress=False, search="located")
     bracket = adhesive_pull_off(mu, 1.0, 64, progress=False, search="bracket")
     assert located.W_star == bracket.W_star
+    assert located.search == "bracket"                                  # the fallback is recorded
     np.testing.assert_array_equal(located.path.approach, bracket.path.approach)
 
 

@@ -30,7 +30,9 @@ def test_solve_json_and_netcdf(tmp_path, capsys):
     md = compare.pull_off("md", 1.0, 1.0)["W_star"]  # Maugis-Dugdale at lambda = 1.1272 mu
     assert rec["W_star"] == pytest.approx(md, rel=COARSE_MD_RTOL)
     assert rec["beta_ab"] == pytest.approx(1.0, abs=1e-12) and rec["beta_cd"] == pytest.approx(1.0, abs=1e-12)
+    assert rec["search"] == "bracket"     # the default 'located' needs N >= 128: the fallback is reported
     ds = read_solution(out)
+    assert ds.attrs["search"] == "bracket"
     assert float(ds["W_star_pull_off"]) == rec["W_star"]
     assert ds.attrs["param_beta0"] == 1.0 and ds.attrs["param_law"] == "dugdale"
 
@@ -52,6 +54,7 @@ def test_solve_reports_non_convergence(monkeypatch, capsys):
     (["--beta0", "0.8", "--mu", "-1"], "mu"),
     (["--beta0", "0.8", "--mu", "1", "--n", "15"], "n"),
     (["--beta0", "0.8", "--mu", "1", "--law", "lj"], "law"),
+    (["--beta0", "0.8", "--mu", "1", "--search", "newton"], "search"),
     (["--beta0", "0.8", "--mu", "1", "--out", "/nonexistent-dir/x.nc"], "out"),
 ])
 def test_solve_bad_input(argv, word, capsys):

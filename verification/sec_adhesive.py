@@ -273,6 +273,7 @@ def _sphere_convergence():
 def _rerun(ds, quick, progress):
     """Re-solve the cheap cases at the coarsest stored N; return checks and a text line."""
     from dhfield.bem import adhesive_pull_off
+    from dhfield.bem.pull_off import SEARCHES
     from verification.study_adhesive import STATUSES, STUDY_MAX_ITER, USABLE
 
     checks, lines = [], []
@@ -288,7 +289,7 @@ def _rerun(ds, quick, progress):
         # the same load-minimum search as the stored case (march for cases stored before 'search')
         search = str(ds["search"].sel(**sel).values) if "search" in ds else "march"
         res = adhesive_pull_off(m, b, n0, max_iter=STUDY_MAX_ITER, progress=False,
-                                search=search if search in ("march", "bracket") else "bracket")
+                                search=search if search in SEARCHES else "bracket")
         el = time.perf_counter() - t0
         progress(f"re-run β0 = {b:g}, μ = {m:g}, N = {n0}: {el:.1f} s")
         err = abs(res.W_star / stored - 1.0)

@@ -140,7 +140,7 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
     rec = {"beta0": float(beta0), "mu": float(mu), "n": int(n), "law": law, "control": control,
            "max_iter": int(options.get("max_iter", -1)),
            "route": "full path" if start is None else f"coarse to fine from n={int(start.n)}",
-           "search": str(options.get("search", "bracket")) if start is None else "refine"}
+           "search": str(options.get("search", "located")) if start is None else "refine"}
     where = f"beta0={beta0:g}, mu={mu:g}, n={int(n)}, law={law}, control={control}"
     t0 = time.perf_counter()
     try:
@@ -156,6 +156,8 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
                    elapsed=time.perf_counter() - t0, converged=False, failures=[])
         return rec, None
     d = res.as_dict()
+    if d.get("search"):
+        rec["search"] = str(d["search"])    # the route actually taken (a search may fall back)
     rec.update({k: float(d[k]) for k in CASE_FLOATS if k in d})
     rec["converged"] = bool(d["converged"])
     rec["failures"] = d.get("failures", [])
@@ -416,7 +418,8 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
                      "(dhfield.bem.refine_pull_off: only the states around the pull-off)"})
     data["search"] = (dims, search.astype(str), {
         "long_name": "load-minimum search of the path: march (unload from approach_max in uniform steps), "
-                     "bracket (from the analytic pull-off) or refine (coarse to fine)"})
+                     "bracket (from the analytic pull-off), located (bracket with the minimum located on "
+                     "coarser grids) or refine (coarse to fine)"})
     data["solver_source"] = (dims, source.astype(str), {
         "long_name": "git commit of the solver that computed the case (and whether dhfield/bem was modified)"})
     # Richardson over the finest three levels, per (beta0, mu); unconverged/failed levels excluded

@@ -233,6 +233,12 @@ class AdhesivePullOff:
         displacement-control result carries :data:`DISPLACEMENT_CONTROL_NOTE`
         (its measured errors against Maugis-Dugdale), and says when the branch
         ends by loss of contact or no fold was bracketed.
+    search : str
+        The route that gave the pull-off: under load control the search that
+        bracketed the minimum ('located', 'bracket', or 'march', also when a
+        requested search fell back to it); 'continuation' under displacement
+        control (:mod:`dhfield.bem.continuation`); 'refine' for
+        :func:`refine_pull_off`.
     """
 
     mu: float
@@ -260,13 +266,14 @@ class AdhesivePullOff:
     path: UnloadingPath = field(repr=False, compare=False)
     W_star_error: float = float("nan")
     note: str = ""
+    search: str = ""
 
     def as_dict(self) -> dict:
         """JSON-ready scalars (the path and failures summarised)."""
         out = {k: getattr(self, k) for k in (
             "mu", "beta0", "n", "law", "control", "W_star", "W_star_error", "a_star", "b_star", "c_star",
             "d_star", "beta_ab", "beta_cd", "delta_star", "converged", "resolved", "n_steps", "iterations",
-            "residual", "half_width_x", "half_width_y", "elapsed", "note")}
+            "residual", "half_width_x", "half_width_y", "elapsed", "note", "search")}
         out["failures"] = [dict(f) for f in self.failures]
         out["iterations_per_step"] = self.iterations / max(self.n_steps, 1)
         return out
@@ -561,7 +568,7 @@ def _located_path(nd, n, ws, *, refine_levels, refine_factor, tol, max_iter, thr
 def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
                       refine_levels=2, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER,
                       margin=DOMAIN_MARGIN, threads=None, keep_states=False,
-                      progress=None, search="bracket", nested=None) -> AdhesivePullOff:
+                      progress=None, search="located", nested=None) -> AdhesivePullOff:
     """BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
 
     Parameters
@@ -592,8 +599,10 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         :func:`solve_adhesive`.
     margin : float
         Domain half-width per expected zone semi-axis.
-    search : {'bracket', 'march', 'located'}
-        Load control only.  'bracket' (default): cold-start at the analytic DH
+    search : {'located', 'bracket', 'march'}
+        Load control only (the route taken is :attr:`AdhesivePullOff.search`).
+        'located' (default) is 'bracket' with the minimum located on coarser
+        grids first (below).  'bracket': cold-start at the analytic DH
         pull-off approach from the DH cohesive zone and bracket the load minimum
         there (a handful of states; :func:`unloading_path` with
         ``approach_guess``).  'march': unload from ``approach_max`` in uniform
@@ -643,14 +652,20 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
                                  tol=tol, max_iter=max_iter, threads=threads, keep_states=keep_states,
                                  progress=progress)
             if path is not None:
-                return _pull_off_result(prob, int(n), path)
+                return _pull_off_result(prob, int(n), path, "located")
     if control == "displacement" and np.all(np.isfinite(prob.pull_off_zone)):
         # the branch is followed by adhesive force from the DH load-control pull-off (unloading_path)
         guess = dict(approach_guess=prob.pull_off_approach, start_stress=prob.start_stress())
     path = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
                           control=control, refine_levels=refine_levels, tol=tol, max_iter=max_iter,
                           threads=threads, keep_states=keep_states, progress=progress, **guess)
-    return _pull_off_result(prob, int(n), path)
+    if control == "displacement":
+        route = "continuation"
+    elif "approach_guess" in guess and not np.any(path.phase == "discarded"):
+        route = "bracket"
+    else:
+        route = "march"     # requested, or the bracket's cold start gave no contact state
+    return _pull_off_result(prob, int(n), path, route)
 
 
 #: Accuracy carried by every displacement-control pull-off (:attr:`AdhesivePullOff.note`).
@@ -670,7 +685,7 @@ DISPLACEMENT_CONTROL_NOTE = (
     "near lambda = 1 coarser grids can mistake the loss of contact for the fold (N = 96: -3.1 %)")
 
 
-def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath) -> AdhesivePullOff:
+def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str) -> AdhesivePullOff:
     """The pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state."""
     note = path.pull_off_note
     if path.control == "displacement":
@@ -687,7 +702,7 @@ def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath) -
         iterations=int(path.iterations.sum()), residual=float(path.residual.max()), failures=path.failures,
         resolved=path.resolved, half_width_x=0.5 * prob.grid.nx * prob.grid.dx,
         half_width_y=0.5 * prob.grid.ny * prob.grid.dy, elapsed=path.elapsed, path=path,
-        W_star_error=float(abs(path.pull_off_error * scale)), note=note)
+        W_star_error=float(abs(path.pull_off_error * scale)), note=note, search=search)
 
 
 def richardson_extrapolation(n, values):
@@ -906,4 +921,4 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
                          "load", float(w_po), float(d_po), states[k_po], failures,
                          tuple(states) if keep_states else (), time.perf_counter() - t0,
                          not failures and sm is not None and not sm.at_boundary, prob.resolved)
-    return _pull_off_result(prob_nd, int(n), path)
+    return _pull_off_result(prob_nd, int(n), path, "refine")

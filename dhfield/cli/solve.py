@@ -27,6 +27,10 @@ def add_parser(sub) -> None:
                    help="traction law, sigma0 = mu and dgamma = 1 (default dugdale)")
     p.add_argument("--control", default="load", choices=("load", "displacement"),
                    help="load: minimum of the unloading force; displacement: the jump (default load)")
+    p.add_argument("--search", default="located", choices=("located", "bracket", "march"),
+                   help="load control: how the force minimum is found -- located on coarser grids first, "
+                        "then 3-4 states on this one (default); bracket: from the analytic pull-off on this "
+                        "grid; march: unload in uniform steps (slowest)")
     p.add_argument("--threads", type=int, default=None, help="FFTW threads (default $DHFIELD_THREADS or 1)")
     p.add_argument("--out", default=None, help="netCDF file for the pull-off fields and the path")
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -40,7 +44,7 @@ def _record(res) -> dict:
     out = {"beta0": d["beta0"], "mu": d["mu"], "n": d["n"], "law": d["law"], "control": d["control"]}
     out.update({k: d[k] for k in BEM_ADHESIVE_KEYS})
     out.update(W_star_error=d["W_star_error"], residual=d["residual"], elapsed=d["elapsed"],
-               failures=d["failures"], note=d["note"])
+               failures=d["failures"], note=d["note"], search=d["search"])
     return out
 
 
@@ -55,7 +59,7 @@ def run(args) -> int:
     where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={args.n}, law={args.law}, control={args.control}")
     try:
         res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
-                                threads=args.threads, progress=None)
+                                threads=args.threads, progress=None, search=args.search)
     except RuntimeError as exc:  # the solver found no converged state to report
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
@@ -73,7 +77,7 @@ def run(args) -> int:
               f"d* = {res.d_star:.5f}")
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
         print(f"converged = {res.converged}  states = {res.n_steps}  CG iterations = {res.iterations}  "
-              f"({res.elapsed:.1f} s)")
+              f"search = {res.search}  ({res.elapsed:.1f} s)")
         if args.out is not None:
             print(f"wrote {args.out}")
     if not res.converged:

@@ -217,6 +217,8 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
     ds.attrs.update({"converged": int(bool(result.converged)), "n_steps": int(result.n_steps),
                      "iterations": int(result.iterations), "residual": float(result.residual),
                      "control": result.control, "elapsed_seconds": float(result.elapsed)})
+    if getattr(result, "search", ""):
+        ds.attrs["search"] = result.search      # the route that gave the pull-off
     return cf.finalize(ds)
 
 
