@@ -161,8 +161,8 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
     while outer < MAX_OUTER and total_it < max_iter and outer - best_outer <= STALL_OUTER:
         outer += 1
         itol = gain * (1e-3 if not np.isfinite(res) else min(max(0.1 * res, 0.1 * tol), 1e-2))
-        p, h, it, err = solve_contact_pressure(prob.op, prob.z - delta, p, h0, itol, max_iter - total_it, prob.k0,
-                                       stress=s)
+        p, h, it, err = solve_contact_pressure(prob.op, prob.z - delta, p, h0, itol, max_iter - total_it,
+                                               prob.k0, stress=s)
         total_it += it
         contact = p > 0
         f = prob.stress_from_gap(h, contact) - s
