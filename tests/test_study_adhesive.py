@@ -138,6 +138,10 @@ def test_verdict_names_the_closest_closure(tmp_path):
     assert any("paper's closure" in ln and "-20.0 %" in ln for ln in lines)
     # the stand-in has beta_cd - beta_ab = 1/N -> 0: shared beta after extrapolation
     assert any("share β" in ln for ln in lines)
+    # the model guide recommends the same closure, with the others' worst deviations
+    guide = sec_adhesive.guide_lines(tab)
+    assert len(guide) == 1 and "`dh-elliptic-two-axis` — within 1.3 %" in guide[0]
+    assert "`dh-elliptic` 20.0 %" in guide[0] and "all 2 cases" in guide[0]
 
 
 def test_implausible_order_keeps_the_finest_value():

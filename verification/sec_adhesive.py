@@ -183,6 +183,25 @@ def verdict_lines(tab, coverage):
     return lines
 
 
+def guide_lines(tab):
+    """'Which model to use when' from the ground truth: the closures ranked by their worst deviation."""
+    ok = np.isfinite(tab["W_bem"])
+    ranked = []
+    for m in CLOSURES:
+        if m in tab["dev"] and np.any(ok):
+            ranked.append((float(np.max(np.abs(tab["dev"][m][ok]))), m))
+    if not ranked:
+        return []
+    ranked.sort()
+    (best_dev, best), rest = ranked[0], ranked[1:]
+    b0 = tab["beta0"][np.any(ok, axis=1)]
+    mu = tab["mu"][np.any(ok, axis=0)]
+    others = "; ".join(f"`{m}` {100 * d:.1f} %" for d, m in rest)
+    return [f"**Against the self-consistent adhesive BEM (β0 = {b0.min():g}–{b0.max():g}, μ = {mu.min():g}–"
+            f"{mu.max():g}, Dugdale law):** `{best}` — within {100 * best_dev:.1f} % of the BEM W*max in all "
+            f"{int(ok.sum())} cases solved; the worst deviation of the others: {others}."]
+
+
 def coarse_to_fine_cases(ds):
     """(beta0, mu, n, route) of every stored case solved coarse to fine, in dataset order."""
     if "route" not in ds:
@@ -393,7 +412,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     if np.any(np.isfinite(tab["W_bem"])):
         figs.append(_figure(tab, outdir, 72 if quick else 110))
     return Section(TITLE, text="\n\n".join(text), checks=checks, figures=figs, tables=[table_markdown(tab)],
-                   datasets=[DATASET], verdict=verdict)
+                   datasets=[DATASET], verdict=verdict, guide=guide_lines(tab))
 
 
 def main(argv=None) -> int:
