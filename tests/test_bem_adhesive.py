@@ -1,4 +1,8 @@
-"""Tests of the adhesive BEM solver (dhfield.bem.adhesive): limits and identities.
+"""End-to-end tests of the adhesive BEM (dhfield.bem.adhesive, the public names): limits and identities.
+
+The parts are tested in tests/test_bem_solver.py (one state), tests/test_bem_path.py
+(paths, the displacement-control fold) and tests/test_bem_pull_off.py (the paper's
+problem, the located search).
 
 Reference values are closed forms (Hertz, :mod:`dhfield.hertz`), the Maugis-Dugdale
 sphere (:mod:`dhfield.maugis_dugdale`, Maugis 1992, with lambda = 1.1272 mu of
@@ -13,7 +17,7 @@ import numpy as np
 import pytest
 
 from dhfield import hertz, jkr_elliptic, maugis_dugdale, transition
-from dhfield.bem import DugdaleLaw, ExponentialLaw, Grid, adhesive_pull_off, solve_adhesive
+from dhfield.bem import Grid, adhesive_pull_off, solve_adhesive
 from dhfield.bem.adhesive import nondimensional_problem, richardson_extrapolation
 from dhfield.geometry import radius_ratio, sin_skew_angle
 
@@ -22,9 +26,6 @@ from dhfield.geometry import radius_ratio, sin_skew_angle
 RTOL_HERTZ_AXES_64 = 0.015
 #: Peak pressure and load at 64^2: cell-averaged field, O(h^2) (measured < 3e-4).
 RTOL_HERTZ_PRESSURE_64 = 2e-3
-#: Symmetric (quadrant) mode and full grid solve the same discrete problem to the
-#: solver tolerance (1e-9 here), through different iteration sequences.
-RTOL_SYMMETRY = 1e-6
 #: BEM sphere pull-off vs MD at N = 64, lambda = 1: the sub-cell edge keeps the error
 #: well below the 1 % required at N = 256 (measured 0.1 % at N = 128).
 RTOL_MD_64 = 0.01
@@ -59,21 +60,6 @@ def test_no_adhesion_is_elliptical_hertz(beta):
     assert st.load == pytest.approx(float(hertz.load(1.0, beta)), rel=RTOL_HERTZ_PRESSURE_64)
     assert np.all(st.gap >= -1e-9 * delta)
     assert np.all(st.cohesive == 0.0)
-
-
-@pytest.mark.parametrize("law", [DugdaleLaw(1.0, 1.0), ExponentialLaw(1.0, 1.0)])
-def test_symmetric_mode_equals_full_grid(law):
-    grid = Grid.centered(32, 2.6)
-    x, y = grid.mesh()
-    z = x * x / 2.0 + y * y / 1.4
-    kw = dict(tol=1e-9)
-    sym = solve_adhesive(z, grid, 0.3, law, symmetric=True, **kw)
-    full = solve_adhesive(z, grid, 0.3, law, symmetric=False, **kw)
-    assert sym.converged and full.converged
-    scale = law.max_stress
-    np.testing.assert_allclose(sym.pressure, full.pressure, rtol=0, atol=RTOL_SYMMETRY * 10 * scale)
-    assert sym.load == pytest.approx(full.load, rel=RTOL_SYMMETRY * 10)
-    np.testing.assert_array_equal(sym.contact, full.contact)
 
 
 def test_dugdale_sphere_pull_off_matches_maugis_dugdale():
@@ -114,14 +100,6 @@ def test_under_resolved_grid_is_flagged():
     assert not flagged.converged and len(flagged.failures) > 0   # flagged, not dropped
 
 
-def test_unconverged_state_is_flagged_not_raised():
-    grid = Grid.centered(32, 2.6)
-    x, y = grid.mesh()
-    st = solve_adhesive((x * x + y * y) / 2, grid, 0.5, DugdaleLaw(1.0, 1.0), max_iter=1)
-    assert not st.converged
-    assert st.residual > 0 and st.iterations <= 1 + 1
-
-
 def test_bad_input_names_the_parameter():
     grid = Grid.centered(16, 1.0)
     z = np.zeros(grid.shape)
@@ -147,7 +125,7 @@ def test_richardson_extrapolation_recovers_power_law():
     assert order == pytest.approx(1.5, rel=1e-12)
 
 
-# ============================================================================ H4: coarse to fine, mu = 5, fold
+# ============================================================================ coarse to fine
 #: States solved at the same approach by the full path and by the coarse-to-fine window are
 #: the same discrete equilibrium: they agree to the solver tolerance (1e-6 on the zone
 #: fraction and on the gap relative to h0; measured 1e-7 relative at N = 256).
@@ -186,32 +164,7 @@ def test_refine_pull_off_rejects_bad_input():
         refine_pull_off(coarse, 32, window=0)
 
 
-#: Fold of delta(W) extrapolated by a parabola through three states 15-45 % above the
-#: fold's contact radius (Maugis-Dugdale curve, lambda = 1): O(h^3), measured 8.4e-4.
-RTOL_FOLD = 2e-3
-
-
-def test_fold_of_branch_recovers_the_maugis_dugdale_jump():
-    from dhfield.bem.adhesive import fold_of_branch
-
-    mu = float(transition.tabor_from_maugis(1.0))
-    ref = maugis_dugdale.pull_off_nondimensional(mu, "displacement")     # Maugis (1992): the fold of delta(a)
-    a = float(ref["a_star"]) * (1.0 + 0.15 * np.array([4.0, 3.0, 2.0, 1.0]))   # stable branch, towards the fold
-    curve = maugis_dugdale.load_curve_nondimensional(a, mu)
-    fold = fold_of_branch(curve["W_star"], curve["delta_star"])
-    w, d, err = fold.load, fold.approach, fold.load_error
-    assert fold.found
-    assert w == pytest.approx(float(ref["W_star"]), rel=RTOL_FOLD)
-    assert d == pytest.approx(float(ref["delta_star"]), abs=RTOL_FOLD * abs(float(ref["delta_star"])))
-    actual = abs(w - float(ref["W_star"]))
-    assert actual / 3.0 <= err <= 3.0 * actual                # the estimate has the right size
-    # the last state is returned (and no estimate) when no fold lies within a span beyond it
-    last = fold_of_branch(curve["W_star"][:2], curve["delta_star"][:2])
-    assert (last.load, last.approach) == (float(curve["W_star"][1]), float(curve["delta_star"][1]))
-    assert np.isnan(last.load_error) and not last.found
-
-
-# ============================================================================ H3: bracket search, direct gap correction
+# ============================================================================ bracket search, nested warm starts
 #: The discrete load W(delta) of a path is jagged at N <= 64 (contact cells switch one by one):
 #: up to ~7e-4 relative between neighbouring samples (measured, lambda = 3, N = 48).  The
 #: bracket search and the marching path take the parabola around their lowest samples, which
@@ -220,8 +173,6 @@ RTOL_BRACKET_VS_MARCH = 5e-4
 #: The same discrete equilibrium reached by a cold start and by warm starts along the path
 #: agrees to the solver tolerance (1e-6 on the zone fraction and on the gap / h0).
 RTOL_COLD_VS_WARM = 1e-5
-#: Direct summation of influence coefficients vs the FFT convolution: rounding only.
-RTOL_DIRECT_SUM = 1e-12
 
 
 @pytest.mark.parametrize("mu, beta0, n", [(float(transition.tabor_from_maugis(1.0)), 1.0, 64), (1.0, 0.5, 48)])
@@ -237,43 +188,6 @@ def test_bracket_search_equals_the_marching_path_with_a_fifth_of_the_states(mu, 
     assert new.path.approach.min() < new.delta_star < new.path.approach.max()
 
 
-def test_cold_start_at_the_guess_is_the_state_of_the_warm_path():
-    from dhfield.bem import unloading_path
-
-    mu = float(transition.tabor_from_maugis(1.0))
-    prob = nondimensional_problem(mu, 1.0, 48)
-    # an approach of the marching lattice next to the analytic guess
-    k = round((prob.approach_max - prob.pull_off_approach) / prob.approach_step)
-    guess = prob.approach_max - k * prob.approach_step
-    kw = dict(progress=False, keep_states=True, refine_levels=0)
-    march = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step, **kw)
-    cold = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
-                          approach_guess=guess, start_stress=prob.start_stress(), **kw)
-    assert cold.approach[0] == guess and cold.converged[0] and cold.states[0].in_contact
-    same = [i for i, d in enumerate(march.approach) if np.isclose(d, guess, rtol=1e-12, atol=1e-14)
-            and march.phase[i] == "unloading"]
-    assert same, "the marching path solved the guess's approach"
-    warm = march.states[same[0]]
-    assert cold.load[0] == pytest.approx(warm.load, rel=RTOL_COLD_VS_WARM)
-    np.testing.assert_array_equal(cold.states[0].contact, warm.contact)
-
-
-def test_failed_cold_start_is_kept_flagged_and_the_path_marches():
-    from dhfield.bem import unloading_path
-
-    mu = float(transition.tabor_from_maugis(1.0))
-    prob = nondimensional_problem(mu, 1.0, 32)
-    # far beyond the jump: the cold start has no contact, so the search gives way to the marching path
-    path = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
-                          approach_guess=-10.0, start_stress=prob.start_stress(), progress=False)
-    assert path.phase[0] == "discarded" and path.approach[0] == -10.0
-    assert "loading" in set(path.phase) and "unloading" in set(path.phase)
-    march = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
-                           progress=False)
-    assert path.pull_off_converged
-    assert path.pull_off_load == pytest.approx(march.pull_off_load, rel=RTOL_COLD_VS_WARM)
-
-
 def test_bracket_search_rejects_bad_input():
     from dhfield.bem import unloading_path
 
@@ -285,24 +199,6 @@ def test_bracket_search_rejects_bad_input():
         unloading_path(*args, approach_guess=-0.5, start_stress=np.zeros((4, 4)))
     with pytest.raises(ValueError, match="search"):
         adhesive_pull_off(1.0, 1.0, 16, search="newton")
-
-
-@pytest.mark.parametrize("symmetric", [True, False])
-def test_direct_gap_correction_equals_the_convolution(symmetric):
-    from dhfield.bem import get_operator
-    from dhfield.bem.solver import _add_point_loads
-
-    grid = Grid.centered(24, 1.3, half_width_y=0.8)
-    op = get_operator(grid, symmetric=symmetric)
-    rng = np.random.default_rng(8)
-    p = rng.random(op.input_shape)
-    cells = (rng.integers(0, op.input_shape[0], 5), rng.integers(0, op.input_shape[1], 5))
-    amounts = rng.random(5)
-    h = op(p)
-    _add_point_loads(op, h, cells, amounts)
-    q = p.copy()
-    np.add.at(q, cells, amounts)
-    np.testing.assert_allclose(h, op(q), rtol=0, atol=RTOL_DIRECT_SUM * float(np.max(np.abs(h))))
 
 
 def test_nested_warm_starts_reach_the_same_states():
@@ -331,14 +227,3 @@ def test_nested_cold_start_solves_the_same_hertz_problem(monkeypatch):
     assert nested.load == pytest.approx(plain.load, rel=RTOL_COLD_VS_WARM)
     assert nested.peak_pressure == pytest.approx(plain.peak_pressure, rel=RTOL_COLD_VS_WARM)
     np.testing.assert_array_equal(nested.contact, plain.contact)
-
-
-# ============================================================================ coordinator: displacement-control caveats
-def test_displacement_control_results_carry_their_measured_caveat():
-    """Every displacement-control result carries its measured accuracy (DISPLACEMENT_CONTROL_NOTE)."""
-    from dhfield.bem.adhesive import DISPLACEMENT_CONTROL_NOTE
-
-    disp = adhesive_pull_off(2.0, 1.0, 32, control="displacement", progress=False)
-    assert DISPLACEMENT_CONTROL_NOTE in disp.note and disp.as_dict()["note"] == disp.note
-    load = adhesive_pull_off(2.0, 1.0, 32, control="load", progress=False)
-    assert load.note == "" and np.isnan(load.W_star_error)

@@ -182,3 +182,81 @@ def test_bad_input_names_the_parameter(sphere_lambda_2):
     with pytest.raises(ValueError, match="refine_factor"):
         unloading_path(nd.initial_gap, nd.grid, nd.law, nd.approach_max, nd.approach_step,
                        control="displacement", refine_factor=1)
+
+
+# ============================================================================ the path: bracket start, jump fold
+#: The same discrete equilibrium reached by a cold start and by warm starts along the path
+#: agrees to the solver tolerance (1e-6 on the zone fraction and on the gap / h0).
+RTOL_COLD_VS_WARM = 1e-5
+
+
+#: Fold of delta(W) extrapolated by a parabola through three states 15-45 % above the
+#: fold's contact radius (Maugis-Dugdale curve, lambda = 1): O(h^3), measured 8.4e-4.
+RTOL_FOLD = 2e-3
+
+
+def test_fold_of_branch_recovers_the_maugis_dugdale_jump():
+    from dhfield.bem.adhesive import fold_of_branch
+
+    mu = float(transition.tabor_from_maugis(1.0))
+    ref = maugis_dugdale.pull_off_nondimensional(mu, "displacement")     # Maugis (1992): the fold of delta(a)
+    a = float(ref["a_star"]) * (1.0 + 0.15 * np.array([4.0, 3.0, 2.0, 1.0]))   # stable branch, towards the fold
+    curve = maugis_dugdale.load_curve_nondimensional(a, mu)
+    fold = fold_of_branch(curve["W_star"], curve["delta_star"])
+    w, d, err = fold.load, fold.approach, fold.load_error
+    assert fold.found
+    assert w == pytest.approx(float(ref["W_star"]), rel=RTOL_FOLD)
+    assert d == pytest.approx(float(ref["delta_star"]), abs=RTOL_FOLD * abs(float(ref["delta_star"])))
+    actual = abs(w - float(ref["W_star"]))
+    assert actual / 3.0 <= err <= 3.0 * actual                # the estimate has the right size
+    # the last state is returned (and no estimate) when no fold lies within a span beyond it
+    last = fold_of_branch(curve["W_star"][:2], curve["delta_star"][:2])
+    assert (last.load, last.approach) == (float(curve["W_star"][1]), float(curve["delta_star"][1]))
+    assert np.isnan(last.load_error) and not last.found
+
+
+def test_cold_start_at_the_guess_is_the_state_of_the_warm_path():
+    from dhfield.bem import unloading_path
+
+    mu = float(transition.tabor_from_maugis(1.0))
+    prob = nondimensional_problem(mu, 1.0, 48)
+    # an approach of the marching lattice next to the analytic guess
+    k = round((prob.approach_max - prob.pull_off_approach) / prob.approach_step)
+    guess = prob.approach_max - k * prob.approach_step
+    kw = dict(progress=False, keep_states=True, refine_levels=0)
+    march = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step, **kw)
+    cold = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
+                          approach_guess=guess, start_stress=prob.start_stress(), **kw)
+    assert cold.approach[0] == guess and cold.converged[0] and cold.states[0].in_contact
+    same = [i for i, d in enumerate(march.approach) if np.isclose(d, guess, rtol=1e-12, atol=1e-14)
+            and march.phase[i] == "unloading"]
+    assert same, "the marching path solved the guess's approach"
+    warm = march.states[same[0]]
+    assert cold.load[0] == pytest.approx(warm.load, rel=RTOL_COLD_VS_WARM)
+    np.testing.assert_array_equal(cold.states[0].contact, warm.contact)
+
+
+def test_failed_cold_start_is_kept_flagged_and_the_path_marches():
+    from dhfield.bem import unloading_path
+
+    mu = float(transition.tabor_from_maugis(1.0))
+    prob = nondimensional_problem(mu, 1.0, 32)
+    # far beyond the jump: the cold start has no contact, so the search gives way to the marching path
+    path = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
+                          approach_guess=-10.0, start_stress=prob.start_stress(), progress=False)
+    assert path.phase[0] == "discarded" and path.approach[0] == -10.0
+    assert "loading" in set(path.phase) and "unloading" in set(path.phase)
+    march = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
+                           progress=False)
+    assert path.pull_off_converged
+    assert path.pull_off_load == pytest.approx(march.pull_off_load, rel=RTOL_COLD_VS_WARM)
+
+
+def test_displacement_control_results_carry_their_measured_caveat():
+    """Every displacement-control result carries its measured accuracy (DISPLACEMENT_CONTROL_NOTE)."""
+    from dhfield.bem.adhesive import DISPLACEMENT_CONTROL_NOTE
+
+    disp = adhesive_pull_off(2.0, 1.0, 32, control="displacement", progress=False)
+    assert DISPLACEMENT_CONTROL_NOTE in disp.note and disp.as_dict()["note"] == disp.note
+    load = adhesive_pull_off(2.0, 1.0, 32, control="load", progress=False)
+    assert load.note == "" and np.isnan(load.W_star_error)
