@@ -67,7 +67,7 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from . import hertz, model, periphery
-from ._validation import check_contact_size_star, check_ellipticity, check_interval, check_positive
+from ._validation import check_contact_size_star, check_interval
 from .elliptic import ellipsoid_integrals
 from .geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
 from .pull_off_search import last_local_minimum

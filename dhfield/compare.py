@@ -108,8 +108,7 @@ import numpy as np
 
 from . import closure, dh_circular, dmt, jkr, jkr_elliptic, maugis_dugdale
 from ._adhesion import approach_unit, check_control, check_material, length_unit, load_unit
-from ._validation import (check_contact_size_star, check_count, check_ellipticity, check_model_ellipticity,
-                          check_positive, check_tabor)
+from ._validation import check_contact_size_star, check_count, check_model_ellipticity, check_tabor
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS

@@ -34,7 +34,9 @@ _WRITER = textwrap.dedent("""
     import xarray as xr
     from dhfield.io import write_netcdf
     n = 1024
-    ds = xr.Dataset({f"v{i}": (("x", "y"), np.full((n, n), float(i))) for i in range(8)},
+    # 32 x 8 MiB: the signal, sent once 2 MiB are written, must arrive before the write ends
+    # (with 8 variables, 64 MiB, the write once finished first: SIGHUP case, full suite, 2026-11-23)
+    ds = xr.Dataset({f"v{i}": (("x", "y"), np.full((n, n), float(i))) for i in range(32)},
                     coords={"x": np.arange(n) * 1.0, "y": np.arange(n) * 1.0})
     print("ready", flush=True)
     write_netcdf(ds, sys.argv[1])
