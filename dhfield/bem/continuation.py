@@ -46,7 +46,7 @@ from scipy.optimize import brentq
 from .._validation import check_count, check_finite, check_positive, check_sequence
 from .laws import DugdaleLaw, cell_fraction_below
 from .solver import (ANDERSON_RESTART, MAX_OUTER, STALL_OUTER, AdhesiveProblem, AndersonMixing, Prediction,
-                     assemble_state, solve_contact_pressure)
+                     assemble_state, extrapolated_start, solve_contact_pressure)
 from .state import ContactState
 
 __all__ = ["solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force", "fit_fold", "FoldSearch",
@@ -82,14 +82,6 @@ def adhesive_force(state: ContactState) -> float:
         return law.max_stress * state.adhesive_area
     s = np.where(state.contact, law.max_stress, law.stress(np.maximum(state.gap, 0.0)))
     return float(s.sum()) * state.cell_area
-
-
-def _stress_of(prob, st):
-    law = prob.law
-    if isinstance(law, DugdaleLaw):
-        return law.max_stress * prob.to_work(st.adhesive_zone)
-    return np.where(prob.to_work(st.contact), law.max_stress,
-                    law.stress(np.maximum(prob.to_work(st.gap), 0.0)))
 
 
 def _shift_for_force(prob, h, contact, target):
@@ -147,7 +139,7 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
     if isinstance(guess, Prediction):
         p, s = guess.pressure.copy(), guess.stress.copy()
     elif isinstance(guess, ContactState) and guess.repulsive_pressure is not None:
-        p, s = prob.to_work(guess.repulsive_pressure).copy(), _stress_of(prob, guess)
+        p, s = prob.to_work(guess.repulsive_pressure).copy(), prob.stress_of_state(guess)
     else:
         raise ValueError("guess must be a solved ContactState or a Prediction of the same problem")
     gain = min(1.0, prob.min_spread / h0) if prob.min_spread > 0.0 else 1.0
@@ -189,11 +181,7 @@ def _secant(prob, prev, last, t):
     """Warm start extrapolated by t (in units of the last force step) from two states."""
     if prev is None or not (prev.converged and last.converged) or prev.in_contact != last.in_contact:
         return last, last.approach
-    s1, s0 = _stress_of(prob, last), _stress_of(prob, prev)
-    p1, p0 = prob.to_work(last.repulsive_pressure), prob.to_work(prev.repulsive_pressure)
-    return (Prediction(np.maximum(p1 + t * (p1 - p0), 0.0), np.clip(s1 + t * (s1 - s0), 0.0,
-                                                                     prob.law.max_stress)),
-            last.approach + t * (last.approach - prev.approach))
+    return extrapolated_start(prob, prev, last, t), last.approach + t * (last.approach - prev.approach)
 
 
 @dataclass(frozen=True)

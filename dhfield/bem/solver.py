@@ -95,7 +95,7 @@ from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "Prediction", "solve_problem", "secant_prediction",
            "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution",
-           "AndersonMixing", "assemble_state"]
+           "AndersonMixing", "assemble_state", "extrapolated_start"]
 
 #: Default solver tolerance: complementarity error of the contact problem relative to
 #: the law's range (or |delta| without adhesion), and largest change of the zone
@@ -227,6 +227,16 @@ class AdhesiveProblem:
             chi[contact] = 1.0
             return law.max_stress * chi
         return law.stress(np.maximum(h, 0.0))
+
+    def stress_of_state(self, state):
+        """Adhesive stress of a solved state on the working grid, to start the fixed point from [stress].
+
+        Dugdale: sigma0 times the state's contact U zone fraction; a smooth law: sigma(h) of its gap.
+        """
+        law = self.law
+        if isinstance(law, DugdaleLaw):
+            return law.max_stress * self.to_work(state.adhesive_zone)
+        return law.stress(np.maximum(self.to_work(state.gap), 0.0))
 
     def zone_fraction(self, h, contact):
         """Fraction of each cell in contact U zone (h below the law's zone gap)."""
@@ -720,10 +730,7 @@ def solve_problem(prob, delta, guess, tol, max_iter):
     if isinstance(guess, Prediction):
         s = guess.stress.copy()
     elif guess is not None:
-        if isinstance(law, DugdaleLaw):
-            s = sigma0 * prob.to_work(guess.adhesive_zone)
-        else:
-            s = law.stress(np.maximum(prob.to_work(guess.gap), 0.0))
+        s = prob.stress_of_state(guess)
     else:
         h_rigid = zd.copy()
         s = prob.stress_from_gap(np.maximum(h_rigid, 0.0), h_rigid <= 0)
@@ -777,16 +784,14 @@ def secant_prediction(prob, prev, last, delta):
     t = (delta - last.approach) / (last.approach - prev.approach)
     if not 0.0 < t <= 1.5:
         return last
-    law = prob.law
+    return extrapolated_start(prob, prev, last, t)
 
-    def stress_of(st):
-        if isinstance(law, DugdaleLaw):
-            return law.max_stress * prob.to_work(st.adhesive_zone)
-        return law.stress(np.maximum(prob.to_work(st.gap), 0.0))
 
-    s1, s0 = stress_of(last), stress_of(prev)
+def extrapolated_start(prob, prev, last, t) -> Prediction:
+    """Warm start ``last + t (last - prev)`` of two solved states (pressure >= 0, 0 <= stress <= sigma0)."""
+    s1, s0 = prob.stress_of_state(last), prob.stress_of_state(prev)
     p1, p0 = prob.to_work(last.repulsive_pressure), prob.to_work(prev.repulsive_pressure)
-    stress = np.clip(s1 + t * (s1 - s0), 0.0, law.max_stress)
+    stress = np.clip(s1 + t * (s1 - s0), 0.0, prob.law.max_stress)
     pressure = np.maximum(p1 + t * (p1 - p0), 0.0)
     return Prediction(pressure, stress)
 
