@@ -87,6 +87,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
+from scipy.fft import next_fast_len
 
 from .._validation import check_finite, check_positive
 from .laws import DugdaleLaw, cell_fraction_below, check_law
@@ -332,29 +333,13 @@ ACTIVE_BOX_MARGIN = 2
 ACTIVE_BOX_MAX_FRACTION = 0.8
 
 
-@functools.lru_cache(maxsize=1)
-def _fft_friendly_sizes(limit=1 << 14):
-    """Even 5-smooth numbers up to ``limit`` (cells per axis of a cropped quadrant or box)."""
-    sizes = set()
-    p2 = 2
-    while p2 <= limit:
-        p3 = p2
-        while p3 <= limit:
-            p5 = p3
-            while p5 <= limit:
-                sizes.add(p5)
-                p5 *= 5
-            p3 *= 3
-        p2 *= 2
-    return tuple(sorted(sizes))
-
-
 def _crop_size(cells, available):
-    """Smallest FFT-friendly size >= cells, or ``available`` if none fits below it."""
-    for k in _fft_friendly_sizes():
-        if k >= cells:
-            return k if k < available else available
-    return available
+    """Smallest even 5-smooth size >= cells (FFT-friendly on the doubled DC-FFT grid), capped at ``available``.
+
+    Even 5-smooth numbers are twice the 5-smooth ones (``scipy.fft.next_fast_len`` for real transforms).
+    """
+    k = 2 * next_fast_len(-(-int(cells) // 2), real=True)
+    return k if k < available else available
 
 
 def _box(op, mask, margin, max_fraction):
