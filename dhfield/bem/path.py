@@ -150,6 +150,21 @@ class UnloadingPath:
         idx = np.nonzero(self.phase != "loading")[0]
         return idx[np.argsort(-self.approach[idx], kind="stable")]
 
+    @classmethod
+    def from_records(cls, records, *, control, pull_off_load, pull_off_approach, pull_off_state,
+                     **rest) -> "UnloadingPath":
+        """A path from one record per solved state (:meth:`ContactState.summary` plus its ``phase``).
+
+        ``rest``: the keyword attributes (failures, states, elapsed, pull_off_converged, ...).
+        """
+        arr = {key: np.array([r[key] for r in records]) for key in
+               ("approach", "load", "a", "b", "c", "d", "contact_area", "phase", "converged", "iterations",
+                "outer_iterations", "residual")}
+        return cls(arr["approach"], arr["load"], arr["a"], arr["b"], arr["c"], arr["d"], arr["contact_area"],
+                   arr["phase"], arr["converged"].astype(bool), arr["iterations"].astype(int),
+                   arr["outer_iterations"].astype(int), arr["residual"], control, float(pull_off_load),
+                   float(pull_off_approach), pull_off_state, **rest)
+
 
 @dataclass(frozen=True)
 class Fold:
@@ -598,17 +613,13 @@ def _path_result(prob, records, by_index, failures, control, w_po, d_po, k_po, p
                  warm_start, w_po_error, po_note) -> UnloadingPath:
     if k_po not in by_index:
         k_po = max(by_index)
-    arr = {key: np.array([r[key] for r in records]) for key in
-           ("approach", "load", "a", "b", "c", "d", "contact_area", "phase", "converged", "iterations",
-            "outer_iterations", "residual")}
     states = tuple(by_index[i] for i in range(len(records))) if keep_states else ()
-    return UnloadingPath(arr["approach"], arr["load"], arr["a"], arr["b"], arr["c"], arr["d"],
-                         arr["contact_area"], arr["phase"], arr["converged"].astype(bool),
-                         arr["iterations"].astype(int), arr["outer_iterations"].astype(int),
-                         arr["residual"], control, float(w_po), float(d_po), by_index[k_po],
-                         tuple(failures), states, time.perf_counter() - t0, po_converged, prob.resolved,
-                         int(getattr(warm_start, "states_solved", 0)), int(getattr(warm_start, "iterations", 0)),
-                         pull_off_error=float(w_po_error), pull_off_note=po_note)
+    return UnloadingPath.from_records(
+        records, control=control, pull_off_load=w_po, pull_off_approach=d_po, pull_off_state=by_index[k_po],
+        failures=tuple(failures), states=states, elapsed=time.perf_counter() - t0, pull_off_converged=po_converged,
+        resolved=prob.resolved, coarse_states=int(getattr(warm_start, "states_solved", 0)),
+        coarse_iterations=int(getattr(warm_start, "iterations", 0)), pull_off_error=float(w_po_error),
+        pull_off_note=po_note)
 
 
 #: Notes of a displacement-control pull-off by how the contact branch ends (:func:`fold_by_adhesive_force`).

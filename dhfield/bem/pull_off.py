@@ -553,16 +553,11 @@ def _located_path(nd, n, ws, *, refine_levels, refine_factor, tol, max_iter, thr
     order, x, sm = minimum()
     if sm.at_boundary:
         return None
-    recs = [st.summary() for st in states]
-    arr = {key: np.array([r[key] for r in recs]) for key in
-           ("approach", "load", "a", "b", "c", "d", "contact_area", "iterations", "outer_iterations",
-            "residual")}
-    return UnloadingPath(arr["approach"], arr["load"], arr["a"], arr["b"], arr["c"], arr["d"],
-                         arr["contact_area"], np.array(phases), np.ones(len(states), dtype=bool),
-                         arr["iterations"].astype(int), arr["outer_iterations"].astype(int), arr["residual"],
-                         "load", float(sm.y), float(sm.x), states[order[sm.index]], (),
-                         tuple(states) if keep_states else (), time.perf_counter() - t0, True, prob.resolved,
-                         ws.states_solved, ws.iterations)
+    recs = [{**st.summary(), "phase": ph} for st, ph in zip(states, phases)]   # all converged (checked above)
+    return UnloadingPath.from_records(
+        recs, control="load", pull_off_load=sm.y, pull_off_approach=sm.x, pull_off_state=states[order[sm.index]],
+        states=tuple(states) if keep_states else (), elapsed=time.perf_counter() - t0, pull_off_converged=True,
+        resolved=prob.resolved, coarse_states=ws.states_solved, coarse_iterations=ws.iterations)
 
 
 def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
@@ -908,17 +903,11 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
         k_po, w_po, d_po = len(states) - 1, float("nan"), float("nan")
     else:
         k_po, w_po, d_po = sm.index, sm.y, sm.x
-    recs = [s.summary() for s in states]
+    recs = [{**s.summary(), "phase": "refine"} for s in states]
     failures = tuple({"approach": r["approach"], "residual": r["residual"], "iterations": r["iterations"],
                       "phase": "refine"} for r in recs if not r["converged"])
-    arr = {key: np.array([r[key] for r in recs]) for key in
-           ("approach", "load", "a", "b", "c", "d", "contact_area", "iterations", "outer_iterations",
-            "residual")}
-    path = UnloadingPath(arr["approach"], arr["load"], arr["a"], arr["b"], arr["c"], arr["d"],
-                         arr["contact_area"], np.array(["refine"] * len(states)),
-                         np.array([r["converged"] for r in recs], dtype=bool),
-                         arr["iterations"].astype(int), arr["outer_iterations"].astype(int), arr["residual"],
-                         "load", float(w_po), float(d_po), states[k_po], failures,
-                         tuple(states) if keep_states else (), time.perf_counter() - t0,
-                         not failures and sm is not None and not sm.at_boundary, prob.resolved)
+    path = UnloadingPath.from_records(
+        recs, control="load", pull_off_load=w_po, pull_off_approach=d_po, pull_off_state=states[k_po],
+        failures=failures, states=tuple(states) if keep_states else (), elapsed=time.perf_counter() - t0,
+        pull_off_converged=not failures and sm is not None and not sm.at_boundary, resolved=prob.resolved)
     return _pull_off_result(prob_nd, int(n), path, "refine")
