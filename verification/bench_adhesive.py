@@ -392,7 +392,7 @@ def bench_path(n, lambdas, tm, march=False):
 
 
 # --------------------------------------------------------------------------- (b) Hertz
-def _hertz_problem(n, half_width=HERTZ_HALF_WIDTH):
+def hertz_problem(n, half_width=HERTZ_HALF_WIDTH):
     from dhfield import hertz
     from dhfield.bem import Grid
     from dhfield.geometry import radius_ratio
@@ -453,7 +453,7 @@ def bench_hertz(n, cm_mod, tm, skip_cm=False):
     print(f"    {'grid':13s} {'solver':38s} {'wall s':>8s} {'cpu s':>7s} {'CG it':>6s} {'a err':>8s} {'b err':>8s} "
           f"{'p0 err':>8s}")
     ratios = {}
-    hp = _hertz_problem(n)
+    hp = hertz_problem(n)
     g = hp["grid"]
     st, t_ours = _ours_hertz(hp)
     a, b = st.contact_semi_axes()
@@ -486,7 +486,7 @@ def bench_hertz(n, cm_mod, tm, skip_cm=False):
         print(f"    {fine:13s} {'ContactMechanics (free, same grid)':38s} {t_cm} {'n/a':>6s} {acc}")
         ratios["ContactMechanics (same grid)"] = (t_ours.wall / t_cm.wall, t_ours.cpu / t_cm.cpu)
     if tm is not None:
-        hp8 = _hertz_problem(n, HERTZ_PERIODIC_SIDE / 2.0)
+        hp8 = hertz_problem(n, HERTZ_PERIODIC_SIDE / 2.0)
         st8, t_ours8 = _ours_hertz(hp8, repeats=HERTZ_REPEATS)
         a8, b8 = st8.contact_semi_axes()
         coarse = f"{HERTZ_PERIODIC_SIDE:g}a x {HERTZ_PERIODIC_SIDE:g}b"

@@ -36,7 +36,7 @@ from dhfield import transition
 from dhfield.bem import adhesive_pull_off, solve_adhesive
 from dhfield.bem import solver as bem_solver
 
-from verification.bench_adhesive import _hertz_problem
+from verification.bench_adhesive import hertz_problem
 
 
 def _timed(run, box, repeats):
@@ -81,7 +81,7 @@ def main(argv=None) -> int:
     t_start = time.perf_counter()
     print("inner CG on a box vs on the whole grid (one thread; fastest of "
           f"{args.repeats}, alternating)")
-    hp = _hertz_problem(args.n_hertz, 4.0)
+    hp = hertz_problem(args.n_hertz, 4.0)
     _compare(f"Hertz, beta = 0.7, N = {args.n_hertz}, 8a x 8b",
              lambda: solve_adhesive(hp["z"], hp["grid"], hp["delta"], None),
              lambda st: f"load {st.load:.8f} (Hertz {hp['load']:.8f}), CG it {st.iterations}", args.repeats)
