@@ -101,7 +101,7 @@ from . import compare
 from ._validation import check_interval
 from .dugdale_separation import dugdale_range, separated_branch, zone_radius_at_contact
 
-__all__ = ["stiffness_star", "check_machine_stiffness", "pull_off_under_spring", "spring_pull_off_record",
+__all__ = ["stiffness_star", "check_machine_stiffness", "add_machine_displacement", "pull_off_under_spring", "spring_pull_off_record",
            "pull_off_force_under_spring", "loading_cycle", "loading_cycle_si", "cycle_path",
            "JUMP_IN_RULES", "CYCLE_UNITS"]
 
@@ -167,6 +167,38 @@ def stiffness_star(machine_stiffness, effective_radius, reduced_modulus, work_of
     k = check_machine_stiffness("machine_stiffness", machine_stiffness)
     return k * approach_unit(effective_radius, reduced_modulus, work_of_adhesion) / load_unit(
         effective_radius, work_of_adhesion, sin_skew)  # Eqs. (33), (34)
+
+
+def add_machine_displacement(curve, machine_stiffness):
+    """A load curve with the column ``machine_displacement``: Delta = delta + W/K.
+
+    Parameters
+    ----------
+    curve : dict
+        A load-curve record of :func:`dhfield.compare.load_curve` (``W_star``,
+        ``delta_star``; K in the paper's units, :func:`stiffness_star`) or of
+        :func:`dhfield.dimensional.load_curve_si` (``force`` [N], ``approach`` [m];
+        K in N/m).
+    machine_stiffness : float
+        K > 0, finite [N/m or -].
+
+    Returns
+    -------
+    dict
+        The record with ``machine_displacement`` after the approach column [m or c_r^2/R]:
+        the position of the spring's far end, whose first minimum on unloading is
+        the jump out (module docstring).
+    """
+    k = float(check_interval("machine_stiffness", machine_stiffness, 0.0, np.inf, high_open=True,
+                             what="machine stiffness, > 0 and finite"))
+    si = "force" in curve
+    load, approach = (curve["force"], curve["approach"]) if si else (curve["W_star"], curve["delta_star"])
+    out = {}
+    for key, v in curve.items():
+        out[key] = v
+        if key == ("approach" if si else "delta_star"):
+            out["machine_displacement"] = np.asarray(approach, float) + np.asarray(load, float) / k  # Delta
+    return out
 
 
 # --------------------------------------------------------------------------- one model's curve, by parameter t
