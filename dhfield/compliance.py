@@ -438,7 +438,9 @@ def pull_off_under_spring(model, mu, beta0, machine_stiffness):
     :func:`dhfield.maugis_dugdale.pull_off` reports under displacement control.
     """
     s, k = _as_weight(machine_stiffness)
-    return _pull_off(_Curve(model, mu, beta0), s, k)
+    out = _pull_off(_Curve(model, mu, beta0), s, k)
+    out.pop("_t")  # the internal curve parameter
+    return out
 
 
 def _pull_off(curve, s, k):
