@@ -134,6 +134,9 @@ VARIABLES: dict[str, Variable] = {
                                     description="NaN where the model has no adhesive zone"),
     "approach": Variable("m", "approach delta", scale=_APPROACH,
                          description="mutual approach of distant points, positive compressive"),
+    "machine_displacement": Variable("m", "machine displacement Delta = delta + W/K", scale=_APPROACH,
+                                     description="position of the far end of a machine spring of stiffness K "
+                                     "(dhfield.compliance); the jump out is its first minimum on unloading"),
     # ----------------------------------------------------------------- SI inputs and derived scales
     "work_of_adhesion": Variable("J m-2", "work of adhesion dgamma", scale=_DGAMMA,
                                  description="Dupre work of adhesion; per ray, the integral of sigma dh "

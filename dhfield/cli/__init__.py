@@ -19,7 +19,7 @@ from ._common import OneLineParser, UsageError
 __all__ = ["main", "build_parser", "SUBCOMMANDS"]
 
 #: Subcommand modules, in the order ``dhfield --help`` lists them.
-SUBCOMMANDS = ["curve", "pulloff", "field", "compare", "periphery", "sweep", "plot", "fit", "solve"]
+SUBCOMMANDS = ["curve", "pulloff", "cycle", "field", "compare", "periphery", "sweep", "plot", "fit", "solve"]
 
 
 def build_parser() -> OneLineParser:

@@ -32,6 +32,9 @@ def add_parser(sub) -> None:
     p.add_argument("--n", type=int, default=200, help="number of points (default 200)")
     p.add_argument("--out", default=None, help="write FILE.nc (netCDF) or FILE.csv; default: print a table")
     p.add_argument("--json", action="store_true", help="print one JSON object (arrays as lists, with 'units')")
+    p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
+                   help="add the column machine_displacement = approach + load/K of a machine spring: K > 0 in N/m "
+                   "with physical inputs, K* (paper's units) with --beta0/--mu (dhfield.compliance)")
     add_physical_arguments(p)
     p.set_defaults(func=run)
 
@@ -106,6 +109,10 @@ def run(args) -> int:
     from ..compare import validity_message
 
     rec = curve_record(args)
+    if getattr(args, "machine_stiffness", None) is not None:
+        from ..compliance import add_machine_displacement
+
+        rec = add_machine_displacement(rec, args.machine_stiffness)
     print_warning({"warning": validity_message(rec["model"], rec["mu"], rec["beta0"])})
     nondim = "force" not in rec
     cols = [k for k in rec if k not in LOAD_CURVE_HEADER_KEYS and np.ndim(rec[k]) == 1]

@@ -22,6 +22,9 @@ def add_parser(sub) -> None:
                    help="load control (default) or displacement control")
     p.add_argument("--model", choices=model_names(), default="dh-elliptic", help=_MODEL_HELP)
     p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
+    p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
+                   help="pull-off under a machine spring (control 'spring'): K >= 0 in N/m with physical inputs, "
+                   "K* (paper's units) with --beta0/--mu; 0 is load control (dhfield.compliance)")
     add_physical_arguments(p)
     p.set_defaults(func=run)
 
@@ -32,6 +35,14 @@ def pull_off_record(args) -> dict:
     from ..dimensional import pull_off_force
 
     params = contact_parameters_from_args(args)
+    if getattr(args, "machine_stiffness", None) is not None:
+        from ..compliance import pull_off_force_under_spring, spring_pull_off_record
+
+        if args.control != "load":
+            raise ValueError("control goes with no machine spring; --machine-stiffness sets the machine itself")
+        if params is None:
+            return plain_record(spring_pull_off_record(args.model, args.mu, args.beta0, args.machine_stiffness))
+        return plain_record(pull_off_force_under_spring(params, args.machine_stiffness, model=args.model))
     if params is None:
         return plain_record(pull_off(args.model, args.mu, args.beta0, args.control))
     return plain_record(pull_off_force(params, model=args.model, control=args.control))

@@ -1,0 +1,97 @@
+"""Figure of a loading-unloading cycle (:func:`dhfield.compliance.cycle_path`): matplotlib at the edge."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from . import atomic_path, check_writable
+
+__all__ = ["write_cycle_plot"]
+
+
+def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dpi=130) -> Path:
+    """Draw force against approach with both jumps marked and the energy lost shaded.
+
+    Parameters
+    ----------
+    path_data : dict
+        From :func:`dhfield.compliance.cycle_path`.
+    path : path-like
+        PNG file to write (atomically).
+    force_unit, approach_unit : float, optional
+        SI scales [N] and [m] of W* and delta* (both or neither); the axes are then
+        in mN and um, else nondimensional (Eq. 34 and c_r^2/R).
+    dpi : int
+        Resolution of the PNG.
+
+    Returns
+    -------
+    Path
+        The PNG written.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    png = Path(path)
+    if png.suffix.lower() != ".png":
+        raise ValueError(f"plot must be a .png file path; got {str(png)!r}")
+    check_writable(png, "plot")
+    rec = path_data["record"]
+    si = force_unit is not None
+    fs = 1e3 * force_unit if si else 1.0  # mN
+    ds = 1e6 * approach_unit if si else 1.0  # um
+    fl = "force W [mN] (compressive > 0)" if si else "load W* = W sin(θ)/(2πRΔγ)  (Eq. 34)"
+    dl = "approach δ [µm]" if si else "approach δ* = δR/c_r²"
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    bd, bw = path_data["branch"]
+    ld, lw = path_data["loop"]
+    finite = np.all(np.isfinite(ld))
+    if finite:
+        ax.fill(ld * ds, lw * fs, color="C1", alpha=0.25, lw=0, label="energy lost per cycle")
+    ax.plot(bd * ds, bw * fs, "-", color="C0", lw=1.8, label="equilibrium curve (stable under the machine)")
+    ad, aw = path_data["approach"]
+    lo = min(float(np.min(bd)), float(ad[0]))
+    sep = rec["separation_delta_star"]
+    left = lo if np.isfinite(sep) else lo - 0.3 * (float(np.max(bd)) - lo)
+    ax.plot(np.array([left, ad[1]]) * ds, aw * fs, "-", color="0.35", lw=1.4, label="separated, W = 0")
+    jd, jw = path_data["jump_in"]
+    ax.annotate("", xy=(jd[1] * ds, jw[1] * fs), xytext=(jd[0] * ds, jw[0] * fs),
+                arrowprops=dict(arrowstyle="-|>", color="C2", lw=1.8))
+    ax.plot(jd * ds, jw * fs, "o", color="C2", ms=5, label="jump in (approach)")
+    od, ow = path_data["jump_out"]
+    if not np.isfinite(od[1]):  # load control: the contact flies off at constant load
+        od = np.array([od[0], left])
+        ow = np.array([ow[0], ow[0]])
+    ax.annotate("", xy=(od[1] * ds, ow[1] * fs), xytext=(od[0] * ds, ow[0] * fs),
+                arrowprops=dict(arrowstyle="-|>", color="C3", lw=1.8))
+    ax.plot(od[:1] * ds, ow[:1] * fs, "s", color="C3", ms=6, label="jump out (retraction)")
+    ax.axhline(0.0, color="0.75", lw=0.6, zorder=0)
+    ax.set_xlabel(dl)
+    ax.set_ylabel(fl)
+    k = rec["machine_stiffness_star"]
+    machine = ("rigid machine (displacement control)" if not np.isfinite(k) else
+               "load control (K = 0)" if k == 0 else
+               f"machine stiffness K = {rec['machine_stiffness']:.3g} N/m" if si and "machine_stiffness" in rec
+               else f"machine stiffness K* = {k:.3g}")
+    if not np.isfinite(rec["energy_lost_star"]):
+        energy = "energy lost: infinite (K = 0)"
+    elif si:
+        energy = f"energy lost {rec['energy_lost'] * 1e9:.4g} nJ"
+    else:
+        energy = f"energy lost U* = {rec['energy_lost_star']:.4g}"
+    out = rec["jump_out_W_star"] * fs
+    inn = rec["jump_in_W_star"] * fs
+    inn = 0.0 if abs(inn) < 1e-12 * max(1.0, abs(out)) else inn  # rounding of a zero-load landing
+    unit = " mN" if si else ""
+    ax.set_title(f"{rec['model']}: β0 = {rec['beta0']:.3g}, μ = {rec['mu']:.3g}; {machine}\n"
+                 f"jump in at W = {inn:.4g}{unit}, jump out at W = {out:.4g}{unit}; {energy}", fontsize=9)
+    ax.legend(fontsize=8, loc="lower right", framealpha=0.9)
+    fig.tight_layout()
+    with atomic_path(png, "plot") as tmp:
+        fig.savefig(tmp, format="png", dpi=dpi)
+    plt.close(fig)
+    return png
