@@ -78,6 +78,8 @@ def test_near_circle_is_continuous():
     # pull-off is even in ln(R'/R'') (swap the axes), so 1 - ratio = O(ln(rho)^2) ~ 1e-12 here
     assert_allclose(ee.pull_off_force_ratio(beta0=1 - 1e-6), 1.0, atol=1e-9)
     assert_allclose(ee.pull_off_force_ratio(beta0=1 - 1e-6, control="displacement"), 5 / 9, atol=1e-9)
+    # one ulp below the circle (90 deg crossing through geometry.ellipticity_from_skew_angle)
+    assert_allclose(ee.pull_off_force_ratio(beta0=np.nextafter(1.0, 0.0)), 1.0, atol=1e-12)
 
 
 # ---------------------------------------------------------------- both semi-axes free
