@@ -28,7 +28,7 @@ The load is ``W = 2 pi a b [alpha0 + (alpha1 + alpha2)/3]`` and the approach
 Energy (GVG).  At fixed approach the elastic energy ``U_E(a, b, delta)`` is
 ``(1/2) int p (delta - z) dA`` and the total energy is
 
-.. math:: \\Pi(a, b, \\delta) = U_E(a, b, \\delta) - \\Delta\\gamma\\,\\pi a b .  \\qquad (1)
+.. math:: \\Pi(a, b, \\delta) = U_E(a, b, \\delta) - \\Delta\\gamma\\,\\pi a b .  \\qquad (G1)
 
 GVG require ``dPi/da = dPi/db = 0`` at fixed delta (JG impose one condition
 instead).  Under load control the equilibria are the same (Legendre transform).
@@ -41,36 +41,43 @@ rate integrated against the normal speed of the contact edge.  On the edge
 above is ``K_I = f(phi) sqrt(pi/h)`` with ``f = alpha0 + alpha1 cos^2 + alpha2 sin^2``
 and ``h = sqrt(cos^2/a^2 + sin^2/b^2)``; ``G = K_I^2/(2E*)``; the normal speed
 times the arc length is ``b cos^2(phi) dphi`` for ``da`` and ``a sin^2(phi) dphi``
-for ``db``.  Eq. (1) stationary in a and b is therefore
+for ``db``.  Eq. (G1) stationary in a and b is therefore
 
 .. math:: \\oint G\\cos^2\\phi\\,d\\phi = \\oint G\\sin^2\\phi\\,d\\phi = \\pi\\Delta\\gamma ,
-          \\qquad (2)
+          \\qquad (G2)
 
 Griffith's criterion on average with the weights cos^2 and sin^2 (JG: pointwise at
-phi = 0 and pi/2).  Write ``f = p_ (1 + eps c)``, ``c = cos^2 phi``,
-``p_ = alpha0 + alpha2``, ``eps = (alpha1 - alpha2)/p_`` and (a = 1)
+phi = 0 and pi/2).  Write ``f = s (1 + eps c)``, ``c = cos^2 phi``,
+``s = alpha0 + alpha2``, ``eps = (alpha1 - alpha2)/s`` and (a = 1)
 ``I_j(m) = int_0^{pi/2} sin^{2j} t / sqrt(1 - m sin^2 t) dt``, m = k^2 = 1 - beta^2
 (I0 = K, I1 = (K - E)/m, then ``(2j+1) m I_{j+1} = 2j(1+m) I_j - (2j-1) I_{j-1}``).
-The difference of the two sides of Eq. (2) is homogeneous in (p_, alpha1 - alpha2):
+The difference of the two sides of Eq. (G2) is homogeneous in (s, alpha1 - alpha2):
 
 .. math:: A_2 + 2A_1\\varepsilon + A_0\\varepsilon^2 = 0, \\quad
-          A_2 = 2I_1 - I_0,\\; A_1 = 2I_2 - I_1,\\; A_0 = 2I_3 - I_2 ,  \\qquad (3)
+          A_2 = 2I_1 - I_0,\\; A_1 = 2I_2 - I_1,\\; A_0 = 2I_3 - I_2 ,  \\qquad (G3)
 
 whose physical root (K_I of one sign all round the edge, eps in (-1, 0)) is
 ``eps = -A_2/(A_1 + sqrt(A_1^2 - A_0 A_2))``; it depends on beta only and vanishes at
 the circle (A2 = 0).  The other root, eps -> -2 at the circle, changes the sign of
-K_I along the edge.  The cos^2-side of Eq. (2) then fixes the size:
+K_I along the edge.  The cos^2-side of Eq. (G2) then fixes the size:
 
-.. math:: a\\,p_\\_^2 = \\frac{E^*\\Delta\\gamma}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)},
-          \\qquad p\\_ = \\frac{\\alpha_1 - \\alpha_2}{\\varepsilon} = \\frac{a\\,(g_1 - g_2)}{\\varepsilon}
+.. math:: a\\,s^2 = \\frac{E^*\\Delta\\gamma}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)},
+          \\qquad s = \\frac{\\alpha_1 - \\alpha_2}{\\varepsilon} = \\frac{a\\,(g_1 - g_2)}{\\varepsilon}
           \\;\\Rightarrow\\;
-          a^3 = \\frac{E^*\\Delta\\gamma\\,\\varepsilon^2}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)\\,(g_1 - g_2)^2}. \\qquad (4)
+          a^3 = \\frac{E^*\\Delta\\gamma\\,\\varepsilon^2}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)\\,(g_1 - g_2)^2}. \\qquad (G4)
 
 So the load curve is closed form in beta, which runs from the Hertz ellipticity
 beta0 (g1 = g2: a -> infinity, high load) to 1 (eps = 0: a -> 0), as in JG; the
 contact becomes rounder on unloading.  The A_j are summed from their power series
 in m below m = 1/4 (they cancel at the circle), from Carlson's R_F, R_D and the
-recurrence above.  beta0 = 1 is circular JKR exactly (not a limit).
+recurrence above.  beta0 = 1 is circular JKR exactly (not a limit).  Equation labels
+(G1)-(G4) are this module's.
+
+Stability (checked, tests): at fixed delta the Hessian of Eq. (G1) in (a, b) is positive
+definite on the branch from high load down to the displacement-control pull-off (the
+first minimum of delta) and has one negative eigenvalue beyond it, so the states up to
+there are true minima over both semi-axes; the load-control pull-off is the first
+minimum of W met on unloading, as for JKR and JG.
 
 Normalisation
 -------------
@@ -105,7 +112,7 @@ __all__ = [
     "state_at_ellipticity",
 ]
 
-_SERIES_M = 0.25  # below this m = 1 - beta^2 the A_j of Eq. (3) are summed from their series
+_SERIES_M = 0.25  # below this m = 1 - beta^2 the A_j of Eq. (G3) are summed from their series
 _SERIES_TERMS = 32  # 0.25^32 ~ 5e-20
 _U_EDGE = 1e-12  # parameter u in (0, 1) kept this far from the ends (a -> inf, a -> 0)
 _SCAN_U = np.clip(0.5 * (1.0 - np.cos(np.pi * np.linspace(0.0, 1.0, 80))), 1e-9, 1.0 - 1e-9)
@@ -135,7 +142,7 @@ EnergyEllipticPullOff = EnergyEllipticLoadCurve
 
 
 def _edge_moments(m):
-    """I_1, I_2, I_3 and A_2, A_1, A_0 of Eq. (3) at m = 1 - beta^2 (complex-safe).
+    """I_1, I_2, I_3 and A_2, A_1, A_0 of Eq. (G3) at m = 1 - beta^2 (complex-safe).
 
     Series below m = 1/4 (A_2 cancels there: (pi/16) m against I_0 ~ pi/2), Carlson's
     R_F, R_D and the recurrence above it (A_2 then loses at most ~1.5 digits).
@@ -166,15 +173,15 @@ def _state_u(u, beta0, rho_m1, sin_skew):
         k2 = one_m_beta * (1.0 + beta)
         g1, g2, dg, j0, j1, j2 = _shape_coefficients(beta, k2, rho_m1)
         i1, i2, i3, a2, a1, a0 = _edge_moments(k2)
-        eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (3), the root with K_I of one sign
+        eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (G3), the root with K_I of one sign
         dg = np.where(np.real(dg) > 0.0, dg, np.nan)  # rounding at u -> 0: a = infinity
-        a3 = eps * eps / (2.0 * beta * (i1 + 2.0 * eps * i2 + eps * eps * i3) * dg * dg)  # Eq. (4)
+        a3 = eps * eps / (2.0 * beta * (i1 + 2.0 * eps * i2 + eps * eps * i3) * dg * dg)  # Eq. (G4)
         a = a3 ** (1.0 / 3.0)
         a = np.where(np.isnan(np.real(a)), np.inf, a)
         al1, al2 = a * g1, a * g2
-        al0 = a * dg / eps - al2  # p_ = (alpha1 - alpha2)/eps
-        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # W = 2 pi a b [a0 + (a1+a2)/3]
-        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # approach
+        al0 = a * dg / eps - al2  # s = alpha0 + alpha2 = (alpha1 - alpha2)/eps, Eq. (G3)
+        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
+        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # JG (2005): approach
     return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,  # Eq. (34)
             "delta_star": delta, "beta": beta, "alpha": (al0, al1, al2)}
 
@@ -200,7 +207,7 @@ def state_at_ellipticity(beta, beta0):
 
     Notes
     -----
-    Eq. (4) of the module docstring, with eps the root of Eq. (3):
+    Eq. (G4) of the module docstring, with eps the root of Eq. (G3):
 
     .. math:: a^3 = \\frac{\\varepsilon^2}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)
               \\,(g_1 - g_2)^2}
@@ -337,7 +344,7 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
 
     Notes
     -----
-    Closed form in the ellipticity beta (module docstring, Eqs. 1-4): the total
+    Closed form in the ellipticity beta (module docstring, Eqs. G1-G4): the total
     energy ``U_E - dgamma pi a b`` is stationary in both semi-axes.
 
     References

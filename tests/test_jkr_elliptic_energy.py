@@ -122,7 +122,7 @@ def test_edge_moments_series_at_the_circle():
 
 
 def test_griffith_on_average_not_pointwise():
-    """Eq. (2): K_I^2/(2E*) averaged with weights cos^2 and sin^2 equals dgamma; it is not equal
+    """Eq. (G2): K_I^2/(2E*) averaged with weights cos^2 and sin^2 equals dgamma; it is not equal
     to dgamma at the two axis ends (JG's condition: there it is ~1 % above, measured 1.4 % and 1.0 %)."""
     s = ee.state_at_ellipticity(0.7, 0.4)
     a, b = float(s["a_star"]), float(s["b_star"])
@@ -253,3 +253,25 @@ def test_domain_properties(beta0, log_a):
         assert_allclose(s["W_star"], c["W_star"], rtol=1e-8, atol=1e-12)
     # no point of the curve lies below the load-control pull-off
     assert c["W_star"] >= po["W_star"] - TOL_LOAD_IDENTITY
+
+
+@pytest.mark.parametrize("beta0", [0.2, 0.5])
+def test_minimum_in_both_semi_axes_until_fixed_grips_pull_off(beta0):
+    """At fixed delta the energy is a minimum in (a, b) (Hessian positive definite) on the branch
+    before the displacement-control pull-off, and a saddle after it (one eigenvalue < 0)."""
+    b_po = float(ee.pull_off_nondimensional(beta0, "displacement")["beta"])
+    signs = []
+    for beta in (beta0 + 0.5 * (b_po - beta0), b_po + 0.5 * (1 - b_po)):
+        s = ee.state_at_ellipticity(beta, beta0)
+        a, b, d = float(s["a_star"]), float(s["b_star"]), float(s["delta_star"])
+        h = 1e-3 * b
+
+        def e(x, y):
+            return _energy(x, y, d, beta0)[0]
+
+        haa = (e(a + h, b) - 2 * e(a, b) + e(a - h, b)) / h**2
+        hbb = (e(a, b + h) - 2 * e(a, b) + e(a, b - h)) / h**2
+        hab = (e(a + h, b + h) - e(a + h, b - h) - e(a - h, b + h) + e(a - h, b - h)) / (4 * h * h)
+        signs.append(np.linalg.eigvalsh([[haa, hab], [hab, hbb]]))
+    assert np.all(signs[0] > 0.1)  # measured eigenvalues O(1) against FD noise ~1e-4
+    assert signs[1][0] < -0.1 < 0.1 < signs[1][1]
