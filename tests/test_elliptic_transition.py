@@ -83,3 +83,15 @@ def test_against_stored_ground_truth():
     assert ok.sum() >= 25
     got = et.pull_off_nondimensional(mu[ok], b0[ok])["W_star"]
     assert np.max(np.abs(got / w[ok] - 1)) < TOL_TRUTH
+
+
+def test_jkr_side_at_mu_1e4_is_gvg():
+    """issue 20 ("must show"): at mu = 1e4 within 1 % of GVG at 45-90 deg and 2.5 % at 20-30 deg;
+    the weight is 1 - O(1/lambda) there, so the candidate is GVG to ~1e-4 at every angle."""
+    from dhfield.geometry import ellipticity_from_skew_angle
+
+    b0 = ellipticity_from_skew_angle(np.radians([20.0, 30.0, 45.0, 60.0, 75.0, 90.0]))
+    got = et.pull_off_nondimensional(1e4, b0)["W_star"]
+    assert_allclose(got, ee.pull_off_nondimensional(b0)["W_star"], rtol=1e-4)
+    assert_allclose(et.pull_off_nondimensional(1e4, 1.0)["W_star"], md.pull_off_nondimensional(1e4)["W_star"],
+                    rtol=1e-14)
