@@ -54,7 +54,8 @@ _CLOSURE_MODELS = ("dh-elliptic-two-axis", "dh-elliptic-ray-average")
 _LOG_XTOL = 1e-13
 #: Models whose load curve depends on sigma0 (mu), so that :func:`fit_curve` can
 #: identify it; JKR, DMT and elliptical JKR have no adhesive stress.
-CURVE_FIT_MODEL_NAMES = tuple(m for m in compare.CURVE_MODEL_NAMES if m not in ("jkr", "dmt", "jkr-elliptic"))
+CURVE_FIT_MODEL_NAMES = tuple(m for m in compare.CURVE_MODEL_NAMES if m not in ("jkr", "dmt", "jkr-elliptic",
+                                                                            "jkr-elliptic-energy"))
 
 
 @dataclass(frozen=True)

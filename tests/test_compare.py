@@ -24,7 +24,8 @@ TOL_LOAD_INVERSION = 1e-9
 
 def test_registry_names():
     assert set(compare.MODELS) == {"dh-elliptic", "dh-elliptic-two-axis", "dh-elliptic-ray-average",
-                                   "dh-elliptic-jkr-beta", "dh-circular", "jkr", "dmt", "md", "jkr-elliptic"}
+                                   "dh-elliptic-jkr-beta", "dh-circular", "jkr", "dmt", "md", "jkr-elliptic",
+                                   "jkr-elliptic-energy"}
     assert compare.MODEL_NAMES[0] == compare.DEFAULT_MODEL == "dh-elliptic"
     assert set(compare.CURVE_MODEL_NAMES) == set(compare.MODEL_NAMES) - {"dh-elliptic-jkr-beta"}
 

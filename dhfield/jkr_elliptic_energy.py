@@ -1,0 +1,426 @@
+"""Energy-minimising JKR theory of an elliptical contact (Giudici, Vella & Griffiths 2025).
+
+Source: A. Giudici, D. Vella & I. Griffiths, "Mechanics of elliptical JKR-type
+adhesive contact", J. Phys. D: Appl. Phys. (2025), arXiv:2407.00378 ("GVG").
+GVG keep Johnson & Greenwood's elliptical contact and pressure (:mod:`dhfield.jkr_elliptic`,
+model ``jkr-elliptic``) but replace JG's Griffith criterion at the two axis ends by the
+minimum of elastic plus surface energy over *both* semi-axes.  Every formula below
+was derived here from that statement and checked independently (tests: the
+energy is stationary in a and b by finite differences of a quadrature of the
+energy; the circle is JKR).  The paper's own equation numbers could not be read
+here; ``GVG`` in a comment marks a step of their model, ``(derived)`` our algebra.
+Model name in :mod:`dhfield.compare`: ``jkr-elliptic-energy``.
+
+Model
+-----
+Gap ``z = A x^2 + B y^2``, ``A = 1/(2R')``, ``B = 1/(2R'')``, R' >= R'' (x along R').
+Contact ellipse with semi-axes a (along x) and b = beta a, ``X = x/a``, ``Y = y/b``;
+pressure (Hertz-type plus elliptical flat punch, Boussinesq superposition)
+
+.. math:: p = \\frac{\\alpha_0 + \\alpha_1 X^2 + \\alpha_2 Y^2}{\\sqrt{1 - X^2 - Y^2}} .
+
+alpha1, alpha2 match the curvatures A, B inside the ellipse and alpha0 the
+approach delta, exactly as in :mod:`dhfield.jkr_elliptic` (ellipsoidal-potential
+integrals J; its helper ``_shape_coefficients`` gives ``alpha_i = a g_i(beta)``).
+The load is ``W = 2 pi a b [alpha0 + (alpha1 + alpha2)/3]`` and the approach
+``delta = (ab/2E*)[2 alpha0 J0 + alpha1 b^2 J2 + alpha2 a^2 J1]``.
+
+Energy (GVG).  At fixed approach the elastic energy ``U_E(a, b, delta)`` is
+``(1/2) int p (delta - z) dA`` and the total energy is
+
+.. math:: \\Pi(a, b, \\delta) = U_E(a, b, \\delta) - \\Delta\\gamma\\,\\pi a b .  \\qquad (G1)
+
+GVG require ``dPi/da = dPi/db = 0`` at fixed delta (JG impose one condition
+instead).  Under load control the equilibria are the same (Legendre transform).
+
+Equilibrium in closed form (derived)
+------------------------------------
+By Irwin's relation the derivative of U_E at fixed delta is the energy release
+rate integrated against the normal speed of the contact edge.  On the edge
+``x = a cos(phi)``, ``y = b sin(phi)`` the stress intensity factor of the pressure
+above is ``K_I = f(phi) sqrt(pi/h)`` with ``f = alpha0 + alpha1 cos^2 + alpha2 sin^2``
+and ``h = sqrt(cos^2/a^2 + sin^2/b^2)``; ``G = K_I^2/(2E*)``; the normal speed
+times the arc length is ``b cos^2(phi) dphi`` for ``da`` and ``a sin^2(phi) dphi``
+for ``db``.  Eq. (G1) stationary in a and b is therefore
+
+.. math:: \\oint G\\cos^2\\phi\\,d\\phi = \\oint G\\sin^2\\phi\\,d\\phi = \\pi\\Delta\\gamma ,
+          \\qquad (G2)
+
+Griffith's criterion on average with the weights cos^2 and sin^2 (JG: pointwise at
+phi = 0 and pi/2).  Write ``f = s (1 + eps c)``, ``c = cos^2 phi``,
+``s = alpha0 + alpha2``, ``eps = (alpha1 - alpha2)/s`` and (a = 1)
+``I_j(m) = int_0^{pi/2} sin^{2j} t / sqrt(1 - m sin^2 t) dt``, m = k^2 = 1 - beta^2
+(I0 = K, I1 = (K - E)/m, then ``(2j+1) m I_{j+1} = 2j(1+m) I_j - (2j-1) I_{j-1}``).
+The difference of the two sides of Eq. (G2) is homogeneous in (s, alpha1 - alpha2):
+
+.. math:: A_2 + 2A_1\\varepsilon + A_0\\varepsilon^2 = 0, \\quad
+          A_2 = 2I_1 - I_0,\\; A_1 = 2I_2 - I_1,\\; A_0 = 2I_3 - I_2 ,  \\qquad (G3)
+
+whose physical root (K_I of one sign all round the edge, eps in (-1, 0)) is
+``eps = -A_2/(A_1 + sqrt(A_1^2 - A_0 A_2))``; it depends on beta only and vanishes at
+the circle (A2 = 0).  The other root, eps -> -2 at the circle, changes the sign of
+K_I along the edge.  The cos^2-side of Eq. (G2) then fixes the size:
+
+.. math:: a\\,s^2 = \\frac{E^*\\Delta\\gamma}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)},
+          \\qquad s = \\frac{\\alpha_1 - \\alpha_2}{\\varepsilon} = \\frac{a\\,(g_1 - g_2)}{\\varepsilon}
+          \\;\\Rightarrow\\;
+          a^3 = \\frac{E^*\\Delta\\gamma\\,\\varepsilon^2}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)\\,(g_1 - g_2)^2}. \\qquad (G4)
+
+So the load curve is closed form in beta, which runs from the Hertz ellipticity
+beta0 (g1 = g2: a -> infinity, high load) to 1 (eps = 0: a -> 0), as in JG; the
+contact becomes rounder on unloading.  The A_j are summed from their power series
+in m below m = 1/4 (they cancel at the circle), from Carlson's R_F, R_D and the
+recurrence above.  beta0 = 1 is circular JKR exactly (not a limit).  Equation labels
+(G1)-(G4) are this module's.
+
+Stability (checked, tests): at fixed delta the Hessian of Eq. (G1) in (a, b) is positive
+definite on the branch from high load down to the displacement-control pull-off (the
+first minimum of delta) and has one negative eigenvalue beyond it, so the states up to
+there are true minima over both semi-axes; the load-control pull-off is the first
+minimum of W met on unloading, as for JKR and JG.
+
+Normalisation
+-------------
+As :mod:`dhfield.jkr_elliptic`: ``W* = W sin(theta_skew)/(2 pi R dgamma)`` (Eq. 34),
+sin(theta_skew) of beta0, R = sqrt(R'R''); lengths in ``c_r = (R^2 dgamma/E*)^(1/3)``
+(Eq. 33); approaches in ``c_r^2/R``.  :func:`pull_off_force_ratio` gives the pull-off
+in units of the circular JKR value 1.5 pi R dgamma instead (no sin(theta_skew)).
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from scipy import special
+from scipy.optimize import elementwise
+
+from ._adhesion import (approach_unit, check_control, check_material, grid_minimum, length_unit,
+                        load_unit, scalar_or_array)
+from ._validation import check_finite, check_interval
+from .jkr_elliptic import _check_geometry, _circle, _geometry, _shape_coefficients
+
+__all__ = [
+    "EnergyEllipticLoadCurve",
+    "EnergyEllipticPullOff",
+    "load_curve",
+    "pull_off",
+    "pull_off_force",
+    "pull_off_force_ratio",
+    "pull_off_ellipticity",
+    "load_curve_nondimensional",
+    "pull_off_nondimensional",
+    "state_at_ellipticity",
+]
+
+_SERIES_M = 0.25  # below this m = 1 - beta^2 the A_j of Eq. (G3) are summed from their series
+_SERIES_TERMS = 32  # 0.25^32 ~ 5e-20
+_U_EDGE = 1e-12  # parameter u in (0, 1) kept this far from the ends (a -> inf, a -> 0)
+_SCAN_U = np.clip(0.5 * (1.0 - np.cos(np.pi * np.linspace(0.0, 1.0, 80))), 1e-9, 1.0 - 1e-9)
+
+_n = np.arange(_SERIES_TERMS + 3, dtype=float)
+#: c_n = (1/2)_n / n!, so that I_j(m) = (pi/2) sum_n c_n c_{n+j} m^n
+_C = np.concatenate([[1.0], np.cumprod((_n[:-1] + 0.5) / (_n[:-1] + 1.0))])
+_N = _n[:_SERIES_TERMS]
+_COEF_A2 = 0.5 * np.pi * _C[:-3] * _C[:-3] * _N / (_N + 1.0)  # 2 I1 - I0 (derived)
+_COEF_A1 = 0.5 * np.pi * _C[:-3] * _C[1:-2] * (_N + 1.0) / (_N + 2.0)  # 2 I2 - I1
+_COEF_A0 = 0.5 * np.pi * _C[:-3] * _C[2:-1] * (_N + 2.0) / (_N + 3.0)  # 2 I3 - I2
+_COEF_I = [0.5 * np.pi * _C[:-3] * _C[j:j + _SERIES_TERMS] for j in range(4)]
+
+
+class EnergyEllipticLoadCurve(NamedTuple):
+    """Energy-minimising elliptical JKR states: ``load`` [N], ``semi_major`` a and
+    ``semi_minor`` b [m], ``approach`` [m], ``ellipticity`` b/a [-]."""
+
+    load: np.ndarray
+    semi_major: np.ndarray
+    semi_minor: np.ndarray
+    approach: np.ndarray
+    ellipticity: np.ndarray
+
+
+EnergyEllipticPullOff = EnergyEllipticLoadCurve
+
+
+def _edge_moments(m):
+    """I_1, I_2, I_3 and A_2, A_1, A_0 of Eq. (G3) at m = 1 - beta^2 (complex-safe).
+
+    Series below m = 1/4 (A_2 cancels there: (pi/16) m against I_0 ~ pi/2), Carlson's
+    R_F, R_D and the recurrence above it (A_2 then loses at most ~1.5 digits).
+    """
+    m = np.asarray(m)
+    small = np.real(m) < _SERIES_M
+    out = [np.empty(m.shape, dtype=m.dtype) for _ in range(6)]
+    if np.any(small):
+        ms = m[small]
+        for o, c in zip(out, _COEF_I[1:] + [_COEF_A2, _COEF_A1, _COEF_A0]):
+            o[small] = np.polyval(c[::-1], ms)
+    if not np.all(small):
+        ml = m[~small]
+        i0 = special.elliprf(0.0, 1.0 - ml, 1.0)  # K(m)
+        i1 = special.elliprd(0.0, 1.0 - ml, 1.0) / 3.0  # (K - E)/m
+        i2 = (2.0 * (1.0 + ml) * i1 - i0) / (3.0 * ml)  # recurrence (derived)
+        i3 = (4.0 * (1.0 + ml) * i2 - 3.0 * i1) / (5.0 * ml)
+        for o, v in zip(out, (i1, i2, i3, 2.0 * i1 - i0, 2.0 * i2 - i1, 2.0 * i3 - i2)):
+            o[~small] = v
+    return out
+
+
+def _state_u(u, beta0, rho_m1, sin_skew):
+    """Closed-form GVG state at beta = beta0 + (1 - beta0) u (paper units, R = E* = dgamma = 1)."""
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # a = inf at u -> 0
+        one_m_beta = (1.0 - beta0) * (1.0 - u)
+        beta = 1.0 - one_m_beta
+        k2 = one_m_beta * (1.0 + beta)
+        g1, g2, dg, j0, j1, j2 = _shape_coefficients(beta, k2, rho_m1)
+        i1, i2, i3, a2, a1, a0 = _edge_moments(k2)
+        eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (G3), the root with K_I of one sign
+        dg = np.where(np.real(dg) > 0.0, dg, np.nan)  # rounding at u -> 0: a = infinity
+        a3 = eps * eps / (2.0 * beta * (i1 + 2.0 * eps * i2 + eps * eps * i3) * dg * dg)  # Eq. (G4)
+        a = a3 ** (1.0 / 3.0)
+        a = np.where(np.isnan(np.real(a)), np.inf, a)
+        al1, al2 = a * g1, a * g2
+        al0 = a * dg / eps - al2  # s = alpha0 + alpha2 = (alpha1 - alpha2)/eps, Eq. (G3)
+        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
+        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # JG (2005): approach
+    return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,  # Eq. (34)
+            "delta_star": delta, "beta": beta, "alpha": (al0, al1, al2)}
+
+
+def state_at_ellipticity(beta, beta0):
+    """GVG state whose contact ellipse has ellipticity beta (closed form, paper units).
+
+    Parameters
+    ----------
+    beta : array_like
+        Contact ellipticity b/a in (beta0, 1) [-]: beta runs from beta0 (a -> infinity,
+        high load) to 1 (a -> 0) on unloading.
+    beta0 : array_like
+        Hertz ellipticity of the geometry, in (0, 1) [-] (beta0 = 1 is circular
+        JKR, :func:`dhfield.jkr.load_curve_nondimensional`).
+
+    Returns
+    -------
+    dict
+        ``W_star`` (W sin(theta_skew)/(2 pi R dgamma), Eq. 34), ``a_star``, ``b_star``
+        (semi-axes / c_r), ``delta_star``, ``beta`` [-] and ``alpha``, the
+        coefficients (alpha0, alpha1, alpha2) of the pressure [E* = 1].
+
+    Notes
+    -----
+    Eq. (G4) of the module docstring, with eps the root of Eq. (G3):
+
+    .. math:: a^3 = \\frac{\\varepsilon^2}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)
+              \\,(g_1 - g_2)^2}
+    """
+    b0 = check_interval("beta0", beta0, 0.0, 1.0, high_open=True, what="Hertz ellipticity, dimensionless")
+    b = np.asarray(check_finite("beta", beta, "contact ellipticity b/a, dimensionless"), dtype=float)
+    if np.any((b <= b0) | (b >= 1.0)):
+        raise ValueError("beta must lie in (beta0, 1) (contact ellipticity b/a, dimensionless)")
+    b0, rho_m1, sn = _geometry(b0)
+    return _state_u((b - b0) / (1.0 - b0), b0, rho_m1, sn)
+
+
+def _u_at_contact(a_star, beta0, rho_m1, sin_skew):
+    def f(u, at, b0, r, s):
+        with np.errstate(divide="ignore"):  # a = 0 at u -> 1; arctan keeps f finite
+            return np.arctan(np.log(_state_u(u, b0, r, s)["a_star"] / at))
+
+    lo = np.full(np.shape(a_star), _U_EDGE)
+    res = elementwise.find_root(f, (lo, 1.0 - lo), args=(a_star, beta0, rho_m1, sin_skew),
+                                tolerances=dict(xatol=1e-16, xrtol=1e-15))
+    return res.x
+
+
+def load_curve_nondimensional(a_star, beta0):
+    """GVG state at contact semi-major axis a*, in the paper's units (Eqs. 32-35).
+
+    The nondimensional core of :func:`load_curve`.
+
+    Parameters
+    ----------
+    a_star : array_like
+        Contact semi-major axis a* = a/c_r > 0, Eq. (32) [-].
+    beta0 : array_like
+        Hertz ellipticity of the geometry in (0, 1] [-]; broadcasts with ``a_star``.
+
+    Returns
+    -------
+    dict
+        ``W_star`` (Eq. 34, with sin(theta_skew) of beta0), ``a_star``, ``b_star``,
+        ``delta_star`` and the contact ellipticity ``beta`` [-].
+
+    Notes
+    -----
+    a decreases monotonically along the closed-form curve of
+    :func:`state_at_ellipticity` (beta0 -> 1); its ellipticity at a* is found by a
+    bracketing root finder.  beta0 = 1 is circular JKR.
+    """
+    beta0, rho_m1, sn = _geometry(beta0)
+    a_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(a_star, float), beta0, rho_m1, sn)
+    circ = beta0 == 1.0
+    out = _circle(a_star, sn)
+    if np.any(~circ):
+        sel = ~circ
+        u = _u_at_contact(a_star[sel], beta0[sel], rho_m1[sel], sn[sel])
+        st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
+        for k in out:
+            out[k] = np.array(out[k], dtype=float)
+            out[k][sel] = st[k]
+        out["a_star"][sel] = a_star[sel]
+        out["b_star"][sel] = st["beta"] * a_star[sel]
+    return out
+
+
+def pull_off_nondimensional(beta0, control="load"):
+    """GVG state at pull-off in the paper's units (Eqs. 32-35), vectorised over beta0.
+
+    The nondimensional core of :func:`pull_off`: the first minimum of W* (load
+    control) or delta* (displacement control) met on unloading from high load,
+    i.e. from beta = beta0 towards beta = 1.
+
+    Parameters
+    ----------
+    beta0 : array_like
+        Hertz ellipticity of the geometry in (0, 1] [-].
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dict
+        ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] as in
+        :func:`load_curve_nondimensional`.
+
+    Notes
+    -----
+    The minimiser is refined on the complex-step derivative of the closed-form
+    curve (accurate to ~1e-15 in beta).  beta0 = 1: JKR, W* = -3/4 (load control,
+    a*^3 = 9 pi/8) and -5/12 (displacement control, a*^3 = pi/8).
+    """
+    check_control(control)
+    beta0, rho_m1, sn = _geometry(beta0)
+    a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
+    out = _circle(np.full(beta0.shape, np.cbrt(a3)), sn)
+    circ = beta0 == 1.0
+    if np.any(~circ):
+        sel = ~circ
+        key = "W_star" if control == "load" else "delta_star"
+
+        def f(u, b0, r, s):
+            return _state_u(u, b0, r, s)[key]
+
+        u, _ = grid_minimum(f, 0.0, 0.0, args=(beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15,
+                            first=True, grid=_SCAN_U, complex_step=True)
+        st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
+        for k in out:
+            out[k] = np.array(out[k], dtype=float)
+            out[k][sel] = st[k]
+    return out
+
+
+def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, *,
+               radius_ratio=None, beta0=None):
+    """Energy-minimising elliptical JKR (Giudici, Vella & Griffiths 2025) states at contact semi-axis a.
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Contact semi-axis a > 0 along the larger principal radius R' [m].
+    effective_radius : array_like
+        Equivalent radius R = sqrt(R' R''), Eq. (5) [m].
+    reduced_modulus : array_like
+        Reduced modulus E*, Eq. (6) [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+    radius_ratio : array_like, optional
+        R'/R'' >= 1 [-].
+    beta0 : array_like, optional
+        The Hertz ellipticity of that geometry in (0, 1] [-] (give one of the two).
+
+    Returns
+    -------
+    EnergyEllipticLoadCurve
+        ``load`` [N] (compressive positive), ``semi_major``, ``semi_minor`` [m],
+        ``approach`` [m], ``ellipticity`` b/a [-].
+
+    Notes
+    -----
+    Closed form in the ellipticity beta (module docstring, Eqs. G1-G4): the total
+    energy ``U_E - dgamma pi a b`` is stationary in both semi-axes.
+
+    References
+    ----------
+    .. [1] A. Giudici, D. Vella, I. Griffiths, J. Phys. D (2025), arXiv:2407.00378
+    """
+    b0 = _check_geometry(radius_ratio, beta0)
+    a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    cr = length_unit(r, e, w)
+    st = load_curve_nondimensional(a / cr, b0)
+    sn = _geometry(b0)[2]
+    return EnergyEllipticLoadCurve(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
+                                   scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
+                                   scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
+                                   scalar_or_array(st["beta"]))
+
+
+def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
+             control="load"):
+    """Energy-minimising elliptical JKR state at pull-off.
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+    radius_ratio, beta0 : array_like
+        R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+    control : {'load', 'displacement'}
+        First minimum of the load (load control) or of the approach
+        (displacement control) met on unloading.
+
+    Returns
+    -------
+    EnergyEllipticPullOff
+        ``load`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m] and
+        ``ellipticity`` b/a at pull-off [-].
+    """
+    b0 = _check_geometry(radius_ratio, beta0)
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    st = pull_off_nondimensional(b0, control)
+    cr = length_unit(r, e, w)
+    sn = _geometry(b0)[2]
+    return EnergyEllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
+                                 scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
+                                 scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
+                                 scalar_or_array(st["beta"]))
+
+
+def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
+                   beta0=None, control="load"):
+    """Energy-minimising elliptical JKR pull-off force [N] (negative); see :func:`pull_off`."""
+    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
+                    beta0=beta0, control=control).load
+
+
+def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
+    """Pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
+
+    R = sqrt(R'R''); depends on R'/R'' only.  Equals 1 at the circle (5/9 under
+    displacement control, the circular fixed-grips value).
+    """
+    b0 = _check_geometry(radius_ratio, beta0)
+    st = pull_off_nondimensional(b0, control)
+    return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
+
+
+def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
+    """Contact ellipticity b/a at pull-off [-], in [beta0, 1]; 1 at the circle.
+
+    Parameters
+    ----------
+    radius_ratio, beta0 : array_like
+        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+    """
+    b0 = _check_geometry(radius_ratio, beta0)
+    return scalar_or_array(pull_off_nondimensional(b0, control)["beta"])

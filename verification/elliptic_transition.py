@@ -1,0 +1,78 @@
+"""The candidate DMT-to-JKR elliptical pull-off (:mod:`dhfield.elliptic_transition`) against
+every case of the stored BEM ground truth, beside the other models, with its cost.
+
+For each stored (beta0, mu) (``data/adhesive_ground_truth.nc``, Dugdale law, load control,
+W* Richardson-extrapolated where three converged levels exist, else the finest usable N
+as stored) prints W*_BEM and the relative deviation of
+
+* ``cand``: W*_DMT,ell + (W*_GVG - W*_DMT,ell) g(mu), g from Maugis-Dugdale on the sphere;
+* ``candJG``: the same with Johnson & Greenwood (2005) as the JKR limit (to show what the
+  exact-energy limit buys);
+* ``md``: Maugis-Dugdale on the sphere R = sqrt(R'R''), times sin(theta_skew) (Eq. 34);
+* the stored models of the dataset (``W_star_model``): the paper's ``dh-elliptic`` and the
+  two-axis closure;
+
+then the max |deviation| of each, and the cost per point (a benchmark, not a test).
+
+``python -m verification.elliptic_transition``
+"""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+
+from dhfield import elliptic_transition as et
+from dhfield import jkr_elliptic as jg
+from dhfield import maugis_dugdale as md
+from dhfield.geometry import sin_skew_angle
+
+DATASET = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth.nc"
+
+
+def _candidate_jg(mu, beta0):
+    sn = sin_skew_angle(beta0)
+    return -sn + (jg.pull_off_nondimensional(beta0)["W_star"] + sn) * et.transition_weight(mu)
+
+
+def main():
+    import xarray as xr
+
+    with xr.open_dataset(DATASET) as ds:
+        w = ds["W_star_extrapolated"].values
+        b0, mu = np.meshgrid(ds["beta0"].values, ds["mu"].values, indexing="ij")
+        stored = {m: ds["W_star_model"].sel(model=m).values for m in ("dh-elliptic", "dh-elliptic-two-axis")}
+    ok = np.isfinite(w)
+    b0, mu, w = b0[ok], mu[ok], w[ok]
+    cols = {"cand": et.pull_off_nondimensional(mu, b0)["W_star"],
+            "candJG": _candidate_jg(mu, b0),
+            "md": md.pull_off_nondimensional(mu)["W_star"] * sin_skew_angle(b0),
+            **{k: v[ok] for k, v in stored.items()}}
+    print("Load-control pull-off W* (Eq. 34) against the stored BEM ground truth; deviations in %")
+    print(f"{'beta0':>6} {'mu':>5} {'W*_BEM':>9} " + " ".join(f"{k:>20}" for k in cols))
+    for i in range(w.size):
+        print(f"{b0[i]:6.3f} {mu[i]:5.2f} {w[i]:9.5f} "
+              + " ".join(f"{100 * (v[i] / w[i] - 1):+20.3f}" for v in cols.values()))
+    print("max |deviation| over", w.size, "cases:")
+    for k, v in cols.items():
+        d = np.abs(v / w - 1)
+        j = int(np.nanargmax(d))
+        print(f"  {k:22s} {100 * d[j]:6.3f} %  at beta0 = {b0[j]:g}, mu = {mu[j]:g}")
+    rng = np.random.default_rng(0)
+    bb, mm = rng.uniform(0.05, 1.0, 1000), 10.0 ** rng.uniform(-2, 4, 1000)
+    et.pull_off_nondimensional(mm[:10], bb[:10])  # warm-up
+    t = time.perf_counter()
+    et.pull_off_nondimensional(mm, bb)
+    t1 = time.perf_counter() - t
+    bg, mg = np.meshgrid(np.linspace(0.05, 1.0, 200), np.geomspace(0.01, 100.0, 200))
+    t = time.perf_counter()
+    et.pull_off_nondimensional(mg, bg)
+    t2 = time.perf_counter() - t
+    print(f"cost: {1e3 * t1 / 1000:.3f} ms per point (1000 distinct random (beta0, mu)); "
+          f"200 x 200 map {t2:.2f} s ({1e3 * t2 / 4e4:.4f} ms per point: one GVG per beta0, one MD per mu)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
