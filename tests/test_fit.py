@@ -248,3 +248,103 @@ def test_closure_models_search_their_own_mu_range(params):
     assert fit_mu_range("md") == FIT_MU_RANGE
     # (the rejection path itself costs four closure solves, ~20 s: python -m verification.fit_round_trip
     # --models dh-elliptic-two-axis --seeds 0 prints it)
+
+
+# ----------------------------------------------------------------- replicates and input uncertainty (issue 17)
+#: Student t quantile t_0.975 with 2 degrees of freedom, closed form: the t(2) CDF is
+#: 1/2 + t/(2 sqrt(2 + t^2)), so t = 0.95 sqrt(2/(1 - 0.95^2)) = 4.30265 (tables: 4.303).
+T975_DOF2 = 0.95 * math.sqrt(2.0 / (1.0 - 0.95 ** 2))
+#: Central differences with relative step 1e-3 (dhfield.fit.INPUT_REL_STEP): truncation error
+#: O(1e-6) relative in a derivative; 1e-5 leaves a margin.
+RTOL_PROPAGATION = 1e-5
+
+
+def _jkr_work(force, params):
+    # JKR: W = -(3/2) pi R dgamma (circle of R = sqrt(R'R''), Johnson 1985): dgamma = -F/(1.5 pi R)
+    return -force / (1.5 * math.pi * params.effective_radius)
+
+
+def test_replicates_give_the_mean_and_a_t_adjusted_standard_error(params):
+    from statistics import NormalDist
+
+    forces = np.array([-0.80e-3, -0.83e-3, -0.78e-3])
+    res = fit_work_of_adhesion(forces, params, model="jkr")
+    works = _jkr_work(forces, params)  # linear in F: each replicate exact (RTOL_CLOSED_FORM)
+    np.testing.assert_allclose(res.replicate_works, works, rtol=RTOL_CLOSED_FORM)
+    assert res.work_of_adhesion == pytest.approx(works.mean(), rel=RTOL_CLOSED_FORM)
+    plain = works.std(ddof=1) / math.sqrt(3)
+    assert res.replicate_stderr == pytest.approx(plain, rel=1e-12)
+    # +-1.96 stderr is the t(2) 95 % interval: stderr = t_0.975(2) / z_0.975 x s/sqrt(n)
+    assert res.work_of_adhesion_stderr == pytest.approx(T975_DOF2 / NormalDist().inv_cdf(0.975) * plain, rel=1e-9)
+    assert res.confidence_interval == pytest.approx((works.mean() - T975_DOF2 * plain,
+                                                     works.mean() + T975_DOF2 * plain), rel=1e-9)
+    assert res.effective_dof == 2 and res.input_stderr == 0 and res.stderr_note == ""
+    assert res.pull_off_force == pytest.approx(forces.mean()) and res.pull_off_forces == tuple(forces)
+    rec = res.as_record()
+    assert rec["n_replicates"] == 3 and rec["work_of_adhesion_stderr"] == res.work_of_adhesion_stderr
+
+
+@pytest.mark.parametrize("forces, note", [(-0.8e-3, "one pull-off force"), ([-0.8e-3] * 4, "same dgamma")])
+def test_no_scatter_gives_no_standard_error(params, forces, note):
+    res = fit_work_of_adhesion(forces, params, model="jkr")
+    assert math.isnan(res.work_of_adhesion_stderr) and note in res.stderr_note
+    assert res.work_of_adhesion == pytest.approx(_jkr_work(-0.8e-3, params), rel=RTOL_CLOSED_FORM)
+
+
+@pytest.mark.parametrize("forces, match", [([[-1e-3, -2e-3]], "1-d sequence"), ([], "at least one"),
+                                           ([-1e-3, 1e-4], "must be negative"), ([-1e-3, np.nan], "finite")])
+def test_bad_replicates_are_rejected(params, forces, match):
+    with pytest.raises(ValueError, match=match):
+        fit_work_of_adhesion(forces, params, model="jkr")
+
+
+@pytest.mark.parametrize("model", ["jkr", "dmt"])
+def test_input_uncertainty_propagates_as_the_closed_form(model):
+    from dhfield.fit import propagate_input_uncertainty
+
+    # JKR and DMT: dgamma = -F/(k pi R) with R = R_c/sin(theta) (Eqs. 3-5) for equal crossed cylinders, so
+    # d dgamma/d R_c = -dgamma/R_c, d dgamma/d theta = dgamma cot(theta); E* and sigma0 do not enter
+    inputs = dict(PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    std = {"cylinder_radius": 0.1e-3, "skew_angle": math.radians(2.0), "youngs_modulus_1": 0.2e6,
+           "max_adhesive_stress": 0.3 * STRESS}
+    forces = [-0.80e-3, -0.83e-3, -0.78e-3]
+    fit = fit_work_of_adhesion(forces, dim.contact_parameters(**inputs), model=model)
+    res = propagate_input_uncertainty(fit, dim.contact_parameters, inputs, std)
+    w, th = res.work_of_adhesion, PDMS["skew_angle"]
+    c = res.input_contributions
+    assert c["cylinder_radius"] == pytest.approx(w * std["cylinder_radius"] / PDMS["cylinder_radius"],
+                                                 rel=RTOL_PROPAGATION)
+    assert c["skew_angle"] == pytest.approx(w * std["skew_angle"] / math.tan(th), rel=RTOL_PROPAGATION)
+    assert c["youngs_modulus_1"] < 1e-10 * w and c["max_adhesive_stress"] < 1e-10 * w
+    assert res.input_stderr == pytest.approx(math.hypot(c["cylinder_radius"], c["skew_angle"]), rel=1e-6)
+    # combined with the replicates: more than either part, and the same estimate
+    assert res.work_of_adhesion == fit.work_of_adhesion
+    assert res.work_of_adhesion_stderr > max(fit.work_of_adhesion_stderr * 0.5, res.input_stderr)
+    assert res.effective_dof > 2
+
+
+def test_input_uncertainty_at_the_edge_of_the_range_is_one_sided():
+    from dhfield.fit import propagate_input_uncertainty
+
+    # 90 degrees is the largest skew angle: the difference is one-sided.  JKR's dgamma is proportional to
+    # sin(theta), whose derivative vanishes at 90 degrees; the backward difference over h = 1e-3 pi/2 is
+    # dgamma (1 - cos h)/h = dgamma h/2 (1 + O(h^2)), a first-order error the docstring states
+    inputs = dict(PDMS, skew_angle=math.pi / 2, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    fit = fit_work_of_adhesion([-1e-3, -1.1e-3], dim.contact_parameters(**inputs), model="jkr")
+    res = propagate_input_uncertainty(fit, dim.contact_parameters, inputs, {"skew_angle": 0.01})
+    h = 1e-3 * math.pi / 2
+    assert res.input_contributions["skew_angle"] == pytest.approx(res.work_of_adhesion * h / 2 * 0.01, rel=1e-5)
+
+
+def test_input_uncertainty_rejects_inconsistent_inputs(params):
+    from dhfield.fit import propagate_input_uncertainty
+
+    inputs = dict(PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    fit = fit_work_of_adhesion([-1e-3, -1.1e-3], params, model="jkr")
+    with pytest.raises(ValueError, match="not in inputs"):
+        propagate_input_uncertainty(fit, dim.contact_parameters, inputs, {"radius": 1e-4})
+    with pytest.raises(ValueError, match="not the fit's"):
+        propagate_input_uncertainty(fit, dim.contact_parameters, {**inputs, "max_adhesive_stress": 1e5},
+                                    {"cylinder_radius": 1e-4})
+    with pytest.raises(ValueError, match="standard deviation"):
+        propagate_input_uncertainty(fit, dim.contact_parameters, inputs, {"cylinder_radius": -1e-4})

@@ -1,4 +1,8 @@
-"""Residual plot of a load-curve fit (:func:`dhfield.fit.fit_curve`): matplotlib at the edge."""
+"""Input and output of the fits (:mod:`dhfield.fit`): the measured load curve, the residual plot.
+
+:func:`read_curve_data` reads a measured load curve from CSV; :func:`write_residual_plot`
+draws a :class:`dhfield.fit.CurveFit` (matplotlib at the edge, imported on use).
+"""
 from __future__ import annotations
 
 from pathlib import Path
@@ -7,7 +11,47 @@ import numpy as np
 
 from . import atomic_path, check_writable
 
-__all__ = ["write_residual_plot"]
+__all__ = ["read_curve_data", "write_residual_plot", "DATA_COLUMNS"]
+
+#: Columns of a measured load curve: schema name -> accepted column names.
+DATA_COLUMNS = {"force": ("force", "load"), "semi_major": ("semi_major", "contact_size"),
+                "approach": ("approach",)}
+
+
+def read_curve_data(path, params=None) -> dict:
+    """A measured load curve from a CSV file, in SI units.
+
+    Parameters
+    ----------
+    path : path-like
+        CSV with a header row: ``force`` (or ``load``) [N], ``semi_major`` (or
+        ``contact_size``) [m], optionally ``approach`` [m].
+    params : dhfield.dimensional.ContactParameters, optional
+        The contact, for the plausibility checks of the magnitudes.
+
+    Returns
+    -------
+    dict
+        ``force``, ``semi_major`` and (if present) ``approach``: float arrays [N], [m], [m].
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and the column.
+    """
+    from .table import read_table
+
+    frame, _ = read_table(path)
+    cols = {}
+    for name, aliases in DATA_COLUMNS.items():
+        found = [a for a in aliases if a in frame.columns]
+        if found:
+            cols[name] = found[0]
+        elif name != "approach":
+            raise ValueError(f"data file {str(path)!r} has no column {name!r} (or {', '.join(aliases[1:])}); "
+                             f"columns: {', '.join(map(str, frame.columns))}")
+    frame, _ = read_table(path, required=tuple(cols.values()))
+    return {name: frame[col].to_numpy(dtype=float) for name, col in cols.items()}
 
 
 def write_residual_plot(fit, path, *, dpi=120) -> tuple[Path, Path]:
