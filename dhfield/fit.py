@@ -236,6 +236,13 @@ class CurveFit:
     message : str
     evaluations : int
         Forward load-curve evaluations.
+    warning : str
+        Empty, or the warning :func:`dhfield.compare.pull_off` (and
+        ``dhfield pulloff``) gives at the fitted (mu, beta0): the model outside
+        its validated range, or ``dh-elliptic`` departing from the two-axis
+        closure (the estimates are then biased).
+    params : dhfield.dimensional.ContactParameters
+        The contact at the estimates (for :meth:`model_curve`).
     """
     work_of_adhesion: float
     max_adhesive_stress: float
@@ -258,6 +265,8 @@ class CurveFit:
     message: str
     evaluations: int
     covariance_log: np.ndarray = field(repr=False, default=None)
+    warning: str = ""
+    params: dimensional.ContactParameters = field(repr=False, default=None)
 
     def as_record(self) -> dict:
         """Plain dict of the scalar results (for ``--json``)."""
@@ -268,7 +277,7 @@ class CurveFit:
                 "correlation": self.correlation, "mu": self.mu, "beta0": self.beta0,
                 "n_points": int(self.load.size), "load_noise": self.load_noise,
                 "approach_noise": self.approach_noise, "success": self.success, "message": self.message,
-                "evaluations": self.evaluations}
+                "evaluations": self.evaluations, "warning": self.warning}
 
 
 def _with(params, work_of_adhesion, max_adhesive_stress):
@@ -573,7 +582,8 @@ def _curve(params, semi_major, model):
     return np.asarray(c["force"], float), np.asarray(c["approach"], float)
 
 
-def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAULT_MODEL, initial=None):
+def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAULT_MODEL, initial=None,
+              check_closure=True):
     """Work of adhesion and adhesive stress from a measured load curve, by least squares.
 
     Parameters
@@ -593,6 +603,14 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         One of :data:`CURVE_FIT_MODEL_NAMES`; default the paper's model.
     initial : (float, float), optional
         Starting (dgamma [J m^-2], sigma0 [Pa]).
+
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic``: compare with the two-axis closure at the fitted
+        state (about a second) and add its departure to ``warning``, as
+        :func:`dhfield.compare.pull_off` does.  The validity range of every
+        model is checked regardless.
 
     Returns
     -------
@@ -706,6 +724,7 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     corr = float(cov[0, 1] / (se[0] * se[1])) if ok else float("nan")
     w_fit, d_fit = model_at(sol.x)
     p = _with(params, work, stress)
+    warning = _validity_warning(model, p, "load", check_closure)
     return CurveFit(
         work_of_adhesion=work, max_adhesive_stress=stress,
         work_of_adhesion_stderr=work * float(se[0]), max_adhesive_stress_stderr=stress * float(se[1]),
@@ -717,4 +736,4 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         approach_noise=float("nan") if d_data is None else
         float(np.sqrt(np.sum((d_data - d_fit) ** 2) / max(d_data.size - 1, 1))),
         model=model, success=success, message=message, evaluations=count[0],
-        covariance_log=cov)
+        covariance_log=cov, warning=warning, params=p)

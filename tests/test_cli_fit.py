@@ -2,6 +2,9 @@
 from __future__ import annotations
 
 import json
+import math
+
+import numpy as np
 
 import pytest
 
@@ -63,3 +66,34 @@ def test_uncertainty_flag_misuse_is_one_line(capsys, tmp_path, monkeypatch, argv
     (tmp_path / "d.csv").write_text("force,semi_major\n1e-3,1e-4\n2e-3,2e-4\n3e-3,3e-4\n")
     code, out, err = _run(capsys, ["fit", *argv])
     assert code == 2 and out == "" and err.count("\n") == 1 and match in err, err
+
+
+def test_pull_off_fit_warns_exactly_like_pulloff(capsys):
+    # issue 18 item 5: jkr at mu ~ 0.045 printed no warning in fit, while pulloff warns for the same state
+    argv = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--principal-radii", "3e-3", "3e-3"]
+    code, out, err = _run(capsys, ["fit", "--pull-off-force", "-1e-3", *argv, "--adhesive-stress", "3e3",
+                                   "--model", "jkr", "--json"])
+    assert code == 0, err
+    rec = json.loads(out)
+    assert rec["mu"] < 0.1 and "jkr is validated for" in rec["warning"]
+    fit_err = err
+    code, out, err = _run(capsys, ["pulloff", *argv, "--model", "jkr", "--adhesive-stress", "3e3",
+                                   "--work-of-adhesion", repr(rec["work_of_adhesion"]), "--json"])
+    assert code == 0 and err == fit_err and json.loads(out)["warning"] == rec["warning"]
+
+
+def test_curve_fit_with_the_default_model_warns(capsys, tmp_path):
+    # issue 17: 'fit --data' with the default model printed nothing on stderr (beta0 = 0.48 at 60 degrees)
+    from dhfield import dimensional as dim
+
+    p = dim.contact_parameters(2e6, 0.5, 2e6, 0.5, 5e-3, math.pi / 3, 0.04, 2.5e4)
+    a = p.length_unit * np.linspace(0.3, 3.0, 12)
+    w = dim.load_curve_si(p, semi_major=a)["force"]
+    (tmp_path / "d.csv").write_text("force,semi_major\n" + "".join(f"{x!r},{y!r}\n" for x, y in zip(map(float, w), map(float, a))))
+    code, out, err = _run(capsys, ["fit", "--data", str(tmp_path / "d.csv"), "--youngs-modulus", "2e6",
+                                   "--poisson-ratio", "0.5", "--cylinder-radius", "5e-3", "--skew-angle-deg", "60",
+                                   "--json"])
+    assert code == 0, err
+    rec = json.loads(out)
+    assert "dh-elliptic is validated for" in rec["warning"]
+    assert err == f"dhfield: warning: {rec['warning']}\n"

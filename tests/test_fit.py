@@ -348,3 +348,39 @@ def test_input_uncertainty_rejects_inconsistent_inputs(params):
                                     {"cylinder_radius": 1e-4})
     with pytest.raises(ValueError, match="standard deviation"):
         propagate_input_uncertainty(fit, dim.contact_parameters, inputs, {"cylinder_radius": -1e-4})
+
+
+# ------------------------------------------------------------------ validity warnings (issues 17, 18 item 5)
+def _sphere(mu, work=WORK):
+    """A sphere (R' = R'' = 3 mm, beta0 = 1) whose sigma0 gives Tabor parameter mu at dgamma = work (Eq. 35)."""
+    p = dim.contact_parameters_from_principal_radii(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, 3e-3, work, 1.0)
+    stress = mu * (p.reduced_modulus ** 2 * work / p.effective_radius) ** (1 / 3)  # Eq. (35) for sigma0
+    return dim.contact_parameters_from_principal_radii(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, 3e-3, work, stress)
+
+
+@pytest.mark.parametrize("model, mu, flagged", [("jkr", 0.045, True), ("jkr", 10.0, False), ("dmt", 5.4, True),
+                                                ("dmt", 0.05, False), ("md", 1.0, False)])
+def test_pull_off_fit_warns_outside_the_validated_range(model, mu, flagged):
+    # issue 18 item 5: jkr at mu = 0.045 and dmt at mu = 5.4 returned warning "" (only dh-elliptic was checked)
+    p = _sphere(mu)
+    assert p.beta0 == 1.0
+    force = float(dim.pull_off_force(p, model)["force"])
+    res = fit_work_of_adhesion([force, 1.01 * force], p, model=model)
+    # the warning pulloff gives at the fitted state, word for word
+    assert res.warning == str(compare.pull_off(model, res.mu, res.beta0)["warning"])
+    assert bool(res.warning) is flagged
+    if flagged:
+        assert res.warning.startswith(f"{model} is validated for") and "mu = " in res.warning
+
+
+def test_curve_fit_warns_like_pulloff():
+    # issue 17: 'fit --data' with the default model was silent where pulloff warns (beta0 = 0.48 at 60 degrees)
+    p = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    a, w, _ = _curve_data(p, "dh-elliptic", n=12)
+    res = fit_curve(w, a, _start())
+    assert res.warning == str(compare.pull_off("dh-elliptic", res.mu, res.beta0)["warning"])
+    assert "dh-elliptic is validated for beta0 in [0.8, 1]" in res.warning and res.as_record()["warning"]
+    # inside the range: none (MD on the sphere is validated for every mu)
+    s = _sphere(1.0)
+    a, w, _ = _curve_data(s, "md", n=12)
+    assert fit_curve(w, a, s, model="md", initial=(WORK / 2, 2 * s.max_adhesive_stress)).warning == ""
