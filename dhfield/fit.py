@@ -577,6 +577,67 @@ def propagate_input_uncertainty(fit, build, inputs, input_std, *, rel_step=INPUT
                    evaluations=fit.evaluations + count[0])
 
 
+_CURVE_PARAMETERS = ("work_of_adhesion", "max_adhesive_stress")
+#: Largest condition number of the (weighted, log-parameter) Jacobian for which dgamma and sigma0
+#: are reported as separately identifiable.  Its columns are computed by finite differences
+#: (relative error ~ sqrt(eps) = 1.5e-8), so a singular value below 1e-6 of the largest is within
+#: 100 x of that error, i.e. not resolved.  Measured: well-posed PDMS curves 3-18; five copies of
+#: one row 2e16; sigma0 on the JKR side (mu ~ 22) 6e7.
+JACOBIAN_COND_MAX = 1e6
+#: |correlation| of the two log-estimates at or above which they count as correlated at +-1
+#: (only a combination determined): the covariance is then rounding.
+CORRELATION_MAX = 1.0 - 1e-6
+
+
+def _log_standard_errors(jac, fun, n_res):
+    """Standard errors, covariance and correlation of (ln dgamma, ln sigma0), and what is not identifiable.
+
+    Returns ``(se, cov, corr, problems, unknown)``: ``se`` NaN for a parameter the data
+    cannot determine (``unknown`` True), with the reason in ``problems`` (list of str).
+    """
+    nan = float("nan")
+    dof = n_res - 2
+    s2 = float(np.sum(fun ** 2)) / dof if dof > 0 else nan
+    problems = []
+    unknown = np.zeros(2, bool)
+    u, sv, vt = np.linalg.svd(np.asarray(jac, float), full_matrices=False)
+    cond = sv[0] / sv[-1] if sv[-1] > 0 else math.inf
+    if not (np.all(np.isfinite(sv)) and sv[0] > 0):
+        unknown[:] = True
+        problems.append("the Jacobian of the residuals is zero or not finite: the data do not constrain "
+                        "work_of_adhesion and max_adhesive_stress; no standard errors")
+        return np.full(2, nan), np.full((2, 2), nan), nan, problems, unknown
+    if cond > JACOBIAN_COND_MAX:
+        # the null direction names the parameters it involves (NaN); a parameter nearly outside it
+        # keeps the standard error of the full inverse, in which the null direction still weighs
+        # v_i^2/s_min^2 (no pretence: large where it is not quite outside)
+        unknown = np.abs(vt[-1]) > 0.1
+        names = " and ".join(n for n, m in zip(_CURVE_PARAMETERS, unknown) if m)
+        # numerical rank as numpy.linalg.matrix_rank counts it: s_min <= eps max(m, n) s_max
+        deficient = sv[-1] <= np.finfo(float).eps * max(np.shape(jac)) * sv[0]
+        problems.append(f"{names} not identifiable: the Jacobian is "
+                        f"{'rank-deficient' if deficient else 'ill-conditioned'} (condition number {cond:.3g} > "
+                        f"{JACOBIAN_COND_MAX:g})"
+                        + ("; only a combination of the two is determined; no standard errors" if unknown.all()
+                           else "; no standard error for it"))
+    keep = sv > 0  # an exactly zero singular value: its direction is dropped (its parameters are NaN)
+    inv = (vt[keep].T / sv[keep] ** 2) @ vt[keep]
+    cov = s2 * inv
+    se = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    se[unknown] = nan
+    cov[unknown, :] = nan
+    cov[:, unknown] = nan
+    corr = float(cov[0, 1] / (se[0] * se[1])) if np.all(np.isfinite(se)) and np.all(se > 0) else nan
+    if math.isfinite(corr) and abs(corr) >= CORRELATION_MAX:
+        unknown[:] = True
+        problems.append(f"work_of_adhesion and max_adhesive_stress are correlated at {corr:+.7f}: only a "
+                        "combination of the two is determined; no standard errors")
+        se[:] = nan
+        cov[:] = nan
+        corr = nan
+    return se, cov, corr, problems, unknown
+
+
 def _curve(params, semi_major, model):
     c = dimensional.load_curve_si(params, semi_major=semi_major, model=model)
     return np.asarray(c["force"], float), np.asarray(c["approach"], float)
@@ -661,6 +722,14 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     if n_res < 3:
         raise ValueError(f"load must have at least 3 points to fit 2 parameters with an error estimate; "
                          f"got {w_data.size}")
+    if not np.any(w_data != 0.0):
+        raise ValueError(f"load must not be 0 at every point (a load curve needs the measured loads, N); "
+                         f"got {w_data.size} zeros")
+    n_sizes = np.unique(a_data).size
+    if n_sizes * (1 if d_data is None else 2) < 2:
+        raise ValueError(f"contact_size has {n_sizes} distinct value in {a_data.size} points: fewer distinct "
+                         "points than the 2 parameters (work_of_adhesion, max_adhesive_stress); measure the load "
+                         "at 2 or more contact sizes")
     if initial is None:
         initial = (params.work_of_adhesion, params.max_adhesive_stress)
     w0 = float(check_positive("initial work_of_adhesion", initial[0], "J m^-2"))
@@ -700,28 +769,23 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
             sd = math.sqrt(float(np.sum(res ** 2)) / dof * n_res / x.size)
             scales[k] = sd if sd > 1e-12 * span(x) else scales[k]
         sol = optimize.least_squares(residuals, sol.x, **opts)
-    jac = sol.jac
-    dof = n_res - 2
-    s2 = float(np.sum(sol.fun ** 2)) / dof if dof > 0 else float("nan")
-    try:
-        cov = s2 * np.linalg.inv(jac.T @ jac)
-    except np.linalg.LinAlgError:
-        cov = np.full((2, 2), np.nan)
     work, stress = (float(v) for v in np.exp(sol.x))
-    se = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    se, cov, corr, problems, unknown = _log_standard_errors(sol.jac, sol.fun, n_res)
     success, message = bool(sol.success), str(sol.message)
     # not identifiable: ran to the search bounds (within 1 %), or a standard error above the estimate
     at_bound = (np.abs(sol.x - bounds[0]) < 0.01) | (np.abs(sol.x - bounds[1]) < 0.01)
-    vague = at_bound | ~(se < 1.0)
+    vague = at_bound | (~(se < 1.0) & ~unknown)
     if np.any(vague):
-        names = [n for n, m in zip(("work_of_adhesion", "max_adhesive_stress"), vague) if m]
+        names = [n for n, m in zip(_CURVE_PARAMETERS, vague) if m]
         se = np.where(at_bound, np.inf, se)
+        problems.insert(0, f"{' and '.join(names)} not identifiable from these data (standard error above the "
+                        "estimate, or the search bound 4 decades from the start reached): data near pull-off, in "
+                        "the JKR-DMT transition, are needed")
+    if problems:
         success = False
-        message = (f"{' and '.join(names)} not identifiable from these data (standard error above the estimate, "
-                   "or the search bound 4 decades from the start reached): data near pull-off, in the JKR-DMT "
-                   "transition, are needed")
-    ok = bool(np.all(np.isfinite(se)) and np.all(se > 0))
-    corr = float(cov[0, 1] / (se[0] * se[1])) if ok else float("nan")
+        message = "; ".join(problems)
+    if not np.all(np.isfinite(se)):
+        corr = float("nan")
     w_fit, d_fit = model_at(sol.x)
     p = _with(params, work, stress)
     warning = _validity_warning(model, p, "load", check_closure)

@@ -97,3 +97,96 @@ def test_curve_fit_with_the_default_model_warns(capsys, tmp_path):
     rec = json.loads(out)
     assert "dh-elliptic is validated for" in rec["warning"]
     assert err == f"dhfield: warning: {rec['warning']}\n"
+
+
+# ------------------------------------------------------------------------- data files: units, degenerate data
+PDMS = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder-radius", "3e-3", "--skew-angle-deg", "60"]
+
+
+@pytest.fixture(scope="module")
+def curve():
+    """The MD load curve [N], [m] of the issue's PDMS contact (dgamma = 50 mJ/m^2, sigma0 = 0.1 MPa), 15 points."""
+    from dhfield import dimensional as dim
+
+    p = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.05, 1e5)
+    a = p.length_unit * np.linspace(0.3, 3.0, 15)
+    c = dim.load_curve_si(p, semi_major=a, model="md")
+    return p, np.asarray(c["force"], float), a, np.asarray(c["approach"], float)
+
+
+def _write(path, header, *columns):
+    rows = zip(*(map(float, c) for c in columns))
+    path.write_text(",".join(header) + "\n" + "".join(",".join(repr(v) for v in r) + "\n" for r in rows),
+                    encoding="utf-8")
+    return str(path)
+
+
+def test_units_in_the_header_are_converted(curve, tmp_path):
+    from dhfield.io.fit import read_curve_data
+
+    p, w, a, d = curve
+    path = _write(tmp_path / "u.csv", ["load [mN]", "contact_size (\u00b5m)", "approach [nm]"], 1e3 * w, 1e6 * a,
+                  1e9 * d)
+    got = read_curve_data(path, p)
+    # one multiplication by the unit's factor: rounding only (a few ulp)
+    np.testing.assert_allclose(got["force"], w, rtol=1e-15)
+    np.testing.assert_allclose(got["semi_major"], a, rtol=1e-15)
+    np.testing.assert_allclose(got["approach"], d, rtol=1e-15)
+
+
+def test_cli_fit_reads_units_from_the_header(curve, capsys, tmp_path):
+    p, w, a, _ = curve
+    si = _write(tmp_path / "si.csv", ["load", "contact_size"], w, a)
+    mn = _write(tmp_path / "mn.csv", ["load [mN]", "contact_size [um]"], 1e3 * w, 1e6 * a)
+    recs = []
+    for path in (si, mn):
+        code, out, err = _run(capsys, ["fit", "--data", path, *PDMS, "--model", "md", "--json"])
+        assert code == 0, err
+        recs.append(json.loads(out))
+    # the same data in other units: the same fit (the least squares stop at xtol = 1e-14)
+    assert recs[1]["work_of_adhesion"] == pytest.approx(recs[0]["work_of_adhesion"], rel=1e-8)
+    assert recs[0]["work_of_adhesion"] == pytest.approx(0.05, rel=1e-8)
+
+
+@pytest.mark.parametrize("scale, header, looks", [
+    ((1e3, 1e6), ["load", "contact_size"], "these look like mN (column 'load') and um (column 'contact_size'); "
+                                           "columns without a unit in the header are expected in N and m"),
+    ((1e3, 1e3), ["force", "semi_major"], "these look like mN (column 'force') and mm (column 'semi_major')"),
+    ((1e6, 1.0), ["force", "semi_major"], "these look like uN (column 'force')"),
+    ((1e15, 1e6), ["force", "semi_major [um]"], "implausible magnitudes in SI units"),
+])
+def test_implausible_magnitudes_name_the_likely_unit(curve, capsys, tmp_path, scale, header, looks):
+    # issue 17: a CSV in mN and um gave "a_star must be in [1e-06, 1e+06] ...; got 2044713.87"
+    _, w, a, _ = curve
+    path = _write(tmp_path / "d.csv", header, scale[0] * w, scale[1] * a)
+    code, out, err = _run(capsys, ["fit", "--data", path, *PDMS])
+    assert code == 2 and out == "" and err.count("\n") == 1 and "d.csv" in err
+    assert looks in err, err
+
+
+def test_unknown_unit_is_one_line(curve, capsys, tmp_path):
+    _, w, a, _ = curve
+    path = _write(tmp_path / "d.csv", ["force [kg]", "semi_major"], w, a)
+    code, out, err = _run(capsys, ["fit", "--data", path, *PDMS])
+    assert code == 2 and err.count("\n") == 1 and "column 'force [kg]': unknown force unit 'kg'" in err
+
+
+def test_all_zero_forces_name_the_file_and_column(curve, capsys, tmp_path):
+    import warnings
+
+    # issue 18 item 14: four scipy RuntimeWarnings, then "array must not contain infs or NaNs"
+    _, _, a, _ = curve
+    path = _write(tmp_path / "zero.csv", ["force", "semi_major"], np.zeros(a.size), a)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        code, out, err = _run(capsys, ["fit", "--data", path, *PDMS])
+    assert code == 2 and out == "" and err.count("\n") == 1, err
+    assert "zero.csv" in err and "column 'force': every load is 0" in err
+
+
+def test_copies_of_one_row_are_one_line(curve, capsys, tmp_path):
+    # issue 18 item 3: five copies of one row gave a confident fit (+- 4.6e-10)
+    _, w, a, _ = curve
+    path = _write(tmp_path / "five.csv", ["force", "semi_major"], np.full(5, w[7]), np.full(5, a[7]))
+    code, out, err = _run(capsys, ["fit", "--data", path, *PDMS])
+    assert code == 2 and err.count("\n") == 1 and "fewer distinct points than the 2 parameters" in err

@@ -384,3 +384,48 @@ def test_curve_fit_warns_like_pulloff():
     s = _sphere(1.0)
     a, w, _ = _curve_data(s, "md", n=12)
     assert fit_curve(w, a, s, model="md", initial=(WORK / 2, 2 * s.max_adhesive_stress)).warning == ""
+
+
+# ------------------------------------------------------------------ identifiability (issue 18 item 3)
+def test_copies_of_one_row_are_refused(params):
+    # issue 18 item 3: five copies of one row gave dgamma +- 4.6e-10, sigma0 +- 0.0012 Pa, success True
+    a = np.full(5, 1.2 * params.length_unit)
+    w = np.asarray(dim.load_curve_si(params, semi_major=a)["force"])
+    for start in (_start(), params):
+        with pytest.raises(ValueError, match="1 distinct value in 5 points: fewer distinct points than the 2"):
+            fit_curve(w, a, start)
+
+
+def test_ill_conditioned_data_give_no_standard_error_for_what_they_cannot_determine(params):
+    # loads far on the compressive side (a* = 5-20): the curve hardly depends on sigma0 there
+    a = params.length_unit * np.linspace(5.0, 20.0, 25)
+    w = np.asarray(dim.load_curve_si(params, semi_major=a)["force"])
+    w = w + np.random.default_rng(1).normal(0.0, 0.01 * np.ptp(w), w.size)
+    res = fit_curve(w, a, _start(), check_closure=False)
+    assert not res.success and "ill-conditioned" in res.message and "max_adhesive_stress" in res.message
+    assert math.isnan(res.max_adhesive_stress_stderr) and math.isnan(res.correlation)
+    # dgamma keeps a standard error, one that does not pretend: the truth is within 2 of them
+    assert abs(res.work_of_adhesion - WORK) < N_SIGMA * res.work_of_adhesion_stderr
+
+
+@pytest.mark.parametrize("jac, match", [
+    ([[1.0, 2.0], [2.0, 4.0], [3.0, 6.0]], "rank-deficient"),          # parallel columns: rank 1
+    ([[1.0, 1.0], [1.0, 1.0 + 1e-9], [1.0, 1.0]], "ill-conditioned"),  # condition number ~ 1e9
+    ([[1.0, 1.0], [1.0, 1.0015], [1.0, 1.0]], "correlated at"),        # cond ~ 2e3, |corr| = 1 - 4e-7
+])
+def test_degenerate_jacobians_give_nan_standard_errors(jac, match):
+    from dhfield.fit import _log_standard_errors
+
+    se, cov, corr, problems, unknown = _log_standard_errors(np.array(jac), np.array([1e-3, -2e-3, 1e-3]), 3)
+    assert np.all(np.isnan(se)) and math.isnan(corr) and unknown.all()
+    assert len(problems) == 1 and match in problems[0] and "combination" in problems[0]
+
+
+def test_zero_loads_are_refused_without_runtime_warnings(params):
+    import warnings
+
+    a = params.length_unit * np.linspace(0.5, 2.0, 5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # issue 18 item 14: four scipy RuntimeWarnings came first
+        with pytest.raises(ValueError, match="load must not be 0 at every point"):
+            fit_curve(np.zeros(5), a, params)

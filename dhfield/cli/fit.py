@@ -6,9 +6,6 @@ import re
 
 from ._common import UsageError, add_physical_arguments, model_names, print_json, print_warning
 
-#: Columns of ``--data``: schema name -> accepted aliases (see :data:`dhfield.io.fit.DATA_COLUMNS`).
-DATA_COLUMNS = {"force": ("force", "load"), "semi_major": ("semi_major", "contact_size"),
-                "approach": ("approach",)}
 #: Starting work of adhesion of a ``--data`` fit without --work-of-adhesion [J/m^2]
 #: (a typical solid-solid value; the fit moves 4 decades either way).
 DEFAULT_START_WORK = 0.05
@@ -125,12 +122,6 @@ def _uncertain_inputs(args):
     return inputs, stds, build
 
 
-def _read_data(path, params=None):
-    from ..io.fit import read_curve_data
-
-    return read_curve_data(path, params)
-
-
 def run(args) -> int:
     from .. import fit
 
@@ -157,7 +148,9 @@ def run(args) -> int:
             raise UsageError(f"{stds_given[0]} goes with --pull-off-force (a --data fit estimates its own "
                              "standard errors)")
         params = _params(args)
-        data = _read_data(args.data, params)
+        from ..io.fit import read_curve_data
+
+        data = read_curve_data(args.data, params)
         stress = args.adhesive_stress if args.adhesive_stress is not None else \
             params.max_adhesive_stress / params.mu  # mu = 1 at the starting dgamma (Eq. 35)
         res = fit.fit_curve(data["force"], data["semi_major"], params, approach=data.get("approach"),
