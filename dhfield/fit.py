@@ -279,6 +279,30 @@ class CurveFit:
                 "approach_noise": self.approach_noise, "success": self.success, "message": self.message,
                 "evaluations": self.evaluations, "warning": self.warning}
 
+    def model_curve(self, n=200):
+        """The fitted model as a smooth curve over the data's range of contact sizes.
+
+        Parameters
+        ----------
+        n : int
+            Number of contact sizes, evenly spaced from the smallest to the
+            largest measured one (2 to 100000).
+
+        Returns
+        -------
+        (ndarray, ndarray, ndarray)
+            Contact semi-major axes a [m], loads W [N] and approaches delta [m]
+            of the model at the estimates.
+        """
+        from ._validation import check_count
+
+        n = check_count("n", n, 2, 100_000)
+        if self.params is None:
+            raise ValueError("this CurveFit has no params (the contact at the estimates); refit with fit_curve")
+        a = np.linspace(float(np.min(self.contact_size)), float(np.max(self.contact_size)), n)
+        w, d = _curve(self.params, a, self.model)
+        return a, w, d
+
 
 def _with(params, work_of_adhesion, max_adhesive_stress):
     """``params`` with another dgamma and sigma0 (the scales of Eqs. 33-35 recomputed)."""

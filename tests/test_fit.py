@@ -182,6 +182,7 @@ def test_cli_curve_fit_with_plot(params, capsys, tmp_path):
     assert rec["units"]["max_adhesive_stress_stderr"] == "Pa"
     assert (tmp_path / "r.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert (tmp_path / "r.svg").read_text().lstrip().startswith("<?xml")
+    assert (tmp_path / "r.pdf").read_bytes()[:5] == b"%PDF-"
 
 
 @pytest.mark.parametrize("content, match", [
@@ -429,3 +430,43 @@ def test_zero_loads_are_refused_without_runtime_warnings(params):
         warnings.simplefilter("error")  # issue 18 item 14: four scipy RuntimeWarnings came first
         with pytest.raises(ValueError, match="load must not be 0 at every point"):
             fit_curve(np.zeros(5), a, params)
+
+
+# ----------------------------------------------------------------------------------- fit.png (issue 17)
+@pytest.mark.parametrize("value, stderr, unit, text", [
+    (7.941e4, 2e4, "Pa", "79 ± 20 kPa"),                    # the issue's title: '7.941e+04 ± 2e+04 Pa'
+    (0.040034, 7.8e-5, "J/m²", "40.034 ± 0.078 mJ/m²"),
+    (1.0, 0.0996, "N", "1.00 ± 0.10 N"),                    # rounding carries into a third digit
+    (2.488e8, float("nan"), "Pa", "248.8 MPa (no s.e.)"),
+    (2.488e8, float("inf"), "Pa", "248.8 MPa (no s.e.)"),
+    (-5.5e-4, 1.23e-5, "N", "-550 ± 12 µN"),
+])
+def test_numbers_in_titles_have_si_prefixes_and_the_precision_of_their_error(value, stderr, unit, text):
+    from dhfield.io.fit import format_with_uncertainty
+
+    assert format_with_uncertainty(value, stderr, unit) == text
+
+
+def test_fit_plot_draws_the_model_smoothly_over_the_data_range(params):
+    import matplotlib.pyplot as plt
+
+    from dhfield.io.fit import residual_figure
+
+    # issue 17: fit.png drew straight segments between the data points
+    a, w, d = _curve_data(params, "dh-elliptic", n=8)
+    res = fit_curve(w, a, _start(), approach=d, check_closure=False)
+    fig = residual_figure(res)
+    try:
+        line = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "-"][0]
+        x, y = 1e-3 * np.asarray(line.get_xdata()), 1e-3 * np.asarray(line.get_ydata())  # mm -> m, mN -> N
+        assert x.size == 200 and x[0] == pytest.approx(a.min()) and x[-1] == pytest.approx(a.max())
+        # the model itself at those sizes, computed independently of the fit
+        truth = dim.load_curve_si(dim.contact_parameters(**PDMS, work_of_adhesion=res.work_of_adhesion,
+                                                         max_adhesive_stress=res.max_adhesive_stress),
+                                  semi_major=x)["force"]
+        np.testing.assert_allclose(y, truth, rtol=1e-9, atol=1e-12 * np.ptp(truth))
+        title = fig._suptitle.get_text()
+        assert "mJ/m²" in title and "kPa" in title and "e+0" not in title and "±" in title
+        assert len(fig.axes) == 4  # load and approach, each with its residuals
+    finally:
+        plt.close(fig)

@@ -54,7 +54,7 @@ def add_parser(sub) -> None:
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="loading mode of the pull-off measurement (default load)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
-                   help="with --data: write the fit and its residuals to FILE.png and FILE.svg")
+                   help="with --data: write the fit and its residuals to FILE.png, FILE.svg and FILE.pdf")
     p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
     add_physical_arguments(p)
     g = p.add_argument_group("input uncertainties (with --pull-off-force; one standard deviation each, in the "
@@ -168,7 +168,7 @@ def run(args) -> int:
         for k, v in rec.items():
             print(f"{k:28s} {_text(v):24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
         if args.plot is not None:
-            print(f"wrote {args.plot} and {args.plot[:-4]}.svg")
+            print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
     if args.data is not None and not res.success:
         import sys
 

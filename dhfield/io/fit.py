@@ -13,7 +13,8 @@ import numpy as np
 
 from . import atomic_path, check_writable
 
-__all__ = ["read_curve_data", "write_residual_plot", "DATA_COLUMNS", "FORCE_UNITS", "LENGTH_UNITS"]
+__all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
+           "FORCE_UNITS", "LENGTH_UNITS"]
 
 #: Columns of a measured load curve: schema name -> accepted column names.
 DATA_COLUMNS = {"force": ("force", "load"), "semi_major": ("semi_major", "contact_size"),
@@ -195,22 +196,119 @@ def _check_magnitudes(raw, factors, cols, params, where):
                      f"in N and m ({facts}): write the units in the header, e.g. {example}")
 
 
-def write_residual_plot(fit, path, *, dpi=120) -> tuple[Path, Path]:
-    """Write the data, the fitted curve and the residuals of ``fit`` as PNG and SVG.
+#: SI prefixes of :func:`format_with_uncertainty`, by power of ten.
+_SI_PREFIXES = {-15: "f", -12: "p", -9: "n", -6: "\u00b5", -3: "m", 0: "", 3: "k", 6: "M", 9: "G", 12: "T"}
+
+
+def format_with_uncertainty(value, stderr, unit) -> str:
+    """``value ± stderr`` with an SI prefix and the precision the standard error allows.
+
+    The standard error is rounded to two significant digits and the value to the
+    same decimal place; the prefix is the power of 1000 of the value, e.g.
+    ``format_with_uncertainty(7.941e4, 2e4, "Pa")`` gives ``"79 ± 20 kPa"``.
+    A NaN or infinite standard error prints the value to 4 significant digits
+    and ``(no s.e.)``.
+
+    Parameters
+    ----------
+    value, stderr : float
+        The estimate and its standard error, in ``unit``.
+    unit : str
+        SI unit without prefix (``"Pa"``, ``"J/m²"``, ``"N"``).
+
+    Returns
+    -------
+    str
+    """
+    value, stderr = float(value), float(stderr)
+    if not math.isfinite(value):
+        return f"{value} {unit}"
+    exp3 = 0 if value == 0 else 3 * math.floor(math.log10(abs(value)) / 3)
+    exp3 = min(max(exp3, min(_SI_PREFIXES)), max(_SI_PREFIXES))
+    v, prefix = value / 10.0 ** exp3, _SI_PREFIXES[exp3]
+    if not (math.isfinite(stderr) and stderr > 0):
+        return f"{v:.4g} {prefix}{unit} (no s.e.)"
+    s = stderr / 10.0 ** exp3
+    place = 1 - math.floor(math.log10(s))  # decimal place of the second significant digit of s
+    s_r = round(s, place)
+    if s_r >= 10.0 ** (2 - place):  # rounding carried into a third digit (e.g. 99.6 -> 100)
+        place -= 1
+        s_r = round(s, place)
+    v_r = round(v, place)
+    decimals = max(place, 0)
+    return f"{v_r:.{decimals}f} \u00b1 {s_r:.{decimals}f} {prefix}{unit}"
+
+
+def _three_digits(x) -> str:
+    """Three significant digits without an exponent between 1e-3 and 1e6 (9610, not 9.61e+03)."""
+    x = float(x)
+    return f"{float(f'{x:.3g}'):g}" if 1e-3 <= abs(x) < 1e6 else f"{x:.3g}"
+
+
+def residual_figure(fit, *, n=200):
+    """The matplotlib figure of :func:`write_residual_plot` (data, smooth fitted curve, residuals)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    a_curve, w_curve, d_curve = fit.model_curve(n)
+    a_mm = 1e3 * np.asarray(fit.contact_size)
+    with_approach = fit.approach is not None
+    cols = 2 if with_approach else 1
+    fig, axes = plt.subplots(2, cols, figsize=(5.2 * cols, 5.6), sharex=True, squeeze=False,
+                             gridspec_kw={"height_ratios": (2.2, 1.0)})
+    blocks = [("load W [mN]", "load residual [mN]", 1e3, fit.load, w_curve, fit.load_residuals, "o", "C0")]
+    if with_approach:
+        blocks.append(("approach δ [µm]", "approach residual [µm]", 1e6, fit.approach, d_curve,
+                       fit.approach_residuals, "s", "C2"))
+    for k, (label, res_label, scale, data, curve, residuals, marker, colour) in enumerate(blocks):
+        ax = axes[0, k]
+        ax.plot(a_mm, scale * np.asarray(data), marker, ms=4.5, color=colour, label="data", zorder=3)
+        ax.plot(1e3 * a_curve, scale * np.asarray(curve), "-", lw=1.6, color="C1", label=f"{fit.model} fit")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=9, loc="best", frameon=False)
+        ax.grid(alpha=0.25)
+        ax = axes[1, k]
+        ax.axhline(0.0, color="0.5", lw=0.8)
+        ax.plot(a_mm, scale * np.asarray(residuals), marker, ms=4.5, color=colour)
+        ax.set_ylabel(res_label)
+        ax.set_xlabel("contact semi-major axis a [mm]")
+        ax.grid(alpha=0.25)
+    title = (f"Δγ = {format_with_uncertainty(fit.work_of_adhesion, fit.work_of_adhesion_stderr, 'J/m²')},  "
+             f"σ₀ = {format_with_uncertainty(fit.max_adhesive_stress, fit.max_adhesive_stress_stderr, 'Pa')}"
+             f"  (± 1 s.e.; μ = {_three_digits(fit.mu)}, β₀ = {_three_digits(fit.beta0)})")
+    fig.suptitle(title, fontsize=10)
+    notes = [m for m in (("not identifiable: see the fit's message" if not fit.success else ""),
+                         ("model outside its validated range: see the fit's warning" if fit.warning else "")) if m]
+    if notes:
+        fig.text(0.5, 0.005, "; ".join(notes), ha="center", va="bottom", fontsize=8, color="C3")
+    fig.tight_layout(rect=(0, 0.03 if notes else 0, 1, 1))
+    return fig
+
+
+def write_residual_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
+    """Write the data, the fitted curve and the residuals of ``fit`` as PNG, SVG and PDF.
+
+    The model is drawn as a smooth curve over the measured range of contact sizes
+    (:meth:`dhfield.fit.CurveFit.model_curve`), the estimates in the title with SI
+    prefixes and the precision their standard errors allow
+    (:func:`format_with_uncertainty`); with approaches, a second column.
 
     Parameters
     ----------
     fit : dhfield.fit.CurveFit
     path : path-like
-        PNG file to write; the SVG is the same path with suffix ``.svg``.  Both
-        are written atomically.
+        PNG file to write; the SVG and PDF are the same path with suffixes
+        ``.svg`` and ``.pdf``.  All three are checked before any is written, and
+        written atomically.
     dpi : int
         Resolution of the PNG.
 
     Returns
     -------
-    (Path, Path)
-        The PNG and SVG paths.
+    (Path, Path, Path)
+        The PNG, SVG and PDF paths.
     """
     import matplotlib
 
@@ -219,35 +317,17 @@ def write_residual_plot(fit, path, *, dpi=120) -> tuple[Path, Path]:
 
     png = Path(path)
     if png.suffix.lower() != ".png":
-        raise ValueError(f"plot must be a .png file path (an .svg is written beside it); got {str(png)!r}")
-    svg = png.with_suffix(".svg")
-    check_writable(png, "plot")
-    a_mm = 1e3 * np.asarray(fit.contact_size)
-    order = np.argsort(a_mm)
-    rows = 2 if fit.approach is None else 3
-    fig, axes = plt.subplots(rows, 1, figsize=(6.0, 2.4 * rows + 0.6), sharex=True)
-    ax = axes[0]
-    ax.plot(a_mm, 1e3 * np.asarray(fit.load), "o", ms=4, label="data")
-    ax.plot(a_mm[order], 1e3 * np.asarray(fit.load_fitted)[order], "-", label=f"{fit.model} fit")
-    ax.set_ylabel("load W [mN]")
-    ax.set_title(f"Δγ = {fit.work_of_adhesion:.4g} ± {fit.work_of_adhesion_stderr:.2g} J/m², "
-                 f"σ₀ = {fit.max_adhesive_stress:.4g} ± {fit.max_adhesive_stress_stderr:.2g} Pa (±1 s.e.)", fontsize=9)
-    ax.legend(fontsize=8, loc="best")
-    ax = axes[1]
-    ax.axhline(0.0, color="0.6", lw=0.8)
-    ax.plot(a_mm, 1e3 * np.asarray(fit.load_residuals), "o", ms=4)
-    ax.set_ylabel("load residual [mN]")
-    if fit.approach is not None:
-        ax = axes[2]
-        ax.axhline(0.0, color="0.6", lw=0.8)
-        ax.plot(a_mm, 1e6 * np.asarray(fit.approach_residuals), "s", ms=4, color="C2")
-        ax.set_ylabel("approach residual [µm]")
-    axes[-1].set_xlabel("contact semi-major axis a [mm]")
-    fig.tight_layout()
+        raise ValueError(f"plot must be a .png file path (an .svg and a .pdf are written beside it); "
+                         f"got {str(png)!r}")
+    svg, pdf = png.with_suffix(".svg"), png.with_suffix(".pdf")
+    for out in (png, svg, pdf):  # all three checked before any is written
+        check_writable(out, "plot")
+    fig = residual_figure(fit)
     try:
-        with atomic_path(png) as tmp_png, atomic_path(svg) as tmp_svg:
+        with atomic_path(png) as tmp_png, atomic_path(svg) as tmp_svg, atomic_path(pdf) as tmp_pdf:
             fig.savefig(tmp_png, format="png", dpi=dpi)
             fig.savefig(tmp_svg, format="svg", metadata={"Date": None})
+            fig.savefig(tmp_pdf, format="pdf", metadata={"CreationDate": None})
     finally:
         plt.close(fig)
-    return png, svg
+    return png, svg, pdf
