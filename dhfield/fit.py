@@ -10,7 +10,10 @@ fitted is exactly what ``dhfield pulloff`` and ``dhfield curve`` compute):
   inputs (sigma0, moduli, radii, angle).
 * :func:`fit_curve` -- dgamma and sigma0 from a measured load curve (load
   against contact size, optionally approach), by nonlinear least squares, with
-  standard errors.
+  standard errors, NaN with the reason where the data cannot determine them.
+
+Both carry the warning ``dhfield pulloff`` gives at the fitted state (a model
+outside its validated range; dh-elliptic departing from the two-axis closure).
 
 Both take the geometry and the material as a
 :class:`dhfield.dimensional.ContactParameters` (from
@@ -42,7 +45,8 @@ from . import closure, compare, dimensional
 from ._validation import TABOR_RANGE, check_finite, check_positive
 
 __all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve", "FIT_MU_RANGE", "fit_mu_range",
-           "CURVE_FIT_MODEL_NAMES", "propagate_input_uncertainty", "replicate_statistics", "COVERAGE_FACTOR"]
+           "CURVE_FIT_MODEL_NAMES", "propagate_input_uncertainty", "replicate_statistics", "COVERAGE_FACTOR",
+           "INPUT_REL_STEP", "JACOBIAN_COND_MAX", "CORRELATION_MAX"]
 
 #: Tabor parameters mu (Eq. 35) the pull-off fit searches: the range every model
 #: accepts (:data:`dhfield._validation.TABOR_RANGE`, DMT limit to 1e-3 at the low
@@ -721,13 +725,23 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     :math:`\\mathrm{se}(\\Delta\\gamma) = \\Delta\\gamma \\sqrt{C_{11}}`.
     They assume independent, equal-variance errors within each block, and are
     meaningful only when the data reach the adhesive part of the curve (near
-    pull-off), where the load depends on sigma0; a parameter whose standard
-    error exceeds its estimate, or that runs to the search bound, is reported
-    as not identifiable (``success`` False).  On 40 seeded noisy PDMS curves the
+    pull-off), where the load depends on sigma0.  Not identifiable, with
+    ``success`` False and the reason in ``message``:
+
+    * fewer distinct contact sizes than parameters (times 2 with approaches):
+      a ValueError, before any fit;
+    * a Jacobian whose condition number exceeds :data:`JACOBIAN_COND_MAX`
+      (rank-deficient or ill-conditioned; computed from its SVD): the
+      parameters in its null direction get a NaN standard error, the other
+      keeps that of the full inverse;
+    * correlation at +-1 (:data:`CORRELATION_MAX`): both NaN;
+    * a standard error above the estimate, or a run to the search bound
+      (infinite standard error).  On 40 seeded noisy PDMS curves the
     truth was within 2 standard errors 38/40 (dgamma) and 39/40 (sigma0)
     times (``python -m verification.fit_round_trip``).  A fit takes 20-35
     load-curve evaluations: under a second for dh-elliptic, MD and DH circular,
-    15-35 s for the two closures.
+    15-35 s for the two closures; the warning's closure check adds about a
+    second for dh-elliptic.
     """
     _check_params(params)
     if model not in CURVE_FIT_MODEL_NAMES:
