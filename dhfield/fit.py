@@ -432,7 +432,14 @@ def _validity_warning(model, p, control, check_closure):
     return str(compare.pull_off(model, p.mu, p.beta0, control, check_closure=check_closure)["warning"])
 
 
+def _reject_complex(name, value):
+    """Complex input is refused by name (numpy would keep only its real part)."""
+    if np.iscomplexobj(value) or isinstance(value, complex):
+        raise ValueError(f"{name} must be real; got complex input {np.asarray(value).ravel()[:3]!r}")
+
+
 def _check_forces(pull_off_force):
+    _reject_complex("pull_off_force", pull_off_force)
     forces = check_finite("pull_off_force", pull_off_force, "N")
     if forces.ndim > 1:
         raise ValueError(f"pull_off_force must be a number or a 1-d sequence of replicate forces [N]; "
@@ -747,6 +754,8 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     if model not in CURVE_FIT_MODEL_NAMES:
         raise ValueError(f"model must be one of {', '.join(CURVE_FIT_MODEL_NAMES)} (models whose load curve "
                          f"depends on the adhesive stress); got {model!r}")
+    for name, value in (("load", load), ("contact_size", contact_size), ("approach", approach)):
+        _reject_complex(name, value)
     w_data = np.atleast_1d(check_finite("load", load, "N")).astype(float).ravel()
     a_data = np.atleast_1d(check_positive("contact_size", contact_size, "m")).astype(float).ravel()
     if w_data.size != a_data.size:

@@ -60,6 +60,8 @@ def test_input_uncertainty_flags_propagate(capsys):
 @pytest.mark.parametrize("argv, match", [
     (["--pull-off-force", "-1e-3", "-1.1e-3", *ISSUE, "--radii-std", "1e-4", "1e-4"], "--radii-std needs --radii"),
     (["--data", "d.csv", *ISSUE, "--adhesive-stress-std", "1e4"], "goes with --pull-off-force"),
+    (["--pull-off-force", "-1e-3", "-1.1e-3", *ISSUE, "--adhesive-stress-std", "-1e4"], "--adhesive-stress-std must"),
+    (["--pull-off-force", "-1e-3", "-1.1e-3", *ISSUE, "--skew-angle-deg-std", "nan"], "--skew-angle-deg-std must"),
 ])
 def test_uncertainty_flag_misuse_is_one_line(capsys, tmp_path, monkeypatch, argv, match):
     monkeypatch.chdir(tmp_path)

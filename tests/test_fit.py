@@ -293,6 +293,7 @@ def test_no_scatter_gives_no_standard_error(params, forces, note):
 
 
 @pytest.mark.parametrize("forces, match", [([[-1e-3, -2e-3]], "1-d sequence"), ([], "at least one"),
+                                           (np.array([-1e-3 + 5e-4j]), "must be real"),
                                            ([-1e-3, 1e-4], "must be negative"), ([-1e-3, np.nan], "finite")])
 def test_bad_replicates_are_rejected(params, forces, match):
     with pytest.raises(ValueError, match=match):
@@ -470,3 +471,14 @@ def test_fit_plot_draws_the_model_smoothly_over_the_data_range(params):
         assert len(fig.axes) == 4  # load and approach, each with its residuals
     finally:
         plt.close(fig)
+
+
+def test_complex_curve_data_is_rejected_by_name(params):
+    # issue 18 item 4: complex arrays were cut to their real part with only a ComplexWarning
+    a, w, d = _curve_data(params, "dh-elliptic", n=5)
+    with pytest.raises(ValueError, match="load must be real"):
+        fit_curve(w + 1j, a, params)
+    with pytest.raises(ValueError, match="contact_size must be real"):
+        fit_curve(w, a * (1 + 1j), params)
+    with pytest.raises(ValueError, match="approach must be real"):
+        fit_curve(w, a, params, approach=d + 0j)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import re
 
 from ._common import UsageError, add_physical_arguments, model_names, print_json, print_warning
@@ -99,6 +100,10 @@ def _uncertain_inputs(args):
         if std is None:
             continue
         value = getattr(args, dest)
+        for x in (std if n == 2 else [std]):
+            if not (math.isfinite(x) and x >= 0.0):
+                raise UsageError(f"{flag} must be a standard deviation >= 0 (finite, in the unit of "
+                                 f"{flag.removesuffix('-std')}); got {x!r}")
         if value is None:
             raise UsageError(f"{flag} needs {flag.removesuffix('-std')} (the value it is the uncertainty of)")
         if n == 1:
