@@ -82,8 +82,8 @@ def read_curve_data(path, params=None) -> dict:
     -----
     Checks of columns without a unit (a unit in the header is taken as given):
 
-    * contact sizes below the smaller principal radius R'' (Hertz theory needs
-      a << R);
+    * contact semi-major axes below the larger principal radius R' (Hertz
+      theory needs a << R');
     * the most tensile load W_min: the work of adhesion it implies,
       :math:`-W_{min}/(1.75 \\pi R)` (between JKR's and DMT's pull-off), in
       :data:`_WORK_RANGE`;
@@ -138,7 +138,7 @@ def _plausible(raw, f, params):
     a = raw["semi_major"] * f["semi_major"]
     w = raw["force"] * f["force"]
     r, e = float(params.effective_radius), float(params.reduced_modulus)
-    if not np.max(np.abs(a)) < float(params.r_minor):
+    if not np.max(np.abs(a)) < float(params.r_major):
         return False, math.inf
     score = 0.0
     if np.min(w) < 0.0:
@@ -180,8 +180,8 @@ def _check_magnitudes(raw, factors, cols, params, where):
             if best is None or score < best[0]:
                 best = (score, combo)
     a_max = float(np.max(np.abs(raw["semi_major"]))) * si["semi_major"]
-    facts = (f"contact sizes up to {a_max:.3g} m against a radius of curvature of "
-             f"{float(params.r_minor):.3g} m" if a_max >= float(params.r_minor) else
+    facts = (f"contact sizes up to {a_max:.3g} m against a largest radius of curvature of "
+             f"{float(params.r_major):.3g} m" if a_max >= float(params.r_major) else
              "a work of adhesion -W_min/(1.75 pi R) outside [1e-4, 10] J/m^2, or loads, contact sizes and "
              "approaches off Hertz's W = 4E*a^3/(3R), delta = a^2/R by orders of magnitude")
     if best is None:
