@@ -3,11 +3,17 @@
 Two estimators, on the SI front end :mod:`dhfield.dimensional` (so that what is
 fitted is exactly what ``dhfield pulloff`` and ``dhfield curve`` compute):
 
-* :func:`fit_work_of_adhesion` -- the work of adhesion dgamma from a measured
-  pull-off force, for a known adhesive stress sigma0 (one root in one unknown).
+* :func:`fit_work_of_adhesion` -- the work of adhesion dgamma from measured
+  pull-off forces (one or several replicates), for a known adhesive stress
+  sigma0 (one root in one unknown per replicate), with the standard error of
+  the replicates; :func:`propagate_input_uncertainty` adds that of uncertain
+  inputs (sigma0, moduli, radii, angle).
 * :func:`fit_curve` -- dgamma and sigma0 from a measured load curve (load
   against contact size, optionally approach), by nonlinear least squares, with
-  standard errors.
+  standard errors, NaN with the reason where the data cannot determine them.
+
+Both carry the warning ``dhfield pulloff`` gives at the fitted state (a model
+outside its validated range; dh-elliptic departing from the two-axis closure).
 
 Both take the geometry and the material as a
 :class:`dhfield.dimensional.ContactParameters` (from
@@ -29,7 +35,7 @@ through mu.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy import optimize
@@ -39,7 +45,8 @@ from . import closure, compare, dimensional
 from ._validation import TABOR_RANGE, check_finite, check_positive
 
 __all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve", "FIT_MU_RANGE", "fit_mu_range",
-           "CURVE_FIT_MODEL_NAMES"]
+           "CURVE_FIT_MODEL_NAMES", "propagate_input_uncertainty", "replicate_statistics", "COVERAGE_FACTOR",
+           "INPUT_REL_STEP", "JACOBIAN_COND_MAX", "CORRELATION_MAX"]
 
 #: Tabor parameters mu (Eq. 35) the pull-off fit searches: the range every model
 #: accepts (:data:`dhfield._validation.TABOR_RANGE`, DMT limit to 1e-3 at the low
@@ -58,14 +65,23 @@ CURVE_FIT_MODEL_NAMES = tuple(m for m in compare.CURVE_MODEL_NAMES if m not in (
                                                                             "jkr-elliptic-energy"))
 
 
+#: Two-sided 95 % normal quantile z_0.975: ``work_of_adhesion_stderr`` is scaled so that
+#: +- COVERAGE_FACTOR of it is the Student-t 95 % interval (see :func:`replicate_statistics`).
+COVERAGE_FACTOR = 1.959963984540054
+#: Relative step of the central differences of :func:`propagate_input_uncertainty`: the
+#: truncation error is O(step^2) ~ 1e-6 relative, the rounding of the fitted root (1e-13,
+#: :data:`_LOG_XTOL`) contributes 1e-13/step ~ 1e-10.
+INPUT_REL_STEP = 1e-3
+
+
 @dataclass(frozen=True)
 class WorkOfAdhesionFit:
-    """Work of adhesion that reproduces a measured pull-off force.
+    """Work of adhesion that reproduces measured pull-off forces (one or several replicates).
 
     Attributes
     ----------
     work_of_adhesion : float
-        dgamma [J m^-2].
+        dgamma [J m^-2]: the mean of the replicates' dgamma (one root each).
     mu : float
         Tabor parameter of Eq. (35) at the fitted dgamma [-].
     beta0 : float
@@ -73,14 +89,40 @@ class WorkOfAdhesionFit:
     max_adhesive_stress : float
         sigma0 used [Pa].
     pull_off_force : float
-        The measured force fitted [N] (negative).
+        The measured force fitted [N] (negative); the mean of the replicates.
     model, control : str
     evaluations : int
         Forward pull-off evaluations used.
     warning : str
-        Empty, or (``dh-elliptic``) why the fitted state should not be trusted:
-        the paper's model departs from the two-axis closure there by more than
-        :data:`dhfield.compare.WARNING_THRESHOLD`, so dgamma is biased.
+        Empty, or why the fitted state should not be trusted: the warning
+        :func:`dhfield.compare.pull_off` (and ``dhfield pulloff``) gives at the
+        fitted (mu, beta0) -- a model outside its validated range
+        (:func:`dhfield.compare.validity_message`) or, for ``dh-elliptic``, a
+        departure from the two-axis closure above
+        :data:`dhfield.compare.WARNING_THRESHOLD` (dgamma biased).
+    work_of_adhesion_stderr : float
+        Standard error of dgamma [J m^-2], t-adjusted: the replicates' standard
+        error of the mean combined with the propagated input uncertainty, scaled
+        so that +- :data:`COVERAGE_FACTOR` (about 2) of it is the 95 % interval
+        (:func:`replicate_statistics`).  NaN, with ``stderr_note``, for a single
+        force or identical replicates (no scatter to estimate).
+    pull_off_forces : tuple of float
+        The replicate forces [N].
+    replicate_works : tuple of float
+        dgamma of each replicate [J m^-2].
+    replicate_stderr : float
+        Plain standard error of the mean of ``replicate_works``, s/sqrt(n) [J m^-2].
+    input_stderr : float
+        Standard uncertainty of dgamma propagated from the inputs [J m^-2]
+        (0 unless :func:`propagate_input_uncertainty` added some).
+    input_contributions : dict
+        Input name -> its contribution |d dgamma/d x| std(x) [J m^-2].
+    effective_dof : float
+        Welch-Satterthwaite degrees of freedom of the combined uncertainty [-].
+    confidence_interval : (float, float)
+        The 95 % interval of dgamma [J m^-2] (NaN without a standard error).
+    stderr_note : str
+        Why ``work_of_adhesion_stderr`` is NaN, or empty.
     """
     work_of_adhesion: float
     mu: float
@@ -91,12 +133,84 @@ class WorkOfAdhesionFit:
     control: str
     evaluations: int
     warning: str = ""
+    work_of_adhesion_stderr: float = float("nan")
+    pull_off_forces: tuple = ()
+    replicate_works: tuple = ()
+    replicate_stderr: float = float("nan")
+    input_stderr: float = 0.0
+    input_contributions: dict = field(default_factory=dict)
+    effective_dof: float = float("nan")
+    confidence_interval: tuple = (float("nan"), float("nan"))
+    stderr_note: str = ""
 
     def as_record(self) -> dict:
         """Plain dict (for ``--json``), keys named as in :mod:`dhfield.schema`."""
         return {"model": self.model, "control": self.control, "work_of_adhesion": self.work_of_adhesion,
+                "work_of_adhesion_stderr": self.work_of_adhesion_stderr,
+                "work_of_adhesion_ci95": list(self.confidence_interval),
                 "mu": self.mu, "beta0": self.beta0, "max_adhesive_stress": self.max_adhesive_stress,
-                "force": self.pull_off_force, "evaluations": self.evaluations, "warning": self.warning}
+                "force": self.pull_off_force, "n_replicates": len(self.pull_off_forces),
+                "forces": list(self.pull_off_forces), "replicate_works": list(self.replicate_works),
+                "replicate_stderr": self.replicate_stderr, "input_stderr": self.input_stderr,
+                "input_contributions": dict(self.input_contributions), "effective_dof": self.effective_dof,
+                "stderr_note": self.stderr_note, "evaluations": self.evaluations, "warning": self.warning}
+
+
+def replicate_statistics(values, input_stderr=0.0):
+    """Mean of replicate estimates and its t-adjusted standard error, with input uncertainty.
+
+    Parameters
+    ----------
+    values : array_like
+        n >= 1 replicate estimates (here: dgamma of each pull-off force).
+    input_stderr : float
+        Standard uncertainty from the inputs, common to all replicates (infinite
+        degrees of freedom: the given standard deviations are taken as known).
+
+    Returns
+    -------
+    dict
+        ``mean``; ``stderr`` (t-adjusted, below); ``plain_stderr`` = s/sqrt(n);
+        ``dof`` (Welch-Satterthwaite); ``interval`` (95 %); ``note`` (why
+        ``stderr`` is NaN, else "").
+
+    Notes
+    -----
+    With s the sample standard deviation of the n values (ddof = 1), the
+    replicate part is :math:`u_r = s/\\sqrt{n}` and the combined standard
+    uncertainty :math:`u_c = \\sqrt{u_r^2 + u_i^2}`.  Its effective degrees of
+    freedom (Welch-Satterthwaite, GUM G.4) are
+    :math:`\\nu = u_c^4 / (u_r^4/(n-1))`, the 95 % interval is
+    mean +- :math:`t_{0.975,\\nu} u_c`, and the reported standard error is
+    :math:`t_{0.975,\\nu} u_c / z_{0.975}`: +- 1.96 (about 2) of it is the
+    95 % interval, also for three replicates, where the plain s/sqrt(n)
+    would give 82 % (t with 2 degrees of freedom: 4.30 instead of 1.96).  As
+    n grows it tends to the plain combined standard error.  A single value or
+    identical replicates give no scatter estimate: ``stderr`` NaN, with the
+    reason in ``note``.
+    """
+    from scipy import stats
+
+    v = np.atleast_1d(np.asarray(values, float)).ravel()
+    n = v.size
+    mean = float(np.mean(v))
+    u_i = float(input_stderr)
+    nan = float("nan")
+    if n < 2:
+        return {"mean": mean, "stderr": nan, "plain_stderr": nan, "dof": nan, "interval": (nan, nan),
+                "note": "one pull-off force: no replicate scatter to estimate a standard error from; "
+                        "give two or more replicates"}
+    s = float(np.std(v, ddof=1))
+    u_r = s / math.sqrt(n)
+    if not u_r > 1e-12 * abs(mean):
+        return {"mean": mean, "stderr": nan, "plain_stderr": u_r, "dof": nan, "interval": (nan, nan),
+                "note": f"the {n} replicates give the same dgamma: no scatter to estimate a standard error "
+                        "from (forces below the instrument's resolution?)"}
+    u_c = math.hypot(u_r, u_i)
+    dof = (n - 1) * (u_c / u_r) ** 4  # Welch-Satterthwaite; the inputs' part has infinite dof
+    half = float(stats.t.ppf(0.975, dof)) * u_c
+    return {"mean": mean, "stderr": half / COVERAGE_FACTOR, "plain_stderr": u_r, "dof": dof,
+            "interval": (mean - half, mean + half), "note": ""}
 
 
 @dataclass(frozen=True)
@@ -127,6 +241,13 @@ class CurveFit:
     message : str
     evaluations : int
         Forward load-curve evaluations.
+    warning : str
+        Empty, or the warning :func:`dhfield.compare.pull_off` (and
+        ``dhfield pulloff``) gives at the fitted (mu, beta0): the model outside
+        its validated range, or ``dh-elliptic`` departing from the two-axis
+        closure (the estimates are then biased).
+    params : dhfield.dimensional.ContactParameters
+        The contact at the estimates (for :meth:`model_curve`).
     """
     work_of_adhesion: float
     max_adhesive_stress: float
@@ -149,6 +270,8 @@ class CurveFit:
     message: str
     evaluations: int
     covariance_log: np.ndarray = field(repr=False, default=None)
+    warning: str = ""
+    params: dimensional.ContactParameters = field(repr=False, default=None)
 
     def as_record(self) -> dict:
         """Plain dict of the scalar results (for ``--json``)."""
@@ -159,7 +282,31 @@ class CurveFit:
                 "correlation": self.correlation, "mu": self.mu, "beta0": self.beta0,
                 "n_points": int(self.load.size), "load_noise": self.load_noise,
                 "approach_noise": self.approach_noise, "success": self.success, "message": self.message,
-                "evaluations": self.evaluations}
+                "evaluations": self.evaluations, "warning": self.warning}
+
+    def model_curve(self, n=200):
+        """The fitted model as a smooth curve over the data's range of contact sizes.
+
+        Parameters
+        ----------
+        n : int
+            Number of contact sizes, evenly spaced from the smallest to the
+            largest measured one (2 to 100000).
+
+        Returns
+        -------
+        (ndarray, ndarray, ndarray)
+            Contact semi-major axes a [m], loads W [N] and approaches delta [m]
+            of the model at the estimates.
+        """
+        from ._validation import check_count
+
+        n = check_count("n", n, 2, 100_000)
+        if self.params is None:
+            raise ValueError("this CurveFit has no params (the contact at the estimates); refit with fit_curve")
+        a = np.linspace(float(np.min(self.contact_size)), float(np.max(self.contact_size)), n)
+        w, d = _curve(self.params, a, self.model)
+        return a, w, d
 
 
 def _with(params, work_of_adhesion, max_adhesive_stress):
@@ -198,12 +345,13 @@ def _work_at_mu(mu, max_adhesive_stress, params):
 
 def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, model=compare.DEFAULT_MODEL,
                          control="load", check_closure=True):
-    """Work of adhesion dgamma that gives a measured pull-off force.
+    """Work of adhesion dgamma that gives measured pull-off forces, with its standard error.
 
     Parameters
     ----------
-    pull_off_force : float
-        Measured pull-off force, negative (tensile) [N].
+    pull_off_force : float or array_like
+        Measured pull-off force, negative (tensile) [N]; or a 1-d sequence of
+        replicate forces of the same contact.
     params : dhfield.dimensional.ContactParameters
         Geometry and material (E*, R', R''); its ``work_of_adhesion`` is ignored.
     max_adhesive_stress : float, optional
@@ -217,22 +365,33 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
     ----------------
     check_closure : bool
         For ``dh-elliptic``: solve the two-axis closure once at the fitted
-        state (a few seconds) and fill ``warning`` as
-        :func:`dhfield.compare.pull_off` does.  False leaves it empty.
+        state (a few seconds) and add its departure to ``warning`` as
+        :func:`dhfield.compare.pull_off` does.  The validity range of every
+        model is checked regardless.
 
     Returns
     -------
     WorkOfAdhesionFit
+        ``work_of_adhesion`` is the mean of the replicates' dgamma and
+        ``work_of_adhesion_stderr`` its t-adjusted standard error
+        (:func:`replicate_statistics`; NaN for one force).  Uncertain inputs:
+        :func:`propagate_input_uncertainty`.
 
     Raises
     ------
     ValueError
-        ``pull_off_force`` not negative, or outside the forces the model attains
-        for Tabor parameters in :data:`FIT_MU_RANGE` (the range is in the message).
+        A force not negative, or outside the forces the model attains for
+        Tabor parameters in :data:`FIT_MU_RANGE` (the range is in the message).
 
     Notes
     -----
-    Solves :math:`\\ln(-W_{\\max}(\\Delta\\gamma)) = \\ln(-F)` in
+    Each replicate force is inverted on its own; the estimate is their mean,
+    and its standard error that of the mean of the n values (t-adjusted, see
+    :func:`replicate_statistics`).  Over the scatter of a few per cent the
+    map from force to dgamma is linear to second order, so the mean of the
+    inverted values and the inverse of the mean force agree to that order.
+
+    Each inversion solves :math:`\\ln(-W_{\\max}(\\Delta\\gamma)) = \\ln(-F)` in
     :math:`x = \\ln \\Delta\\gamma` with Eqs. (34)-(35):
 
     .. math::
@@ -252,15 +411,52 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
     on the bracket of :data:`FIT_MU_RANGE` is the fallback.
     """
     _check_params(params)
-    f_meas = float(check_finite("pull_off_force", pull_off_force, "N"))
-    if not f_meas < 0.0:
-        raise ValueError(f"pull_off_force must be negative (tensile, N); got {f_meas!r}")
+    forces = _check_forces(pull_off_force)
     s0 = params.max_adhesive_stress if max_adhesive_stress is None else max_adhesive_stress
     s0 = float(check_positive("max_adhesive_stress", s0, "Pa"))
     if model not in compare.MODEL_NAMES:
         raise ValueError(f"model must be one of {', '.join(compare.MODEL_NAMES)}; got {model!r}")
-    target = math.log(-f_meas)
     count = [0]
+    works = [_solve_work(f, params, s0, model, control, count) for f in forces]
+    stats = replicate_statistics(works)
+    p = _with(params, stats["mean"], s0)
+    warning = _validity_warning(model, p, control, check_closure)
+    return WorkOfAdhesionFit(
+        stats["mean"], float(p.mu), float(p.beta0), s0, float(np.mean(forces)), model, control, count[0], warning,
+        work_of_adhesion_stderr=stats["stderr"], pull_off_forces=tuple(float(f) for f in forces),
+        replicate_works=tuple(works), replicate_stderr=stats["plain_stderr"], effective_dof=stats["dof"],
+        confidence_interval=stats["interval"], stderr_note=stats["note"])
+
+
+def _validity_warning(model, p, control, check_closure):
+    """The warning :func:`dhfield.compare.pull_off` (and ``dhfield pulloff``) gives at ``p``'s (mu, beta0)."""
+    return str(compare.pull_off(model, p.mu, p.beta0, control, check_closure=check_closure)["warning"])
+
+
+def _reject_complex(name, value):
+    """Complex input is refused by name (numpy would keep only its real part)."""
+    if np.iscomplexobj(value) or isinstance(value, complex):
+        raise ValueError(f"{name} must be real; got complex input {np.asarray(value).ravel()[:3]!r}")
+
+
+def _check_forces(pull_off_force):
+    _reject_complex("pull_off_force", pull_off_force)
+    forces = check_finite("pull_off_force", pull_off_force, "N")
+    if forces.ndim > 1:
+        raise ValueError(f"pull_off_force must be a number or a 1-d sequence of replicate forces [N]; "
+                         f"got an array of shape {forces.shape}")
+    forces = np.atleast_1d(forces).astype(float)
+    if forces.size == 0:
+        raise ValueError("pull_off_force must contain at least one force [N]; got an empty sequence")
+    if not np.all(forces < 0.0):
+        raise ValueError(f"pull_off_force must be negative (tensile, N); got {float(forces[~(forces < 0)][0])!r}")
+    return forces
+
+
+def _solve_work(f_meas, params, s0, model, control, count):
+    """dgamma [J m^-2] whose pull-off force is ``f_meas`` at sigma0 = ``s0`` (Notes of fit_work_of_adhesion)."""
+    f_meas = float(f_meas)
+    target = math.log(-f_meas)
 
     def force(work):
         count[0] += 1
@@ -320,12 +516,162 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
         if not f_a <= 0.0 <= f_b:
             raise ValueError(attainable())
         root = optimize.brentq(f, x_lo, x_hi, xtol=_LOG_XTOL, rtol=4 * np.finfo(float).eps)
-    work = math.exp(root)
-    p = _with(params, work, s0)
-    warning = ""
-    if model == "dh-elliptic" and check_closure:
-        warning = str(compare.pull_off(model, p.mu, p.beta0, control, check_closure=True)["warning"])
-    return WorkOfAdhesionFit(work, float(p.mu), float(p.beta0), s0, f_meas, model, control, count[0], warning)
+    return math.exp(root)
+
+
+def propagate_input_uncertainty(fit, build, inputs, input_std, *, rel_step=INPUT_REL_STEP):
+    """Add to a pull-off fit the uncertainty of dgamma from uncertain inputs.
+
+    Parameters
+    ----------
+    fit : WorkOfAdhesionFit
+        From :func:`fit_work_of_adhesion` (its forces, model and control are reused).
+    build : callable
+        ``build(**inputs)`` -> :class:`dhfield.dimensional.ContactParameters`, e.g.
+        :func:`dhfield.dimensional.contact_parameters` or
+        :func:`dhfield.dimensional.contact_parameters_from_principal_radii`; its
+        ``max_adhesive_stress`` is the sigma0 of the fit (so sigma0 may be one of
+        the uncertain inputs) and its ``work_of_adhesion`` is ignored.
+    inputs : dict
+        Keyword arguments of ``build`` (scalars) at their nominal values; they
+        must give the fit's sigma0.
+    input_std : dict
+        Standard deviation of some of ``inputs`` (same keys, same units; 0 or
+        absent: exact).  Taken as independent.
+
+    Other Parameters
+    ----------------
+    rel_step : float
+        Relative step of the central differences (:data:`INPUT_REL_STEP`).
+
+    Returns
+    -------
+    WorkOfAdhesionFit
+        ``fit`` with ``input_stderr``, ``input_contributions`` and the combined
+        ``work_of_adhesion_stderr`` (:func:`replicate_statistics`) filled in.
+
+    Notes
+    -----
+    Linear (first-order) propagation, GUM Eq. (10):
+    :math:`u_i^2 = \\sum_k (\\partial\\Delta\\gamma/\\partial x_k)^2 \\sigma_k^2`,
+    the derivatives by central differences of the fit of the mean force with
+    step h = rel_step |x_k| (one-sided where x_k +- h leaves the accepted range,
+    e.g. a skew angle of exactly 90 degrees or nu = 0.5).  Each input costs two
+    inversions.  Valid while dgamma is close to linear over +- sigma_k, which a
+    relative standard deviation of 10-20 % still satisfies on the smooth
+    pull-off curves (verification/fit_coverage.py checks the coverage).
+    """
+    if not isinstance(fit, WorkOfAdhesionFit):
+        raise ValueError(f"fit must be a WorkOfAdhesionFit (from fit_work_of_adhesion); got {type(fit).__name__}")
+    if not callable(build):
+        raise ValueError(f"build must be a callable returning ContactParameters; got {type(build).__name__}")
+    inputs = dict(inputs)
+    unknown = sorted(set(input_std) - set(inputs))
+    if unknown:
+        raise ValueError(f"input_std names inputs that are not in inputs: {', '.join(unknown)}; "
+                         f"inputs: {', '.join(inputs)}")
+    base = build(**inputs)
+    _check_params(base)
+    if not math.isclose(float(base.max_adhesive_stress), fit.max_adhesive_stress, rel_tol=1e-12):
+        raise ValueError(f"build(**inputs) gives max_adhesive_stress {float(base.max_adhesive_stress)!r} Pa, "
+                         f"not the fit's {fit.max_adhesive_stress!r} Pa")
+    force = float(np.mean(fit.pull_off_forces)) if fit.pull_off_forces else fit.pull_off_force
+    count = [0]
+
+    def work_at(name, value):
+        p = build(**{**inputs, name: value})
+        return _solve_work(force, p, float(p.max_adhesive_stress), fit.model, fit.control, count)
+
+    contributions = {}
+    for name, std in input_std.items():
+        std = float(check_positive(f"input_std[{name!r}]", std, "standard deviation", allow_zero=True))
+        if std == 0.0:
+            continue
+        x = float(check_finite(f"inputs[{name!r}]", inputs[name]))
+        h = rel_step * abs(x) if x != 0.0 else rel_step * std
+        ends = []
+        for v in (x + h, x - h):
+            try:
+                ends.append((v, work_at(name, v)))
+            except ValueError:  # outside the accepted range on this side: one-sided difference
+                pass
+        if len(ends) == 1:
+            ends.append((x, work_at(name, x)))
+        if len(ends) < 2:
+            raise ValueError(f"cannot vary input {name!r} by +-{h:.3g} around {x!r}: both sides are outside "
+                             "the accepted range")
+        (v1, w1), (v2, w2) = ends
+        contributions[name] = abs((w1 - w2) / (v1 - v2)) * std
+    u_i = math.sqrt(sum(c * c for c in contributions.values()))
+    stats = replicate_statistics(fit.replicate_works or (fit.work_of_adhesion,), u_i)
+    note = stats["note"]
+    if note and u_i > 0:
+        note += f" (the inputs alone contribute {u_i:.3g} J/m^2: input_stderr)"
+    return replace(fit, work_of_adhesion_stderr=stats["stderr"], input_stderr=u_i,
+                   input_contributions=contributions, effective_dof=stats["dof"],
+                   confidence_interval=stats["interval"], stderr_note=note,
+                   evaluations=fit.evaluations + count[0])
+
+
+_CURVE_PARAMETERS = ("work_of_adhesion", "max_adhesive_stress")
+#: Largest condition number of the (weighted, log-parameter) Jacobian for which dgamma and sigma0
+#: are reported as separately identifiable.  Its columns are computed by finite differences
+#: (relative error ~ sqrt(eps) = 1.5e-8), so a singular value below 1e-6 of the largest is within
+#: 100 x of that error, i.e. not resolved.  Measured: well-posed PDMS curves 3-18; five copies of
+#: one row 2e16; sigma0 on the JKR side (mu ~ 22) 6e7.
+JACOBIAN_COND_MAX = 1e6
+#: |correlation| of the two log-estimates at or above which they count as correlated at +-1
+#: (only a combination determined): the covariance is then rounding.
+CORRELATION_MAX = 1.0 - 1e-6
+
+
+def _log_standard_errors(jac, fun, n_res):
+    """Standard errors, covariance and correlation of (ln dgamma, ln sigma0), and what is not identifiable.
+
+    Returns ``(se, cov, corr, problems, unknown)``: ``se`` NaN for a parameter the data
+    cannot determine (``unknown`` True), with the reason in ``problems`` (list of str).
+    """
+    nan = float("nan")
+    dof = n_res - 2
+    s2 = float(np.sum(fun ** 2)) / dof if dof > 0 else nan
+    problems = []
+    unknown = np.zeros(2, bool)
+    u, sv, vt = np.linalg.svd(np.asarray(jac, float), full_matrices=False)
+    cond = sv[0] / sv[-1] if sv[-1] > 0 else math.inf
+    if not (np.all(np.isfinite(sv)) and sv[0] > 0):
+        unknown[:] = True
+        problems.append("the Jacobian of the residuals is zero or not finite: the data do not constrain "
+                        "work_of_adhesion and max_adhesive_stress; no standard errors")
+        return np.full(2, nan), np.full((2, 2), nan), nan, problems, unknown
+    if cond > JACOBIAN_COND_MAX:
+        # the null direction names the parameters it involves (NaN); a parameter nearly outside it
+        # keeps the standard error of the full inverse, in which the null direction still weighs
+        # v_i^2/s_min^2 (no pretence: large where it is not quite outside)
+        unknown = np.abs(vt[-1]) > 0.1
+        names = " and ".join(n for n, m in zip(_CURVE_PARAMETERS, unknown) if m)
+        # numerical rank as numpy.linalg.matrix_rank counts it: s_min <= eps max(m, n) s_max
+        deficient = sv[-1] <= np.finfo(float).eps * max(np.shape(jac)) * sv[0]
+        problems.append(f"{names} not identifiable: the Jacobian is "
+                        f"{'rank-deficient' if deficient else 'ill-conditioned'} (condition number {cond:.3g} > "
+                        f"{JACOBIAN_COND_MAX:g})"
+                        + ("; only a combination of the two is determined; no standard errors" if unknown.all()
+                           else "; no standard error for it"))
+    keep = sv > 0  # an exactly zero singular value: its direction is dropped (its parameters are NaN)
+    inv = (vt[keep].T / sv[keep] ** 2) @ vt[keep]
+    cov = s2 * inv
+    se = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    se[unknown] = nan
+    cov[unknown, :] = nan
+    cov[:, unknown] = nan
+    corr = float(cov[0, 1] / (se[0] * se[1])) if np.all(np.isfinite(se)) and np.all(se > 0) else nan
+    if math.isfinite(corr) and abs(corr) >= CORRELATION_MAX:
+        unknown[:] = True
+        problems.append(f"work_of_adhesion and max_adhesive_stress are correlated at {corr:+.7f}: only a "
+                        "combination of the two is determined; no standard errors")
+        se[:] = nan
+        cov[:] = nan
+        corr = nan
+    return se, cov, corr, problems, unknown
 
 
 def _curve(params, semi_major, model):
@@ -333,7 +679,8 @@ def _curve(params, semi_major, model):
     return np.asarray(c["force"], float), np.asarray(c["approach"], float)
 
 
-def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAULT_MODEL, initial=None):
+def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAULT_MODEL, initial=None,
+              check_closure=True):
     """Work of adhesion and adhesive stress from a measured load curve, by least squares.
 
     Parameters
@@ -353,6 +700,14 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         One of :data:`CURVE_FIT_MODEL_NAMES`; default the paper's model.
     initial : (float, float), optional
         Starting (dgamma [J m^-2], sigma0 [Pa]).
+
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic``: compare with the two-axis closure at the fitted
+        state (about a second) and add its departure to ``warning``, as
+        :func:`dhfield.compare.pull_off` does.  The validity range of every
+        model is checked regardless.
 
     Returns
     -------
@@ -378,18 +733,30 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     :math:`\\mathrm{se}(\\Delta\\gamma) = \\Delta\\gamma \\sqrt{C_{11}}`.
     They assume independent, equal-variance errors within each block, and are
     meaningful only when the data reach the adhesive part of the curve (near
-    pull-off), where the load depends on sigma0; a parameter whose standard
-    error exceeds its estimate, or that runs to the search bound, is reported
-    as not identifiable (``success`` False).  On 40 seeded noisy PDMS curves the
+    pull-off), where the load depends on sigma0.  Not identifiable, with
+    ``success`` False and the reason in ``message``:
+
+    * fewer distinct contact sizes than parameters (times 2 with approaches):
+      a ValueError, before any fit;
+    * a Jacobian whose condition number exceeds :data:`JACOBIAN_COND_MAX`
+      (rank-deficient or ill-conditioned; computed from its SVD): the
+      parameters in its null direction get a NaN standard error, the other
+      keeps that of the full inverse;
+    * correlation at +-1 (:data:`CORRELATION_MAX`): both NaN;
+    * a standard error above the estimate, or a run to the search bound
+      (infinite standard error).  On 40 seeded noisy PDMS curves the
     truth was within 2 standard errors 38/40 (dgamma) and 39/40 (sigma0)
     times (``python -m verification.fit_round_trip``).  A fit takes 20-35
     load-curve evaluations: under a second for dh-elliptic, MD and DH circular,
-    15-35 s for the two closures.
+    15-35 s for the two closures; the warning's closure check adds about a
+    second for dh-elliptic.
     """
     _check_params(params)
     if model not in CURVE_FIT_MODEL_NAMES:
         raise ValueError(f"model must be one of {', '.join(CURVE_FIT_MODEL_NAMES)} (models whose load curve "
                          f"depends on the adhesive stress); got {model!r}")
+    for name, value in (("load", load), ("contact_size", contact_size), ("approach", approach)):
+        _reject_complex(name, value)
     w_data = np.atleast_1d(check_finite("load", load, "N")).astype(float).ravel()
     a_data = np.atleast_1d(check_positive("contact_size", contact_size, "m")).astype(float).ravel()
     if w_data.size != a_data.size:
@@ -403,6 +770,14 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     if n_res < 3:
         raise ValueError(f"load must have at least 3 points to fit 2 parameters with an error estimate; "
                          f"got {w_data.size}")
+    if not np.any(w_data != 0.0):
+        raise ValueError(f"load must not be 0 at every point (a load curve needs the measured loads, N); "
+                         f"got {w_data.size} zeros")
+    n_sizes = np.unique(a_data).size
+    if n_sizes * (1 if d_data is None else 2) < 2:
+        raise ValueError(f"contact_size has {n_sizes} distinct value in {a_data.size} points: fewer distinct "
+                         "points than the 2 parameters (work_of_adhesion, max_adhesive_stress); measure the load "
+                         "at 2 or more contact sizes")
     if initial is None:
         initial = (params.work_of_adhesion, params.max_adhesive_stress)
     w0 = float(check_positive("initial work_of_adhesion", initial[0], "J m^-2"))
@@ -442,30 +817,26 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
             sd = math.sqrt(float(np.sum(res ** 2)) / dof * n_res / x.size)
             scales[k] = sd if sd > 1e-12 * span(x) else scales[k]
         sol = optimize.least_squares(residuals, sol.x, **opts)
-    jac = sol.jac
-    dof = n_res - 2
-    s2 = float(np.sum(sol.fun ** 2)) / dof if dof > 0 else float("nan")
-    try:
-        cov = s2 * np.linalg.inv(jac.T @ jac)
-    except np.linalg.LinAlgError:
-        cov = np.full((2, 2), np.nan)
     work, stress = (float(v) for v in np.exp(sol.x))
-    se = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    se, cov, corr, problems, unknown = _log_standard_errors(sol.jac, sol.fun, n_res)
     success, message = bool(sol.success), str(sol.message)
     # not identifiable: ran to the search bounds (within 1 %), or a standard error above the estimate
     at_bound = (np.abs(sol.x - bounds[0]) < 0.01) | (np.abs(sol.x - bounds[1]) < 0.01)
-    vague = at_bound | ~(se < 1.0)
+    vague = at_bound | (~(se < 1.0) & ~unknown)
     if np.any(vague):
-        names = [n for n, m in zip(("work_of_adhesion", "max_adhesive_stress"), vague) if m]
+        names = [n for n, m in zip(_CURVE_PARAMETERS, vague) if m]
         se = np.where(at_bound, np.inf, se)
+        problems.insert(0, f"{' and '.join(names)} not identifiable from these data (standard error above the "
+                        "estimate, or the search bound 4 decades from the start reached): data near pull-off, in "
+                        "the JKR-DMT transition, are needed")
+    if problems:
         success = False
-        message = (f"{' and '.join(names)} not identifiable from these data (standard error above the estimate, "
-                   "or the search bound 4 decades from the start reached): data near pull-off, in the JKR-DMT "
-                   "transition, are needed")
-    ok = bool(np.all(np.isfinite(se)) and np.all(se > 0))
-    corr = float(cov[0, 1] / (se[0] * se[1])) if ok else float("nan")
+        message = "; ".join(problems)
+    if not np.all(np.isfinite(se)):
+        corr = float("nan")
     w_fit, d_fit = model_at(sol.x)
     p = _with(params, work, stress)
+    warning = _validity_warning(model, p, "load", check_closure)
     return CurveFit(
         work_of_adhesion=work, max_adhesive_stress=stress,
         work_of_adhesion_stderr=work * float(se[0]), max_adhesive_stress_stderr=stress * float(se[1]),
@@ -477,4 +848,4 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         approach_noise=float("nan") if d_data is None else
         float(np.sqrt(np.sum((d_data - d_fit) ** 2) / max(d_data.size - 1, 1))),
         model=model, success=success, message=message, evaluations=count[0],
-        covariance_log=cov)
+        covariance_log=cov, warning=warning, params=p)

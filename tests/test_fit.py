@@ -182,6 +182,7 @@ def test_cli_curve_fit_with_plot(params, capsys, tmp_path):
     assert rec["units"]["max_adhesive_stress_stderr"] == "Pa"
     assert (tmp_path / "r.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert (tmp_path / "r.svg").read_text().lstrip().startswith("<?xml")
+    assert (tmp_path / "r.pdf").read_bytes()[:5] == b"%PDF-"
 
 
 @pytest.mark.parametrize("content, match", [
@@ -248,3 +249,236 @@ def test_closure_models_search_their_own_mu_range(params):
     assert fit_mu_range("md") == FIT_MU_RANGE
     # (the rejection path itself costs four closure solves, ~20 s: python -m verification.fit_round_trip
     # --models dh-elliptic-two-axis --seeds 0 prints it)
+
+
+# ----------------------------------------------------------------- replicates and input uncertainty (issue 17)
+#: Student t quantile t_0.975 with 2 degrees of freedom, closed form: the t(2) CDF is
+#: 1/2 + t/(2 sqrt(2 + t^2)), so t = 0.95 sqrt(2/(1 - 0.95^2)) = 4.30265 (tables: 4.303).
+T975_DOF2 = 0.95 * math.sqrt(2.0 / (1.0 - 0.95 ** 2))
+#: Central differences with relative step 1e-3 (dhfield.fit.INPUT_REL_STEP): truncation error
+#: O(1e-6) relative in a derivative; 1e-5 leaves a margin.
+RTOL_PROPAGATION = 1e-5
+
+
+def _jkr_work(force, params):
+    # JKR: W = -(3/2) pi R dgamma (circle of R = sqrt(R'R''), Johnson 1985): dgamma = -F/(1.5 pi R)
+    return -force / (1.5 * math.pi * params.effective_radius)
+
+
+def test_replicates_give_the_mean_and_a_t_adjusted_standard_error(params):
+    from statistics import NormalDist
+
+    forces = np.array([-0.80e-3, -0.83e-3, -0.78e-3])
+    res = fit_work_of_adhesion(forces, params, model="jkr")
+    works = _jkr_work(forces, params)  # linear in F: each replicate exact (RTOL_CLOSED_FORM)
+    np.testing.assert_allclose(res.replicate_works, works, rtol=RTOL_CLOSED_FORM)
+    assert res.work_of_adhesion == pytest.approx(works.mean(), rel=RTOL_CLOSED_FORM)
+    plain = works.std(ddof=1) / math.sqrt(3)
+    assert res.replicate_stderr == pytest.approx(plain, rel=1e-12)
+    # +-1.96 stderr is the t(2) 95 % interval: stderr = t_0.975(2) / z_0.975 x s/sqrt(n)
+    assert res.work_of_adhesion_stderr == pytest.approx(T975_DOF2 / NormalDist().inv_cdf(0.975) * plain, rel=1e-9)
+    assert res.confidence_interval == pytest.approx((works.mean() - T975_DOF2 * plain,
+                                                     works.mean() + T975_DOF2 * plain), rel=1e-9)
+    assert res.effective_dof == 2 and res.input_stderr == 0 and res.stderr_note == ""
+    assert res.pull_off_force == pytest.approx(forces.mean()) and res.pull_off_forces == tuple(forces)
+    rec = res.as_record()
+    assert rec["n_replicates"] == 3 and rec["work_of_adhesion_stderr"] == res.work_of_adhesion_stderr
+
+
+@pytest.mark.parametrize("forces, note", [(-0.8e-3, "one pull-off force"), ([-0.8e-3] * 4, "same dgamma")])
+def test_no_scatter_gives_no_standard_error(params, forces, note):
+    res = fit_work_of_adhesion(forces, params, model="jkr")
+    assert math.isnan(res.work_of_adhesion_stderr) and note in res.stderr_note
+    assert res.work_of_adhesion == pytest.approx(_jkr_work(-0.8e-3, params), rel=RTOL_CLOSED_FORM)
+
+
+@pytest.mark.parametrize("forces, match", [([[-1e-3, -2e-3]], "1-d sequence"), ([], "at least one"),
+                                           (np.array([-1e-3 + 5e-4j]), "must be real"),
+                                           ([-1e-3, 1e-4], "must be negative"), ([-1e-3, np.nan], "finite")])
+def test_bad_replicates_are_rejected(params, forces, match):
+    with pytest.raises(ValueError, match=match):
+        fit_work_of_adhesion(forces, params, model="jkr")
+
+
+@pytest.mark.parametrize("model", ["jkr", "dmt"])
+def test_input_uncertainty_propagates_as_the_closed_form(model):
+    from dhfield.fit import propagate_input_uncertainty
+
+    # JKR and DMT: dgamma = -F/(k pi R) with R = R_c/sin(theta) (Eqs. 3-5) for equal crossed cylinders, so
+    # d dgamma/d R_c = -dgamma/R_c, d dgamma/d theta = dgamma cot(theta); E* and sigma0 do not enter
+    inputs = dict(PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    std = {"cylinder_radius": 0.1e-3, "skew_angle": math.radians(2.0), "youngs_modulus_1": 0.2e6,
+           "max_adhesive_stress": 0.3 * STRESS}
+    forces = [-0.80e-3, -0.83e-3, -0.78e-3]
+    fit = fit_work_of_adhesion(forces, dim.contact_parameters(**inputs), model=model)
+    res = propagate_input_uncertainty(fit, dim.contact_parameters, inputs, std)
+    w, th = res.work_of_adhesion, PDMS["skew_angle"]
+    c = res.input_contributions
+    assert c["cylinder_radius"] == pytest.approx(w * std["cylinder_radius"] / PDMS["cylinder_radius"],
+                                                 rel=RTOL_PROPAGATION)
+    assert c["skew_angle"] == pytest.approx(w * std["skew_angle"] / math.tan(th), rel=RTOL_PROPAGATION)
+    assert c["youngs_modulus_1"] < 1e-10 * w and c["max_adhesive_stress"] < 1e-10 * w
+    assert res.input_stderr == pytest.approx(math.hypot(c["cylinder_radius"], c["skew_angle"]), rel=1e-6)
+    # combined with the replicates: more than either part, and the same estimate
+    assert res.work_of_adhesion == fit.work_of_adhesion
+    assert res.work_of_adhesion_stderr > max(fit.work_of_adhesion_stderr * 0.5, res.input_stderr)
+    assert res.effective_dof > 2
+
+
+def test_input_uncertainty_at_the_edge_of_the_range_is_one_sided():
+    from dhfield.fit import propagate_input_uncertainty
+
+    # 90 degrees is the largest skew angle: the difference is one-sided.  JKR's dgamma is proportional to
+    # sin(theta), whose derivative vanishes at 90 degrees; the backward difference over h = 1e-3 pi/2 is
+    # dgamma (1 - cos h)/h = dgamma h/2 (1 + O(h^2)), a first-order error the docstring states
+    inputs = dict(PDMS, skew_angle=math.pi / 2, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    fit = fit_work_of_adhesion([-1e-3, -1.1e-3], dim.contact_parameters(**inputs), model="jkr")
+    res = propagate_input_uncertainty(fit, dim.contact_parameters, inputs, {"skew_angle": 0.01})
+    h = 1e-3 * math.pi / 2
+    assert res.input_contributions["skew_angle"] == pytest.approx(res.work_of_adhesion * h / 2 * 0.01, rel=1e-5)
+
+
+def test_input_uncertainty_rejects_inconsistent_inputs(params):
+    from dhfield.fit import propagate_input_uncertainty
+
+    inputs = dict(PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    fit = fit_work_of_adhesion([-1e-3, -1.1e-3], params, model="jkr")
+    with pytest.raises(ValueError, match="not in inputs"):
+        propagate_input_uncertainty(fit, dim.contact_parameters, inputs, {"radius": 1e-4})
+    with pytest.raises(ValueError, match="not the fit's"):
+        propagate_input_uncertainty(fit, dim.contact_parameters, {**inputs, "max_adhesive_stress": 1e5},
+                                    {"cylinder_radius": 1e-4})
+    with pytest.raises(ValueError, match="standard deviation"):
+        propagate_input_uncertainty(fit, dim.contact_parameters, inputs, {"cylinder_radius": -1e-4})
+
+
+# ------------------------------------------------------------------ validity warnings (issues 17, 18 item 5)
+def _sphere(mu, work=WORK):
+    """A sphere (R' = R'' = 3 mm, beta0 = 1) whose sigma0 gives Tabor parameter mu at dgamma = work (Eq. 35)."""
+    p = dim.contact_parameters_from_principal_radii(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, 3e-3, work, 1.0)
+    stress = mu * (p.reduced_modulus ** 2 * work / p.effective_radius) ** (1 / 3)  # Eq. (35) for sigma0
+    return dim.contact_parameters_from_principal_radii(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, 3e-3, work, stress)
+
+
+@pytest.mark.parametrize("model, mu, flagged", [("jkr", 0.045, True), ("jkr", 10.0, False), ("dmt", 5.4, True),
+                                                ("dmt", 0.05, False), ("md", 1.0, False)])
+def test_pull_off_fit_warns_outside_the_validated_range(model, mu, flagged):
+    # issue 18 item 5: jkr at mu = 0.045 and dmt at mu = 5.4 returned warning "" (only dh-elliptic was checked)
+    p = _sphere(mu)
+    assert p.beta0 == 1.0
+    force = float(dim.pull_off_force(p, model)["force"])
+    res = fit_work_of_adhesion([force, 1.01 * force], p, model=model)
+    # the warning pulloff gives at the fitted state, word for word
+    assert res.warning == str(compare.pull_off(model, res.mu, res.beta0)["warning"])
+    assert bool(res.warning) is flagged
+    if flagged:
+        assert res.warning.startswith(f"{model} is validated for") and "mu = " in res.warning
+
+
+def test_curve_fit_warns_like_pulloff():
+    # issue 17: 'fit --data' with the default model was silent where pulloff warns (beta0 = 0.48 at 60 degrees)
+    p = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
+    a, w, _ = _curve_data(p, "dh-elliptic", n=12)
+    res = fit_curve(w, a, _start())
+    assert res.warning == str(compare.pull_off("dh-elliptic", res.mu, res.beta0)["warning"])
+    assert "dh-elliptic is validated for beta0 in [0.8, 1]" in res.warning and res.as_record()["warning"]
+    # inside the range: none (MD on the sphere is validated for every mu)
+    s = _sphere(1.0)
+    a, w, _ = _curve_data(s, "md", n=12)
+    assert fit_curve(w, a, s, model="md", initial=(WORK / 2, 2 * s.max_adhesive_stress)).warning == ""
+
+
+# ------------------------------------------------------------------ identifiability (issue 18 item 3)
+def test_copies_of_one_row_are_refused(params):
+    # issue 18 item 3: five copies of one row gave dgamma +- 4.6e-10, sigma0 +- 0.0012 Pa, success True
+    a = np.full(5, 1.2 * params.length_unit)
+    w = np.asarray(dim.load_curve_si(params, semi_major=a)["force"])
+    for start in (_start(), params):
+        with pytest.raises(ValueError, match="1 distinct value in 5 points: fewer distinct points than the 2"):
+            fit_curve(w, a, start)
+
+
+def test_ill_conditioned_data_give_no_standard_error_for_what_they_cannot_determine(params):
+    # loads far on the compressive side (a* = 5-20): the curve hardly depends on sigma0 there
+    a = params.length_unit * np.linspace(5.0, 20.0, 25)
+    w = np.asarray(dim.load_curve_si(params, semi_major=a)["force"])
+    w = w + np.random.default_rng(1).normal(0.0, 0.01 * np.ptp(w), w.size)
+    res = fit_curve(w, a, _start(), check_closure=False)
+    assert not res.success and "ill-conditioned" in res.message and "max_adhesive_stress" in res.message
+    assert math.isnan(res.max_adhesive_stress_stderr) and math.isnan(res.correlation)
+    # dgamma keeps a standard error, one that does not pretend: the truth is within 2 of them
+    assert abs(res.work_of_adhesion - WORK) < N_SIGMA * res.work_of_adhesion_stderr
+
+
+@pytest.mark.parametrize("jac, match", [
+    ([[1.0, 2.0], [2.0, 4.0], [3.0, 6.0]], "rank-deficient"),          # parallel columns: rank 1
+    ([[1.0, 1.0], [1.0, 1.0 + 1e-9], [1.0, 1.0]], "ill-conditioned"),  # condition number ~ 1e9
+    ([[1.0, 1.0], [1.0, 1.0015], [1.0, 1.0]], "correlated at"),        # cond ~ 2e3, |corr| = 1 - 4e-7
+])
+def test_degenerate_jacobians_give_nan_standard_errors(jac, match):
+    from dhfield.fit import _log_standard_errors
+
+    se, cov, corr, problems, unknown = _log_standard_errors(np.array(jac), np.array([1e-3, -2e-3, 1e-3]), 3)
+    assert np.all(np.isnan(se)) and math.isnan(corr) and unknown.all()
+    assert len(problems) == 1 and match in problems[0] and "combination" in problems[0]
+
+
+def test_zero_loads_are_refused_without_runtime_warnings(params):
+    import warnings
+
+    a = params.length_unit * np.linspace(0.5, 2.0, 5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # issue 18 item 14: four scipy RuntimeWarnings came first
+        with pytest.raises(ValueError, match="load must not be 0 at every point"):
+            fit_curve(np.zeros(5), a, params)
+
+
+# ----------------------------------------------------------------------------------- fit.png (issue 17)
+@pytest.mark.parametrize("value, stderr, unit, text", [
+    (7.941e4, 2e4, "Pa", "79 ± 20 kPa"),                    # the issue's title: '7.941e+04 ± 2e+04 Pa'
+    (0.040034, 7.8e-5, "J/m²", "40.034 ± 0.078 mJ/m²"),
+    (1.0, 0.0996, "N", "1.00 ± 0.10 N"),                    # rounding carries into a third digit
+    (2.488e8, float("nan"), "Pa", "248.8 MPa (no s.e.)"),
+    (2.488e8, float("inf"), "Pa", "248.8 MPa (no s.e.)"),
+    (-5.5e-4, 1.23e-5, "N", "-550 ± 12 µN"),
+])
+def test_numbers_in_titles_have_si_prefixes_and_the_precision_of_their_error(value, stderr, unit, text):
+    from dhfield.io.fit import format_with_uncertainty
+
+    assert format_with_uncertainty(value, stderr, unit) == text
+
+
+def test_fit_plot_draws_the_model_smoothly_over_the_data_range(params):
+    import matplotlib.pyplot as plt
+
+    from dhfield.io.fit import residual_figure
+
+    # issue 17: fit.png drew straight segments between the data points
+    a, w, d = _curve_data(params, "dh-elliptic", n=8)
+    res = fit_curve(w, a, _start(), approach=d, check_closure=False)
+    fig = residual_figure(res)
+    try:
+        line = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "-"][0]
+        x, y = 1e-3 * np.asarray(line.get_xdata()), 1e-3 * np.asarray(line.get_ydata())  # mm -> m, mN -> N
+        assert x.size == 200 and x[0] == pytest.approx(a.min()) and x[-1] == pytest.approx(a.max())
+        # the model itself at those sizes, computed independently of the fit
+        truth = dim.load_curve_si(dim.contact_parameters(**PDMS, work_of_adhesion=res.work_of_adhesion,
+                                                         max_adhesive_stress=res.max_adhesive_stress),
+                                  semi_major=x)["force"]
+        np.testing.assert_allclose(y, truth, rtol=1e-9, atol=1e-12 * np.ptp(truth))
+        title = fig._suptitle.get_text()
+        assert "mJ/m²" in title and "kPa" in title and "e+0" not in title and "±" in title
+        assert len(fig.axes) == 4  # load and approach, each with its residuals
+    finally:
+        plt.close(fig)
+
+
+def test_complex_curve_data_is_rejected_by_name(params):
+    # issue 18 item 4: complex arrays were cut to their real part with only a ComplexWarning
+    a, w, d = _curve_data(params, "dh-elliptic", n=5)
+    with pytest.raises(ValueError, match="load must be real"):
+        fit_curve(w + 1j, a, params)
+    with pytest.raises(ValueError, match="contact_size must be real"):
+        fit_curve(w, a * (1 + 1j), params)
+    with pytest.raises(ValueError, match="approach must be real"):
+        fit_curve(w, a, params, approach=d + 0j)

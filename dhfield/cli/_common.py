@@ -20,7 +20,9 @@ class OneLineParser(argparse.ArgumentParser):
     """argparse with usage errors reduced to one line and exit status 2."""
 
     def error(self, message):
-        raise UsageError(f"{self.prog}: {message}")
+        # main() already prints "dhfield: error: "; keep only the subcommand (if any) of the prog
+        where = self.prog.partition(" ")[2]
+        raise UsageError(f"{where}: {message}" if where else message)
 
 
 def _json_default(obj):

@@ -1,37 +1,69 @@
 """``dhfield fit``: the inverse problem, dgamma (and sigma0) from measurements."""
 from __future__ import annotations
 
+import argparse
+import math
 import re
 
 from ._common import UsageError, add_physical_arguments, model_names, print_json, print_warning
 
-#: Columns of ``--data``: schema name -> accepted aliases.
-DATA_COLUMNS = {"force": ("force", "load"), "semi_major": ("semi_major", "contact_size"),
-                "approach": ("approach",)}
 #: Starting work of adhesion of a ``--data`` fit without --work-of-adhesion [J/m^2]
 #: (a typical solid-solid value; the fit moves 4 decades either way).
 DEFAULT_START_WORK = 0.05
+#: Uncertainty flags: dest of the input -> (flag, number of values).  One standard deviation
+#: each, in the unit of the input; propagated linearly by dhfield.fit.propagate_input_uncertainty.
+STD_FLAGS = {"adhesive_stress": ("--adhesive-stress-std", 1), "youngs_modulus": ("--youngs-modulus-std", 1),
+             "poisson_ratio": ("--poisson-ratio-std", 1), "youngs_modulus_2": ("--youngs-modulus-2-std", 1),
+             "poisson_ratio_2": ("--poisson-ratio-2-std", 1), "cylinder_radius": ("--cylinder-radius-std", 1),
+             "radii": ("--radii-std", 2), "principal_radii": ("--principal-radii-std", 2),
+             "skew_angle_deg": ("--skew-angle-deg-std", 1)}
+
+_DESCRIPTION = """\
+The inverse problem, in SI units.
+
+With --pull-off-force F [F ...] and --adhesive-stress: the work of adhesion whose
+pull-off force is each F (one root each); with several replicate forces, their
+mean and its standard error.  The standard error is t-adjusted: +-1.96 of it
+is the Student-t 95 % interval of the mean (for 3 replicates the plain s/sqrt(n)
+would cover only 82 %); 'replicate_stderr' is the plain one.  Uncertain inputs
+(--adhesive-stress-std, --youngs-modulus-std, ..., one standard deviation each,
+in the input's unit) are propagated linearly (central differences) and
+combined with the replicates' scatter (Welch-Satterthwaite degrees of freedom).
+
+With --data FILE.csv (columns force [N] and semi_major [m], optionally
+approach [m]; aliases load, contact_size; a unit in the header such as
+'load [mN]' or 'contact_size [um]' is converted): dgamma and sigma0 by least
+squares, with standard errors, NaN with a warning where the data cannot
+identify them.  With --data, --work-of-adhesion and --adhesive-stress are
+starting values (default 0.05 J/m^2 and mu = 1).
+
+Geometry and material as for 'dhfield pulloff'.  Outside a model's validated
+range, and for dh-elliptic where it departs from the two-axis closure, the
+result carries the warning 'dhfield pulloff' gives."""
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser(
-        "fit", help="work of adhesion from a pull-off force, or dgamma and sigma0 from a load curve",
-        description="The inverse problem, in SI units.  With --pull-off-force F and --adhesive-stress: the "
-        "work of adhesion whose pull-off force is F (one root).  With --data FILE.csv (columns force [N] and "
-        "semi_major [m], optionally approach [m]; aliases load, contact_size): dgamma and sigma0 by least "
-        "squares, with standard errors.  Geometry and material as for 'dhfield pulloff'; with --data, "
-        "--work-of-adhesion and --adhesive-stress are starting values (default 0.05 J/m^2 and mu = 1).")
+        "fit", help="work of adhesion from pull-off forces, or dgamma and sigma0 from a load curve",
+        description=_DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     what = p.add_mutually_exclusive_group(required=True)
-    what.add_argument("--pull-off-force", type=float, metavar="F", help="measured pull-off force [N] (negative)")
+    what.add_argument("--pull-off-force", type=float, nargs="+", metavar="F",
+                      help="measured pull-off force(s) [N] (negative); several values are replicates")
     what.add_argument("--data", metavar="FILE.csv", help="measured load curve (CSV with a header row)")
     p.add_argument("--model", choices=model_names(), default="dh-elliptic",
                    help="model (default: dh-elliptic, the paper's)")
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="loading mode of the pull-off measurement (default load)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
-                   help="with --data: write the fit and its residuals to FILE.png and FILE.svg")
+                   help="with --data: write the fit and its residuals to FILE.png, FILE.svg and FILE.pdf")
     p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
     add_physical_arguments(p)
+    g = p.add_argument_group("input uncertainties (with --pull-off-force; one standard deviation each, in the "
+                             "input's unit; body 2 follows body 1 when it has no flags of its own)")
+    for dest, (flag, n) in STD_FLAGS.items():
+        kw = {"nargs": 2} if n == 2 else {}
+        g.add_argument(flag, type=float, dest=f"{dest}_std", metavar="STD", default=None, **kw,
+                       help=f"standard deviation of {flag.removesuffix('-std')}")
     p.set_defaults(func=run, beta0=None, mu=None)
     # accept negative numbers in scientific notation as values (--pull-off-force -1.2e-3)
     p._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
@@ -49,30 +81,54 @@ def _params(args):
     args.work_of_adhesion = DEFAULT_START_WORK if given_work is None else given_work
     if given_stress is None:
         args.adhesive_stress = 1.0
-    params = contact_parameters_from_args(args)
-    args.work_of_adhesion, args.adhesive_stress = given_work, given_stress
+    try:
+        params = contact_parameters_from_args(args)
+    finally:
+        args.work_of_adhesion, args.adhesive_stress = given_work, given_stress
     return params
 
 
-def _read_data(path):
-    from ..io.table import read_table
+def _uncertain_inputs(args):
+    """(inputs, input_std, build) of the --*-std flags, for dhfield.fit.propagate_input_uncertainty."""
+    import copy
 
-    frame, _ = read_table(path)
-    cols = {}
-    for name, aliases in DATA_COLUMNS.items():
-        found = [a for a in aliases if a in frame.columns]
-        if found:
-            cols[name] = found[0]
-        elif name != "approach":
-            raise ValueError(f"data file {str(path)!r} has no column {name!r} (or {', '.join(aliases[1:])}); "
-                             f"columns: {', '.join(map(str, frame.columns))}")
-    frame, _ = read_table(path, required=tuple(cols.values()))
-    return {name: frame[col].to_numpy(dtype=float) for name, col in cols.items()}
+    from ._common import contact_parameters_from_args
+
+    inputs, stds = {}, {}
+    for dest, (flag, n) in STD_FLAGS.items():
+        std = getattr(args, f"{dest}_std")
+        if std is None:
+            continue
+        value = getattr(args, dest)
+        for x in (std if n == 2 else [std]):
+            if not (math.isfinite(x) and x >= 0.0):
+                raise UsageError(f"{flag} must be a standard deviation >= 0 (finite, in the unit of "
+                                 f"{flag.removesuffix('-std')}); got {x!r}")
+        if value is None:
+            raise UsageError(f"{flag} needs {flag.removesuffix('-std')} (the value it is the uncertainty of)")
+        if n == 1:
+            inputs[dest], stds[dest] = value, std
+        else:
+            for k in range(2):
+                inputs[f"{dest}_{k + 1}"], stds[f"{dest}_{k + 1}"] = value[k], std[k]
+
+    def build(**values):
+        ns = copy.copy(args)
+        ns.work_of_adhesion = DEFAULT_START_WORK  # a placeholder: dgamma is what is fitted
+        for dest, (_, n) in STD_FLAGS.items():
+            if n == 1 and dest in values:
+                setattr(ns, dest, values[dest])
+            elif n == 2 and f"{dest}_1" in values:
+                pair = list(getattr(ns, dest))
+                pair = [values.get(f"{dest}_{k + 1}", pair[k]) for k in range(2)]
+                setattr(ns, dest, pair)
+        return contact_parameters_from_args(ns)
+
+    return inputs, stds, build
 
 
 def run(args) -> int:
     from .. import fit
-    from ..schema import units
 
     if args.plot is not None and args.data is None:
         raise UsageError("--plot goes with --data")
@@ -80,36 +136,44 @@ def run(args) -> int:
         from ..io import validate_output_path
 
         validate_output_path(args.plot, (".png",), "plot")
+    stds_given = [flag for dest, (flag, _) in STD_FLAGS.items() if getattr(args, f"{dest}_std") is not None]
     if args.pull_off_force is not None:
         if args.adhesive_stress is None:
             raise UsageError("--pull-off-force needs --adhesive-stress (the fit finds dgamma at that sigma0)")
+        inputs, stds, build = _uncertain_inputs(args)
         params = _params(args)
         res = fit.fit_work_of_adhesion(args.pull_off_force, params, max_adhesive_stress=args.adhesive_stress,
                                        model=args.model, control=args.control)
+        if stds:
+            res = fit.propagate_input_uncertainty(res, build, inputs, stds)
         rec = res.as_record()
         print_warning(rec)
     else:
-        data = _read_data(args.data)
+        if stds_given:
+            raise UsageError(f"{stds_given[0]} goes with --pull-off-force (a --data fit estimates its own "
+                             "standard errors)")
         params = _params(args)
+        from ..io.fit import read_curve_data
+
+        data = read_curve_data(args.data, params)
         stress = args.adhesive_stress if args.adhesive_stress is not None else \
             params.max_adhesive_stress / params.mu  # mu = 1 at the starting dgamma (Eq. 35)
         res = fit.fit_curve(data["force"], data["semi_major"], params, approach=data.get("approach"),
                             model=args.model, initial=(params.work_of_adhesion, stress))
         rec = res.as_record()
+        print_warning(rec)
         if args.plot is not None:
             from ..io.fit import write_residual_plot
 
             write_residual_plot(res, args.plot)
-    unit = {k: units(k.removesuffix("_stderr")) if k.removesuffix("_stderr") in _SCHEMA_KEYS else
-            _EXTRA_UNITS.get(k, "1") for k in rec}
+    unit = {k: _unit(k) for k in rec}
     if args.json:
-        print_json({**rec, "units": {k: u for k, u in unit.items() if isinstance(rec[k], (float, int))
-                                     and not isinstance(rec[k], bool)}})
+        print_json({**rec, "units": {k: u for k, u in unit.items() if not isinstance(rec[k], (str, bool))}})
     else:
         for k, v in rec.items():
-            print(f"{k:28s} {v!s:24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
+            print(f"{k:28s} {_text(v):24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
         if args.plot is not None:
-            print(f"wrote {args.plot} and {args.plot[:-4]}.svg")
+            print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
     if args.data is not None and not res.success:
         import sys
 
@@ -117,6 +181,27 @@ def run(args) -> int:
     return 0
 
 
+def _text(v):
+    if isinstance(v, float):
+        return f"{v:.10g}"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_text(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{k}: {_text(x)}" for k, x in v.items()) + "}"
+    return str(v)
+
+
+def _unit(key):
+    from ..schema import units
+
+    if key in _EXTRA_UNITS:
+        return _EXTRA_UNITS[key]
+    base = key.removesuffix("_stderr")
+    return units(base) if base in _SCHEMA_KEYS else "1"
+
+
 _SCHEMA_KEYS = ("work_of_adhesion", "max_adhesive_stress", "mu", "beta0", "force")
 #: Units of record keys that are not schema variables.
-_EXTRA_UNITS = {"load_noise": "N", "approach_noise": "m"}
+_EXTRA_UNITS = {"load_noise": "N", "approach_noise": "m", "work_of_adhesion_ci95": "J m-2", "forces": "N",
+                "replicate_works": "J m-2", "replicate_stderr": "J m-2", "input_stderr": "J m-2",
+                "input_contributions": "J m-2"}

@@ -1,31 +1,314 @@
-"""Residual plot of a load-curve fit (:func:`dhfield.fit.fit_curve`): matplotlib at the edge."""
+"""Input and output of the fits (:mod:`dhfield.fit`): the measured load curve, the residual plot.
+
+:func:`read_curve_data` reads a measured load curve from CSV; :func:`write_residual_plot`
+draws a :class:`dhfield.fit.CurveFit` (matplotlib at the edge, imported on use).
+"""
 from __future__ import annotations
 
+import math
+import re
 from pathlib import Path
 
 import numpy as np
 
 from . import atomic_path, check_writable
 
-__all__ = ["write_residual_plot"]
+__all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
+           "FORCE_UNITS", "LENGTH_UNITS"]
+
+#: Columns of a measured load curve: schema name -> accepted column names.
+DATA_COLUMNS = {"force": ("force", "load"), "semi_major": ("semi_major", "contact_size"),
+                "approach": ("approach",)}
+#: Units accepted in a column header (``load [mN]`` or ``load (mN)``): unit -> factor to SI.
+#: Case matters (mN is not MN); the micro sign may be u, the micro sign or the Greek mu.
+FORCE_UNITS = {"N": 1.0, "kN": 1e3, "mN": 1e-3, "uN": 1e-6, "\u00b5N": 1e-6, "\u03bcN": 1e-6, "nN": 1e-9}
+LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "\u00b5m": 1e-6, "\u03bcm": 1e-6,
+                "micron": 1e-6, "nm": 1e-9}
+_QUANTITY_UNITS = {"force": ("force", FORCE_UNITS), "semi_major": ("length", LENGTH_UNITS),
+                   "approach": ("length", LENGTH_UNITS)}
+#: The units :func:`read_curve_data` proposes for a column without one (one per decade of 1e3).
+_GUESSES = {"force": ("N", "mN", "uN", "nN"), "semi_major": ("m", "mm", "um", "nm"),
+            "approach": ("m", "mm", "um", "nm")}
+#: Plausible ratio of the largest compressive load to the Hertz load 4E*a^3/(3R) at its contact
+#: size: adhesion lowers the load below Hertz's (ratio < 1, near 0 close to zero load), an
+#: ellipse's Hertz load differs from the circle's by a factor below 2; a unit slip is >= 1e3.
+_HERTZ_LOAD_RATIO = (1e-5, 1e2)
+#: Plausible work of adhesion [J m^-2] of the most tensile load W_min, dgamma ~ -W_min/(1.75 pi R)
+#: (between JKR's 1.5 pi R dgamma and DMT's 2 pi R dgamma): from liquids-wetted polymers (1e-4) to
+#: clean metals (a few J m^-2); a unit slip moves it by 1e3.
+_WORK_RANGE = (1e-4, 10.0)
+#: Typical work of adhesion [J m^-2] (van der Waals solids): ranks the units that pass.
+_TYPICAL_WORK = 0.05
+#: Plausible ratio of the largest |approach| to a^2/R (Hertz: 1; JKR at pull-off: about 1/3).
+_HERTZ_APPROACH_RATIO = (1e-3, 1e2)
+_HEADER = re.compile(r"^\s*(?P<name>[^\[\]()]*?)\s*(?:\[\s*(?P<u1>[^\]]*?)\s*\]|\(\s*(?P<u2>[^)]*?)\s*\))\s*$")
 
 
-def write_residual_plot(fit, path, *, dpi=120) -> tuple[Path, Path]:
-    """Write the data, the fitted curve and the residuals of ``fit`` as PNG and SVG.
+def _split_header(column):
+    """(name, unit or None) of a header such as ``load [mN]``, ``load (mN)`` or ``load``."""
+    m = _HEADER.match(str(column))
+    if m is None:
+        return str(column).strip().lower(), None
+    return m.group("name").lower(), m.group("u1") if m.group("u1") is not None else m.group("u2")
+
+
+def read_curve_data(path, params=None) -> dict:
+    """A measured load curve from a CSV file, in SI units.
+
+    Parameters
+    ----------
+    path : path-like
+        CSV with a header row: ``force`` (or ``load``), ``semi_major`` (or
+        ``contact_size``), optionally ``approach``.  A header may carry a unit
+        in brackets or parentheses, ``load [mN]``, ``contact_size (um)``: forces
+        in :data:`FORCE_UNITS`, lengths in :data:`LENGTH_UNITS`; without one,
+        forces are in N and lengths in m.
+    params : dhfield.dimensional.ContactParameters, optional
+        The contact: columns without a unit are checked against it (Notes).
+
+    Returns
+    -------
+    dict
+        ``force``, ``semi_major`` and (if present) ``approach``: float arrays [N], [m], [m].
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and the column: a column missing, not numeric,
+        an unknown unit, forces zero in every row, or (with ``params``)
+        magnitudes that look like another unit -- the message names it.
+
+    Notes
+    -----
+    Checks of columns without a unit (a unit in the header is taken as given):
+
+    * contact semi-major axes below the larger principal radius R' (Hertz
+      theory needs a << R');
+    * the most tensile load W_min: the work of adhesion it implies,
+      :math:`-W_{min}/(1.75 \\pi R)` (between JKR's and DMT's pull-off), in
+      :data:`_WORK_RANGE`;
+    * the largest compressive load W against the Hertz load
+      :math:`W_H = 4E^*a^3/(3R)` at its contact size: W/W_H in
+      :data:`_HERTZ_LOAD_RATIO` (adhesion only lowers it);
+    * the largest |approach| against :math:`a^2/R`: in :data:`_HERTZ_APPROACH_RATIO`.
+
+    Where SI fails them, the units of :data:`_GUESSES` are tried (all
+    combinations) and the one that passes with the most typical values
+    (dgamma nearest 0.05 J/m^2, W/W_H nearest 1) is named in the message.
+    The checks catch the slips of 1e3 between the units of the tables; an
+    explicit unit in the header skips them.
+    """
+    from .table import read_table
+
+    frame, _ = read_table(path)
+    where = f"data file {str(path)!r}"
+    cols, col_units = {}, {}
+    headers = [_split_header(c) for c in frame.columns]
+    for name, aliases in DATA_COLUMNS.items():
+        found = [(col, unit) for col, (base, unit) in zip(frame.columns, headers) if base in aliases]
+        if found:
+            cols[name], col_units[name] = found[0]
+        elif name != "approach":
+            raise ValueError(f"{where} has no column {name!r} (or {', '.join(aliases[1:])}); "
+                             f"columns: {', '.join(map(str, frame.columns))}")
+    factors = {}
+    for name, unit in col_units.items():
+        if unit is None:
+            continue
+        kind, table = _QUANTITY_UNITS[name]
+        if unit not in table:
+            raise ValueError(f"{where}, column {cols[name]!r}: unknown {kind} unit {unit!r}; "
+                             f"use one of {', '.join(table)}")
+        factors[name] = table[unit]
+    frame, _ = read_table(path, required=tuple(cols.values()))
+    raw = {name: frame[col].to_numpy(dtype=float) for name, col in cols.items()}
+    if not np.any(raw["force"] != 0.0):
+        raise ValueError(f"{where}, column {cols['force']!r}: every load is 0; a load curve needs the "
+                         "measured loads (compressive positive, pull-off negative)")
+    if params is not None:
+        _check_magnitudes(raw, factors, cols, params, where)
+    return {name: values * factors.get(name, 1.0) for name, values in raw.items()}
+
+
+def _plausible(raw, f, params):
+    """(passes, score) of the data read with the factors ``f`` (see read_curve_data's Notes).
+
+    The score (lower: more typical) is |log10(dgamma/0.05)| + |log10(W/W_H)|/2.
+    """
+    a = raw["semi_major"] * f["semi_major"]
+    w = raw["force"] * f["force"]
+    r, e = float(params.effective_radius), float(params.reduced_modulus)
+    if not np.max(np.abs(a)) < float(params.r_major):
+        return False, math.inf
+    score = 0.0
+    if np.min(w) < 0.0:
+        work = -float(np.min(w)) / (1.75 * math.pi * r)  # between JKR (1.5 pi R) and DMT (2 pi R)
+        if not _WORK_RANGE[0] <= work <= _WORK_RANGE[1]:
+            return False, math.inf
+        score += abs(math.log10(work / _TYPICAL_WORK))
+    k = int(np.argmax(w))
+    if w[k] > 0.0:
+        ratio = w[k] / (4.0 * e * a[k] ** 3 / (3.0 * r))  # Hertz: W = 4 E* a^3/(3R)
+        if not _HERTZ_LOAD_RATIO[0] <= ratio <= _HERTZ_LOAD_RATIO[1]:
+            return False, math.inf
+        score += abs(math.log10(ratio)) / 2
+    if "approach" in raw:
+        d = np.max(np.abs(raw["approach"])) * f["approach"]
+        q = d / (np.max(a) ** 2 / r)
+        if d > 0.0 and not _HERTZ_APPROACH_RATIO[0] <= q <= _HERTZ_APPROACH_RATIO[1]:
+            return False, math.inf
+    return True, score
+
+
+def _check_magnitudes(raw, factors, cols, params, where):
+    import itertools
+
+    free = [name for name in raw if name not in factors]
+    if not free:
+        return
+    si = {name: factors.get(name, 1.0) for name in raw}
+    ok, _ = _plausible(raw, si, params)
+    if ok:
+        return
+    best = None
+    for combo in itertools.product(*(_GUESSES[name] for name in free)):
+        f = dict(si)
+        for name, unit in zip(free, combo):
+            f[name] = _QUANTITY_UNITS[name][1][unit]
+        passes, score = _plausible(raw, f, params)
+        if passes:
+            if best is None or score < best[0]:
+                best = (score, combo)
+    a_max = float(np.max(np.abs(raw["semi_major"]))) * si["semi_major"]
+    facts = (f"contact sizes up to {a_max:.3g} m against a largest radius of curvature of "
+             f"{float(params.r_major):.3g} m" if a_max >= float(params.r_major) else
+             "a work of adhesion -W_min/(1.75 pi R) outside [1e-4, 10] J/m^2, or loads, contact sizes and "
+             "approaches off Hertz's W = 4E*a^3/(3R), delta = a^2/R by orders of magnitude")
+    if best is None:
+        raise ValueError(f"{where}: implausible magnitudes in SI units ({facts}); columns without a unit in "
+                         "the header are read in N and m: check the values, or write the units in the header, "
+                         "e.g. 'force [mN]', 'semi_major [um]'")
+    guess = [(cols[name], unit) for name, unit in zip(free, best[1]) if _QUANTITY_UNITS[name][1][unit] != 1.0]
+    parts = [f"{unit} (column {col!r})" for col, unit in guess]
+    looks = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
+    example = ", ".join(f"'{_split_header(col)[0]} [{unit}]'" for col, unit in guess)
+    raise ValueError(f"{where}: these look like {looks}; columns without a unit in the header are expected "
+                     f"in N and m ({facts}): write the units in the header, e.g. {example}")
+
+
+#: SI prefixes of :func:`format_with_uncertainty`, by power of ten.
+_SI_PREFIXES = {-15: "f", -12: "p", -9: "n", -6: "\u00b5", -3: "m", 0: "", 3: "k", 6: "M", 9: "G", 12: "T"}
+
+
+def format_with_uncertainty(value, stderr, unit) -> str:
+    """``value ± stderr`` with an SI prefix and the precision the standard error allows.
+
+    The standard error is rounded to two significant digits and the value to the
+    same decimal place; the prefix is the power of 1000 of the value, e.g.
+    ``format_with_uncertainty(7.941e4, 2e4, "Pa")`` gives ``"79 ± 20 kPa"``.
+    A NaN or infinite standard error prints the value to 4 significant digits
+    and ``(no s.e.)``.
+
+    Parameters
+    ----------
+    value, stderr : float
+        The estimate and its standard error, in ``unit``.
+    unit : str
+        SI unit without prefix (``"Pa"``, ``"J/m²"``, ``"N"``).
+
+    Returns
+    -------
+    str
+    """
+    value, stderr = float(value), float(stderr)
+    if not math.isfinite(value):
+        return f"{value} {unit}"
+    exp3 = 0 if value == 0 else 3 * math.floor(math.log10(abs(value)) / 3)
+    exp3 = min(max(exp3, min(_SI_PREFIXES)), max(_SI_PREFIXES))
+    v, prefix = value / 10.0 ** exp3, _SI_PREFIXES[exp3]
+    if not (math.isfinite(stderr) and stderr > 0):
+        return f"{v:.4g} {prefix}{unit} (no s.e.)"
+    s = stderr / 10.0 ** exp3
+    place = 1 - math.floor(math.log10(s))  # decimal place of the second significant digit of s
+    s_r = round(s, place)
+    if s_r >= 10.0 ** (2 - place):  # rounding carried into a third digit (e.g. 99.6 -> 100)
+        place -= 1
+        s_r = round(s, place)
+    v_r = round(v, place)
+    decimals = max(place, 0)
+    return f"{v_r:.{decimals}f} \u00b1 {s_r:.{decimals}f} {prefix}{unit}"
+
+
+def _three_digits(x) -> str:
+    """Three significant digits without an exponent between 1e-3 and 1e6 (9610, not 9.61e+03)."""
+    x = float(x)
+    return f"{float(f'{x:.3g}'):g}" if 1e-3 <= abs(x) < 1e6 else f"{x:.3g}"
+
+
+def residual_figure(fit, *, n=200):
+    """The matplotlib figure of :func:`write_residual_plot` (data, smooth fitted curve, residuals)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    a_curve, w_curve, d_curve = fit.model_curve(n)
+    a_mm = 1e3 * np.asarray(fit.contact_size)
+    with_approach = fit.approach is not None
+    cols = 2 if with_approach else 1
+    fig, axes = plt.subplots(2, cols, figsize=(5.2 * cols, 5.6), sharex=True, squeeze=False,
+                             gridspec_kw={"height_ratios": (2.2, 1.0)})
+    blocks = [("load W [mN]", "load residual [mN]", 1e3, fit.load, w_curve, fit.load_residuals, "o", "C0")]
+    if with_approach:
+        blocks.append(("approach δ [µm]", "approach residual [µm]", 1e6, fit.approach, d_curve,
+                       fit.approach_residuals, "s", "C2"))
+    for k, (label, res_label, scale, data, curve, residuals, marker, colour) in enumerate(blocks):
+        ax = axes[0, k]
+        ax.plot(a_mm, scale * np.asarray(data), marker, ms=4.5, color=colour, label="data", zorder=3)
+        ax.plot(1e3 * a_curve, scale * np.asarray(curve), "-", lw=1.6, color="C1", label=f"{fit.model} fit")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=9, loc="best", frameon=False)
+        ax.grid(alpha=0.25)
+        ax = axes[1, k]
+        ax.axhline(0.0, color="0.5", lw=0.8)
+        ax.plot(a_mm, scale * np.asarray(residuals), marker, ms=4.5, color=colour)
+        ax.set_ylabel(res_label)
+        ax.set_xlabel("contact semi-major axis a [mm]")
+        ax.grid(alpha=0.25)
+    title = (f"Δγ = {format_with_uncertainty(fit.work_of_adhesion, fit.work_of_adhesion_stderr, 'J/m²')},  "
+             f"σ₀ = {format_with_uncertainty(fit.max_adhesive_stress, fit.max_adhesive_stress_stderr, 'Pa')}"
+             f"  (± 1 s.e.; μ = {_three_digits(fit.mu)}, β₀ = {_three_digits(fit.beta0)})")
+    fig.suptitle(title, fontsize=10)
+    notes = [m for m in (("not identifiable: see the fit's message" if not fit.success else ""),
+                         ("model outside its validated range: see the fit's warning" if fit.warning else "")) if m]
+    if notes:
+        fig.text(0.5, 0.005, "; ".join(notes), ha="center", va="bottom", fontsize=8, color="C3")
+    fig.tight_layout(rect=(0, 0.03 if notes else 0, 1, 1))
+    return fig
+
+
+def write_residual_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
+    """Write the data, the fitted curve and the residuals of ``fit`` as PNG, SVG and PDF.
+
+    The model is drawn as a smooth curve over the measured range of contact sizes
+    (:meth:`dhfield.fit.CurveFit.model_curve`), the estimates in the title with SI
+    prefixes and the precision their standard errors allow
+    (:func:`format_with_uncertainty`); with approaches, a second column.
 
     Parameters
     ----------
     fit : dhfield.fit.CurveFit
     path : path-like
-        PNG file to write; the SVG is the same path with suffix ``.svg``.  Both
-        are written atomically.
+        PNG file to write; the SVG and PDF are the same path with suffixes
+        ``.svg`` and ``.pdf``.  All three are checked before any is written, and
+        written atomically.
     dpi : int
         Resolution of the PNG.
 
     Returns
     -------
-    (Path, Path)
-        The PNG and SVG paths.
+    (Path, Path, Path)
+        The PNG, SVG and PDF paths.
     """
     import matplotlib
 
@@ -34,35 +317,17 @@ def write_residual_plot(fit, path, *, dpi=120) -> tuple[Path, Path]:
 
     png = Path(path)
     if png.suffix.lower() != ".png":
-        raise ValueError(f"plot must be a .png file path (an .svg is written beside it); got {str(png)!r}")
-    svg = png.with_suffix(".svg")
-    check_writable(png, "plot")
-    a_mm = 1e3 * np.asarray(fit.contact_size)
-    order = np.argsort(a_mm)
-    rows = 2 if fit.approach is None else 3
-    fig, axes = plt.subplots(rows, 1, figsize=(6.0, 2.4 * rows + 0.6), sharex=True)
-    ax = axes[0]
-    ax.plot(a_mm, 1e3 * np.asarray(fit.load), "o", ms=4, label="data")
-    ax.plot(a_mm[order], 1e3 * np.asarray(fit.load_fitted)[order], "-", label=f"{fit.model} fit")
-    ax.set_ylabel("load W [mN]")
-    ax.set_title(f"Δγ = {fit.work_of_adhesion:.4g} ± {fit.work_of_adhesion_stderr:.2g} J/m², "
-                 f"σ₀ = {fit.max_adhesive_stress:.4g} ± {fit.max_adhesive_stress_stderr:.2g} Pa (±1 s.e.)", fontsize=9)
-    ax.legend(fontsize=8, loc="best")
-    ax = axes[1]
-    ax.axhline(0.0, color="0.6", lw=0.8)
-    ax.plot(a_mm, 1e3 * np.asarray(fit.load_residuals), "o", ms=4)
-    ax.set_ylabel("load residual [mN]")
-    if fit.approach is not None:
-        ax = axes[2]
-        ax.axhline(0.0, color="0.6", lw=0.8)
-        ax.plot(a_mm, 1e6 * np.asarray(fit.approach_residuals), "s", ms=4, color="C2")
-        ax.set_ylabel("approach residual [µm]")
-    axes[-1].set_xlabel("contact semi-major axis a [mm]")
-    fig.tight_layout()
+        raise ValueError(f"plot must be a .png file path (an .svg and a .pdf are written beside it); "
+                         f"got {str(png)!r}")
+    svg, pdf = png.with_suffix(".svg"), png.with_suffix(".pdf")
+    for out in (png, svg, pdf):  # all three checked before any is written
+        check_writable(out, "plot")
+    fig = residual_figure(fit)
     try:
-        with atomic_path(png) as tmp_png, atomic_path(svg) as tmp_svg:
+        with atomic_path(png) as tmp_png, atomic_path(svg) as tmp_svg, atomic_path(pdf) as tmp_pdf:
             fig.savefig(tmp_png, format="png", dpi=dpi)
             fig.savefig(tmp_svg, format="svg", metadata={"Date": None})
+            fig.savefig(tmp_pdf, format="pdf", metadata={"CreationDate": None})
     finally:
         plt.close(fig)
-    return png, svg
+    return png, svg, pdf
