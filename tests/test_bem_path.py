@@ -11,11 +11,11 @@ import pytest
 
 from dhfield import maugis_dugdale, transition
 from dhfield.bem import adhesive_pull_off
-from dhfield.bem.adhesive import (DISPLACEMENT_CONTROL_NOTE, adhesive_force, fit_fold, fold_by_adhesive_force,
+from dhfield.bem import (DISPLACEMENT_CONTROL_NOTE, adhesive_force, fit_fold, fold_by_adhesive_force,
                                   fold_of_branch, nondimensional_problem, solve_at_adhesive_force,
                                   unloading_path)
 from dhfield.bem.path import CONTACT_LOSS_NOTE
-from dhfield.bem.solver import AdhesiveProblem, Prediction, solve_problem
+from dhfield.bem.solver import Prediction, solve_problem
 
 #: BEM vs MD, displacement-control pull-off at N = 64: the self-set target of issue 8
 #: (2 %, as for the load-control pull-off at lambda = 3); measured at N = 64 over
@@ -46,7 +46,7 @@ def _md_displacement_pull_off(mu):
 def sphere_lambda_2():
     mu = _mu(2.0)
     nd = nondimensional_problem(mu, 1.0, 64)
-    prob = AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, None, 1.0)
+    prob = nd.adhesive_problem()
     start = solve_problem(prob, nd.pull_off_approach,
                           Prediction(np.zeros_like(prob.z), prob.to_work(nd.start_stress())), TOL_SOLVE, 20000)
     assert start.converged and start.in_contact
@@ -196,7 +196,7 @@ RTOL_FOLD = 2e-3
 
 
 def test_fold_of_branch_recovers_the_maugis_dugdale_jump():
-    from dhfield.bem.adhesive import fold_of_branch
+    from dhfield.bem import fold_of_branch
 
     mu = float(transition.tabor_from_maugis(1.0))
     ref = maugis_dugdale.pull_off_nondimensional(mu, "displacement")     # Maugis (1992): the fold of delta(a)
@@ -254,7 +254,7 @@ def test_failed_cold_start_is_kept_flagged_and_the_path_marches():
 
 def test_displacement_control_results_carry_their_measured_caveat():
     """Every displacement-control result carries its measured accuracy (DISPLACEMENT_CONTROL_NOTE)."""
-    from dhfield.bem.adhesive import DISPLACEMENT_CONTROL_NOTE
+    from dhfield.bem import DISPLACEMENT_CONTROL_NOTE
 
     disp = adhesive_pull_off(2.0, 1.0, 32, control="displacement", progress=False)
     assert DISPLACEMENT_CONTROL_NOTE in disp.note and disp.as_dict()["note"] == disp.note

@@ -17,9 +17,9 @@ import pytest
 from dhfield import compare, transition
 from dhfield.bem import adhesive_pull_off, refine_pull_off
 from dhfield.bem import pull_off as pull_off_module
-from dhfield.bem.pull_off import (LOCATE_MAX_EXTEND, LOCATE_VERTEX_STATES, NestedWarmStart,
-                                  interpolate_state, nondimensional_problem)
-from dhfield.bem.solver import DEFAULT_TOL, AdhesiveProblem, solve_problem
+from dhfield.bem import nondimensional_problem
+from dhfield.bem.pull_off import LOCATE_MAX_EXTEND, NestedWarmStart, interpolate_state
+from dhfield.bem.solver import DEFAULT_TOL, solve_problem
 
 
 @pytest.fixture(scope="module")
@@ -93,7 +93,7 @@ def test_located_search_equals_the_bracket_search(lam, beta0, mu):
     assert located.W_star == pytest.approx(bracket.W_star, rel=RTOL_LOCATED_VS_BRACKET)
     # only lattice samples (and vertex states) on the fine grid, nothing past the minimum's bracket
     assert set(located.path.phase) <= {"unloading", "refine"}
-    assert 3 <= located.n_steps <= 3 + LOCATE_MAX_EXTEND + LOCATE_VERTEX_STATES
+    assert 3 <= located.n_steps <= 3 + LOCATE_MAX_EXTEND + 1   # lattice samples, extensions, at most one vertex
     assert located.path.coarse_states > 0
     # the reported minimum is interior: fine samples on both sides of it
     assert located.path.approach.min() < located.delta_star < located.path.approach.max()
@@ -130,9 +130,9 @@ def test_nested_warm_start_reaches_the_state_of_the_plain_interpolation_in_fewer
     # the warm start takes the fine grid's own sub-cell zone of the interpolated gap
     mu = float(transition.tabor_from_maugis(3.0))
     nd = nondimensional_problem(mu, 1.0, 128)
-    ws = NestedWarmStart(mu, 1.0, 128, problem=nd)
+    ws = NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
     delta = nd.pull_off_approach
-    prob = AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, None, 1.0)
+    prob = nd.adhesive_problem()
     plain = solve_problem(prob, delta, interpolate_state(ws.coarse_state(delta), nd.grid), DEFAULT_TOL, 20000)
     nested = solve_problem(prob, delta, ws(delta), DEFAULT_TOL, 20000)
     assert plain.converged and nested.converged
@@ -141,10 +141,13 @@ def test_nested_warm_start_reaches_the_state_of_the_plain_interpolation_in_fewer
     assert nested.iterations < plain.iterations
 
 
-def test_nested_warm_start_rejects_a_problem_of_another_grid():
-    nd = nondimensional_problem(1.0, 1.0, 128)
-    with pytest.raises(ValueError, match="problem"):
-        NestedWarmStart(1.0, 1.0, 256, problem=nd)
+def test_nested_warm_start_rejects_a_grid_without_a_coarser_level():
+    # n = 64: the grid half as fine (32) is below NESTED_MIN_N
+    nd = nondimensional_problem(1.0, 1.0, 64)
+    with pytest.raises(ValueError, match="^problem must have an even n >= 128"):
+        NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
+    with pytest.raises(ValueError, match="^problem must be a NondimensionalProblem"):
+        NestedWarmStart(nd.grid, tol=DEFAULT_TOL, max_iter=20000)
 
 
 
@@ -155,7 +158,7 @@ def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n)
 
     fine = nondimensional_problem(mu, beta0, n)
     for k in (2, 4):
-        derived = pull_off_module._coarser_problem(fine, n // k)
+        derived = fine.coarser(n // k)
         fresh = nondimensional_problem(mu, beta0, n // k)
         assert derived.grid == fresh.grid
         for f in dataclasses.fields(fresh):
@@ -169,7 +172,7 @@ def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n)
 def test_located_search_does_not_locate_on_a_grid_too_coarse_for_the_edge():
     # mu = 5 at N = 64: the edge wants ~3.8x its cap 2 h0 (unconverged states): no location, nothing solved
     nd = nondimensional_problem(5.0, 1.0, 128)
-    ws = NestedWarmStart(5.0, 1.0, 128, problem=nd)
+    ws = NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
     assert ws._prob.edge_width_ratio > pull_off_module.LOCATE_MAX_EDGE_RATIO
     assert np.isnan(ws.locate_pull_off(nd.approach_step / 2))
     assert ws.states_solved == 0

@@ -51,8 +51,8 @@ def _across(st, grid):
 def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
     """(approach, zone, state, seconds) of the first bracket state solved from ``start``."""
     from dhfield import compare
-    from dhfield.bem.pull_off import nondimensional_problem
-    from dhfield.bem.solver import AdhesiveProblem, Prediction, solve_problem
+    from dhfield.adhesive_start import nondimensional_problem
+    from dhfield.bem.solver import Prediction, solve_problem
 
     nd = nondimensional_problem(mu, beta0, n)
     dh = compare.pull_off("dh-elliptic", mu, beta0, "load")
@@ -63,7 +63,7 @@ def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
         approach, c, d = float(dh["delta_star"]), float(dh["c_star"]), float(dh["d_star"])
         if start != "dh":
             d = c * float(ta["adhesive_ellipticity"])
-    prob = AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, None, 1.0)
+    prob = nd.adhesive_problem()
     x, y = nd.grid.mesh()
     stress = nd.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
     t0 = time.perf_counter()

@@ -24,6 +24,7 @@ import numpy as np
 CASES = (
     ("located-sphere", 2.0, 1.0, 128, dict(search="located")),
     ("located-ellipse", 1.0, 0.6, 128, dict(search="located")),
+    ("located-two-levels", 1.0, 1.0, 256, dict(search="located")),
     ("bracket-sphere", 2.0, 1.0, 64, dict(search="bracket")),
     ("bracket-nested", 1.0, 1.0, 128, dict(search="bracket", nested=True)),
     ("bracket-ellipse", 1.0, 0.6, 64, dict(search="bracket")),
