@@ -22,6 +22,7 @@ names of :mod:`dhfield.bem.operator` are re-exported here, so
 """
 from .operator import *  # noqa: F401,F403
 from .operator import __all__ as _operator_all
+from ._wisdom import save_wisdom  # noqa: F401  (not public: verification/bench_bem saves its own plans)
 from .laws import DugdaleLaw, ExponentialLaw, cell_fraction_below  # noqa: E402
 from .state import ContactState, mask_semi_axes  # noqa: E402
 from .solver import (DEFAULT_MAX_ITER, DEFAULT_TOL, ContactPressureSolution, solve_adhesive,  # noqa: E402

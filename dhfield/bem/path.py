@@ -28,7 +28,7 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from .._validation import check_count, check_finite, check_positive, check_sequence
-from .branch import NOT_ON_BRANCH, Branch, PathProgress, UnloadingPath
+from .branch import Branch, PathProgress, UnloadingPath
 from .continuation import FOLD_STEPS, fold_by_adhesive_force
 from .solver import DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction
 

@@ -29,7 +29,7 @@ from .branch import Branch, UnloadingPath
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
 from .path import PathOptions, PathStart, load_control_path, path_on
-from .solver import AdhesiveProblem, Prediction, solve_problem
+from .solver import AdhesiveProblem, Prediction
 from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "PullOffStart", "AdhesivePullOff", "NondimensionalProblem",
