@@ -46,7 +46,7 @@ def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) ->
     n_steps : int
         Unloading steps from the start of unloading to the expected jump (4 to 1e6).
     margin : float
-        Domain half-width per expected zone semi-axis, > 0.
+        Domain half-width per expected zone semi-axis, > 1 (the zone must lie inside the grid).
 
     Returns
     -------
@@ -68,8 +68,21 @@ def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) ->
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
+    return _start(mu, beta0, n_steps, _check_margin(margin))
+
+
+def _check_margin(margin) -> float:
+    """``margin`` as a domain half-width per zone semi-axis: a number > 1 (ValueError naming it otherwise).
+
+    The largest cohesive zone of the path (at the start of unloading) must lie inside the
+    grid: with margin <= 1 the domain cuts it and the pull-off is that of another problem
+    (issue 18: margin = 0.3 gave W* = -0.261, margin = 0.1 -0.029, for about -0.79).
+    """
     margin = float(check_positive("margin", margin, "domain half-width per zone semi-axis"))
-    return _start(mu, beta0, n_steps, margin)
+    if not margin > 1.0:
+        raise ValueError("margin must be > 1 (domain half-width per semi-axis of the largest cohesive zone "
+                         f"of the path, which must lie inside the grid); got {margin!r}")
+    return margin
 
 
 def _start(mu, beta0, n_steps, margin) -> PullOffStart:
@@ -137,8 +150,7 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     beta0 = float(check_ellipticity("beta0", beta0))
     n = check_cells(n)
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    margin = float(check_positive("margin", margin, "domain half-width per zone semi-axis"))
-    return paper_problem(mu, beta0, n, _start(mu, beta0, n_steps, margin), law=law)
+    return paper_problem(mu, beta0, n, _start(mu, beta0, n_steps, _check_margin(margin)), law=law)
 
 
 def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,

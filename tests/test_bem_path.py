@@ -154,4 +154,6 @@ def test_displacement_control_results_carry_their_measured_caveat():
     disp = adhesive_pull_off(2.0, 1.0, 32, control="displacement", progress=False)
     assert DISPLACEMENT_CONTROL_NOTE in disp.note and disp.as_dict()["note"] == disp.note
     load = adhesive_pull_off(2.0, 1.0, 32, control="load", progress=False)
-    assert load.note == "" and np.isnan(load.W_star_error)
+    # load control has no such caveat (its note holds only why it is unresolved: N = 32 is too coarse
+    # for lambda = 2, so its W_star_error is infinite, never NaN)
+    assert DISPLACEMENT_CONTROL_NOTE not in load.note and not np.isnan(load.W_star_error)

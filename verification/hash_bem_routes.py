@@ -10,6 +10,8 @@ Two runs of the same code print the same lines; diff the output of two commits::
 
     PYTHONPATH=$PWD .venv/bin/python -m verification.hash_bem_routes > hashes.txt
 
+``--skip FIELD`` leaves a field out everywhere (e.g. one added since the reference run).
+
 About 1-2 minutes on one core.
 """
 from __future__ import annotations
@@ -84,9 +86,16 @@ def result_lines(label, res):
 
 
 def main(argv=None):
+    """``argv``: case labels to run (default all); ``--skip FIELD`` leaves a field out everywhere
+    (e.g. a field added since the reference run, to compare the rest)."""
     from dhfield.bem import adhesive_pull_off, refine_pull_off
 
-    only = set(argv or ())
+    argv = list(argv or ())
+    while "--skip" in argv:
+        k = argv.index("--skip")
+        SKIP.add(argv[k + 1])
+        del argv[k:k + 2]
+    only = set(argv)
     results = {}
     for label, mu, beta0, n, kw in CASES:
         if only and label not in only:

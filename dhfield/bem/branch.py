@@ -97,9 +97,10 @@ class UnloadingPath:
         States and CG iterations solved on coarser grids for the warm starts
         (``warm_start``; 0 without), not counted in the arrays above.
     pull_off_error : float
-        Displacement control: error estimate of ``pull_off_load`` from the fit
-        around the fold [force], without the grid's discretisation error (NaN
-        when it cannot be estimated, and under load control).
+        Error estimate of ``pull_off_load`` [force], without the grid's
+        discretisation error: from the fit around the fold (displacement
+        control) or the samples around the minimum (load control,
+        :meth:`Branch.minimum_error`); NaN when it cannot be estimated.
     pull_off_note : str
         Caveats on the pull-off (empty if none): under displacement control, a
         branch that ends by loss of contact, or a fold that is not bracketed.
@@ -296,6 +297,25 @@ class Branch:
             return order, None
         return order, refine_sampled_minimum(np.array([self.approach(i) for i in order]), w, first=False)
 
+    def minimum_error(self, order, sm) -> float:
+        """Error estimate of the load minimum ``sm`` of the states ``order`` [force] (inf at an end).
+
+        The change of the minimum between the parabola's vertex and the best sample (the
+        vertex's own error is O(h^3), far smaller); when the vertex is the sample, the load
+        step to its nearer neighbour (the samples resolve no better).  It does not include
+        the grid's discretisation error.  Infinite when the minimum is at an end of the samples.
+        """
+        if sm is None or sm.at_boundary:
+            return float("inf")
+        w = np.array([self.records[i]["load"] if self.usable(i) else np.nan for i in order])
+        best = float(np.nanmin(w))
+        if sm.y != best:
+            return abs(best - sm.y)
+        good = np.flatnonzero(np.isfinite(w))
+        at = int(np.searchsorted(good, sm.index))
+        near = [w[good[j]] for j in (at - 1, at + 1) if 0 <= j < good.size]
+        return float(min(abs(v - best) for v in near)) if near else float("inf")
+
     def extend_until_interior(self, indices, next_approach, max_states, *, phase="unloading", resolve_jump=False):
         """One more state beyond the end holding the lowest load, until the load minimum is interior.
 
@@ -438,4 +458,5 @@ class Branch:
         reached = [i for i in range(len(self.records)) if self.records[i]["phase"] not in NOT_ON_BRANCH
                    and self.approach(i) >= self.approach(k_po)]
         return self.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=k_po,
-                            converged=all(self.records[i]["converged"] for i in reached))
+                            converged=all(self.records[i]["converged"] for i in reached),
+                            error=self.minimum_error(order, sm))

@@ -194,6 +194,11 @@ def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProble
         raise ValueError("law must be 'dugdale' or 'exponential'; got None")
     if not isinstance(start, PullOffStart):
         raise ValueError(f"start must be a PullOffStart; got {type(start).__name__}")
+    c, d = start.zone
+    if not (c < start.half_width_x and d < start.half_width_y) and np.all(np.isfinite(start.zone)):
+        raise ValueError(f"start.zone {start.zone!r} must lie inside the domain (half-widths "
+                         f"{start.half_width_x:.4g} x {start.half_width_y:.4g}): the domain is too small for the "
+                         "contact")
     grid = Grid.centered(n, start.half_width_x, half_width_y=start.half_width_y)
     return NondimensionalProblem(mu, beta0, grid, _initial_gap(grid, beta0), law_obj, float(sin_skew_angle(beta0)),
                                  start.approach_max, start.approach_step, start.approach, start.zone)
@@ -232,8 +237,11 @@ class AdhesivePullOff:
     failures : tuple of dict
         Unconverged states (approach, residual, iterations, phase).
     resolved : bool
-        False when the grid is too coarse to resolve the Dugdale edge
-        (dx > 2 E* h0/(kappa_n sigma0), see ``EDGE_WIDTH_FACTOR``): increase n.
+        False when the answer is not trustworthy, the reasons in ``note``: the
+        grid is too coarse for the law's edge (``EDGE_WIDTH_FACTOR``), W* is
+        stronger than the DMT limit -sin(theta_skew) or above 0, or the Dugdale
+        zone is collapsed onto the contact (c* <= a*) or narrower than
+        ``ZONE_MIN_CELLS`` cells.  The values are reported, never clipped.
     half_width_x, half_width_y : float
         Domain half-widths [c_r].
     elapsed : float
@@ -241,11 +249,15 @@ class AdhesivePullOff:
     path : UnloadingPath
         The whole path.
     W_star_error : float
-        Displacement control: error estimate of ``W_star`` from the fit around
-        the fold (:func:`dhfield.bem.continuation.fold_by_adhesive_force`),
-        without the grid's discretisation error; NaN under load control.
+        Error estimate of ``W_star`` without the grid's discretisation error:
+        under displacement control from the fit around the fold
+        (:func:`dhfield.bem.continuation.fold_by_adhesive_force`), under load
+        control from the samples around the minimum
+        (:meth:`dhfield.bem.branch.Branch.minimum_error`).  Never NaN: infinite
+        when there is no estimate or the answer is not ``resolved``.
     note : str
-        Caveats on the pull-off (empty under load control): every
+        Caveats on the pull-off (empty for a resolved load-control pull-off): why it is
+        not ``resolved``; every
         displacement-control result carries :data:`DISPLACEMENT_CONTROL_NOTE`
         (its measured errors against Maugis-Dugdale), and says when the branch
         ends by loss of contact or no fold was bracketed.
@@ -494,7 +506,8 @@ def located_path(problem, ws, options):
     order, sm = b.minimum(range(len(b.records)))
     if sm.at_boundary or not all(r["converged"] for r in b.records):
         return None
-    return b.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=order[sm.index], converged=True)
+    return b.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=order[sm.index], converged=True,
+                     error=b.minimum_error(order, sm))
 
 
 def solve_pull_off(problem, *, control="load", search="located", nested=None, options=PathOptions()) -> AdhesivePullOff:
@@ -572,8 +585,51 @@ DISPLACEMENT_CONTROL_NOTE = (
     "near lambda = 1 coarser grids can mistake the loss of contact for the fold (N = 96: -3.1 %)")
 
 
+#: Slack of the DMT bound on W*, relative to it: the accuracy the BEM states where it is
+#: resolved (1 % of Maugis-Dugdale at N = 256, tests/test_cli_solve.py); a pull-off stronger
+#: than DMT by more than this (or than its W_star_error) is not a physical answer.
+DMT_BOUND_SLACK = 0.01
+#: Fewest cells across the Dugdale zone (c* - a*, d* - b*) of a resolved pull-off state: a
+#: zone narrower than a cell is not represented (issue 18: c* = a* at mu = 30, N = 64, W* = -7.24).
+ZONE_MIN_CELLS = 1.0
+
+
+def _unresolved_reasons(prob, path, w_star, error, axes):
+    """Why a pull-off is not a resolved answer (empty when it is): the grid, then the physical bounds.
+
+    ``axes`` = (a*, b*, c*, d*) of the pull-off state.  Bounds: W* between the DMT limit
+    -sin(theta_skew) (Eq. 34 of W = -2 pi Delta gamma sqrt(R'R''), the rigid limit of every
+    law with that work of adhesion) and the zero-adhesion limit 0; for the Dugdale law a
+    cohesive zone beyond the contact, at least ``ZONE_MIN_CELLS`` cells wide on both axes.
+    """
+    reasons = []
+    if not path.resolved:
+        reasons.append("the grid is too coarse for the traction law's edge (EDGE_WIDTH_FACTOR): increase n")
+    if not np.isfinite(w_star):
+        return reasons + ["no pull-off was found (no converged contact state)"]
+    dmt = -prob.sin_skew
+    if w_star < dmt - max(DMT_BOUND_SLACK * abs(dmt), error if np.isfinite(error) else 0.0):
+        reasons.append(f"W* = {w_star:.4g} is stronger than the DMT limit {dmt:.4g}")
+    if w_star > 0.0:
+        reasons.append(f"W* = {w_star:.4g} is above the zero-adhesion limit 0")
+    a, b, c, d = axes
+    if isinstance(prob.law, DugdaleLaw):
+        g = prob.grid
+        if not (c > a and d > b):
+            reasons.append(f"the Dugdale zone has collapsed onto the contact (c* = {c:.4g}, a* = {a:.4g})")
+        elif min((c - a) / g.dx, (d - b) / g.dy) < ZONE_MIN_CELLS:
+            reasons.append(f"the Dugdale zone is narrower than {ZONE_MIN_CELLS:g} cell (c* - a* = {c - a:.3g}, "
+                           f"dx = {g.dx:.3g}; d* - b* = {d - b:.3g}, dy = {g.dy:.3g}): increase n")
+    return reasons
+
+
 def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str) -> AdhesivePullOff:
-    """The pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state."""
+    """The pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state.
+
+    ``resolved`` is False, with the reasons in ``note``, when the grid is too coarse or the
+    answer breaks a physical bound (:func:`_unresolved_reasons`); ``W_star_error`` is then
+    infinite (no bound), as it is when the path gives no estimate.
+    """
     note = path.pull_off_note
     if path.control == "displacement":
         note = "; ".join(filter(None, (note, DISPLACEMENT_CONTROL_NOTE)))
@@ -581,15 +637,22 @@ def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, s
     a, b = st.contact_semi_axes()
     c, d = st.cohesive_semi_axes()
     scale = prob.sin_skew / (2.0 * math.pi)  # Eq. (34): W* = W sin(theta_skew) / (2 pi R dgamma)
+    w_star = float(path.pull_off_load * scale)
+    error = float(abs(path.pull_off_error * scale))
+    reasons = _unresolved_reasons(prob, path, w_star, error, (a, b, c, d))
+    if reasons or not np.isfinite(error):
+        error = float("inf")
+    if reasons:
+        note = "; ".join(filter(None, (note, "unresolved: " + "; ".join(reasons))))
     return AdhesivePullOff(
         mu=prob.mu, beta0=prob.beta0, n=int(n), law=prob.law.name, control=path.control,
-        W_star=float(path.pull_off_load * scale), a_star=a, b_star=b, c_star=c, d_star=d,
+        W_star=w_star, a_star=a, b_star=b, c_star=c, d_star=d,
         beta_ab=b / a if a > 0 else float("nan"), beta_cd=d / c if c > 0 else float("nan"),
         delta_star=float(path.pull_off_approach), converged=path.pull_off_converged, n_steps=path.n_steps,
         iterations=int(path.iterations.sum()), residual=float(path.residual.max()), failures=path.failures,
-        resolved=path.resolved, half_width_x=0.5 * prob.grid.nx * prob.grid.dx,
+        resolved=not reasons, half_width_x=0.5 * prob.grid.nx * prob.grid.dx,
         half_width_y=0.5 * prob.grid.ny * prob.grid.dy, elapsed=path.elapsed, path=path,
-        W_star_error=float(abs(path.pull_off_error * scale)), note=note, search=search)
+        W_star_error=error, note=note, search=search)
 
 
 def richardson_extrapolation(n, values):
@@ -758,5 +821,5 @@ def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> A
         k_po, w_po, d_po = order[sm.index], sm.y, sm.x
     converged = all(r["converged"] for r in b.records) and sm is not None and not sm.at_boundary
     path = b.to_path(control="load", load=w_po, approach=d_po, pull_off_index=k_po, converged=converged,
-                     order=order)
+                     order=order, error=b.minimum_error(order, sm))
     return _pull_off_result(problem, n, path, "refine")

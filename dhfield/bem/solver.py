@@ -179,6 +179,14 @@ class AdhesiveProblem:
             self.resolved = want <= 2.0 * self.law.range
             # wanted edge width per its cap 2 h0 (resolved iff <= 1)
             self.edge_width_ratio = want / (2.0 * self.law.range)
+        elif self.law is not None:
+            # a smooth law has no edge to smear: the discrete state is stable only if its steepest
+            # slope sigma0/rho times the edge cells' compliance kappa dx/E* is below 1 (the same
+            # criterion as the Dugdale edge's, whose smeared slope is sigma0/(2 h0))
+            cells = math.sqrt(grid.nx * grid.ny)
+            kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(cells))
+            slope = self.law.max_stress / self.law.range
+            self.resolved = kappa * slope * math.sqrt(dx * dy) / e <= 1.0
 
     def to_full(self, q):
         return unfold_quadrant(q) if self.symmetric else q
@@ -794,4 +802,4 @@ def assemble_state(prob, delta, p, s, h, iterations, residual, converged, outer)
         grid=prob.grid, pressure=full(p - s), gap=full(h), approach=float(delta), load=load,
         contact=full(contact_w), cohesive=full(coh), law=law, converged=bool(converged),
         iterations=int(iterations), residual=float(residual), outer_iterations=int(outer),
-        repulsive_pressure=full(p))
+        repulsive_pressure=full(p), resolved=bool(prob.resolved))
