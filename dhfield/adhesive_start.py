@@ -130,14 +130,8 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-]; sigma0 = mu in these units.
-    beta0 : float
-        Initial (Hertz) ellipticity in (0, 1] [-].
-    n : int
-        Cells along each axis (even, >= 8) [-].
-    law : {'dugdale', 'exponential'}
-        Traction law with sigma0 = mu and Delta gamma = 1.
+    mu, beta0, n, law
+        As in :func:`dhfield.bem.pull_off.paper_problem` (n even, 8 to 65536 cells per axis).
     n_steps, margin
         As in :func:`pull_off_start`.
 
