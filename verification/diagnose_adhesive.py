@@ -27,6 +27,7 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import argparse
+import dataclasses
 import sys
 import time
 
@@ -63,11 +64,12 @@ def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
         approach, c, d = float(dh["delta_star"]), float(dh["c_star"]), float(dh["d_star"])
         if start != "dh":
             d = c * float(ta["adhesive_ellipticity"])
+    # the library's cold start (sigma0 on the zone) from this start's approach and zone
+    nd = dataclasses.replace(nd, pull_off_approach=approach, pull_off_zone=(c, d))
     prob = nd.adhesive_problem()
-    x, y = nd.grid.mesh()
-    stress = nd.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
+    cold = nd.path_start(prob)
     t0 = time.perf_counter()
-    st = solve_problem(prob, approach, Prediction(np.zeros_like(prob.z), prob.to_work(stress)), tol, max_iter)
+    st = solve_problem(prob, approach, Prediction(np.zeros_like(prob.z), cold.stress), tol, max_iter)
     return approach, (c, d), st, time.perf_counter() - t0, nd, prob
 
 
