@@ -173,8 +173,11 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
                            f"{' (all beyond the pull-off)' if after else ''}, "
                            f"worst residual {worst:.3g}")
     if not d.get("resolved", True):
-        rec["message"] = (rec["message"] + "; " if rec["message"] else f"{where}: ") + \
-            "grid too coarse for the Dugdale edge (resolved=False)"
+        # the solver's note says why (too coarse for the edge, a physical bound broken, a collapsed zone)
+        note = str(d.get("note", ""))
+        why = note[note.index("unresolved: "):] if "unresolved: " in note else \
+            "unresolved: grid too coarse for the Dugdale edge"
+        rec["message"] = (rec["message"] + "; " if rec["message"] else f"{where}: ") + f"{why} (resolved=False)"
     return rec, res
 
 
