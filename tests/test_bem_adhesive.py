@@ -1,4 +1,4 @@
-"""End-to-end tests of the adhesive BEM (dhfield.bem.adhesive, the public names): limits and identities.
+"""End-to-end tests of the adhesive BEM (dhfield.bem and dhfield.adhesive_start, the public names): limits and identities.
 
 The parts are tested in tests/test_bem_solver.py (one state), tests/test_bem_path.py
 (paths, the displacement-control fold) and tests/test_bem_pull_off.py (the paper's
@@ -18,7 +18,7 @@ import pytest
 
 from dhfield import hertz, jkr_elliptic, maugis_dugdale, transition
 from dhfield.bem import Grid, adhesive_pull_off, solve_adhesive
-from dhfield.bem.adhesive import nondimensional_problem, richardson_extrapolation
+from dhfield.bem import nondimensional_problem, richardson_extrapolation
 from dhfield.geometry import radius_ratio, sin_skew_angle
 
 #: Hertz on 64^2 cells over 1.25 a: semi-axes from the second moments of the pixel

@@ -12,7 +12,7 @@ import pyfftw
 import pytest
 
 from dhfield import bem
-from dhfield.bem import operator as op
+from dhfield.bem import _wisdom as op
 
 #: Seconds a child Python may take to import dhfield and plan a 16 x 16 operator on a loaded 2-core machine.
 CHILD_TIMEOUT = 120
@@ -86,7 +86,7 @@ def _load_from(monkeypatch, cache):
     monkeypatch.setattr(op, "_WISDOM_STATE", {"loaded": False, "saved": None})
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        op._load_wisdom()
+        op.load_wisdom()
     return [w for w in caught if issubclass(w.category, op.WisdomCacheWarning)]
 
 

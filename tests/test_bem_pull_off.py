@@ -17,9 +17,9 @@ import pytest
 from dhfield import compare, transition
 from dhfield.bem import adhesive_pull_off, refine_pull_off
 from dhfield.bem import pull_off as pull_off_module
-from dhfield.bem.pull_off import (LOCATE_MAX_EXTEND, LOCATE_VERTEX_STATES, NestedWarmStart,
-                                  interpolate_state, nondimensional_problem)
-from dhfield.bem.solver import DEFAULT_TOL, AdhesiveProblem, solve_problem
+from dhfield.bem import nondimensional_problem
+from dhfield.bem.pull_off import LOCATE_MAX_EXTEND, NestedWarmStart, interpolate_state
+from dhfield.bem.solver import DEFAULT_TOL, solve_problem
 
 
 @pytest.fixture(scope="module")
@@ -47,29 +47,6 @@ def test_refine_pull_off_names_a_bad_count(coarse, kwargs, name):
         refine_pull_off(coarse, **kwargs)
 
 
-#: The start is copied from the closure's pull-off record: only round-off can differ.
-RTOL_SAME_NUMBER = 1e-12
-
-
-def test_cold_start_of_the_bracket_search_is_the_two_axis_pull_off():
-    """The fix of beta0 = 0.5, mu = 5 (issue 8): the bracket search cold-starts from the two-axis
-    closure's pull-off state, whose adhesive ellipse is rounder than beta0 (like the BEM's), not
-    from the paper's zone d = beta0 c (48 cells short along y at N = 512: no convergence)."""
-    from dhfield import compare, model
-
-    nd = nondimensional_problem(5.0, 0.5, 16)
-    ref = compare.pull_off("dh-elliptic-two-axis", 5.0, 0.5, "load")
-    c, d = nd.pull_off_zone
-    assert nd.pull_off_approach == pytest.approx(float(ref["delta_star"]), rel=RTOL_SAME_NUMBER)
-    assert (c, d) == pytest.approx((float(ref["c_star"]), float(ref["d_star"])), rel=RTOL_SAME_NUMBER)
-    assert d / c > 0.5 + 0.05                      # rounder than beta0 (two-axis: 0.596)
-    # the circle: the DH model itself (the two-axis closure reduces to it), not computed twice
-    sphere = nondimensional_problem(5.0, 1.0, 16)
-    po = model.pull_off(5.0, 1.0)
-    assert sphere.pull_off_approach == float(po.delta_star)
-    assert sphere.pull_off_zone[0] == sphere.pull_off_zone[1]
-
-
 # ============================================================================ the located search
 #: The discrete load W(delta) is jagged at the lattice level (contact cells switch one by
 #: one): ~5e-4 relative between neighbouring samples at N = 128 (measured: lambda = 3,
@@ -93,7 +70,7 @@ def test_located_search_equals_the_bracket_search(lam, beta0, mu):
     assert located.W_star == pytest.approx(bracket.W_star, rel=RTOL_LOCATED_VS_BRACKET)
     # only lattice samples (and vertex states) on the fine grid, nothing past the minimum's bracket
     assert set(located.path.phase) <= {"unloading", "refine"}
-    assert 3 <= located.n_steps <= 3 + LOCATE_MAX_EXTEND + LOCATE_VERTEX_STATES
+    assert 3 <= located.n_steps <= 3 + LOCATE_MAX_EXTEND + 1   # lattice samples, extensions, at most one vertex
     assert located.path.coarse_states > 0
     # the reported minimum is interior: fine samples on both sides of it
     assert located.path.approach.min() < located.delta_star < located.path.approach.max()
@@ -130,9 +107,9 @@ def test_nested_warm_start_reaches_the_state_of_the_plain_interpolation_in_fewer
     # the warm start takes the fine grid's own sub-cell zone of the interpolated gap
     mu = float(transition.tabor_from_maugis(3.0))
     nd = nondimensional_problem(mu, 1.0, 128)
-    ws = NestedWarmStart(mu, 1.0, 128, problem=nd)
+    ws = NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
     delta = nd.pull_off_approach
-    prob = AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, None, 1.0)
+    prob = nd.adhesive_problem()
     plain = solve_problem(prob, delta, interpolate_state(ws.coarse_state(delta), nd.grid), DEFAULT_TOL, 20000)
     nested = solve_problem(prob, delta, ws(delta), DEFAULT_TOL, 20000)
     assert plain.converged and nested.converged
@@ -141,10 +118,13 @@ def test_nested_warm_start_reaches_the_state_of_the_plain_interpolation_in_fewer
     assert nested.iterations < plain.iterations
 
 
-def test_nested_warm_start_rejects_a_problem_of_another_grid():
-    nd = nondimensional_problem(1.0, 1.0, 128)
-    with pytest.raises(ValueError, match="problem"):
-        NestedWarmStart(1.0, 1.0, 256, problem=nd)
+def test_nested_warm_start_rejects_a_grid_without_a_coarser_level():
+    # n = 64: the grid half as fine (32) is below NESTED_MIN_N
+    nd = nondimensional_problem(1.0, 1.0, 64)
+    with pytest.raises(ValueError, match="^problem must have an even n >= 128"):
+        NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
+    with pytest.raises(ValueError, match="^problem must be a NondimensionalProblem"):
+        NestedWarmStart(nd.grid, tol=DEFAULT_TOL, max_iter=20000)
 
 
 
@@ -155,7 +135,7 @@ def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n)
 
     fine = nondimensional_problem(mu, beta0, n)
     for k in (2, 4):
-        derived = pull_off_module._coarser_problem(fine, n // k)
+        derived = fine.coarser(n // k)
         fresh = nondimensional_problem(mu, beta0, n // k)
         assert derived.grid == fresh.grid
         for f in dataclasses.fields(fresh):
@@ -169,7 +149,51 @@ def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n)
 def test_located_search_does_not_locate_on_a_grid_too_coarse_for_the_edge():
     # mu = 5 at N = 64: the edge wants ~3.8x its cap 2 h0 (unconverged states): no location, nothing solved
     nd = nondimensional_problem(5.0, 1.0, 128)
-    ws = NestedWarmStart(5.0, 1.0, 128, problem=nd)
+    ws = NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
     assert ws._prob.edge_width_ratio > pull_off_module.LOCATE_MAX_EDGE_RATIO
     assert np.isnan(ws.locate_pull_off(nd.approach_step / 2))
     assert ws.states_solved == 0
+
+
+# ============================================================================ a resolved answer, or flagged (issue 18)
+def test_exponential_law_has_its_own_resolution_criterion():
+    # issue 18: the sphere at mu = 8, N = 32 under the exponential law gave W* = -2.43 (+224 %) with
+    # resolved = True; its steepest slope sigma0/rho times kappa dx/E* is ~24 there (resolved iff <= 1)
+    res = adhesive_pull_off(8.0, 1.0, 32, law="exponential", progress=False, keep_states=True)
+    assert not res.resolved and res.W_star_error == np.inf
+    assert "stronger than the DMT limit" in res.note        # W* < -1 (Eq. 34 of the DMT pull-off) is reported
+    assert all(not st.resolved for st in res.path.states)   # every state carries the flag
+
+
+def test_collapsed_dugdale_zone_is_not_a_resolved_answer():
+    # issue 18: mu = 30, N = 64 gave W* = -7.24 with c* = a*: the zone is narrower than a cell
+    res = adhesive_pull_off(30.0, 1.0, 64, progress=False)
+    assert not res.resolved and res.c_star <= res.a_star
+    assert "collapsed onto the contact" in res.note and "stronger than the DMT limit" in res.note
+    assert res.W_star < -1.0                                # reported as computed, not clipped
+
+
+def test_zone_narrower_than_a_cell_is_not_resolved():
+    # issue 18: N = 8 gave W* = -0.859 (about -0.79 true) with resolved = True
+    res = adhesive_pull_off(1.0, 0.9, 8, progress=False)
+    assert not res.resolved and "narrower than 1 cell" in res.note and res.W_star_error == np.inf
+
+
+@pytest.mark.parametrize("control", ["load", "displacement"])
+def test_resolved_answer_has_a_finite_error_estimate(control):
+    # the estimate of the search (or of the fold's fit), never NaN on a returned answer
+    res = adhesive_pull_off(1.0, 1.0, 64, control=control, progress=False, keep_states=True)
+    assert res.resolved and res.converged and "unresolved" not in res.note
+    assert 0.0 < res.W_star_error < np.inf                   # near lambda = 1 the fold's can be a few %
+    assert -1.0 < res.W_star < 0.0                          # between the DMT and zero-adhesion limits
+    assert res.c_star > res.a_star
+    assert all(st.resolved for st in res.path.states)
+
+
+def test_cold_start_outside_the_domain_is_rejected():
+    nd = nondimensional_problem(1.0, 1.0, 16)
+    hw = 0.5 * nd.grid.nx * nd.grid.dx
+    start = pull_off_module.PullOffStart(hw, hw, nd.approach_max, nd.approach_step, nd.pull_off_approach,
+                                         (1.5 * hw, 0.5 * hw))
+    with pytest.raises(ValueError, match="must lie inside the domain"):
+        pull_off_module.paper_problem(1.0, 1.0, 16, start)

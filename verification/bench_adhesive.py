@@ -9,7 +9,7 @@
     ``approach_max - j approach_step/2`` around the coarser minimum on every
     finer grid), and only 3-4 states are solved on the N grid.  Every state
     starts from the same approach solved on the grid half as fine
-    (:class:`dhfield.bem.adhesive.NestedWarmStart`).  Its wall time includes
+    (:class:`dhfield.bem.pull_off.NestedWarmStart`).  Its wall time includes
     the analytic DH prediction and the coarse solves.  ``search='bracket'``
     (the default of ``adhesive_pull_off``: the bracket search on the N grid
     itself, 4-6 states) is timed beside it.  Printed per run: wall and CPU
@@ -112,7 +112,7 @@ LAMBDA_PER_MU = 1.1272
 #: Periodic side per MD zone radius for tamaas (issue 8: "a periodic domain 8x the zone").
 TAMAAS_SIDE_PER_ZONE = 8.0
 HERTZ_BETA = 0.7
-#: Peers' tolerances, set to our nominal 1e-6 (dhfield.bem.adhesive.DEFAULT_TOL); the definitions
+#: Peers' tolerances, set to our nominal 1e-6 (dhfield.bem.DEFAULT_TOL); the definitions
 #: differ (tamaas: relative complementarity error; ContactMechanics: penetration, here 1e-6 delta).
 PEER_TOL = 1e-6
 #: Hertz domains: half-widths per semi-axis of our accuracy grid, and tamaas' periodic side per semi-axis.
@@ -293,7 +293,7 @@ def _w_star(approaches, loads):
 def bench_path(n, lambdas, tm, march=False):
     from dhfield import compare
     from dhfield.bem import adhesive_pull_off
-    from dhfield.bem.adhesive import nondimensional_problem
+    from dhfield.adhesive_start import nondimensional_problem
 
     print(f"(a) path to the load-control pull-off, sphere, Dugdale, N = {n}")
     head = (f"    {'lambda':>6s} {'solver / setup':36s} {'wall s':>8s} {'cpu s':>7s} {'states':>6s} {'CG it/state':>11s} "

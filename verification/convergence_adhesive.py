@@ -1,4 +1,4 @@
-"""Accuracy of the adhesive BEM solver (dhfield.bem.adhesive): the "must show" figures of issue 8.
+"""Accuracy of the adhesive BEM solver (dhfield.bem, dhfield.adhesive_start): the "must show" figures of issue 8.
 
 Prints, side by side in one run:
 

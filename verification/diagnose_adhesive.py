@@ -27,6 +27,7 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import argparse
+import dataclasses
 import sys
 import time
 
@@ -51,8 +52,8 @@ def _across(st, grid):
 def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
     """(approach, zone, state, seconds) of the first bracket state solved from ``start``."""
     from dhfield import compare
-    from dhfield.bem.pull_off import nondimensional_problem
-    from dhfield.bem.solver import AdhesiveProblem, Prediction, solve_problem
+    from dhfield.adhesive_start import nondimensional_problem
+    from dhfield.bem.solver import Prediction, solve_problem
 
     nd = nondimensional_problem(mu, beta0, n)
     dh = compare.pull_off("dh-elliptic", mu, beta0, "load")
@@ -63,11 +64,12 @@ def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
         approach, c, d = float(dh["delta_star"]), float(dh["c_star"]), float(dh["d_star"])
         if start != "dh":
             d = c * float(ta["adhesive_ellipticity"])
-    prob = AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, None, 1.0)
-    x, y = nd.grid.mesh()
-    stress = nd.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
+    # the library's cold start (sigma0 on the zone) from this start's approach and zone
+    nd = dataclasses.replace(nd, pull_off_approach=approach, pull_off_zone=(c, d))
+    prob = nd.adhesive_problem()
+    cold = nd.path_start(prob)
     t0 = time.perf_counter()
-    st = solve_problem(prob, approach, Prediction(np.zeros_like(prob.z), prob.to_work(stress)), tol, max_iter)
+    st = solve_problem(prob, approach, Prediction(np.zeros_like(prob.z), cold.stress), tol, max_iter)
     return approach, (c, d), st, time.perf_counter() - t0, nd, prob
 
 

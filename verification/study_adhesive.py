@@ -173,8 +173,11 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
                            f"{' (all beyond the pull-off)' if after else ''}, "
                            f"worst residual {worst:.3g}")
     if not d.get("resolved", True):
-        rec["message"] = (rec["message"] + "; " if rec["message"] else f"{where}: ") + \
-            "grid too coarse for the Dugdale edge (resolved=False)"
+        # the solver's note says why (too coarse for the edge, a physical bound broken, a collapsed zone)
+        note = str(d.get("note", ""))
+        why = note[note.index("unresolved: "):] if "unresolved: " in note else \
+            "unresolved: grid too coarse for the Dugdale edge"
+        rec["message"] = (rec["message"] + "; " if rec["message"] else f"{where}: ") + f"{why} (resolved=False)"
     return rec, res
 
 
@@ -355,7 +358,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
     command : str
         The command line, stored as provenance.
     tolerances : dict, optional
-        Solver tolerances to store (default: dhfield.bem.adhesive defaults).
+        Solver tolerances to store (default: dhfield.bem defaults).
 
     Returns
     -------
@@ -457,7 +460,7 @@ def ground_truth_dataset(records, *, ns=None, references=None, command="", toler
               "model": cf.label_coordinate("model", models)}
     ds = xr.Dataset(data, coords=coords)
     if tolerances is None:
-        from dhfield.bem import adhesive
+        from dhfield import bem as adhesive
 
         tolerances = {"tol": adhesive.DEFAULT_TOL, "max_iter": adhesive.DEFAULT_MAX_ITER,
                       "domain_margin": adhesive.DOMAIN_MARGIN, "unloading_steps": adhesive.DEFAULT_STEPS}
@@ -489,7 +492,7 @@ def consolidate(work_dir=DEFAULT_WORK_DIR, out=DEFAULT_OUT, *, ns=None, law="dug
         references = cached_reference_table(work_dir, beta0s, mus, control)
     tolerances = None
     if max_iter is not None:
-        from dhfield.bem import adhesive
+        from dhfield import bem as adhesive
 
         tolerances = {"tol": adhesive.DEFAULT_TOL, "max_iter": int(max_iter),
                       "domain_margin": adhesive.DOMAIN_MARGIN, "unloading_steps": adhesive.DEFAULT_STEPS}

@@ -1,24 +1,56 @@
-"""Boundary-element (DC-FFT) solvers on the elastic half-space.
+"""Boundary-element (DC-FFT) solvers on the elastic half-space: the one BEM facade.
 
 * :mod:`dhfield.bem.operator` -- the forward operator: Love's influence
   coefficients, DC-FFT convolution on pyfftw, cached plans, symmetry mode.
 * :mod:`dhfield.bem.laws` -- traction-separation laws (Dugdale, exponential).
 * :mod:`dhfield.bem.state` -- :class:`ContactState`, the one typed BEM solution.
 * :mod:`dhfield.bem.solver` -- the self-consistent adhesive contact solver (one state).
-* :mod:`dhfield.bem.path` -- loading-unloading paths, the pull-off and the fold.
-* :mod:`dhfield.bem.pull_off` -- the pull-off in the paper's units, coarse to fine.
-* :mod:`dhfield.bem.adhesive` -- the public names of the three, in one place.
+* :mod:`dhfield.bem.branch` -- :class:`~dhfield.bem.branch.Branch`, the states of one
+  problem along the approach: the engine under every pull-off route.
+* :mod:`dhfield.bem.continuation` -- states at a prescribed adhesive force (the fold).
+* :mod:`dhfield.bem.path` -- loading-unloading paths: the bracket search, the
+  marching path, the continuation (:func:`unloading_path` dispatches).
+* :mod:`dhfield.bem.pull_off` -- the pull-off in the paper's units from a given
+  start (:class:`PullOffStart`): located, bracket, march, continuation, coarse to fine.
 
-The public names of :mod:`dhfield.bem.operator` are re-exported here, so
+This package imports no analytic model: the start of the paper's problem is chosen
+from the models by :mod:`dhfield.adhesive_start`, whose :func:`adhesive_pull_off`,
+:func:`refine_pull_off` and :func:`nondimensional_problem` are forwarded here on
+first use (``from dhfield.bem import adhesive_pull_off`` keeps working).  The public
+names of :mod:`dhfield.bem.operator` are re-exported here, so
 ``from dhfield import bem; bem.get_operator(...)`` keeps working.
 """
 from .operator import *  # noqa: F401,F403
 from .operator import __all__ as _operator_all
+from ._wisdom import save_wisdom  # noqa: F401  (not public: verification/bench_bem saves its own plans)
 from .laws import DugdaleLaw, ExponentialLaw, cell_fraction_below  # noqa: E402
 from .state import ContactState, mask_semi_axes  # noqa: E402
-from .adhesive import (AdhesivePullOff, UnloadingPath, adhesive_pull_off,  # noqa: E402
-                       refine_pull_off, richardson_extrapolation, solve_adhesive, unloading_path)
+from .solver import (DEFAULT_MAX_ITER, DEFAULT_TOL, ContactPressureSolution, solve_adhesive,  # noqa: E402
+                     solve_contact_pressure)
+from .continuation import (FoldSearch, adhesive_force, fit_fold, fold_by_adhesive_force,  # noqa: E402
+                           solve_at_adhesive_force)
+from .branch import UnloadingPath  # noqa: E402
+from .path import Fold, PathOptions, fold_of_branch, unloading_path  # noqa: E402
+from .pull_off import (DEFAULT_STEPS, DISPLACEMENT_CONTROL_NOTE, DOMAIN_MARGIN, SEARCHES,  # noqa: E402
+                       AdhesivePullOff, NestedWarmStart, NondimensionalProblem, PullOffStart, interpolate_state,
+                       paper_problem, richardson_extrapolation, solve_pull_off)
 
-__all__ = list(_operator_all) + ["DugdaleLaw", "ExponentialLaw", "cell_fraction_below", "ContactState",
-                                 "mask_semi_axes", "AdhesivePullOff", "UnloadingPath", "adhesive_pull_off",
-                                 "refine_pull_off", "richardson_extrapolation", "solve_adhesive", "unloading_path"]
+#: Names of :mod:`dhfield.adhesive_start` forwarded on first use (it imports the analytic models).
+_FROM_START = ("adhesive_pull_off", "refine_pull_off", "nondimensional_problem", "pull_off_start")
+
+__all__ = list(_operator_all) + [
+    "DugdaleLaw", "ExponentialLaw", "cell_fraction_below", "ContactState", "mask_semi_axes",
+    "DEFAULT_MAX_ITER", "DEFAULT_TOL", "ContactPressureSolution", "solve_adhesive", "solve_contact_pressure",
+    "FoldSearch", "adhesive_force", "fit_fold", "fold_by_adhesive_force", "solve_at_adhesive_force",
+    "UnloadingPath", "Fold", "PathOptions", "fold_of_branch", "unloading_path",
+    "DEFAULT_STEPS", "DISPLACEMENT_CONTROL_NOTE", "DOMAIN_MARGIN", "SEARCHES", "AdhesivePullOff",
+    "NestedWarmStart", "NondimensionalProblem", "PullOffStart", "interpolate_state", "paper_problem", "solve_pull_off",
+    "richardson_extrapolation", *_FROM_START]
+
+
+def __getattr__(name):
+    if name in _FROM_START:
+        from .. import adhesive_start
+
+        return getattr(adhesive_start, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

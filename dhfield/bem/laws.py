@@ -1,4 +1,4 @@
-"""Traction-separation laws of the adhesive BEM solver (:mod:`dhfield.bem.adhesive`).
+"""Traction-separation laws of the adhesive BEM solver (:mod:`dhfield.bem.solver`).
 
 A law gives the tensile adhesive stress sigma(h) >= 0 that acts between the
 surfaces at gap h >= 0.  In the solver's sign convention (pressure positive in

@@ -54,11 +54,7 @@ Performance
 FFTW plans, aligned work arrays and the kernel spectrum are built once per grid
 (:func:`get_operator` caches operators) and reused.  FFTW wisdom is imported
 from, and saved to, ``$DHFIELD_CACHE/fftw_wisdom.bin`` (default directory
-``~/.cache/dhfield``).  The file is plain bytes (:func:`encode_wisdom`: magic
-and format version, pyfftw version, the three wisdom strings with their
-lengths, SHA-256), never a pickle: a file that is corrupt, foreign, not a
-regular file, not owned by this user or writable by others is ignored with a
-:class:`WisdomCacheWarning` and rewritten; failure to write it is ignored.
+``~/.cache/dhfield``) by the private :mod:`dhfield.bem._wisdom`.
 ``threads`` selects FFTW threads (default ``$DHFIELD_THREADS`` or 1), an integer
 in ``1 .. max_threads()`` (4 per CPU); a bad ``DHFIELD_THREADS`` is a
 ValueError naming it.
@@ -76,24 +72,19 @@ References
 """
 from __future__ import annotations
 
-import contextlib
 import functools
 import math
 import operator
-import hashlib
 import os
-import stat
-import tempfile
 import threading
-import warnings
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import pyfftw
 import scipy.fft
 
 from .._validation import check_finite, check_positive
+from ._wisdom import load_wisdom, save_wisdom
 
 __all__ = [
     "MIN_CELLS",
@@ -106,12 +97,6 @@ __all__ = [
     "surface_displacement",
     "quadrant",
     "unfold_quadrant",
-    "cache_dir",
-    "encode_wisdom",
-    "save_wisdom",
-    "decode_wisdom",
-    "WisdomCacheWarning",
-    "WISDOM_MAGIC",
     "THREADS_PER_CPU",
     "max_threads",
     "check_threads",
@@ -302,145 +287,6 @@ def influence_coefficients(grid: Grid, reduced_modulus=1.0) -> np.ndarray:
     return k
 
 
-# --------------------------------------------------------------------------- wisdom
-_WISDOM_LOCK = threading.Lock()
-_WISDOM_STATE = {"loaded": False, "saved": None}
-
-#: First bytes of a wisdom cache file; the digit is the format version.
-WISDOM_MAGIC = b"DHFIELD-FFTW-WISDOM-1\n"
-#: Largest wisdom cache file read [bytes] (real ones are a few kB).
-_WISDOM_MAX_BYTES = 4 * 2**20
-_WISDOM_PARTS = 3  # pyfftw: double, single, long-double wisdom
-
-
-class WisdomCacheWarning(UserWarning):
-    """The FFTW wisdom cache file was ignored (corrupt, foreign or unsafe); it is rewritten."""
-
-
-def cache_dir() -> Path:
-    """Directory for persistent caches: ``$DHFIELD_CACHE`` or ``~/.cache/dhfield``."""
-    env = os.environ.get("DHFIELD_CACHE")
-    return Path(env) if env else Path.home() / ".cache" / "dhfield"
-
-
-def _wisdom_path() -> Path:
-    return cache_dir() / "fftw_wisdom.bin"
-
-
-def _wisdom_header() -> bytes:
-    return WISDOM_MAGIC + f"pyfftw {pyfftw.__version__}\n".encode("ascii")
-
-
-def encode_wisdom(wisdom) -> bytes:
-    """The cache-file bytes of ``pyfftw.export_wisdom()``: plain bytes, never a pickle.
-
-    Layout: :data:`WISDOM_MAGIC`, a ``pyfftw <version>`` line, then for each of
-    the three wisdom strings its length (8 bytes, little-endian) and its bytes,
-    then the SHA-256 of everything before.
-    """
-    parts = tuple(wisdom)
-    if len(parts) != _WISDOM_PARTS or not all(isinstance(w, bytes) for w in parts):
-        raise ValueError("wisdom must be the 3-tuple of bytes of pyfftw.export_wisdom()")
-    body = _wisdom_header() + b"".join(len(w).to_bytes(8, "little") + w for w in parts)
-    return body + hashlib.sha256(body).digest()
-
-
-def decode_wisdom(data: bytes) -> tuple:
-    """The wisdom tuple stored by :func:`encode_wisdom`; ValueError saying why if ``data`` is not one."""
-    header = _wisdom_header()
-    if not data.startswith(WISDOM_MAGIC):
-        raise ValueError("not a dhfield wisdom file (bad magic)")
-    if not data.startswith(header):
-        raise ValueError("written by another pyfftw version")
-    if len(data) < len(header) + 32 or hashlib.sha256(data[:-32]).digest() != data[-32:]:
-        raise ValueError("checksum mismatch (corrupt or truncated)")
-    body, pos, parts = data[:-32], len(header), []
-    for _ in range(_WISDOM_PARTS):
-        if pos + 8 > len(body):
-            raise ValueError("truncated")
-        n = int.from_bytes(body[pos:pos + 8], "little")
-        pos += 8
-        if pos + n > len(body):
-            raise ValueError("truncated")
-        part = bytes(body[pos:pos + n])
-        pos += n
-        if part and not part.startswith(b"(fftw-3"):
-            raise ValueError("not FFTW wisdom text")
-        parts.append(part)
-    if pos != len(body):
-        raise ValueError("trailing bytes")
-    return tuple(parts)
-
-
-def _read_wisdom_file(path: Path):
-    """The decoded wisdom of ``path``, None if absent; ValueError saying why it is unusable."""
-    try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
-    except FileNotFoundError:
-        return None
-    except OSError as exc:
-        raise ValueError(f"cannot be opened ({exc.strerror})") from None
-    with os.fdopen(fd, "rb") as fh:
-        st = os.fstat(fh.fileno())
-        if not stat.S_ISREG(st.st_mode):
-            raise ValueError("not a regular file")
-        if hasattr(os, "getuid") and st.st_uid != os.getuid():
-            raise ValueError("owned by another user")
-        if st.st_mode & 0o022:
-            raise ValueError("writable by other users")
-        data = fh.read(_WISDOM_MAX_BYTES + 1)
-    if len(data) > _WISDOM_MAX_BYTES:
-        raise ValueError(f"larger than {_WISDOM_MAX_BYTES} bytes")
-    return decode_wisdom(data)
-
-
-def _load_wisdom() -> None:
-    with _WISDOM_LOCK:
-        if _WISDOM_STATE["loaded"]:
-            return
-        _WISDOM_STATE["loaded"] = True
-        path = _wisdom_path()
-        try:
-            wisdom = _read_wisdom_file(path)
-        except ValueError as exc:
-            warnings.warn(f"ignoring the FFTW wisdom cache {str(path)!r}: {exc}; it will be rewritten",
-                          WisdomCacheWarning, stacklevel=3)
-            return
-        except Exception:  # noqa: BLE001 - an unreadable cache is harmless
-            return
-        if wisdom is not None:
-            pyfftw.import_wisdom(wisdom)
-            _WISDOM_STATE["saved"] = wisdom
-
-
-def save_wisdom() -> None:
-    """Write the FFTW wisdom gathered so far to ``$DHFIELD_CACHE/fftw_wisdom.bin`` (atomically).
-
-    Operators save it when they are built; call this after planning outside them
-    (e.g. a benchmark's own pyfftw plans).  Nothing is written when the wisdom is
-    unchanged, and a failure to write is ignored (the cache is an optimisation).
-    """
-    with _WISDOM_LOCK:
-        try:
-            wisdom = pyfftw.export_wisdom()
-            if wisdom == _WISDOM_STATE["saved"]:
-                return
-            path = _wisdom_path()
-            path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-            fd, tmp = tempfile.mkstemp(prefix=".wisdom.", suffix=".part", dir=path.parent)  # mode 0600
-            try:
-                with os.fdopen(fd, "wb") as fh:
-                    fh.write(encode_wisdom(wisdom))
-                os.replace(tmp, path)
-            except BaseException:
-                with contextlib.suppress(OSError):
-                    os.unlink(tmp)
-                raise
-            _WISDOM_STATE["saved"] = wisdom
-        except Exception:  # noqa: BLE001 - an unwritable cache is harmless
-            pass
-
-
 #: Threads per CPU accepted at most: FFTW gains nothing beyond the cores; the
 #: factor leaves room for hyper-threading and oversubscription experiments,
 #: while a typo such as 1000000 is refused instead of spawning that many threads.
@@ -527,7 +373,7 @@ class HalfSpaceOperator:
         if self.symmetric and not grid.is_even:
             raise ValueError(f"symmetric mode needs even nx and ny; got nx={grid.nx}, ny={grid.ny}")
         self._lock = threading.Lock()
-        _load_wisdom()
+        load_wisdom()
         kernel = influence_coefficients(grid, self.reduced_modulus)
         if self.symmetric:
             self._build_symmetric(kernel)

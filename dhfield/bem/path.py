@@ -23,147 +23,17 @@ to fine) is :mod:`dhfield.bem.pull_off`.
 """
 from __future__ import annotations
 
-import math
-import sys
-import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from .._validation import check_count, check_finite, check_positive, check_sequence
+from .branch import Branch, PathProgress, UnloadingPath
 from .continuation import FOLD_STEPS, fold_by_adhesive_force
-from .state import ContactState
-from .solver import (DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction,
-                     solve_problem)
+from .solver import DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction
 
-__all__ = ["unloading_path", "UnloadingPath", "fold_of_branch", "Fold", "PathProgress"]
-
-
-@dataclass(frozen=True, eq=False)
-class UnloadingPath:
-    """A displacement-controlled loading-unloading path and its pull-off.
-
-    Attributes
-    ----------
-    approach, load : ndarray
-        Approach delta [length] and load W [force] of every solved state, in
-        solve order (loading, unloading, then the refinements of the pull-off
-        bracket).
-    a, b, c, d : ndarray
-        Second-moment semi-axes of contact and of contact U cohesive zone
-        [length] per state.
-    contact_area : ndarray
-        Contact area per state [length^2].
-    phase : ndarray of str
-        'loading', 'unloading', 'refine', 'jump' (re-solved from separation),
-        'discarded' (a cold start of the bracket search that gave no converged
-        contact state; kept, flagged, excluded from the pull-off), and under
-        displacement control 'continuation' and 'fold' (states at a prescribed
-        adhesive force: the coarse steps and the window around the fold) per state.
-    converged : ndarray of bool
-    iterations : ndarray of int
-        Inner CG iterations per state.
-    outer_iterations : ndarray of int
-    residual : ndarray of float
-    control : str
-        'load' or 'displacement': which pull-off is reported.
-    pull_off_load, pull_off_approach : float
-        Load-control: the minimum of the unloading load, refined by a parabola
-        through the three finest samples around it.  Displacement control: the
-        minimum of the approach along the branch followed by adhesive force
-        (:func:`dhfield.bem.continuation.fold_by_adhesive_force`): the fold, or
-        the loss of contact when the approach still falls there (said in
-        ``pull_off_note``); when neither is bracketed, the fold of delta(W)
-        extrapolated from the converged states (:func:`fold_of_branch`, said in
-        ``pull_off_note``).
-    pull_off_state : ContactState
-        The solved state nearest to the pull-off (its semi-axes are reported).
-    failures : tuple of dict
-        Every state that did not converge: approach, residual, iterations,
-        phase.  Unconverged states are kept in the arrays (flagged) and
-        excluded from the pull-off search.  When a warm-started state does not
-        converge on unloading the branch has ended (the jump): the state at
-        that approach is re-solved from separation (phase 'jump').
-    states : tuple of ContactState
-        All states when requested (``keep_states=True``), else empty.
-    elapsed : float
-        Wall time [s].
-    pull_off_converged : bool
-        True when every state from the start of the path down to the pull-off
-        converged (failures beyond the jump do not count).  Under displacement
-        control: a fold or loss of contact was located and the states before the
-        branch (loading, start) converged; an unconverged state along the branch
-        is left out of the fit (listed in ``failures``).
-    resolved : bool
-        False when the grid is too coarse for the Dugdale edge (see
-        ``EDGE_WIDTH_FACTOR``): the results are then not trustworthy.
-    coarse_states, coarse_iterations : int
-        States and CG iterations solved on coarser grids for the warm starts
-        (``warm_start``; 0 without), not counted in the arrays above.
-    pull_off_error : float
-        Displacement control: error estimate of ``pull_off_load`` from the fit
-        around the fold [force], without the grid's discretisation error (NaN
-        when it cannot be estimated, and under load control).
-    pull_off_note : str
-        Caveats on the pull-off (empty if none): under displacement control, a
-        branch that ends by loss of contact, or a fold that is not bracketed.
-    """
-
-    approach: np.ndarray
-    load: np.ndarray
-    a: np.ndarray
-    b: np.ndarray
-    c: np.ndarray
-    d: np.ndarray
-    contact_area: np.ndarray
-    phase: np.ndarray
-    converged: np.ndarray
-    iterations: np.ndarray
-    outer_iterations: np.ndarray
-    residual: np.ndarray
-    control: str
-    pull_off_load: float
-    pull_off_approach: float
-    pull_off_state: ContactState
-    failures: tuple = ()
-    states: tuple = field(default=(), repr=False)
-    elapsed: float = 0.0
-    pull_off_converged: bool = True
-    resolved: bool = True
-    coarse_states: int = 0
-    coarse_iterations: int = 0
-    pull_off_error: float = float("nan")
-    pull_off_note: str = ""
-
-    @property
-    def n_steps(self) -> int:
-        """Number of solved states."""
-        return int(self.approach.size)
-
-    @property
-    def all_converged(self) -> bool:
-        return bool(np.all(self.converged))
-
-    @property
-    def unloading_order(self) -> np.ndarray:
-        """Indices of the unloading and refinement states by decreasing approach."""
-        idx = np.nonzero(self.phase != "loading")[0]
-        return idx[np.argsort(-self.approach[idx], kind="stable")]
-
-    @classmethod
-    def from_records(cls, records, *, control, pull_off_load, pull_off_approach, pull_off_state,
-                     **rest) -> "UnloadingPath":
-        """A path from one record per solved state (:meth:`ContactState.summary` plus its ``phase``).
-
-        ``rest``: the keyword attributes (failures, states, elapsed, pull_off_converged, ...).
-        """
-        arr = {key: np.array([r[key] for r in records]) for key in
-               ("approach", "load", "a", "b", "c", "d", "contact_area", "phase", "converged", "iterations",
-                "outer_iterations", "residual")}
-        return cls(arr["approach"], arr["load"], arr["a"], arr["b"], arr["c"], arr["d"], arr["contact_area"],
-                   arr["phase"], arr["converged"].astype(bool), arr["iterations"].astype(int),
-                   arr["outer_iterations"].astype(int), arr["residual"], control, float(pull_off_load),
-                   float(pull_off_approach), pull_off_state, **rest)
+__all__ = ["unloading_path", "UnloadingPath", "fold_of_branch", "Fold", "PathProgress", "PathOptions",
+           "PathStart", "bracket_search", "marching_path", "continuation_path"]
 
 
 @dataclass(frozen=True)
@@ -257,32 +127,217 @@ def fold_of_branch(loads, approaches, *, points=5) -> Fold:
     return Fold(fold[0], fold[1], err, True)
 
 
-class PathProgress:
-    def __init__(self, enabled, label):
-        if enabled is None:
-            enabled = bool(getattr(sys.stderr, "isatty", lambda: False)())
-        self.enabled = enabled
-        self.label = label
-        self.t0 = time.perf_counter()
 
-    def update(self, k, st, phase):
-        if self.enabled:
-            el = time.perf_counter() - self.t0
-            sys.stderr.write(f"\r{self.label} {phase:9s} state {k:3d}  delta={st.approach:+.5f}  "
-                             f"W={st.load:+.5f}  it={st.iterations:5d}  {el:6.1f}s ")
-            sys.stderr.flush()
+@dataclass(frozen=True)
+class PathOptions:
+    """Settings of a path (:func:`unloading_path`) and of the pull-off routes on it.
 
-    def close(self):
-        if self.enabled:
-            sys.stderr.write("\n")
-            sys.stderr.flush()
+    Attributes
+    ----------
+    n_loading : int
+        Loading steps from approach 0 (first touch) to ``approach_max`` (1-10000).
+    refine_levels : int
+        Refinements of the pull-off bracket (0-20).
+    refine_factor : int
+        Step division per refinement (2-100).
+    max_steps : int
+        Cap on unloading states (2-100000).
+    tol, max_iter, symmetric, threads, reduced_modulus
+        As in :func:`dhfield.bem.solve_adhesive`.
+    keep_states : bool
+        Keep every ContactState (memory: three full-grid arrays per state).
+    progress : bool, optional
+        Progress line on stderr (default: when stderr is a terminal).
+    """
+
+    n_loading: int = 3
+    refine_levels: int = 2
+    refine_factor: int = 4
+    max_steps: int = 200
+    tol: float = DEFAULT_TOL
+    max_iter: int = DEFAULT_MAX_ITER
+    symmetric: bool | None = None
+    threads: int | None = None
+    reduced_modulus: float = 1.0
+    keep_states: bool = False
+    progress: bool | None = None
+
+    def checked(self) -> "PathOptions":
+        """These options with every count and tolerance checked (ValueError naming the first bad one)."""
+        return replace(
+            self, n_loading=check_count("n_loading", self.n_loading, 1, 10_000, "loading steps"),
+            refine_levels=check_count("refine_levels", self.refine_levels, 0, 20,
+                                      "refinements of the pull-off bracket"),
+            refine_factor=check_count("refine_factor", self.refine_factor, 2, 100, "step division per refinement"),
+            max_steps=check_count("max_steps", self.max_steps, 2, 100_000, "cap on unloading states"),
+            tol=float(check_positive("tol", self.tol, "solver tolerance, dimensionless")),
+            max_iter=int(self.max_iter))
+
+    @classmethod
+    def from_keywords(cls, options) -> "PathOptions":
+        """Options from keyword arguments (ValueError naming an unknown one)."""
+        known = {f.name for f in fields(cls)}
+        for name in options:
+            if name not in known:
+                raise ValueError(f"unknown path option {name!r}; the options are {sorted(known)}")
+        return cls(**options).checked()
+
+
+@dataclass(frozen=True)
+class PathStart:
+    """Where a path starts, chosen by the caller: the cold start of the bracket search.
+
+    Attributes
+    ----------
+    approach : float, optional
+        Approach of the first state (e.g. an analytic model's load-control pull-off) [length];
+        None: the marching path from ``approach_max``.
+    stress : ndarray, optional
+        Adhesive stress (working arrays of the problem) of its cold start [stress]; None: from the rigid gap.
+    warm_start : callable, optional
+        ``warm_start(approach)`` -> a guess on this grid or None (:class:`Branch`).
+    """
+
+    approach: float | None = None
+    stress: np.ndarray | None = None
+    warm_start: object = None
+
+    def cold_start(self, branch, phase="unloading"):
+        """Solve the first state at :attr:`approach`: (state or None when it is not a converged contact state).
+
+        From the warm start at that approach, else from :attr:`stress`, else from the rigid gap;
+        a state that is not a converged contact state is kept, flagged 'discarded'.
+        """
+        guess = branch.external(self.approach)
+        if guess is None and self.stress is not None:
+            guess = Prediction(np.zeros_like(self.stress), self.stress.copy())
+        k, st = branch.solve(self.approach, guess, phase)
+        if st.converged and st.in_contact:
+            return st
+        branch.records[k]["phase"] = "discarded"
+        return None
+
+
+def bracket_search(branch, start, step, options):
+    """Load control: bracket the load minimum around ``start.approach`` (a handful of states).
+
+    Returns ('interior' | 'branch end' | 'failed', indices).  The cold start, then steps of
+    ``step`` up or down (:meth:`Branch.extend_until_interior`) until the discrete minimum is
+    interior, then parabola vertices (:meth:`Branch.refine_vertex`) to the spacing the
+    marching refinement reaches; when the branch ends below the minimum (the jump comes
+    first), its bracket is refined with uniform sub-steps (:meth:`Branch.refine_bracket`).
+    """
+    first = start.cold_start(branch)
+    if first is None:
+        return "failed", []
+    outcome, current = branch.extend_until_interior(
+        [len(branch.records) - 1], lambda i, up: branch.approach(i) + (step if up else -step),
+        options.max_steps - 1, resolve_jump=True)
+    if outcome == "failed":
+        return outcome, current
+    branch.prune(set(current))
+    if outcome == "interior":
+        xtol = step / options.refine_factor ** options.refine_levels
+        return outcome, branch.refine_vertex(current, xtol, options.refine_levels + 1)
+    return outcome, branch.refine_bracket(current, step, options.refine_factor, options.refine_levels)
+
+
+def _loading(branch, approach_max, n_loading):
+    """Loading steps from approach 0 (first touch) to ``approach_max``, each from the last: the last state."""
+    st = None
+    for delta in np.linspace(0.0, approach_max, int(n_loading) + 1)[1:] if approach_max > 0 else [approach_max]:
+        _, st = branch.solve(delta, st, "loading")
+    return st
+
+
+def marching_path(branch, approach_max, step, options):
+    """Load control: loading to ``approach_max``, unloading by ``step`` until contact is lost, then
+    the bracket of the load minimum re-solved ``refine_levels`` times with finer steps: the indices."""
+    st = _loading(branch, approach_max, options.n_loading)
+    delta = approach_max
+    k, st = branch.solve(delta, st, "unloading")
+    unload = [k]
+    prev = None
+    while st.in_contact and len(unload) < options.max_steps:
+        delta -= step
+        k, new = branch.solve(delta, secant_prediction(branch.prob, prev, st, delta), "unloading")
+        prev = st
+        unload.append(k)
+        if not new.converged:
+            # no state on the branch any more (the jump): the state reached from separation
+            k, new = branch.solve(delta, None, "jump")
+            unload.append(k)
+        st = new
+    return branch.refine_bracket(unload, step, options.refine_factor, options.refine_levels)
+
+
+#: Notes of a displacement-control pull-off by how the contact branch ends (:func:`fold_by_adhesive_force`).
+CONTACT_LOSS_NOTE = ("the contact branch ends where its last contact cell opens, before a fold of the "
+                     "approach (the end a = 0 of the Maugis-Dugdale curve): the pull-off is the load there; "
+                     "the Dugdale contact then continues on the separated branch without a jump")
+FOLD_NOT_FOUND_NOTE = ("no fold of the approach (nor a loss of contact) was bracketed along the adhesive "
+                       "force: the pull-off is extrapolated from the converged states (fold_of_branch)")
+
+
+def continuation_path(branch, start, approach_max, options) -> UnloadingPath:
+    """Displacement control: a start state, then the branch by adhesive force through its fold.
+
+    The start is solved at ``start.approach`` (else the loading steps end at
+    ``approach_max``); :func:`dhfield.bem.continuation.fold_by_adhesive_force` records
+    every state of the branch on ``branch``.
+    """
+    first = start.cold_start(branch) if start.approach is not None else None
+    if first is None:
+        st = _loading(branch, approach_max, options.n_loading)
+        first = st if (st.converged and st.in_contact) else None
+    if first is None:
+        # no converged contact state to start from: report the failure (NaN pull-off), never raise
+        return branch.to_path(control="displacement", load=float("nan"), approach=float("nan"),
+                              pull_off_index=len(branch.records) - 1, converged=False)
+    index_of = {id(first): len(branch.records) - 1}
+
+    def record(state, phase):
+        index_of[id(state)] = branch.record(state, phase)
+
+    fold = fold_by_adhesive_force(branch.prob, first, steps=FOLD_STEPS, refine_factor=options.refine_factor,
+                                  tol=options.tol, max_iter=options.max_iter, record=record)
+    k_po = index_of.get(id(fold.nearest), len(branch.records) - 1)
+    branch.prune({k_po})              # the summaries stay; of the states only the reported one
+    records = branch.records
+    if fold.kind == "failed":
+        good = branch.by_approach(i for i in range(len(records))
+                                  if records[i]["phase"] in ("unloading", "continuation", "fold")
+                                  and records[i]["converged"] and records[i]["in_contact"])
+        old = fold_of_branch([records[i]["load"] for i in good], [records[i]["approach"] for i in good])
+        return branch.to_path(control="displacement", load=old.load, approach=old.approach, pull_off_index=k_po,
+                              converged=False, error=old.load_error, note=FOLD_NOT_FOUND_NOTE)
+    # the fit uses converged states only: an unconverged state along the adhesive force is a hole
+    # in the samples (listed in failures), not a failure of the pull-off; the states before
+    # the branch (loading, the start) must have converged
+    converged = all(r["converged"] for r in records if r["phase"] in ("loading", "unloading"))
+    return branch.to_path(control="displacement", load=fold.load, approach=fold.approach, pull_off_index=k_po,
+                          converged=converged, error=fold.load_error,
+                          note=CONTACT_LOSS_NOTE if fold.kind == "contact loss" else "")
+
+
+def load_control_path(branch, start, approach_max, step, options) -> UnloadingPath:
+    """Load control: the bracket search from ``start`` when it has an approach, else (or when it
+    fails: its states are kept, flagged 'discarded') the marching path; the pull-off is the load minimum."""
+    outcome, current = ("none", [])
+    if start.approach is not None:
+        outcome, current = bracket_search(branch, start, step, options)
+        if outcome == "failed":
+            for i in current:
+                if branch.records[i]["phase"] == "unloading":
+                    branch.records[i]["phase"] = "discarded"
+            current = []
+    if not current:
+        current = marching_path(branch, approach_max, step, options)
+    return branch.load_pull_off(current)
 
 
 def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, control="load",
-                   n_loading=3, refine_levels=2, refine_factor=4, max_steps=200,
-                   tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, symmetric=None, threads=None,
-                   reduced_modulus=1.0, keep_states=False, progress=None, predict=True,
-                   approach_guess=None, start_stress=None, warm_start=None) -> UnloadingPath:
+                   approach_guess=None, start_stress=None, warm_start=None, **options) -> UnloadingPath:
     """Displacement-controlled loading and unloading path to pull-off, with warm starts.
 
     Parameters
@@ -300,27 +355,7 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
         re-solved ``refine_levels`` times with steps ``refine_factor`` times
         smaller.
     control : {'load', 'displacement'}
-        Which pull-off to report (both come from the same path).
-    n_loading : int
-        Loading steps from approach 0 (first touch) to ``approach_max``.
-    max_steps : int
-        Cap on unloading states.
-
-    Returns
-    -------
-    UnloadingPath
-
-    Other Parameters
-    ----------------
-    tol, max_iter, symmetric, threads, reduced_modulus
-        As in :func:`solve_adhesive`.
-    keep_states : bool
-        Keep every ContactState (memory: three full-grid arrays per state).
-    progress : bool, optional
-        Progress line on stderr (default: when stderr is a terminal).
-    predict : bool, default True
-        Warm-start each state from the secant extrapolation of the two previous
-        states of the same branch (fewer outer iterations), else from the last.
+        Which pull-off to report.
     approach_guess : float, optional
         Expected approach of the load minimum (e.g. the analytic DH model's
         load-control pull-off) [length].  With ``control='load'`` the path then
@@ -334,352 +369,81 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     warm_start : callable, optional
         ``warm_start(approach)`` returns a guess for that approach on this grid
         (a ContactState, e.g. the same approach solved on a coarser grid and
-        interpolated, :class:`NestedWarmStart`) or None; used by the bracket
-        search for every state before the defaults above.  Its
+        interpolated, :class:`dhfield.bem.pull_off.NestedWarmStart`) or None; used
+        for every state of the bracket search before the defaults above.  Its
         ``states_solved`` and ``iterations`` attributes, when present, are
         reported as ``coarse_states`` and ``coarse_iterations``.
+    **options
+        The fields of :class:`PathOptions`: n_loading, refine_levels,
+        refine_factor, max_steps, tol, max_iter, symmetric, threads,
+        reduced_modulus, keep_states, progress.
+
+    Returns
+    -------
+    UnloadingPath
 
     Notes
     -----
-    **Bracket search** (``control='load'`` with ``approach_guess``): the first
-    state is solved at ``approach_guess`` from ``start_stress`` (a cold start on
-    the contact branch: the analytic zone puts it in that branch's basin; when
-    it is not a converged contact state it is kept, flagged 'discarded', and
-    the marching path below is run instead).  Then steps of ``approach_step``
-    (warm-started, secant predictor) go up or down until the discrete load
-    minimum is interior to the samples; nothing beyond the bracket is solved
-    (load control needs nothing past the minimum).  The minimum is then located
-    by successive parabolic interpolation: at most ``refine_levels + 1`` states
-    at the vertex of the parabola through the best sample and its neighbours,
-    each warm-started from the nearest sample, stopping when the vertex is
-    within ``approach_step / refine_factor**refine_levels`` (the spacing the
-    marching refinement reaches) of a solved state.  When the minimum is at the
-    end of the contact branch (the jump comes first), the bracket is refined
-    with uniform sub-steps as below.
+    A dispatcher: the states are solved on one :class:`dhfield.bem.branch.Branch`.
 
-    **Marching path** (otherwise): loading runs from delta = 0 to ``approach_max`` in ``n_loading`` steps,
-    unloading by ``approach_step`` until the first state without contact.
-    Every state is warm-started from the previous one (never a cold start
-    part-way: the states are multistable).  The bracket of the pull-off (the
-    states on either side of the discrete load minimum, or of the contact loss
-    for displacement control) is re-solved from its upper end with finer steps.
-    The load minimum is refined by
-    :func:`dhfield.pull_off_search.refine_sampled_minimum` on the finest
-    samples.  Under displacement control the contact branch is stable until
-    the jump, so no state is lost by stepping past it.
+    **Bracket search** (``control='load'`` with ``approach_guess``,
+    :func:`bracket_search`): the first state is solved at ``approach_guess``
+    from ``start_stress`` (a cold start on the contact branch: the analytic
+    zone puts it in that branch's basin; when it is not a converged contact
+    state it is kept, flagged 'discarded', and the marching path is run
+    instead).  Then steps of ``approach_step`` (warm-started, secant
+    predictor) go up or down until the discrete load minimum is interior to
+    the samples; nothing beyond the bracket is solved.  The minimum is then
+    located by successive parabolic interpolation: at most
+    ``refine_levels + 1`` states at the vertex of the parabola through the
+    best sample and its neighbours, each warm-started from the nearest sample,
+    stopping when the vertex is within ``approach_step /
+    refine_factor**refine_levels`` of a solved state.  When the minimum is at
+    the end of the contact branch (the jump comes first), the bracket is
+    refined with uniform sub-steps as below.
 
-    **Displacement control**: the first state is solved at ``approach_guess``
-    as above (else the loading steps end at ``approach_max``), and the branch
-    is followed from it by decreasing *adhesive force* with the approach as an
-    unknown (:func:`dhfield.bem.continuation.fold_by_adhesive_force`): that
-    control is monotone through the fold of the approach, where a prescribed
-    approach stops converging, so the fold (the jump) is interpolated between
-    states on both sides of it.  ``refine_factor`` divides the force step in
-    the window fitted around the fold; ``approach_step``, ``refine_levels`` and
+    **Marching path** (otherwise, :func:`marching_path`): loading from
+    delta = 0 to ``approach_max`` in ``n_loading`` steps, unloading by
+    ``approach_step`` until the first state without contact, every state
+    warm-started from the previous ones; the bracket of the discrete load
+    minimum is re-solved from its upper end with finer steps.  The load
+    minimum is refined by :func:`dhfield.pull_off_search.refine_sampled_minimum`
+    on the finest samples.
+
+    **Displacement control** (:func:`continuation_path`): the first state is
+    solved at ``approach_guess`` as above (else the loading steps end at
+    ``approach_max``), and the branch is followed from it by decreasing
+    *adhesive force* with the approach as an unknown
+    (:func:`dhfield.bem.continuation.fold_by_adhesive_force`): that control is
+    monotone through the fold of the approach, where a prescribed approach
+    stops converging, so the fold (the jump) is interpolated between states on
+    both sides of it.  ``refine_factor`` divides the force step in the window
+    fitted around the fold; ``approach_step``, ``refine_levels`` and
     ``max_steps`` are not used.
     """
-    from ..pull_off_search import refine_sampled_minimum
-
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
     if law is None:
         raise ValueError("law must be a DugdaleLaw or an ExponentialLaw for an unloading path; got None")
-    prob = AdhesiveProblem(initial_gap, grid, law, symmetric, threads, reduced_modulus)
+    opts = PathOptions.from_keywords(options)
+    prob = AdhesiveProblem(initial_gap, grid, law, opts.symmetric, opts.threads, opts.reduced_modulus)
     dmax = float(check_finite("approach_max", approach_max, "length"))
     step = float(check_positive("approach_step", approach_step, "length"))
-    tol = float(check_positive("tol", tol, "solver tolerance, dimensionless"))
-    n_loading = check_count("n_loading", n_loading, 1, 10_000, "loading steps")
-    refine_levels = check_count("refine_levels", refine_levels, 0, 20, "refinements of the pull-off bracket")
-    refine_factor = check_count("refine_factor", refine_factor, 2, 100, "step division per refinement")
-    max_steps = check_count("max_steps", max_steps, 2, 100_000, "cap on unloading states")
     guess_d = None if approach_guess is None else float(
         check_finite("approach_guess", approach_guess, "expected approach of the load minimum, length"))
-    start_gap_stress = None
+    stress = None
     if start_stress is not None:
         s_full = check_finite("start_stress", start_stress, "adhesive stress of the cold start, stress")
         if s_full.shape != grid.shape:
             raise ValueError(f"start_stress must have the grid shape {grid.shape}; got {s_full.shape}")
-        start_gap_stress = np.clip(prob.to_work(s_full), 0.0, law.max_stress)
-    t0 = time.perf_counter()
-    prog = PathProgress(progress, "path")
-    records = []          # (state summary dict, phase)
-    failures = []
-    by_index = {}
+        stress = np.clip(prob.to_work(s_full), 0.0, law.max_stress)
+    return path_on(prob, PathStart(guess_d, stress, warm_start), dmax, step, control=control, options=opts)
 
-    def run(delta, guess, phase):
-        return keep(solve_problem(prob, float(delta), guess, tol, int(max_iter)), phase)
 
-    def keep(st, phase):
-        rec = st.summary()
-        rec["phase"] = phase
-        rec["in_contact"] = st.in_contact
-        records.append(rec)
-        k = len(records) - 1
-        by_index[k] = st
-        if not st.converged:
-            failures.append({"approach": float(st.approach), "residual": float(st.residual),
-                             "iterations": int(st.iterations), "phase": phase})
-        prog.update(k, st, phase)
-        return k, st
-
-    def usable(i):
-        r = records[i]
-        return bool(r["converged"] and r["in_contact"] and r["phase"] not in ("jump", "discarded"))
-
-    def by_approach(indices):
-        return sorted(indices, key=lambda i: -records[i]["approach"])
-
-    def external(delta):
-        g = warm_start(float(delta)) if warm_start is not None else None
-        return g if (isinstance(g, ContactState) and g.grid == grid) else None
-
-    def search_minimum():
-        """Bracket the load minimum around ``guess_d``: ('bracket' | 'branch end' | 'failed', indices)."""
-        guess = external(guess_d)
-        if guess is None and start_gap_stress is not None:
-            guess = Prediction(np.zeros_like(start_gap_stress), start_gap_stress.copy())
-        k, st = run(guess_d, guess, "unloading")
-        if not (st.converged and st.in_contact):
-            records[k]["phase"] = "discarded"
-            return "failed", []
-        idx = [k]
-        while len(idx) < max_steps:
-            order = by_approach(idx)
-            j = int(np.argmin([records[i]["load"] for i in order]))
-            if 0 < j < len(order) - 1:
-                return "bracket", order
-            up = j == 0               # the minimum is above the samples: extend upwards
-            end, nxt = (order[0], order[1:2]) if up else (order[-1], order[-2:-1])
-            d_new = records[end]["approach"] + (step if up else -step)
-            last = by_index[end]
-            g = external(d_new)
-            if g is None:
-                g = secant_prediction(prob, by_index[nxt[0]], last, d_new) if (predict and nxt) else last
-            k, new = run(d_new, g, "unloading")
-            idx.append(k)
-            if not (new.converged and new.in_contact):
-                if not new.converged:
-                    # no state on the branch any more (the jump): the state reached from separation
-                    idx.append(run(d_new, None, "jump")[0])
-                return ("branch end" if not up else "failed"), by_approach(idx)
-            prune(set(order[max(j - 1, 0):j + 2]) | {k})
-        return "failed", by_approach(idx)
-
-    def prune(keep):
-        if not keep_states:
-            for i in list(by_index):
-                if i not in keep:
-                    del by_index[i]
-
+def path_on(prob, start, approach_max, step, *, control, options, label="path") -> UnloadingPath:
+    """The path of ``control`` on the problem ``prob`` from ``start`` (checked inputs; :func:`unloading_path`)."""
+    branch = Branch(prob, options.tol, options.max_iter, label=label, progress=options.progress,
+                    keep_states=options.keep_states, warm_start=start.warm_start)
     if control == "displacement":
-        return _displacement_pull_off(prob, keep, run, records, by_index, failures, prog, t0, external,
-                                      guess_d, start_gap_stress, dmax, n_loading, refine_factor, tol,
-                                      max_iter, keep_states, warm_start)
-    outcome, unload = ("none", [])
-    if control == "load" and guess_d is not None:
-        outcome, unload = search_minimum()
-        if outcome == "failed":
-            for i in unload:
-                if records[i]["phase"] == "unloading":
-                    records[i]["phase"] = "discarded"
-            unload = []
-    if not unload:
-        # loading
-        st = None
-        for delta in np.linspace(0.0, dmax, int(n_loading) + 1)[1:] if dmax > 0 else [dmax]:
-            _, st = run(delta, st, "loading")
-        # unloading until contact is lost
-        delta = dmax
-        k, st = run(delta, st, "unloading")
-        unload.append(k)
-        prev = None
-        while st.in_contact and len(unload) < max_steps:
-            delta -= step
-            k, new = run(delta, secant_prediction(prob, prev, st, delta) if predict else st, "unloading")
-            prev = st
-            unload.append(k)
-            if not new.converged:
-                # no state on the branch any more (the jump): the state reached from separation
-                k, new = run(delta, None, "jump")
-                unload.append(k)
-            st = new
-
-    def bracket(indices):
-        """(upper, lower, ordered indices) of the pull-off bracket among ``indices``."""
-        idx = [i for i in indices if records[i]["phase"] not in ("jump", "discarded")]
-        ds = np.array([records[i]["approach"] for i in idx])
-        idx = [idx[j] for j in np.argsort(-ds, kind="stable")]
-        good = [bool(records[i]["in_contact"] and records[i]["converged"]) for i in idx]
-        if not any(good):
-            return None
-        if control == "displacement":
-            # the last good contact state before the branch ends (contact lost or no state)
-            first_bad = next((j for j, g in enumerate(good) if not g and j > 0 and good[j - 1]), None)
-            if first_bad is None:
-                last = max(j for j, g in enumerate(good) if g)
-                return idx[last], (idx[last + 1] if last + 1 < len(idx) else None), idx
-            return idx[first_bad - 1], idx[first_bad], idx
-        w = np.array([records[i]["load"] if g else np.nan for i, g in zip(idx, good)])
-        sm = refine_sampled_minimum(np.array([records[i]["approach"] for i in idx]), w, first=False)
-        j = sm.index
-        up = idx[max(j - 1, 0)]
-        lo = idx[j + 1] if j + 1 < len(idx) else None
-        return up, lo, idx
-
-    current = list(unload)
-    prune(set(current))
-    h = step
-    if outcome == "bracket":
-        # successive parabolic interpolation on the samples around the discrete minimum
-        xtol = step / int(refine_factor) ** int(refine_levels)
-        for _level in range(int(refine_levels) + 1):
-            order = [i for i in by_approach(current) if usable(i)]
-            x = np.array([records[i]["approach"] for i in order])
-            sm = refine_sampled_minimum(x, np.array([records[i]["load"] for i in order]), first=False)
-            if sm.at_boundary or float(np.min(np.abs(x - sm.x))) <= xtol:
-                break
-            near = sorted(order, key=lambda i: abs(records[i]["approach"] - sm.x))
-            g = external(sm.x)
-            k, new = run(sm.x, g if g is not None else by_index.get(near[0]), "refine")
-            current.append(k)
-            if not (new.converged and new.in_contact):
-                break
-            prune(set(order[max(sm.index - 1, 0):sm.index + 2]) | {k})
-    for _level in range(int(refine_levels) if outcome != "bracket" else 0):
-        br = bracket(current)
-        if br is None or br[1] is None:
-            break
-        up, lo, _ = br
-        d_up, d_lo = records[up]["approach"], records[lo]["approach"]
-        h = h / int(refine_factor)
-        n_sub = max(2, int(round((d_up - d_lo) / h)))
-        sub = [up]
-        st = by_index[up]
-        prev = None
-        known = {records[i]["approach"]: i for i in current if i in by_index and records[i]["converged"]}
-        for dd in np.linspace(d_up, d_lo, n_sub + 1)[1:-1]:
-            same = [i for d0, i in known.items() if math.isclose(d0, dd, rel_tol=1e-12, abs_tol=1e-14)]
-            if same:                      # already solved at this approach: reuse it
-                k, new = same[0], by_index[same[0]]
-            else:
-                k, new = run(dd, secant_prediction(prob, prev, st, dd) if predict else st, "refine")
-            prev, st = st, new
-            sub.append(k)
-        sub.append(lo)
-        current = sub
-        prune(set(current))
-    prog.close()
-    # pull-off
-    br = bracket(current)
-    w_po_error, po_note = float("nan"), ""
-    if br is None:
-        # no converged contact state at all: report the failure (NaN pull-off), never raise
-        k_po = len(records) - 1
-        w_po = d_po = float("nan")
-        po_converged = False
-    elif control == "displacement":
-        up, lo, idx = br
-        k_po = up
-        # the fold from every converged contact state of the branch down to the last one
-        # (the finest bracket alone holds too few states above it)
-        branch = sorted((i for i in range(len(records)) if records[i]["phase"] in ("unloading", "refine")
-                         and records[i]["converged"] and records[i]["in_contact"]
-                         and records[i]["approach"] >= records[up]["approach"]),
-                        key=lambda i: -records[i]["approach"])
-        fold = fold_of_branch([records[i]["load"] for i in branch],
-                              [records[i]["approach"] for i in branch])
-        w_po, d_po, w_po_error = fold.load, fold.approach, fold.load_error
-        if not fold.found:
-            po_note = ("no fold of delta(W) is bracketed by the converged states: the pull-off is the last "
-                       "converged contact state")
-    else:
-        up, lo, idx = br
-        x = np.array([records[i]["approach"] for i in idx])
-        w = np.array([records[i]["load"] if (records[i]["converged"] and records[i]["in_contact"])
-                      else np.nan for i in idx])
-        sm = refine_sampled_minimum(x, w, first=False)
-        k_po = idx[sm.index]
-        w_po, d_po = sm.y, sm.x
-    if br is not None:
-        # the pull-off is trusted when every state from the start down to it converged
-        reached = [i for i in range(len(records)) if records[i]["phase"] not in ("jump", "discarded")
-                   and records[i]["approach"] >= records[k_po]["approach"]]
-        po_converged = all(records[i]["converged"] for i in reached)
-    return _path_result(prob, records, by_index, failures, control, w_po, d_po, k_po, po_converged, t0,
-                        keep_states, warm_start, w_po_error, po_note)
-
-
-def _path_result(prob, records, by_index, failures, control, w_po, d_po, k_po, po_converged, t0, keep_states,
-                 warm_start, w_po_error, po_note) -> UnloadingPath:
-    if k_po not in by_index:
-        k_po = max(by_index)
-    states = tuple(by_index[i] for i in range(len(records))) if keep_states else ()
-    return UnloadingPath.from_records(
-        records, control=control, pull_off_load=w_po, pull_off_approach=d_po, pull_off_state=by_index[k_po],
-        failures=tuple(failures), states=states, elapsed=time.perf_counter() - t0, pull_off_converged=po_converged,
-        resolved=prob.resolved, coarse_states=int(getattr(warm_start, "states_solved", 0)),
-        coarse_iterations=int(getattr(warm_start, "iterations", 0)), pull_off_error=float(w_po_error),
-        pull_off_note=po_note)
-
-
-#: Notes of a displacement-control pull-off by how the contact branch ends (:func:`fold_by_adhesive_force`).
-CONTACT_LOSS_NOTE = ("the contact branch ends where its last contact cell opens, before a fold of the "
-                     "approach (the end a = 0 of the Maugis-Dugdale curve): the pull-off is the load there; "
-                     "the Dugdale contact then continues on the separated branch without a jump")
-FOLD_NOT_FOUND_NOTE = ("no fold of the approach (nor a loss of contact) was bracketed along the adhesive "
-                       "force: the pull-off is extrapolated from the converged states (fold_of_branch)")
-
-
-def _displacement_pull_off(prob, keep, run, records, by_index, failures, prog, t0, external, guess_d,
-                           start_gap_stress, dmax, n_loading, refine_factor, tol, max_iter, keep_states,
-                           warm_start) -> UnloadingPath:
-    """Displacement control: a start state, then the branch by adhesive force through its fold."""
-    start = None
-    if guess_d is not None:
-        guess = external(guess_d)
-        if guess is None and start_gap_stress is not None:
-            guess = Prediction(np.zeros_like(start_gap_stress), start_gap_stress.copy())
-        k, st = run(guess_d, guess, "unloading")
-        if st.converged and st.in_contact:
-            start = st
-        else:
-            records[k]["phase"] = "discarded"
-    if start is None:
-        st = None
-        for delta in np.linspace(0.0, dmax, int(n_loading) + 1)[1:] if dmax > 0 else [dmax]:
-            _, st = run(delta, st, "loading")
-        if st.converged and st.in_contact:
-            start = st
-    if start is None:
-        prog.close()
-        # no converged contact state to start from: report the failure (NaN pull-off), never raise
-        return _path_result(prob, records, by_index, failures, "displacement", float("nan"), float("nan"),
-                            len(records) - 1, False, t0, keep_states, warm_start, float("nan"), "")
-    index_of = {id(start): len(records) - 1}
-
-    def record(state, phase):
-        keep(state, phase)
-        index_of[id(state)] = len(records) - 1
-
-    fold = fold_by_adhesive_force(prob, start, steps=FOLD_STEPS, refine_factor=refine_factor, tol=tol,
-                                  max_iter=int(max_iter), record=record)
-    prog.close()
-    k_po = index_of.get(id(fold.nearest), len(records) - 1)
-    if not keep_states:               # the summaries stay; of the states only the reported one
-        for i in [i for i in by_index if i != k_po]:
-            del by_index[i]
-    branch = [i for i in range(len(records)) if records[i]["phase"] in ("unloading", "continuation", "fold")]
-    if fold.kind == "failed":
-        good = sorted((i for i in branch if records[i]["converged"] and records[i]["in_contact"]),
-                      key=lambda i: -records[i]["approach"])
-        old = fold_of_branch([records[i]["load"] for i in good], [records[i]["approach"] for i in good])
-        return _path_result(prob, records, by_index, failures, "displacement", old.load, old.approach, k_po,
-                            False, t0, keep_states, warm_start, old.load_error, FOLD_NOT_FOUND_NOTE)
-    # the fit uses converged states only: an unconverged state along the adhesive force is a hole
-    # in the samples (listed in failures), not a failure of the pull-off; the states before
-    # the branch (loading, the start) must have converged
-    po_converged = all(records[i]["converged"] for i in range(len(records))
-                       if records[i]["phase"] in ("loading", "unloading"))
-    note = CONTACT_LOSS_NOTE if fold.kind == "contact loss" else ""
-    return _path_result(prob, records, by_index, failures, "displacement", fold.load, fold.approach, k_po,
-                        po_converged, t0, keep_states, warm_start, fold.load_error, note)
+        return continuation_path(branch, start, approach_max, options)
+    return load_control_path(branch, start, approach_max, step, options)

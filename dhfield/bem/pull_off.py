@@ -1,35 +1,40 @@
 """The adhesive BEM pull-off in the paper's units (R = E* = Delta gamma = 1, Eqs. 32-35).
 
-:func:`adhesive_pull_off` sets up the crossed-cylinder problem of the paper
-(:func:`nondimensional_problem`) and runs :func:`dhfield.bem.path.unloading_path`
-on it; under load control it brackets the minimum of the unloading load with
-states warm-started from coarser grids (:class:`NestedWarmStart`), or, with
-``search='located'``, locates the minimum on the coarser grids and solves only
-3-4 states on the fine one (half the time at lambda = 3, N = 256).
-:func:`refine_pull_off` carries a pull-off to a finer grid (coarse to fine,
-:func:`interpolate_state`); :func:`richardson_extrapolation` extrapolates
-pull-offs over N.
+The engine takes its start as an argument: :class:`PullOffStart` (the domain, the
+range of the unloading path and the cold start of the bracket search) is chosen by
+the caller -- :mod:`dhfield.adhesive_start` chooses it from the analytic models, so
+that this package imports none of the models it is the ground truth for.
+
+:func:`paper_problem` sets up the crossed-cylinder problem of the paper on a grid
+(:class:`NondimensionalProblem`); :func:`solve_pull_off` runs the load- or
+displacement-control route on it (:mod:`dhfield.bem.path`): under load control it
+brackets the minimum of the unloading load with states warm-started from coarser
+grids (:class:`NestedWarmStart`), or, with ``search='located'``, locates the
+minimum on the coarser grids and solves only 3-4 states on the fine one (half the
+time at lambda = 3, N = 256).  :func:`refine` carries a pull-off to a finer grid
+(coarse to fine, :func:`interpolate_state`); :func:`richardson_extrapolation`
+extrapolates pull-offs over N.  Every route is a short function on one
+:class:`dhfield.bem.branch.Branch`.
 """
 from __future__ import annotations
 
-import functools
 import math
-import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .._validation import check_count, check_ellipticity, check_positive
+from ..geometry import radius_ratio, sin_skew_angle
+from .branch import Branch, UnloadingPath
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
+from .path import PathOptions, PathStart, load_control_path, path_on
+from .solver import AdhesiveProblem, Prediction
 from .state import ContactState
-from .path import PathProgress, UnloadingPath, unloading_path
-from .solver import (DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction,
-                     solve_problem)
 
-__all__ = ["adhesive_pull_off", "AdhesivePullOff", "nondimensional_problem", "NondimensionalProblem",
-           "NestedWarmStart", "refine_pull_off", "interpolate_state", "richardson_extrapolation",
-           "DISPLACEMENT_CONTROL_NOTE", "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES"]
+__all__ = ["solve_pull_off", "refine", "paper_problem", "PullOffStart", "AdhesivePullOff", "NondimensionalProblem",
+           "NestedWarmStart", "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
+           "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS"]
 
 
 #: Half-width of the domain per expected semi-axis of the largest cohesive zone of
@@ -41,6 +46,35 @@ DEFAULT_STEPS = 20
 MAX_CELLS = 2 ** 16
 #: Largest count of path steps (n_steps, window, refine_factor) accepted.
 MAX_STEPS = 10 ** 6
+#: Load-control searches of :func:`pull_off`.
+SEARCHES = ("bracket", "march", "located")
+
+
+@dataclass(frozen=True)
+class PullOffStart:
+    """Where the BEM pull-off starts, chosen by the caller (e.g. :func:`dhfield.adhesive_start.pull_off_start`).
+
+    Attributes
+    ----------
+    half_width_x, half_width_y : float
+        Half-widths of the domain [c_r]: the cohesive zone of every state must lie inside.
+    approach_max, approach_step : float
+        Start of unloading (a state on the stable branch, above pull-off) and
+        unloading step [c_r^2/R].
+    approach : float
+        Approach of the cold start of the bracket search (the expected
+        load-control pull-off) [c_r^2/R]; NaN: none (the marching path).
+    zone : (float, float)
+        Semi-axes (c, d) of the cohesive zone of that cold start [c_r] (sigma0 on
+        the ellipse); NaN: none.
+    """
+
+    half_width_x: float
+    half_width_y: float
+    approach_max: float
+    approach_step: float
+    approach: float = float("nan")
+    zone: tuple = (float("nan"), float("nan"))
 
 
 @dataclass(frozen=True)
@@ -63,17 +97,11 @@ class NondimensionalProblem:
     sin_skew : float
         sin(theta_skew) of beta0, the factor of Eq. (34).
     approach_max, approach_step : float
-        Start of unloading and unloading step [c_r^2/R], from the analytic DH
-        model (:func:`dhfield.model.pull_off`, :func:`dhfield.model.load_curve`).
+        Start of unloading and unloading step [c_r^2/R] (:class:`PullOffStart`).
     pull_off_approach : float
-        Approach at the analytic load-control pull-off [c_r^2/R]: where the
-        bracket search of :func:`unloading_path` starts.  For beta0 < 1 that of
-        the two-axis closure (``dh-elliptic-two-axis``: its adhesive ellipse is
-        not tied to beta0, like the BEM's), at beta0 = 1 (and if the closure
-        fails) that of the DH model (:func:`dhfield.model.pull_off`).
+        Approach of the bracket search's cold start [c_r^2/R] (:attr:`PullOffStart.approach`).
     pull_off_zone : (float, float)
-        Semi-axes (c, d) of the same model's cohesive zone at that pull-off
-        [c_r]: the zone of the bracket search's cold start.
+        Semi-axes (c, d) of its cohesive zone [c_r] (:attr:`PullOffStart.zone`).
     """
 
     mu: float
@@ -87,16 +115,59 @@ class NondimensionalProblem:
     pull_off_approach: float = float("nan")
     pull_off_zone: tuple = (float("nan"), float("nan"))
 
+    @property
+    def has_cold_start(self) -> bool:
+        """True when a cold start (approach and zone) is given."""
+        return bool(np.all(np.isfinite(self.pull_off_zone)))
+
     def start_stress(self) -> np.ndarray:
-        """sigma0 on the analytic cohesive zone at pull-off, full grid [stress] (a cold start)."""
+        """sigma0 on the cold start's cohesive zone, full grid [stress] (a cold start)."""
         c, d = self.pull_off_zone
         x, y = self.grid.mesh()
         return self.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
 
+    def adhesive_problem(self, threads=None) -> AdhesiveProblem:
+        """The solver's working arrays of this problem (symmetry from the gap, E* = 1)."""
+        return AdhesiveProblem(self.initial_gap, self.grid, self.law, None, threads, 1.0)
 
-def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS,
-                           margin=DOMAIN_MARGIN) -> NondimensionalProblem:
-    """Grid, initial gap, law and path range of the paper's problem at (mu, beta0).
+    def path_start(self, prob, warm_start=None) -> PathStart:
+        """The cold start of a path on ``prob`` (this problem's working arrays): none without one."""
+        if not self.has_cold_start:
+            return PathStart(warm_start=warm_start)
+        stress = np.clip(prob.to_work(self.start_stress()), 0.0, self.law.max_stress)
+        return PathStart(self.pull_off_approach, stress, warm_start)
+
+    def coarser(self, n) -> "NondimensionalProblem":
+        """This problem on the grid with ``n`` cells along x over the same domain.
+
+        ``grid.nx`` must be a multiple of ``n``.  Equal to :func:`paper_problem` at ``n``
+        with the same start (the cell sizes are exact multiples: 2 lx/(n/k) = k (2 lx/n)
+        in floating point).
+        """
+        g = self.grid
+        k = g.nx // n
+        grid = Grid(n, g.ny // k, g.dx * k, g.dy * k)
+        return replace(self, grid=grid, initial_gap=_initial_gap(grid, self.beta0))
+
+
+def _initial_gap(grid, beta0):
+    """z = x^2/(2R') + y^2/(2R'') with R'R'' = 1, Eq. (2), on the cell centres [c_r]."""
+    rho = float(radius_ratio(beta0))
+    r_major, r_minor = math.sqrt(rho), 1.0 / math.sqrt(rho)
+    x, y = grid.mesh()
+    return x * x / (2.0 * r_major) + y * y / (2.0 * r_minor)  # Eq. (2)
+
+
+def check_cells(n) -> int:
+    """``n`` as cells per axis: an even integer in [8, MAX_CELLS] (ValueError naming it otherwise)."""
+    n = check_count("n", n, 8, MAX_CELLS, "cells per axis, even")
+    if n % 2:
+        raise ValueError(f"n must be an even integer in [8, {MAX_CELLS}] (cells per axis); got {n!r}")
+    return n
+
+
+def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProblem:
+    """Grid, initial gap and law of the paper's problem at (mu, beta0), from a given start.
 
     Parameters
     ----------
@@ -105,82 +176,32 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
     n : int
-        Cells along each axis (even, >= 8) [-].
-    law : {'dugdale', 'exponential'}
+        Cells along each axis (even, 8 to 65536) [-].
+    start : PullOffStart
+        The domain, the path range and the cold start.
+    law : {'dugdale', 'exponential'} or a law
         Traction law with sigma0 = mu and Delta gamma = 1.
-    n_steps : int
-        Unloading steps from the start of unloading to the expected jump.
-    margin : float
-        Domain half-width per expected zone semi-axis.
 
-    Notes
-    -----
-    The analytic DH model gives the expected pull-off (a_po, delta_po).  Unloading
-    starts at a* = 1.1 a_po + 0.15 (a state on the stable branch, above pull-off), whose DH
-    approach is ``approach_max`` and whose adhesive semi-axis c* sets the domain:
-    half-widths ``margin c*`` along x and ``margin c* beta0^(3/4)`` along y (the
-    adhesive ellipse is rounder than the contact ellipse).  The step takes the
-    path in ``n_steps`` from ``approach_max`` to 20 % beyond the analytic
-    displacement-control pull-off.  The bracket search's cold start
-    (``pull_off_approach``, ``pull_off_zone``) is the two-axis closure's pull-off
-    for beta0 < 1: the DH zone (d = beta0 c) is tens of cells off the BEM's at
-    mu = 5, beta0 = 0.5, N = 512, where its cold start does not converge.
+    Returns
+    -------
+    NondimensionalProblem
     """
-    from .. import model
-    from ..geometry import radius_ratio, sin_skew_angle
-
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
-    n = check_count("n", n, 8, MAX_CELLS, "cells per axis, even")
-    if n % 2:
-        raise ValueError(f"n must be an even integer in [8, {MAX_CELLS}] (cells per axis); got {n!r}")
-    n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    margin = float(check_positive("margin", margin, "domain half-width per zone semi-axis"))
+    n = check_cells(n)
     law_obj = law_from_name(law, mu, 1.0) if isinstance(law, str) else check_law(law)
     if law_obj is None:
         raise ValueError("law must be 'dugdale' or 'exponential'; got None")
-    rho = float(radius_ratio(beta0))
-    r_major, r_minor = math.sqrt(rho), 1.0 / math.sqrt(rho)
-    po = model.pull_off(mu, beta0)
-    pod = model.pull_off(mu, beta0, control="displacement")
-    a_start = 1.1 * float(po.a_star) + 0.15
-    cur = model.load_curve(mu, beta0, [a_start])
-    c_start = float(cur.c_star[0])
-    d_max = float(cur.delta_star[0])
-    d_end = float(pod.delta_star) - 0.2 * (d_max - float(pod.delta_star))
-    lx = margin * c_start
-    ly = margin * c_start * beta0 ** 0.75
-    grid = Grid.centered(n, lx, half_width_y=ly)
-    x, y = grid.mesh()
-    z = x * x / (2.0 * r_major) + y * y / (2.0 * r_minor)  # Eq. (2)
-    # the cold start of the bracket search: the analytic load-control pull-off state
-    start = _two_axis_start(mu, beta0) if beta0 < 1.0 else None
-    if start is None:
-        at_po = model.load_curve(mu, beta0, [max(float(po.a_star), 1e-3 * a_start)])
-        start = (float(po.delta_star), (float(at_po.c_star[0]), float(at_po.d_star[0])))
-    return NondimensionalProblem(mu, beta0, grid, z, law_obj, float(sin_skew_angle(beta0)), d_max,
-                                 (d_max - d_end) / int(n_steps), start[0], start[1])
-
-
-@functools.lru_cache(maxsize=64)
-def _two_axis_start(mu, beta0):
-    """(approach, (c, d)) at the load-control pull-off of the two-axis closure, or None if it fails.
-
-    The paper's closure keeps d = beta0 c; the BEM's adhesive ellipse is rounder (beta_cd =
-    0.593 at beta0 = 0.5, mu = 5), and a cold start from the paper's zone (48 cells short
-    along y at N = 512) creeps for 300 outer iterations without converging.  The two-axis
-    closure (beta_cd free) is within 0.8 % of the BEM's pull-off approach and 0.4 % of its
-    c, d there, and the cold start converges (measured: 73 outer iterations;
-    ``python -m verification.diagnose_adhesive --beta0 0.5 --mu 5 --n 512``).
-    """
-    from .. import compare
-
-    try:
-        rec = compare.pull_off("dh-elliptic-two-axis", mu, beta0, "load")
-        out = (float(rec["delta_star"]), (float(rec["c_star"]), float(rec["d_star"])))
-    except (ValueError, ArithmeticError):
-        return None
-    return out if np.all(np.isfinite([out[0], *out[1]])) and min(out[1]) > 0 else None
+    if not isinstance(start, PullOffStart):
+        raise ValueError(f"start must be a PullOffStart; got {type(start).__name__}")
+    c, d = start.zone
+    if not (c < start.half_width_x and d < start.half_width_y) and np.all(np.isfinite(start.zone)):
+        raise ValueError(f"start.zone {start.zone!r} must lie inside the domain (half-widths "
+                         f"{start.half_width_x:.4g} x {start.half_width_y:.4g}): the domain is too small for the "
+                         "contact")
+    grid = Grid.centered(n, start.half_width_x, half_width_y=start.half_width_y)
+    return NondimensionalProblem(mu, beta0, grid, _initial_gap(grid, beta0), law_obj, float(sin_skew_angle(beta0)),
+                                 start.approach_max, start.approach_step, start.approach, start.zone)
 
 
 @dataclass(frozen=True)
@@ -216,8 +237,11 @@ class AdhesivePullOff:
     failures : tuple of dict
         Unconverged states (approach, residual, iterations, phase).
     resolved : bool
-        False when the grid is too coarse to resolve the Dugdale edge
-        (dx > 2 E* h0/(kappa_n sigma0), see ``EDGE_WIDTH_FACTOR``): increase n.
+        False when the answer is not trustworthy, the reasons in ``note``: the
+        grid is too coarse for the law's edge (``EDGE_WIDTH_FACTOR``), W* is
+        stronger than the DMT limit -sin(theta_skew) or above 0, or the Dugdale
+        zone is collapsed onto the contact (c* <= a*) or narrower than
+        ``ZONE_MIN_CELLS`` cells.  The values are reported, never clipped.
     half_width_x, half_width_y : float
         Domain half-widths [c_r].
     elapsed : float
@@ -225,11 +249,15 @@ class AdhesivePullOff:
     path : UnloadingPath
         The whole path.
     W_star_error : float
-        Displacement control: error estimate of ``W_star`` from the fit around
-        the fold (:func:`dhfield.bem.continuation.fold_by_adhesive_force`),
-        without the grid's discretisation error; NaN under load control.
+        Error estimate of ``W_star`` without the grid's discretisation error:
+        under displacement control from the fit around the fold
+        (:func:`dhfield.bem.continuation.fold_by_adhesive_force`), under load
+        control from the samples around the minimum
+        (:meth:`dhfield.bem.branch.Branch.minimum_error`).  Never NaN: infinite
+        when there is no estimate or the answer is not ``resolved``.
     note : str
-        Caveats on the pull-off (empty under load control): every
+        Caveats on the pull-off (empty for a resolved load-control pull-off): why it is
+        not ``resolved``; every
         displacement-control result carries :data:`DISPLACEMENT_CONTROL_NOTE`
         (its measured errors against Maugis-Dugdale), and says when the branch
         ends by loss of contact or no fold was bracketed.
@@ -238,7 +266,7 @@ class AdhesivePullOff:
         bracketed the minimum ('located', 'bracket', or 'march', also when a
         requested search fell back to it); 'continuation' under displacement
         control (:mod:`dhfield.bem.continuation`); 'refine' for
-        :func:`refine_pull_off`.
+        :func:`refine`.
     """
 
     mu: float
@@ -283,34 +311,13 @@ class AdhesivePullOff:
 NESTED_MIN_N = 64
 
 
-def _coarser_problem(problem, n):
-    """``problem`` on the grid with ``n`` cells along x over the same domain (its analytic set-up reused).
-
-    ``problem.grid.nx`` must be a multiple of ``n``.  Equal to :func:`nondimensional_problem` at
-    ``n`` (the cell sizes are exact multiples: 2 lx/(n/k) = k (2 lx/n) in floating point), without
-    its analytic DH pull-off and load-curve solves (~20 ms per level on a quiet machine).
-    """
-    from ..geometry import radius_ratio
-
-    g = problem.grid
-    k = g.nx // n
-    grid = Grid(n, g.ny // k, g.dx * k, g.dy * k)
-    rho = float(radius_ratio(problem.beta0))
-    r_major, r_minor = math.sqrt(rho), 1.0 / math.sqrt(rho)
-    x, y = grid.mesh()
-    z = x * x / (2.0 * r_major) + y * y / (2.0 * r_minor)  # Eq. (2)
-    return replace(problem, grid=grid, initial_gap=z)
-#: Load-control searches of :func:`adhesive_pull_off`.
-SEARCHES = ("bracket", "march", "located")
-
-
 class NestedWarmStart:
     """Warm starts from the same approach solved on grids 2x, 4x, ... coarser (same domain).
 
     ``start(approach)`` solves the paper's problem at that approach on the grid with
     ``n/2`` cells per axis (itself warm-started the same way from ``n/4``, down to
     :data:`NESTED_MIN_N`; the coarsest level from its nearest solved state, the first
-    one cold from the analytic DH zone at pull-off) and carries the state onto the
+    one cold from the problem's cold-start zone) and carries the state onto the
     ``n`` grid (:func:`interpolate_state`).  A fine state started there needs a
     fraction of the outer (zone) iterations of one warm-started from a neighbouring
     fine state (measured at lambda = 3, N = 256: 22 vs 74-87), and a coarse state
@@ -318,13 +325,10 @@ class NestedWarmStart:
 
     Parameters
     ----------
-    mu, beta0, n, law, margin
-        As in :func:`nondimensional_problem` (``n`` is the *fine* grid).
+    problem : NondimensionalProblem
+        The fine grid's problem (``n`` cells per axis, even, >= 2 NESTED_MIN_N).
     tol, max_iter, threads
-        As in :func:`solve_adhesive`.
-    problem : NondimensionalProblem, optional
-        The fine grid's problem when already built (its grid must have ``n`` cells per
-        axis); saves its analytic set-up.
+        As in :func:`dhfield.bem.solve_adhesive`.
 
     Attributes
     ----------
@@ -332,53 +336,46 @@ class NestedWarmStart:
         Coarse states solved and their CG iterations, over all levels.
     """
 
-    def __init__(self, mu, beta0, n, *, law="dugdale", margin=DOMAIN_MARGIN, tol=DEFAULT_TOL,
-                 max_iter=DEFAULT_MAX_ITER, threads=None, problem=None):
-        if problem is None:
-            fine = nondimensional_problem(mu, beta0, n, law=law, margin=margin)
-        elif isinstance(problem, NondimensionalProblem) and problem.grid.nx == n:
-            fine = problem
-        else:
-            raise ValueError(f"problem must be the NondimensionalProblem of the fine grid (n = {n!r} cells)")
+    def __init__(self, problem, *, tol, max_iter, threads=None):
+        if not isinstance(problem, NondimensionalProblem):
+            raise ValueError(f"problem must be a NondimensionalProblem; got {type(problem).__name__}")
+        n = problem.grid.nx
         nc = int(n) // 2
         if nc < NESTED_MIN_N or nc % 2:
-            raise ValueError(f"n must be even and >= {2 * NESTED_MIN_N} for nested warm starts; got {n!r}")
-        coarse = _coarser_problem(fine, nc)
-        self.fine_grid = fine.grid
-        self._fine_nd = fine
+            raise ValueError(f"problem must have an even n >= {2 * NESTED_MIN_N} cells per axis for nested "
+                             f"warm starts; got {n!r}")
+        coarse = problem.coarser(nc)
+        self.fine_grid = problem.grid
+        self._fine_nd = problem
         self._fine_prob = None
         self._nd = coarse
         self._threads = threads
-        self._prob = AdhesiveProblem(coarse.initial_gap, coarse.grid, coarse.law, None, threads, 1.0)
+        self._prob = coarse.adhesive_problem(threads)
         self._cold = Prediction(np.zeros_like(self._prob.z), self._prob.to_work(coarse.start_stress()))
         self._tol, self._max_iter = float(tol), int(max_iter)
-        self._inner = (NestedWarmStart(mu, beta0, nc, law=law, margin=margin, tol=tol, max_iter=max_iter,
-                                       threads=threads, problem=coarse)
+        self._inner = (NestedWarmStart(coarse, tol=tol, max_iter=max_iter, threads=threads)
                        if nc // 2 >= NESTED_MIN_N and nc % 4 == 0 else None)
+        # the coarse states, solved on one branch (kept: they are the warm starts), by approach
+        self._branch = Branch(self._prob, self._tol, self._max_iter, progress=False, keep_states=True,
+                              warm_start=self._inner)
         self._states = {}
-        self._n_solved = 0
-        self._own_iterations = 0
 
     @property
     def states_solved(self) -> int:
-        return self._n_solved + (self._inner.states_solved if self._inner else 0)
+        return len(self._branch.records) + (self._inner.states_solved if self._inner else 0)
 
     @property
     def iterations(self) -> int:
-        return self._own_iterations + (self._inner.iterations if self._inner else 0)
+        own = sum(r["iterations"] for r in self._branch.records)
+        return own + (self._inner.iterations if self._inner else 0)
 
     def coarse_state(self, approach):
         """The state at ``approach`` on the coarse grid (solved once)."""
         d = float(approach)
         if d not in self._states:
-            guess = self._inner(d) if self._inner else None
-            if guess is None:
-                good = [k for k, st in self._states.items() if st.converged and st.in_contact]
-                guess = self._states[min(good, key=lambda k: abs(k - d))] if good else self._cold
-            st = solve_problem(self._prob, d, guess, self._tol, self._max_iter)
-            self._own_iterations += st.iterations
-            self._n_solved += 1
-            self._states[d] = st
+            b = self._branch
+            guess = b.guess(d, b.nearest_usable(d))
+            self._states[d] = b.solve(d, guess if guess is not None else self._cold, "unloading")[1]
         return self._states[d]
 
     def __call__(self, approach):
@@ -398,8 +395,7 @@ class NestedWarmStart:
         if not isinstance(law, DugdaleLaw):
             return guess
         if self._fine_prob is None:
-            fine = self._fine_nd
-            self._fine_prob = AdhesiveProblem(fine.initial_gap, fine.grid, fine.law, None, self._threads, 1.0)
+            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
         fp = self._fine_prob
         zone = fp.to_full(fp.stress_from_gap(fp.to_work(guess.gap), fp.to_work(guess.contact)) / law.max_stress)
         return replace(guess, pressure=guess.repulsive_pressure - law.max_stress * zone,
@@ -409,33 +405,37 @@ class NestedWarmStart:
         """Approach of the load-control pull-off on the coarse grid (NaN when not found).
 
         The coarsest level whose Dugdale edge is (nearly) resolved
-        (:data:`LOCATE_MAX_EDGE_RATIO`) runs the bracket search (:func:`unloading_path` with the analytic DH guess, and
-        the coarser levels as warm starts); every finer level solves the approaches of the lattice
-        ``approach_max - j spacing`` next to the pull-off of the level below
-        (:func:`_lattice_minimum`, warm-started from that level) and returns the
-        vertex of their parabola.  The states are kept for the warm starts.  NaN
-        when this grid is too coarse for the Dugdale edge.
+        (:data:`LOCATE_MAX_EDGE_RATIO`) runs the bracket search (with the problem's cold
+        start, and the coarser levels as warm starts); every finer level solves the
+        approaches of the lattice ``approach_max - j spacing`` next to the pull-off of the
+        level below (:func:`_lattice_minimum`, warm-started from that level) and returns
+        the vertex of their parabola.  The states are kept for the warm starts.  NaN when
+        this grid is too coarse for the Dugdale edge.
         """
-        nd = self._nd
+        nd, b = self._nd, self._branch
         if self._prob.edge_width_ratio > LOCATE_MAX_EDGE_RATIO:
             return float("nan")           # the Dugdale edge is far from resolved here: no reliable minimum
         if self._inner is None or self._inner._prob.edge_width_ratio > LOCATE_MAX_EDGE_RATIO:
             # the coarsest resolved grid: the bracket search (warm starts from the grid below, if any)
-            path = unloading_path(nd.initial_gap, nd.grid, nd.law, nd.approach_max, nd.approach_step,
-                                  control="load", refine_levels=LOCATE_BOTTOM_REFINE, tol=self._tol,
-                                  max_iter=self._max_iter, threads=self._threads,
-                                  keep_states=True, progress=False, approach_guess=nd.pull_off_approach,
-                                  start_stress=nd.start_stress(), warm_start=self._inner)
-            for st in path.states:
+            # no vertex refinement: the next grid's lattice samples re-locate the minimum anyway
+            # (measured over 4 cases at N = 256: the same pull-offs, 10 % less CPU than 2)
+            opts = PathOptions(refine_levels=0, tol=self._tol, max_iter=self._max_iter,
+                               threads=self._threads, keep_states=True, progress=False).checked()
+            first = len(b.records)
+            path = load_control_path(b, nd.path_start(self._prob, self._inner), nd.approach_max,
+                                     nd.approach_step, opts)
+            for i in range(first, len(b.records)):
+                st = b.states[i]
                 if st.converged and st.in_contact and st.approach not in self._states:
                     self._states[st.approach] = st
-            self._own_iterations += int(path.iterations.sum())
-            self._n_solved += path.n_steps
             return float(path.pull_off_approach)
         below = self._inner.locate_pull_off(spacing)
         if not np.isfinite(below):
             return float("nan")
-        _, sm = _lattice_minimum(self.coarse_state, below, nd.approach_max, spacing)
+        first = len(b.records)
+        sm = _lattice_minimum(b, self.coarse_state, below, nd.approach_max, spacing)
+        for i in range(first, len(b.records)):
+            self._states.setdefault(b.approach(i), b.states[i])
         return float("nan") if (sm is None or sm.at_boundary) else float(sm.x)
 
 
@@ -446,12 +446,6 @@ class NestedWarmStart:
 LOCATE_DIVISIONS = 2
 #: Cap on lattice samples added when the load minimum sits at an end of the samples.
 LOCATE_MAX_EXTEND = 6
-#: Cap on the parabola-vertex states solved on the fine grid after the lattice samples.
-LOCATE_VERTEX_STATES = 1
-#: Vertex refinements of the bracket search on the coarsest grid of the located search: none,
-#: the next grid's lattice samples re-locate the minimum anyway (measured over 4 cases at
-#: N = 256: the same pull-offs, 10 % less CPU than 2).
-LOCATE_BOTTOM_REFINE = 0
 #: Coarse grids of the located search must have an ``AdhesiveProblem.edge_width_ratio`` (edge
 #: width wanted / its cap 2 h0; > 1 is flagged unresolved) of at most this.  Measured: the
 #: states converge at 1.10 (lambda = 3, N = 64) and 1.18 (mu = 5, N = 256), and not at 2.1-3.8
@@ -464,203 +458,114 @@ LOCATE_MAX_EDGE_RATIO = 1.25
 LOCATE_COARSE_TOL = 1e-4
 
 
-def _usable(st):
-    return bool(st.converged and st.in_contact)
+def _lattice_minimum(branch, solve, approach, top, spacing, max_extend=LOCATE_MAX_EXTEND):
+    """The load minimum of samples of the lattice ``top - j spacing`` around ``approach``, or None.
 
-
-def _lattice_minimum(solve, approach, top, spacing, max_extend=LOCATE_MAX_EXTEND):
-    """Samples of the lattice ``top - j spacing`` around ``approach`` until the load minimum is interior.
-
-    ``solve(delta)`` returns the state at delta.  Three samples next to ``approach``, then
-    one more beyond the end holding the lowest load, until the discrete minimum is interior
-    (or the branch ends there, or ``max_extend`` samples were added).  Returns
-    ``({j: state}, SampledMinimum or None)`` (None: no converged contact state).
+    ``solve(delta)`` solves the state at delta on ``branch``.  Three samples next to
+    ``approach``, then one more beyond the end holding the lowest load until the discrete
+    minimum is interior (:meth:`Branch.extend_until_interior`, at most ``max_extend``).
+    Returns the SampledMinimum (None: no converged contact state).
     """
-    from ..pull_off_search import refine_sampled_minimum
-
     j0 = int(round((top - approach) / spacing))
-    solved = {j: solve(top - j * spacing) for j in (j0 - 1, j0, j0 + 1)}
-    sm = None
-    for k in range(max_extend + 1):
-        js = sorted(solved)
-        w = np.array([solved[j].load if _usable(solved[j]) else np.nan for j in js])
-        if not np.isfinite(w).any():
-            return solved, None
-        sm = refine_sampled_minimum(top - np.array(js) * spacing, w, first=False)
-        if not sm.at_boundary or k == max_extend:
-            break
-        if sm.index == 0:
-            j = js[0] - 1                 # minimum at the top: back up the branch
-        elif sm.index == len(js) - 1:
-            j = js[-1] + 1                # at the bottom: further down
-        else:
-            break                         # next to a failed state: the branch ends there
-        solved[j] = solve(top - j * spacing)
-    return solved, sm
+    first = len(branch.records)
+    for j in (j0 - 1, j0, j0 + 1):
+        solve(top - j * spacing)
+
+    def next_approach(i, up):
+        j = int(round((top - branch.approach(i)) / spacing))
+        return top - (j - 1 if up else j + 1) * spacing
+
+    _, order = branch.extend_until_interior(range(first, len(branch.records)), next_approach, max_extend)
+    return branch.minimum(order)[1]
 
 
-def _located_path(nd, n, ws, *, refine_levels, refine_factor, tol, max_iter, threads, keep_states,
-                  progress):
+def located_path(problem, ws, options):
     """The load-control pull-off located on coarser grids (``search='located'``), or None.
 
     ``ws.locate_pull_off`` finds the pull-off on the grid half as fine (recursively: the
     bracket search on the coarsest grid, three lattice samples on every finer one); on this
     grid only the lattice samples around it (:func:`_lattice_minimum`) and at most
-    ``refine_levels`` parabola vertices are solved, each warm-started from the same
-    approach on the coarser grid.  None when the located minimum is not interior or a state
-    did not converge (the caller then runs the bracket search).
+    one parabola vertex (none with ``refine_levels=0``) is solved,
+    each warm-started from the same approach on the coarser grid.  None when the located
+    minimum is not interior or a state did not converge (the caller then runs the bracket search).
     """
-    from ..pull_off_search import refine_sampled_minimum
-
-    t0 = time.perf_counter()
-    spacing = nd.approach_step / LOCATE_DIVISIONS
+    spacing = problem.approach_step / LOCATE_DIVISIONS
     d_coarse = ws.locate_pull_off(spacing)
     if not np.isfinite(d_coarse):
         return None
-    prob = AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, threads, 1.0)
-    prog = PathProgress(progress, f"located N={int(n)}")
-    states, phases = [], []
-
-    def run(delta, phase):
-        guess = ws(delta)
-        if guess is None:                 # the coarse state is off the branch: the nearest fine state
-            good = [st for st in states if _usable(st)]
-            guess = min(good, key=lambda st: abs(st.approach - delta)) if good else None
-        st = solve_problem(prob, float(delta), guess, tol, int(max_iter))
-        states.append(st)
-        phases.append(phase)
-        prog.update(len(states), st, phase)
-        return st
-
-    solved, sm = _lattice_minimum(lambda d: run(d, "unloading"), d_coarse, nd.approach_max, spacing)
-    xtol = nd.approach_step / int(refine_factor) ** int(refine_levels)
-
-    def minimum():
-        order = sorted((i for i in range(len(states)) if _usable(states[i])), key=lambda i: -states[i].approach)
-        x = np.array([states[i].approach for i in order])
-        return order, x, refine_sampled_minimum(x, np.array([states[i].load for i in order]), first=False)
-
-    if sm is not None and not sm.at_boundary and all(st.converged for st in states):
-        for _ in range(min(int(refine_levels), LOCATE_VERTEX_STATES)):
-            order, x, sm = minimum()
-            if sm.at_boundary or float(np.min(np.abs(x - sm.x))) <= xtol:
-                break
-            if not _usable(run(sm.x, "refine")):
-                break
-    prog.close()
-    if sm is None or not all(st.converged for st in states):
+    b = Branch(problem.adhesive_problem(options.threads), options.tol, options.max_iter,
+               label=f"located N={problem.grid.nx}", progress=options.progress, keep_states=options.keep_states,
+               warm_start=ws)
+    sm = _lattice_minimum(b, lambda d: b.solve(d, b.guess(d, b.nearest_usable(d)), "unloading"), d_coarse,
+                          problem.approach_max, spacing)
+    every = range(len(b.records))
+    if sm is None or sm.at_boundary or not all(r["converged"] for r in b.records):
         return None
-    order, x, sm = minimum()
-    if sm.at_boundary:
+    xtol = problem.approach_step / options.refine_factor ** options.refine_levels
+    b.refine_vertex(every, xtol, min(options.refine_levels, 1))
+    order, sm = b.minimum(range(len(b.records)))
+    if sm.at_boundary or not all(r["converged"] for r in b.records):
         return None
-    recs = [{**st.summary(), "phase": ph} for st, ph in zip(states, phases)]   # all converged (checked above)
-    return UnloadingPath.from_records(
-        recs, control="load", pull_off_load=sm.y, pull_off_approach=sm.x, pull_off_state=states[order[sm.index]],
-        states=tuple(states) if keep_states else (), elapsed=time.perf_counter() - t0, pull_off_converged=True,
-        resolved=prob.resolved, coarse_states=ws.states_solved, coarse_iterations=ws.iterations)
+    return b.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=order[sm.index], converged=True,
+                     error=b.minimum_error(order, sm))
 
 
-def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
-                      refine_levels=2, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER,
-                      margin=DOMAIN_MARGIN, threads=None, keep_states=False,
-                      progress=None, search="located", nested=None) -> AdhesivePullOff:
-    """BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
+def solve_pull_off(problem, *, control="load", search="located", nested=None, options=PathOptions()) -> AdhesivePullOff:
+    """The BEM pull-off of a problem in the paper's units, by the route of ``control`` and ``search``.
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
-    beta0 : float
-        Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
-    n : int
-        Cells per axis (even) [-].
-    law : {'dugdale', 'exponential'}
-        Traction law (:mod:`dhfield.bem.laws`).
+    problem : NondimensionalProblem
+        From :func:`paper_problem` (its start chosen by the caller).
     control : {'load', 'displacement'}
         Load control: the minimum of the unloading load.  Displacement control:
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
+    search : {'located', 'bracket', 'march'}
+        The load-control route (:func:`dhfield.adhesive_start.adhesive_pull_off`
+        describes each); without a cold start in ``problem``: 'march'.
+    nested : bool, optional
+        Bracket search only: warm starts from the grid half as fine
+        (:class:`NestedWarmStart`).  Default: when ``n >= 2 NESTED_MIN_N`` (and n % 4 == 0).
+    options : PathOptions
+        Path settings and solver tolerances.
 
     Returns
     -------
     AdhesivePullOff
-        W* in the normalisation of Eq. (34) with sin(theta_skew) of beta0, like
-        every other model of :mod:`dhfield.compare`; semi-axes in c_r.
-
-    Other Parameters
-    ----------------
-    n_steps, refine_levels, tol, max_iter, threads, keep_states, progress
-        See :func:`nondimensional_problem`, :func:`unloading_path` and
-        :func:`solve_adhesive`.
-    margin : float
-        Domain half-width per expected zone semi-axis.
-    search : {'located', 'bracket', 'march'}
-        Load control only (the route taken is :attr:`AdhesivePullOff.search`).
-        'located' (default) is 'bracket' with the minimum located on coarser
-        grids first (below).  'bracket': cold-start at the analytic DH
-        pull-off approach from the DH cohesive zone and bracket the load minimum
-        there (a handful of states; :func:`unloading_path` with
-        ``approach_guess``).  'march': unload from ``approach_max`` in uniform
-        steps to the jump and refine the minimum's bracket (the path of
-        dhfield <= the first session; ~5x more states, same pull-off).
-        'located': the minimum is located on the grids 2x, 4x, ... coarser (the
-        bracket search on the coarsest, N = 64; three samples of the approach
-        lattice ``approach_max - j approach_step/2`` around the coarser
-        level's minimum on every finer one), and on this grid only those
-        lattice samples and at most one parabola vertex (none with
-        ``refine_levels=0``) are solved, each from the same approach on the
-        grid half as fine: 3-4 fine states instead of 4-6 (measured at
-        N = 256), the same pull-off to the jaggedness of the discrete load
-        curve (~5e-4).  Falls back to 'bracket' (keeping the coarse
-        states) when ``n < 2 NESTED_MIN_N``, when the grid half as fine is too
-        coarse for the Dugdale edge (:data:`LOCATE_MAX_EDGE_RATIO`), when the
-        located minimum is not interior, or when a fine state does not converge.
-    nested : bool, optional
-        Bracket search only: start every state from the same approach solved
-        on a grid half as fine (:class:`NestedWarmStart`).  Default: when
-        ``n >= 2 * NESTED_MIN_N``.
-
-    Notes
-    -----
-    With R = E* = Delta gamma = 1 (Eqs. 32-35): the initial gap is Eq. (2) with
-    R' R'' = 1, the law has sigma0 = mu and range 1/mu, and
-
-    .. math:: W^* = \\frac{W \\sin\\theta_{skew}}{2\\pi R\\Delta\\gamma}
-
-    (Eq. 34).  The domain and the path come from :func:`nondimensional_problem`.
+        W* in the normalisation of Eq. (34); ``search`` names the route taken.
     """
+    if control not in ("load", "displacement"):
+        raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
     if search not in SEARCHES:
         raise ValueError(f"search must be one of {SEARCHES} (load-control path); got {search!r}")
-    prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
-    guess = {}
-    if control == "load" and search != "march" and np.all(np.isfinite(prob.pull_off_zone)):
-        guess = dict(approach_guess=prob.pull_off_approach, start_stress=prob.start_stress())
+    if not isinstance(problem, NondimensionalProblem):
+        raise ValueError(f"problem must be a NondimensionalProblem; got {type(problem).__name__}")
+    options = options.checked()
+    n = problem.grid.nx
+    prob = problem.adhesive_problem(options.threads)
+    ws = None
+    cold = problem.has_cold_start and (control == "displacement" or search != "march")
+    if control == "load" and cold:
         if nested is None or search == "located":
-            nested = int(n) >= 2 * NESTED_MIN_N and int(n) % 4 == 0
+            nested = n >= 2 * NESTED_MIN_N and n % 4 == 0
         if nested:
             # the located search's coarse states only locate the minimum and start the fine states
-            coarse_tol = max(tol, LOCATE_COARSE_TOL) if search == "located" else tol
-            guess["warm_start"] = NestedWarmStart(mu, beta0, n, law=law, margin=margin, tol=coarse_tol,
-                                                  max_iter=max_iter, threads=threads, problem=prob)
+            coarse_tol = max(options.tol, LOCATE_COARSE_TOL) if search == "located" else options.tol
+            ws = NestedWarmStart(problem, tol=coarse_tol, max_iter=options.max_iter, threads=options.threads)
         if search == "located" and nested:
-            path = _located_path(prob, n, guess["warm_start"], refine_levels=refine_levels, refine_factor=4,
-                                 tol=tol, max_iter=max_iter, threads=threads, keep_states=keep_states,
-                                 progress=progress)
+            path = located_path(problem, ws, options)
             if path is not None:
-                return _pull_off_result(prob, int(n), path, "located")
-    if control == "displacement" and np.all(np.isfinite(prob.pull_off_zone)):
-        # the branch is followed by adhesive force from the DH load-control pull-off (unloading_path)
-        guess = dict(approach_guess=prob.pull_off_approach, start_stress=prob.start_stress())
-    path = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
-                          control=control, refine_levels=refine_levels, tol=tol, max_iter=max_iter,
-                          threads=threads, keep_states=keep_states, progress=progress, **guess)
+                return _pull_off_result(problem, n, path, "located")
+    start = problem.path_start(prob, ws) if cold else PathStart()
+    path = path_on(prob, start, problem.approach_max, problem.approach_step, control=control, options=options)
     if control == "displacement":
         route = "continuation"
-    elif "approach_guess" in guess and not np.any(path.phase == "discarded"):
+    elif cold and not np.any(path.phase == "discarded"):
         route = "bracket"
     else:
         route = "march"     # requested, or the bracket's cold start gave no contact state
-    return _pull_off_result(prob, int(n), path, route)
+    return _pull_off_result(problem, n, path, route)
 
 
 #: Accuracy carried by every displacement-control pull-off (:attr:`AdhesivePullOff.note`).
@@ -680,8 +585,51 @@ DISPLACEMENT_CONTROL_NOTE = (
     "near lambda = 1 coarser grids can mistake the loss of contact for the fold (N = 96: -3.1 %)")
 
 
+#: Slack of the DMT bound on W*, relative to it: the accuracy the BEM states where it is
+#: resolved (1 % of Maugis-Dugdale at N = 256, tests/test_cli_solve.py); a pull-off stronger
+#: than DMT by more than this (or than its W_star_error) is not a physical answer.
+DMT_BOUND_SLACK = 0.01
+#: Fewest cells across the Dugdale zone (c* - a*, d* - b*) of a resolved pull-off state: a
+#: zone narrower than a cell is not represented (issue 18: c* = a* at mu = 30, N = 64, W* = -7.24).
+ZONE_MIN_CELLS = 1.0
+
+
+def _unresolved_reasons(prob, path, w_star, error, axes):
+    """Why a pull-off is not a resolved answer (empty when it is): the grid, then the physical bounds.
+
+    ``axes`` = (a*, b*, c*, d*) of the pull-off state.  Bounds: W* between the DMT limit
+    -sin(theta_skew) (Eq. 34 of W = -2 pi Delta gamma sqrt(R'R''), the rigid limit of every
+    law with that work of adhesion) and the zero-adhesion limit 0; for the Dugdale law a
+    cohesive zone beyond the contact, at least ``ZONE_MIN_CELLS`` cells wide on both axes.
+    """
+    reasons = []
+    if not path.resolved:
+        reasons.append("the grid is too coarse for the traction law's edge (EDGE_WIDTH_FACTOR): increase n")
+    if not np.isfinite(w_star):
+        return reasons + ["no pull-off was found (no converged contact state)"]
+    dmt = -prob.sin_skew
+    if w_star < dmt - max(DMT_BOUND_SLACK * abs(dmt), error if np.isfinite(error) else 0.0):
+        reasons.append(f"W* = {w_star:.4g} is stronger than the DMT limit {dmt:.4g}")
+    if w_star > 0.0:
+        reasons.append(f"W* = {w_star:.4g} is above the zero-adhesion limit 0")
+    a, b, c, d = axes
+    if isinstance(prob.law, DugdaleLaw):
+        g = prob.grid
+        if not (c > a and d > b):
+            reasons.append(f"the Dugdale zone has collapsed onto the contact (c* = {c:.4g}, a* = {a:.4g})")
+        elif min((c - a) / g.dx, (d - b) / g.dy) < ZONE_MIN_CELLS:
+            reasons.append(f"the Dugdale zone is narrower than {ZONE_MIN_CELLS:g} cell (c* - a* = {c - a:.3g}, "
+                           f"dx = {g.dx:.3g}; d* - b* = {d - b:.3g}, dy = {g.dy:.3g}): increase n")
+    return reasons
+
+
 def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str) -> AdhesivePullOff:
-    """The pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state."""
+    """The pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state.
+
+    ``resolved`` is False, with the reasons in ``note``, when the grid is too coarse or the
+    answer breaks a physical bound (:func:`_unresolved_reasons`); ``W_star_error`` is then
+    infinite (no bound), as it is when the path gives no estimate.
+    """
     note = path.pull_off_note
     if path.control == "displacement":
         note = "; ".join(filter(None, (note, DISPLACEMENT_CONTROL_NOTE)))
@@ -689,15 +637,22 @@ def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, s
     a, b = st.contact_semi_axes()
     c, d = st.cohesive_semi_axes()
     scale = prob.sin_skew / (2.0 * math.pi)  # Eq. (34): W* = W sin(theta_skew) / (2 pi R dgamma)
+    w_star = float(path.pull_off_load * scale)
+    error = float(abs(path.pull_off_error * scale))
+    reasons = _unresolved_reasons(prob, path, w_star, error, (a, b, c, d))
+    if reasons or not np.isfinite(error):
+        error = float("inf")
+    if reasons:
+        note = "; ".join(filter(None, (note, "unresolved: " + "; ".join(reasons))))
     return AdhesivePullOff(
         mu=prob.mu, beta0=prob.beta0, n=int(n), law=prob.law.name, control=path.control,
-        W_star=float(path.pull_off_load * scale), a_star=a, b_star=b, c_star=c, d_star=d,
+        W_star=w_star, a_star=a, b_star=b, c_star=c, d_star=d,
         beta_ab=b / a if a > 0 else float("nan"), beta_cd=d / c if c > 0 else float("nan"),
         delta_star=float(path.pull_off_approach), converged=path.pull_off_converged, n_steps=path.n_steps,
         iterations=int(path.iterations.sum()), residual=float(path.residual.max()), failures=path.failures,
-        resolved=path.resolved, half_width_x=0.5 * prob.grid.nx * prob.grid.dx,
+        resolved=not reasons, half_width_x=0.5 * prob.grid.nx * prob.grid.dx,
         half_width_y=0.5 * prob.grid.ny * prob.grid.dy, elapsed=path.elapsed, path=path,
-        W_star_error=float(abs(path.pull_off_error * scale)), note=note, search=search)
+        W_star_error=error, note=note, search=search)
 
 
 def richardson_extrapolation(n, values):
@@ -735,15 +690,6 @@ def richardson_extrapolation(n, values):
         return f[2], float("nan")
     q = math.log(e1 / e2) / math.log(r)
     return f[2] + e2 / (r**q - 1.0), q
-
-
-# ============================================================================ coarse to fine
-#: Half-width, in finest path steps, of the window of approaches solved around the
-#: coarse pull-off by :func:`refine_pull_off` (the fine minimum moves by O(error) of
-#: the coarse one: a fraction of a step at N >= 128).
-REFINE_WINDOW = 3
-#: Cap on window extensions when the fine minimum sits on the window's edge.
-REFINE_MAX_EXTEND = 12
 
 
 def interpolate_state(state, grid):
@@ -792,39 +738,37 @@ def interpolate_state(state, grid):
                         repulsive_pressure=p)
 
 
-def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine_factor=4,
-                    window=REFINE_WINDOW, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None,
-                    keep_states=False, progress=None) -> AdhesivePullOff:
+# ============================================================================ coarse to fine
+#: Half-width, in finest path steps, of the window of approaches solved around the
+#: coarse pull-off by :func:`refine` (the fine minimum moves by O(error) of
+#: the coarse one: a fraction of a step at N >= 128).
+REFINE_WINDOW = 3
+#: Cap on window extensions when the fine minimum sits on the window's edge.
+REFINE_MAX_EXTEND = 12
+
+
+def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> AdhesivePullOff:
     """Load-control pull-off on a finer grid, started from a coarser solution (coarse to fine).
 
     Parameters
     ----------
+    problem : NondimensionalProblem
+        The fine grid's problem, over the same domain and path range as ``coarse``'s.
     coarse : AdhesivePullOff
-        A pull-off of the same (mu, beta0, law) on a coarser grid (load
-        control), e.g. from :func:`adhesive_pull_off` at N = 256 or from a
-        previous call of this function.
-    n : int
-        Cells per axis of the fine grid (even, > ``coarse.n``) [-].
+        A load-control pull-off of the same (mu, beta0, law) on a coarser grid.
     window : int
         Half-width of the window of fine states around the coarse pull-off, in
         finest path steps (extended while the fine minimum sits on its edge).
+    options : PathOptions
+        ``refine_levels`` and ``refine_factor`` of the full path (the fine states
+        sit on its finest approach lattice, ``approach_max - j h`` with
+        ``h = approach_step / refine_factor**refine_levels``), and the solver settings.
 
     Returns
     -------
     AdhesivePullOff
-        As :func:`adhesive_pull_off`, with ``path.phase == 'refine'`` for every
-        state.  ``converged`` is True when every state of the window converged.
-
-    Other Parameters
-    ----------------
-    n_steps, refine_levels, refine_factor
-        The path settings of the full path (:func:`adhesive_pull_off`): the fine
-        states sit on its finest approach lattice, ``approach_max - j h`` with
-        ``h = approach_step / refine_factor**refine_levels``, so that the fine
-        pull-off equals the full fine path's wherever both bracket the same
-        samples.
-    tol, max_iter, threads, keep_states, progress
-        As in :func:`unloading_path`.
+        With ``path.phase == 'refine'`` for every state; ``converged`` when every
+        state of the window converged and the minimum is interior.
 
     Notes
     -----
@@ -832,82 +776,50 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
     first is warm-started from the coarse pull-off state interpolated onto the
     fine grid (:func:`interpolate_state`), the others from their neighbours
     (secant predictor), descending in approach like an unloading path; the
-    minimum is refined by :func:`dhfield.pull_off_search.refine_sampled_minimum`
-    over the window.  The load-control pull-off lies on the stable branch of
-    displacement control, so the warm start stays on the branch of the full
-    path; multistability after the jump does not enter.
+    window is extended while the minimum sits on its edge
+    (:meth:`Branch.extend_until_interior`).  The load-control pull-off lies on
+    the stable branch of displacement control, so the warm start stays on the
+    branch of the full path; multistability after the jump does not enter.
     """
-    from ..pull_off_search import refine_sampled_minimum
-
     if not isinstance(coarse, AdhesivePullOff):
         raise ValueError(f"coarse must be an AdhesivePullOff; got {type(coarse).__name__}")
     if coarse.control != "load":
         raise ValueError(f"coarse must be a load-control pull-off; got control={coarse.control!r}")
     if not np.isfinite(coarse.delta_star):
         raise ValueError("coarse must hold a pull-off (its delta_star is NaN: no converged contact state)")
-    n = check_count("n", n, 8, MAX_CELLS, "cells per axis")
+    window = check_count("window", window, 1, MAX_STEPS, "finest path steps")
+    options = options.checked()
+    n = problem.grid.nx
     if n <= coarse.n:
         raise ValueError(f"n must be an integer > coarse.n = {coarse.n} (cells per axis); got {n!r}")
-    window = check_count("window", window, 1, MAX_STEPS, "finest path steps")
-    refine_levels = check_count("refine_levels", refine_levels, 0, 16, "bracket refinements")
-    refine_factor = check_count("refine_factor", refine_factor, 2, MAX_STEPS, "step division per refinement")
-    prob_nd = nondimensional_problem(coarse.mu, coarse.beta0, int(n), law=coarse.law, n_steps=n_steps)
-    grid = prob_nd.grid
+    grid = problem.grid
     if not (math.isclose(0.5 * grid.nx * grid.dx, coarse.half_width_x, rel_tol=1e-9)
             and math.isclose(0.5 * grid.ny * grid.dy, coarse.half_width_y, rel_tol=1e-9)):
         raise ValueError("coarse must come from the same domain (adhesive_pull_off with the default margin)")
-    prob = AdhesiveProblem(prob_nd.initial_gap, grid, prob_nd.law, None, threads, 1.0)
-    tol = float(check_positive("tol", tol, "solver tolerance, dimensionless"))
-    h = prob_nd.approach_step / int(refine_factor) ** int(refine_levels)
-    top = prob_nd.approach_max
+    h = problem.approach_step / options.refine_factor ** options.refine_levels
+    top = problem.approach_max
     j_c = int(round((top - coarse.delta_star) / h))
-    t0 = time.perf_counter()
-    prog = PathProgress(progress, f"refine N={int(n)}")
-    solved = {}                       # lattice index -> ContactState
-
-    def run(j, guess):
-        st = solve_problem(prob, top - j * h, guess, tol, int(max_iter))
-        solved[j] = st
-        prog.update(len(solved), st, "refine")
-        return st
-
+    b = Branch(problem.adhesive_problem(options.threads), options.tol, options.max_iter, label=f"refine N={n}",
+               progress=options.progress, keep_states=options.keep_states)
     # downwards from the top of the window: warm start from the coarse state, then secant
-    first = interpolate_state(coarse.path.pull_off_state, grid)
-    lo_j, hi_j = j_c - int(window), j_c + int(window)
-    prev, st = None, first
-    for j in range(lo_j, hi_j + 1):
-        new = run(j, first if st is first else secant_prediction(prob, prev, st, top - j * h))
+    st = first = interpolate_state(coarse.path.pull_off_state, grid)
+    prev = None
+    for j in range(j_c - window, j_c + window + 1):
+        d = top - j * h
+        new = b.solve(d, first if st is first else b.guess(d, st, prev), "refine")[1]
         prev, st = (None if st is first else st), new
 
-    def minimum():
-        js = sorted(solved)
-        w = np.array([solved[j].load if (solved[j].converged and solved[j].in_contact) else np.nan for j in js])
-        if not np.any(np.isfinite(w)):
-            return js, w, None
-        return js, w, refine_sampled_minimum(np.array([top - j * h for j in js]), w, first=False)
+    def next_approach(i, up):
+        j = int(round((top - b.approach(i)) / h))
+        return top - (j - 1 if up else j + 1) * h
 
-    for _ in range(REFINE_MAX_EXTEND):
-        js, w, sm = minimum()
-        if sm is None or not sm.at_boundary:
-            break
-        if sm.index == 0:             # minimum at the top: extend upwards (back along the branch)
-            j = js[0] - 1
-            run(j, secant_prediction(prob, solved[js[1]], solved[js[0]], top - j * h))
-        else:                         # at the bottom: continue unloading
-            j = js[-1] + 1
-            run(j, secant_prediction(prob, solved[js[-2]], solved[js[-1]], top - j * h))
-    prog.close()
-    js, w, sm = minimum()
-    states = [solved[j] for j in js]
+    b.extend_until_interior(range(len(b.records)), next_approach, REFINE_MAX_EXTEND, phase="refine")
+    order, sm = b.minimum(range(len(b.records)))
     if sm is None:
-        k_po, w_po, d_po = len(states) - 1, float("nan"), float("nan")
+        k_po, w_po, d_po = order[-1], float("nan"), float("nan")
     else:
-        k_po, w_po, d_po = sm.index, sm.y, sm.x
-    recs = [{**s.summary(), "phase": "refine"} for s in states]
-    failures = tuple({"approach": r["approach"], "residual": r["residual"], "iterations": r["iterations"],
-                      "phase": "refine"} for r in recs if not r["converged"])
-    path = UnloadingPath.from_records(
-        recs, control="load", pull_off_load=w_po, pull_off_approach=d_po, pull_off_state=states[k_po],
-        failures=failures, states=tuple(states) if keep_states else (), elapsed=time.perf_counter() - t0,
-        pull_off_converged=not failures and sm is not None and not sm.at_boundary, resolved=prob.resolved)
-    return _pull_off_result(prob_nd, int(n), path, "refine")
+        k_po, w_po, d_po = order[sm.index], sm.y, sm.x
+    converged = all(r["converged"] for r in b.records) and sm is not None and not sm.at_boundary
+    path = b.to_path(control="load", load=w_po, approach=d_po, pull_off_index=k_po, converged=converged,
+                     order=order, error=b.minimum_error(order, sm))
+    return _pull_off_result(problem, n, path, "refine")

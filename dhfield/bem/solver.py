@@ -179,6 +179,14 @@ class AdhesiveProblem:
             self.resolved = want <= 2.0 * self.law.range
             # wanted edge width per its cap 2 h0 (resolved iff <= 1)
             self.edge_width_ratio = want / (2.0 * self.law.range)
+        elif self.law is not None:
+            # a smooth law has no edge to smear: the discrete state is stable only if its steepest
+            # slope sigma0/rho times the edge cells' compliance kappa dx/E* is below 1 (the same
+            # criterion as the Dugdale edge's, whose smeared slope is sigma0/(2 h0))
+            cells = math.sqrt(grid.nx * grid.ny)
+            kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(cells))
+            slope = self.law.max_stress / self.law.range
+            self.resolved = kappa * slope * math.sqrt(dx * dy) / e <= 1.0
 
     def to_full(self, q):
         return unfold_quadrant(q) if self.symmetric else q
@@ -480,7 +488,7 @@ def _active_box_cg(op, g0, p, scale, tol, max_iter, k0, stress):
     pb = np.ascontiguousarray(p[sl])
     hb = np.ascontiguousarray(h[sl])
     pc, _, it, _ = _constrained_cg(sub_op, hb - sub_op(pb), pb.copy(), scale, tol, max_iter, k0, None,
-                                   h=hb.copy(), nested=False, exact_gap=False)   # (p is updated in place)
+                                   h=hb.copy(), exact_gap=False)   # (p is updated in place)
     dp = np.zeros_like(p)
     dp[sl] = pc - pb
     p[sl] = pc
@@ -493,11 +501,11 @@ def _active_box_cg(op, g0, p, scale, tol, max_iter, k0, stress):
     return p, h, it + it2, err
 
 
-def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=True, exact_gap=True):
+def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, exact_gap=True):
     """The Polonsky-Keer iteration for ``h = g0 + K(p - stress)`` on ``op``'s grid (p >= 0, owned).
 
-    ``h``: the gap of ``p`` if already known; ``nested``: a cold start without stress
-    may start from the coarser grid (:func:`_nested_cold_start`); ``exact_gap``: end with a
+    ``h``: the gap of ``p`` if already known (a cold start, p = 0, without stress starts
+    from the coarser grid, :func:`_nested_cold_start`); ``exact_gap``: end with a
     fresh convolution of the gap (False when the caller completes the gap itself: the
     box solves, whose returned gap is discarded).
     """
@@ -514,7 +522,7 @@ def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=
         if not np.any(neg):
             return p, h, 0, 0.0          # empty active set: linear, done
         pc = None
-        if stress is None and nested:    # cold start of a contact problem: from the coarser grid
+        if stress is None:               # cold start of a contact problem: from the coarser grid
             pc, coarse_it = _nested_cold_start(op, g0, scale, tol, max_iter, k0)
         if pc is not None and np.any(pc > 0):
             p = pc
@@ -582,9 +590,8 @@ def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, nested=
 class AndersonMixing:
     """Anderson mixing (type II) for x = F(x); residual f = F(x) - x."""
 
-    def __init__(self, memory=ANDERSON_MEMORY, mixing=1.0):
+    def __init__(self, memory=ANDERSON_MEMORY):
         self.m = memory
-        self.beta = mixing
         self.reset()
 
     def reset(self):
@@ -604,7 +611,7 @@ class AndersonMixing:
             np.subtract(ff, self.f_prev, out=self.df[k])
             self.count += 1
         self.x_prev, self.f_prev = xf.copy(), ff.copy()
-        new = xf + self.beta * ff
+        new = xf + ff
         n = min(self.count, self.m)
         if n:
             dfm = self.df[:n]
@@ -617,7 +624,7 @@ class AndersonMixing:
             except np.linalg.LinAlgError:
                 self.reset()
                 return new.reshape(x.shape)
-            new -= gamma @ dxm + self.beta * (gamma @ dfm)
+            new -= gamma @ dxm + gamma @ dfm
         return new.reshape(x.shape)
 
 
@@ -795,4 +802,4 @@ def assemble_state(prob, delta, p, s, h, iterations, residual, converged, outer)
         grid=prob.grid, pressure=full(p - s), gap=full(h), approach=float(delta), load=load,
         contact=full(contact_w), cohesive=full(coh), law=law, converged=bool(converged),
         iterations=int(iterations), residual=float(residual), outer_iterations=int(outer),
-        repulsive_pressure=full(p))
+        repulsive_pressure=full(p), resolved=bool(prob.resolved))

@@ -121,6 +121,11 @@ class ContactState:
         Outer (cohesive-zone) iterations.
     repulsive_pressure : ndarray, optional
         The repulsive (contact) part of the pressure, >= 0 [stress].
+    resolved : bool
+        False when the grid is too coarse for the traction law (the Dugdale
+        edge, or the steepest slope of a smooth law; see
+        ``dhfield.bem.solver.EDGE_WIDTH_FACTOR``): no discrete state is then
+        stable, and a converged one is not the continuum's.
     """
 
     grid: Grid
@@ -136,6 +141,7 @@ class ContactState:
     residual: float
     outer_iterations: int = 0
     repulsive_pressure: np.ndarray | None = field(default=None, repr=False)
+    resolved: bool = True
 
     def __post_init__(self):
         shape = self.grid.shape

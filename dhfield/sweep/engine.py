@@ -64,7 +64,7 @@ CONNECT_TIMEOUT = 5.0
 #: Modules the tasks of each quantity import: preloaded by the local workers of a sweep
 #: (:meth:`Executor.start`), so that only what the sweep uses is imported, once, at start-up.
 QUANTITY_MODULES = {"pull_off": ("dhfield.compare",), "load_curve": ("dhfield.compare",),
-                    "bem_field": ("dhfield.fields",), "adhesive": ("dhfield.bem.adhesive",)}
+                    "bem_field": ("dhfield.fields",), "adhesive": ("dhfield.adhesive_start",)}
 #: Seconds a starting local worker waits for its siblings (:meth:`Executor.start`).
 WORKER_START_TIMEOUT = 300.0
 #: Thread counts of the numerical libraries, set to 1 in every local worker process

@@ -6,9 +6,8 @@ Each quantity is a public function of plain numbers or arrays:
   block of (mu, beta0) points (vectorised; :func:`dhfield.compare.pull_off`).
 * :func:`bem_field_case` -- the forward BEM check of one DH state
   (:func:`dhfield.fields.model_case`, :func:`dhfield.fields.annulus_identity`).
-* :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off, through
-  the solver registered in :data:`ADHESIVE_SOLVERS` (default
-  ``dhfield.bem.adhesive.adhesive_pull_off`` when that module exists).
+* :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off
+  (:func:`dhfield.adhesive_start.adhesive_pull_off`).
 * :func:`expected_seconds` -- a cost model of one case, used by the engine only
   to hand out the costliest tasks first.
 
@@ -18,11 +17,9 @@ built there on first use and cached per process by
 """
 from __future__ import annotations
 
-import importlib
-
 import numpy as np
 
-__all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_BEM_FIELDS", "ADHESIVE_SOLVERS", "ADHESIVE_MODEL",
+__all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_BEM_FIELDS", "ADHESIVE_MODEL",
            "pull_off_block", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver",
            "expected_seconds"]
 
@@ -40,11 +37,6 @@ ADHESIVE_FIELDS = ("W_star", "a_star", "c_star", "ellipticity", "delta_star", "i
 ADHESIVE_BEM_FIELDS = ("b_star", "d_star", "beta_ab", "beta_cd")
 #: Name of the adhesive ground truth on the ``model`` dimension of a sweep.
 ADHESIVE_MODEL = "bem-adhesive"
-#: name -> "module:function" of adhesive BEM solvers
-#: ``f(mu, beta0, n, *, law, control, threads) -> result`` with attributes ``W_star``, ``a_star``,
-#: ``converged`` and, where available, ``c_star``, ``ellipticity``/``beta_ab``, ``delta_star``,
-#: ``iterations``, ``residual``, ``failures``, ``message``.
-ADHESIVE_SOLVERS = {"default": "dhfield.bem.adhesive:adhesive_pull_off"}
 
 
 def cohesive_laws() -> tuple:
@@ -130,17 +122,12 @@ def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width
 
 
 def adhesive_solver(name: str = "default"):
-    """The adhesive BEM solver registered under ``name``; ValueError if it is not available."""
-    try:
-        target = ADHESIVE_SOLVERS[name]
-    except KeyError:
-        raise ValueError(f"adhesive solver must be one of {tuple(ADHESIVE_SOLVERS)}; got {name!r}") from None
-    mod, _, func = target.partition(":")
-    try:
-        return getattr(importlib.import_module(mod), func)
-    except (ImportError, AttributeError):
-        raise ValueError(f"quantity 'adhesive' needs the adhesive BEM solver {target}, which is not "
-                         "available in this installation") from None
+    """The adhesive BEM solver (:func:`dhfield.adhesive_start.adhesive_pull_off`); ValueError for another name."""
+    if name != "default":
+        raise ValueError(f"adhesive solver must be one of ('default',); got {name!r}")
+    from ..adhesive_start import adhesive_pull_off
+
+    return adhesive_pull_off
 
 
 def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "load", *,
