@@ -343,6 +343,7 @@ def adhesion_map(crossing_angle_deg=None, mu=None, models=MAP_MODEL_NAMES, *,
     vm = _range("validated_mu", validated_mu, *TABOR_RANGE)
 
     beta0 = np.asarray(ellipticity_from_skew_angle(np.radians(angles)), float).reshape(angles.shape)
+    beta0[angles == 90.0] = 1.0  # cos(radians(90)) is 6e-17, not 0: the circle exactly, as the models' ranges say
     b_grid, m_grid = np.meshgrid(beta0, mus, indexing="ij")
     forces, statuses, notes = [], [], {}
     for m in models:
