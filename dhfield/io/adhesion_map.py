@@ -58,6 +58,8 @@ def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
               "mu": coordinate("mu", result.mu),
               "beta0": ("skew_angle_deg", beta0[1], beta0[2])}
     ds = xr.Dataset(data, coords=coords)
+    for v in ("force_pi_r_dgamma", "relative_deviation", "model_status"):
+        ds[v].encoding.update(zlib=True, complevel=4, shuffle=True)  # lossless; the map is smooth
     ds.attrs.update(provenance_attrs(
         "Adhesion map for elliptical contacts: load-control pull-off of each model against the candidate "
         "DMT-to-JKR transition model, over crossing angle and mu",
