@@ -194,7 +194,8 @@ def map_figure(r, truth, dev_truth, stem):
     fig.suptitle("Adhesion map for elliptical contacts (equal cylinders, load control): deviation of the pull-off "
                  "force from the reference\nThe reference is the candidate model, validated against the BEM only "
                  f"\ninside the dashed box (θ ≥ {a_lo:.0f}°: β0 ≥ {r.validated_beta0[0]:g}; "
-                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g}); outside it, deviations are from the candidate, "
+                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g}); outside it, deviations are from the "
+                 "candidate, "
                  "not from the truth.\nThe two-axis double-Hertz closure (0.2-0.4 s per point) is not mapped: see the "
                  "practitioner's figure.", fontsize=9)
     return _save(fig, stem)
@@ -202,7 +203,6 @@ def map_figure(r, truth, dev_truth, stem):
 
 def practitioner_figure(curves, two_axis, truth, stem):
     from matplotlib.figure import Figure
-    from matplotlib.lines import Line2D
 
     mus = curves.mu
     fig = Figure(figsize=(10.5, 3.9), layout="constrained")
@@ -221,13 +221,14 @@ def practitioner_figure(curves, two_axis, truth, stem):
             i2 = two_axis.index("dh-elliptic-two-axis")
             (h,) = ax.plot(two_axis.crossing_angle_deg, -two_axis.force[i2, :, jj], ls="", marker="s", ms=5,
                            mfc="none", mec="#a6761d", mew=1.2, label=am.MODEL_LABELS["dh-elliptic-two-axis"]
-                           + " (refuses < 44°)")
+                           + " (μ ≤ 30; refuses θ < 44°)")
             if j == 0:
                 handles.append(h)
         sel = np.isclose(truth["mu"], mu)
         if sel.any():
             (h,) = ax.plot(truth["angle"][sel], -truth["force"][sel], ls="", marker="o", ms=5, c="black",
-                           mec="white", mew=0.8, zorder=4, label="BEM ground truth")
+                           mec="white", mew=0.8, zorder=4,
+                           label="BEM ground truth (stored at μ = 0.3-5 only)")
             handles.append(h)
         ax.set_title(f"μ = {mu:g}", fontsize=10)
         ax.set_xlabel("crossing angle θ (deg)", fontsize=9)
@@ -236,11 +237,12 @@ def practitioner_figure(curves, two_axis, truth, stem):
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=8)
     axes[0].set_ylabel("pull-off force −W/(πRΔγ)", fontsize=10)
-    fig.legend(handles=handles, loc="outside lower center", ncols=4, fontsize=8, frameon=False)
+    fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8, frameon=False)
     a_lo = float(np.degrees(skew_angle(curves.validated_beta0[0])))
     fig.suptitle("Pull-off force of equal crossed cylinders against crossing angle, every model (load control; "
                  "R = √(R′R″); 2 = DMT, 1.5 = JKR sphere)\nThe candidate is validated against the BEM only for "
-                 f"θ ≥ {a_lo:.0f}° (β0 ≥ {curves.validated_beta0[0]:g}) and {curves.validated_mu[0]:g} ≤ μ ≤ "
+                 f"θ ≥ {a_lo:.0f}° (β0 ≥ {curves.validated_beta0[0]:g}) and "
+                 f"{curves.validated_mu[0]:g} ≤ μ ≤ "
                  f"{curves.validated_mu[1]:g}", fontsize=9)
     return _save(fig, stem)
 
@@ -293,7 +295,8 @@ def main(argv=None) -> int:
     for q in paths:
         print(f"figure: {q}")
     f1, f5, ans = r.fraction_within(0.01), r.fraction_within(0.05), r.fraction_answered()
-    print(f"\n{'model':24s} {'label':40s} {'<=1 %':>6s} {'<=5 %':>6s} {'answered':>8s}  {'max |dev| vs BEM (30 cases)':>28s}")
+    head = f"max |dev| vs BEM ({truth['force'].size} cases)"
+    print(f"\n{'model':24s} {'label':40s} {'<=1 %':>6s} {'<=5 %':>6s} {'answered':>8s}  {head:>28s}")
     for m in r.models:
         dv = np.abs(dev_truth[m])
         i = int(np.argmax(dv))
