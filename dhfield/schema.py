@@ -193,6 +193,18 @@ VARIABLES: dict[str, Variable] = {
     "width_ratio": Variable("1", "adhesive-zone width, minor axis / major axis"),
     "eq30": Variable("1", "Eq. (30) at pull-off, in dgamma",
                      description="equals 4 [dgamma(0) - dgamma(pi/2)], not dgamma"),
+    # ----------------------------------------------------------------- adhesion map (dhfield.adhesion_map)
+    "force_pi_r_dgamma": Variable("1", "pull-off force W/(pi R dgamma), R = sqrt(R'R'')",
+                                  description="2 W*/sin(theta_skew) (Eq. 34); load control, negative tensile: "
+                                              "-2 is DMT, -1.5 the JKR sphere"),
+    "relative_deviation": Variable("1", "relative deviation of the pull-off force from the reference model",
+                                   description="W_model/W_reference - 1; positive: more adhesion than the "
+                                               "reference; NaN where the model gave no answer"),
+    "model_status": Variable("1", "status of the model's answer",
+                             description="answered; answered with a warning (outside the model's validated "
+                                         "range); refused (the model raised: no answer); not finite"),
+    "validated_region": Variable("1", "inside the extent of the BEM ground truth",
+                                 description="where the reference model is validated against the BEM"),
 }
 
 #: The two model parameters, in the one order every grid Dataset uses.

@@ -1,0 +1,362 @@
+"""Adhesion map for elliptical contacts: where each pull-off model agrees with the reference.
+
+For equal cylinders crossed at an angle theta_skew (10-90 deg by default) and a Tabor
+parameter mu (0.01-100 by default, Eq. 35), the load-control pull-off force of every
+comparison model is set beside that of a reference model and the relative deviation is
+mapped.  Johnson & Greenwood's (1997) adhesion map is for spheres; this is its elliptical
+counterpart on the axes a practitioner uses (crossing angle, mu).
+
+The reference, and how far it can be trusted
+---------------------------------------------
+The reference is the candidate DMT-to-JKR model of issue 20,
+:mod:`dhfield.elliptic_transition` (``elliptic-transition``): exact at mu -> 0 (DMT of the
+paraboloid), at mu -> infinity (the energy-minimising elliptical JKR of Giudici, Vella &
+Griffiths 2025) and on the circle (Maugis-Dugdale).  It is **validated against the BEM only
+where the stored ground truth exists**: ``data/adhesive_ground_truth.nc`` covers beta0 in
+[0.5, 1] (crossing angles of about 61-90 deg) and mu in [0.3, 5], where it is within 0.34 %
+of every stored case (``python -m verification.elliptic_transition``).  Elsewhere a deviation
+on this map is a deviation from the candidate model, not from the truth.
+:attr:`AdhesionMap.validated` marks the validated region (:data:`VALIDATED_BETA0`,
+:data:`VALIDATED_MU`, or the ranges the caller passes, e.g. those of an extended ground truth).
+
+Quantities
+----------
+* Every model is evaluated through :func:`dhfield.compare.pull_off` (load control), except
+  the reference, which :mod:`dhfield.compare` does not register: it is called from
+  :mod:`dhfield.elliptic_transition` directly.  ``dh-elliptic`` is evaluated with
+  ``check_closure=False`` (the paper's model alone, ~1 ms per point; the two-axis check
+  costs ~200 ms per point).
+* ``force``: the pull-off force W/(pi R dgamma), R = sqrt(R'R'') (Eq. 5); from a record,
+  ``2 W*/sin_skew`` (Eq. 34 inverted with the record's own ``sin_skew``: sin(theta_skew)
+  for the elliptical models, 1 for the circular ones, which are the sphere of radius R).
+  -2 is DMT, -1.5 the JKR sphere; negative is tensile.
+* ``deviation``: force/force_reference - 1; positive where the model predicts more
+  adhesion than the reference.
+* ``status`` per point: :data:`STATUS_MEANINGS`.  A model that raises ``ValueError`` or
+  ``RuntimeError`` for some inputs (e.g. the closures below beta0 = 0.3) is *refused* there:
+  NaN, no answer, no exception.  A model that answers with a non-empty ``warning``
+  (outside its own :data:`dhfield.compare.VALIDITY_RANGES`) or a Python warning is
+  ``answered_with_warning``: the value is kept.
+
+Crossing angle and beta0
+------------------------
+beta0 = :func:`dhfield.geometry.ellipticity_from_skew_angle` of the crossing angle (equal
+cylinders, Eqs. 3-4 and the Hertz ratio of Eq. 8): 10 deg -> 0.0470, 30 deg -> 0.1806,
+60 deg -> 0.4826, 90 deg -> 1.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import compare, elliptic_transition
+from ._validation import TABOR_RANGE, check_count, check_interval, check_tabor
+from .geometry import ellipticity_from_skew_angle, sin_skew_angle
+
+__all__ = ["AdhesionMap", "adhesion_map", "map_grid", "REFERENCE_MODEL", "MAP_MODEL_NAMES",
+           "MODEL_LABELS", "STATUS_MEANINGS", "VALIDATED_BETA0", "VALIDATED_MU",
+           "DEFAULT_CROSSING_ANGLE_DEG", "DEFAULT_MU", "MAX_AXIS_POINTS", "REFERENCE_NOTE"]
+
+#: Name of the reference model (:mod:`dhfield.elliptic_transition`; not in dhfield.compare).
+REFERENCE_MODEL = "elliptic-transition"
+#: The models of the map, reference first.
+MAP_MODEL_NAMES = (REFERENCE_MODEL, "dh-elliptic", "jkr-elliptic", "jkr-elliptic-energy", "md", "dmt")
+#: Readable names of the models (figures, tables).
+MODEL_LABELS = {
+    REFERENCE_MODEL: "DMT-JKR transition (candidate)",
+    "dh-elliptic": "Elliptical double-Hertz (Zini 2018)",
+    "dh-elliptic-two-axis": "Double-Hertz, two-axis closure",
+    "dh-elliptic-ray-average": "Double-Hertz, ray-average closure",
+    "jkr-elliptic": "Elliptical JKR (Johnson-Greenwood 2005)",
+    "jkr-elliptic-energy": "Elliptical JKR, energy (Giudici 2025)",
+    "md": "Maugis-Dugdale, equivalent sphere",
+    "dmt": "DMT",
+    "jkr": "JKR, equivalent sphere",
+    "dh-circular": "Double-Hertz, equivalent sphere",
+}
+#: Codes of :attr:`AdhesionMap.status`; codes 2 and 3 are 'no answer' (NaN).
+STATUS_MEANINGS = ("answered", "answered_with_warning", "refused", "not_finite")
+#: Extent of the stored BEM ground truth (``data/adhesive_ground_truth.nc``: beta0 in
+#: {0.5, 0.6, 0.8, 0.9, 0.99, 1} x mu in {0.3, 0.5, 1, 2, 5}, load control), where the
+#: reference is validated (within 0.34 % of every case).
+VALIDATED_BETA0 = (0.5, 1.0)
+VALIDATED_MU = (0.3, 5.0)
+#: Default axes: crossing angle 10-90 deg [deg] and mu 0.01-100 [-].
+DEFAULT_CROSSING_ANGLE_DEG = (10.0, 90.0)
+DEFAULT_MU = (0.01, 100.0)
+#: Largest number of points on one axis of :func:`map_grid` (a 2000 x 2000 map: ~1 min per model).
+MAX_AXIS_POINTS = 2000
+#: The one sentence every output of the map carries about its reference.
+REFERENCE_NOTE = ("Reference: the candidate DMT-to-JKR transition model (dhfield.elliptic_transition), not the "
+                  "BEM. It is validated against the BEM only where the stored ground truth exists "
+                  "(beta0 {b}, mu {m}: within 0.34 % of every case); elsewhere a deviation is from the "
+                  "candidate, not from the truth.")
+
+_NAN = float("nan")
+
+
+def _note(validated_beta0, validated_mu):
+    return REFERENCE_NOTE.format(b=f"in [{validated_beta0[0]:g}, {validated_beta0[1]:g}]",
+                                 m=f"in [{validated_mu[0]:g}, {validated_mu[1]:g}]")
+
+
+@dataclass(frozen=True)
+class AdhesionMap:
+    """Pull-off of several models on a (crossing angle, mu) grid, against a reference.
+
+    Attributes
+    ----------
+    crossing_angle_deg : ndarray, shape (n_angle,)
+        Crossing angle theta_skew of the equal cylinders [deg].
+    mu : ndarray, shape (n_mu,)
+        Tabor parameter of Eq. (35) with R = sqrt(R'R'') [-].
+    beta0 : ndarray, shape (n_angle,)
+        Hertz ellipticity of each crossing angle [-].
+    models : tuple of str
+        Model names (the reference first).
+    force : ndarray, shape (n_model, n_angle, n_mu)
+        Load-control pull-off force W/(pi R dgamma), R = sqrt(R'R'') [-]; NaN where no answer.
+    deviation : ndarray, shape (n_model, n_angle, n_mu)
+        force/reference_force - 1 [-]; NaN where no answer.
+    status : ndarray of int8, shape (n_model, n_angle, n_mu)
+        Codes of :data:`STATUS_MEANINGS`.
+    reference_force : ndarray, shape (n_angle, n_mu)
+        The reference's W/(pi R dgamma) [-].
+    validated : ndarray of bool, shape (n_angle, n_mu)
+        Inside the extent of the BEM ground truth, where the reference is validated.
+    validated_beta0, validated_mu : tuple of float
+        That extent.
+    notes : dict
+        model -> one line on its warnings and refusals over the grid ("" if none).
+    reference : str
+        :data:`REFERENCE_MODEL`.
+    reference_note : str
+        Where the reference is validated (:data:`REFERENCE_NOTE`).
+    """
+
+    crossing_angle_deg: np.ndarray
+    mu: np.ndarray
+    beta0: np.ndarray
+    models: tuple
+    force: np.ndarray
+    deviation: np.ndarray
+    status: np.ndarray
+    reference_force: np.ndarray
+    validated: np.ndarray
+    validated_beta0: tuple
+    validated_mu: tuple
+    notes: dict = field(default_factory=dict)
+    reference: str = REFERENCE_MODEL
+    reference_note: str = ""
+
+    def index(self, model: str) -> int:
+        """Position of ``model`` on the first axis of the model arrays."""
+        if model not in self.models:
+            raise ValueError(f"model must be one of {', '.join(self.models)}; got {model!r}")
+        return self.models.index(model)
+
+    def within(self, tolerance: float) -> np.ndarray:
+        """True where a model answered within ``tolerance`` (relative, > 0) of the reference.
+
+        Returns
+        -------
+        ndarray of bool, shape (n_model, n_angle, n_mu)
+            False where the model gave no answer.
+        """
+        tol = float(check_interval("tolerance", tolerance, 0.0, np.inf, what="relative deviation"))
+        with np.errstate(invalid="ignore"):
+            return np.abs(self.deviation) <= tol
+
+    def fraction_within(self, tolerance: float) -> dict:
+        """model -> fraction of the grid (uniform in angle and log mu: of the map's area)
+        where it is within ``tolerance`` of the reference; a point without answer counts as outside."""
+        w = self.within(tolerance)
+        return {m: float(w[i].mean()) for i, m in enumerate(self.models)}
+
+    def fraction_answered(self) -> dict:
+        """model -> fraction of the grid where it gave a finite answer (status 0 or 1)."""
+        return {m: float((self.status[i] <= 1).mean()) for i, m in enumerate(self.models)}
+
+
+def map_grid(n_angle: int = 81, n_mu: int = 81, *, crossing_angle_deg=DEFAULT_CROSSING_ANGLE_DEG,
+             mu=DEFAULT_MU):
+    """The default axes: ``n_angle`` crossing angles evenly spaced, ``n_mu`` values of mu log-spaced.
+
+    Parameters
+    ----------
+    n_angle, n_mu : int
+        Number of points, >= 2 [-].
+    crossing_angle_deg : (float, float)
+        First and last crossing angle, in (0, 90] [deg].
+    mu : (float, float)
+        First and last mu, in :data:`dhfield._validation.TABOR_RANGE` [-].
+
+    Returns
+    -------
+    angles, mus : ndarray
+    """
+    n_angle = check_count("n_angle", n_angle, 2, MAX_AXIS_POINTS, "number of crossing angles")
+    n_mu = check_count("n_mu", n_mu, 2, MAX_AXIS_POINTS, "number of values of mu")
+    a0, a1 = (float(x) for x in _check_angles(np.asarray(crossing_angle_deg, float)))
+    m0, m1 = (float(x) for x in check_tabor("mu", np.asarray(mu, float)))
+    return np.linspace(a0, a1, int(n_angle)), np.geomspace(m0, m1, int(n_mu))
+
+
+def _check_angles(angles):
+    return check_interval("crossing_angle_deg", angles, 0.0, 90.0, what="crossing angle of the cylinders, deg")
+
+
+def _axis(name, values, check):
+    arr = np.asarray(values, dtype=float)
+    if arr.ndim != 1 or arr.size < 1:
+        raise ValueError(f"{name} must be a 1-D array with at least one value; got shape {arr.shape}")
+    arr = np.asarray(check(arr), dtype=float)
+    if arr.size > 1 and not np.all(np.diff(arr) > 0):
+        raise ValueError(f"{name} must be strictly increasing; got {values!r}")
+    return arr
+
+
+def _range(name, value, lo, hi):
+    v = tuple(float(x) for x in np.ravel(value))
+    if len(v) != 2 or not (lo <= v[0] <= v[1] <= hi):
+        raise ValueError(f"{name} must be (low, high) with {lo:g} <= low <= high <= {hi:g}; got {value!r}")
+    return v
+
+
+def _force(rec):
+    """W/(pi R dgamma) from a pull-off record: 2 W*/sin_skew (Eq. 34 inverted)."""
+    return 2.0 * np.asarray(rec["W_star"], float) / np.asarray(rec["sin_skew"], float)  # Eq. (34)
+
+
+def _evaluate(model, mu, beta0):
+    """(force, warned) of one model on broadcast arrays; raises what the model raises."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if model == REFERENCE_MODEL:
+            st = elliptic_transition.pull_off_nondimensional(mu, beta0, "load")
+            force = 2.0 * st["W_star"] / sin_skew_angle(beta0)  # Eq. (34)
+            warned = np.zeros(np.shape(force), bool)
+        else:
+            kw = {"check_closure": False} if model == "dh-elliptic" else {}
+            rec = compare.pull_off(model, mu, beta0, "load", **kw)
+            force = _force(rec)
+            warned = np.asarray(rec["warning"], dtype=object) != ""
+    force = np.broadcast_to(force, np.shape(mu)).astype(float)
+    warned = np.broadcast_to(warned, np.shape(mu)) | bool(caught)
+    first = next((str(w.message) for w in caught), "")
+    return force, warned, first
+
+
+def _model_on_grid(model, mu, beta0):
+    """force, status and a one-line note of ``model`` on the (angle, mu) grid; never raises for
+    inputs the model refuses (those points are NaN, status 'refused')."""
+    shape = mu.shape
+    force = np.full(shape, _NAN)
+    status = np.zeros(shape, np.int8)
+    warned = np.zeros(shape, bool)
+    refusal = warning = ""
+    try:
+        force[...], warned[...], warning = _evaluate(model, mu, beta0)
+    except (ValueError, RuntimeError):
+        # some points refused: find which, one crossing angle (beta0) at a time, then point by point
+        for i in range(shape[0]):
+            try:
+                force[i], warned[i], w = _evaluate(model, mu[i], beta0[i])
+                warning = warning or w
+                continue
+            except (ValueError, RuntimeError):
+                pass
+            for j in range(shape[1]):
+                try:
+                    f, wd, w = _evaluate(model, mu[i, j], beta0[i, j])
+                    force[i, j], warned[i, j] = float(f), bool(wd)
+                    warning = warning or w
+                except (ValueError, RuntimeError) as exc:
+                    status[i, j] = 2
+                    refusal = refusal or " ".join(str(exc).split())
+    status[(status == 0) & warned] = 1
+    status[(status < 2) & ~np.isfinite(force)] = 3
+    force[status >= 2] = _NAN
+    if model != REFERENCE_MODEL and np.any(status == 1) and not warning:
+        # the record's own warning (its validated range), reproduced for one point
+        i, j = np.argwhere(status == 1)[0]
+        warning = str(compare.validity_message(model, mu[i, j], beta0[i, j])) or "warning in the record"
+    parts = []
+    n = status.size
+    if np.any(status == 1):
+        parts.append(f"answered with a warning at {int(np.sum(status == 1))} of {n} points (e.g. {warning})")
+    if np.any(status == 2):
+        parts.append(f"refused {int(np.sum(status == 2))} of {n} points (e.g. {refusal})")
+    if np.any(status == 3):
+        parts.append(f"non-finite at {int(np.sum(status == 3))} of {n} points")
+    return force, status, "; ".join(parts)
+
+
+def adhesion_map(crossing_angle_deg=None, mu=None, models=MAP_MODEL_NAMES, *,
+                 validated_beta0=VALIDATED_BETA0, validated_mu=VALIDATED_MU) -> AdhesionMap:
+    """Load-control pull-off of each model over (crossing angle, mu) and its deviation from the reference.
+
+    Parameters
+    ----------
+    crossing_angle_deg : array_like, optional
+        Strictly increasing crossing angles of the equal cylinders, in (0, 90] [deg];
+        default :func:`map_grid`'s 81 angles over 10-90 deg.
+    mu : array_like, optional
+        Strictly increasing Tabor parameters of Eq. (35), in
+        :data:`dhfield._validation.TABOR_RANGE` [-]; default 81 log-spaced over 0.01-100.
+    models : sequence of str
+        :data:`REFERENCE_MODEL` and/or names of :data:`dhfield.compare.MODEL_NAMES`; the
+        reference is always evaluated, and put first.
+    validated_beta0, validated_mu : (float, float)
+        Extent of the BEM ground truth where the reference is validated (marks
+        :attr:`AdhesionMap.validated`) [-].
+
+    Returns
+    -------
+    AdhesionMap
+
+    Notes
+    -----
+    beta0 = :func:`dhfield.geometry.ellipticity_from_skew_angle` (Eqs. 3-4, 8).  The force
+    is :math:`W/(\\pi R \\Delta\\gamma) = 2 W^*/\\sin\\theta` (Eq. 34), with the record's own
+    sin(theta) (1 for the circular models: the sphere of R = sqrt(R'R'')), and the deviation
+    :math:`W_{model}/W_{ref} - 1`.  The reference is validated against the BEM only inside
+    ``validated_beta0`` x ``validated_mu`` (module docstring).
+    """
+    default_a, default_m = map_grid()
+    angles = _axis("crossing_angle_deg", default_a if crossing_angle_deg is None else crossing_angle_deg,
+                   _check_angles)
+    mus = _axis("mu", default_m if mu is None else mu, lambda x: check_tabor("mu", x))
+    if isinstance(models, str):
+        models = (models,)
+    models = tuple(models)
+    if not models:
+        raise ValueError("models must name at least one model; got none")
+    known = (REFERENCE_MODEL,) + compare.MODEL_NAMES
+    for m in models:
+        if m not in known:
+            raise ValueError(f"models must be among {', '.join(known)}; got {m!r}")
+    models = (REFERENCE_MODEL,) + tuple(dict.fromkeys(m for m in models if m != REFERENCE_MODEL))
+    vb = _range("validated_beta0", validated_beta0, 0.0, 1.0)
+    vm = _range("validated_mu", validated_mu, *TABOR_RANGE)
+
+    beta0 = np.asarray(ellipticity_from_skew_angle(np.radians(angles)), float).reshape(angles.shape)
+    beta0[angles == 90.0] = 1.0  # cos(radians(90)) is 6e-17, not 0: the circle exactly, as the models' ranges say
+    b_grid, m_grid = np.meshgrid(beta0, mus, indexing="ij")
+    forces, statuses, notes = [], [], {}
+    for m in models:
+        f, s, note = _model_on_grid(m, m_grid, b_grid)
+        forces.append(f)
+        statuses.append(s)
+        notes[m] = note
+    force = np.stack(forces)
+    ref = force[0]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        deviation = force / ref - 1.0
+    validated = (b_grid >= vb[0]) & (b_grid <= vb[1]) & (m_grid >= vm[0]) & (m_grid <= vm[1])
+    return AdhesionMap(crossing_angle_deg=angles, mu=mus, beta0=beta0, models=models, force=force,
+                       deviation=deviation, status=np.stack(statuses), reference_force=ref,
+                       validated=validated, validated_beta0=vb, validated_mu=vm, notes=notes,
+                       reference_note=_note(vb, vm))
