@@ -30,8 +30,12 @@ import pkgutil
 import re
 from pathlib import Path
 
+import os
+
 DOCS = Path(__file__).resolve().parents[1]
-ROOT = DOCS.parent
+#: The project root (data/, CHANGELOG.md, CITATION.cff, verification/); DHFIELD_DOCS_ROOT overrides it
+#: when the docs tree is a copy (tests/test_docs.py builds one in a temporary directory).
+ROOT = Path(os.environ.get("DHFIELD_DOCS_ROOT", DOCS.parent)).resolve()
 
 #: (title, introduction, module-name prefixes), in the order a user meets them.  A module
 #: belongs to the first group with a matching prefix (exact name, or prefix + ".").
