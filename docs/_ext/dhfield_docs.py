@@ -184,11 +184,24 @@ def escape_bars(line: str) -> str:
     return "".join(p if k % 2 else re.sub(r"(?<!\\)\|", r"\\|", p) for k, p in enumerate(parts))
 
 
-def sanitize_docstring(app, what, name, obj, options, lines) -> None:
-    """``autodoc-process-docstring`` (before numpydoc): plain-text ``|x|`` becomes literal bars.
+_QUALIFIED_HEADER = re.compile(r"^(\s*)(Attributes|Parameters|Returns|Other Parameters)\s+\((.+)\)\s*$")
 
-    Lines of ``.. math::`` blocks, literal blocks (after ``::``) and grid tables are left alone.
+
+def sanitize_docstring(app, what, name, obj, options, lines) -> None:
+    """``autodoc-process-docstring`` (before numpydoc): plain-text conventions made valid.
+
+    * ``|x|`` (an absolute value) becomes literal bars; lines of ``.. math::`` blocks, literal
+      blocks (after ``::``) and grid tables are left alone;
+    * a qualified section header such as ``Attributes (arrays over the broadcast inputs)``,
+      which numpydoc would drop with its content as an unknown section, becomes the plain
+      header, its qualifier a sentence just before it.
     """
+    for k in range(len(lines) - 2, -1, -1):
+        m = _QUALIFIED_HEADER.match(lines[k])
+        if m and set(lines[k + 1].strip()) == {"-"}:
+            indent, header, qualifier = m.groups()
+            lines[k:k + 2] = [f"{indent}{header}: {qualifier}.", "", f"{indent}{header}",
+                              f"{indent}{'-' * len(header)}"]
     verbatim_indent = None
     for k, line in enumerate(lines):
         stripped = line.strip()
