@@ -26,9 +26,10 @@ print(f"paper's model: W*max = {float(paper.W_star):.4f}, a* = {float(paper.a_st
 
 state = res.path.pull_off_state
 zone = np.where(state.contact, 2.0, np.clip(state.cohesive, 0.0, 1.0))   # 2: contact, (0, 1]: zone
-hx, hy = res.half_width_x, res.half_width_y
+x, y = state.grid.x, state.grid.y                                       # cell centres [c_r]
 fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
-im = ax.imshow(zone.T, origin="lower", extent=(-hx, hx, -hy, hy), cmap="Blues", vmin=0, vmax=2)
+ax.pcolormesh(x, y, zone.T, cmap="Blues", vmin=0, vmax=2, shading="nearest")
+ax.set_aspect("equal")
 t = np.linspace(0, 2 * np.pi, 200)
 a = float(paper.a_star)
 ax.plot(a * np.cos(t), beta0 * a * np.sin(t), "r--", lw=1, label="paper's contact ellipse")
@@ -36,13 +37,13 @@ ax.set_xlabel("x / c_r")
 ax.set_ylabel("y / c_r")
 ax.set_title("contact (dark) and cohesive zone (light)")
 ax.legend(loc="upper right", fontsize=8)
-lim = 1.6 * max(res.c_star, a)
+lim = 1.3 * max(res.c_star, a)
 ax.set_xlim(-lim, lim)
 ax.set_ylim(-lim, lim)
 
 p = state.pressure
-ax2.plot(np.linspace(-hx, hx, p.shape[0]), p[:, p.shape[1] // 2], label="major axis (y = 0)")
-ax2.plot(np.linspace(-hy, hy, p.shape[1]), p[p.shape[0] // 2, :], label="minor axis (x = 0)")
+ax2.plot(x, p[:, np.argmin(np.abs(y))], label="major axis (y ≈ 0)")
+ax2.plot(y, p[np.argmin(np.abs(x)), :], label="minor axis (x ≈ 0)")
 ax2.axhline(-mu, color="k", ls=":", lw=1, label="−σ0 = −μ (Dugdale)")
 ax2.set_xlim(-lim, lim)
 ax2.set_xlabel("position / c_r")
