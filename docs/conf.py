@@ -90,7 +90,8 @@ html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
     "header_links_before_dropdown": 7,
-    "secondary_sidebar_items": ["page-toc"],
+    # the pages of wide generated tables give the right-hand column to the table
+    "secondary_sidebar_items": {"**": ["page-toc"], "theory/bem": [], "netcdf": [], "cli": []},
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version"],
 }

@@ -333,18 +333,19 @@ def write_verdict(outdir: Path) -> None:
 
     sphere = ROOT / "data" / "adhesive_sphere_convergence.json"
     doc = json.loads(sphere.read_text())
-    srows = [["λ", "μ", "W* (MD)"] + [f"N = {n}" for n in doc["n"]] + ["Richardson", "order"]]
+    srows = [["λ", "μ", "W* (MD)"] + [f"N = {n}" for n in doc["n"]] + ["Richardson", "observed order"]]
     for case in doc["cases"]:
         per_n = {r["n"]: r["err"] for r in case["rows"]}
         order = case["order"]
         srows.append([f"{case['lam']:g}", f"{case['mu']:.4f}", f"{case['W_md']:.6f}"]
                      + [f"{100 * per_n[n]:+.4f} %" if n in per_n else "–" for n in doc["n"]]
                      + [f"{100 * case['richardson_err']:+.4f} %",
-                        f"{order:.2f}" if order == order else "not monotone"])
+                        f"{order:.2f}" if order == order else "–"])
     out = [f".. Generated from ``data/{sphere.name}`` by docs/_ext/dhfield_docs.py; do not edit.\n",
            f".. list-table:: Sphere (β0 = 1, Dugdale law): W*BEM/W*MD − 1 per grid and Richardson-extrapolated "
-           f"(solver commit ``{doc['git_commit'][:10]}``; {doc['route']})",
-           "   :header-rows: 1", ""]
+           f"(solver commit ``{doc['git_commit'][:10]}``; {doc['route']}; observed order –: the error is not "
+           f"monotone over N)",
+           "   :header-rows: 1", "   :class: dhfield-wide", ""]
     for r in srows:
         out.append("   * - " + r[0])
         out += [f"     - {c}" for c in r[1:]]
@@ -357,7 +358,7 @@ def write_netcdf_variables(outdir: Path) -> None:
     from dhfield import schema
 
     out = [".. Generated from dhfield.schema.VARIABLES by docs/_ext/dhfield_docs.py; do not edit.\n",
-           ".. list-table::", "   :header-rows: 1", "   :widths: 16 10 22 40 12", "   :class: dhfield-wide", "",
+           ".. list-table::", "   :header-rows: 1", "   :widths: 16 10 22 40 12", "   :class: dhfield-vars", "",
            "   * - name", "     - units", "     - long_name", "     - description", "     - paper's unit"]
 
     def cell(s):
