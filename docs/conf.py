@@ -95,5 +95,5 @@ html_theme_options = {
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version"],
 }
-html_sidebars = {"index": [], "citing": [], "changelog": []}
+html_sidebars = {"index": [], "citing": [], "changelog": [], "netcdf": [], "cli": []}   # no section navigation there
 html_context = {"default_mode": "light"}
