@@ -37,6 +37,9 @@ exclude_patterns = ["_build", "examples", "Thumbs.db", ".DS_Store", "auto_exampl
                     "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.json",
                     "sg_execution_times.rst"]
 root_doc = "index"
+# smart quotes and ellipses, but "--" stays two hyphens: option names such as --a-min appear in
+# text generated from the CLI's help strings
+smartquotes_action = "qe"
 default_role = "code"
 nitpicky = False
 # numpydoc renames the citations of each docstring's References section; one listed there but not
@@ -91,7 +94,7 @@ html_theme_options = {
     "show_toc_level": 2,
     "header_links_before_dropdown": 7,
     # the pages of wide generated tables give the right-hand column to the table
-    "secondary_sidebar_items": {"**": ["page-toc"], "theory/bem": [], "netcdf": [], "cli": []},
+    "secondary_sidebar_items": {"**": ["page-toc"], "theory/bem": [], "netcdf": []},
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version"],
 }
