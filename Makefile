@@ -1,12 +1,16 @@
 # dhfield: two commands for a fresh machine (only python3 needed).
 #   make report   build .venv if missing, then run the verification report into out/
 #   make test     build .venv if missing, then run the whole test suite
+#   make docs     install the docs extra, then build the documentation site into docs/_build/html
+#                 (warnings are errors; the gallery's examples run)
 PYTHON ?= python3
 VENV   := .venv
 STAMP  := $(VENV)/.dhfield-installed
 REPORT_ARGS ?=
 
-.PHONY: report quick-report test bench clean
+DOCS_STAMP := $(VENV)/.dhfield-docs-installed
+
+.PHONY: report quick-report test bench docs clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -22,6 +26,13 @@ quick-report: $(STAMP)
 
 test: $(STAMP)
 	$(VENV)/bin/python -m pytest -q
+
+$(DOCS_STAMP): $(STAMP) pyproject.toml
+	$(VENV)/bin/python -m pip install --quiet -e '.[docs]'
+	touch $(DOCS_STAMP)
+
+docs: $(DOCS_STAMP)
+	MPLBACKEND=Agg $(VENV)/bin/python -m sphinx -b html -W --keep-going docs docs/_build/html
 
 bench: $(STAMP)
 	$(VENV)/bin/python -m verification.bench_analytic

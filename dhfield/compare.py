@@ -27,6 +27,7 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 
 Models
 ------
+===========================  ======================================================================
 ``dh-elliptic``              the paper's model, beta = beta0 throughout, dgamma on the major axis
                              (Eqs. 17-19, 31) — :mod:`dhfield.model`; the default
 ``dh-elliptic-two-axis``     dgamma = 1 on both axes, beta_cd != beta_ab, contact condition exact —
@@ -40,6 +41,7 @@ Models
 ``jkr-elliptic``             Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
 ``jkr-elliptic-energy``      Giudici, Vella & Griffiths (2025), energy minimised over both semi-axes —
                              :mod:`dhfield.jkr_elliptic_energy`
+===========================  ======================================================================
 
 Every model except ``dh-elliptic-jkr-beta`` (whose ellipticity is defined at
 pull-off only) has a load curve (:data:`CURVE_MODEL_NAMES`).

@@ -57,8 +57,23 @@ __all__ = [
 
 
 class DoubleHertzParameters(NamedTuple):
-    """Checked parameters of a DH state: semi-axes a, c [m], ellipticity beta [-], scaling v [-],
-    effective radius R [m] and reduced modulus E* [Pa] (arrays)."""
+    """Checked parameters of a DH state (float arrays), as returned by :func:`check_parameters`.
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+    """
 
     semi_major: np.ndarray
     adhesive_semi_major: np.ndarray
@@ -105,7 +120,7 @@ def check_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_r
 
 def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
              reduced_modulus=1.0):
-    """Total surface pressure of the DH contact, Eqs. (7), (16), (22) [Pa].
+    """Total surface pressure of the DH contact, Eqs. (7), (16), (22).
 
     Positive in compression inside the contact ellipse, negative (tensile) in the
     adhesive annulus, zero outside the adhesive ellipse.
@@ -114,16 +129,33 @@ def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_rad
     ----------
     x, y : array_like
         Surface coordinates, x along the major axis [m].
-    semi_major : float
-        Contact semi-major axis a [m].
-    adhesive_semi_major : float
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
         Adhesive semi-major axis c >= a [m].
-    beta : float
-        Common ellipticity beta = b/a = d/c (Eq. 17) [-].
-    scaling : float
-        The DH scaling factor v >= 0 [-].
-    effective_radius, reduced_modulus : float
-        R [m] and E* [Pa].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        Pressure, positive in compression [Pa].
+
+    Examples
+    --------
+    With v = 0 the DH pressure is the Hertz pressure: at the centre Po_ab = 2 E* a/(pi R)
+    for the circle.
+
+    >>> import numpy as np
+    >>> from dhfield import double_hertz
+    >>> bool(np.isclose(double_hertz.pressure(0.0, 0.0, 1.0, 1.5, 1.0, 0.0), 2 / np.pi, rtol=1e-14))
+    True
     """
     a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
@@ -136,10 +168,32 @@ def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_rad
 
 def adhesive_stress(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                     reduced_modulus=1.0):
-    """Tensile adhesive stress sigma_ac in the annulus, Eq. (23) [Pa]; 0 elsewhere.
+    """Tensile adhesive stress sigma_ac in the annulus, Eq. (23); 0 elsewhere.
 
     sigma_ac = v Po_cd sqrt(1 - (x/c)^2 - (y/d)^2) for points outside the contact
     ellipse and inside the adhesive ellipse.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        The adhesive stress, a positive tensile magnitude [Pa].
     """
     a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
@@ -152,10 +206,30 @@ def adhesive_stress(x, y, semi_major, adhesive_semi_major, beta, scaling, effect
 
 def max_adhesive_stress(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                         reduced_modulus=1.0):
-    """Maximum adhesive stress sigma0 = v Po_cd sqrt(1 - a^2/c^2), Eq. (24) [Pa].
+    """Maximum adhesive stress sigma0 = v Po_cd sqrt(1 - a^2/c^2), Eq. (24).
 
     With equal ellipticities this is the stress at the contact edge for every
     theta_p (see module docstring).
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        The maximum adhesive stress, a positive tensile magnitude [Pa].
     """
     a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
@@ -164,7 +238,27 @@ def max_adhesive_stress(semi_major, adhesive_semi_major, beta, scaling, effectiv
 
 
 def load(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):
-    """Total load of the DH contact, Eq. (25) [N] (positive compressive).
+    """Total load of the DH contact, Eq. (25).
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        The load W, positive compressive [N].
 
     Notes
     -----
@@ -178,10 +272,30 @@ def load(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, r
 
 
 def approach(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):
-    """Approach of distant points of the DH contact [m].
+    """Approach of distant points of the DH contact.
 
     delta = (1 + v) delta_ab - v delta_cd with delta_i = Po_i b_i K(k)/E* (Eq. 14a);
     the sum delta_ab + omega_0ab of Eqs. (26a)-(27).
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        The approach delta, positive into the bodies [m].
     """
     a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
@@ -192,10 +306,32 @@ def approach(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.
 
 def surface_displacement(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                          reduced_modulus=1.0):
-    """Total surface displacement of the DH pressure, Eqs. (13), (21), (26) [m].
+    """Total surface displacement of the DH pressure, Eqs. (13), (21), (26).
 
     omega = omega_ab + v (omega_ab - omega_cd), valid over the whole surface (inside
     the contact, in the annulus and outside the adhesive ellipse).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        The displacement omega, positive into the bodies [m].
     """
     a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)
@@ -207,10 +343,32 @@ def surface_displacement(x, y, semi_major, adhesive_semi_major, beta, scaling, e
 
 
 def gap(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):
-    """Gap h of the DH contact, Eq. (27), over the whole surface [m].
+    """Gap h of the DH contact, Eq. (27), over the whole surface.
 
     h = z + omega - delta with the total displacement and approach above; zero
     inside the contact ellipse, (1 + v) times the Hertz gap in the annulus.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    semi_major : array_like
+        Contact semi-major axis a > 0 [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') > 0 [m].
+    reduced_modulus : array_like, default 1
+        E* > 0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        The gap h >= 0 [m].
     """
     a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                        effective_radius, reduced_modulus)

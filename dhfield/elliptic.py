@@ -44,13 +44,43 @@ def complete_k(beta):
     ----------
     beta : array_like
         Ellipticity ratio b/a in (0, 1] [-].
+
+    Returns
+    -------
+    ndarray
+        K(k) [-]; pi/2 at the circle (beta = 1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhfield import elliptic
+    >>> bool(np.isclose(elliptic.complete_k(1.0), np.pi / 2, rtol=1e-15))
+    True
     """
     beta = np.asarray(beta, dtype=float)
     return special.elliprf(0.0, beta**2, 1.0)  # K(k) = R_F(0, 1 - k^2, 1)
 
 
 def complete_e(beta):
-    """Complete elliptic integral of the second kind E(k), k**2 = 1 - beta**2."""
+    """Complete elliptic integral of the second kind E(k), k**2 = 1 - beta**2.
+
+    Parameters
+    ----------
+    beta : array_like
+        Ellipticity ratio b/a in [0, 1] [-].
+
+    Returns
+    -------
+    ndarray
+        E(k) [-]; pi/2 at the circle (beta = 1) and 1 at beta = 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhfield import elliptic
+    >>> [round(float(elliptic.complete_e(b)), 15) for b in (0.0, 1.0)] == [1.0, round(np.pi / 2, 15)]
+    True
+    """
     beta = np.asarray(beta, dtype=float)
     return special.ellipe(1.0 - beta**2)
 
@@ -68,9 +98,23 @@ def ellipsoid_integrals(l, a, b):
 
     Returns
     -------
-    I1 : ndarray  [m^-1]
-    I2 : ndarray  [m^-3]
-    I3 : ndarray  [m^-3]
+    I1 : ndarray
+        Integral of Eq. (B1) [m^-1].
+    I2 : ndarray
+        Integral of Eq. (B2) [m^-3].
+    I3 : ndarray
+        Integral of Eq. (B3) [m^-3].
+
+    Examples
+    --------
+    At the centre of a circle of radius a (l = 0): I1 = pi/a and I2 = I3 = pi/(2 a^3), since
+    R_F(0, a^2, a^2) = pi/(2a) and R_D(0, a^2, a^2) = 3 pi/(4 a^3) (DLMF 19.20.1, 19.20.4).
+
+    >>> import numpy as np
+    >>> from dhfield import elliptic
+    >>> i1, i2, i3 = elliptic.ellipsoid_integrals(0.0, 1.0, 1.0)
+    >>> bool(np.allclose([i1, i2, i3], [np.pi, np.pi / 2, np.pi / 2], rtol=1e-14))
+    True
     """
     l = np.asarray(l, dtype=float)
     a2 = np.asarray(a, dtype=float) ** 2 + l
@@ -87,6 +131,33 @@ def ellipsoid_integrals_legendre(l, a, b):
     Only defined for ``b < a`` (k > 0); the circle is a 0/0 limit here, which is
     why the library evaluates :func:`ellipsoid_integrals` instead.  Kept as the
     paper's reference form for tests.
+
+    Parameters
+    ----------
+    l : array_like
+        Lower limit of integration, the root of Eq. (12) outside the ellipse and
+        0 inside it [m^2].
+    a : array_like
+        Semi-major axis, along x [m].
+    b : array_like
+        Semi-minor axis, ``b < a`` [m].
+
+    Returns
+    -------
+    I1 : ndarray
+        Integral of Eq. (B1) [m^-1].
+    I2 : ndarray
+        Integral of Eq. (B2) [m^-3].
+    I3 : ndarray
+        Integral of Eq. (B3) [m^-3].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhfield import elliptic
+    >>> carlson = elliptic.ellipsoid_integrals(0.3, 1.0, 0.6)
+    >>> bool(np.allclose(elliptic.ellipsoid_integrals_legendre(0.3, 1.0, 0.6), carlson, rtol=1e-12))
+    True
     """
     l = np.asarray(l, dtype=float)
     a = np.asarray(a, dtype=float)

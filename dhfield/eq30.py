@@ -114,7 +114,7 @@ DEFAULT_THETA_NODES = 48
 class Eq30Boundary:
     """The four edges of the Green's-theorem form of Eq. (30) (each already x 4).
 
-    Attributes
+    Parameters
     ----------
     major_axis : ndarray
         4 int sigma dh along theta_p = 0, run outwards: 4 Delta gamma(0) [J m^-2].
@@ -135,6 +135,13 @@ class Eq30Boundary:
     total: np.ndarray
 
     def as_dict(self):
+        """The fields as a dict.
+
+        Returns
+        -------
+        dict
+            Field name -> value.
+        """
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
@@ -197,16 +204,16 @@ def eq30_area(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1
     effective_radius, reduced_modulus : array_like
         R [m] and E* [Pa].
 
-    Other Parameters
-    ----------------
-    n_theta : int
-        Gauss-Legendre nodes in theta_p.
-
     Returns
     -------
     ndarray
         I_30 [J m^-2].  Equal to 4 [Delta gamma(0) - Delta gamma(pi/2)] (module
         docstring): *not* the work of adhesion.
+
+    Other Parameters
+    ----------------
+    n_theta : int
+        Gauss-Legendre nodes in theta_p.
 
     Notes
     -----
@@ -268,8 +275,18 @@ def eq30_boundary(semi_major, adhesive_semi_major, beta, scaling, effective_radi
 
     Parameters
     ----------
-    semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus
-        As in :func:`eq30_area`.
+    semi_major : array_like
+        Contact semi-major axis a [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v [-].
+    effective_radius : array_like, default 1
+        R [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
 
     Returns
     -------
@@ -292,12 +309,32 @@ def eq30_boundary(semi_major, adhesive_semi_major, beta, scaling, effective_radi
 
 def adhesive_stress_extended(x, y, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                              reduced_modulus=1.0):
-    """Eq. (23) continued over the whole adhesive ellipse, including the contact [Pa].
+    """Eq. (23) continued over the whole adhesive ellipse, including the contact.
 
     sigma = v Po_cd sqrt(1 - x^2/c^2 - y^2/d^2).  Inside the contact h = 0, so the
     Jacobian of Eq. (30) does not depend on how sigma is continued there; this
     continuation is smooth across the contact edge, which keeps finite differences
     on a grid accurate (a jump of sigma at the contact edge would cost O(dx^1/2)).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c [m].
+    beta : array_like
+        Common ellipticity d/c (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v [-].
+    effective_radius : array_like, default 1
+        R [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
+
+    Returns
+    -------
+    ndarray
+        The stress, a positive tensile magnitude, zero outside the adhesive ellipse [Pa].
     """
     c = check_positive("adhesive_semi_major", adhesive_semi_major, "m")
     po_cd = hertz.max_pressure(c, beta, effective_radius, reduced_modulus)  # Eq. (20)
@@ -364,10 +401,36 @@ def eq30_cartesian(x, y, stress, gap):
 
 def eq30_boundary_from_grid(x, y, gap, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                             reduced_modulus=1.0, **kwargs):
-    """Green's form of Eq. (30) from a gridded gap: 4 [Delta gamma(0) - Delta gamma(pi/2)] [J m^-2].
+    """The Green's form of Eq. (30) from a gridded gap: 4 [Delta gamma(0) - Delta gamma(pi/2)].
 
     The two ray works come from :func:`dhfield.periphery.periphery_from_gap_grid`
     (keyword arguments are passed on); the curved edges vanish identically.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Strictly increasing 1-D grid coordinates (cell centres) [m].
+    gap : array_like
+        Gap h on the grid, shape ``(len(x), len(y))`` [m].
+    semi_major : array_like
+        Contact semi-major axis a [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v [-].
+    effective_radius : array_like, default 1
+        R [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
+    **kwargs
+        Passed to :func:`dhfield.periphery.periphery_from_gap_grid` (``method``, ``trend``).
+
+    Returns
+    -------
+    float
+        I_30 [J m^-2].
     """
     prof = periphery.periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, scaling,
                                              [0.0, 0.5 * np.pi], effective_radius, reduced_modulus, **kwargs)
@@ -380,8 +443,18 @@ def periphery_work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, e
 
     Parameters
     ----------
-    semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus
-        As in :func:`eq30_area`.
+    semi_major : array_like
+        Contact semi-major axis a [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v [-].
+    effective_radius : array_like, default 1
+        R [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
     weight : {"area", "angle"}
         See :func:`dhfield.periphery.ray_average`.
     n_theta : int
@@ -406,18 +479,40 @@ def eq30_cartesian_from_state(state):
     :func:`eq30_cartesian` of the state's adhesive traction
     (:func:`dhfield.periphery.adhesive_traction`, which continues the law's
     stress at zero gap over the contact) and its gap, on the full grid.
+
+    Parameters
+    ----------
+    state : dhfield.bem.ContactState
+        A full-grid BEM solution.
+
+    Returns
+    -------
+    float
+        I_30 [J m^-2].
     """
     g = state.grid
     return eq30_cartesian(g.x, g.y, periphery.adhesive_traction(state), state.gap)
 
 
 def eq30_boundary_from_state(state, **kwargs):
-    """Green's form of Eq. (30) on a BEM state: 4 [Delta gamma(0) - Delta gamma(pi/2)] [J m^-2].
+    """The Green's form of Eq. (30) on a BEM state: 4 [Delta gamma(0) - Delta gamma(pi/2)].
 
     The two ray works come from :func:`dhfield.periphery.periphery_from_state`
     (keyword arguments are passed on).  For a self-consistent solution with one
     traction law both rays give the law's work of adhesion, so this vanishes up
     to the discretisation.
+
+    Parameters
+    ----------
+    state : dhfield.bem.ContactState
+        A full-grid BEM solution.
+    **kwargs
+        Passed to :func:`dhfield.periphery.periphery_from_state` (``n_samples``).
+
+    Returns
+    -------
+    float
+        I_30 [J m^-2].
     """
     prof = periphery.periphery_from_state(state, [0.0, 0.5 * np.pi], **kwargs)
     return float(4.0 * (prof.work_of_adhesion[0] - prof.work_of_adhesion[1]))

@@ -48,8 +48,19 @@ def principal_radii(cylinder_radius, skew_angle):
 
     Returns
     -------
-    r_major, r_minor : ndarray
-        R' = R_c/(1 - cos theta_skew) and R'' = R_c/(1 + cos theta_skew) [m].
+    r_major : ndarray
+        R' = R_c/(1 - cos theta_skew) [m].
+    r_minor : ndarray
+        R'' = R_c/(1 + cos theta_skew) [m].
+
+    Examples
+    --------
+    Perpendicular cylinders (theta_skew = pi/2) are a sphere of radius R_c: R' = R'' = R_c.
+
+    >>> import numpy as np
+    >>> from dhfield import geometry
+    >>> [round(float(r), 12) for r in geometry.principal_radii(5e-3, np.pi / 2)]
+    [0.005, 0.005]
     """
     rc = check_positive("cylinder_radius", cylinder_radius, "m")
     th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
@@ -59,7 +70,24 @@ def principal_radii(cylinder_radius, skew_angle):
 
 
 def effective_radius(r_major, r_minor):
-    """Equivalent radius R = sqrt(R' R''), Eq. (5) [m]."""
+    """Equivalent radius R = sqrt(R' R''), Eq. (5).
+
+    Parameters
+    ----------
+    r_major, r_minor : array_like
+        Principal relative radii R' and R'' > 0 [m].
+
+    Returns
+    -------
+    ndarray
+        R [m].
+
+    Examples
+    --------
+    >>> from dhfield import geometry
+    >>> float(geometry.effective_radius(4.0, 1.0))
+    2.0
+    """
     r1 = check_positive("r_major", r_major, "m")
     r2 = check_positive("r_minor", r_minor, "m")
     return np.sqrt(r1 * r2)  # Eq. (5)
@@ -70,10 +98,27 @@ def reduced_modulus(e1, nu1, e2, nu2):
 
     Parameters
     ----------
-    e1, e2 : array_like
-        Young's moduli of the two bodies [Pa].
-    nu1, nu2 : array_like
+    e1 : array_like
+        Young's modulus of body 1 [Pa].
+    nu1 : array_like
+        Poisson's ratio of body 1, in (-1, 0.5] [-].
+    e2 : array_like
+        Young's modulus of body 2 [Pa].
+    nu2 : array_like
         Poisson's ratios, in (-1, 0.5] [-].
+
+    Returns
+    -------
+    ndarray
+        E* = 1/((1 - nu1^2)/e1 + (1 - nu2^2)/e2) [Pa].
+
+    Examples
+    --------
+    Two PDMS bodies, E = 2 MPa, nu = 0.5: E* = E/(2(1 - nu^2)).
+
+    >>> from dhfield import geometry
+    >>> float(geometry.reduced_modulus(2e6, 0.5, 2e6, 0.5)) / 1e6
+    1.3333333333333333
     """
     e1 = check_positive("e1", e1, "Pa")
     e2 = check_positive("e2", e2, "Pa")
@@ -89,7 +134,7 @@ def _radius_ratio(beta):
 
 
 def radius_ratio(beta):
-    """Radius ratio R'/R'' that gives the Hertz ellipticity ``beta`` (Eqs. 8, 14).
+    """The radius ratio R'/R'' that gives the Hertz ellipticity ``beta`` (Eqs. 8, 14).
 
     Parameters
     ----------
@@ -100,6 +145,12 @@ def radius_ratio(beta):
     -------
     ndarray
         R'/R'' >= 1 [-]; exactly 1 at beta = 1.
+
+    Examples
+    --------
+    >>> from dhfield import geometry
+    >>> float(geometry.radius_ratio(1.0))
+    1.0
     """
     return _radius_ratio(check_ellipticity("beta", beta))
 
@@ -109,6 +160,22 @@ def ellipticity_from_radius_ratio(ratio):
 
     Solved element-wise with a bracketing root finder in log(beta), to
     ~1e-15 relative.
+
+    Parameters
+    ----------
+    ratio : array_like
+        Radius ratio R'/R'' >= 1 [-].
+
+    Returns
+    -------
+    ndarray or float
+        Ellipticity beta = b/a in (0, 1] [-]; exactly 1 at ratio = 1.
+
+    Examples
+    --------
+    >>> from dhfield import geometry
+    >>> round(float(geometry.ellipticity_from_radius_ratio(geometry.radius_ratio(0.8))), 12)
+    0.8
     """
     rho = check_interval("ratio", ratio, 1.0, np.inf, low_open=False, high_open=True,
                          what="R'/R'', dimensionless")
@@ -130,25 +197,71 @@ def ellipticity_from_radius_ratio(ratio):
 
 
 def skew_angle(beta):
-    """Crossing angle theta_skew [rad] of equal cylinders giving Hertz ellipticity ``beta``.
+    """Crossing angle theta_skew of equal cylinders giving Hertz ellipticity ``beta``.
 
     From Eqs. (3)-(4): cos(theta_skew) = (rho - 1)/(rho + 1), rho = R'/R''.
+
+    Parameters
+    ----------
+    beta : array_like
+        Ellipticity b/a in (0, 1] [-].
+
+    Returns
+    -------
+    ndarray
+        The crossing angle in (0, pi/2] [rad]; pi/2 (perpendicular cylinders) at beta = 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhfield import geometry
+    >>> round(float(np.rad2deg(geometry.skew_angle(0.8))), 2)
+    80.45
     """
     rho = radius_ratio(beta)
     return np.arccos((rho - 1.0) / (rho + 1.0))
 
 
 def sin_skew_angle(beta):
-    """sin(theta_skew) for Hertz ellipticity ``beta`` (the factor of Eqs. 34, 36) [-].
+    """Sine of the crossing angle, sin(theta_skew), for Hertz ellipticity ``beta``.
 
-    Computed as 2 sqrt(rho)/(1 + rho), which is exactly 1 at the circle.
+    The factor of Eqs. (34) and (36), computed as 2 sqrt(rho)/(1 + rho), rho =
+    R'/R'', which is exactly 1 at the circle.
+
+    Parameters
+    ----------
+    beta : array_like
+        Ellipticity b/a in (0, 1] [-].
+
+    Returns
+    -------
+    ndarray
+        The sine, in (0, 1] [-].
     """
     rho = radius_ratio(beta)
     return 2.0 * np.sqrt(rho) / (1.0 + rho)
 
 
 def ellipticity_from_skew_angle(skew_angle):
-    """Hertz ellipticity beta of equal cylinders crossed at ``skew_angle`` in (0, pi/2] [rad]."""
+    """Hertz ellipticity beta of equal cylinders crossed at ``skew_angle``.
+
+    Parameters
+    ----------
+    skew_angle : array_like
+        Crossing angle theta_skew in (0, pi/2] [rad].
+
+    Returns
+    -------
+    ndarray or float
+        The ellipticity b/a in (0, 1] [-] (Eqs. 3-4 and 8).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dhfield import geometry
+    >>> round(float(geometry.ellipticity_from_skew_angle(np.deg2rad(60))), 3)
+    0.483
+    """
     th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
     cos = np.cos(th)
     rho = (1.0 + cos) / np.maximum(1.0 - cos, np.finfo(float).tiny)

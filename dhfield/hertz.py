@@ -89,7 +89,17 @@ def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
 
 
 def load_factor(beta):
-    """The factor F1 of Eq. (11) [-]; F1 = 1 at the circle.
+    """The factor F1 of Eq. (11); F1 = 1 at the circle.
+
+    Parameters
+    ----------
+    beta : array_like
+        Ellipticity ratio b/a in (0, 1] [-].
+
+    Returns
+    -------
+    ndarray
+        F1 [-].
 
     Notes
     -----
@@ -106,7 +116,23 @@ def load_factor(beta):
 
 
 def load(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
-    """Hertz load W for contact semi-major axis a, Eq. (10) [N].
+    """Hertz load W for contact semi-major axis a, Eq. (10).
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Semi-major axis a of the contact ellipse [m].
+    beta : array_like
+        Ellipticity ratio b/a in (0, 1] [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R' R'') [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
+
+    Returns
+    -------
+    ndarray
+        W, positive compressive [N].
 
     Notes
     -----
@@ -120,23 +146,59 @@ def load(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
 
 
 def approach(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
-    """Hertz approach of distant points, delta = Po_ab b K(k)/E* (Eqs. 13a, 14a) [m]."""
+    """Hertz approach of distant points, delta = Po_ab b K(k)/E* (Eqs. 13a, 14a).
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Semi-major axis a of the contact ellipse [m].
+    beta : array_like
+        Ellipticity ratio b/a in (0, 1] [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R' R'') [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
+
+    Returns
+    -------
+    ndarray
+        The approach delta, positive into the bodies [m].
+
+    Examples
+    --------
+    At the circle, delta = a^2/R (Hertz).
+
+    >>> from dhfield import hertz
+    >>> round(float(hertz.approach(0.5, 1.0, effective_radius=2.0)), 15)
+    0.125
+    """
     p0 = max_pressure(semi_major, beta, effective_radius, reduced_modulus)
     beta = np.asarray(beta, dtype=float)
     return p0 * beta * np.asarray(semi_major, dtype=float) * complete_k(beta) / reduced_modulus  # Eq. (14a)
 
 
 def pressure(x, y, semi_major, semi_minor, peak_pressure):
-    """Semi-ellipsoidal Hertz pressure, Eq. (7) [Pa]; zero outside the ellipse.
+    """Semi-ellipsoidal Hertz pressure, Eq. (7); zero outside the ellipse.
 
     Parameters
     ----------
     x, y : array_like
         Surface coordinates, x along the major axis [m].
     semi_major, semi_minor : array_like
-        Semi-axes a >= b [m].
+        Semi-axes a >= b of the loaded ellipse [m].
     peak_pressure : array_like
         Po [Pa].
+
+    Returns
+    -------
+    ndarray
+        Pressure, positive in compression [Pa].
+
+    Examples
+    --------
+    >>> from dhfield import hertz
+    >>> [float(hertz.pressure(x, 0.0, 2.0, 1.0, 3.0)) for x in (0.0, 2.0, 5.0)]
+    [3.0, 0.0, 0.0]
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -151,6 +213,26 @@ def ellipse_root(x, y, semi_major, semi_minor):
     ``l^2 + (a^2 + b^2 - x^2 - y^2) l + (a^2 b^2 - x^2 b^2 - y^2 a^2) = 0``
     outside the ellipse, and 0 on and inside it.  Evaluated without
     cancellation: ``l = -2C/(B + sqrt(B^2 - 4C))`` when B > 0.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    semi_major, semi_minor : array_like
+        Semi-axes a >= b of the ellipse [m].
+
+    Returns
+    -------
+    ndarray
+        The root l >= 0 [m^2].
+
+    Examples
+    --------
+    On the major axis of a circle of radius 1, at x = 2: 4/(1 + l) = 1, so l = 3.
+
+    >>> from dhfield import hertz
+    >>> float(hertz.ellipse_root(2.0, 0.0, 1.0, 1.0))
+    3.0
     """
     x2 = np.asarray(x, dtype=float) ** 2
     y2 = np.asarray(y, dtype=float) ** 2
@@ -166,14 +248,28 @@ def ellipse_root(x, y, semi_major, semi_minor):
 
 
 def displacement_coefficients(x, y, semi_major, semi_minor, peak_pressure):
-    """Coefficients L, M, N of Eqs. (13)-(15) / (B4)-(B6) at each point.
+    """The coefficients L, M, N of Eqs. (13)-(15) / (B4)-(B6) at each point.
 
     ``omega = (L - M x^2 - N y^2)/(pi E*)``.  Inside the ellipse they are the
     constants of Eq. (14), outside the point-dependent values of Eq. (15).
 
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    semi_major, semi_minor : array_like
+        Semi-axes a >= b of the loaded ellipse [m].
+    peak_pressure : array_like
+        Po [Pa].
+
     Returns
     -------
-    L [Pa m], M [Pa m^-1], N [Pa m^-1]
+    L : ndarray
+        Constant term [Pa m].
+    M : ndarray
+        Coefficient of x^2 [Pa m^-1].
+    N : ndarray
+        Coefficient of y^2 [Pa m^-1].
     """
     l = ellipse_root(x, y, semi_major, semi_minor)
     i1, i2, i3 = ellipsoid_integrals(l, semi_major, semi_minor)
@@ -190,13 +286,27 @@ def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_mo
     Parameters
     ----------
     x, y : array_like
-        Surface coordinates [m].
+        Surface coordinates, x along the major axis [m].
     semi_major, semi_minor : array_like
         Semi-axes a >= b of the loaded ellipse [m].
     peak_pressure : array_like
         Po [Pa].
     reduced_modulus : array_like, default 1
         E* [Pa].
+
+    Returns
+    -------
+    ndarray
+        Displacement omega, positive into the bodies [m].
+
+    Examples
+    --------
+    At the centre of a circular Hertz pressure, omega = pi a Po/(2 E*).
+
+    >>> import numpy as np
+    >>> from dhfield import hertz
+    >>> bool(np.isclose(hertz.surface_displacement(0.0, 0.0, 1.0, 1.0, 1.0), np.pi / 2, rtol=1e-14))
+    True
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -205,10 +315,28 @@ def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_mo
 
 
 def surface_displacement_gradient(x, y, semi_major, semi_minor, peak_pressure, reduced_modulus=1.0):
-    """Gradient (d omega/dx, d omega/dy) of Eq. (13) [-].
+    """Gradient (d omega/dx, d omega/dy) of Eq. (13).
 
     The integrand of Eq. (12b) vanishes at w = l, so the moving lower limit
     contributes nothing: d omega/dx = -2 x M/(pi E*), d omega/dy = -2 y N/(pi E*).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    semi_major, semi_minor : array_like
+        Semi-axes a >= b of the loaded ellipse [m].
+    peak_pressure : array_like
+        Po [Pa].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
+
+    Returns
+    -------
+    d_omega_dx : ndarray
+        Slope along x [-].
+    d_omega_dy : ndarray
+        Slope along y [-].
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -217,14 +345,48 @@ def surface_displacement_gradient(x, y, semi_major, semi_minor, peak_pressure, r
 
 
 def principal_radii_from_ellipticity(beta, effective_radius=1.0):
-    """R', R'' that give Hertz ellipticity ``beta`` at equivalent radius R [m]."""
+    """Principal radii R', R'' that give Hertz ellipticity ``beta`` at equivalent radius R.
+
+    Parameters
+    ----------
+    beta : array_like
+        Ellipticity ratio b/a in (0, 1] [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R' R'') [m].
+
+    Returns
+    -------
+    r_major : ndarray
+        R' = R sqrt(rho), rho = R'/R'' of :func:`dhfield.geometry.radius_ratio` [m].
+    r_minor : ndarray
+        R'' = R/sqrt(rho) [m].
+    """
     rho = radius_ratio(beta)
     s = np.sqrt(rho)
     return effective_radius * s, effective_radius / s
 
 
 def gap(x, y, semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
-    """Hertz gap h = z - delta + omega (Eqs. 2, 13, 14a) [m]; zero inside the contact."""
+    """Hertz gap h = z - delta + omega (Eqs. 2, 13, 14a); zero inside the contact.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Surface coordinates, x along the major axis [m].
+    semi_major : array_like
+        Semi-major axis a of the contact ellipse [m].
+    beta : array_like
+        Ellipticity ratio b/a in (0, 1] [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R' R'') [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
+
+    Returns
+    -------
+    ndarray
+        Gap h >= 0 [m].
+    """
     x = check_finite("x", x, "m")
     y = check_finite("y", y, "m")
     a = check_positive("semi_major", semi_major, "m")

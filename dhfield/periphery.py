@@ -110,18 +110,18 @@ class PeripheryProfile:
     Every array has the broadcast shape of the contact state followed by the
     ``theta`` axis (last).
 
-    Attributes
+    Parameters
     ----------
     theta : ndarray
         Polar angle theta_p of each ray, 0 on the major axis [rad].
     contact_radius : ndarray
-        r_ab(theta_p), Eq. (A1) [m].
+        Radius of the contact edge, r_ab(theta_p), Eq. (A1) [m].
     adhesive_radius : ndarray
-        r_cd(theta_p), Eq. (A2) [m].
+        Radius of the adhesive edge, r_cd(theta_p), Eq. (A2) [m].
     zone_width : ndarray
-        r_cd - r_ab [m].
+        Width of the cohesive zone, r_cd - r_ab [m].
     max_adhesive_stress : ndarray
-        sigma0(theta_p), the tensile stress at the contact edge (Eq. 24 on the ray) [Pa].
+        The maximum adhesive stress sigma0(theta_p), the tensile stress at the contact edge (Eq. 24 on the ray) [Pa].
     edge_separation : ndarray
         Gap at the zone's outer edge, h(r_cd, theta_p) (Eq. 27) [m].
     work_of_adhesion : ndarray
@@ -141,6 +141,13 @@ class PeripheryProfile:
     contact_edge_gap: np.ndarray
 
     def as_dict(self):
+        """The fields as a dict.
+
+        Returns
+        -------
+        dict
+            Field name -> array.
+        """
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
@@ -152,7 +159,7 @@ class CohesiveLaw:
     running from the contact edge (h = 0, sigma = sigma0(theta_p)) to the
     adhesive edge (h = h(r_cd), sigma = 0).
 
-    Attributes
+    Parameters
     ----------
     theta : ndarray
         Ray angle theta_p [rad].
@@ -172,7 +179,7 @@ class CohesiveLaw:
 
 # --------------------------------------------------------------------------- geometry
 def contact_edge_radius(semi_major, beta, theta):
-    """Radius of the contact ellipse along the ray theta_p, Eq. (A1) [m].
+    """The radius of the contact ellipse along the ray theta_p, Eq. (A1).
 
     Parameters
     ----------
@@ -182,6 +189,11 @@ def contact_edge_radius(semi_major, beta, theta):
         Ellipticity b/a in (0, 1] [-].
     theta : array_like
         Ray angle theta_p, 0 on the major axis [rad].
+
+    Returns
+    -------
+    ndarray
+        The radius r_ab [m].
 
     Notes
     -----
@@ -194,7 +206,7 @@ def contact_edge_radius(semi_major, beta, theta):
 
 
 def adhesive_edge_radius(adhesive_semi_major, beta, theta):
-    """Radius of the adhesive ellipse along the ray theta_p, Eq. (A2) [m].
+    """The radius of the adhesive ellipse along the ray theta_p, Eq. (A2).
 
     Parameters
     ----------
@@ -204,6 +216,20 @@ def adhesive_edge_radius(adhesive_semi_major, beta, theta):
         Ellipticity d/c in (0, 1] [-].
     theta : array_like
         Ray angle theta_p [rad].
+
+    Returns
+    -------
+    ndarray
+        The radius r_cd [m].
+
+    Examples
+    --------
+    On the axes the radius is c and d = beta c.
+
+    >>> import numpy as np
+    >>> from dhfield import periphery
+    >>> [round(float(periphery.adhesive_edge_radius(2.0, 0.5, t)), 12) for t in (0.0, np.pi / 2)]
+    [2.0, 1.0]
     """
     c = check_positive("adhesive_semi_major", adhesive_semi_major, "m")
     beta = check_ellipticity("beta", beta)
@@ -307,9 +333,27 @@ def _law_general(a, b, c, d, gap_amplitude, stress_amplitude, theta, n_points, r
 
 # --------------------------------------------------------------------------- public, equal beta
 class FieldParameters(NamedTuple):
-    """Checked DH parameters (see :class:`dhfield.double_hertz.DoubleHertzParameters`) and the
-    amplitudes ``gap_amplitude`` A = (1 + v) Po_ab and ``stress_amplitude`` B = v Po_cd [Pa]
-    of the two-ellipse field (Eq. 22)."""
+    """Checked DH parameters and the amplitudes of the two-ellipse field (Eq. 22).
+
+    Parameters
+    ----------
+    semi_major : array_like
+        Contact semi-major axis a [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity b/a = d/c (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : ndarray
+        R = sqrt(R'R'') [m].
+    reduced_modulus : ndarray
+        E* [Pa].
+    gap_amplitude : ndarray
+        A = (1 + v) Po_ab [Pa].
+    stress_amplitude : ndarray
+        B = v Po_cd [Pa].
+    """
 
     semi_major: np.ndarray
     adhesive_semi_major: np.ndarray
@@ -326,8 +370,18 @@ def field_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_r
 
     Parameters
     ----------
-    semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus
-        As in :func:`periphery` ([m], [m], [-], [-], [m], [Pa]).
+    semi_major : array_like
+        Contact semi-major axis a [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity b/a = d/c (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
+    effective_radius : array_like
+        R = sqrt(R'R'') [m].
+    reduced_modulus : array_like
+        E* [Pa].
 
     Returns
     -------
@@ -361,7 +415,9 @@ def _check_theta(theta):
 
 def periphery(semi_major, adhesive_semi_major, beta, scaling, theta=None, effective_radius=1.0,
               reduced_modulus=1.0):
-    """sigma0, zone width, edge separation and Delta gamma along every ray theta_p.
+    """The maximum adhesive stress, zone width, edge separation and work of adhesion per ray.
+
+    Along every ray theta_p: sigma0, r_cd - r_ab, h(r_cd) and Delta gamma.
 
     Parameters
     ----------
@@ -375,8 +431,10 @@ def periphery(semi_major, adhesive_semi_major, beta, scaling, theta=None, effect
         DH scaling factor v >= 0 [-].
     theta : array_like, optional
         Ray angles in [0, pi/2], 1-D [rad]; default :data:`DEFAULT_THETA`.
-    effective_radius, reduced_modulus : array_like
-        R [m] and E* [Pa].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
 
     Returns
     -------
@@ -404,17 +462,27 @@ def cohesive_law(semi_major, adhesive_semi_major, beta, scaling, theta=None, n_p
 
     Parameters
     ----------
-    semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus
-        As in :func:`periphery`.
+    semi_major : array_like
+        Contact semi-major axis a [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a [m].
+    beta : array_like
+        Common ellipticity b/a = d/c (Eq. 17) [-].
+    scaling : array_like
+        DH scaling factor v >= 0 [-].
     theta : array_like, optional
         Ray angles in [0, pi/2], 1-D [rad].
     n_points : int
         Samples per ray (>= 2), uniform in t with l = l_cd sin^2 t [-].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
 
     Returns
     -------
     CohesiveLaw
-        radius, separation and stress of shape ``state + theta + (n_points,)``.
+        Radius, separation and stress of shape ``state + theta + (n_points,)``.
     """
     if int(n_points) != n_points or n_points < 2:
         raise ValueError(f"n_points must be an integer >= 2 (samples per ray); got {n_points!r}")
@@ -434,7 +502,7 @@ def ray_average(values, theta, contact_radius=None, weight="area"):
     theta : array_like
         Ray angles, 1-D, covering [0, pi/2] [rad].
     contact_radius : array_like, optional
-        r_ab(theta_p) on the same rays [m]; needed for ``weight="area"``.
+        The contact radius r_ab(theta_p) on the same rays [m]; needed for ``weight="area"``.
     weight : {"area", "angle"}
         ``"angle"``: uniform in theta_p.  ``"area"``: weight r_ab^2 d(theta_p), the
         area swept by a self-similar advance of the contact edge (a -> a(1+eps)),
@@ -511,10 +579,16 @@ def load_curve_periphery(mu, beta0, a_star=None, theta=None, *, ellipticity=None
         :data:`dhfield.model.DEFAULT_A_STAR`.
     theta : array_like, optional
         Ray angles, 1-D [rad].
+    ellipticity : float, optional
+        Ellipticity of both ellipses if different from beta0 (see
+        :func:`dhfield.model.load_curve`) [-].
+    n : int
+        Number of contact sizes when ``a_star`` is not given.
 
     Returns
     -------
     curve : dhfield.model.LoadCurve
+        The load curve.
     profile : PeripheryProfile
         Shape ``(len(a_star), len(theta))``, nondimensional as in :func:`pull_off_periphery`.
     """
@@ -561,10 +635,20 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
         covers only x > 0 (or y > 0) is extended by even symmetry.
     gap : array_like
         Gap h on the grid, shape ``(len(x), len(y))`` ('ij' indexing) [m].
-    semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus
-        The DH state that produced the field (as in :func:`periphery`).
+    semi_major : array_like
+        Contact semi-major axis a of the DH state that produced the field [m].
+    adhesive_semi_major : array_like
+        Adhesive semi-major axis c >= a of that state [m].
+    beta : array_like
+        Its common ellipticity b/a = d/c (Eq. 17) [-].
+    scaling : array_like
+        Its DH scaling factor v >= 0 [-].
     theta : array_like, optional
         Ray angles, 1-D [rad].
+    effective_radius : array_like, default 1
+        R = sqrt(R'R'') [m].
+    reduced_modulus : array_like, default 1
+        E* [Pa].
     method : {"parts", "slope"}
         ``"parts"``: Delta gamma = -sigma0 h(r_ab) - int h (d sigma/dr) dr, which
         uses only values of the interpolated gap (integration by parts;
@@ -583,7 +667,7 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
     Returns
     -------
     PeripheryProfile
-        work_of_adhesion, edge_separation and contact_edge_gap from the grid;
+        The work of adhesion, edge separation and contact-edge gap from the grid;
         radii, zone width and sigma0 from the state.
 
     Notes
@@ -655,6 +739,16 @@ def adhesive_traction(state) -> np.ndarray:
     state carries its repulsive part.  Otherwise it is ``-pressure`` outside the
     contact and the law's stress at zero gap (sigma0 of Eq. 24 for the Dugdale
     law, as in Maugis' model) inside it; zero without a law.
+
+    Parameters
+    ----------
+    state : dhfield.bem.ContactState
+        A BEM solution.
+
+    Returns
+    -------
+    ndarray
+        The traction per cell, >= 0, shape of ``state.pressure`` [Pa].
     """
     p = np.asarray(state.pressure, dtype=float)
     contact = np.asarray(state.contact, dtype=bool)

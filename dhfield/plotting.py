@@ -74,13 +74,37 @@ def _draw(ax, da, ds, title, label, cmap="viridis", symmetric=False):
 
 
 def pull_off_map(ds, model, ax):
-    """Draw W*max(mu, beta0) of ``model`` (Eq. 34, negative: tensile) on ``ax``."""
+    """Draw W*max(mu, beta0) of ``model`` (Eq. 34, negative: tensile) on ``ax``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep holding the pull_off quantity (``W_star``, ``ellipticity`` on ``model``).
+    model : str
+        A model of ``ds["model"]``.
+    ax : matplotlib.axes.Axes
+        Where to draw (a colour bar is added next to it).
+    """
     _check(ds, model)
     _draw(ax, ds["W_star"].sel(model=model), ds, f"{model}: W*max (Eq. 34)", "W*max")
 
 
 def error_map(ds, model, reference, ax):
-    """Draw (W*max_model - W*max_reference)/|W*max_reference| on ``ax``."""
+    """Draw the relative difference of W*max between ``model`` and ``reference`` on ``ax``.
+
+    The difference is (W*max_model - W*max_reference)/abs(W*max_reference).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep holding the pull_off quantity (``W_star``, ``ellipticity`` on ``model``).
+    model : str
+        A model of ``ds["model"]``.
+    reference : str
+        The reference model, also in ``ds["model"]``.
+    ax : matplotlib.axes.Axes
+        Where to draw (a colour bar is added next to it).
+    """
     _check(ds, model)
     _check(ds, reference, "reference")
     w = ds["W_star"]
@@ -90,14 +114,35 @@ def error_map(ds, model, reference, ax):
 
 
 def ellipticity_map(ds, model, ax):
-    """Draw the contact ellipticity b/a at pull-off of ``model`` on ``ax``."""
+    """Draw the contact ellipticity b/a at pull-off of ``model`` on ``ax``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep holding the pull_off quantity (``W_star``, ``ellipticity`` on ``model``).
+    model : str
+        A model of ``ds["model"]``.
+    ax : matplotlib.axes.Axes
+        Where to draw (a colour bar is added next to it).
+    """
     _check(ds, model)
     _draw(ax, ds["ellipticity"].sel(model=model), ds, f"{model}: ellipticity b/a at pull-off",
           "b/a at pull-off", cmap="magma")
 
 
 def default_reference(ds) -> str:
-    """Reference of the error maps: the adhesive BEM ground truth if swept, else the paper's model."""
+    """Reference of the error maps: the adhesive BEM ground truth if swept, else the paper's model.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep with a ``model`` coordinate.
+
+    Returns
+    -------
+    str
+        ``"bem-adhesive"`` or ``"dh-elliptic"`` when swept, else the first model.
+    """
     models = [str(m) for m in ds["model"].values]
     for name in ("bem-adhesive", "dh-elliptic"):
         if name in models:
@@ -139,6 +184,13 @@ def standard_maps(ds, out_dir, *, reference=None, stem="sweep") -> list:
         are two models or more) and ``<stem>_ellipticity``, each ``.png`` and ``.svg``.
     reference : str, optional
         Reference model of the error maps (default :func:`default_reference`).
+    stem : str, default "sweep"
+        Start of the file names.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
     """
     if not hasattr(ds, "data_vars"):
         from .io import read_netcdf

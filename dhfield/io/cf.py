@@ -58,13 +58,50 @@ def variable(name: str, dims, values, *, nondimensional: bool = False, qualifier
 
     ``quantity`` names the schema entry when the variable's own name differs
     (e.g. ``gap_analytic`` is the quantity ``gap``, qualified "analytic").
+
+    Parameters
+    ----------
+    name : str
+        Variable name, a key of :data:`dhfield.schema.VARIABLES` unless ``quantity`` is given.
+    dims : str or tuple of str
+        Dimension names.
+    values : array_like
+        The values, stored as float.
+    nondimensional : bool
+        True if the values are in the paper's units (see :func:`variable_attrs`).
+    qualifier : str, optional
+        Appended to ``long_name`` (see :func:`variable_attrs`).
+    quantity : str, optional
+        Schema key when it differs from ``name``.
+
+    Returns
+    -------
+    tuple
+        ``(dims, values, attrs)``, ready for ``xarray.Dataset(data_vars=...)``.
     """
     attrs = variable_attrs(quantity or name, nondimensional=nondimensional, qualifier=qualifier)
     return (dims, np.asarray(values, dtype=float), attrs)
 
 
 def coordinate(name: str, values, *, nondimensional: bool = False, quantity: str | None = None):
-    """``(name, float array, attrs)`` of a dimension coordinate (no fill value is written)."""
+    """``(name, float array, attrs)`` of a dimension coordinate (no fill value is written).
+
+    Parameters
+    ----------
+    name : str
+        Coordinate (and dimension) name.
+    values : array_like
+        The coordinate values, stored as float.
+    nondimensional : bool
+        True if the values are in the paper's units (see :func:`variable_attrs`).
+    quantity : str, optional
+        Schema key when it differs from ``name``.
+
+    Returns
+    -------
+    tuple
+        ``(name, values, attrs)``, ready for ``xarray.Dataset(coords=...)``.
+    """
     attrs = variable_attrs(quantity or name, nondimensional=nondimensional)
     return (name, np.asarray(values, dtype=float), attrs)
 
@@ -74,6 +111,20 @@ def label_coordinate(name: str, labels, *, quantity: str | None = None):
 
     Labels get ``long_name`` (and ``description``) but no ``units``: a string
     has no unit.
+
+    Parameters
+    ----------
+    name : str
+        Coordinate (and dimension) name.
+    labels : array_like of str
+        The labels.
+    quantity : str, optional
+        Schema key when it differs from ``name``.
+
+    Returns
+    -------
+    tuple
+        ``(name, labels, attrs)``.
     """
     attrs = variable_attrs(quantity or name)
     attrs.pop("units", None)
@@ -88,11 +139,14 @@ def flag_variable(name: str, dims, labels, meanings, *, quantity: str | None = N
     name : str
         Schema key (its ``long_name`` and ``description`` are used).
     dims : str or tuple of str
+        Dimension names.
     labels : array_like of str or of int
         The category of every element: a string of ``meanings``, or already
         its code (position in ``meanings``).
     meanings : sequence of str
         The categories; code ``i`` means ``meanings[i]``.
+    quantity : str, optional
+        Schema key when it differs from ``name``.
 
     Returns
     -------
@@ -122,6 +176,16 @@ def finalize(ds):
     Transposes every variable into :data:`dhfield.schema.DIM_ORDER` and sets
     no ``_FillValue`` on coordinate variables.  Idempotent; returns a new
     Dataset (``ds`` is not modified).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Any dhfield Dataset.
+
+    Returns
+    -------
+    xarray.Dataset
+        The finalized copy.
     """
     ds = ds.transpose(*schema.order_dims(ds.dims))
     ds = ds.copy()

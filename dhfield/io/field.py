@@ -79,11 +79,18 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
     Parameters
     ----------
     case : dhfield.fields.FieldCase
+        An analytic-versus-BEM case.
     r_max : float, optional
         Largest radius [m]; default 95 % of the smaller half-width of the grid.
     n_r, n_theta : int
         Number of radii in ``[0, r_max]`` and of angles in ``[0, pi/2]`` (the
         fields are even in x and y).
+
+    Returns
+    -------
+    xarray.Dataset
+        Analytic and numerical displacement and gap on ``(r, theta_p)``, CF metadata from
+        :mod:`dhfield.schema`.
     """
     g = case.grid
     if r_max is None:
@@ -118,7 +125,22 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
 
 
 def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
-    """The Dataset of one case (Cartesian maps, plus the polar resampling if ``polar``)."""
+    """The Dataset of one case (Cartesian maps, plus the polar resampling if ``polar``).
+
+    Parameters
+    ----------
+    case : dhfield.fields.FieldCase
+        An analytic-versus-BEM case.
+    polar : bool, default True
+        Include :func:`polar_dataset` of the case.
+    **polar_options
+        Passed to :func:`polar_dataset` (``r_max``, ``n_r``, ``n_theta``).
+
+    Returns
+    -------
+    xarray.Dataset
+        Pressure, displacement, gap and their errors on the grid, with provenance.
+    """
     g = case.grid
     nd = _nondim(case)
     dims = ("x", "y")
@@ -155,7 +177,22 @@ def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
 
 
 def write_field(case, path, **options) -> Path:
-    """Write :func:`field_dataset` of ``case`` to netCDF atomically; return the path."""
+    """Write :func:`field_dataset` of ``case`` to netCDF atomically; return the path.
+
+    Parameters
+    ----------
+    case : dhfield.fields.FieldCase
+        An analytic-versus-BEM case.
+    path : path-like
+        The netCDF file.
+    **options
+        Passed to :func:`field_dataset`.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
     check_writable(path)
     return write_netcdf(field_dataset(case, **options), path)
 
@@ -188,6 +225,7 @@ def compute_and_write_case(beta0, mu, a_star, n, out, *, half_width=None, sampli
     Returns
     -------
     pathlib.Path
+        The file written.
     """
     check_writable(out)
     from ..bem.operator import MIN_CELLS

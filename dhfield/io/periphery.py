@@ -56,12 +56,18 @@ def pull_off_periphery_dataset(mu, beta0, pull_off, profile, law=None, *, contro
     mu, beta0 : array_like
         1-D grids [-]; ``pull_off`` and ``profile`` have shape (len(beta0), len(mu)).
     pull_off : dhfield.model.PullOff
+        The pull-off points.
     profile : dhfield.periphery.PeripheryProfile
         Shape (len(beta0), len(mu), len(theta)).
     law : dhfield.periphery.CohesiveLaw, optional
-        sigma-h curves, shape (len(beta0), len(mu), n_law_theta, n_sample).
+        The sigma-h curves, shape (len(beta0), len(mu), n_law_theta, n_sample).
     control : str
         Pull-off control mode (recorded).
+
+    Returns
+    -------
+    xarray.Dataset
+        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
     """
     theta = np.asarray(profile.theta)[0, 0]
     data = {name: _var(("beta0", "mu", "theta"), getattr(profile, name), name, "on the ray theta_p")
@@ -94,9 +100,17 @@ def equal_beta_dataset(mu, beta0, spread, closures: dict, *, control="load") -> 
     mu, beta0 : array_like
         1-D grids; arrays have shape (len(beta0), len(mu)).
     spread : dhfield.closure.EqualBetaSpread
+        The equal-beta test at pull-off.
     closures : dict
-        name -> dhfield.closure.ClosureState at pull-off (e.g. "paper",
+        Name -> dhfield.closure.ClosureState at pull-off (e.g. "paper",
         "ray_average", "two_axis").
+    control : str
+        Pull-off control mode (recorded).
+
+    Returns
+    -------
+    xarray.Dataset
+        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
     """
     names = list(closures)
     grid = ("beta0", "mu")
@@ -129,7 +143,26 @@ def equal_beta_dataset(mu, beta0, spread, closures: dict, *, control="load") -> 
 
 
 def eq30_dataset(mu, beta0, area, boundary, work_major, work_minor, mean_work) -> xr.Dataset:
-    """Dataset of Eq. (30) (area and Green's forms) next to the ray works, at pull-off."""
+    """Dataset of Eq. (30) (area and Green's forms) next to the ray works, at pull-off.
+
+    Parameters
+    ----------
+    mu, beta0 : array_like
+        1-D grids; the other arrays have shape (len(beta0), len(mu)).
+    area : array_like
+        Eq. (30) as an area integral (:func:`dhfield.eq30.eq30_area`).
+    boundary : array_like
+        Its Green's form (:func:`dhfield.eq30.eq30_boundary`, ``total``).
+    work_major, work_minor : array_like
+        Delta gamma(0) and Delta gamma(pi/2).
+    mean_work : array_like
+        The periphery average of Delta gamma (:func:`dhfield.eq30.periphery_work_of_adhesion`).
+
+    Returns
+    -------
+    xarray.Dataset
+        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
+    """
     grid = ("beta0", "mu")
     data = {
         "eq30_area": _var(grid, area, "eq30", "as printed, area integral on the polar grid"),
@@ -153,10 +186,16 @@ def grid_periphery_dataset(theta, analytic, numerical: dict, **parameters) -> xr
     theta : array_like
         Ray angles [rad].
     analytic : dhfield.periphery.PeripheryProfile
+        The analytic ray quantities.
     numerical : dict
-        label -> PeripheryProfile from :func:`dhfield.periphery.periphery_from_gap_grid`.
+        Label -> PeripheryProfile from :func:`dhfield.periphery.periphery_from_gap_grid`.
     **parameters
         Recorded as attributes (state, grid size, ...).
+
+    Returns
+    -------
+    xarray.Dataset
+        Analytic and numerical quantities on ``theta``, CF metadata from :mod:`dhfield.schema`.
     """
     data = {"work_analytic": _var("theta", analytic.work_of_adhesion, "work_of_adhesion", "analytic (Eq. 31)"),
             "edge_separation_analytic": _var("theta", analytic.edge_separation, "edge_separation", "analytic")}
@@ -183,6 +222,11 @@ def load_curve_periphery_dataset(mu, beta0, curves: dict, profiles: dict) -> xr.
         (beta0, mu) -> dhfield.model.LoadCurve, all on the same a* points.
     profiles : dict
         (beta0, mu) -> dhfield.periphery.PeripheryProfile of shape (len(a_star), len(theta)).
+
+    Returns
+    -------
+    xarray.Dataset
+        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
     """
     mu, beta0 = np.asarray(mu, float), np.asarray(beta0, float)
     first = next(iter(profiles.values()))
@@ -210,5 +254,18 @@ def load_curve_periphery_dataset(mu, beta0, curves: dict, profiles: dict) -> xr.
 
 
 def write_dataset(ds, path) -> Path:
-    """Write one of the datasets above atomically (netCDF4)."""
+    """Write one of the datasets above atomically (netCDF4).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A dataset of this module.
+    path : path-like
+        The netCDF file.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
     return write_netcdf(ds, path)

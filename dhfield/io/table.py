@@ -29,7 +29,24 @@ __all__ = ["write_table", "read_table", "sidecar_path"]
 
 
 def sidecar_path(path) -> Path:
-    """The JSON metadata file of the CSV ``path``: ``path + ".json"``."""
+    """The JSON metadata file of the CSV ``path``: ``path + ".json"``.
+
+    Parameters
+    ----------
+    path : path-like
+        The CSV file.
+
+    Returns
+    -------
+    pathlib.Path
+        The sidecar's path.
+
+    Examples
+    --------
+    >>> from dhfield.io.table import sidecar_path
+    >>> sidecar_path("out/curve.csv").as_posix()
+    'out/curve.csv.json'
+    """
     p = Path(path)
     return p.with_name(p.name + ".json")
 
@@ -63,7 +80,7 @@ def write_table(columns, path, *, title: str, nondimensional: bool = False, quan
     Parameters
     ----------
     columns : mapping
-        name -> 1-D array_like; all of one length.  Every name (or its entry in
+        Column name -> 1-D array_like; all of one length.  Every name (or its entry in
         ``quantities``) must be a key of :data:`dhfield.schema.VARIABLES`.
     path : path-like
         CSV file to write (any suffix; ``.csv`` recommended).
@@ -73,7 +90,7 @@ def write_table(columns, path, *, title: str, nondimensional: bool = False, quan
         The values are in the paper's units (Eqs. 32-35): units "1" and the
         scale in each ``long_name``.
     quantities : mapping, optional
-        column name -> schema key, for columns named differently from their
+        Column name -> schema key, for columns named differently from their
         quantity.
     **parameters
         Input parameters, recorded as ``param_*`` attributes.
@@ -125,6 +142,7 @@ def read_table(path, required=()):
     Returns
     -------
     frame : pandas.DataFrame
+        The table, one column per CSV column.
     metadata : dict
         The sidecar's content, or ``{}`` if there is none.
 

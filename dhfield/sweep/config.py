@@ -36,17 +36,17 @@ TOML layout (every table and key optional except ``[axes]``)::
 
 Axes and quantities
 -------------------
-=============  ==========================================  ==========================
-axis           meaning                                     used by
-=============  ==========================================  ==========================
-beta0          Hertz ellipticity b/a in (0, 1] (Eq. 9)     every quantity
-skew_angle_deg crossing angle in (0, 90] degrees (replaces  every quantity
-               beta0; beta0 from Eqs. 3-4)
-mu             Tabor parameter > 0 (Eq. 35)                every quantity
-a_star         contact semi-major axis a/c_r > 0 (Eq. 32)  bem_field
-n              BEM cells per side, even, in [16, 8192]     bem_field, adhesive
-law            cohesive law of the adhesive BEM solver     adhesive
-=============  ==========================================  ==========================
+==============  ===========================================  ==========================
+axis            meaning                                      used by
+==============  ===========================================  ==========================
+beta0           Hertz ellipticity b/a in (0, 1] (Eq. 9)      every quantity
+skew_angle_deg  crossing angle in (0, 90] degrees (replaces  every quantity
+                beta0; beta0 from Eqs. 3-4)
+mu              Tabor parameter > 0 (Eq. 35)                 every quantity
+a_star          contact semi-major axis a/c_r > 0 (Eq. 32)   bem_field
+n               BEM cells per side, even, in [16, 8192]      bem_field, adhesive
+law             cohesive law of the adhesive BEM solver      adhesive
+==============  ===========================================  ==========================
 
 ``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it

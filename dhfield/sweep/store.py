@@ -31,6 +31,26 @@ def output_paths(out) -> tuple[Path, Path]:
     ``out`` ending in ``.nc`` is the consolidated file, its store is
     ``<out>.cases/`` beside it; otherwise ``out`` is a directory holding
     ``sweep.nc`` and ``cases/``.
+
+    Parameters
+    ----------
+    out : path-like
+        The sweep's output path.
+
+    Returns
+    -------
+    consolidated : pathlib.Path
+        The consolidated netCDF file.
+    store : pathlib.Path
+        The directory of the per-case files.
+
+    Examples
+    --------
+    >>> from dhfield.sweep.store import output_paths
+    >>> [p.as_posix() for p in output_paths("runs/map.nc")]
+    ['runs/map.nc', 'runs/map.nc.cases']
+    >>> [p.as_posix() for p in output_paths("runs/map")]
+    ['runs/map/sweep.nc', 'runs/map/cases']
     """
     p = Path(out)
     if p.suffix.lower() == ".nc":
@@ -77,15 +97,52 @@ class CaseStore:
             tmp.write_text(json.dumps({"fingerprint": fingerprint, **(manifest or {})}, indent=1))
 
     def path(self, key: str, failed: bool = False) -> Path:
-        """File of case ``key`` (``failed``: the record of a case that raised)."""
+        """File of case ``key`` (``failed``: the record of a case that raised).
+
+        Parameters
+        ----------
+        key : str
+            Case key (a file-name-safe string made by the sweep engine).
+        failed : bool
+            The path of the failure record instead of the finished file.
+
+        Returns
+        -------
+        pathlib.Path
+            ``<key>.nc`` or ``<key>.failed.nc`` in the store.
+        """
         return self.directory / (f"{key}.failed.nc" if failed else f"{key}.nc")
 
     def is_done(self, key: str) -> bool:
-        """True if case ``key`` finished (successfully or not converged) in an earlier run."""
+        """Whether case ``key`` finished (successfully or not converged) in an earlier run.
+
+        Parameters
+        ----------
+        key : str
+            Case key (a file-name-safe string made by the sweep engine).
+
+        Returns
+        -------
+        bool
+            True if its finished file exists.
+        """
         return self.path(key).is_file()
 
     def write(self, key: str, ds) -> Path:
-        """Write case ``key`` atomically; a ``status`` attribute "failed" goes to the failed file."""
+        """Write case ``key`` atomically; a ``status`` attribute "failed" goes to the failed file.
+
+        Parameters
+        ----------
+        key : str
+            Case key (a file-name-safe string made by the sweep engine).
+        ds : xarray.Dataset
+            The case's result.
+
+        Returns
+        -------
+        pathlib.Path
+            The file written.
+        """
         from ..io import write_netcdf
 
         failed = ds.attrs.get("status") == "failed"
@@ -96,7 +153,18 @@ class CaseStore:
         return path
 
     def read(self, key: str):
-        """The Dataset of case ``key`` (its failed record if it has no finished file), or None."""
+        """The Dataset of case ``key`` (its failed record if it has no finished file), or None.
+
+        Parameters
+        ----------
+        key : str
+            Case key (a file-name-safe string made by the sweep engine).
+
+        Returns
+        -------
+        xarray.Dataset or None
+            The stored case, or None if there is none.
+        """
         from ..io import read_netcdf
 
         for p in (self.path(key), self.path(key, True)):
@@ -106,5 +174,11 @@ class CaseStore:
         return None
 
     def keys(self) -> list[str]:
-        """Keys of the finished cases."""
+        """The keys of the finished cases.
+
+        Returns
+        -------
+        list of str
+            Sorted keys (failure records excluded).
+        """
         return sorted(p.name[:-3] for p in self.directory.glob("*.nc") if not p.name.endswith(".failed.nc"))

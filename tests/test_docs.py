@@ -1,0 +1,147 @@
+"""The documentation: doctests, numpydoc validation, the site builds with -W, its links and images.
+
+The full build (``make docs``) also runs the gallery; here the site is built from a copy of
+docs/ in a temporary directory without running it (``plot_gallery=0``), so the source tree's
+executed gallery is not touched.  Counts: ``python -m verification.doc_counts``.
+"""
+from __future__ import annotations
+
+import doctest
+import importlib
+import os
+import py_compile
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("sphinx")
+pytest.importorskip("numpydoc")
+pytest.importorskip("sphinx_gallery")
+pytest.importorskip("pydata_sphinx_theme")
+pytest.importorskip("sphinxarg")
+
+from verification import doc_counts as dc  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+
+#: numpydoc validation must find zero errors in these modules (their docstrings were brought to
+#: the standard with the documentation site).
+STRICT = (
+    "dhfield.geometry", "dhfield.elliptic", "dhfield.hertz", "dhfield.double_hertz", "dhfield.adhesion",
+    "dhfield.periphery", "dhfield.eq30", "dhfield.plotting", "dhfield.io.cf", "dhfield.io.table",
+    "dhfield.io.field", "dhfield.io.periphery", "dhfield.sweep.store",
+)
+
+#: Modules not yet held to zero (owned by other work in progress this session: the BEM, model,
+#: comparison and fit refactors, ...).  Their counts are printed, not asserted, and so are those of
+#: any public module in neither list.  This list only shrinks: fix a module's docstrings (the
+#: printed counts say which are clean), then move it to STRICT.
+ALLOWED_ERRORS = (
+    "dhfield", "dhfield.bem", "dhfield.bem.adhesive", "dhfield.bem.continuation", "dhfield.bem.laws",
+    "dhfield.bem.operator", "dhfield.bem.path", "dhfield.bem.pull_off", "dhfield.bem.solver",
+    "dhfield.bem.state", "dhfield.cli", "dhfield.closure", "dhfield.compare", "dhfield.dh_circular",
+    "dhfield.dimensional", "dhfield.dmt", "dhfield.fields", "dhfield.fit", "dhfield.io", "dhfield.io.compare",
+    "dhfield.io.curves", "dhfield.io.fit", "dhfield.io.solution", "dhfield.jkr", "dhfield.jkr_elliptic",
+    "dhfield.maugis_dugdale", "dhfield.model", "dhfield.pull_off_search", "dhfield.schema", "dhfield.sweep",
+    "dhfield.sweep.config", "dhfield.sweep.engine", "dhfield.sweep.tasks", "dhfield.transition",
+)
+
+
+@pytest.fixture(scope="module")
+def api():
+    return dc.public_api()
+
+
+# --------------------------------------------------------------------------- doctests
+def test_doctests_in_public_docstrings(api):
+    """Every ``>>>`` example in a public module's docstrings runs and prints what it says."""
+    finder = doctest.DocTestFinder(exclude_empty=True)
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    attempted, seen = 0, set()
+    for modname in api:
+        mod = importlib.import_module(modname)
+        for test in finder.find(mod, modname):
+            if test.name in seen:
+                continue
+            seen.add(test.name)
+            result = runner.run(test, out=lambda s: sys.stdout.write(s))
+            attempted += result.attempted
+    assert runner.failures == 0, f"{runner.failures} doctest failures (output above)"
+    assert attempted >= 10, f"only {attempted} doctest examples found"
+
+
+# --------------------------------------------------------------------------- numpydoc
+def test_numpydoc_validation(api):
+    """Zero numpydoc errors in STRICT's modules; the others' counts are printed (-s shows them)."""
+    errors = dc.validation_errors(api=api)
+    others = {m: len(errors.get(m, [])) for m in sorted(set(api) - set(STRICT))}
+    print("numpydoc errors outside STRICT:", others, "total", sum(others.values()))
+    print("not in ALLOWED_ERRORS either:", sorted(set(others) - set(ALLOWED_ERRORS)))
+    print("clean, could move to STRICT:", [m for m, n in others.items() if n == 0])
+    assert set(STRICT) <= set(api), f"not public modules: {sorted(set(STRICT) - set(api))}"
+    strict = [f"{name}: {code} {msg}" for m in STRICT for name, code, msg in errors.get(m, [])]
+    assert not strict, f"{len(strict)} numpydoc errors:\n" + "\n".join(strict)
+
+
+def test_gallery_examples_compile():
+    examples = sorted((ROOT / "docs" / "examples").glob("plot_*.py"))
+    assert len(examples) >= 6
+    for path in examples:
+        py_compile.compile(str(path), doraise=True)
+
+
+# --------------------------------------------------------------------------- the site
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    """The site built with warnings as errors, the gallery not run, from a copy of docs/."""
+    tmp = tmp_path_factory.mktemp("docs")
+    src = tmp / "docs"
+    shutil.copytree(ROOT / "docs", src, ignore=shutil.ignore_patterns(
+        "_build", "api", "auto_examples", "_generated", "sg_execution_times.rst", "__pycache__"))
+    out = tmp / "html"
+    env = dict(os.environ, DHFIELD_DOCS_ROOT=str(ROOT), MPLBACKEND="Agg",
+               PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.run([sys.executable, "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q",
+                           "-D", "plot_gallery=0", str(src), str(out)],
+                          capture_output=True, text=True, env=env, timeout=900)
+    assert proc.returncode == 0, f"sphinx -W failed:\n{proc.stderr[-5000:]}"
+    return out
+
+
+def test_every_public_name_has_a_reference_page(site, api):
+    assert dc.names_without_page(site, api) == []
+
+
+def test_internal_links_resolve(site):
+    broken = dc.broken_internal_links(site)
+    assert broken == [], "\n".join(broken[:40])
+    assert len(list(site.rglob("*.html"))) > 100
+
+
+def test_link_checker_finds_broken_links(tmp_path):
+    # negative control: a missing file and a missing anchor are both reported
+    (tmp_path / "a.html").write_text('<a id="here" href="b.html#nowhere">x</a><a href="missing.html">y</a>'
+                                     '<a href="#here">z</a><a href="https://doi.org/10.1007/s11249-017-0976-8">d</a>')
+    (tmp_path / "b.html").write_text('<p id="somewhere">b</p>')
+    assert dc.broken_internal_links(tmp_path) == ["a.html: b.html#nowhere (no #nowhere)",
+                                                  "a.html: missing.html (no file)"]
+
+
+needs_chromium = pytest.mark.skipif(not dc.CHROMIUM.exists(),
+                                    reason=f"headless Chromium not installed at {dc.CHROMIUM} "
+                                           "(apt-get install chromium); verification/doc_counts.py "
+                                           "--screenshots does this check where it is")
+
+
+@needs_chromium
+def test_page_opens_in_chromium_and_its_images_load(site, tmp_path):
+    # the gallery's index has a thumbnail per example even when the examples are not run
+    n_images, broken = dc.images_in_chromium(site / "auto_examples" / "index.html")
+    assert n_images >= 6 and broken == []
+    # negative control: a missing image is reported
+    (tmp_path / "bad.html").write_text('<img src="nothing.png"><img src="nothing2.png">')
+    n_images, broken = dc.images_in_chromium(tmp_path / "bad.html")
+    assert n_images == 2 and broken == ["nothing.png", "nothing2.png"]
