@@ -744,8 +744,9 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
       keeps that of the full inverse;
     * correlation at +-1 (:data:`CORRELATION_MAX`): both NaN;
     * a standard error above the estimate, or a run to the search bound
-      (infinite standard error).  On 40 seeded noisy PDMS curves the
-    truth was within 2 standard errors 38/40 (dgamma) and 39/40 (sigma0)
+      (infinite standard error).
+
+    On 40 seeded noisy PDMS curves the truth was within 2 standard errors 38/40 (dgamma) and 39/40 (sigma0)
     times (``python -m verification.fit_round_trip``).  A fit takes 20-35
     load-curve evaluations: under a second for dh-elliptic, MD and DH circular,
     15-35 s for the two closures; the warning's closure check adds about a
