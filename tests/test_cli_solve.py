@@ -68,3 +68,34 @@ def test_help_documents_exit_status(capsys):
         main(["solve", "--help"])
     assert f"{EXIT_UNCONVERGED} a state of the path up to the pull-off did not converge" in " ".join(
         capsys.readouterr().out.split())
+
+
+def test_solve_flags_an_unresolved_pull_off(tmp_path, capsys):
+    """Issue 18 item 1: at mu = 8, N = 32 on the sphere the Dugdale zone is narrower than a cell
+    (the API's own flag says resolved = False; W* = -2.44 where MD gives about -1.1); the CLI
+    used to print converged = True and exit 0.  It must print and store resolved = false and exit 4."""
+    from dhfield.cli.solve import EXIT_UNRESOLVED
+
+    out = tmp_path / "unresolved.nc"
+    rc = main(["solve", "--beta0", "1", "--mu", "8", "--n", "32", "--json", "--out", str(out)])
+    captured = capsys.readouterr()
+    rec = json.loads(captured.out)
+    assert rec["resolved"] is False
+    assert rc == EXIT_UNRESOLVED != 0
+    assert "unresolved" in captured.err and "beta0=1, mu=8, n=32" in captured.err
+    ds = read_solution(out)
+    assert ds.attrs["resolved"] == 0 and int(ds["resolved"]) == 0
+    assert int(ds["converged_pull_off"]) == int(rec["converged"])
+    rc = main(["solve", "--beta0", "1", "--mu", "8", "--n", "32"])
+    text = capsys.readouterr().out
+    assert rc == EXIT_UNRESOLVED and "resolved = False" in text
+
+
+def test_solve_resolved_case_exits_zero_and_says_so(tmp_path, capsys):
+    out = tmp_path / "ok.nc"
+    rc = main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--out", str(out)])
+    text = capsys.readouterr().out
+    assert "resolved = True" in text
+    ds = read_solution(out)
+    assert ds.attrs["resolved"] == 1 and int(ds["resolved"]) == 1
+    assert rc in (0, EXIT_UNCONVERGED)

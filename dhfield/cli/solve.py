@@ -7,11 +7,16 @@ from ._common import add_model_arguments, print_json
 
 #: Exit status when a state of the path did not converge (the result is still printed/written, flagged).
 EXIT_UNCONVERGED = 3
+#: Exit status when the path converged but the grid does not resolve the cohesive zone
+#: (``resolved = false``: the pull-off is not an answer; refine --n).
+EXIT_UNRESOLVED = 4
 
-_EPILOG = (f"exit status: 0 success (a note on stderr if states beyond the pull-off did not converge); "
-           f"2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the path up to the pull-off "
-           "did not converge (one line on stderr naming the parameters; the result is still printed and "
-           "written, with converged = false)")
+_EPILOG = (f"exit status: 0 success, converged and resolved (a note on stderr if states beyond the pull-off "
+           f"did not converge); 2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the path "
+           "up to the pull-off did not converge; "
+           f"{EXIT_UNRESOLVED} converged but unresolved: the grid is too coarse for the cohesive zone, the "
+           "pull-off is not an answer (increase --n).  In cases 3 and 4 one line on stderr names the "
+           "parameters, and the result is still printed and written with converged / resolved = false.")
 
 
 def add_parser(sub) -> None:
@@ -43,6 +48,7 @@ def _record(res) -> dict:
     d = res.as_dict()
     out = {"beta0": d["beta0"], "mu": d["mu"], "n": d["n"], "law": d["law"], "control": d["control"]}
     out.update({k: d[k] for k in BEM_ADHESIVE_KEYS})
+    out["resolved"] = bool(getattr(res, "resolved", True))
     out.update(W_star_error=d["W_star_error"], residual=d["residual"], elapsed=d["elapsed"],
                failures=d["failures"], note=d["note"], search=d["search"])
     return out
@@ -76,7 +82,7 @@ def run(args) -> int:
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
-        print(f"converged = {res.converged}  states = {res.n_steps}  CG iterations = {res.iterations}  "
+        print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  CG iterations = {res.iterations}  "
               f"search = {res.search}  ({res.elapsed:.1f} s)")
         if args.out is not None:
             print(f"wrote {args.out}")
@@ -86,6 +92,10 @@ def run(args) -> int:
                else res.note)
         print(f"dhfield: solve did not converge for {where}: {why}", file=sys.stderr)
         return EXIT_UNCONVERGED
+    if not rec["resolved"]:
+        print(f"dhfield: solve is unresolved for {where}: the grid does not resolve the cohesive zone "
+              "(resolved = false), so W* is not an answer; increase --n", file=sys.stderr)
+        return EXIT_UNRESOLVED
     if res.note:
         print(f"dhfield: note: {where}: {res.note}", file=sys.stderr)
     if res.failures:

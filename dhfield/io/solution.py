@@ -214,7 +214,13 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
         ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), nondimensional=True, qualifier=q)
     for key in ("beta_ab", "beta_cd"):
         ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), qualifier=q)
-    ds.attrs.update({"converged": int(bool(result.converged)), "n_steps": int(result.n_steps),
+    resolved = bool(getattr(result, "resolved", True))
+    ds["resolved"] = _flag("resolved", (), int(resolved), ("false", "true"),
+                           "grid resolves the cohesive zone (false: the pull-off is not an answer; refine n)")
+    ds["converged_pull_off"] = _flag("converged", (), int(bool(result.converged)), ("false", "true"),
+                                     "every state of the path down to the pull-off converged")
+    ds.attrs.update({"converged": int(bool(result.converged)), "resolved": int(resolved),
+                     "n_steps": int(result.n_steps),
                      "iterations": int(result.iterations), "residual": float(result.residual),
                      "control": result.control, "elapsed_seconds": float(result.elapsed)})
     if getattr(result, "search", ""):

@@ -33,7 +33,9 @@ Engine
 * **Resumable.** Cases are written to a :class:`~dhfield.sweep.store.CaseStore`
   as they finish; a case that raises is recorded with its message (status
   "failed", NaN values) and retried by the next run; a non-converged adhesive
-  case is recorded with its message (status "not_converged") and kept.  The
+  case is recorded with its message (status "not_converged") and kept, and so
+  is one that converged on a grid too coarse for its cohesive zone (status
+  "unresolved": the solver's ``resolved`` flag is false).  The
   consolidated Dataset is written atomically at the end.
 """
 from __future__ import annotations
@@ -72,7 +74,10 @@ WORKER_START_TIMEOUT = 300.0
 SINGLE_THREAD_ENV = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "VECLIB_MAXIMUM_THREADS",
                      "NUMEXPR_NUM_THREADS")
 #: Case status codes (CF flag_values) and their meanings.
-STATUS_MEANINGS = {0: "ok", 1: "not_converged", 2: "failed"}
+STATUS_MEANINGS = {0: "ok", 1: "not_converged", 2: "failed", 3: "unresolved"}
+#: Message of an adhesive case whose path converged on a grid too coarse for its cohesive zone.
+UNRESOLVED_MESSAGE = ("unresolved: the grid does not resolve the cohesive zone (resolved = false), W* is not an "
+                      "answer; increase n")
 _STATUS = {v: k for k, v in STATUS_MEANINGS.items()}
 _LOCAL = ("synchronous", "processes")
 #: Environment variables giving :func:`map_cases` its default scheduler and worker count
@@ -433,8 +438,11 @@ def _run_cases(quantity, cases, store_dir, fingerprint):
                 status, message = "ok", ""
             else:
                 rec = adhesive_case(**params)
-                status = "ok" if rec.pop("converged") else "not_converged"
+                converged, resolved = bool(rec.pop("converged")), bool(rec.pop("resolved", True))
                 message = rec.pop("message")
+                status = "ok" if converged and resolved else "not_converged" if not converged else "unresolved"
+                if not resolved:
+                    message = "; ".join(m for m in (message, UNRESOLVED_MESSAGE) if m)
         except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
             shape = (len(params["a_star"]),) if dims else ()
             rec = {k: np.full(shape, np.nan) for k in fields}
@@ -524,6 +532,9 @@ class SweepResult:
         Keys of the cases computed by this run and of those read back from the store.
     failed : list of str
         Keys of the cases that raised (recorded with their message).
+    flagged : list of str
+        Keys of the BEM cases stored with a result that is not an answer: status
+        "not_converged" or "unresolved" (with their message).
     """
 
     dataset: object
@@ -531,6 +542,7 @@ class SweepResult:
     computed: list = field(default_factory=list)
     reused: list = field(default_factory=list)
     failed: list = field(default_factory=list)
+    flagged: list = field(default_factory=list)
 
 
 def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, progress=None) -> SweepResult:
@@ -623,8 +635,11 @@ def _run(config, executor, store, final, progress):
     ds = _consolidate(config, kinds, results, store)
     after = set(store.keys())
     failed = sorted(p.name[:-len(".failed.nc")] for p in store.directory.glob("*.failed.nc"))
+    flagged = sorted(key for (kind, _), res in zip(kinds, results) if kind != "pull_off"
+                     for key, (_, st, _, _) in res.items() if st in ("not_converged", "unresolved"))
     write_netcdf(ds, final)
-    return SweepResult(ds, final, computed=sorted(after - before), reused=sorted(before), failed=failed)
+    return SweepResult(ds, final, computed=sorted(after - before), reused=sorted(before), failed=failed,
+                       flagged=flagged)
 
 
 # --------------------------------------------------------------------------- consolidation
