@@ -99,3 +99,19 @@ def test_solve_resolved_case_exits_zero_and_says_so(tmp_path, capsys):
     ds = read_solution(out)
     assert ds.attrs["resolved"] == 1 and int(ds["resolved"]) == 1
     assert rc in (0, EXIT_UNCONVERGED)
+
+
+def test_solve_too_large_for_memory_is_refused_before_allocating(monkeypatch, capsys):
+    """Issue 18 item 11: `solve --n 8192` ran past 90 s at >= 5.5 GB with no output.  It is now
+    refused at once, in one line with the estimate (500 B/cell x 8192^2 = 31 GiB) and the limit."""
+    import dhfield._memory
+    import dhfield.bem
+
+    def forbidden(*a, **k):
+        raise AssertionError("solved before checking the memory")
+
+    monkeypatch.setattr(dhfield.bem, "adhesive_pull_off", forbidden)
+    monkeypatch.setattr(dhfield._memory, "available_memory", lambda: 16 * 2**30)
+    assert main(["solve", "--beta0", "1", "--mu", "1", "--n", "8192"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "n=8192" in err[0] and "31.2 GiB" in err[0] and "12.8 GiB" in err[0]

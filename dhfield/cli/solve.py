@@ -11,6 +11,26 @@ EXIT_UNCONVERGED = 3
 #: (``resolved = false``: the pull-off is not an answer; refine --n).
 EXIT_UNRESOLVED = 4
 
+#: Peak memory of ``dhfield solve`` per grid cell (N x N cells), path and netCDF output included
+#: [bytes].  Measured peak RSS above the imports (``/usr/bin/time -f %M``, beta0 = 0.8, mu = 1,
+#: --out): 664 B/cell at N = 256 and 416 B/cell at N = 1024; 500 leaves a 20 % margin at large N,
+#: where the estimate matters.
+SOLVE_BYTES_PER_CELL = 500
+
+
+def check_solve_memory(n) -> None:
+    """Refuse an N x N adhesive BEM solve that would not fit in memory, before allocating anything.
+
+    The estimate is ``SOLVE_BYTES_PER_CELL * n**2``; the limit is 80 % of the memory available now
+    (:func:`dhfield._memory.memory_limit`).  Raises ValueError naming ``n``, the estimate and the limit.
+    """
+    from .._memory import check_memory
+
+    if isinstance(n, int) and n > 0:
+        check_memory(SOLVE_BYTES_PER_CELL * float(n) ** 2,
+                     f"n={n} (a {n} x {n} grid, about {SOLVE_BYTES_PER_CELL} bytes per cell)")
+
+
 _EPILOG = (f"exit status: 0 success, converged and resolved (a note on stderr if states beyond the pull-off "
            f"did not converge); 2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the path "
            "up to the pull-off did not converge; "
@@ -62,6 +82,7 @@ def run(args) -> int:
         check_writable(args.out)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
+    check_solve_memory(args.n)
     where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={args.n}, law={args.law}, control={args.control}")
     try:
         res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
