@@ -10,8 +10,6 @@ a config file override its ``[run]`` table only.
 """
 from __future__ import annotations
 
-import os
-
 import sys
 
 #: Exit status when every case ran but some BEM cases are stored flagged (status
@@ -96,14 +94,17 @@ def run(args) -> int:
         if not flag_mapping["axes"]:
             raise ValueError("give a CONFIG.toml or the axes as flags (e.g. --beta0 0.9 1 --mu-geomspace 0.1 10 50)")
         config = config_from_mapping(flag_mapping)
-    max_workers = 4 * (os.cpu_count() or 1)  # local processes beyond a few per core only cost memory
-    if args.workers is not None and not 1 <= args.workers <= max_workers:
-        raise ValueError(f"--workers must be an integer in 1..{max_workers} (4 local processes per CPU); "
-                         f"got {args.workers}")
+    from ..sweep.config import WORKERS_PER_CPU, max_workers
+
+    if args.workers is not None and not 1 <= args.workers <= max_workers():
+        raise ValueError(f"--workers must be an integer in 1..{max_workers()} ({WORKERS_PER_CPU} local processes "
+                         f"per CPU); got {args.workers}")
     scheduler = args.scheduler if args.scheduler is not None else config.scheduler
     if scheduler not in (None, "synchronous", "processes"):
         check_scheduler_address(scheduler)
     out = args.out if args.out is not None else config.out
+    if out is not None and not str(out).strip():
+        raise ValueError(f"out (output path) must be a non-empty path; got {out!r}")
     if out is None:
         raise ValueError("--out is required (an output FILE.nc or DIR), or run.out in the config")
     res = run_sweep(config, out=out, scheduler=scheduler, workers=args.workers,
