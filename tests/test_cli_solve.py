@@ -115,3 +115,11 @@ def test_solve_too_large_for_memory_is_refused_before_allocating(monkeypatch, ca
     assert main(["solve", "--beta0", "1", "--mu", "1", "--n", "8192"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "n=8192" in err[0] and "31.2 GiB" in err[0] and "12.8 GiB" in err[0]
+
+
+def test_solve_json_has_units(capsys):
+    """Issue 18 item 14: `solve --json` had no units entry (pulloff, curve, compare have one)."""
+    main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json"])
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["units"]["W_star"] == "1" and rec["units"]["elapsed"] == "s"
+    assert {k for k, v in rec.items() if isinstance(v, (int, float)) and k != "units"} <= set(rec["units"])

@@ -310,3 +310,17 @@ def test_unresolved_adhesive_case_is_not_stored_ok(tmp_path, capsys):
         msg = str(ds["adhesive_message"].values.item())
     assert st == engine._STATUS["unresolved"] != 0
     assert "resolve" in msg
+
+
+def test_quiet_sweep_with_failed_cases_says_so(tmp_path, capsys, monkeypatch):
+    """Issue 18 item 14: `sweep --quiet` with failed cases exited 1 with nothing on stderr."""
+    from dhfield.cli import main
+
+    def broken(*a, **k):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(engine, "pull_off_block", broken)
+    rc = main(["sweep", "--beta0", "0.9", "--mu", "1", "--workers", "1", "--out", str(tmp_path / "f.nc"),
+               "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 1 and "1 failed" in err and "\n" not in err

@@ -74,6 +74,22 @@ def _record(res) -> dict:
     return out
 
 
+#: Units of the solve record's keys that :mod:`dhfield.schema` does not list.
+_LOCAL_UNITS = {"n": "1", "W_star_error": "1", "residual": "1", "elapsed": "s", "resolved": "1", "n_steps": "1",
+                "iterations": "1", "converged": "1"}
+
+
+def _units(rec) -> dict:
+    """key -> unit string of every numeric entry of the record ("1": dimensionless, paper's units)."""
+    from ..schema import units
+
+    out = {}
+    for k, v in rec.items():
+        if isinstance(v, (bool, int, float)) and not isinstance(v, str):
+            out[k] = _LOCAL_UNITS[k] if k in _LOCAL_UNITS else units(k, nondimensional=True)
+    return out
+
+
 def run(args) -> int:
     from ..bem import adhesive_pull_off
     from ..io import check_writable
@@ -96,7 +112,7 @@ def run(args) -> int:
         write_solution(res, args.out)
     rec = _record(res)
     if args.json:
-        print_json(rec)
+        print_json({**rec, "units": _units(rec)})
     else:
         print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {res.n}, {res.law}, {res.control} control")
         err = f" (fold fit error ~{res.W_star_error:.2g})" if res.W_star_error == res.W_star_error else ""

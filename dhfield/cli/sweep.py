@@ -10,6 +10,7 @@ a config file override its ``[run]`` table only.
 """
 from __future__ import annotations
 
+import os
 import sys
 
 #: Exit status when every case ran but some BEM cases are stored flagged (status
@@ -105,6 +106,10 @@ def run(args) -> int:
     out = args.out if args.out is not None else config.out
     if out is not None and not str(out).strip():
         raise ValueError(f"out (output path) must be a non-empty path; got {out!r}")
+    if out is not None:
+        from ..io import require_utf8_path
+
+        require_utf8_path(os.path.abspath(out))   # the sweep and its cases are netCDF files
     if out is None:
         raise ValueError("--out is required (an output FILE.nc or DIR), or run.out in the config")
     res = run_sweep(config, out=out, scheduler=scheduler, workers=args.workers,
