@@ -123,3 +123,33 @@ def test_solve_json_has_units(capsys):
     rec = json.loads(capsys.readouterr().out)
     assert rec["units"]["W_star"] == "1" and rec["units"]["elapsed"] == "s"
     assert {k for k, v in rec.items() if isinstance(v, (int, float)) and k != "units"} <= set(rec["units"])
+
+
+def test_help_opens_with_what_solve_does(capsys):
+    """Issue 17: `solve --help` opened with "Displacement-controlled loading/unloading path" although
+    load control is the default."""
+    with pytest.raises(SystemExit):
+        main(["solve", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    desc = text.split("options:")[0].split("]", 1)[-1] if "options:" in text else text
+    assert "Pull-off of the adhesive elliptical contact" in desc and "load control (the default)" in desc
+    assert not desc.strip().startswith("Displacement")
+
+
+def test_progress_on_a_terminal_only(monkeypatch, capsys):
+    """Issue 17: a long solve shows progress on a terminal (stderr), and nothing when piped."""
+    import dhfield.bem
+
+    seen = {}
+    real = dhfield.bem.adhesive_pull_off
+
+    def spy(*a, **k):
+        seen["progress"] = k.get("progress")
+        return real(*a, **k)
+
+    monkeypatch.setattr(dhfield.bem, "adhesive_pull_off", spy)
+    main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json"])
+    assert seen["progress"] is False and "solving" not in capsys.readouterr().err
+    monkeypatch.setattr("sys.stderr.isatty", lambda: True, raising=False)
+    main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json"])
+    assert seen["progress"] is True and "dhfield: solving beta0=1" in capsys.readouterr().err

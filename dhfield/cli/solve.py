@@ -41,10 +41,15 @@ _EPILOG = (f"exit status: 0 success, converged and resolved (a note on stderr if
 
 def add_parser(sub) -> None:
     p = sub.add_parser("solve", help="self-consistent adhesive BEM (Dugdale) pull-off of the elliptical contact",
-                       description="Displacement-controlled loading/unloading path of the adhesive elliptical "
-                                   "contact on a free-boundary DC-FFT grid (dhfield.bem.adhesive_pull_off); "
-                                   "W* in the normalisation of Eq. (34), semi-axes in c_r (Eq. 32) from the "
-                                   "second moments of the contact and adhesive masks.",
+                       description="Pull-off of the adhesive elliptical contact (beta0, mu) from the self-"
+                                   "consistent boundary-element solver: under load control (the default) the "
+                                   "minimum of the force along the unloading path, under --control displacement "
+                                   "the jump.  Free-boundary DC-FFT grid of N x N cells "
+                                   "(dhfield.bem.adhesive_pull_off); W* in the normalisation of Eq. (34), "
+                                   "semi-axes in c_r (Eq. 32) from the second moments of the contact and "
+                                   "adhesive masks.  The result says whether the path converged and whether the "
+                                   "grid resolves the cohesive zone; a progress line goes to stderr on a "
+                                   "terminal.",
                        epilog=_EPILOG)
     add_model_arguments(p)
     p.add_argument("--n", type=int, default=256, help="cells per axis (even, >= 8; default 256)")
@@ -100,9 +105,13 @@ def run(args) -> int:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
     check_solve_memory(args.n)
     where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={args.n}, law={args.law}, control={args.control}")
+    progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
+    if progress:  # on a terminal: say what runs now; the solver then draws its progress line (stderr)
+        print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {args.n} path)",
+              file=sys.stderr, flush=True)
     try:
         res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
-                                threads=args.threads, progress=None, search=args.search)
+                                threads=args.threads, progress=progress, search=args.search)
     except RuntimeError as exc:  # the solver found no converged state to report
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
