@@ -51,7 +51,7 @@ from pathlib import Path
 from .. import PAPER_DOI, __version__
 
 __all__ = ["atomic_path", "provenance_attrs", "write_netcdf", "read_netcdf", "check_writable",
-           "validate_output_path", "require_utf8_path", "SignalExit", "CAUGHT_SIGNALS"]
+           "validate_output_path", "require_utf8_path", "format_size", "SignalExit", "CAUGHT_SIGNALS"]
 
 REFERENCES = (
     "Zini N.H.M., de Rooij M.B., Bazr Afshan Fadafan M., Ismail N., Schipper D.J. (2018) "
