@@ -128,8 +128,8 @@ def run(args) -> int:
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
-        print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  CG iterations = {res.iterations}  "
-              f"search = {res.search}  ({res.elapsed:.1f} s)")
+        print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  "
+              f"CG iterations = {res.iterations}  search = {res.search}  ({res.elapsed:.1f} s)")
         if args.out is not None:
             print(f"wrote {args.out}")
     if not res.converged:

@@ -4,9 +4,10 @@ In the style of :mod:`dhfield.io.field`, one :class:`xarray.Dataset` per solutio
 
 * coordinates ``x``, ``y`` (cell centres of the full grid);
 * on (y, x) -- rows y, columns x, so ``ds.gap.plot()`` draws x horizontally
-  (files written before 2026-11 have (x, y); :func:`read_solution` turns them): the total ``pressure`` (compressive positive, the adhesive traction
-  negative), the ``gap`` h = z - delta + omega, the ``cohesive_fraction`` of
-  each cell in the cohesive zone (sub-cell, in [0, 1]) and the categorical
+  (older files have (x, y); :func:`read_solution` turns them): the total
+  ``pressure`` (compressive positive, the adhesive traction negative), the
+  ``gap`` h = z - delta + omega, the ``cohesive_fraction`` of each cell in
+  the cohesive zone (sub-cell, in [0, 1]) and the categorical
   ``region`` (contact / cohesive_zone / outside, CF flags: a cell is in the
   zone when more than half of it is);
 * scalars of the state: ``approach``, ``load``, the second-moment semi-axes
