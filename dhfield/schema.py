@@ -210,9 +210,10 @@ VARIABLES: dict[str, Variable] = {
 #: The two model parameters, in the one order every grid Dataset uses.
 GRID_DIMS = ("beta0", "mu")
 
-#: Canonical order of every dimension a dhfield Dataset may carry.
+#: Canonical order of every dimension a dhfield Dataset may carry.  Surface fields are (y, x):
+#: rows are y, columns x, so ``ds.gap.plot()`` puts x on the horizontal axis (issue 17).
 DIM_ORDER = ("model", "closure", "skew_angle_deg", "skew_angle", "beta0", "mu", "a_star", "point",
-             "theta", "law_theta", "sample", "r", "theta_p", "x", "y")
+             "theta", "law_theta", "sample", "r", "theta_p", "y", "x")
 
 _HEAD = ("model", "control", "geometry", "beta0", "mu", "sin_skew")
 _NONDIM = ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star", "ellipticity",

@@ -121,3 +121,22 @@ def test_periphery_subcommand(tmp_path, capsys):
     assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--out", str(nc)]) == 0
     assert read_netcdf(nc)["work_ratio"].shape == (1, 1)
     assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--n-theta", "1"]) == 2
+
+
+def test_closed_pipe_is_quiet():
+    """Issue 17: `dhfield curve ... | head` printed "dhfield: error: [Errno 32] Broken pipe".
+    The run now ends quietly with 141 (128 + SIGPIPE), like a command SIGPIPE ended."""
+    import os
+    import subprocess
+    import sys
+
+    from dhfield.cli import EXIT_BROKEN_PIPE
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    proc = subprocess.Popen([sys.executable, "-m", "dhfield.cli", "curve", "--beta0", "0.9", "--mu", "1",
+                             "--n", "20000"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    proc.stdout.readline()
+    proc.stdout.close()          # the reader goes away, as `head -1` does
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == EXIT_BROKEN_PIPE
+    assert "Broken pipe" not in err and "Traceback" not in err and "Exception ignored" not in err

@@ -199,7 +199,9 @@ def test_netcdf_round_trip_of_the_writer(tmp_path, rng):
     ds["p"][0, 0] = np.nan
     path = dio.write_netcdf(ds, tmp_path / "r.nc")
     back = dio.read_netcdf(path)
-    np.testing.assert_array_equal(back["p"].values, ds["p"].values)  # NaN in the same place
+    # dimensions in the canonical order of dhfield.schema.DIM_ORDER (y before x: rows y, columns x)
+    assert back["p"].dims == ("y", "x")
+    np.testing.assert_array_equal(back["p"].transpose("x", "y").values, ds["p"].values)  # NaN in the same place
     np.testing.assert_array_equal(back["flag"].values, ds["flag"].values)
     assert back["flag"].dtype == np.int8 and back["ok"].dtype == bool
     assert list(back["label"].values) == ["dh-elliptic", "jkr"] and float(back["scalar"]) == 2.5
@@ -220,3 +222,31 @@ def test_unreadable_input_is_one_line_value_error(tmp_path):
         with pytest.raises(ValueError, match=word) as info:
             dio.read_netcdf(path)
         assert "\n" not in str(info.value)
+
+
+def test_full_disk_message_gives_real_sizes(tmp_path, monkeypatch):
+    """Issue 18 item 14: a full disk said "needs about 0.0 MiB and the device has 0.0 MiB free"."""
+    import collections
+    import shutil
+
+    import numpy as np
+    import xarray as xr
+
+    usage = collections.namedtuple("usage", "total used free")
+    monkeypatch.setattr(shutil, "disk_usage", lambda p: usage(10**9, 10**9 - 100, 100))
+    ds = xr.Dataset({"v": ("x", np.zeros(64))})  # 512 bytes of data
+    with pytest.raises(OSError) as err:
+        dio.write_netcdf(ds, tmp_path / "x.nc")
+    msg = str(err.value)
+    assert "512 B" in msg and "100 B free" in msg and "0.0 MiB" not in msg
+    assert not (tmp_path / "x.nc").exists()
+
+
+def test_non_utf8_netcdf_name_is_refused_in_one_line(tmp_path):
+    """Issue 18 item 14: a non-UTF-8 --out gave "'utf-8' codec can't encode character" after computing."""
+    import os
+
+    bad = os.fsdecode(os.fsencode(str(tmp_path)) + b"/\xff.nc")
+    with pytest.raises(ValueError, match="UTF-8"):
+        dio.validate_output_path(bad, (".nc",))
+    dio.validate_output_path(os.fsdecode(os.fsencode(str(tmp_path)) + b"/\xff.csv"), (".csv",))  # CSV is fine

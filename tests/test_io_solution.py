@@ -31,11 +31,14 @@ def test_pull_off_round_trip(tmp_path, small_result):
         assert float(back[f"{key}_pull_off"]) == getattr(res, key)
     assert back["W_star_pull_off"].attrs["units"] == "1" and "Eq. (34)" in back["W_star_pull_off"].attrs["description"]
     st = res.path.pull_off_state
-    assert_array_equal(back["pressure"].values, st.pressure)
-    assert_array_equal(back["gap"].values, st.gap)
+    # fields are stored (y, x) (rows y, columns x); the solver's arrays are (x, y)
+    assert back["gap"].dims == ("y", "x")
+    assert_array_equal(back["pressure"].values, st.pressure.T)
+    assert_array_equal(back["gap"].values, st.gap.T)
     # the region flags are the contact mask and the majority cohesive cells
-    assert_array_equal(back["region"].values == REGIONS.index("contact"), st.contact)
-    assert_array_equal(back["region"].values == REGIONS.index("cohesive_zone"), (st.cohesive > 0.5) & ~st.contact)
+    region = back["region"].transpose("x", "y").values
+    assert_array_equal(region == REGIONS.index("contact"), st.contact)
+    assert_array_equal(region == REGIONS.index("cohesive_zone"), (st.cohesive > 0.5) & ~st.contact)
     assert list(back["region"].attrs["flag_values"]) == [0, 1, 2]
     # the path, step by step, with its flags
     assert back.sizes["step"] == res.n_steps
@@ -74,3 +77,25 @@ def test_write_is_checked_and_atomic(tmp_path, small_result):
     bad.write_text("no")
     with pytest.raises(ValueError, match="not.nc"):
         read_solution(bad)
+
+
+def test_fields_are_stored_y_by_x_and_old_files_still_read(tmp_path):
+    """Issue 17: fields were stored (x, y), so ds.gap.plot() put x on the vertical axis.  The stored
+    gap now has rows y and columns x (xarray's default plot is the right way up); a file of the old
+    layout is turned on reading."""
+    import xarray as xr
+
+    from test_periphery import _radial_dugdale_state
+
+    state, _, _ = _radial_dugdale_state(16)
+    ds = state_dataset(state)
+    assert ds["gap"].dims == ("y", "x") and ds["region"].dims == ("y", "x")
+    assert_array_equal(ds["gap"].sel(x=ds.x[3], y=ds.y[5]).values, state.gap[3, 5])
+    old = ds.transpose(..., "x", "y")          # the layout of files written before the change
+    path = tmp_path / "old.nc"
+    old.to_netcdf(path)
+    with xr.open_dataset(path) as raw:
+        assert raw["gap"].dims == ("x", "y")
+    back = read_solution(path)
+    assert back["gap"].dims == ("y", "x")
+    assert_array_equal(back["gap"].values, state.gap.T)

@@ -73,3 +73,87 @@ def test_cli_bad_input(sweep, tmp_path, capsys, extra, words):
     err = capsys.readouterr().err.strip()
     assert words in err and "\n" not in err
     assert not list(tmp_path.glob("*.png"))
+
+
+def _synthetic(n_ell, n_mu, models=("jkr", "dmt"), mu=None):
+    """A sweep-shaped Dataset with closed-form values (JKR -3/4, DMT -1), no computation."""
+    import xarray as xr
+
+    mu = np.geomspace(0.1, 10, n_mu) if mu is None else np.asarray(mu, float)
+    beta0 = np.linspace(0.2, 1.0, n_ell)
+    w = np.stack([np.full((n_ell, mu.size), -0.75 if m == "jkr" else -1.0) for m in models])
+    return xr.Dataset({"W_star": (("model", "beta0", "mu"), w), "ellipticity": (("model", "beta0", "mu"), 0 * w + 1)},
+                      coords={"model": list(models), "beta0": beta0, "mu": mu})
+
+
+def test_plot_checks_every_output_before_writing_any(sweep, tmp_path, capsys):
+    """Issue 18 item 6: with s_error.svg a directory, plot replaced three other files and then
+    exited 2, leaving old and new mixed.  Now it refuses before writing anything."""
+    old = {}
+    for kind in ("pull_off", "ellipticity"):
+        for fmt in ("png", "svg"):
+            p = tmp_path / f"s_{kind}.{fmt}"
+            p.write_bytes(b"old")
+            old[p] = b"old"
+    (tmp_path / "s_error.png").write_bytes(b"old")
+    old[tmp_path / "s_error.png"] = b"old"
+    (tmp_path / "s_error.svg").mkdir()
+    assert main(["plot", str(sweep.path), "--out", str(tmp_path), "--reference", "jkr"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "s_error.svg" in err
+    for p, content in old.items():
+        assert p.read_bytes() == content, p
+    assert not list(tmp_path.glob(".*.part"))
+
+
+def test_plot_creates_its_output_directory(sweep, tmp_path, capsys):
+    """Issue 17: `dhfield plot --out maps2` refused a directory that did not exist yet."""
+    out = tmp_path / "maps2" / "deeper"
+    assert main(["plot", str(sweep.path), "--out", str(out), "--reference", "jkr"]) == 0
+    assert len(list(out.glob("s_*.png"))) == 3
+
+
+def test_log_axis_cells_keep_the_smallest_mu():
+    """Issue 17: `--mu 0.3 1 3 10` hid the mu = 0.3 column (linear midpoints on a log axis put its
+    left edge below zero).  The edges are now geometric midpoints: every column has positive width."""
+    ax = Figure().add_subplot()
+    plotting.pull_off_map(_synthetic(3, 4, mu=[0.3, 1, 3, 10]), "jkr", ax)
+    assert ax.get_xscale() == "log"
+    edges = plotting.cell_edges([0.3, 1, 3, 10], log=True)
+    assert np.all(edges > 0) and np.all(np.diff(np.log(edges)) > 0)
+    # geometric midpoints: sqrt(0.3 x 1), and the outer edge mirrors it in log x
+    assert edges[1] == pytest.approx(np.sqrt(0.3)) and edges[0] == pytest.approx(0.3 ** 2 / np.sqrt(0.3))
+    coords = ax.collections[0].get_coordinates()
+    assert coords[..., 0].min() == pytest.approx(edges[0])
+    # beta0 cells stop at the axis' range (they ran to 1.05)
+    assert coords[..., 1].max() == pytest.approx(1.0)
+
+
+def test_large_sweep_is_thinned_and_svg_bounded(tmp_path):
+    """Issue 18 item 10: a 1000 x 1000 sweep took 81 s and wrote 190 MB SVGs.  At most
+    MAX_CELLS_PER_AXIS points per axis are drawn (said in the title), the mesh is a raster in SVG."""
+    ds = _synthetic(1000, 1000)
+    paths = plotting.standard_maps(ds, tmp_path, reference="jkr", stem="big")
+    svg = [p for p in paths if p.suffix == ".svg"]
+    assert svg and max(p.stat().st_size for p in svg) < 2 * 2**20
+    ax = Figure().add_subplot()
+    plotting.pull_off_map(ds, "jkr", ax)
+    assert np.asarray(ax.collections[0].get_array()).size <= plotting.MAX_CELLS_PER_AXIS ** 2
+    assert "points shown" in ax.get_title()
+
+
+def test_string_w_star_and_duplicate_models_are_clean_errors(tmp_path, capsys):
+    """Issue 18 items 13, 14: a W_star of strings gave UFuncTypeError, duplicate model names an
+    xarray transpose error.  Both are one line naming the problem, exit 2."""
+    ds = _synthetic(3, 4)
+    bad = ds.assign(W_star=ds["W_star"].astype(str))
+    bad.to_netcdf(tmp_path / "str.nc")
+    assert main(["plot", str(tmp_path / "str.nc"), "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "W_star" in err and "real numbers" in err
+    dup = _synthetic(3, 4, models=("jkr", "jkr"))
+    dup.to_netcdf(tmp_path / "dup.nc")
+    assert main(["plot", str(tmp_path / "dup.nc"), "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "distinct" in err and "jkr" in err
+    assert not list(tmp_path.glob("*.png"))

@@ -161,3 +161,68 @@ def test_si_front_end_finite_or_rejected_by_name(sigma0, angle):
 def test_si_rejects_skew_angle_by_name(bad):
     with pytest.raises(ValueError, match=r"^skew_angle "):
         dimensional.contact_parameters(**{**_SI, "skew_angle": bad})
+
+
+# --- issue 18: TOML values, scheduler addresses, plot cells, sizes ----------------------------------------
+toml_scalars = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70),
+                         st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=12),
+                         st.lists(st.integers(-3, 3), max_size=3))
+
+
+@given(workers=toml_scalars, out=toml_scalars, num=toml_scalars)
+@example(workers=20, out="", num=1e300)            # issue 18 items 7, 9, 14
+@example(workers=1, out="s.nc", num=float("inf"))
+def test_sweep_config_values_accepted_in_range_or_rejected_by_key(workers, out, num):
+    """Any TOML value of run.workers, run.out and a linspace num: a config within the CLI's bounds,
+    or one ValueError naming the key -- never another exception, never an empty output path."""
+    from dhfield.sweep import config_from_mapping
+    from dhfield.sweep.config import MAX_POINTS, max_workers
+
+    run = {k: v for k, v in (("workers", workers), ("out", out)) if v is not None}
+    mapping = {"axes": {"beta0": [0.9], "mu": {"linspace": [0.1, 1.0, num]}}, "run": run}
+    try:
+        cfg = config_from_mapping(mapping)
+    except ValueError as exc:
+        assert str(exc).startswith(("run.workers", "run.out", "axes.mu", "axes ")), str(exc)
+        return
+    assert cfg.workers is None or 1 <= cfg.workers <= max_workers()
+    assert cfg.out is None or cfg.out.strip()
+    assert 1 <= len(cfg.axes["mu"]) <= MAX_POINTS
+
+
+@given(address=st.one_of(st.text(max_size=30), st.from_regex(r"[a-z]{2,6}://[a-z0-9.:\[\]]{0,20}", fullmatch=True)))
+@example(address="inproc://x")
+@example(address="tls://127.0.0.1:8786")
+@example(address="tcp://127.0.0.1:99999")
+def test_scheduler_address_is_tcp_host_port_or_rejected_by_name(address):
+    from dhfield.sweep.config import check_scheduler_address, scheduler_host_port
+
+    try:
+        check_scheduler_address(address)
+    except ValueError as exc:
+        assert str(exc).startswith("scheduler "), str(exc)
+        return
+    host, port = scheduler_host_port(address)
+    assert address.startswith("tcp://") and host and 1 <= port <= 65535
+
+
+@given(centres=st.lists(st.floats(1e-6, 1e12), min_size=1, max_size=30, unique=True), log=st.booleans())
+@example(centres=[0.3, 1.0, 3.0, 10.0], log=True)   # issue 17: mu = 0.3 was hidden
+def test_plot_cells_cover_every_point_with_positive_width(centres, log):
+    from dhfield.plotting import cell_edges
+
+    x = np.sort(np.asarray(centres))
+    e = cell_edges(x, log=log)
+    assert e.size == x.size + 1 and np.all(np.diff(e) > 0)
+    assert np.all((e[:-1] <= x) & (x <= e[1:]))         # each point inside its own cell
+    if log:
+        assert np.all(e > 0)                              # every cell visible on a log axis
+
+
+@given(nbytes=st.integers(0, 2**60))
+def test_sizes_in_messages_are_never_rounded_to_zero(nbytes):
+    from dhfield.io import format_size
+
+    text = format_size(nbytes)
+    value, unit = text.split()
+    assert unit in ("B", "KiB", "MiB", "GiB", "TiB") and (float(value) > 0 or nbytes == 0)

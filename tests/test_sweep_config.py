@@ -135,3 +135,116 @@ def test_cli_unreachable_scheduler(tmp_path, capsys, monkeypatch):
     err = _cli_fails_before_work(tmp_path, capsys, ["--beta0", "0.9", "--mu", "1", "--scheduler",
                                                     "tcp://127.0.0.1:9"])
     assert "unreachable" in err
+
+
+# --- issue 18, items 7, 8, 9, 13, 14: TOML values, scheduler peers ------------------------------------
+_AXES = '[axes]\nbeta0 = [0.9]\nmu = [1.0]\n'
+
+
+def _deep(depth):
+    return _AXES + "[run]\nout = " + "[" * depth + "]" * depth + "\n"
+
+
+@pytest.mark.parametrize("toml, words", [
+    (_AXES + '[run]\nout = ""\n', "run.out"),               # item 7: wrote sweep.nc and cases/ into the cwd
+    (_AXES + '[run]\nout = "  "\n', "run.out"),
+    (_AXES + '[run]\nworkers = 99999\n', "run.workers"),     # item 9: spawned the workers, --workers is refused
+    (_deep(5000), "too deeply"),                              # item 13: internal error RecursionError
+    ('[axes]\nbeta0 = [0.9]\nmu = {linspace = [0.1, 1, 1e300]}\n', "num"),   # item 14: numpy's size error
+    ('[axes]\nbeta0 = [0.9]\nmu = {linspace = [0.1, 1, inf]}\n', "num"),
+    ('[axes]\nbeta0 = [0.9]\nmu = {linspace = [0.1, 1, nan]}\n', "num"),
+    (_AXES + '[run]\nscheduler = "tls://127.0.0.1:8786"\n', "tls://"),
+])
+def test_cli_bad_toml_values(tmp_path, capsys, toml, words, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    cfg = tmp_path / "bad.toml"
+    cfg.write_text(toml)
+    assert words in _cli_fails_before_work(tmp_path, capsys, [str(cfg)])
+    assert main(["sweep", str(cfg), "--quiet"]) == 2           # without --out: run.out is the output
+    err = capsys.readouterr().err.strip()
+    assert words in err and "\n" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml"]   # nothing written in the cwd
+
+
+def test_toml_workers_bound_equals_the_cli_bound():
+    from dhfield.sweep.config import max_workers
+
+    config_from_mapping({**GOOD, "run": {"workers": max_workers()}})
+    with pytest.raises(ValueError, match=f"1..{max_workers()}"):
+        config_from_mapping({**GOOD, "run": {"workers": max_workers() + 1}})
+
+
+def test_toml_with_a_byte_order_mark_is_read(tmp_path):
+    """Item 14: a UTF-8 BOM (Notepad writes one) gave "Invalid statement"."""
+    cfg = tmp_path / "bom.toml"
+    cfg.write_bytes(b"\xef\xbb\xbf" + _AXES.encode())
+    assert load_config(cfg).axes["mu"] == (1.0,)
+    cfg.write_bytes(b"\xff\xfe" + _AXES.encode("utf-16-le"))
+    with pytest.raises(ValueError, match="UTF-8"):
+        load_config(cfg)
+
+
+@pytest.mark.parametrize("address", ["tls://127.0.0.1:8786", "ucx://127.0.0.1:8786", "ws://127.0.0.1:8786",
+                                     "wss://h:1", "inproc://x", "tcp://127.0.0.1:99999", "tcp://a b:1"])
+def test_unsupported_scheduler_addresses_are_one_line(tmp_path, capsys, address):
+    """Item 13: tls/ucx/ws gave internal errors, inproc://x 'not enough values to unpack'."""
+    err = _cli_fails_before_work(tmp_path, capsys, ["--beta0", "0.9", "--mu", "1", "--scheduler", address])
+    assert "scheduler" in err
+
+
+def _peer(behaviour):
+    """A listener on 127.0.0.1 that behaves like a non-scheduler; returns (address, stop)."""
+    import socket
+    import threading
+
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    srv.listen(4)
+    stop = threading.Event()
+    conns = []
+
+    def serve():
+        srv.settimeout(0.1)
+        while not stop.is_set():
+            try:
+                c, _ = srv.accept()
+            except OSError:
+                continue
+            conns.append(c)
+            if behaviour == "garbage":
+                c.sendall(b"\xff" * 64)          # announces 2^64 - 1 bytes
+            elif behaviour == "close":
+                c.close()
+            # "silent" and "http" (an HTTP server waits for a request) send nothing
+
+    t = threading.Thread(target=serve, daemon=True)
+    t.start()
+
+    def close():
+        stop.set()
+        t.join()
+        for c in conns:
+            c.close()
+        srv.close()
+
+    return f"tcp://127.0.0.1:{srv.getsockname()[1]}", close
+
+
+@pytest.mark.parametrize("behaviour, words", [("silent", "no dask handshake within"),
+                                              ("garbage", "is not a dask scheduler"),
+                                              ("close", "closed the connection")])
+def test_scheduler_peer_that_is_not_one_fails_in_time(tmp_path, capsys, monkeypatch, behaviour, words):
+    """Item 8: a silent listener or an HTTP server kept `sweep --scheduler` waiting past 120 s;
+    a garbage peer made it allocate 6.46 EiB.  Now: one line within CONNECT_TIMEOUT."""
+    import time
+
+    monkeypatch.setattr(engine, "CONNECT_TIMEOUT", 0.5)
+    address, close = _peer(behaviour)
+    try:
+        t0 = time.monotonic()
+        err = _cli_fails_before_work(tmp_path, capsys, ["--beta0", "0.9", "--mu", "1", "--workers", "1",
+                                                        "--scheduler", address])
+        assert time.monotonic() - t0 < 10  # a hang guard, not a timing test
+    finally:
+        close()
+    assert words in err and address in err

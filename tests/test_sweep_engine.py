@@ -287,3 +287,40 @@ def test_case_files_record_their_wall_time(serial):
         seconds = read_netcdf(p).attrs["seconds"]
         assert 0.0 < seconds < 600.0
     assert "seconds" not in serial[1].dataset.attrs
+
+
+def test_unresolved_adhesive_case_is_not_stored_ok(tmp_path, capsys):
+    """Issue 18 item 1: `dhfield sweep --beta0 1 --mu 8 --n 32 --quantities adhesive` stored
+    W* = -2.44 with status 0 although the solver flags the case resolved = False (the Dugdale
+    zone is narrower than a cell).  It must be stored with status "unresolved" and the CLI
+    must say so and exit non-zero, also under --quiet."""
+    from dhfield.cli import main
+    from dhfield.cli.sweep import EXIT_FLAGGED
+
+    out = tmp_path / "adh.nc"
+    rc = main(["sweep", "--beta0", "1", "--mu", "8", "--n", "32", "--quantities", "adhesive", "--workers", "1",
+               "--out", str(out), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == EXIT_FLAGGED
+    assert "1 flagged" in err
+    import xarray as xr
+
+    with xr.open_dataset(out) as ds:
+        st = int(ds["status"].sel(model=tasks.ADHESIVE_MODEL).values.item())
+        msg = str(ds["adhesive_message"].values.item())
+    assert st == engine._STATUS["unresolved"] != 0
+    assert "resolve" in msg
+
+
+def test_quiet_sweep_with_failed_cases_says_so(tmp_path, capsys, monkeypatch):
+    """Issue 18 item 14: `sweep --quiet` with failed cases exited 1 with nothing on stderr."""
+    from dhfield.cli import main
+
+    def broken(*a, **k):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(engine, "pull_off_block", broken)
+    rc = main(["sweep", "--beta0", "0.9", "--mu", "1", "--workers", "1", "--out", str(tmp_path / "f.nc"),
+               "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 1 and "1 failed" in err and "\n" not in err

@@ -16,7 +16,7 @@ import sys
 
 from ._common import OneLineParser, UsageError
 
-__all__ = ["main", "build_parser", "SUBCOMMANDS"]
+__all__ = ["main", "build_parser", "SUBCOMMANDS", "EXIT_BROKEN_PIPE"]
 
 #: Subcommand modules, in the order ``dhfield --help`` lists them.
 SUBCOMMANDS = ["curve", "pulloff", "cycle", "field", "compare", "periphery", "sweep", "plot", "fit", "solve"]
@@ -39,10 +39,29 @@ def _one_line(exc: BaseException) -> str:
     return text or type(exc).__name__
 
 
+#: Exit status when stdout's reader closed the pipe: 128 + SIGPIPE, what a shell reports for a
+#: command that SIGPIPE ended (Python ignores SIGPIPE and raises BrokenPipeError instead).
+EXIT_BROKEN_PIPE = 141
+
+
+def _stdout_closed() -> int:
+    """Quiet end after the reader of stdout went away: no message, no flush error at exit."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # stdout replaced by an object without a descriptor
+        pass
+    return EXIT_BROKEN_PIPE
+
+
 def main(argv=None) -> int:
     """Run the CLI; return the exit status.
 
-    0 success; 2 bad input (one line on stderr: usage, ``ValueError``, ``OSError``
+    0 success; 141 (128 + SIGPIPE) silently when the reader of stdout went away
+    (``dhfield curve ... | head``), as a command killed by SIGPIPE; 2 bad input (one line on stderr: usage, ``ValueError``, ``OSError``
     such as a full disk, ``MemoryError``); 1 an unexpected internal error (one
     line; set ``DHFIELD_DEBUG=1`` for the traceback); 128 + n when signal n
     stopped the run (130 for Ctrl-C, 143 for SIGTERM, 129 for SIGHUP), after any
@@ -63,6 +82,8 @@ def main(argv=None) -> int:
             args = build_parser().parse_args(argv)
             check_output_argument(args)
             return int(args.func(args) or 0)
+        except BrokenPipeError:
+            return _stdout_closed()
         except (UsageError, ValueError, OSError) as exc:
             return fail(f"error: {_one_line(exc)}", 2)
         except MemoryError as exc:

@@ -7,19 +7,49 @@ from ._common import add_model_arguments, print_json
 
 #: Exit status when a state of the path did not converge (the result is still printed/written, flagged).
 EXIT_UNCONVERGED = 3
+#: Exit status when the path converged but the grid does not resolve the cohesive zone
+#: (``resolved = false``: the pull-off is not an answer; refine --n).
+EXIT_UNRESOLVED = 4
 
-_EPILOG = (f"exit status: 0 success (a note on stderr if states beyond the pull-off did not converge); "
-           f"2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the path up to the pull-off "
-           "did not converge (one line on stderr naming the parameters; the result is still printed and "
-           "written, with converged = false)")
+#: Peak memory of ``dhfield solve`` per grid cell (N x N cells), path and netCDF output included
+#: [bytes].  Measured peak RSS above the imports (``/usr/bin/time -f %M``, beta0 = 0.8, mu = 1,
+#: --out): 664 B/cell at N = 256 and 416 B/cell at N = 1024; 500 leaves a 20 % margin at large N,
+#: where the estimate matters.
+SOLVE_BYTES_PER_CELL = 500
+
+
+def check_solve_memory(n) -> None:
+    """Refuse an N x N adhesive BEM solve that would not fit in memory, before allocating anything.
+
+    The estimate is ``SOLVE_BYTES_PER_CELL * n**2``; the limit is 80 % of the memory available now
+    (:func:`dhfield._memory.memory_limit`).  Raises ValueError naming ``n``, the estimate and the limit.
+    """
+    from .._memory import check_memory
+
+    if isinstance(n, int) and n > 0:
+        check_memory(SOLVE_BYTES_PER_CELL * float(n) ** 2,
+                     f"n={n} (a {n} x {n} grid, about {SOLVE_BYTES_PER_CELL} bytes per cell)")
+
+
+_EPILOG = (f"exit status: 0 success, converged and resolved (a note on stderr if states beyond the pull-off "
+           f"did not converge); 2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the path "
+           "up to the pull-off did not converge; "
+           f"{EXIT_UNRESOLVED} converged but unresolved: the grid is too coarse for the cohesive zone, the "
+           "pull-off is not an answer (increase --n).  In cases 3 and 4 one line on stderr names the "
+           "parameters, and the result is still printed and written with converged / resolved = false.")
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("solve", help="self-consistent adhesive BEM (Dugdale) pull-off of the elliptical contact",
-                       description="Displacement-controlled loading/unloading path of the adhesive elliptical "
-                                   "contact on a free-boundary DC-FFT grid (dhfield.bem.adhesive_pull_off); "
-                                   "W* in the normalisation of Eq. (34), semi-axes in c_r (Eq. 32) from the "
-                                   "second moments of the contact and adhesive masks.",
+                       description="Pull-off of the adhesive elliptical contact (beta0, mu) from the self-"
+                                   "consistent boundary-element solver: under load control (the default) the "
+                                   "minimum of the force along the unloading path, under --control displacement "
+                                   "the jump.  Free-boundary DC-FFT grid of N x N cells "
+                                   "(dhfield.bem.adhesive_pull_off); W* in the normalisation of Eq. (34), "
+                                   "semi-axes in c_r (Eq. 32) from the second moments of the contact and "
+                                   "adhesive masks.  The result says whether the path converged and whether the "
+                                   "grid resolves the cohesive zone; a progress line goes to stderr on a "
+                                   "terminal.",
                        epilog=_EPILOG)
     add_model_arguments(p)
     p.add_argument("--n", type=int, default=256, help="cells per axis (even, >= 8; default 256)")
@@ -43,8 +73,25 @@ def _record(res) -> dict:
     d = res.as_dict()
     out = {"beta0": d["beta0"], "mu": d["mu"], "n": d["n"], "law": d["law"], "control": d["control"]}
     out.update({k: d[k] for k in BEM_ADHESIVE_KEYS})
+    out["resolved"] = bool(getattr(res, "resolved", True))
     out.update(W_star_error=d["W_star_error"], residual=d["residual"], elapsed=d["elapsed"],
                failures=d["failures"], note=d["note"], search=d["search"])
+    return out
+
+
+#: Units of the solve record's keys that :mod:`dhfield.schema` does not list.
+_LOCAL_UNITS = {"n": "1", "W_star_error": "1", "residual": "1", "elapsed": "s", "resolved": "1", "n_steps": "1",
+                "iterations": "1", "converged": "1"}
+
+
+def _units(rec) -> dict:
+    """key -> unit string of every numeric entry of the record ("1": dimensionless, paper's units)."""
+    from ..schema import units
+
+    out = {}
+    for k, v in rec.items():
+        if isinstance(v, (bool, int, float)) and not isinstance(v, str):
+            out[k] = _LOCAL_UNITS[k] if k in _LOCAL_UNITS else units(k, nondimensional=True)
     return out
 
 
@@ -56,10 +103,15 @@ def run(args) -> int:
         check_writable(args.out)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
+    check_solve_memory(args.n)
     where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={args.n}, law={args.law}, control={args.control}")
+    progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
+    if progress:  # on a terminal: say what runs now; the solver then draws its progress line (stderr)
+        print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {args.n} path)",
+              file=sys.stderr, flush=True)
     try:
         res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
-                                threads=args.threads, progress=None, search=args.search)
+                                threads=args.threads, progress=progress, search=args.search)
     except RuntimeError as exc:  # the solver found no converged state to report
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
@@ -69,15 +121,15 @@ def run(args) -> int:
         write_solution(res, args.out)
     rec = _record(res)
     if args.json:
-        print_json(rec)
+        print_json({**rec, "units": _units(rec)})
     else:
         print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {res.n}, {res.law}, {res.control} control")
         err = f" (fold fit error ~{res.W_star_error:.2g})" if res.W_star_error == res.W_star_error else ""
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
-        print(f"converged = {res.converged}  states = {res.n_steps}  CG iterations = {res.iterations}  "
-              f"search = {res.search}  ({res.elapsed:.1f} s)")
+        print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  "
+              f"CG iterations = {res.iterations}  search = {res.search}  ({res.elapsed:.1f} s)")
         if args.out is not None:
             print(f"wrote {args.out}")
     if not res.converged:
@@ -86,6 +138,10 @@ def run(args) -> int:
                else res.note)
         print(f"dhfield: solve did not converge for {where}: {why}", file=sys.stderr)
         return EXIT_UNCONVERGED
+    if not rec["resolved"]:
+        print(f"dhfield: solve is unresolved for {where}: the grid does not resolve the cohesive zone "
+              "(resolved = false), so W* is not an answer; increase --n", file=sys.stderr)
+        return EXIT_UNRESOLVED
     if res.note:
         print(f"dhfield: note: {where}: {res.note}", file=sys.stderr)
     if res.failures:

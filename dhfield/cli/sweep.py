@@ -11,15 +11,25 @@ a config file override its ``[run]`` table only.
 from __future__ import annotations
 
 import os
-
 import sys
+
+#: Exit status when every case ran but some BEM cases are stored flagged (status
+#: not_converged or unresolved: their values are not answers).
+EXIT_FLAGGED = 3
+
+_EPILOG = ("exit status: 0 every case ok; 1 some cases failed (recorded with their message; a rerun retries "
+           f"them); {EXIT_FLAGGED} some BEM cases are stored flagged, status not_converged or unresolved (the "
+           "grid does not resolve the cohesive zone): their values are not answers; 2 invalid input.  "
+           "A summary line goes to stderr, and with --quiet only when cases failed or are flagged.")
 
 _AXIS_FLAGS = (("beta0", float), ("skew_angle_deg", float), ("mu", float), ("a_star", float), ("n", int),
                ("law", str))
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("sweep", help="sweep a grid of inputs (pull-offs, BEM checks) on dask; resumable")
+    p = sub.add_parser("sweep", help="sweep a grid of inputs (pull-offs, BEM checks) on dask; resumable",
+                       description="Sweep a grid of model inputs (analytic pull-offs, load curves, forward BEM "
+                                   "checks, the adhesive BEM) on dask; resumable.", epilog=_EPILOG)
     p.add_argument("config", nargs="?", default=None, help="TOML sweep file (see dhfield.sweep.config)")
     for name, typ in _AXIS_FLAGS:
         flag = name.replace("_", "-")
@@ -85,19 +95,30 @@ def run(args) -> int:
         if not flag_mapping["axes"]:
             raise ValueError("give a CONFIG.toml or the axes as flags (e.g. --beta0 0.9 1 --mu-geomspace 0.1 10 50)")
         config = config_from_mapping(flag_mapping)
-    max_workers = 4 * (os.cpu_count() or 1)  # local processes beyond a few per core only cost memory
-    if args.workers is not None and not 1 <= args.workers <= max_workers:
-        raise ValueError(f"--workers must be an integer in 1..{max_workers} (4 local processes per CPU); "
-                         f"got {args.workers}")
+    from ..sweep.config import WORKERS_PER_CPU, max_workers
+
+    if args.workers is not None and not 1 <= args.workers <= max_workers():
+        raise ValueError(f"--workers must be an integer in 1..{max_workers()} ({WORKERS_PER_CPU} local processes "
+                         f"per CPU); got {args.workers}")
     scheduler = args.scheduler if args.scheduler is not None else config.scheduler
     if scheduler not in (None, "synchronous", "processes"):
         check_scheduler_address(scheduler)
     out = args.out if args.out is not None else config.out
+    if out is not None and not str(out).strip():
+        raise ValueError(f"out (output path) must be a non-empty path; got {out!r}")
+    if out is not None:
+        from ..io import require_utf8_path
+
+        require_utf8_path(os.path.abspath(out))   # the sweep and its cases are netCDF files
     if out is None:
         raise ValueError("--out is required (an output FILE.nc or DIR), or run.out in the config")
     res = run_sweep(config, out=out, scheduler=scheduler, workers=args.workers,
                     progress=False if args.quiet else None)
-    if not args.quiet:
-        print(f"wrote {res.path}: {len(res.computed)} cases computed, {len(res.reused)} reused, "
-              f"{len(res.failed)} failed", file=sys.stderr)
-    return 1 if res.failed else 0
+    flagged = list(getattr(res, "flagged", ()))
+    summary = (f"wrote {res.path}: {len(res.computed)} cases computed, {len(res.reused)} reused, "
+               f"{len(res.failed)} failed")
+    if flagged:
+        summary += f", {len(flagged)} flagged (not converged or unresolved: see status and adhesive_message)"
+    if not args.quiet or res.failed or flagged:
+        print(summary, file=sys.stderr)
+    return 1 if res.failed else EXIT_FLAGGED if flagged else 0

@@ -51,7 +51,7 @@ from pathlib import Path
 from .. import PAPER_DOI, __version__
 
 __all__ = ["atomic_path", "provenance_attrs", "write_netcdf", "read_netcdf", "check_writable",
-           "validate_output_path", "SignalExit", "CAUGHT_SIGNALS"]
+           "validate_output_path", "require_utf8_path", "format_size", "SignalExit", "CAUGHT_SIGNALS"]
 
 REFERENCES = (
     "Zini N.H.M., de Rooij M.B., Bazr Afshan Fadafan M., Ismail N., Schipper D.J. (2018) "
@@ -218,6 +218,8 @@ def validate_output_path(path, suffixes=None, name: str = "out") -> Path:
     if text.endswith(os.sep) or Path(text).name in ("", ".", ".."):
         raise ValueError(f"{label} must name a file, not a directory; got {text!r}")
     p = Path(text)
+    if p.suffix.lower() == ".nc":
+        require_utf8_path(os.path.abspath(text), label)
     if suffixes:
         suffixes = tuple(s.lower() for s in suffixes)
         if p.suffix.lower() not in suffixes:
@@ -242,6 +244,21 @@ def validate_output_path(path, suffixes=None, name: str = "out") -> Path:
                              f"{len(os.fsencode(os.path.abspath(t)))} bytes")
         _check_target(t, label)
     return p
+
+
+def require_utf8_path(text: str, label: str = "out (output path)") -> None:
+    """ValueError if ``text`` is not valid UTF-8: the netCDF library takes UTF-8 file names only.
+
+    A name given in another encoding reaches Python with surrogate escapes
+    (PEP 383); netCDF4 then failed with a bare codec error after the computation.
+    """
+    try:
+        str(text).encode("utf-8")
+    except UnicodeEncodeError:
+        shown = os.fsencode(text)
+        raise ValueError(f"{label} must be valid UTF-8 for a netCDF file (the netCDF library takes UTF-8 file "
+                         f"names only); got {shown!r}: rename it, or set a UTF-8 locale and use a UTF-8 "
+                         "name") from None
 
 
 def check_writable(path, name: str = "out") -> Path:
@@ -365,6 +382,16 @@ def _write_encoded(nc, ds, variables, attrs, guard) -> None:
     guard.check()
 
 
+def format_size(nbytes) -> str:
+    """A byte count for people: "512 B", "3.4 KiB", "1.21 GiB" (never "0.0 MiB" for a small file)."""
+    n = float(nbytes)
+    for unit in ("B", "KiB", "MiB", "GiB", "TiB"):
+        if abs(n) < 1024 or unit == "TiB":
+            return f"{int(n)} B" if unit == "B" else f"{n:.3g} {unit}"
+        n /= 1024
+    return f"{n:.3g} TiB"  # pragma: no cover
+
+
 def _write_failed(exc, final: Path, tmp: Path) -> OSError:
     """An OSError in one line for a failed netCDF write (disk full is the usual cause)."""
     free = None
@@ -373,9 +400,9 @@ def _write_failed(exc, final: Path, tmp: Path) -> OSError:
     detail = " ".join(str(exc).split()) or type(exc).__name__
     hint = ""
     if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG):
-        hint = f" ({os.strerror(exc.errno)})"
+        hint = f" ({os.strerror(exc.errno)}" + (f"; {format_size(free)} free" if free is not None else "") + ")"
     elif free is not None and free < 2**20:
-        hint = " (no space left on device)"
+        hint = f" (no space left on device: {format_size(free)} free)"
     return OSError(f"could not write the netCDF file {str(final)!r}: {detail}{hint}; nothing was written")
 
 
@@ -402,8 +429,8 @@ def write_netcdf(ds, path, name: str = "out") -> Path:
     with contextlib.suppress(OSError):
         free = shutil.disk_usage(parent).free
     if free is not None and need > free:
-        raise OSError(f"could not write the netCDF file {str(p)!r}: it needs about {need / 2**20:.1f} MiB "
-                      f"and the device has {free / 2**20:.1f} MiB free; nothing was written")
+        raise OSError(f"could not write the netCDF file {str(p)!r}: it needs about {format_size(need)} "
+                      f"and the device has {format_size(free)} free; nothing was written")
     with atomic_path(p, name) as tmp:
         with _SignalGuard(defer=True) as guard:
             try:

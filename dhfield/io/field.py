@@ -143,7 +143,7 @@ def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
     """
     g = case.grid
     nd = _nondim(case)
-    dims = ("x", "y")
+    dims = ("y", "x")   # rows y, columns x: ds.gap.plot() draws x horizontally (the grid's arrays are (x, y))
     arrays = {
         "pressure": case.pressure,
         "pressure_analytic": case.pressure_exact,
@@ -154,13 +154,13 @@ def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
         "gap_numerical": case.gap_numerical,
         "gap_difference": case.gap_analytic - case.gap_numerical,
     }
-    data = {name: variable(name, dims, arr, nondimensional=nd, quantity=FIELD_VARIABLES[name][0],
+    data = {name: variable(name, dims, np.asarray(arr).T, nondimensional=nd, quantity=FIELD_VARIABLES[name][0],
                            qualifier=FIELD_VARIABLES[name][1])
             for name, arr in arrays.items()}
     region = np.full(g.shape, 2, dtype=np.int8)
     region[case.masks["annulus"]] = 1
     region[case.masks["contact"]] = 0
-    data["region"] = flag_variable("region", dims, region, REGIONS)
+    data["region"] = flag_variable("region", dims, region.T, REGIONS)
     # no axis="X"/"Y": the CF checker would read x and y as longitude and latitude
     coords = {"x": coordinate("x", g.x, nondimensional=nd), "y": coordinate("y", g.y, nondimensional=nd)}
     ds = xr.Dataset(data, coords=coords)

@@ -3,9 +3,11 @@
 In the style of :mod:`dhfield.io.field`, one :class:`xarray.Dataset` per solution:
 
 * coordinates ``x``, ``y`` (cell centres of the full grid);
-* on (x, y): the total ``pressure`` (compressive positive, the adhesive traction
-  negative), the ``gap`` h = z - delta + omega, the ``cohesive_fraction`` of
-  each cell in the cohesive zone (sub-cell, in [0, 1]) and the categorical
+* on (y, x) -- rows y, columns x, so ``ds.gap.plot()`` draws x horizontally
+  (older files have (x, y); :func:`read_solution` turns them): the total
+  ``pressure`` (compressive positive, the adhesive traction negative), the
+  ``gap`` h = z - delta + omega, the ``cohesive_fraction`` of each cell in
+  the cohesive zone (sub-cell, in [0, 1]) and the categorical
   ``region`` (contact / cohesive_zone / outside, CF flags: a cell is in the
   zone when more than half of it is);
 * scalars of the state: ``approach``, ``load``, the second-moment semi-axes
@@ -34,6 +36,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from ..schema import order_dims as schema_order
 from . import cf, check_writable, provenance_attrs, read_netcdf, write_netcdf
 
 __all__ = ["state_dataset", "path_dataset", "pull_off_dataset", "write_solution", "read_solution",
@@ -112,15 +115,15 @@ def state_dataset(state, *, nondimensional: bool = False, title: str | None = No
     """
     g = state.grid
     nd = nondimensional
-    dims = ("x", "y")
+    dims = ("y", "x")   # rows y, columns x (the grid's arrays are (x, y): transposed below)
     a, b = state.contact_semi_axes()
     c, d = state.cohesive_semi_axes()
     data = {
-        "pressure": cf.variable("pressure", dims, state.pressure, nondimensional=nd,
+        "pressure": cf.variable("pressure", dims, np.asarray(state.pressure).T, nondimensional=nd,
                                 qualifier="total (contact minus adhesive traction)"),
-        "gap": cf.variable("gap", dims, state.gap, nondimensional=nd),
-        "cohesive_fraction": _local("cohesive_fraction", dims, state.cohesive, nd),
-        "region": _flag("region", dims, _region_codes(state), REGIONS,
+        "gap": cf.variable("gap", dims, np.asarray(state.gap).T, nondimensional=nd),
+        "cohesive_fraction": _local("cohesive_fraction", dims, np.asarray(state.cohesive).T, nd),
+        "region": _flag("region", dims, _region_codes(state).T, REGIONS,
                         "region of the surface (cohesive zone: more than half of the cell)"),
         "approach": cf.variable("approach", (), state.approach, nondimensional=nd),
         "load": _local("load", (), state.load, nd),
@@ -214,7 +217,13 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
         ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), nondimensional=True, qualifier=q)
     for key in ("beta_ab", "beta_cd"):
         ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), qualifier=q)
-    ds.attrs.update({"converged": int(bool(result.converged)), "n_steps": int(result.n_steps),
+    resolved = bool(getattr(result, "resolved", True))
+    ds["resolved"] = _flag("resolved", (), int(resolved), ("false", "true"),
+                           "grid resolves the cohesive zone (false: the pull-off is not an answer; refine n)")
+    ds["converged_pull_off"] = _flag("converged", (), int(bool(result.converged)), ("false", "true"),
+                                     "every state of the path down to the pull-off converged")
+    ds.attrs.update({"converged": int(bool(result.converged)), "resolved": int(resolved),
+                     "n_steps": int(result.n_steps),
                      "iterations": int(result.iterations), "residual": float(result.residual),
                      "control": result.control, "elapsed_seconds": float(result.elapsed)})
     if getattr(result, "search", ""):
@@ -240,4 +249,4 @@ def read_solution(path) -> xr.Dataset:
     ds = read_netcdf(path)
     if "gap" not in ds and "W_star_pull_off" not in ds:
         raise ValueError(f"input file is not a dhfield BEM solution (no gap, no W_star_pull_off): {str(path)!r}")
-    return ds
+    return ds.transpose(*schema_order(ds.dims))   # files before 2026-11 stored the fields (x, y)

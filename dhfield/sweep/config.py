@@ -67,7 +67,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapping", "axis_values",
-           "check_scheduler_address", "MAX_POINTS"]
+           "check_scheduler_address", "MAX_POINTS", "max_workers", "MAX_CONFIG_BYTES", "DEFAULT_SCHEDULER_PORT"]
 
 #: Quantities a sweep can compute.
 QUANTITIES = ("pull_off", "load_curve", "bem_field", "adhesive")
@@ -87,6 +87,24 @@ MAX_BEM_CELLS = 8192
 _MIN_BEM_CELLS = 16
 _SAMPLINGS = ("average", "centre")
 _CONTROLS = ("load", "displacement")
+
+#: Largest TOML sweep file read [bytes]: a sweep file is a few hundred bytes; a bigger one is a mistake.
+MAX_CONFIG_BYTES = 1 << 20
+#: Port of a scheduler address that names none (dask.distributed's default).
+DEFAULT_SCHEDULER_PORT = 8786
+#: Local worker processes per CPU at most (beyond a few per core they only cost memory).
+WORKERS_PER_CPU = 4
+
+
+def max_workers() -> int:
+    """Largest accepted number of local worker processes: :data:`WORKERS_PER_CPU` x the CPUs.
+
+    The one bound of ``--workers`` and ``[run] workers``.
+    """
+    import os
+
+    return WORKERS_PER_CPU * (os.cpu_count() or 1)
+
 
 _TOP_KEYS = {"sweep", "axes", "bem", "run"}
 _SWEEP_KEYS = {"quantities", "models", "control", "chunk_points", "curve_a_star", "curve_points"}
@@ -219,8 +237,10 @@ def axis_values(name: str, spec) -> tuple:
         if not (isinstance(args, (list, tuple)) and len(args) == 3):
             _fail(f"{key}.{kind}", "[start, stop, num]", args)
         start, stop, num = args
-        if isinstance(num, bool) or not isinstance(num, (int, float)) or num != int(num) or num < 1:
-            _fail(f"{key}.{kind} num", "an integer >= 1 (an axis must not be empty)", num)
+        if (isinstance(num, bool) or not isinstance(num, (int, float)) or not math.isfinite(num)
+                or num != int(num) or not 1 <= num <= MAX_POINTS):
+            _fail(f"{key}.{kind} num", f"an integer in [1, {MAX_POINTS}] (an axis must not be empty; "
+                  f"a sweep has at most {MAX_POINTS} points)", num)
         for v in (start, stop):
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
                 _fail(f"{key}.{kind} start/stop", "finite numbers", v)
@@ -281,16 +301,37 @@ def _int_at_least(key, value, low):
     return value
 
 
-_ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx|ws|wss)://[^\s/]+(:\d+)?$")
+_ADDRESS = re.compile(r"^tcp://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+)(:\d{1,5})?$")
+_OTHER_PROTOCOL = re.compile(r"^([A-Za-z][A-Za-z0-9+.-]*)://")
 
 
 def check_scheduler_address(address):
-    """Validate the form of a dask.distributed scheduler address (``tcp://host:port``)."""
+    """Validate the form of a dask.distributed scheduler address (``tcp://host[:port]``).
+
+    Only plain TCP is supported: ``tls://`` (needs certificates), ``ucx://``,
+    ``ws://``/``wss://`` (need optional packages) and ``inproc://`` (same process
+    only) are refused in one line, as is a port outside 1..65535.
+    """
     if address is None:
         return None
-    if not isinstance(address, str) or not _ADDRESS.match(address):
+    if isinstance(address, str):
+        other = _OTHER_PROTOCOL.match(address)
+        if other and other.group(1).lower() != "tcp":
+            _fail("scheduler", f"a tcp://host:port address (dhfield sweep does not support "
+                  f"{other.group(1)}:// schedulers; use tcp://, 'processes' or 'synchronous')", address)
+    m = _ADDRESS.match(address) if isinstance(address, str) else None
+    if m is None:
         _fail("scheduler", "a dask.distributed address such as tcp://127.0.0.1:8786", address)
+    if m.group(2) is not None and not 1 <= int(m.group(2)[1:]) <= 65535:
+        _fail("scheduler", "an address with a port in 1..65535", address)
     return address
+
+
+def scheduler_host_port(address) -> tuple:
+    """(host, port) of a ``tcp://host[:port]`` address checked by :func:`check_scheduler_address`."""
+    m = _ADDRESS.match(check_scheduler_address(address))
+    host = m.group(1).strip("[]")
+    return host, int(m.group(2)[1:]) if m.group(2) else DEFAULT_SCHEDULER_PORT
 
 
 def config_from_mapping(mapping: dict) -> SweepConfig:
@@ -365,10 +406,15 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     workers = run.get("workers")
     if workers is not None:
         _int_at_least("run.workers", workers, 1)
-    scheduler = check_scheduler_address(run.get("scheduler"))
+        if workers > max_workers():
+            _fail("run.workers", f"an integer in 1..{max_workers()} ({WORKERS_PER_CPU} local processes per "
+                  "CPU)", workers)
+    scheduler = run.get("scheduler")
+    if scheduler not in (None, "synchronous", "processes"):
+        check_scheduler_address(scheduler)
     out = run.get("out")
-    if out is not None and not isinstance(out, str):
-        _fail("run.out", "a path", out)
+    if out is not None and (not isinstance(out, str) or not out.strip() or "\x00" in out):
+        _fail("run.out", "a non-empty path (an output FILE.nc or DIR)", out)
     return SweepConfig(axes=axes, quantities=tuple(dict.fromkeys(quantities)), models=tuple(dict.fromkeys(models)),
                        control=control, chunk_points=chunk,
                        curve_a_star=(float(curve_a[0]), float(curve_a[1])), curve_points=curve_points,
@@ -395,7 +441,22 @@ def load_config(path) -> SweepConfig:
         raise ValueError(f"config must be an existing TOML file; got {str(p)!r}")
     try:
         with open(p, "rb") as fh:
-            mapping = tomllib.load(fh)
+            raw = fh.read(MAX_CONFIG_BYTES + 1)
+    except OSError as exc:
+        raise ValueError(f"config {str(p)!r} cannot be read ({exc.strerror})") from None
+    if len(raw) > MAX_CONFIG_BYTES:
+        raise ValueError(f"config {str(p)!r} must be a TOML file of at most {MAX_CONFIG_BYTES} bytes")
+    if raw.startswith(b"\xef\xbb\xbf"):  # a UTF-8 byte-order mark (some editors write one): not TOML, skip it
+        raw = raw[3:]
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"config {str(p)!r} must be UTF-8 text (TOML); byte {exc.start} is not") from None
+    try:
+        mapping = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"config {str(p)!r} is not valid TOML: {exc}") from None
+        raise ValueError(f"config {str(p)!r} is not valid TOML: {' '.join(str(exc).split())}") from None
+    except RecursionError:
+        raise ValueError(f"config {str(p)!r} nests tables or arrays too deeply (a sweep file needs 3 levels)") \
+            from None
     return config_from_mapping(mapping)

@@ -33,7 +33,9 @@ Engine
 * **Resumable.** Cases are written to a :class:`~dhfield.sweep.store.CaseStore`
   as they finish; a case that raises is recorded with its message (status
   "failed", NaN values) and retried by the next run; a non-converged adhesive
-  case is recorded with its message (status "not_converged") and kept.  The
+  case is recorded with its message (status "not_converged") and kept, and so
+  is one that converged on a grid too coarse for its cohesive zone (status
+  "unresolved": the solver's ``resolved`` flag is false).  The
   consolidated Dataset is written atomically at the end.
 """
 from __future__ import annotations
@@ -47,7 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import SweepConfig, check_scheduler_address
+from .config import SweepConfig, check_scheduler_address, scheduler_host_port
 from .store import CaseStore, output_paths
 from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
                     adhesive_case, adhesive_solver, bem_field_case, expected_seconds, load_curve_case, pull_off_block)
@@ -57,10 +59,13 @@ _FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS + ADHESIVE
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
            "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV", "SINGLE_THREAD_ENV", "WORKER_START_TIMEOUT",
-           "QUANTITY_MODULES"]
+           "QUANTITY_MODULES", "probe_scheduler", "MAX_HANDSHAKE_BYTES", "UNRESOLVED_MESSAGE"]
 
-#: Seconds to wait for a dask.distributed scheduler before reporting it unreachable.
+#: Seconds to wait for a dask.distributed scheduler (connection and handshake) before reporting it.
 CONNECT_TIMEOUT = 5.0
+#: Largest first message accepted from a scheduler [bytes]: its handshake is a few hundred bytes
+#: of msgpack; a peer announcing more is not a scheduler (a garbage peer announced 6.46 EiB).
+MAX_HANDSHAKE_BYTES = 1 << 16
 #: Modules the tasks of each quantity import: preloaded by the local workers of a sweep
 #: (:meth:`Executor.start`), so that only what the sweep uses is imported, once, at start-up.
 QUANTITY_MODULES = {"pull_off": ("dhfield.compare",), "load_curve": ("dhfield.compare",),
@@ -72,7 +77,10 @@ WORKER_START_TIMEOUT = 300.0
 SINGLE_THREAD_ENV = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "VECLIB_MAXIMUM_THREADS",
                      "NUMEXPR_NUM_THREADS")
 #: Case status codes (CF flag_values) and their meanings.
-STATUS_MEANINGS = {0: "ok", 1: "not_converged", 2: "failed"}
+STATUS_MEANINGS = {0: "ok", 1: "not_converged", 2: "failed", 3: "unresolved"}
+#: Message of an adhesive case whose path converged on a grid too coarse for its cohesive zone.
+UNRESOLVED_MESSAGE = ("unresolved: the grid does not resolve the cohesive zone (resolved = false), W* is not an "
+                      "answer; increase n")
 _STATUS = {v: k for k, v in STATUS_MEANINGS.items()}
 _LOCAL = ("synchronous", "processes")
 #: Environment variables giving :func:`map_cases` its default scheduler and worker count
@@ -261,6 +269,7 @@ def connect(scheduler=None, workers=None) -> Executor:
         w = 1 if scheduler == "synchronous" else (workers or os.cpu_count() or 1)
         return Executor(scheduler, w)
     check_scheduler_address(scheduler)
+    probe_scheduler(scheduler)
     from distributed import Client
 
     try:
@@ -269,6 +278,67 @@ def connect(scheduler=None, workers=None) -> Executor:
         raise ValueError(f"scheduler {scheduler} is unreachable ({type(exc).__name__} after "
                          f"{CONNECT_TIMEOUT:g} s); start one with 'dask scheduler' or omit --scheduler") from None
     return Executor("distributed", len(client.scheduler_info()["workers"]), client, True)
+
+
+def probe_scheduler(address: str, timeout: float | None = None) -> None:
+    """Check, within ``timeout`` seconds, that a dask scheduler answers at ``address``.
+
+    A dask.distributed scheduler sends its handshake as soon as it accepts a TCP
+    connection: an 8-byte length, then frames (a frame count, the frame lengths, the
+    msgpack body).  This reads that message on a plain socket with a deadline, and
+    refuses a peer that sends nothing (a silent listener, an HTTP server waiting for
+    a request), closes, or announces a message larger than :data:`MAX_HANDSHAKE_BYTES`
+    (garbage), before :class:`distributed.Client`, whose handshake is unbounded, is
+    involved.  Raises ValueError (one line naming the address); returns None.
+    """
+    import socket
+    import struct
+
+    timeout = CONNECT_TIMEOUT if timeout is None else float(timeout)
+    host, port = scheduler_host_port(address)
+    hint = "start one with 'dask scheduler', or omit --scheduler"
+
+    def fail(why):
+        raise ValueError(f"scheduler {address} {why}; {hint}")
+
+    deadline = time.monotonic() + timeout
+    try:
+        sock = socket.create_connection((host, port), timeout=timeout)
+    except (socket.timeout, TimeoutError):
+        fail(f"did not accept a connection within {timeout:g} s")
+    except OSError as exc:
+        fail(f"is unreachable ({exc.strerror or type(exc).__name__})")
+
+    def recv_exact(n):
+        buf = bytearray()
+        while len(buf) < n:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError
+            sock.settimeout(left)
+            chunk = sock.recv(min(n - len(buf), 65536))
+            if not chunk:
+                raise ConnectionError("closed")
+            buf += chunk
+        return bytes(buf)
+
+    with sock:
+        try:
+            (total,) = struct.unpack("Q", recv_exact(8))
+            if not 16 <= total <= MAX_HANDSHAKE_BYTES:
+                fail(f"is not a dask scheduler: its first message announces {total} bytes, a dask handshake "
+                     f"has 16 to {MAX_HANDSHAKE_BYTES}")
+            body = recv_exact(total)
+            (n_frames,) = struct.unpack_from("Q", body)
+            lengths = struct.unpack_from(f"{n_frames}Q", body, 8) if 1 <= n_frames <= 64 and \
+                8 * (n_frames + 1) <= total else None
+            if lengths is None or 8 * (n_frames + 1) + sum(lengths) != total:
+                fail("is not a dask scheduler: its first message is not a dask handshake")
+        except (socket.timeout, TimeoutError):
+            fail(f"sent no dask handshake within {timeout:g} s (is it a dask scheduler? a web server or "
+                 "another service on that port answers nothing)")
+        except OSError as exc:
+            fail(f"closed the connection before its dask handshake ({exc.strerror or exc})")
 
 
 def _output_keys(collection):
@@ -433,8 +503,11 @@ def _run_cases(quantity, cases, store_dir, fingerprint):
                 status, message = "ok", ""
             else:
                 rec = adhesive_case(**params)
-                status = "ok" if rec.pop("converged") else "not_converged"
+                converged, resolved = bool(rec.pop("converged")), bool(rec.pop("resolved", True))
                 message = rec.pop("message")
+                status = "ok" if converged and resolved else "not_converged" if not converged else "unresolved"
+                if not resolved:
+                    message = "; ".join(m for m in (message, UNRESOLVED_MESSAGE) if m)
         except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
             shape = (len(params["a_star"]),) if dims else ()
             rec = {k: np.full(shape, np.nan) for k in fields}
@@ -524,6 +597,9 @@ class SweepResult:
         Keys of the cases computed by this run and of those read back from the store.
     failed : list of str
         Keys of the cases that raised (recorded with their message).
+    flagged : list of str
+        Keys of the BEM cases stored with a result that is not an answer: status
+        "not_converged" or "unresolved" (with their message).
     """
 
     dataset: object
@@ -531,6 +607,7 @@ class SweepResult:
     computed: list = field(default_factory=list)
     reused: list = field(default_factory=list)
     failed: list = field(default_factory=list)
+    flagged: list = field(default_factory=list)
 
 
 def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, progress=None) -> SweepResult:
@@ -623,8 +700,11 @@ def _run(config, executor, store, final, progress):
     ds = _consolidate(config, kinds, results, store)
     after = set(store.keys())
     failed = sorted(p.name[:-len(".failed.nc")] for p in store.directory.glob("*.failed.nc"))
+    flagged = sorted(key for (kind, _), res in zip(kinds, results) if kind != "pull_off"
+                     for key, (_, st, _, _) in res.items() if st in ("not_converged", "unresolved"))
     write_netcdf(ds, final)
-    return SweepResult(ds, final, computed=sorted(after - before), reused=sorted(before), failed=failed)
+    return SweepResult(ds, final, computed=sorted(after - before), reused=sorted(before), failed=failed,
+                       flagged=flagged)
 
 
 # --------------------------------------------------------------------------- consolidation

@@ -137,7 +137,8 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
     The whole load path runs in this one call (each step warm-starts from the
     last).  Returns :data:`ADHESIVE_FIELDS` and :data:`ADHESIVE_BEM_FIELDS` (NaN where the
     solver gives none)
-    plus ``converged`` (bool) and ``message`` (str).
+    plus ``converged`` (bool), ``resolved`` (bool: the grid resolves the cohesive zone) and
+    ``message`` (str).
     """
     res = adhesive_solver(solver)(float(mu), float(beta0), int(n), law=law, control=control, threads=1)
 
@@ -152,6 +153,7 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
            "iterations": get("iterations")}
     out.update({k: get(k) for k in ADHESIVE_BEM_FIELDS})
     out["converged"] = bool(getattr(res, "converged", True))
+    out["resolved"] = bool(getattr(res, "resolved", True))
     message = str(getattr(res, "message", "") or "")
     if not out["converged"] and not message:
         failures = getattr(res, "failures", ()) or ()
