@@ -56,8 +56,21 @@ def _numeric(ds, name, what):
 def check_sweep(ds) -> list:
     """Check that ``ds`` is a sweep :func:`standard_maps` can draw; return its model names.
 
-    Raises ValueError (one line) if ``W_star`` or the axes are missing or not real
-    numbers, if a model name appears twice, or if an axis value is not finite.
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep written by ``dhfield sweep`` (``W_star`` on (model, beta0 or skew angle, mu)).
+
+    Returns
+    -------
+    list of str
+        The model names of the sweep, in its order.
+
+    Raises
+    ------
+    ValueError
+        One line, if ``W_star`` or the axes are missing or not real numbers, if a model
+        name appears twice, or if an axis value is not finite.
     """
     if "W_star" not in ds or "model" not in ds.dims:
         raise ValueError("sweep must hold the pull_off quantity (variables W_star on the dimension model)")
@@ -94,12 +107,28 @@ def _thin(n):
 
 
 def cell_edges(centres, log=False, limits=None):
-    """Edges of the cells around sorted ``centres``: midpoints, geometric ones on a log axis.
+    """Return the edges of the cells around sorted centres: midpoints, geometric ones on a log axis.
 
+    Parameters
+    ----------
+    centres : array_like
+        Sorted cell centres (positive when ``log``).
+    log : bool, optional
+        Whether the axis is logarithmic.
+    limits : tuple of float, optional
+        ``(low, high)``: the outer edges are clipped to this valid range of the axis.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``len(centres) + 1`` cell edges.
+
+    Notes
+    -----
     On a log axis the edge between x_i and x_i+1 is sqrt(x_i x_i+1), the midpoint in
     log x, and the outer edges mirror it (x_0^2/edge_1); linear midpoints would put the
     first cell's left edge at or below zero, off a log axis (mu = 0.3 disappeared next to
-    1, 3, 10).  ``limits`` clips the outer edges to an axis' valid range.
+    1, 3, 10).
     """
     x = np.asarray(centres, float)
     if x.size == 1:
@@ -250,7 +279,24 @@ def _render(fig) -> dict:
 
 
 def output_paths(ds, out_dir, *, reference=None, stem="sweep") -> list:
-    """The files :func:`standard_maps` writes for ``ds``, in order (nothing is checked or written)."""
+    """List the files :func:`standard_maps` writes for ``ds``, in order (nothing is checked or written).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The sweep (see :func:`check_sweep`).
+    out_dir : str or pathlib.Path
+        The output directory.
+    reference : str, optional
+        The reference model of the error map (default: :func:`default_reference`).
+    stem : str, optional
+        The file name stem.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The output paths.
+    """
     models = check_sweep(ds)
     ref = default_reference(ds) if reference is None else reference
     kinds = ["pull_off"] + (["error"] if [m for m in models if m != ref] else [])
