@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from verification._api import Check, Figure, Section, check_le, save_figure
-from verification._style import QUICK_DPI, REPORT_DPI, figsize, legend_below
+from verification._style import MIN_FONT_PT, QUICK_DPI, REPORT_DPI, figsize, legend_below
 
 TITLE = "Analytic elliptical double-Hertz model (θp = 0): Figs. 4–7, 10, load curves and pull-off"
 
@@ -78,7 +78,7 @@ def _curve_grid(n):
 
 
 def _label_beta(b):
-    return "DH circular (β0 = 1)" if b == 1.0 else f"β0 = {b:g}"
+    return "DH circular" if b == 1.0 else f"β0 = {b:g}"
 
 
 def _curve_dataset(curve):
@@ -392,7 +392,7 @@ def _fig_beta_family(curves_by, pulloffs, mu, outdir, dpi, fname, caption):
     ax.set_xlim(-1.2, 2.6)
     ax.set_ylim(0, 4.6 if mu < 1 else 2.6)
     ax.grid(alpha=0.3)
-    ax.legend(ncol=2)
+    ax.legend(ncol=2, loc="lower right")  # the curves turn at W* < 0: the lower right is free
     ax.set_title(f"Fig. {6 if mu < 1 else 7}: a*, c* vs W* at μ = {mu:g}")
     fig.tight_layout()
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
@@ -470,7 +470,7 @@ def _fig_quadrature(scatter, outdir, dpi, fname, caption):
         # thousands of markers: rasterized inside the SVG (the axes, labels and legend stay vector)
         ax.loglog(gap, np.maximum(err, floor), ".", ms=2.5, label=f"Carlson, β = {beta:g}", rasterized=True)
         if err_p is not None:
-            ax.loglog(gap, np.maximum(err_p, floor), "x", ms=2.5, alpha=0.5, label=f"Legendre (printed), β = {beta:g}",
+            ax.loglog(gap, np.maximum(err_p, floor), "x", ms=2.5, alpha=0.5, label=f"Legendre, β = {beta:g}",
                       rasterized=True)
     ax.axhline(TOL_EXACT, color="r", lw=1, label="tolerance 1e-10")
     ax.set_xlabel("distance outside the ellipse, r/r_ab − 1")
@@ -619,15 +619,15 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
                 for k in range(n_states):
                     ax.plot(ja[k] * np.cos(t), jb[k] * np.sin(t), ":", color="r", lw=1.1,
                             label="elliptical JKR contact (same W*)" if k == 0 else None)
-                jkr_line = f"\nJKR pull-off W* = {jw[-1]:.3f}, b/a = {jb[-1] / ja[-1]:.3f}"
+                jkr_line = f"\nJKR: W* = {jw[-1]:.3f}, b/a = {jb[-1] / ja[-1]:.3f}".replace("-", "−")
             except Exception as exc:  # noqa: BLE001 - optional overlay
                 jkr_note = f"{type(exc).__name__}: {exc}"
         ax.set_aspect("equal")
         sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, max(n_states - 1, 1)))
         cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.8, pad=0.02)
-        cb.ax.set_yticklabels([f"{w:.2f}" for w in st.W_star])
-        cb.set_label("W* of the state", labelpad=1)
-        ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}" + jkr_line)
+        cb.ax.set_yticklabels([f"{w:.2f}".replace("-", "−") for w in st.W_star])
+        cb.set_label("W* of the state", labelpad=0)
+        ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}" + jkr_line, fontsize=MIN_FONT_PT, loc="left")
         ax.set_xlabel("x/c_r (θp = 0)")
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("y/c_r")
