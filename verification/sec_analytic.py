@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from verification._api import Check, Figure, Section, check_le, save_figure
-from verification._style import MIN_FONT_PT, QUICK_DPI, REPORT_DPI, figsize, legend_below
+from verification._style import QUICK_DPI, REPORT_DPI, figsize, legend_below
 
 TITLE = "Analytic elliptical double-Hertz model (θp = 0): Figs. 4–7, 10, load curves and pull-off"
 
@@ -392,7 +392,7 @@ def _fig_beta_family(curves_by, pulloffs, mu, outdir, dpi, fname, caption):
     ax.set_xlim(-1.2, 2.6)
     ax.set_ylim(0, 4.6 if mu < 1 else 2.6)
     ax.grid(alpha=0.3)
-    ax.legend(ncol=2, loc="lower right")  # the curves turn at W* < 0: the lower right is free
+    ax.legend(ncol=2 if mu < 1 else 1, loc="lower right")  # the curves turn at W* < 0: the lower right is free
     ax.set_title(f"Fig. {6 if mu < 1 else 7}: a*, c* vs W* at μ = {mu:g}")
     fig.tight_layout()
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
@@ -594,7 +594,7 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
     from dhfield.model import load_curve, pull_off
 
     cases = [(5.0, 0.8), (5.0, 0.9), (0.5, 0.8)]
-    fig, axes = plt.subplots(1, len(cases), figsize=figsize(2, 0.36))
+    fig, axes = plt.subplots(1, len(cases), figsize=figsize(2, 0.32))
     jkr_note = ""
     cmap = plt.get_cmap("viridis")
     for ax, (mu, beta0) in zip(axes, cases):
@@ -624,11 +624,11 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
                 jkr_note = f"{type(exc).__name__}: {exc}"
         ax.set_aspect("equal")
         sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, max(n_states - 1, 1)))
-        cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.8, pad=0.02)
+        cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.6, pad=0.02)
         cb.ax.set_yticklabels([f"{w:.2f}".replace("-", "−") for w in st.W_star])
         cb.set_label("W* of the state", labelpad=0)
-        ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}" + jkr_line, fontsize=MIN_FONT_PT, loc="left")
-        ax.set_xlabel("x/c_r (θp = 0)")
+        ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}")
+        ax.set_xlabel("x/c_r (θp = 0)" + jkr_line)  # under the panel: clear of the colour bars
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("y/c_r")
     handles, labels = axes[0].get_legend_handles_labels()
