@@ -261,7 +261,7 @@ def test_parallel_sections_isolate_a_dying_worker(tmp_path):
     """--jobs 2: sections run in their own processes; one that dies or fails to import fails alone."""
     pkg = tmp_path / "verification"
     pkg.mkdir()
-    for name in ("__init__.py", "_api.py", "report.py"):
+    for name in ("__init__.py", "_api.py", "_style.py", "report.py"):
         shutil.copy(ROOT / "verification" / name, pkg / name)
     (pkg / "sec_models.py").write_text(
         "from verification._api import Section, check_le\n"
