@@ -172,7 +172,11 @@ def _fig_annulus(results, path, dpi):
     ax.set_xlabel("θp [deg]")
     ax.set_ylabel("|h_BEM − (1+v)h_H| / max (1+v)h_H")
     ax.set_title("Annulus identity h = (1+v)h_H (Eq. 27)")
-    ax.legend()
+    from matplotlib.lines import Line2D
+
+    handles = ax.get_legend_handles_labels()[0] + [Line2D([], [], color="0.4", ls=":", lw=0.8,
+                                                          label="tolerance at that N")]
+    legend_below(fig, handles, [h.get_label() for h in handles], ncol=3)  # in the axes it hid a tolerance line
     return save_figure(fig, path, dpi)
 
 
