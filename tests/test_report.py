@@ -261,7 +261,7 @@ def test_parallel_sections_isolate_a_dying_worker(tmp_path):
     """--jobs 2: sections run in their own processes; one that dies or fails to import fails alone."""
     pkg = tmp_path / "verification"
     pkg.mkdir()
-    for name in ("__init__.py", "_api.py", "report.py"):
+    for name in ("__init__.py", "_api.py", "_style.py", "report.py"):
         shutil.copy(ROOT / "verification" / name, pkg / name)
     (pkg / "sec_models.py").write_text(
         "from verification._api import Section, check_le\n"
@@ -420,6 +420,7 @@ def test_every_figure_has_an_svg_sibling(quick_report):
         root = ET.parse(svg).getroot()
         assert root.tag.endswith("svg")
         assert "<dc:date>" not in svg.read_text(encoding="utf-8"), "the SVG carries a date (not reproducible)"
+        assert png.with_suffix(".pdf").read_bytes().startswith(b"%PDF"), f"no PDF next to {png.name}"
 
 
 def test_check_references_point_to_things_a_reader_can_open(quick_report):
@@ -513,4 +514,49 @@ def test_save_figure_writes_png_and_svg(tmp_path):
     p = save_figure(fig, tmp_path / "f.png", 50)
     assert p.read_bytes().startswith(PNG_SIGNATURE)
     assert p.with_suffix(".svg").read_text(encoding="utf-8").lstrip().startswith("<?xml")
-    assert sorted(x.name for x in tmp_path.iterdir()) == ["f.png", "f.svg"]  # no temporary file left
+    assert p.with_suffix(".pdf").read_bytes().startswith(b"%PDF")
+    assert b"CreationDate" not in p.with_suffix(".pdf").read_bytes(), "the PDF carries a date (not reproducible)"
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["f.pdf", "f.png", "f.svg"]  # no temporary file left
+
+
+def test_log_ticks_carry_no_overlapping_labels():
+    """Issue 17: '3×10⁻¹4×10⁻¹' on a log axis from 0.3 to 8; every labelled tick must stand clear of the next."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from verification._style import SINGLE_COLUMN_IN, figure_style, tidy_log_ticks
+
+    for lo, hi in ((0.3, 8.0), (4e-4, 1e-3), (1e-6, 10.0), (1e-18, 1e-8), (20.0, 3000.0)):
+        with figure_style():
+            fig, ax = plt.subplots(figsize=(SINGLE_COLUMN_IN, 2.5))
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlim(lo, hi)
+            ax.set_ylim(lo, hi)
+            tidy_log_ticks(ax)
+            fig.draw_without_rendering()
+            renderer = fig.canvas.get_renderer()
+            for axis, along in ((ax.xaxis, 0), (ax.yaxis, 1)):
+                boxes = sorted((t.label1.get_window_extent(renderer) for t in axis.get_major_ticks()
+                                if t.label1.get_visible() and t.label1.get_text()
+                                and lo <= t.get_loc() <= hi), key=lambda b: (b.x0, b.y0)[along])
+                assert len(boxes) >= 2, f"fewer than two labels on a log axis {lo:g}..{hi:g}"
+                for b0, b1 in zip(boxes, boxes[1:]):
+                    assert not b0.overlaps(b1), f"tick labels overlap on a log axis {lo:g}..{hi:g}"
+            assert all(not t.label1.get_text() for t in ax.xaxis.get_minor_ticks()), "minor ticks carry labels"
+            plt.close(fig)
+
+
+def test_style_helpers():
+    from verification._style import MODEL_LABELS, model_label, rel_diff_label, si_format
+
+    from dhfield.compare import MODEL_NAMES
+
+    assert all(name in MODEL_LABELS for name in MODEL_NAMES), "a model has no readable name"
+    assert model_label("jkr-elliptic") != "jkr-elliptic"
+    assert rel_diff_label("W*max") == "W*max: model/BEM − 1 [%]"  # the report's one sign convention
+    assert si_format(7.941e4, "Pa") == "79.4 kPa"
+    assert si_format(-0.8e-3, "N") == "-800 µN"
+    assert si_format(999.96, "m") == "1 km"

@@ -4,7 +4,7 @@ Each section module ``verification/sec_<name>.py`` exposes::
 
     def run(outdir: pathlib.Path, quick: bool, progress: Callable[[str], None]) -> Section
 
-It writes its figures (PNG, with an SVG sibling: :func:`save_figure`) and datasets
+It writes its figures (PNG, with SVG and PDF siblings: :func:`save_figure`) and datasets
 (netCDF, via dhfield.io.write_netcdf) under ``outdir`` and returns a :class:`Section`.  ``quick=True`` must finish in a few
 seconds (the test suite runs it).  Every check carries a tolerance and a one-line
 justification; the report exits non-zero if any check fails.
@@ -56,8 +56,12 @@ class Section:
     guide: list[str] = field(default_factory=list)
 
 
-#: The vector sibling of every PNG figure (issue 10: figures also as SVG or PDF).
+#: The vector sibling of every PNG figure that the report links (issue 10: figures also as SVG or PDF).
 VECTOR_FORMAT = "svg"
+#: Every vector sibling written beside the PNG (issue 17: PDF beside PNG and SVG).
+VECTOR_FORMATS = ("svg", "pdf")
+#: Metadata that would date a vector file: left out, so that the files are reproducible.
+_NO_DATE = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}}
 #: A legend may touch a curve by this many pixels (anti-aliasing, frame line) without hiding it.
 LEGEND_SLACK_PX = 1.5
 #: In-axes legend positions tried, in order, when a legend hides data.
@@ -226,28 +230,32 @@ def _legend_outside_canvas(fig):
 
 
 def save_figure(fig, path, dpi) -> Path:
-    """Write a matplotlib figure as PNG and as an SVG sibling, atomically, and close it.
+    """Write a matplotlib figure as PNG with SVG and PDF siblings, atomically, and close it.
 
+    Log axes get ticks whose labels never overlap (:func:`verification._style.tidy_log_ticks`).
     Legends that hide a data curve are moved (:func:`fix_legends`, checked on the
     layout of the PNG's own draw, so that a figure whose legends are clear costs no
     extra pass); a legend that then reaches outside the canvas is kept in the
-    picture by ``bbox_inches="tight"``.  Both files are written through
-    :func:`dhfield.io.atomic_path`; the SVG carries no date, so that it is
-    reproducible.
+    picture by ``bbox_inches="tight"``.  Every file is written through
+    :func:`dhfield.io.atomic_path`; the vector files carry no date, so that they
+    are reproducible.
 
     Returns
     -------
     Path
-        The PNG path (the SVG is ``Path(path).with_suffix(".svg")``).
+        The PNG path (the siblings are ``Path(path).with_suffix(".svg")`` and ``".pdf"``).
     """
     import warnings
 
     import matplotlib.pyplot as plt
 
     from dhfield.io import atomic_path
+    from verification._style import tidy_log_ticks
 
     path = Path(path)
     try:
+        for ax in fig.axes:
+            tidy_log_ticks(ax)
         with atomic_path(path) as tmp:
             fig.savefig(tmp, format="png", dpi=dpi)  # draws: the layout below is this one
         kw = {}
@@ -258,8 +266,9 @@ def save_figure(fig, path, dpi) -> Path:
             kw = dict(bbox_inches="tight", pad_inches=0.05) if _legend_outside_canvas(fig) else {}
             with atomic_path(path) as tmp:
                 fig.savefig(tmp, format="png", dpi=dpi, **kw)
-        with atomic_path(path.with_suffix("." + VECTOR_FORMAT)) as tmp:
-            fig.savefig(tmp, format=VECTOR_FORMAT, metadata={"Date": None}, **kw)
+        for fmt in VECTOR_FORMATS:
+            with atomic_path(path.with_suffix("." + fmt)) as tmp:
+                fig.savefig(tmp, format=fmt, metadata=_NO_DATE[fmt], **kw)
     finally:
         plt.close(fig)
     return path

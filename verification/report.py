@@ -53,7 +53,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from verification._api import VECTOR_FORMAT, Check, Section
+from verification._api import VECTOR_FORMATS, Check, Section
+from verification._style import figure_style
 
 __all__ = ["SECTION_ORDER", "VERDICT_ORDER", "SectionResult", "main", "run_sections", "render_html",
            "render_summary", "markdown_to_html", "link_references", "collect_verdict"]
@@ -164,7 +165,8 @@ def _run_one(name: str, i: int, total: int, outdir: Path, quick: bool, progress:
         sec = _failed_section(name, f"{name} (import failed)", error, traceback.format_exc())
     else:
         try:
-            sec = module.run(outdir, quick, sec_progress)
+            with figure_style():  # print-size fonts for every figure the section draws
+                sec = module.run(outdir, quick, sec_progress)
             problems = _validate_section(name, sec)
             if problems and not isinstance(sec, Section):
                 crashed, error = True, problems[0]
@@ -650,9 +652,9 @@ def render_html(results, meta, out: Path, total_seconds: float) -> str:
                 img = _img_tag(p, f"{sec.title}, figure {k}")
             else:
                 img = f"<p class=fail>missing figure file {html.escape(str(p))}</p>"
-            vec = p.with_suffix("." + VECTOR_FORMAT)
-            files = html.escape(_rel(p, out)) + (f", <a href='{html.escape(_rel(vec, out))}'>"
-                                                 f"{html.escape(_rel(vec, out))}</a>" if vec.is_file() else "")
+            vecs = [v for v in (p.with_suffix("." + f) for f in VECTOR_FORMATS) if v.is_file()]
+            files = html.escape(_rel(p, out)) + "".join(f", <a href='{html.escape(_rel(v, out))}'>"
+                                                        f"{html.escape(_rel(v, out))}</a>" for v in vecs)
             parts.append(f"<figure>{img}<figcaption><strong>{html.escape(r.name)} figure {k}.</strong> "
                          f"{_inline(fig.caption)} <span class=small>[{files}]</span>"
                          f"</figcaption></figure>")
@@ -706,8 +708,8 @@ def render_summary(results, meta, out: Path, total_seconds: float) -> str:
                   f"{sum(not c.passed for c in r.checks)} failed" + (f"; **{r.error}**" if r.error else ""), ""]
         for k, fig in enumerate(r.section.figures, 1):
             rel = _rel(Path(fig.path), out)
-            vec = Path(fig.path).with_suffix("." + VECTOR_FORMAT)
-            alt = f" ([{VECTOR_FORMAT.upper()}]({_rel(vec, out)}))" if vec.is_file() else ""
+            vecs = [v for v in (Path(fig.path).with_suffix("." + f) for f in VECTOR_FORMATS) if v.is_file()]
+            alt = f" ({', '.join(f'[{v.suffix[1:].upper()}]({_rel(v, out)})' for v in vecs)})" if vecs else ""
             lines.append(f"- Figure {k}: [{rel}]({rel}){alt} — {_md_cell(fig.caption)}")
         for ds in r.section.datasets:
             rel = _rel(Path(ds), out)

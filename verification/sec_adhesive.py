@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from verification._api import Figure, Section, check_le, save_figure
+from verification._style import QUICK_DPI, REPORT_DPI, figsize, legend_below, model_label, rel_diff_label
 
 TITLE = "Adhesive ground truth: BEM pull-off of the elliptical contact vs the closures"
 ROOT = Path(__file__).resolve().parent.parent
@@ -327,7 +328,7 @@ def _rerun(ds, quick, progress):
 # --------------------------------------------------------------------------- figure
 def _figure(tab, outdir, dpi):
     plt = _plt()
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=figsize(2, 0.4))
     markers = {"dh-elliptic": "o", "dh-elliptic-jkr-beta": "s", "dh-elliptic-ray-average": "^",
                "dh-elliptic-two-axis": "v", "jkr-elliptic": "x", "md": "+"}
     colors = plt.cm.viridis(np.linspace(0, 0.9, len(tab["beta0"])))
@@ -336,13 +337,12 @@ def _figure(tab, outdir, dpi):
             continue
         for i, b in enumerate(tab["beta0"]):
             ax1.plot(tab["mu"], 100 * tab["dev"][mod][i], marker=mk, color=colors[i], lw=0.8,
-                     label=mod if i == 0 else None)
+                     label=model_label(mod) if i == 0 else None)
     ax1.axhline(0.0, color="k", lw=0.6)
     ax1.set_xscale("log")
     ax1.set_xlabel("μ (Eq. 35)")
-    ax1.set_ylabel("W*max model / W*max BEM − 1 [%]")
-    ax1.set_title("(a) pull-off vs the BEM ground truth (colour: β0)")
-    ax1.legend(fontsize=7)
+    ax1.set_ylabel(rel_diff_label("W*max", "model", "BEM"))
+    ax1.set_title("(a) pull-off vs BEM (colour: β0)")
     for i, b in enumerate(tab["beta0"]):
         ax2.plot(tab["mu"], tab["beta_ab"][i], "-o", color=colors[i], ms=4, label=f"β_ab, β0 = {b:g}")
         ax2.plot(tab["mu"], tab["beta_cd"][i], "--s", color=colors[i], ms=4, mfc="none",
@@ -351,9 +351,14 @@ def _figure(tab, outdir, dpi):
     ax2.set_xscale("log")
     ax2.set_xlabel("μ (Eq. 35)")
     ax2.set_ylabel("ellipticity at pull-off")
-    ax2.set_title("(b) contact b/a (solid) and adhesive d/c (dashed); dotted: β0")
-    ax2.legend(fontsize=7, ncols=2)
-    fig.tight_layout()
+    ax2.set_title("(b) b/a (solid), d/c (dashed), β0 (dotted)")
+    from matplotlib.lines import Line2D
+
+    # one legend: the model by marker (black), β0 by colour
+    handles = [Line2D([], [], color="k", marker=mk, lw=0.8, label=model_label(mod))
+               for mod, mk in markers.items() if mod in tab["dev"]]
+    handles += [Line2D([], [], color=colors[i], lw=3, label=f"β0 = {b:g}") for i, b in enumerate(tab["beta0"])]
+    legend_below(fig, handles, [h.get_label() for h in handles], ncol=4)
     cap = ("BEM ground truth (Dugdale, free boundary; Richardson over N where three levels converged) against "
            "the analytic models at the pull-off, on the axes of the paper's Fig. 9 (W* of Eq. 34 vs μ of Eq. 35): "
            "(a) relative error of each model's W*max, (b) the contact and adhesive ellipticities b/a and d/c "
@@ -410,7 +415,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
                     + "; ".join(f"β0 = {b:g}, μ = {m:g}, N = {n}" for b, m, n, _ in bad) + ".")
     figs = []
     if np.any(np.isfinite(tab["W_bem"])):
-        figs.append(_figure(tab, outdir, 72 if quick else 110))
+        figs.append(_figure(tab, outdir, QUICK_DPI if quick else REPORT_DPI))
     return Section(TITLE, text="\n\n".join(text), checks=checks, figures=figs, tables=[table_markdown(tab)],
                    datasets=[DATASET], verdict=verdict, guide=guide_lines(tab))
 

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from verification._api import Check, Figure, Section, check_le, save_figure
+from verification._style import QUICK_DPI, REPORT_DPI, figsize, legend_below
 
 TITLE = "Analytic elliptical double-Hertz model (θp = 0): Figs. 4–7, 10, load curves and pull-off"
 
@@ -62,8 +63,8 @@ _COLORS = {0.5: "tab:blue", 1.0: "tab:orange", 2.0: "tab:purple", 5.0: "tab:gree
 
 def _settings(quick):
     if quick:
-        return dict(n_curve=160, n_quad=1000, n_beta=41, n_eq31=4, dpi=72)
-    return dict(n_curve=600, n_quad=4000, n_beta=81, n_eq31=16, dpi=110)
+        return dict(n_curve=160, n_quad=1000, n_beta=41, n_eq31=4, dpi=QUICK_DPI)
+    return dict(n_curve=600, n_quad=4000, n_beta=81, n_eq31=16, dpi=REPORT_DPI)
 
 
 # --------------------------------------------------------------------------- helpers
@@ -77,7 +78,7 @@ def _curve_grid(n):
 
 
 def _label_beta(b):
-    return "DH circular (β0 = 1)" if b == 1.0 else f"β0 = {b:g}"
+    return "DH circular" if b == 1.0 else f"β0 = {b:g}"
 
 
 def _curve_dataset(curve):
@@ -351,7 +352,7 @@ def _continuity(n_beta):
 def _fig_axes_vs_load(curves_by, pulloffs, outdir, dpi, which, fname, caption, jkr=None):
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = plt.subplots(figsize=figsize(1))
     for (mu, beta0), cv in curves_by.items():
         if beta0 not in (BETA_FIG45, 1.0) or mu not in MU_FIG45:
             continue
@@ -359,27 +360,26 @@ def _fig_axes_vs_load(curves_by, pulloffs, outdir, dpi, which, fname, caption, j
         ls = "-" if beta0 == BETA_FIG45 else "--"
         y = cv.a_star if which == "a" else cv.c_star
         ax.plot(cv.W_star, y, ls, color=col, lw=1.6 if ls == "-" else 1.2,
-                label=f"{_label_beta(beta0)}: μ = {mu:g}")
+                label=f"{_label_beta(beta0)}, μ = {mu:g}")
         po = pulloffs[(mu, beta0)]
         ax.plot(po.W_star, po.a_star if which == "a" else po.c_star, "o" if ls == "-" else "s",
                 color=col, mfc="none" if ls == "--" else col, ms=5)
     if jkr is not None and which == "a":
         ax.plot(jkr[0], jkr[1], ":", color="k", lw=1.8, label="JKR circular", zorder=5)
-    ax.set_xlabel("normalised load W* = W sinθ_skew / (2πRΔγ)  (Eq. 34)")
-    ax.set_ylabel("contact semi-major axis a*" if which == "a" else "adhesive semi-major axis c*")
+    ax.set_xlabel("W* = W sinθ_skew/(2πRΔγ) (Eq. 34)")
+    ax.set_ylabel("contact semi-axis a*" if which == "a" else "adhesive semi-axis c*")
     ax.set_xlim(-1.2, 2.6)
     ax.set_ylim(0, 3.1 if which == "a" else 4.6)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")  # the curves run through the upper corners
     ax.set_title(("Fig. 4: a* vs W*" if which == "a" else "Fig. 5: c* vs W*") + f", β0 = {BETA_FIG45}")
-    fig.tight_layout()
+    legend_below(fig, ncol=2)
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
 def _fig_beta_family(curves_by, pulloffs, mu, outdir, dpi, fname, caption):
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = plt.subplots(figsize=figsize(1))
     for beta0 in BETA_FIG67:
         cv = curves_by[(mu, beta0)]
         col = _COLORS[beta0]
@@ -387,12 +387,12 @@ def _fig_beta_family(curves_by, pulloffs, mu, outdir, dpi, fname, caption):
         ax.plot(cv.W_star, cv.c_star, "--", color=col, lw=1.3, label=f"c*, β0 = {beta0:g}")
         po = pulloffs[(mu, beta0)]
         ax.plot([po.W_star] * 2, [po.a_star, po.c_star], "o", color=col, ms=4)
-    ax.set_xlabel("normalised load W* (Eq. 34)")
+    ax.set_xlabel("W* (Eq. 34)")
     ax.set_ylabel("semi-major axes a*, c*")
     ax.set_xlim(-1.2, 2.6)
     ax.set_ylim(0, 4.6 if mu < 1 else 2.6)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, ncol=2)
+    ax.legend(ncol=2 if mu < 1 else 1, loc="lower right")  # the curves turn at W* < 0: the lower right is free
     ax.set_title(f"Fig. {6 if mu < 1 else 7}: a*, c* vs W* at μ = {mu:g}")
     fig.tight_layout()
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
@@ -403,7 +403,7 @@ def _fig_load_approach(curves_by, outdir, dpi, fname, caption):
 
     from dhfield.model import pull_off
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
+    fig, axes = plt.subplots(1, 2, figsize=figsize(2, 0.4))
     ax = axes[0]
     for mu in MU_FIG45:
         for beta0 in (BETA_FIG45, 1.0):
@@ -417,15 +417,15 @@ def _fig_load_approach(curves_by, outdir, dpi, fname, caption):
         for beta0 in BETA_FIG67:
             cv = curves_by[(mu, beta0)]
             ax.plot(cv.delta_star, cv.W_star, ls, color=_COLORS[beta0], lw=1.4, label=f"μ = {mu:g}, β0 = {beta0:g}")
-    ax.set_title("β0 ∈ {0.8, 0.9, 0.99} at μ = 0.5 and 5")
+    ax.set_title("β0 = 0.8, 0.9, 0.99 at μ = 0.5 and 5")
     for ax in axes:
-        ax.set_xlabel("normalised approach δ* = δR/c_r²  (Eq. 26a)")
+        ax.set_xlabel("approach δ* = δR/c_r² (Eq. 26a)")
         ax.set_ylabel("W* (Eq. 36)")
         ax.set_xlim(-3.0, 4.0)
         ax.set_ylim(-1.2, 3.0)
         ax.axhline(0, color="0.6", lw=0.6)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend()
     # displacement-controlled pull-off points (minimum of delta*) on the right panel
     for mu in MU_FIG67:
         p = pull_off(mu, np.asarray(BETA_FIG67), control="displacement")
@@ -437,7 +437,7 @@ def _fig_load_approach(curves_by, outdir, dpi, fname, caption):
 def _fig_continuity(betas, mus, po, outdir, dpi, fname, caption):
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, axes = plt.subplots(1, 2, figsize=figsize(2, 0.4))
     for i, mu in enumerate(mus):
         col = _COLORS[float(mu)]
         axes[0].plot(betas, po["load"].W_star[i], "-", color=col, label=f"load control, μ = {mu:g}")
@@ -449,31 +449,35 @@ def _fig_continuity(betas, mus, po, outdir, dpi, fname, caption):
     for ax in axes:
         ax.set_xlabel("initial ellipticity β0")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color=_COLORS[float(mu)], label=f"μ = {mu:g}") for mu in mus]
+    handles += [Line2D([], [], color="k", ls="-", label="load control (W*, a*)"),
+                Line2D([], [], color="k", ls="--", label="displacement control (W*)"),
+                Line2D([], [], color="k", ls=":", label="c* (load control)")]
+    legend_below(fig, handles, [h.get_label() for h in handles], ncol=4)
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
 def _fig_quadrature(scatter, outdir, dpi, fname, caption):
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    fig, ax = plt.subplots(figsize=figsize(1))
     floor = 1e-18
     for beta, (gap, err, err_p) in scatter.items():
         gap, err = gap[:1000], err[:1000]  # every point is checked; 1000 per series are drawn
         err_p = None if err_p is None else err_p[:1000]
         # thousands of markers: rasterized inside the SVG (the axes, labels and legend stay vector)
-        ax.loglog(gap, np.maximum(err, floor), ".", ms=2.5, label=f"library (Carlson), β = {beta:g}", rasterized=True)
+        ax.loglog(gap, np.maximum(err, floor), ".", ms=2.5, label=f"Carlson, β = {beta:g}", rasterized=True)
         if err_p is not None:
-            ax.loglog(gap, np.maximum(err_p, floor), "x", ms=2.5, alpha=0.5, label=f"printed (Legendre), β = {beta:g}",
+            ax.loglog(gap, np.maximum(err_p, floor), "x", ms=2.5, alpha=0.5, label=f"Legendre, β = {beta:g}",
                       rasterized=True)
     ax.axhline(TOL_EXACT, color="r", lw=1, label="tolerance 1e-10")
-    ax.set_xlabel("relative distance outside the contact ellipse, r/r_ab − 1")
-    ax.set_ylabel("relative error vs quad of Eq. (12b)")
+    ax.set_xlabel("distance outside the ellipse, r/r_ab − 1")
+    ax.set_ylabel("|Eq. (12b)/quadrature − 1|")
     ax.set_ylim(floor / 2, 1e-8)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=6, ncol=2)
-    fig.tight_layout()
+    ax.grid(alpha=0.3)
+    legend_below(fig, ncol=2)
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
 
 
@@ -491,7 +495,7 @@ def _fig_pressure_displacement(outdir, dpi, fname, mu=1.0, beta0=0.99):
 
     from dhfield import double_hertz, hertz
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.3))
+    fig, axes = plt.subplots(1, 2, figsize=figsize(2, 0.4))
     for b0, ls in ((beta0, "-"), (1.0, "--")):
         a, c, beta, v = _fig3_state(mu, b0)
         x = np.linspace(0.0, 1.6 * c, 801)
@@ -501,29 +505,33 @@ def _fig_pressure_displacement(outdir, dpi, fname, mu=1.0, beta0=0.99):
         h_ab = hertz.pressure(x, y, a, beta * a, po_ab)  # Eq. (7)
         h_cd = hertz.pressure(x, y, c, beta * c, po_cd)  # Eq. (16)
         p = double_hertz.pressure(x, y, a, c, beta, v)  # Eq. (22)
-        tag = f"β0 = {b0:g}" if b0 < 1 else "DH circular"
+        first = b0 < 1  # one legend entry per colour; the line style says β0 (proxies below)
         ax = axes[0]
-        ax.plot(x, h_ab / po_ab, ls, color="tab:blue", lw=1.1, label=f"H_ab/Po_ab ({tag})")
-        ax.plot(x, v * (h_cd - h_ab) / po_ab, ls, color="tab:orange", lw=1.1, label=f"v(H_cd − H_ab)/Po_ab ({tag})")
-        ax.plot(x, p / po_ab, ls, color="k", lw=1.8, label=f"total P/Po_ab ({tag})")
+        ax.plot(x, h_ab / po_ab, ls, color="tab:blue", lw=1.1, label="H_ab/Po_ab" if first else None)
+        ax.plot(x, v * (h_cd - h_ab) / po_ab, ls, color="tab:orange", lw=1.1,
+                label="v(H_cd − H_ab)/Po_ab" if first else None)
+        ax.plot(x, p / po_ab, ls, color="k", lw=1.8, label="total P/Po_ab (Eq. 22)" if first else None)
         w = double_hertz.surface_displacement(x, y, a, c, beta, v)  # Eq. (26)
         h = double_hertz.gap(x, y, a, c, beta, v)  # Eq. (27)
         ax = axes[1]
-        ax.plot(x, w, ls, color="tab:green", lw=1.4, label=f"ω, Eq. (26) ({tag})")
-        ax.plot(x, h, ls, color="tab:red", lw=1.4, label=f"gap h, Eq. (27) ({tag})")
+        ax.plot(x, w, ls, color="tab:green", lw=1.4, label="ω (Eq. 26)" if first else None)
+        ax.plot(x, h, ls, color="tab:red", lw=1.4, label="gap h (Eq. 27)" if first else None)
         for axx in axes:
             axx.axvline(a, color="0.5", lw=0.6, ls=ls)
             axx.axvline(c, color="0.75", lw=0.6, ls=ls)
     axes[0].set_ylabel("normalised pressure P/Po_ab")
-    axes[0].set_title(f"Fig. 3a: pressures along θp = 0 at pull-off, μ = {mu:g}", fontsize=10)
+    axes[0].set_title(f"Fig. 3a: pressures at pull-off, μ = {mu:g}")
     axes[1].set_ylabel("ω*, h* (units c_r²/R)")
-    axes[1].set_title("Fig. 3b: surface displacement and gap along θp = 0", fontsize=10)
+    axes[1].set_title("Fig. 3b: displacement and gap")
     for ax in axes:
-        ax.set_xlabel("x/c_r (θp = 0); grey lines: a*, c*")
+        ax.set_xlabel("x/c_r along θp = 0 (grey: a*, c*)")
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncols=2)  # below: no curve hidden
-    axes[1].legend(fontsize=7, loc="upper left")
-    fig.tight_layout()
+    from matplotlib.lines import Line2D
+
+    handles = [h for ax in axes for h in ax.get_legend_handles_labels()[0]]
+    handles += [Line2D([], [], color="0.3", ls="-", label=f"β0 = {beta0:g}"),
+                Line2D([], [], color="0.3", ls="--", label="DH circular (β0 = 1)")]
+    legend_below(fig, handles, [h.get_label() for h in handles], ncol=4)
     return save_figure(fig, outdir / fname, dpi)
 
 
@@ -586,7 +594,7 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
     from dhfield.model import load_curve, pull_off
 
     cases = [(5.0, 0.8), (5.0, 0.9), (0.5, 0.8)]
-    fig, axes = plt.subplots(1, len(cases), figsize=(14, 4.6))
+    fig, axes = plt.subplots(1, len(cases), figsize=figsize(2, 0.32))
     jkr_note = ""
     cmap = plt.get_cmap("viridis")
     for ax, (mu, beta0) in zip(axes, cases):
@@ -604,28 +612,27 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
                     label=f"contact ellipse ({lab})" if lab else None)
             ax.plot(st.c_star[k] * np.cos(t), st.d_star[k] * np.sin(t), "--", color=col, lw=1.1,
                     label=f"adhesive ellipse ({lab})" if lab else None)
+        jkr_line = ""
         if mu >= 5.0:  # the JKR domain, as in the paper's Fig. 10
             try:
                 ja, jb, jw = _jkr_elliptic_contacts(st.W_star, beta0)
                 for k in range(n_states):
                     ax.plot(ja[k] * np.cos(t), jb[k] * np.sin(t), ":", color="r", lw=1.1,
-                            label="elliptical JKR contact (same loads; innermost: its pull-off)" if k == 0 else None)
-                ax.text(0.02, 0.98, f"JKR pull-off W* = {jw[-1]:.3f},\nb/a = {jb[-1] / ja[-1]:.3f}",
-                        transform=ax.transAxes, va="top", fontsize=7, color="r")
+                            label="elliptical JKR contact (same W*)" if k == 0 else None)
+                jkr_line = f"\nJKR: W* = {jw[-1]:.3f}, b/a = {jb[-1] / ja[-1]:.3f}".replace("-", "−")
             except Exception as exc:  # noqa: BLE001 - optional overlay
                 jkr_note = f"{type(exc).__name__}: {exc}"
         ax.set_aspect("equal")
         sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, max(n_states - 1, 1)))
-        cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.8, pad=0.02)
-        cb.ax.set_yticklabels([f"{w:.2f}" for w in st.W_star], fontsize=7)
-        cb.set_label("W* of the state", fontsize=8)
-        ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}: W* from 1 to {float(po.W_star):.3f}", fontsize=9)
-        ax.set_xlabel("x/c_r (major axis, θp = 0)")
-        ax.set_ylabel("y/c_r")
+        cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.6, pad=0.02)
+        cb.ax.set_yticklabels([f"{w:.2f}".replace("-", "−") for w in st.W_star])
+        cb.set_label("W* of the state", labelpad=0)
+        ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}")
+        ax.set_xlabel("x/c_r (θp = 0)" + jkr_line)  # under the panel: clear of the colour bars
         ax.grid(alpha=0.3)
+    axes[0].set_ylabel("y/c_r")
     handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    legend_below(fig, handles, labels, ncol=3)
     return save_figure(fig, outdir / fname, dpi), jkr_note
 
 

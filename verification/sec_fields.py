@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from verification._api import Figure, Section, check_ge, check_le, save_figure
+from verification._style import QUICK_DPI, REPORT_DPI, figsize, legend_below, shared_limits
 
 TITLE = "Full-field verification: analytic DH fields vs DC-FFT boundary elements (2-D, all θp)"
 
@@ -70,8 +71,8 @@ EDGE_BAND = 0.1
 
 def _settings(quick):
     if quick:
-        return dict(n_case=64, ns=(128, 256, 512), dpi=72, n_theta=46)
-    return dict(n_case=512, ns=(128, 256, 512, 1024, 2048), dpi=110, n_theta=91)
+        return dict(n_case=64, ns=(128, 256, 512), dpi=QUICK_DPI, n_theta=46)
+    return dict(n_case=512, ns=(128, 256, 512, 1024, 2048), dpi=REPORT_DPI, n_theta=91)
 
 
 
@@ -94,22 +95,28 @@ def _fig_maps(case, path, dpi):
         (case.pressure, "pressure p (Eq. 22, cell averages)", "RdBu_r", True),
         (case.gap_numerical, "gap h from the BEM displacement", "viridis", False),
         (case.displacement_analytic - case.displacement_numerical,
-         "ω analytic (Eq. 26) − ω BEM", "RdBu_r", True),
-        (case.gap_analytic - case.gap_numerical, "h analytic (Eq. 27) − h BEM", "RdBu_r", True),
+         "ω: Eq. (26) − BEM", "RdBu_r", True),
+        (case.gap_analytic - case.gap_numerical, "h: Eq. (27) − BEM", "RdBu_r", True),
     ]
-    fig, axes = plt.subplots(2, 2, figsize=(10, 8.4), constrained_layout=True)
-    for ax, (f, title, cmap, centred) in zip(axes.ravel(), panels):
+    cbar_labels = ("p (units Po_ab)", "h (units c_r²/R)", "analytic − BEM (units c_r²/R)",
+                   "analytic − BEM (units c_r²/R)")
+    fig, axes = plt.subplots(2, 2, figsize=figsize(2, 0.84), constrained_layout=True)
+    # the two difference maps compare the same kind of quantity (units c_r²/R): one colour range
+    diff_lim = shared_limits([panels[2][0], panels[3][0]], centred=True)
+    for k, (ax, (f, title, cmap, centred)) in enumerate(zip(axes.ravel(), panels)):
         kw = {}
-        if centred:
+        if k >= 2:
+            kw = dict(vmin=diff_lim[0], vmax=diff_lim[1])
+        elif centred:
             m = float(np.max(np.abs(f)))
             kw = dict(vmin=-m, vmax=m)
         im = ax.imshow(f.T, origin="lower", extent=ext, cmap=cmap, aspect="equal", **kw)
         _ellipse(ax, prm["semi_major"], prm["beta"], color="k", lw=0.8)
         _ellipse(ax, prm["adhesive_semi_major"], prm["beta"], color="k", lw=0.8, ls="--")
-        ax.set_title(title, fontsize=10)
+        ax.set_title(title)
         ax.set_xlabel("x / c_r")
         ax.set_ylabel("y / c_r")
-        fig.colorbar(im, ax=ax, shrink=0.85)
+        fig.colorbar(im, ax=ax, shrink=0.85, label=cbar_labels[k])
     fig.suptitle(f"β0 = {prm['beta0']:g}, μ = {prm['mu']:g}, a* = {prm['a_star']:g} "
                  f"(c* = {prm['adhesive_semi_major']:.4f}, v = {prm['scaling']:.4f}), {g.nx}×{g.ny} cells")
     return save_figure(fig, path, dpi)
@@ -121,7 +128,7 @@ def _fig_profiles(cases, path, dpi):
 
     from dhfield import fields
 
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2), constrained_layout=True)
+    fig, axes = plt.subplots(1, 3, figsize=figsize(2, 0.4), constrained_layout=True)
     for case, color in zip(cases, ("tab:blue", "tab:red")):
         prm = case.parameters
         a = prm["semi_major"]
@@ -133,46 +140,50 @@ def _fig_profiles(cases, path, dpi):
         ana_row = fields.analytic_fields(case, xs, np.full_like(xs, g.y[j]))
         po = float(__import__("dhfield").hertz.max_pressure(a, prm["beta"]))
         lab = f"β0 = {prm['beta0']:g}"
-        axes[0].plot(r / a, ana["pressure"] / po, color=color, label=f"{lab}: Eqs. (8), (20), (22)")
+        axes[0].plot(r / a, ana["pressure"] / po, color=color, label=f"{lab}, analytic (Eqs. 22, 26, 27)")
         axes[0].plot(xs / a, case.pressure[g.nx // 2:, j] / po, ".", ms=3, color=color,
-                     label=f"{lab}: cell averages fed to the BEM")
-        axes[1].plot(r / a, ana["displacement"], color=color, label=f"{lab}: Eq. (26)")
+                     label=f"{lab}, BEM (cells at y = Δy/2)")
+        axes[1].plot(r / a, ana["displacement"], color=color, label=None)
         axes[1].plot(xs / a, case.displacement_numerical[g.nx // 2:, j], ".", ms=3, color=color,
-                     label=f"{lab}: BEM (y = Δy/2)")
-        axes[2].plot(r / a, ana["gap"], color=color, label=f"{lab}: Eq. (27)")
-        axes[2].plot(xs / a, case.gap_numerical[g.nx // 2:, j], ".", ms=3, color=color, label=f"{lab}: BEM")
+                     label=None)
+        axes[2].plot(r / a, ana["gap"], color=color, label=None)
+        axes[2].plot(xs / a, case.gap_numerical[g.nx // 2:, j], ".", ms=3, color=color, label=None)
         del ana_row
         for ax in axes:
             ax.axvline(1.0, color="0.6", lw=0.6)
             ax.axvline(prm["adhesive_semi_major"] / a, color=color, lw=0.6, ls="--")
     axes[0].set_ylabel("P / Po_ab")
-    axes[1].set_ylabel("surface displacement ω (units c_r²/R)")
+    axes[1].set_ylabel("ω (units c_r²/R)")
     axes[2].set_ylabel("gap h (units c_r²/R)")
     for ax, t in zip(axes, ("(a) pressure, cf. Fig. 3a", "(b) displacement, cf. Fig. 3b", "(c) gap")):
         ax.set_xlabel("r / a along θp = 0")
-        ax.set_title(t, fontsize=10)
-        ax.legend(fontsize=7)
+        ax.set_title(t)
+    legend_below(fig, ncol=2)
     return save_figure(fig, path, dpi)
 
 
 def _fig_annulus(results, path, dpi):
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=figsize(1), constrained_layout=True)
     for n, res in sorted(results.items()):
         ax.semilogy(np.degrees(res["theta_p"]), res["rel_error"], label=f"N = {n}")
         ax.axhline(tol_annulus(n), ls=":", lw=0.8, color=ax.lines[-1].get_color())
     ax.set_xlabel("θp [deg]")
-    ax.set_ylabel("max over r of |h_BEM − (1+v) h_H| / max (1+v) h_H", fontsize=9)
-    ax.set_title("Annulus identity along every ray (Eq. 27 ⇒ h = (1+v) h_H)", fontsize=10)
-    ax.legend()
+    ax.set_ylabel("|h_BEM − (1+v)h_H| / max (1+v)h_H")
+    ax.set_title("Annulus identity h = (1+v)h_H (Eq. 27)")
+    from matplotlib.lines import Line2D
+
+    handles = ax.get_legend_handles_labels()[0] + [Line2D([], [], color="0.4", ls=":", lw=0.8,
+                                                          label="tolerance at that N")]
+    legend_below(fig, handles, [h.get_label() for h in handles], ncol=3)  # in the axes it hid a tolerance line
     return save_figure(fig, path, dpi)
 
 
 def _fig_convergence(arr, path, dpi):
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.4), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=figsize(1), constrained_layout=True)
     n, h = arr[:, 0], arr[:, 1]
     ax.loglog(n, arr[:, 2], "o-", label="rel. L∞, whole grid")
     ax.loglog(n, arr[:, 3], "s-", label=f"rel. L∞, > {EDGE_BAND} a from the edge")
@@ -186,8 +197,8 @@ def _fig_convergence(arr, path, dpi):
     ax.minorticks_off()
     ax.set_xlabel("N (cells per axis)")
     ax.set_ylabel("error / max |ω|")
-    ax.set_title("BEM vs Eq. (13), Hertz ellipse β = 0.7 (× = accuracy targets)", fontsize=10)
-    ax.legend(fontsize=8)
+    ax.set_title("BEM vs Eq. (13), β = 0.7 (×: targets)")
+    legend_below(fig, ncol=2)
     return save_figure(fig, path, dpi)
 
 

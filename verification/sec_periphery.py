@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from verification._api import Figure, Section, check_ge, check_le, save_figure
+from verification._style import QUICK_DPI, REPORT_DPI, figsize, legend_below, model_label, rel_diff_label
 
 TITLE = "θp dependence, Eq. (30) and the equal-β test"
 
@@ -58,9 +59,9 @@ _STYLES = {0.8: "-", 0.9: "--", 0.99: ":"}
 
 def _settings(quick):
     if quick:
-        return dict(n_theta=31, n_law=65, dpi=72, closure_beta=(0.8,), closure_mu=(1.0, 5.0),
+        return dict(n_theta=31, n_law=65, dpi=QUICK_DPI, closure_beta=(0.8,), closure_mu=(1.0, 5.0),
                     bem_cases=((0.8, 1.0),), bem_n=(128, 256), curve_n=25)
-    return dict(n_theta=91, n_law=129, dpi=110, closure_beta=BETA0, closure_mu=MU,
+    return dict(n_theta=91, n_law=129, dpi=REPORT_DPI, closure_beta=BETA0, closure_mu=MU,
                 bem_cases=tuple((b, m) for b in BETA0 for m in MU), bem_n=(512, 1024), curve_n=60)
 
 
@@ -326,25 +327,26 @@ def _fig_rays(res, outdir, dpi):
     plt = _plt()
     prof = res["profile"]
     deg = np.rad2deg(res["theta"])
-    fig, axs = plt.subplots(2, 2, figsize=(10, 7.4), sharex=True)
-    panels = [(prof.work_of_adhesion, "Δγ(θp) / Δγ  (Δγ(0) = 1 imposed, Eq. 31)", False),
-              (prof.max_adhesive_stress, "σ0(θp) / σ0(0)  (Eq. 24 on each ray)", True),
-              (prof.zone_width, "zone width (r_cd − r_ab)(θp) / value at θp = 0", True),
-              (prof.edge_separation, "edge separation h(r_cd, θp) / value at θp = 0 (Eq. 27)", True)]
+    fig, axs = plt.subplots(2, 2, figsize=figsize(2, 0.74), sharex=True)
+    panels = [(prof.work_of_adhesion, "Δγ(θp)/Δγ(0) (Eq. 31)", False),
+              (prof.max_adhesive_stress, "σ0(θp)/σ0(0) (Eq. 24)", True),
+              (prof.zone_width, "(r_cd − r_ab)(θp)/(r_cd − r_ab)(0)", True),
+              (prof.edge_separation, "h(r_cd, θp)/h(r_cd, 0) (Eq. 27)", True)]
     for ax, (q, lab, norm) in zip(axs.ravel(), panels):
         for i, b in enumerate(res["beta0"]):
             for j, m in enumerate(res["mu"]):
                 y = q[i, j] / q[i, j, 0] if norm else q[i, j]
                 ax.plot(deg, y, _STYLES[b], color=_COLORS[m], lw=1.3,
                         label=f"β0 = {b:g}, μ = {m:g}" if ax is axs[0, 0] else None)
-        ax.set_ylabel(lab, fontsize=8)
+        ax.set_ylabel(lab)
         ax.grid(alpha=0.3)
     for ax in axs[1]:
         ax.set_xlabel("ray angle θp (deg), 0 = major axis")
     axs[0, 1].set_ylim(0.99, 1.01)
-    axs[0, 0].legend(fontsize=6, ncol=2)
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, frameon=False)  # 12 entries: under the panels
     fig.suptitle("Elliptical DH at pull-off (load control): quantities along every ray")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.13, 1, 1))
     cap = ("Along every ray θp of the adhesive annulus at the load-controlled pull-off of the paper's model "
            "(Eqs. 17–19, 24, 31, 35; rays r_ab ≤ r ≤ r_cd of Eqs. A1–A2): the ray work of adhesion "
            "Δγ(θp) = ∫σ dh (Eq. 31 evaluated on every ray), σ0(θp) (Eq. 24 on the ray: flat, equal β), the zone "
@@ -356,7 +358,7 @@ def _fig_rays(res, outdir, dpi):
 def _fig_laws(res, outdir, dpi):
     plt = _plt()
     law = res["law"]
-    fig, axs = plt.subplots(1, 4, figsize=(13, 3.6), sharey=True)
+    fig, axs = plt.subplots(1, 4, figsize=figsize(2, 0.33), sharey=True)
     cols = ["k", "tab:blue", "tab:orange", "tab:red"]
     i = 0  # beta0 = 0.8
     for j, (ax, m) in enumerate(zip(axs, res["mu"])):
@@ -365,11 +367,11 @@ def _fig_laws(res, outdir, dpi):
         for k, tt in enumerate(res["law_theta"]):
             ax.plot(law.separation[i, j, k] / h0, law.stress[i, j, k] / s0, color=cols[k],
                     label=f"θp = {np.rad2deg(tt):.0f}°")
-        ax.set_title(f"β0 = {res['beta0'][i]:g}, μ = {m:g}", fontsize=9)
-        ax.set_xlabel("h / h(r_cd) on the major axis")
+        ax.set_title(f"β0 = {res['beta0'][i]:g}, μ = {m:g}")
+        ax.set_xlabel("h / h(r_cd, θp = 0)")
         ax.grid(alpha=0.3)
     axs[0].set_ylabel("σ / σ0")
-    axs[0].legend(fontsize=7)
+    axs[0].legend()
     fig.tight_layout()
     cap = ("The cohesive law each ray sees: σ (Eq. 23) against the gap h (Eq. 27) along rays θp = 0°, 30°, 60°, "
            "90°, at pull-off, β0 = 0.8. Equal β gives the same σ0 on every ray but a shorter law (smaller edge "
@@ -381,7 +383,7 @@ def _fig_curves(res, outdir, dpi, n):
     from dhfield import periphery
 
     plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    fig, ax = plt.subplots(figsize=figsize(1))
     a = np.linspace(0.1, 3.0, n)
     curves = {}
     th = np.linspace(0.0, 0.5 * np.pi, 19)
@@ -393,10 +395,9 @@ def _fig_curves(res, outdir, dpi, n):
             ax.plot(lc.W_star, ratio, _STYLES[b], color=_COLORS[m], label=f"β0 = {b:g}, μ = {m:g}")
     ax.set_xlabel("W* (Eq. 34)")
     ax.set_ylabel("Δγ(π/2) / Δγ(0)")
-    ax.set_xlim(-1, 4)
+    ax.set_xlim(-1, 2.6)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
+    legend_below(fig, ncol=2)
     cap = ("Ratio of the ray works of adhesion on the minor and major axes (Eq. 31 on θp = π/2 and 0) along the "
            "load curves of the paper's model (Figs. 4–5 states, a* ∈ [0.1, 3]), μ = 1 and 5.")
     return Figure(save_figure(fig, outdir / "periphery_ratio_load_curves.png", dpi), cap), curves
@@ -405,24 +406,24 @@ def _fig_curves(res, outdir, dpi, n):
 def _fig_closures(res, outdir, dpi):
     plt = _plt()
     cl = res["closures"]
-    fig, axs = plt.subplots(1, len(res["closure_beta"]), figsize=(4.3 * len(res["closure_beta"]), 3.8),
+    n_panels = len(res["closure_beta"])
+    fig, axs = plt.subplots(1, n_panels, figsize=figsize(1, 0.85) if n_panels == 1 else figsize(2, 0.4),
                             squeeze=False)
     for i, (ax, b) in enumerate(zip(axs[0], res["closure_beta"])):
         m = res["closure_mu"]
-        ax.plot(m, cl["paper"].W_star[i], "o-", color="k", label="paper (Δγ on θp = 0)")
-        ax.plot(m, cl["ray_average"].W_star[i], "s--", color="tab:blue", label="ray average (r_ab² weights)")
-        ax.plot(m, cl["two_axis"].W_star[i], "^-.", color="tab:red", label="two axes, β_cd ≠ β_ab")
-        ax.plot(m, res["jkr_elliptic"][i], "x:", color="0.4", label="elliptical JKR (JG05)")
+        ax.plot(m, cl["paper"].W_star[i], "o-", color="k", label=model_label("dh-elliptic") + ", Δγ on θp = 0")
+        ax.plot(m, cl["ray_average"].W_star[i], "s--", color="tab:blue", label=model_label("dh-elliptic-ray-average"))
+        ax.plot(m, cl["two_axis"].W_star[i], "^-.", color="tab:red", label=model_label("dh-elliptic-two-axis") + ", β_cd ≠ β_ab")
+        ax.plot(m, res["jkr_elliptic"][i], "x:", color="0.4", label=model_label("jkr-elliptic"))
         ax.set_xscale("log")
         ax.set_xticks(m)
         ax.set_xticklabels([f"{x:g}" for x in m])
         ax.minorticks_off()
         ax.set_xlabel("μ (Eq. 35)")
-        ax.set_title(f"β0 = {b:g}", fontsize=9)
+        ax.set_title(f"β0 = {b:g}")
         ax.grid(alpha=0.3)
     axs[0, 0].set_ylabel("W*max (Eq. 34)")
-    axs[0, 0].legend(fontsize=7)
-    fig.tight_layout()
+    legend_below(fig, ncol=1 if n_panels == 1 else 2)
     cap = ("Load-controlled pull-off W*max (Eq. 34, as in Fig. 9a) of the paper's closure (Eqs. 17–19, 31) and of "
            "two alternatives: Δγ = 1 imposed on the periphery average, and on both axes with β_cd ≠ β_ab and "
            "the contact condition kept exactly; elliptical JKR (Johnson & Greenwood 2005) for reference.")
@@ -432,17 +433,19 @@ def _fig_closures(res, outdir, dpi):
 def _fig_bem(recs, outdir, dpi):
     plt = _plt()
     nmax = max(r["n"] for r in recs)
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    fig, ax = plt.subplots(figsize=figsize(1))
     for r in recs:
         if r["n"] != nmax:
             continue
-        ax.semilogy(np.rad2deg(r["profile"].theta), np.maximum(r["error"], 1e-12), _STYLES[r["beta0"]],
+        # the report's sign convention, model/BEM − 1 (the check's |BEM/model − 1| differs by O(error²))
+        err = np.abs(r["analytic"].work_of_adhesion / r["profile"].work_of_adhesion - 1.0)
+        ax.semilogy(np.rad2deg(r["profile"].theta), np.maximum(err, 1e-12), _STYLES[r["beta0"]],
                     color=_COLORS[r["mu"]], label=f"β0 = {r['beta0']:g}, μ = {r['mu']:g}")
     ax.axhline(TOL_BEM, color="k", lw=0.8)
     ax.set_xlabel("θp (deg)")
-    ax.set_ylabel("abs(Δγ_BEM(θp)/Δγ(θp) − 1)")
+    ax.set_ylabel(rel_diff_label("Δγ(θp)", "analytic", "BEM", percent=False, absolute=True))
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=6, ncol=2)
+    ax.legend(ncol=2)
     fig.tight_layout()
     cap = (f"Ray work of adhesion (Eq. 31 on every ray) from the DC-FFT BEM gap (dhfield.bem/fields, N = {nmax}, "
            "domain 2.1c, cell-averaged DH pressure of Eq. 22) against the analytic fields, at pull-off. The gap is "
