@@ -25,9 +25,6 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from ._validation import check_interval, check_positive
-from ._validation import check_tabor as _check_tabor_range
-
-CONTROLS = ("load", "displacement")
 
 
 class LoadCurve(NamedTuple):
@@ -46,24 +43,12 @@ class PullOff(NamedTuple):
     approach: np.ndarray
 
 
-def check_control(control: str) -> str:
-    """Validate the pull-off control mode ('load' or 'displacement')."""
-    if control not in CONTROLS:
-        raise ValueError(f"control must be one of {CONTROLS} (loading mode); got {control!r}")
-    return control
-
-
 def check_material(effective_radius, reduced_modulus, work_of_adhesion):
     """Validate R [m], E* [Pa], dgamma [J/m^2]; return them as float arrays."""
     r = check_positive("effective_radius", effective_radius, "m")
     e = check_positive("reduced_modulus", reduced_modulus, "Pa")
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
     return r, e, w
-
-
-def check_tabor(mu):
-    """Validate the transition parameter mu of Eq. (35) against :data:`dhfield._validation.TABOR_RANGE`."""
-    return _check_tabor_range("mu", mu)
 
 
 def check_contact_size(name, value):

@@ -23,6 +23,9 @@ __all__ = [
     "check_tabor",
     "check_model_ellipticity",
     "check_contact_size_star",
+    "check_control",
+    "check_grid_point",
+    "CONTROLS",
     "TABOR_RANGE",
     "ELLIPTICITY_RANGE",
     "CONTACT_SIZE_RANGE",
@@ -131,6 +134,31 @@ def check_contact_size_star(name: str, value) -> np.ndarray:
     """Check a nondimensional contact size a* against :data:`CONTACT_SIZE_RANGE`."""
     return check_interval(name, value, *CONTACT_SIZE_RANGE, low_open=False,
                           what="contact semi-axis in units of c_r, Eq. (32)")
+
+
+#: Loading modes of every pull-off: the minimum of the load (load control) or of the approach
+#: (displacement control) along the unloading path.
+CONTROLS = ("load", "displacement")
+
+
+def check_control(control) -> str:
+    """Check a loading mode, one of :data:`CONTROLS` (the one check of ``control`` in dhfield)."""
+    if not isinstance(control, str) or control not in CONTROLS:
+        raise ValueError(f"control must be one of {CONTROLS} (loading mode); got {control!r}")
+    return control
+
+
+def check_grid_point(beta0, mu, control="load"):
+    """Check (beta0, mu) of a nondimensional model and the loading mode; return them broadcast.
+
+    ``beta0`` against :data:`ELLIPTICITY_RANGE`, ``mu`` against :data:`TABOR_RANGE` (mu is
+    checked first, so its message wins where both are bad), ``control`` by :func:`check_control`.
+    """
+    mu = check_tabor("mu", mu)
+    beta0 = check_model_ellipticity("beta0", beta0)
+    check_control(control)
+    beta0, mu = np.broadcast_arrays(beta0, mu)
+    return beta0, mu
 
 
 def check_sequence(name: str, value, what: str = "") -> np.ndarray:

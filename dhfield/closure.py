@@ -67,7 +67,7 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from . import hertz, model, periphery
-from ._validation import check_contact_size_star, check_interval
+from ._validation import check_contact_size_star, check_control, check_interval
 from .elliptic import ellipsoid_integrals
 from .geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
 from .pull_off_search import last_local_minimum
@@ -552,8 +552,7 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
     """
     if closure not in CLOSURES:
         raise ValueError(f"closure must be one of {CLOSURES}; got {closure!r}")
-    if control not in ("load", "displacement"):
-        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    check_control(control)
     mu, beta0 = _check_domain(mu, beta0)
     mu, beta0 = np.broadcast_arrays(mu, beta0)
     solver = _SOLVERS[closure]

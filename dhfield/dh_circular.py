@@ -44,10 +44,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
-                        check_material, check_tabor, grid_minimum, length_unit, load_unit,
-                        scalar_or_array, tabor_parameter)
-from ._validation import check_positive
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, grid_minimum,
+                        length_unit, load_unit, scalar_or_array, tabor_parameter)
+from ._validation import check_control, check_positive, check_tabor
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "work_of_adhesion", "load_curve_nondimensional",
            "pull_off_nondimensional"]
@@ -276,7 +275,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    check_tabor(mu)
+    check_tabor("mu", mu)
     return PullOff(*(scalar_or_array(x) for x in _dimensional(pull_off_nondimensional(mu, control), r, e, w)))
 
 

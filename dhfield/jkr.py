@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
-                        check_material, length_unit, load_unit, scalar_or_array)
-from ._validation import check_finite
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, length_unit,
+                        load_unit, scalar_or_array)
+from ._validation import check_control, check_finite
 
 __all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
            "pull_off_nondimensional"]

@@ -78,9 +78,8 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._adhesion import (approach_unit, check_control, check_material,
-                        grid_minimum, length_unit, load_unit, scalar_or_array)
-from ._validation import check_ellipticity, check_finite, check_interval
+from ._adhesion import (approach_unit, check_material, grid_minimum, length_unit, load_unit, scalar_or_array)
+from ._validation import check_control, check_ellipticity, check_finite, check_interval
 from .geometry import ellipticity_from_radius_ratio
 
 __all__ = [

@@ -45,10 +45,9 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
-                        check_material, grid_minimum, length_unit, load_unit, scalar_or_array,
-                        tabor_parameter)
-from ._validation import check_positive
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, grid_minimum,
+                        length_unit, load_unit, scalar_or_array, tabor_parameter)
+from ._validation import check_control, check_positive
 from .transition import maugis_parameter
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "LAMBDA_RANGE", "load_curve_nondimensional",

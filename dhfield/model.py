@@ -53,7 +53,7 @@ from dataclasses import asdict, astuple, dataclass, field
 import numpy as np
 from scipy import special
 
-from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star,
+from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star, check_control,
                           check_count, check_model_ellipticity, check_tabor)
 from .adhesion import NODES_PER_PANEL, graded_panel_counts, ragged_graded_rule
 from .geometry import sin_skew_angle
@@ -569,8 +569,7 @@ def jkr_limit_pull_off(beta0, *, control="load", ellipticity=None):
     the Griffith condition holds on the major axis only.  The finite-mu pull-off
     approaches it as 1/mu^2 (relative 1.4e-5 at mu = 100, beta0 = 1).
     """
-    if control not in ("load", "displacement"):
-        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    check_control(control)
     beta0 = check_model_ellipticity("beta0", beta0)
     ell = beta0 if ellipticity is None else check_model_ellipticity("ellipticity", ellipticity)
     sh = _shape(ell, sin_skew_angle(beta0))
@@ -670,8 +669,7 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     :data:`DERIVATIVE_FLOOR` times |W*(a* = 0)| (for delta*: |delta*(0)|): below it,
     W* is flat to ~1e-15 and the pull-off is the zero-contact limit.
     """
-    if control not in ("load", "displacement"):
-        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    check_control(control)
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
     mu, beta0, ell = np.broadcast_arrays(mu, beta0, ell)
     out_shape = mu.shape

@@ -106,15 +106,6 @@ def test_jkr_beta_variant_definition():
     assert abs(rec["W_star"] - w_jkr) < abs(w_dh - w_jkr)
 
 
-def test_dimensional():
-    rec = compare.pull_off("jkr-elliptic", 1.0, 0.9)
-    si = compare.to_dimensional(rec, 1e-6, 1e9, 0.05)
-    assert_allclose(si["load"], jkr_elliptic.pull_off_force(1e-6, 1e9, 0.05, beta0=0.9), rtol=1e-12)
-    rec = compare.pull_off("jkr", 1.0, 1.0)
-    assert_allclose(compare.to_dimensional(rec, 1e-6, 1e9, 0.05)["load"], -1.5 * np.pi * 1e-6 * 0.05,
-                    rtol=1e-14)
-
-
 def test_bad_input():
     with pytest.raises(ValueError, match="model"):
         compare.pull_off("hertz", 1.0, 0.9)

@@ -103,7 +103,7 @@ def run(args) -> int:
 
     from ..schema import LOAD_CURVE_HEADER_KEYS, units
 
-    from ..compare import validity_message
+    from ..validity import validity_message
 
     rec = curve_record(args)
     print_warning({"warning": validity_message(rec["model"], rec["mu"], rec["beta0"])})
