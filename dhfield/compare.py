@@ -107,9 +107,11 @@ from __future__ import annotations
 import numpy as np
 
 from . import closure, dh_circular, dmt, jkr, jkr_elliptic, maugis_dugdale
+from . import model as paper_model
 from ._validation import check_contact_size_star, check_count, check_grid_point
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
+from .records import pull_off_record
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
 
 from .validity import (JKR_PROXY_MU, VALIDITY_RANGES, WARNING_THRESHOLD, closure_departure, departure_warning,
@@ -129,126 +131,50 @@ def _check(mu, beta0, control):
     return mu, beta0
 
 
+def _dh_elliptic_jkr_beta(beta0, mu, *, control="load"):
+    """The paper's second assumption (Fig. 9b): the paper's model at beta = beta_JKR(pull-off)."""
+    beta_jkr = jkr_elliptic.pull_off_nondimensional(beta0, mu, control=control).ellipticity
+    return paper_model.pull_off_nondimensional(beta0, mu, control=control, ellipticity=beta_jkr).replace(
+        model="dh-elliptic-jkr-beta")
+
+
+#: name -> the model's pull-off, ``f(beta0, mu, *, control) -> dhfield.records.PullOff`` on validated
+#: inputs (see the module docstring); :func:`pull_off` adds the validity warnings.
+MODELS = {
+    "dh-elliptic": paper_model.pull_off_nondimensional,
+    "dh-elliptic-two-axis": closure.pull_off_two_axis,
+    "dh-elliptic-ray-average": closure.pull_off_ray_average,
+    "dh-elliptic-jkr-beta": _dh_elliptic_jkr_beta,
+    "dh-circular": dh_circular.pull_off_nondimensional,
+    "jkr": jkr.pull_off_nondimensional,
+    "dmt": dmt.pull_off_nondimensional,
+    "md": maugis_dugdale.pull_off_nondimensional,
+    "jkr-elliptic": jkr_elliptic.pull_off_nondimensional,
+}
+MODEL_NAMES = tuple(MODELS)
+#: Models of a circular contact (R = sqrt(R'R''), sin(theta_skew) = 1 in Eq. 34), whatever beta0.
+CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
+
+
+def _warned(rec, warning=""):
+    """``rec`` with its validity warning (:mod:`dhfield.validity`) joined to ``warning``."""
+    return rec.replace(warning=_arr(join_warnings(warning, validity_message(rec.model, rec.mu, rec.beta0)),
+                                    np.shape(rec.W_star), object))
+
+
 def _arr(x, shape, dtype=float):
     out = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
     return out[()] if out.ndim == 0 else out
 
 
-def _record(name, mu, beta0, control, st, sin_skew, geometry, warning=""):
-    """A pull-off record with the keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in order."""
-    shape = np.broadcast_shapes(mu.shape, beta0.shape)
-    warning = join_warnings(warning, validity_message(name, mu, beta0))
-    a = np.asarray(st["a_star"], float)
-    b = np.asarray(st.get("b_star", a), float)
-    c = np.asarray(st.get("c_star", _NAN), float)
-    d = np.asarray(st.get("d_star", c * np.divide(b, a, out=np.ones_like(b), where=a > 0)), float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ell = np.asarray(st.get("ellipticity", np.divide(b, a, out=np.ones_like(b), where=a > 0)), float)
-        adh = np.where(np.isfinite(c) & (c > 0), d / np.where(c > 0, c, 1.0), _NAN)
-    zero = st.get("at_zero_contact", a == 0)
-    rec = {"model": name, "control": control, "geometry": geometry, "beta0": _arr(beta0, shape),
-           "mu": _arr(mu, shape), "sin_skew": _arr(sin_skew, shape), "W_star": _arr(st["W_star"], shape),
-           "a_star": _arr(a, shape), "b_star": _arr(b, shape), "c_star": _arr(c, shape),
-           "d_star": _arr(d, shape), "v": _arr(st.get("v", _NAN), shape),
-           "delta_star": _arr(st["delta_star"], shape), "ellipticity": _arr(ell, shape),
-           "adhesive_ellipticity": _arr(adh, shape),
-           "at_zero_contact": _arr(zero, shape, bool), "warning": _arr(warning, shape, object)}
-    assert tuple(rec) == PULL_OFF_KEYS
-    return rec
-
-
-def _from_model(res):
-    return {"W_star": res.W_star, "a_star": res.a_star, "b_star": res.a_star * res.ellipticity,
-            "c_star": res.c_star, "d_star": res.c_star * res.ellipticity, "v": res.v,
-            "delta_star": res.delta_star, "at_zero_contact": res.at_zero_contact}
-
-
-def _from_closure(st):
-    return {"W_star": st.W_star, "a_star": st.a_star, "b_star": st.b_star, "c_star": st.c_star,
-            "d_star": st.d_star, "delta_star": st.delta_star, "at_zero_contact": st.at_zero_contact}
-
-
-def _dh_elliptic(mu, beta0, control="load", *, check_closure=True, two_axis=None):
-    from .model import pull_off as dh_pull_off
-
-    mu, beta0 = _check(mu, beta0, control)
-    res = dh_pull_off(mu, beta0, control=control)
+def _pull_off(name, beta0, mu, control, *, check_closure=True, two_axis=None):
+    """Pull-off record of a model on validated inputs, with its warnings."""
+    rec = MODELS[name](beta0, mu, control=control)
     warning = ""
-    if check_closure:
+    if name == "dh-elliptic" and check_closure:
         # the closure where it accepts the inputs, elliptical JKR above its mu cap
-        warning = departure_warning(res.W_star, mu, beta0, control,
-                                    None if two_axis is None else two_axis["W_star"])
-    return _record("dh-elliptic", mu, beta0, control, _from_model(res), sin_skew_angle(beta0), "ellipse",
-                   warning)
-
-
-def _dh_elliptic_jkr_beta(mu, beta0, control="load"):
-    from .model import pull_off as dh_pull_off
-
-    mu, beta0 = _check(mu, beta0, control)
-    beta_jkr = jkr_elliptic.pull_off_nondimensional(beta0, control)["beta"]
-    res = dh_pull_off(mu, beta0, control=control, ellipticity=beta_jkr)
-    return _record("dh-elliptic-jkr-beta", mu, beta0, control, _from_model(res), sin_skew_angle(beta0),
-                   "ellipse")
-
-
-def _two_axis(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    st = closure.pull_off_two_axis(mu, beta0, control=control)
-    return _record("dh-elliptic-two-axis", mu, beta0, control, _from_closure(st), sin_skew_angle(beta0),
-                   "ellipse")
-
-
-def _ray_average(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    st = closure.pull_off_ray_average(mu, beta0, control=control)
-    return _record("dh-elliptic-ray-average", mu, beta0, control, _from_closure(st), sin_skew_angle(beta0),
-                   "ellipse")
-
-
-def _dh_circular(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("dh-circular", mu, beta0, control, dh_circular.pull_off_nondimensional(mu, control), 1.0, "circle")
-
-
-def _jkr(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("jkr", mu, beta0, control, jkr.pull_off_nondimensional(control), 1.0, "circle")
-
-
-def _dmt(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("dmt", mu, beta0, control, dmt.pull_off_nondimensional(control), 1.0, "circle")
-
-
-def _md(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("md", mu, beta0, control, maugis_dugdale.pull_off_nondimensional(mu, control), 1.0, "circle")
-
-
-def _jkr_elliptic(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    st = jkr_elliptic.pull_off_nondimensional(beta0, control)
-    st = {**st, "ellipticity": st["beta"]}
-    return _record("jkr-elliptic", mu, beta0, control, st, sin_skew_angle(beta0), "ellipse")
-
-
-#: name -> callable (mu, beta0, control="load") -> dict with the keys of
-#: :data:`dhfield.schema.PULL_OFF_KEYS` (see the module docstring).
-MODELS = {
-    "dh-elliptic": _dh_elliptic,
-    "dh-elliptic-two-axis": _two_axis,
-    "dh-elliptic-ray-average": _ray_average,
-    "dh-elliptic-jkr-beta": _dh_elliptic_jkr_beta,
-    "dh-circular": _dh_circular,
-    "jkr": _jkr,
-    "dmt": _dmt,
-    "md": _md,
-    "jkr-elliptic": _jkr_elliptic,
-}
-MODEL_NAMES = tuple(MODELS)
-#: Models of a circular contact (R = sqrt(R'R''), sin(theta_skew) = 1 in Eq. 34), whatever beta0.
-CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
+        warning = departure_warning(rec.W_star, mu, beta0, control, two_axis)
+    return _warned(rec, warning)
 
 
 def _check_model(model):
@@ -283,15 +209,15 @@ def pull_off(model, mu, beta0, control="load", *, check_closure=True):
 
     Returns
     -------
-    dict
-        The keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in that order, for every
-        model; NaN where a quantity does not apply (module docstring).  Arrays
-        broadcast over ``mu`` and ``beta0``; scalars in give scalars out.
+    dhfield.records.PullOff
+        The record of every model: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`,
+        in that order, as attributes or a mapping; NaN where a quantity does not apply
+        (module docstring).  Arrays broadcast over ``mu`` and ``beta0``; scalars in
+        give scalars out.
     """
     _check_model(model)
-    if model == "dh-elliptic":
-        return _dh_elliptic(mu, beta0, control, check_closure=check_closure)
-    return MODELS[model](mu, beta0, control)
+    mu, beta0 = _check(mu, beta0, control)
+    return _pull_off(model, beta0, mu, control, check_closure=check_closure)
 
 
 def compare(mu, beta0, control="load", models=None, *, check_closure=True):
@@ -322,21 +248,22 @@ def compare(mu, beta0, control="load", models=None, *, check_closure=True):
             nan = np.full(mu.shape, _NAN)
             st = {"W_star": nan, "a_star": nan, "c_star": nan, "delta_star": nan}
             circle = name in CIRCULAR_MODEL_NAMES
-            return _record(name, mu, beta0, control, st, 1.0 if circle else sin_skew_angle(beta0),
-                           "circle" if circle else "ellipse", f"{name} failed: {exc}")
+            return _warned(pull_off_record(name, beta0, mu, st, control=control,
+                                           sin_skew=1.0 if circle else sin_skew_angle(beta0),
+                                           geometry="circle" if circle else "ellipse"), f"{name} failed: {exc}")
 
     out = {}
     two_axis = shown = None
     if "dh-elliptic-two-axis" in names:
-        shown = guarded("dh-elliptic-two-axis", lambda: _two_axis(mu, beta0, control))
-        two_axis = None if np.all(np.isnan(shown["W_star"])) else shown
+        shown = guarded("dh-elliptic-two-axis", lambda: _pull_off("dh-elliptic-two-axis", beta0, mu, control))
+        two_axis = None if np.all(np.isnan(shown.W_star)) else shown.W_star
     for name in names:
         if name == "dh-elliptic":
-            out[name] = _dh_elliptic(mu, beta0, control, check_closure=check_closure, two_axis=two_axis)
+            out[name] = _pull_off(name, beta0, mu, control, check_closure=check_closure, two_axis=two_axis)
         elif name == "dh-elliptic-two-axis":
             out[name] = shown
         else:
-            out[name] = guarded(name, lambda name=name: MODELS[name](mu, beta0, control))
+            out[name] = guarded(name, lambda name=name: _pull_off(name, beta0, mu, control))
     return out
 
 
@@ -492,8 +419,7 @@ def load_curve_at_load(model, mu, beta0, w_star):
     w = np.atleast_1d(np.asarray(w_star, dtype=float))
     if not np.all(np.isfinite(w)):
         raise ValueError(f"load must be finite; got {w_star!r}")
-    po = MODELS[model](mu, beta0, "load") if model != "dh-elliptic" else _dh_elliptic(
-        mu, beta0, "load", check_closure=False)
+    po = MODELS[model](np.asarray(beta0), np.asarray(mu), control="load")
     w_po, a_po = float(po["W_star"]), float(po["a_star"])
     if np.any(w < w_po):
         raise ValueError(f"load must be at least the pull-off load W* = {w_po:.6g} of {model} "

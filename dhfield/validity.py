@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import closure, jkr_elliptic
+from . import model as paper_model
 from ._validation import check_grid_point
 
 __all__ = ["VALIDITY_RANGES", "WARNING_THRESHOLD", "JKR_PROXY_MU", "validity_message", "validity_table",
@@ -131,14 +132,14 @@ def _reference(mu, beta0, control):
     reason = f"outside mu in [{mu_lo:g}, {mu_hi:g}], beta0 in [{b_lo:g}, {b_hi:g}] of dhfield.closure"
     if inside.any():
         try:
-            ref[inside] = closure.pull_off_two_axis(mu[inside], beta0[inside], control=control).W_star
+            ref[inside] = closure.pull_off_two_axis(beta0[inside], mu[inside], control=control).W_star
         except RuntimeError:
             reason = "its solve did not converge"
         except ValueError as exc:  # a narrower domain than the one published in dhfield.closure
             reason = str(exc)
     proxy = ~inside & (mu >= JKR_PROXY_MU)
     if proxy.any():
-        ref[proxy] = jkr_elliptic.pull_off_nondimensional(beta0[proxy], control)["W_star"]
+        ref[proxy] = jkr_elliptic.pull_off_nondimensional(beta0[proxy], mu[proxy], control=control).W_star
         label[proxy] = _JKR_PROXY
     return ref, label, reason
 
@@ -178,11 +179,10 @@ def closure_departure(mu, beta0, control="load"):
         W*_paper / W*_two-axis - 1 at pull-off [-]; negative where the paper's
         model predicts less adhesion.  0 at beta0 = 1, where both are the circle.
     """
-    from .model import pull_off as dh_pull_off
 
     beta0, mu = check_grid_point(beta0, mu, control)
-    w = dh_pull_off(mu, beta0, control=control).W_star
-    ref = closure.pull_off_two_axis(mu, beta0, control=control).W_star
+    w = paper_model.pull_off_nondimensional(beta0, mu, control=control).W_star
+    ref = closure.pull_off_two_axis(beta0, mu, control=control).W_star
     out = np.asarray(w, float) / np.asarray(ref, float) - 1.0
     return out[()] if out.ndim == 0 else out
 

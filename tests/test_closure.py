@@ -187,4 +187,4 @@ def test_issue9_closures_reject_outside_their_domain_by_name(mu, beta0, name):
 
     for f in (cl.pull_off_two_axis, cl.pull_off_ray_average):
         with pytest.raises(ValueError, match=rf"^{name} must be in"):
-            f(mu, beta0)
+            f(beta0, mu)

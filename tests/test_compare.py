@@ -91,7 +91,7 @@ def test_jkr_beta_variant_definition():
     """beta_JKR(pull-off) replaces beta for both ellipses; Eq. (34) keeps sin(theta_skew(beta0))."""
     model = pytest.importorskip("dhfield.model")
     mu, beta0 = 5.0, 0.9
-    rec = compare.MODELS["dh-elliptic-jkr-beta"](mu, beta0)
+    rec = compare.pull_off("dh-elliptic-jkr-beta", mu, beta0)
     bj = jkr_elliptic.pull_off_ellipticity(beta0=beta0)
     assert_allclose(rec["ellipticity"], bj, rtol=1e-15)
     ref = model.pull_off(mu, beta0, ellipticity=bj)
@@ -101,8 +101,8 @@ def test_jkr_beta_variant_definition():
     alone = model.pull_off(mu, bj)
     assert_allclose(rec["W_star"], alone.W_star * sin_skew_angle(beta0) / sin_skew_angle(bj), rtol=1e-10)
     # the paper's claim at mu = 5: the variant narrows the gap to elliptical JKR
-    w_dh = compare.MODELS["dh-elliptic"](mu, beta0)["W_star"]
-    w_jkr = compare.MODELS["jkr-elliptic"](mu, beta0)["W_star"]
+    w_dh = compare.pull_off("dh-elliptic", mu, beta0, check_closure=False)["W_star"]
+    w_jkr = compare.pull_off("jkr-elliptic", mu, beta0)["W_star"]
     assert abs(rec["W_star"] - w_jkr) < abs(w_dh - w_jkr)
 
 
@@ -111,11 +111,21 @@ def test_bad_input():
         compare.pull_off("hertz", 1.0, 0.9)
     for name in compare.MODELS:
         with pytest.raises(ValueError, match="beta0"):
-            compare.MODELS[name](1.0, 1.5)
+            compare.pull_off(name, 1.0, 1.5)
         with pytest.raises(ValueError, match="mu"):
-            compare.MODELS[name](-1.0, 0.9)
+            compare.pull_off(name, -1.0, 0.9)
         with pytest.raises(ValueError, match="control"):
-            compare.MODELS[name](1.0, 0.9, "force")
+            compare.pull_off(name, 1.0, 0.9, "force")
+
+
+def test_one_record_type_for_every_model():
+    """Every model answers with dhfield.records.PullOff, read as attributes or as a mapping (issue 16)."""
+    from dhfield.records import PullOff
+
+    for name in compare.MODELS:
+        rec = compare.pull_off(name, 1.0, 0.9, check_closure=False)
+        assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS and rec.model == name
+        assert all(rec[k] is getattr(rec, k) for k in PULL_OFF_KEYS)
 
 
 # --- CLI: `dhfield compare` and `dhfield pulloff --model` -----------------------------------
@@ -259,6 +269,7 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
         raise ValueError("mu must be in [1e-06, 20] (closure domain); got 22.0")
 
     monkeypatch.setattr(compare.closure, "pull_off_two_axis", refuse)
+    monkeypatch.setitem(compare.MODELS, "dh-elliptic-two-axis", refuse)
     res = compare.compare(1.0, 0.9, models=["dh-elliptic", "dh-elliptic-two-axis", "jkr"])
     assert np.isnan(res["dh-elliptic-two-axis"]["W_star"]) and "failed" in res["dh-elliptic-two-axis"]["warning"]
     assert tuple(res["dh-elliptic-two-axis"]) == PULL_OFF_KEYS

@@ -16,6 +16,7 @@ import contextlib
 import hashlib
 import io
 import sys
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -35,7 +36,7 @@ def digest(value) -> str:
 
 
 def _feed(h, value):
-    if isinstance(value, dict):
+    if isinstance(value, Mapping):
         for k in value:
             h.update(repr(k).encode())
             _feed(h, value[k])
@@ -58,7 +59,7 @@ def _feed(h, value):
 
 def emit(name, value):
     """Print one line per field of a record (a mapping) or one line for a value."""
-    if isinstance(value, dict):
+    if isinstance(value, Mapping):
         for k, v in value.items():
             print(f"{name}.{k} {digest(v)}", flush=True)
     else:
@@ -100,7 +101,8 @@ def main(argv=None) -> int:
             emit(f"compare[{control},{beta0},{mu}]", compare.compare(mu, beta0, control))
     for beta0, mu in POINTS:
         c = dhfield.load_curve(mu=mu, beta0=beta0, n=40)
-        emit(f"dhfield.load_curve[{beta0},{mu}]", c.as_dict())
+        emit(f"dhfield.load_curve[{beta0},{mu}]", {k: getattr(c, k) for k in (
+            "mu", "beta0", "ellipticity", "a_star", "b_star", "c_star", "d_star", "v", "W_star", "delta_star")})
         for name in compare.CURVE_MODEL_NAMES:
             emit(f"load_curve[{name},{beta0},{mu}]", compare.load_curve(name, mu, beta0, n=40))
             w_po = float(compare.pull_off(name, mu, beta0, "load", check_closure=False)["W_star"])

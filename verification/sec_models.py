@@ -175,7 +175,7 @@ def _checks_dh_circular():
         for key in ("W_star", "c_star", "v", "delta_star"):
             worst = max(worst, np.max(np.abs(st[key] - getattr(ref, key)) / np.maximum(1, np.abs(getattr(ref, key)))))
         for control in ("load", "displacement"):
-            po, pr = dh_circular.pull_off_nondimensional(mu, control), model.pull_off(mu, 1.0, control=control)
+            po, pr = dh_circular.pull_off_nondimensional(1.0, mu, control=control), model.pull_off(mu, 1.0, control=control)
             worst = max(worst, abs(po["W_star"] - pr.W_star), abs(po["a_star"] - pr.a_star))
     out.append(check_le("circular DH (closed form) vs elliptical DH core at β0 = 1: W*, c*, v, δ* on a* ∈ "
                         f"[{model.DEFAULT_A_STAR[0]:g}, {model.DEFAULT_A_STAR[1]:g}] and the pull-off (both "
@@ -229,7 +229,7 @@ def _fig8(outdir, dpi, n):
         ax.plot(po.W_star, po.a_star, "o", color=col, ms=5)
         st = je.load_curve_nondimensional(a, b0)
         ax.plot(st["W_star"], st["a_star"], "--", color=col, lw=1.2, label=f"JKR elliptical β0 = {b0:g}")
-        pj = je.pull_off_nondimensional(b0)
+        pj = je.pull_off_nondimensional(b0, 1.0)
         ax.plot(pj["W_star"], pj["a_star"], "s", color=col, mfc="none", ms=5)
     j = jkr.load_curve_nondimensional(a)
     ax.plot(j["W_star"], j["a_star"], ":", color="0.3", lw=1.5, label="JKR circular")

@@ -128,7 +128,8 @@ def wrap(name, f):
     @functools.wraps(f)
     def g(*a, **k):
         if depth[0] == 0:
-            pname = a[0] if a and isinstance(a[0], str) else "?"
+            pname = "control" if name == "check_control" else "beta0, mu" if name == "check_grid_point" else (
+                a[0] if a and isinstance(a[0], str) else "?")
             counts[f"{name}({pname})"] = counts.get(f"{name}({pname})", 0) + 1
         depth[0] += 1
         try:
