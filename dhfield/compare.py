@@ -112,7 +112,7 @@ from ._validation import check_contact_size_star, check_count, check_grid_point
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
 from .records import pull_off_record
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
+from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS
 
 from .validity import (JKR_PROXY_MU, VALIDITY_RANGES, WARNING_THRESHOLD, closure_departure, departure_warning,
                        join_warnings, validity_message, validity_table)

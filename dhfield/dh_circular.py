@@ -44,9 +44,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, grid_minimum,
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material,
                         length_unit, load_unit, scalar_or_array, tabor_parameter)
 from ._validation import check_control, check_positive, check_tabor
+from .pull_off_search import scan_minimum
 from .records import pull_off_record
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "work_of_adhesion", "load_curve_nondimensional",
@@ -161,8 +162,7 @@ def _pull_off_state(mu, control="load"):
     def f(t, m):
         return _state(t, m)[key]
 
-    t, _ = grid_minimum(f, top, top, args=(mu,), xatol=1e-15, first=True, grid=grid,
-                        complex_step=True)
+    t, _ = scan_minimum(f, grid, (mu,), xatol=1e-15)
     st = _state(np.minimum(t, top), mu)
     end = t >= top
     if np.any(end):  # a = 0 exactly: c = q = pi mu/(2 v0)

@@ -78,9 +78,10 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._adhesion import (approach_unit, check_material, grid_minimum, length_unit, load_unit, scalar_or_array)
+from ._adhesion import approach_unit, check_material, length_unit, load_unit, scalar_or_array
 from ._validation import check_control, check_ellipticity, check_finite, check_interval
 from .geometry import ellipticity_from_radius_ratio, sin_skew_angle
+from .pull_off_search import scan_minimum
 from .records import pull_off_record
 
 __all__ = [
@@ -330,8 +331,7 @@ def _pull_off_state(beta0, control="load"):
         def f(u, b0, r, s):
             return _state_u(u, b0, r, s)[key]
 
-        u, _ = grid_minimum(f, 0.0, 0.0, args=(beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15,
-                            first=True, grid=_SCAN_U, complex_step=True)
+        u, _ = scan_minimum(f, _SCAN_U, (beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15)
         st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
         for k in out:
             out[k] = np.array(out[k], dtype=float)

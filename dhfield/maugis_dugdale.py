@@ -45,9 +45,10 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, grid_minimum,
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material,
                         length_unit, load_unit, scalar_or_array, tabor_parameter)
 from ._validation import check_control, check_positive
+from .pull_off_search import scan_minimum
 from .records import pull_off_record
 from .transition import maugis_parameter
 
@@ -237,8 +238,7 @@ def pull_off_maugis_units(lam, control="load"):
         return _state_maugis(t, lm)[col]
 
     grid = _log_m_at(np.broadcast_to(_SCAN_A, lam.shape + _SCAN_A.shape), lam[..., None])
-    t, _ = grid_minimum(f, 0.0, 0.0, args=(lam,), xatol=1e-14, first=True, grid=grid,
-                        complex_step=True)
+    t, _ = scan_minimum(f, grid, (lam,), xatol=1e-14)
     a, p, d, m = _state_maugis(t, lam)
     # the curve ends at A = 0 (M -> infinity); compare with that end point exactly
     p0, d0 = _zero_contact(lam)

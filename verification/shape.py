@@ -13,7 +13,8 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
   call scipy's ``find_minimum``/``minimize_scalar``/``fminbound``/``golden``/``brent``,
   ``np.argmin``, test a discrete local minimum on neighbouring samples (a comparison of slices such
   as ``v[1:-1] <= v[:-2]``), or bracket the root of a derivative (``find_root`` on a callable
-  whose name starts with ``d``);
+  whose name starts with ``d``); and, of those, the local-minimum rules (the neighbour
+  comparisons, in all of ``dhfield/``: one rule and one tie rule is the target);
 * the number of ``dhfield._validation`` calls on one ``dhfield pulloff --beta0 0.9 --mu 1 --json``
   (outermost calls only, counted per parameter name; target: each input once);
 * whether ``dhfield/bem/`` imports an analytic model module;
@@ -61,7 +62,21 @@ def _call_name(call):
     return f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else None
 
 
+def _has_neighbour_rule(fn) -> bool:
+    """A discrete local-minimum test: a sample compared with its neighbours (v[1:-1] <= v[:-2], f[i] <= f[i - 1])."""
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.LtE, ast.Lt)):
+            sides = [node.left, *node.comparators]
+            if all(isinstance(q, ast.Subscript) for q in sides):
+                src = ast.unparse(node)
+                if ("1:-1" in src and ":-2" in src) or ("i - 1]" in src or "i + 1]" in src):
+                    return True
+    return False
+
+
 def _is_min_search(fn) -> bool:
+    if _has_neighbour_rule(fn):
+        return True
     for node in ast.walk(fn):
         if isinstance(node, ast.Call):
             name = _call_name(node)
@@ -70,14 +85,6 @@ def _is_min_search(fn) -> bool:
             if name == "find_root" and node.args and isinstance(node.args[0], ast.Name) \
                     and node.args[0].id.startswith("d"):
                 return True
-        if isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.LtE, ast.Lt)):
-            sides = [node.left, *node.comparators]
-            if all(isinstance(s, ast.Subscript) for s in sides) and any(
-                    isinstance(s.slice, (ast.Slice, ast.Tuple)) or
-                    (isinstance(s.slice, ast.Name)) for s in sides):
-                src = ast.unparse(node)
-                if ("1:-1" in src or "i - 1" in src or "i + 1" in src) and ":-2" in src or "i - 1]" in src:
-                    return True
     return False
 
 
@@ -95,6 +102,7 @@ def static(root: Path) -> dict:
     params.sort(key=lambda t: -t[2])
     searches = _top_level([(p, fn) for p, fn in _functions(root)
                            if not str(p).startswith("dhfield/bem") and _is_min_search(fn)])
+    rules = _top_level([(p, fn) for p, fn in _functions(root) if _has_neighbour_rule(fn)])
     bem_imports = []
     for path in sorted((root / "dhfield" / "bem").rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text())):
@@ -116,6 +124,7 @@ def static(root: Path) -> dict:
         nonblank += sum(1 for t in text if t.strip())
     return {"max_params": params[0][2], "over_10": [f"{p}:{ln} {n} ({k})" for p, n, k, ln in params if k > 10],
             "min_searches": [f"{p}:{fn.lineno} {fn.name}" for p, fn in searches],
+            "min_rules": [f"{p}:{fn.lineno} {fn.name}" for p, fn in rules],
             "bem_imports_analytic": bem_imports, "lines": lines, "nonblank_lines": nonblank}
 
 
@@ -216,6 +225,10 @@ def main(argv=None) -> int:
         print(f"    (not called: {'; '.join(d['skipped'])})")
     print(f"minimum-search implementations (outside dhfield/bem): {len(s['min_searches'])} (target 1)")
     for x in s["min_searches"]:
+        print(f"    {x}")
+    print(f"local-minimum rules (a sample compared with its neighbours, all of dhfield/): {len(s['min_rules'])} "
+          f"(target 1)")
+    for x in s["min_rules"]:
         print(f"    {x}")
     total = sum(d["validation"].values())
     print(f"_validation calls on one `dhfield pulloff --beta0 0.9 --mu 1 --json`: {total} "
