@@ -22,6 +22,8 @@ __all__ = [
     "check_count",
     "check_tabor",
     "check_model_ellipticity",
+    "as_circle",
+    "CIRCLE_TOLERANCE",
     "check_contact_size_star",
     "check_control",
     "check_grid_point",
@@ -124,10 +126,32 @@ def check_tabor(name: str, value) -> np.ndarray:
                           what="Tabor parameter of Eq. (35), dimensionless")
 
 
+#: Ellipticities within this of 1 are the circle, exactly (:func:`as_circle`): 1 - beta0 <= sqrt(eps)
+#: = 1.49e-8.  Where beta0 -> 1 the elliptical forms lose digits like eps/(1 - beta0) (the Hertz
+#: integrals' modulus k^2 = 1 - beta^2 and elliptical JKR's path u = (beta - beta0)/(1 - beta0)
+#: carry 1 - beta0: elliptical JKR's pull-off contact is off by 3e-5 at 1 - beta0 = 1e-12 and by
+#: 3e-4 at 1e-13), while every model departs from its circle linearly, by about 0.4 (1 - beta0)
+#: relative (W* and a* of dh-elliptic, measured).  The two errors balance at 1 - beta0 ~ sqrt(eps):
+#: closer to 1, the circle is the more accurate answer, and 90 deg from SI input (beta0 =
+#: 1 - 2^-53) is the sphere.
+CIRCLE_TOLERANCE = math.sqrt(float(np.finfo(float).eps))
+
+
+def as_circle(beta):
+    """``beta`` with the values within :data:`CIRCLE_TOLERANCE` of 1 set to exactly 1 (the circle).
+
+    The one place where dhfield decides that an ellipticity is the circle; applied where a
+    model's ellipticity is validated (:func:`check_model_ellipticity`).
+    """
+    beta = np.asarray(beta, dtype=float)
+    return np.where(beta >= 1.0 - CIRCLE_TOLERANCE, 1.0, beta)
+
+
 def check_model_ellipticity(name: str, value) -> np.ndarray:
-    """Check a model ellipticity beta0 against :data:`ELLIPTICITY_RANGE`."""
-    return check_interval(name, value, *ELLIPTICITY_RANGE, low_open=False,
-                          what="ellipticity ratio b/a, dimensionless")
+    """Check a model ellipticity beta0 against :data:`ELLIPTICITY_RANGE`; the circle within
+    :data:`CIRCLE_TOLERANCE` of 1 is exactly 1 (:func:`as_circle`)."""
+    return as_circle(check_interval(name, value, *ELLIPTICITY_RANGE, low_open=False,
+                                    what="ellipticity ratio b/a, dimensionless"))
 
 
 def check_contact_size_star(name: str, value) -> np.ndarray:

@@ -67,7 +67,7 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from . import hertz, model, periphery
-from ._validation import check_contact_size_star, check_control, check_interval
+from ._validation import as_circle, check_contact_size_star, check_control, check_interval
 from .elliptic import ellipsoid_integrals
 from .geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
 from .pull_off_search import last_local_minimum
@@ -331,8 +331,8 @@ def _check_domain(mu, beta0):
     """Validate (mu, beta0) against the closures' accepted domain (see :data:`CLOSURE_MU_RANGE`)."""
     mu = check_interval("mu", mu, *CLOSURE_MU_RANGE, low_open=False,
                         what="Tabor parameter of Eq. (35) for the closures")
-    beta0 = check_interval("beta0", beta0, *CLOSURE_BETA0_RANGE, low_open=False,
-                           what="ellipticity ratio b/a for the closures")
+    beta0 = as_circle(check_interval("beta0", beta0, *CLOSURE_BETA0_RANGE, low_open=False,
+                                     what="ellipticity ratio b/a for the closures"))
     return mu, beta0
 
 

@@ -79,7 +79,7 @@ from scipy import special
 from scipy.optimize import elementwise
 
 from ._adhesion import approach_unit, check_material, length_unit, load_unit, scalar_or_array
-from ._validation import check_control, check_ellipticity, check_finite, check_interval
+from ._validation import as_circle, check_control, check_ellipticity, check_finite, check_interval
 from .geometry import ellipticity_from_radius_ratio, sin_skew_angle
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
@@ -387,10 +387,10 @@ def _check_geometry(radius_ratio_, beta0):
     if (radius_ratio_ is None) == (beta0 is None):
         raise ValueError("give exactly one of radius_ratio (R'/R'' >= 1) and beta0 (Hertz b/a in (0, 1])")
     if beta0 is not None:
-        return check_ellipticity("beta0", beta0)
+        return as_circle(check_ellipticity("beta0", beta0))
     rho = check_interval("radius_ratio", radius_ratio_, 1.0, np.inf, low_open=False, high_open=True,
                          what="R'/R'' >= 1, dimensionless")
-    return ellipticity_from_radius_ratio(rho)
+    return as_circle(ellipticity_from_radius_ratio(rho))
 
 
 def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, *,

@@ -35,3 +35,12 @@ def test_count_accepts_integers(good, expect):
 def test_count_rejects_non_integers_and_out_of_range(bad):
     with pytest.raises(ValueError, match=r"^n must be an integer in \[2, 10\]"):
         v.check_count("n", bad, 2, 10)
+
+
+def test_as_circle_is_the_one_near_circle_decision():
+    """Within sqrt(eps) of 1 an ellipticity is exactly the circle (issue 18, item 2); outside it is kept."""
+    eps = np.finfo(float).eps
+    assert v.CIRCLE_TOLERANCE == np.sqrt(eps)
+    assert v.as_circle(1.0 - 2.0**-53) == 1.0 and v.as_circle(1.0 - 1e-8) == 1.0
+    assert v.as_circle(1.0 - 1e-7) == 1.0 - 1e-7 and v.as_circle(0.3) == 0.3
+    np.testing.assert_array_equal(v.check_model_ellipticity("beta0", [0.5, 1 - 3 * 2.0**-53]), [0.5, 1.0])
