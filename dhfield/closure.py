@@ -496,6 +496,14 @@ def _solve_two_axis(a, mu, beta0):
             up = ui.copy()
             up[:, k] += _FD_STEP
             jac[..., k] = (np.stack(_two_axis_residual(ai, up[:, 0], up[:, 1], mi, r1i, r2i), axis=-1) - f0) / _FD_STEP
+            back = ~np.isfinite(jac[..., k]).all(axis=-1)
+            if back.any():
+                # Within _FD_STEP of the circle (d = c, rho_ab = 1) the forward step leaves the admissible
+                # states (d > c): difference backwards there (issue 18, item 12).
+                dn = ui[back].copy()
+                dn[:, k] -= _FD_STEP
+                jac[back, :, k] = (f0[back] - np.stack(_two_axis_residual(ai[back], dn[:, 0], dn[:, 1], mi[back],
+                                                                          r1i[back], r2i[back]), axis=-1)) / _FD_STEP
         step = -np.linalg.solve(jac, f0[..., None])[..., 0]
         # damping: halve until the residual decreases and stays admissible
         lam = np.ones(ai.shape)
