@@ -70,6 +70,7 @@ def check_finite(name: str, value, what: str = "") -> np.ndarray:
     """
     if isinstance(value, np.ma.MaskedArray):
         check_array_input(name, value)
+    _check_real(name, value, what)
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -78,6 +79,16 @@ def check_finite(name: str, value, what: str = "") -> np.ndarray:
         bad = float(arr[~np.isfinite(arr)].flat[0])
         raise ValueError(f"{name} must be finite{_what(what)}; got {bad!r}")
     return arr
+
+
+def _check_real(name: str, value, what: str = "") -> None:
+    """Reject complex input by name (numpy would keep the real part with only a ComplexWarning)."""
+    try:
+        complex_ = np.iscomplexobj(value)
+    except Exception:  # noqa: BLE001 - objects numpy cannot inspect: the float conversion names them
+        return
+    if complex_:
+        raise ValueError(f"{name} must be real{_what(what)}; got complex {_describe(value)}")
 
 
 def _what(what: str) -> str:
@@ -187,6 +198,7 @@ def check_grid_point(beta0, mu, control="load"):
 
 def check_sequence(name: str, value, what: str = "") -> np.ndarray:
     """Check a 1-d sequence of numbers (NaN allowed) and return it as a float array."""
+    _check_real(name, value, what)
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
