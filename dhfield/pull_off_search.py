@@ -191,9 +191,8 @@ def refine_sampled_minimum(x, y, *, first=True):
     return SampledMinimum(float(xv), float(yv), int(idx[i]), False)
 
 
-def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_extend=6,
-                      xatol=1e-13, xrtol=1e-13, chunk_bytes=None,
-                      bytes_per_state=2048, block=SCAN_BLOCK):
+def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_extend=6, xtol=1e-13,
+                      chunk_bytes=None, bytes_per_state=2048, block=SCAN_BLOCK):
     """Largest contact size where ``derivative`` crosses from negative to non-negative.
 
     Vectorised over problems: ``scan`` has shape ``(m, n)`` (or ``(n,)`` shared by
@@ -219,8 +218,8 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
         Where the derivative is still negative at the top of the scan (the stable
         branch is not reached), the problem's scan is multiplied by ``extend`` and
         evaluated again, at most ``max_extend`` times.
-    xatol, xrtol : float
-        Tolerances of Chandrupatla's method on the root.
+    xtol : float
+        Absolute and relative tolerance of Chandrupatla's method on the root.
     chunk_bytes : int, optional
         Working-memory budget of one chunk of problems; default
         :data:`DEFAULT_CHUNK_BYTES` (read at call time).
@@ -308,7 +307,7 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
         if got.any():
             r = rows[got]
             root = elementwise.find_root(derivative, (lo[got], hi[got]), args=tuple(q[r] for q in sub_args),
-                                         tolerances=dict(xatol=xatol, xrtol=xrtol))
+                                         tolerances=dict(xatol=xtol, xrtol=xtol))
             xr[got] = np.where(np.isfinite(root.x), root.x, 0.5 * (lo[got] + hi[got]))
         x[start + rows] = xr
         found[start + rows] = True
