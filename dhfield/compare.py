@@ -111,8 +111,8 @@ from . import model as paper_model
 from ._validation import check_contact_size_star, check_count, check_grid_point
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
-from .records import pull_off_record
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS
+from .records import load_curve_record, pull_off_record
+from .schema import LOAD_CURVE_KEYS
 
 from .validity import (JKR_PROXY_MU, VALIDITY_RANGES, WARNING_THRESHOLD, closure_departure, departure_warning,
                        join_warnings, validity_message, validity_table)
@@ -336,11 +336,8 @@ def _curve_arrays(model, a_star, mu, beta0):
 
 def _curve_record(model, mu, beta0, arrays):
     circle = model in CIRCULAR_MODEL_NAMES
-    head = {"model": model, "geometry": "circle" if circle else "ellipse",
-            "beta0": float(beta0), "mu": float(mu),
-            "sin_skew": 1.0 if circle else float(sin_skew_angle(beta0))}
-    assert tuple(head) == LOAD_CURVE_HEADER_KEYS
-    return {**head, **{k: arrays[k] for k in LOAD_CURVE_KEYS}}
+    return load_curve_record(model, beta0, mu, arrays, sin_skew=1.0 if circle else float(sin_skew_angle(beta0)),
+                             geometry="circle" if circle else "ellipse")
 
 
 def load_curve(model, mu, beta0, a_star=None, *, n=200):
@@ -362,8 +359,9 @@ def load_curve(model, mu, beta0, a_star=None, *, n=200):
 
     Returns
     -------
-    dict
-        The scalar keys of :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
+    dhfield.records.LoadCurve
+        The record of every model's curve: the scalar keys of
+        :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
         arrays of :data:`dhfield.schema.LOAD_CURVE_KEYS` (NaN where a model has no
         such quantity: ``c_star``, ``d_star`` outside the DH models, ``v`` outside the
         paper's and the circular DH models where the DH factor is not reported).
