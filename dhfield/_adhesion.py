@@ -22,12 +22,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import elementwise
 
 from ._validation import check_interval, check_positive
-from ._validation import check_tabor as _check_tabor_range
-
-CONTROLS = ("load", "displacement")
 
 
 class LoadCurve(NamedTuple):
@@ -46,24 +42,12 @@ class PullOff(NamedTuple):
     approach: np.ndarray
 
 
-def check_control(control: str) -> str:
-    """Validate the pull-off control mode ('load' or 'displacement')."""
-    if control not in CONTROLS:
-        raise ValueError(f"control must be one of {CONTROLS} (loading mode); got {control!r}")
-    return control
-
-
 def check_material(effective_radius, reduced_modulus, work_of_adhesion):
     """Validate R [m], E* [Pa], dgamma [J/m^2]; return them as float arrays."""
     r = check_positive("effective_radius", effective_radius, "m")
     e = check_positive("reduced_modulus", reduced_modulus, "Pa")
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
     return r, e, w
-
-
-def check_tabor(mu):
-    """Validate the transition parameter mu of Eq. (35) against :data:`dhfield._validation.TABOR_RANGE`."""
-    return _check_tabor_range("mu", mu)
 
 
 def check_contact_size(name, value):
@@ -104,81 +88,3 @@ def scalar_or_array(x):
     """Return a 0-d array as a Python-float-like numpy scalar, otherwise the array."""
     x = np.asarray(x, dtype=float)
     return x[()] if x.ndim == 0 else x
-
-
-def grid_minimum(func, lo, hi, args=(), n=64, xatol=1e-13, first=False, grid=None,
-                 complex_step=False):
-    """Vectorised grid-then-local minimisation of ``func(t, *args)`` on [lo, hi].
-
-    ``func`` must broadcast: it is first evaluated on an ``n``-point grid (a
-    trailing axis) to locate the basin of the minimum, then refined with
-    :func:`scipy.optimize.elementwise.find_minimum` from the bracket around the
-    best grid point.  A minimum on the grid's end point is returned as is (the
-    minimiser sits on the boundary of the admissible range).
-
-    With ``first=True`` the basin is the *first* discrete local minimum met from
-    ``lo`` (callers put the high-load end of a curve at ``lo``, so this is the
-    end of the stable branch reached on unloading); otherwise the global one.
-
-    ``grid`` (shape ``(..., n)``, increasing along the last axis) replaces the
-    even grid on [lo, hi] when the parameter is badly graded.
-
-    With ``complex_step=True`` (``func`` analytic and complex-safe) the local
-    refinement finds the root of the complex-step derivative
-    ``Im f(t + ih)/h`` instead of minimising ``f``: the minimiser is then
-    accurate to ~1e-15 rather than ~sqrt(eps).
-
-    Returns
-    -------
-    t, f : ndarray
-        Minimiser and minimum, with the broadcast shape of ``lo``, ``hi`` and ``args``.
-    """
-    args = tuple(np.asarray(a, dtype=float) for a in args)
-    shape = np.broadcast_shapes(np.shape(lo), np.shape(hi), *(a.shape for a in args))
-    lo = np.broadcast_to(np.asarray(lo, dtype=float), shape)
-    hi = np.broadcast_to(np.asarray(hi, dtype=float), shape)
-    args = tuple(np.broadcast_to(a, shape) for a in args)
-    if grid is None:
-        s = np.linspace(0.0, 1.0, n)
-        grid = lo[..., None] + (hi - lo)[..., None] * s
-    else:
-        grid = np.broadcast_to(grid, shape + np.shape(grid)[-1:])
-        n = grid.shape[-1]
-    vals = func(grid, *(a[..., None] for a in args))
-    vals = np.where(np.isfinite(vals), vals, np.inf)
-    i = np.argmin(vals, axis=-1)
-    if first:
-        loc = np.zeros(vals.shape, dtype=bool)
-        loc[..., 1:-1] = (vals[..., 1:-1] <= vals[..., :-2]) & (vals[..., 1:-1] < vals[..., 2:])
-        loc[..., -1] = vals[..., -1] <= vals[..., -2]
-        i = np.where(loc.any(axis=-1), np.argmax(loc, axis=-1), i)
-    t = np.take_along_axis(grid, i[..., None], -1)[..., 0]
-    f = np.take_along_axis(vals, i[..., None], -1)[..., 0]
-    inner = (i > 0) & (i < n - 1)
-    if np.any(inner):
-        il = np.clip(i - 1, 0, n - 1)
-        ir = np.clip(i + 1, 0, n - 1)
-        xl = np.take_along_axis(grid, il[..., None], -1)[..., 0][inner]
-        xr = np.take_along_axis(grid, ir[..., None], -1)[..., 0][inner]
-        xm = t[inner]
-        sub_args = tuple(a[inner] for a in args)
-        if complex_step:
-            def dfunc(x, *a):
-                return np.imag(func(x + 1e-30j, *a)) / 1e-30
-
-            res = elementwise.find_root(dfunc, (xl, xr), args=sub_args,
-                                        tolerances=dict(xatol=xatol, xrtol=1e-15))
-            fx = func(res.x, *sub_args)
-        else:
-            res = elementwise.find_minimum(func, (xl, xm, xr), args=sub_args,
-                                           tolerances=dict(xatol=xatol, xrtol=1e-14, fatol=0.0,
-                                                           frtol=0.0))
-            fx = res.f_x
-        better = np.isfinite(fx) & (fx <= f[inner] + 1e-14 * np.abs(f[inner]))
-        t_in = np.where(better, res.x, xm)
-        f_in = np.where(better, fx, f[inner])
-        t = t.copy()
-        f = f.copy()
-        t[inner] = t_in
-        f[inner] = f_in
-    return t, f

@@ -22,7 +22,12 @@ __all__ = [
     "check_count",
     "check_tabor",
     "check_model_ellipticity",
+    "as_circle",
+    "CIRCLE_TOLERANCE",
     "check_contact_size_star",
+    "check_control",
+    "check_grid_point",
+    "CONTROLS",
     "TABOR_RANGE",
     "ELLIPTICITY_RANGE",
     "CONTACT_SIZE_RANGE",
@@ -65,6 +70,7 @@ def check_finite(name: str, value, what: str = "") -> np.ndarray:
     """
     if isinstance(value, np.ma.MaskedArray):
         check_array_input(name, value)
+    _check_real(name, value, what)
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -73,6 +79,16 @@ def check_finite(name: str, value, what: str = "") -> np.ndarray:
         bad = float(arr[~np.isfinite(arr)].flat[0])
         raise ValueError(f"{name} must be finite{_what(what)}; got {bad!r}")
     return arr
+
+
+def _check_real(name: str, value, what: str = "") -> None:
+    """Reject complex input by name (numpy would keep the real part with only a ComplexWarning)."""
+    try:
+        complex_ = np.iscomplexobj(value)
+    except Exception:  # noqa: BLE001 - objects numpy cannot inspect: the float conversion names them
+        return
+    if complex_:
+        raise ValueError(f"{name} must be real{_what(what)}; got complex {_describe(value)}")
 
 
 def _what(what: str) -> str:
@@ -121,10 +137,32 @@ def check_tabor(name: str, value) -> np.ndarray:
                           what="Tabor parameter of Eq. (35), dimensionless")
 
 
+#: Ellipticities within this of 1 are the circle, exactly (:func:`as_circle`): 1 - beta0 <= sqrt(eps)
+#: = 1.49e-8.  Where beta0 -> 1 the elliptical forms lose digits like eps/(1 - beta0) (the Hertz
+#: integrals' modulus k^2 = 1 - beta^2 and elliptical JKR's path u = (beta - beta0)/(1 - beta0)
+#: carry 1 - beta0: elliptical JKR's pull-off contact is off by 3e-5 at 1 - beta0 = 1e-12 and by
+#: 3e-4 at 1e-13), while every model departs from its circle linearly, by about 0.4 (1 - beta0)
+#: relative (W* and a* of dh-elliptic, measured).  The two errors balance at 1 - beta0 ~ sqrt(eps):
+#: closer to 1, the circle is the more accurate answer, and 90 deg from SI input (beta0 =
+#: 1 - 2^-53) is the sphere.
+CIRCLE_TOLERANCE = math.sqrt(float(np.finfo(float).eps))
+
+
+def as_circle(beta):
+    """``beta`` with the values within :data:`CIRCLE_TOLERANCE` of 1 set to exactly 1 (the circle).
+
+    The one place where dhfield decides that an ellipticity is the circle; applied where a
+    model's ellipticity is validated (:func:`check_model_ellipticity`).
+    """
+    beta = np.asarray(beta, dtype=float)
+    return np.where(beta >= 1.0 - CIRCLE_TOLERANCE, 1.0, beta)
+
+
 def check_model_ellipticity(name: str, value) -> np.ndarray:
-    """Check a model ellipticity beta0 against :data:`ELLIPTICITY_RANGE`."""
-    return check_interval(name, value, *ELLIPTICITY_RANGE, low_open=False,
-                          what="ellipticity ratio b/a, dimensionless")
+    """Check a model ellipticity beta0 against :data:`ELLIPTICITY_RANGE`; the circle within
+    :data:`CIRCLE_TOLERANCE` of 1 is exactly 1 (:func:`as_circle`)."""
+    return as_circle(check_interval(name, value, *ELLIPTICITY_RANGE, low_open=False,
+                                    what="ellipticity ratio b/a, dimensionless"))
 
 
 def check_contact_size_star(name: str, value) -> np.ndarray:
@@ -133,8 +171,34 @@ def check_contact_size_star(name: str, value) -> np.ndarray:
                           what="contact semi-axis in units of c_r, Eq. (32)")
 
 
+#: Loading modes of every pull-off: the minimum of the load (load control) or of the approach
+#: (displacement control) along the unloading path.
+CONTROLS = ("load", "displacement")
+
+
+def check_control(control) -> str:
+    """Check a loading mode, one of :data:`CONTROLS` (the one check of ``control`` in dhfield)."""
+    if not isinstance(control, str) or control not in CONTROLS:
+        raise ValueError(f"control must be one of {CONTROLS} (loading mode); got {control!r}")
+    return control
+
+
+def check_grid_point(beta0, mu, control="load"):
+    """Check (beta0, mu) of a nondimensional model and the loading mode; return them broadcast.
+
+    ``beta0`` against :data:`ELLIPTICITY_RANGE`, ``mu`` against :data:`TABOR_RANGE` (mu is
+    checked first, so its message wins where both are bad), ``control`` by :func:`check_control`.
+    """
+    mu = check_tabor("mu", mu)
+    beta0 = check_model_ellipticity("beta0", beta0)
+    check_control(control)
+    beta0, mu = np.broadcast_arrays(beta0, mu)
+    return beta0, mu
+
+
 def check_sequence(name: str, value, what: str = "") -> np.ndarray:
     """Check a 1-d sequence of numbers (NaN allowed) and return it as a float array."""
+    _check_real(name, value, what)
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):

@@ -67,10 +67,11 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from . import hertz, model, periphery
-from ._validation import check_contact_size_star, check_interval
+from ._validation import as_circle, check_contact_size_star, check_control, check_interval
 from .elliptic import ellipsoid_integrals
 from .geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
 from .pull_off_search import last_local_minimum
+from .records import pull_off_record
 
 __all__ = [
     "CLOSURES",
@@ -330,8 +331,8 @@ def _check_domain(mu, beta0):
     """Validate (mu, beta0) against the closures' accepted domain (see :data:`CLOSURE_MU_RANGE`)."""
     mu = check_interval("mu", mu, *CLOSURE_MU_RANGE, low_open=False,
                         what="Tabor parameter of Eq. (35) for the closures")
-    beta0 = check_interval("beta0", beta0, *CLOSURE_BETA0_RANGE, low_open=False,
-                           what="ellipticity ratio b/a for the closures")
+    beta0 = as_circle(check_interval("beta0", beta0, *CLOSURE_BETA0_RANGE, low_open=False,
+                                     what="ellipticity ratio b/a for the closures"))
     return mu, beta0
 
 
@@ -388,8 +389,13 @@ def solve_ray_average(a_star, mu, beta0, *, weight="area", n_theta=None):
     a, mu, beta0 = _check(a_star, mu, beta0)
     if weight not in ("area", "angle"):
         raise ValueError(f"weight must be 'area' or 'angle'; got {weight!r}")
+    return _solve_ray_average(a, mu, beta0, weight=weight, n_theta=n_theta)
+
+
+def _solve_ray_average(a, mu, beta0, *, weight="area", n_theta=None):
+    """:func:`solve_ray_average` on validated, broadcast inputs."""
     n_theta = rays_for(beta0) if n_theta is None else int(n_theta)
-    c0, _ = model.solve_adhesive_axis(a, mu, beta0)
+    c0, _ = model.adhesive_axis_state(a, beta0, mu)
     log_s0 = np.log(np.sqrt(np.asarray(c0) ** 2 - a * a))
     args = (a, mu, beta0)
 
@@ -410,9 +416,8 @@ def solve_ray_average(a_star, mu, beta0, *, weight="area", n_theta=None):
 
 
 # --------------------------------------------------------------------------- closure 2: two axes
-def _two_axis_fields(a, log_c, log_d, mu, beta0):
-    """(b, c, d, A, B) from the unknowns (log c, log d); NaN where inadmissible."""
-    r1, r2, _ = _geometry(beta0)
+def _two_axis_fields(a, log_c, log_d, mu, r1, r2):
+    """(b, c, d, A, B) from the unknowns (log c, log d) for principal radii R', R''; NaN where inadmissible."""
     c, d = np.exp(log_c), np.exp(log_d)
     ok = (c > a) & (d <= c)
     c = np.where(ok, c, np.nan)
@@ -433,8 +438,8 @@ def _two_axis_fields(a, log_c, log_d, mu, beta0):
     return nan(b), nan(c), nan(d), nan(amp_a), nan(amp_b)
 
 
-def _two_axis_residual(a, log_c, log_d, mu, beta0):
-    b, c, d, amp_a, amp_b = _two_axis_fields(a, log_c, log_d, mu, beta0)
+def _two_axis_residual(a, log_c, log_d, mu, r1, r2):
+    b, c, d, amp_a, amp_b = _two_axis_fields(a, log_c, log_d, mu, r1, r2)
     safe = np.isfinite(b)
     fill = (lambda q, f: np.where(safe, q, f))
     prof = periphery.periphery_two_ellipses(fill(a, 1.0), fill(b, 0.5), fill(c, 2.0), fill(d, 1.5),
@@ -469,30 +474,43 @@ def solve_two_axis(a_star, mu, beta0):
     Jacobian (relative step :data:`_FD_STEP`), started from the paper's solution
     (d = beta0 c); converged when both log Delta gamma are below :data:`SOLVE_TOL`.
     """
-    a, mu, beta0 = _check(a_star, mu, beta0)
+    return _solve_two_axis(*_check(a_star, mu, beta0))
+
+
+def _solve_two_axis(a, mu, beta0):
+    """:func:`solve_two_axis` on validated, broadcast inputs."""
     shape = a.shape
     a, mu, beta0 = (np.atleast_1d(q).ravel() for q in (a, mu, beta0))
-    c0, _ = model.solve_adhesive_axis(a, mu, beta0)
+    c0, _ = model.adhesive_axis_state(a, beta0, mu)
+    r1, r2, _ = _geometry(beta0)  # once per solve: the residual is evaluated ~10 times per Newton step
     u = np.stack([np.log(c0), np.log(beta0 * c0)], axis=-1).astype(float)
     u = np.array(np.broadcast_to(u, a.shape + (2,)))
     active = np.ones(a.shape, bool)
     for _ in range(_MAX_NEWTON):
         idx = np.nonzero(active)
-        ai, mi, bi, ui = a[idx], mu[idx], beta0[idx], u[idx]
-        f0 = np.stack(_two_axis_residual(ai, ui[:, 0], ui[:, 1], mi, bi), axis=-1)
+        ai, mi, ui, r1i, r2i = a[idx], mu[idx], u[idx], r1[idx], r2[idx]
+        f0 = np.stack(_two_axis_residual(ai, ui[:, 0], ui[:, 1], mi, r1i, r2i), axis=-1)
         done = np.all(np.abs(f0) < SOLVE_TOL, axis=-1)
         jac = np.empty(f0.shape + (2,))
         for k in range(2):
             up = ui.copy()
             up[:, k] += _FD_STEP
-            jac[..., k] = (np.stack(_two_axis_residual(ai, up[:, 0], up[:, 1], mi, bi), axis=-1) - f0) / _FD_STEP
+            jac[..., k] = (np.stack(_two_axis_residual(ai, up[:, 0], up[:, 1], mi, r1i, r2i), axis=-1) - f0) / _FD_STEP
+            back = ~np.isfinite(jac[..., k]).all(axis=-1)
+            if back.any():
+                # Within _FD_STEP of the circle (d = c, rho_ab = 1) the forward step leaves the admissible
+                # states (d > c): difference backwards there (issue 18, item 12).
+                dn = ui[back].copy()
+                dn[:, k] -= _FD_STEP
+                jac[back, :, k] = (f0[back] - np.stack(_two_axis_residual(ai[back], dn[:, 0], dn[:, 1], mi[back],
+                                                                          r1i[back], r2i[back]), axis=-1)) / _FD_STEP
         step = -np.linalg.solve(jac, f0[..., None])[..., 0]
         # damping: halve until the residual decreases and stays admissible
         lam = np.ones(ai.shape)
         norm0 = np.max(np.abs(f0), axis=-1)
         for _ in range(20):
             trial = ui + np.clip(lam[:, None] * step, -0.5, 0.5)
-            ft = np.stack(_two_axis_residual(ai, trial[:, 0], trial[:, 1], mi, bi), axis=-1)
+            ft = np.stack(_two_axis_residual(ai, trial[:, 0], trial[:, 1], mi, r1i, r2i), axis=-1)
             good = np.isfinite(ft).all(axis=-1) & (np.max(np.abs(ft), axis=-1) < norm0)
             if np.all(good | done):
                 break
@@ -504,25 +522,27 @@ def solve_two_axis(a_star, mu, beta0):
             break
     else:
         raise RuntimeError("two-axis closure solve did not converge; please report the inputs")
-    out = _two_axis_fields(a, u[..., 0], u[..., 1], mu, beta0)
+    out = _two_axis_fields(a, u[..., 0], u[..., 1], mu, r1, r2)
     mu, beta0, a, b, c, d, amp_a, amp_b = (np.reshape(q, shape) for q in (mu, beta0, a, *out))
     return _two_field_state("two_axis", mu, beta0, a, b, c, d, amp_a, amp_b)
 
 
 # --------------------------------------------------------------------------- pull-off
 def _paper_state(a_star, mu, beta0):
-    a, mu, beta0 = _check(a_star, mu, beta0)
-    c, v = model.solve_adhesive_axis(a, mu, beta0)
+    a, mu, beta0 = np.broadcast_arrays(a_star, mu, beta0)
+    c, v = model.adhesive_axis_state(a, beta0, mu)
     c = np.asarray(c, float)
     v = np.asarray(v, float)
     return _two_field_state("paper", mu, beta0, a, beta0 * a, c, beta0 * c,
                             (1 + v) * hertz.max_pressure(a, beta0), v * hertz.max_pressure(c, beta0))  # Eq. (22)
 
 
+#: closure -> its state on validated inputs ``f(a_star, mu, beta0)`` (the pull-off search evaluates it
+#: hundreds of times: the inputs are checked once, by :func:`pull_off_closure`).
 _SOLVERS = {
     "paper": _paper_state,
-    "ray_average": solve_ray_average,
-    "two_axis": solve_two_axis,
+    "ray_average": lambda a, mu, beta0: _solve_ray_average(*np.broadcast_arrays(a, mu, beta0)),
+    "two_axis": lambda a, mu, beta0: _solve_two_axis(*np.broadcast_arrays(a, mu, beta0)),
 }
 
 
@@ -552,8 +572,7 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
     """
     if closure not in CLOSURES:
         raise ValueError(f"closure must be one of {CLOSURES}; got {closure!r}")
-    if control not in ("load", "displacement"):
-        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    check_control(control)
     mu, beta0 = _check_domain(mu, beta0)
     mu, beta0 = np.broadcast_arrays(mu, beta0)
     solver = _SOLVERS[closure]
@@ -570,11 +589,43 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
                            "at_zero_contact": ~has})
 
 
-def pull_off_ray_average(mu, beta0, *, control="load"):
-    """Pull-off of the ray-average closure (:func:`pull_off_closure`)."""
-    return pull_off_closure(mu, beta0, "ray_average", control=control)
+def _record(model, beta0, mu, state, control):
+    return pull_off_record(model, beta0, mu, {k: getattr(state, k) for k in (
+        "W_star", "a_star", "b_star", "c_star", "d_star", "delta_star", "at_zero_contact")}, control=control,
+        sin_skew=sin_skew_angle(beta0), geometry="ellipse")
 
 
-def pull_off_two_axis(mu, beta0, *, control="load"):
-    """Pull-off of the two-axis closure (:func:`pull_off_closure`)."""
-    return pull_off_closure(mu, beta0, "two_axis", control=control)
+def pull_off_ray_average(beta0, mu, *, control="load"):
+    """Pull-off record of the ray-average closure, ``dh-elliptic-ray-average`` (:func:`pull_off_closure`).
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-], in :data:`CLOSURE_BETA0_RANGE`
+        and :data:`CLOSURE_MU_RANGE`.
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dhfield.records.PullOff
+    """
+    state = pull_off_closure(mu, beta0, "ray_average", control=control)
+    return _record("dh-elliptic-ray-average", *np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float)), state, control)
+
+
+def pull_off_two_axis(beta0, mu, *, control="load"):
+    """Pull-off record of the two-axis closure, ``dh-elliptic-two-axis`` (:func:`pull_off_closure`).
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-], in :data:`CLOSURE_BETA0_RANGE`
+        and :data:`CLOSURE_MU_RANGE`.
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dhfield.records.PullOff
+    """
+    state = pull_off_closure(mu, beta0, "two_axis", control=control)
+    return _record("dh-elliptic-two-axis", *np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float)), state, control)

@@ -27,7 +27,6 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 
 Models
 ------
-===========================  ======================================================================
 ``dh-elliptic``              the paper's model, beta = beta0 throughout, dgamma on the major axis
                              (Eqs. 17-19, 31) — :mod:`dhfield.model`; the default
 ``dh-elliptic-two-axis``     dgamma = 1 on both axes, beta_cd != beta_ab, contact condition exact —
@@ -41,7 +40,6 @@ Models
 ``jkr-elliptic``             Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
 ``jkr-elliptic-energy``      Giudici, Vella & Griffiths (2025), energy minimised over both semi-axes —
                              :mod:`dhfield.jkr_elliptic_energy`
-===========================  ======================================================================
 
 Every model except ``dh-elliptic-jkr-beta`` (whose ellipticity is defined at
 pull-off only) has a load curve (:data:`CURVE_MODEL_NAMES`).
@@ -111,29 +109,60 @@ from __future__ import annotations
 import numpy as np
 
 from . import closure, dh_circular, dmt, jkr, jkr_elliptic, jkr_elliptic_energy, maugis_dugdale
-from ._adhesion import approach_unit, check_control, check_material, length_unit, load_unit
-from ._validation import check_contact_size_star, check_count, check_model_ellipticity, check_tabor
+from . import model as paper_model
+from ._validation import check_contact_size_star, check_count, check_grid_point
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
+from .records import load_curve_record, pull_off_record
+from .schema import LOAD_CURVE_KEYS
 
-__all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "WARNING_THRESHOLD", "JKR_PROXY_MU",
-           "closure_departure", "compare", "load_curve", "load_curve_at_load", "validity_message", "validity_table",
-           "VALIDITY_RANGES", "pull_off", "to_dimensional"]
+from .validity import (JKR_PROXY_MU, VALIDITY_RANGES, WARNING_THRESHOLD, closure_departure, departure_warning,
+                       join_warnings, validity_message, validity_table)
+
+__all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "compare",
+           "load_curve", "load_curve_at_load", "pull_off",
+           # the validity policy, from dhfield.validity
+           "WARNING_THRESHOLD", "JKR_PROXY_MU", "VALIDITY_RANGES", "closure_departure", "validity_message",
+           "validity_table"]
 
 _NAN = float("nan")
 #: The paper's model, the default everywhere a model is chosen.
 DEFAULT_MODEL = "dh-elliptic"
-#: Relative departure of the paper's pull-off force from the two-axis closure above which the
-#: paper's model carries a warning (issue 10: "more than 2 %").
-WARNING_THRESHOLD = 0.02
-
-
 def _check(mu, beta0, control):
-    mu = check_tabor("mu", mu)  # _validation.TABOR_RANGE: every model's accepted domain
-    beta0 = check_model_ellipticity("beta0", beta0)
-    check_control(control)
-    return np.broadcast_arrays(mu, beta0)
+    beta0, mu = check_grid_point(beta0, mu, control)  # _validation.TABOR_RANGE: every model's accepted domain
+    return mu, beta0
+
+
+def _dh_elliptic_jkr_beta(beta0, mu, *, control="load"):
+    """The paper's second assumption (Fig. 9b): the paper's model at beta = beta_JKR(pull-off)."""
+    beta_jkr = jkr_elliptic.pull_off_nondimensional(beta0, mu, control=control).ellipticity
+    return paper_model.pull_off_nondimensional(beta0, mu, control=control, ellipticity=beta_jkr).replace(
+        model="dh-elliptic-jkr-beta")
+
+
+#: name -> the model's pull-off, ``f(beta0, mu, *, control) -> dhfield.records.PullOff`` on validated
+#: inputs (see the module docstring); :func:`pull_off` adds the validity warnings.
+MODELS = {
+    "dh-elliptic": paper_model.pull_off_nondimensional,
+    "dh-elliptic-two-axis": closure.pull_off_two_axis,
+    "dh-elliptic-ray-average": closure.pull_off_ray_average,
+    "dh-elliptic-jkr-beta": _dh_elliptic_jkr_beta,
+    "dh-circular": dh_circular.pull_off_nondimensional,
+    "jkr": jkr.pull_off_nondimensional,
+    "dmt": dmt.pull_off_nondimensional,
+    "md": maugis_dugdale.pull_off_nondimensional,
+    "jkr-elliptic": jkr_elliptic.pull_off_nondimensional,
+    "jkr-elliptic-energy": jkr_elliptic_energy.pull_off_nondimensional,
+}
+MODEL_NAMES = tuple(MODELS)
+#: Models of a circular contact (R = sqrt(R'R''), sin(theta_skew) = 1 in Eq. 34), whatever beta0.
+CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
+
+
+def _warned(rec, warning=""):
+    """``rec`` with its validity warning (:mod:`dhfield.validity`) joined to ``warning``."""
+    return rec.replace(warning=_arr(join_warnings(warning, validity_message(rec.model, rec.mu, rec.beta0)),
+                                    np.shape(rec.W_star), object))
 
 
 def _arr(x, shape, dtype=float):
@@ -141,293 +170,14 @@ def _arr(x, shape, dtype=float):
     return out[()] if out.ndim == 0 else out
 
 
-_INF = float("inf")
-#: Largest mu of the closures: the grid of the table above, capped by the closures' own accepted domain.
-_CLOSURE_MU_MAX = min(30.0, getattr(closure, "CLOSURE_MU_RANGE", (0.0, _INF))[1])
-#: name -> ((beta0_min, beta0_max), (mu_min, mu_max)) where each model is validated; outside, its
-#: results are still computed and carry a ``warning``.  Provenance:
-#:
-#: * dh-elliptic, dh-elliptic-jkr-beta: the paper's own range, "beta0 ranging from 0.8 to 0.99" and
-#:   "0.5 <= mu <= 5" (Zini et al. 2018, Sec. 1); beta0 = 1 is the circular DH model;
-#: * the closures: the grid of the table above (beta0 = 0.3-1, mu = 0.1-30), where they were solved
-#:   and compared with elliptical JKR (mu -> infinity) and the circular DH model (beta0 = 1), capped
-#:   by the domain :mod:`dhfield.closure` accepts (``CLOSURE_MU_RANGE``);
-#: * jkr-elliptic and jkr: the JKR side of the adhesion map, mu >= 10 for the ellipse (within 0.3 %
-#:   of the two-axis closure, table above) and lambda = 1.1272 mu >= 5 for the circle (Johnson &
-#:   Greenwood 1997, doi:10.1006/jcis.1997.4984); dmt: lambda <= 0.1 (same map);
-#: * the circular models at beta0 = 1 only (elsewhere they are the circle of R = sqrt(R'R'')).
-VALIDITY_RANGES = {
-    "dh-elliptic": ((0.8, 1.0), (0.5, 5.0)),
-    "dh-elliptic-two-axis": ((0.3, 1.0), (0.1, _CLOSURE_MU_MAX)),
-    "dh-elliptic-ray-average": ((0.3, 1.0), (0.1, _CLOSURE_MU_MAX)),
-    "dh-elliptic-jkr-beta": ((0.8, 1.0), (0.5, 5.0)),
-    "dh-circular": ((1.0, 1.0), (0.0, _INF)),
-    "jkr": ((1.0, 1.0), (4.4, _INF)),
-    "dmt": ((1.0, 1.0), (0.0, 0.09)),
-    "md": ((1.0, 1.0), (0.0, _INF)),
-    "jkr-elliptic": ((0.0, 1.0), (10.0, _INF)),
-    # the JKR limit like jkr-elliptic: BEM at mu = 5 is within 0.4 % of it (beta0 0.5-1, verification/jkr_limit.py)
-    "jkr-elliptic-energy": ((0.0, 1.0), (10.0, _INF)),
-}
-
-
-def validity_table() -> str:
-    """One line per model: its validated beta0 and mu (for ``--help`` and the README)."""
-    return "\n".join(f"  {name:24s} beta0 {_interval(*b):14s} mu {_interval(*m)}"
-                     for name, (b, m) in VALIDITY_RANGES.items())
-
-
-def _interval(lo, hi):
-    if lo == 0.0 and hi == _INF:
-        return "any"
-    if lo == hi:
-        return f"= {lo:g}"
-    if hi == _INF:
-        return f">= {lo:g}"
-    if lo == 0.0:
-        return f"<= {hi:g}"
-    return f"in [{lo:g}, {hi:g}]"
-
-
-def validity_message(model, mu, beta0):
-    """The validated range of a model and where (mu, beta0) leaves it ("" inside).
-
-    Parameters
-    ----------
-    model : str
-        One of :data:`MODEL_NAMES`.
-    mu, beta0 : array_like
-        Tabor parameter (Eq. 35) and Hertz ellipticity [-].
-
-    Returns
-    -------
-    str or ndarray of str
-        Empty where (mu, beta0) lies in :data:`VALIDITY_RANGES`.
-    """
-    (b_lo, b_hi), (m_lo, m_hi) = VALIDITY_RANGES[_check_model(model)]
-    mu, beta0 = np.broadcast_arrays(np.asarray(mu, float), np.asarray(beta0, float))
-
-    def one(m, b):
-        if b_lo <= b <= b_hi and m_lo <= m <= m_hi:
-            return ""
-        return (f"{model} is validated for beta0 {_interval(b_lo, b_hi)} and mu {_interval(m_lo, m_hi)}; "
-                f"got beta0 = {b:.4g}, mu = {m:.4g}")
-
-    out = np.array([one(m, b) for m, b in zip(mu.ravel(), beta0.ravel())], dtype=object).reshape(mu.shape)
-    return out[()] if out.ndim == 0 else out
-
-
-def _join(*messages):
-    parts = np.broadcast_arrays(*(np.asarray(m, dtype=object) for m in messages))
-    out = np.array(["; ".join(p for p in ps if p) for ps in zip(*(q.ravel() for q in parts))],
-                   dtype=object).reshape(parts[0].shape)
-    return out[()] if out.ndim == 0 else out
-
-
-def _record(name, mu, beta0, control, st, sin_skew, geometry, warning=""):
-    """A pull-off record with the keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in order."""
-    shape = np.broadcast_shapes(mu.shape, beta0.shape)
-    warning = _join(warning, validity_message(name, mu, beta0))
-    a = np.asarray(st["a_star"], float)
-    b = np.asarray(st.get("b_star", a), float)
-    c = np.asarray(st.get("c_star", _NAN), float)
-    d = np.asarray(st.get("d_star", c * np.divide(b, a, out=np.ones_like(b), where=a > 0)), float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ell = np.asarray(st.get("ellipticity", np.divide(b, a, out=np.ones_like(b), where=a > 0)), float)
-        adh = np.where(np.isfinite(c) & (c > 0), d / np.where(c > 0, c, 1.0), _NAN)
-    zero = st.get("at_zero_contact", a == 0)
-    rec = {"model": name, "control": control, "geometry": geometry, "beta0": _arr(beta0, shape),
-           "mu": _arr(mu, shape), "sin_skew": _arr(sin_skew, shape), "W_star": _arr(st["W_star"], shape),
-           "a_star": _arr(a, shape), "b_star": _arr(b, shape), "c_star": _arr(c, shape),
-           "d_star": _arr(d, shape), "v": _arr(st.get("v", _NAN), shape),
-           "delta_star": _arr(st["delta_star"], shape), "ellipticity": _arr(ell, shape),
-           "adhesive_ellipticity": _arr(adh, shape),
-           "at_zero_contact": _arr(zero, shape, bool), "warning": _arr(warning, shape, object)}
-    assert tuple(rec) == PULL_OFF_KEYS
-    return rec
-
-
-def _from_model(res):
-    return {"W_star": res.W_star, "a_star": res.a_star, "b_star": res.a_star * res.ellipticity,
-            "c_star": res.c_star, "d_star": res.c_star * res.ellipticity, "v": res.v,
-            "delta_star": res.delta_star, "at_zero_contact": res.at_zero_contact}
-
-
-def _from_closure(st):
-    return {"W_star": st.W_star, "a_star": st.a_star, "b_star": st.b_star, "c_star": st.c_star,
-            "d_star": st.d_star, "delta_star": st.delta_star, "at_zero_contact": st.at_zero_contact}
-
-
-#: Smallest mu at which elliptical JKR stands in for the two-axis closure where the closure does not
-#: accept the inputs (within 0.3 % of it for mu >= 10 over beta0 = 0.3-0.99, table above).
-JKR_PROXY_MU = 10.0
-_TWO_AXIS = "the two-axis closure"
-_JKR_PROXY = f"elliptical JKR (the two-axis closure's limit, mu >= {JKR_PROXY_MU:g})"
-
-
-def _reference(mu, beta0, control):
-    """W* of the two-axis closure where it accepts (mu, beta0), elliptical JKR above it at mu >= 10.
-
-    Returns the reference W* (NaN where neither applies), its label per point, and the
-    reason where it is NaN.
-    """
-    mu_lo, mu_hi = getattr(closure, "CLOSURE_MU_RANGE", (0.0, _INF))
-    b_lo, b_hi = getattr(closure, "CLOSURE_BETA0_RANGE", (0.0, 1.0))
-    mu, beta0 = np.broadcast_arrays(np.atleast_1d(mu), np.atleast_1d(beta0))
-    inside = (mu >= mu_lo) & (mu <= mu_hi) & (beta0 >= b_lo) & (beta0 <= b_hi)
-    ref = np.full(mu.shape, _NAN)
-    label = np.full(mu.shape, _TWO_AXIS, dtype=object)
-    reason = f"outside mu in [{mu_lo:g}, {mu_hi:g}], beta0 in [{b_lo:g}, {b_hi:g}] of dhfield.closure"
-    if inside.any():
-        try:
-            ref[inside] = closure.pull_off_two_axis(mu[inside], beta0[inside], control=control).W_star
-        except RuntimeError:
-            reason = "its solve did not converge"
-        except ValueError as exc:  # a narrower domain than the one published in dhfield.closure
-            reason = str(exc)
-    proxy = ~inside & (mu >= JKR_PROXY_MU)
-    if proxy.any():
-        ref[proxy] = jkr_elliptic.pull_off_nondimensional(beta0[proxy], control)["W_star"]
-        label[proxy] = _JKR_PROXY
-    return ref, label, reason
-
-
-def _departure_warning(w_paper, w_ref, label=_TWO_AXIS, reason=""):
-    w_paper, w_ref, label = np.broadcast_arrays(np.asarray(w_paper, float), np.asarray(w_ref, float),
-                                                np.asarray(label, dtype=object))
-    dep = w_paper / w_ref - 1.0
-
-    def one(x, lab):
-        if np.isnan(x):
-            return f"dh-elliptic could not be checked against {_TWO_AXIS} ({reason})"
-        if not abs(x) > WARNING_THRESHOLD:
-            return ""
-        return (f"dh-elliptic pull-off departs from {lab} by {100 * x:+.1f} % "
-                f"(> {100 * WARNING_THRESHOLD:g} %): prefer the model "
-                + ("dh-elliptic-two-axis" if lab == _TWO_AXIS else "jkr-elliptic"))
-
-    out = np.array([one(x, lab) for x, lab in zip(dep.ravel(), label.ravel())], dtype=object).reshape(dep.shape)
-    return out[()] if out.ndim == 0 else out
-
-
-def closure_departure(mu, beta0, control="load"):
-    """Relative departure of the paper's pull-off from the two-axis closure.
-
-    Parameters
-    ----------
-    mu : array_like
-        Tabor parameter of Eq. (35), > 0 [-].
-    beta0 : array_like
-        Hertz ellipticity b/a of the geometry, in (0, 1] [-].
-    control : {'load', 'displacement'}
-
-    Returns
-    -------
-    ndarray or float
-        W*_paper / W*_two-axis - 1 at pull-off [-]; negative where the paper's
-        model predicts less adhesion.  0 at beta0 = 1, where both are the circle.
-    """
-    from .model import pull_off as dh_pull_off
-
-    mu, beta0 = _check(mu, beta0, control)
-    w = dh_pull_off(mu, beta0, control=control).W_star
-    ref = closure.pull_off_two_axis(mu, beta0, control=control).W_star
-    out = np.asarray(w, float) / np.asarray(ref, float) - 1.0
-    return out[()] if out.ndim == 0 else out
-
-
-def _dh_elliptic(mu, beta0, control="load", *, check_closure=True, two_axis=None):
-    from .model import pull_off as dh_pull_off
-
-    mu, beta0 = _check(mu, beta0, control)
-    res = dh_pull_off(mu, beta0, control=control)
+def _pull_off(name, beta0, mu, control, *, check_closure=True, two_axis=None):
+    """Pull-off record of a model on validated inputs, with its warnings."""
+    rec = MODELS[name](beta0, mu, control=control)
     warning = ""
-    if check_closure:
-        if two_axis is not None:
-            warning = _departure_warning(res.W_star, two_axis["W_star"])
-        else:  # the closure where it accepts the inputs, elliptical JKR above its mu cap
-            ref, label, reason = _reference(mu, beta0, control)
-            warning = _departure_warning(res.W_star, ref.reshape(np.shape(res.W_star)),
-                                         label.reshape(np.shape(res.W_star)), reason)
-    return _record("dh-elliptic", mu, beta0, control, _from_model(res), sin_skew_angle(beta0), "ellipse",
-                   warning)
-
-
-def _dh_elliptic_jkr_beta(mu, beta0, control="load"):
-    from .model import pull_off as dh_pull_off
-
-    mu, beta0 = _check(mu, beta0, control)
-    beta_jkr = jkr_elliptic.pull_off_nondimensional(beta0, control)["beta"]
-    res = dh_pull_off(mu, beta0, control=control, ellipticity=beta_jkr)
-    return _record("dh-elliptic-jkr-beta", mu, beta0, control, _from_model(res), sin_skew_angle(beta0),
-                   "ellipse")
-
-
-def _two_axis(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    st = closure.pull_off_two_axis(mu, beta0, control=control)
-    return _record("dh-elliptic-two-axis", mu, beta0, control, _from_closure(st), sin_skew_angle(beta0),
-                   "ellipse")
-
-
-def _ray_average(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    st = closure.pull_off_ray_average(mu, beta0, control=control)
-    return _record("dh-elliptic-ray-average", mu, beta0, control, _from_closure(st), sin_skew_angle(beta0),
-                   "ellipse")
-
-
-def _dh_circular(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("dh-circular", mu, beta0, control, dh_circular.pull_off_nondimensional(mu, control), 1.0, "circle")
-
-
-def _jkr(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("jkr", mu, beta0, control, jkr.pull_off_nondimensional(control), 1.0, "circle")
-
-
-def _dmt(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("dmt", mu, beta0, control, dmt.pull_off_nondimensional(control), 1.0, "circle")
-
-
-def _md(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    return _record("md", mu, beta0, control, maugis_dugdale.pull_off_nondimensional(mu, control), 1.0, "circle")
-
-
-def _jkr_elliptic(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    st = jkr_elliptic.pull_off_nondimensional(beta0, control)
-    st = {**st, "ellipticity": st["beta"]}
-    return _record("jkr-elliptic", mu, beta0, control, st, sin_skew_angle(beta0), "ellipse")
-
-
-def _jkr_elliptic_energy(mu, beta0, control="load"):
-    mu, beta0 = _check(mu, beta0, control)
-    st = jkr_elliptic_energy.pull_off_nondimensional(beta0, control)
-    st = {**st, "ellipticity": st["beta"]}
-    return _record("jkr-elliptic-energy", mu, beta0, control, st, sin_skew_angle(beta0), "ellipse")
-
-
-#: name -> callable (mu, beta0, control="load") -> dict with the keys of
-#: :data:`dhfield.schema.PULL_OFF_KEYS` (see the module docstring).
-MODELS = {
-    "dh-elliptic": _dh_elliptic,
-    "dh-elliptic-two-axis": _two_axis,
-    "dh-elliptic-ray-average": _ray_average,
-    "dh-elliptic-jkr-beta": _dh_elliptic_jkr_beta,
-    "dh-circular": _dh_circular,
-    "jkr": _jkr,
-    "dmt": _dmt,
-    "md": _md,
-    "jkr-elliptic": _jkr_elliptic,
-    "jkr-elliptic-energy": _jkr_elliptic_energy,
-}
-MODEL_NAMES = tuple(MODELS)
-#: Models of a circular contact (R = sqrt(R'R''), sin(theta_skew) = 1 in Eq. 34), whatever beta0.
-CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
+    if name == "dh-elliptic" and check_closure:
+        # the closure where it accepts the inputs, elliptical JKR above its mu cap
+        warning = departure_warning(rec.W_star, mu, beta0, control, two_axis)
+    return _warned(rec, warning)
 
 
 def _check_model(model):
@@ -462,15 +212,15 @@ def pull_off(model, mu, beta0, control="load", *, check_closure=True):
 
     Returns
     -------
-    dict
-        The keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in that order, for every
-        model; NaN where a quantity does not apply (module docstring).  Arrays
-        broadcast over ``mu`` and ``beta0``; scalars in give scalars out.
+    dhfield.records.PullOff
+        The record of every model: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`,
+        in that order, as attributes or a mapping; NaN where a quantity does not apply
+        (module docstring).  Arrays broadcast over ``mu`` and ``beta0``; scalars in
+        give scalars out.
     """
     _check_model(model)
-    if model == "dh-elliptic":
-        return _dh_elliptic(mu, beta0, control, check_closure=check_closure)
-    return MODELS[model](mu, beta0, control)
+    mu, beta0 = _check(mu, beta0, control)
+    return _pull_off(model, beta0, mu, control, check_closure=check_closure)
 
 
 def compare(mu, beta0, control="load", models=None, *, check_closure=True):
@@ -501,21 +251,22 @@ def compare(mu, beta0, control="load", models=None, *, check_closure=True):
             nan = np.full(mu.shape, _NAN)
             st = {"W_star": nan, "a_star": nan, "c_star": nan, "delta_star": nan}
             circle = name in CIRCULAR_MODEL_NAMES
-            return _record(name, mu, beta0, control, st, 1.0 if circle else sin_skew_angle(beta0),
-                           "circle" if circle else "ellipse", f"{name} failed: {exc}")
+            return _warned(pull_off_record(name, beta0, mu, st, control=control,
+                                           sin_skew=1.0 if circle else sin_skew_angle(beta0),
+                                           geometry="circle" if circle else "ellipse"), f"{name} failed: {exc}")
 
     out = {}
     two_axis = shown = None
     if "dh-elliptic-two-axis" in names:
-        shown = guarded("dh-elliptic-two-axis", lambda: _two_axis(mu, beta0, control))
-        two_axis = None if np.all(np.isnan(shown["W_star"])) else shown
+        shown = guarded("dh-elliptic-two-axis", lambda: _pull_off("dh-elliptic-two-axis", beta0, mu, control))
+        two_axis = None if np.all(np.isnan(shown.W_star)) else shown.W_star
     for name in names:
         if name == "dh-elliptic":
-            out[name] = _dh_elliptic(mu, beta0, control, check_closure=check_closure, two_axis=two_axis)
+            out[name] = _pull_off(name, beta0, mu, control, check_closure=check_closure, two_axis=two_axis)
         elif name == "dh-elliptic-two-axis":
             out[name] = shown
         else:
-            out[name] = guarded(name, lambda name=name: MODELS[name](mu, beta0, control))
+            out[name] = guarded(name, lambda name=name: _pull_off(name, beta0, mu, control))
     return out
 
 
@@ -589,11 +340,8 @@ def _curve_arrays(model, a_star, mu, beta0):
 
 def _curve_record(model, mu, beta0, arrays):
     circle = model in CIRCULAR_MODEL_NAMES
-    head = {"model": model, "geometry": "circle" if circle else "ellipse",
-            "beta0": float(beta0), "mu": float(mu),
-            "sin_skew": 1.0 if circle else float(sin_skew_angle(beta0))}
-    assert tuple(head) == LOAD_CURVE_HEADER_KEYS
-    return {**head, **{k: arrays[k] for k in LOAD_CURVE_KEYS}}
+    return load_curve_record(model, beta0, mu, arrays, sin_skew=1.0 if circle else float(sin_skew_angle(beta0)),
+                             geometry="circle" if circle else "ellipse")
 
 
 def load_curve(model, mu, beta0, a_star=None, *, n=200):
@@ -615,8 +363,9 @@ def load_curve(model, mu, beta0, a_star=None, *, n=200):
 
     Returns
     -------
-    dict
-        The scalar keys of :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
+    dhfield.records.LoadCurve
+        The record of every model's curve: the scalar keys of
+        :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
         arrays of :data:`dhfield.schema.LOAD_CURVE_KEYS` (NaN where a model has no
         such quantity: ``c_star``, ``d_star`` outside the DH models, ``v`` outside the
         paper's and the circular DH models where the DH factor is not reported).
@@ -672,8 +421,7 @@ def load_curve_at_load(model, mu, beta0, w_star):
     w = np.atleast_1d(np.asarray(w_star, dtype=float))
     if not np.all(np.isfinite(w)):
         raise ValueError(f"load must be finite; got {w_star!r}")
-    po = MODELS[model](mu, beta0, "load") if model != "dh-elliptic" else _dh_elliptic(
-        mu, beta0, "load", check_closure=False)
+    po = MODELS[model](np.asarray(beta0), np.asarray(mu), control="load")
     w_po, a_po = float(po["W_star"]), float(po["a_star"])
     if np.any(w < w_po):
         raise ValueError(f"load must be at least the pull-off load W* = {w_po:.6g} of {model} "
@@ -702,29 +450,3 @@ def load_curve_at_load(model, mu, beta0, w_star):
 
 #: Relative tolerance on a* of the load inversion (well below plotting or fitting needs).
 _ROOT_RTOL = 1e-12
-
-
-def to_dimensional(record, effective_radius, reduced_modulus, work_of_adhesion):
-    """SI values of a record: ``load`` [N], ``semi_major`` and ``adhesive_semi_major`` [m],
-    ``approach`` [m].
-
-    Parameters
-    ----------
-    record : dict
-        A record from :data:`MODELS`.
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
-
-    Notes
-    -----
-    Inverts Eqs. (32)-(34): W = W* 2 pi R dgamma/sin(theta_skew), a = a* c_r,
-    delta = delta* c_r^2/R.  The full SI record of every model is
-    :func:`dhfield.dimensional.pull_off_force`.
-    """
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    cr = length_unit(r, e, w)
-    return {"model": record["model"],
-            "load": record["W_star"] * load_unit(r, w, record["sin_skew"]),  # Eq. (34)
-            "semi_major": record["a_star"] * cr,  # Eq. (32)
-            "adhesive_semi_major": record["c_star"] * cr,
-            "approach": record["delta_star"] * approach_unit(r, e, w)}

@@ -44,10 +44,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
-                        check_material, check_tabor, grid_minimum, length_unit, load_unit,
-                        scalar_or_array, tabor_parameter)
-from ._validation import check_positive
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material,
+                        length_unit, load_unit, scalar_or_array, tabor_parameter)
+from ._validation import check_control, check_positive, check_tabor
+from .pull_off_search import scan_minimum
+from .records import pull_off_record
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "work_of_adhesion", "load_curve_nondimensional",
            "pull_off_nondimensional"]
@@ -131,10 +132,10 @@ def load_curve_nondimensional(a_star, mu):
     return st
 
 
-def pull_off_nondimensional(mu, control="load"):
+def _pull_off_state(mu, control="load"):
     """Circular DH state at pull-off in the paper's units (Eqs. 32-35), vectorised over mu.
 
-    The nondimensional core of :func:`pull_off`.  Load control: the first minimum
+    Load control: the first minimum
     of W* (Eq. 36) met on unloading from high load (the end of the stable branch);
     displacement control: the same for delta*.  Either may be the end point a = 0
     (then W* = -1/(1 + v0)).
@@ -152,8 +153,6 @@ def pull_off_nondimensional(mu, control="load"):
         :func:`load_curve_nondimensional`, and ``at_zero_contact`` (bool: the
         pull-off is the end point a = 0).
     """
-    check_control(control)
-    check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
     mu = np.asarray(mu, dtype=float)
     key = "W_star" if control == "load" else "delta_star"
     top = np.log(_v_zero_contact(mu))
@@ -163,8 +162,7 @@ def pull_off_nondimensional(mu, control="load"):
     def f(t, m):
         return _state(t, m)[key]
 
-    t, _ = grid_minimum(f, top, top, args=(mu,), xatol=1e-15, first=True, grid=grid,
-                        complex_step=True)
+    t, _ = scan_minimum(f, grid, (mu,), xatol=1e-15)
     st = _state(np.minimum(t, top), mu)
     end = t >= top
     if np.any(end):  # a = 0 exactly: c = q = pi mu/(2 v0)
@@ -175,6 +173,27 @@ def pull_off_nondimensional(mu, control="load"):
         st["delta_star"] = np.where(end, -st["v"] * c0**2, st["delta_star"])
     st["at_zero_contact"] = end
     return st
+
+
+def pull_off_nondimensional(beta0, mu, *, control="load"):
+    """Circular DH pull-off record (Greenwood & Johnson 1998) in the paper's units, Eqs. (32)-(35).
+
+    The nondimensional core of :func:`pull_off`; inputs are not validated here
+    (:func:`dhfield.compare.pull_off` does).
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; the circle of R = sqrt(R'R'') depends on mu only; the record has their broadcast shape.
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dhfield.records.PullOff
+    """
+    mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[1]
+    return pull_off_record("dh-circular", beta0, mu, _pull_off_state(mu, control), control=control, sin_skew=1.0,
+                           geometry="circle")
 
 
 def work_of_adhesion(contact_radius, adhesive_radius, scaling, effective_radius, reduced_modulus):
@@ -276,8 +295,9 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    check_tabor(mu)
-    return PullOff(*(scalar_or_array(x) for x in _dimensional(pull_off_nondimensional(mu, control), r, e, w)))
+    check_tabor("mu", mu)
+    check_control(control)
+    return PullOff(*(scalar_or_array(x) for x in _dimensional(_pull_off_state(mu, control), r, e, w)))
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

@@ -19,9 +19,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
-                        check_material, length_unit, load_unit, scalar_or_array)
-from ._validation import check_finite
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, length_unit,
+                        load_unit, scalar_or_array)
+from ._validation import check_control, check_finite
+from .records import pull_off_record
 
 __all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
            "pull_off_nondimensional"]
@@ -54,23 +55,31 @@ def load_curve_nondimensional(a_star):
     return {"W_star": w, "a_star": a, "delta_star": a**2}  # Hertz approach
 
 
-def pull_off_nondimensional(control="load"):
-    """DMT state at pull-off in the paper's units: W* = -1 at a* = 0 for either control.
+def _pull_off_state(control):  # noqa: ARG001 - the same state for both controls
+    """``W_star``, ``a_star``, ``delta_star`` [-] at pull-off (:func:`load_curve_nondimensional`)."""
+    return load_curve_nondimensional(0.0)
 
-    The nondimensional core of :func:`pull_off`.
+
+def pull_off_nondimensional(beta0, mu, *, control="load"):
+    """DMT pull-off record in the paper's units: W* = -1 at a* = 0 for either control.
+
+    The nondimensional core of :func:`pull_off`; inputs are not validated here
+    (:func:`dhfield.compare.pull_off` does).
 
     Parameters
     ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-]: DMT depends on neither; the
+        record has their broadcast shape (the circle of R = sqrt(R'R'')).
     control : {'load', 'displacement'}
         Both give the same state (the approach is monotone in a).
 
     Returns
     -------
-    dict
-        ``W_star``, ``a_star``, ``delta_star`` [-] of :func:`load_curve_nondimensional`.
+    dhfield.records.PullOff
     """
-    check_control(control)
-    return load_curve_nondimensional(0.0)
+    return pull_off_record("dmt", beta0, mu, _pull_off_state(control), control=control, sin_skew=1.0,
+                           geometry="circle")
 
 
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
@@ -129,8 +138,9 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
     PullOff
         ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
     """
+    check_control(control)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = pull_off_nondimensional(control)
+    s = _pull_off_state(control)
     z = np.zeros(np.broadcast_shapes(r.shape, e.shape, w.shape))
     return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w) + z), scalar_or_array(z),
                    scalar_or_array(z))

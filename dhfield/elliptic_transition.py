@@ -36,8 +36,8 @@ from __future__ import annotations
 import numpy as np
 
 from . import jkr_elliptic_energy, maugis_dugdale
-from ._adhesion import check_control, check_material, check_tabor, load_unit, scalar_or_array, tabor_parameter
-from ._validation import check_interval
+from ._adhesion import check_material, load_unit, scalar_or_array, tabor_parameter
+from ._validation import check_control, check_interval, check_tabor
 from .geometry import sin_skew_angle
 from .jkr_elliptic import _check_geometry
 
@@ -68,8 +68,8 @@ def transition_weight(mu, control="load"):
         0 at the DMT limit (mu -> 0), 1 at the JKR limit (mu -> infinity).
     """
     check_control(control)
-    mu = check_tabor(mu)
-    w_md = _unique_eval(lambda m: maugis_dugdale.pull_off_nondimensional(m, control)["W_star"], mu)
+    mu = check_tabor("mu", mu)
+    w_md = _unique_eval(lambda m: maugis_dugdale.pull_off_nondimensional(1.0, m, control=control).W_star, mu)
     return (w_md + 1.0) / (_JKR_W_STAR[control] + 1.0)
 
 
@@ -95,11 +95,11 @@ def pull_off_nondimensional(mu, beta0, control="load"):
     .. math:: W^* = -\\sin\\theta_{skew} + \\left(W^*_{GVG} + \\sin\\theta_{skew}\\right) g(\\mu)
     """
     check_control(control)
-    mu = check_tabor(mu)
+    mu = check_tabor("mu", mu)
     beta0 = check_interval("beta0", beta0, 0.0, 1.0, what="Hertz ellipticity b/a, dimensionless")
     mu, beta0 = np.broadcast_arrays(mu, beta0)
     g = transition_weight(mu, control)
-    w_jkr = _unique_eval(lambda b: jkr_elliptic_energy.pull_off_nondimensional(b, control)["W_star"], beta0)
+    w_jkr = _unique_eval(lambda b: jkr_elliptic_energy.pull_off_nondimensional(b, 1.0, control=control).W_star, beta0)
     w_dmt = -_unique_eval(sin_skew_angle, beta0)  # DMT: W = -2 pi dgamma sqrt(R'R''), Eq. (34)
     return {"W_star": w_dmt + (w_jkr - w_dmt) * g, "W_star_dmt": w_dmt, "W_star_jkr": w_jkr, "weight": g}
 

@@ -20,9 +20,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
-                        check_material, length_unit, load_unit, scalar_or_array)
-from ._validation import check_finite
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, length_unit,
+                        load_unit, scalar_or_array)
+from ._validation import check_control, check_finite
+from .records import pull_off_record
 
 __all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
            "pull_off_nondimensional"]
@@ -70,22 +71,31 @@ def _contact_radius(w_star):
     return np.cbrt(0.75 * (p + 3.0 * np.pi + np.sqrt(disc)))  # JKR (1971): inverse of the load curve
 
 
-def pull_off_nondimensional(control="load"):
-    """JKR state at pull-off in the paper's units (Eqs. 32-35); the core of :func:`pull_off`.
+def _pull_off_state(control):
+    """``W_star``, ``a_star``, ``delta_star`` [-] at pull-off (:func:`load_curve_nondimensional`)."""
+    return load_curve_nondimensional(np.cbrt(_PULL_OFF_A3[control]))
+
+
+def pull_off_nondimensional(beta0, mu, *, control="load"):
+    """JKR pull-off record in the paper's units (Eqs. 32-35); the core of :func:`pull_off`.
+
+    Inputs are not validated here (:func:`dhfield.compare.pull_off` does).
 
     Parameters
     ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-]: JKR depends on neither; the
+        record has their broadcast shape (the circle of R = sqrt(R'R'')).
     control : {'load', 'displacement'}
         Load control: the minimum of W* (a*^3 = 9 pi/8, W* = -3/4); displacement
         control: the minimum of delta* (a*^3 = pi/8, W* = -5/12).
 
     Returns
     -------
-    dict
-        ``W_star``, ``a_star``, ``delta_star`` [-] of :func:`load_curve_nondimensional`.
+    dhfield.records.PullOff
     """
-    check_control(control)
-    return load_curve_nondimensional(np.cbrt(_PULL_OFF_A3[control]))
+    return pull_off_record("jkr", beta0, mu, _pull_off_state(control), control=control, sin_skew=1.0,
+                           geometry="circle")
 
 
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
@@ -165,8 +175,9 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
     Load control: :math:`W = -\\tfrac32\\pi R\\Delta\\gamma`, :math:`a^3 = 9\\pi\\Delta\\gamma R^2/(8E^*)`.
     Displacement control: :math:`W = -\\tfrac56\\pi R\\Delta\\gamma`, :math:`a^3 = \\pi\\Delta\\gamma R^2/(8E^*)`.
     """
+    check_control(control)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = pull_off_nondimensional(control)
+    s = _pull_off_state(control)
     return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w)),
                    scalar_or_array(s["a_star"] * length_unit(r, e, w)),
                    scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))

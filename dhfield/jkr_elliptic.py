@@ -78,10 +78,11 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._adhesion import (approach_unit, check_control, check_material,
-                        grid_minimum, length_unit, load_unit, scalar_or_array)
-from ._validation import check_ellipticity, check_finite, check_interval
-from .geometry import ellipticity_from_radius_ratio
+from ._adhesion import approach_unit, check_material, length_unit, load_unit, scalar_or_array
+from ._validation import as_circle, check_control, check_ellipticity, check_finite, check_interval
+from .geometry import ellipticity_from_radius_ratio, sin_skew_angle
+from .pull_off_search import scan_minimum
+from .records import pull_off_record
 
 __all__ = [
     "EllipticLoadCurve",
@@ -300,10 +301,10 @@ def load_curve_nondimensional(a_star, beta0):
     return out
 
 
-def pull_off_nondimensional(beta0, control="load"):
+def _pull_off_state(beta0, control="load"):
     """Elliptical JKR state at pull-off in the paper's units (Eqs. 32-35), vectorised over beta0.
 
-    The nondimensional core of :func:`pull_off`: the first minimum of W* (load
+    The first minimum of W* (load
     control) or delta* (displacement control) met on unloading from high load,
     i.e. from beta = beta0 towards beta = 1.
 
@@ -319,7 +320,6 @@ def pull_off_nondimensional(beta0, control="load"):
         ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] as in
         :func:`load_curve_nondimensional`.
     """
-    check_control(control)
     beta0, rho_m1, sn = _geometry(beta0)
     a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
     out = _circle(np.full(beta0.shape, np.cbrt(a3)), sn)
@@ -331,13 +331,36 @@ def pull_off_nondimensional(beta0, control="load"):
         def f(u, b0, r, s):
             return _state_u(u, b0, r, s)[key]
 
-        u, _ = grid_minimum(f, 0.0, 0.0, args=(beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15,
-                            first=True, grid=_SCAN_U, complex_step=True)
+        u, _ = scan_minimum(f, _SCAN_U, (beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15)
         st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
         for k in out:
             out[k] = np.array(out[k], dtype=float)
             out[k][sel] = st[k]
     return out
+
+
+def pull_off_nondimensional(beta0, mu, *, control="load"):
+    """Elliptical JKR pull-off record (Johnson & Greenwood 2005) in the paper's units, Eqs. (32)-(35).
+
+    The nondimensional core of :func:`pull_off`; inputs are not validated here
+    (:func:`dhfield.compare.pull_off` does).
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; JKR does not depend on mu, the
+        record has their broadcast shape.
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dhfield.records.PullOff
+        ``ellipticity`` is beta_JKR(pull-off).
+    """
+    beta0 = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[0]
+    st = _pull_off_state(beta0, control)
+    return pull_off_record("jkr-elliptic", beta0, mu, {**st, "ellipticity": st["beta"]}, control=control,
+                           sin_skew=sin_skew_angle(beta0), geometry="ellipse")
 
 
 def _beta_at_load(w_star, beta0):
@@ -347,7 +370,7 @@ def _beta_at_load(w_star, beta0):
     out = np.ones(w_star.shape)
     sel = beta0 < 1.0
     if np.any(sel):
-        po = pull_off_nondimensional(beta0[sel])
+        po = _pull_off_state(beta0[sel])
         u_po = (po["beta"] - beta0[sel]) / (1.0 - beta0[sel])
 
         def f(u, w, b0, r, s):
@@ -364,10 +387,10 @@ def _check_geometry(radius_ratio_, beta0):
     if (radius_ratio_ is None) == (beta0 is None):
         raise ValueError("give exactly one of radius_ratio (R'/R'' >= 1) and beta0 (Hertz b/a in (0, 1])")
     if beta0 is not None:
-        return check_ellipticity("beta0", beta0)
+        return as_circle(check_ellipticity("beta0", beta0))
     rho = check_interval("radius_ratio", radius_ratio_, 1.0, np.inf, low_open=False, high_open=True,
                          what="R'/R'' >= 1, dimensionless")
-    return ellipticity_from_radius_ratio(rho)
+    return as_circle(ellipticity_from_radius_ratio(rho))
 
 
 def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, *,
@@ -441,7 +464,8 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
     """
     b0 = _check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    st = pull_off_nondimensional(b0, control)
+    check_control(control)
+    st = _pull_off_state(b0, control)
     cr = length_unit(r, e, w)
     sn = _geometry(b0)[2]
     return EllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
@@ -464,7 +488,8 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
     under displacement control, the circular fixed-grips value).
     """
     b0 = _check_geometry(radius_ratio, beta0)
-    st = pull_off_nondimensional(b0, control)
+    check_control(control)
+    st = _pull_off_state(b0, control)
     return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
 
 
@@ -484,7 +509,8 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
         beta at pull-off, in [beta0, 1] [-]; 1 at the circle.
     """
     b0 = _check_geometry(radius_ratio, beta0)
-    return scalar_or_array(pull_off_nondimensional(b0, control)["beta"])
+    check_control(control)
+    return scalar_or_array(_pull_off_state(b0, control)["beta"])
 
 
 def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
@@ -496,7 +522,7 @@ def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
     b0 = _check_geometry(radius_ratio, beta0)
     w = check_interval("load_star", load_star, -1.0, np.inf, high_open=True,
                        what="W* of Eq. (34), above the pull-off load")
-    po = pull_off_nondimensional(b0)["W_star"]
+    po = _pull_off_state(b0)["W_star"]
     if np.any(w < po):
         raise ValueError(f"load_star must be >= the pull-off load W* = {np.min(po):.6g}; "
                          f"got {np.min(w)!r}")

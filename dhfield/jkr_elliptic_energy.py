@@ -94,10 +94,12 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._adhesion import (approach_unit, check_control, check_material, grid_minimum, length_unit,
-                        load_unit, scalar_or_array)
-from ._validation import check_finite, check_interval
+from ._adhesion import approach_unit, check_material, length_unit, load_unit, scalar_or_array
+from ._validation import check_control, check_finite, check_interval
+from .geometry import sin_skew_angle
 from .jkr_elliptic import _check_geometry, _circle, _geometry, _shape_coefficients
+from .pull_off_search import scan_minimum
+from .records import pull_off_record
 
 __all__ = [
     "EnergyEllipticLoadCurve",
@@ -271,10 +273,34 @@ def load_curve_nondimensional(a_star, beta0):
     return out
 
 
-def pull_off_nondimensional(beta0, control="load"):
+def pull_off_nondimensional(beta0, mu, *, control="load"):
+    """GVG pull-off record in the paper's units, Eqs. (32)-(35).
+
+    The nondimensional core of :func:`pull_off`; inputs are not validated here
+    (:func:`dhfield.compare.pull_off` does).
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; JKR does not depend on mu, the
+        record has their broadcast shape.
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dhfield.records.PullOff
+        ``ellipticity`` is the contact ellipticity b/a at pull-off.
+    """
+    beta0 = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[0]
+    st = _pull_off_state(beta0, control)
+    return pull_off_record("jkr-elliptic-energy", beta0, mu, {**st, "ellipticity": st["beta"]},
+                           control=control, sin_skew=sin_skew_angle(beta0), geometry="ellipse")
+
+
+def _pull_off_state(beta0, control="load"):
     """GVG state at pull-off in the paper's units (Eqs. 32-35), vectorised over beta0.
 
-    The nondimensional core of :func:`pull_off`: the first minimum of W* (load
+    The first minimum of W* (load
     control) or delta* (displacement control) met on unloading from high load,
     i.e. from beta = beta0 towards beta = 1.
 
@@ -296,7 +322,6 @@ def pull_off_nondimensional(beta0, control="load"):
     curve (accurate to ~1e-15 in beta).  beta0 = 1: JKR, W* = -3/4 (load control,
     a*^3 = 9 pi/8) and -5/12 (displacement control, a*^3 = pi/8).
     """
-    check_control(control)
     beta0, rho_m1, sn = _geometry(beta0)
     a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
     out = _circle(np.full(beta0.shape, np.cbrt(a3)), sn)
@@ -308,8 +333,7 @@ def pull_off_nondimensional(beta0, control="load"):
         def f(u, b0, r, s):
             return _state_u(u, b0, r, s)[key]
 
-        u, _ = grid_minimum(f, 0.0, 0.0, args=(beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15,
-                            first=True, grid=_SCAN_U, complex_step=True)
+        u, _ = scan_minimum(f, _SCAN_U, (beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15)
         st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
         for k in out:
             out[k] = np.array(out[k], dtype=float)
@@ -385,7 +409,8 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
     """
     b0 = _check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    st = pull_off_nondimensional(b0, control)
+    check_control(control)
+    st = _pull_off_state(b0, control)
     cr = length_unit(r, e, w)
     sn = _geometry(b0)[2]
     return EnergyEllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
@@ -408,7 +433,8 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
     displacement control, the circular fixed-grips value).
     """
     b0 = _check_geometry(radius_ratio, beta0)
-    st = pull_off_nondimensional(b0, control)
+    check_control(control)
+    st = _pull_off_state(b0, control)
     return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
 
 
@@ -423,4 +449,5 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
         Loading mode of the pull-off.
     """
     b0 = _check_geometry(radius_ratio, beta0)
-    return scalar_or_array(pull_off_nondimensional(b0, control)["beta"])
+    check_control(control)
+    return scalar_or_array(_pull_off_state(b0, control)["beta"])

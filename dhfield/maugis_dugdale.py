@@ -45,10 +45,11 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_control,
-                        check_material, grid_minimum, length_unit, load_unit, scalar_or_array,
-                        tabor_parameter)
-from ._validation import check_positive
+from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material,
+                        length_unit, load_unit, scalar_or_array, tabor_parameter)
+from ._validation import check_control, check_positive
+from .pull_off_search import scan_minimum
+from .records import pull_off_record
 from .transition import maugis_parameter
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "LAMBDA_RANGE", "load_curve_nondimensional",
@@ -237,8 +238,7 @@ def pull_off_maugis_units(lam, control="load"):
         return _state_maugis(t, lm)[col]
 
     grid = _log_m_at(np.broadcast_to(_SCAN_A, lam.shape + _SCAN_A.shape), lam[..., None])
-    t, _ = grid_minimum(f, 0.0, 0.0, args=(lam,), xatol=1e-14, first=True, grid=grid,
-                        complex_step=True)
+    t, _ = scan_minimum(f, grid, (lam,), xatol=1e-14)
     a, p, d, m = _state_maugis(t, lam)
     # the curve ends at A = 0 (M -> infinity); compare with that end point exactly
     p0, d0 = _zero_contact(lam)
@@ -251,28 +251,34 @@ def pull_off_maugis_units(lam, control="load"):
     return MaugisPullOff(a, p, d, m)
 
 
-def pull_off_nondimensional(mu, control="load"):
-    """MD state at pull-off in the paper's units (Eqs. 32-35), vectorised over mu.
-
-    The nondimensional core of :func:`pull_off` (see :func:`pull_off_maugis_units`).
-
-    Parameters
-    ----------
-    mu : array_like
-        Transition parameter, Eq. (35), > 0 [-].
-    control : {'load', 'displacement'}
-
-    Returns
-    -------
-    dict
-        ``W_star``, ``a_star``, ``c_star``, ``delta_star`` [-] as in
-        :func:`load_curve_nondimensional`.
-    """
+def _pull_off_state(mu, control):
+    """MD ``W_star``, ``a_star``, ``c_star``, ``delta_star`` [-] at pull-off (:func:`pull_off_maugis_units`)."""
     lam = maugis_parameter(mu)
     a, p, d, m = pull_off_maugis_units(lam, control)
     with np.errstate(invalid="ignore"):
         c_star = np.where(a > 0, m * a, _zero_contact_zone(lam)) * _A_UNIT
     return {"W_star": 0.5 * p, "a_star": a * _A_UNIT, "c_star": c_star, "delta_star": d * _D_UNIT}
+
+
+def pull_off_nondimensional(beta0, mu, *, control="load"):
+    """MD pull-off record in the paper's units (Eqs. 32-35), vectorised, at lambda = 1.1272 mu.
+
+    The nondimensional core of :func:`pull_off` (see :func:`pull_off_maugis_units`).
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; the circle of R = sqrt(R'R'')
+        depends on mu only; the record has their broadcast shape.
+    control : {'load', 'displacement'}
+
+    Returns
+    -------
+    dhfield.records.PullOff
+    """
+    mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[1]
+    return pull_off_record("md", beta0, mu, _pull_off_state(mu, control), control=control, sin_skew=1.0,
+                           geometry="circle")
 
 
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
@@ -337,7 +343,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    s = pull_off_nondimensional(mu, control)
+    s = _pull_off_state(mu, control)
     return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w)),
                    scalar_or_array(s["a_star"] * length_unit(r, e, w)),
                    scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))

@@ -48,18 +48,20 @@ states are evaluated in bounded chunks.
 """
 from __future__ import annotations
 
-from dataclasses import asdict, astuple, dataclass, field
+from dataclasses import asdict, astuple, dataclass
 
 import numpy as np
 from scipy import special
 
-from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star,
+from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, check_contact_size_star, check_control,
                           check_count, check_model_ellipticity, check_tabor)
 from .adhesion import NODES_PER_PANEL, graded_panel_counts, ragged_graded_rule
 from .geometry import sin_skew_angle
 from .pull_off_search import stable_branch_end
+from .records import PullOff, pull_off_record
 
-__all__ = ["solve_adhesive_axis", "load_curve", "load_curve_nondimensional", "pull_off", "jkr_limit_pull_off", "LoadCurve",
+__all__ = ["solve_adhesive_axis", "adhesive_axis_state", "load_curve", "load_curve_nondimensional", "pull_off", "pull_off_nondimensional",
+           "jkr_limit_pull_off", "LoadCurve",
            "PullOff", "DEFAULT_A_STAR", "MAX_CURVE_POINTS", "TABOR_RANGE", "ELLIPTICITY_RANGE",
            "CONTACT_SIZE_RANGE"]
 
@@ -379,7 +381,17 @@ def solve_adhesive_axis(a_star, mu, beta0, *, ellipticity=None):
     """
     a = check_contact_size_star("a_star", a_star)
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
-    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)))
+    return adhesive_axis_state(a, beta0, mu, ellipticity=ell)
+
+
+def adhesive_axis_state(a_star, beta0, mu, *, ellipticity=None):
+    """The core of :func:`solve_adhesive_axis` (c*, v), inputs not validated.
+
+    For callers that validated ``a_star``, ``beta0``, ``mu`` (float arrays) once and solve
+    many states (the closures' pull-off searches).
+    """
+    ell = beta0 if ellipticity is None else ellipticity
+    st = _state_chunked(a_star, mu, _shape(ell, sin_skew_angle(beta0)))
     return _scalar(st["c"]), _scalar(st["v"])
 
 
@@ -413,32 +425,6 @@ class LoadCurve:
 
     def as_dict(self):
         return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}
-
-
-@dataclass(frozen=True)
-class PullOff:
-    """Pull-off point of the elliptical DH model (nondimensional, Eqs. 32-36).
-
-    ``at_zero_contact`` is True where the pull-off is the a* -> 0 limit (the load
-    or approach increases monotonically with a*, as on the DMT side).
-    """
-    mu: np.ndarray
-    beta0: np.ndarray
-    ellipticity: np.ndarray
-    control: str
-    W_star: np.ndarray
-    a_star: np.ndarray
-    c_star: np.ndarray
-    v: np.ndarray
-    delta_star: np.ndarray
-    at_zero_contact: np.ndarray = field(default=None)
-
-    def as_dict(self):
-        out = {}
-        for k, v in asdict(self).items():
-            v = np.asarray(v) if not isinstance(v, str) else v
-            out[k] = v.tolist() if isinstance(v, np.ndarray) else v
-        return out
 
 
 def load_curve(mu, beta0, a_star=None, *, ellipticity=None, n=200):
@@ -569,8 +555,7 @@ def jkr_limit_pull_off(beta0, *, control="load", ellipticity=None):
     the Griffith condition holds on the major axis only.  The finite-mu pull-off
     approaches it as 1/mu^2 (relative 1.4e-5 at mu = 100, beta0 = 1).
     """
-    if control not in ("load", "displacement"):
-        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    check_control(control)
     beta0 = check_model_ellipticity("beta0", beta0)
     ell = beta0 if ellipticity is None else check_model_ellipticity("ellipticity", ellipticity)
     sh = _shape(ell, sin_skew_angle(beta0))
@@ -652,8 +637,11 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     Returns
     -------
     PullOff
-        W_star is W*max of Eq. (34) (negative: tensile), with a*, c*, v, delta* there.
-        Empty inputs give empty results; masked arrays are rejected.
+        The record of every analytic model (:class:`dhfield.records.PullOff`, model
+        ``"dh-elliptic"``): W_star is W*max of Eq. (34) (negative: tensile), with a*, b*,
+        c*, d*, v, delta* there; ``ellipticity`` is that of both ellipses; ``warning`` is
+        empty (the validity policy is :func:`dhfield.compare.pull_off`'s).  Empty inputs
+        give empty results; masked arrays are rejected.
 
     Notes
     -----
@@ -670,9 +658,28 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     :data:`DERIVATIVE_FLOOR` times |W*(a* = 0)| (for delta*: |delta*(0)|): below it,
     W* is flat to ~1e-15 and the pull-off is the zero-contact limit.
     """
-    if control not in ("load", "displacement"):
-        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    check_control(control)
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
+    return pull_off_nondimensional(beta0, mu, control=control, ellipticity=ell)
+
+
+def pull_off_nondimensional(beta0, mu, *, control="load", ellipticity=None):
+    """The core of :func:`pull_off`, inputs not validated (:func:`dhfield.compare.pull_off` does).
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Initial ellipticity and Tabor parameter (Eq. 35) [-], float arrays.
+    control : {"load", "displacement"}
+    ellipticity : array_like, optional
+        As in :func:`pull_off` (default beta0).
+
+    Returns
+    -------
+    PullOff
+        As :func:`pull_off`.
+    """
+    ell = beta0 if ellipticity is None else ellipticity
     mu, beta0, ell = np.broadcast_arrays(mu, beta0, ell)
     out_shape = mu.shape
     mu, beta0, ell = (np.ravel(q) for q in (mu, beta0, ell))
@@ -697,5 +704,8 @@ def pull_off(mu, beta0, *, control="load", ellipticity=None):
     def out(x):
         return _scalar(np.reshape(x, out_shape))
 
-    return PullOff(out(mu), out(beta0), out(ell), control, out(res["W"]), out(res["a"]), out(res["c"]),
-                   out(res["v"]), out(res["delta"]), out(~has))
+    a, c = out(res["a"]), out(res["c"])
+    state = {"W_star": out(res["W"]), "a_star": a, "b_star": a * out(ell), "c_star": c, "d_star": c * out(ell),
+             "v": out(res["v"]), "delta_star": out(res["delta"]), "ellipticity": out(ell), "at_zero_contact": out(~has)}
+    return pull_off_record("dh-elliptic", out(beta0), out(mu), state, control=control,
+                           sin_skew=out(shape.sin_skew), geometry="ellipse")

@@ -1,8 +1,12 @@
-"""Pull-off search: one place for the two ways dhfield locates a pull-off point.
+"""Pull-off search: the one place where dhfield locates a pull-off point.
 
 A pull-off point is where an unloading path leaves its stable branch: the minimum
 of the load W (load control) or of the approach delta (displacement control)
-reached from the high-load end of the path.  dhfield meets it in three forms:
+reached from the high-load end of the path.  On sampled values every search here
+applies one rule, :func:`stable_minimum_index`: walking from the high-load end,
+sample i is the pull-off when v_i <= v_(i-1) (ties go to the lower-load sample)
+and v_i < v_(i+1); the low-load end point when v_last <= v_(last-1).  dhfield meets
+the pull-off in four forms:
 
 * **a smooth family with an analytic derivative** (the analytic DH model and its
   closures): the pull-off is the *largest* contact size a at which dW/da (or
@@ -16,6 +20,9 @@ reached from the high-load end of the path.  dhfield meets it in three forms:
   closures): :func:`last_local_minimum` takes the local minimum of the values
   on a scan nearest its high end and refines it with
   :func:`scipy.optimize.elementwise.find_minimum`;
+* **a closed-form family, complex-safe** (MD, circular DH, elliptical JKR):
+  :func:`scan_minimum` takes the local minimum nearest the high-load end of a
+  graded scan and refines it at the root of the complex-step derivative;
 * **a discretely sampled path** (the BEM unloading path): the pull-off is the
   minimum of sampled values; :func:`refine_sampled_minimum` takes the first
   (or global) discrete minimum and refines it with the parabola through the
@@ -30,8 +37,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import elementwise
 
-__all__ = ["SampledMinimum", "BranchEnd", "refine_sampled_minimum", "stable_branch_end",
-           "last_local_minimum", "DEFAULT_CHUNK_BYTES", "SCAN_BLOCK"]
+__all__ = ["SampledMinimum", "BranchEnd", "stable_minimum_index", "refine_sampled_minimum", "stable_branch_end",
+           "last_local_minimum", "scan_minimum", "DEFAULT_CHUNK_BYTES", "SCAN_BLOCK"]
 
 #: Default working-memory budget of one chunk of :func:`stable_branch_end`
 #: (one step of the scan evaluates ``chunk * SCAN_BLOCK`` states).
@@ -80,6 +87,38 @@ class BranchEnd:
 
     x: np.ndarray
     found: np.ndarray
+
+
+def stable_minimum_index(values):
+    """Index of the pull-off sample: the local minimum nearest the high-load end (index 0).
+
+    Parameters
+    ----------
+    values : array_like, shape (..., n)
+        Values along the path, the high-load end first (rounding noise included:
+        the rule, not a tolerance, decides ties).
+
+    Returns
+    -------
+    ndarray of int, shape (...)
+        The first i (from index 0) with ``v[i] <= v[i-1]`` and ``v[i] < v[i+1]``, or
+        ``n - 1`` when none is interior and ``v[-1] <= v[-2]`` (the low-load end is the
+        minimum); -1 where neither (the values rise from the high-load end).
+
+    Notes
+    -----
+    The one local-minimum rule and tie rule of every pull-off search in dhfield: on a
+    plateau of equal samples the pull-off is the plateau's lowest-load sample that is
+    followed by a rise, so a flat stretch of the path is walked down, never stopped on.
+    """
+    v = np.asarray(values)
+    n = v.shape[-1]
+    loc = np.zeros(v.shape, dtype=bool)
+    if n >= 3:
+        loc[..., 1:-1] = (v[..., 1:-1] <= v[..., :-2]) & (v[..., 1:-1] < v[..., 2:])
+    if n >= 2:
+        loc[..., -1] = v[..., -1] <= v[..., -2]
+    return np.where(loc.any(axis=-1), np.argmax(loc, axis=-1), -1)
 
 
 def refine_sampled_minimum(x, y, *, first=True):
@@ -131,13 +170,7 @@ def refine_sampled_minimum(x, y, *, first=True):
     n = xs.size
     i = int(np.argmin(ys))
     if first and n >= 3:
-        loc = (ys[1:-1] <= ys[:-2]) & (ys[1:-1] < ys[2:])
-        if loc.any():
-            i = int(np.argmax(loc)) + 1
-        elif ys[-1] <= ys[-2]:
-            i = n - 1
-        else:
-            i = 0
+        i = max(0, int(stable_minimum_index(ys)))
     if i == 0 or i == n - 1:
         return SampledMinimum(float(xs[i]), float(ys[i]), int(idx[i]), True)
     (x0, x1, x2), (y0, y1, y2) = xs[i - 1:i + 2], ys[i - 1:i + 2]
@@ -158,9 +191,8 @@ def refine_sampled_minimum(x, y, *, first=True):
     return SampledMinimum(float(xv), float(yv), int(idx[i]), False)
 
 
-def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_extend=6,
-                      xatol=1e-13, xrtol=1e-13, chunk_bytes=None,
-                      bytes_per_state=2048, block=SCAN_BLOCK):
+def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_extend=6, xtol=1e-13,
+                      chunk_bytes=None, bytes_per_state=2048, block=SCAN_BLOCK):
     """Largest contact size where ``derivative`` crosses from negative to non-negative.
 
     Vectorised over problems: ``scan`` has shape ``(m, n)`` (or ``(n,)`` shared by
@@ -186,8 +218,8 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
         Where the derivative is still negative at the top of the scan (the stable
         branch is not reached), the problem's scan is multiplied by ``extend`` and
         evaluated again, at most ``max_extend`` times.
-    xatol, xrtol : float
-        Tolerances of Chandrupatla's method on the root.
+    xtol : float
+        Absolute and relative tolerance of Chandrupatla's method on the root.
     chunk_bytes : int, optional
         Working-memory budget of one chunk of problems; default
         :data:`DEFAULT_CHUNK_BYTES` (read at call time).
@@ -275,7 +307,7 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
         if got.any():
             r = rows[got]
             root = elementwise.find_root(derivative, (lo[got], hi[got]), args=tuple(q[r] for q in sub_args),
-                                         tolerances=dict(xatol=xatol, xrtol=xrtol))
+                                         tolerances=dict(xatol=xtol, xrtol=xtol))
             xr[got] = np.where(np.isfinite(root.x), root.x, 0.5 * (lo[got] + hi[got]))
         x[start + rows] = xr
         found[start + rows] = True
@@ -309,8 +341,9 @@ def last_local_minimum(objective, scan, args=(), *, block=SCAN_BLOCK, xatol=1e-8
 
     Notes
     -----
-    Scan point i is a local minimum when f_i <= f_(i-1) and f_i <= f_(i+1); the largest
-    such i is refined on the bracket (a_(i-1), a_i, a_(i+1)).  The scan is walked from
+    Scan point i is the pull-off by the rule of :func:`stable_minimum_index` read from the
+    top of the scan (f_i <= f_(i+1), f_i < f_(i-1)); it is refined on the bracket
+    (a_(i-1), a_i, a_(i+1)).  The scan is walked from
     its top down, ``block`` points at a time, and a problem stops as soon as its
     largest local minimum is known: the result of evaluating the whole scan, at a
     fraction of the evaluations where the pull-off is near the top.
@@ -330,13 +363,12 @@ def last_local_minimum(objective, scan, args=(), *, block=SCAN_BLOCK, xatol=1e-8
         rows = np.nonzero(active)[0]
         f[rows, bottom:top] = objective(np.broadcast_to(scan[bottom:top], (rows.size, top - bottom)),
                                         *(q[rows][:, None] for q in args))
-        # Interior points whose neighbours are known now: i in [bottom + 1, n - 2].
-        fr = f[rows]
-        i = np.arange(bottom + 1, n - 1)
-        if i.size:
-            interior = (fr[:, i] <= fr[:, i - 1]) & (fr[:, i] <= fr[:, i + 1])
-            hit = interior.any(axis=-1)
-            last[rows[hit]] = i[-1] - np.argmax(interior[hit, ::-1], axis=-1)
+        # The rule of stable_minimum_index, high-load end first, on the points whose neighbours are
+        # known now (i in [bottom + 1, n - 2]); the scan's low end is the zero-contact side, not a minimum.
+        if n - 1 - bottom >= 2:
+            j = stable_minimum_index(f[rows, bottom:][:, ::-1])
+            hit = (j >= 1) & (j < n - 1 - bottom)
+            last[rows[hit]] = n - 1 - j[hit]
             active[rows[hit]] = False
         top = bottom
     found = last >= 0
@@ -348,3 +380,63 @@ def last_local_minimum(objective, scan, args=(), *, block=SCAN_BLOCK, xatol=1e-8
                                        tolerances=dict(xatol=xatol, xrtol=xrtol, fatol=0.0, frtol=0.0))
         x[r] = res.x
     return BranchEnd(x, found)
+
+
+def scan_minimum(func, scan, args=(), *, xatol=1e-13):
+    """The pull-off on a graded scan of a closed-form, complex-safe family, refined.
+
+    Parameters
+    ----------
+    func : callable
+        ``func(t, *args)`` -> W (or delta) at path parameter ``t``; broadcasts ``t`` of
+        shape ``(..., n)`` against args of shape ``(..., 1)``, and is analytic and
+        complex-safe (its complex-step derivative is exact to rounding).
+    scan : array_like, shape (..., n)
+        Path parameter per problem, the high-load end first.
+    args : tuple of array_like
+        Per-problem parameters, broadcast together to the problems' shape.
+    xatol : float
+        Absolute tolerance of the refined minimiser.
+
+    Returns
+    -------
+    t, f : ndarray
+        Minimiser and minimum, with the problems' shape.
+
+    Notes
+    -----
+    The scan point is chosen by :func:`stable_minimum_index` (the global minimum of the
+    scan where no point qualifies); an end point is returned as is.  An interior one is
+    refined at the root of the complex-step derivative Im f(t + ih)/h on its two
+    neighbours (Chandrupatla, :func:`scipy.optimize.elementwise.find_root`, xrtol 1e-15):
+    the minimiser is then accurate to ~1e-15 rather than ~sqrt(eps).  The refined point
+    is kept only where its value is not above the scan point's (to 1e-14 relative).
+    """
+    args = tuple(np.asarray(a, dtype=float) for a in args)
+    shape = np.broadcast_shapes(*(a.shape for a in args))
+    args = tuple(np.broadcast_to(a, shape) for a in args)
+    grid = np.broadcast_to(scan, shape + np.shape(scan)[-1:])
+    n = grid.shape[-1]
+    vals = func(grid, *(a[..., None] for a in args))
+    vals = np.where(np.isfinite(vals), vals, np.inf)
+    i = stable_minimum_index(vals)
+    i = np.where(i >= 0, i, np.argmin(vals, axis=-1))
+    t = np.take_along_axis(grid, i[..., None], -1)[..., 0]
+    f = np.take_along_axis(vals, i[..., None], -1)[..., 0]
+    inner = (i > 0) & (i < n - 1)
+    if np.any(inner):
+        xl = np.take_along_axis(grid, np.clip(i - 1, 0, n - 1)[..., None], -1)[..., 0][inner]
+        xr = np.take_along_axis(grid, np.clip(i + 1, 0, n - 1)[..., None], -1)[..., 0][inner]
+        sub_args = tuple(a[inner] for a in args)
+
+        def dfunc(x, *a):
+            return np.imag(func(x + 1e-30j, *a)) / 1e-30
+
+        res = elementwise.find_root(dfunc, (xl, xr), args=sub_args, tolerances=dict(xatol=xatol, xrtol=1e-15))
+        fx = func(res.x, *sub_args)
+        better = np.isfinite(fx) & (fx <= f[inner] + 1e-14 * np.abs(f[inner]))
+        t = t.copy()
+        f = f.copy()
+        t[inner] = np.where(better, res.x, t[inner])
+        f[inner] = np.where(better, fx, f[inner])
+    return t, f

@@ -66,7 +66,7 @@ def test_dugdale_sphere_pull_off_matches_maugis_dugdale():
     lam = 1.0
     mu = float(transition.tabor_from_maugis(lam))
     res = adhesive_pull_off(mu, 1.0, 64, progress=False)
-    ref = maugis_dugdale.pull_off_nondimensional(mu)  # Maugis (1992) in the paper's units
+    ref = maugis_dugdale.pull_off_nondimensional(1.0, mu)  # Maugis (1992) in the paper's units
     assert res.converged
     assert res.W_star == pytest.approx(float(ref["W_star"]), rel=RTOL_MD_64)
     assert res.beta_ab == pytest.approx(1.0, abs=1e-12)   # the symmetric sphere stays round
@@ -83,7 +83,7 @@ def test_small_mu_tends_to_dmt_force():
 
 def test_large_mu_tends_to_elliptical_jkr():
     beta0 = 0.8
-    ref = float(jkr_elliptic.pull_off_nondimensional(np.asarray(beta0))["W_star"])
+    ref = float(jkr_elliptic.pull_off_nondimensional(np.asarray(beta0), 1.0)["W_star"])
     near = adhesive_pull_off(2.5, beta0, 96, progress=False)
     far = adhesive_pull_off(1.0, beta0, 64, progress=False)
     assert near.resolved and near.converged

@@ -29,7 +29,7 @@ def _mu(lam):
 
 def _md_displacement_pull_off(mu):
     # Maugis (1992) in the paper's units (R = E* = Delta gamma = 1, sigma0 = mu)
-    return maugis_dugdale.pull_off_nondimensional(mu, "displacement")
+    return maugis_dugdale.pull_off_nondimensional(1.0, mu, control="displacement")
 
 
 def test_displacement_pull_off_is_the_maugis_dugdale_fold_interpolated_not_extrapolated():
@@ -94,7 +94,7 @@ def test_fold_of_branch_recovers_the_maugis_dugdale_jump():
     from dhfield.bem import fold_of_branch
 
     mu = float(transition.tabor_from_maugis(1.0))
-    ref = maugis_dugdale.pull_off_nondimensional(mu, "displacement")     # Maugis (1992): the fold of delta(a)
+    ref = maugis_dugdale.pull_off_nondimensional(1.0, mu, control="displacement")     # Maugis (1992): the fold of delta(a)
     a = float(ref["a_star"]) * (1.0 + 0.15 * np.array([4.0, 3.0, 2.0, 1.0]))   # stable branch, towards the fold
     curve = maugis_dugdale.load_curve_nondimensional(a, mu)
     fold = fold_of_branch(curve["W_star"], curve["delta_star"])

@@ -187,4 +187,17 @@ def test_issue9_closures_reject_outside_their_domain_by_name(mu, beta0, name):
 
     for f in (cl.pull_off_two_axis, cl.pull_off_ray_average):
         with pytest.raises(ValueError, match=rf"^{name} must be in"):
-            f(mu, beta0)
+            f(beta0, mu)
+
+
+@pytest.mark.parametrize("gap", [1e-7, 5e-8, 2e-8, 1e-9, 3e-15])
+@pytest.mark.parametrize("control", ["load", "displacement"])
+def test_issue18_item12_two_axis_converges_next_to_the_circle(gap, control):
+    """beta0 = 1 - gap: before, RuntimeError 'did not converge' from about 1 - 1e-7 to 1 - 3e-15 (the
+    finite-difference step crossed d = c).  The pull-off tends to the circle's: W* departs by O(gap) plus
+    the closure's own search tolerance (find_minimum xatol 1e-8 on a*: W* to ~1e-7 relative at worst on
+    the flat displacement-control minimum), hence 1e-6."""
+    got = closure.pull_off_two_axis(1.0 - gap, 1.0, control=control)
+    ref = closure.pull_off_two_axis(1.0, 1.0, control=control)
+    assert np.isfinite(got.W_star)
+    assert_allclose(got.W_star, ref.W_star, rtol=1e-6)

@@ -52,8 +52,8 @@ def test_curve_satisfies_eqs_24_31(mu):
 
 
 def test_jkr_and_dmt_limits():
-    assert abs(dh_circular.pull_off_nondimensional(1000.0)["W_star"] + 0.75) < TOL_JKR_LIMIT
-    po = dh_circular.pull_off_nondimensional(1e-3)
+    assert abs(dh_circular.pull_off_nondimensional(1.0, 1000.0)["W_star"] + 0.75) < TOL_JKR_LIMIT
+    po = dh_circular.pull_off_nondimensional(1.0, 1e-3)
     assert abs(po["W_star"] + 1.0) < 1e-3  # DMT side: -1/(1+v), v = O(mu^1.5)
     # the curve approaches JKR at large mu
     a = np.linspace(0.5, 3.0, 6)
@@ -69,14 +69,14 @@ def test_agrees_with_elliptical_core_at_circle(mu):
     for key in ("W_star", "c_star", "v", "delta_star"):
         assert_allclose(st[key], getattr(ref, key), rtol=TOL_CORE, atol=TOL_CORE, err_msg=key)
     for control in ("load", "displacement"):
-        po, pref = dh_circular.pull_off_nondimensional(mu, control), model.pull_off(mu, 1.0, control=control)
+        po, pref = dh_circular.pull_off_nondimensional(1.0, mu, control=control), model.pull_off(mu, 1.0, control=control)
         assert_allclose([po["W_star"], po["a_star"], po["delta_star"]],
                         [pref.W_star, pref.a_star, pref.delta_star], atol=TOL_CORE)
 
 
 def test_pull_off_is_first_minimum_on_unloading():
     mu = 1.0
-    po = dh_circular.pull_off_nondimensional(mu)
+    po = dh_circular.pull_off_nondimensional(1.0, mu)
     a = np.linspace(po["a_star"], 4.0, 2000)
     w = dh_circular.load_curve_nondimensional(a, mu)["W_star"]
     assert np.all(np.diff(w) > 0)  # the load rises monotonically above the pull-off point
@@ -86,7 +86,7 @@ def test_dimensional_wrapper():
     sigma0 = 2e8
     mu = sigma0 * np.cbrt(R / (E * E * DG))
     po = dh_circular.pull_off(R, E, DG, sigma0)
-    assert_allclose(po.load, dh_circular.pull_off_nondimensional(mu)["W_star"] * 2 * np.pi * R * DG, rtol=1e-12)
+    assert_allclose(po.load, dh_circular.pull_off_nondimensional(1.0, mu)["W_star"] * 2 * np.pi * R * DG, rtol=1e-12)
     cr = np.cbrt(R * R * DG / E)
     c = dh_circular.load_curve(np.array([0.5, 1.0]) * cr, R, E, DG, sigma0)
     assert_allclose(c.load, dh_circular.load_curve_nondimensional(np.array([0.5, 1.0]), mu)["W_star"] * 2 * np.pi * R * DG,
@@ -112,5 +112,5 @@ def test_issue9_large_mu_is_jkr_without_cancellation(mu):
     # JKR: load control -3/4, fixed grips -5/12 (Maugis 2000); the departure is O(mu^-2).
     from dhfield import dh_circular as dc
 
-    assert float(dc.pull_off_nondimensional(np.array(mu))["W_star"]) == pytest.approx(-0.75, rel=1e-11)
-    assert float(dc.pull_off_nondimensional(np.array(mu), "displacement")["W_star"]) == pytest.approx(-5 / 12, rel=1e-11)
+    assert float(dc.pull_off_nondimensional(1.0, np.array(mu))["W_star"]) == pytest.approx(-0.75, rel=1e-11)
+    assert float(dc.pull_off_nondimensional(1.0, np.array(mu), control="displacement")["W_star"]) == pytest.approx(-5 / 12, rel=1e-11)

@@ -15,7 +15,7 @@ R, E, DG = 2e-6, 1.5e9, 0.04
 @pytest.mark.parametrize("control", ["load", "displacement"])
 def test_pull_off(control):
     ref = circular_pull_off()[("dmt", control)]
-    s = dmt.pull_off_nondimensional(control)
+    s = dmt.pull_off_nondimensional(1.0, 1.0, control=control)
     assert_allclose([s["W_star"], s["a_star"], s["delta_star"]],
                     [ref["W_star"], ref["a_star"], ref["delta_star"]], atol=TOL_EXACT)
     assert_allclose(dmt.pull_off_force(R, E, DG, control=control), -2 * np.pi * R * DG, rtol=TOL_EXACT)

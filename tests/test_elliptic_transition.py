@@ -21,7 +21,7 @@ def test_circle_is_maugis_dugdale(control):
     mu = np.array([0.01, 0.3, 1.0, 3.0, 30.0])
     got = et.pull_off_nondimensional(mu, 1.0, control)["W_star"]
     # the weight is defined from MD on the sphere, so beta0 = 1 is MD up to rounding
-    assert_allclose(got, md.pull_off_nondimensional(mu, control)["W_star"], rtol=1e-13)
+    assert_allclose(got, md.pull_off_nondimensional(1.0, mu, control=control).W_star, rtol=1e-13)
 
 
 @pytest.mark.parametrize("control", ["load", "displacement"])
@@ -32,7 +32,7 @@ def test_dmt_and_jkr_limits(beta0, control):
     assert_allclose(lo["W_star"], -sin_skew_angle(beta0), rtol=1e-7)
     hi = et.pull_off_nondimensional(1e12, beta0, control)
     # JKR: GVG; the MD weight is 1 - O(mu^-1) ~ 1e-12 at mu = 1e12
-    assert_allclose(hi["W_star"], ee.pull_off_nondimensional(beta0, control)["W_star"], rtol=1e-9)
+    assert_allclose(hi["W_star"], ee.pull_off_nondimensional(beta0, 1.0, control=control).W_star, rtol=1e-9)
 
 
 def test_weight_limits_and_monotone():
@@ -92,6 +92,6 @@ def test_jkr_side_at_mu_1e4_is_gvg():
 
     b0 = ellipticity_from_skew_angle(np.radians([20.0, 30.0, 45.0, 60.0, 75.0, 90.0]))
     got = et.pull_off_nondimensional(1e4, b0)["W_star"]
-    assert_allclose(got, ee.pull_off_nondimensional(b0)["W_star"], rtol=1e-4)
+    assert_allclose(got, ee.pull_off_nondimensional(b0, 1.0).W_star, rtol=1e-4)
     assert_allclose(et.pull_off_nondimensional(1e4, 1.0)["W_star"], md.pull_off_nondimensional(1e4)["W_star"],
                     rtol=1e-14)

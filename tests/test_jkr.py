@@ -17,14 +17,14 @@ R, E, DG = 2e-6, 1.5e9, 0.04  # SI: m, Pa, J/m^2
 @pytest.mark.parametrize("control", ["load", "displacement"])
 def test_pull_off_matches_closed_form(control):
     ref = circular_pull_off()[("jkr", control)]
-    s = jkr.pull_off_nondimensional(control)
+    s = jkr.pull_off_nondimensional(1.0, 1.0, control=control)
     assert_allclose([s["W_star"], s["a_star"], s["delta_star"]],
                     [ref["W_star"], ref["a_star"], ref["delta_star"]], rtol=TOL_EXACT)
 
 
 @pytest.mark.parametrize("control,key", [("load", "W_star"), ("displacement", "delta_star")])
 def test_pull_off_is_stationary(control, key):
-    a = float(jkr.pull_off_nondimensional(control)["a_star"])
+    a = float(jkr.pull_off_nondimensional(1.0, 1.0, control=control)["a_star"])
     h = 1e-5
     d = (jkr.load_curve_nondimensional(a + h)[key] - jkr.load_curve_nondimensional(a - h)[key]) / (2 * h)
     assert abs(d) < TOL_STATIONARY

@@ -79,7 +79,7 @@ def test_circle_is_jkr():
         assert_allclose(st[key], ref[key], rtol=TOL_CIRCLE, atol=TOL_CIRCLE)
     assert np.all(st["beta"] == 1.0)
     for control in ("load", "displacement"):
-        po, pj = je.pull_off_nondimensional(1.0, control), jkr.pull_off_nondimensional(control)
+        po, pj = je.pull_off_nondimensional(1.0, 1.0, control=control), jkr.pull_off_nondimensional(1.0, 1.0, control=control)
         assert_allclose([po["W_star"], po["a_star"]], [pj["W_star"], pj["a_star"]], rtol=TOL_CIRCLE)
 
 
@@ -114,7 +114,7 @@ def test_pull_off_mild_ellipticity():
     assert np.all(f < 1)
     assert_allclose(coef, coef[-1], rtol=0.02)
     beta0 = je._check_geometry(rho, None)
-    w = je.pull_off_nondimensional(beta0)["W_star"]
+    w = je.pull_off_nondimensional(beta0, 1.0)["W_star"]
     assert_allclose(w, -0.75 * f * sin_skew_angle(beta0), rtol=1e-12)
     # the notes' reconstruction (not literature): 0.985, 0.944, 0.861 at R'/R'' = 2, 4, 10
     assert_allclose(je.pull_off_force_ratio(radius_ratio=[2.0, 4.0, 10.0]), [0.985, 0.944, 0.861],
@@ -125,7 +125,7 @@ def test_pull_off_shape():
     beta0 = np.array([0.8, 0.9, 0.99])
     bpo = je.pull_off_ellipticity(beta0=beta0)
     assert np.all((bpo > beta0) & (bpo < 1))
-    po = je.pull_off_nondimensional(beta0)
+    po = je.pull_off_nondimensional(beta0, 1.0)
     for b0, w in zip(beta0, po["W_star"]):  # the pull-off is the minimum of a dense scan
         u = np.linspace(1e-4, 1 - 1e-4, 4000)
         _, rm, sn = je._geometry(b0)
@@ -135,7 +135,7 @@ def test_pull_off_shape():
 def test_dimensional():
     r, e, dg = 1e-6, 1e9, 0.05
     po = je.pull_off(r, e, dg, beta0=0.9)
-    assert_allclose(po.load, je.pull_off_nondimensional(0.9)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
+    assert_allclose(po.load, je.pull_off_nondimensional(0.9, 1.0)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
                     rtol=1e-12)
     assert_allclose(po.ellipticity, je.pull_off_ellipticity(beta0=0.9))
     rho = radius_ratio(0.9)

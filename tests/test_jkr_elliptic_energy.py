@@ -59,10 +59,10 @@ def _gradient(a, b, delta, beta0):
 
 # ---------------------------------------------------------------- the circle
 def test_circle_is_jkr_exactly():
-    po = ee.pull_off_nondimensional(1.0)
+    po = ee.pull_off_nondimensional(1.0, 1.0)
     assert_allclose(po["W_star"], -0.75, rtol=TOL_CIRCLE)  # JKR: -(3/2) pi R dgamma
     assert_allclose(po["a_star"] ** 3, 9 * np.pi / 8, rtol=TOL_CIRCLE)
-    pd = ee.pull_off_nondimensional(1.0, "displacement")
+    pd = ee.pull_off_nondimensional(1.0, 1.0, control="displacement")
     assert_allclose(pd["W_star"], -5 / 12, rtol=TOL_CIRCLE)  # JKR fixed grips: -(5/6) pi R dgamma
     assert_allclose(ee.pull_off_force_ratio(beta0=1.0), 1.0, rtol=TOL_CIRCLE)
     assert_allclose(ee.pull_off_force_ratio(beta0=1.0, control="displacement"), 5 / 9, rtol=TOL_CIRCLE)
@@ -205,7 +205,7 @@ def test_si_scaling_and_invariance():
 def test_broadcasting():
     c = ee.load_curve_nondimensional(np.array([[0.5], [2.0]]), np.array([0.3, 0.6, 1.0]))
     assert c["W_star"].shape == (2, 3)
-    p = ee.pull_off_nondimensional(np.array([[0.3, 1.0], [0.6, 0.9]]))
+    p = ee.pull_off_nondimensional(np.array([[0.3, 1.0], [0.6, 0.9]]), 1.0)
     assert p["W_star"].shape == (2, 2)
 
 
@@ -236,10 +236,10 @@ def test_bad_input_curve_and_state():
 def test_domain_properties(beta0, log_a):
     """Crossing angles down to ~10 deg (beta0 ~ 0.05): finite states, beta in [beta0, 1],
     the round trip a* -> state -> a*, and the ordering of the pull-offs."""
-    po = ee.pull_off_nondimensional(beta0)
-    pd = ee.pull_off_nondimensional(beta0, "displacement")
+    po = ee.pull_off_nondimensional(beta0, 1.0)
+    pd = ee.pull_off_nondimensional(beta0, 1.0, control="displacement")
     assert np.isfinite(po["W_star"]) and np.isfinite(pd["W_star"])
-    assert beta0 <= po["beta"] <= 1.0 and beta0 <= pd["beta"] <= 1.0
+    assert beta0 <= po.ellipticity <= 1.0 and beta0 <= pd.ellipticity <= 1.0
     assert po["W_star"] <= pd["W_star"] < 0  # load control pulls harder than fixed grips
     ratio = ee.pull_off_force_ratio(beta0=beta0)
     assert 0.8 < ratio <= 1.0 + 1e-12
@@ -259,7 +259,7 @@ def test_domain_properties(beta0, log_a):
 def test_minimum_in_both_semi_axes_until_fixed_grips_pull_off(beta0):
     """At fixed delta the energy is a minimum in (a, b) (Hessian positive definite) on the branch
     before the displacement-control pull-off, and a saddle after it (one eigenvalue < 0)."""
-    b_po = float(ee.pull_off_nondimensional(beta0, "displacement")["beta"])
+    b_po = float(ee.pull_off_nondimensional(beta0, 1.0, control="displacement").ellipticity)
     signs = []
     for beta in (beta0 + 0.5 * (b_po - beta0), b_po + 0.5 * (1 - b_po)):
         s = ee.state_at_ellipticity(beta, beta0)

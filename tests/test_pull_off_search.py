@@ -150,3 +150,33 @@ def test_last_local_minimum_is_the_one_nearest_the_top_whatever_the_block():
         assert x == pytest.approx(ref.x, abs=1e-7)
     rising = last_local_minimum(lambda x, s: s * x, scan, (np.array([1.0]),))
     assert not rising.found[0] and np.isnan(rising.x[0])
+
+
+@pytest.mark.parametrize("values, index", [
+    ([5.0, 3.0, 1.0, 4.0], 2),             # one interior minimum
+    ([5.0, 2.0, 2.0, 2.0, 6.0], 3),        # a plateau is walked down to its last sample before the rise
+    ([5.0, 1.0, 3.0, 0.0, 2.0], 1),        # the minimum nearest the high-load end, not the global one
+    ([5.0, 4.0, 3.0], 2),                  # still falling: the low-load end point
+    ([5.0, 4.0, 4.0], 2),                  # a tie at the end counts as falling
+    ([1.0, 2.0, 3.0], -1),                 # rising from the high-load end: none
+])
+def test_stable_minimum_index_one_rule(values, index):
+    """The one local-minimum and tie rule (issue 16), checked by hand on sequences."""
+    from dhfield.pull_off_search import stable_minimum_index
+
+    assert int(stable_minimum_index(np.array(values))) == index
+
+
+def test_every_sampled_search_takes_the_same_sample_on_a_plateau():
+    """refine_sampled_minimum and last_local_minimum follow stable_minimum_index on a path whose
+    minimum is an exact plateau: the tie rule, not the refinement, decides (issue 16)."""
+    from dhfield.pull_off_search import last_local_minimum, stable_minimum_index
+
+    x = np.arange(9.0)  # high-load end first
+    y = np.array([8.0, 6.0, 4.0, 2.0, 2.0, 2.0, 3.0, 5.0, 7.0])
+    i = int(stable_minimum_index(y))
+    assert i == 5 and refine_sampled_minimum(x, y).index == i
+    # last_local_minimum scans a = 8 - x upwards (its top is the high-load end): sample i is a = 3,
+    # refined on the bracket (2, 4); the plateau's other end (a = 5, bracket (4, 6)) is not taken
+    end = last_local_minimum(lambda a, s: s * np.interp(a, x, y[::-1]), x, (np.array([1.0]),))
+    assert end.found[0] and 2.0 <= end.x[0] <= 4.0

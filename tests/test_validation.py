@@ -35,3 +35,39 @@ def test_count_accepts_integers(good, expect):
 def test_count_rejects_non_integers_and_out_of_range(bad):
     with pytest.raises(ValueError, match=r"^n must be an integer in \[2, 10\]"):
         v.check_count("n", bad, 2, 10)
+
+
+def test_as_circle_is_the_one_near_circle_decision():
+    """Within sqrt(eps) of 1 an ellipticity is exactly the circle (issue 18, item 2); outside it is kept."""
+    eps = np.finfo(float).eps
+    assert v.CIRCLE_TOLERANCE == np.sqrt(eps)
+    assert v.as_circle(1.0 - 2.0**-53) == 1.0 and v.as_circle(1.0 - 1e-8) == 1.0
+    assert v.as_circle(1.0 - 1e-7) == 1.0 - 1e-7 and v.as_circle(0.3) == 0.3
+    np.testing.assert_array_equal(v.check_model_ellipticity("beta0", [0.5, 1 - 3 * 2.0**-53]), [0.5, 1.0])
+
+
+def test_issue18_item4_complex_arrays_are_rejected_by_name():
+    """Complex arrays were cut to their real part with only a ComplexWarning (complex scalars were
+    already refused): every public entry point now names the parameter."""
+    import warnings
+
+    import dhfield
+    from dhfield import compare
+
+    params = dhfield.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.0, 0.05, 2e5)
+    calls = [
+        (lambda: dhfield.pull_off(np.array([1 + 5j]), 0.9), "mu"),
+        (lambda: dhfield.pull_off(1.0, np.array([0.9 + 0j])), "beta0"),
+        (lambda: compare.pull_off("jkr", [1 + 1j], 0.9), "mu"),
+        (lambda: dhfield.load_curve(1.0, 0.9, np.array([1 + 0j])), "a_star"),
+        (lambda: dhfield.contact_parameters(np.array([1e6 + 0j]), 0.5, 1e6, 0.5, 0.01, 1.0, 0.05, 2e5),
+         "youngs_modulus_1"),
+        (lambda: dhfield.fit_curve(np.array([1e-3 + 1j, 2e-3, 3e-3]), np.array([1e-4, 2e-4, 3e-4]), params),
+         "load"),
+        (lambda: v.check_sequence("x", [1.0, 2j]), "x"),
+    ]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no ComplexWarning on the way
+        for call, name in calls:
+            with pytest.raises(ValueError, match=rf"^{name} must be real"):
+                call()

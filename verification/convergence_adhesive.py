@@ -77,8 +77,8 @@ def sphere_row(lam, n, start=None):
     res = adhesive_pull_off(mu, 1.0, n, progress=None, search="march") if start is None else \
         refine_pull_off(start, n)
     el = time.perf_counter() - t0
-    ref = maugis_dugdale.pull_off_nondimensional(mu)
-    ref_d = maugis_dugdale.pull_off_nondimensional(mu, "displacement")
+    ref = maugis_dugdale.pull_off_nondimensional(1.0, mu)
+    ref_d = maugis_dugdale.pull_off_nondimensional(1.0, mu, control="displacement")
     w_ref = float(ref["W_star"])
     path = res.path
     # contact radius along the stable branch (states converged, in contact, above the MD fold)

@@ -33,7 +33,7 @@ DATASET = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_tru
 
 def _candidate_jg(mu, beta0):
     sn = sin_skew_angle(beta0)
-    return -sn + (jg.pull_off_nondimensional(beta0)["W_star"] + sn) * et.transition_weight(mu)
+    return -sn + (jg.pull_off_nondimensional(beta0, 1.0).W_star + sn) * et.transition_weight(mu)
 
 
 def main():
@@ -47,7 +47,7 @@ def main():
     b0, mu, w = b0[ok], mu[ok], w[ok]
     cols = {"cand": et.pull_off_nondimensional(mu, b0)["W_star"],
             "candJG": _candidate_jg(mu, b0),
-            "md": md.pull_off_nondimensional(mu)["W_star"] * sin_skew_angle(b0),
+            "md": md.pull_off_nondimensional(1.0, mu).W_star * sin_skew_angle(b0),
             **{k: v[ok] for k, v in stored.items()}}
     print("Load-control pull-off W* (Eq. 34) against the stored BEM ground truth; deviations in %")
     print(f"{'beta0':>6} {'mu':>5} {'W*_BEM':>9} " + " ".join(f"{k:>20}" for k in cols))

@@ -67,9 +67,9 @@ def ground_truth_rows():
         mu = float(ds["mu"].values.max())
         w = ds["W_star_extrapolated"].sel(mu=mu).values
         b0 = ds["beta0"].values
-    md_over_jkr = float(maugis_dugdale.pull_off_nondimensional(mu)["W_star"]) / -0.75
-    w_gvg = gvg.pull_off_nondimensional(b0)["W_star"]
-    w_jg = jg.pull_off_nondimensional(b0)["W_star"]
+    md_over_jkr = float(maugis_dugdale.pull_off_nondimensional(1.0, mu).W_star) / -0.75
+    w_gvg = gvg.pull_off_nondimensional(b0, 1.0).W_star
+    w_jg = jg.pull_off_nondimensional(b0, 1.0).W_star
     return mu, md_over_jkr, [(b, mu, wb, wg, wg * md_over_jkr, wj)
                              for b, wb, wg, wj in zip(b0, w, w_gvg, w_jg)]
 

@@ -7,7 +7,7 @@ import json
 import math
 
 __all__ = ["OneLineParser", "UsageError", "print_json", "add_model_arguments", "model_names",
-           "compare_record", "plain_record", "add_physical_arguments", "contact_parameters_from_args",
+           "plain_record", "add_physical_arguments", "contact_parameters_from_args",
            "print_warning", "validity_epilog", "PHYSICAL_FLAGS", "OUTPUT_SUFFIXES", "check_output_argument", "thread_count",
            "max_threads", "termination_signals_as_exceptions"]
 
@@ -76,13 +76,6 @@ def _plain(v):
 def plain_record(rec) -> dict:
     """A scalar record with numpy scalars turned into str, bool or float (key order kept)."""
     return {k: _plain(v) for k, v in rec.items()}
-
-
-def compare_record(model, args) -> dict:
-    """Pull-off record of one registry model for ``args.mu``, ``args.beta0``, ``args.control``."""
-    from ..compare import pull_off
-
-    return plain_record(pull_off(model, args.mu, args.beta0, args.control))
 
 
 # --------------------------------------------------------------------------- physical (SI) inputs
@@ -172,7 +165,7 @@ def contact_parameters_from_args(args):
 
 def validity_epilog() -> str:
     """The ``--help`` epilog: each model's validated range (outside it, results carry a warning)."""
-    from ..compare import validity_table
+    from ..validity import validity_table
 
     return ("validated ranges (outside them the result is computed and a warning printed):\n"
             + validity_table())

@@ -79,7 +79,7 @@ def curve_record(args) -> dict:
             if args.model != "dh-elliptic":
                 raise UsageError("--ellipticity applies to --model dh-elliptic only")
             c = load_curve(args.mu, args.beta0, a_star, ellipticity=args.ellipticity, n=args.n)
-            rec = compare.load_curve("dh-elliptic", args.mu, args.beta0, [1.0])
+            rec = dict(compare.load_curve("dh-elliptic", args.mu, args.beta0, [1.0]))
             rec.update({k: getattr(c, k) for k in ("a_star", "b_star", "c_star", "d_star", "v", "W_star",
                                                     "delta_star")})
             rec["ellipticity"] = float(args.ellipticity)
@@ -106,7 +106,7 @@ def run(args) -> int:
 
     from ..schema import LOAD_CURVE_HEADER_KEYS, units
 
-    from ..compare import validity_message
+    from ..validity import validity_message
 
     rec = curve_record(args)
     if getattr(args, "machine_stiffness", None) is not None:

@@ -1,0 +1,215 @@
+"""The one pull-off record and the one load-curve record of every analytic model.
+
+Every analytic model answers with the same two types, whose fields are named by
+:mod:`dhfield.schema`:
+
+* :class:`PullOff`: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in that order
+  (the model, control and geometry; beta0, mu and sin(theta_skew); W*, the semi-axes,
+  v, delta* and the ellipticities at pull-off; ``at_zero_contact`` and ``warning``);
+* :class:`LoadCurve`: :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS` (scalars) then
+  :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size).
+
+Both are read as attributes (``p.W_star``) or as a mapping (``p["W_star"]``, ``dict(p)``,
+``{**p}``), so a record goes straight into JSON, netCDF and tables.  NaN stands for a
+quantity the model does not have (the adhesive zone of JKR, the DH factor ``v`` outside
+the equal-beta DH models).  Units: the paper's nondimensional ones, Eqs. (32)-(35).
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+
+from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
+
+__all__ = ["PullOff", "LoadCurve", "pull_off_record", "load_curve_record"]
+
+_NAN = float("nan")
+
+
+class _Record(Mapping):
+    """Attribute and read-only mapping access over the dataclass fields, in their order."""
+
+    __slots__ = ()
+
+    def __getitem__(self, key):
+        if key in self._KEYS:
+            return getattr(self, key)
+        raise KeyError(key)
+
+    def __iter__(self):
+        return iter(self._KEYS)
+
+    def __len__(self):
+        return len(self._KEYS)
+
+    def replace(self, **changes):
+        """A copy with some fields changed."""
+        return replace(self, **changes)
+
+    def as_dict(self) -> dict:
+        """The fields as a plain dict (arrays kept)."""
+        return {k: getattr(self, k) for k in self._KEYS}
+
+
+@dataclass(frozen=True, eq=False)
+class PullOff(_Record):
+    """The pull-off point of an analytic model (fields: :data:`dhfield.schema.PULL_OFF_KEYS`).
+
+    Attributes
+    ----------
+    model : str
+        A name of :data:`dhfield.compare.MODEL_NAMES`.
+    control : str
+        'load' or 'displacement'.
+    geometry : str
+        'ellipse', or 'circle' for the circular models (R = sqrt(R'R''), sin_skew = 1).
+    beta0, mu : ndarray or float
+        Hertz ellipticity of the geometry and Tabor parameter (Eq. 35) [-].
+    sin_skew : ndarray or float
+        sin(theta_skew) of the load normalisation, Eq. (34) [-].
+    W_star : ndarray or float
+        Pull-off load W sin(theta_skew)/(2 pi R dgamma), Eq. (34) (negative: tensile) [-].
+    a_star, b_star, c_star, d_star : ndarray or float
+        Contact and adhesive-zone semi-axes in c_r, Eq. (33) [-] (NaN: no zone).
+    v : ndarray or float
+        Double-Hertz factor of Eq. (22) [-] (NaN outside the equal-beta DH models).
+    delta_star : ndarray or float
+        Approach in c_r^2/R [-].
+    ellipticity, adhesive_ellipticity : ndarray or float
+        b/a and d/c at pull-off [-].
+    at_zero_contact : ndarray or bool
+        True where the pull-off is reached as the contact vanishes.
+    warning : ndarray or str
+        Empty inside the model's validated range (:mod:`dhfield.validity`).
+    """
+
+    model: str
+    control: str
+    geometry: str
+    beta0: np.ndarray
+    mu: np.ndarray
+    sin_skew: np.ndarray
+    W_star: np.ndarray
+    a_star: np.ndarray
+    b_star: np.ndarray
+    c_star: np.ndarray
+    d_star: np.ndarray
+    v: np.ndarray
+    delta_star: np.ndarray
+    ellipticity: np.ndarray
+    adhesive_ellipticity: np.ndarray
+    at_zero_contact: np.ndarray
+    warning: np.ndarray
+
+    _KEYS = PULL_OFF_KEYS
+
+
+@dataclass(frozen=True, eq=False)
+class LoadCurve(_Record):
+    """A load curve of an analytic model (fields: the schema's load-curve keys).
+
+    Attributes
+    ----------
+    model, geometry : str
+        As in :class:`PullOff`.
+    beta0, mu, sin_skew : float
+        As in :class:`PullOff`.
+    a_star, b_star, c_star, d_star, v, W_star, delta_star : ndarray
+        The states along the curve, over the contact size (NaN where the model has no
+        such quantity).
+    """
+
+    model: str
+    geometry: str
+    beta0: float
+    mu: float
+    sin_skew: float
+    a_star: np.ndarray
+    b_star: np.ndarray
+    c_star: np.ndarray
+    d_star: np.ndarray
+    v: np.ndarray
+    W_star: np.ndarray
+    delta_star: np.ndarray
+
+    _KEYS = LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
+
+
+assert tuple(f.name for f in fields(PullOff)) == PULL_OFF_KEYS
+assert tuple(f.name for f in fields(LoadCurve)) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
+
+
+def _arr(x, shape, dtype=float):
+    out = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
+    return out[()] if out.ndim == 0 else out
+
+
+def _ratio(num, den):
+    return np.divide(num, den, out=np.ones_like(num), where=den > 0)
+
+
+def pull_off_record(model, beta0, mu, state, *, control, sin_skew, geometry, warning=""):
+    """The :class:`PullOff` of a model from its state at pull-off.
+
+    Parameters
+    ----------
+    model : str
+        The model's name.
+    beta0, mu : array_like
+        The inputs [-]; the record has their broadcast shape.
+    state : mapping
+        ``W_star``, ``a_star``, ``delta_star`` and, where the model has them, ``b_star``
+        (default a*: a circle), ``c_star`` (default NaN), ``d_star`` (default c* b*/a*),
+        ``v`` (default NaN), ``ellipticity`` (default b*/a*, 1 at a* = 0) and
+        ``at_zero_contact`` (default a* = 0).
+    control : {'load', 'displacement'}
+    sin_skew : array_like
+        sin(theta_skew) of Eq. (34) (1 for the circle) [-].
+    geometry : {'ellipse', 'circle'}
+    warning : str or array of str
+        The model's own warning ("" for none).
+
+    Returns
+    -------
+    PullOff
+        Scalars where every input is a scalar.
+    """
+    beta0, mu = np.asarray(beta0, float), np.asarray(mu, float)
+    shape = np.broadcast_shapes(beta0.shape, mu.shape)
+    a = np.asarray(state["a_star"], float)
+    b = np.asarray(state.get("b_star", a), float)
+    c = np.asarray(state.get("c_star", _NAN), float)
+    d = np.asarray(state.get("d_star", c * _ratio(b, a)), float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ell = np.asarray(state.get("ellipticity", _ratio(b, a)), float)
+        adh = np.where(np.isfinite(c) & (c > 0), d / np.where(c > 0, c, 1.0), _NAN)
+    zero = state.get("at_zero_contact", a == 0)
+    return PullOff(model, control, geometry, _arr(beta0, shape), _arr(mu, shape), _arr(sin_skew, shape),
+                   _arr(state["W_star"], shape), _arr(a, shape), _arr(b, shape), _arr(c, shape),
+                   _arr(d, shape), _arr(state.get("v", _NAN), shape), _arr(state["delta_star"], shape),
+                   _arr(ell, shape), _arr(adh, shape), _arr(zero, shape, bool), _arr(warning, shape, object))
+
+
+def load_curve_record(model, beta0, mu, arrays, *, sin_skew, geometry):
+    """The :class:`LoadCurve` of a model from its arrays over the contact size.
+
+    Parameters
+    ----------
+    model : str
+    beta0, mu : float
+        The inputs [-].
+    arrays : mapping
+        ``a_star``, ``W_star``, ``delta_star`` and, where the model has them, ``b_star``
+        (default a*), ``c_star``, ``d_star``, ``v`` (default NaN).
+    sin_skew : float
+    geometry : {'ellipse', 'circle'}
+    """
+    a = np.asarray(arrays["a_star"], float)
+    nan = np.full(a.shape, _NAN)
+    get = {"a_star": a, "b_star": arrays.get("b_star", a), "c_star": arrays.get("c_star", nan),
+           "d_star": arrays.get("d_star", nan), "v": arrays.get("v", nan), "W_star": arrays["W_star"],
+           "delta_star": arrays["delta_star"]}
+    return LoadCurve(model, geometry, float(beta0), float(mu), float(sin_skew),
+                     *(np.asarray(get[k], float) for k in LOAD_CURVE_KEYS))

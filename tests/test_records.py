@@ -1,0 +1,42 @@
+"""dhfield.records: the one pull-off record and the one load-curve record (issue 16)."""
+import numpy as np
+import pytest
+
+from dhfield.records import LoadCurve, PullOff, load_curve_record, pull_off_record
+from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
+
+
+def test_pull_off_record_fields_defaults_and_mapping():
+    """A circle without adhesive zone (JKR-like state): b = a, no zone, ellipticity 1; the record reads
+    as attributes and as a read-only mapping in the schema's order."""
+    st = {"W_star": -0.75, "a_star": 1.5, "delta_star": -0.77}
+    rec = pull_off_record("jkr", 1.0, [1.0, 2.0], st, control="load", sin_skew=1.0, geometry="circle")
+    assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS and len(rec) == len(PULL_OFF_KEYS)
+    assert rec.W_star.shape == (2,) and np.all(rec.b_star == rec.a_star)
+    assert np.all(np.isnan(rec.c_star)) and np.all(np.isnan(rec.d_star)) and np.all(np.isnan(rec.v))
+    assert np.all(rec.ellipticity == 1.0) and np.all(np.isnan(rec.adhesive_ellipticity))
+    assert not rec.at_zero_contact.any() and list(rec.warning) == ["", ""]
+    assert {**rec}["mu"].tolist() == [1.0, 2.0] and rec["model"] == "jkr"
+    with pytest.raises(KeyError):
+        rec["force"]
+    with pytest.raises(AttributeError):
+        rec.W_star = 0.0  # frozen
+    assert rec.replace(warning="w").warning == "w"
+
+
+def test_pull_off_record_zero_contact_and_ellipse():
+    """At a* = 0 the contact ratio defaults to 1 and at_zero_contact to True; d* defaults to c* b*/a*."""
+    zero = pull_off_record("md", 1.0, 0.5, {"W_star": -1.0, "a_star": 0.0, "c_star": 2.0, "delta_star": 0.0},
+                           control="load", sin_skew=1.0, geometry="circle")
+    assert zero.at_zero_contact and zero.ellipticity == 1.0 and zero.d_star == 2.0 and np.ndim(zero.W_star) == 0
+    ell = pull_off_record("x", 0.5, 1.0, {"W_star": -0.5, "a_star": 2.0, "b_star": 1.0, "c_star": 4.0,
+                                          "delta_star": 0.1}, control="displacement", sin_skew=0.8,
+                          geometry="ellipse")
+    assert ell.d_star == 2.0 and ell.ellipticity == 0.5 and ell.adhesive_ellipticity == 0.5
+
+
+def test_load_curve_record():
+    c = load_curve_record("jkr", 1.0, 2.0, {"a_star": [1.0, 2.0], "W_star": [0.1, 0.2], "delta_star": [0, 1]},
+                          sin_skew=1.0, geometry="circle")
+    assert type(c) is LoadCurve and tuple(c) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
+    assert c.b_star.tolist() == [1.0, 2.0] and np.all(np.isnan(c.c_star)) and c.mu == 2.0
