@@ -93,5 +93,5 @@ def test_jkr_side_at_mu_1e4_is_gvg():
     b0 = ellipticity_from_skew_angle(np.radians([20.0, 30.0, 45.0, 60.0, 75.0, 90.0]))
     got = et.pull_off_nondimensional(1e4, b0)["W_star"]
     assert_allclose(got, ee.pull_off_nondimensional(b0, 1.0).W_star, rtol=1e-4)
-    assert_allclose(et.pull_off_nondimensional(1e4, 1.0)["W_star"], md.pull_off_nondimensional(1e4)["W_star"],
+    assert_allclose(et.pull_off_nondimensional(1e4, 1.0)["W_star"], md.pull_off_nondimensional(1.0, 1e4).W_star,
                     rtol=1e-14)
