@@ -33,7 +33,7 @@ def _mu(lam):
 
 def _md_displacement_pull_off(mu):
     # Maugis (1992) in the paper's units (R = E* = Delta gamma = 1, sigma0 = mu)
-    return maugis_dugdale.pull_off_nondimensional(mu, "displacement")
+    return maugis_dugdale.pull_off_nondimensional(1.0, mu, control="displacement")
 
 
 @pytest.fixture(scope="module")
