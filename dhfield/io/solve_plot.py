@@ -66,6 +66,13 @@ def _scales(result, params):
             "load": (fu / fs, fl), "si": True}
 
 
+def _stress_unit(params) -> float:
+    """The paper's stress unit E* c_r/R [Pa] (pressures of the state are in it)."""
+    from .solution import stress_unit
+
+    return stress_unit(params)
+
+
 def _ellipses(ax, result, k, colour_ab="k", colour_cd="k"):
     from matplotlib.patches import Ellipse
 
@@ -110,7 +117,9 @@ def solve_figure(result, params=None):
     st = result.path.pull_off_state
     g = st.grid
     x, y = np.asarray(g.x) * lk, np.asarray(g.y) * lk
-    fig, axes = plt.subplots(1, 3, figsize=(13.0, 4.3), gridspec_kw={"width_ratios": (1.0, 1.12, 1.0)})
+    fig = plt.figure(figsize=(9.0, 7.6), layout="constrained")
+    gs = fig.add_gridspec(2, 2, height_ratios=(1.0, 1.05), width_ratios=(1.0, 1.2))
+    axes = [fig.add_subplot(gs[0, 0]), fig.add_subplot(gs[0, 1]), fig.add_subplot(gs[1, :])]
 
     # (a) contact and cohesive zone, fitted ellipses
     ax = axes[0]
@@ -120,15 +129,16 @@ def solve_figure(result, params=None):
     ax.pcolormesh(x, y, region, cmap=cmap, vmin=-0.5, vmax=len(REGIONS) - 0.5, shading="nearest",
                   rasterized=True)
     _ellipses(ax, result, lk)
-    from matplotlib.patches import Patch
-
-    handles = [Patch(color=colours["contact"], label="contact"),
-               Patch(color=colours["cohesive_zone"], label="cohesive zone (Dugdale)" if result.law == "dugdale"
-                     else "cohesive zone"),
-               *ax.patches[-2:]]
-    ax.legend(handles=handles, fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2,
-              frameon=False)
+    ax.set_title("contact and adhesive zone at pull-off\nfitted ellipses: solid (a, b), dashed (c, d)",
+                 fontsize=10)
     _zoom(ax, result, lk)
+    lo_y, hi_y = ax.get_ylim()
+    ax.set_ylim(lo_y, hi_y + 0.3 * (hi_y - lo_y))  # room for the zone's label above the ellipses
+    ax.text(0.0, 0.0, "contact", ha="center", va="center", color="white", fontsize=10)
+    zone = "cohesive zone (Dugdale)" if result.law == "dugdale" else "cohesive zone"
+    ax.annotate(zone, xy=(0.0, 0.5 * (result.b_star + result.d_star) * lk),
+                xytext=(0.0, hi_y + 0.12 * (hi_y - lo_y)), ha="center", va="center", fontsize=9,
+                arrowprops=dict(arrowstyle="-|>", color="0.2", lw=1.0))
     ax.set_xlabel(f"x (major axis) [{ll}]")
     ax.set_ylabel(f"y (minor axis) [{ll}]")
 
@@ -142,8 +152,9 @@ def solve_figure(result, params=None):
     _ellipses(ax, result, lk, "0.15", "0.15")
     _zoom(ax, result, lk)
     cb = fig.colorbar(im, ax=ax, shrink=0.85, pad=0.02)
-    s0 = f"σ0 = {abs(lo):.3g} {sl}" if si else f"σ0 = μ = {result.mu:.3g}"
-    cb.set_label(f"pressure p [{sl}]  (compressive > 0;\nadhesive traction −σ0 < 0, {s0})", fontsize=9)
+    s0 = (f"−σ0 = −{float(params.max_adhesive_stress) * sk / _stress_unit(params):.3g} {sl}" if si
+          else f"−σ0 = −μ = −{result.mu:.3g}")
+    cb.set_label(f"pressure p [{sl}], compressive > 0\n(cohesive zone: {s0})", fontsize=9)
     ax.set_xlabel(f"x (major axis) [{ll}]")
     ax.set_title("pressure at pull-off", fontsize=10)
 
@@ -160,17 +171,16 @@ def solve_figure(result, params=None):
     for k, phase in enumerate(dict.fromkeys(phases[ok])):
         sel = ok & (phases == phase)
         ax.plot(d[sel], w[sel], "o", ms=5, color=f"C{k}", mfc="none", mew=1.4,
-                label=f"BEM states, N = {result.n} ({phase})")
+                label=f"BEM, N = {result.n}: {phase}")
     if np.any(~ok):
-        ax.plot(d[~ok], w[~ok], "x", ms=6, color="C3", label="unconverged state (excluded)")
+        ax.plot(d[~ok], w[~ok], "x", ms=6, color="C3", label="BEM: unconverged (excluded)")
     ax.plot([path.pull_off_approach * ak], [path.pull_off_load * fk], "*", ms=13, color="C3", mec="k", mew=0.6,
-            label=f"pull-off ({result.control} control)", zorder=5)
-    ax.axhline(0.0, color="0.7", lw=0.7, zorder=0)
+            label="pull-off", zorder=5)
     ax.set_xlabel(f"approach δ [{al}]" if si else "approach δ* = δR/c_r²  (Eq. 33)")
     ax.set_ylabel(f"force W [{fl}]  (compressive > 0)" if si else "load W* = W sin θ/(2πRΔγ)  (Eq. 34)")
-    ax.legend(fontsize=8, loc="upper left", framealpha=0.9)
+    ax.legend(fontsize=9, loc="upper right", framealpha=0.9)
     ax.grid(alpha=0.25)
-    ax.set_title("load–approach path", fontsize=10)
+    ax.set_title(f"load–approach path ({result.control} control)", fontsize=10)
 
     flag = "" if (result.converged and getattr(result, "resolved", True)) else \
         "   [NOT " + ("converged" if not result.converged else "resolved") + ": not an answer]"
@@ -181,15 +191,14 @@ def solve_figure(result, params=None):
                 f"a, b = {result.a_star * params.length_unit / lq:.3g}, {result.b_star * params.length_unit / lq:.3g}"
                 f" {lql}; c, d = {result.c_star * params.length_unit / lq:.3g}, "
                 f"{result.d_star * params.length_unit / lq:.3g} {lql}")
-        sub = (f"E* = {params.reduced_modulus / 1e6:.3g} MPa, R = √(R′R″) = {params.effective_radius * 1e3:.3g} mm, "
+        sub = (f"E* = {params.reduced_modulus / 1e6:.3g} MPa, R = {params.effective_radius * 1e3:.3g} mm, "
                f"Δγ = {params.work_of_adhesion:.3g} J/m², σ0 = {params.max_adhesive_stress / 1e3:.3g} kPa  →  "
-               f"β0 = {result.beta0:.3g}, μ = {result.mu:.3g};  {result.law}, N = {result.n}, {result.control} control")
+               f"β0 = {result.beta0:.3g}, μ = {result.mu:.3g}; {result.law}, N = {result.n}")
     else:
         head = (f"BEM pull-off W* = {result.W_star:.4g}; a*, b* = {result.a_star:.3g}, {result.b_star:.3g}; "
                 f"c*, d* = {result.c_star:.3g}, {result.d_star:.3g}")
         sub = f"β0 = {result.beta0:.3g}, μ = {result.mu:.3g};  {result.law}, N = {result.n}, {result.control} control"
     fig.suptitle(head + flag + "\n" + sub, fontsize=10.5)
-    fig.tight_layout()
     return fig
 
 
@@ -212,7 +221,7 @@ def _reference_curve(ax, result, ak, fk):
     span = max(top - float(np.nanmin(delta[ok])), 1e-12)
     ok &= delta <= top + 0.6 * span  # the unloading end of the curve, where the BEM path lies
     ax.plot(delta[ok] * ak, load[ok] * fk, "-", color="0.55", lw=1.3,
-            label=f"{REFERENCE_MODEL} (analytic, for reference)")
+            label=f"{REFERENCE_MODEL} (analytic)")
 
 
 def write_solve_plot(result, path, *, params=None, dpi=150) -> tuple[Path, Path, Path]:
