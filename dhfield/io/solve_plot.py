@@ -73,6 +73,16 @@ def _stress_unit(params) -> float:
     return stress_unit(params)
 
 
+def _two_sided_ticks(lo: float, hi: float) -> np.ndarray:
+    """Colour-bar ticks of a scale centred on zero: nice ticks on each side, zero included."""
+    from matplotlib.ticker import MaxNLocator
+
+    neg = MaxNLocator(nbins=4).tick_values(lo, 0.0) if lo < 0 else np.array([0.0])
+    pos = MaxNLocator(nbins=3).tick_values(0.0, hi) if hi > 0 else np.array([0.0])
+    ticks = np.unique(np.concatenate([neg, pos]))
+    return ticks[(ticks >= lo) & (ticks <= hi)]
+
+
 def _ellipses(ax, result, k, colour_ab="k", colour_cd="k"):
     from matplotlib.patches import Ellipse
 
@@ -108,6 +118,7 @@ def solve_figure(result, params=None):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap, TwoSlopeNorm
+    from matplotlib.ticker import FormatStrFormatter
 
     from .solution import REGIONS, _region_codes
 
@@ -152,6 +163,8 @@ def solve_figure(result, params=None):
     _ellipses(ax, result, lk, "0.15", "0.15")
     _zoom(ax, result, lk)
     cb = fig.colorbar(im, ax=ax, shrink=0.85, pad=0.02)
+    cb.set_ticks(_two_sided_ticks(norm.vmin, norm.vmax))  # TwoSlopeNorm alone may label one side only
+    cb.ax.yaxis.set_major_formatter(FormatStrFormatter("%g"))
     s0 = (f"−σ0 = −{float(params.max_adhesive_stress) * sk / _stress_unit(params):.3g} {sl}" if si
           else f"−σ0 = −μ = −{result.mu:.3g}")
     cb.set_label(f"pressure p [{sl}], compressive > 0\n(cohesive zone: {s0})", fontsize=9)
@@ -168,10 +181,13 @@ def solve_figure(result, params=None):
     w = np.asarray(path.load, float) * fk
     ok = np.asarray(path.converged, bool)
     phases = np.asarray([str(q) for q in path.phase])
-    for k, phase in enumerate(dict.fromkeys(phases[ok])):
-        sel = ok & (phases == phase)
-        ax.plot(d[sel], w[sel], "o", ms=5, color=f"C{k}", mfc="none", mew=1.4,
-                label=f"BEM, N = {result.n}: {phase}")
+    jump = phases == "jump"  # re-solved from separation after the branch ended: W = 0
+    sel = ok & ~jump
+    ax.plot(d[sel], w[sel], "o", ms=5, color="C0", mfc="none", mew=1.4,
+            label=f"BEM states, N = {result.n} (loading, unloading, refinement)")
+    if np.any(ok & jump):
+        ax.plot(d[ok & jump], w[ok & jump], "o", ms=5, color="C2", mfc="none", mew=1.4,
+                label="BEM, after the jump out: separated (W = 0)")
     if np.any(~ok):
         ax.plot(d[~ok], w[~ok], "x", ms=6, color="C3", label="BEM: unconverged (excluded)")
     ax.plot([path.pull_off_approach * ak], [path.pull_off_load * fk], "*", ms=13, color="C3", mec="k", mew=0.6,
