@@ -202,8 +202,8 @@ def test_solve_si_round_trip(tmp_path, capsys):
 
 @pytest.mark.parametrize("extra, word", [
     (["--beta0", "0.8"], "either --beta0/--mu or physical inputs"),
-    (["--adhesive-stress", "1e12"], "max_adhesive_stress"),          # mu far above the models' range
-    (["--youngs-modulus", "-2e6"], "youngs_modulus"),
+    (["--adhesive-stress", "1e-3"], "max_adhesive_stress"),          # mu = 4e-8, below the models' range
+    (["--youngs-modulus", "0"], "youngs_modulus_1 must be in (0, inf)"),
     (["--skew-angle-deg", "120"], "skew-angle-deg"),
     (["--plot", "figure.svg"], "plot"),
 ])

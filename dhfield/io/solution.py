@@ -245,7 +245,18 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
 
 
 def stress_unit(params) -> float:
-    """The paper's unit of stress E* c_r/R [Pa] of a contact (sigma0 = mu times it, Eq. 35)."""
+    """The paper's unit of stress E* c_r/R of a contact (sigma0 = mu times it, Eq. 35).
+
+    Parameters
+    ----------
+    params : dhfield.dimensional.ContactParameters
+        The contact (scalar parameters).
+
+    Returns
+    -------
+    float
+        E* c_r/R [Pa].
+    """
     return float(params.reduced_modulus * params.length_unit / params.effective_radius)
 
 
@@ -310,9 +321,22 @@ def _add_si(ds, result, params):
 def write_solution(result, path, *, fields: bool = True, params=None) -> Path:
     """Write a pull-off (:class:`AdhesivePullOff`) or a ContactState to netCDF atomically.
 
-    ``path`` is checked before the Dataset is built; the write is atomic.  With
-    ``params`` (:class:`dhfield.dimensional.ContactParameters` of the solved case)
-    a pull-off also carries its SI values (:func:`pull_off_si`).
+    Parameters
+    ----------
+    result : dhfield.bem.AdhesivePullOff or dhfield.bem.ContactState
+        What to write (:func:`pull_off_dataset` or :func:`state_dataset`).
+    path : path-like
+        The netCDF file; checked before the Dataset is built, written atomically.
+    fields : bool
+        A pull-off: also the fields of the pull-off state.
+    params : dhfield.dimensional.ContactParameters, optional
+        The contact of the solved case: a pull-off then also carries its SI values
+        (:func:`pull_off_si`).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
     """
     check_writable(path)
     if hasattr(result, "path") and hasattr(result, "W_star"):

@@ -106,12 +106,14 @@ def solve_figure(result, params=None):
     Parameters
     ----------
     result : dhfield.bem.AdhesivePullOff
+        The pull-off, with its path and the state at pull-off.
     params : dhfield.dimensional.ContactParameters, optional
         The contact solved (same beta0 and mu): SI axes.  Without it the paper's units.
 
     Returns
     -------
     matplotlib.figure.Figure
+        The figure (close it with ``matplotlib.pyplot.close``).
     """
     import matplotlib
 
@@ -246,6 +248,7 @@ def write_solve_plot(result, path, *, params=None, dpi=150) -> tuple[Path, Path,
     Parameters
     ----------
     result : dhfield.bem.AdhesivePullOff
+        The pull-off, with its path and the state at pull-off.
     path : path-like
         PNG file; the SVG and PDF are the same path with suffixes ``.svg`` and
         ``.pdf``.  All three are checked before any is written.
