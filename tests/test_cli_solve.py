@@ -153,3 +153,88 @@ def test_progress_on_a_terminal_only(monkeypatch, capsys):
     monkeypatch.setattr("sys.stderr.isatty", lambda: True, raising=False)
     main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json"])
     assert seen["progress"] is True and "dhfield: solving beta0=1" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- SI inputs and outputs (issue 17)
+#: The README's PDMS cylinders (E = 2 MPa, nu = 0.5, R_c = 5 mm, 60 deg, dgamma = 0.04 J/m^2) at
+#: sigma0 = 23.1 kPa, mu = 1.0003: a Dugdale zone of several cells even at N = 32.
+PDMS_SI = ["--youngs-modulus", "2e6", "--poisson-ratio", "0.5", "--cylinder-radius", "5e-3",
+           "--skew-angle-deg", "60", "--work-of-adhesion", "0.04", "--adhesive-stress", "2.31e4"]
+
+
+def test_solve_si_round_trip(tmp_path, capsys):
+    """SI in -> the same W* as the nondimensional call at the (beta0, mu) of the contact, and SI out
+    by closed forms written here without dhfield.dimensional: equal cylinders crossed at theta have
+    R'R'' = R_c^2/sin^2(theta) (Eqs. 3-5), so R = R_c/sin(theta); E* = E/(2(1 - nu^2)) (Eq. 6);
+    W = W* 2 pi R dgamma/sin(theta) (Eq. 34), a = a* c_r with c_r = (R^2 dgamma/E*)^(1/3) (Eqs. 32-33),
+    delta = delta* c_r^2/R.  rel 1e-12: the same floats through a different order of operations."""
+    import math
+
+    out = tmp_path / "si.nc"
+    rc = main(["solve", *PDMS_SI, "--n", "32", "--json", "--out", str(out)])
+    si = json.loads(capsys.readouterr().out)
+    assert rc in (0, EXIT_UNCONVERGED)
+    rc2 = main(["solve", "--beta0", repr(si["beta0"]), "--mu", repr(si["mu"]), "--n", "32", "--json"])
+    nd = json.loads(capsys.readouterr().out)
+    assert rc2 == rc
+    for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star"):
+        assert si[key] == pytest.approx(nd[key], rel=1e-12, abs=0.0), key
+    theta, rc_, dgamma, e, nu = math.radians(60.0), 5e-3, 0.04, 2e6, 0.5
+    r = rc_ / math.sin(theta)
+    e_star = e / (2.0 * (1.0 - nu * nu))
+    c_r = (r * r * dgamma / e_star) ** (1.0 / 3.0)
+    assert si["force"] == pytest.approx(si["W_star"] * 2.0 * math.pi * r * dgamma / math.sin(theta), rel=1e-12)
+    assert si["semi_major"] == pytest.approx(si["a_star"] * c_r, rel=1e-12)
+    assert si["adhesive_semi_minor"] == pytest.approx(si["d_star"] * c_r, rel=1e-12)
+    assert si["approach"] == pytest.approx(si["delta_star"] * c_r * c_r / r, rel=1e-12)
+    assert si["mu"] == pytest.approx(2.31e4 * (r / (e_star ** 2 * dgamma)) ** (1.0 / 3.0), rel=1e-12)  # Eq. (35)
+    assert si["units"]["force"] == "N" and si["units"]["semi_major"] == "m" and si["units"]["W_star"] == "1"
+    assert si["units"]["max_adhesive_stress"] == "Pa" and si["units"]["approach"] == "m"
+    ds = read_solution(out)
+    assert float(ds["force_pull_off"]) == si["force"] and ds["force_pull_off"].attrs["units"] == "N"
+    assert float(ds["semi_major_pull_off"]) == si["semi_major"] and ds["approach_pull_off"].attrs["units"] == "m"
+    assert float(ds["W_star_pull_off"]) == si["W_star"]
+    # text output: the SI line beside the nondimensional ones
+    main(["solve", *PDMS_SI, "--n", "32"])
+    text = capsys.readouterr().out
+    assert "W* = " in text and f"force = {si['force']:.6g} N" in text and " m  approach = " in text
+
+
+@pytest.mark.parametrize("extra, word", [
+    (["--beta0", "0.8"], "either --beta0/--mu or physical inputs"),
+    (["--adhesive-stress", "1e-3"], "max_adhesive_stress"),          # mu = 4e-8, below the models' range
+    (["--youngs-modulus", "0"], "youngs_modulus_1 must be in (0, inf)"),
+    (["--skew-angle-deg", "120"], "skew-angle-deg"),
+    (["--plot", "figure.svg"], "plot"),
+])
+def test_solve_bad_si_input(extra, word, capsys, tmp_path, monkeypatch):
+    import dhfield.bem
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(dhfield.bem, "adhesive_pull_off", lambda *a, **k: pytest.fail("solved a bad input"))
+    argv = list(PDMS_SI)
+    for flag, value in zip(extra[::2], extra[1::2]):
+        if flag in argv:
+            argv[argv.index(flag) + 1] = value
+        else:
+            argv += [flag, value]
+    assert main(["solve", *argv, "--n", "32"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and word in err[0], err
+
+
+def test_solve_incomplete_si_input(capsys):
+    assert main(["solve", *PDMS_SI[:-2], "--n", "32"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--adhesive-stress" in err[0]
+
+
+def test_solve_plot_writes_png_svg_pdf(tmp_path, capsys):
+    """The figure code runs end to end from the command line (N = 32: cheap), SI axes."""
+    png = tmp_path / "solve.png"
+    rc = main(["solve", *PDMS_SI, "--n", "32", "--plot", str(png)])
+    assert rc in (0, EXIT_UNCONVERGED)
+    assert f"wrote {png}" in capsys.readouterr().out
+    for suffix in (".png", ".svg", ".pdf"):
+        assert png.with_suffix(suffix).stat().st_size > 1000
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

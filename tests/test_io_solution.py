@@ -99,3 +99,40 @@ def test_fields_are_stored_y_by_x_and_old_files_still_read(tmp_path):
     back = read_solution(path)
     assert back["gap"].dims == ("y", "x")
     assert_array_equal(back["gap"].values, state.gap.T)
+
+
+def test_si_variables_of_a_pull_off(tmp_path, small_result):
+    """With the contact's parameters the file carries the SI pull-off, the SI force path and the inputs,
+    with their schema units.  Contact chosen so that beta0 = 0.8 is hit: principal radii with
+    R'/R'' of beta0 = 0.8 (dhfield.geometry, Eq. 9), and sigma0 for mu = 1 (Eq. 35)."""
+    from dhfield import geometry
+    from dhfield.dimensional import contact_parameters_from_principal_radii
+    from dhfield.io.solution import SI_INPUT_KEYS, SI_PULL_OFF_KEYS, pull_off_si
+
+    res = small_result
+    ratio = float(geometry.radius_ratio(res.beta0))
+    r1, r2 = 4e-3 * np.sqrt(ratio), 4e-3 / np.sqrt(ratio)         # R = sqrt(R'R'') = 4 mm
+    e_star, dgamma = 1e6, 0.05                                     # E* = E/(2(1 - nu^2)), E = 1.5 MPa
+    sigma0 = res.mu * (e_star ** 2 * dgamma / 4e-3) ** (1.0 / 3.0)  # Eq. (35) inverted
+    params = contact_parameters_from_principal_radii(1.5e6, 0.5, 1.5e6, 0.5, r1, r2, dgamma, sigma0)
+    assert float(params.mu) == pytest.approx(res.mu, rel=1e-12)
+    params = type(params)(**{**params.__dict__, "beta0": res.beta0, "mu": res.mu})  # exact case of the result
+    back = read_solution(write_solution(res, tmp_path / "si.nc", params=params))
+    si = pull_off_si(res, params)
+    for key in SI_PULL_OFF_KEYS:
+        assert float(back[f"{key}_pull_off"]) == si[key]
+    for key in SI_INPUT_KEYS:
+        assert float(back[key]) == si[key]
+    assert back["force_pull_off"].attrs["units"] == "N" and back["semi_major_pull_off"].attrs["units"] == "m"
+    assert back["max_adhesive_stress"].attrs["units"] == "Pa" and back["force_path"].attrs["units"] == "N"
+    # the load unit of Eq. (34), 2 pi R dgamma/sin(theta_skew), and the path's load in R dgamma
+    sin_skew = float(geometry.sin_skew_angle(res.beta0))
+    assert si["force"] == pytest.approx(res.W_star * 2 * np.pi * 4e-3 * dgamma / sin_skew, rel=1e-12)
+    np.testing.assert_allclose(back["force_path"].values, res.path.load * 4e-3 * dgamma, rtol=1e-12)
+    np.testing.assert_allclose(back["force_path"].values * sin_skew / (2 * np.pi * 4e-3 * dgamma),
+                               back["W_star_path"].values, rtol=1e-12)
+    c_r = (4e-3 ** 2 * dgamma / e_star) ** (1.0 / 3.0)                 # Eq. (33)
+    assert si["semi_major"] == pytest.approx(res.a_star * c_r, rel=1e-12)
+    assert back.attrs["length_unit_m"] == pytest.approx(c_r, rel=1e-12)
+    with pytest.raises(ValueError, match="params must describe the solved case"):
+        pull_off_si(res, type(params)(**{**params.__dict__, "mu": 2.0 * res.mu}))

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import sys
 
-from ._common import add_model_arguments, print_json
+from ._common import add_model_arguments, add_physical_arguments, contact_parameters_from_args, print_json
 
 #: Exit status when a state of the path did not converge (the result is still printed/written, flagged).
 EXIT_UNCONVERGED = 3
@@ -49,9 +49,12 @@ def add_parser(sub) -> None:
                                    "semi-axes in c_r (Eq. 32) from the second moments of the contact and "
                                    "adhesive masks.  The result says whether the path converged and whether the "
                                    "grid resolves the cohesive zone; a progress line goes to stderr on a "
-                                   "terminal.",
+                                   "terminal.  Inputs: --beta0 and --mu, or the physical inputs in SI units of "
+                                   "'dhfield pulloff' (converted with dhfield.dimensional.contact_parameters); "
+                                   "these add the force [N], the semi-axes and the approach [m] beside W*, a*, "
+                                   "b*, c*, d*, delta*.",
                        epilog=_EPILOG)
-    add_model_arguments(p)
+    add_model_arguments(p, required=False)   # or the SI inputs of add_physical_arguments (below)
     p.add_argument("--n", type=int, default=256, help="cells per axis (even, >= 8; default 256)")
     p.add_argument("--law", default="dugdale", choices=("dugdale", "exponential"),
                    help="traction law, sigma0 = mu and dgamma = 1 (default dugdale)")
@@ -63,7 +66,12 @@ def add_parser(sub) -> None:
                         "grid; march: unload in uniform steps (slowest)")
     p.add_argument("--threads", type=int, default=None, help="FFTW threads (default $DHFIELD_THREADS or 1)")
     p.add_argument("--out", default=None, help="netCDF file for the pull-off fields and the path")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
+    p.add_argument("--plot", metavar="FILE.png", default=None,
+                   help="figure of the pull-off: contact and adhesive-zone map with the fitted ellipses, the "
+                        "pressure, the load-approach path (PNG, with an .svg and a .pdf beside it); SI axes "
+                        "with physical inputs")
+    add_physical_arguments(p)
     p.set_defaults(func=run)
 
 
@@ -84,23 +92,58 @@ _LOCAL_UNITS = {"n": "1", "W_star_error": "1", "residual": "1", "elapsed": "s", 
                 "iterations": "1", "converged": "1"}
 
 
-def _units(rec) -> dict:
-    """key -> unit string of every numeric entry of the record ("1": dimensionless, paper's units)."""
+def _units(rec, si_keys=()) -> dict:
+    """key -> unit string of every numeric entry of the record ("1": dimensionless, paper's units;
+    the keys ``si_keys`` in their SI unit of :mod:`dhfield.schema`)."""
     from ..schema import units
 
     out = {}
     for k, v in rec.items():
         if isinstance(v, (bool, int, float)) and not isinstance(v, str):
-            out[k] = _LOCAL_UNITS[k] if k in _LOCAL_UNITS else units(k, nondimensional=True)
+            out[k] = (_LOCAL_UNITS[k] if k in _LOCAL_UNITS else units(k, nondimensional=k not in si_keys))
     return out
+
+
+# --------------------------------------------------------------------------- SI inputs and outputs, --plot
+def _physical_inputs(args):
+    """ContactParameters of the SI flags (beta0, mu then set on ``args``), or None for --beta0/--mu."""
+    params = contact_parameters_from_args(args)
+    if params is not None:
+        args.beta0, args.mu = float(params.beta0), float(params.mu)
+    return params
+
+
+def _check_plot(args) -> None:
+    """Refuse a bad --plot path (and its .svg/.pdf) before solving."""
+    if getattr(args, "plot", None) is None:
+        return
+    from pathlib import Path
+
+    from ..io import check_writable, validate_output_path
+
+    validate_output_path(args.plot, (".png",), "plot")
+    for suffix in (".svg", ".pdf"):
+        check_writable(Path(args.plot).with_suffix(suffix), "plot")
+
+
+def _print_si(si) -> None:
+    """The SI line(s) of the text output."""
+    print(f"force = {si['force']:.6g} N  a = {si['semi_major']:.5g} m  b = {si['semi_minor']:.5g} m  "
+          f"c = {si['adhesive_semi_major']:.5g} m  d = {si['adhesive_semi_minor']:.5g} m  "
+          f"approach = {si['approach']:.5g} m")
+    print(f"(E* = {si['reduced_modulus']:.6g} Pa, R' = {si['r_major']:.6g} m, R'' = {si['r_minor']:.6g} m, "
+          f"R = {si['effective_radius']:.6g} m, dgamma = {si['work_of_adhesion']:.6g} J/m^2, "
+          f"sigma0 = {si['max_adhesive_stress']:.6g} Pa)")
 
 
 def run(args) -> int:
     from ..bem import adhesive_pull_off
     from ..io import check_writable
 
+    params = _physical_inputs(args)
     if args.out is not None:
         check_writable(args.out)
+    _check_plot(args)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
     check_solve_memory(args.n)
@@ -118,10 +161,20 @@ def run(args) -> int:
     if args.out is not None:
         from ..io.solution import write_solution
 
-        write_solution(res, args.out)
+        write_solution(res, args.out, params=params)
     rec = _record(res)
+    si = {}
+    if params is not None:
+        from ..io.solution import pull_off_si
+
+        si = pull_off_si(res, params)
+    if args.plot is not None:
+        from ..io.solve_plot import write_solve_plot
+
+        write_solve_plot(res, args.plot, params=params)
     if args.json:
-        print_json({**rec, "units": _units(rec)})
+        rec = {**rec, **si}
+        print_json({**rec, "units": _units(rec, si_keys=tuple(si))})
     else:
         print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {res.n}, {res.law}, {res.control} control")
         err = f" (fold fit error ~{res.W_star_error:.2g})" if res.W_star_error == res.W_star_error else ""
@@ -130,8 +183,12 @@ def run(args) -> int:
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
         print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  "
               f"CG iterations = {res.iterations}  search = {res.search}  ({res.elapsed:.1f} s)")
+        if si:
+            _print_si(si)
         if args.out is not None:
             print(f"wrote {args.out}")
+        if args.plot is not None:
+            print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
     if not res.converged:
         worst = max((f.get("residual", float("nan")) for f in res.failures), default=res.residual)
         why = (f"{len(res.failures)} unconverged state(s), worst residual {worst:.3g}" if res.failures

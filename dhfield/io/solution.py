@@ -19,6 +19,13 @@ In the style of :mod:`dhfield.io.field`, one :class:`xarray.Dataset` per solutio
 * for a nondimensional pull-off (:class:`dhfield.bem.AdhesivePullOff`), the
   paper's quantities W*, a*, b*, c*, d*, delta* (Eqs. 32-34) per step and at
   pull-off, with ``units = "1"`` and the scale in ``long_name``;
+* with the physical inputs of the contact (``params``, a
+  :class:`dhfield.dimensional.ContactParameters`): the same pull-off in SI
+  (``force_pull_off`` [N], ``semi_major_pull_off`` ... [m], ``approach_pull_off``
+  [m]), the ``force_path`` [N] per step, the SI inputs (``work_of_adhesion``,
+  ``max_adhesive_stress``, ``reduced_modulus``, ``r_major``, ``r_minor``,
+  ``effective_radius``) and the scales of the paper's units as attributes
+  (``length_unit_m``, ``approach_unit_m``, ``stress_unit_Pa``, ``load_unit_N``);
 * the global attributes of :func:`dhfield.io.provenance_attrs` with every input
   parameter (``param_*``, including the traction law).
 
@@ -40,7 +47,8 @@ from ..schema import order_dims as schema_order
 from . import cf, check_writable, provenance_attrs, read_netcdf, write_netcdf
 
 __all__ = ["state_dataset", "path_dataset", "pull_off_dataset", "write_solution", "read_solution",
-           "REGIONS", "PHASES", "LOCAL_VARIABLES"]
+           "pull_off_si", "stress_unit", "REGIONS", "PHASES", "LOCAL_VARIABLES", "SI_PULL_OFF_KEYS",
+           "SI_INPUT_KEYS"]
 
 #: Categories of the ``region`` flag variable, code = position.
 REGIONS = ("contact", "cohesive_zone", "outside")
@@ -61,6 +69,11 @@ LOCAL_VARIABLES = {
     "d": ("adhesive semi-minor axis from second moments of contact + cohesive zone", "length"),
     "step": ("solved state index, in solve order", "1"),
 }
+#: SI outputs of a BEM pull-off (:func:`pull_off_si`), schema names, in order.
+SI_PULL_OFF_KEYS = ("force", "semi_major", "semi_minor", "adhesive_semi_major", "adhesive_semi_minor", "approach")
+#: SI inputs of the contact reported beside them, schema names, in order.
+SI_INPUT_KEYS = ("work_of_adhesion", "max_adhesive_stress", "reduced_modulus", "r_major", "r_minor",
+                 "effective_radius")
 _SI = {"length": "m", "length2": "m2", "stress": "Pa", "force": "N", "1": "1"}
 _NONDIM_SCALE = {"length": "c_r", "length2": "c_r^2", "stress": "E* c_r/R", "force": "R dgamma", "1": None}
 
@@ -231,14 +244,105 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
     return cf.finalize(ds)
 
 
-def write_solution(result, path, *, fields: bool = True) -> Path:
+def stress_unit(params) -> float:
+    """The paper's unit of stress E* c_r/R of a contact (sigma0 = mu times it, Eq. 35).
+
+    Parameters
+    ----------
+    params : dhfield.dimensional.ContactParameters
+        The contact (scalar parameters).
+
+    Returns
+    -------
+    float
+        E* c_r/R [Pa].
+    """
+    return float(params.reduced_modulus * params.length_unit / params.effective_radius)
+
+
+def pull_off_si(result, params) -> dict:
+    """The pull-off of a nondimensional BEM result in SI units, with the SI inputs.
+
+    Parameters
+    ----------
+    result : dhfield.bem.AdhesivePullOff
+        Solved at ``params.beta0`` and ``params.mu``.
+    params : dhfield.dimensional.ContactParameters
+        The contact (scalar parameters).
+
+    Returns
+    -------
+    dict
+        :data:`SI_PULL_OFF_KEYS` then :data:`SI_INPUT_KEYS`: ``force`` [N] (negative:
+        tensile), the semi-axes and the ``approach`` [m], the inputs [Pa, J m^-2, m].
+
+    Notes
+    -----
+    Inverts Eqs. (32)-(34) with the scales of
+    :func:`dhfield.dimensional.contact_parameters`:
+
+    .. math:: W = W^* \\frac{2\\pi R \\Delta\\gamma}{\\sin\\theta_{skew}}, \\quad
+              a = a^* c_r, \\quad \\delta = \\delta^* c_r^2/R
+
+    where the BEM's sin(theta_skew) (that of beta0) is the one of ``params``.
+    """
+    if not (math.isclose(float(params.beta0), result.beta0, rel_tol=1e-9)
+            and math.isclose(float(params.mu), result.mu, rel_tol=1e-9)):
+        raise ValueError(f"params must describe the solved case (beta0 = {result.beta0:g}, mu = {result.mu:g}); "
+                         f"got beta0 = {float(params.beta0):g}, mu = {float(params.mu):g}")
+    lu = float(params.length_unit)
+    out = {
+        "force": result.W_star * float(params.load_unit),  # Eq. (34)
+        "semi_major": result.a_star * lu, "semi_minor": result.b_star * lu,  # Eq. (32)
+        "adhesive_semi_major": result.c_star * lu, "adhesive_semi_minor": result.d_star * lu,
+        "approach": result.delta_star * float(params.approach_unit),  # Eq. (33)
+    }
+    out.update({k: float(getattr(params, k)) for k in SI_INPUT_KEYS})
+    return out
+
+
+def _add_si(ds, result, params):
+    """Add the SI pull-off, the SI force path, the SI inputs and the scales to ``ds``."""
+    q = "BEM at pull-off"
+    si = pull_off_si(result, params)
+    for key in SI_PULL_OFF_KEYS:
+        ds[f"{key}_pull_off"] = cf.variable(key, (), si[key], qualifier=q)
+    for key in SI_INPUT_KEYS:
+        ds[key] = cf.variable(key, (), si[key])
+    # the path's load is in R dgamma (E* c_r/R x c_r^2 with c_r^3 = R^2 dgamma/E*): W = load R dgamma
+    force_unit = float(params.effective_radius * params.work_of_adhesion)
+    ds["force_path"] = cf.variable("force", ("step",), np.asarray(result.path.load, float) * force_unit,
+                                   qualifier="per step")
+    ds.attrs.update({"length_unit_m": float(params.length_unit), "approach_unit_m": float(params.approach_unit),
+                     "stress_unit_Pa": stress_unit(params), "load_unit_N": float(params.load_unit)})
+    return ds
+
+
+def write_solution(result, path, *, fields: bool = True, params=None) -> Path:
     """Write a pull-off (:class:`AdhesivePullOff`) or a ContactState to netCDF atomically.
 
-    ``path`` is checked before the Dataset is built; the write is atomic.
+    Parameters
+    ----------
+    result : dhfield.bem.AdhesivePullOff or dhfield.bem.ContactState
+        What to write (:func:`pull_off_dataset` or :func:`state_dataset`).
+    path : path-like
+        The netCDF file; checked before the Dataset is built, written atomically.
+    fields : bool
+        A pull-off: also the fields of the pull-off state.
+    params : dhfield.dimensional.ContactParameters, optional
+        The contact of the solved case: a pull-off then also carries its SI values
+        (:func:`pull_off_si`).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
     """
     check_writable(path)
     if hasattr(result, "path") and hasattr(result, "W_star"):
         ds = pull_off_dataset(result, fields=fields)
+        if params is not None:
+            ds = cf.finalize(_add_si(ds, result, params))
     else:
         ds = state_dataset(result)
     return write_netcdf(ds, path)
