@@ -227,3 +227,13 @@ def test_discretisation_error_per_cell_across_the_narrowest_length():
     # nothing resolved, or no pull-off: no bound
     assert pull_off_module.discretisation_error(-0.8, (0.0, 0.0, 0.3, 0.3), grid) == np.inf
     assert pull_off_module.discretisation_error(float("nan"), (1.0, 0.6, 1.3, 0.8), grid) == np.inf
+
+
+@pytest.mark.parametrize("mu, n", [(0.2, 8), (0.3, 8), (0.1, 16)])
+def test_contact_on_the_centre_cells_is_not_a_resolved_answer(mu, n):
+    # found by verification/bem_resolution_sweep.py's probes: the sphere at mu = 0.2, N = 8 gave
+    # W* 7.1 % stronger than Maugis-Dugdale with resolved and converged True and W_star_error = inf
+    # (the load minimum at an end of its samples); the contact was the 2 x 2 centre cells (a* = dx)
+    res = adhesive_pull_off(mu, 1.0, n, progress=False)
+    assert not res.resolved and "the contact spans fewer than" in res.note
+    assert res.W_star_error == np.inf
