@@ -611,6 +611,8 @@ ZONE_MIN_CELLS = 1.0
 #: against their Richardson extrapolation) below 0.014 wherever a zone cell is resolved.
 #: The error falls like 1/cells to 1/cells^2 (the sub-cell Dugdale edge does ~10x better than
 #: the 30 %/cells of a cell-wise edge); 0.05 bounds every measured case by a factor 1.5.
+#: Measured for the Dugdale law only (there is no exact reference for the exponential law on
+#: the sphere): applied to it unmeasured, with (c*, d*) its adhesive zone's semi-axes.
 DISCRETISATION_ERROR_PER_CELL = 0.05
 
 
