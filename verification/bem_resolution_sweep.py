@@ -33,8 +33,10 @@ Prints the table, the count of violations (target 0) and the runtime; exits 1 wh
 Measured 2026-11-26 (branch bem-resolution, loaded 2-core machine, DHFIELD_THREADS=1): 72 cases,
 ok 15 (mu = 1 at N = 16-128 for each beta0; |deviation| / W_star_error 0.05-0.68), flagged 40,
 budget 17 (unresolved mu = 5-30 grids), violations 0, 396 s.  Before the stated error included
-the grid's (commit a958851) the same 15 answers were each outside their W_star_error (the
-search's error alone: e.g. the sphere at mu = 1, N = 32, -0.38 % against 3.5e-6 relative).
+the grid's (commit a958851, this script run on that tree with ``--mu 1``) the same 15 answers had
+W_star_error 7e-7 to 4e-5 (the search's alone) and all 15 were outside it against these references
+(13 counted there, where beta0 = 0.5 fell back to ET; N = 64 and 128 are 5.9e-4 and 3.2e-4 from GT,
+whose uncertainty is 8.8e-5): e.g. the sphere at N = 32, -0.38 % against 3.5e-6 relative.
 With ``--beta0 0.5 0.8 1 --mu 0.3 2 3 --n 16 32 48 64 96 128``: ok 31, flagged 21, budget 2,
 violations 0, 126 s.
 
