@@ -241,7 +241,9 @@ class AdhesivePullOff:
         grid is too coarse for the law's edge (``EDGE_WIDTH_FACTOR``), W* is
         stronger than the DMT limit -sin(theta_skew) or above 0, or the Dugdale
         zone is collapsed onto the contact (c* <= a*) or narrower than
-        ``ZONE_MIN_CELLS`` cells.  The values are reported, never clipped.
+        ``ZONE_MIN_CELLS`` cells; under load control also when the contact spans
+        fewer than ``CONTACT_MIN_CELLS`` cells or ``W_star_error`` is infinite (no
+        estimate).  The values are reported, never clipped.
     half_width_x, half_width_y : float
         Domain half-widths [c_r].
     elapsed : float
@@ -249,11 +251,16 @@ class AdhesivePullOff:
     path : UnloadingPath
         The whole path.
     W_star_error : float
-        Error estimate of ``W_star`` without the grid's discretisation error:
-        under displacement control from the fit around the fold
-        (:func:`dhfield.bem.continuation.fold_by_adhesive_force`), under load
-        control from the samples around the minimum
-        (:meth:`dhfield.bem.branch.Branch.minimum_error`).  Never NaN: infinite
+        Stated error of ``W_star``: a resolved and converged answer lies within it
+        of the grid-converged pull-off.  Under load control the search's error
+        (the samples around the minimum, :meth:`dhfield.bem.branch.Branch.minimum_error`)
+        plus the grid's discretisation error (:func:`discretisation_error`:
+        ``DISCRETISATION_ERROR_PER_CELL |W*|`` per cell across the narrowest of the
+        contact and cohesive-zone widths, an upper bound of the errors measured
+        against Maugis-Dugdale and the stored ground truth).  Under displacement
+        control from the fit around the fold
+        (:func:`dhfield.bem.continuation.fold_by_adhesive_force`; its measured
+        accuracy in :data:`DISPLACEMENT_CONTROL_NOTE`).  Never NaN: infinite
         when there is no estimate or the answer is not ``resolved``.
     note : str
         Caveats on the pull-off (empty for a resolved load-control pull-off): why it is
@@ -594,13 +601,71 @@ DMT_BOUND_SLACK = 0.01
 ZONE_MIN_CELLS = 1.0
 
 
-def _unresolved_reasons(prob, path, w_star, error, axes):
+#: Discretisation error of a pull-off relative to |W*|, times the cells across the narrowest
+#: length the state must resolve (:func:`discretisation_error`).  Measured against exact
+#: references: on the sphere against Maugis-Dugdale (mu = 0.3, 0.5, 1, 2; N = 16-128,
+#: ``verification/bem_resolution_sweep.py`` and the table in the commit of this constant),
+#: |W* - W*_MD| / |W*| x cells reaches 0.033 (mu = 1, N = 16: 1.3 cells across c* - a*,
+#: -2.5 %) and stays below 0.018 elsewhere (0.011 at mu = 0.3, N = 16, one cell across a*);
+#: on the ellipses of ``data/adhesive_ground_truth.nc`` (beta0 0.5-0.99, mu 0.3-5, N 64-512,
+#: against their Richardson extrapolation) below 0.014 wherever a zone cell is resolved.
+#: The error falls like 1/cells to 1/cells^2 (the sub-cell Dugdale edge does ~10x better than
+#: the 30 %/cells of a cell-wise edge); 0.05 bounds every measured case by a factor 1.5.
+#: Measured for the Dugdale law only (there is no exact reference for the exponential law on
+#: the sphere): applied to it unmeasured, with (c*, d*) its adhesive zone's semi-axes.
+DISCRETISATION_ERROR_PER_CELL = 0.05
+
+
+def resolving_cells(axes, grid) -> float:
+    """Cells across the narrowest length of a pull-off state [-] (0 when a length is not positive).
+
+    ``axes`` = (a*, b*, c*, d*): the contact semi-axes a*/dx, b*/dy and, when a cohesive zone
+    lies beyond the contact, its widths (c* - a*)/dx, (d* - b*)/dy.
+    """
+    a, b, c, d = (float(v) for v in axes)
+    lengths = [a / grid.dx, b / grid.dy]
+    if c > a or d > b:
+        lengths += [(c - a) / grid.dx, (d - b) / grid.dy]
+    cells = min(lengths)
+    return cells if np.isfinite(cells) and cells > 0.0 else 0.0
+
+
+def discretisation_error(w_star, axes, grid) -> float:
+    """Estimate of the grid's error on W* [-]: DISCRETISATION_ERROR_PER_CELL |W*| / cells.
+
+    ``cells`` from :func:`resolving_cells`; infinite when no length is resolved (or W* is not finite).
+
+    Notes
+    -----
+    .. math:: \\epsilon_h = K \\frac{|W^*|}{\\min(a^*/h_x,\\ b^*/h_y,\\ (c^*-a^*)/h_x,\\ (d^*-b^*)/h_y)},
+        \\qquad K = 0.05
+
+    (an upper bound fitted to measured errors, :data:`DISCRETISATION_ERROR_PER_CELL`).
+    """
+    cells = resolving_cells(axes, grid)
+    if not (np.isfinite(w_star) and cells > 0.0):
+        return float("inf")
+    return DISCRETISATION_ERROR_PER_CELL * abs(float(w_star)) / cells
+
+
+#: Fewest cells across the contact semi-axes (a*/dx, b*/dy) of a resolved load-control pull-off:
+#: more than the 2 x 2 centre cells (a* = dx from their second moments).  Measured on the sphere
+#: against Maugis-Dugdale with the contact on those cells (a* = dx): -7.1 % (mu = 0.2, N = 8),
+#: -3.8 % (mu = 0.3, N = 8), -1.7 % (mu = 0.1, N = 16), some with no error estimate (the load
+#: minimum at an end of the samples): one cell is not a contact shape.  Under displacement control
+#: the pull-off can be the loss of contact (a* -> 0): not applied there.
+CONTACT_MIN_CELLS = 1.5
+
+
+def _unresolved_reasons(prob, path, w_star, error, axes, stated_error=None):
     """Why a pull-off is not a resolved answer (empty when it is): the grid, then the physical bounds.
 
     ``axes`` = (a*, b*, c*, d*) of the pull-off state.  Bounds: W* between the DMT limit
     -sin(theta_skew) (Eq. 34 of W = -2 pi Delta gamma sqrt(R'R''), the rigid limit of every
     law with that work of adhesion) and the zero-adhesion limit 0; for the Dugdale law a
     cohesive zone beyond the contact, at least ``ZONE_MIN_CELLS`` cells wide on both axes.
+    ``error`` (the search's) widens the DMT bound.  Under load control also: a contact at least
+    ``CONTACT_MIN_CELLS`` cells across, and a finite ``stated_error`` (search plus grid).
     """
     reasons = []
     if not path.resolved:
@@ -620,6 +685,13 @@ def _unresolved_reasons(prob, path, w_star, error, axes):
         elif min((c - a) / g.dx, (d - b) / g.dy) < ZONE_MIN_CELLS:
             reasons.append(f"the Dugdale zone is narrower than {ZONE_MIN_CELLS:g} cell (c* - a* = {c - a:.3g}, "
                            f"dx = {g.dx:.3g}; d* - b* = {d - b:.3g}, dy = {g.dy:.3g}): increase n")
+    if path.control == "load":
+        g = prob.grid
+        if min(a / g.dx, b / g.dy) < CONTACT_MIN_CELLS:
+            reasons.append(f"the contact spans fewer than {CONTACT_MIN_CELLS:g} cells (a* = {a:.3g}, dx = {g.dx:.3g}; "
+                           f"b* = {b:.3g}, dy = {g.dy:.3g}): increase n")
+        if stated_error is not None and not np.isfinite(stated_error):
+            reasons.append("no error estimate (the load minimum is at an end of its samples)")
     return reasons
 
 
@@ -628,7 +700,8 @@ def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, s
 
     ``resolved`` is False, with the reasons in ``note``, when the grid is too coarse or the
     answer breaks a physical bound (:func:`_unresolved_reasons`); ``W_star_error`` is then
-    infinite (no bound), as it is when the path gives no estimate.
+    infinite (no bound), as it is when the path gives no estimate.  Under load control
+    ``W_star_error`` is the search's error plus :func:`discretisation_error`.
     """
     note = path.pull_off_note
     if path.control == "displacement":
@@ -638,8 +711,14 @@ def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, s
     c, d = st.cohesive_semi_axes()
     scale = prob.sin_skew / (2.0 * math.pi)  # Eq. (34): W* = W sin(theta_skew) / (2 pi R dgamma)
     w_star = float(path.pull_off_load * scale)
-    error = float(abs(path.pull_off_error * scale))
-    reasons = _unresolved_reasons(prob, path, w_star, error, (a, b, c, d))
+    search_error = float(abs(path.pull_off_error * scale))
+    error = search_error
+    if path.control == "load":
+        # the search's error and the grid's (the displacement-control fold error is measured
+        # against MD in DISPLACEMENT_CONTROL_NOTE and stays as it is)
+        error = search_error + discretisation_error(w_star, (a, b, c, d), prob.grid)
+    # the DMT bound is checked with the search's error alone (the stricter test)
+    reasons = _unresolved_reasons(prob, path, w_star, search_error, (a, b, c, d), stated_error=error)
     if reasons or not np.isfinite(error):
         error = float("inf")
     if reasons:
