@@ -102,7 +102,7 @@ def _ground_truth():
 def reference(beta0, mu, truth):
     """(W*, uncertainty, label) of the best stored reference for (beta0, mu) (ET*: to be replaced by a study)."""
     if beta0 == 1.0:
-        return float(maugis_dugdale.pull_off_nondimensional(mu)["W_star"]), 0.0, "MD"
+        return float(maugis_dugdale.pull_off_nondimensional(1.0, mu).W_star), 0.0, "MD"
     if (beta0, mu) in truth:
         w, u = truth[(beta0, mu)]
         return w, u, "GT"
