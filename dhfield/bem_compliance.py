@@ -1,0 +1,316 @@
+"""The BEM pull-off under a machine spring: the unloading branch by adhesive force, jumped out of by a spring.
+
+:mod:`dhfield.compliance` gives every analytic model's pull-off under a machine
+spring of stiffness K*: the jump out is the first minimum, met on unloading, of
+the (scaled) machine position
+
+.. math:: F_s = s\\,\\delta^* + (1 - s)\\,W^*, \\qquad s = \\frac{K^*}{1 + K^*},
+
+where dW*/d(delta*) = -K* (Maugis & Barquins 1978 [1]_; derived in
+:mod:`dhfield.compliance`).  K* -> 0 (s = 0) is load control, the minimum of W*;
+K* -> infinity (s = 1) displacement control, the minimum of delta*.
+
+Here the curve is the BEM's.  Between the two pull-offs the spring's jump lies on
+the branch beyond the load minimum, which a displacement-controlled path cannot
+reach near the fold (the fixed point at a prescribed approach slows down and
+stops converging there).  The branch is followed instead at prescribed adhesive
+force F_a (:func:`dhfield.bem.continuation.solve_at_adhesive_force`), which
+decreases monotonically along the whole unloading branch, through the fold and
+past the loss of contact: :func:`bem_unloading_branch` samples it once, in
+uniform steps of F_a from above the load minimum to beyond the minimum of delta*,
+and :func:`bem_pull_off_under_spring` locates, for every K*, the first minimum of
+F_s(F_a) met from high force by the least-squares fit of
+:func:`dhfield.bem.continuation.fit_fold` (a cubic over +-``window`` samples
+around the discrete minimum, with its error estimate), the same fit that gives the
+BEM's displacement-control pull-off.  One branch serves every stiffness.
+
+Units: the paper's (R = E* = Delta gamma = 1, Eqs. 32-35): W* = W sin(theta_skew)/(2 pi)
+(Eq. 34), delta* = delta (c_r = 1, Eq. 33), K* as :func:`dhfield.compliance.stiffness_star`.
+
+References
+----------
+.. [1] D. Maugis, M. Barquins, J. Phys. D 11 (1978) 1989,
+   doi:10.1088/0022-3727/11/14/011 (the jump under a machine of finite stiffness:
+   dW/d(delta) = -K)
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validation import check_count, check_ellipticity, check_positive
+from .bem.branch import Branch
+from .bem.continuation import adhesive_force, fit_fold, solve_at_adhesive_force
+from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
+from .compliance import _as_weight
+
+__all__ = ["BemBranch", "bem_unloading_branch", "bem_pull_off_under_spring", "BRANCH_STEPS", "BRANCH_WINDOW"]
+
+#: Adhesive-force steps from the cold start (near the load-control pull-off) to zero force:
+#: the sampling step dF = F_a(start)/BRANCH_STEPS of the whole branch.
+BRANCH_STEPS = 32
+#: Half-width of the fitted window around each discrete minimum, in steps (a cubic over
+#: 2 x 3 + 1 = 7 samples averages the lattice jaggedness, as the fold fit does).
+BRANCH_WINDOW = 3
+#: Largest count of states solved along one branch.
+MAX_BRANCH_STATES = 400
+
+
+@dataclass(frozen=True)
+class BemBranch:
+    """The BEM's unloading branch of (mu, beta0) sampled at prescribed adhesive force, paper units.
+
+    Attributes
+    ----------
+    mu, beta0 : float
+        Transition parameter (Eq. 35) and Hertz ellipticity [-].
+    n : int
+        Cells per axis.
+    adhesive_force : ndarray
+        F_a of each converged state, descending (unloading order) [sigma0-area, paper units].
+    W_star, delta_star : ndarray
+        Load (Eq. 34) and approach [c_r^2/R] of each state.
+    in_contact : ndarray of bool
+        False on the separated branch (no contact cell).
+    step : float
+        The sampling step dF of F_a.
+    window : int
+        Half-width of the fitted window, in steps.
+    failures : int
+        States that did not converge (left out: holes in the samples).
+    complete : bool
+        True when the samples hold the load minimum and the minimum of delta*
+        with ``window`` samples on each side (every stiffness's jump is then
+        bracketed); False when the branch ended first (unconverged states or
+        zero force).
+    elapsed : float
+        Wall time [s].
+    """
+
+    mu: float
+    beta0: float
+    n: int
+    adhesive_force: np.ndarray = field(repr=False)
+    W_star: np.ndarray = field(repr=False)
+    delta_star: np.ndarray = field(repr=False)
+    in_contact: np.ndarray = field(repr=False)
+    step: float
+    window: int
+    failures: int
+    complete: bool
+    elapsed: float
+
+
+def _first_rise(x, f, window):
+    """Index of the first sample, walking down the branch (index 0: highest F_a), where f stops falling.
+
+    The slope df/d(-F_a) at each sample is that of a least-squares quadratic over the
+    samples within +-``window`` indices (the lattice jaggedness of the BEM's loads and
+    approaches, ~1e-3 at N = 64, makes single differences change sign before the
+    minimum).  Returns ``f.size`` when f falls at every sample (no minimum met).
+    """
+    x, f = np.asarray(x, float), np.asarray(f, float)
+    for i in range(f.size):
+        lo, hi = max(0, i - window), min(f.size, i + window + 1)
+        if hi - lo < 3:
+            continue
+        u = x[i] - x[lo:hi]  # increases along unloading, 0 at sample i
+        if np.polyfit(u, f[lo:hi], 2)[1] >= 0.0:
+            return i
+    return f.size
+
+
+def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WINDOW, law="dugdale",
+                         tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None) -> BemBranch:
+    """Sample the BEM's unloading branch at prescribed adhesive force, from above the load minimum past the fold.
+
+    Parameters
+    ----------
+    mu : float
+        Transition parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Hertz ellipticity of the geometry, in (0, 1] [-].
+    n : int
+        Cells per axis (even, >= 8).
+    steps : int
+        The step dF is F_a(start)/steps (8 to 10000).
+    window : int
+        Samples kept beyond each minimum (and fitted each side of it), 2 to 100.
+    law, tol, max_iter, threads
+        As :func:`dhfield.adhesive_start.adhesive_pull_off`.
+
+    Returns
+    -------
+    BemBranch
+
+    Notes
+    -----
+    The problem and the cold start are those of the BEM's pull-off
+    (:func:`dhfield.adhesive_start.nondimensional_problem`: the analytic
+    load-control pull-off's approach and zone).  From its adhesive force F0 the
+    branch is followed up in steps dF = F0/steps until the discrete minimum of W*
+    has ``window`` samples above it, then down until the discrete minimum of
+    delta* has ``window`` samples below it (or two states in a row fail, or F_a
+    reaches zero), each state warm-started by the secant of the last two.
+    """
+    from .adhesive_start import nondimensional_problem
+
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    steps = check_count("steps", steps, 8, 10_000, "adhesive-force steps to zero")
+    window = check_count("window", window, 2, 100, "samples each side of a minimum")
+    t0 = time.perf_counter()
+    problem = nondimensional_problem(mu, beta0, n, law=law)
+    prob = problem.adhesive_problem(threads)
+    branch = Branch(prob, tol, max_iter, label="spring")
+    first = problem.path_start(prob).cold_start(branch)
+    if first is None:
+        from .bem.path import _loading  # the marching path's loading steps: a state above pull-off
+
+        st = _loading(branch, problem.approach_max, 4)
+        first = st if (st.converged and st.in_contact) else None
+    if first is None:
+        raise RuntimeError(f"bem_unloading_branch: no converged contact state to start from at mu = {mu:g}, "
+                           f"beta0 = {beta0:g}, n = {n} (increase n)")
+    f0 = adhesive_force(first)
+    df = f0 / steps
+    samples = {0: first}              # step index j (F_a = f0 - j dF) -> converged state
+    failures = 0
+    scale = problem.sin_skew / (2.0 * math.pi)  # Eq. (34)
+
+    def solve(j, toward):
+        """Solve the state at index j from its neighbours on the side ``toward`` (+1 / -1)."""
+        nonlocal failures
+        side = sorted((k for k in samples if (k - j) * toward < 0), key=lambda k: abs(k - j))
+        last = samples[side[0]]
+        prev = samples[side[1]] if len(side) > 1 else None
+        if prev is not None and prev.in_contact == last.in_contact:
+            t = abs(j - side[0]) / abs(side[0] - side[1])  # secant in units of their spacing
+            guess = extrapolated_start(prob, prev, last, t)
+            d_guess = last.approach + t * (last.approach - prev.approach)
+        else:
+            guess, d_guess = last, last.approach
+        st = solve_at_adhesive_force(prob, f0 - j * df, guess, d_guess, tol, max_iter)
+        branch.record(st, "spring")
+        if st.converged:
+            samples[j] = st
+        else:
+            failures += 1
+        return st
+
+    def series(key):
+        js = sorted(samples)
+        return js, np.array([key(samples[j]) for j in js])
+
+    # up: until the load minimum has `window` samples above it
+    complete = True
+    while len(samples) < MAX_BRANCH_STATES:
+        js, w = series(lambda s: s.load)
+        if _first_rise(f0 - df * np.array(js), w, window) >= window:  # the load minimum, window samples in
+            break
+        st = solve(js[0] - 1, -1)
+        if not st.converged:
+            complete = False
+            break
+    # down: until the minimum of delta has `window` samples below it
+    misses = 0
+    while len(samples) < MAX_BRANCH_STATES:
+        js, d = series(lambda s: s.approach)
+        i = _first_rise(f0 - df * np.array(js), d, window)
+        if i < len(js) and js[-1] - js[i] >= window:  # the minimum of delta, window samples beyond
+            break
+        j = js[-1] + 1 + misses
+        if f0 - j * df <= 0.25 * df or misses >= 2:
+            complete = False
+            break
+        st = solve(j, +1)
+        misses = 0 if st.converged else misses + 1
+    js = sorted(samples)
+    force = np.array([f0 - j * df for j in js])
+    return BemBranch(mu, beta0, int(n), force, np.array([samples[j].load for j in js]) * scale,
+                     np.array([samples[j].approach for j in js]),
+                     np.array([samples[j].in_contact for j in js]), df, window, failures, complete,
+                     time.perf_counter() - t0)
+
+
+def bem_pull_off_under_spring(branch, machine_stiffness):
+    """Pull-off of the BEM under a machine spring of stiffness K*, from a sampled branch.
+
+    Parameters
+    ----------
+    branch : BemBranch
+        From :func:`bem_unloading_branch`.
+    machine_stiffness : array_like
+        K* >= 0, finite, or None (a rigid machine), in the paper's units
+        (:func:`dhfield.compliance.stiffness_star`) [-]; 0 is load control.
+
+    Returns
+    -------
+    dict
+        Arrays of the shape of K*: ``machine_stiffness_star``, ``W_star`` (load at
+        the jump out, Eq. 34), ``W_star_error`` (the fit's error estimate, without
+        the grid's discretisation error; inf when the minimum is not bracketed),
+        ``delta_star`` (approach at the jump [c_r^2/R]), ``adhesive_force``
+        (F_a there), ``in_contact`` (the jump starts from a contact state; False:
+        from the separated branch) and ``resolved`` (a bracketed interior minimum
+        was fitted).
+
+    Notes
+    -----
+    For each K*, s = K*/(1 + K*) and F_s = s delta* + (1 - s) W* along the
+    samples (descending F_a); the first discrete minimum met from high force,
+    and the least-squares cubic of :func:`dhfield.bem.continuation.fit_fold`
+    over the samples within +-``window`` steps of it (on the same side of the
+    loss of contact), give its force, F_s and W*; delta* is a cubic of delta*(F_a)
+    there.  The error estimate is fit_fold's (quartic, inner quadratic and the
+    scatter of F_s about its cubic).  K* = 0 is the minimum of W*, the BEM's
+    load-control pull-off; a rigid machine the minimum of delta*, its
+    displacement-control pull-off (the same fit as
+    :func:`dhfield.bem.continuation.fold_by_adhesive_force`).
+    """
+    if not isinstance(branch, BemBranch):
+        raise ValueError(f"branch must be a BemBranch (from bem_unloading_branch); got {type(branch).__name__}")
+    s, k = _as_weight(machine_stiffness)
+    shape = np.shape(s)
+    s1 = np.atleast_1d(s).astype(float)
+    k1 = np.broadcast_to(np.atleast_1d(k), s1.shape).astype(float)
+    out = {key: np.full(s1.shape, np.nan) for key in ("W_star", "W_star_error", "delta_star", "adhesive_force")}
+    out["in_contact"] = np.zeros(s1.shape, bool)
+    out["resolved"] = np.zeros(s1.shape, bool)
+    x, w, d, c = branch.adhesive_force, branch.W_star, branch.delta_star, branch.in_contact
+    win = branch.window
+    for m, sm in enumerate(s1):
+        f = sm * d + (1.0 - sm) * w
+        rise = _first_rise(x, f, win)
+        i = min(rise, x.size - 1)
+        if 0 < i < x.size - 1 and f[i - 1] < f[i]:
+            i -= 1  # the discrete minimum is the sample before the first rising one
+        fit = sel = None
+        for half in range(win, 2 * win + 1):  # widened while the lattice noise hides the vertex
+            near = np.abs(np.arange(x.size) - i) <= half
+            same = near & (c == c[i])
+            sel = same if np.count_nonzero(same) >= 2 * win - 1 else near
+            if not (rise < x.size and 0 < i < x.size - 1 and np.count_nonzero(sel) >= 4):
+                break
+            fit = fit_fold(x[sel], f[sel], w[sel])
+            if fit.kind == "fold":
+                break
+        if fit is not None and fit.kind == "fold":
+            xs = x[sel]
+            x0, sc = 0.5 * (xs.min() + xs.max()), max(0.5 * np.ptp(xs), 1e-300)
+            pd = np.polyfit((xs - x0) / sc, d[sel], min(3, xs.size - 1))
+            out["W_star"][m], out["W_star_error"][m] = fit.load, fit.load_error
+            out["adhesive_force"][m] = fit.adhesive_force
+            out["delta_star"][m] = np.polyval(pd, (fit.adhesive_force - x0) / sc)
+            out["resolved"][m] = bool(np.isfinite(fit.load_error))
+        else:  # not bracketed: the discrete sample, flagged
+            out["W_star"][m], out["delta_star"][m], out["adhesive_force"][m] = w[i], d[i], x[i]
+            out["W_star_error"][m] = np.inf
+        out["in_contact"][m] = bool(c[i])
+        if not out["resolved"][m]:
+            out["W_star_error"][m] = np.inf
+    rec = {"machine_stiffness_star": k1, **out}
+    return {key: v.reshape(shape)[()] for key, v in rec.items()}
