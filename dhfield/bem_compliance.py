@@ -55,6 +55,11 @@ BRANCH_STEPS = 32
 #: Half-width of the fitted window around each discrete minimum, in steps (a cubic over
 #: 2 x 3 + 1 = 7 samples averages the lattice jaggedness, as the fold fit does).
 BRANCH_WINDOW = 3
+#: Steps of adhesive force over the separated branch, from the first separated state to zero force
+#: (its zone shrinks to nothing there; the minimum of delta lies at F_a = 16 mu^3/pi on MD's).
+SEPARATED_STEPS = 16
+#: Step halvings allowed toward zero force (the last samples of the separated branch).
+MAX_HALVINGS = 64
 #: Largest count of states solved along one branch.
 MAX_BRANCH_STATES = 400
 
@@ -88,6 +93,9 @@ class BemBranch:
         zero force).
     elapsed : float
         Wall time [s].
+    start_delta : float
+        Approach where the force-free approach from separation ends, -h0 (the
+        law's range: the central gap reaches it) [c_r^2/R].
     """
 
     mu: float
@@ -102,6 +110,7 @@ class BemBranch:
     failures: int
     complete: bool
     elapsed: float
+    start_delta: float = float("nan")
 
 
 def _first_rise(x, f, window):
@@ -123,8 +132,8 @@ def _first_rise(x, f, window):
     return f.size
 
 
-def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WINDOW, law="dugdale",
-                         tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None) -> BemBranch:
+def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WINDOW, landing=None, margin=None,
+                         law="dugdale", tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None) -> BemBranch:
     """Sample the BEM's unloading branch at prescribed adhesive force, from above the load minimum past the fold.
 
     Parameters
@@ -139,6 +148,14 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
         The step dF is F_a(start)/steps (8 to 10000).
     window : int
         Samples kept beyond each minimum (and fitted each side of it), 2 to 100.
+    landing : array_like, optional
+        Machine stiffnesses K* >= 0 whose jump in must land on the samples: the
+        branch is extended up until their machine position passes that of the end
+        of the force-free approach (for the cycle, :func:`bem_loading_cycle`).
+    margin : float, optional
+        Domain half-width per zone semi-axis of the start of unloading
+        (:func:`dhfield.adhesive_start.pull_off_start`; default its own).  The
+        domain must hold the cohesive zone of the top state.
     law, tol, max_iter, threads
         As :func:`dhfield.adhesive_start.adhesive_pull_off`.
 
@@ -154,7 +171,10 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
     branch is followed up in steps dF = F0/steps until the discrete minimum of W*
     has ``window`` samples above it, then down until the discrete minimum of
     delta* has ``window`` samples below it (or two states in a row fail, or F_a
-    reaches zero), each state warm-started by the secant of the last two.
+    reaches zero), each state warm-started by the secant of the last two.  On the
+    separated branch (no contact cell) the step is F_a(first separated)/``SEPARATED_STEPS``:
+    its zone shrinks to nothing over the last few dF, and Maugis-Dugdale's minimum of
+    delta lies there for lambda <~ 1 (c* = 4 mu/pi, :mod:`dhfield.dugdale_separation`).
     """
     from .adhesive_start import nondimensional_problem
 
@@ -163,7 +183,7 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
     steps = check_count("steps", steps, 8, 10_000, "adhesive-force steps to zero")
     window = check_count("window", window, 2, 100, "samples each side of a minimum")
     t0 = time.perf_counter()
-    problem = nondimensional_problem(mu, beta0, n, law=law)
+    problem = nondimensional_problem(mu, beta0, n, law=law, **({} if margin is None else {"margin": margin}))
     prob = problem.adhesive_problem(threads)
     branch = Branch(prob, tol, max_iter, label="spring")
     first = problem.path_start(prob).cold_start(branch)
@@ -177,63 +197,84 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
                            f"beta0 = {beta0:g}, n = {n} (increase n)")
     f0 = adhesive_force(first)
     df = f0 / steps
-    samples = {0: first}              # step index j (F_a = f0 - j dF) -> converged state
+    samples = {f0: first}             # adhesive force -> converged state
     failures = 0
     scale = problem.sin_skew / (2.0 * math.pi)  # Eq. (34)
 
-    def solve(j, toward):
-        """Solve the state at index j from its neighbours on the side ``toward`` (+1 / -1)."""
+    def solve(force):
+        """Solve the state at ``force`` from its two nearest neighbours on the side nearer to it (secant)."""
         nonlocal failures
-        side = sorted((k for k in samples if (k - j) * toward < 0), key=lambda k: abs(k - j))
+        toward = 1.0 if force > max(samples) else -1.0 if force < min(samples) else 0.0
+        side = sorted((k for k in samples if toward == 0.0 or (force - k) * toward > 0),
+                      key=lambda k: abs(k - force))
         last = samples[side[0]]
         prev = samples[side[1]] if len(side) > 1 else None
         if prev is not None and prev.in_contact == last.in_contact:
-            t = abs(j - side[0]) / abs(side[0] - side[1])  # secant in units of their spacing
+            t = (force - side[0]) / (side[0] - side[1])  # secant in units of their spacing
             guess = extrapolated_start(prob, prev, last, t)
             d_guess = last.approach + t * (last.approach - prev.approach)
         else:
             guess, d_guess = last, last.approach
-        st = solve_at_adhesive_force(prob, f0 - j * df, guess, d_guess, tol, max_iter)
+        st = solve_at_adhesive_force(prob, force, guess, d_guess, tol, max_iter)
         branch.record(st, "spring")
         if st.converged:
-            samples[j] = st
+            samples[force] = st
         else:
             failures += 1
         return st
 
     def series(key):
-        js = sorted(samples)
-        return js, np.array([key(samples[j]) for j in js])
+        fs = sorted(samples, reverse=True)  # unloading order
+        return np.array(fs), np.array([key(samples[f]) for f in fs])
 
-    # up: until the load minimum has `window` samples above it
+    def machine_low(s_land):
+        """True while a landing spring's machine position at the top is below that of the jump-in."""
+        fs, w = series(lambda s: s.load)
+        d_top = samples[fs[0]].approach
+        return any(sm * d_top + (1.0 - sm) * w[0] * scale < sm * start_delta for sm in s_land)
+
+    # up: until the load minimum has `window` samples above it (and the landings are passed)
     complete = True
+    s_land = [] if landing is None else list(np.atleast_1d(_as_weight(landing)[0]))
+    start_delta = -float(prob.law.range)  # the force-free approach ends where the central gap reaches the range
+    above = 0
     while len(samples) < MAX_BRANCH_STATES:
-        js, w = series(lambda s: s.load)
-        if _first_rise(f0 - df * np.array(js), w, window) >= window:  # the load minimum, window samples in
-            break
-        st = solve(js[0] - 1, -1)
+        fs, w = series(lambda s: s.load)
+        if _first_rise(np.sqrt(fs), w, window) >= window:  # the load minimum, window samples in
+            if not s_land or not machine_low(s_land):
+                above += 1
+                if not s_land or above > 2:  # two samples beyond the last landing, for its interpolation
+                    break
+        st = solve(fs[0] + df)
         if not st.converged:
             complete = False
             break
-    # down: until the minimum of delta has `window` samples below it
+    # down: until the minimum of delta has `window` samples below it; on the separated branch
+    # (no contact cell) the step is refined: the zone shrinks to nothing over the last few dF
     misses = 0
+    step = df
     while len(samples) < MAX_BRANCH_STATES:
-        js, d = series(lambda s: s.approach)
-        i = _first_rise(f0 - df * np.array(js), d, window)
-        if i < len(js) and js[-1] - js[i] >= window:  # the minimum of delta, window samples beyond
+        fs, d = series(lambda s: s.approach)
+        i = _first_rise(np.sqrt(fs), d, window)
+        if i < fs.size and fs.size - 1 - i >= window:  # the minimum of delta, window samples beyond
             break
-        j = js[-1] + 1 + misses
-        if f0 - j * df <= 0.25 * df or misses >= 2:
+        last = samples[fs[-1]]
+        if not last.in_contact and step == df:
+            step = min(df, fs[-1] / SEPARATED_STEPS)
+        force = fs[-1] - step * (1 + misses)
+        while force <= 0.25 * step and step > df / MAX_HALVINGS:
+            step *= 0.5       # toward zero force: the zone shrinks to nothing, c ~ sqrt(F_a)
+            force = fs[-1] - step * (1 + misses)
+        if force <= 0.25 * step or misses >= 2:
             complete = False
             break
-        st = solve(j, +1)
+        st = solve(force)
         misses = 0 if st.converged else misses + 1
-    js = sorted(samples)
-    force = np.array([f0 - j * df for j in js])
-    return BemBranch(mu, beta0, int(n), force, np.array([samples[j].load for j in js]) * scale,
-                     np.array([samples[j].approach for j in js]),
-                     np.array([samples[j].in_contact for j in js]), df, window, failures, complete,
-                     time.perf_counter() - t0)
+    fs = np.array(sorted(samples, reverse=True))
+    return BemBranch(mu, beta0, int(n), fs, np.array([samples[f].load for f in fs]) * scale,
+                     np.array([samples[f].approach for f in fs]),
+                     np.array([samples[f].in_contact for f in fs]), df, window, failures, complete,
+                     time.perf_counter() - t0, start_delta)
 
 
 def bem_pull_off_under_spring(branch, machine_stiffness):
@@ -280,7 +321,10 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
     out = {key: np.full(s1.shape, np.nan) for key in ("W_star", "W_star_error", "delta_star", "adhesive_force")}
     out["in_contact"] = np.zeros(s1.shape, bool)
     out["resolved"] = np.zeros(s1.shape, bool)
-    x, w, d, c = branch.adhesive_force, branch.W_star, branch.delta_star, branch.in_contact
+    # abscissa q = sqrt(F_a), ~ the zone radius: on the separated branch delta* and W* are
+    # quadratics in it (Maugis 1992; F_a = sigma0 pi c^2), in F_a they have a sqrt(F_a) end
+    x = np.sqrt(branch.adhesive_force)
+    w, d, c = branch.W_star, branch.delta_star, branch.in_contact
     win = branch.window
     for m, sm in enumerate(s1):
         f = sm * d + (1.0 - sm) * w
@@ -302,12 +346,19 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
             xs = x[sel]
             x0, sc = 0.5 * (xs.min() + xs.max()), max(0.5 * np.ptp(xs), 1e-300)
             pd = np.polyfit((xs - x0) / sc, d[sel], min(3, xs.size - 1))
-            out["W_star"][m], out["W_star_error"][m] = fit.load, fit.load_error
-            out["adhesive_force"][m] = fit.adhesive_force
+            # the fitted load's own scatter: the residual deviation of W* about its cubic, times
+            # sqrt(4/n) (four coefficients from n samples); fit_fold's estimate holds the slope's
+            # scatter only, which vanishes at the minimum of W* (K* = 0)
+            pw = np.polyfit((xs - x0) / sc, w[sel], min(3, xs.size - 1))
+            resid = w[sel] - np.polyval(pw, (xs - x0) / sc)
+            dof = max(xs.size - 4, 1)
+            scatter = math.sqrt(float(resid @ resid) / dof) * math.sqrt(4.0 / xs.size)
+            out["W_star"][m], out["W_star_error"][m] = fit.load, max(fit.load_error, scatter)
+            out["adhesive_force"][m] = fit.adhesive_force ** 2
             out["delta_star"][m] = np.polyval(pd, (fit.adhesive_force - x0) / sc)
             out["resolved"][m] = bool(np.isfinite(fit.load_error))
         else:  # not bracketed: the discrete sample, flagged
-            out["W_star"][m], out["delta_star"][m], out["adhesive_force"][m] = w[i], d[i], x[i]
+            out["W_star"][m], out["delta_star"][m], out["adhesive_force"][m] = w[i], d[i], x[i] ** 2
             out["W_star_error"][m] = np.inf
         out["in_contact"][m] = bool(c[i])
         if not out["resolved"][m]:
