@@ -47,7 +47,7 @@ from .bem.continuation import adhesive_force, fit_fold, solve_at_adhesive_force
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
 from .compliance import _as_weight
 
-__all__ = ["BemBranch", "bem_unloading_branch", "bem_pull_off_under_spring", "BRANCH_STEPS", "BRANCH_WINDOW"]
+__all__ = ["BemBranch", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle", "BRANCH_STEPS", "BRANCH_WINDOW"]
 
 #: Adhesive-force steps from the cold start (near the load-control pull-off) to zero force:
 #: the sampling step dF = F_a(start)/BRANCH_STEPS of the whole branch.
@@ -247,7 +247,8 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
                     break
         st = solve(fs[0] + df)
         if not st.converged:
-            complete = False
+            # the end of what converges above: incomplete unless the minimum and the landings are in
+            complete = above > 0
             break
     # down: until the minimum of delta has `window` samples below it; on the separated branch
     # (no contact cell) the step is refined: the zone shrinks to nothing over the last few dF
@@ -365,3 +366,155 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
             out["W_star_error"][m] = np.inf
     rec = {"machine_stiffness_star": k1, **out}
     return {key: v.reshape(shape)[()] for key, v in rec.items()}
+
+
+def _cycle_margin(mu, beta0, k_positive):
+    """Domain margin holding the jump-in landing state of the softest spring, from Maugis-Dugdale.
+
+    The landing of a soft spring lies near W* = 0, above the start of unloading the
+    pull-off's domain is sized for (:func:`dhfield.adhesive_start.pull_off_start`).  MD's
+    landing zone radius c* (the sphere's; for beta0 < 1 the major semi-axis taken as
+    c*/sqrt(beta0), the equivalent radius sqrt(cd) = c*), 10 % beyond, sets the margin.
+    """
+    from . import compare, compliance
+    from .adhesive_start import pull_off_start
+    from .bem.pull_off import DOMAIN_MARGIN
+
+    rec = compliance.loading_cycle("md", mu, 1.0, float(np.min(k_positive)))
+    a_in = max(float(rec["jump_in_a_star"]), 1e-3)
+    c_land = float(np.asarray(compare.load_curve("md", mu, 1.0, [a_in])["c_star"])[0]) / math.sqrt(beta0)
+    c_start = pull_off_start(mu, beta0).half_width_x / DOMAIN_MARGIN
+    return DOMAIN_MARGIN * max(1.0, 1.1 * c_land / c_start)
+
+
+def _landing(x, f, w, d, x_out, target, window):
+    """(W*, delta*, W* error) where f(x) = target on the stable branch above x_out (x descending)."""
+    above = np.flatnonzero(x > x_out)
+    cross = [j for j in above if f[j] < target]  # below the machine position of the jump-in
+    j = (min(cross) if cross else above[-1] + 1) if above.size else 0
+    # the crossing lies between samples j - 1 (f >= target) and j (f < target)
+    if j < 1 or j >= x.size or f[j - 1] < target:
+        return float("nan"), float("nan"), float("inf")
+    lo, hi = max(0, j - window), min(x.size, j + window)
+    res = []
+    for deg in (3, 2):
+        xs = x[lo:hi]
+        x0, sc = 0.5 * (xs.min() + xs.max()), max(0.5 * np.ptp(xs), 1e-300)
+        u = (xs - x0) / sc
+        deg = min(deg, xs.size - 1)
+        pf, pw, pd = (np.polyfit(u, v[lo:hi], deg) for v in (f, w, d))
+        ua, ub = (x[j] - x0) / sc, (x[j - 1] - x0) / sc
+        ga, gb = np.polyval(pf, ua) - target, np.polyval(pf, ub) - target
+        if ga * gb > 0:
+            r = ua + (ub - ua) * (target - f[j]) / (f[j - 1] - f[j])  # the fit misses: linear
+        else:
+            from scipy.optimize import brentq
+
+            r = brentq(lambda v: np.polyval(pf, v) - target, ua, ub)
+        res.append((float(np.polyval(pw, r)), float(np.polyval(pd, r))))
+    return res[0][0], res[0][1], abs(res[0][0] - res[1][0])
+
+
+def _trapezoid(w, d):
+    return float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(d)))
+
+
+def bem_loading_cycle(mu, beta0, n, machine_stiffness=None, *, branch=None, steps=BRANCH_STEPS,
+                      window=BRANCH_WINDOW, margin=None, **options):
+    """Loading-unloading cycle of the BEM under a machine spring: both jumps and the energy lost.
+
+    Parameters
+    ----------
+    mu, beta0, n
+        As :func:`bem_unloading_branch`.
+    machine_stiffness : array_like or None
+        K* > 0 and finite in the paper's units (:func:`dhfield.compliance.stiffness_star`),
+        or None: a rigid machine [-].  (Under load control, K* = 0, the energy lost
+        is infinite: :func:`dhfield.compliance.loading_cycle`.)
+    branch : BemBranch, optional
+        A branch sampled with ``landing`` holding these stiffnesses (default:
+        sampled here).
+    steps, window, margin, **options
+        As :func:`bem_unloading_branch`; ``margin`` defaults to one whose domain
+        holds the softest spring's landing state (:func:`_cycle_margin`, from MD).
+
+    Returns
+    -------
+    dict
+        Arrays of the shape of K*: ``machine_stiffness_star``;
+        ``jump_in_start_delta_star`` (-h0: where the force-free approach ends),
+        ``jump_in_W_star``, ``jump_in_W_star_error``, ``jump_in_delta_star`` (where
+        it lands); ``jump_out_W_star``, ``jump_out_W_star_error``,
+        ``jump_out_delta_star``; ``separation_delta_star``; ``energy_lost_star``
+        and ``energy_lost_error_star`` (units of :func:`dhfield.compliance.loading_cycle`);
+        ``resolved``; and ``branch``.
+
+    Notes
+    -----
+    The cycle of :mod:`dhfield.compliance` on the BEM's branch.  With the Dugdale
+    law the approach from separation is force-free until the central gap reaches
+    the range h0 (delta_s = -h0); the separated branch is unstable there, and the
+    contact jumps at fixed machine position to the stable state where
+    s delta* + (1 - s) W* = s delta_s (a cubic of the samples in sqrt(F_a) around
+    the crossing; error: the change with a quadratic).  The jump out is
+    :func:`bem_pull_off_under_spring`.  The energy lost per cycle is
+
+    .. math:: U^* = -\\int_{o}^{i} W^*\\,d\\delta^* + \\frac{W_o^{*2} - W_i^{*2}}{2K^*}
+
+    along the branch from the jump out to the landing, by the trapezoid rule over
+    the samples and the two end states; its error estimate is the change with every
+    other sample plus the end states' load errors times the approach spanned.
+    """
+    if machine_stiffness is not None:
+        k = np.asarray(_as_weight(machine_stiffness)[1], float)
+        if np.any(k <= 0.0):
+            raise ValueError("machine_stiffness of a cycle must be > 0 and finite (or None: a rigid machine); "
+                             f"got {machine_stiffness!r} (K* = 0 loses an infinite energy)")
+    s, k = _as_weight(machine_stiffness)
+    shape = np.shape(s)
+    s1 = np.atleast_1d(s).astype(float)
+    k1 = np.broadcast_to(np.atleast_1d(k), s1.shape).astype(float)
+    if branch is None:
+        mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+        beta0 = float(check_ellipticity("beta0", beta0))
+        if margin is None:
+            finite = k1[np.isfinite(k1)]
+            margin = _cycle_margin(mu, beta0, finite) if finite.size else None
+        landing = [1e300 if not np.isfinite(v) else v for v in k1]
+        branch = bem_unloading_branch(mu, beta0, n, steps=steps, window=window, landing=landing,
+                                      margin=margin, **options)
+    elif not isinstance(branch, BemBranch):
+        raise ValueError(f"branch must be a BemBranch (from bem_unloading_branch); got {type(branch).__name__}")
+    x = np.sqrt(branch.adhesive_force)
+    w, d = branch.W_star, branch.delta_star
+    ds = branch.start_delta
+    keys = ("jump_in_W_star", "jump_in_W_star_error", "jump_in_delta_star", "jump_out_W_star",
+            "jump_out_W_star_error", "jump_out_delta_star", "separation_delta_star", "energy_lost_star",
+            "energy_lost_error_star")
+    out = {key: np.full(s1.shape, np.nan) for key in keys}
+    out["resolved"] = np.zeros(s1.shape, bool)
+    for m, (sm, km) in enumerate(zip(s1, k1)):
+        po = bem_pull_off_under_spring(branch, None if not np.isfinite(km) else km)
+        w_o, d_o, e_o = float(po["W_star"]), float(po["delta_star"]), float(po["W_star_error"])
+        x_o = math.sqrt(float(po["adhesive_force"]))
+        f = sm * d + (1.0 - sm) * w
+        w_i, d_i, e_i = _landing(x, f, w, d, x_o, sm * ds, branch.window)
+        sep = d_o if not np.isfinite(km) else d_o + w_o / km
+        # samples strictly between the jump out and the landing, in loading order (x ascending)
+        between = np.flatnonzero((x > x_o) & (f < sm * ds)) if np.isfinite(w_i) else np.array([], int)
+        between = between[np.argsort(x[between])]
+        ww = np.concatenate([[w_o], w[between], [w_i]])
+        dd = np.concatenate([[d_o], d[between], [d_i]])
+        integ = _trapezoid(ww, dd)
+        coarse = _trapezoid(np.concatenate([ww[:-1:2], ww[-1:]]), np.concatenate([dd[:-1:2], dd[-1:]]))
+        spring = 0.0 if not np.isfinite(km) else (w_o ** 2 - w_i ** 2) / (2.0 * km)
+        energy = -integ + spring
+        spring_err = 0.0 if not np.isfinite(km) else (abs(w_o) * e_o + abs(w_i) * e_i) / km
+        err = abs(integ - coarse) + (e_o + e_i) * abs(d_i - d_o) + spring_err
+        for key, v in zip(keys, (w_i, e_i, d_i, w_o, e_o, d_o, sep, energy, err)):
+            out[key][m] = v
+        out["resolved"][m] = bool(po["resolved"]) and np.isfinite(w_i) and np.isfinite(err)
+    rec = {"machine_stiffness_star": k1, "jump_in_start_delta_star": np.full(s1.shape, ds), **out}
+    rec = {key: v.reshape(shape)[()] for key, v in rec.items()}
+    rec["branch"] = branch
+    return rec

@@ -117,3 +117,41 @@ def test_bad_input_named():
         bem_unloading_branch(1.0, 1.0, N, window=1)
     with pytest.raises(ValueError, match="n"):
         bem_unloading_branch(1.0, 1.0, 7)
+
+
+# ============================================================================ the cycle
+#: The cycle on the exact MD curve sampled from the jump out of the stiffest spring to above the
+#: landing of the softest (a* from 0.6 a_fold to 1.2 a_landing, 121 samples, h ~ 0.02 in a*):
+#: the trapezoid rule's error ~h^2 W'' delta' ~ 1e-4 of U*; 1e-3 relative leaves a decade.
+RTOL_CYCLE_EXACT = 1e-3
+
+
+def test_cycle_on_the_exact_md_curve_is_compliance_s():
+    from dhfield.bem_compliance import bem_loading_cycle
+
+    mu = _mu(3.0)
+    ks = [0.3, 1.0, 10.0]
+    ref = compliance.loading_cycle("md", mu, 1.0, ks)
+    a_lo = 0.6 * float(compliance.pull_off_under_spring("md", mu, 1.0, None)["a_star"])
+    a_hi = 1.2 * float(np.max(ref["jump_in_a_star"]))
+    br = _md_branch(mu, a_lo, a_hi, n=121)
+    br = BemBranch(**{**br.__dict__, "start_delta": -1.0 / mu})  # the Dugdale range h0 = 1/mu (Eq. 35 units)
+    got = bem_loading_cycle(mu, 1.0, 0, ks, branch=br)
+    assert np.all(got["resolved"])
+    np.testing.assert_allclose(got["jump_in_W_star"], ref["jump_in_W_star"], atol=ATOL_FIT_EXACT)
+    np.testing.assert_allclose(got["jump_out_W_star"], ref["jump_out_W_star"], atol=ATOL_FIT_EXACT)
+    np.testing.assert_allclose(got["energy_lost_star"], ref["energy_lost_star"], rtol=RTOL_CYCLE_EXACT)
+    assert np.all(np.abs(got["energy_lost_star"] - ref["energy_lost_star"]) <= got["energy_lost_error_star"]
+                  + RTOL_CYCLE_EXACT * np.abs(ref["energy_lost_star"]))
+
+
+def test_cycle_bad_input_named():
+    from dhfield.bem_compliance import bem_loading_cycle
+
+    br = _md_branch(_mu(3.0), 0.5, 2.0)
+    with pytest.raises(ValueError, match="machine_stiffness"):
+        bem_loading_cycle(1.0, 1.0, N, 0.0, branch=br)  # load control: infinite energy lost
+    with pytest.raises(ValueError, match="machine_stiffness"):
+        bem_loading_cycle(1.0, 1.0, N, -2.0, branch=br)
+    with pytest.raises(ValueError, match="branch"):
+        bem_loading_cycle(1.0, 1.0, N, 1.0, branch="nope")
