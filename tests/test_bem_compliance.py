@@ -90,6 +90,20 @@ def test_stiff_spring_is_the_bem_displacement_control_pull_off(branch_lambda_3):
     assert rigid["W_star"] == pytest.approx(ref.W_star, abs=rigid["W_star_error"] + ref.W_star_error)
 
 
+def test_ellipse_limits_are_the_bem_pull_offs():
+    """beta0 = 0.5, mu = 2: both limits against the BEM's own pull-offs on the same grid."""
+    br = bem_unloading_branch(2.0, 0.5, N)
+    soft, rigid = bem_pull_off_under_spring(br, 0.0), bem_pull_off_under_spring(br, None)
+    mid = bem_pull_off_under_spring(br, 1.0)
+    load = adhesive_pull_off(2.0, 0.5, N, control="load")
+    disp = adhesive_pull_off(2.0, 0.5, N, control="displacement")
+    assert soft["resolved"] and rigid["resolved"] and mid["resolved"]
+    assert soft["W_star"] == pytest.approx(load.W_star, abs=soft["W_star_error"] + load.W_star_error
+                                           + JAGGEDNESS_N64)
+    assert rigid["W_star"] == pytest.approx(disp.W_star, abs=rigid["W_star_error"] + disp.W_star_error)
+    assert soft["W_star"] < mid["W_star"] < rigid["W_star"]  # the spring's jump lies between the two
+
+
 def test_branch_brackets_both_minima(branch_lambda_3):
     br = branch_lambda_3
     assert br.complete and br.n == N
