@@ -53,7 +53,7 @@ from ._validation import check_count, check_ellipticity, check_positive
 from .bem.branch import Branch
 from .bem.continuation import adhesive_force, fit_fold, solve_at_adhesive_force
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
-from .compliance import _as_weight
+from .compliance import spring_weight
 
 __all__ = ["BemBranch", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle", "BRANCH_STEPS",
            "BRANCH_WINDOW"]
@@ -244,7 +244,7 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
 
     # up: until the load minimum has `window` samples above it (and the landings are passed)
     complete = True
-    s_land = [] if landing is None else list(np.atleast_1d(_as_weight(landing)[0]))
+    s_land = [] if landing is None else list(np.atleast_1d(spring_weight(landing)[0]))
     start_delta = -float(prob.law.range)  # the force-free approach ends where the central gap reaches the range
     above = 0
     while len(samples) < MAX_BRANCH_STATES:
@@ -324,7 +324,7 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
     """
     if not isinstance(branch, BemBranch):
         raise ValueError(f"branch must be a BemBranch (from bem_unloading_branch); got {type(branch).__name__}")
-    s, k = _as_weight(machine_stiffness)
+    s, k = spring_weight(machine_stiffness)
     shape = np.shape(s)
     s1 = np.atleast_1d(s).astype(float)
     k1 = np.broadcast_to(np.atleast_1d(k), s1.shape).astype(float)
@@ -488,11 +488,11 @@ def bem_loading_cycle(mu, beta0, n, machine_stiffness=None, *, branch=None, step
     other sample plus the end states' load errors times the approach spanned.
     """
     if machine_stiffness is not None:
-        k = np.asarray(_as_weight(machine_stiffness)[1], float)
+        k = np.asarray(spring_weight(machine_stiffness)[1], float)
         if np.any(k <= 0.0):
             raise ValueError("machine_stiffness of a cycle must be > 0 and finite (or None: a rigid machine); "
                              f"got {machine_stiffness!r} (K* = 0 loses an infinite energy)")
-    s, k = _as_weight(machine_stiffness)
+    s, k = spring_weight(machine_stiffness)
     shape = np.shape(s)
     s1 = np.atleast_1d(s).astype(float)
     k1 = np.broadcast_to(np.atleast_1d(k), s1.shape).astype(float)
