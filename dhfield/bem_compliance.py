@@ -165,12 +165,19 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
         Domain half-width per zone semi-axis of the start of unloading
         (:func:`dhfield.adhesive_start.pull_off_start`; default its own).  The
         domain must hold the cohesive zone of the top state.
-    law, tol, max_iter, threads
-        As :func:`dhfield.adhesive_start.adhesive_pull_off`.
+    law : {'dugdale', 'exponential'}
+        Traction law (:mod:`dhfield.bem.laws`).
+    tol : float
+        Solver tolerance of every state (:func:`dhfield.bem.continuation.solve_at_adhesive_force`).
+    max_iter : int
+        Inner iterations allowed per state.
+    threads : int, optional
+        FFT threads.
 
     Returns
     -------
     BemBranch
+        The converged states in unloading order, paper units.
 
     Notes
     -----
@@ -447,18 +454,28 @@ def bem_loading_cycle(mu, beta0, n, machine_stiffness=None, *, branch=None, step
 
     Parameters
     ----------
-    mu, beta0, n
-        As :func:`bem_unloading_branch`.
+    mu : float
+        Transition parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Hertz ellipticity of the geometry, in (0, 1] [-].
+    n : int
+        Cells per axis (even, >= 8).
     machine_stiffness : array_like or None
         K* > 0 and finite in the paper's units (:func:`dhfield.compliance.stiffness_star`),
-        or None: a rigid machine [-].  (Under load control, K* = 0, the energy lost
-        is infinite: :func:`dhfield.compliance.loading_cycle`.)
+        or None: a rigid machine [-].  Under load control, K* = 0, the energy lost
+        is infinite (:func:`dhfield.compliance.loading_cycle`).
     branch : BemBranch, optional
         A branch sampled with ``landing`` holding these stiffnesses (default:
         sampled here).
-    steps, window, margin, **options
-        As :func:`bem_unloading_branch`; ``margin`` defaults to one whose domain
-        holds the softest spring's landing state (:func:`_cycle_margin`, from MD).
+    steps : int
+        As :func:`bem_unloading_branch`.
+    window : int
+        As :func:`bem_unloading_branch`.
+    margin : float, optional
+        Domain margin; default one whose domain holds the softest spring's landing
+        state (:func:`_cycle_margin`, from MD and the DH zone).
+    **options
+        ``law``, ``tol``, ``max_iter``, ``threads`` of :func:`bem_unloading_branch`.
 
     Returns
     -------
