@@ -81,6 +81,9 @@ load): the spring releases W_o^2/(2K).  The integral is a Chebyshev quadrature o
 the public load curve (two orders; the difference is reported as
 ``energy_lost_error``); on the MD separated branch it is closed form.
 
+The BEM under a spring and its cycle are :mod:`dhfield.bem_compliance` (the same
+jump conditions on the BEM's branch sampled by adhesive force).
+
 References
 ----------
 .. [1] D. Maugis, J. Colloid Interface Sci. 150 (1992) 243,
@@ -103,7 +106,7 @@ from .dugdale_separation import dugdale_range, separated_branch, zone_radius_at_
 
 __all__ = ["stiffness_star", "check_machine_stiffness", "add_machine_displacement", "pull_off_under_spring", "spring_pull_off_record",
            "pull_off_force_under_spring", "loading_cycle", "loading_cycle_si", "cycle_path",
-           "JUMP_IN_RULES", "CYCLE_UNITS"]
+           "JUMP_IN_RULES", "CYCLE_UNITS", "spring_weight"]
 
 #: How each model's force-free approach ends (module docstring).
 JUMP_IN_RULES = {
@@ -369,6 +372,23 @@ def _separated_integral(mu, c1, c2):
     def prim(c):  # W = -mu c^2/2, d(delta)/dc = c - 4 mu/pi (dhfield.dugdale_separation)
         return -0.5 * mu * (c**4 / 4.0 - 4.0 * mu / np.pi * c**3 / 3.0)
     return prim(c2) - prim(c1)
+
+
+def spring_weight(machine_stiffness):
+    """The weight s = K*/(1 + K*) of the machine position F_s = s delta* + (1 - s) W*, and K*.
+
+    Parameters
+    ----------
+    machine_stiffness : array_like or None
+        K* >= 0 and finite; None is the rigid machine (s = 1, K* = inf) [-].
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        s and K* (validated; ValueError naming ``machine_stiffness`` otherwise).
+        Used by :mod:`dhfield.bem_compliance`, the BEM under a spring.
+    """
+    return _as_weight(machine_stiffness)
 
 
 def _as_weight(k):
