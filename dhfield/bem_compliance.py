@@ -204,9 +204,9 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
     branch = Branch(prob, tol, max_iter, label="spring")
     first = problem.path_start(prob).cold_start(branch)
     if first is None:
-        from .bem.path import _loading  # the marching path's loading steps: a state above pull-off
+        from .bem.path import loading_steps  # the marching path's loading steps: a state above pull-off
 
-        st = _loading(branch, problem.approach_max, 4)
+        st = loading_steps(branch, problem.approach_max, 4)
         first = st if (st.converged and st.in_contact) else None
     if first is None:
         raise RuntimeError(f"bem_unloading_branch: no converged contact state to start from at mu = {mu:g}, "

@@ -242,8 +242,23 @@ def bracket_search(branch, start, step, options):
     return outcome, branch.refine_bracket(current, step, options.refine_factor, options.refine_levels)
 
 
-def _loading(branch, approach_max, n_loading):
-    """Loading steps from approach 0 (first touch) to ``approach_max``, each from the last: the last state."""
+def loading_steps(branch, approach_max, n_loading):
+    """Solve loading steps from approach 0 (first touch) to ``approach_max``, each from the last.
+
+    Parameters
+    ----------
+    branch : Branch
+        The branch the states are solved and recorded on.
+    approach_max : float
+        The last approach [c_r^2/R].
+    n_loading : int
+        The number of equal steps.
+
+    Returns
+    -------
+    ContactState
+        The last state.
+    """
     st = None
     for delta in np.linspace(0.0, approach_max, int(n_loading) + 1)[1:] if approach_max > 0 else [approach_max]:
         _, st = branch.solve(delta, st, "loading")
@@ -253,7 +268,7 @@ def _loading(branch, approach_max, n_loading):
 def marching_path(branch, approach_max, step, options):
     """Load control: loading to ``approach_max``, unloading by ``step`` until contact is lost, then
     the bracket of the load minimum re-solved ``refine_levels`` times with finer steps: the indices."""
-    st = _loading(branch, approach_max, options.n_loading)
+    st = loading_steps(branch, approach_max, options.n_loading)
     delta = approach_max
     k, st = branch.solve(delta, st, "unloading")
     unload = [k]
@@ -288,7 +303,7 @@ def continuation_path(branch, start, approach_max, options) -> UnloadingPath:
     """
     first = start.cold_start(branch) if start.approach is not None else None
     if first is None:
-        st = _loading(branch, approach_max, options.n_loading)
+        st = loading_steps(branch, approach_max, options.n_loading)
         first = st if (st.converged and st.in_contact) else None
     if first is None:
         # no converged contact state to start from: report the failure (NaN pull-off), never raise
