@@ -106,7 +106,7 @@ def _note(validated_beta0, validated_mu):
 class AdhesionMap:
     """Pull-off of several models on a (crossing angle, mu) grid, against a reference.
 
-    Attributes
+    Parameters
     ----------
     crossing_angle_deg : ndarray, shape (n_angle,)
         Crossing angle theta_skew of the equal cylinders [deg].
@@ -119,7 +119,7 @@ class AdhesionMap:
     force : ndarray, shape (n_model, n_angle, n_mu)
         Load-control pull-off force W/(pi R dgamma), R = sqrt(R'R'') [-]; NaN where no answer.
     deviation : ndarray, shape (n_model, n_angle, n_mu)
-        force/reference_force - 1 [-]; NaN where no answer.
+        Relative deviation force/reference_force - 1 [-]; NaN where no answer.
     status : ndarray of int8, shape (n_model, n_angle, n_mu)
         Codes of :data:`STATUS_MEANINGS`.
     reference_force : ndarray, shape (n_angle, n_mu)
@@ -128,11 +128,11 @@ class AdhesionMap:
         Inside the extent of the BEM ground truth, where the reference is validated.
     validated_beta0, validated_mu : tuple of float
         That extent.
-    notes : dict
-        model -> one line on its warnings and refusals over the grid ("" if none).
-    reference : str
+    notes : dict, optional
+        Model -> one line on its warnings and refusals over the grid ("" if none).
+    reference : str, default REFERENCE_MODEL
         :data:`REFERENCE_MODEL`.
-    reference_note : str
+    reference_note : str, default ""
         Where the reference is validated (:data:`REFERENCE_NOTE`).
     """
 
@@ -152,13 +152,34 @@ class AdhesionMap:
     reference_note: str = ""
 
     def index(self, model: str) -> int:
-        """Position of ``model`` on the first axis of the model arrays."""
+        """Return the position of ``model`` on the first axis of the model arrays.
+
+        Parameters
+        ----------
+        model : str
+            One of :attr:`models`.
+
+        Returns
+        -------
+        int
+            The index.
+
+        Raises
+        ------
+        ValueError
+            If ``model`` is not on the map.
+        """
         if model not in self.models:
             raise ValueError(f"model must be one of {', '.join(self.models)}; got {model!r}")
         return self.models.index(model)
 
     def within(self, tolerance: float) -> np.ndarray:
-        """True where a model answered within ``tolerance`` (relative, > 0) of the reference.
+        """Mark where a model answered within ``tolerance`` of the reference.
+
+        Parameters
+        ----------
+        tolerance : float
+            Relative deviation, > 0 [-].
 
         Returns
         -------
@@ -170,19 +191,38 @@ class AdhesionMap:
             return np.abs(self.deviation) <= tol
 
     def fraction_within(self, tolerance: float) -> dict:
-        """model -> fraction of the grid (uniform in angle and log mu: of the map's area)
-        where it is within ``tolerance`` of the reference; a point without answer counts as outside."""
+        """Compute each model's fraction of the map within ``tolerance`` of the reference.
+
+        The grid is uniform in angle and log mu, so this is a fraction of the map's
+        area; a point without answer counts as outside.
+
+        Parameters
+        ----------
+        tolerance : float
+            Relative deviation, > 0 [-].
+
+        Returns
+        -------
+        dict
+            Model -> fraction [-].
+        """
         w = self.within(tolerance)
         return {m: float(w[i].mean()) for i, m in enumerate(self.models)}
 
     def fraction_answered(self) -> dict:
-        """model -> fraction of the grid where it gave a finite answer (status 0 or 1)."""
+        """Compute each model's fraction of the grid where it gave a finite answer (status 0 or 1).
+
+        Returns
+        -------
+        dict
+            Model -> fraction [-].
+        """
         return {m: float((self.status[i] <= 1).mean()) for i, m in enumerate(self.models)}
 
 
 def map_grid(n_angle: int = 81, n_mu: int = 81, *, crossing_angle_deg=DEFAULT_CROSSING_ANGLE_DEG,
              mu=DEFAULT_MU):
-    """The default axes: ``n_angle`` crossing angles evenly spaced, ``n_mu`` values of mu log-spaced.
+    """Build the map's axes: ``n_angle`` crossing angles evenly spaced, ``n_mu`` mu log-spaced.
 
     Parameters
     ----------
@@ -195,7 +235,10 @@ def map_grid(n_angle: int = 81, n_mu: int = 81, *, crossing_angle_deg=DEFAULT_CR
 
     Returns
     -------
-    angles, mus : ndarray
+    angles : ndarray
+        Crossing angles [deg].
+    mus : ndarray
+        Tabor parameters [-].
     """
     n_angle = check_count("n_angle", n_angle, 2, MAX_AXIS_POINTS, "number of crossing angles")
     n_mu = check_count("n_mu", n_mu, 2, MAX_AXIS_POINTS, "number of values of mu")
@@ -296,7 +339,7 @@ def _model_on_grid(model, mu, beta0):
 
 def adhesion_map(crossing_angle_deg=None, mu=None, models=MAP_MODEL_NAMES, *,
                  validated_beta0=VALIDATED_BETA0, validated_mu=VALIDATED_MU) -> AdhesionMap:
-    """Load-control pull-off of each model over (crossing angle, mu) and its deviation from the reference.
+    """Map each model's load-control pull-off over (crossing angle, mu) against the reference.
 
     Parameters
     ----------
@@ -316,6 +359,7 @@ def adhesion_map(crossing_angle_deg=None, mu=None, models=MAP_MODEL_NAMES, *,
     Returns
     -------
     AdhesionMap
+        Forces, deviations and statuses of every model on the grid.
 
     Notes
     -----

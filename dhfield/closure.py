@@ -121,15 +121,24 @@ _MAX_NEWTON = 40
 class EqualBetaSpread:
     """How far the equal-beta DH fields are from one cohesive law around the periphery.
 
-    Attributes (arrays over the broadcast inputs)
-    ---------------------------------------------
-    work_ratio : Delta gamma(pi/2)/Delta gamma(0) [-]
-    work_spread : (max - min)/mean of Delta gamma(theta_p) over theta_p [-]
-    mean_work : periphery average of Delta gamma, weights r_ab^2 (units of Delta gamma)
-    law_spread : max over theta_p of int |sigma_theta(h) - sigma_0(h)| dh / Delta gamma(0) [-]
-    law_sup_spread : max over theta_p and h of |sigma_theta(h) - sigma_0(h)| / sigma0 [-]
-    separation_ratio : h(r_cd) on the minor axis / on the major axis [-]
-    width_ratio : (r_cd - r_ab) on the minor axis / on the major axis [-]
+    Every field is an array over the broadcast inputs.
+
+    Parameters
+    ----------
+    work_ratio : ndarray
+        Delta gamma(pi/2)/Delta gamma(0) [-].
+    work_spread : ndarray
+        (max - min)/mean of Delta gamma(theta_p) over theta_p [-].
+    mean_work : ndarray
+        Periphery average of Delta gamma, weights r_ab^2 [units of Delta gamma].
+    law_spread : ndarray
+        Max over theta_p of int |sigma_theta(h) - sigma_0(h)| dh / Delta gamma(0) [-].
+    law_sup_spread : ndarray
+        Max over theta_p and h of |sigma_theta(h) - sigma_0(h)| / sigma0 [-].
+    separation_ratio : ndarray
+        Edge separation h(r_cd) on the minor axis / on the major axis [-].
+    width_ratio : ndarray
+        (r_cd - r_ab) on the minor axis / on the major axis [-].
     """
 
     work_ratio: np.ndarray
@@ -141,6 +150,13 @@ class EqualBetaSpread:
     width_ratio: np.ndarray
 
     def as_dict(self):
+        """Return the fields as a dict.
+
+        Returns
+        -------
+        dict
+            ``{field name: array}``.
+        """
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
@@ -148,7 +164,7 @@ class EqualBetaSpread:
 class ClosureState:
     """An equilibrium state of a closure (nondimensional, R = E* = Delta gamma = 1).
 
-    Attributes
+    Parameters
     ----------
     closure : str
         "paper", "ray_average" or "two_axis".
@@ -166,7 +182,7 @@ class ClosureState:
         Delta gamma(0) and Delta gamma(pi/2), in Delta gamma [-].
     sigma0_major, sigma0_minor : ndarray
         Adhesive stress at the contact edge on the two axes, in E* c_r/R [-].
-    at_zero_contact : ndarray
+    at_zero_contact : ndarray, optional
         For pull-off states: True where the minimum sits at the smallest scanned contact.
     """
 
@@ -198,6 +214,13 @@ class ClosureState:
         return self.d_star / self.c_star
 
     def as_dict(self):
+        """Return the fields and the two ellipticities as a dict.
+
+        Returns
+        -------
+        dict
+            ``{name: array}``, with ``beta_contact`` and ``beta_adhesive`` added.
+        """
         out = {f.name: getattr(self, f.name) for f in fields(self)}
         out["beta_contact"] = self.beta_contact
         out["beta_adhesive"] = self.beta_adhesive
@@ -206,7 +229,7 @@ class ClosureState:
 
 # --------------------------------------------------------------------------- the equal-beta test
 def law_spread(law, norm="l1"):
-    """Distance between the sigma-h curves of all rays and that of the first ray.
+    """Measure the distance between the sigma-h curves of all rays and that of the first ray.
 
     Parameters
     ----------
@@ -223,7 +246,7 @@ def law_spread(law, norm="l1"):
     Returns
     -------
     ndarray
-        Shape of the state [-].
+        The relative distance, shape of the state [-].
     """
     if norm not in ("l1", "sup"):
         raise ValueError(f"norm must be 'l1' or 'sup'; got {norm!r}")
@@ -244,11 +267,21 @@ def law_spread(law, norm="l1"):
 
 
 def rays_for(beta):
-    """Number of uniform rays on [0, pi/2] for periphery averages: 1 + 4 ceil(3/beta).
+    """Return the number of uniform rays on [0, pi/2] for periphery averages: 1 + 4 ceil(3/beta).
 
     The integrands are even about both axes, so the trapezoidal rule converges
     geometrically, more slowly as beta falls (17 rays: 1e-14 at beta = 0.8; 41 rays:
     ~1e-9 at beta = 0.3 with a wide zone, ~1e-6 with a very narrow one).
+
+    Parameters
+    ----------
+    beta : array_like
+        Ellipticities [-]; the smallest one sets the count.
+
+    Returns
+    -------
+    int
+        The number of rays.
     """
     return int(1 + 4 * np.ceil(3.0 / np.min(np.asarray(beta, float))))
 
@@ -270,7 +303,7 @@ def _spread_from_state(a, c, beta, v, n_theta=N_THETA, n_law=129):
 
 
 def equal_beta_spread(mu, beta0, *, control="load", n_theta=N_THETA):
-    """The equal-beta test at the pull-off point of the paper's model.
+    """Run the equal-beta test at the pull-off point of the paper's model.
 
     Parameters
     ----------
@@ -295,7 +328,18 @@ def equal_beta_spread(mu, beta0, *, control="load", n_theta=N_THETA):
 
 
 def equal_beta_spread_along_curve(mu, beta0, a_star, *, n_theta=N_THETA):
-    """The equal-beta test along a load curve of the paper's model (one mu, beta0).
+    """Run the equal-beta test along a load curve of the paper's model (one mu, beta0).
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter, Eq. (35) [-].
+    beta0 : float
+        Ellipticity (Eqs. 17-19) [-].
+    a_star : array_like
+        Contact semi-major axes a* of the curve [-].
+    n_theta : int
+        Rays on [0, pi/2].
 
     Returns
     -------
@@ -356,7 +400,7 @@ def _ray_average_log_residual(log_s, a, mu, beta, weight, n_theta):
 
 
 def solve_ray_average(a_star, mu, beta0, *, weight="area", n_theta=None):
-    """Ray-average closure: equal beta (Eq. 17), sigma0 = mu, mean Delta gamma = 1.
+    """Solve the ray-average closure: equal beta (Eq. 17), sigma0 = mu, mean Delta gamma = 1.
 
     Parameters
     ----------
@@ -374,6 +418,7 @@ def solve_ray_average(a_star, mu, beta0, *, weight="area", n_theta=None):
     Returns
     -------
     ClosureState
+        The equilibrium state at ``a_star``.
 
     Notes
     -----
@@ -450,7 +495,7 @@ def _two_axis_residual(a, log_c, log_d, mu, r1, r2):
 
 
 def solve_two_axis(a_star, mu, beta0):
-    """Two-axis closure: Delta gamma = 1 on both axes, beta_cd != beta_ab, contact condition exact.
+    """Solve the two-axis closure: Delta gamma = 1 on both axes, beta_cd != beta_ab, contact exact.
 
     Parameters
     ----------
@@ -464,7 +509,7 @@ def solve_two_axis(a_star, mu, beta0):
     Returns
     -------
     ClosureState
-        b* and d* are outputs: beta_contact and beta_adhesive differ from each
+        The equilibrium state; b* and d* are outputs: beta_contact and beta_adhesive differ from each
         other and from beta0 (module docstring).
 
     Notes
@@ -547,7 +592,7 @@ _SOLVERS = {
 
 
 def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
-    """Pull-off point of a closure: the minimum of W* (load) or delta* (displacement).
+    """Find the pull-off point of a closure: the minimum of W* (load) or delta* (displacement).
 
     Parameters
     ----------
@@ -559,6 +604,7 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
         "paper" is Eqs. (17)-(19), (24), (31) (equal to :func:`dhfield.model.pull_off`
         to the solver tolerance; used as the like-for-like baseline).
     control : {"load", "displacement"}
+        Pull-off control mode.
 
     Returns
     -------
@@ -596,7 +642,7 @@ def _record(model, beta0, mu, state, control):
 
 
 def pull_off_ray_average(beta0, mu, *, control="load"):
-    """Pull-off record of the ray-average closure, ``dh-elliptic-ray-average`` (:func:`pull_off_closure`).
+    """Compute the pull-off record of the ray-average closure, ``dh-elliptic-ray-average``.
 
     Parameters
     ----------
@@ -604,17 +650,19 @@ def pull_off_ray_average(beta0, mu, *, control="load"):
         Hertz ellipticity and Tabor parameter (Eq. 35) [-], in :data:`CLOSURE_BETA0_RANGE`
         and :data:`CLOSURE_MU_RANGE`.
     control : {'load', 'displacement'}
+        Pull-off control mode.
 
     Returns
     -------
     dhfield.records.PullOff
+        The pull-off point (:func:`pull_off_closure`), nondimensional.
     """
     state = pull_off_closure(mu, beta0, "ray_average", control=control)
     return _record("dh-elliptic-ray-average", *np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float)), state, control)
 
 
 def pull_off_two_axis(beta0, mu, *, control="load"):
-    """Pull-off record of the two-axis closure, ``dh-elliptic-two-axis`` (:func:`pull_off_closure`).
+    """Compute the pull-off record of the two-axis closure, ``dh-elliptic-two-axis``.
 
     Parameters
     ----------
@@ -622,10 +670,12 @@ def pull_off_two_axis(beta0, mu, *, control="load"):
         Hertz ellipticity and Tabor parameter (Eq. 35) [-], in :data:`CLOSURE_BETA0_RANGE`
         and :data:`CLOSURE_MU_RANGE`.
     control : {'load', 'displacement'}
+        Pull-off control mode.
 
     Returns
     -------
     dhfield.records.PullOff
+        The pull-off point (:func:`pull_off_closure`), nondimensional.
     """
     state = pull_off_closure(mu, beta0, "two_axis", control=control)
     return _record("dh-elliptic-two-axis", *np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float)), state, control)

@@ -27,19 +27,27 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 
 Models
 ------
-``dh-elliptic``              the paper's model, beta = beta0 throughout, dgamma on the major axis
-                             (Eqs. 17-19, 31) — :mod:`dhfield.model`; the default
-``dh-elliptic-two-axis``     dgamma = 1 on both axes, beta_cd != beta_ab, contact condition exact —
-                             :func:`dhfield.closure.pull_off_two_axis`
-``dh-elliptic-ray-average``  equal beta, dgamma = 1 on the periphery average —
-                             :func:`dhfield.closure.pull_off_ray_average`
-``dh-elliptic-jkr-beta``     the paper's second assumption (Fig. 9): beta_(pull-off) = beta_JKR(pull-off)
-``dh-circular``              Greenwood & Johnson (1998) — :mod:`dhfield.dh_circular`
-``jkr``, ``dmt``             :mod:`dhfield.jkr`, :mod:`dhfield.dmt`
-``md``                       Maugis (1992) — :mod:`dhfield.maugis_dugdale`
-``jkr-elliptic``             Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
-``jkr-elliptic-energy``      Giudici, Vella & Griffiths (2025), energy minimised over both semi-axes —
-                             :mod:`dhfield.jkr_elliptic_energy`
+``dh-elliptic``
+    the paper's model, beta = beta0 throughout, dgamma on the major axis
+    (Eqs. 17-19, 31) — :mod:`dhfield.model`; the default
+``dh-elliptic-two-axis``
+    dgamma = 1 on both axes, beta_cd != beta_ab, contact condition exact —
+    :func:`dhfield.closure.pull_off_two_axis`
+``dh-elliptic-ray-average``
+    equal beta, dgamma = 1 on the periphery average — :func:`dhfield.closure.pull_off_ray_average`
+``dh-elliptic-jkr-beta``
+    the paper's second assumption (Fig. 9): beta_(pull-off) = beta_JKR(pull-off)
+``dh-circular``
+    Greenwood & Johnson (1998) — :mod:`dhfield.dh_circular`
+``jkr``, ``dmt``
+    :mod:`dhfield.jkr`, :mod:`dhfield.dmt`
+``md``
+    Maugis (1992) — :mod:`dhfield.maugis_dugdale`
+``jkr-elliptic``
+    Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
+``jkr-elliptic-energy``
+    Giudici, Vella & Griffiths (2025), energy minimised over both semi-axes —
+    :mod:`dhfield.jkr_elliptic_energy`
 
 Every model except ``dh-elliptic-jkr-beta`` (whose ellipticity is defined at
 pull-off only) has a load curve (:data:`CURVE_MODEL_NAMES`).
@@ -187,7 +195,7 @@ def _check_model(model):
 
 
 def pull_off(model, mu, beta0, control="load", *, check_closure=True):
-    """Pull-off of one model, in the paper's normalisation (Eq. 34).
+    """Compute the pull-off of one model, in the paper's normalisation (Eq. 34).
 
     Parameters
     ----------
@@ -200,6 +208,14 @@ def pull_off(model, mu, beta0, control="load", *, check_closure=True):
     control : {'load', 'displacement'}
         Loading mode.
 
+    Returns
+    -------
+    dhfield.records.PullOff
+        The record of every model: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`,
+        in that order, as attributes or a mapping; NaN where a quantity does not apply
+        (module docstring).  Arrays broadcast over ``mu`` and ``beta0``; scalars in
+        give scalars out.
+
     Other Parameters
     ----------------
     check_closure : bool
@@ -209,14 +225,6 @@ def pull_off(model, mu, beta0, control="load", *, check_closure=True):
         the inputs (mu above its cap) and mu >= :data:`JKR_PROXY_MU`, elliptical
         JKR, the closure's high-mu limit, stands in.  False leaves ``warning``
         empty of this check.
-
-    Returns
-    -------
-    dhfield.records.PullOff
-        The record of every model: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`,
-        in that order, as attributes or a mapping; NaN where a quantity does not apply
-        (module docstring).  Arrays broadcast over ``mu`` and ``beta0``; scalars in
-        give scalars out.
     """
     _check_model(model)
     mu, beta0 = _check(mu, beta0, control)
@@ -224,16 +232,29 @@ def pull_off(model, mu, beta0, control="load", *, check_closure=True):
 
 
 def compare(mu, beta0, control="load", models=None, *, check_closure=True):
-    """Pull-off of every model side by side, on the axes of Fig. 9.
+    """Compute the pull-off of every model side by side, on the axes of Fig. 9.
 
     All models apply to any beta0: the circular ones (dh-circular, jkr, dmt, md)
     are the beta0 -> 1 references the paper plots in Fig. 9a, evaluated with
     R = sqrt(R'R'') and sin(theta_skew) = 1 (``geometry`` = 'circle').
 
+    Parameters
+    ----------
+    mu : array_like
+        Transition parameter of Eq. (35), > 0 [-].
+    beta0 : array_like
+        Hertz ellipticity b/a of the geometry, in (0, 1] [-].
+    control : {'load', 'displacement'}
+        Loading mode.
+    models : sequence of str, optional
+        Names of :data:`MODEL_NAMES`; default all.
+    check_closure : bool
+        As in :func:`pull_off`.
+
     Returns
     -------
     dict
-        model name -> record (see :func:`pull_off`).  The two-axis closure is
+        Model name -> record (see :func:`pull_off`).  The two-axis closure is
         solved once and also serves the warning of ``dh-elliptic``.  A model that
         refuses the inputs (a narrower domain of its own) or fails to converge
         gets NaN values and says why in ``warning``; invalid ``mu``, ``beta0`` or

@@ -176,7 +176,7 @@ def _pull_off_state(mu, control="load"):
 
 
 def pull_off_nondimensional(beta0, mu, *, control="load"):
-    """Circular DH pull-off record (Greenwood & Johnson 1998) in the paper's units, Eqs. (32)-(35).
+    """Compute the circular DH pull-off record (Greenwood & Johnson 1998) in the paper's units.
 
     The nondimensional core of :func:`pull_off`; inputs are not validated here
     (:func:`dhfield.compare.pull_off` does).
@@ -186,10 +186,12 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     beta0, mu : array_like
         Hertz ellipticity and Tabor parameter (Eq. 35) [-]; the circle of R = sqrt(R'R'') depends on mu only; the record has their broadcast shape.
     control : {'load', 'displacement'}
+        Loading mode of the pull-off.
 
     Returns
     -------
     dhfield.records.PullOff
+        The pull-off point, nondimensional (Eqs. 32-35).
     """
     mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[1]
     return pull_off_record("dh-circular", beta0, mu, _pull_off_state(mu, control), control=control, sin_skew=1.0,
@@ -197,16 +199,23 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 
 
 def work_of_adhesion(contact_radius, adhesive_radius, scaling, effective_radius, reduced_modulus):
-    """Work of adhesion of the circular DH stress field, closed form [J/m^2].
+    """Compute the work of adhesion of the circular DH stress field, closed form [J/m^2].
 
     Parameters
     ----------
-    contact_radius, adhesive_radius : array_like
-        a and c >= a [m].
+    contact_radius : array_like
+        Contact radius a [m].
+    adhesive_radius : array_like
+        Adhesive radius c >= a [m].
     scaling : array_like
         DH scaling factor v [-].
     effective_radius, reduced_modulus : array_like
         R [m], E* [Pa].
+
+    Returns
+    -------
+    ndarray
+        Delta gamma [J/m^2].
 
     Notes
     -----
@@ -302,6 +311,21 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
                    control="load"):
-    """Circular DH pull-off force [N]; see :func:`pull_off`."""
+    """Compute the circular DH pull-off force [N].
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+    max_adhesive_stress : array_like
+        Peak adhesive stress sigma0 [Pa].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+    """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
                     control=control).load

@@ -50,19 +50,30 @@ _s = units.scalar_or_array
 class ContactParameters:
     """Derived parameters of an adhesive elliptical contact (SI); floats or arrays.
 
-    Attributes
+    Parameters
     ----------
-    reduced_modulus : E* [Pa] (Eq. 6)
-    r_major, r_minor : R' >= R'' [m] (Eqs. 3-4)
-    effective_radius : R [m] (Eq. 5)
-    beta0 : Hertz ellipticity [-] (Eq. 9)
-    sin_skew : sin(theta_skew) of beta0 [-]
-    mu : Tabor parameter [-] (Eq. 35)
-    length_unit : c_r [m] (Eq. 33)
-    approach_unit : c_r^2/R [m]
-    load_unit : 2 pi R dgamma / sin(theta_skew) [N] (Eq. 34)
-    work_of_adhesion : dgamma [J m^-2]
-    max_adhesive_stress : sigma0 [Pa]
+    reduced_modulus : float or ndarray
+        E* [Pa] (Eq. 6).
+    r_major, r_minor : float or ndarray
+        Principal relative radii R' >= R'' [m] (Eqs. 3-4).
+    effective_radius : float or ndarray
+        R [m] (Eq. 5).
+    beta0 : float or ndarray
+        Hertz ellipticity [-] (Eq. 9).
+    sin_skew : float or ndarray
+        The sin(theta_skew) of beta0 [-].
+    mu : float or ndarray
+        Tabor parameter [-] (Eq. 35).
+    length_unit : float or ndarray
+        The length scale c_r [m] (Eq. 33).
+    approach_unit : float or ndarray
+        The approach scale c_r^2/R [m].
+    load_unit : float or ndarray
+        The load scale 2 pi R dgamma / sin(theta_skew) [N] (Eq. 34).
+    work_of_adhesion : float or ndarray
+        Delta gamma [J m^-2].
+    max_adhesive_stress : float or ndarray
+        The peak adhesive stress sigma0 [Pa].
     """
     reduced_modulus: float
     r_major: float
@@ -87,7 +98,7 @@ def _reduced_modulus(e1, nu1, e2, nu2):
 
 
 def crossed_cylinder_radii(radius_1, radius_2, skew_angle):
-    """Principal relative radii R' >= R'' of two cylinders of radii R1, R2 crossed at an angle.
+    """Compute the principal relative radii R' >= R'' of two cylinders crossed at an angle.
 
     Parameters
     ----------
@@ -98,8 +109,10 @@ def crossed_cylinder_radii(radius_1, radius_2, skew_angle):
 
     Returns
     -------
-    r_major, r_minor : ndarray or float
-        R' >= R'' [m].
+    r_major : ndarray or float
+        R' [m].
+    r_minor : ndarray or float
+        R'' <= R' [m].
 
     Notes
     -----
@@ -134,21 +147,25 @@ def crossed_cylinder_radii(radius_1, radius_2, skew_angle):
 def contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
                                             poisson_ratio_2, r_major, r_minor, work_of_adhesion,
                                             max_adhesive_stress):
-    """Nondimensional groups and scales of a contact of principal relative radii R', R''.
+    """Compute the nondimensional groups and scales of a contact of principal relative radii R', R''.
 
     Parameters
     ----------
-    youngs_modulus_1, youngs_modulus_2 : array_like
-        Young's moduli E1, E2 > 0 [Pa].
-    poisson_ratio_1, poisson_ratio_2 : array_like
-        Poisson's ratios in (-1, 0.5] [-].
+    youngs_modulus_1 : array_like
+        Young's modulus E1 > 0 of the first body [Pa].
+    poisson_ratio_1 : array_like
+        Poisson's ratio of the first body, in (-1, 0.5] [-].
+    youngs_modulus_2 : array_like
+        Young's modulus E2 > 0 of the second body [Pa].
+    poisson_ratio_2 : array_like
+        Poisson's ratio of the second body, in (-1, 0.5] [-].
     r_major, r_minor : array_like
         Principal relative radii R', R'' > 0 of the gap z = x^2/(2R') + y^2/(2R'')
         [m]; given in either order (the larger is R').
     work_of_adhesion : array_like
         Delta gamma > 0 [J m^-2].
     max_adhesive_stress : array_like
-        sigma0 > 0 [Pa].
+        Peak adhesive stress sigma0 > 0 [Pa].
 
     Returns
     -------
@@ -204,14 +221,18 @@ def _check_model_domain(ratio, beta0, mu, s0):
 
 def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2,
                        cylinder_radius, skew_angle, work_of_adhesion, max_adhesive_stress):
-    """Nondimensional groups and scales of two equal crossed cylinders.
+    """Compute the nondimensional groups and scales of two equal crossed cylinders.
 
     Parameters
     ----------
-    youngs_modulus_1, youngs_modulus_2 : array_like
-        Young's moduli E1, E2 [Pa].
-    poisson_ratio_1, poisson_ratio_2 : array_like
-        Poisson's ratios in (-1, 0.5] [-].
+    youngs_modulus_1 : array_like
+        Young's modulus E1 > 0 of the first body [Pa].
+    poisson_ratio_1 : array_like
+        Poisson's ratio of the first body, in (-1, 0.5] [-].
+    youngs_modulus_2 : array_like
+        Young's modulus E2 > 0 of the second body [Pa].
+    poisson_ratio_2 : array_like
+        Poisson's ratio of the second body, in (-1, 0.5] [-].
     cylinder_radius : array_like
         Radius R_c of both cylinders [m].
     skew_angle : array_like
@@ -219,11 +240,12 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
     work_of_adhesion : array_like
         Delta gamma > 0 [J m^-2].
     max_adhesive_stress : array_like
-        sigma0 > 0 [Pa].
+        Peak adhesive stress sigma0 > 0 [Pa].
 
     Returns
     -------
     ContactParameters
+        Floats for scalar inputs, arrays broadcast over all inputs otherwise.
     """
     th_min = float(geometry.skew_angle(ELLIPTICITY_RANGE[0]))  # beta0 >= 1e-4 (H3, issue 9)
     check_interval("skew_angle", skew_angle, th_min, np.pi / 2, low_open=False,
@@ -258,12 +280,6 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
     control : {'load', 'displacement'}
         Loading mode.
 
-    Other Parameters
-    ----------------
-    check_closure : bool
-        For ``dh-elliptic``: compare with the two-axis closure and fill ``warning``
-        (:func:`dhfield.compare.pull_off`).
-
     Returns
     -------
     dict
@@ -272,6 +288,12 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
         ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor``,
         ``approach`` [m] (NaN where the model has no such quantity), the SI
         inputs, and the nondimensional record of the model.
+
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic``: compare with the two-axis closure and fill ``warning``
+        (:func:`dhfield.compare.pull_off`).
     """
     return pull_off_record_si(compare.pull_off(model, params.mu, params.beta0, control,
                                                check_closure=check_closure), params)

@@ -77,6 +77,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     Returns
     -------
     dhfield.records.PullOff
+        The pull-off point, nondimensional (Eqs. 32-35).
     """
     return pull_off_record("dmt", beta0, mu, _pull_off_state(control), control=control, sin_skew=1.0,
                            geometry="circle")
@@ -113,7 +114,20 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
-    """DMT contact radius for load W >= -2 pi R dgamma [m]: a^3 = 3R(W + 2 pi R dgamma)/(4E*)."""
+    """Compute the DMT contact radius: a^3 = 3R(W + 2 pi R dgamma)/(4E*) [m].
+
+    Parameters
+    ----------
+    load : array_like
+        Load W >= -2 pi R dgamma [N].
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+
+    Returns
+    -------
+    ndarray
+        The contact radius a [m].
+    """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     p = check_finite("load", load, "N")
     ws = p / load_unit(r, w)
@@ -147,5 +161,18 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
-    """DMT pull-off force -2 pi R dgamma [N]; see :func:`pull_off`."""
+    """Compute the DMT pull-off force -2 pi R dgamma [N].
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+    """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).load

@@ -50,12 +50,17 @@ _EDGE = 2.0 - 4.0 / np.pi  # (centre - edge) displacement of a uniform disc load
 
 
 def dugdale_range(mu):
-    """Range h0 = dgamma/sigma0 of the Dugdale law, in c_r^2/R (= 1/mu) [-].
+    """Compute the range h0 = dgamma/sigma0 of the Dugdale law, in c_r^2/R (= 1/mu) [-].
 
     Parameters
     ----------
     mu : array_like
         Transition parameter of Eq. (35), > 0 [-] (the Dugdale stress in E* c_r/R).
+
+    Returns
+    -------
+    ndarray
+        The range h0 in c_r^2/R [-].
     """
     mu = check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
     return 1.0 / mu  # h0 = dgamma/sigma0 with dgamma = 1, sigma0 = mu (Eq. 35)

@@ -106,9 +106,19 @@ def _hemisphere_volume_quadrant(x, y):
 
 
 def hemisphere_volume(x, y):
-    """Volume under the unit hemisphere over ``[0, x] x [0, y]`` (signed) [-].
+    """Compute the volume under the unit hemisphere over ``[0, x] x [0, y]`` (signed) [-].
 
     ``V(x, y) = int_0^x int_0^y sqrt(max(1 - s^2 - t^2, 0)) dt ds``, odd in x and y.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Upper limits of the integral, in units of the hemisphere's radius [-].
+
+    Returns
+    -------
+    ndarray
+        The signed volume ``V(x, y)`` [-], broadcast over ``x`` and ``y``.
 
     Notes
     -----
@@ -133,10 +143,24 @@ def hemisphere_volume(x, y):
 
 
 def ellipsoid_cell_average(grid: bem.Grid, semi_major, semi_minor, peak_pressure):
-    """Cell averages of the semi-ellipsoidal pressure of Eq. (7) [Pa], shape (nx, ny).
+    """Compute the cell averages of the semi-ellipsoidal pressure of Eq. (7) [Pa].
 
     The mean of ``Po sqrt(1 - (x/a)^2 - (y/b)^2)`` over each cell, exactly (up to
     rounding), from :func:`hemisphere_volume` at the scaled cell corners.
+
+    Parameters
+    ----------
+    grid : dhfield.bem.Grid
+        The cell grid [m].
+    semi_major, semi_minor : float
+        Semi-axes a and b of the pressure ellipse [m].
+    peak_pressure : float
+        Peak pressure Po [Pa].
+
+    Returns
+    -------
+    ndarray
+        The cell means [Pa], shape ``(nx, ny)``.
     """
     a = float(check_positive("semi_major", semi_major, "m"))
     b = float(check_positive("semi_minor", semi_minor, "m"))
@@ -149,7 +173,24 @@ def ellipsoid_cell_average(grid: bem.Grid, semi_major, semi_minor, peak_pressure
 
 
 def ellipsoid_pressure(grid: bem.Grid, semi_major, semi_minor, peak_pressure, sampling="average"):
-    """Semi-ellipsoidal pressure of Eq. (7) on the grid [Pa], by cell average or centre value."""
+    """Sample the semi-ellipsoidal pressure of Eq. (7) on the grid [Pa].
+
+    Parameters
+    ----------
+    grid : dhfield.bem.Grid
+        The cell grid [m].
+    semi_major, semi_minor : float
+        Semi-axes a and b of the pressure ellipse [m].
+    peak_pressure : float
+        Peak pressure Po [Pa].
+    sampling : {"average", "centre"}
+        Cell means (default) or centre values.
+
+    Returns
+    -------
+    ndarray
+        The pressure [Pa], shape ``grid.shape``.
+    """
     if sampling not in SAMPLINGS:
         raise ValueError(f"sampling must be one of {SAMPLINGS}; got {sampling!r}")
     if sampling == "average":
@@ -160,7 +201,7 @@ def ellipsoid_pressure(grid: bem.Grid, semi_major, semi_minor, peak_pressure, sa
 
 def hertz_pressure(grid: bem.Grid, semi_major, beta, effective_radius=1.0, reduced_modulus=1.0,
                    sampling="average"):
-    """Hertz pressure of the contact ellipse (Eqs. 7, 8) on the grid [Pa].
+    """Sample the Hertz pressure of the contact ellipse (Eqs. 7, 8) on the grid [Pa].
 
     Parameters
     ----------
@@ -174,6 +215,11 @@ def hertz_pressure(grid: bem.Grid, semi_major, beta, effective_radius=1.0, reduc
         R [m] and E* [Pa].
     sampling : {"average", "centre"}
         Cell means (default) or centre values.
+
+    Returns
+    -------
+    ndarray
+        The pressure [Pa], shape ``grid.shape``.
     """
     a = check_positive("semi_major", semi_major, "m")
     beta = check_ellipticity("beta", beta)
@@ -183,11 +229,37 @@ def hertz_pressure(grid: bem.Grid, semi_major, beta, effective_radius=1.0, reduc
 
 def dh_pressure(grid: bem.Grid, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                 reduced_modulus=1.0, sampling="average"):
-    """Total DH pressure ``(1 + v) H_ab - v H_cd`` (Eqs. 16, 20, 22) on the grid [Pa].
+    """Sample the total DH pressure ``(1 + v) H_ab - v H_cd`` (Eqs. 16, 20, 22) on the grid [Pa].
 
-    Parameters as in :func:`dhfield.double_hertz.pressure`, plus ``grid`` and
-    ``sampling``.  Cell averages are exact because the field is linear in the two
-    Hertz pressures.
+    Cell averages are exact because the field is linear in the two Hertz pressures.
+
+    Parameters
+    ----------
+    grid : dhfield.bem.Grid
+        The cell grid [m].
+    semi_major : float
+        Contact semi-major axis a [m].
+    adhesive_semi_major : float
+        Adhesive semi-major axis c [m].
+    beta : float
+        Common ellipticity b/a = d/c [-].
+    scaling : float
+        Scaling factor v of the DH pressure [-].
+    effective_radius : float, default 1.0
+        R [m].
+    reduced_modulus : float, default 1.0
+        E* [Pa].
+    sampling : {"average", "centre"}
+        Cell means (default) or centre values.
+
+    Returns
+    -------
+    ndarray
+        The pressure [Pa], shape ``grid.shape``.
+
+    See Also
+    --------
+    dhfield.double_hertz.pressure : The same field at arbitrary points.
     """
     a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                                         effective_radius, reduced_modulus)
@@ -200,10 +272,26 @@ def dh_pressure(grid: bem.Grid, semi_major, adhesive_semi_major, beta, scaling, 
 
 def numerical_displacement(pressure, grid: bem.Grid, reduced_modulus=1.0, *, symmetric=True,
                            threads=None):
-    """BEM surface displacement of a gridded pressure at the cell centres [m].
+    """Compute the BEM surface displacement of a gridded pressure at the cell centres [m].
 
-    With ``symmetric=True`` (default; every field of this module is even in x and
-    y, and the grid must have even nx, ny) only the quadrant is transformed.
+    Parameters
+    ----------
+    pressure : array_like
+        Gridded pressure [Pa], shape ``grid.shape``.
+    grid : dhfield.bem.Grid
+        The cell grid [m].
+    reduced_modulus : float, default 1.0
+        E* [Pa].
+    symmetric : bool, default True
+        Transform only the quadrant (every field of this module is even in x and
+        y; used when the grid has even nx, ny).
+    threads : int, optional
+        FFT worker threads.
+
+    Returns
+    -------
+    ndarray
+        The displacement [m], shape ``grid.shape``.
     """
     p = np.asarray(pressure, dtype=float)
     if p.shape != grid.shape:
@@ -216,7 +304,7 @@ def numerical_displacement(pressure, grid: bem.Grid, reduced_modulus=1.0, *, sym
 
 # --------------------------------------------------------------------------- comparison
 def region_masks(x, y, semi_major, beta, adhesive_semi_major=None):
-    """Boolean masks of the contact ellipse, the adhesive annulus and the outside.
+    """Compute boolean masks of the contact ellipse, the adhesive annulus and the outside.
 
     Parameters
     ----------
@@ -247,7 +335,7 @@ def region_masks(x, y, semi_major, beta, adhesive_semi_major=None):
 
 
 def compare(numerical, analytic, masks=None, scale=None) -> dict:
-    """Error statistics of ``numerical - analytic``, overall and per region.
+    """Compute error statistics of ``numerical - analytic``, overall and per region.
 
     Parameters
     ----------
@@ -291,7 +379,26 @@ def compare(numerical, analytic, masks=None, scale=None) -> dict:
 
 # --------------------------------------------------------------------------- polar
 def polar_grid(r_max, n_r=200, n_theta=91, theta_max=0.5 * np.pi):
-    """Radii ``[0, r_max]`` and angles ``theta_p in [0, theta_max]`` (1-D arrays) [m], [rad]."""
+    """Return radii ``[0, r_max]`` [m] and angles ``theta_p in [0, theta_max]`` [rad].
+
+    Parameters
+    ----------
+    r_max : float
+        Largest radius [m].
+    n_r : int, default 200
+        Number of radii.
+    n_theta : int, default 91
+        Number of angles.
+    theta_max : float, default pi/2
+        Largest angle [rad].
+
+    Returns
+    -------
+    r : ndarray
+        1-D radii [m].
+    theta_p : ndarray
+        1-D angles [rad].
+    """
     r_max = float(check_positive("r_max", r_max, "m"))
     return np.linspace(0.0, r_max, int(n_r)), np.linspace(0.0, float(theta_max), int(n_theta))
 
@@ -338,14 +445,27 @@ def to_polar(field, grid: bem.Grid, r, theta_p, order=3):
 
 # --------------------------------------------------------------------------- refinement
 def observed_orders(h, err):
-    """Observed orders ``log(e_i/e_{i+1})/log(h_i/h_{i+1})`` between successive grids."""
+    """Compute the observed orders ``log(e_i/e_{i+1})/log(h_i/h_{i+1})`` between successive grids.
+
+    Parameters
+    ----------
+    h : array_like
+        Cell sizes of the grids [m].
+    err : array_like
+        Errors on those grids (any consistent unit).
+
+    Returns
+    -------
+    ndarray
+        The ``len(h) - 1`` observed orders [-].
+    """
     h = np.asarray(h, dtype=float)
     e = np.asarray(err, dtype=float)
     return np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:])
 
 
 def refinement_study(error_of_n, ns):
-    """Grid-refinement study.
+    """Run a grid-refinement study.
 
     Parameters
     ----------
@@ -375,17 +495,24 @@ def refinement_study(error_of_n, ns):
 class FieldCase:
     """All fields of one case on one grid (arrays of shape ``grid.shape``).
 
-    Attributes
+    Parameters
     ----------
     grid : dhfield.bem.Grid
+        The cell grid [m].
     parameters : dict
         Every input parameter (for provenance).
-    pressure : gridded pressure fed to the BEM [Pa]
-    pressure_exact : the analytic pressure at the cell centres [Pa]
-    displacement_analytic, displacement_numerical : [m]
-    gap_analytic, gap_numerical : [m]; the numerical gap uses the analytic approach
-    masks : dict of region masks
-    approach : the approach delta [m]
+    pressure : ndarray
+        Gridded pressure fed to the BEM [Pa].
+    pressure_exact : ndarray
+        The analytic pressure at the cell centres [Pa].
+    displacement_analytic, displacement_numerical : ndarray
+        Surface displacements [m].
+    gap_analytic, gap_numerical : ndarray
+        Gaps [m]; the numerical gap uses the analytic approach.
+    masks : dict
+        Region masks (:func:`region_masks`).
+    approach : float
+        The approach delta [m].
     """
 
     grid: bem.Grid
@@ -400,11 +527,23 @@ class FieldCase:
     approach: float
 
     def displacement_errors(self) -> dict:
-        """:func:`compare` of the displacements, relative to max |analytic displacement|."""
+        """Compare the displacements, relative to max |analytic displacement|.
+
+        Returns
+        -------
+        dict
+            :func:`compare`'s statistics per region.
+        """
         return compare(self.displacement_numerical, self.displacement_analytic, self.masks)
 
     def gap_errors(self) -> dict:
-        """:func:`compare` of the gaps, relative to max |analytic displacement|."""
+        """Compare the gaps, relative to max |analytic displacement|.
+
+        Returns
+        -------
+        dict
+            :func:`compare`'s statistics per region.
+        """
         scale = float(np.max(np.abs(self.displacement_analytic)))
         return compare(self.gap_numerical, self.gap_analytic, self.masks, scale=scale)
 
@@ -424,8 +563,19 @@ def check_case_memory(n, ny=None) -> None:
     """Refuse an ``n`` x ``ny`` field case that would not fit in memory, before allocating it.
 
     The estimate is ``CASE_BYTES_PER_CELL * n * ny``; the limit is 80 % of the
-    memory available now (:func:`dhfield._memory.memory_limit`).  Raises
-    ValueError naming ``n`` (and ``ny``), the estimate and the limit.
+    memory available now (:func:`dhfield._memory.memory_limit`).
+
+    Parameters
+    ----------
+    n : int
+        Cells along x (and along y unless ``ny`` is given) [-].
+    ny : int, optional
+        Cells along y [-].
+
+    Raises
+    ------
+    ValueError
+        Naming ``n`` (and ``ny``), the estimate and the limit.
     """
     from .bem.operator import MIN_CELLS
 
@@ -444,9 +594,35 @@ def check_case_memory(n, ny=None) -> None:
 
 def hertz_case(n, semi_major=1.0, beta=1.0, *, half_width=None, effective_radius=1.0,
                reduced_modulus=1.0, sampling="average", symmetric=True, threads=None, ny=None) -> FieldCase:
-    """Hertz contact ellipse on an ``n`` x ``ny`` grid over ``[-L, L] x [-L, L]``.
+    """Compute the Hertz contact ellipse's fields on an ``n`` x ``ny`` grid over ``[-L, L]^2``.
 
-    ``half_width`` L defaults to ``2 a``.  See :class:`FieldCase`.
+    Parameters
+    ----------
+    n : int
+        Cells along x (and y unless ``ny`` is given) [-].
+    semi_major : float, default 1.0
+        Contact semi-major axis a [m].
+    beta : float, default 1.0
+        Ellipticity b/a [-].
+    half_width : float, optional
+        Half-width L of the domain [m]; default ``2 a``.
+    effective_radius : float, default 1.0
+        R [m].
+    reduced_modulus : float, default 1.0
+        E* [Pa].
+    sampling : {"average", "centre"}
+        Cell means (default) or centre values of the pressure.
+    symmetric : bool, default True
+        Transform only the quadrant.
+    threads : int, optional
+        FFT worker threads.
+    ny : int, optional
+        Cells along y [-].
+
+    Returns
+    -------
+    FieldCase
+        All fields of the case.
     """
     a = float(check_positive("semi_major", semi_major, "m"))
     beta = float(check_ellipticity("beta", beta))
@@ -470,11 +646,44 @@ def hertz_case(n, semi_major=1.0, beta=1.0, *, half_width=None, effective_radius
 def dh_case(n, semi_major, adhesive_semi_major, beta, scaling, *, half_width=None, effective_radius=1.0,
             reduced_modulus=1.0, sampling="average", symmetric=True, threads=None, ny=None,
             extra_parameters=None) -> FieldCase:
-    """Extended DH contact on an ``n`` x ``ny`` grid over ``[-L, L]^2``.
+    """Compute the extended DH contact's fields on an ``n`` x ``ny`` grid over ``[-L, L]^2``.
 
-    ``half_width`` L defaults to ``1.5 c``.  The numerical gap is
-    ``z - delta + omega_BEM`` with the analytic approach
-    ``delta = (1 + v) delta_ab - v delta_cd``.  See :class:`FieldCase`.
+    The numerical gap is ``z - delta + omega_BEM`` with the analytic approach
+    ``delta = (1 + v) delta_ab - v delta_cd``.
+
+    Parameters
+    ----------
+    n : int
+        Cells along x (and y unless ``ny`` is given) [-].
+    semi_major : float
+        Contact semi-major axis a [m].
+    adhesive_semi_major : float
+        Adhesive semi-major axis c [m].
+    beta : float
+        Common ellipticity [-].
+    scaling : float
+        Scaling factor v [-].
+    half_width : float, optional
+        Half-width L of the domain [m]; default ``1.5 c``.
+    effective_radius : float, default 1.0
+        R [m].
+    reduced_modulus : float, default 1.0
+        E* [Pa].
+    sampling : {"average", "centre"}
+        Cell means (default) or centre values of the pressure.
+    symmetric : bool, default True
+        Transform only the quadrant.
+    threads : int, optional
+        FFT worker threads.
+    ny : int, optional
+        Cells along y [-].
+    extra_parameters : dict, optional
+        Recorded in :attr:`FieldCase.parameters` as well.
+
+    Returns
+    -------
+    FieldCase
+        All fields of the case.
     """
     a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                                         effective_radius, reduced_modulus)
@@ -505,6 +714,15 @@ def annulus_identity(case: FieldCase, n_theta=91, n_r=64):
     and ``r_cd(theta_p)`` (Eqs. A1, A2), and compared with ``(1 + v)`` times the
     analytic Hertz gap of the contact ellipse (:func:`dhfield.hertz.gap`).
 
+    Parameters
+    ----------
+    case : FieldCase
+        A DH case (:func:`dh_case` or :func:`model_case`).
+    n_theta : int, default 91
+        Number of rays [-].
+    n_r : int, default 64
+        Radii per ray [-].
+
     Returns
     -------
     dict
@@ -534,7 +752,7 @@ def annulus_identity(case: FieldCase, n_theta=91, n_r=64):
 
 
 def adhesive_state(a_star, mu, beta0):
-    """Nondimensional DH state ``(c*, v)`` at contact size ``a*`` (Eqs. 24, 31, 35).
+    """Solve for the nondimensional DH state ``(c*, v)`` at contact size ``a*`` (Eqs. 24, 31, 35).
 
     A scalar wrapper of :func:`dhfield.model.solve_adhesive_axis`.
 
@@ -549,8 +767,10 @@ def adhesive_state(a_star, mu, beta0):
 
     Returns
     -------
-    c_star, v : float
-        Adhesive semi-major axis c/c_r [-] and scaling factor [-].
+    c_star : float
+        Adhesive semi-major axis c/c_r [-].
+    v : float
+        Scaling factor [-].
     """
     c, v = model.solve_adhesive_axis(np.atleast_1d(np.asarray(a_star, dtype=float)), mu, beta0)
     return float(np.ravel(c)[0]), float(np.ravel(v)[0])
@@ -558,10 +778,34 @@ def adhesive_state(a_star, mu, beta0):
 
 def model_case(n, beta0, mu, a_star, *, half_width=None, sampling="average", symmetric=True,
                threads=None) -> FieldCase:
-    """The nondimensional DH case (R = E* = Delta gamma = 1) of :func:`dhfield.model` on the grid.
+    """Compute the nondimensional DH case (R = E* = Delta gamma = 1) of :mod:`dhfield.model` on a grid.
 
     Solves for ``c*`` and ``v`` (:func:`adhesive_state`) and returns :func:`dh_case`
     with ``beta0``, ``mu``, ``a_star`` recorded in the parameters.
+
+    Parameters
+    ----------
+    n : int
+        Cells per axis [-].
+    beta0 : float
+        Ellipticity of both ellipses [-].
+    mu : float
+        Tabor parameter, Eq. (35) [-].
+    a_star : float
+        Contact semi-major axis a/c_r [-].
+    half_width : float, optional
+        Half-width of the domain [c_r]; default ``1.5 c*``.
+    sampling : {"average", "centre"}
+        Cell means (default) or centre values of the pressure.
+    symmetric : bool, default True
+        Transform only the quadrant.
+    threads : int, optional
+        FFT worker threads.
+
+    Returns
+    -------
+    FieldCase
+        All fields of the case, lengths in c_r and pressures in E* c_r/R.
     """
     c, v = adhesive_state(a_star, mu, beta0)
     return dh_case(n, float(a_star), c, float(beta0), v, half_width=half_width, sampling=sampling,
@@ -572,10 +816,20 @@ def model_case(n, beta0, mu, a_star, *, half_width=None, sampling="average", sym
 
 
 def analytic_fields(case: FieldCase, x, y) -> dict:
-    """Analytic pressure, displacement and gap of ``case`` at arbitrary points.
+    """Evaluate the analytic pressure, displacement and gap of ``case`` at arbitrary points.
 
-    Returns ``{"pressure": ..., "displacement": ..., "gap": ...}`` (Eqs. 7/22,
-    13/26, 27) evaluated with the case's parameters [Pa], [m], [m].
+    Parameters
+    ----------
+    case : FieldCase
+        A Hertz or DH case.
+    x, y : array_like
+        The points [m].
+
+    Returns
+    -------
+    dict
+        ``{"pressure": ..., "displacement": ..., "gap": ...}`` (Eqs. 7/22,
+        13/26, 27) evaluated with the case's parameters [Pa], [m], [m].
     """
     prm = case.parameters
     a, beta = prm["semi_major"], prm["beta"]

@@ -78,19 +78,20 @@ INPUT_REL_STEP = 1e-3
 class WorkOfAdhesionFit:
     """Work of adhesion that reproduces measured pull-off forces (one or several replicates).
 
-    Attributes
+    Parameters
     ----------
     work_of_adhesion : float
-        dgamma [J m^-2]: the mean of the replicates' dgamma (one root each).
+        Work of adhesion dgamma [J m^-2]: the mean of the replicates' dgamma (one root each).
     mu : float
         Tabor parameter of Eq. (35) at the fitted dgamma [-].
     beta0 : float
         Hertz ellipticity of the geometry [-].
     max_adhesive_stress : float
-        sigma0 used [Pa].
+        The adhesive stress sigma0 used [Pa].
     pull_off_force : float
         The measured force fitted [N] (negative); the mean of the replicates.
     model, control : str
+        The model name and the loading mode ('load' or 'displacement').
     evaluations : int
         Forward pull-off evaluations used.
     warning : str
@@ -109,7 +110,7 @@ class WorkOfAdhesionFit:
     pull_off_forces : tuple of float
         The replicate forces [N].
     replicate_works : tuple of float
-        dgamma of each replicate [J m^-2].
+        The dgamma of each replicate [J m^-2].
     replicate_stderr : float
         Plain standard error of the mean of ``replicate_works``, s/sqrt(n) [J m^-2].
     input_stderr : float
@@ -144,7 +145,13 @@ class WorkOfAdhesionFit:
     stderr_note: str = ""
 
     def as_record(self) -> dict:
-        """Plain dict (for ``--json``), keys named as in :mod:`dhfield.schema`."""
+        """Return a plain dict (for ``--json``), keys named as in :mod:`dhfield.schema`.
+
+        Returns
+        -------
+        dict
+            The results and their uncertainties, in SI units.
+        """
         return {"model": self.model, "control": self.control, "work_of_adhesion": self.work_of_adhesion,
                 "work_of_adhesion_stderr": self.work_of_adhesion_stderr,
                 "work_of_adhesion_ci95": list(self.confidence_interval),
@@ -162,7 +169,7 @@ def replicate_statistics(values, input_stderr=0.0):
     Parameters
     ----------
     values : array_like
-        n >= 1 replicate estimates (here: dgamma of each pull-off force).
+        The n >= 1 replicate estimates (here: dgamma of each pull-off force).
     input_stderr : float
         Standard uncertainty from the inputs, common to all replicates (infinite
         degrees of freedom: the given standard deviations are taken as known).
@@ -217,7 +224,7 @@ def replicate_statistics(values, input_stderr=0.0):
 class CurveFit:
     """Least-squares estimates of dgamma and sigma0 from a load curve.
 
-    Attributes
+    Parameters
     ----------
     work_of_adhesion, max_adhesive_stress : float
         Estimates of dgamma [J m^-2] and sigma0 [Pa].
@@ -237,10 +244,15 @@ class CurveFit:
     load_noise, approach_noise : float
         Residual standard deviations (the weights of each block) [N], [m].
     model : str
+        The model name.
     success : bool
+        Whether the least-squares solver converged.
     message : str
+        The solver's message.
     evaluations : int
         Forward load-curve evaluations.
+    covariance_log : ndarray, optional
+        Covariance of the log estimates (ln dgamma, ln sigma0), shape (2, 2) [-].
     warning : str
         Empty, or the warning :func:`dhfield.compare.pull_off` (and
         ``dhfield pulloff``) gives at the fitted (mu, beta0): the model outside
@@ -274,7 +286,13 @@ class CurveFit:
     params: dimensional.ContactParameters = field(repr=False, default=None)
 
     def as_record(self) -> dict:
-        """Plain dict of the scalar results (for ``--json``)."""
+        """Return a plain dict of the scalar results (for ``--json``).
+
+        Returns
+        -------
+        dict
+            The estimates, their uncertainties and the solver's outcome, in SI units.
+        """
         return {"model": self.model, "work_of_adhesion": self.work_of_adhesion,
                 "work_of_adhesion_stderr": self.work_of_adhesion_stderr,
                 "max_adhesive_stress": self.max_adhesive_stress,
@@ -285,7 +303,7 @@ class CurveFit:
                 "evaluations": self.evaluations, "warning": self.warning}
 
     def model_curve(self, n=200):
-        """The fitted model as a smooth curve over the data's range of contact sizes.
+        """Evaluate the fitted model as a smooth curve over the data's range of contact sizes.
 
         Parameters
         ----------
@@ -330,7 +348,18 @@ def _check_params(params):
 
 
 def fit_mu_range(model) -> tuple:
-    """The Tabor parameters (Eq. 35) :func:`fit_work_of_adhesion` searches for ``model``."""
+    """Return the range of Tabor parameters (Eq. 35) :func:`fit_work_of_adhesion` searches.
+
+    Parameters
+    ----------
+    model : str
+        The model name.
+
+    Returns
+    -------
+    tuple of float
+        The smallest and largest mu [-].
+    """
     if model in _CLOSURE_MODELS:
         lo, hi = closure.CLOSURE_MU_RANGE
         return (max(lo, FIT_MU_RANGE[0]), min(hi, FIT_MU_RANGE[1]))
@@ -361,14 +390,6 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
     control : {'load', 'displacement'}
         Loading mode of the measurement.
 
-    Other Parameters
-    ----------------
-    check_closure : bool
-        For ``dh-elliptic``: solve the two-axis closure once at the fitted
-        state (a few seconds) and add its departure to ``warning`` as
-        :func:`dhfield.compare.pull_off` does.  The validity range of every
-        model is checked regardless.
-
     Returns
     -------
     WorkOfAdhesionFit
@@ -376,6 +397,14 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
         ``work_of_adhesion_stderr`` its t-adjusted standard error
         (:func:`replicate_statistics`; NaN for one force).  Uncertain inputs:
         :func:`propagate_input_uncertainty`.
+
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic``: solve the two-axis closure once at the fitted
+        state (a few seconds) and add its departure to ``warning`` as
+        :func:`dhfield.compare.pull_off` does.  The validity range of every
+        model is checked regardless.
 
     Raises
     ------
@@ -539,16 +568,16 @@ def propagate_input_uncertainty(fit, build, inputs, input_std, *, rel_step=INPUT
         Standard deviation of some of ``inputs`` (same keys, same units; 0 or
         absent: exact).  Taken as independent.
 
-    Other Parameters
-    ----------------
-    rel_step : float
-        Relative step of the central differences (:data:`INPUT_REL_STEP`).
-
     Returns
     -------
     WorkOfAdhesionFit
         ``fit`` with ``input_stderr``, ``input_contributions`` and the combined
         ``work_of_adhesion_stderr`` (:func:`replicate_statistics`) filled in.
+
+    Other Parameters
+    ----------------
+    rel_step : float
+        Relative step of the central differences (:data:`INPUT_REL_STEP`).
 
     Notes
     -----
@@ -701,6 +730,11 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     initial : (float, float), optional
         Starting (dgamma [J m^-2], sigma0 [Pa]).
 
+    Returns
+    -------
+    CurveFit
+        The estimates, their standard errors and the model at the estimates.
+
     Other Parameters
     ----------------
     check_closure : bool
@@ -708,10 +742,6 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         state (about a second) and add its departure to ``warning``, as
         :func:`dhfield.compare.pull_off` does.  The validity range of every
         model is checked regardless.
-
-    Returns
-    -------
-    CurveFit
 
     Notes
     -----

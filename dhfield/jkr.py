@@ -93,6 +93,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     Returns
     -------
     dhfield.records.PullOff
+        The pull-off point, nondimensional (Eqs. 32-35).
     """
     return pull_off_record("jkr", beta0, mu, _pull_off_state(control), control=control, sin_skew=1.0,
                            geometry="circle")
@@ -138,7 +139,19 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
-    """JKR contact radius on the stable branch for load W >= -(3/2) pi R dgamma [m].
+    """Compute the JKR contact radius on the stable branch [m].
+
+    Parameters
+    ----------
+    load : array_like
+        Load W >= -(3/2) pi R dgamma [N].
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+
+    Returns
+    -------
+    ndarray
+        The contact radius a [m].
 
     Notes
     -----
@@ -184,5 +197,18 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
-    """JKR pull-off force [N] (negative, tensile); see :func:`pull_off`."""
+    """Compute the JKR pull-off force [N] (negative, tensile).
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+    """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).load

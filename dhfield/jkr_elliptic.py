@@ -110,8 +110,19 @@ _SERIES_COEF = np.cumprod(np.concatenate([[1.0], (1.5 + _N[:-1]) / (_N[:-1] + 1.
 
 
 class EllipticLoadCurve(NamedTuple):
-    """Elliptical JKR states: ``load`` [N], ``semi_major`` a and ``semi_minor`` b [m],
-    ``approach`` [m], ``ellipticity`` b/a [-]."""
+    """Elliptical JKR states (also the pull-off state, :data:`EllipticPullOff`).
+
+    Parameters
+    ----------
+    load : ndarray
+        Load W [N].
+    semi_major, semi_minor : ndarray
+        Contact semi-axes a and b [m].
+    approach : ndarray
+        Approach delta [m].
+    ellipticity : ndarray
+        Contact ellipticity b/a [-].
+    """
 
     load: np.ndarray
     semi_major: np.ndarray
@@ -476,25 +487,30 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
                    beta0=None, control="load"):
-    """Elliptical JKR pull-off force [N] (negative); see :func:`pull_off`."""
+    """Compute the elliptical JKR pull-off force [N] (negative).
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+    radius_ratio, beta0 : array_like
+        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+    """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
                     beta0=beta0, control=control).load
 
 
 def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
-    """Pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
+    """Compute the pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
 
-    R = sqrt(R'R''); depends on R'/R'' only.  Equals 1 at the circle (and 5/9
-    under displacement control, the circular fixed-grips value).
-    """
-    b0 = _check_geometry(radius_ratio, beta0)
-    check_control(control)
-    st = _pull_off_state(b0, control)
-    return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
-
-
-def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
-    """beta_JKR(pull-off): the contact ellipticity b/a at pull-off [-].
+    R = sqrt(R'R''); depends on R'/R'' only.
 
     Parameters
     ----------
@@ -506,7 +522,29 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
     Returns
     -------
     ndarray
-        beta at pull-off, in [beta0, 1] [-]; 1 at the circle.
+        The ratio [-]: 1 at the circle (and 5/9 under displacement control, the
+        circular fixed-grips value).
+    """
+    b0 = _check_geometry(radius_ratio, beta0)
+    check_control(control)
+    st = _pull_off_state(b0, control)
+    return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
+
+
+def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
+    """Compute beta_JKR(pull-off), the contact ellipticity b/a at pull-off [-].
+
+    Parameters
+    ----------
+    radius_ratio, beta0 : array_like
+        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The ellipticity at pull-off, in [beta0, 1] [-]; 1 at the circle.
     """
     b0 = _check_geometry(radius_ratio, beta0)
     check_control(control)
@@ -514,10 +552,19 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
 
 
 def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
-    """Contact ellipticity b/a on the stable branch at load W* of Eq. (34) [-].
+    """Compute the contact ellipticity b/a on the stable branch at load W* of Eq. (34) [-].
 
-    ``load_star`` must be >= the load-controlled pull-off W*; beta -> beta0 (the
-    Hertz ellipticity) as W* -> infinity.
+    Parameters
+    ----------
+    load_star : array_like
+        Load W* of Eq. (34), >= the load-controlled pull-off W* [-].
+    radius_ratio, beta0 : array_like
+        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+
+    Returns
+    -------
+    ndarray
+        The ellipticity beta [-]; beta -> beta0 (the Hertz ellipticity) as W* -> infinity.
     """
     b0 = _check_geometry(radius_ratio, beta0)
     w = check_interval("load_star", load_star, -1.0, np.inf, high_open=True,

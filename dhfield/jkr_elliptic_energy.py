@@ -130,8 +130,19 @@ _COEF_I = [0.5 * np.pi * _C[:-3] * _C[j:j + _SERIES_TERMS] for j in range(4)]
 
 
 class EnergyEllipticLoadCurve(NamedTuple):
-    """Energy-minimising elliptical JKR states: ``load`` [N], ``semi_major`` a and
-    ``semi_minor`` b [m], ``approach`` [m], ``ellipticity`` b/a [-]."""
+    """Energy-minimising elliptical JKR states.
+
+    Parameters
+    ----------
+    load : ndarray
+        Load W [N].
+    semi_major, semi_minor : ndarray
+        Contact semi-axes a and b [m].
+    approach : ndarray
+        Approach delta [m].
+    ellipticity : ndarray
+        Contact ellipticity b/a [-].
+    """
 
     load: np.ndarray
     semi_major: np.ndarray
@@ -421,16 +432,43 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
                    beta0=None, control="load"):
-    """Energy-minimising elliptical JKR pull-off force [N] (negative); see :func:`pull_off`."""
+    """Compute the energy-minimising elliptical JKR pull-off force [N] (negative).
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+    radius_ratio, beta0 : array_like
+        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+    """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
                     beta0=beta0, control=control).load
 
 
 def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
-    """Pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
+    """Compute the pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
 
-    R = sqrt(R'R''); depends on R'/R'' only.  Equals 1 at the circle (5/9 under
-    displacement control, the circular fixed-grips value).
+    R = sqrt(R'R''); depends on R'/R'' only.
+
+    Parameters
+    ----------
+    radius_ratio, beta0 : array_like
+        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The ratio [-]: 1 at the circle (5/9 under displacement control, the
+        circular fixed-grips value).
     """
     b0 = _check_geometry(radius_ratio, beta0)
     check_control(control)
@@ -439,7 +477,7 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
 
 
 def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
-    """Contact ellipticity b/a at pull-off [-], in [beta0, 1]; 1 at the circle.
+    """Compute the contact ellipticity b/a at pull-off [-].
 
     Parameters
     ----------
@@ -447,6 +485,11 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
         R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
     control : {'load', 'displacement'}
         Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The ellipticity, in [beta0, 1] [-]; 1 at the circle.
     """
     b0 = _check_geometry(radius_ratio, beta0)
     check_control(control)

@@ -124,8 +124,17 @@ def _log_m_at(a_maugis, lam):
 
 
 class MaugisCurve(NamedTuple):
-    """MD states in Maugis units: ``load`` P = W/(pi R dgamma), ``approach`` D and
-    ``zone_ratio`` m = c/a (inf at A = 0) [-]."""
+    """MD states in Maugis units.
+
+    Parameters
+    ----------
+    load : ndarray
+        Load P = W/(pi R dgamma) [-].
+    approach : ndarray
+        Approach D [-].
+    zone_ratio : ndarray
+        Zone ratio m = c/a [-] (inf at A = 0).
+    """
 
     load: np.ndarray
     approach: np.ndarray
@@ -133,8 +142,19 @@ class MaugisCurve(NamedTuple):
 
 
 class MaugisPullOff(NamedTuple):
-    """MD pull-off in Maugis units: ``contact_radius`` A, ``load`` P, ``approach`` D,
-    ``zone_ratio`` m = c/a [-]."""
+    """MD pull-off in Maugis units.
+
+    Parameters
+    ----------
+    contact_radius : ndarray
+        Contact radius A [-].
+    load : ndarray
+        Load P = W/(pi R dgamma) [-].
+    approach : ndarray
+        Approach D [-].
+    zone_ratio : ndarray
+        Zone ratio m = c/a [-].
+    """
 
     contact_radius: np.ndarray
     load: np.ndarray
@@ -271,10 +291,12 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
         Hertz ellipticity and Tabor parameter (Eq. 35) [-]; the circle of R = sqrt(R'R'')
         depends on mu only; the record has their broadcast shape.
     control : {'load', 'displacement'}
+        Loading mode of the pull-off.
 
     Returns
     -------
     dhfield.records.PullOff
+        The pull-off point, nondimensional (Eqs. 32-35).
     """
     mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[1]
     return pull_off_record("md", beta0, mu, _pull_off_state(mu, control), control=control, sin_skew=1.0,
@@ -351,7 +373,22 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
                    control="load"):
-    """Maugis-Dugdale pull-off force [N]; see :func:`pull_off`."""
+    """Compute the Maugis-Dugdale pull-off force [N].
+
+    Parameters
+    ----------
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa], dgamma [J/m^2].
+    max_adhesive_stress : array_like
+        Dugdale stress sigma0 [Pa].
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+
+    Returns
+    -------
+    ndarray
+        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+    """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
                     control=control).load
 

@@ -375,9 +375,11 @@ def solve_adhesive_axis(a_star, mu, beta0, *, ellipticity=None):
 
     Returns
     -------
-    c_star, v : ndarray
-        Adhesive semi-major axis [-] and DH scaling factor [-].  Empty inputs give
-        empty outputs; masked arrays are rejected.
+    c_star : ndarray
+        Adhesive semi-major axis [-].  Empty inputs give empty outputs; masked
+        arrays are rejected.
+    v : ndarray
+        DH scaling factor [-].
     """
     a = check_contact_size_star("a_star", a_star)
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
@@ -385,10 +387,28 @@ def solve_adhesive_axis(a_star, mu, beta0, *, ellipticity=None):
 
 
 def adhesive_axis_state(a_star, beta0, mu, *, ellipticity=None):
-    """The core of :func:`solve_adhesive_axis` (c*, v), inputs not validated.
+    """Solve for (c*, v) like :func:`solve_adhesive_axis`, inputs not validated.
 
     For callers that validated ``a_star``, ``beta0``, ``mu`` (float arrays) once and solve
     many states (the closures' pull-off searches).
+
+    Parameters
+    ----------
+    a_star : ndarray
+        Contact semi-major axis a* = a/c_r [-].
+    beta0 : ndarray
+        Initial (Hertz) ellipticity [-].
+    mu : ndarray
+        Tabor parameter, Eq. (35) [-].
+    ellipticity : ndarray, optional
+        Ellipticity of both ellipses if different from beta0.
+
+    Returns
+    -------
+    c_star : ndarray
+        Adhesive semi-major axis [-].
+    v : ndarray
+        DH scaling factor [-].
     """
     ell = beta0 if ellipticity is None else ellipticity
     st = _state_chunked(a_star, mu, _shape(ell, sin_skew_angle(beta0)))
@@ -404,13 +424,26 @@ def _scalar(x):
 class LoadCurve:
     """A nondimensional load curve of the elliptical DH model (Eqs. 32-36).
 
-    Attributes (arrays over the contact size)
-    -----------------------------------------
-    a_star, b_star : contact semi-axes a/c_r, b/c_r
-    c_star, d_star : adhesive semi-axes c/c_r, d/c_r
-    v : DH scaling factor
-    W_star : load W sin(theta_skew)/(2 pi R Delta gamma), Eq. (34)
-    delta_star : approach delta/(c_r^2/R)
+    The array fields are arrays over the contact size.
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter, Eq. (35) [-].
+    beta0 : float
+        Initial (Hertz) ellipticity [-].
+    ellipticity : float
+        Ellipticity of both ellipses [-].
+    a_star, b_star : ndarray
+        Contact semi-axes a/c_r, b/c_r [-].
+    c_star, d_star : ndarray
+        Adhesive semi-axes c/c_r, d/c_r [-].
+    v : ndarray
+        DH scaling factor [-].
+    W_star : ndarray
+        Load W sin(theta_skew)/(2 pi R Delta gamma), Eq. (34) [-].
+    delta_star : ndarray
+        Approach delta/(c_r^2/R) [-].
     """
     mu: float
     beta0: float
@@ -424,6 +457,13 @@ class LoadCurve:
     delta_star: np.ndarray
 
     def as_dict(self):
+        """Return the curve as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            Field name -> value, arrays as lists.
+        """
         return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}
 
 
@@ -450,6 +490,7 @@ def load_curve(mu, beta0, a_star=None, *, ellipticity=None, n=200):
     Returns
     -------
     LoadCurve
+        The curve, nondimensional (Eqs. 32-36).
     """
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
     for name, val in (("mu", mu), ("beta0", beta0), ("ellipticity", ell)):
@@ -519,20 +560,23 @@ def _zero_contact_state(mu, shape):
 
 
 def jkr_limit_pull_off(beta0, *, control="load", ellipticity=None):
-    """Pull-off of the elliptical DH model in its JKR limit mu -> infinity (derived here).
+    """Compute the pull-off of the elliptical DH model in its JKR limit mu -> infinity (derived here).
 
     Parameters
     ----------
     beta0 : array_like
         Initial ellipticity in :data:`ELLIPTICITY_RANGE` [-].
     control : {"load", "displacement"}
+        Loading mode of the pull-off.
     ellipticity : array_like, optional
         Ellipticity of both ellipses if different from beta0 (as in :func:`pull_off`).
 
     Returns
     -------
-    W_star, a_star : ndarray
-        Pull-off load W* (Eq. 34) [-] and contact semi-major axis a* [-].
+    W_star : ndarray
+        Pull-off load W* (Eq. 34) [-].
+    a_star : ndarray
+        Contact semi-major axis a* at pull-off [-].
 
     Notes
     -----

@@ -52,7 +52,7 @@ SCAN_BLOCK = 8
 class SampledMinimum:
     """Minimum of a sampled path (see :func:`refine_sampled_minimum`).
 
-    Attributes
+    Parameters
     ----------
     x : float
         Abscissa of the refined minimum (the vertex of the parabola, or the sample
@@ -76,7 +76,7 @@ class SampledMinimum:
 class BranchEnd:
     """End of the stable branch found by :func:`stable_branch_end`.
 
-    Attributes
+    Parameters
     ----------
     x : ndarray
         Root of the derivative (the pull-off contact size); NaN where not ``found``.
@@ -140,6 +140,7 @@ def refine_sampled_minimum(x, y, *, first=True):
     Returns
     -------
     SampledMinimum
+        The refined minimum and where it was found.
 
     Notes
     -----
@@ -193,7 +194,7 @@ def refine_sampled_minimum(x, y, *, first=True):
 
 def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_extend=6, xtol=1e-13,
                       chunk_bytes=None, bytes_per_state=2048, block=SCAN_BLOCK):
-    """Largest contact size where ``derivative`` crosses from negative to non-negative.
+    """Find the largest contact size where ``derivative`` crosses from negative to non-negative.
 
     Vectorised over problems: ``scan`` has shape ``(m, n)`` (or ``(n,)`` shared by
     all problems), increasing along the last axis; ``args`` are arrays of shape
@@ -218,6 +219,8 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
         Where the derivative is still negative at the top of the scan (the stable
         branch is not reached), the problem's scan is multiplied by ``extend`` and
         evaluated again, at most ``max_extend`` times.
+    max_extend : int
+        Most extensions of the scan.
     xtol : float
         Absolute and relative tolerance of Chandrupatla's method on the root.
     chunk_bytes : int, optional
@@ -400,8 +403,10 @@ def scan_minimum(func, scan, args=(), *, xatol=1e-13):
 
     Returns
     -------
-    t, f : ndarray
-        Minimiser and minimum, with the problems' shape.
+    t : ndarray
+        Minimiser, with the problems' shape.
+    f : ndarray
+        Minimum, with the problems' shape.
 
     Notes
     -----

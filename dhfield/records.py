@@ -57,7 +57,7 @@ class _Record(Mapping):
 class PullOff(_Record):
     """The pull-off point of an analytic model (fields: :data:`dhfield.schema.PULL_OFF_KEYS`).
 
-    Attributes
+    Parameters
     ----------
     model : str
         A name of :data:`dhfield.compare.MODEL_NAMES`.
@@ -68,7 +68,7 @@ class PullOff(_Record):
     beta0, mu : ndarray or float
         Hertz ellipticity of the geometry and Tabor parameter (Eq. 35) [-].
     sin_skew : ndarray or float
-        sin(theta_skew) of the load normalisation, Eq. (34) [-].
+        The sin(theta_skew) of the load normalisation, Eq. (34) [-].
     W_star : ndarray or float
         Pull-off load W sin(theta_skew)/(2 pi R dgamma), Eq. (34) (negative: tensile) [-].
     a_star, b_star, c_star, d_star : ndarray or float
@@ -78,7 +78,7 @@ class PullOff(_Record):
     delta_star : ndarray or float
         Approach in c_r^2/R [-].
     ellipticity, adhesive_ellipticity : ndarray or float
-        b/a and d/c at pull-off [-].
+        Ellipticities b/a and d/c at pull-off [-].
     at_zero_contact : ndarray or bool
         True where the pull-off is reached as the contact vanishes.
     warning : ndarray or str
@@ -110,7 +110,7 @@ class PullOff(_Record):
 class LoadCurve(_Record):
     """A load curve of an analytic model (fields: the schema's load-curve keys).
 
-    Attributes
+    Parameters
     ----------
     model, geometry : str
         As in :class:`PullOff`.
@@ -151,7 +151,7 @@ def _ratio(num, den):
 
 
 def pull_off_record(model, beta0, mu, state, *, control, sin_skew, geometry, warning=""):
-    """The :class:`PullOff` of a model from its state at pull-off.
+    """Build the :class:`PullOff` of a model from its state at pull-off.
 
     Parameters
     ----------
@@ -165,9 +165,11 @@ def pull_off_record(model, beta0, mu, state, *, control, sin_skew, geometry, war
         ``v`` (default NaN), ``ellipticity`` (default b*/a*, 1 at a* = 0) and
         ``at_zero_contact`` (default a* = 0).
     control : {'load', 'displacement'}
+        Loading mode of the pull-off.
     sin_skew : array_like
-        sin(theta_skew) of Eq. (34) (1 for the circle) [-].
+        The sin(theta_skew) of Eq. (34) (1 for the circle) [-].
     geometry : {'ellipse', 'circle'}
+        The contact's shape.
     warning : str or array of str
         The model's own warning ("" for none).
 
@@ -193,18 +195,26 @@ def pull_off_record(model, beta0, mu, state, *, control, sin_skew, geometry, war
 
 
 def load_curve_record(model, beta0, mu, arrays, *, sin_skew, geometry):
-    """The :class:`LoadCurve` of a model from its arrays over the contact size.
+    """Build the :class:`LoadCurve` of a model from its arrays over the contact size.
 
     Parameters
     ----------
     model : str
+        The model's name.
     beta0, mu : float
         The inputs [-].
     arrays : mapping
         ``a_star``, ``W_star``, ``delta_star`` and, where the model has them, ``b_star``
         (default a*), ``c_star``, ``d_star``, ``v`` (default NaN).
     sin_skew : float
+        The sin(theta_skew) of Eq. (34) (1 for the circle) [-].
     geometry : {'ellipse', 'circle'}
+        The contact's shape.
+
+    Returns
+    -------
+    LoadCurve
+        The curve, nondimensional.
     """
     a = np.asarray(arrays["a_star"], float)
     nan = np.full(a.shape, _NAN)

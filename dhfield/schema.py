@@ -52,7 +52,7 @@ __all__ = [
 class Variable:
     """Metadata of one named quantity.
 
-    Attributes
+    Parameters
     ----------
     units : str
         CF/UDUNITS unit of the quantity in SI ("1": dimensionless).
@@ -247,7 +247,7 @@ def _get(name: str) -> Variable:
 
 
 def attrs(name: str, nondimensional: bool = False) -> dict:
-    """xarray-ready attributes of a named quantity.
+    """Build the xarray-ready attributes of a named quantity.
 
     Parameters
     ----------
@@ -274,17 +274,54 @@ def attrs(name: str, nondimensional: bool = False) -> dict:
 
 
 def units(name: str, nondimensional: bool = False) -> str:
-    """CF/UDUNITS unit string of a named quantity ("1": dimensionless)."""
+    """Return the CF/UDUNITS unit string of a named quantity ("1": dimensionless).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`VARIABLES`.
+    nondimensional : bool, default False
+        True for the quantity in the paper's units ("1" unless dimensionless anyway).
+
+    Returns
+    -------
+    str
+        The unit string.
+    """
     return attrs(name, nondimensional)["units"]
 
 
 def units_of(keys, nondimensional: bool = False) -> dict:
-    """name -> unit string for a sequence of names (e.g. a record's keys)."""
+    """Map each of a sequence of names (e.g. a record's keys) to its unit string.
+
+    Parameters
+    ----------
+    keys : iterable of str
+        Names of :data:`VARIABLES`.
+    nondimensional : bool, default False
+        True for the quantity in the paper's units ("1" unless dimensionless anyway).
+
+    Returns
+    -------
+    dict
+        Name -> unit string.
+    """
     return {k: units(k, nondimensional) for k in keys}
 
 
 def order_dims(dims) -> tuple:
-    """``dims`` sorted into :data:`DIM_ORDER` (unknown names keep their order, last)."""
+    """Sort ``dims`` into :data:`DIM_ORDER` (unknown names keep their order, last).
+
+    Parameters
+    ----------
+    dims : iterable of str
+        Dimension names.
+
+    Returns
+    -------
+    tuple of str
+        The sorted names.
+    """
     dims = tuple(dims)
     known = [d for d in DIM_ORDER if d in dims]
     return tuple(known) + tuple(d for d in dims if d not in DIM_ORDER)

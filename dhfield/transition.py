@@ -36,17 +36,17 @@ MAUGIS_PER_TABOR = 2.0 * (9.0 / (16.0 * np.pi)) ** (1.0 / 3.0)
 
 
 def maugis_parameter(mu):
-    """Maugis' lambda for the paper's transition parameter mu of Eq. (35) [-].
+    """Convert the paper's transition parameter mu of Eq. (35) to Maugis' lambda [-].
 
     Parameters
     ----------
     mu : array_like
-        mu = sigma0 (R/(E*^2 dgamma))^(1/3) > 0, Eq. (35) [-].
+        Tabor parameter mu = sigma0 (R/(E*^2 dgamma))^(1/3) > 0, Eq. (35) [-].
 
     Returns
     -------
     ndarray
-        lambda = 2 sigma0 (R/(pi dgamma K^2))^(1/3), K = 4E*/3 [-].
+        Maugis' lambda = 2 sigma0 (R/(pi dgamma K^2))^(1/3), K = 4E*/3 [-].
 
     Notes
     -----
@@ -58,7 +58,18 @@ def maugis_parameter(mu):
 
 
 def tabor_from_maugis(lam):
-    """Inverse of :func:`maugis_parameter`: mu = lambda/(2 (9/(16 pi))^(1/3)) [-]."""
+    """Convert Maugis' lambda to the paper's mu (the inverse of :func:`maugis_parameter`) [-].
+
+    Parameters
+    ----------
+    lam : array_like
+        Maugis' transition parameter lambda > 0 [-].
+
+    Returns
+    -------
+    ndarray
+        The Tabor parameter mu = lambda/(2 (9/(16 pi))^(1/3)) of Eq. (35) [-].
+    """
     lam = check_positive("lam", lam, "Maugis transition parameter, dimensionless")
     out = lam / MAUGIS_PER_TABOR
     return out[()] if out.ndim == 0 else out

@@ -59,7 +59,13 @@ VALIDITY_RANGES = {
 
 
 def validity_table() -> str:
-    """One line per model: its validated beta0 and mu (for ``--help`` and the README)."""
+    """Tabulate each model's validated beta0 and mu (for ``--help`` and the README).
+
+    Returns
+    -------
+    str
+        One line per model.
+    """
     return "\n".join(f"  {name:24s} beta0 {_interval(*b):14s} mu {_interval(*m)}"
                      for name, (b, m) in VALIDITY_RANGES.items())
 
@@ -105,7 +111,18 @@ def validity_message(model, mu, beta0):
 
 
 def join_warnings(*messages):
-    """Join warning strings (or object arrays of them, broadcast) with '; ', skipping empty ones."""
+    """Join warning strings (or object arrays of them, broadcast) with '; ', skipping empty ones.
+
+    Parameters
+    ----------
+    *messages : str or array_like of str
+        The warnings, broadcast together.
+
+    Returns
+    -------
+    str or ndarray of str
+        The joined warnings, with the broadcast shape.
+    """
     parts = np.broadcast_arrays(*(np.asarray(m, dtype=object) for m in messages))
     out = np.array(["; ".join(p for p in ps if p) for ps in zip(*(q.ravel() for q in parts))],
                    dtype=object).reshape(parts[0].shape)

@@ -28,25 +28,28 @@ from verification import doc_counts as dc  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 
 #: numpydoc validation must find zero errors in these modules (their docstrings were brought to
-#: the standard with the documentation site).
+#: the standard with the documentation site).  A new public module goes here.
 STRICT = (
-    "dhfield.geometry", "dhfield.elliptic", "dhfield.hertz", "dhfield.double_hertz", "dhfield.adhesion",
-    "dhfield.periphery", "dhfield.eq30", "dhfield.plotting", "dhfield.io.cf", "dhfield.io.table",
-    "dhfield.io.field", "dhfield.io.periphery", "dhfield.sweep.store",
+    "dhfield", "dhfield.adhesion", "dhfield.adhesion_map", "dhfield.bem", "dhfield.bem.continuation",
+    "dhfield.bem.laws", "dhfield.bem.path", "dhfield.cli", "dhfield.closure", "dhfield.compare",
+    "dhfield.dh_circular", "dhfield.dimensional", "dhfield.dmt", "dhfield.double_hertz",
+    "dhfield.dugdale_separation", "dhfield.elliptic", "dhfield.elliptic_transition", "dhfield.eq30",
+    "dhfield.fields", "dhfield.fit", "dhfield.geometry", "dhfield.hertz", "dhfield.io",
+    "dhfield.io.adhesion_map", "dhfield.io.cf", "dhfield.io.compare", "dhfield.io.curves", "dhfield.io.cycle",
+    "dhfield.io.field", "dhfield.io.fit", "dhfield.io.periphery", "dhfield.io.table", "dhfield.jkr",
+    "dhfield.jkr_elliptic", "dhfield.jkr_elliptic_energy", "dhfield.maugis_dugdale", "dhfield.model",
+    "dhfield.periphery", "dhfield.plotting", "dhfield.pull_off_search", "dhfield.records", "dhfield.schema",
+    "dhfield.sweep", "dhfield.sweep.config", "dhfield.sweep.engine", "dhfield.sweep.store",
+    "dhfield.sweep.tasks", "dhfield.transition", "dhfield.validity",
 )
 
-#: Modules not yet held to zero (owned by other work in progress this session: the BEM, model,
-#: comparison and fit refactors, ...).  Their counts are printed, not asserted, and so are those of
-#: any public module in neither list.  This list only shrinks: fix a module's docstrings (the
-#: printed counts say which are clean), then move it to STRICT.
+#: Modules not yet held to zero (being refactored by other work in progress: the BEM solver,
+#: its branch and pull-off, the adhesive start, compliance, the solution files).  Their counts are
+#: printed, not asserted.  This list only shrinks: fix a module's docstrings (the printed counts
+#: say which are clean), then move it to STRICT.  Never add a new module here.
 ALLOWED_ERRORS = (
-    "dhfield", "dhfield.bem", "dhfield.bem.adhesive", "dhfield.bem.continuation", "dhfield.bem.laws",
-    "dhfield.bem.operator", "dhfield.bem.path", "dhfield.bem.pull_off", "dhfield.bem.solver",
-    "dhfield.bem.state", "dhfield.cli", "dhfield.closure", "dhfield.compare", "dhfield.dh_circular",
-    "dhfield.dimensional", "dhfield.dmt", "dhfield.fields", "dhfield.fit", "dhfield.io", "dhfield.io.compare",
-    "dhfield.io.curves", "dhfield.io.fit", "dhfield.io.solution", "dhfield.jkr", "dhfield.jkr_elliptic",
-    "dhfield.maugis_dugdale", "dhfield.model", "dhfield.pull_off_search", "dhfield.schema", "dhfield.sweep",
-    "dhfield.sweep.config", "dhfield.sweep.engine", "dhfield.sweep.tasks", "dhfield.transition",
+    "dhfield.adhesive_start", "dhfield.bem.branch", "dhfield.bem.operator", "dhfield.bem.pull_off",
+    "dhfield.bem.solver", "dhfield.bem.state", "dhfield.compliance", "dhfield.io.solution",
 )
 
 
@@ -75,13 +78,18 @@ def test_doctests_in_public_docstrings(api):
 
 # --------------------------------------------------------------------------- numpydoc
 def test_numpydoc_validation(api):
-    """Zero numpydoc errors in STRICT's modules; the others' counts are printed (-s shows them)."""
+    """Zero numpydoc errors in STRICT's modules; ALLOWED_ERRORS' counts are printed (-s shows them)."""
     errors = dc.validation_errors(api=api)
-    others = {m: len(errors.get(m, [])) for m in sorted(set(api) - set(STRICT))}
-    print("numpydoc errors outside STRICT:", others, "total", sum(others.values()))
-    print("not in ALLOWED_ERRORS either:", sorted(set(others) - set(ALLOWED_ERRORS)))
-    print("clean, could move to STRICT:", [m for m, n in others.items() if n == 0])
-    assert set(STRICT) <= set(api), f"not public modules: {sorted(set(STRICT) - set(api))}"
+    allowed = {m: len(errors.get(m, [])) for m in sorted(ALLOWED_ERRORS)}
+    print("numpydoc errors in ALLOWED_ERRORS:", allowed, "total", sum(allowed.values()))
+    print("clean, could move to STRICT:", [m for m, n in allowed.items() if n == 0])
+    assert not set(STRICT) & set(ALLOWED_ERRORS), \
+        f"in both STRICT and ALLOWED_ERRORS: {sorted(set(STRICT) & set(ALLOWED_ERRORS))}"
+    listed = set(STRICT) | set(ALLOWED_ERRORS)
+    assert listed <= set(api), f"not public modules (remove them from tests/test_docs.py): {sorted(listed - set(api))}"
+    unlisted = sorted(set(api) - listed)
+    assert not unlisted, (f"public modules in neither STRICT nor ALLOWED_ERRORS: {unlisted}; add each to STRICT "
+                          "in tests/test_docs.py (and fix its numpydoc errors: python -m verification.doc_counts)")
     strict = [f"{name}: {code} {msg}" for m in STRICT for name, code, msg in errors.get(m, [])]
     assert not strict, f"{len(strict)} numpydoc errors:\n" + "\n".join(strict)
 

@@ -70,10 +70,20 @@ MAX_SHIFT_RANGES = 4.0
 
 
 def adhesive_force(state: ContactState) -> float:
-    """Adhesive force of a solved state, the integral of the adhesive stress [force].
+    """Compute the adhesive force of a solved state, the integral of the adhesive stress [force].
 
     For the Dugdale law sigma0 x (area of contact U cohesive zone); for the
     exponential law the integral of sigma(h) (sigma0 in contact).
+
+    Parameters
+    ----------
+    state : ContactState
+        A solved state.
+
+    Returns
+    -------
+    float
+        The adhesive force [force].
     """
     if not isinstance(state, ContactState) or state.law is None:
         raise ValueError("state must be a ContactState with a traction law (adhesive)")
@@ -120,8 +130,10 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
         Warm start (a state of the same branch, e.g. the previous one).
     approach : float
         First guess of the approach [length].
-    tol, max_iter
-        As in :func:`dhfield.bem.solver.solve_problem`; the approach is
+    tol : float
+        Tolerance [-], as in :func:`dhfield.bem.solver.solve_problem`.
+    max_iter : int
+        Iteration cap, as in :func:`dhfield.bem.solver.solve_problem`; the approach is
         converged when the rigid shift of the gap that restores the force is
         below ``tol`` times the law's range.
 
@@ -188,7 +200,7 @@ def _secant(prob, prev, last, t):
 class FoldSearch:
     """The end of a contact branch found along the adhesive force.
 
-    Attributes
+    Parameters
     ----------
     kind : str
         'fold' (interior minimum of the approach: the jump under displacement
@@ -311,7 +323,7 @@ def fit_fold(adhesive_forces, approaches, loads, *, contact_loss=None) -> FoldSe
     Returns
     -------
     FoldSearch
-        kind 'fold' (interior minimum of delta), 'contact loss' (delta still
+        Of kind 'fold' (interior minimum of delta), 'contact loss' (delta still
         falls at the loss of contact) or 'failed'; ``nearest`` is None.
 
     Notes
@@ -394,8 +406,10 @@ def fold_by_adhesive_force(prob: AdhesiveProblem, start: ContactState, *, steps=
         in coarse steps (>= 1).
     refine_factor : int
         The window is sampled with steps dF/refine_factor (>= 1).
-    tol, max_iter
-        As in :func:`solve_at_adhesive_force`.
+    tol : float
+        Tolerance [-], as in :func:`solve_at_adhesive_force`.
+    max_iter : int
+        Iteration cap, as in :func:`solve_at_adhesive_force`.
     record : callable, optional
         ``record(state, phase)`` is called for every solved state (phase
         'continuation' for the coarse steps, 'fold' for the window).
@@ -403,6 +417,8 @@ def fold_by_adhesive_force(prob: AdhesiveProblem, start: ContactState, *, steps=
     Returns
     -------
     FoldSearch
+        The fold, the loss of contact or the failure, with ``nearest`` the solved
+        state nearest to it.
 
     Notes
     -----

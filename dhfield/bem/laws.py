@@ -160,17 +160,47 @@ class DugdaleLaw(_TwoParameterLaw):
     _labels = ("Dugdale stress sigma0, Pa", "cut-off gap h0, m")
 
     def stress(self, gap):
-        """Tensile adhesive stress sigma(h) >= 0 at gap ``gap`` >= 0 [Pa]."""
+        """Evaluate the tensile adhesive stress sigma(h) >= 0 [Pa].
+
+        Parameters
+        ----------
+        gap : array_like
+            Gap h >= 0 [m].
+
+        Returns
+        -------
+        ndarray
+            The stress [Pa].
+        """
         g = np.asarray(gap, dtype=float)
         return np.where(g < self.range, self.max_stress, 0.0)
 
     def energy(self, gap):
-        """Adhesive energy per unit area still to be paid to separate to infinity,
-        ``int_h^inf sigma dh`` = sigma0 max(h0 - h, 0) [J/m^2]."""
+        """Evaluate the adhesive energy per unit area still to be paid to separate to infinity.
+
+        ``int_h^inf sigma dh`` = sigma0 max(h0 - h, 0) [J/m^2].
+
+        Parameters
+        ----------
+        gap : array_like
+            Gap h >= 0 [m].
+
+        Returns
+        -------
+        ndarray
+            The energy per unit area [J/m^2].
+        """
         g = np.asarray(gap, dtype=float)
         return self.max_stress * np.maximum(self.range - g, 0.0)
 
     def as_dict(self) -> dict:
+        """Return the law as a mapping.
+
+        Returns
+        -------
+        dict
+            ``law`` (the name), ``max_stress`` [Pa] and ``range`` [m].
+        """
         return {"law": self.name, "max_stress": self.max_stress, "range": self.range}
 
 
@@ -204,20 +234,60 @@ class ExponentialLaw(_TwoParameterLaw):
     _labels = ("peak stress sigma0, Pa", "decay length rho, m")
 
     def stress(self, gap):
-        """Tensile adhesive stress sigma(h) >= 0 at gap ``gap`` >= 0 [Pa]."""
+        """Evaluate the tensile adhesive stress sigma(h) >= 0 [Pa].
+
+        Parameters
+        ----------
+        gap : array_like
+            Gap h >= 0 [m].
+
+        Returns
+        -------
+        ndarray
+            The stress [Pa].
+        """
         g = np.maximum(np.asarray(gap, dtype=float), 0.0)
         return self.max_stress * np.exp(-g / self.range)
 
     def stress_slope(self, gap):
-        """d sigma/dh [Pa/m] (<= 0)."""
+        """Evaluate the slope d sigma/dh <= 0 [Pa/m].
+
+        Parameters
+        ----------
+        gap : array_like
+            Gap h >= 0 [m].
+
+        Returns
+        -------
+        ndarray
+            The slope [Pa/m].
+        """
         return -self.stress(gap) / self.range
 
     def energy(self, gap):
-        """``int_h^inf sigma dh`` = sigma0 rho exp(-h/rho) [J/m^2]."""
+        """Evaluate ``int_h^inf sigma dh`` = sigma0 rho exp(-h/rho) [J/m^2].
+
+        Parameters
+        ----------
+        gap : array_like
+            Gap h >= 0 [m].
+
+        Returns
+        -------
+        ndarray
+            The energy per unit area [J/m^2].
+        """
         g = np.maximum(np.asarray(gap, dtype=float), 0.0)
         return self.work_of_adhesion * np.exp(-g / self.range)
 
     def as_dict(self) -> dict:
+        """Return the law as a mapping.
+
+        Returns
+        -------
+        dict
+            ``law`` (the name), ``max_stress`` [Pa] and ``range`` [m].
+        """
         return {"law": self.name, "max_stress": self.max_stress, "range": self.range}
 
 
@@ -232,7 +302,22 @@ def _law_names():
 
 
 def law_from_name(name: str, max_stress, work_of_adhesion=1.0):
-    """Build a law by name ('dugdale' or 'exponential') from sigma0 and Delta gamma."""
+    """Build a law by name ('dugdale' or 'exponential') from sigma0 and Delta gamma.
+
+    Parameters
+    ----------
+    name : {"dugdale", "exponential"}
+        The law.
+    max_stress : float
+        Peak stress sigma0 > 0 [Pa].
+    work_of_adhesion : float, default 1.0
+        Delta gamma > 0 [J/m^2].
+
+    Returns
+    -------
+    DugdaleLaw or ExponentialLaw
+        The law.
+    """
     if name not in LAWS:
         raise ValueError(f"law must be one of {_law_names()}; got {name!r}")
     return LAWS[name].from_work_of_adhesion(max_stress, work_of_adhesion)
@@ -242,7 +327,23 @@ __all__ += ["LAWS", "law_from_name"]
 
 
 def check_law(law):
-    """Return ``law`` if it is a Dugdale or exponential law or None (no adhesion), else raise ValueError."""
+    """Check that ``law`` is a Dugdale or exponential law or None (no adhesion).
+
+    Parameters
+    ----------
+    law : DugdaleLaw, ExponentialLaw or None
+        The law to check.
+
+    Returns
+    -------
+    DugdaleLaw, ExponentialLaw or None
+        ``law``, unchanged.
+
+    Raises
+    ------
+    ValueError
+        For anything else.
+    """
     if law is None or isinstance(law, (DugdaleLaw, ExponentialLaw)):
         return law
     raise ValueError(f"law must be a DugdaleLaw, an ExponentialLaw or None (no adhesion); got {law!r}")

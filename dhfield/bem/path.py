@@ -33,18 +33,19 @@ from .continuation import FOLD_STEPS, fold_by_adhesive_force
 from .solver import DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction
 
 __all__ = ["unloading_path", "UnloadingPath", "fold_of_branch", "Fold", "PathProgress", "PathOptions",
-           "PathStart", "bracket_search", "marching_path", "continuation_path"]
+           "PathStart", "bracket_search", "marching_path", "continuation_path", "loading_steps"]
 
 
 @dataclass(frozen=True)
 class Fold:
     """The fold of a sampled unloading branch (displacement-control pull-off).
 
-    Attributes
+    Parameters
     ----------
-    load, approach : float
-        Load W [force] and approach delta [length] at the fold, or of the last
-        state when no fold is bracketed.
+    load : float
+        Load W at the fold, or of the last state when no fold is bracketed [force].
+    approach : float
+        Approach delta at the fold, or of the last state when no fold is bracketed [length].
     load_error : float
         Error estimate of ``load`` [force]: the change of the vertex when the
         last state is left out (NaN when it cannot be estimated).
@@ -132,19 +133,27 @@ def fold_of_branch(loads, approaches, *, points=5) -> Fold:
 class PathOptions:
     """Settings of a path (:func:`unloading_path`) and of the pull-off routes on it.
 
-    Attributes
+    Parameters
     ----------
-    n_loading : int
+    n_loading : int, default 3
         Loading steps from approach 0 (first touch) to ``approach_max`` (1-10000).
-    refine_levels : int
+    refine_levels : int, default 2
         Refinements of the pull-off bracket (0-20).
-    refine_factor : int
+    refine_factor : int, default 4
         Step division per refinement (2-100).
-    max_steps : int
+    max_steps : int, default 200
         Cap on unloading states (2-100000).
-    tol, max_iter, symmetric, threads, reduced_modulus
-        As in :func:`dhfield.bem.solve_adhesive`.
-    keep_states : bool
+    tol : float, default DEFAULT_TOL
+        Solver tolerance [-], as in :func:`dhfield.bem.solve_adhesive`.
+    max_iter : int, default DEFAULT_MAX_ITER
+        Iteration cap per state, as in :func:`dhfield.bem.solve_adhesive`.
+    symmetric : bool, optional
+        Quadrant symmetry, as in :func:`dhfield.bem.solve_adhesive`.
+    threads : int, optional
+        FFT worker threads, as in :func:`dhfield.bem.solve_adhesive`.
+    reduced_modulus : float, default 1.0
+        E* [stress], as in :func:`dhfield.bem.solve_adhesive`.
+    keep_states : bool, default False
         Keep every ContactState (memory: three full-grid arrays per state).
     progress : bool, optional
         Progress line on stderr (default: when stderr is a terminal).
@@ -163,7 +172,18 @@ class PathOptions:
     progress: bool | None = None
 
     def checked(self) -> "PathOptions":
-        """These options with every count and tolerance checked (ValueError naming the first bad one)."""
+        """Check every count and tolerance of these options.
+
+        Returns
+        -------
+        PathOptions
+            The options, converted to their types.
+
+        Raises
+        ------
+        ValueError
+            Naming the first bad option and its valid range.
+        """
         return replace(
             self, n_loading=check_count("n_loading", self.n_loading, 1, 10_000, "loading steps"),
             refine_levels=check_count("refine_levels", self.refine_levels, 0, 20,
@@ -175,7 +195,23 @@ class PathOptions:
 
     @classmethod
     def from_keywords(cls, options) -> "PathOptions":
-        """Options from keyword arguments (ValueError naming an unknown one)."""
+        """Build checked options from keyword arguments.
+
+        Parameters
+        ----------
+        options : dict
+            Option name -> value.
+
+        Returns
+        -------
+        PathOptions
+            The checked options.
+
+        Raises
+        ------
+        ValueError
+            Naming an unknown option.
+        """
         known = {f.name for f in fields(cls)}
         for name in options:
             if name not in known:
@@ -187,7 +223,7 @@ class PathOptions:
 class PathStart:
     """Where a path starts, chosen by the caller: the cold start of the bracket search.
 
-    Attributes
+    Parameters
     ----------
     approach : float, optional
         Approach of the first state (e.g. an analytic model's load-control pull-off) [length];
@@ -203,10 +239,22 @@ class PathStart:
     warm_start: object = None
 
     def cold_start(self, branch, phase="unloading"):
-        """Solve the first state at :attr:`approach`: (state or None when it is not a converged contact state).
+        """Solve the first state at :attr:`approach`.
 
         From the warm start at that approach, else from :attr:`stress`, else from the rigid gap;
         a state that is not a converged contact state is kept, flagged 'discarded'.
+
+        Parameters
+        ----------
+        branch : dhfield.bem.branch.Branch
+            The branch that solves and records the state.
+        phase : str, default "unloading"
+            Phase recorded with the state.
+
+        Returns
+        -------
+        ContactState or None
+            The state, or None when it is not a converged contact state.
         """
         guess = branch.external(self.approach)
         if guess is None and self.stress is not None:
@@ -219,13 +267,31 @@ class PathStart:
 
 
 def bracket_search(branch, start, step, options):
-    """Load control: bracket the load minimum around ``start.approach`` (a handful of states).
+    """Bracket the load minimum around ``start.approach`` under load control (a handful of states).
 
-    Returns ('interior' | 'branch end' | 'failed', indices).  The cold start, then steps of
+    The cold start, then steps of
     ``step`` up or down (:meth:`Branch.extend_until_interior`) until the discrete minimum is
     interior, then parabola vertices (:meth:`Branch.refine_vertex`) to the spacing the
     marching refinement reaches; when the branch ends below the minimum (the jump comes
     first), its bracket is refined with uniform sub-steps (:meth:`Branch.refine_bracket`).
+
+    Parameters
+    ----------
+    branch : dhfield.bem.branch.Branch
+        The branch that solves and records the states.
+    start : PathStart
+        The cold start (its ``approach`` must be set).
+    step : float
+        Approach step [length].
+    options : PathOptions
+        Checked settings.
+
+    Returns
+    -------
+    outcome : {"interior", "branch end", "failed"}
+        How the search ended.
+    indices : list of int
+        Records of the bracket on ``branch``.
     """
     first = start.cold_start(branch)
     if first is None:
@@ -266,8 +332,27 @@ def loading_steps(branch, approach_max, n_loading):
 
 
 def marching_path(branch, approach_max, step, options):
-    """Load control: loading to ``approach_max``, unloading by ``step`` until contact is lost, then
-    the bracket of the load minimum re-solved ``refine_levels`` times with finer steps: the indices."""
+    """March a load-control path: loading, then unloading until contact is lost.
+
+    Loading to ``approach_max``, unloading by ``step`` until contact is lost, then
+    the bracket of the load minimum re-solved ``refine_levels`` times with finer steps.
+
+    Parameters
+    ----------
+    branch : dhfield.bem.branch.Branch
+        The branch that solves and records the states.
+    approach_max : float
+        Largest approach [length].
+    step : float
+        Unloading approach step [length].
+    options : PathOptions
+        Checked settings.
+
+    Returns
+    -------
+    list of int
+        Records of the final bracket on ``branch``.
+    """
     st = loading_steps(branch, approach_max, options.n_loading)
     delta = approach_max
     k, st = branch.solve(delta, st, "unloading")
@@ -295,11 +380,28 @@ FOLD_NOT_FOUND_NOTE = ("no fold of the approach (nor a loss of contact) was brac
 
 
 def continuation_path(branch, start, approach_max, options) -> UnloadingPath:
-    """Displacement control: a start state, then the branch by adhesive force through its fold.
+    """Follow the branch by adhesive force through its fold (displacement control).
 
     The start is solved at ``start.approach`` (else the loading steps end at
     ``approach_max``); :func:`dhfield.bem.continuation.fold_by_adhesive_force` records
     every state of the branch on ``branch``.
+
+    Parameters
+    ----------
+    branch : dhfield.bem.branch.Branch
+        The branch that solves and records the states.
+    start : PathStart
+        The cold start.
+    approach_max : float
+        Largest approach of the loading steps [length].
+    options : PathOptions
+        Checked settings.
+
+    Returns
+    -------
+    UnloadingPath
+        The path and its displacement-control pull-off (NaN, not converged, when
+        no contact state could be started).
     """
     first = start.cold_start(branch) if start.approach is not None else None
     if first is None:
@@ -396,6 +498,7 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     Returns
     -------
     UnloadingPath
+        The states' summaries and the pull-off of ``control``.
 
     Notes
     -----

@@ -23,6 +23,13 @@ SUBCOMMANDS = ["curve", "pulloff", "cycle", "field", "compare", "periphery", "sw
 
 
 def build_parser() -> OneLineParser:
+    """Build the ``dhfield`` argument parser with every subcommand.
+
+    Returns
+    -------
+    OneLineParser
+        The parser (bad arguments: one line on stderr, exit status 2).
+    """
     from .. import __version__
 
     parser = OneLineParser(prog="dhfield", description="Extended double-Hertz model of an adhesive "
@@ -58,7 +65,7 @@ def _stdout_closed() -> int:
 
 
 def main(argv=None) -> int:
-    """Run the CLI; return the exit status.
+    """Run the CLI.
 
     0 success; 141 (128 + SIGPIPE) silently when the reader of stdout went away
     (``dhfield curve ... | head``), as a command killed by SIGPIPE; 2 bad input (one line on stderr: usage, ``ValueError``, ``OSError``
@@ -67,6 +74,16 @@ def main(argv=None) -> int:
     stopped the run (130 for Ctrl-C, 143 for SIGTERM, 129 for SIGHUP), after any
     temporary file was removed.  ``--out`` is validated before anything is
     computed (:func:`dhfield.cli._common.check_output_argument`).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments; default ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        The exit status.
     """
     import os
 

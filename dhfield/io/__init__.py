@@ -78,6 +78,11 @@ class SignalExit(BaseException):
 
     A ``BaseException`` like ``KeyboardInterrupt``, so ``except Exception``
     does not swallow it.  ``exit_status`` is the shell convention 128 + signal.
+
+    Parameters
+    ----------
+    signum : int
+        The signal number.
     """
 
     def __init__(self, signum: int):
@@ -86,6 +91,7 @@ class SignalExit(BaseException):
 
     @property
     def exit_status(self) -> int:
+        """Exit status of a process killed by the signal: 128 + signal number."""
         return 128 + self.signum
 
 
@@ -197,6 +203,7 @@ def validate_output_path(path, suffixes=None, name: str = "out") -> Path:
     Returns
     -------
     pathlib.Path
+        ``path``, as a Path.
 
     Raises
     ------
@@ -247,10 +254,22 @@ def validate_output_path(path, suffixes=None, name: str = "out") -> Path:
 
 
 def require_utf8_path(text: str, label: str = "out (output path)") -> None:
-    """ValueError if ``text`` is not valid UTF-8: the netCDF library takes UTF-8 file names only.
+    """Refuse a file name that is not valid UTF-8: the netCDF library takes UTF-8 file names only.
 
     A name given in another encoding reaches Python with surrogate escapes
     (PEP 383); netCDF4 then failed with a bare codec error after the computation.
+
+    Parameters
+    ----------
+    text : str
+        The file name.
+    label : str, default "out (output path)"
+        The parameter named in the error message.
+
+    Raises
+    ------
+    ValueError
+        If ``text`` is not valid UTF-8.
     """
     try:
         str(text).encode("utf-8")
@@ -262,7 +281,20 @@ def require_utf8_path(text: str, label: str = "out (output path)") -> None:
 
 
 def check_writable(path, name: str = "out") -> Path:
-    """:func:`validate_output_path` without a suffix check (kept for existing callers)."""
+    """Check that ``path`` can be written, without a suffix check (kept for existing callers).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output file.
+    name : str, default "out"
+        The parameter name used in error messages.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``, as a Path (:func:`validate_output_path`).
+    """
     return validate_output_path(path, None, name)
 
 
@@ -282,6 +314,18 @@ def atomic_path(path, name: str = "out"):
     or ``0666 & ~umask`` for a new name.  If the block raises, or SIGINT,
     SIGTERM or SIGHUP arrives, the temporary file is removed; the signal is
     then re-delivered to the previous handler.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The final file.
+    name : str, default "out"
+        The parameter name used in error messages.
+
+    Yields
+    ------
+    pathlib.Path
+        The temporary file to write.
     """
     p = validate_output_path(path, None, name)
     parent = p.parent if str(p.parent) else Path(".")
@@ -304,7 +348,20 @@ def atomic_path(path, name: str = "out"):
 
 
 def provenance_attrs(title: str, **parameters) -> dict:
-    """CF-style global attributes plus every input parameter as an attribute."""
+    """Build CF-style global attributes plus every input parameter as an attribute.
+
+    Parameters
+    ----------
+    title : str
+        The file's title.
+    **parameters
+        Input parameters, stored as ``param_<name>`` (None skipped, bools as 0/1).
+
+    Returns
+    -------
+    dict
+        The global attributes.
+    """
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     attrs = {
         "Conventions": "CF-1.10",
@@ -383,7 +440,18 @@ def _write_encoded(nc, ds, variables, attrs, guard) -> None:
 
 
 def format_size(nbytes) -> str:
-    """A byte count for people: "512 B", "3.4 KiB", "1.21 GiB" (never "0.0 MiB" for a small file)."""
+    """Format a byte count for people: "512 B", "3.4 KiB", "1.21 GiB" (never "0.0 MiB").
+
+    Parameters
+    ----------
+    nbytes : int or float
+        The count [bytes].
+
+    Returns
+    -------
+    str
+        The count with a binary unit.
+    """
     n = float(nbytes)
     for unit in ("B", "KiB", "MiB", "GiB", "TiB"):
         if abs(n) < 1024 or unit == "TiB":
@@ -407,14 +475,32 @@ def _write_failed(exc, final: Path, tmp: Path) -> OSError:
 
 
 def write_netcdf(ds, path, name: str = "out") -> Path:
-    """Write an xarray Dataset to netCDF4 atomically; return the final path.
+    """Write an xarray Dataset to netCDF4 atomically.
 
     The Dataset first goes through :func:`dhfield.io.cf.finalize` (canonical
     dimension order, no ``_FillValue`` on coordinates), so every file is CF-clean.
     It is then CF-encoded by xarray's encoder and written with netCDF4 directly,
     slab by slab, with SIGINT/SIGTERM/SIGHUP deferred to the slab boundaries
-    (see the module docstring).  A failed write (disk full, ...) raises a
-    one-line ``OSError``; an interrupted one removes its temporary file.
+    (see the module docstring).  An interrupted write removes its temporary file.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The Dataset.
+    path : str or path-like
+        The netCDF file.
+    name : str, default "out"
+        The parameter name used in error messages.
+
+    Returns
+    -------
+    pathlib.Path
+        The final path.
+
+    Raises
+    ------
+    OSError
+        One line, when the write fails (disk full, ...).
     """
     import netCDF4
 
@@ -455,10 +541,25 @@ def write_netcdf(ds, path, name: str = "out") -> Path:
 
 
 def read_netcdf(path):
-    """Read a netCDF file written by dhfield into memory; clear error if unreadable.
+    """Read a netCDF file written by dhfield into memory.
 
     SIGINT, SIGTERM and SIGHUP are deferred until the file is closed (xarray's
     file locks would deadlock if an interrupt landed inside them).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The netCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        Its contents, loaded.
+
+    Raises
+    ------
+    ValueError
+        If the file does not exist or cannot be read as netCDF.
     """
     import xarray as xr
 

@@ -31,13 +31,19 @@ _DIMS = ("model", "skew_angle_deg", "mu")
 
 
 def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
-    """CF Dataset of an :class:`dhfield.adhesion_map.AdhesionMap`.
+    """Build the CF Dataset of an :class:`dhfield.adhesion_map.AdhesionMap`.
 
     Parameters
     ----------
     result : AdhesionMap
+        The map.
     **extra_attrs
         Recorded as ``param_*`` global attributes (e.g. the command that built it).
+
+    Returns
+    -------
+    xarray.Dataset
+        The map on (model, crossing angle, mu), CF-annotated.
     """
     if not isinstance(result, AdhesionMap):
         raise ValueError(f"result must be a dhfield.adhesion_map.AdhesionMap; got {type(result).__name__}")
@@ -75,12 +81,43 @@ def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
 
 
 def write_adhesion_map(result: AdhesionMap, path, **extra_attrs):
-    """Write the adhesion map to netCDF atomically (:func:`dhfield.io.write_netcdf`); return the path."""
+    """Write the adhesion map to netCDF atomically (:func:`dhfield.io.write_netcdf`).
+
+    Parameters
+    ----------
+    result : AdhesionMap
+        The map.
+    path : str or path-like
+        The netCDF file.
+    **extra_attrs
+        Recorded as ``param_*`` global attributes.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     return write_netcdf(adhesion_map_dataset(result, **extra_attrs), path)
 
 
 def read_adhesion_map(path) -> AdhesionMap:
-    """Read a file of :func:`write_adhesion_map` back into an :class:`~dhfield.adhesion_map.AdhesionMap`."""
+    """Read a file of :func:`write_adhesion_map` back into an :class:`~dhfield.adhesion_map.AdhesionMap`.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The netCDF file.
+
+    Returns
+    -------
+    AdhesionMap
+        The map.
+
+    Raises
+    ------
+    ValueError
+        If the file is not an adhesion-map file.
+    """
     ds = read_netcdf(path)
     need = ("force_pi_r_dgamma", "relative_deviation", "model_status", "validated_region", "warning")
     missing = [v for v in need if v not in ds]

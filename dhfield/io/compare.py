@@ -26,14 +26,19 @@ GEOMETRIES = ("ellipse", "circle")
 
 
 def comparison_dataset(records: dict, **extra_attrs) -> xr.Dataset:
-    """Dataset on the dimension ``model`` from :func:`dhfield.compare.compare` (scalar mu, beta0).
+    """Build a Dataset on the dimension ``model`` from :func:`dhfield.compare.compare` (scalar mu, beta0).
 
     Parameters
     ----------
     records : dict
-        model name -> pull-off record (:func:`dhfield.compare.pull_off`).
+        Model name -> pull-off record (:func:`dhfield.compare.pull_off`).
     **extra_attrs
         Recorded as ``param_*`` global attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        The records, CF-annotated.
     """
     names = list(records)
     if not names:

@@ -26,7 +26,7 @@ _TITLE = "Load curve of an adhesive contact (Zini et al. 2018, Eqs. 31-36)"
 
 
 def load_curve_columns(curve):
-    """The array columns and scalar header of a load curve.
+    """Split a load curve into its array columns and scalar header.
 
     Parameters
     ----------
@@ -38,7 +38,7 @@ def load_curve_columns(curve):
     Returns
     -------
     columns : dict
-        name -> 1-D array, in schema order.
+        Name -> 1-D array, in schema order.
     header : dict
         Scalar parameters of the curve (model, beta0, mu, ...).
     nondimensional : bool
@@ -67,7 +67,7 @@ def load_curve_columns(curve):
 
 
 def load_curve_dataset(curve, **extra_attrs) -> xr.Dataset:
-    """Dataset of a load curve on the dimension ``point``.
+    """Build the Dataset of a load curve on the dimension ``point``.
 
     Parameters
     ----------
@@ -75,6 +75,11 @@ def load_curve_dataset(curve, **extra_attrs) -> xr.Dataset:
         See :func:`load_curve_columns`.
     **extra_attrs
         Recorded as ``param_*`` global attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        The curve, CF-annotated.
     """
     columns, header, nondim = load_curve_columns(curve)
     n = len(next(iter(columns.values())))
@@ -86,14 +91,14 @@ def load_curve_dataset(curve, **extra_attrs) -> xr.Dataset:
 
 
 def pull_off_dataset(mu, beta0, results: dict, *, input_dims=("mu", "beta0"), **extra_attrs) -> xr.Dataset:
-    """Dataset of pull-off results on a ``(beta0, mu)`` grid.
+    """Build the Dataset of pull-off results on a ``(beta0, mu)`` grid.
 
     Parameters
     ----------
     mu, beta0 : array_like
         1-D grids [-].
     results : dict
-        name -> array on the two grids, laid out as ``input_dims`` says.  A
+        Name -> array on the two grids, laid out as ``input_dims`` says.  A
         name is a key of :data:`dhfield.schema.VARIABLES`, optionally followed
         by ``_<qualifier>`` (e.g. ``W_star_displacement_control``), which is
         added to the ``long_name``.
@@ -103,6 +108,11 @@ def pull_off_dataset(mu, beta0, results: dict, *, input_dims=("mu", "beta0"), **
         Dataset is always on ``(beta0, mu)`` (:data:`dhfield.schema.GRID_DIMS`).
     **extra_attrs
         Recorded as ``param_*`` global attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        The results, CF-annotated.
     """
     if tuple(input_dims) not in (("mu", "beta0"), ("beta0", "mu")):
         raise ValueError(f"input_dims must be ('mu', 'beta0') or ('beta0', 'mu'); got {input_dims!r}")
@@ -127,7 +137,22 @@ def _split(name):
 
 
 def write_load_curve(curve, path, **extra_attrs) -> Path:
-    """Write a load curve to ``.nc`` (netCDF4) or ``.csv`` (with a ``.csv.json`` sidecar), atomically."""
+    """Write a load curve to ``.nc`` (netCDF4) or ``.csv`` (with a ``.csv.json`` sidecar), atomically.
+
+    Parameters
+    ----------
+    curve : dhfield.model.LoadCurve or mapping
+        See :func:`load_curve_columns`.
+    path : str or path-like
+        The output file, ending in ``.nc`` or ``.csv``.
+    **extra_attrs
+        Recorded as ``param_*`` attributes.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     p = Path(path)
     suffix = p.suffix.lower()
     if suffix == ".nc":

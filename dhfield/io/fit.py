@@ -219,6 +219,7 @@ def format_with_uncertainty(value, stderr, unit) -> str:
     Returns
     -------
     str
+        The value with its uncertainty and unit.
     """
     value, stderr = float(value), float(stderr)
     if not math.isfinite(value):
@@ -246,7 +247,20 @@ def _three_digits(x) -> str:
 
 
 def residual_figure(fit, *, n=200):
-    """The matplotlib figure of :func:`write_residual_plot` (data, smooth fitted curve, residuals)."""
+    """Draw the figure of :func:`write_residual_plot` (data, smooth fitted curve, residuals).
+
+    Parameters
+    ----------
+    fit : dhfield.fit.CurveFit
+        The fit.
+    n : int, default 200
+        Points of the smooth fitted curve.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -298,6 +312,7 @@ def write_residual_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
     Parameters
     ----------
     fit : dhfield.fit.CurveFit
+        The fit.
     path : path-like
         PNG file to write; the SVG and PDF are the same path with suffixes
         ``.svg`` and ``.pdf``.  All three are checked before any is written, and

@@ -97,9 +97,14 @@ WORKERS_PER_CPU = 4
 
 
 def max_workers() -> int:
-    """Largest accepted number of local worker processes: :data:`WORKERS_PER_CPU` x the CPUs.
+    """Return the largest accepted number of local worker processes.
 
     The one bound of ``--workers`` and ``[run] workers``.
+
+    Returns
+    -------
+    int
+        :data:`WORKERS_PER_CPU` x the CPUs.
     """
     import os
 
@@ -117,7 +122,7 @@ _SPACE_KEYS = ("linspace", "geomspace")
 class SweepConfig:
     """A validated sweep.
 
-    Attributes
+    Parameters
     ----------
     axes : dict
         Axis name -> tuple of values, in :data:`AXES` order; every axis non-empty.
@@ -125,9 +130,9 @@ class SweepConfig:
         Subset of :data:`QUANTITIES`.
     models : tuple of str
         Comparison models of the ``pull_off`` quantity.
-    control : str
+    control : str, default "load"
         "load" or "displacement".
-    chunk_points : int
+    chunk_points : int, default 2048
         Grid points per analytic dask task (bounds memory per worker).
     curve_a_star : tuple of float
         Contact sizes (from, to) of the ``load_curve`` quantity [-].
@@ -159,7 +164,13 @@ class SweepConfig:
     out: str | None = None
 
     def fingerprint(self) -> str:
-        """Hash of everything that determines the results (not workers, scheduler, out)."""
+        """Hash everything that determines the results (not workers, scheduler, out).
+
+        Returns
+        -------
+        str
+            16 hexadecimal digits of a SHA-256.
+        """
         payload = {"axes": {k: list(v) for k, v in self.axes.items()}, "quantities": list(self.quantities),
                    "models": list(self.models), "control": self.control, "chunk_points": self.chunk_points,
                    "half_width": self.half_width, "sampling": self.sampling}
@@ -168,7 +179,13 @@ class SweepConfig:
         return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
 
     def as_dict(self) -> dict:
-        """The TOML-shaped mapping of this config (round-trips through :func:`config_from_mapping`)."""
+        """Return the TOML-shaped mapping of this config.
+
+        Returns
+        -------
+        dict
+            The mapping; it round-trips through :func:`config_from_mapping`.
+        """
         out = {"sweep": {"quantities": list(self.quantities), "models": list(self.models),
                          "control": self.control, "chunk_points": self.chunk_points,
                          "curve_a_star": list(self.curve_a_star), "curve_points": self.curve_points},
@@ -183,7 +200,7 @@ class SweepConfig:
 
     @property
     def beta0(self) -> np.ndarray:
-        """beta0 of every point of the ellipticity axis (converted from the skew angle if given)."""
+        """Ellipticity beta0 of every point of the ellipticity axis [-] (from the skew angle if given)."""
         if "beta0" in self.axes:
             return np.asarray(self.axes["beta0"], dtype=float)
         from ..geometry import ellipticity_from_skew_angle
@@ -224,9 +241,24 @@ def _check_keys(table, allowed, where):
 
 
 def axis_values(name: str, spec) -> tuple:
-    """Values of one axis from its spec: a list, a scalar, or ``{linspace|geomspace = [a, b, n]}``.
+    """Expand one axis's spec into its values.
 
-    Raises ValueError (naming ``axes.<name>``) if the axis is empty or a value is out of range.
+    Parameters
+    ----------
+    name : str
+        The axis, one of :data:`AXES`.
+    spec : list, float or dict
+        A list, a scalar, or ``{linspace|geomspace = [a, b, n]}``.
+
+    Returns
+    -------
+    tuple of float
+        The axis values.
+
+    Raises
+    ------
+    ValueError
+        Naming ``axes.<name>``, if the axis is empty or a value is out of range.
     """
     key = f"axes.{name}"
     if isinstance(spec, dict):
@@ -311,6 +343,21 @@ def check_scheduler_address(address):
     Only plain TCP is supported: ``tls://`` (needs certificates), ``ucx://``,
     ``ws://``/``wss://`` (need optional packages) and ``inproc://`` (same process
     only) are refused in one line, as is a port outside 1..65535.
+
+    Parameters
+    ----------
+    address : str or None
+        The address.
+
+    Returns
+    -------
+    str or None
+        ``address``, unchanged.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``scheduler``, for a malformed address.
     """
     if address is None:
         return None
@@ -335,7 +382,18 @@ def scheduler_host_port(address) -> tuple:
 
 
 def config_from_mapping(mapping: dict) -> SweepConfig:
-    """Validate a TOML-shaped mapping (see the module docstring) into a :class:`SweepConfig`."""
+    """Validate a TOML-shaped mapping (see the module docstring) into a :class:`SweepConfig`.
+
+    Parameters
+    ----------
+    mapping : dict
+        Tables ``sweep``, ``axes``, ``bem`` and ``run``.
+
+    Returns
+    -------
+    SweepConfig
+        The validated sweep.
+    """
     from ..compare import MODEL_NAMES
 
     _check_keys(mapping, _TOP_KEYS, "")
@@ -430,7 +488,18 @@ def cohesive_default() -> str:
 
 
 def load_config(path) -> SweepConfig:
-    """Read and validate a TOML sweep file (see the module docstring)."""
+    """Read and validate a TOML sweep file (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The TOML file.
+
+    Returns
+    -------
+    SweepConfig
+        The validated sweep.
+    """
     try:
         import tomllib
     except ModuleNotFoundError:  # Python 3.10

@@ -91,7 +91,19 @@ WORKERS_ENV = "DHFIELD_WORKERS"
 
 # --------------------------------------------------------------------------- progress
 class Progress:
-    """A one-line progress bar with ETA on ``stream`` (stderr), redrawn at most 5 times a second."""
+    """A one-line progress bar with ETA on ``stream`` (stderr), redrawn at most 5 times a second.
+
+    Parameters
+    ----------
+    total : int
+        Number of steps.
+    enabled : bool
+        Draw the bar (False: count silently).
+    label : str, default "sweep"
+        Text before the bar.
+    stream : file-like, optional
+        Where to draw; default ``sys.stderr``.
+    """
 
     def __init__(self, total: int, enabled: bool, label: str = "sweep", stream=None):
         self.total, self.enabled, self.label = int(total), bool(enabled), label
@@ -101,6 +113,13 @@ class Progress:
         self._last = 0.0
 
     def advance(self, n: int = 1) -> None:
+        """Count ``n`` more steps done and redraw if due.
+
+        Parameters
+        ----------
+        n : int, default 1
+            Steps done.
+        """
         self.done += n
         if self.enabled and (time.monotonic() - self._last > 0.2 or self.done >= self.total):
             self._draw()
@@ -117,6 +136,7 @@ class Progress:
         self.stream.flush()
 
     def close(self) -> None:
+        """Draw the final state and end the line."""
         if self.enabled:
             self._draw()
             self.stream.write("\n")
@@ -131,6 +151,21 @@ class Executor:
     An Executor from :func:`connect` can be passed to several :func:`run_sweep`
     calls: local worker processes are started once, on first use, and kept
     (with the operators they built) until :meth:`close`.
+
+    Parameters
+    ----------
+    kind : {"synchronous", "processes", "distributed"}
+        Where tasks run.
+    workers : int
+        Number of workers.
+    client : distributed.Client, optional
+        The client, for ``kind == "distributed"``.
+    _own_client : bool, default False
+        Internal: True when this Executor started ``client`` (and closes it).
+    _pool : object, optional
+        Internal: the running local process pool.
+    _starting : tuple, optional
+        Internal: ``(pool, futures, t0)`` of workers spawned by ``start(wait=False)``.
     """
 
     kind: str
@@ -148,7 +183,7 @@ class Executor:
         return self._pool
 
     def start(self, preload=(), wait=True) -> float:
-        """Start the local worker processes now; return the seconds it took until all were ready.
+        """Start the local worker processes now.
 
         Every worker is spawned with one BLAS/OpenMP thread (:data:`SINGLE_THREAD_ENV`;
         the BEM tasks also ask FFTW for one thread), so W workers use W cores and
@@ -159,6 +194,18 @@ class Executor:
         they start while this process prepares the sweep; the next ``start()``
         or use of :attr:`pool` waits for them.  Nothing to do (0.0) for the
         other kinds or when the pool is already running.
+
+        Parameters
+        ----------
+        preload : sequence of str, default ()
+            Modules each worker imports before it reports ready.
+        wait : bool, default True
+            Wait until all workers are ready.
+
+        Returns
+        -------
+        float
+            The seconds it took until all workers were ready [s].
         """
         if self.kind != "processes" or self._pool is not None:
             return 0.0
@@ -251,6 +298,11 @@ def connect(scheduler=None, workers=None) -> Executor:
     workers : int, optional
         Local worker processes, >= 1 (default: every core).
 
+    Returns
+    -------
+    Executor
+        Where the tasks will run.
+
     Raises
     ------
     ValueError
@@ -289,7 +341,19 @@ def probe_scheduler(address: str, timeout: float | None = None) -> None:
     refuses a peer that sends nothing (a silent listener, an HTTP server waiting for
     a request), closes, or announces a message larger than :data:`MAX_HANDSHAKE_BYTES`
     (garbage), before :class:`distributed.Client`, whose handshake is unbounded, is
-    involved.  Raises ValueError (one line naming the address); returns None.
+    involved.
+
+    Parameters
+    ----------
+    address : str
+        The scheduler's ``tcp://host:port``.
+    timeout : float, optional
+        Deadline [s]; default :data:`CONNECT_TIMEOUT`.
+
+    Raises
+    ------
+    ValueError
+        One line naming the address, when no dask scheduler answers.
     """
     import socket
     import struct
@@ -387,7 +451,7 @@ def _compute(collections, executor: Executor, progress: Progress):
 
 
 def map_cases(fn, arguments, *, scheduler=None, workers=None, progress=False) -> list:
-    """``[fn(*args) for args in arguments]`` as dask tasks on a scheduler; results in order.
+    """Compute ``[fn(*args) for args in arguments]`` as dask tasks on a scheduler, in order.
 
     For studies whose results are Python objects rather than store records (the
     report's BEM loops): one task per argument tuple, so keep the cases of one
@@ -398,12 +462,21 @@ def map_cases(fn, arguments, *, scheduler=None, workers=None, progress=False) ->
     Parameters
     ----------
     fn : callable
+        A module-level function, called once per argument tuple.
     arguments : iterable of tuple
-    scheduler, workers
-        See :func:`connect`; defaults from ``$DHFIELD_SCHEDULER`` (else
-        "synchronous": in this process) and ``$DHFIELD_WORKERS``.
+        The positional arguments of each call.
+    scheduler : str, distributed.Client or Executor, optional
+        See :func:`connect`; default ``$DHFIELD_SCHEDULER``, else "synchronous"
+        (in this process).
+    workers : int, optional
+        See :func:`connect`; default ``$DHFIELD_WORKERS``.
     progress : bool
         Progress bar on stderr.
+
+    Returns
+    -------
+    list
+        The results, in the order of ``arguments``.
     """
     import dask
 
@@ -587,7 +660,7 @@ def _key(quantity, idx):
 class SweepResult:
     """Outcome of :func:`run_sweep`.
 
-    Attributes
+    Parameters
     ----------
     dataset : xarray.Dataset
         The consolidated sweep (dims: the swept axes).
@@ -616,6 +689,7 @@ def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, pr
     Parameters
     ----------
     config : SweepConfig
+        What to sweep.
     out : path, optional
         Output (see :func:`dhfield.sweep.store.output_paths`); default ``config.out``.
     scheduler : str, distributed.Client or Executor, optional
@@ -629,6 +703,7 @@ def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, pr
     Returns
     -------
     SweepResult
+        The consolidated Dataset and which cases were computed, reused, failed or flagged.
     """
     out = out if out is not None else config.out
     if out is None:

@@ -40,7 +40,13 @@ ADHESIVE_MODEL = "bem-adhesive"
 
 
 def cohesive_laws() -> tuple:
-    """Names of the cohesive laws of the adhesive BEM solver."""
+    """List the names of the cohesive laws of the adhesive BEM solver.
+
+    Returns
+    -------
+    tuple of str
+        The names.
+    """
     try:
         from ..bem.laws import LAWS
     except ImportError:  # pragma: no cover - laws module always ships
@@ -56,6 +62,7 @@ def pull_off_block(model: str, control: str, mu, beta0) -> np.ndarray:
     model : str
         One of :data:`dhfield.compare.MODEL_NAMES`.
     control : {"load", "displacement"}
+        Loading mode of the pull-off.
     mu, beta0 : array_like
         Tabor parameter (Eq. 35) [-] and Hertz ellipticity [-], broadcast together.
 
@@ -81,7 +88,18 @@ def pull_off_block(model: str, control: str, mu, beta0) -> np.ndarray:
 
 
 def load_curve_case(model: str, beta0: float, mu: float, a_star) -> dict:
-    """Load curve of one model at the contact sizes ``a_star`` (:func:`dhfield.compare.load_curve`).
+    """Compute the load curve of one model at the contact sizes ``a_star``.
+
+    Parameters
+    ----------
+    model : str
+        One of :data:`dhfield.compare.MODEL_NAMES` (:func:`dhfield.compare.load_curve`).
+    beta0 : float
+        Hertz ellipticity [-].
+    mu : float
+        Tabor parameter, Eq. (35) [-].
+    a_star : array_like
+        Contact semi-major axes a* = a/c_r [-].
 
     Returns
     -------
@@ -96,12 +114,27 @@ def load_curve_case(model: str, beta0: float, mu: float, a_star) -> dict:
 
 def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width=None,
                    sampling="average") -> dict:
-    """Forward BEM check of the DH state at contact size ``a_star`` (one case).
+    """Check the DH state at contact size ``a_star`` with the forward BEM (one case).
 
     The DH pressure of :func:`dhfield.model.solve_adhesive_axis` is put on an
     ``n`` x ``n`` grid, its displacement computed with the DC-FFT operator and
     compared with Eq. (26); the gap with Eq. (27); the annulus identity
     h = (1 + v) h_Hertz is checked along every ray.
+
+    Parameters
+    ----------
+    beta0 : float
+        Hertz ellipticity [-].
+    mu : float
+        Tabor parameter, Eq. (35) [-].
+    a_star : float
+        Contact semi-major axis a* = a/c_r [-].
+    n : int
+        Cells per axis [-].
+    half_width : float, optional
+        Half-width of the domain [c_r]; default 1.5 c*.
+    sampling : {"average", "centre"}
+        Cell means (default) or centre values of the pressure.
 
     Returns
     -------
@@ -122,7 +155,23 @@ def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width
 
 
 def adhesive_solver(name: str = "default"):
-    """The adhesive BEM solver (:func:`dhfield.adhesive_start.adhesive_pull_off`); ValueError for another name."""
+    """Return the adhesive BEM solver of a name.
+
+    Parameters
+    ----------
+    name : {"default"}
+        The solver's name.
+
+    Returns
+    -------
+    callable
+        :func:`dhfield.adhesive_start.adhesive_pull_off`.
+
+    Raises
+    ------
+    ValueError
+        For another name.
+    """
     if name != "default":
         raise ValueError(f"adhesive solver must be one of ('default',); got {name!r}")
     from ..adhesive_start import adhesive_pull_off
@@ -132,13 +181,32 @@ def adhesive_solver(name: str = "default"):
 
 def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "load", *,
                   solver: str = "default") -> dict:
-    """Adhesive BEM ground truth at pull-off of one (beta0, mu, n, law) case.
+    """Compute the adhesive BEM ground truth at pull-off of one (beta0, mu, n, law) case.
 
     The whole load path runs in this one call (each step warm-starts from the
-    last).  Returns :data:`ADHESIVE_FIELDS` and :data:`ADHESIVE_BEM_FIELDS` (NaN where the
-    solver gives none)
-    plus ``converged`` (bool), ``resolved`` (bool: the grid resolves the cohesive zone) and
-    ``message`` (str).
+    last).
+
+    Parameters
+    ----------
+    beta0 : float
+        Hertz ellipticity [-].
+    mu : float
+        Tabor parameter, Eq. (35) [-].
+    n : int
+        Cells per axis [-].
+    law : str
+        Cohesive law, one of :func:`cohesive_laws`.
+    control : {"load", "displacement"}
+        Loading mode of the pull-off.
+    solver : {"default"}
+        The solver (:func:`adhesive_solver`).
+
+    Returns
+    -------
+    dict
+        :data:`ADHESIVE_FIELDS` and :data:`ADHESIVE_BEM_FIELDS` (NaN where the
+        solver gives none) plus ``converged`` (bool), ``resolved`` (bool: the grid
+        resolves the cohesive zone) and ``message`` (str).
     """
     res = adhesive_solver(solver)(float(mu), float(beta0), int(n), law=law, control=control, threads=1)
 
@@ -195,9 +263,15 @@ def expected_seconds(quantity: str, params: dict) -> float:
     Parameters
     ----------
     quantity : {"bem_field", "adhesive", "load_curve"}
+        The kind of case.
     params : dict
         The case's keyword arguments (:func:`bem_field_case`,
         :func:`adhesive_case`, :func:`load_curve_case`).
+
+    Returns
+    -------
+    float
+        The estimate [s].
 
     Notes
     -----
