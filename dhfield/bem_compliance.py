@@ -77,7 +77,7 @@ MAX_BRANCH_STATES = 400
 class BemBranch:
     """The BEM's unloading branch of (mu, beta0) sampled at prescribed adhesive force, paper units.
 
-    Attributes
+    Parameters
     ----------
     mu, beta0 : float
         Transition parameter (Eq. 35) and Hertz ellipticity [-].
