@@ -137,6 +137,18 @@ CYCLE_UNITS = {
 def check_machine_stiffness(name, value):
     """Validate a machine stiffness: finite and >= 0 (0 is load control).
 
+    Parameters
+    ----------
+    name : str
+        The parameter's name, used in the error message.
+    value : array_like
+        The machine stiffness, K [N/m] or K* [-].
+
+    Returns
+    -------
+    ndarray
+        ``value`` as a float array, unchanged.
+
     Raises
     ------
     ValueError
@@ -147,7 +159,7 @@ def check_machine_stiffness(name, value):
 
 
 def stiffness_star(machine_stiffness, effective_radius, reduced_modulus, work_of_adhesion, sin_skew=1.0):
-    """Machine stiffness in the paper's units, K* = K (c_r^2/R)/(2 pi R dgamma/sin(theta_skew)) [-].
+    """Convert a machine stiffness to the paper's units, K* = K (c_r^2/R)/(2 pi R dgamma/sin(theta_skew)) [-].
 
     Parameters
     ----------
@@ -155,9 +167,20 @@ def stiffness_star(machine_stiffness, effective_radius, reduced_modulus, work_of
         K >= 0, finite [N/m].
     effective_radius, reduced_modulus, work_of_adhesion : array_like
         R [m], E* [Pa], dgamma [J/m^2].
-    sin_skew : array_like
-        sin(theta_skew) of the load normalisation, Eq. (34): 1 for the circular
-        models, that of beta0 for the elliptical ones [-].
+    sin_skew : array_like, default 1.0
+        The sine of the skew angle, sin(theta_skew), of the load normalisation,
+        Eq. (34): 1 for the circular models, that of beta0 for the elliptical
+        ones [-].
+
+    Returns
+    -------
+    ndarray
+        K* [-], broadcast over the inputs.
+
+    Raises
+    ------
+    ValueError
+        If ``machine_stiffness`` is negative or not finite.
 
     Notes
     -----
@@ -375,7 +398,7 @@ def _separated_integral(mu, c1, c2):
 
 
 def spring_weight(machine_stiffness):
-    """The weight s = K*/(1 + K*) of the machine position F_s = s delta* + (1 - s) W*, and K*.
+    """Return the weight s = K*/(1 + K*) of the machine position F_s = s delta* + (1 - s) W*, and K*.
 
     Parameters
     ----------
@@ -385,8 +408,13 @@ def spring_weight(machine_stiffness):
     Returns
     -------
     (ndarray, ndarray)
-        s and K* (validated; ValueError naming ``machine_stiffness`` otherwise).
+        The weight s and K* (validated), both [-].
         Used by :mod:`dhfield.bem_compliance`, the BEM under a spring.
+
+    Raises
+    ------
+    ValueError
+        If ``machine_stiffness`` is negative or not finite (the message names it).
     """
     return _as_weight(machine_stiffness)
 
@@ -481,11 +509,32 @@ def _pull_off(curve, s, k):
 
 
 def spring_pull_off_record(model, mu, beta0, machine_stiffness):
-    """A pull-off record (keys of :data:`dhfield.schema.PULL_OFF_KEYS`) under a spring of stiffness K*.
+    """Build a pull-off record (keys of :data:`dhfield.schema.PULL_OFF_KEYS`) under a spring of stiffness K*.
 
     ``control`` is ``'spring'``; the state is the one at the jump out
     (:func:`pull_off_under_spring`), scalar K* only.  The ``warning`` is that of
     :func:`dhfield.compare.pull_off` (the model's validated range).
+
+    Parameters
+    ----------
+    model : str
+        One of :data:`dhfield.compare.CURVE_MODEL_NAMES`.
+    mu, beta0 : float
+        Transition parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    machine_stiffness : float
+        K* >= 0 in the paper's units (:func:`stiffness_star`) [-]; a scalar.
+
+    Returns
+    -------
+    dict
+        The record: ``control = 'spring'``, W*, a*, b*, c*, d*, v and delta* at
+        the jump out, the ellipticities b/a and d/c, ``at_zero_contact``, and the
+        other keys of :func:`dhfield.compare.pull_off`.
+
+    Raises
+    ------
+    ValueError
+        If ``machine_stiffness`` is not a scalar, or out of range.
     """
     if np.ndim(machine_stiffness):
         raise ValueError("machine_stiffness of a pull-off record must be a scalar")
@@ -548,12 +597,6 @@ def loading_cycle(model, mu, beta0, machine_stiffness=None, *, with_path=False):
         K* >= 0 in the paper's units (:func:`stiffness_star`) [-]; None: a rigid
         machine (displacement control); 0: load control (infinite energy lost).
 
-    Other Parameters
-    ----------------
-    with_path : bool
-        Also return ``_curve`` and ``_t`` (the curve and the jump parameters) for
-        :func:`cycle_path`.
-
     Returns
     -------
     dict
@@ -567,6 +610,12 @@ def loading_cycle(model, mu, beta0, machine_stiffness=None, *, with_path=False):
         (per cycle, in (2 pi R dgamma/sin(theta_skew)) c_r^2/R) and
         ``energy_lost_error_star`` (its quadrature error estimate); ``warning``.
         Scalars for a scalar K*, else arrays.
+
+    Other Parameters
+    ----------------
+    with_path : bool
+        Also return ``_curve`` and ``_t`` (the curve and the jump parameters) for
+        :func:`cycle_path`.
 
     Notes
     -----
@@ -681,15 +730,20 @@ def loading_cycle_si(params, machine_stiffness=None, model=compare.DEFAULT_MODEL
 
 
 def cycle_path(model, mu, beta0, machine_stiffness=None, *, n=200, overshoot=0.3):
-    """The closed cycle as polylines in the (delta*, W*) plane, for plotting.
+    """Trace the closed cycle as polylines in the (delta*, W*) plane, for plotting.
 
     Parameters
     ----------
-    model, mu, beta0, machine_stiffness
-        As :func:`loading_cycle` (scalar K* or None).
-    n : int
+    model : str
+        One of :data:`dhfield.compare.CURVE_MODEL_NAMES`.
+    mu, beta0 : float
+        Transition parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    machine_stiffness : float or None
+        K* >= 0 in the paper's units [-], a scalar; None: a rigid machine
+        (as :func:`loading_cycle`).
+    n : int, default 200
         Points on the equilibrium curve between the jumps.
-    overshoot : float
+    overshoot : float, default 0.3
         Fraction of the curve's parameter range drawn above the landing point
         (loading beyond the jump-in, then unloading along the same branch).
 

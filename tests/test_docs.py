@@ -32,6 +32,7 @@ ROOT = Path(__file__).resolve().parent.parent
 STRICT = (
     "dhfield", "dhfield.adhesion", "dhfield.adhesion_map", "dhfield.bem", "dhfield.bem.continuation",
     "dhfield.bem_compliance", "dhfield.io.solve_plot",
+    "dhfield.bem.branch", "dhfield.bem.pull_off", "dhfield.compliance", "dhfield.io.solution",
     "dhfield.bem.laws", "dhfield.bem.path", "dhfield.cli", "dhfield.closure", "dhfield.compare",
     "dhfield.dh_circular", "dhfield.dimensional", "dhfield.dmt", "dhfield.double_hertz",
     "dhfield.dugdale_separation", "dhfield.elliptic", "dhfield.elliptic_transition", "dhfield.eq30",
@@ -45,12 +46,11 @@ STRICT = (
 )
 
 #: Modules not yet held to zero (being refactored by other work in progress: the BEM solver,
-#: its branch and pull-off, the adhesive start, compliance, the solution files).  Their counts are
+#: its operator and state, the adhesive start).  Their counts are
 #: printed, not asserted.  This list only shrinks: fix a module's docstrings (the printed counts
 #: say which are clean), then move it to STRICT.  Never add a new module here.
 ALLOWED_ERRORS = (
-    "dhfield.adhesive_start", "dhfield.bem.branch", "dhfield.bem.operator", "dhfield.bem.pull_off",
-    "dhfield.bem.solver", "dhfield.bem.state", "dhfield.compliance", "dhfield.io.solution",
+    "dhfield.adhesive_start", "dhfield.bem.operator", "dhfield.bem.solver", "dhfield.bem.state",
 )
 
 

@@ -39,7 +39,7 @@ NOT_ON_BRANCH = ("jump", "discarded")
 class UnloadingPath:
     """A displacement-controlled loading-unloading path and its pull-off.
 
-    Attributes
+    Parameters
     ----------
     approach, load : ndarray
         Approach delta [length] and load W [force] of every solved state, in
@@ -57,10 +57,13 @@ class UnloadingPath:
         displacement control 'continuation' and 'fold' (states at a prescribed
         adhesive force: the coarse steps and the window around the fold) per state.
     converged : ndarray of bool
+        True where the state converged, per state.
     iterations : ndarray of int
         Inner CG iterations per state.
     outer_iterations : ndarray of int
+        Outer (cohesive-zone) iterations per state.
     residual : ndarray of float
+        Final residual of the solver per state.
     control : str
         'load' or 'displacement': which pull-off is reported.
     pull_off_load, pull_off_approach : float
@@ -139,6 +142,7 @@ class UnloadingPath:
 
     @property
     def all_converged(self) -> bool:
+        """True when every state of the path converged."""
         return bool(np.all(self.converged))
 
     @property
@@ -150,9 +154,28 @@ class UnloadingPath:
     @classmethod
     def from_records(cls, records, *, control, pull_off_load, pull_off_approach, pull_off_state,
                      **rest) -> "UnloadingPath":
-        """A path from one record per solved state (:meth:`ContactState.summary` plus its ``phase``).
+        """Build a path from one record per solved state (:meth:`ContactState.summary` plus its ``phase``).
 
-        ``rest``: the keyword attributes (failures, states, elapsed, pull_off_converged, ...).
+        Parameters
+        ----------
+        records : sequence of dict
+            One record per state, in the path's order, with the keys ``approach``,
+            ``load``, ``a``, ``b``, ``c``, ``d``, ``contact_area``, ``phase``,
+            ``converged``, ``iterations``, ``outer_iterations`` and ``residual``.
+        control : str
+            'load' or 'displacement'.
+        pull_off_load, pull_off_approach : float
+            The pull-off [force], [length].
+        pull_off_state : ContactState
+            The solved state nearest to the pull-off.
+        **rest
+            The other fields, by keyword (``failures``, ``states``, ``elapsed``,
+            ``pull_off_converged``, ...).
+
+        Returns
+        -------
+        UnloadingPath
+            The records' columns as arrays, with the given pull-off and fields.
         """
         arr = {key: np.array([r[key] for r in records]) for key in
                ("approach", "load", "a", "b", "c", "d", "contact_area", "phase", "converged", "iterations",
@@ -164,7 +187,15 @@ class UnloadingPath:
 
 
 class PathProgress:
-    """One progress line on stderr (default: when stderr is a terminal)."""
+    """One progress line on stderr (default: when stderr is a terminal).
+
+    Parameters
+    ----------
+    enabled : bool or None
+        Write the line; None: when stderr is a terminal.
+    label : str
+        Label at the start of the line.
+    """
 
     def __init__(self, enabled, label):
         if enabled is None:
@@ -174,6 +205,17 @@ class PathProgress:
         self.t0 = time.perf_counter()
 
     def update(self, k, st, phase):
+        """Rewrite the line with state ``k`` (when enabled).
+
+        Parameters
+        ----------
+        k : int
+            Record index of the state.
+        st : ContactState
+            The state (its approach, load and CG iterations are shown).
+        phase : str
+            Its phase.
+        """
         if self.enabled:
             el = time.perf_counter() - self.t0
             sys.stderr.write(f"\r{self.label} {phase:9s} state {k:3d}  delta={st.approach:+.5f}  "
@@ -181,6 +223,7 @@ class PathProgress:
             sys.stderr.flush()
 
     def close(self):
+        """End the line (when enabled)."""
         if self.enabled:
             sys.stderr.write("\n")
             sys.stderr.flush()
@@ -193,8 +236,10 @@ class Branch:
     ----------
     prob : AdhesiveProblem
         The problem (grid, initial gap, law) every state solves.
-    tol, max_iter
-        As in :func:`dhfield.bem.solver.solve_problem`.
+    tol : float
+        Solver tolerance, as in :func:`dhfield.bem.solver.solve_problem`.
+    max_iter : int
+        Cap on CG iterations, as in :func:`dhfield.bem.solver.solve_problem`.
     label : str
         Label of the progress line.
     progress : bool, optional
@@ -228,7 +273,21 @@ class Branch:
 
     # ------------------------------------------------------------------ solving and recording
     def record(self, st, phase) -> int:
-        """Record a solved state under ``phase``; returns its index."""
+        """Record a solved state under ``phase``.
+
+        Parameters
+        ----------
+        st : ContactState
+            The solved state (held in :attr:`states`; an unconverged one is
+            listed as a failure).
+        phase : str
+            Its phase ('loading', 'unloading', 'refine', 'jump', ...).
+
+        Returns
+        -------
+        int
+            Its record index.
+        """
         rec = st.summary()
         rec["phase"] = phase
         rec["in_contact"] = st.in_contact
@@ -242,30 +301,111 @@ class Branch:
         return k
 
     def solve(self, approach, guess, phase):
-        """Solve and record the state at ``approach`` from ``guess``: (index, state)."""
+        """Solve and record the state at ``approach`` from ``guess``.
+
+        Parameters
+        ----------
+        approach : float
+            Approach [length].
+        guess : ContactState or Prediction or None
+            Warm start (:meth:`guess`); None: from separation.
+        phase : str
+            Phase of the record.
+
+        Returns
+        -------
+        (int, ContactState)
+            The record index and the state.
+        """
         st = solve_problem(self.prob, float(approach), guess, self.tol, self.max_iter)
         return self.record(st, phase), st
 
     def usable(self, i) -> bool:
-        """A converged contact state on the branch."""
+        """Tell whether record ``i`` is a converged contact state on the branch.
+
+        Parameters
+        ----------
+        i : int
+            Record index.
+
+        Returns
+        -------
+        bool
+            True when it converged, is in contact and its phase is not in
+            :data:`NOT_ON_BRANCH`.
+        """
         r = self.records[i]
         return bool(r["converged"] and r["in_contact"] and r["phase"] not in NOT_ON_BRANCH)
 
     def approach(self, i) -> float:
+        """Return the approach of record ``i`` [length].
+
+        Parameters
+        ----------
+        i : int
+            Record index.
+
+        Returns
+        -------
+        float
+            Its approach [length].
+        """
         return self.records[i]["approach"]
 
     def by_approach(self, indices) -> list:
-        """``indices`` by decreasing approach (stable)."""
+        """Sort record indices by decreasing approach (stable).
+
+        Parameters
+        ----------
+        indices : iterable of int
+            Record indices.
+
+        Returns
+        -------
+        list of int
+            ``indices`` by decreasing approach.
+        """
         return sorted(indices, key=lambda i: -self.records[i]["approach"])
 
     def external(self, approach):
-        """The warm start of ``warm_start`` at ``approach`` when it is a state of this grid, else None."""
+        """Return the warm start of ``warm_start`` at ``approach`` when it is a state of this grid.
+
+        Parameters
+        ----------
+        approach : float
+            Approach [length].
+
+        Returns
+        -------
+        ContactState or None
+            The guess of ``warm_start`` (e.g. a coarser grid's state carried onto
+            this grid); None without ``warm_start`` or when it is not a state of
+            this grid.
+        """
         g = self.warm_start(float(approach)) if self.warm_start is not None else None
         return g if (isinstance(g, ContactState) and g.grid == self.prob.grid) else None
 
     def guess(self, approach, last, prev=None):
-        """The warm start at ``approach``: the warm start of the coarser grid when there is one, else the
-        secant extrapolation of ``prev`` and ``last`` (record indices or states) when they allow it, else ``last``."""
+        """Choose the warm start at ``approach``.
+
+        The warm start of the coarser grid when there is one (:meth:`external`),
+        else the secant extrapolation of ``prev`` and ``last`` when they allow it,
+        else ``last``.
+
+        Parameters
+        ----------
+        approach : float
+            Approach of the state to solve [length].
+        last : int or ContactState or None
+            The last state (record index or state).
+        prev : int or ContactState, optional
+            The state before it (record index or state).
+
+        Returns
+        -------
+        ContactState or Prediction or None
+            The warm start (None: ``last`` is None or not held).
+        """
         g = self.external(approach)
         if g is not None:
             return g
@@ -273,23 +413,49 @@ class Branch:
         return secant_prediction(self.prob, prev, last, approach)
 
     def nearest_usable(self, approach):
-        """Index of the held usable state nearest to ``approach`` (None when there is none)."""
+        """Find the held usable state nearest to ``approach``.
+
+        Parameters
+        ----------
+        approach : float
+            Approach [length].
+
+        Returns
+        -------
+        int or None
+            Its record index; None when no held state is usable (:meth:`usable`).
+        """
         good = [i for i in self.states if self.usable(i)]
         return min(good, key=lambda i: abs(self.approach(i) - approach)) if good else None
 
     def prune(self, keep):
-        """Drop the held states not in ``keep`` (unless every state is kept)."""
+        """Drop the held states not in ``keep`` (unless every state is kept).
+
+        Parameters
+        ----------
+        keep : set of int
+            Record indices of the states to hold.
+        """
         if not self.keep_states:
             for i in [i for i in self.states if i not in keep]:
                 del self.states[i]
 
     # ------------------------------------------------------------------ the load minimum
     def minimum(self, indices):
-        """(order, SampledMinimum or None): the load minimum over ``indices`` on the branch.
+        """Find the load minimum over ``indices`` on the branch.
 
-        ``order``: those indices by decreasing approach, states off the branch left out;
-        the minimum (:func:`dhfield.pull_off_search.refine_sampled_minimum`, global)
-        counts the usable states only; None when there is none.
+        Parameters
+        ----------
+        indices : iterable of int
+            Record indices.
+
+        Returns
+        -------
+        order : list of int
+            Those indices by decreasing approach, states off the branch left out.
+        minimum : SampledMinimum or None
+            The load minimum (:func:`dhfield.pull_off_search.refine_sampled_minimum`,
+            global) over the usable states only; None when there is none.
         """
         order = self.by_approach(i for i in indices if self.records[i]["phase"] not in NOT_ON_BRANCH)
         w = np.array([self.records[i]["load"] if self.usable(i) else np.nan for i in order])
@@ -304,6 +470,18 @@ class Branch:
         vertex's own error is O(h^3), far smaller); when the vertex is the sample, the load
         step to its nearer neighbour (the samples resolve no better).  It does not include
         the grid's discretisation error.  Infinite when the minimum is at an end of the samples.
+
+        Parameters
+        ----------
+        order : list of int
+            Record indices by decreasing approach (the ``order`` of :meth:`minimum`).
+        sm : SampledMinimum or None
+            Their load minimum (:meth:`minimum`).
+
+        Returns
+        -------
+        float
+            The error estimate [force]; inf when ``sm`` is None or at an end.
         """
         if sm is None or sm.at_boundary:
             return float("inf")
@@ -371,11 +549,27 @@ class Branch:
             self.prune(set(order[max(sm.index - 1, 0):sm.index + 2]) | {k})
 
     def refine_vertex(self, indices, xtol, max_states, phase="refine"):
-        """States at the vertex of the parabola through the load minimum, until it is within ``xtol``.
+        """Solve states at the vertex of the parabola through the load minimum, until it is within ``xtol``.
 
-        At most ``max_states`` states, each from the warm start of the coarser grid or the
-        nearest usable state; stops when the vertex is at an end of the samples, within
-        ``xtol`` of a solved approach, or a vertex state is off the branch.  Returns the indices.
+        Each state from the warm start of the coarser grid or the nearest usable
+        state; stops when the vertex is at an end of the samples, within ``xtol``
+        of a solved approach, or a vertex state is off the branch.
+
+        Parameters
+        ----------
+        indices : iterable of int
+            Record indices of the samples so far.
+        xtol : float
+            Stop when the vertex is within this of a solved approach [length].
+        max_states : int
+            Cap on the states added.
+        phase : str, default 'refine'
+            Phase of the states added.
+
+        Returns
+        -------
+        list of int
+            ``indices`` and those of the states added.
         """
         current = list(indices)
         for _ in range(int(max_states)):
@@ -392,11 +586,27 @@ class Branch:
         return current
 
     def refine_bracket(self, indices, step, refine_factor, levels):
-        """The bracket of the load minimum re-solved ``levels`` times with steps ``refine_factor`` smaller.
+        """Re-solve the bracket of the load minimum ``levels`` times with steps ``refine_factor`` smaller.
 
         Each level re-solves the approaches between the states on either side of the discrete
         minimum from the upper one down (secant warm starts; a state already solved at an
-        approach is reused).  Returns the indices of the finest level.
+        approach is reused).
+
+        Parameters
+        ----------
+        indices : iterable of int
+            Record indices of the samples.
+        step : float
+            Their approach step [length].
+        refine_factor : int
+            Step reduction per level.
+        levels : int
+            Number of levels.
+
+        Returns
+        -------
+        list of int
+            The record indices of the finest level, by decreasing approach.
         """
         current = list(indices)
         self.prune(set(current))
@@ -428,7 +638,32 @@ class Branch:
     # ------------------------------------------------------------------ the record
     def to_path(self, *, control, load, approach, pull_off_index, converged, order=None,
                 error=float("nan"), note="") -> UnloadingPath:
-        """The :class:`UnloadingPath` of the branch (records in ``order``, default solve order)."""
+        """Build the :class:`UnloadingPath` of the branch (and close the progress line).
+
+        Parameters
+        ----------
+        control : str
+            'load' or 'displacement'.
+        load, approach : float
+            The pull-off load [force] and approach [length].
+        pull_off_index : int
+            Record index of the state nearest to the pull-off (if not held: the
+            last held state).
+        converged : bool
+            The path's ``pull_off_converged``.
+        order : sequence of int, optional
+            Record indices in the path's order; None (default): solve order.
+        error : float, default NaN
+            The path's ``pull_off_error`` [force].
+        note : str, default ''
+            The path's ``pull_off_note``.
+
+        Returns
+        -------
+        UnloadingPath
+            The records in ``order``, the failures, the held states (with
+            ``keep_states``), the elapsed time and the warm starts' counts.
+        """
         self._progress.close()
         idx = list(range(len(self.records))) if order is None else list(order)
         k = pull_off_index if pull_off_index in self.states else max(self.states)
@@ -445,10 +680,21 @@ class Branch:
             pull_off_note=note)
 
     def load_pull_off(self, indices) -> UnloadingPath:
-        """The load-control pull-off of the states ``indices``: the minimum of the load.
+        """Find the load-control pull-off of the states ``indices``: the minimum of the load.
 
         Trusted (``pull_off_converged``) when every state on the branch from the start down to
         it converged; a NaN pull-off (never an exception) when no state is a converged contact state.
+
+        Parameters
+        ----------
+        indices : iterable of int
+            Record indices of the samples.
+
+        Returns
+        -------
+        UnloadingPath
+            The path in solve order, its pull-off the load minimum and its error
+            (:meth:`minimum_error`).
         """
         order, sm = self.minimum(indices)
         if sm is None:

@@ -54,7 +54,7 @@ SEARCHES = ("bracket", "march", "located")
 class PullOffStart:
     """Where the BEM pull-off starts, chosen by the caller (e.g. :func:`dhfield.adhesive_start.pull_off_start`).
 
-    Attributes
+    Parameters
     ----------
     half_width_x, half_width_y : float
         Half-widths of the domain [c_r]: the cohesive zone of every state must lie inside.
@@ -81,21 +81,21 @@ class PullOffStart:
 class NondimensionalProblem:
     """The crossed-cylinder problem in the paper's units (R = E* = Delta gamma = 1).
 
-    Attributes
+    Parameters
     ----------
     mu, beta0 : float
         Tabor parameter (Eq. 35) and initial ellipticity (Hertz b/a) [-].
     grid : Grid
-        n x n cells over ``[-half_width_x, half_width_x] x [-half_width_y, half_width_y]``
+        The n x n cells over ``[-half_width_x, half_width_x] x [-half_width_y, half_width_y]``
         (rectangular cells when beta0 < 1: as many cells across the minor axis
         as across the major one).
     initial_gap : ndarray
-        z = x^2/(2R') + y^2/(2R''), Eq. (2), with R' = sqrt(rho), R'' = 1/sqrt(rho),
+        The gap z = x^2/(2R') + y^2/(2R''), Eq. (2), with R' = sqrt(rho), R'' = 1/sqrt(rho),
         rho = R'/R'' of beta0 (so R = sqrt(R'R'') = 1) [c_r].
     law : DugdaleLaw or ExponentialLaw
-        sigma0 = mu, range 1/mu (Delta gamma = 1).
+        Traction law: sigma0 = mu, range 1/mu (Delta gamma = 1).
     sin_skew : float
-        sin(theta_skew) of beta0, the factor of Eq. (34).
+        The sine of the skew angle, sin(theta_skew), of beta0: the factor of Eq. (34) [-].
     approach_max, approach_step : float
         Start of unloading and unloading step [c_r^2/R] (:class:`PullOffStart`).
     pull_off_approach : float
@@ -121,28 +121,72 @@ class NondimensionalProblem:
         return bool(np.all(np.isfinite(self.pull_off_zone)))
 
     def start_stress(self) -> np.ndarray:
-        """sigma0 on the cold start's cohesive zone, full grid [stress] (a cold start)."""
+        """Return sigma0 on the cold start's cohesive zone, full grid (a cold start).
+
+        Returns
+        -------
+        ndarray
+            The adhesive stress on the full grid: sigma0 inside the ellipse of
+            semi-axes :attr:`pull_off_zone`, 0 outside [stress].
+        """
         c, d = self.pull_off_zone
         x, y = self.grid.mesh()
         return self.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
 
     def adhesive_problem(self, threads=None) -> AdhesiveProblem:
-        """The solver's working arrays of this problem (symmetry from the gap, E* = 1)."""
+        """Build the solver's working arrays of this problem (symmetry from the gap, E* = 1).
+
+        Parameters
+        ----------
+        threads : int, optional
+            FFTW threads; None: the solver's default.
+
+        Returns
+        -------
+        AdhesiveProblem
+            The problem's gap, grid and law in the solver's working arrays.
+        """
         return AdhesiveProblem(self.initial_gap, self.grid, self.law, None, threads, 1.0)
 
     def path_start(self, prob, warm_start=None) -> PathStart:
-        """The cold start of a path on ``prob`` (this problem's working arrays): none without one."""
+        """Build the cold start of a path on ``prob`` (this problem's working arrays).
+
+        Parameters
+        ----------
+        prob : AdhesiveProblem
+            This problem's working arrays (:meth:`adhesive_problem`).
+        warm_start : callable, optional
+            ``warm_start(approach)`` -> a guess on this grid or None (e.g. a
+            :class:`NestedWarmStart`).
+
+        Returns
+        -------
+        PathStart
+            The cold start at :attr:`pull_off_approach` with sigma0 on
+            :attr:`pull_off_zone`; without a cold start (:attr:`has_cold_start`
+            False), only ``warm_start``.
+        """
         if not self.has_cold_start:
             return PathStart(warm_start=warm_start)
         stress = np.clip(prob.to_work(self.start_stress()), 0.0, self.law.max_stress)
         return PathStart(self.pull_off_approach, stress, warm_start)
 
     def coarser(self, n) -> "NondimensionalProblem":
-        """This problem on the grid with ``n`` cells along x over the same domain.
+        """Return this problem on the grid with ``n`` cells along x over the same domain.
 
-        ``grid.nx`` must be a multiple of ``n``.  Equal to :func:`paper_problem` at ``n``
-        with the same start (the cell sizes are exact multiples: 2 lx/(n/k) = k (2 lx/n)
-        in floating point).
+        Equal to :func:`paper_problem` at ``n`` with the same start (the cell sizes
+        are exact multiples: 2 lx/(n/k) = k (2 lx/n) in floating point).
+
+        Parameters
+        ----------
+        n : int
+            Cells along x; ``grid.nx`` must be a multiple of ``n``.
+
+        Returns
+        -------
+        NondimensionalProblem
+            The same problem (law, start, domain) with the coarser grid and its
+            initial gap.
         """
         g = self.grid
         k = g.nx // n
@@ -185,6 +229,14 @@ def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProble
     Returns
     -------
     NondimensionalProblem
+        The grid (n x n cells over the start's domain), the initial gap
+        (Eq. 2), the law, sin(theta_skew) (Eq. 34) and the start.
+
+    Raises
+    ------
+    ValueError
+        If ``mu``, ``beta0``, ``n``, ``law`` or ``start`` is out of range, or the
+        start's zone does not lie inside the domain.
     """
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
@@ -208,7 +260,7 @@ def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProble
 class AdhesivePullOff:
     """Pull-off of the BEM adhesive contact in the paper's units (Eqs. 32-35).
 
-    Attributes
+    Parameters
     ----------
     mu, beta0 : float
         Tabor parameter (Eq. 35) and initial ellipticity [-].
@@ -222,7 +274,7 @@ class AdhesivePullOff:
         Second-moment semi-axes of the contact and of contact U cohesive zone
         at pull-off [c_r].
     beta_ab, beta_cd : float
-        b/a and d/c at pull-off (NaN without contact).
+        Ellipticities b/a and d/c at pull-off [-] (NaN without contact).
     delta_star : float
         Approach at pull-off [c_r^2/R].
     converged : bool
@@ -304,7 +356,14 @@ class AdhesivePullOff:
     search: str = ""
 
     def as_dict(self) -> dict:
-        """JSON-ready scalars (the path and failures summarised)."""
+        """Return the JSON-ready scalars (the path and failures summarised).
+
+        Returns
+        -------
+        dict
+            The scalar fields (not ``path``), ``failures`` as a list of dicts, and
+            ``iterations_per_step``.
+        """
         out = {k: getattr(self, k) for k in (
             "mu", "beta0", "n", "law", "control", "W_star", "W_star_error", "a_star", "b_star", "c_star",
             "d_star", "beta_ab", "beta_cd", "delta_star", "converged", "resolved", "n_steps", "iterations",
@@ -334,8 +393,12 @@ class NestedWarmStart:
     ----------
     problem : NondimensionalProblem
         The fine grid's problem (``n`` cells per axis, even, >= 2 NESTED_MIN_N).
-    tol, max_iter, threads
-        As in :func:`dhfield.bem.solve_adhesive`.
+    tol : float
+        Solver tolerance, as in :func:`dhfield.bem.solve_adhesive`.
+    max_iter : int
+        Cap on CG iterations, as in :func:`dhfield.bem.solve_adhesive`.
+    threads : int, optional
+        FFTW threads, as in :func:`dhfield.bem.solve_adhesive`.
 
     Attributes
     ----------
@@ -369,15 +432,28 @@ class NestedWarmStart:
 
     @property
     def states_solved(self) -> int:
+        """Coarse states solved, over all levels."""
         return len(self._branch.records) + (self._inner.states_solved if self._inner else 0)
 
     @property
     def iterations(self) -> int:
+        """CG iterations of the coarse states, over all levels."""
         own = sum(r["iterations"] for r in self._branch.records)
         return own + (self._inner.iterations if self._inner else 0)
 
     def coarse_state(self, approach):
-        """The state at ``approach`` on the coarse grid (solved once)."""
+        """Solve the state at ``approach`` on the coarse grid (once; later calls reuse it).
+
+        Parameters
+        ----------
+        approach : float
+            Approach [c_r^2/R].
+
+        Returns
+        -------
+        ContactState
+            The coarse grid's state, converged or not.
+        """
         d = float(approach)
         if d not in self._states:
             b = self._branch
@@ -409,7 +485,7 @@ class NestedWarmStart:
                        cohesive=np.where(guess.contact, 0.0, zone))
 
     def locate_pull_off(self, spacing):
-        """Approach of the load-control pull-off on the coarse grid (NaN when not found).
+        """Locate the approach of the load-control pull-off on the coarse grid (NaN when not found).
 
         The coarsest level whose Dugdale edge is (nearly) resolved
         (:data:`LOCATE_MAX_EDGE_RATIO`) runs the bracket search (with the problem's cold
@@ -418,6 +494,17 @@ class NestedWarmStart:
         level below (:func:`_lattice_minimum`, warm-started from that level) and returns
         the vertex of their parabola.  The states are kept for the warm starts.  NaN when
         this grid is too coarse for the Dugdale edge.
+
+        Parameters
+        ----------
+        spacing : float
+            Spacing of the approach lattice [c_r^2/R].
+
+        Returns
+        -------
+        float
+            The pull-off approach [c_r^2/R]; NaN when not found (the edge
+            unresolved here, or the minimum at an end of the samples).
         """
         nd, b = self._nd, self._branch
         if self._prob.edge_width_ratio > LOCATE_MAX_EDGE_RATIO:

@@ -109,11 +109,14 @@ def _region_codes(state):
 
 
 def state_dataset(state, *, nondimensional: bool = False, title: str | None = None, **parameters) -> xr.Dataset:
-    """The Dataset of one :class:`dhfield.bem.ContactState` (fields and scalars).
+    """Build the Dataset of one :class:`dhfield.bem.ContactState` (fields and scalars).
 
     Parameters
     ----------
     state : dhfield.bem.ContactState
+        Solved contact state: its pressure, gap, cohesive fraction and region
+        on the grid ``(y, x)``, and its scalars (approach, load, semi-axes,
+        solver diagnostics).
     nondimensional : bool
         True when the state is in the paper's units (R = E* = dgamma = 1): units
         become "1" and the scales are named in ``long_name``; else SI.
@@ -125,6 +128,8 @@ def state_dataset(state, *, nondimensional: bool = False, title: str | None = No
     Returns
     -------
     xarray.Dataset
+        The state's fields on ``(y, x)`` and its scalars, CF attributes and
+        provenance attributes included.
     """
     g = state.grid
     nd = nondimensional
@@ -160,10 +165,28 @@ def state_dataset(state, *, nondimensional: bool = False, title: str | None = No
 
 
 def path_dataset(path, *, nondimensional: bool = False, sin_skew: float | None = None) -> xr.Dataset:
-    """The per-step arrays of a :class:`dhfield.bem.UnloadingPath` on the dimension ``step``.
+    """Build the per-step arrays of a :class:`dhfield.bem.UnloadingPath` on the dimension ``step``.
 
     With ``sin_skew`` (and ``nondimensional``), the load is also given as
     W* = W sin(theta_skew)/(2 pi) (Eq. 34, R = dgamma = 1) and the approach as delta*.
+
+    Parameters
+    ----------
+    path : dhfield.bem.UnloadingPath
+        The loading-unloading path (approach, load, contact area, semi-axes,
+        phase and solver diagnostics per step, and its pull-off).
+    nondimensional : bool
+        True when the path is in the paper's units (R = E* = dgamma = 1); else SI.
+    sin_skew : float, optional
+        The sine of the skew angle, sin(theta_skew) [-] (Eq. 34); with ``nondimensional``
+        it adds ``W_star_path``. None (default) leaves it out.
+
+    Returns
+    -------
+    xarray.Dataset
+        The ``*_path`` variables on ``step``, ``pull_off_load`` and
+        ``pull_off_approach``; attributes ``control``, ``n_failures``,
+        ``failures`` and ``elapsed_seconds``.
     """
     nd = nondimensional
     n = int(np.size(path.approach))
@@ -203,11 +226,26 @@ def path_dataset(path, *, nondimensional: bool = False, sin_skew: float | None =
 
 
 def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
-    """Dataset of a nondimensional :class:`dhfield.bem.AdhesivePullOff`.
+    """Build the Dataset of a nondimensional :class:`dhfield.bem.AdhesivePullOff`.
 
     The pull-off scalars (W*, a*, b*, c*, d*, beta_ab, beta_cd, delta*, Eqs.
     32-34), the whole path, and (``fields=True``) the fields of the pull-off
     state, all in the paper's units.
+
+    Parameters
+    ----------
+    result : dhfield.bem.AdhesivePullOff
+        The BEM pull-off, in the paper's units (R = E* = dgamma = 1).
+    fields : bool, default True
+        Include the fields of the pull-off state on ``(y, x)``; False keeps
+        only the scalars and the path.
+
+    Returns
+    -------
+    xarray.Dataset
+        The ``*_pull_off`` scalars, the path's ``*_path`` variables on
+        ``step``, the flags ``resolved`` and ``converged_pull_off`` and,
+        with ``fields``, the pull-off state's fields.
     """
     from ..geometry import sin_skew_angle
 
@@ -349,7 +387,25 @@ def write_solution(result, path, *, fields: bool = True, params=None) -> Path:
 
 
 def read_solution(path) -> xr.Dataset:
-    """Read a file written by :func:`write_solution` (ValueError naming the file otherwise)."""
+    """Read a file written by :func:`write_solution`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The solution, its fields ordered ``(y, x)`` (files before 2026-11
+        stored them ``(x, y)``).
+
+    Raises
+    ------
+    ValueError
+        If the file is not a dhfield BEM solution (no ``gap``, no
+        ``W_star_pull_off``); the message names the file.
+    """
     ds = read_netcdf(path)
     if "gap" not in ds and "W_star_pull_off" not in ds:
         raise ValueError(f"input file is not a dhfield BEM solution (no gap, no W_star_pull_off): {str(path)!r}")
