@@ -27,19 +27,28 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 
 Models
 ------
-``dh-elliptic``              the paper's model, beta = beta0 throughout, dgamma on the major axis
-                             (Eqs. 17-19, 31) — :mod:`dhfield.model`; the default
-``dh-elliptic-two-axis``     dgamma = 1 on both axes, beta_cd != beta_ab, contact condition exact —
-                             :func:`dhfield.closure.pull_off_two_axis`
-``dh-elliptic-ray-average``  equal beta, dgamma = 1 on the periphery average —
-                             :func:`dhfield.closure.pull_off_ray_average`
-``dh-elliptic-jkr-beta``     the paper's second assumption (Fig. 9): beta_(pull-off) = beta_JKR(pull-off)
-``dh-circular``              Greenwood & Johnson (1998) — :mod:`dhfield.dh_circular`
-``jkr``, ``dmt``             :mod:`dhfield.jkr`, :mod:`dhfield.dmt`
-``md``                       Maugis (1992) — :mod:`dhfield.maugis_dugdale`
-``jkr-elliptic``             Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
-``jkr-elliptic-energy``      Giudici, Vella & Griffiths (2025), energy minimised over both semi-axes —
-                             :mod:`dhfield.jkr_elliptic_energy`
+``dh-elliptic``
+    the paper's model, beta = beta0 throughout, dgamma on the major axis (Eqs. 17-19, 31) —
+    :mod:`dhfield.model`; the default
+``dh-elliptic-two-axis``
+    dgamma = 1 on both axes, beta_cd != beta_ab, contact condition exact —
+    :func:`dhfield.closure.pull_off_two_axis`
+``dh-elliptic-ray-average``
+    equal beta, dgamma = 1 on the periphery average —
+    :func:`dhfield.closure.pull_off_ray_average`
+``dh-elliptic-jkr-beta``
+    the paper's second assumption (Fig. 9): beta_(pull-off) = beta_JKR(pull-off)
+``dh-circular``
+    Greenwood & Johnson (1998) — :mod:`dhfield.dh_circular`
+``jkr``, ``dmt``
+    :mod:`dhfield.jkr`, :mod:`dhfield.dmt`
+``md``
+    Maugis (1992) — :mod:`dhfield.maugis_dugdale`
+``jkr-elliptic``
+    Johnson & Greenwood (2005) — :mod:`dhfield.jkr_elliptic`
+``jkr-elliptic-energy``
+    Giudici, Vella & Griffiths (2025), energy minimised over both semi-axes —
+    :mod:`dhfield.jkr_elliptic_energy`
 
 Every model except ``dh-elliptic-jkr-beta`` (whose ellipticity is defined at
 pull-off only) has a load curve (:data:`CURVE_MODEL_NAMES`).
