@@ -15,7 +15,7 @@ itself); ``tests/test_layout.py`` checks this against the import statements::
 
     layer        modules                                   holds                          may import
     -----------  ----------------------------------------  -----------------------------  -------------------
-    foundations  _validation _memory schema records        input checks, the variable     (nothing)
+    foundations  _validation _memory schema records        input checks, the variable     one another
                  elliptic geometry pull_off_search         table, result records,
                  _adhesion transition dugdale_separation   elliptic integrals, Eqs. 2-6,
                                                            the one pull-off search
