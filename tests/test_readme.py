@@ -161,3 +161,12 @@ def test_shell_line_works(page, index, cmd, comment, tmp_path, monkeypatch, caps
     if expected is not None and not expected.startswith("# output") and cmd == lines[-1]:
         for line in expected.strip().splitlines():
             assert line.strip() in out.out + out.err, f"{page} says `{cmd}` prints {line!r}; it printed:\n{out.err}"
+
+
+def test_readme_links_to_pages_that_exist():
+    """Every relative link of the README (to the documentation's sources) names an existing file."""
+    links = re.findall(r"\]\(([^)#\s]+)\)", README.read_text(encoding="utf-8"))
+    local = [link for link in links if "://" not in link]
+    assert local, "the README links to no documentation page"
+    missing = [link for link in local if not (ROOT / link).is_file()]
+    assert not missing, f"README links to missing files: {missing}"
