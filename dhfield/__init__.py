@@ -9,6 +9,34 @@ Quick start (nondimensional units of Eqs. 32-35)::
     >>> p = dhfield.pull_off(mu=1.0, beta0=0.9)
     >>> round(float(p.W_star), 4)
     -0.7714
+
+Package map, bottom up.  A layer imports only the layers named in its last column (and
+itself); ``tests/test_layout.py`` checks this against the import statements::
+
+    layer        modules                                   holds                          may import
+    -----------  ----------------------------------------  -----------------------------  -------------------
+    foundations  _validation _memory schema records        input checks, the variable     one another
+                 elliptic geometry pull_off_search         table, result records,
+                 _adhesion transition dugdale_separation   elliptic integrals, Eqs. 2-6,
+                                                           the one pull-off search
+    analytic     hertz double_hertz adhesion model _rays   the paper's model, Eqs. 7-36;  foundations
+                 periphery eq30 closure                    theta_p, Eq. 30, closures
+    comparison   jkr dmt dh_circular maugis_dugdale        JKR, DMT, GJ98, MD, elliptical foundations
+                 jkr_elliptic jkr_elliptic_energy          JKR, the MD-to-JKR transition
+                 elliptic_transition
+    front        compare validity dimensional compliance   model registry, validity, SI   the three above
+                 fit adhesion_map                          front end, fitting
+    bem          bem/                                      DC-FFT boundary elements:      foundations (+ one
+                                                           operator, laws, solver, paths, lazy forward of
+                                                           pull-off                       adhesive_start)
+    bridge       adhesive_start fields                     BEM start from the analytic    all of the above
+                                                           models; analytic-vs-BEM fields
+    edges        io/ plotting sweep/ cli/                  files (xarray, netCDF,         io: the core;
+                                                           pandas), figures (matplotlib), plotting: io; sweep:
+                                                           dask sweeps, the command       core + io; cli: all
+
+The core (every layer but the edges) is numpy/scipy only: it imports no xarray, matplotlib,
+pandas, netCDF4 or dask, and no edge module.
 """
 __version__ = "0.1.0"
 PAPER_DOI = "10.1007/s11249-017-0976-8"

@@ -12,6 +12,10 @@
   it (``make <target>`` has that target, ``python -m <module>`` imports, a script
   path exists, ``pip install -e '.[extra]'`` names an extra of pyproject.toml);
   anything else fails the test, so that nothing in the README goes unchecked.
+
+The same holds for the ``.. code-block:: python`` / ``sh`` / ``text`` blocks of the documentation
+pages in :data:`DOC_PAGES`, where the README's longer examples moved (``::`` literal blocks are
+not run).
 """
 from __future__ import annotations
 
@@ -20,18 +24,37 @@ import importlib.util
 import io
 import re
 import shlex
+import textwrap
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 README = ROOT / "README.md"
+#: Documentation pages whose code blocks run too (the README's longer examples moved there).
+DOC_PAGES = ("docs/howto/python_api.rst", "docs/howto/cli_tour.rst", "docs/howto/fit.rst",
+             "docs/howto/pull_off.rst", "docs/verification.rst")
 _FENCE = re.compile(r"^```(\w*)\s*\n(.*?)^```\s*$", re.MULTILINE | re.DOTALL)
+_RST_BLOCK = re.compile(r"^\.\. code-block:: *(\w+)[ \t]*\n((?:[ \t]*\n|[ \t]+\S.*\n)*)", re.MULTILINE)
 
 
-def _blocks():
-    """(language, body, index) of every fenced block of the README, in order."""
-    return [(m.group(1), m.group(2), k) for k, m in enumerate(_FENCE.finditer(README.read_text(encoding="utf-8")))]
+def _rst_blocks(text):
+    """(language, body) of every ``.. code-block::`` of an RST page: options dropped, dedented."""
+    out = []
+    for m in _RST_BLOCK.finditer(text):
+        lines = textwrap.dedent(m.group(2)).splitlines()
+        while lines and (not lines[0].strip() or lines[0].startswith(":")):
+            lines.pop(0)
+        out.append((m.group(1), "\n".join(lines).rstrip() + "\n"))
+    return out
+
+
+def _blocks(path=README):
+    """(language, body, index) of every code block of a page (the README by default), in order."""
+    text = path.read_text(encoding="utf-8")
+    pairs = ([(m.group(1), m.group(2)) for m in _FENCE.finditer(text)] if path.suffix == ".md"
+             else _rst_blocks(text))
+    return [(lang, body, k) for k, (lang, body) in enumerate(pairs)]
 
 
 def _command_lines(body):
@@ -50,15 +73,16 @@ def _command_lines(body):
     return out
 
 
-BLOCKS = _blocks()
-PYTHON = [(k, body) for lang, body, k in BLOCKS if lang == "python"]
-SHELL = [(k, cmd, comment) for lang, body, k in BLOCKS if lang in ("sh", "bash", "console", "shell")
-         for cmd, comment in _command_lines(body)]
+PAGES = {"README.md": README, **{page: ROOT / page for page in DOC_PAGES}}
+BLOCKS = {name: _blocks(path) for name, path in PAGES.items()}
+PYTHON = [(name, k, body) for name, blocks in BLOCKS.items() for lang, body, k in blocks if lang == "python"]
+SHELL = [(name, k, cmd, comment) for name, blocks in BLOCKS.items() for lang, body, k in blocks
+         if lang in ("sh", "bash", "console", "shell") for cmd, comment in _command_lines(body)]
 
 
-def _expected_after(index):
-    """The ```text block right after block ``index`` (None if the next block is not text)."""
-    nxt = [b for b in BLOCKS if b[2] == index + 1]
+def _expected_after(page, index):
+    """The text block right after block ``index`` of ``page`` (None if the next block is not text)."""
+    nxt = [b for b in BLOCKS[page] if b[2] == index + 1]
     return nxt[0][1] if nxt and nxt[0][0] == "text" else None
 
 
@@ -68,17 +92,24 @@ def test_readme_has_the_worked_example_and_code():
     assert "PDMS" in text and "--skew-angle-deg 60" in text and "--model dh-elliptic-two-axis" in text
 
 
-@pytest.mark.parametrize("index,body", PYTHON, ids=[f"python-block-{k}" for k, _ in PYTHON])
-def test_python_block_runs_on_its_own(index, body, tmp_path, monkeypatch):
+def test_every_doc_page_has_code_blocks():
+    """The pages the README's examples moved to are parsed (a renamed page or directive would
+    otherwise leave its examples silently untested)."""
+    for page in DOC_PAGES:
+        assert any(p == page for p, _k, _b in PYTHON) or any(p == page for p, *_ in SHELL), page
+
+
+@pytest.mark.parametrize("page,index,body", PYTHON, ids=[f"{p}-python-block-{k}" for p, k, _ in PYTHON])
+def test_python_block_runs_on_its_own(page, index, body, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        exec(compile(body, f"README.md block {index}", "exec"), {"__name__": "__readme__"})  # noqa: S102
-    expected = _expected_after(index)
+        exec(compile(body, f"{page} block {index}", "exec"), {"__name__": "__readme__"})  # noqa: S102
+    expected = _expected_after(page, index)
     if expected is not None and expected.startswith("# output"):
         want = expected.splitlines()[1:]
         got = buf.getvalue().splitlines()
-        assert got == want, "README output block is stale:\n" + "\n".join(got)
+        assert got == want, f"{page} output block is stale:\n" + "\n".join(got)
 
 
 def _check_other(cmd):
@@ -108,8 +139,8 @@ def _check_other(cmd):
     return f"README command the test does not know how to check: {cmd!r}"
 
 
-@pytest.mark.parametrize("index,cmd,comment", SHELL, ids=[f"sh-{k}-{c[:40]}" for k, c, _ in SHELL])
-def test_shell_line_works(index, cmd, comment, tmp_path, monkeypatch, capsys):
+@pytest.mark.parametrize("page,index,cmd,comment", SHELL, ids=[f"{p}-sh-{k}-{c[:40]}" for p, k, c, _ in SHELL])
+def test_shell_line_works(page, index, cmd, comment, tmp_path, monkeypatch, capsys):
     from dhfield import cli
 
     words = shlex.split(cmd)
@@ -125,8 +156,17 @@ def test_shell_line_works(index, cmd, comment, tmp_path, monkeypatch, capsys):
     status = cli.main(argv)
     out = capsys.readouterr()
     assert status == 0, f"`{cmd}` exited {status}:\n{out.err[-2000:]}"
-    expected = _expected_after(index)
-    lines = [c for k, c, _c in SHELL if k == index]
+    expected = _expected_after(page, index)
+    lines = [c for p, k, c, _c in SHELL if p == page and k == index]
     if expected is not None and not expected.startswith("# output") and cmd == lines[-1]:
         for line in expected.strip().splitlines():
-            assert line.strip() in out.out + out.err, f"README says `{cmd}` prints {line!r}; it printed:\n{out.err}"
+            assert line.strip() in out.out + out.err, f"{page} says `{cmd}` prints {line!r}; it printed:\n{out.err}"
+
+
+def test_readme_links_to_pages_that_exist():
+    """Every relative link of the README (to the documentation's sources) names an existing file."""
+    links = re.findall(r"\]\(([^)#\s]+)\)", README.read_text(encoding="utf-8"))
+    local = [link for link in links if "://" not in link]
+    assert local, "the README links to no documentation page"
+    missing = [link for link in local if not (ROOT / link).is_file()]
+    assert not missing, f"README links to missing files: {missing}"
