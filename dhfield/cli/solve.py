@@ -7,11 +7,17 @@ from ._common import add_model_arguments, print_json
 
 #: Exit status when a state of the path did not converge (the result is still printed/written, flagged).
 EXIT_UNCONVERGED = 3
+#: Exit status when the case cannot be resolved within the memory or time available (or the given
+#: --n is far too coarse for it): one line, before solving, with the N it needs and the analytic value.
+EXIT_UNRESOLVABLE = 4
 
 _EPILOG = (f"exit status: 0 success (a note on stderr if states beyond the pull-off did not converge); "
            f"2 invalid input (one line on stderr); {EXIT_UNCONVERGED} a state of the path up to the pull-off "
            "did not converge (one line on stderr naming the parameters; the result is still printed and "
-           "written, with converged = false)")
+           "written, with converged = false); "
+           f"{EXIT_UNRESOLVABLE} the case cannot be resolved within the memory or time available, or --n is far "
+           "too coarse for it (one line, before solving: the n it needs, its estimated memory and time, and the "
+           "analytic W* to use instead)")
 
 
 def add_parser(sub) -> None:
@@ -22,7 +28,8 @@ def add_parser(sub) -> None:
                                    "second moments of the contact and adhesive masks.",
                        epilog=_EPILOG)
     add_model_arguments(p)
-    p.add_argument("--n", type=int, default=256, help="cells per axis (even, >= 8; default 256)")
+    p.add_argument("--n", type=int, default=None,
+                   help="cells per axis (even, >= 8; default: chosen from the Dugdale zone width and memory)")
     p.add_argument("--law", default="dugdale", choices=("dugdale", "exponential"),
                    help="traction law, sigma0 = mu and dgamma = 1 (default dugdale)")
     p.add_argument("--control", default="load", choices=("load", "displacement"),
@@ -56,10 +63,19 @@ def run(args) -> int:
         check_writable(args.out)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
-    where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={args.n}, law={args.law}, control={args.control}")
+    from ..adhesive_start import UnresolvableCaseError, plan_grid
+
+    plan = plan_grid(args.mu, args.beta0, args.n, law=args.law)
+    if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
+        print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
+        return EXIT_UNRESOLVABLE
+    where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={plan.n}, law={args.law}, control={args.control}")
     try:
         res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
                                 threads=args.threads, progress=None, search=args.search)
+    except UnresolvableCaseError as exc:
+        print(f"dhfield: solve refused: {exc}", file=sys.stderr)
+        return EXIT_UNRESOLVABLE
     except RuntimeError as exc:  # the solver found no converged state to report
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
