@@ -178,9 +178,15 @@ def _edge_compliance(grid, reduced_modulus):
 
 
 class AdhesiveProblem:
-    """Working arrays of one (grid, z, law) problem: full grid or even-even quadrant."""
+    """Working arrays of one (grid, z, law) problem: full grid or even-even quadrant.
 
-    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus):
+    ``relaxed_edge=True`` (Dugdale only) widens the sub-cell edge to what discrete stability
+    wants even beyond its cap 2 h0 (:data:`EDGE_WIDTH_FACTOR`), so that a grid too coarse for
+    the law still has stable, converging states: they solve a smeared law and serve only as
+    warm starts of a finer grid (``resolved`` stays False).
+    """
+
+    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus, *, relaxed_edge=False):
         if not isinstance(grid, Grid):
             raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
         z = check_finite("initial_gap", initial_gap, "initial gap z(x, y), length")
@@ -215,7 +221,9 @@ class AdhesiveProblem:
             self.edge_width_ratio = ratio
             # at most 2 h0: the smeared edge stays within h >= 0 and keeps the work of adhesion
             want = _edge_compliance(grid, e) * self.law.max_stress
-            self.min_spread = min(want, 2.0 * self.law.range)
+            # relaxed_edge: the edge as wide as stability wants, beyond 2 h0 (a different law near the
+            # edge, and resolved = False: only a warm start for a finer grid, never an answer)
+            self.min_spread = want if relaxed_edge else min(want, 2.0 * self.law.range)
 
     def to_full(self, q):
         return unfold_quadrant(q) if self.symmetric else q
