@@ -13,6 +13,16 @@ from the models:
   pull-off for beta0 < 1 (``dh-elliptic-two-axis``, :func:`dhfield.compare.pull_off`),
   the DH model's at beta0 = 1.
 
+The grid: :func:`plan_grid` chooses the cells per axis a case needs from the law's edge
+(:func:`dhfield.bem.solver.edge_width_ratio` <= 1, i.e. ``sqrt(dx dy) <= 2/(kappa mu^2)``)
+and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2), estimates its memory
+and time, and names the analytic value to use instead
+(:func:`dhfield.elliptic_transition.pull_off_nondimensional`); :func:`adhesive_pull_off`
+without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
+allowed (:class:`UnresolvableCaseError`).  Where the grid half as fine cannot hold the
+Dugdale edge (high mu), the states are warm-started from it with the edge relaxed
+(:class:`RelaxedWarmStart`).
+
 :func:`adhesive_pull_off` and :func:`refine_pull_off`, the user-facing BEM
 pull-offs, set the problem up here and run :func:`dhfield.bem.pull_off.solve_pull_off`
 and :func:`dhfield.bem.pull_off.refine` on it; :mod:`dhfield.bem` forwards their
@@ -38,7 +48,7 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
-           "UNSTABLE_EDGE_RATIO"]
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -461,14 +471,111 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
         n = plan.n_needed
-        if control == "load" and search == "located" and nested is None and not _half_grid_locates(plan, law, margin):
-            # the grid half as fine cannot hold the Dugdale edge (its states do not converge): a cold
-            # start on this grid instead of unconverged coarse states (LOCATE_MAX_EDGE_RATIO)
-            search, nested = "bracket", False
+        relaxed = (control == "load" and search == "located" and nested is None and law == "dugdale"
+                   and n % 4 == 0 and not _half_grid_locates(plan, law, margin))
+    else:
+        relaxed = False
     prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
     options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
                           keep_states=keep_states, progress=progress)
+    if relaxed and prob.has_cold_start:
+        # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
+        # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
+        return _relaxed_pull_off(prob, options)
     return solve_pull_off(prob, control=control, search=search, nested=nested, options=options)
+
+
+#: Tolerance of the relaxed coarse states of :class:`RelaxedWarmStart` (warm starts only: their
+#: law is smeared anyway; the fine grid keeps ``tol``).
+RELAXED_COARSE_TOL = 1e-4
+
+
+class RelaxedWarmStart:
+    """Warm starts from the grid half as fine with the Dugdale edge relaxed (coarse to fine at high mu).
+
+    Where the grid half as fine cannot hold the Dugdale edge (its ``edge_width_ratio`` is
+    above the located search's gate), its states do not converge, and
+    :class:`dhfield.bem.pull_off.NestedWarmStart` gives nothing.  Here the coarse states
+    solve the law with the edge as wide as stability wants
+    (``AdhesiveProblem(..., relaxed_edge=True)``): they converge, and their zone is within a
+    fraction of a coarse cell of the fine grid's.  ``start(approach)`` solves the coarse
+    state at that approach (from the nearest one solved, the first from the problem's cold
+    start), carries it onto the fine grid (:func:`dhfield.bem.pull_off.interpolate_state`)
+    with the fine grid's own sub-cell zone fraction of the carried gap, and returns it as a
+    guess (never as an answer: the fine state is solved from it with the unrelaxed law).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The fine grid's problem (n divisible by 4).
+    tol, max_iter, threads
+        As in :func:`dhfield.bem.solve_adhesive` (``tol`` of the coarse states).
+    """
+
+    def __init__(self, problem, *, tol=RELAXED_COARSE_TOL, max_iter=DEFAULT_MAX_ITER, threads=None):
+        from .bem.solver import AdhesiveProblem
+
+        coarse = problem.coarser(problem.grid.nx // 2)
+        self._fine_nd, self._fine_prob, self._threads = problem, None, threads
+        self._prob = AdhesiveProblem(coarse.initial_gap, coarse.grid, coarse.law, None, threads, 1.0,
+                                     relaxed_edge=True)
+        self._cold = np.clip(self._prob.to_work(coarse.start_stress()), 0.0, coarse.law.max_stress)
+        self._tol, self._max_iter = float(tol), int(max_iter)
+        self._states = {}
+        self.iterations = 0
+        self.seconds = 0.0
+
+    @property
+    def states_solved(self) -> int:
+        return len(self._states)
+
+    def coarse_state(self, approach):
+        """The relaxed state at ``approach`` on the coarse grid (solved once)."""
+        import time
+
+        from .bem.solver import Prediction, solve_problem
+
+        d = float(approach)
+        if d not in self._states:
+            near = [s for s in self._states.values() if s.converged and s.in_contact]
+            guess = (min(near, key=lambda s: abs(s.approach - d)) if near
+                     else Prediction(np.zeros_like(self._cold), self._cold.copy()))
+            t0 = time.perf_counter()
+            st = solve_problem(self._prob, d, guess, self._tol, self._max_iter)
+            self.seconds += time.perf_counter() - t0
+            self.iterations += st.iterations
+            self._states[d] = st
+        return self._states[d]
+
+    def __call__(self, approach):
+        """Warm start on the fine grid (a guess), or None when the coarse state is not a converged contact state."""
+        from dataclasses import replace
+
+        from .bem.pull_off import interpolate_state
+
+        st = self.coarse_state(approach)
+        if not (st.converged and st.in_contact):
+            return None
+        guess = interpolate_state(st, self._fine_nd.grid)
+        if self._fine_prob is None:
+            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
+        fp, law = self._fine_prob, guess.law
+        zone = fp.to_full(fp.stress_from_gap(fp.to_work(guess.gap), fp.to_work(guess.contact)) / law.max_stress)
+        return replace(guess, pressure=guess.repulsive_pressure - law.max_stress * zone,
+                       cohesive=np.where(guess.contact, 0.0, zone))
+
+
+def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
+    """Load-control bracket search on ``prob`` with every state warm-started by :class:`RelaxedWarmStart`."""
+    from .bem.path import path_on
+    from .bem.pull_off import _pull_off_result
+
+    options = options.checked()
+    ws = RelaxedWarmStart(prob, max_iter=options.max_iter, threads=options.threads)
+    work = prob.adhesive_problem(options.threads)
+    path = path_on(work, prob.path_start(work, ws), prob.approach_max, prob.approach_step, control="load",
+                   options=options)
+    return _pull_off_result(prob, prob.grid.nx, path, "bracket")
 
 
 def _half_grid_locates(plan, law, margin) -> bool:
