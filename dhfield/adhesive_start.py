@@ -13,6 +13,16 @@ from the models:
   pull-off for beta0 < 1 (``dh-elliptic-two-axis``, :func:`dhfield.compare.pull_off`),
   the DH model's at beta0 = 1.
 
+The grid: :func:`plan_grid` chooses the cells per axis a case needs from the law's edge
+(:func:`dhfield.bem.solver.edge_width_ratio` <= 1, i.e. ``sqrt(dx dy) <= 2/(kappa mu^2)``)
+and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2), estimates its memory
+and time, and names the analytic value to use instead
+(:func:`dhfield.elliptic_transition.pull_off_nondimensional`); :func:`adhesive_pull_off`
+without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
+allowed (:class:`UnresolvableCaseError`).  Where the grid half as fine cannot hold the
+Dugdale edge (high mu), the states are warm-started from it with the edge relaxed
+(:class:`RelaxedWarmStart`).
+
 :func:`adhesive_pull_off` and :func:`refine_pull_off`, the user-facing BEM
 pull-offs, set the problem up here and run :func:`dhfield.bem.pull_off.solve_pull_off`
 and :func:`dhfield.bem.pull_off.refine` on it; :mod:`dhfield.bem` forwards their
@@ -21,17 +31,24 @@ names, so ``from dhfield.bem import adhesive_pull_off`` keeps working.
 from __future__ import annotations
 
 import functools
+import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from . import model
+from ._memory import memory_limit
 from ._validation import check_count, check_ellipticity, check_positive
+from .bem.laws import law_from_name
+from .bem.operator import Grid
 from .bem.path import PathOptions
-from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_STEPS, AdhesivePullOff, NondimensionalProblem,
-                           PullOffStart, check_cells, paper_problem, refine, solve_pull_off)
-from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL
+from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_CELLS, MAX_STEPS, AdhesivePullOff,
+                           NondimensionalProblem, PullOffStart, check_cells, paper_problem, refine, solve_pull_off)
+from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
-__all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off"]
+__all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
+           "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -96,11 +113,35 @@ def _start(mu, beta0, n_steps, margin) -> PullOffStart:
     d_end = float(pod.delta_star) - 0.2 * (d_max - float(pod.delta_star))
     # the cold start of the bracket search: the analytic load-control pull-off state
     start = _two_axis_start(mu, beta0) if beta0 < 1.0 else None
+    half_x, half_y = margin * c_start, margin * c_start * beta0 ** 0.75
+    if start is None and beta0 < 1.0 and mu >= SLENDER_START_MIN_MU:
+        # slender (the two-axis closure refuses beta0 < 0.3): GVG's pull-off ellipse plus the zone
+        start = _gvg_start(mu, beta0)
+        half_x = max(half_x, SLENDER_DOMAIN_MARGIN * start[1][0])
+        half_y = max(half_y, SLENDER_DOMAIN_MARGIN * start[1][1])
     if start is None:
         at_po = model.load_curve(mu, beta0, [max(float(po.a_star), 1e-3 * a_start)])
         start = (float(po.delta_star), (float(at_po.c_star[0]), float(at_po.d_star[0])))
-    return PullOffStart(margin * c_start, margin * c_start * beta0 ** 0.75, d_max, (d_max - d_end) / int(n_steps),
-                        start[0], start[1])
+    return PullOffStart(half_x, half_y, d_max, (d_max - d_end) / int(n_steps), start[0], start[1])
+
+
+#: Smallest mu at which slender contacts (no two-axis start) start from GVG's JKR pull-off ellipse.
+SLENDER_START_MIN_MU = 2.0
+#: Domain half-width per semi-axis of that start's zone (GVG's contact plus the expected zone):
+#: at beta0 = 0.1806, mu = 5, N = 400 the paper's start gave a domain of 3.13 x 0.87 and the
+#: BEM's contact reached a* = 3.14 (cut by the domain; 9 unconverged states, W* 2 % weak),
+#: against GVG's a = 2.79, b = 0.74 and the paper's zone c = 2.34, d = 0.42.
+SLENDER_DOMAIN_MARGIN = 1.3
+
+
+def _gvg_start(mu, beta0):
+    """(approach, (c, d)) of GVG's JKR load-control pull-off (:mod:`dhfield.jkr_elliptic_energy`), the
+    contact semi-axes widened by :func:`expected_zone_width`: the cold start of slender contacts."""
+    from . import jkr_elliptic_energy
+
+    rec = jkr_elliptic_energy.pull_off_nondimensional(beta0, "load")
+    w = expected_zone_width(mu)
+    return float(rec["delta_star"]), (float(rec["a_star"]) + w, float(rec["b_star"]) + w)
 
 
 @functools.lru_cache(maxsize=64)
@@ -147,10 +188,226 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     return paper_problem(mu, beta0, n, _start(mu, beta0, n_steps, _check_margin(margin)), law=law)
 
 
-def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
+# ============================================================================ the grid a case needs
+#: Fewest cells per axis of an automatic grid: N = 256 is within 1 % of Maugis-Dugdale on the
+#: sphere at mu <= 3 (tests/test_cli_solve.py, data/adhesive_ground_truth.nc).
+AUTO_MIN_CELLS = 256
+#: Fewest cells across the expected Dugdale zone c - a (:func:`expected_zone_width`) along x
+#: of an automatic grid (the resolved flag wants >= ZONE_MIN_CELLS = 1 at pull-off; the edge
+#: criterion below gives ~2 at mu >= 5, so this rarely binds).
+AUTO_ZONE_CELLS = 2.0
+#: Memory of one load-control pull-off per cell of the full grid [bytes].  Measured: 185 and 179
+#: B/cell of peak RSS for one state solve at N = 512 and 1024 (mu = 1, beta0 = 0.5; operator,
+#: CG and Anderson arrays, quadrant mode), plus ~33 B/cell per full-grid state held by a path
+#: (pressure, gap, repulsive pressure, masks; ~8 held) -> 450.
+PATH_BYTES_PER_CELL = 450.0
+#: Wall time per cell of the full grid and per CG iteration [s]: the stored ground truth at
+#: mu = 5, N = 512 and 1024 (data/adhesive_ground_truth.nc, 'elapsed'/'iterations'/N^2) gives
+#: 0.023-0.12 us on this shared 2-core machine, median ~0.06 us.
+SECONDS_PER_CELL_ITERATION = 6e-8
+#: CG iterations of one pull-off at a resolved grid: 3000-9300 at mu = 5, N = 512-1024 (stored
+#: ground truth, bracket/located/refine routes).  With the two constants above the time
+#: estimate is a rough one (a factor 2-3 either way on a loaded machine).
+PULL_OFF_ITERATIONS = 6000
+#: Default time a pull-off with an automatic grid may be estimated to take before it is refused [s].
+DEFAULT_MAX_SECONDS = 1800.0
+#: An explicit grid whose ``edge_width_ratio`` exceeds this has no stable discrete state: its
+#: states do not converge (measured: they converge at 1.10-1.18 and not at 2.1-3.8; at 3.07,
+#: beta0 = 0.4826, mu = 11.4, N = 512, the cold start stalls at residual 4e-2 after 189 outer
+#: iterations, 83 s, and the pull-off is NaN).  :func:`plan_grid` says so.
+UNSTABLE_EDGE_RATIO = 2.0
+
+
+def expected_zone_width(mu) -> float:
+    """Width c - a of the Dugdale zone on the JKR side, in contact units [c_r].
+
+    ``(pi/8) 2 E* dgamma/sigma0^2 = 0.785/mu^2`` with R = E* = dgamma = 1 (sigma0 = mu).
+    Checked against the stored BEM (data/adhesive_ground_truth.nc, beta0 = 0.5-1): at mu = 5
+    c* - a* = 0.029-0.031 and d* - b* = 0.029-0.030 (estimate 0.0314); at mu = 2 0.163-0.174
+    (0.196); at mu = 1 0.48-0.54 (0.785): an upper bound, close on the JKR side (mu >= 5).
+    """
+    return math.pi / 8.0 * 2.0 / float(mu) ** 2
+
+
+def _fft_sizes():
+    """Even cell counts with small prime factors (2, 3, 5; multiples of 16), AUTO_MIN_CELLS to MAX_CELLS."""
+    out = set()
+    for a in range(4, 17):
+        for b in range(0, 4):
+            for c in range(0, 3):
+                n = 2 ** a * 3 ** b * 5 ** c
+                if AUTO_MIN_CELLS <= n <= MAX_CELLS:
+                    out.add(n)
+    return sorted(out)
+
+
+@dataclass(frozen=True)
+class GridPlan:
+    """The grid a BEM pull-off needs at (mu, beta0), its cost, and the analytic value to use instead.
+
+    Attributes
+    ----------
+    mu, beta0 : float
+        The case [-].
+    n : int
+        Cells per axis asked for (the automatic choice when none was given).
+    n_needed : int
+        Fewest cells per axis (from the FFT-friendly sizes) that resolve the law's edge
+        (``edge_width_ratio <= 1``) with >= AUTO_ZONE_CELLS cells across the expected zone.
+    edge_width_ratio : float
+        :func:`dhfield.bem.solver.edge_width_ratio` of the grid of ``n`` (resolved iff <= 1).
+    memory_bytes, seconds : float
+        Estimated memory and wall time of the pull-off on the grid of ``n_needed`` [bytes], [s].
+    memory_limit : float or None
+        The memory one computation may claim now [bytes] (None: unknown, no limit).
+    max_seconds : float
+        The time allowed [s].
+    analytic_W_star : float
+        The best analytic value, :func:`dhfield.elliptic_transition.pull_off_nondimensional`
+        (GVG x the sphere's MD/JKR transition; within 0.34 % of the stored BEM at beta0 >= 0.5,
+        mu <= 5) [-].
+    """
+
+    mu: float
+    beta0: float
+    n: int
+    n_needed: int
+    edge_width_ratio: float
+    memory_bytes: float
+    seconds: float
+    memory_limit: float | None
+    max_seconds: float
+    analytic_W_star: float
+
+    @property
+    def affordable(self) -> bool:
+        """True when the grid of ``n_needed`` fits the memory and the time allowed."""
+        fits = self.memory_limit is None or self.memory_bytes <= self.memory_limit
+        return fits and self.seconds <= self.max_seconds
+
+    @property
+    def too_coarse(self) -> bool:
+        """True when the grid of ``n`` is far too coarse for the law's edge (> UNSTABLE_EDGE_RATIO)."""
+        return self.edge_width_ratio > UNSTABLE_EDGE_RATIO
+
+    @property
+    def resolved(self) -> bool:
+        """True when the grid of ``n`` resolves the law's edge."""
+        return self.edge_width_ratio <= 1.0
+
+    def reason(self) -> str:
+        """Why the case cannot be solved as asked (empty when it can be)."""
+        why = []
+        if self.too_coarse:
+            why.append(f"n={self.n} is too coarse for the Dugdale edge at mu={self.mu:g} (it wants "
+                       f"{self.edge_width_ratio:.2f}x its cap 2 h0: no stable discrete state, no convergence)")
+        if self.memory_limit is not None and self.memory_bytes > self.memory_limit:
+            why.append(f"n={self.n_needed} needs ~{self.memory_bytes / 2**30:.3g} GiB, more than the "
+                       f"{self.memory_limit / 2**30:.3g} GiB available")
+        if self.seconds > self.max_seconds:
+            why.append(f"n={self.n_needed} would take ~{self.seconds:.0f} s, more than the "
+                       f"{self.max_seconds:.0f} s allowed")
+        return "; ".join(why)
+
+    def message(self) -> str:
+        """One line: the case, why not, the N it needs with its memory and time, the analytic value."""
+        return (f"beta0={self.beta0:g}, mu={self.mu:g}: {self.reason() or 'can be solved'}; a resolved BEM "
+                f"needs n >= {self.n_needed} (~{self.memory_bytes / 2**30:.2g} GiB, ~{self.seconds / 60:.0f} min "
+                f"estimated); use the analytic W* = {self.analytic_W_star:.4f} (elliptic_transition: GVG x the "
+                "sphere's MD/JKR transition) instead")
+
+
+class UnresolvableCaseError(RuntimeError):
+    """A BEM pull-off that cannot be resolved within the memory or time available, refused before solving.
+
+    Attributes
+    ----------
+    plan : GridPlan
+        The case, the N it needs, its estimated memory [bytes] and time [s], and the best
+        analytic value (``plan.analytic_W_star``).
+    n_needed, memory_bytes, seconds, analytic_W_star
+        Shortcuts to the plan's fields.
+    """
+
+    def __init__(self, plan: GridPlan):
+        self.plan = plan
+        self.n_needed = plan.n_needed
+        self.memory_bytes = plan.memory_bytes
+        self.seconds = plan.seconds
+        self.analytic_W_star = plan.analytic_W_star
+        super().__init__(plan.message())
+
+
+def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
+              max_seconds=DEFAULT_MAX_SECONDS) -> GridPlan:
+    """The grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    n : int, optional
+        Cells per axis asked for; default: the automatic choice ``n_needed``.
+    law : {'dugdale', 'exponential'}
+        Traction law (sigma0 = mu, Delta gamma = 1).
+    margin : float
+        As in :func:`pull_off_start` (the domain).
+    max_seconds : float
+        Time allowed [s] (:attr:`GridPlan.affordable`).
+
+    Returns
+    -------
+    GridPlan
+
+    Notes
+    -----
+    The domain is :func:`pull_off_start`'s (n x n cells over it, rectangular cells for
+    beta0 < 1).  ``n_needed`` is the smallest size of 2^a 3^b 5^c (a multiple of 16, at
+    least :data:`AUTO_MIN_CELLS`) whose :func:`dhfield.bem.solver.edge_width_ratio` is <= 1
+    (resolved: in the paper's units ``sqrt(dx dy) <= 2/(kappa mu^2)``) and whose cells along x
+    number >= :data:`AUTO_ZONE_CELLS` across :func:`expected_zone_width`.  Both fall like
+    1/mu^2, so N grows like mu^2 (ln-corrected): ~512 at mu = 5, ~1440 at mu = 10 for
+    beta0 = 0.5.  Memory ``PATH_BYTES_PER_CELL n^2`` and time
+    ``SECONDS_PER_CELL_ITERATION n^2 PULL_OFF_ITERATIONS`` (measured constants; the solver
+    works on the quadrant, which these include).
+    """
+    from . import elliptic_transition
+
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
+    start = _start(mu, beta0, DEFAULT_STEPS, _check_margin(margin))
+    law_obj = law_from_name(law, mu, 1.0)
+    zone = expected_zone_width(mu)
+
+    def grid(k):
+        return Grid.centered(k, start.half_width_x, half_width_y=start.half_width_y)
+
+    def good(k):
+        g = grid(k)
+        return edge_width_ratio(g, law_obj) <= 1.0 and zone / g.dx >= AUTO_ZONE_CELLS
+
+    sizes = _fft_sizes()
+    n_needed = next((k for k in sizes if good(k)), None)
+    if n_needed is None:        # beyond MAX_CELLS: extrapolate (N grows like mu^2)
+        g = grid(MAX_CELLS)
+        n_needed = int(2 * math.ceil(MAX_CELLS * max(edge_width_ratio(g, law_obj),
+                                                     AUTO_ZONE_CELLS * g.dx / zone) / 2))
+    n = n_needed if n is None else check_cells(n)
+    cells = float(n_needed) ** 2
+    w_star = float(elliptic_transition.pull_off_nondimensional(mu, beta0)["W_star"])
+    return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n), law_obj)),
+                    PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
+                    memory_limit(), max_seconds, w_star)
+
+
+def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
                       refine_levels=2, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER,
                       margin=DOMAIN_MARGIN, threads=None, keep_states=False,
-                      progress=None, search="located", nested=None) -> AdhesivePullOff:
+                      progress=None, search="located", nested=None,
+                      max_seconds=DEFAULT_MAX_SECONDS) -> AdhesivePullOff:
     """BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
 
     Parameters
@@ -159,20 +416,32 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
     beta0 : float
         Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
-    n : int
-        Cells per axis (even) [-].
+    n : int, optional
+        Cells per axis (even) [-].  Default: chosen from the expected zone width and the
+        law's edge (:func:`plan_grid`, ``n_needed``), refused with
+        :class:`UnresolvableCaseError` before anything is solved when that grid does not fit
+        the memory available or ``max_seconds``.
     law : {'dugdale', 'exponential'}
         Traction law (:mod:`dhfield.bem.laws`).
     control : {'load', 'displacement'}
         Load control: the minimum of the unloading load.  Displacement control:
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
+    max_seconds : float
+        Automatic n only: the estimated time allowed [s] (:func:`plan_grid`).
 
     Returns
     -------
     AdhesivePullOff
         W* in the normalisation of Eq. (34) with sin(theta_skew) of beta0, like
         every other model of :mod:`dhfield.compare`; semi-axes in c_r.
+
+    Raises
+    ------
+    UnresolvableCaseError
+        Automatic n only: the grid the case needs exceeds the memory or the time allowed;
+        the exception carries that N, its estimated memory and time, and the analytic
+        W* to use instead (one-line message).
 
     Other Parameters
     ----------------
@@ -221,10 +490,166 @@ def adhesive_pull_off(mu, beta0, n, *, law="dugdale", control="load", n_steps=DE
         raise ValueError(f"search must be one of {SEARCHES} (load-control path); got {search!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
+    if n is None:
+        plan = plan_grid(mu, beta0, law=law, margin=margin, max_seconds=max_seconds)
+        if not plan.affordable:
+            raise UnresolvableCaseError(plan)
+        n = plan.n_needed
+        relaxed = (control == "load" and search == "located" and nested is None and law == "dugdale"
+                   and n % 4 == 0 and not _half_grid_locates(plan, law, margin))
+    else:
+        relaxed = False
     prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
     options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
                           keep_states=keep_states, progress=progress)
+    if relaxed and prob.has_cold_start:
+        # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
+        # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
+        return _relaxed_pull_off(prob, options)
     return solve_pull_off(prob, control=control, search=search, nested=nested, options=options)
+
+
+#: Tolerance of the relaxed coarse states of :class:`RelaxedWarmStart` (warm starts only: their
+#: law is smeared anyway; the fine grid keeps ``tol``).
+RELAXED_COARSE_TOL = 1e-4
+
+
+class RelaxedWarmStart:
+    """Warm starts from the grid half as fine with the Dugdale edge relaxed (coarse to fine at high mu).
+
+    Where the grid half as fine cannot hold the Dugdale edge (its ``edge_width_ratio`` is
+    above the located search's gate), its states do not converge, and
+    :class:`dhfield.bem.pull_off.NestedWarmStart` gives nothing.  Here the coarse states
+    solve the law with the edge as wide as stability wants
+    (``AdhesiveProblem(..., relaxed_edge=True)``): they converge, and their zone is within a
+    fraction of a coarse cell of the fine grid's.  ``start(approach)`` solves the coarse
+    state at that approach (from the nearest one solved, the first from the problem's cold
+    start), carries it onto the fine grid (:func:`dhfield.bem.pull_off.interpolate_state`)
+    with the fine grid's own sub-cell zone fraction of the carried gap, and returns it as a
+    guess (never as an answer: the fine state is solved from it with the unrelaxed law).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The fine grid's problem (n divisible by 4).
+    tol, max_iter, threads
+        As in :func:`dhfield.bem.solve_adhesive` (``tol`` of the coarse states).
+    """
+
+    def __init__(self, problem, *, tol=RELAXED_COARSE_TOL, max_iter=DEFAULT_MAX_ITER, threads=None):
+        from .bem.solver import AdhesiveProblem
+
+        coarse = problem.coarser(problem.grid.nx // 2)
+        self._fine_nd, self._fine_prob, self._threads = problem, None, threads
+        self._prob = AdhesiveProblem(coarse.initial_gap, coarse.grid, coarse.law, None, threads, 1.0,
+                                     relaxed_edge=True)
+        self._cold = np.clip(self._prob.to_work(coarse.start_stress()), 0.0, coarse.law.max_stress)
+        self._tol, self._max_iter = float(tol), int(max_iter)
+        self._states = {}
+        self.iterations = 0
+        self.seconds = 0.0
+
+    @property
+    def states_solved(self) -> int:
+        return len(self._states)
+
+    def coarse_state(self, approach):
+        """The relaxed state at ``approach`` on the coarse grid (solved once)."""
+        import time
+
+        from .bem.solver import Prediction, solve_problem
+
+        d = float(approach)
+        if d not in self._states:
+            near = [s for s in self._states.values() if s.converged and s.in_contact]
+            guess = (min(near, key=lambda s: abs(s.approach - d)) if near
+                     else Prediction(np.zeros_like(self._cold), self._cold.copy()))
+            t0 = time.perf_counter()
+            st = solve_problem(self._prob, d, guess, self._tol, self._max_iter)
+            self.seconds += time.perf_counter() - t0
+            self.iterations += st.iterations
+            self._states[d] = st
+        return self._states[d]
+
+    def __call__(self, approach):
+        """Warm start on the fine grid (a guess), or None when the coarse state is not a converged contact state."""
+        from dataclasses import replace
+
+        from .bem.pull_off import interpolate_state
+
+        st = self.coarse_state(approach)
+        if not (st.converged and st.in_contact):
+            return None
+        guess = interpolate_state(st, self._fine_nd.grid)
+        if self._fine_prob is None:
+            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
+        fp, law = self._fine_prob, guess.law
+        zone = fp.to_full(fp.stress_from_gap(fp.to_work(guess.gap), fp.to_work(guess.contact)) / law.max_stress)
+        return replace(guess, pressure=guess.repulsive_pressure - law.max_stress * zone,
+                       cohesive=np.where(guess.contact, 0.0, zone))
+
+
+    def locate_pull_off(self, spacing):
+        """Approach of the relaxed coarse grid's load-control pull-off (NaN when not found).
+
+        The bracket search on the coarse grid (the problem's cold start, no vertex
+        refinement); its states are kept as the warm starts of the fine grid, whose lattice
+        samples ``approach_max - j spacing`` next to it :func:`dhfield.bem.pull_off.located_path`
+        then solves.  The smeared law moves the minimum by a fraction of a path step (the
+        fine samples re-locate it).
+        """
+        import time
+
+        from .bem.branch import Branch
+        from .bem.path import PathStart, bracket_search
+
+        nd = self._fine_nd
+        b = Branch(self._prob, self._tol, self._max_iter, progress=False, keep_states=True)
+        opts = PathOptions(refine_levels=0, tol=self._tol, max_iter=self._max_iter, threads=self._threads,
+                           keep_states=True, progress=False).checked()
+        t0 = time.perf_counter()
+        # the bracket search only: no marching fall-back (measured at mu = 10, N = 720: a failed
+        # cold start went on to load the whole path from first touch)
+        outcome, current = bracket_search(b, PathStart(nd.pull_off_approach, self._cold.copy()), nd.approach_step,
+                                          opts)
+        self.seconds += time.perf_counter() - t0
+        for i, st in b.states.items():
+            self.iterations += st.iterations
+            if st.converged and st.in_contact:
+                self._states.setdefault(float(st.approach), st)
+        if outcome != "interior":
+            return float("nan")
+        return float(b.load_pull_off(current).pull_off_approach)
+
+
+def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
+    """Load-control pull-off on ``prob`` with every state warm-started by :class:`RelaxedWarmStart`.
+
+    The minimum located on the relaxed coarse grid first, then 3-4 fine lattice samples
+    around it (:func:`dhfield.bem.pull_off.located_path`, as ``search='located'``); the
+    bracket search on this grid when that fails.
+    """
+    from .bem.path import path_on
+    from .bem.pull_off import pull_off_result, located_path
+
+    options = options.checked()
+    ws = RelaxedWarmStart(prob, max_iter=options.max_iter, threads=options.threads)
+    path = located_path(prob, ws, options)
+    if path is not None:
+        return pull_off_result(prob, prob.grid.nx, path, "located")
+    work = prob.adhesive_problem(options.threads)
+    path = path_on(work, prob.path_start(work, ws), prob.approach_max, prob.approach_step, control="load",
+                   options=options)
+    return pull_off_result(prob, prob.grid.nx, path, "bracket")
+
+
+def _half_grid_locates(plan, law, margin) -> bool:
+    """True when the grid half as fine as ``plan.n_needed`` passes the located search's edge gate."""
+    from .bem.pull_off import LOCATE_MAX_EDGE_RATIO
+
+    start = _start(plan.mu, plan.beta0, DEFAULT_STEPS, _check_margin(margin))
+    half = Grid.centered(plan.n_needed // 2, start.half_width_x, half_width_y=start.half_width_y)
+    return edge_width_ratio(half, law_from_name(law, plan.mu, 1.0)) <= LOCATE_MAX_EDGE_RATIO
 
 
 def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine_factor=4,

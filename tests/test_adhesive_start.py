@@ -44,3 +44,116 @@ def test_the_bem_facade_forwards_the_convenience_functions():
     assert bem.adhesive_pull_off is adhesive_start.adhesive_pull_off
     assert bem.refine_pull_off is adhesive_start.refine_pull_off
     assert bem.nondimensional_problem is adhesive_start.nondimensional_problem
+
+
+# ============================================================================ the grid a case needs (issue 20)
+def _paper_edge_ratio(mu, n, start):
+    """kappa mu^2 sqrt(dx dy)/2 of an n x n grid over the start's domain: the Dugdale edge width wanted,
+    EDGE_WIDTH_FACTOR (1 + (2/pi) ln n) sigma0 sqrt(dx dy)/E*, per its cap 2 h0 (sigma0 = mu, h0 = 1/mu)."""
+    import math
+
+    from dhfield.bem.solver import EDGE_WIDTH_FACTOR
+
+    dx, dy = 2 * start.half_width_x / n, 2 * start.half_width_y / n
+    kappa = EDGE_WIDTH_FACTOR * (1 + 2 / math.pi * math.log(n))
+    return kappa * mu * mu * math.sqrt(dx * dy) / 2
+
+
+@pytest.mark.parametrize("mu, beta0", [(5.0, 0.5), (10.0, 0.4826), (5.0, 1.0), (2.0, 0.8)])
+def test_automatic_grid_is_the_smallest_that_resolves_the_dugdale_edge(mu, beta0):
+    plan = adhesive_start.plan_grid(mu, beta0)
+    start = adhesive_start.pull_off_start(mu, beta0)
+    assert plan.n == plan.n_needed and plan.n_needed >= adhesive_start.AUTO_MIN_CELLS
+    # the edge criterion, written out in the paper's units (independent of the solver's code)
+    assert plan.edge_width_ratio == pytest.approx(_paper_edge_ratio(mu, plan.n, start), rel=1e-12)
+    assert plan.resolved and plan.edge_width_ratio <= 1.0
+    smaller = [k for k in adhesive_start._fft_sizes() if k < plan.n_needed]
+    if smaller:   # the next smaller size fails the edge or the zone-cell criterion
+        k = smaller[-1]
+        zone_cells = adhesive_start.expected_zone_width(mu) / (2 * start.half_width_x / k)
+        assert _paper_edge_ratio(mu, k, start) > 1.0 or zone_cells < adhesive_start.AUTO_ZONE_CELLS
+
+
+def test_automatic_grid_grows_like_mu_squared():
+    # both criteria scale as 1/mu^2 (ln-corrected by kappa): 2x mu -> ~4x cells per axis, less the ln
+    n5, n10 = (adhesive_start.plan_grid(mu, 0.4826).n_needed for mu in (5.0, 10.0))
+    assert 2.5 < n10 / n5 <= 4.5
+
+
+def test_expected_zone_width_matches_the_stored_bem_on_the_jkr_side():
+    # (pi/8) 2 E* dgamma/sigma0^2 = 0.785/mu^2; the stored BEM at mu = 5 (data/adhesive_ground_truth.nc,
+    # finest converged N per case) has c* - a* = 0.029-0.031 and d* - b* = 0.029-0.030: within 10 %
+    from pathlib import Path
+
+    import numpy as np
+    import xarray as xr
+
+    with xr.open_dataset(Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth.nc") as ds:
+        at5 = ds.sel(mu=5.0)
+        widths = np.concatenate([(at5.c_star - at5.a_star).values.ravel(), (at5.d_star - at5.b_star).values.ravel()])
+        ns = np.concatenate([np.broadcast_to(at5.n.values, at5.c_star.shape).ravel()] * 2)
+    widths = widths[np.isfinite(widths) & (ns >= 256)]
+    assert widths.size >= 10
+    np.testing.assert_allclose(widths, adhesive_start.expected_zone_width(5.0), rtol=0.10)
+
+
+def test_case_beyond_time_is_refused_before_solving_with_the_analytic_value(monkeypatch):
+    from dhfield import elliptic_transition
+
+    calls = []
+    monkeypatch.setattr(adhesive_start, "solve_pull_off", lambda *a, **k: calls.append(a))
+    with pytest.raises(adhesive_start.UnresolvableCaseError) as info:
+        adhesive_start.adhesive_pull_off(10.0, 0.4826, max_seconds=1.0)
+    err = info.value
+    assert not calls                                              # nothing solved
+    assert err.n_needed == adhesive_start.plan_grid(10.0, 0.4826).n_needed
+    assert err.seconds > 1.0 and err.memory_bytes > 0.0
+    ref = float(elliptic_transition.pull_off_nondimensional(10.0, 0.4826)["W_star"])
+    assert err.analytic_W_star == pytest.approx(ref, rel=RTOL_SAME_NUMBER)
+    msg = str(err)
+    assert "\n" not in msg and f"n >= {err.n_needed}" in msg and f"{ref:.4f}" in msg and "1 s allowed" in msg
+
+
+def test_case_beyond_memory_is_refused(monkeypatch):
+    monkeypatch.setattr(adhesive_start, "memory_limit", lambda: 1024)
+    plan = adhesive_start.plan_grid(5.0, 0.5)
+    assert not plan.affordable and "GiB available" in plan.reason()
+    with pytest.raises(adhesive_start.UnresolvableCaseError, match="GiB available"):
+        adhesive_start.adhesive_pull_off(5.0, 0.5)
+
+
+def test_explicit_grid_far_too_coarse_is_named():
+    # the issue's case: N = 512 at mu = 11.4 wants ~3x the edge's cap (no stable discrete state)
+    plan = adhesive_start.plan_grid(11.4, 0.4826, 512)
+    assert plan.n == 512 and plan.too_coarse and plan.n_needed > 512
+    assert "n=512 is too coarse for the Dugdale edge" in plan.reason()
+    assert not adhesive_start.plan_grid(1.0, 0.9, 64).too_coarse
+
+
+def test_automatic_grid_on_the_sphere_at_mu_5_is_within_1_percent_of_maugis_dugdale():
+    # mu = 5 (lambda = 5.64): the grid half as fine (N = 160) cannot hold the Dugdale edge, so the states
+    # start from it with the edge relaxed (RelaxedWarmStart); MD (Maugis 1992) is the closed form on the
+    # sphere; 1 % is the BEM's stated accuracy where resolved (DMT_BOUND_SLACK; measured +0.04 %)
+    from dhfield import maugis_dugdale
+
+    plan = adhesive_start.plan_grid(5.0, 1.0)
+    assert not adhesive_start._half_grid_locates(plan, "dugdale", adhesive_start.DOMAIN_MARGIN)
+    res = adhesive_start.adhesive_pull_off(5.0, 1.0, progress=False)
+    md = float(maugis_dugdale.pull_off_nondimensional(5.0, "load")["W_star"])
+    assert res.n == plan.n_needed and res.converged and res.resolved
+    assert res.W_star == pytest.approx(md, rel=0.01)
+
+
+def test_slender_contact_starts_from_the_gvg_ellipse_and_its_domain_holds_it():
+    # beta0 = 0.1806 (30 deg): the two-axis closure refuses beta0 < 0.3 and the paper's zone (2.34 x 0.42)
+    # is far inside GVG's contact (2.79 x 0.74); the start is GVG's pull-off ellipse widened by the zone
+    from dhfield import jkr_elliptic_energy
+
+    start = adhesive_start.pull_off_start(5.0, 0.1806)
+    gvg = jkr_elliptic_energy.pull_off_nondimensional(0.1806, "load")
+    w = adhesive_start.expected_zone_width(5.0)
+    assert start.approach == pytest.approx(float(gvg["delta_star"]), rel=RTOL_SAME_NUMBER)
+    assert start.zone == pytest.approx((float(gvg["a_star"]) + w, float(gvg["b_star"]) + w), rel=RTOL_SAME_NUMBER)
+    margin = adhesive_start.SLENDER_DOMAIN_MARGIN
+    assert start.half_width_x >= margin * start.zone[0] * (1 - 1e-12)
+    assert start.half_width_y >= margin * start.zone[1] * (1 - 1e-12)

@@ -154,3 +154,33 @@ def test_direct_gap_correction_equals_the_convolution(symmetric):
     q = p.copy()
     np.add.at(q, cells, amounts)
     np.testing.assert_allclose(h, op(q), rtol=0, atol=RTOL_DIRECT_SUM * float(np.max(np.abs(h))))
+
+
+# ============================================================================ the edge criterion (issue 20)
+@pytest.mark.parametrize("n, dx, dy", [(64, 0.05, 0.05), (256, 0.02, 0.0116), (96, 0.01, 0.03)])
+def test_edge_width_ratio_is_the_stability_criterion_written_out(n, dx, dy):
+    import math
+
+    grid = Grid(n, n, dx, dy)
+    law = DugdaleLaw(7.0, 1.0 / 7.0)       # sigma0 = mu, h0 = 1/mu in the paper's units (mu = 7)
+    kappa = bem_solver.EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(n))
+    want = kappa * 7.0 * math.sqrt(dx * dy)  # edge width wanted, E* = 1
+    assert bem_solver.edge_width_ratio(grid, law) == pytest.approx(want / (2.0 / 7.0), rel=1e-12)
+    smooth = ExponentialLaw(7.0, 1.0 / 7.0)  # steepest slope sigma0/rho times the edge compliance
+    assert bem_solver.edge_width_ratio(grid, smooth) == pytest.approx(kappa * 49.0 * math.sqrt(dx * dy), rel=1e-12)
+    z = np.zeros((n, n))
+    prob = bem_solver.AdhesiveProblem(z, grid, law, None, None, 1.0)
+    assert prob.edge_width_ratio == bem_solver.edge_width_ratio(grid, law)
+    assert prob.resolved == (prob.edge_width_ratio <= 1.0)
+    assert prob.min_spread == pytest.approx(min(want, 2.0 / 7.0), rel=1e-12)
+
+
+def test_relaxed_edge_is_as_wide_as_stability_wants_and_never_resolved():
+    grid = Grid(64, 64, 0.05, 0.05)
+    law = DugdaleLaw(7.0, 1.0 / 7.0)
+    z = np.zeros((64, 64))
+    capped = bem_solver.AdhesiveProblem(z, grid, law, None, None, 1.0)
+    relaxed = bem_solver.AdhesiveProblem(z, grid, law, None, None, 1.0, relaxed_edge=True)
+    assert capped.edge_width_ratio > 1.0 and capped.min_spread == pytest.approx(2.0 / 7.0)
+    assert relaxed.min_spread == pytest.approx(capped.edge_width_ratio * 2.0 / 7.0, rel=1e-12)
+    assert not relaxed.resolved and not capped.resolved

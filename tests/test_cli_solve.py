@@ -238,3 +238,23 @@ def test_solve_plot_writes_png_svg_pdf(tmp_path, capsys):
     for suffix in (".png", ".svg", ".pdf"):
         assert png.with_suffix(suffix).stat().st_size > 1000
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_solve_refuses_a_grid_far_too_coarse_in_one_line_before_solving(capsys):
+    # issue 20: --n 512 at mu = 11.4 (60 deg) printed W* = nan after 110 s; the edge wants 3x its cap there
+    from dhfield.cli.solve import EXIT_UNRESOLVABLE
+
+    rc = main(["solve", "--beta0", "0.4826", "--mu", "11.4", "--n", "512"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == EXIT_UNRESOLVABLE
+    assert len(err) == 1 and "n=512 is too coarse" in err[0] and "needs n >=" in err[0] and "W* = -0.64" in err[0]
+
+
+def test_solve_without_n_refuses_a_case_beyond_memory(monkeypatch, capsys):
+    from dhfield import adhesive_start
+    from dhfield.cli.solve import EXIT_UNRESOLVABLE
+
+    monkeypatch.setattr(adhesive_start, "memory_limit", lambda: 1024)
+    rc = main(["solve", "--beta0", "0.8", "--mu", "1"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == EXIT_UNRESOLVABLE and len(err) == 1 and "GiB available" in err[0] and "analytic W*" in err[0]

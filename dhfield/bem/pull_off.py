@@ -34,7 +34,7 @@ from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "PullOffStart", "AdhesivePullOff", "NondimensionalProblem",
            "NestedWarmStart", "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
-           "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS"]
+           "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS", "pull_off_result"]
 
 
 #: Half-width of the domain per expected semi-axis of the largest cohesive zone of
@@ -650,7 +650,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
         if search == "located" and nested:
             path = located_path(problem, ws, options)
             if path is not None:
-                return _pull_off_result(problem, n, path, "located")
+                return pull_off_result(problem, n, path, "located")
     start = problem.path_start(prob, ws) if cold else PathStart()
     path = path_on(prob, start, problem.approach_max, problem.approach_step, control=control, options=options)
     if control == "displacement":
@@ -659,7 +659,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
         route = "bracket"
     else:
         route = "march"     # requested, or the bracket's cold start gave no contact state
-    return _pull_off_result(problem, n, path, route)
+    return pull_off_result(problem, n, path, route)
 
 
 #: Accuracy carried by every displacement-control pull-off (:attr:`AdhesivePullOff.note`).
@@ -782,13 +782,27 @@ def _unresolved_reasons(prob, path, w_star, error, axes, stated_error=None):
     return reasons
 
 
-def _pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str) -> AdhesivePullOff:
-    """The pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state.
+def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str) -> AdhesivePullOff:
+    """Build the pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state.
 
-    ``resolved`` is False, with the reasons in ``note``, when the grid is too coarse or the
-    answer breaks a physical bound (:func:`_unresolved_reasons`); ``W_star_error`` is then
-    infinite (no bound), as it is when the path gives no estimate.  Under load control
-    ``W_star_error`` is the search's error plus :func:`discretisation_error`.
+    Parameters
+    ----------
+    prob : NondimensionalProblem
+        The problem the path was solved on.
+    n : int
+        Cells per axis of its grid.
+    path : UnloadingPath
+        The path, with its pull-off state.
+    search : str
+        The route that found it (one of :data:`SEARCHES`, or 'refine').
+
+    Returns
+    -------
+    AdhesivePullOff
+        ``resolved`` is False, with the reasons in ``note``, when the grid is too coarse or
+        the answer breaks a physical bound; ``W_star_error`` is then infinite (no bound), as
+        it is when the path gives no estimate.  Under load control ``W_star_error`` is the
+        search's error plus :func:`discretisation_error`.
     """
     note = path.pull_off_note
     if path.control == "displacement":
@@ -988,4 +1002,4 @@ def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> A
     converged = all(r["converged"] for r in b.records) and sm is not None and not sm.at_boundary
     path = b.to_path(control="load", load=w_po, approach=d_po, pull_off_index=k_po, converged=converged,
                      order=order, error=b.minimum_error(order, sm))
-    return _pull_off_result(problem, n, path, "refine")
+    return pull_off_result(problem, n, path, "refine")

@@ -94,7 +94,7 @@ from .laws import DugdaleLaw, cell_fraction_below, check_law
 from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, quadrant, unfold_quadrant
 from .state import ContactState
 
-__all__ = ["solve_adhesive", "AdhesiveProblem", "Prediction", "solve_problem", "secant_prediction",
+__all__ = ["solve_adhesive", "AdhesiveProblem", "edge_width_ratio", "Prediction", "solve_problem", "secant_prediction",
            "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution",
            "AndersonMixing", "assemble_state", "extrapolated_start"]
 
@@ -140,10 +140,53 @@ def _is_even_even(z):
     return bool(np.max(np.abs(z - z[::-1, :])) <= tol and np.max(np.abs(z - z[:, ::-1])) <= tol)
 
 
-class AdhesiveProblem:
-    """Working arrays of one (grid, z, law) problem: full grid or even-even quadrant."""
+def edge_width_ratio(grid, law, reduced_modulus=1.0) -> float:
+    """How far a grid is from resolving a traction law's edge: resolved iff <= 1 [-].
 
-    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus):
+    Parameters
+    ----------
+    grid : Grid
+        The cell grid (cells dx x dy, nx x ny).
+    law : DugdaleLaw or ExponentialLaw
+        The traction law (sigma0, range).
+    reduced_modulus : float
+        E* [stress].
+
+    Returns
+    -------
+    float
+        Dugdale: the edge width wanted, ``kappa sigma0 sqrt(dx dy)/E*`` with
+        ``kappa = EDGE_WIDTH_FACTOR (1 + (2/pi) ln sqrt(nx ny))``, per its cap 2 h0
+        (:data:`EDGE_WIDTH_FACTOR`).  A smooth law: its steepest slope sigma0/rho times
+        the edge cells' compliance ``kappa sqrt(dx dy)/E*`` (the same criterion: the
+        smeared Dugdale edge has the slope sigma0/(2 h0)).
+
+    Notes
+    -----
+    The ratio falls like ln(n)/n as the cells shrink; in the paper's units (sigma0 = mu,
+    h0 = 1/mu) it is ``kappa mu^2 sqrt(dx dy)/2`` for the Dugdale law, so a case at mu needs
+    cells ``sqrt(dx dy) <= 2/(kappa mu^2)`` (:func:`dhfield.adhesive_start.required_cells`).
+    """
+    want = _edge_compliance(grid, float(reduced_modulus)) * law.max_stress
+    return want / (2.0 * law.range) if isinstance(law, DugdaleLaw) else want / law.range
+
+
+def _edge_compliance(grid, reduced_modulus):
+    """kappa sqrt(dx dy)/E*: the compliance of a ring of edge cells (see EDGE_WIDTH_FACTOR)."""
+    kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(math.sqrt(grid.nx * grid.ny)))
+    return kappa * math.sqrt(grid.dx * grid.dy) / reduced_modulus
+
+
+class AdhesiveProblem:
+    """Working arrays of one (grid, z, law) problem: full grid or even-even quadrant.
+
+    ``relaxed_edge=True`` (Dugdale only) widens the sub-cell edge to what discrete stability
+    wants even beyond its cap 2 h0 (:data:`EDGE_WIDTH_FACTOR`), so that a grid too coarse for
+    the law still has stable, converging states: they solve a smeared law and serve only as
+    warm starts of a finer grid (``resolved`` stays False).
+    """
+
+    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus, *, relaxed_edge=False):
         if not isinstance(grid, Grid):
             raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
         z = check_finite("initial_gap", initial_gap, "initial gap z(x, y), length")
@@ -170,23 +213,17 @@ class AdhesiveProblem:
         self.min_spread = 0.0
         self.resolved = True
         self.edge_width_ratio = 0.0
+        if self.law is not None:
+            ratio = edge_width_ratio(grid, self.law, e)
+            self.resolved = ratio <= 1.0
         if isinstance(self.law, DugdaleLaw):
-            cells = math.sqrt(grid.nx * grid.ny)
-            kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(cells))
-            want = kappa * self.law.max_stress * math.sqrt(dx * dy) / e
+            # wanted edge width per its cap 2 h0 (the located search's gate reads it)
+            self.edge_width_ratio = ratio
             # at most 2 h0: the smeared edge stays within h >= 0 and keeps the work of adhesion
-            self.min_spread = min(want, 2.0 * self.law.range)
-            self.resolved = want <= 2.0 * self.law.range
-            # wanted edge width per its cap 2 h0 (resolved iff <= 1)
-            self.edge_width_ratio = want / (2.0 * self.law.range)
-        elif self.law is not None:
-            # a smooth law has no edge to smear: the discrete state is stable only if its steepest
-            # slope sigma0/rho times the edge cells' compliance kappa dx/E* is below 1 (the same
-            # criterion as the Dugdale edge's, whose smeared slope is sigma0/(2 h0))
-            cells = math.sqrt(grid.nx * grid.ny)
-            kappa = EDGE_WIDTH_FACTOR * (1.0 + 2.0 / math.pi * math.log(cells))
-            slope = self.law.max_stress / self.law.range
-            self.resolved = kappa * slope * math.sqrt(dx * dy) / e <= 1.0
+            want = _edge_compliance(grid, e) * self.law.max_stress
+            # relaxed_edge: the edge as wide as stability wants, beyond 2 h0 (a different law near the
+            # edge, and resolved = False: only a warm start for a finer grid, never an answer)
+            self.min_spread = want if relaxed_edge else min(want, 2.0 * self.law.range)
 
     def to_full(self, q):
         return unfold_quadrant(q) if self.symmetric else q

@@ -10,6 +10,9 @@ EXIT_UNCONVERGED = 3
 #: Exit status when the path converged but the grid does not resolve the cohesive zone
 #: (``resolved = false``: the pull-off is not an answer; refine --n).
 EXIT_UNRESOLVED = 4
+#: Exit status when the case cannot be resolved within the memory or time available (or the given
+#: --n is far too coarse for it): one line, before solving, with the N it needs and the analytic value.
+EXIT_UNRESOLVABLE = 5
 
 #: Peak memory of ``dhfield solve`` per grid cell (N x N cells), path and netCDF output included
 #: [bytes].  Measured peak RSS above the imports (``/usr/bin/time -f %M``, beta0 = 0.8, mu = 1,
@@ -36,7 +39,10 @@ _EPILOG = (f"exit status: 0 success, converged and resolved (a note on stderr if
            "up to the pull-off did not converge; "
            f"{EXIT_UNRESOLVED} converged but unresolved: the grid is too coarse for the cohesive zone, the "
            "pull-off is not an answer (increase --n).  In cases 3 and 4 one line on stderr names the "
-           "parameters, and the result is still printed and written with converged / resolved = false.")
+           "parameters, and the result is still printed and written with converged / resolved = false.  "
+           f"{EXIT_UNRESOLVABLE} the case cannot be resolved within the memory or time available, or --n is "
+           "far too coarse for it (one line, before solving: the n it needs, its estimated memory and time, "
+           "and the analytic W* to use instead).")
 
 
 def add_parser(sub) -> None:
@@ -55,7 +61,8 @@ def add_parser(sub) -> None:
                                    "b*, c*, d*, delta*.",
                        epilog=_EPILOG)
     add_model_arguments(p, required=False)   # or the SI inputs of add_physical_arguments (below)
-    p.add_argument("--n", type=int, default=256, help="cells per axis (even, >= 8; default 256)")
+    p.add_argument("--n", type=int, default=None,
+                   help="cells per axis (even, >= 8; default: chosen from the Dugdale zone width and memory)")
     p.add_argument("--law", default="dugdale", choices=("dugdale", "exponential"),
                    help="traction law, sigma0 = mu and dgamma = 1 (default dugdale)")
     p.add_argument("--control", default="load", choices=("load", "displacement"),
@@ -146,15 +153,24 @@ def run(args) -> int:
     _check_plot(args)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
+    from ..adhesive_start import UnresolvableCaseError, plan_grid
+
     check_solve_memory(args.n)
-    where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={args.n}, law={args.law}, control={args.control}")
+    plan = plan_grid(args.mu, args.beta0, args.n, law=args.law)
+    if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
+        print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
+        return EXIT_UNRESOLVABLE
+    where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={plan.n}, law={args.law}, control={args.control}")
     progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if progress:  # on a terminal: say what runs now; the solver then draws its progress line (stderr)
-        print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {args.n} path)",
+        print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {plan.n} path)",
               file=sys.stderr, flush=True)
     try:
         res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
                                 threads=args.threads, progress=progress, search=args.search)
+    except UnresolvableCaseError as exc:
+        print(f"dhfield: solve refused: {exc}", file=sys.stderr)
+        return EXIT_UNRESOLVABLE
     except RuntimeError as exc:  # the solver found no converged state to report
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
