@@ -139,7 +139,7 @@ def _gvg_start(mu, beta0):
     contact semi-axes widened by :func:`expected_zone_width`: the cold start of slender contacts."""
     from . import jkr_elliptic_energy
 
-    rec = jkr_elliptic_energy.pull_off_nondimensional(beta0, "load")
+    rec = jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")
     w = expected_zone_width(mu)
     return float(rec["delta_star"]), (float(rec["a_star"]) + w, float(rec["b_star"]) + w)
 

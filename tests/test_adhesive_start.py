@@ -139,7 +139,7 @@ def test_automatic_grid_on_the_sphere_at_mu_5_is_within_1_percent_of_maugis_dugd
     plan = adhesive_start.plan_grid(5.0, 1.0)
     assert not adhesive_start._half_grid_locates(plan, "dugdale", adhesive_start.DOMAIN_MARGIN)
     res = adhesive_start.adhesive_pull_off(5.0, 1.0, progress=False)
-    md = float(maugis_dugdale.pull_off_nondimensional(5.0, "load")["W_star"])
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 5.0, control="load").W_star)
     assert res.n == plan.n_needed and res.converged and res.resolved
     assert res.W_star == pytest.approx(md, rel=0.01)
 
@@ -150,7 +150,7 @@ def test_slender_contact_starts_from_the_gvg_ellipse_and_its_domain_holds_it():
     from dhfield import jkr_elliptic_energy
 
     start = adhesive_start.pull_off_start(5.0, 0.1806)
-    gvg = jkr_elliptic_energy.pull_off_nondimensional(0.1806, "load")
+    gvg = jkr_elliptic_energy.pull_off_nondimensional(0.1806, 5.0, control="load")
     w = adhesive_start.expected_zone_width(5.0)
     assert start.approach == pytest.approx(float(gvg["delta_star"]), rel=RTOL_SAME_NUMBER)
     assert start.zone == pytest.approx((float(gvg["a_star"]) + w, float(gvg["b_star"]) + w), rel=RTOL_SAME_NUMBER)

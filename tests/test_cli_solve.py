@@ -71,24 +71,38 @@ def test_help_documents_exit_status(capsys):
 
 
 def test_solve_flags_an_unresolved_pull_off(tmp_path, capsys):
-    """Issue 18 item 1: at mu = 8, N = 32 on the sphere the Dugdale zone is narrower than a cell
-    (the API's own flag says resolved = False; W* = -2.44 where MD gives about -1.1); the CLI
-    used to print converged = True and exit 0.  It must print and store resolved = false and exit 4."""
+    """Issue 18 item 1: an unresolved pull-off used to print converged = True and exit 0.  On the
+    sphere at mu = 0.3, N = 8 the contact covers the centre cells only (resolved = False; W* =
+    -0.93 where MD gives -0.89): the CLI must print and store resolved = false and exit 4."""
     from dhfield.cli.solve import EXIT_UNRESOLVED
 
     out = tmp_path / "unresolved.nc"
-    rc = main(["solve", "--beta0", "1", "--mu", "8", "--n", "32", "--json", "--out", str(out)])
+    rc = main(["solve", "--beta0", "1", "--mu", "0.3", "--n", "8", "--json", "--out", str(out)])
     captured = capsys.readouterr()
     rec = json.loads(captured.out)
     assert rec["resolved"] is False
     assert rc == EXIT_UNRESOLVED != 0
-    assert "unresolved" in captured.err and "beta0=1, mu=8, n=32" in captured.err
+    assert "unresolved" in captured.err and "beta0=1, mu=0.3, n=8" in captured.err
     ds = read_solution(out)
     assert ds.attrs["resolved"] == 0 and int(ds["resolved"]) == 0
     assert int(ds["converged_pull_off"]) == int(rec["converged"])
-    rc = main(["solve", "--beta0", "1", "--mu", "8", "--n", "32"])
+    rc = main(["solve", "--beta0", "1", "--mu", "0.3", "--n", "8"])
     text = capsys.readouterr().out
     assert rc == EXIT_UNRESOLVED and "resolved = False" in text
+
+
+def test_solve_refuses_a_grid_far_too_coarse(tmp_path, capsys):
+    """Issue 18 item 1: at mu = 8, N = 32 on the sphere the CLI printed W* = -2.44 (MD: -0.75),
+    converged, exit 0.  The Dugdale edge wants 17x its cap there: refused before solving, one line,
+    nothing written, exit 5."""
+    from dhfield.cli.solve import EXIT_UNRESOLVABLE
+
+    out = tmp_path / "refused.nc"
+    rc = main(["solve", "--beta0", "1", "--mu", "8", "--n", "32", "--json", "--out", str(out)])
+    captured = capsys.readouterr()
+    assert rc == EXIT_UNRESOLVABLE and captured.out == "" and not out.exists()
+    err = captured.err.strip().splitlines()
+    assert len(err) == 1 and "too coarse" in err[0] and "analytic W*" in err[0]
 
 
 def test_solve_resolved_case_exits_zero_and_says_so(tmp_path, capsys):

@@ -1,6 +1,7 @@
 """``dhfield solve``: the self-consistent adhesive BEM pull-off of one (beta0, mu) case."""
 from __future__ import annotations
 
+import math
 import sys
 
 from ._common import add_model_arguments, add_physical_arguments, contact_parameters_from_args, print_json
@@ -193,7 +194,10 @@ def run(args) -> int:
         print_json({**rec, "units": _units(rec, si_keys=tuple(si))})
     else:
         print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {res.n}, {res.law}, {res.control} control")
-        err = f" (fold fit error ~{res.W_star_error:.2g})" if res.W_star_error == res.W_star_error else ""
+        # the stated error: under load control the search's plus the grid's (W_star_error), the fold
+        # fit's under displacement control; infinite when the answer is not resolved
+        err = (f" (stated error {res.W_star_error:.2g})" if math.isfinite(res.W_star_error)
+               else " (no error bound: not resolved)")
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
         print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
