@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import atomic_path, check_writable
+from ._figures import figure_paths, save_figure
 
 __all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
            "FORCE_UNITS", "LENGTH_UNITS"]
@@ -330,19 +330,10 @@ def write_residual_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    png = Path(path)
-    if png.suffix.lower() != ".png":
-        raise ValueError(f"plot must be a .png file path (an .svg and a .pdf are written beside it); "
-                         f"got {str(png)!r}")
-    svg, pdf = png.with_suffix(".svg"), png.with_suffix(".pdf")
-    for out in (png, svg, pdf):  # all three checked before any is written
-        check_writable(out, "plot")
+    paths = figure_paths(path)
     fig = residual_figure(fit)
     try:
-        with atomic_path(png) as tmp_png, atomic_path(svg) as tmp_svg, atomic_path(pdf) as tmp_pdf:
-            fig.savefig(tmp_png, format="png", dpi=dpi)
-            fig.savefig(tmp_svg, format="svg", metadata={"Date": None})
-            fig.savefig(tmp_pdf, format="pdf", metadata={"CreationDate": None})
+        save_figure(fig, paths, dpi)
     finally:
         plt.close(fig)
-    return png, svg, pdf
+    return paths
