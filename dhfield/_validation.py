@@ -82,13 +82,17 @@ def check_finite(name: str, value, what: str = "") -> np.ndarray:
 
 
 def _check_real(name: str, value, what: str = "") -> None:
-    """Reject complex input by name (numpy would keep the real part with only a ComplexWarning)."""
+    """Reject complex and date/time input by name (numpy would keep the real part of a complex with
+    only a ComplexWarning, and turn a datetime64 or timedelta64 into its count of time units)."""
     try:
         complex_ = np.iscomplexobj(value)
+        kind = np.asarray(value).dtype.kind
     except Exception:  # noqa: BLE001 - objects numpy cannot inspect: the float conversion names them
         return
     if complex_:
         raise ValueError(f"{name} must be real{_what(what)}; got complex {_describe(value)}")
+    if kind in "mM":
+        raise ValueError(f"{name} must be a real number{_what(what)}; got a date/time {_describe(value)}")
 
 
 def _what(what: str) -> str:

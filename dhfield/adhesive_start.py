@@ -486,6 +486,10 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
     """
     from .bem.pull_off import SEARCHES
 
+    for name, value in (("mu", mu), ("beta0", beta0)):  # one case per call: scalars only
+        if np.ndim(value) != 0:
+            raise ValueError(f"{name} must be a scalar (one BEM case per call); got an array of shape "
+                             f"{np.shape(value)}")
     if search not in SEARCHES:
         raise ValueError(f"search must be one of {SEARCHES} (load-control path); got {search!r}")
     if control not in ("load", "displacement"):

@@ -6,6 +6,7 @@ contact is refused before anything is solved.
 """
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from dhfield import adhesive_start, compare, model
@@ -157,3 +158,13 @@ def test_slender_contact_starts_from_the_gvg_ellipse_and_its_domain_holds_it():
     margin = adhesive_start.SLENDER_DOMAIN_MARGIN
     assert start.half_width_x >= margin * start.zone[0] * (1 - 1e-12)
     assert start.half_width_y >= margin * start.zone[1] * (1 - 1e-12)
+
+
+@pytest.mark.parametrize("kwargs, name", [({"max_iter": 0}, "max_iter"), ({"mu": np.array([1.0])}, "mu"),
+                                          ({"beta0": np.array([0.9, 0.8])}, "beta0")])
+def test_bad_counts_and_arrays_are_named_errors(kwargs, name):
+    """Issue 18 item 13: max_iter = 0 and an array mu raised TypeError from inside the solver."""
+    args = {"mu": 1.0, "beta0": 0.9, **kwargs}
+    with pytest.raises(ValueError, match=name):
+        adhesive_start.adhesive_pull_off(args["mu"], args["beta0"], 16,
+                                         **{k: v for k, v in kwargs.items() if k not in ("mu", "beta0")})

@@ -71,3 +71,13 @@ def test_issue18_item4_complex_arrays_are_rejected_by_name():
         for call, name in calls:
             with pytest.raises(ValueError, match=rf"^{name} must be real"):
                 call()
+
+
+@pytest.mark.parametrize("value", [np.datetime64("2020-01-01"), np.timedelta64(1, "s"),
+                                   np.array(["2020-01-01"], dtype="datetime64[D]")])
+def test_dates_and_durations_are_refused_by_name(value):
+    """Issue 18 (hostile run): model.pull_off(mu=datetime64) was accepted as a count of time units."""
+    from dhfield import model
+
+    with pytest.raises(ValueError, match="mu must be a real number.*date/time"):
+        model.pull_off(mu=value, beta0=0.9)

@@ -83,7 +83,7 @@ GENERIC_VALUES = {"beta0": "0.9", "mu": "1", "a_star": "1.2", "n": "16", "n_thet
 FILE_SUFFIX = {"curve": ".nc", "compare": ".nc", "periphery": ".nc", "field": ".nc", "solve": ".nc", "sweep": ".nc"}
 SIGNALS = ("SIGINT", "SIGTERM", "SIGHUP")
 #: Non-zero exits that flag a computed result as not an answer (one line on stderr): counted clean.
-FLAGGED_STATUS = {"solve": (3, 4), "sweep": (3,)}
+FLAGGED_STATUS = {"solve": (3, 4, 5), "sweep": (3,)}
 
 
 @dataclass
@@ -324,7 +324,8 @@ def classify(case: Case, status, stdout: str, stderr: str, workdir: Path, facts:
             case.outcome, case.detail = "traceback", f"exit 2 without the one-line error: {stderr[:160]}"
         return
     if status in FLAGGED_STATUS.get(case.argv[0] if case.argv else "", ()):
-        # solve: 3 unconverged, 4 unresolved; sweep: 3 flagged cases -- the answer is refused, in one line
+        # solve: 3 unconverged, 4 unresolved, 5 refused before solving (cannot be resolved within memory/time,
+        # or --n far too coarse); sweep: 3 flagged cases -- the answer is refused, in one line
         if len(lines) == 1:
             case.outcome, case.detail = "clean error", f"flagged, exit {status}: {lines[0][:140]}"
         else:

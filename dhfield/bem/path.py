@@ -191,7 +191,7 @@ class PathOptions:
             refine_factor=check_count("refine_factor", self.refine_factor, 2, 100, "step division per refinement"),
             max_steps=check_count("max_steps", self.max_steps, 2, 100_000, "cap on unloading states"),
             tol=float(check_positive("tol", self.tol, "solver tolerance, dimensionless")),
-            max_iter=int(self.max_iter))
+            max_iter=check_count("max_iter", self.max_iter, 1, 10_000_000, "iterations per state"))
 
     @classmethod
     def from_keywords(cls, options) -> "PathOptions":
