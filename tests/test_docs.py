@@ -30,7 +30,7 @@ ROOT = Path(__file__).resolve().parent.parent
 #: numpydoc validation must find zero errors in these modules (their docstrings were brought to
 #: the standard with the documentation site).  A new public module goes here.
 STRICT = (
-    "dhfield.bem.state", "dhfield.bem.operator",
+    "dhfield.bem.state", "dhfield.bem.operator", "dhfield.bem.solver",
     "dhfield", "dhfield.adhesion", "dhfield.adhesion_map", "dhfield.bem", "dhfield.bem.continuation",
     "dhfield.bem_compliance", "dhfield.io.solve_plot",
     "dhfield.bem.branch", "dhfield.bem.pull_off", "dhfield.compliance", "dhfield.io.solution",
@@ -51,7 +51,7 @@ STRICT = (
 #: printed, not asserted.  This list only shrinks: fix a module's docstrings (the printed counts
 #: say which are clean), then move it to STRICT.  Never add a new module here.
 ALLOWED_ERRORS = (
-    "dhfield.adhesive_start", "dhfield.bem.solver",
+    "dhfield.adhesive_start",
 )
 
 
