@@ -52,7 +52,7 @@ __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "ref
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
-    """The start of the BEM pull-off at (mu, beta0), from the analytic models.
+    """Choose the start of the BEM pull-off at (mu, beta0) from the analytic models.
 
     Parameters
     ----------
@@ -60,14 +60,21 @@ def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) ->
         Tabor parameter of Eq. (35), > 0 [-].
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
-    n_steps : int
-        Unloading steps from the start of unloading to the expected jump (4 to 1e6).
-    margin : float
-        Domain half-width per expected zone semi-axis, > 1 (the zone must lie inside the grid).
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps from the start of unloading to the expected jump (4 to 1e6) [-].
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per expected zone semi-axis, > 1 (the zone must lie inside the grid) [-].
 
     Returns
     -------
     PullOffStart
+        Domain half-widths [c_r], ``approach_max`` and the unloading step [c_r^2/R], and the
+        bracket search's cold start (approach [c_r^2/R] and zone semi-axes (c, d) [c_r]).
+
+    Raises
+    ------
+    ValueError
+        If ``mu``, ``beta0``, ``n_steps`` or ``margin`` is out of range (naming it).
 
     Notes
     -----
@@ -167,19 +174,34 @@ def _two_axis_start(mu, beta0):
 
 def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS,
                            margin=DOMAIN_MARGIN) -> NondimensionalProblem:
-    """Grid, initial gap, law and path range of the paper's problem at (mu, beta0), started from the models.
+    """Set up the grid, initial gap, law and path range of the paper's problem at (mu, beta0).
+
+    The start comes from the analytic models (:func:`pull_off_start`).
 
     Parameters
     ----------
-    mu, beta0, n, law
-        As in :func:`dhfield.bem.pull_off.paper_problem` (n even, 8 to 65536 cells per axis).
-    n_steps, margin
-        As in :func:`pull_off_start`.
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    n : int
+        Cells per axis, even, 8 to 65536 [-].
+    law : {'dugdale', 'exponential'}, default 'dugdale'
+        Traction law, as in :func:`dhfield.bem.pull_off.paper_problem`.
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps (4 to 1e6) [-], as in :func:`pull_off_start`.
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per expected zone semi-axis, > 1 [-], as in :func:`pull_off_start`.
 
     Returns
     -------
     NondimensionalProblem
         :func:`dhfield.bem.pull_off.paper_problem` with the start of :func:`pull_off_start`.
+
+    Raises
+    ------
+    ValueError
+        If an argument is out of range (naming it).
     """
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
@@ -219,9 +241,21 @@ UNSTABLE_EDGE_RATIO = 2.0
 
 
 def expected_zone_width(mu) -> float:
-    """Width c - a of the Dugdale zone on the JKR side, in contact units [c_r].
+    """Estimate the width c - a of the Dugdale zone on the JKR side [c_r].
 
-    ``(pi/8) 2 E* dgamma/sigma0^2 = 0.785/mu^2`` with R = E* = dgamma = 1 (sigma0 = mu).
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+
+    Returns
+    -------
+    float
+        ``(pi/8) 2 E* dgamma/sigma0^2 = 0.785/mu^2`` with R = E* = dgamma = 1 (sigma0 = mu)
+        [c_r].
+
+    Notes
+    -----
     Checked against the stored BEM (data/adhesive_ground_truth.nc, beta0 = 0.5-1): at mu = 5
     c* - a* = 0.029-0.031 and d* - b* = 0.029-0.030 (estimate 0.0314); at mu = 2 0.163-0.174
     (0.196); at mu = 1 0.48-0.54 (0.785): an upper bound, close on the JKR side (mu >= 5).
@@ -245,19 +279,23 @@ def _fft_sizes():
 class GridPlan:
     """The grid a BEM pull-off needs at (mu, beta0), its cost, and the analytic value to use instead.
 
-    Attributes
+    Parameters
     ----------
-    mu, beta0 : float
-        The case [-].
+    mu : float
+        Tabor parameter of the case, Eq. (35) [-].
+    beta0 : float
+        Initial ellipticity of the case [-].
     n : int
-        Cells per axis asked for (the automatic choice when none was given).
+        Cells per axis asked for (the automatic choice when none was given) [-].
     n_needed : int
         Fewest cells per axis (from the FFT-friendly sizes) that resolve the law's edge
-        (``edge_width_ratio <= 1``) with >= AUTO_ZONE_CELLS cells across the expected zone.
+        (``edge_width_ratio <= 1``) with >= AUTO_ZONE_CELLS cells across the expected zone [-].
     edge_width_ratio : float
-        :func:`dhfield.bem.solver.edge_width_ratio` of the grid of ``n`` (resolved iff <= 1).
-    memory_bytes, seconds : float
-        Estimated memory and wall time of the pull-off on the grid of ``n_needed`` [bytes], [s].
+        :func:`dhfield.bem.solver.edge_width_ratio` of the grid of ``n`` (resolved iff <= 1) [-].
+    memory_bytes : float
+        Estimated memory of the pull-off on the grid of ``n_needed`` [bytes].
+    seconds : float
+        Estimated wall time of the pull-off on the grid of ``n_needed`` [s].
     memory_limit : float or None
         The memory one computation may claim now [bytes] (None: unknown, no limit).
     max_seconds : float
@@ -296,7 +334,14 @@ class GridPlan:
         return self.edge_width_ratio <= 1.0
 
     def reason(self) -> str:
-        """Why the case cannot be solved as asked (empty when it can be)."""
+        """Say why the case cannot be solved as asked.
+
+        Returns
+        -------
+        str
+            The reasons (too coarse an ``n``, memory, time), joined by "; "; empty when the
+            case can be solved.
+        """
         why = []
         if self.too_coarse:
             why.append(f"n={self.n} is too coarse for the Dugdale edge at mu={self.mu:g} (it wants "
@@ -310,7 +355,14 @@ class GridPlan:
         return "; ".join(why)
 
     def message(self) -> str:
-        """One line: the case, why not, the N it needs with its memory and time, the analytic value."""
+        """Describe the plan in one line.
+
+        Returns
+        -------
+        str
+            The case, why it cannot be solved (:meth:`reason`), the N it needs with its
+            memory and time, and the analytic W* to use instead.
+        """
         return (f"beta0={self.beta0:g}, mu={self.mu:g}: {self.reason() or 'can be solved'}; a resolved BEM "
                 f"needs n >= {self.n_needed} (~{self.memory_bytes / 2**30:.2g} GiB, ~{self.seconds / 60:.0f} min "
                 f"estimated); use the analytic W* = {self.analytic_W_star:.4f} (elliptic_transition: GVG x the "
@@ -320,13 +372,24 @@ class GridPlan:
 class UnresolvableCaseError(RuntimeError):
     """A BEM pull-off that cannot be resolved within the memory or time available, refused before solving.
 
-    Attributes
+    Parameters
     ----------
     plan : GridPlan
         The case, the N it needs, its estimated memory [bytes] and time [s], and the best
         analytic value (``plan.analytic_W_star``).
-    n_needed, memory_bytes, seconds, analytic_W_star
-        Shortcuts to the plan's fields.
+
+    Attributes
+    ----------
+    plan : GridPlan
+        The plan given.
+    n_needed : int
+        Shortcut to ``plan.n_needed`` [-].
+    memory_bytes : float
+        Shortcut to ``plan.memory_bytes`` [bytes].
+    seconds : float
+        Shortcut to ``plan.seconds`` [s].
+    analytic_W_star : float
+        Shortcut to ``plan.analytic_W_star`` [-].
     """
 
     def __init__(self, plan: GridPlan):
@@ -340,7 +403,7 @@ class UnresolvableCaseError(RuntimeError):
 
 def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
               max_seconds=DEFAULT_MAX_SECONDS) -> GridPlan:
-    """The grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
+    """Plan the grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
 
     Parameters
     ----------
@@ -349,17 +412,24 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
     n : int, optional
-        Cells per axis asked for; default: the automatic choice ``n_needed``.
-    law : {'dugdale', 'exponential'}
+        Cells per axis asked for [-]; default: the automatic choice ``n_needed``.
+    law : {'dugdale', 'exponential'}, default 'dugdale'
         Traction law (sigma0 = mu, Delta gamma = 1).
-    margin : float
-        As in :func:`pull_off_start` (the domain).
-    max_seconds : float
+    margin : float, default DOMAIN_MARGIN
+        As in :func:`pull_off_start` (the domain) [-].
+    max_seconds : float, default DEFAULT_MAX_SECONDS
         Time allowed [s] (:attr:`GridPlan.affordable`).
 
     Returns
     -------
     GridPlan
+        The case, ``n`` and ``n_needed``, the edge ratio of the grid of ``n``, the estimated
+        memory and time of the grid of ``n_needed``, the limits, and the analytic W*.
+
+    Raises
+    ------
+    ValueError
+        If an argument is out of range (naming it).
 
     Notes
     -----
@@ -408,7 +478,7 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
                       margin=DOMAIN_MARGIN, threads=None, keep_states=False,
                       progress=None, search="located", nested=None,
                       max_seconds=DEFAULT_MAX_SECONDS) -> AdhesivePullOff:
-    """BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
+    """Compute the BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
 
     Parameters
     ----------
@@ -427,29 +497,23 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         Load control: the minimum of the unloading load.  Displacement control:
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
-    max_seconds : float
-        Automatic n only: the estimated time allowed [s] (:func:`plan_grid`).
-
-    Returns
-    -------
-    AdhesivePullOff
-        W* in the normalisation of Eq. (34) with sin(theta_skew) of beta0, like
-        every other model of :mod:`dhfield.compare`; semi-axes in c_r.
-
-    Raises
-    ------
-    UnresolvableCaseError
-        Automatic n only: the grid the case needs exceeds the memory or the time allowed;
-        the exception carries that N, its estimated memory and time, and the analytic
-        W* to use instead (one-line message).
-
-    Other Parameters
-    ----------------
-    n_steps, margin
-        See :func:`pull_off_start`.
-    refine_levels, tol, max_iter, threads, keep_states, progress
-        See :class:`dhfield.bem.path.PathOptions`.
-    search : {'located', 'bracket', 'march'}
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps (4 to 1e6) [-]; see :func:`pull_off_start`.
+    refine_levels : int, default 2
+        Refinements of the pull-off bracket (0-20) [-]; see :class:`dhfield.bem.path.PathOptions`.
+    tol : float, default DEFAULT_TOL
+        Solver tolerance [-]; see :class:`dhfield.bem.path.PathOptions`.
+    max_iter : int, default DEFAULT_MAX_ITER
+        Iteration cap per state [-]; see :class:`dhfield.bem.path.PathOptions`.
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per expected zone semi-axis, > 1 [-]; see :func:`pull_off_start`.
+    threads : int, optional
+        FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
+    keep_states : bool, default False
+        Keep every state of the path; see :class:`dhfield.bem.path.PathOptions`.
+    progress : bool, optional
+        Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
+    search : {'located', 'bracket', 'march'}, default 'located'
         Load control only (the route taken is :attr:`AdhesivePullOff.search`).
         'located' (default) is 'bracket' with the minimum located on coarser
         grids first (below).  'bracket': cold-start at the analytic
@@ -474,6 +538,24 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         Bracket search only: start every state from the same approach solved
         on a grid half as fine (:class:`dhfield.bem.pull_off.NestedWarmStart`).
         Default: when ``n >= 2 * NESTED_MIN_N``.
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Automatic n only: the estimated time allowed [s] (:func:`plan_grid`).
+
+    Returns
+    -------
+    AdhesivePullOff
+        W* in the normalisation of Eq. (34) with sin(theta_skew) of beta0, like
+        every other model of :mod:`dhfield.compare`; semi-axes in c_r.
+
+    Raises
+    ------
+    UnresolvableCaseError
+        Automatic n only: the grid the case needs exceeds the memory or the time allowed;
+        the exception carries that N, its estimated memory and time, and the analytic
+        W* to use instead (one-line message).
+    ValueError
+        If an argument is out of its range (naming it), e.g. an unknown ``search`` or
+        ``control``.
 
     Notes
     -----
@@ -536,8 +618,12 @@ class RelaxedWarmStart:
     ----------
     problem : NondimensionalProblem
         The fine grid's problem (n divisible by 4).
-    tol, max_iter, threads
-        As in :func:`dhfield.bem.solve_adhesive` (``tol`` of the coarse states).
+    tol : float, default RELAXED_COARSE_TOL
+        Tolerance of the coarse states [-], as in :func:`dhfield.bem.solve_adhesive`.
+    max_iter : int, default DEFAULT_MAX_ITER
+        Iteration cap per coarse state, as in :func:`dhfield.bem.solve_adhesive`.
+    threads : int, optional
+        FFTW threads, as in :func:`dhfield.bem.solve_adhesive`.
     """
 
     def __init__(self, problem, *, tol=RELAXED_COARSE_TOL, max_iter=DEFAULT_MAX_ITER, threads=None):
@@ -555,10 +641,23 @@ class RelaxedWarmStart:
 
     @property
     def states_solved(self) -> int:
+        """Number of relaxed coarse states solved (or kept from the bracket search) so far [-]."""
         return len(self._states)
 
     def coarse_state(self, approach):
-        """The relaxed state at ``approach`` on the coarse grid (solved once)."""
+        """Return the relaxed state at ``approach`` on the coarse grid (solved once).
+
+        Parameters
+        ----------
+        approach : float
+            Approach of distant points [c_r^2/R].
+
+        Returns
+        -------
+        ContactState
+            The coarse state, warm-started from the nearest converged contact state solved
+            (the problem's cold start for the first); flagged when not converged.
+        """
         import time
 
         from .bem.solver import Prediction, solve_problem
@@ -594,13 +693,24 @@ class RelaxedWarmStart:
 
 
     def locate_pull_off(self, spacing):
-        """Approach of the relaxed coarse grid's load-control pull-off (NaN when not found).
+        """Locate the load-control pull-off approach on the relaxed coarse grid.
 
         The bracket search on the coarse grid (the problem's cold start, no vertex
         refinement); its states are kept as the warm starts of the fine grid, whose lattice
         samples ``approach_max - j spacing`` next to it :func:`dhfield.bem.pull_off.located_path`
         then solves.  The smeared law moves the minimum by a fraction of a path step (the
         fine samples re-locate it).
+
+        Parameters
+        ----------
+        spacing : float
+            Spacing of the fine grid's approach lattice [c_r^2/R].
+
+        Returns
+        -------
+        float
+            The coarse pull-off approach [c_r^2/R]; NaN when the bracket search finds no
+            interior minimum.
         """
         import time
 
@@ -659,7 +769,11 @@ def _half_grid_locates(plan, law, margin) -> bool:
 def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine_factor=4,
                     window=3, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None,
                     keep_states=False, progress=None) -> AdhesivePullOff:
-    """Load-control pull-off on a finer grid, started from a coarser solution (coarse to fine).
+    """Compute the load-control pull-off on a finer grid, started from a coarser solution.
+
+    The fine states sit on the finest approach lattice of the full path set by ``n_steps``,
+    ``refine_levels`` and ``refine_factor`` (:func:`adhesive_pull_off`), so that the fine
+    pull-off equals the full fine path's wherever both bracket the same samples.
 
     Parameters
     ----------
@@ -669,9 +783,25 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
         previous call of this function.
     n : int
         Cells per axis of the fine grid (even, > ``coarse.n``) [-].
-    window : int
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps of the full path (4 to 1e6) [-].
+    refine_levels : int, default 2
+        Refinements of the full path's pull-off bracket (0-20) [-].
+    refine_factor : int, default 4
+        Step division per refinement (2-100) [-].
+    window : int, default 3
         Half-width of the window of fine states around the coarse pull-off, in
-        finest path steps (extended while the fine minimum sits on its edge).
+        finest path steps (extended while the fine minimum sits on its edge) [-].
+    tol : float, default DEFAULT_TOL
+        Solver tolerance [-]; see :class:`dhfield.bem.path.PathOptions`.
+    max_iter : int, default DEFAULT_MAX_ITER
+        Iteration cap per state; see :class:`dhfield.bem.path.PathOptions`.
+    threads : int, optional
+        FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
+    keep_states : bool, default False
+        Keep every state; see :class:`dhfield.bem.path.PathOptions`.
+    progress : bool, optional
+        Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
 
     Returns
     -------
@@ -679,14 +809,11 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
         As :func:`adhesive_pull_off`, with ``path.phase == 'refine'`` for every
         state (:func:`dhfield.bem.pull_off.refine`).
 
-    Other Parameters
-    ----------------
-    n_steps, refine_levels, refine_factor
-        The path settings of the full path (:func:`adhesive_pull_off`): the fine
-        states sit on its finest approach lattice, so that the fine pull-off
-        equals the full fine path's wherever both bracket the same samples.
-    tol, max_iter, threads, keep_states, progress
-        See :class:`dhfield.bem.path.PathOptions`.
+    Raises
+    ------
+    ValueError
+        If ``coarse`` is not an :class:`~dhfield.bem.pull_off.AdhesivePullOff`, ``n`` is not
+        above ``coarse.n``, or another argument is out of range (naming it).
     """
     if not isinstance(coarse, AdhesivePullOff):
         raise ValueError(f"coarse must be an AdhesivePullOff; got {type(coarse).__name__}")

@@ -180,6 +180,7 @@ class Grid:
 
     @property
     def shape(self) -> tuple[int, int]:
+        """Cell counts ``(nx, ny)`` of the full grid [-]."""
         return (self.nx, self.ny)
 
     @property
@@ -203,7 +204,15 @@ class Grid:
         return (np.arange(self.ny + 1) - 0.5 * self.ny) * self.dy
 
     def mesh(self) -> tuple[np.ndarray, np.ndarray]:
-        """Cell-centre coordinates ``X, Y`` of shape (nx, ny) ('ij' indexing) [m]."""
+        """Return the cell-centre coordinates on the full grid ('ij' indexing).
+
+        Returns
+        -------
+        X : ndarray, shape (nx, ny)
+            The x coordinate of each cell centre [m].
+        Y : ndarray, shape (nx, ny)
+            The y coordinate of each cell centre [m].
+        """
         return np.meshgrid(self.x, self.y, indexing="ij")
 
     @property
@@ -212,6 +221,13 @@ class Grid:
         return self.nx % 2 == 0 and self.ny % 2 == 0
 
     def quadrant_grid_shape(self) -> tuple[int, int]:
+        """Return the shape of the ``x > 0, y > 0`` quadrant used by the symmetry mode.
+
+        Returns
+        -------
+        (int, int)
+            ``(nx // 2, ny // 2)`` [-].
+        """
         return (self.nx // 2, self.ny // 2)
 
 
@@ -272,11 +288,29 @@ def love_influence(x, y, half_width_x, half_width_y, reduced_modulus=1.0):
 
 
 def influence_coefficients(grid: Grid, reduced_modulus=1.0) -> np.ndarray:
-    """Influence coefficients ``K[i, j]`` for offsets ``(i dx, j dy)``, ``0 <= i <= nx`` [m/Pa].
+    """Compute the influence coefficients ``K[i, j]`` for offsets ``(i dx, j dy)`` [m/Pa].
 
-    Shape ``(nx + 1, ny + 1)``.  The kernel is even in both offsets, so these
+    The kernel is even in both offsets, so ``0 <= i <= nx``, ``0 <= j <= ny``
     cover every offset; the last row and column (offset ``nx dx`` or ``ny dy``)
     never enter the discrete convolution and are set to zero.
+
+    Parameters
+    ----------
+    grid : Grid
+        The cell grid.
+    reduced_modulus : float, default 1
+        E* [Pa].
+
+    Returns
+    -------
+    ndarray, shape (nx + 1, ny + 1)
+        Displacement at offset ``(i dx, j dy)`` per unit pressure on one cell
+        (:func:`love_influence`) [m/Pa].
+
+    Raises
+    ------
+    ValueError
+        If ``reduced_modulus`` is not finite and positive.
     """
     e = _check_spacing("reduced_modulus", reduced_modulus)
     ix = np.arange(grid.nx + 1)[:, None] * grid.dx
@@ -294,12 +328,38 @@ THREADS_PER_CPU = 4
 
 
 def max_threads() -> int:
-    """Largest accepted FFTW thread count, ``THREADS_PER_CPU * os.cpu_count()``."""
+    """Return the largest accepted FFTW thread count.
+
+    Returns
+    -------
+    int
+        ``THREADS_PER_CPU * os.cpu_count()`` (``os.cpu_count()`` taken as 1
+        when unknown) [-].
+    """
     return THREADS_PER_CPU * (os.cpu_count() or 1)
 
 
 def check_threads(value, name: str = "threads") -> int:
-    """``value`` as an int in ``1 .. max_threads()``; ValueError naming ``name`` otherwise."""
+    """Check an FFTW thread count.
+
+    Parameters
+    ----------
+    value : int
+        Thread count to check (bools are refused) [-].
+    name : str, default "threads"
+        Name of the parameter, used in the error message.
+
+    Returns
+    -------
+    int
+        ``value`` as a Python int in ``1 .. max_threads()`` [-].
+
+    Raises
+    ------
+    ValueError
+        Naming ``name`` and the valid range if ``value`` is not an integer in
+        ``1 .. max_threads()``.
+    """
     valid = f"an integer in 1..{max_threads()} (at most {THREADS_PER_CPU} per CPU)"
     if isinstance(value, bool):
         raise ValueError(f"{name} must be {valid}; got {value!r}")
@@ -313,10 +373,18 @@ def check_threads(value, name: str = "threads") -> int:
 
 
 def default_threads() -> int:
-    """FFTW threads when none are given: ``$DHFIELD_THREADS``, else 1.
+    """Return the FFTW thread count used when none is given.
 
-    Raises ValueError naming ``DHFIELD_THREADS`` if it is set but not an integer
-    in ``1 .. max_threads()``.
+    Returns
+    -------
+    int
+        ``$DHFIELD_THREADS`` if set and not blank, else 1 [-].
+
+    Raises
+    ------
+    ValueError
+        Naming ``DHFIELD_THREADS`` if it is set but not an integer in
+        ``1 .. max_threads()``.
     """
     env = os.environ.get("DHFIELD_THREADS")
     if env is None or env.strip() == "":
@@ -488,7 +556,33 @@ def _cached_operator(grid, reduced_modulus, symmetric, threads, planner_effort):
 
 def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
                  planner_effort="FFTW_MEASURE") -> HalfSpaceOperator:
-    """The cached :class:`HalfSpaceOperator` for this grid (built on first use)."""
+    """Return the cached :class:`HalfSpaceOperator` for this grid (built on first use).
+
+    Parameters
+    ----------
+    grid : Grid
+        The full cell grid.
+    reduced_modulus : float, default 1
+        E* [Pa].
+    symmetric : bool, default False
+        Build the even-even quadrant operator (see the module's Conventions).
+    threads : int, optional
+        FFTW threads; default :func:`default_threads`.
+    planner_effort : str, default "FFTW_MEASURE"
+        FFTW planner flag, one of ``FFTW_ESTIMATE``, ``FFTW_MEASURE``,
+        ``FFTW_PATIENT``, ``FFTW_EXHAUSTIVE``.
+
+    Returns
+    -------
+    HalfSpaceOperator
+        The operator, shared by every call with the same arguments.
+
+    Raises
+    ------
+    ValueError
+        If ``threads``, ``reduced_modulus`` or ``planner_effort`` is out of
+        range.
+    """
     threads = default_threads() if threads is None else check_threads(threads)
     e = _check_spacing("reduced_modulus", reduced_modulus)
     return _cached_operator(grid, e, bool(symmetric), threads, planner_effort)
@@ -546,7 +640,23 @@ _EVEN_RTOL = 1e-12
 
 
 def quadrant(field) -> np.ndarray:
-    """The ``x > 0, y > 0`` quadrant of a full-grid field with even nx, ny (a copy)."""
+    """Return the ``x > 0, y > 0`` quadrant of a full-grid field with even nx, ny.
+
+    Parameters
+    ----------
+    field : array_like, shape (..., nx, ny)
+        Field on the full grid; nx and ny must be even.
+
+    Returns
+    -------
+    ndarray, shape (..., nx/2, ny/2)
+        A contiguous copy of the quadrant.
+
+    Raises
+    ------
+    ValueError
+        If nx or ny is odd.
+    """
     f = np.asarray(field)
     nx, ny = f.shape[-2:]
     if nx % 2 or ny % 2:
@@ -555,7 +665,18 @@ def quadrant(field) -> np.ndarray:
 
 
 def unfold_quadrant(q) -> np.ndarray:
-    """The full even-even field from its ``x > 0, y > 0`` quadrant."""
+    """Return the full even-even field from its ``x > 0, y > 0`` quadrant.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., nx/2, ny/2)
+        The quadrant, as returned by :func:`quadrant`.
+
+    Returns
+    -------
+    ndarray, shape (..., nx, ny)
+        The field mirrored into all four quadrants (even in x and in y).
+    """
     q = np.asarray(q)
     half = np.concatenate([q[..., ::-1, :], q], axis=-2)
     return np.concatenate([half[..., ::-1], half], axis=-1)

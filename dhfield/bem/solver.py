@@ -184,6 +184,29 @@ class AdhesiveProblem:
     wants even beyond its cap 2 h0 (:data:`EDGE_WIDTH_FACTOR`), so that a grid too coarse for
     the law still has stable, converging states: they solve a smeared law and serve only as
     warm starts of a finer grid (``resolved`` stays False).
+
+    Parameters
+    ----------
+    initial_gap : array_like, shape (nx, ny)
+        Initial gap z(x, y) at the cell centres of ``grid`` [length].
+    grid : Grid
+        The full cell grid.
+    law : DugdaleLaw, ExponentialLaw or None
+        Traction-separation law; None for non-adhesive contact.
+    symmetric : bool or None
+        Work on the even-even quadrant; None: when z is even in x and y and nx, ny are even.
+    threads : int or None
+        FFTW threads (None: :func:`dhfield.bem.operator.default_threads`).
+    reduced_modulus : float
+        E* [stress].
+    relaxed_edge : bool, default False
+        Widen the Dugdale edge beyond its cap 2 h0 (see above).
+
+    Raises
+    ------
+    ValueError
+        If ``grid`` is not a :class:`Grid`, ``initial_gap`` is not finite or not of the grid's
+        shape, ``law`` is not a traction law, or ``symmetric=True`` for an uneven problem.
     """
 
     def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus, *, relaxed_edge=False):
@@ -226,13 +249,53 @@ class AdhesiveProblem:
             self.min_spread = want if relaxed_edge else min(want, 2.0 * self.law.range)
 
     def to_full(self, q):
+        """Return a working-grid field on the full grid.
+
+        Parameters
+        ----------
+        q : ndarray
+            Field on the working grid (the quadrant in symmetric mode).
+
+        Returns
+        -------
+        ndarray
+            The field on the full grid (unfolded in symmetric mode, else ``q`` itself).
+        """
         return unfold_quadrant(q) if self.symmetric else q
 
     def to_work(self, f):
+        """Return a full-grid field on the working grid.
+
+        Parameters
+        ----------
+        f : ndarray, shape (nx, ny)
+            Field on the full grid.
+
+        Returns
+        -------
+        ndarray
+            Its quadrant in symmetric mode (a copy), else ``f`` as a contiguous array.
+        """
         return quadrant(f) if self.symmetric else np.ascontiguousarray(f)
 
     def gradient_spreads(self, h):
-        """|dh/dx| dx and |dh/dy| dy per cell (central differences; mirrored at symmetry axes)."""
+        """Compute the gap's variation across each cell, for the sub-cell Dugdale edge.
+
+        Central differences, mirrored at the symmetry axes in symmetric mode; spreads below
+        the smallest edge width ``min_spread`` are scaled up to it.
+
+        Parameters
+        ----------
+        h : ndarray
+            Gap on the working grid [length].
+
+        Returns
+        -------
+        sx : ndarray
+            The variation ``|dh/dx| dx`` along x per cell [length].
+        sy : ndarray
+            The variation ``|dh/dy| dy`` along y per cell [length].
+        """
         if self.symmetric:
             # central differences; at the symmetry axes (index 0) the mirror image h[-1] = h[0],
             # one-sided at the outer edge (slices instead of padded copies: the same values)
@@ -265,7 +328,21 @@ class AdhesiveProblem:
         return sx, sy
 
     def stress_from_gap(self, h, contact):
-        """Adhesive stress per cell for the gap h (the fixed-point map) [stress]."""
+        """Compute the adhesive stress per cell for the gap h (the fixed-point map).
+
+        Parameters
+        ----------
+        h : ndarray
+            Gap on the working grid [length].
+        contact : ndarray of bool
+            Cells in contact (full adhesive stress for the Dugdale law).
+
+        Returns
+        -------
+        ndarray
+            Tensile stress per cell, in [0, sigma0]: sigma0 times the sub-cell zone fraction
+            (Dugdale), or sigma(max(h, 0)) for a smooth law [stress].
+        """
         law = self.law
         if isinstance(law, DugdaleLaw):
             sx, sy = self.gradient_spreads(h)
@@ -275,9 +352,18 @@ class AdhesiveProblem:
         return law.stress(np.maximum(h, 0.0))
 
     def stress_of_state(self, state):
-        """Adhesive stress of a solved state on the working grid, to start the fixed point from [stress].
+        """Compute the adhesive stress of a solved state, to start the fixed point from.
 
-        Dugdale: sigma0 times the state's contact U zone fraction; a smooth law: sigma(h) of its gap.
+        Parameters
+        ----------
+        state : ContactState
+            A solved state on this problem's grid.
+
+        Returns
+        -------
+        ndarray
+            Stress on the working grid: sigma0 times the state's contact U zone fraction
+            (Dugdale), or sigma(h) of its gap for a smooth law [stress].
         """
         law = self.law
         if isinstance(law, DugdaleLaw):
@@ -285,7 +371,20 @@ class AdhesiveProblem:
         return law.stress(np.maximum(self.to_work(state.gap), 0.0))
 
     def zone_fraction(self, h, contact):
-        """Fraction of each cell in contact U zone (h below the law's zone gap)."""
+        """Compute the fraction of each cell in contact U zone (h below the law's zone gap).
+
+        Parameters
+        ----------
+        h : ndarray
+            Gap on the working grid [length].
+        contact : ndarray of bool
+            Cells in contact (fraction 1).
+
+        Returns
+        -------
+        ndarray
+            Fraction in [0, 1] per cell of the working grid [-].
+        """
         sx, sy = self.gradient_spreads(h)
         chi = cell_fraction_below(self.law.zone_gap - h, sx, sy)
         chi[contact] = 1.0
@@ -432,7 +531,19 @@ def _contact_box(op, free_gap):
 
 
 class ContactPressureSolution(NamedTuple):
-    """Result of :func:`solve_contact_pressure` (working arrays of the operator's shape)."""
+    """Result of :func:`solve_contact_pressure` (working arrays of the operator's shape).
+
+    Parameters
+    ----------
+    pressure : ndarray
+        Repulsive pressure p >= 0 [stress].
+    gap : ndarray
+        Gap h = g0 + K(p - stress) [length].
+    iterations : int
+        CG iterations, on every grid (coarse and box ones included).
+    error : float
+        Complementarity error / scale [-].
+    """
 
     pressure: np.ndarray     #: repulsive pressure p >= 0 [stress]
     gap: np.ndarray          #: gap h = g0 + K(p - stress) [length]
@@ -464,7 +575,7 @@ def solve_contact_pressure(op, free_gap, pressure, scale, tol, max_iter, self_in
     op : HalfSpaceOperator
         The DC-FFT operator K of the working grid.
     free_gap : ndarray
-        g0 = z - delta on the working grid [length].
+        The free gap g0 = z - delta on the working grid [length].
     pressure : ndarray
         Warm start p (clipped at 0; zeros for a cold start) [stress].
     scale : float
@@ -625,19 +736,41 @@ def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, exact_g
 
 
 class AndersonMixing:
-    """Anderson mixing (type II) for x = F(x); residual f = F(x) - x."""
+    """Anderson mixing (type II) for x = F(x); residual f = F(x) - x.
+
+    Parameters
+    ----------
+    memory : int, default ANDERSON_MEMORY
+        Number of past differences kept [-].
+    """
 
     def __init__(self, memory=ANDERSON_MEMORY):
         self.m = memory
         self.reset()
 
     def reset(self):
+        """Forget the stored history (the next step is a plain fixed-point step)."""
         self.dx = None
         self.df = None
         self.count = 0
         self.x_prev = self.f_prev = None
 
     def step(self, x, f):
+        """Return the next iterate from the current one and its residual.
+
+        Parameters
+        ----------
+        x : ndarray
+            Current iterate.
+        f : ndarray
+            Its residual F(x) - x, of the shape of ``x``.
+
+        Returns
+        -------
+        ndarray
+            The mixed iterate, of the shape of ``x`` (``x + f`` without history, or after
+            a singular least-squares system, which also resets the history).
+        """
         xf, ff = x.ravel(), f.ravel()
         if self.dx is None:
             self.dx = np.empty((self.m, xf.size))
@@ -687,6 +820,13 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
     guess : ContactState, optional
         Warm start (a state on the same grid, e.g. the previous state of a path).
         Along a path always warm-start: the adhesive states are multistable.
+    tol : float, default DEFAULT_TOL
+        Tolerance on the complementarity error (relative to the law's range,
+        or to |delta| and max z without adhesion) and on the largest change of
+        the zone fraction (Dugdale) or of the stress relative to sigma0
+        (exponential) between outer iterations [-].
+    max_iter : int, default DEFAULT_MAX_ITER
+        Cap on the total inner conjugate-gradient iterations.
     symmetric : bool, optional
         Solve on the even-even quadrant (default: when z is even in x and y and
         nx, ny are even).
@@ -701,15 +841,11 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
         On the full grid, with ``converged``, ``iterations``, ``residual``.  An
         unconverged state is returned flagged, never silently.
 
-    Other Parameters
-    ----------------
-    tol : float
-        Tolerance on the complementarity error (relative to the law's range,
-        or to |delta| and max z without adhesion) and on the largest change of
-        the zone fraction (Dugdale) or of the stress relative to sigma0
-        (exponential) between outer iterations.
-    max_iter : int
-        Cap on the total inner conjugate-gradient iterations.
+    Raises
+    ------
+    ValueError
+        If an argument is out of range (naming it): a non-finite gap or approach, a grid
+        or gap shape mismatch, ``tol <= 0``, ``max_iter < 1``, or a guess on another grid.
 
     Notes
     -----
@@ -728,6 +864,28 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
 
 
 def solve_problem(prob, delta, guess, tol, max_iter):
+    """Solve a prepared problem at one approach (the body of :func:`solve_adhesive`).
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem's working arrays.
+    delta : float
+        Approach of distant points [length].
+    guess : ContactState, Prediction or None
+        Warm start: a solved state on the same grid, an extrapolated prediction, or None
+        for a cold start.
+    tol : float
+        Tolerance, as in :func:`solve_adhesive` [-].
+    max_iter : int
+        Cap on the total inner conjugate-gradient iterations.
+
+    Returns
+    -------
+    ContactState
+        On the full grid; when the iterations run out, the best iterate, flagged
+        ``converged=False``.
+    """
     law = prob.law
     op = prob.op
     zd = prob.z - delta
@@ -798,14 +956,39 @@ def solve_problem(prob, delta, guess, tol, max_iter):
 
 @dataclass
 class Prediction:
-    """Warm start extrapolated along a path (working arrays: repulsive pressure, stress)."""
+    """Warm start extrapolated along a path (working arrays: repulsive pressure, stress).
+
+    Parameters
+    ----------
+    pressure : ndarray
+        Repulsive pressure on the working grid, >= 0 [stress].
+    stress : ndarray
+        Adhesive (tensile) stress on the working grid, in [0, sigma0] [stress].
+    """
 
     pressure: np.ndarray
     stress: np.ndarray
 
 
 def secant_prediction(prob, prev, last, delta):
-    """Secant predictor from the last two states of a path (same branch), else ``last``."""
+    """Predict the warm start at ``delta`` from the last two states of a path.
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem both states solve.
+    prev, last : ContactState or None
+        The two previous states of the path, in order.
+    delta : float
+        Next approach [length].
+
+    Returns
+    -------
+    Prediction or ContactState or None
+        The secant extrapolation (:func:`extrapolated_start`) when both states converged on
+        the same branch (both in contact or both not) and the step ratio t is in (0, 1.5];
+        else ``last``.
+    """
     if prev is None or last is None or not (prev.converged and last.converged):
         return last
     if prev.in_contact != last.in_contact or prev.approach == last.approach:
@@ -817,7 +1000,22 @@ def secant_prediction(prob, prev, last, delta):
 
 
 def extrapolated_start(prob, prev, last, t) -> Prediction:
-    """Warm start ``last + t (last - prev)`` of two solved states (pressure >= 0, 0 <= stress <= sigma0)."""
+    """Extrapolate a warm start ``last + t (last - prev)`` from two solved states.
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The (adhesive) problem both states solve.
+    prev, last : ContactState
+        Two solved states on the problem's grid, with repulsive pressures.
+    t : float
+        Extrapolation factor [-].
+
+    Returns
+    -------
+    Prediction
+        Pressure clipped at >= 0 and stress clipped to [0, sigma0], on the working grid.
+    """
     s1, s0 = prob.stress_of_state(last), prob.stress_of_state(prev)
     p1, p0 = prob.to_work(last.repulsive_pressure), prob.to_work(prev.repulsive_pressure)
     stress = np.clip(s1 + t * (s1 - s0), 0.0, prob.law.max_stress)
@@ -826,6 +1024,35 @@ def extrapolated_start(prob, prev, last, t) -> Prediction:
 
 
 def assemble_state(prob, delta, p, s, h, iterations, residual, converged, outer):
+    """Build the full-grid :class:`ContactState` from a solve's working arrays.
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem solved.
+    delta : float
+        Approach of distant points [length].
+    p : ndarray
+        Repulsive pressure on the working grid [stress].
+    s : ndarray
+        Adhesive stress on the working grid [stress].
+    h : ndarray
+        Gap on the working grid [length].
+    iterations : int
+        Total inner iterations.
+    residual : float
+        Final residual [-].
+    converged : bool
+        Whether both tolerances were met.
+    outer : int
+        Outer (fixed-point) iterations.
+
+    Returns
+    -------
+    ContactState
+        Pressure ``p - s``, load ``sum(p - s)`` times the cell area (four times in
+        symmetric mode), contact ``p > 0`` and the cohesive fraction outside it.
+    """
     contact_w = p > 0
     law = prob.law
     if law is None:

@@ -41,7 +41,7 @@ __all__ = ["ContactState", "mask_semi_axes"]
 
 
 def mask_semi_axes(weights, grid: Grid) -> tuple[float, float]:
-    """Semi-axes (major, minor) of a mask from its second moments [length].
+    """Compute the semi-axes (major, minor) of a mask from its second moments [length].
 
     Parameters
     ----------
@@ -85,7 +85,7 @@ def mask_semi_axes(weights, grid: Grid) -> tuple[float, float]:
 class ContactState:
     """A BEM solution of (adhesive) normal contact on a grid.
 
-    Attributes
+    Parameters
     ----------
     grid : Grid
         The cell grid (full grid, even when the solver worked on a quadrant).
@@ -153,7 +153,7 @@ class ContactState:
     # -- masks and areas -------------------------------------------------------
     @property
     def cell_area(self) -> float:
-        """dx dy [length^2]."""
+        """Area of one cell, dx dy [length^2]."""
         return self.grid.dx * self.grid.dy
 
     @property
@@ -178,11 +178,25 @@ class ContactState:
 
     # -- semi-axes -------------------------------------------------------------
     def contact_semi_axes(self) -> tuple[float, float]:
-        """(a, b): semi-axes of the contact from its second moments [length]."""
+        """Return the semi-axes of the contact from its second moments.
+
+        Returns
+        -------
+        (float, float)
+            (a, b), major and minor semi-axes of the contact [length]; (0, 0)
+            without contact.
+        """
         return mask_semi_axes(self.contact, self.grid)
 
     def cohesive_semi_axes(self) -> tuple[float, float]:
-        """(c, d): semi-axes of contact U cohesive zone from its second moments [length]."""
+        """Return the semi-axes of contact U cohesive zone from its second moments.
+
+        Returns
+        -------
+        (float, float)
+            (c, d), major and minor semi-axes of contact U cohesive zone
+            [length]; (0, 0) without a zone.
+        """
         return mask_semi_axes(self.adhesive_zone, self.grid)
 
     @property
@@ -203,7 +217,16 @@ class ContactState:
         return float(np.max(self.pressure))
 
     def summary(self) -> dict:
-        """Scalars of the state as a plain dict (no fields)."""
+        """Return the scalars of the state as a plain dict (no fields).
+
+        Returns
+        -------
+        dict
+            ``approach``, ``load``, the semi-axes ``a, b, c, d``, ``beta_ab``,
+            ``beta_cd``, ``contact_area``, ``adhesive_area`` and the solver
+            record (``converged``, ``iterations``, ``outer_iterations``,
+            ``residual``), as Python scalars in the state's units.
+        """
         a, b = self.contact_semi_axes()
         c, d = self.cohesive_semi_axes()
         return {"approach": float(self.approach), "load": float(self.load), "a": a, "b": b, "c": c,
