@@ -118,6 +118,9 @@ def test_periphery_subcommand(tmp_path, capsys):
     ref = work_of_adhesion(float(p.a_star), float(p.c_star), 0.85, float(p.v), np.array(rec["rays"]["theta"]))
     np.testing.assert_allclose(rec["rays"]["work_of_adhesion"], ref, rtol=1e-11)
     assert rec["rays"]["work_of_adhesion"][0] == pytest.approx(1.0, rel=1e-11)
+    # issue 18 item 14: a units entry like pulloff/curve/compare/solve (paper's units; theta in rad)
+    assert rec["units"]["W_star"] == "1" and rec["units"]["theta"] == "rad"
+    assert set(rec["rays"]) <= set(rec["units"])
     assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--out", str(nc)]) == 0
     assert read_netcdf(nc)["work_ratio"].shape == (1, 1)
     assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--n-theta", "1"]) == 2

@@ -42,9 +42,13 @@ def run(args) -> int:
             "edge_separation", "work_of_adhesion")
     rows = {c: np.asarray(getattr(prof, c))[0, 0] for c in cols}
     if args.json:
+        from ..schema import units_of
+
+        scalars = ("beta0", "mu", "W_star", "a_star", "c_star", "v")
         print_json({"beta0": args.beta0, "mu": args.mu, "control": args.control,
                      "W_star": float(po.W_star[0, 0]), "a_star": float(po.a_star[0, 0]),
-                     "c_star": float(po.c_star[0, 0]), "v": float(po.v[0, 0]), "rays": rows})
+                     "c_star": float(po.c_star[0, 0]), "v": float(po.v[0, 0]), "rays": rows,
+                     "units": units_of(scalars + cols, nondimensional=True)})
         return 0
     print(f"pull-off ({args.control} control): W* = {float(po.W_star[0, 0]):.6g}, "
           f"a* = {float(po.a_star[0, 0]):.6g}, c* = {float(po.c_star[0, 0]):.6g}, v = {float(po.v[0, 0]):.6g}")
