@@ -39,7 +39,7 @@ from . import jkr_elliptic_energy, maugis_dugdale
 from ._adhesion import check_material, load_unit, scalar_or_array, tabor_parameter
 from ._validation import check_control, check_interval, check_tabor
 from .geometry import sin_skew_angle
-from .jkr_elliptic import _check_geometry
+from .jkr_elliptic import check_geometry
 
 __all__ = ["transition_weight", "pull_off_nondimensional", "pull_off_force"]
 
@@ -123,7 +123,7 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhe
     ndarray
         W [N]: between -2 pi dgamma R (DMT) and the GVG pull-off (JKR).
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
     st = pull_off_nondimensional(mu, b0, control)

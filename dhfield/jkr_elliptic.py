@@ -158,7 +158,7 @@ def _radius_ratio_m1(beta0):
     return k2 * j12 / j1  # J2/J1 - 1, since J2 - J1 = k^2 J12
 
 
-def _shape_coefficients(beta, k2, rho_m1):
+def shape_coefficients(beta, k2, rho_m1):
     """g1, g2 with alpha_i = a g_i (R = E* = 1) and the integrals.
 
     ``rho_m1`` = R'/R'' - 1.  g1 - g2 is formed directly: with the curvature
@@ -186,7 +186,7 @@ def _state_u(u, beta0, rho_m1, sin_skew):
         one_m_beta = (1.0 - beta0) * (1.0 - u)
         beta = 1.0 - one_m_beta
         k2 = one_m_beta * (1.0 + beta)
-        g1, g2, dg, j0, j1, j2 = _shape_coefficients(beta, k2, rho_m1)
+        g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
         # at u -> 0 (beta -> beta0, a -> infinity) rounding can leave dg <= 0: a = infinity
         dg = np.where(np.real(dg) > 0.0, dg, np.nan)
         root = np.expm1(-0.5 * np.log1p(-one_m_beta))  # beta^(-1/2) - 1
@@ -201,7 +201,7 @@ def _state_u(u, beta0, rho_m1, sin_skew):
             "alpha": (al0, al1, al2)}
 
 
-def _circle(a_star, sin_skew=1.0):
+def circle_state(a_star, sin_skew=1.0):
     a = np.asarray(a_star, dtype=float)
     w = (4.0 / 3.0 * a**3 - np.sqrt(8.0 * np.pi * a**3)) / (2.0 * np.pi)  # JKR (1971)
     d = a**2 - np.sqrt(2.0 * np.pi * a)
@@ -209,7 +209,7 @@ def _circle(a_star, sin_skew=1.0):
             "beta": np.ones_like(a)}
 
 
-def _geometry(beta0):
+def geometry_terms(beta0):
     """beta0, R'/R'' - 1 and sin(theta_skew) of Eq. (34)."""
     beta0 = np.asarray(beta0, dtype=float)
     rho_m1 = _radius_ratio_m1(beta0)
@@ -269,7 +269,7 @@ def state_at_ellipticity(beta, beta0):
     b = np.asarray(check_finite("beta", beta, "contact ellipticity b/a, dimensionless"), dtype=float)
     if np.any((b <= b0) | (b >= 1.0)):
         raise ValueError("beta must lie in (beta0, 1) (contact ellipticity b/a, dimensionless)")
-    b0, rho_m1, sn = _geometry(b0)
+    b0, rho_m1, sn = geometry_terms(b0)
     return _state_u((b - b0) / (1.0 - b0), b0, rho_m1, sn)
 
 
@@ -296,10 +296,10 @@ def load_curve_nondimensional(a_star, beta0):
     The contact ellipticity is found by a root finder on the closed-form curve of
     :func:`state_at_ellipticity`; beta0 = 1 is circular JKR.
     """
-    beta0, rho_m1, sn = _geometry(beta0)
+    beta0, rho_m1, sn = geometry_terms(beta0)
     a_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(a_star, float), beta0, rho_m1, sn)
     circ = beta0 == 1.0
-    out = _circle(a_star, sn)
+    out = circle_state(a_star, sn)
     if np.any(~circ):
         sel = ~circ
         u = _u_at_contact(a_star[sel], beta0[sel], rho_m1[sel], sn[sel])
@@ -331,9 +331,9 @@ def _pull_off_state(beta0, control="load"):
         ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] as in
         :func:`load_curve_nondimensional`.
     """
-    beta0, rho_m1, sn = _geometry(beta0)
+    beta0, rho_m1, sn = geometry_terms(beta0)
     a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
-    out = _circle(np.full(beta0.shape, np.cbrt(a3)), sn)
+    out = circle_state(np.full(beta0.shape, np.cbrt(a3)), sn)
     circ = beta0 == 1.0
     if np.any(~circ):
         sel = ~circ
@@ -376,7 +376,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 
 def _beta_at_load(w_star, beta0):
     """beta on the stable (load-controlled) branch at load W* >= W*_pull-off."""
-    beta0, rho_m1, sn = _geometry(beta0)
+    beta0, rho_m1, sn = geometry_terms(beta0)
     w_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(w_star, float), beta0, rho_m1, sn)
     out = np.ones(w_star.shape)
     sel = beta0 < 1.0
@@ -394,7 +394,7 @@ def _beta_at_load(w_star, beta0):
     return out
 
 
-def _check_geometry(radius_ratio_, beta0):
+def check_geometry(radius_ratio_, beta0):
     if (radius_ratio_ is None) == (beta0 is None):
         raise ValueError("give exactly one of radius_ratio (R'/R'' >= 1) and beta0 (Hertz b/a in (0, 1])")
     if beta0 is not None:
@@ -441,12 +441,12 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     .. [1] K. L. Johnson, J. A. Greenwood, J. Phys. D 38 (2005) 1042,
        doi:10.1088/0022-3727/38/7/012
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     cr = length_unit(r, e, w)
     st = load_curve_nondimensional(a / cr, b0)
-    sn = _geometry(b0)[2]
+    sn = geometry_terms(b0)[2]
     return EllipticLoadCurve(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
                              scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
                              scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
@@ -473,12 +473,12 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
         ``load`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m] and
         ``ellipticity`` beta_JKR(pull-off) [-].
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     check_control(control)
     st = _pull_off_state(b0, control)
     cr = length_unit(r, e, w)
-    sn = _geometry(b0)[2]
+    sn = geometry_terms(b0)[2]
     return EllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
                            scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
                            scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
@@ -525,10 +525,10 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
         The ratio [-]: 1 at the circle (and 5/9 under displacement control, the
         circular fixed-grips value).
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     check_control(control)
     st = _pull_off_state(b0, control)
-    return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
+    return scalar_or_array(st["W_star"] / geometry_terms(b0)[2] / -0.75)
 
 
 def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
@@ -546,7 +546,7 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
     ndarray
         The ellipticity at pull-off, in [beta0, 1] [-]; 1 at the circle.
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     check_control(control)
     return scalar_or_array(_pull_off_state(b0, control)["beta"])
 
@@ -566,7 +566,7 @@ def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
     ndarray
         The ellipticity beta [-]; beta -> beta0 (the Hertz ellipticity) as W* -> infinity.
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     w = check_interval("load_star", load_star, -1.0, np.inf, high_open=True,
                        what="W* of Eq. (34), above the pull-off load")
     po = _pull_off_state(b0)["W_star"]

@@ -21,7 +21,7 @@ pressure (Hertz-type plus elliptical flat punch, Boussinesq superposition)
 
 alpha1, alpha2 match the curvatures A, B inside the ellipse and alpha0 the
 approach delta, exactly as in :mod:`dhfield.jkr_elliptic` (ellipsoidal-potential
-integrals J; its helper ``_shape_coefficients`` gives ``alpha_i = a g_i(beta)``).
+integrals J; its helper ``shape_coefficients`` gives ``alpha_i = a g_i(beta)``).
 The load is ``W = 2 pi a b [alpha0 + (alpha1 + alpha2)/3]`` and the approach
 ``delta = (ab/2E*)[2 alpha0 J0 + alpha1 b^2 J2 + alpha2 a^2 J1]``.
 
@@ -97,7 +97,7 @@ from scipy.optimize import elementwise
 from ._adhesion import approach_unit, check_material, length_unit, load_unit, scalar_or_array
 from ._validation import check_control, check_finite, check_interval
 from .geometry import sin_skew_angle
-from .jkr_elliptic import _check_geometry, _circle, _geometry, _shape_coefficients
+from .jkr_elliptic import check_geometry, circle_state, geometry_terms, shape_coefficients
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
 
@@ -184,7 +184,7 @@ def _state_u(u, beta0, rho_m1, sin_skew):
         one_m_beta = (1.0 - beta0) * (1.0 - u)
         beta = 1.0 - one_m_beta
         k2 = one_m_beta * (1.0 + beta)
-        g1, g2, dg, j0, j1, j2 = _shape_coefficients(beta, k2, rho_m1)
+        g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
         i1, i2, i3, a2, a1, a0 = _edge_moments(k2)
         eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (G3), the root with K_I of one sign
         dg = np.where(np.real(dg) > 0.0, dg, np.nan)  # rounding at u -> 0: a = infinity
@@ -229,7 +229,7 @@ def state_at_ellipticity(beta, beta0):
     b = np.asarray(check_finite("beta", beta, "contact ellipticity b/a, dimensionless"), dtype=float)
     if np.any((b <= b0) | (b >= 1.0)):
         raise ValueError("beta must lie in (beta0, 1) (contact ellipticity b/a, dimensionless)")
-    b0, rho_m1, sn = _geometry(b0)
+    b0, rho_m1, sn = geometry_terms(b0)
     return _state_u((b - b0) / (1.0 - b0), b0, rho_m1, sn)
 
 
@@ -268,10 +268,10 @@ def load_curve_nondimensional(a_star, beta0):
     :func:`state_at_ellipticity` (beta0 -> 1); its ellipticity at a* is found by a
     bracketing root finder.  beta0 = 1 is circular JKR.
     """
-    beta0, rho_m1, sn = _geometry(beta0)
+    beta0, rho_m1, sn = geometry_terms(beta0)
     a_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(a_star, float), beta0, rho_m1, sn)
     circ = beta0 == 1.0
-    out = _circle(a_star, sn)
+    out = circle_state(a_star, sn)
     if np.any(~circ):
         sel = ~circ
         u = _u_at_contact(a_star[sel], beta0[sel], rho_m1[sel], sn[sel])
@@ -333,9 +333,9 @@ def _pull_off_state(beta0, control="load"):
     curve (accurate to ~1e-15 in beta).  beta0 = 1: JKR, W* = -3/4 (load control,
     a*^3 = 9 pi/8) and -5/12 (displacement control, a*^3 = pi/8).
     """
-    beta0, rho_m1, sn = _geometry(beta0)
+    beta0, rho_m1, sn = geometry_terms(beta0)
     a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
-    out = _circle(np.full(beta0.shape, np.cbrt(a3)), sn)
+    out = circle_state(np.full(beta0.shape, np.cbrt(a3)), sn)
     circ = beta0 == 1.0
     if np.any(~circ):
         sel = ~circ
@@ -386,12 +386,12 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     ----------
     .. [1] A. Giudici, D. Vella, I. Griffiths, J. Phys. D (2025), arXiv:2407.00378
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     cr = length_unit(r, e, w)
     st = load_curve_nondimensional(a / cr, b0)
-    sn = _geometry(b0)[2]
+    sn = geometry_terms(b0)[2]
     return EnergyEllipticLoadCurve(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
                                    scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
                                    scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
@@ -418,12 +418,12 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
         ``load`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m] and
         ``ellipticity`` b/a at pull-off [-].
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     check_control(control)
     st = _pull_off_state(b0, control)
     cr = length_unit(r, e, w)
-    sn = _geometry(b0)[2]
+    sn = geometry_terms(b0)[2]
     return EnergyEllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
                                  scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
                                  scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
@@ -470,10 +470,10 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
         The ratio [-]: 1 at the circle (5/9 under displacement control, the
         circular fixed-grips value).
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     check_control(control)
     st = _pull_off_state(b0, control)
-    return scalar_or_array(st["W_star"] / _geometry(b0)[2] / -0.75)
+    return scalar_or_array(st["W_star"] / geometry_terms(b0)[2] / -0.75)
 
 
 def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
@@ -491,6 +491,6 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
     ndarray
         The ellipticity, in [beta0, 1] [-]; 1 at the circle.
     """
-    b0 = _check_geometry(radius_ratio, beta0)
+    b0 = check_geometry(radius_ratio, beta0)
     check_control(control)
     return scalar_or_array(_pull_off_state(b0, control)["beta"])

@@ -49,7 +49,7 @@ def test_series_and_divided_difference_agree_at_switch():
 def test_hertz_limit_of_coefficients(beta0):
     rho_m1 = je._radius_ratio_m1(beta0)
     assert_allclose(1 + rho_m1, radius_ratio(beta0), rtol=1e-14)
-    g1, g2, dg, *_ = je._shape_coefficients(beta0, 1 - beta0**2, rho_m1)
+    g1, g2, dg, *_ = je.shape_coefficients(beta0, 1 - beta0**2, rho_m1)
     kappa = hertz.max_pressure(1.0, beta0)  # Po/a of Eq. (8)
     assert_allclose([g1, g2], [-kappa, -kappa], rtol=TOL_HERTZ)
     assert abs(dg) < 1e-14
@@ -59,7 +59,7 @@ def test_hertz_limit_of_coefficients(beta0):
 def test_contact_condition_and_griffith(beta0, u):
     """Independent check of the model: the pressure makes omega = delta - A x^2 - B y^2
     inside the ellipse (Boussinesq quadrature), and K_I = sqrt(2) at both axis ends."""
-    _, rho_m1, sn = je._geometry(beta0)
+    _, rho_m1, sn = je.geometry_terms(beta0)
     st = je._state_u(u, beta0, rho_m1, sn)
     a, b, alpha = st["a_star"], st["b_star"], st["alpha"]
     r1 = np.sqrt(1 + rho_m1)
@@ -113,7 +113,7 @@ def test_pull_off_mild_ellipticity():
     coef = (1 - f) / np.log(rho) ** 2
     assert np.all(f < 1)
     assert_allclose(coef, coef[-1], rtol=0.02)
-    beta0 = je._check_geometry(rho, None)
+    beta0 = je.check_geometry(rho, None)
     w = je.pull_off_nondimensional(beta0, 1.0)["W_star"]
     assert_allclose(w, -0.75 * f * sin_skew_angle(beta0), rtol=1e-12)
     # the notes' reconstruction (not literature): 0.985, 0.944, 0.861 at R'/R'' = 2, 4, 10
@@ -128,7 +128,7 @@ def test_pull_off_shape():
     po = je.pull_off_nondimensional(beta0, 1.0)
     for b0, w in zip(beta0, po["W_star"]):  # the pull-off is the minimum of a dense scan
         u = np.linspace(1e-4, 1 - 1e-4, 4000)
-        _, rm, sn = je._geometry(b0)
+        _, rm, sn = je.geometry_terms(b0)
         assert w <= np.min(je._state_u(u, b0, rm, sn)["W_star"]) + 1e-12
 
 

@@ -101,7 +101,8 @@ def _law_parameters(law) -> dict:
     return {"law": law.name, "law_max_stress": float(law.max_stress), "law_range": float(law.range)}
 
 
-def _region_codes(state):
+def region_codes(state):
+    """Return the region code of every cell of a state (outside, cohesive zone, contact; see REGIONS)."""
     region = np.full(state.grid.shape, REGIONS.index("outside"), dtype=np.int8)
     region[np.asarray(state.cohesive) > 0.5] = REGIONS.index("cohesive_zone")
     region[np.asarray(state.contact, dtype=bool)] = REGIONS.index("contact")
@@ -141,7 +142,7 @@ def state_dataset(state, *, nondimensional: bool = False, title: str | None = No
                                 qualifier="total (contact minus adhesive traction)"),
         "gap": cf.variable("gap", dims, np.asarray(state.gap).T, nondimensional=nd),
         "cohesive_fraction": _local("cohesive_fraction", dims, np.asarray(state.cohesive).T, nd),
-        "region": _flag("region", dims, _region_codes(state).T, REGIONS,
+        "region": _flag("region", dims, region_codes(state).T, REGIONS,
                         "region of the surface (cohesive zone: more than half of the cell)"),
         "approach": cf.variable("approach", (), state.approach, nondimensional=nd),
         "load": _local("load", (), state.load, nd),

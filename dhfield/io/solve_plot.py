@@ -122,7 +122,7 @@ def solve_figure(result, params=None):
     from matplotlib.colors import ListedColormap, TwoSlopeNorm
     from matplotlib.ticker import FormatStrFormatter
 
-    from .solution import REGIONS, _region_codes
+    from .solution import REGIONS, region_codes
 
     sc = _scales(result, params)
     si = sc["si"]
@@ -136,7 +136,7 @@ def solve_figure(result, params=None):
 
     # (a) contact and cohesive zone, fitted ellipses
     ax = axes[0]
-    region = _region_codes(st).T  # (y, x)
+    region = region_codes(st).T  # (y, x)
     colours = {"contact": "#3b6fb6", "cohesive_zone": "#f2a541", "outside": "#ffffff"}
     cmap = ListedColormap([colours[r] for r in REGIONS])
     ax.pcolormesh(x, y, region, cmap=cmap, vmin=-0.5, vmax=len(REGIONS) - 0.5, shading="nearest",
