@@ -223,7 +223,12 @@ def add_machine_displacement(curve, machine_stiffness):
     for key, v in curve.items():
         out[key] = v
         if key == ("approach" if si else "delta_star"):
-            out["machine_displacement"] = np.asarray(approach, float) + np.asarray(load, float) / k  # Delta
+            with np.errstate(over="ignore"):
+                delta = np.asarray(approach, float) + np.asarray(load, float) / k  # Delta
+            if not np.all(np.isfinite(delta)):  # W/K overflows: K is too small to be told from load control
+                raise ValueError(f"machine_stiffness = {k:g} is too small: the machine displacement W/K "
+                                 "overflows (a machine this soft is load control: leave the stiffness out)")
+            out["machine_displacement"] = delta
     return out
 
 

@@ -288,3 +288,11 @@ def test_bad_stiffness_is_named(bad):
 def test_model_without_a_curve_is_refused():
     with pytest.raises(ValueError, match="load curve"):
         compliance.loading_cycle("dh-elliptic-jkr-beta", 1.0, 0.9, 1.0)
+
+
+def test_machine_displacement_of_a_vanishing_stiffness_is_a_named_error():
+    """Hostile run (issue 18): K = 1e-308 gave W/K = inf in the curve's machine_displacement."""
+    curve = {"W_star": np.array([-5.0, 5.0]), "delta_star": np.array([0.1, 0.2])}  # 5/1e-308 > max float
+    with pytest.raises(ValueError, match="machine_stiffness.*too small"):
+        compliance.add_machine_displacement(curve, 1e-308)
+    assert np.all(np.isfinite(compliance.add_machine_displacement(curve, 1e-3)["machine_displacement"]))
