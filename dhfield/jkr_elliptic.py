@@ -215,6 +215,33 @@ def geometry_terms(beta0):
     rho_m1 = _radius_ratio_m1(beta0)
     return beta0, rho_m1, 2.0 * np.sqrt(1.0 + rho_m1) / (2.0 + rho_m1)
 
+def state_si(record_type, state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
+    """Convert a nondimensional elliptical-JKR state (Eqs. 32-34) to SI, as ``record_type``.
+
+    Parameters
+    ----------
+    record_type : type
+        A NamedTuple of fields (load, semi_major, semi_minor, approach, ellipticity).
+    state : dict
+        ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] in the paper's units.
+    beta0 : array_like
+        Hertz ellipticity of the geometry [-] (sin(theta_skew) of Eq. 34).
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R [m], E* [Pa] and dgamma [J/m^2], validated.
+
+    Returns
+    -------
+    record_type
+        Load [N], semi-axes [m], approach [m] and ellipticity [-].
+    """
+    r, e, w = effective_radius, reduced_modulus, work_of_adhesion
+    cr = length_unit(r, e, w)
+    sn = geometry_terms(beta0)[2]
+    return record_type(scalar_or_array(state["W_star"] / sn * load_unit(r, w)),  # Eq. (34)
+                       scalar_or_array(state["a_star"] * cr), scalar_or_array(state["b_star"] * cr),
+                       scalar_or_array(state["delta_star"] * approach_unit(r, e, w)),
+                       scalar_or_array(state["beta"]))
+
 
 def _merge(mask, circ, ell, shape):
     out = {}
@@ -444,13 +471,8 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     b0 = check_geometry(radius_ratio, beta0)
     a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    cr = length_unit(r, e, w)
-    st = load_curve_nondimensional(a / cr, b0)
-    sn = geometry_terms(b0)[2]
-    return EllipticLoadCurve(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
-                             scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
-                             scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
-                             scalar_or_array(st["beta"]))
+    st = load_curve_nondimensional(a / length_unit(r, e, w), b0)
+    return state_si(EllipticLoadCurve, st, b0, r, e, w)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
@@ -476,13 +498,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
     b0 = check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     check_control(control)
-    st = _pull_off_state(b0, control)
-    cr = length_unit(r, e, w)
-    sn = geometry_terms(b0)[2]
-    return EllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
-                           scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
-                           scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
-                           scalar_or_array(st["beta"]))
+    return state_si(EllipticPullOff, _pull_off_state(b0, control), b0, r, e, w)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,

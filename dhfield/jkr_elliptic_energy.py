@@ -94,10 +94,10 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._adhesion import approach_unit, check_material, length_unit, load_unit, scalar_or_array
+from ._adhesion import check_material, length_unit, scalar_or_array
 from ._validation import check_control, check_finite, check_interval
 from .geometry import sin_skew_angle
-from .jkr_elliptic import check_geometry, circle_state, geometry_terms, shape_coefficients
+from .jkr_elliptic import check_geometry, circle_state, geometry_terms, shape_coefficients, state_si
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
 
@@ -389,13 +389,8 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     b0 = check_geometry(radius_ratio, beta0)
     a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    cr = length_unit(r, e, w)
-    st = load_curve_nondimensional(a / cr, b0)
-    sn = geometry_terms(b0)[2]
-    return EnergyEllipticLoadCurve(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
-                                   scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
-                                   scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
-                                   scalar_or_array(st["beta"]))
+    st = load_curve_nondimensional(a / length_unit(r, e, w), b0)
+    return state_si(EnergyEllipticLoadCurve, st, b0, r, e, w)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
@@ -421,13 +416,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
     b0 = check_geometry(radius_ratio, beta0)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     check_control(control)
-    st = _pull_off_state(b0, control)
-    cr = length_unit(r, e, w)
-    sn = geometry_terms(b0)[2]
-    return EnergyEllipticPullOff(scalar_or_array(st["W_star"] / sn * load_unit(r, w)),
-                                 scalar_or_array(st["a_star"] * cr), scalar_or_array(st["b_star"] * cr),
-                                 scalar_or_array(st["delta_star"] * approach_unit(r, e, w)),
-                                 scalar_or_array(st["beta"]))
+    return state_si(EnergyEllipticPullOff, _pull_off_state(b0, control), b0, r, e, w)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
