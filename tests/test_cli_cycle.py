@@ -137,3 +137,27 @@ def test_bem_cycle_bad_input(capsys, argv, match):
     assert main(["cycle", "--beta0", "1", "--mu", "1", *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and match in err
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".nc"])
+def test_curve_out_keeps_machine_displacement(capsys, tmp_path, suffix):
+    """Issue 17: `curve --machine-stiffness K --out` dropped the machine_displacement column."""
+    import xarray as xr
+
+    from dhfield.io.table import read_table
+
+    out = tmp_path / f"curve{suffix}"
+    assert main(["curve", "--model", "jkr", *PDMS, "--n", "4", "--machine-stiffness", "50", "--out", str(out)]) == 0
+    capsys.readouterr()
+    printed = _json(capsys, ["curve", "--model", "jkr", *PDMS, "--n", "4", "--machine-stiffness", "50", "--json"])
+    if suffix == ".nc":
+        ds = xr.open_dataset(out)
+        got, unit, k = ds["machine_displacement"].values, ds["machine_displacement"].attrs["units"], \
+            ds.attrs["param_machine_stiffness"]
+        ds.close()
+    else:
+        frame, meta = read_table(out)
+        got, unit = frame["machine_displacement"].to_numpy(), meta["columns"]["machine_displacement"]["units"]
+        k = meta["attributes"]["param_machine_stiffness"]
+    np.testing.assert_array_equal(got, printed["machine_displacement"])
+    assert unit == "m" and k == 50.0
