@@ -159,3 +159,19 @@ def test_compare_si_equals_pulloff_si(capsys):
     for name in ("jkr-elliptic", "md", "dmt"):
         api = dim.pull_off_force(p, model=name)
         assert by_name[name]["force"] == pytest.approx(float(api["force"]), rel=TOL_CLI_API), name
+
+
+@pytest.mark.parametrize("inputs, header", [
+    (["--beta0", "0.8", "--mu", "1"], ("[Eq. 34]", "[c_r]", "[c_r]", "[c_r]", "[c_r]", "[1]", "[c_r^2/R]")),
+    (PDMS_ARGS, ("[N]", "[m]", "[m]", "[m]", "[m]", "[Eq. 34]")),
+])
+def test_compare_table_says_its_units(capsys, inputs, header):
+    """Issue 17: the compare table had no units header.  A 'units' row under the column names (SI
+    units with physical inputs); nondimensionally also a line naming the paper's scales."""
+    rc, out, _ = _run(capsys, ["compare", *inputs])
+    lines = out.splitlines()
+    assert rc == 0
+    row = next(line for line in lines if line.startswith("units"))
+    assert row.split()[1:] == " ".join(header).split()     # one label per column, in column order
+    assert lines.index(row) == next(i for i, line in enumerate(lines) if line.startswith("model")) + 1
+    assert ("c_r = (R^2 dgamma/E*)^(1/3)" in out) == (inputs[0] == "--beta0")
