@@ -6,7 +6,13 @@ from ._common import print_json, print_warning
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("compare", help="pull-off of every comparison model side by side (Fig. 9 axes)")
+    p = sub.add_parser("compare", help="pull-off of every comparison model side by side (Fig. 9 axes)",
+                       description="The pull-off of every model of dhfield.compare side by side, one row per "
+                       "model.  Inputs: --beta0 and --mu (table in the paper's units, Eqs. 32-35) or the "
+                       "physical inputs in SI units of 'dhfield pulloff' (table in N and m, with W*).  The "
+                       "table's second row gives each column's unit; --json gives every record with a 'units' "
+                       "entry, --out a netCDF file on the dimension 'model'.  Models outside their validated "
+                       "range are named on stderr.")
     add_model_arguments(p, required=False)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="load control (default) or displacement control")
