@@ -59,7 +59,9 @@ def add_parser(sub) -> None:
                                    "terminal.  Inputs: --beta0 and --mu, or the physical inputs in SI units of "
                                    "'dhfield pulloff' (converted with dhfield.dimensional.contact_parameters); "
                                    "these add the force [N], the semi-axes and the approach [m] beside W*, a*, "
-                                   "b*, c*, d*, delta*.",
+                                   "b*, c*, d*, delta*.  With --machine-stiffness: the pull-off under a "
+                                   "machine spring, from the unloading branch sampled at prescribed adhesive "
+                                   "force (dhfield.bem_compliance).",
                        epilog=_EPILOG)
     add_model_arguments(p, required=False)   # or the SI inputs of add_physical_arguments (below)
     p.add_argument("--n", type=int, default=None,
