@@ -125,7 +125,7 @@ def bem_cycle_record(cyc, k_star, params=None) -> dict:
            "energy_lost_error_star": f["energy_lost_error_star"], "resolved": bool(np.asarray(cyc["resolved"])),
            "branch_states": int(np.size(br.adhesive_force)), "branch_complete": bool(br.complete),
            "failures": int(br.failures), "elapsed": float(br.elapsed)}
-    if params is not None:  # inverts Eqs. (33)-(34) with the contact's scales (its sin(theta_skew): the BEM's)
+    if params is not None:  # inverts Eqs. 33-34 with the contact's scales (its sin(theta_skew): the BEM's)
         force, approach = float(params.load_unit), float(params.approach_unit)
         rec.update({
             "machine_stiffness": rec["machine_stiffness_star"] * force / approach,
