@@ -137,6 +137,13 @@ VARIABLES: dict[str, Variable] = {
     "machine_displacement": Variable("m", "machine displacement Delta = delta + W/K", scale=_APPROACH,
                                      description="position of the far end of a machine spring of stiffness K "
                                      "(dhfield.compliance); the jump out is its first minimum on unloading"),
+    "machine_stiffness": Variable("N m-1", "machine stiffness K", scale="(2 pi R dgamma/sin(theta_skew))/(c_r^2/R)",
+                                  description="stiffness of the machine spring in series with the contact "
+                                              "(dhfield.compliance.stiffness_star); the jump out is where "
+                                              "dW/d(delta) = -K; 0 is load control, inf a rigid machine"),
+    "separation_approach": Variable("m", "approach after the jump out, W = 0", scale=_APPROACH,
+                                    description="the machine displacement at the jump out: the force-free "
+                                                "state the contact jumps to (dhfield.compliance)"),
     # ----------------------------------------------------------------- SI inputs and derived scales
     "work_of_adhesion": Variable("J m-2", "work of adhesion dgamma", scale=_DGAMMA,
                                  description="Dupre work of adhesion; per ray, the integral of sigma dh "

@@ -212,3 +212,13 @@ def test_cli_starts_without_the_heavy_imports():
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr
     assert res.stdout.strip() == "[]"
+
+
+@pytest.mark.parametrize("command", ["field", "compare", "solve", "cycle"])
+def test_help_says_what_the_command_does(capsys, command):
+    """Issue 17: `field --help` had no description (usage and options only)."""
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    text = capsys.readouterr().out
+    head = text.split("options:")[0]
+    assert len(head.split("\n\n", 1)[-1].split()) >= 20, head   # a paragraph beyond the usage lines

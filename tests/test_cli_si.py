@@ -159,3 +159,31 @@ def test_compare_si_equals_pulloff_si(capsys):
     for name in ("jkr-elliptic", "md", "dmt"):
         api = dim.pull_off_force(p, model=name)
         assert by_name[name]["force"] == pytest.approx(float(api["force"]), rel=TOL_CLI_API), name
+
+
+@pytest.mark.parametrize("inputs, header", [
+    (["--beta0", "0.8", "--mu", "1"], ("[Eq. 34]", "[c_r]", "[c_r]", "[c_r]", "[c_r]", "[1]", "[c_r^2/R]")),
+    (PDMS_ARGS, ("[N]", "[m]", "[m]", "[m]", "[m]", "[Eq. 34]")),
+])
+def test_compare_table_says_its_units(capsys, inputs, header):
+    """Issue 17: the compare table had no units header.  A 'units' row under the column names (SI
+    units with physical inputs); nondimensionally also a line naming the paper's scales."""
+    rc, out, _ = _run(capsys, ["compare", *inputs])
+    lines = out.splitlines()
+    assert rc == 0
+    row = next(line for line in lines if line.startswith("units"))
+    assert row.split()[1:] == " ".join(header).split()     # one label per column, in column order
+    assert lines.index(row) == next(i for i, line in enumerate(lines) if line.startswith("model")) + 1
+    assert ("c_r = (R^2 dgamma/E*)^(1/3)" in out) == (inputs[0] == "--beta0")
+
+
+def test_pulloff_text_has_no_rounding_noise(capsys):
+    """Issue 17: the text output printed sin_skew 0.49999999999999994 at 30 deg (repr of a float one
+    ulp from sin 30 deg = 1/2).  Now 10 significant digits, as curve, cycle and fit."""
+    argv = [*PDMS_ARGS[:-4], "--work-of-adhesion", "0.04", "--adhesive-stress", "0.5e6", "--model", "jkr-elliptic"]
+    argv[argv.index("--skew-angle-deg") + 1] = "30"
+    rc, out, _ = _run(capsys, ["pulloff", *argv])
+    row = {line.split()[0]: line.split()[1] for line in out.splitlines() if len(line.split()) > 1}
+    assert rc == 0 and row["sin_skew"] == "0.5"
+    numbers = [v for v in row.values() if v.lstrip("-")[:1].isdigit()]
+    assert numbers and all(len(v.lstrip("-0.").replace(".", "").split("e")[0]) <= 10 for v in numbers), numbers

@@ -4,7 +4,8 @@ import pytest
 from dhfield import schema
 
 #: Units a CF/UDUNITS parser accepts that dhfield uses; a new unit string must be added here knowingly.
-KNOWN_UNITS = {"1", "m", "N", "Pa", "J m-2", "rad", "degree"}
+KNOWN_UNITS = {"1", "m", "N", "Pa", "J m-2", "rad", "degree",
+               "N m-1"}   # machine stiffness (issue 17); cf_units.Unit("N m-1") converts to kg s-2 with factor 1
 
 
 def test_every_record_key_has_metadata():

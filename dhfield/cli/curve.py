@@ -119,7 +119,9 @@ def run(args) -> int:
     if args.out:
         from ..io.curves import write_load_curve
 
-        path = write_load_curve(rec, args.out)
+        k = getattr(args, "machine_stiffness", None)   # the stiffness of machine_displacement (param_*)
+        extra = {} if k is None else {("machine_stiffness" if not nondim else "machine_stiffness_star"): k}
+        path = write_load_curve(rec, args.out, **extra)
         print(f"wrote {path}")
         return 0
     if args.json:

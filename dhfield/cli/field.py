@@ -7,7 +7,18 @@ from ._common import add_model_arguments, thread_count
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("field", help="full-field BEM cross-check of one DH case, written to netCDF")
+    p = sub.add_parser("field", help="full-field BEM cross-check of one DH case, written to netCDF",
+                       description="Full-field cross-check of the analytic double-Hertz model at one state "
+                       "(beta0, mu, contact size a*): the DH pressure (Eqs. 7, 16, 22; cell averages) is put "
+                       "on an N x N grid, the surface displacement computed from it by the DC-FFT boundary "
+                       "elements (dhfield.fields) and compared with the analytic displacement (Eqs. 13-15, "
+                       "21, 26) and gap (Eq. 27) in the contact, the adhesive annulus and outside.  Writes "
+                       "one netCDF file (dhfield.io.field): pressure, analytic and numerical displacement "
+                       "and gap and their differences on (y, x), a region flag, the same resampled on a "
+                       "polar (r, theta_p) grid with the annulus-identity error per ray, the error summary "
+                       "as error_* attributes and every input as param_*; paper's units (Eqs. 32-35).  "
+                       "Nothing is solved for: the pressure is the model's (the self-consistent BEM is "
+                       "'dhfield solve').")
     add_model_arguments(p)
     p.add_argument("--a-star", type=float, required=True, help="contact semi-major axis a* (> 0)")
     p.add_argument("--n", type=int, default=512,

@@ -58,6 +58,7 @@ def run(args) -> int:
     if args.json:
         print_json({**rec, "units": unit})
     else:
-        for k, v in rec.items():
-            print(f"{k:22s} {v!s:24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
+        for k, v in rec.items():  # 10 significant digits, as curve, cycle and fit (no 0.49999999999999994)
+            text = f"{v:.10g}" if isinstance(v, float) else str(v)
+            print(f"{k:22s} {text:24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
     return 0

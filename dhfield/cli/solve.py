@@ -59,7 +59,9 @@ def add_parser(sub) -> None:
                                    "terminal.  Inputs: --beta0 and --mu, or the physical inputs in SI units of "
                                    "'dhfield pulloff' (converted with dhfield.dimensional.contact_parameters); "
                                    "these add the force [N], the semi-axes and the approach [m] beside W*, a*, "
-                                   "b*, c*, d*, delta*.",
+                                   "b*, c*, d*, delta*.  With --machine-stiffness: the pull-off under a "
+                                   "machine spring, from the unloading branch sampled at prescribed adhesive "
+                                   "force (dhfield.bem_compliance).",
                        epilog=_EPILOG)
     add_model_arguments(p, required=False)   # or the SI inputs of add_physical_arguments (below)
     p.add_argument("--n", type=int, default=None,
@@ -68,7 +70,13 @@ def add_parser(sub) -> None:
                    help="traction law, sigma0 = mu and dgamma = 1 (default dugdale)")
     p.add_argument("--control", default="load", choices=("load", "displacement"),
                    help="load: minimum of the unloading force; displacement: the jump (default load)")
-    p.add_argument("--search", default="located", choices=("located", "bracket", "march"),
+    p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
+                   help="pull-off under a machine spring (control 'spring'), as in 'dhfield pulloff': K >= 0 in "
+                        "N/m with physical inputs, K* (paper's units, dhfield.compliance.stiffness_star) with "
+                        "--beta0/--mu; 0 is load control.  The BEM's unloading branch is sampled at prescribed "
+                        "adhesive force and the jump is the first minimum of the machine position on it "
+                        "(dhfield.bem_compliance); --out then holds the branch, --search does not apply")
+    p.add_argument("--search", default=None, choices=("located", "bracket", "march"),
                    help="load control: how the force minimum is found -- located on coarser grids first, "
                         "then 3-4 states on this one (default); bracket: from the analytic pull-off on this "
                         "grid; march: unload in uniform steps (slowest)")
@@ -108,8 +116,185 @@ def _units(rec, si_keys=()) -> dict:
     out = {}
     for k, v in rec.items():
         if isinstance(v, (bool, int, float)) and not isinstance(v, str):
-            out[k] = (_LOCAL_UNITS[k] if k in _LOCAL_UNITS else units(k, nondimensional=k not in si_keys))
+            local = _LOCAL_UNITS.get(k, _SPRING_UNITS.get(k))
+            out[k] = local if local is not None else units(k, nondimensional=k not in si_keys)
     return out
+
+
+# --------------------------------------------------------------------------- --machine-stiffness
+#: Units of the keys of the spring record that :func:`_units` cannot take from the schema.
+_SPRING_UNITS = {"machine_stiffness_star": "1", "separation_delta_star": "1", "in_contact": "1",
+                 "branch_states": "1", "branch_complete": "1", "failures": "1"}
+
+
+def _check_spring_arguments(args, params) -> None:
+    """Refuse what does not go with --machine-stiffness (one line, exit 2), before solving."""
+    from ..compliance import check_machine_stiffness
+
+    check_machine_stiffness("machine-stiffness", args.machine_stiffness)
+    if args.control != "load":
+        raise ValueError("control goes with no machine spring; --machine-stiffness sets the machine itself")
+    if args.search is not None:
+        raise ValueError("search applies to the load-control pull-off; with --machine-stiffness the whole "
+                         "unloading branch is sampled (leave --search out)")
+    if args.plot is not None:
+        raise ValueError("plot draws the fields of a pull-off state; with --machine-stiffness use "
+                         "'dhfield cycle --model bem --plot' for the branch and both jumps")
+
+
+def _stiffness_star(args, params) -> float:
+    """K* in the paper's units: --machine-stiffness itself, or from N/m with the contact's scales."""
+    if params is None:
+        return float(args.machine_stiffness)
+    from ..compliance import stiffness_star
+
+    # the BEM's load normalisation is that of beta0 (Eq. 34): the contact's own sin(theta_skew)
+    return float(stiffness_star(args.machine_stiffness, params.effective_radius, params.reduced_modulus,
+                                params.work_of_adhesion, params.sin_skew))
+
+
+def spring_record(branch, k_star, params=None) -> dict:
+    """The solve record of the BEM pull-off under a spring of stiffness K* (paper's units; SI with params).
+
+    Keys: beta0, mu, n, law, control ('spring'), machine_stiffness_star, W_star, W_star_error (the fit's
+    error estimate, without the grid's discretisation error; inf when not resolved), delta_star,
+    separation_delta_star (the force-free approach the contact jumps to, delta* + W*/K*), in_contact
+    (the jump starts from a contact state), resolved, branch_states, branch_complete, failures, elapsed;
+    with ``params``, the SI values (machine_stiffness [N/m], force [N], approach and separation_approach
+    [m]) and the SI inputs.
+    """
+    import numpy as np
+
+    from ..bem_compliance import bem_pull_off_under_spring
+
+    po = bem_pull_off_under_spring(branch, k_star)
+    w, d = float(po["W_star"]), float(po["delta_star"])
+    sep = d + w / k_star if k_star > 0 else float("-inf")  # Delta* = delta* + W*/K*
+    rec = {"beta0": branch.beta0, "mu": branch.mu, "n": branch.n, "law": None, "control": "spring",
+           "machine_stiffness_star": float(k_star), "W_star": w, "W_star_error": float(po["W_star_error"]),
+           "delta_star": d, "separation_delta_star": sep, "in_contact": bool(po["in_contact"]),
+           "resolved": bool(po["resolved"]), "branch_states": int(np.size(branch.adhesive_force)),
+           "branch_complete": bool(branch.complete), "failures": int(branch.failures),
+           "elapsed": float(branch.elapsed)}
+    if params is not None:
+        from ..io.solution import SI_INPUT_KEYS
+
+        au = float(params.approach_unit)
+        rec.update(machine_stiffness=float(k_star * float(params.load_unit) / au),  # the inverse of K*
+                   force=w * float(params.load_unit), approach=d * au, separation_approach=sep * au)
+        rec.update({k: float(getattr(params, k)) for k in SI_INPUT_KEYS})
+    return rec
+
+
+def _spring_dataset(branch, rec, params):
+    """netCDF Dataset of the spring pull-off: the branch per state, the jump, the spring (attributes)."""
+    import numpy as np
+    import xarray as xr
+
+    from ..io import cf, provenance_attrs
+    from ..io.solution import SI_INPUT_KEYS
+
+    k = rec["machine_stiffness_star"]
+    dims = ("step",)
+    q = "per state of the unloading branch (prescribed adhesive force)"
+    w, d = np.asarray(branch.W_star, float), np.asarray(branch.delta_star, float)
+    data = {"W_star_branch": cf.variable("W_star", dims, w, nondimensional=True, qualifier=q),
+            "delta_star_branch": cf.variable("delta_star", dims, d, nondimensional=True, qualifier=q),
+            "in_contact_branch": (dims, np.asarray(branch.in_contact, dtype=np.int8),
+                                  {"long_name": "state has contact cells, " + q,
+                                   "flag_values": np.arange(2, dtype=np.int8), "flag_meanings": "false true"})}
+    if k > 0:
+        data["machine_displacement_branch"] = cf.variable("machine_displacement", dims, d + w / k,
+                                                          nondimensional=True, qualifier=q)
+    at = "BEM at the jump out under the machine spring"
+    data["W_star_pull_off"] = cf.variable("W_star", (), rec["W_star"], nondimensional=True, qualifier=at)
+    data["W_star_error_pull_off"] = ((), float(rec["W_star_error"]),
+                                     {"long_name": "error estimate of W* at the jump out (the fit's; the grid's "
+                                                   "discretisation error not included)", "units": "1"})
+    data["delta_star_pull_off"] = cf.variable("delta_star", (), rec["delta_star"], nondimensional=True,
+                                              qualifier=at)
+    data["machine_stiffness"] = cf.variable("machine_stiffness", (), k, nondimensional=True)
+    data["resolved"] = ((), np.int8(rec["resolved"]),
+                        {"long_name": "the jump out is bracketed on the branch and fitted (false: not an answer)",
+                         "flag_values": np.arange(2, dtype=np.int8), "flag_meanings": "false true"})
+    if params is not None:
+        data["force_pull_off"] = cf.variable("force", (), rec["force"], qualifier=at)
+        data["approach_pull_off"] = cf.variable("approach", (), rec["approach"], qualifier=at)
+        data["separation_approach"] = cf.variable("separation_approach", (), rec["separation_approach"])
+        data["machine_stiffness_si"] = cf.variable("machine_stiffness", (), rec["machine_stiffness"],
+                                                   quantity="machine_stiffness")
+        data["force_branch"] = cf.variable("force", dims, w * float(params.load_unit), qualifier=q)
+        data["approach_branch"] = cf.variable("approach", dims, d * float(params.approach_unit), qualifier=q)
+        for key in SI_INPUT_KEYS:
+            data[key] = cf.variable(key, (), rec[key])
+    ds = xr.Dataset(data, coords={"step": ("step", np.arange(w.size, dtype=np.int32),
+                                           {"long_name": "state of the branch, in unloading order", "units": "1"})})
+    ds.attrs.update(provenance_attrs(
+        "dhfield: BEM pull-off of the adhesive elliptical contact under a machine spring (DC-FFT, free boundary)",
+        beta0=rec["beta0"], mu=rec["mu"], n=rec["n"], law=rec["law"], control="spring",
+        machine_stiffness_star=k, machine_stiffness=rec.get("machine_stiffness")))
+    ds.attrs.update({"resolved": int(rec["resolved"]), "branch_complete": int(rec["branch_complete"]),
+                     "n_failures": rec["failures"], "elapsed_seconds": rec["elapsed"]})
+    if params is not None:
+        ds.attrs.update({"length_unit_m": float(params.length_unit), "approach_unit_m": float(params.approach_unit),
+                         "load_unit_N": float(params.load_unit)})
+    return cf.finalize(ds)
+
+
+def _run_spring(args, params, plan, where, progress) -> int:
+    """``solve --machine-stiffness``: the BEM's unloading branch and the jump under the spring."""
+    from ..bem_compliance import bem_unloading_branch
+
+    if args.n is None and not plan.affordable:
+        print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
+        return EXIT_UNRESOLVABLE
+    k_star = _stiffness_star(args, params)
+    if progress:
+        print(f"dhfield: solving {where} (the unloading branch at prescribed adhesive force, K* = {k_star:.4g})",
+              file=sys.stderr, flush=True)
+    try:
+        branch = bem_unloading_branch(args.mu, args.beta0, plan.n, law=args.law, threads=args.threads)
+    except RuntimeError as exc:  # no converged state to start from
+        print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
+        return EXIT_UNCONVERGED
+    rec = spring_record(branch, k_star, params)
+    rec["law"] = args.law
+    if args.out is not None:
+        from ..io import write_netcdf
+
+        write_netcdf(_spring_dataset(branch, rec, params), args.out)
+    if args.json:
+        si_keys = tuple(k for k in ("machine_stiffness", "force", "approach", "separation_approach",
+                                    *_si_input_keys()) if k in rec)
+        print_json({**rec, "units": _units(rec, si_keys=si_keys)})
+    else:
+        err = (f" (fit error {rec['W_star_error']:.2g}; the grid's not included)"
+               if math.isfinite(rec["W_star_error"]) else " (no error bound: not resolved)")
+        print(f"beta0 = {rec['beta0']:g}, mu = {rec['mu']:g}, N = {rec['n']}, {args.law}, machine spring "
+              f"K* = {k_star:.6g}")
+        print(f"W* = {rec['W_star']:.6f}{err}  delta* = {rec['delta_star']:.5f}  after the jump: delta* = "
+              f"{rec['separation_delta_star']:.5f}, W* = 0  (jump {'from contact' if rec['in_contact'] else 'from the separated branch'})")
+        print(f"resolved = {rec['resolved']}  branch states = {rec['branch_states']}  complete = "
+              f"{rec['branch_complete']}  unconverged = {rec['failures']}  ({rec['elapsed']:.1f} s)")
+        if params is not None:
+            print(f"force = {rec['force']:.6g} N  approach = {rec['approach']:.5g} m  after the jump: approach = "
+                  f"{rec['separation_approach']:.5g} m  (K = {rec['machine_stiffness']:.6g} N/m)")
+        if args.out is not None:
+            print(f"wrote {args.out}")
+    if not rec["resolved"]:
+        print(f"dhfield: solve is unresolved for {where}: the jump out is not bracketed on the sampled branch "
+              f"(complete = {rec['branch_complete']}), so W* is not an answer; increase --n", file=sys.stderr)
+        return EXIT_UNRESOLVED
+    if rec["failures"]:
+        print(f"dhfield: note: {rec['failures']} state(s) of the branch did not converge for {where} (left out "
+              "of the samples)", file=sys.stderr)
+    return 0
+
+
+def _si_input_keys():
+    from ..io.solution import SI_INPUT_KEYS
+
+    return SI_INPUT_KEYS
 
 
 # --------------------------------------------------------------------------- SI inputs and outputs, --plot
@@ -157,18 +342,23 @@ def run(args) -> int:
     from ..adhesive_start import UnresolvableCaseError, plan_grid
 
     check_solve_memory(args.n)
+    if args.machine_stiffness is not None:
+        _check_spring_arguments(args, params)
     plan = plan_grid(args.mu, args.beta0, args.n, law=args.law)
     if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
         print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
-    where = (f"beta0={args.beta0:g}, mu={args.mu:g}, n={plan.n}, law={args.law}, control={args.control}")
+    control = args.control if args.machine_stiffness is None else "spring"
+    where = f"beta0={args.beta0:g}, mu={args.mu:g}, n={plan.n}, law={args.law}, control={control}"
     progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
+    if args.machine_stiffness is not None:
+        return _run_spring(args, params, plan, where, progress)
     if progress:  # on a terminal: say what runs now; the solver then draws its progress line (stderr)
         print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {plan.n} path)",
               file=sys.stderr, flush=True)
     try:
         res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
-                                threads=args.threads, progress=progress, search=args.search)
+                                threads=args.threads, progress=progress, search=args.search or "located")
     except UnresolvableCaseError as exc:
         print(f"dhfield: solve refused: {exc}", file=sys.stderr)
         return EXIT_UNRESOLVABLE

@@ -21,6 +21,9 @@ __all__ = ["load_curve_dataset", "pull_off_dataset", "write_load_curve", "load_c
 
 #: Array variables of a nondimensional load curve, in order (:data:`dhfield.schema.LOAD_CURVE_KEYS`).
 CURVE_VARIABLES = schema.LOAD_CURVE_KEYS
+#: Columns a curve may carry besides, written after them when present: the machine position of
+#: :func:`dhfield.compliance.add_machine_displacement` (``curve --machine-stiffness``).
+OPTIONAL_CURVE_VARIABLES = ("machine_displacement",)
 
 _TITLE = "Load curve of an adhesive contact (Zini et al. 2018, Eqs. 31-36)"
 
@@ -38,7 +41,7 @@ def load_curve_columns(curve):
     Returns
     -------
     columns : dict
-        Name -> 1-D array, in schema order.
+        Name -> 1-D array, in schema order (then :data:`OPTIONAL_CURVE_VARIABLES` present).
     header : dict
         Scalar parameters of the curve (model, beta0, mu, ...).
     nondimensional : bool
@@ -50,7 +53,8 @@ def load_curve_columns(curve):
     missing = [k for k in keys if get(k) is None]
     if missing:
         raise ValueError(f"curve must have the load-curve keys {keys}; missing {missing}")
-    columns = {k: np.atleast_1d(np.asarray(get(k), dtype=float)) for k in keys}
+    optional = tuple(k for k in OPTIONAL_CURVE_VARIABLES if get(k) is not None)
+    columns = {k: np.atleast_1d(np.asarray(get(k), dtype=float)) for k in keys + optional}
     header = {}
     for k in schema.LOAD_CURVE_HEADER_KEYS + ("control", "ellipticity"):
         v = get(k)
