@@ -171,3 +171,21 @@ def test_every_map_model_answers_in_the_domain(angle, log_mu):
     r = am.adhesion_map([angle], [10.0 ** log_mu])
     assert np.all(r.status <= 1)
     assert np.all((r.force >= -2.0 - EXACT) & (r.force < 0.0))
+
+
+def test_recommended_pull_off_is_the_reference_of_the_map():
+    # the one adapter that names the recommended model: W* = -s + (W*_GVG + s) g, g = (W*_MD + 1)/(1/4)
+    # from MD on the sphere and GVG's elliptical JKR (built here from those two models), and the map's
+    # reference column is its force 2 W*/s (Eq. 34)
+    from dhfield import jkr_elliptic_energy, maugis_dugdale
+    from dhfield.geometry import sin_skew_angle
+
+    r = am.adhesion_map([30.0, 60.0, 90.0], [0.1, 1.0, 10.0], models=("dmt",))
+    b, m = np.meshgrid(r.beta0, r.mu, indexing="ij")
+    w = am.recommended_pull_off(beta0=b, mu=m)
+    s = sin_skew_angle(b)
+    g = (maugis_dugdale.pull_off_nondimensional(1.0, m).W_star + 1.0) / 0.25
+    expected = -s + (jkr_elliptic_energy.pull_off_nondimensional(b, 1.0).W_star + s) * g
+    np.testing.assert_allclose(w, expected, rtol=1e-12)
+    np.testing.assert_allclose(2.0 * w / s, r.reference_force, rtol=EXACT)
+    assert w.shape == b.shape
