@@ -253,6 +253,21 @@ def practitioner_figure(curves, two_axis, truth, stem, dpi=200):
 
 
 # --------------------------------------------------------------------------- main
+def _git_commit():
+    """The code's commit (with '(uncommitted changes)' when the tree differs), for provenance."""
+    import subprocess
+
+    try:
+        rev = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True, timeout=10)
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--", "dhfield",
+                                "verification"], cwd=ROOT, capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return "unavailable"
+    if rev.returncode != 0:
+        return "unavailable"
+    return rev.stdout.strip() + (" (uncommitted changes)" if dirty.stdout.strip() else "")
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m verification.adhesion_map", description=__doc__.split("\n")[0])
     p.add_argument("--n-angle", type=int, default=81, help="crossing angles over 10-90 deg (default 81)")
@@ -278,7 +293,8 @@ def main(argv=None) -> int:
     from dhfield.io.adhesion_map import write_adhesion_map
 
     cmd = "python -m verification.adhesion_map " + " ".join(argv if argv is not None else sys.argv[1:])
-    nc = write_adhesion_map(r, args.out, command=cmd.strip(), ground_truth="data/adhesive_ground_truth.nc")
+    nc = write_adhesion_map(r, args.out, command=cmd.strip(), ground_truth="data/adhesive_ground_truth.nc",
+                            git_commit=_git_commit())
     dev_truth = truth_deviation(truth)
     curves = am.adhesion_map(np.linspace(10.0, 90.0, 81), PRACTITIONER_MU, validated_beta0=vb, validated_mu=vm)
     two = None
