@@ -305,7 +305,7 @@ def _evaluate(model, mu, beta0):
             warned = np.zeros(np.shape(force), bool)
         else:
             kw = {"check_closure": False} if model == "dh-elliptic" else {}
-            rec = compare.pull_off(model, mu, beta0, "load", **kw)
+            rec = compare.pull_off(model, beta0=beta0, mu=mu, control="load", **kw)
             force = _force(rec)
             warned = np.asarray(rec["warning"], dtype=object) != ""
     force = np.broadcast_to(force, np.shape(mu)).astype(float)
@@ -347,7 +347,7 @@ def _model_on_grid(model, mu, beta0):
     if model != REFERENCE_MODEL and np.any(status == 1) and not warning:
         # the record's own warning (its validated range), reproduced for one point
         i, j = np.argwhere(status == 1)[0]
-        warning = str(compare.validity_message(model, mu[i, j], beta0[i, j])) or "warning in the record"
+        warning = str(compare.validity_message(model, mu=mu[i, j], beta0=beta0[i, j])) or "warning in the record"
     parts = []
     n = status.size
     if np.any(status == 1):

@@ -80,8 +80,8 @@ def test_jkr_limit_is_gvg(limits):
     # candidate - GVG = (1 - g)(W*_DMT,ell - W*_GVG), 1 - g = 3 (W_MD/W_JKR - 1) on the sphere and
     # |W*_DMT,ell - W*_GVG|/|W*_GVG| = 2/|F_GVG| - 1 <= 1 for every angle >= 10 deg (F_GVG <= -1.33):
     # bounded by 3 x the sphere's MD-JKR gap, 4x to cover the second order of the ratio
-    md = compare.pull_off("md", 1e4, 1.0)["W_star"]
-    gap = abs(md / compare.pull_off("jkr", 1e4, 1.0)["W_star"] - 1.0)
+    md = compare.pull_off("md", beta0=1.0, mu=1e4)["W_star"]
+    gap = abs(md / compare.pull_off("jkr", beta0=1.0, mu=1e4)["W_star"] - 1.0)
     assert gap < 1e-6
     dev = limits.deviation[limits.index("jkr-elliptic-energy"), :, -1]
     assert np.all(np.abs(dev) <= 4 * gap + EXACT)
@@ -184,8 +184,8 @@ def test_recommended_pull_off_is_the_reference_of_the_map():
     b, m = np.meshgrid(r.beta0, r.mu, indexing="ij")
     w = am.recommended_pull_off(beta0=b, mu=m)
     s = sin_skew_angle(b)
-    g = (maugis_dugdale.pull_off_nondimensional(1.0, m).W_star + 1.0) / 0.25
-    expected = -s + (jkr_elliptic_energy.pull_off_nondimensional(b, 1.0).W_star + s) * g
+    g = (maugis_dugdale.pull_off_nondimensional(beta0=1.0, mu=m).W_star + 1.0) / 0.25
+    expected = -s + (jkr_elliptic_energy.pull_off_nondimensional(beta0=b, mu=1.0).W_star + s) * g
     np.testing.assert_allclose(w, expected, rtol=1e-12)
     np.testing.assert_allclose(2.0 * w / s, r.reference_force, rtol=EXACT)
     assert w.shape == b.shape

@@ -31,7 +31,7 @@ EXACT = 1e-12
 
 
 def test_md_at_the_study_mu_extrapolates_to_jkr():
-    w = md.pull_off_nondimensional(1.0, STUDY_MU).W_star
+    w = md.pull_off_nondimensional(beta0=1.0, mu=STUDY_MU).W_star
     lim = jl.extrapolate_jkr_limit(STUDY_MU, w, 1.0)
     assert lim.mu_used == (1.0, 2.0, 5.0)  # the JKR side only (mu >= 1), the three largest
     # the transition form is MD's own weight: exact on the sphere
@@ -48,7 +48,7 @@ def test_md_at_the_study_mu_extrapolates_to_jkr():
 def test_md_approaches_jkr_as_one_over_mu_squared():
     # the form the series assumes: (W*_MD + 3/4) mu^2 tends to a constant (local slope -2 in log-log)
     mu = np.array([50.0, 100.0, 200.0])
-    d = md.pull_off_nondimensional(1.0, mu).W_star + 0.75
+    d = md.pull_off_nondimensional(beta0=1.0, mu=mu).W_star + 0.75
     slope = np.diff(np.log(np.abs(d))) / np.diff(np.log(mu))
     np.testing.assert_allclose(slope, -2.0, atol=2e-3)
 
@@ -72,7 +72,7 @@ def test_series_limit_is_exact_on_a_series():
 
 
 def test_bem_uncertainty_enters_over_g():
-    w = md.pull_off_nondimensional(1.0, STUDY_MU).W_star
+    w = md.pull_off_nondimensional(beta0=1.0, mu=STUDY_MU).W_star
     unc = np.full(STUDY_MU.shape, 1e-3)
     lim = jl.extrapolate_jkr_limit(STUDY_MU, w, 1.0, unc)
     assert lim.bem_error == pytest.approx(1e-3 / jl.sphere_transition_weight(5.0), rel=EXACT)
@@ -80,7 +80,7 @@ def test_bem_uncertainty_enters_over_g():
 
 
 def test_nan_and_low_mu_are_skipped():
-    w = md.pull_off_nondimensional(1.0, STUDY_MU).W_star
+    w = md.pull_off_nondimensional(beta0=1.0, mu=STUDY_MU).W_star
     w[-1] = np.nan
     lim = jl.extrapolate_jkr_limit(STUDY_MU, w, 1.0)
     assert lim.mu_used == (1.0, 2.0)

@@ -98,9 +98,9 @@ def ground_truth_rows():
         mu = float(ds["mu"].values.max())
         w = ds["W_star_extrapolated"].sel(mu=mu).values
         b0 = ds["beta0"].values
-    md_over_jkr = float(maugis_dugdale.pull_off_nondimensional(1.0, mu).W_star) / -0.75
-    w_gvg = gvg.pull_off_nondimensional(b0, 1.0).W_star
-    w_jg = jg.pull_off_nondimensional(b0, 1.0).W_star
+    md_over_jkr = float(maugis_dugdale.pull_off_nondimensional(beta0=1.0, mu=mu).W_star) / -0.75
+    w_gvg = gvg.pull_off_nondimensional(beta0=b0, mu=1.0).W_star
+    w_jg = jg.pull_off_nondimensional(beta0=b0, mu=1.0).W_star
     return mu, md_over_jkr, [(b, mu, wb, wg, wg * md_over_jkr, wj)
                              for b, wb, wg, wj in zip(b0, w, w_gvg, w_jg)]
 
@@ -126,7 +126,7 @@ def sphere_transition_weight(mu):
     ndarray
         0 at DMT (mu -> 0), 1 at JKR (mu -> infinity); MD of :mod:`dhfield.maugis_dugdale`.
     """
-    w = maugis_dugdale.pull_off_nondimensional(1.0, np.asarray(mu, float)).W_star
+    w = maugis_dugdale.pull_off_nondimensional(beta0=1.0, mu=np.asarray(mu, float)).W_star
     return (np.asarray(w, float) + 1.0) / (W_STAR_JKR_SPHERE + 1.0)
 
 
@@ -304,8 +304,8 @@ def bem_jkr_limits(path=DATASET):
         w = ds["W_star_extrapolated"].sel(beta0=b).values.astype(float)
         s = float(sin_skew_angle(b))
         lim = extrapolate_jkr_limit(mu, w, s, np.abs(w) * np.nan_to_num(rel, nan=np.inf))
-        w_gvg = float(gvg.pull_off_nondimensional(b, 1.0).W_star)
-        w_jg = float(jg.pull_off_nondimensional(b, 1.0).W_star)
+        w_gvg = float(gvg.pull_off_nondimensional(beta0=b, mu=1.0).W_star)
+        w_jg = float(jg.pull_off_nondimensional(beta0=b, mu=1.0).W_star)
         rows.append(dict(beta0=b, angle_deg=float(np.degrees(skew_angle(b))), limit=lim, gvg=w_gvg, jg=w_jg,
                          gvg_z=abs(w_gvg - lim.w_inf) / lim.error, jg_z=abs(w_jg - lim.w_inf) / lim.error))
     # the BEM's bias common to every beta0, measured on the sphere (exact limit -3/4)

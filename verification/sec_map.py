@@ -202,8 +202,9 @@ def jkr_table(rows):
         lim = r["limit"]
         out.append(f"| {r['beta0']:g} | {r['angle_deg']:.1f} | {lim.w_inf:.5f} | ±{lim.error:.5f} "
                    f"({100 * lim.error / abs(lim.w_inf):.2f} %) | {lim.fit_spread:.5f} | {lim.bem_error:.5f} | "
-                   f"{r['gvg']:.5f} | {100 * (r['gvg'] / lim.w_inf - 1):+.2f} % | {(r['gvg'] - lim.w_inf) / lim.error:+.2f} | "
-                   f"{r['jg']:.5f} | {100 * (r['jg'] / lim.w_inf - 1):+.2f} % | {(r['jg'] - lim.w_inf) / lim.error:+.2f} |")
+                   f"{r['gvg']:.5f} | {100 * (r['gvg'] / lim.w_inf - 1):+.2f} % | "
+                   f"{(r['gvg'] - lim.w_inf) / lim.error:+.2f} | {r['jg']:.5f} | "
+                   f"{100 * (r['jg'] / lim.w_inf - 1):+.2f} % | {(r['jg'] - lim.w_inf) / lim.error:+.2f} |")
     return "\n".join(out)
 
 
@@ -261,7 +262,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         rep = float(np.nanmax(np.abs(again.force / old - 1.0))) if same_nan else np.inf
     checks.append(check_le(f"the stored adhesion map reproduces: max |F_re-run/F_stored − 1| over "
                            f"{ia.size} × {im.size} (angle, μ) points × {len(stored.models)} models",
-                           rep, TOL_REPRODUCE, f"{MAP_DATASET.relative_to(ROOT)} (python -m verification.adhesion_map)"))
+                           rep, TOL_REPRODUCE,
+                           f"{MAP_DATASET.relative_to(ROOT)} (python -m verification.adhesion_map)"))
     progress(f"re-ran {ia.size} x {im.size} points of the map")
 
     # the recommended model against the stored BEM, every map model through the same function
@@ -285,7 +287,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     if sphere:
         lim = sphere[0]["limit"]
         checks.append(check_le("numerical JKR limit on the sphere (BEM at β0 = 1 extrapolated to μ → ∞): "
-                               "|W*∞ + 3/4| / its stated error", abs(lim.w_inf - jkr_limit.W_STAR_JKR_SPHERE) / lim.error,
+                               "|W*∞ + 3/4| / its stated error",
+                               abs(lim.w_inf - jkr_limit.W_STAR_JKR_SPHERE) / lim.error,
                                1.0, "JKR (1971): W* = −3/4; verification/jkr_limit.py"))
     z = max(r["gvg_z"] for r in rows)
     betas = ", ".join(f"{r['beta0']:g}" for r in rows)
@@ -306,7 +309,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     a_lo = float(np.min(truth["angle"]))
     vb, vm = stored.validated_beta0, stored.validated_mu
     figs = [
-        Figure(paths[0], "Adhesion map for elliptical contacts (equal crossed cylinders, load control): for each model, "
+        Figure(paths[0], "Adhesion map for elliptical contacts (equal crossed cylinders, load control): for each "
+               "model, "
                "where its pull-off force W/(πRΔγ), R = √(R′R″) (W* of Eq. (34) × 2/sin θ; μ of Eq. (35)), is within "
                "1 % (dark) and 5 % (light) of the recommended model, over crossing angle 10–90° and μ 0.01–100. "
                f"Dots: the stored BEM cases (filled where that model is within 1 % of the BEM). The dashed box "
