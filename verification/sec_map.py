@@ -188,7 +188,8 @@ def guide_lines(stored, truth, dev_truth):
     worst = float(np.max(np.abs(dev_truth[ref])))
     f1 = stored.fraction_within(TOLERANCES[0])
     vb, vm = stored.validated_beta0, stored.validated_mu
-    return [f"**Any crossing angle 10–90°, any μ 0.01–100: `{ref}`** (the recommended model) — within "
+    return [f"**Any crossing angle 10–90°, any μ 0.01–100: `{ref}`** (the recommended model, "
+            f"`dhfield.elliptic_transition`) — within "
             f"{100 * worst:.2f} % of all {truth['force'].size} stored BEM cases, proven inside β0 ≥ {vb[0]:g}, "
             f"{vm[0]:g} ≤ μ ≤ {vm[1]:g} only. The paper's `dh-elliptic` is within 1 % of it on "
             f"{100 * f1['dh-elliptic']:.0f} % of the map: use it to reproduce the paper."]
