@@ -10,9 +10,9 @@ The reference, and how far it can be trusted
 ---------------------------------------------
 The reference is the recommended DMT-to-JKR model, :mod:`dhfield.elliptic_transition`
 (``elliptic-transition``), evaluated through :func:`recommended_pull_off` (the one place
-that names it): exact at mu -> 0 (DMT of the
-paraboloid), at mu -> infinity (the energy-minimising elliptical JKR of Giudici, Vella &
-Griffiths 2025) and on the circle (Maugis-Dugdale).  It is **validated against the BEM only
+that names it): exact at mu -> 0 (DMT of the paraboloid), at mu -> infinity (the
+energy-minimising elliptical JKR of Giudici, Vella & Griffiths 2025) and on the circle
+(Maugis-Dugdale).  It is **validated against the BEM only
 where the stored ground truth exists**: ``data/adhesive_ground_truth.nc`` covers beta0 in
 [0.5, 1] (crossing angles of about 61-90 deg) and mu in [0.3, 5], where it is within 0.34 %
 of every stored case (``python -m verification.elliptic_transition``).  Elsewhere a deviation

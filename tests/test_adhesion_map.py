@@ -77,7 +77,7 @@ def test_dmt_limit(limits):
 
 
 def test_jkr_limit_is_gvg(limits):
-    # candidate - GVG = (1 - g)(W*_DMT,ell - W*_GVG), 1 - g = 3 (W_MD/W_JKR - 1) on the sphere and
+    # recommended - GVG = (1 - g)(W*_DMT,ell - W*_GVG), 1 - g = 3 (W_MD/W_JKR - 1) on the sphere and
     # |W*_DMT,ell - W*_GVG|/|W*_GVG| = 2/|F_GVG| - 1 <= 1 for every angle >= 10 deg (F_GVG <= -1.33):
     # bounded by 3 x the sphere's MD-JKR gap, 4x to cover the second order of the ratio
     md = compare.pull_off("md", beta0=1.0, mu=1e4)["W_star"]
