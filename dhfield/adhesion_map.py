@@ -8,22 +8,22 @@ counterpart on the axes a practitioner uses (crossing angle, mu).
 
 The reference, and how far it can be trusted
 ---------------------------------------------
-The reference is the candidate DMT-to-JKR model of issue 20,
-:mod:`dhfield.elliptic_transition` (``elliptic-transition``): exact at mu -> 0 (DMT of the
-paraboloid), at mu -> infinity (the energy-minimising elliptical JKR of Giudici, Vella &
-Griffiths 2025) and on the circle (Maugis-Dugdale).  It is **validated against the BEM only
+The reference is the recommended DMT-to-JKR model, :mod:`dhfield.elliptic_transition`
+(``elliptic-transition``), evaluated through :func:`recommended_pull_off` (the one place
+that names it): exact at mu -> 0 (DMT of the paraboloid), at mu -> infinity (the
+energy-minimising elliptical JKR of Giudici, Vella & Griffiths 2025) and on the circle
+(Maugis-Dugdale).  It is **validated against the BEM only
 where the stored ground truth exists**: ``data/adhesive_ground_truth.nc`` covers beta0 in
 [0.5, 1] (crossing angles of about 61-90 deg) and mu in [0.3, 5], where it is within 0.34 %
 of every stored case (``python -m verification.elliptic_transition``).  Elsewhere a deviation
-on this map is a deviation from the candidate model, not from the truth.
+on this map is a deviation from the recommended model, not from the truth.
 :attr:`AdhesionMap.validated` marks the validated region (:data:`VALIDATED_BETA0`,
 :data:`VALIDATED_MU`, or the ranges the caller passes, e.g. those of an extended ground truth).
 
 Quantities
 ----------
 * Every model is evaluated through :func:`dhfield.compare.pull_off` (load control), except
-  the reference, which :mod:`dhfield.compare` does not register: it is called from
-  :mod:`dhfield.elliptic_transition` directly.  ``dh-elliptic`` is evaluated with
+  the reference, evaluated by :func:`recommended_pull_off`.  ``dh-elliptic`` is evaluated with
   ``check_closure=False`` (the paper's model alone, ~1 ms per point; the two-axis check
   costs ~200 ms per point).
 * ``force``: the pull-off force W/(pi R dgamma), R = sqrt(R'R'') (Eq. 5); from a record,
@@ -55,17 +55,17 @@ from . import compare, elliptic_transition
 from ._validation import TABOR_RANGE, check_count, check_interval, check_tabor
 from .geometry import ellipticity_from_skew_angle, sin_skew_angle
 
-__all__ = ["AdhesionMap", "adhesion_map", "map_grid", "REFERENCE_MODEL", "MAP_MODEL_NAMES",
+__all__ = ["AdhesionMap", "adhesion_map", "map_grid", "recommended_pull_off", "REFERENCE_MODEL", "MAP_MODEL_NAMES",
            "MODEL_LABELS", "STATUS_MEANINGS", "VALIDATED_BETA0", "VALIDATED_MU",
            "DEFAULT_CROSSING_ANGLE_DEG", "DEFAULT_MU", "MAX_AXIS_POINTS", "REFERENCE_NOTE"]
 
-#: Name of the reference model (:mod:`dhfield.elliptic_transition`; not in dhfield.compare).
+#: Name of the reference model, the recommended one (:mod:`dhfield.elliptic_transition`).
 REFERENCE_MODEL = "elliptic-transition"
 #: The models of the map, reference first.
 MAP_MODEL_NAMES = (REFERENCE_MODEL, "dh-elliptic", "jkr-elliptic", "jkr-elliptic-energy", "md", "dmt")
 #: Readable names of the models (figures, tables).
 MODEL_LABELS = {
-    REFERENCE_MODEL: "DMT-JKR transition (candidate)",
+    REFERENCE_MODEL: "DMT-JKR transition (recommended)",
     "dh-elliptic": "Elliptical double-Hertz (Zini 2018)",
     "dh-elliptic-two-axis": "Double-Hertz, two-axis closure",
     "dh-elliptic-ray-average": "Double-Hertz, ray-average closure",
@@ -89,10 +89,10 @@ DEFAULT_MU = (0.01, 100.0)
 #: Largest number of points on one axis of :func:`map_grid` (a 2000 x 2000 map: ~1 min per model).
 MAX_AXIS_POINTS = 2000
 #: The one sentence every output of the map carries about its reference.
-REFERENCE_NOTE = ("Reference: the candidate DMT-to-JKR transition model (dhfield.elliptic_transition), not the "
+REFERENCE_NOTE = ("Reference: the recommended DMT-to-JKR transition model (dhfield.elliptic_transition), not the "
                   "BEM. It is validated against the BEM only where the stored ground truth exists "
                   "(beta0 {b}, mu {m}: within 0.34 % of every case); elsewhere a deviation is from the "
-                  "candidate, not from the truth.")
+                  "recommended model, not from the truth.")
 
 _NAN = float("nan")
 
@@ -268,6 +268,29 @@ def _range(name, value, lo, hi):
     return v
 
 
+def recommended_pull_off(beta0, mu):
+    """W* of the recommended model, load control: the one place that names it.
+
+    Parameters
+    ----------
+    beta0, mu : array_like
+        Hertz ellipticity in (0, 1] and Tabor parameter of Eq. (35) [-]; broadcast.
+
+    Returns
+    -------
+    ndarray
+        W* = W sin(theta_skew)/(2 pi R dgamma) (Eq. 34) of :mod:`dhfield.elliptic_transition`.
+
+    Notes
+    -----
+    By keyword, so that the call holds for the module's ``(mu, beta0, control)`` and for a
+    ``(beta0, mu, *, control)`` signature, and ``["W_star"]`` reads a dict or a
+    :class:`dhfield.records.PullOff` alike.
+    """
+    return np.asarray(elliptic_transition.pull_off_nondimensional(beta0=beta0, mu=mu, control="load")["W_star"],
+                      dtype=float)
+
+
 def _force(rec):
     """W/(pi R dgamma) from a pull-off record: 2 W*/sin_skew (Eq. 34 inverted)."""
     return 2.0 * np.asarray(rec["W_star"], float) / np.asarray(rec["sin_skew"], float)  # Eq. (34)
@@ -278,12 +301,11 @@ def _evaluate(model, mu, beta0):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         if model == REFERENCE_MODEL:
-            st = elliptic_transition.pull_off_nondimensional(mu, beta0, "load")
-            force = 2.0 * st["W_star"] / sin_skew_angle(beta0)  # Eq. (34)
+            force = 2.0 * recommended_pull_off(beta0=beta0, mu=mu) / sin_skew_angle(beta0)  # Eq. (34)
             warned = np.zeros(np.shape(force), bool)
         else:
             kw = {"check_closure": False} if model == "dh-elliptic" else {}
-            rec = compare.pull_off(model, mu, beta0, "load", **kw)
+            rec = compare.pull_off(model, beta0=beta0, mu=mu, control="load", **kw)
             force = _force(rec)
             warned = np.asarray(rec["warning"], dtype=object) != ""
     force = np.broadcast_to(force, np.shape(mu)).astype(float)
@@ -325,7 +347,7 @@ def _model_on_grid(model, mu, beta0):
     if model != REFERENCE_MODEL and np.any(status == 1) and not warning:
         # the record's own warning (its validated range), reproduced for one point
         i, j = np.argwhere(status == 1)[0]
-        warning = str(compare.validity_message(model, mu[i, j], beta0[i, j])) or "warning in the record"
+        warning = str(compare.validity_message(model, mu=mu[i, j], beta0=beta0[i, j])) or "warning in the record"
     parts = []
     n = status.size
     if np.any(status == 1):

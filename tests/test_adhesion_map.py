@@ -77,11 +77,11 @@ def test_dmt_limit(limits):
 
 
 def test_jkr_limit_is_gvg(limits):
-    # candidate - GVG = (1 - g)(W*_DMT,ell - W*_GVG), 1 - g = 3 (W_MD/W_JKR - 1) on the sphere and
+    # recommended - GVG = (1 - g)(W*_DMT,ell - W*_GVG), 1 - g = 3 (W_MD/W_JKR - 1) on the sphere and
     # |W*_DMT,ell - W*_GVG|/|W*_GVG| = 2/|F_GVG| - 1 <= 1 for every angle >= 10 deg (F_GVG <= -1.33):
     # bounded by 3 x the sphere's MD-JKR gap, 4x to cover the second order of the ratio
-    md = compare.pull_off("md", 1e4, 1.0)["W_star"]
-    gap = abs(md / compare.pull_off("jkr", 1e4, 1.0)["W_star"] - 1.0)
+    md = compare.pull_off("md", beta0=1.0, mu=1e4)["W_star"]
+    gap = abs(md / compare.pull_off("jkr", beta0=1.0, mu=1e4)["W_star"] - 1.0)
     assert gap < 1e-6
     dev = limits.deviation[limits.index("jkr-elliptic-energy"), :, -1]
     assert np.all(np.abs(dev) <= 4 * gap + EXACT)
@@ -171,3 +171,21 @@ def test_every_map_model_answers_in_the_domain(angle, log_mu):
     r = am.adhesion_map([angle], [10.0 ** log_mu])
     assert np.all(r.status <= 1)
     assert np.all((r.force >= -2.0 - EXACT) & (r.force < 0.0))
+
+
+def test_recommended_pull_off_is_the_reference_of_the_map():
+    # the one adapter that names the recommended model: W* = -s + (W*_GVG + s) g, g = (W*_MD + 1)/(1/4)
+    # from MD on the sphere and GVG's elliptical JKR (built here from those two models), and the map's
+    # reference column is its force 2 W*/s (Eq. 34)
+    from dhfield import jkr_elliptic_energy, maugis_dugdale
+    from dhfield.geometry import sin_skew_angle
+
+    r = am.adhesion_map([30.0, 60.0, 90.0], [0.1, 1.0, 10.0], models=("dmt",))
+    b, m = np.meshgrid(r.beta0, r.mu, indexing="ij")
+    w = am.recommended_pull_off(beta0=b, mu=m)
+    s = sin_skew_angle(b)
+    g = (maugis_dugdale.pull_off_nondimensional(beta0=1.0, mu=m).W_star + 1.0) / 0.25
+    expected = -s + (jkr_elliptic_energy.pull_off_nondimensional(beta0=b, mu=1.0).W_star + s) * g
+    np.testing.assert_allclose(w, expected, rtol=1e-12)
+    np.testing.assert_allclose(2.0 * w / s, r.reference_force, rtol=EXACT)
+    assert w.shape == b.shape

@@ -78,7 +78,7 @@ def test_quick_report_exits_zero_and_writes_files(quick_report):
     assert (out / "report.html").is_file()
     assert (out / "summary.md").is_file()
     # progress lines with section counters and timings went to stderr
-    assert re.search(r"\[1/\d+\] analytic: .*\(\d+\.\d s\)", proc.stderr)
+    assert re.search(r"\[1/\d+\] map: .*\(\d+\.\d s\)", proc.stderr)  # the adhesion map opens the report
 
 
 def test_quick_report_summary_lists_every_check(quick_report):

@@ -13,9 +13,9 @@ Builds :func:`dhfield.adhesion_map.adhesion_map` over crossing angle 10-90 deg x
    exists (mu = 1) and the two-axis double-Hertz closure on a coarse subset (45-90 deg:
    it refuses beta0 < 0.3, and costs 0.2-0.4 s per point, so it is not on the full map).
 
-The reference is the candidate model (:mod:`dhfield.elliptic_transition`), validated
+The reference is the recommended model (:mod:`dhfield.elliptic_transition`), validated
 against the BEM only inside the outlined region (beta0 >= 0.5, mu 0.3-5): a deviation
-outside it is from the candidate, not from the truth.  Prints the figure paths and, per
+outside it is from the recommended model, not from the truth.  Prints the figure paths and, per
 model, the fraction of the map within 1 % and 5 % of the reference and its worst
 deviation from the BEM.
 
@@ -78,15 +78,15 @@ def truth_deviation(truth):
 
 
 # --------------------------------------------------------------------------- figures
-def _save(fig, stem: Path) -> list:
+def _save(fig, stem: Path, dpi: int = 200) -> list:
     from dhfield.io import atomic_path
 
     paths = []
     for fmt in FORMATS:
         p = stem.with_suffix("." + fmt)
-        meta = {"png": {}, "svg": {"Date": None}, "pdf": {"CreationDate": None}}[fmt]
+        meta = {"png": {}, "svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}}[fmt]
         with atomic_path(p) as tmp:
-            fig.savefig(tmp, format=fmt, dpi=200, metadata=meta)
+            fig.savefig(tmp, format=fmt, dpi=dpi, metadata=meta)
         paths.append(p)
     return paths
 
@@ -129,7 +129,7 @@ def _label_at(r, k, level, angle=22.0):
     return float(np.interp(level, np.sort(row), r.crossing_angle_deg[np.argsort(row)])), 20.0
 
 
-def map_figure(r, truth, dev_truth, stem):
+def map_figure(r, truth, dev_truth, stem, dpi=200):
     from matplotlib.colors import ListedColormap
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
@@ -156,7 +156,7 @@ def map_figure(r, truth, dev_truth, stem):
             # labels on the left half, clear of the ground-truth box and its markers
             ax.clabel(cs, fmt="%.2f", fontsize=7, inline_spacing=2,
                       manual=[_label_at(r, k, lev) for lev in cs.levels])
-            title = "Reference: DMT-JKR transition (candidate)\ncontours: pull-off force −W/(πRΔγ)"
+            title = "Reference: DMT-JKR transition (recommended)\ncontours: pull-off force −W/(πRΔγ)"
         else:
             # bands of |deviation| (contourf: boundaries interpolated between grid points)
             ax.contourf(r.crossing_angle_deg, r.mu, np.nan_to_num(d, nan=np.inf).T,
@@ -164,6 +164,11 @@ def map_figure(r, truth, dev_truth, stem):
             title = (f"{am.MODEL_LABELS.get(m, m)}\nwithin 1 %: {100 * f1[m]:.0f} % of map, "
                      f"5 %: {100 * f5[m]:.0f} %")
         ax.add_patch(Rectangle(box[:2], box[2], box[3], fill=False, ec="black", lw=1.4, ls="--", zorder=4))
+        if m == r.reference:  # the validated box, stated on the map itself
+            ax.text(box[0] + 0.5 * box[2], r.validated_mu[1] * 1.25,
+                    f"BEM-validated:\nβ0 ≥ {r.validated_beta0[0]:g}, {r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g}",
+                    ha="center", va="bottom", fontsize=8, zorder=6,
+                    bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="black", lw=0.6, alpha=0.9))
         dv = np.abs(dev_truth[m])
         good = dv <= TOLERANCES[0]
         ax.scatter(truth["angle"][good], truth["mu"][good], s=16, c="black", marker="o", zorder=5, lw=0.6,
@@ -192,16 +197,16 @@ def map_figure(r, truth, dev_truth, stem):
         handles.insert(3, Patch(fc=_BAND_COLOURS[3], ec="grey", label="no answer (refused)"))
     fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8, frameon=False)
     fig.suptitle("Adhesion map for elliptical contacts (equal cylinders, load control): deviation of the pull-off "
-                 "force from the reference\nThe reference is the candidate model, validated against the BEM only "
+                 "force from the reference\nThe reference is the recommended model, validated against the BEM only "
                  f"\ninside the dashed box (θ ≥ {a_lo:.0f}°: β0 ≥ {r.validated_beta0[0]:g}; "
                  f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g}); outside it, deviations are from the "
-                 "candidate, "
+                 "recommended model, "
                  "not from the truth.\nThe two-axis double-Hertz closure (0.2-0.4 s per point) is not mapped: see the "
                  "practitioner's figure.", fontsize=9)
-    return _save(fig, stem)
+    return _save(fig, stem, dpi)
 
 
-def practitioner_figure(curves, two_axis, truth, stem):
+def practitioner_figure(curves, two_axis, truth, stem, dpi=200):
     from matplotlib.figure import Figure
 
     mus = curves.mu
@@ -240,14 +245,29 @@ def practitioner_figure(curves, two_axis, truth, stem):
     fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8, frameon=False)
     a_lo = float(np.degrees(skew_angle(curves.validated_beta0[0])))
     fig.suptitle("Pull-off force of equal crossed cylinders against crossing angle, every model (load control; "
-                 "R = √(R′R″); 2 = DMT, 1.5 = JKR sphere)\nThe candidate is validated against the BEM only for "
+                 "R = √(R′R″); 2 = DMT, 1.5 = JKR sphere)\nThe recommended model is validated against the BEM only for "
                  f"θ ≥ {a_lo:.0f}° (β0 ≥ {curves.validated_beta0[0]:g}) and "
                  f"{curves.validated_mu[0]:g} ≤ μ ≤ "
                  f"{curves.validated_mu[1]:g}", fontsize=9)
-    return _save(fig, stem)
+    return _save(fig, stem, dpi)
 
 
 # --------------------------------------------------------------------------- main
+def _git_commit():
+    """The code's commit (with '(uncommitted changes)' when the tree differs), for provenance."""
+    import subprocess
+
+    try:
+        rev = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True, timeout=10)
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--", "dhfield",
+                                "verification"], cwd=ROOT, capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return "unavailable"
+    if rev.returncode != 0:
+        return "unavailable"
+    return rev.stdout.strip() + (" (uncommitted changes)" if dirty.stdout.strip() else "")
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m verification.adhesion_map", description=__doc__.split("\n")[0])
     p.add_argument("--n-angle", type=int, default=81, help="crossing angles over 10-90 deg (default 81)")
@@ -273,7 +293,8 @@ def main(argv=None) -> int:
     from dhfield.io.adhesion_map import write_adhesion_map
 
     cmd = "python -m verification.adhesion_map " + " ".join(argv if argv is not None else sys.argv[1:])
-    nc = write_adhesion_map(r, args.out, command=cmd.strip(), ground_truth="data/adhesive_ground_truth.nc")
+    nc = write_adhesion_map(r, args.out, command=cmd.strip(), ground_truth="data/adhesive_ground_truth.nc",
+                            git_commit=_git_commit())
     dev_truth = truth_deviation(truth)
     curves = am.adhesion_map(np.linspace(10.0, 90.0, 81), PRACTITIONER_MU, validated_beta0=vb, validated_mu=vm)
     two = None

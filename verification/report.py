@@ -20,8 +20,9 @@ The builder
   each atomically (temporary file, then ``os.replace``);
 * opens both ``report.html`` and ``summary.md`` with the **verdict**: what the
   checks conclude about the paper, in words and numbers, gathered from every
-  section's ``Section.verdict`` in :data:`VERDICT_ORDER` (the adhesive ground truth
-  first when it is present), then "which model to use when" (``Section.guide``);
+  section's ``Section.verdict`` in :data:`VERDICT_ORDER` (the adhesion map and the
+  recommended model first, then the adhesive ground truth), then "which model to use
+  when" (``Section.guide``);
   the PASS/FAIL count and the checks table come after it;
 * turns the literature and equation references of the checks table into links a
   reader can open (:func:`link_references`: DOIs, report-section anchors);
@@ -59,12 +60,14 @@ from verification._style import figure_style
 __all__ = ["SECTION_ORDER", "VERDICT_ORDER", "SectionResult", "main", "run_sections", "render_html",
            "render_summary", "markdown_to_html", "link_references", "collect_verdict"]
 
-#: Section modules in report order: ``verification/sec_<name>.py``.
-SECTION_ORDER = ("analytic", "models", "fields", "periphery", "adhesive")
-#: Whose verdict leads: the self-consistent adhesive solution (ground truth) first, then the
-#: closures against elliptical JKR, the periphery/Eq. (30) analysis, the analytic core, the BEM.
+#: Section modules in report order: ``verification/sec_<name>.py``.  The report opens with the
+#: adhesion map (its first figure) and the recommended model.
+SECTION_ORDER = ("map", "analytic", "models", "fields", "periphery", "adhesive")
+#: Whose verdict leads: the adhesion map (the recommended model against the ground truth, and over
+#: the whole domain), then the self-consistent adhesive solution (ground truth), the closures against
+#: elliptical JKR, the periphery/Eq. (30) analysis, the analytic core, the BEM.
 #: Sections not named here follow in :data:`SECTION_ORDER`.
-VERDICT_ORDER = ("adhesive", "models", "periphery", "analytic", "fields")
+VERDICT_ORDER = ("map", "adhesive", "models", "periphery", "analytic", "fields")
 #: The section whose verdict is the ground truth; the verdict says so when it is absent.
 GROUND_TRUTH_SECTION = "adhesive"
 #: Files of a previous report that the builder removes from ``--out`` before running.

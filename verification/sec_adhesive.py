@@ -130,7 +130,7 @@ def verdict_lines(tab, coverage):
     best = min(stats, key=lambda m: stats[m][0])
     b_i, b_j = stats[best][2]
     lines.append(
-        f"**Best closure against the BEM ground truth: {CLOSURES[best]}**, within "
+        f"**Best double-Hertz closure against the BEM ground truth: {CLOSURES[best]}**, within "
         f"{100 * stats[best][0]:.1f} % of W*max in every one of the {n_ok} (β0, μ) cases solved "
         f"(median {100 * stats[best][1]:.1f} %; worst at β0 = {tab['beta0'][b_i]:g}, μ = {tab['mu'][b_j]:g}).")
     if n_ok < total:
@@ -198,9 +198,10 @@ def guide_lines(tab):
     b0 = tab["beta0"][np.any(ok, axis=1)]
     mu = tab["mu"][np.any(ok, axis=0)]
     others = "; ".join(f"`{m}` {100 * d:.1f} %" for d, m in rest)
-    return [f"**Against the self-consistent adhesive BEM (β0 = {b0.min():g}–{b0.max():g}, μ = {mu.min():g}–"
-            f"{mu.max():g}, Dugdale law):** `{best}` — within {100 * best_dev:.1f} % of the BEM W*max in all "
-            f"{int(ok.sum())} cases solved; the worst deviation of the others: {others}."]
+    return [f"**Among the double-Hertz closures, against the self-consistent adhesive BEM (β0 = {b0.min():g}–"
+            f"{b0.max():g}, μ = {mu.min():g}–{mu.max():g}, Dugdale law):** `{best}` — within "
+            f"{100 * best_dev:.1f} % of the BEM W*max in all {int(ok.sum())} cases solved; the worst deviation "
+            f"of the others: {others}."]
 
 
 def coarse_to_fine_cases(ds):

@@ -12,7 +12,7 @@ Variables, with the units and names of :mod:`dhfield.schema`:
 * ``warning`` (model): the model's warnings and refusals over the grid, one line.
 
 Global attributes: provenance (:func:`dhfield.io.provenance_attrs`), ``reference_model``,
-``reference_note`` (where the reference is validated: it is the candidate model, not the
+``reference_note`` (where the reference is validated: it is the recommended model, not the
 BEM), ``model_labels`` and the validated extent as ``param_validated_*``.
 """
 from __future__ import annotations
@@ -67,7 +67,7 @@ def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
     for v in ("force_pi_r_dgamma", "relative_deviation", "model_status"):
         ds[v].encoding.update(zlib=True, complevel=4, shuffle=True)  # lossless; the map is smooth
     ds.attrs.update(provenance_attrs(
-        "Adhesion map for elliptical contacts: load-control pull-off of each model against the candidate "
+        "Adhesion map for elliptical contacts: load-control pull-off of each model against the recommended "
         "DMT-to-JKR transition model, over crossing angle and mu",
         control="load", validated_beta0_min=result.validated_beta0[0],
         validated_beta0_max=result.validated_beta0[1], validated_mu_min=result.validated_mu[0],

@@ -1,0 +1,78 @@
+"""The report's adhesion-map section (verification/sec_map.py) runs, opens the report and says where
+its reference is validated.
+
+Provenance: the recommended model's worst deviation from the stored BEM is re-derived here from
+the ground truth (data/adhesive_ground_truth.nc, W* of Eq. 34) and dhfield.adhesion_map's
+adapter, independently of the section's own code path.
+"""
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+
+from verification import report, sec_map
+
+
+@pytest.fixture(scope="module")
+def section(tmp_path_factory):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    out = tmp_path_factory.mktemp("map")
+    lines = []
+    return sec_map.run(out, True, lines.append), out, lines
+
+
+def test_map_section_runs_and_passes(section):
+    sec, out, lines = section
+    assert sec.checks and all(c.passed for c in sec.checks), [c for c in sec.checks if not c.passed]
+    assert report._validate_section("map", sec) == []
+    # the map first, then the practitioner's figure; PNG with SVG and PDF siblings
+    names = [f.path.name for f in sec.figures]
+    assert names == ["adhesion_map.png", "practitioner_pull_off.png"]
+    for f in sec.figures:
+        assert f.path.with_suffix(".svg").is_file() and f.path.with_suffix(".pdf").read_bytes()[:4] == b"%PDF"
+    assert lines and lines[-1] == "figures"
+
+
+def test_map_section_states_the_validated_box_and_the_worst_case(section):
+    from dhfield.adhesion_map import recommended_pull_off
+    from verification.adhesion_map import read_truth
+
+    sec, _, _ = section
+    text = " ".join(sec.verdict)
+    assert "validated against the BEM only inside β0 ≥ 0.5" in text and "0.3 ≤ μ ≤ 5" in text
+    assert "BEM-validated" not in text  # that label is on the figure; the verdict says it in words
+    truth = read_truth()
+    w = recommended_pull_off(beta0=truth["beta0"], mu=truth["mu"])
+    from dhfield.geometry import sin_skew_angle
+
+    dev = (2.0 * w / sin_skew_angle(truth["beta0"])) / truth["force"] - 1.0
+    assert f"within {100 * np.max(np.abs(dev)):.2f} % of every one of the {dev.size} stored BEM cases" in text
+    assert re.search(r"Numerical JKR limit.*GVG is within \d+\.\d+ %", text)
+
+
+def test_map_leads_the_report():
+    assert report.SECTION_ORDER[0] == "map" and report.VERDICT_ORDER[0] == "map"
+    from verification._api import Check, Section
+
+    res = [report.SectionResult(n, Section(n, verdict=[n.upper()], guide=[f"use {n}"]), 0.0, None, False, "",
+                                [Check("c", 0.0, 1.0, True)]) for n in ("analytic", "adhesive", "map")]
+    verdict, guide = report.collect_verdict(res)
+    assert [t for _, t in verdict] == ["MAP", "ADHESIVE", "ANALYTIC"]
+    assert guide[0] == ("map", "use map")
+
+
+def test_domain_of_reads_bands_of_the_map():
+    from dhfield import adhesion_map as am
+
+    r = am.adhesion_map([30.0, 60.0, 90.0], [0.01, 1.0, 100.0], models=("md", "jkr-elliptic-energy", "dmt"))
+    md = sec_map.domain_of(r, "md")
+    # from 60 deg on the sphere is within 1 % at every mu (GVG at 60 deg: 1.4864 against 1.5, -0.9 %; at 30 deg
+    # 1.4333, -4.4 %); every model is DMT at mu = 0.01 to < 1 %
+    assert md["angle_min"] == 60.0 and md["mu_max"] == 0.01
+    gvg = sec_map.domain_of(r, "jkr-elliptic-energy")
+    assert gvg["mu_min"] == 100.0 and gvg["angle_min"] is None
+    assert sec_map.domain_of(r, "dmt")["mu_min"] is None

@@ -1,0 +1,388 @@
+"""Report section: the adhesion map for elliptical contacts, the recommended model and the JKR limit.
+
+The report opens with this section.  It
+
+* READS the stored adhesion map (``data/adhesion_map.nc``, written by
+  ``python -m verification.adhesion_map``: crossing angle 10-90 deg x mu 0.01-100, log,
+  load control; every model's pull-off against the recommended one) and RE-RUNS it
+  (the whole grid; a subset with ``--quick``) to show that the stored numbers are the
+  current code's;
+* draws the map (where each model is within 1 % and 5 % of the recommended model, the
+  stored BEM cases on top, the BEM-validated box outlined and labelled) and the
+  practitioner's figure (pull-off force against crossing angle at mu = 0.1, 1, 10, 100,
+  every model on the same axes);
+* judges the recommended model against every stored BEM case
+  (``data/adhesive_ground_truth.nc``) and prints its worst case;
+* extends the verdict to the whole domain: for each model, the share of the map and the
+  ranges of angle and mu where it is within 1 % of the recommended model;
+* sets a numerical JKR limit, independent of GVG's elliptical-shape assumption, beside GVG
+  and JG: the stored BEM W*(mu) at each beta0 extrapolated to mu -> infinity
+  (:func:`verification.jkr_limit.bem_jkr_limits`).
+
+The recommended model is validated against the BEM only inside the stored ground truth's
+extent (beta0 >= 0.5, i.e. crossing angles >= 61 deg, and 0.3 <= mu <= 5); every output of
+the section says so.
+
+``python -m verification.sec_map [--quick]`` prints the verdict, the text and the checks.
+"""
+from __future__ import annotations
+
+import dataclasses
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from verification._api import Figure, Section, check_ge, check_le
+from verification._style import QUICK_DPI, REPORT_DPI
+
+TITLE = "Adhesion map for elliptical contacts: which model, at which crossing angle and μ"
+ROOT = Path(__file__).resolve().parent.parent
+MAP_DATASET = ROOT / "data" / "adhesion_map.nc"
+GROUND_TRUTH = ROOT / "data" / "adhesive_ground_truth.nc"
+#: Readable relation of a model to the recommended one on the map.
+TOLERANCES = (0.01, 0.05)
+#: issue 20: the recommended model within 1 % of the ground truth in every case.
+TOL_TRUTH = 0.01
+#: The stored map against a re-run with the same code: deterministic root finders, so only
+#: round-off of another numpy/scipy/libm build can differ (measured 0 on the build that wrote it).
+TOL_REPRODUCE = 1e-9
+#: At 90 deg the recommended model is Maugis-Dugdale on the sphere by construction (g is MD's
+#: weight): a few operations on O(1) numbers.
+TOL_SPHERE = 1e-12
+#: Every ``step``-th crossing angle and mu of the stored grid is re-run with --quick (all of it otherwise).
+QUICK_STEP = 8
+#: Words of the map's models in the verdict.
+WORDS = {
+    "dh-elliptic": "the paper's elliptical double-Hertz model (`dh-elliptic`)",
+    "jkr-elliptic": "elliptical JKR of Johnson & Greenwood 2005 (`jkr-elliptic`)",
+    "jkr-elliptic-energy": "the energy-minimising elliptical JKR of Giudici, Vella & Griffiths (`jkr-elliptic-energy`)",
+    "md": "Maugis–Dugdale on the equivalent sphere (`md`)",
+    "dmt": "DMT (`dmt`)",
+}
+
+
+# --------------------------------------------------------------------------- analysis
+def _columns(r, mus):
+    """The map's columns at the given mu (each must be on the grid)."""
+    j = [int(np.argmin(np.abs(np.log(r.mu / m)))) for m in mus]
+    if not np.allclose(r.mu[j], mus, rtol=1e-9):
+        raise ValueError(f"mus must lie on the map's grid; nearest are {r.mu[j]}")
+    return dataclasses.replace(r, mu=r.mu[j], force=r.force[:, :, j], deviation=r.deviation[:, :, j],
+                               status=r.status[:, :, j], reference_force=r.reference_force[:, j],
+                               validated=r.validated[:, j])
+
+
+def domain_of(r, model, tol=TOLERANCES[0]):
+    """Where ``model`` is within ``tol`` of the reference over the whole map, in three simple shapes.
+
+    Returns
+    -------
+    dict
+        ``angle_min``: the smallest crossing angle from which on it is within at every mu
+        (None if not even at 90 deg); ``mu_max``: the largest mu up to which it is within
+        at every angle (None if not at the smallest mu); ``mu_min``: the smallest mu from
+        which on it is within at every angle (None if not at the largest mu) [deg, -].
+    """
+    w = r.within(tol)[r.index(model)]  # (angle, mu)
+    all_mu = w.all(axis=1)
+    all_angle = w.all(axis=0)
+
+    def tail(ok):  # the first index from which every later one is True
+        bad = np.flatnonzero(~ok)
+        k = 0 if bad.size == 0 else int(bad[-1]) + 1
+        return k if k < ok.size else None
+
+    def head(ok):  # the last index up to which every earlier one is True
+        bad = np.flatnonzero(~ok)
+        k = ok.size - 1 if bad.size == 0 else int(bad[0]) - 1
+        return k if k >= 0 else None
+
+    ka, kh, kl = tail(all_mu), head(all_angle), tail(all_angle)
+    return {"angle_min": None if ka is None else float(r.crossing_angle_deg[ka]),
+            "mu_max": None if kh is None else float(r.mu[kh]),
+            "mu_min": None if kl is None else float(r.mu[kl])}
+
+
+def _domain_words(r, model):
+    d = domain_of(r, model)
+    parts = []
+    if d["angle_min"] is not None:
+        parts.append(f"for θ ≥ {d['angle_min']:.0f}° at every μ" if d["angle_min"] > r.crossing_angle_deg[0]
+                     else "everywhere")
+    if d["mu_max"] is not None and d["mu_max"] < r.mu[-1]:
+        parts.append(f"for μ ≤ {d['mu_max']:.2g} at every angle")
+    if d["mu_min"] is not None and d["mu_min"] > r.mu[0]:
+        parts.append(f"for μ ≥ {d['mu_min']:.2g} at every angle")
+    return " and ".join(parts) if parts else "over no band that spans every angle or every μ"
+
+
+def _truth_worst(truth, dev):
+    d = np.abs(dev)
+    i = int(np.argmax(d))
+    return float(d[i]), float(dev[i]), float(truth["beta0"][i]), float(truth["mu"][i]), float(truth["angle"][i])
+
+
+# --------------------------------------------------------------------------- text
+def verdict_lines(stored, truth, dev_truth, jkr_rows):
+    """The verdict, most important first; every number computed here."""
+
+    ref = stored.reference
+    worst, signed, b, m, a = _truth_worst(truth, dev_truth[ref])
+    n = truth["force"].size
+    vb, vm = stored.validated_beta0, stored.validated_mu
+    a_lo = float(np.min(truth["angle"]))
+    answered = stored.fraction_answered()[ref]
+    lines = [
+        f"**Recommended model `{ref}` (the sphere's DMT–JKR transition between elliptical DMT and GVG): within "
+        f"{100 * worst:.2f} % of every one "
+        f"of the {n} stored BEM cases** (worst {100 * signed:+.2f} % at β0 = {b:g}, θ = {a:.0f}°, μ = {m:g}); it "
+        f"answers at {100 * answered:.0f} % of the map (crossing angle {stored.crossing_angle_deg[0]:g}–"
+        f"{stored.crossing_angle_deg[-1]:g}°, μ {stored.mu[0]:g}–{stored.mu[-1]:g}). **It is validated against the "
+        f"BEM only inside β0 ≥ {vb[0]:g} (θ ≥ {a_lo:.0f}°), {vm[0]:g} ≤ μ ≤ {vm[1]:g}**; elsewhere it rests on its "
+        f"exact limits (DMT as μ → 0, GVG as μ → ∞, Maugis–Dugdale at 90°), and the map compares the other models "
+        f"with it, not with the truth."]
+    f1, f5 = stored.fraction_within(TOLERANCES[0]), stored.fraction_within(TOLERANCES[1])
+    others = [mod for mod in stored.models if mod != ref]
+    lines.append("**Adhesion map, the whole domain** (θ 10–90° × μ 0.01–100, log; share of the map within 1 % / "
+                 "5 % of the recommended model): "
+                 + "; ".join(f"{WORDS.get(mod, mod)} {100 * f1[mod]:.0f} % / {100 * f5[mod]:.0f} %, within 1 % "
+                             f"{_domain_words(stored, mod)}" for mod in others) + ".")
+    if "dh-elliptic" in others:
+        mod = "dh-elliptic"
+        _, s, bb, mm, _ = _truth_worst(truth, dev_truth[mod])
+        if True:
+            lines.append(f"Against the stored BEM, {WORDS[mod]} is off by up to {100 * s:+.1f} % (β0 = {bb:g}, "
+                         f"μ = {mm:g}): the recommended model replaces it; it stays available by its name to "
+                         f"reproduce the paper.")
+    if jkr_rows:
+        lines.append(jkr_verdict(jkr_rows))
+    return lines
+
+
+def jkr_verdict(rows):
+    """One verdict line on the numerical JKR limit against GVG and JG."""
+    gvg_dev = [abs(r["gvg"] / r["limit"].w_inf - 1) for r in rows]
+    errs = [r["limit"].error / abs(r["limit"].w_inf) for r in rows]
+    jg = min(rows, key=lambda r: r["beta0"])
+    jg_dev = jg["jg"] / jg["limit"].w_inf - 1
+    decided = [r["beta0"] for r in rows if r["jg_z"] > 1.0]
+    b_lo, b_hi = min(r["beta0"] for r in rows), max(r["beta0"] for r in rows)
+    a_lo = min(r["angle_deg"] for r in rows)
+    norm = ""
+    if np.isfinite(rows[0].get("sphere_scale", np.nan)):
+        dn = max(abs(r["gvg"] / r["w_inf_normalised"] - 1) for r in rows)
+        norm = (f"; divided by the sphere's own extrapolated limit, which removes the BEM's common bias of "
+                f"{100 * (1 / rows[0]['sphere_scale'] - 1):+.2f} %, within {100 * dn:.2f} %")
+    return (f"**Numerical JKR limit** (the stored BEM W*(μ) extrapolated to μ → ∞ with the sphere's Maugis–Dugdale "
+            f"law; error = spread of fits over μ subsets + the BEM's grid step): GVG is within "
+            f"{100 * max(gvg_dev):.2f} % of it at every stored β0 = {b_lo:g}–{b_hi:g} (errors "
+            f"{100 * min(errs):.2f}–{100 * max(errs):.2f} %, each covering GVG{norm}), while Johnson & Greenwood's "
+            f"fixed-shape JKR is {100 * jg_dev:+.2f} % at β0 = {jg['beta0']:g} ({jg['jg_z']:.1f}× the error; "
+            f"outside it at β0 = {', '.join(f'{b:g}' for b in decided)}). Below β0 = {b_lo:g} (θ < {a_lo:.0f}°) no BEM "
+            f"is stored: GVG's elliptical-shape assumption, and so the recommended model's JKR end, is untested there.")
+
+
+def guide_lines(stored, truth, dev_truth):
+    ref = stored.reference
+    worst = float(np.max(np.abs(dev_truth[ref])))
+    f1 = stored.fraction_within(TOLERANCES[0])
+    vb, vm = stored.validated_beta0, stored.validated_mu
+    return [f"**Any crossing angle 10–90°, any μ 0.01–100: `{ref}`** (the recommended model, "
+            f"`dhfield.elliptic_transition`) — within "
+            f"{100 * worst:.2f} % of all {truth['force'].size} stored BEM cases, proven inside β0 ≥ {vb[0]:g}, "
+            f"{vm[0]:g} ≤ μ ≤ {vm[1]:g} only. The paper's `dh-elliptic` is within 1 % of it on "
+            f"{100 * f1['dh-elliptic']:.0f} % of the map: use it to reproduce the paper."]
+
+
+def jkr_table(rows):
+    head = ("| β0 | θ (°) | W*∞ (BEM extrapolated) | error | fit spread | BEM step / g | GVG | GVG/W*∞ − 1 | "
+            "GVG − W*∞, in errors | JG | JG/W*∞ − 1 | JG − W*∞, in errors |")
+    out = [head, "|" + "---|" * 12]
+    for r in rows:
+        lim = r["limit"]
+        out.append(f"| {r['beta0']:g} | {r['angle_deg']:.1f} | {lim.w_inf:.5f} | ±{lim.error:.5f} "
+                   f"({100 * lim.error / abs(lim.w_inf):.2f} %) | {lim.fit_spread:.5f} | {lim.bem_error:.5f} | "
+                   f"{r['gvg']:.5f} | {100 * (r['gvg'] / lim.w_inf - 1):+.2f} % | "
+                   f"{(r['gvg'] - lim.w_inf) / lim.error:+.2f} | {r['jg']:.5f} | "
+                   f"{100 * (r['jg'] / lim.w_inf - 1):+.2f} % | {(r['jg'] - lim.w_inf) / lim.error:+.2f} |")
+    return "\n".join(out)
+
+
+def fraction_table(stored, truth, dev_truth):
+    from dhfield import adhesion_map as am
+
+    f1, f5 = stored.fraction_within(TOLERANCES[0]), stored.fraction_within(TOLERANCES[1])
+    out = ["| model | within 1 % of the recommended (share of map) | within 5 % | within 1 % where | "
+           "worst vs stored BEM |", "|---|---|---|---|---|"]
+    for mod in stored.models:
+        w, s, b, m, _ = _truth_worst(truth, dev_truth[mod])
+        where = "(reference)" if mod == stored.reference else _domain_words(stored, mod)
+        share = ("—" if mod == stored.reference else f"{100 * f1[mod]:.1f} %")
+        share5 = ("—" if mod == stored.reference else f"{100 * f5[mod]:.1f} %")
+        out.append(f"| `{mod}` ({am.MODEL_LABELS.get(mod, mod)}) | {share} | {share5} | {where} | "
+                   f"{100 * s:+.2f} % (β0 = {b:g}, μ = {m:g}) |")
+    return "\n".join(out)
+
+
+# --------------------------------------------------------------------------- section
+def _failed(message):
+    return Section(TITLE, text=f"The stored adhesion map could not be used: {message}",
+                   checks=[check_le("adhesion map dataset readable", 1.0, 0.0,
+                                    "python -m verification.adhesion_map")],
+                   verdict=[f"**No adhesion map** ({message}): the recommended model is not judged over the "
+                            "domain."])
+
+
+def run(outdir: Path, quick: bool, progress) -> Section:
+    """Build the adhesion-map section (see the module docstring)."""
+    from dhfield import adhesion_map as am
+    from dhfield.io.adhesion_map import read_adhesion_map
+    from verification import adhesion_map as vam
+    from verification import jkr_limit
+
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    try:
+        stored = read_adhesion_map(MAP_DATASET)
+        truth = vam.read_truth(GROUND_TRUTH)
+    except (OSError, ValueError, KeyError) as exc:
+        return _failed(f"{type(exc).__name__}: {exc}")
+    progress("read the stored map and ground truth")
+    checks = []
+
+    # re-run the stored grid (or a subset) with the current code
+    step = QUICK_STEP if quick else 1
+    ia = np.arange(0, stored.crossing_angle_deg.size, step)
+    im = np.arange(0, stored.mu.size, step)
+    again = am.adhesion_map(stored.crossing_angle_deg[ia], stored.mu[im], stored.models,
+                            validated_beta0=stored.validated_beta0, validated_mu=stored.validated_mu)
+    old = stored.force[:, ia][:, :, im]
+    same_nan = bool(np.array_equal(np.isnan(again.force), np.isnan(old)))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rep = float(np.nanmax(np.abs(again.force / old - 1.0))) if same_nan else np.inf
+    checks.append(check_le(f"the stored adhesion map reproduces: max |F_re-run/F_stored − 1| over "
+                           f"{ia.size} × {im.size} (angle, μ) points × {len(stored.models)} models",
+                           rep, TOL_REPRODUCE,
+                           f"{MAP_DATASET.relative_to(ROOT)} (python -m verification.adhesion_map)"))
+    progress(f"re-ran {ia.size} x {im.size} points of the map")
+
+    # the recommended model against the stored BEM, every map model through the same function
+    dev_truth = vam.truth_deviation(truth)
+    ref = stored.reference
+    worst, signed, b, m, a = _truth_worst(truth, dev_truth[ref])
+    checks.append(check_le(f"recommended model `{ref}` against the stored BEM: worst |W*/W*_BEM − 1| over "
+                           f"{truth['force'].size} cases (β0 = {b:g}, μ = {m:g})", worst, TOL_TRUTH,
+                           f"{GROUND_TRUTH.relative_to(ROOT)}; target 1 % in every case"))
+    checks.append(check_ge("recommended model answers at every point of the map (fraction answered)",
+                           again.fraction_answered()[ref], 1.0, "no refusal inside 10–90°, μ 0.01–100"))
+    at90 = np.flatnonzero(again.crossing_angle_deg == 90.0)
+    if at90.size:
+        sph = float(np.max(np.abs(again.force[0, at90[0]] / again.force[again.index("md"), at90[0]] - 1.0)))
+        checks.append(check_le("at 90° the recommended model is Maugis–Dugdale on the sphere: max |F/F_MD − 1| "
+                               "over μ", sph, TOL_SPHERE, "Maugis (1992) via dhfield.maugis_dugdale; round-off"))
+
+    # the numerical JKR limit
+    rows = jkr_limit.bem_jkr_limits(GROUND_TRUTH)
+    sphere = [r for r in rows if r["beta0"] == 1.0]
+    if sphere:
+        lim = sphere[0]["limit"]
+        checks.append(check_le("numerical JKR limit on the sphere (BEM at β0 = 1 extrapolated to μ → ∞): "
+                               "|W*∞ + 3/4| / its stated error",
+                               abs(lim.w_inf - jkr_limit.W_STAR_JKR_SPHERE) / lim.error,
+                               1.0, "JKR (1971): W* = −3/4; verification/jkr_limit.py"))
+    z = max(r["gvg_z"] for r in rows)
+    betas = ", ".join(f"{r['beta0']:g}" for r in rows)
+    checks.append(check_le(f"GVG elliptical JKR inside the numerical JKR limit's error at every stored β0 "
+                           f"({betas}): max |W*_GVG − W*∞| / error", z, 1.0,
+                           "BEM extrapolated to μ → ∞ (verification/jkr_limit.py); Giudici, Vella & Griffiths 2025"))
+    progress("numerical JKR limit")
+
+    # figures: the map first, then the practitioner's figure
+    dpi = QUICK_DPI if quick else REPORT_DPI
+    paths = vam.map_figure(stored, truth, dev_truth, outdir / "adhesion_map", dpi=dpi)
+    curves = _columns(stored, vam.PRACTITIONER_MU)
+    two = None
+    if not quick:  # the two-axis closure costs 0.2-0.4 s per point: a coarse subset, default mode only
+        two = am.adhesion_map((30.0,) + vam.TWO_AXIS_ANGLES, vam.PRACTITIONER_MU[:3], models=("dh-elliptic-two-axis",))
+    paths2 = vam.practitioner_figure(curves, two, truth, outdir / "practitioner_pull_off", dpi=dpi)
+    progress("figures")
+    a_lo = float(np.min(truth["angle"]))
+    vb, vm = stored.validated_beta0, stored.validated_mu
+    figs = [
+        Figure(paths[0], "Adhesion map for elliptical contacts (equal crossed cylinders, load control): for each "
+               "model, "
+               "where its pull-off force W/(πRΔγ), R = √(R′R″) (W* of Eq. (34) × 2/sin θ; μ of Eq. (35)), is within "
+               "1 % (dark) and 5 % (light) of the recommended model, over crossing angle 10–90° and μ 0.01–100. "
+               f"Dots: the stored BEM cases (filled where that model is within 1 % of the BEM). The dashed box "
+               f"(θ ≥ {a_lo:.0f}°: β0 ≥ {vb[0]:g}; {vm[0]:g} ≤ μ ≤ {vm[1]:g}) is where the recommended model is "
+               "validated against the BEM; outside it, the bands compare models with the recommended one, not with "
+               "the truth."),
+        Figure(paths2[0], "Practitioner's figure: pull-off force −W/(πRΔγ) of equal crossed cylinders against the "
+               "crossing angle at μ = " + ", ".join(f"{x:g}" for x in vam.PRACTITIONER_MU)
+               + " (Eq. (35)), every model on the same axes (2 = DMT, 1.5 = JKR sphere), the stored BEM where it "
+               "exists" + (" and the two-axis double-Hertz closure at 45–90° (it refuses below 44°)" if two is not None
+                           else "") + "; the paper's Fig. 9 shows W* of Eq. (34) against μ at fixed angles."),
+    ]
+    text = [
+        "The map is read from `data/adhesion_map.nc` (command `{}`, {}) and re-run here with the current code "
+        "({} × {} points{}). The reference is the recommended model `{}` (`dhfield.elliptic_transition`: "
+        "W* = −sin θ + (W*_GVG + sin θ) g(μ), g the sphere's Maugis–Dugdale weight between DMT and JKR). "
+        "{}".format(stored_attr("param_command"), stored_attr("history"), ia.size, im.size,
+                    ", every point" if step == 1 else f", every {step}th angle and μ", ref, again.reference_note),
+        "**Numerical JKR limit.** The BEM finds the contact and adhesive shapes itself; extrapolating its W*(μ) to "
+        "μ → ∞ gives a JKR limit that does not assume an elliptical contact. The form of the approach is the "
+        "sphere's: W*(μ) = −sin θ + (W*∞ + sin θ) g(μ), or the series W*∞ + A/μ² (+ B/μ⁴) that Maugis' equations "
+        "give near JKR (the zone c − a shrinks like 1/λ²). Central value: the first form at the largest stored μ; "
+        f"error: the largest distance of the family of fits over the stored μ ≥ {jkr_limit.MU_JKR_SIDE:g} "
+        "(every subset, both forms) from it, plus the BEM's last N-ladder step there divided by g. On Maugis–"
+        "Dugdale itself sampled at the study's μ every fit returns −3/4 within 0.05 % (tests/test_jkr_limit.py).",
+        "**Where the stored data cannot decide.** No BEM is stored below β0 = {:g} (θ < {:.0f}°) nor above μ = {:g}: "
+        "there GVG's elliptical-shape assumption and the recommended model's transition are unverified, and at "
+        "β0 ≥ 0.9 GVG and JG differ by less than the error of the limit.".format(
+            min(r["beta0"] for r in rows), a_lo, float(np.max(truth["mu"]))),
+    ]
+    verdict = verdict_lines(stored, truth, dev_truth, rows)
+    return Section(TITLE, text="\n\n".join(text), checks=checks, figures=figs,
+                   tables=[fraction_table(stored, truth, dev_truth), jkr_table(rows)], datasets=[MAP_DATASET],
+                   verdict=verdict, guide=guide_lines(stored, truth, dev_truth))
+
+
+def stored_attr(name):
+    """A global attribute of the stored map ('?' when absent)."""
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(MAP_DATASET) as ds:
+            return str(ds.attrs.get(name, "?"))
+    except (OSError, ValueError):
+        return "?"
+
+
+def main(argv=None) -> int:
+    import argparse
+    import tempfile
+
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--quick", action="store_true")
+    args = p.parse_args(argv)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    with tempfile.TemporaryDirectory() as tmp:
+        sec = run(Path(tmp), args.quick, lambda m: print(m, file=sys.stderr))
+    print("\n".join(f"- {v}" for v in sec.verdict))
+    print("\n".join(f"- {v}" for v in sec.guide))
+    print()
+    print(sec.text)
+    print()
+    for t in sec.tables:
+        print(t)
+        print()
+    for c in sec.checks:
+        print(f"{'PASS' if c.passed else 'FAIL'}  {c.name}: {c.value:.3g} {c.comparison} {c.tolerance:.3g}")
+    return 0 if all(c.passed for c in sec.checks) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
