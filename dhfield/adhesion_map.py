@@ -283,7 +283,7 @@ def _evaluate(model, mu, beta0):
             warned = np.zeros(np.shape(force), bool)
         else:
             kw = {"check_closure": False} if model == "dh-elliptic" else {}
-            rec = compare.pull_off(model, mu, beta0, "load", **kw)
+            rec = compare.pull_off(model, mu=mu, beta0=beta0, control="load", **kw)
             force = _force(rec)
             warned = np.asarray(rec["warning"], dtype=object) != ""
     force = np.broadcast_to(force, np.shape(mu)).astype(float)

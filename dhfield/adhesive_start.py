@@ -111,10 +111,10 @@ def _check_margin(margin) -> float:
 
 def _start(mu, beta0, n_steps, margin) -> PullOffStart:
     """:func:`pull_off_start` of checked inputs."""
-    po = model.pull_off(mu, beta0)
-    pod = model.pull_off(mu, beta0, control="displacement")
+    po = model.pull_off(mu=mu, beta0=beta0)
+    pod = model.pull_off(mu=mu, beta0=beta0, control="displacement")
     a_start = 1.1 * float(po.a_star) + 0.15
-    cur = model.load_curve(mu, beta0, [a_start])
+    cur = model.load_curve(mu=mu, beta0=beta0, a_star=[a_start])
     c_start = float(cur.c_star[0])
     d_max = float(cur.delta_star[0])
     d_end = float(pod.delta_star) - 0.2 * (d_max - float(pod.delta_star))
@@ -127,7 +127,7 @@ def _start(mu, beta0, n_steps, margin) -> PullOffStart:
         half_x = max(half_x, SLENDER_DOMAIN_MARGIN * start[1][0])
         half_y = max(half_y, SLENDER_DOMAIN_MARGIN * start[1][1])
     if start is None:
-        at_po = model.load_curve(mu, beta0, [max(float(po.a_star), 1e-3 * a_start)])
+        at_po = model.load_curve(mu=mu, beta0=beta0, a_star=[max(float(po.a_star), 1e-3 * a_start)])
         start = (float(po.delta_star), (float(at_po.c_star[0]), float(at_po.d_star[0])))
     return PullOffStart(half_x, half_y, d_max, (d_max - d_end) / int(n_steps), start[0], start[1])
 
@@ -165,7 +165,7 @@ def _two_axis_start(mu, beta0):
     from . import compare
 
     try:
-        rec = compare.pull_off("dh-elliptic-two-axis", mu, beta0, "load")
+        rec = compare.pull_off("dh-elliptic-two-axis", mu=mu, beta0=beta0, control="load")
         out = (float(rec["delta_star"]), (float(rec["c_star"]), float(rec["d_star"])))
     except (ValueError, ArithmeticError):
         return None
@@ -473,7 +473,7 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
                     memory_limit(), max_seconds, w_star)
 
 
-def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
+def adhesive_pull_off(*, beta0, mu, n=None, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
                       refine_levels=2, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER,
                       margin=DOMAIN_MARGIN, threads=None, keep_states=False,
                       progress=None, search="located", nested=None,
@@ -482,10 +482,10 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
     beta0 : float
         Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
+    mu : float
+        Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
     n : int, optional
         Cells per axis (even) [-].  Default: chosen from the expected zone width and the
         law's edge (:func:`plan_grid`, ``n_needed``), refused with

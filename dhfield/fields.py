@@ -751,7 +751,7 @@ def annulus_identity(case: FieldCase, n_theta=91, n_r=64):
             "scale": scale}
 
 
-def adhesive_state(a_star, mu, beta0):
+def adhesive_state(a_star, *, beta0, mu):
     """Solve for the nondimensional DH state ``(c*, v)`` at contact size ``a*`` (Eqs. 24, 31, 35).
 
     A scalar wrapper of :func:`dhfield.model.solve_adhesive_axis`.
@@ -760,10 +760,10 @@ def adhesive_state(a_star, mu, beta0):
     ----------
     a_star : float
         Contact semi-major axis a/c_r [-].
-    mu : float
-        Tabor parameter, Eq. (35) [-].
     beta0 : float
         Ellipticity of both ellipses (Eqs. 17-19) [-].
+    mu : float
+        Tabor parameter, Eq. (35) [-].
 
     Returns
     -------
@@ -772,7 +772,7 @@ def adhesive_state(a_star, mu, beta0):
     v : float
         Scaling factor [-].
     """
-    c, v = model.solve_adhesive_axis(np.atleast_1d(np.asarray(a_star, dtype=float)), mu, beta0)
+    c, v = model.solve_adhesive_axis(np.atleast_1d(np.asarray(a_star, dtype=float)), mu=mu, beta0=beta0)
     return float(np.ravel(c)[0]), float(np.ravel(v)[0])
 
 
@@ -807,7 +807,7 @@ def model_case(n, beta0, mu, a_star, *, half_width=None, sampling="average", sym
     FieldCase
         All fields of the case, lengths in c_r and pressures in E* c_r/R.
     """
-    c, v = adhesive_state(a_star, mu, beta0)
+    c, v = adhesive_state(a_star, mu=mu, beta0=beta0)
     return dh_case(n, float(a_star), c, float(beta0), v, half_width=half_width, sampling=sampling,
                    symmetric=symmetric, threads=threads,
                    extra_parameters=dict(beta0=float(beta0), mu=float(mu), a_star=float(a_star),

@@ -80,8 +80,8 @@ def test_jkr_limit_is_gvg(limits):
     # candidate - GVG = (1 - g)(W*_DMT,ell - W*_GVG), 1 - g = 3 (W_MD/W_JKR - 1) on the sphere and
     # |W*_DMT,ell - W*_GVG|/|W*_GVG| = 2/|F_GVG| - 1 <= 1 for every angle >= 10 deg (F_GVG <= -1.33):
     # bounded by 3 x the sphere's MD-JKR gap, 4x to cover the second order of the ratio
-    md = compare.pull_off("md", 1e4, 1.0)["W_star"]
-    gap = abs(md / compare.pull_off("jkr", 1e4, 1.0)["W_star"] - 1.0)
+    md = compare.pull_off("md", mu=1e4, beta0=1.0)["W_star"]
+    gap = abs(md / compare.pull_off("jkr", mu=1e4, beta0=1.0)["W_star"] - 1.0)
     assert gap < 1e-6
     dev = limits.deviation[limits.index("jkr-elliptic-energy"), :, -1]
     assert np.all(np.abs(dev) <= 4 * gap + EXACT)

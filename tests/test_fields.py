@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from dhfield import bem, double_hertz, fields, hertz
+from dhfield import bem, double_hertz, fields, hertz, model
 
 # --- tolerances -------------------------------------------------------------------
 #: hemisphere_volume vs scipy dblquad asked for 1e-13 absolute.
@@ -233,3 +233,11 @@ def test_unit_neutrality_si_vs_nondimensional():
         ref = getattr(nd, name)
         assert np.allclose(getattr(si, name) / u_s, ref, rtol=RTOL_UNITS_FIELD,
                            atol=RTOL_UNITS_FIELD * np.abs(ref).max()), name
+
+
+def test_adhesive_state_takes_beta0_and_mu_by_keyword():
+    """(mu, beta0) was the old positional order: a positional call would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        fields.adhesive_state(1.0, 1.0, 0.9)
+    c, v = fields.adhesive_state(1.0, beta0=0.9, mu=1.0)
+    assert (c, v) == tuple(float(t) for t in model.solve_adhesive_axis(1.0, beta0=0.9, mu=1.0))

@@ -171,7 +171,7 @@ def test_coarse_to_fine_from_a_stored_coarse_level(tmp_path):
     fine = next(r for r in recs if r["n"] == 32)
     assert fine["route"] == "coarse to fine from n=16" and fine["search"] == "refine"
     assert fine["status"] == "ok" and fine["converged"]
-    direct = refine_pull_off(adhesive_pull_off(1.0, 1.0, 16, progress=False, **opts), 32, progress=False, **opts)
+    direct = refine_pull_off(adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, **opts), 32, progress=False, **opts)
     assert fine["W_star"] == pytest.approx(direct.W_star, rel=RTOL_SAME_ROUTE)
     assert fine["n_steps"] == direct.n_steps
 

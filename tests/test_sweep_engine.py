@@ -54,7 +54,7 @@ def test_matches_single_case_functions(serial):
     ds = serial[0].dataset
     mu, b0 = np.meshgrid(ds["mu"].values, ds["beta0"].values)
     for model in ("dh-elliptic", "md"):
-        ref = compare.pull_off(model, mu, b0, check_closure=False)
+        ref = compare.pull_off(model, mu=mu, beta0=b0, check_closure=False)
         for k in tasks.PULL_OFF_FIELDS:
             np.testing.assert_allclose(ds[k].sel(model=model).values, ref[k], rtol=BLOCK_RTOL, err_msg=k)
 

@@ -75,7 +75,7 @@ def study(make_case, ns):
 
 
 def dh_parameters():
-    return fields.adhesive_state(DH_CASE["a_star"], DH_CASE["mu"], DH_CASE["beta0"])
+    return fields.adhesive_state(DH_CASE["a_star"], mu=DH_CASE["mu"], beta0=DH_CASE["beta0"])
 
 
 def format_table(arr, orders) -> str:

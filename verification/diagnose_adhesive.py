@@ -56,8 +56,8 @@ def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
     from dhfield.bem.solver import Prediction, solve_problem
 
     nd = nondimensional_problem(mu, beta0, n)
-    dh = compare.pull_off("dh-elliptic", mu, beta0, "load")
-    ta = compare.pull_off("dh-elliptic-two-axis", mu, beta0, "load")
+    dh = compare.pull_off("dh-elliptic", mu=mu, beta0=beta0, control="load")
+    ta = compare.pull_off("dh-elliptic-two-axis", mu=mu, beta0=beta0, control="load")
     if start == "two-axis":
         approach, c, d = float(ta["delta_star"]), float(ta["c_star"]), float(ta["d_star"])
     else:
@@ -101,7 +101,7 @@ def main(argv=None) -> int:
         from dhfield.bem import adhesive_pull_off
 
         t0 = time.perf_counter()
-        res = adhesive_pull_off(m, b, n, max_iter=args.max_iter, keep_states=True, progress=sys.stderr.isatty())
+        res = adhesive_pull_off(mu=m, beta0=b, n=n, max_iter=args.max_iter, keep_states=True, progress=sys.stderr.isatty())
         path = res.path
         print(f"path: W* = {res.W_star:.6f}, converged = {res.converged}, resolved = {res.resolved}, "
               f"{res.n_steps} states, {res.iterations} CG iterations ({time.perf_counter() - t0:.0f} s)")

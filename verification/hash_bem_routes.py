@@ -100,7 +100,7 @@ def main(argv=None):
     for label, mu, beta0, n, kw in CASES:
         if only and label not in only:
             continue
-        res = adhesive_pull_off(mu, beta0, n, progress=False, keep_states=True, **kw)
+        res = adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False, keep_states=True, **kw)
         results[label] = res
         print(f"{label} route={res.search} W_star={res.W_star!r}", flush=True)
         for line in result_lines(label, res):

@@ -308,7 +308,7 @@ def _rerun(ds, quick, progress):
         t0 = time.perf_counter()
         # the same load-minimum search as the stored case (march for cases stored before 'search')
         search = str(ds["search"].sel(**sel).values) if "search" in ds else "march"
-        res = adhesive_pull_off(m, b, n0, max_iter=STUDY_MAX_ITER, progress=False,
+        res = adhesive_pull_off(mu=m, beta0=b, n=n0, max_iter=STUDY_MAX_ITER, progress=False,
                                 search=search if search in SEARCHES else "bracket")
         el = time.perf_counter() - t0
         progress(f"re-run β0 = {b:g}, μ = {m:g}, N = {n0}: {el:.1f} s")

@@ -145,7 +145,7 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
     t0 = time.perf_counter()
     try:
         if start is None:
-            res = solver(float(mu), float(beta0), int(n), law=law, control=control, progress=False, **options)
+            res = solver(mu=float(mu), beta0=float(beta0), n=int(n), law=law, control=control, progress=False, **options)
         else:
             from dhfield.bem import refine_pull_off
 
@@ -313,7 +313,7 @@ def reference_table(beta0s, mus, models=REFERENCE_MODELS, control="load") -> dic
     m = np.asarray(mus, float)[None, :]
     out = {}
     for name in models:
-        rec = compare.pull_off(name, m, b, control)
+        rec = compare.pull_off(name, mu=m, beta0=b, control=control)
         out[name] = {k: np.broadcast_to(np.asarray(rec.get(k, np.nan), float), (b.size, m.size)).copy()
                      for k in ("W_star", "ellipticity", "adhesive_ellipticity")}
     return out

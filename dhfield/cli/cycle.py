@@ -42,7 +42,7 @@ def run(args) -> int:
         compliance.check_machine_stiffness("machine-stiffness", args.machine_stiffness)
     params = contact_parameters_from_args(args)
     if params is None:
-        rec = compliance.loading_cycle(args.model, args.mu, args.beta0, args.machine_stiffness)
+        rec = compliance.loading_cycle(args.model, mu=args.mu, beta0=args.beta0, machine_stiffness=args.machine_stiffness)
         k_star, mu, beta0 = args.machine_stiffness, args.mu, args.beta0
     else:
         rec = compliance.loading_cycle_si(params, args.machine_stiffness, model=args.model)
@@ -63,7 +63,7 @@ def run(args) -> int:
     if args.plot is not None:
         from ..io.cycle import write_cycle_plot
 
-        data = compliance.cycle_path(args.model, mu, beta0, k_star)
+        data = compliance.cycle_path(args.model, mu=mu, beta0=beta0, machine_stiffness=k_star)
         data["record"].update(rec)
         if params is None:
             write_cycle_plot(data, args.plot)

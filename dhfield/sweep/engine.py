@@ -523,7 +523,7 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
         ds = store.read(key)
         return np.stack([ds[k].values for k in PULL_OFF_FIELDS], axis=-1)
     try:
-        out = pull_off_block(model, control, mu, beta0)
+        out = pull_off_block(model, control=control, mu=mu, beta0=beta0)
         status, message = "ok", ""
     except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
         out = np.full(mu.shape + (len(PULL_OFF_FIELDS),), np.nan)

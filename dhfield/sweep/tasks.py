@@ -54,17 +54,18 @@ def cohesive_laws() -> tuple:
     return tuple(LAWS)
 
 
-def pull_off_block(model: str, control: str, mu, beta0) -> np.ndarray:
+def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> np.ndarray:
     """Analytic pull-off of one model on a block of points, stacked on a last axis.
 
     Parameters
     ----------
     model : str
         One of :data:`dhfield.compare.MODEL_NAMES`.
+    beta0, mu : array_like
+        Hertz ellipticity [-] and Tabor parameter (Eq. 35) [-], broadcast together
+        (keyword-only, as ``control``).
     control : {"load", "displacement"}
         Loading mode of the pull-off.
-    mu, beta0 : array_like
-        Tabor parameter (Eq. 35) [-] and Hertz ellipticity [-], broadcast together.
 
     Returns
     -------
@@ -81,13 +82,13 @@ def pull_off_block(model: str, control: str, mu, beta0) -> np.ndarray:
         return out
     # The two-axis closure behind dh-elliptic's warning is a model of its own
     # ("dh-elliptic-two-axis"): sweep it, and map the departure, rather than solve it twice.
-    rec = pull_off(model, mu.ravel(), beta0.ravel(), control, check_closure=False)
+    rec = pull_off(model, mu=mu.ravel(), beta0=beta0.ravel(), control=control, check_closure=False)
     for i, k in enumerate(PULL_OFF_FIELDS):
         out[..., i] = np.broadcast_to(np.asarray(rec[k], dtype=float), (mu.size,)).reshape(shape)
     return out
 
 
-def load_curve_case(model: str, beta0: float, mu: float, a_star) -> dict:
+def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> dict:
     """Compute the load curve of one model at the contact sizes ``a_star``.
 
     Parameters
@@ -208,7 +209,7 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
         solver gives none) plus ``converged`` (bool), ``resolved`` (bool: the grid
         resolves the cohesive zone) and ``message`` (str).
     """
-    res = adhesive_solver(solver)(float(mu), float(beta0), int(n), law=law, control=control, threads=1)
+    res = adhesive_solver(solver)(beta0=float(beta0), mu=float(mu), n=int(n), law=law, control=control, threads=1)
 
     def get(*names):
         for nm in names:
