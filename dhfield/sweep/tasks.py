@@ -3,7 +3,8 @@
 Each quantity is a public function of plain numbers or arrays:
 
 * :func:`pull_off_block` -- the analytic pull-off of one comparison model over a
-  block of (mu, beta0) points (vectorised; :func:`dhfield.compare.pull_off`).
+  block of (beta0, mu) points, with each point's validity warning (one vectorised
+  call of :func:`dhfield.compare.pull_off`).
 * :func:`bem_field_case` -- the forward BEM check of one DH state
   (:func:`dhfield.fields.model_case`, :func:`dhfield.fields.annulus_identity`).
 * :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off
@@ -54,8 +55,10 @@ def cohesive_laws() -> tuple:
     return tuple(LAWS)
 
 
-def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> np.ndarray:
-    """Analytic pull-off of one model on a block of points, stacked on a last axis.
+def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> tuple[np.ndarray, np.ndarray]:
+    """Analytic pull-off of one model on a block of points, stacked on a last axis, with its warnings.
+
+    One vectorised call of :func:`dhfield.compare.pull_off` on the whole block.
 
     Parameters
     ----------
@@ -69,23 +72,29 @@ def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> np.ndarra
 
     Returns
     -------
-    ndarray
+    values : ndarray
         Shape ``broadcast(mu, beta0).shape + (len(PULL_OFF_FIELDS),)``, fields in
         the order of :data:`PULL_OFF_FIELDS` (NaN where the model has none).
+    warnings : ndarray of str
+        Shape ``broadcast(mu, beta0).shape``: each record's ``warning`` (its
+        validity warning, :mod:`dhfield.validity`; empty inside the validated
+        range).
     """
     from ..compare import pull_off
 
     mu, beta0 = np.broadcast_arrays(np.asarray(mu, float), np.asarray(beta0, float))
     shape = mu.shape
     out = np.empty(shape + (len(PULL_OFF_FIELDS),))
+    warnings = np.full(shape, "", dtype=object)
     if mu.size == 0:
-        return out
-    # The two-axis closure behind dh-elliptic's warning is a model of its own
+        return out, warnings
+    # The two-axis closure behind dh-elliptic's departure warning is a model of its own
     # ("dh-elliptic-two-axis"): sweep it, and map the departure, rather than solve it twice.
     rec = pull_off(model, mu=mu.ravel(), beta0=beta0.ravel(), control=control, check_closure=False)
     for i, k in enumerate(PULL_OFF_FIELDS):
         out[..., i] = np.broadcast_to(np.asarray(rec[k], dtype=float), (mu.size,)).reshape(shape)
-    return out
+    warnings[...] = np.broadcast_to(np.asarray(rec["warning"], dtype=object), (mu.size,)).reshape(shape)
+    return out, warnings
 
 
 def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> dict:
