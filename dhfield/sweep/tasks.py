@@ -6,7 +6,7 @@ Each quantity is a public function of plain numbers or arrays:
   block of (beta0, mu) points, with each point's validity warning (one vectorised
   call of :func:`dhfield.compare.pull_off`).
 * :func:`bem_field_case` -- the forward BEM check of one DH state
-  (:func:`dhfield.fields.model_case`, :func:`dhfield.fields.annulus_identity`).
+  (:func:`dhfield.fields.model_case`, :func:`dhfield.field_metrics.annulus_identity`).
 * :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off
   (:func:`dhfield.adhesive_start.adhesive_pull_off`).
 * :func:`expected_seconds` -- a cost model of one case, used by the engine only
@@ -153,7 +153,8 @@ def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width
         grid relative to max |omega| [-], worst relative annulus-identity error
         [-], and the solved c* and v of the state.
     """
-    from ..fields import annulus_identity, model_case
+    from ..field_metrics import annulus_identity
+    from ..fields import model_case
 
     case = model_case(int(n), float(beta0), float(mu), float(a_star), half_width=half_width,
                       sampling=sampling, threads=1)
