@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from dhfield import adhesive_start, compare, model
+from dhfield.adhesive_start import AdhesiveOptions
 
 #: The start is copied from the closure's pull-off record: only round-off can differ.
 RTOL_SAME_NUMBER = 1e-12
@@ -34,7 +35,7 @@ def test_cold_start_is_the_two_axis_pull_off_for_an_ellipse_and_the_dh_one_for_t
 def test_domain_too_small_for_the_contact_is_refused_before_solving(margin):
     # issue 18: margin = 0.3 gave W* = -0.261 and 0.1 gave -0.029 (about -0.79): the domain cut the zone
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
-        adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.9, n=64, margin=margin)
+        adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.9, n=64, options=AdhesiveOptions(margin=margin))
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
         adhesive_start.pull_off_start(1.0, 0.9, margin=margin)
 
@@ -104,7 +105,7 @@ def test_case_beyond_time_is_refused_before_solving_with_the_analytic_value(monk
     calls = []
     monkeypatch.setattr(adhesive_start, "solve_pull_off", lambda *a, **k: calls.append(a))
     with pytest.raises(adhesive_start.UnresolvableCaseError) as info:
-        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, max_seconds=1.0)
+        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, options=AdhesiveOptions(max_seconds=1.0))
     err = info.value
     assert not calls                                              # nothing solved
     assert err.n_needed == adhesive_start.plan_grid(10.0, 0.4826).n_needed
@@ -167,7 +168,8 @@ def test_bad_counts_and_arrays_are_named_errors(kwargs, name):
     args = {"mu": 1.0, "beta0": 0.9, **kwargs}
     with pytest.raises(ValueError, match=name):
         adhesive_start.adhesive_pull_off(mu=args["mu"], beta0=args["beta0"], n=16,
-                                         **{k: v for k, v in kwargs.items() if k not in ("mu", "beta0")})
+                                         options=AdhesiveOptions(**{k: v for k, v in kwargs.items()
+                                                                    if k not in ("mu", "beta0")}))
 
 
 def test_adhesive_pull_off_takes_beta0_and_mu_by_keyword():

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from dhfield import hertz, jkr_elliptic, maugis_dugdale, transition
+from dhfield.adhesive_start import AdhesiveOptions
 from dhfield.bem import Grid, adhesive_pull_off, solve_adhesive
 from dhfield.bem import nondimensional_problem, richardson_extrapolation
 from dhfield.geometry import radius_ratio, sin_skew_angle
@@ -94,7 +95,7 @@ def test_large_mu_tends_to_elliptical_jkr():
 
 def test_under_resolved_grid_is_flagged():
     res = nondimensional_problem(6.0, 1.0, 32)
-    flagged = adhesive_pull_off(mu=6.0, beta0=1.0, n=32, progress=False, n_steps=4, refine_levels=0, max_iter=50)
+    flagged = adhesive_pull_off(mu=6.0, beta0=1.0, n=32, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0, max_iter=50))
     assert res.grid.nx == 32
     assert not flagged.resolved
     assert not flagged.converged and len(flagged.failures) > 0   # flagged, not dropped
@@ -155,7 +156,7 @@ def test_coarse_to_fine_equals_the_full_path():
 def test_refine_pull_off_rejects_bad_input():
     from dhfield.bem import refine_pull_off
 
-    coarse = adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, n_steps=4, refine_levels=0)
+    coarse = adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0))
     with pytest.raises(ValueError, match="n must be an integer > coarse.n"):
         refine_pull_off(coarse, 16)
     with pytest.raises(ValueError, match="coarse must be an AdhesivePullOff"):

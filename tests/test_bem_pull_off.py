@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from dhfield import compare, transition
+from dhfield.adhesive_start import AdhesiveOptions
 from dhfield.bem import adhesive_pull_off, refine_pull_off
 from dhfield.bem import pull_off as pull_off_module
 from dhfield.bem import nondimensional_problem
@@ -25,7 +26,7 @@ from dhfield.bem.solver import DEFAULT_TOL, solve_problem
 @pytest.fixture(scope="module")
 def coarse():
     # the cheapest load-control pull-off there is (16 x 16 cells, 4 steps): only its type matters
-    return adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, n_steps=4, refine_levels=0)
+    return adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0))
 
 
 @pytest.mark.parametrize("kwargs, name", [
@@ -159,7 +160,7 @@ def test_located_search_does_not_locate_on_a_grid_too_coarse_for_the_edge():
 def test_exponential_law_has_its_own_resolution_criterion():
     # issue 18: the sphere at mu = 8, N = 32 under the exponential law gave W* = -2.43 (+224 %) with
     # resolved = True; its steepest slope sigma0/rho times kappa dx/E* is ~24 there (resolved iff <= 1)
-    res = adhesive_pull_off(mu=8.0, beta0=1.0, n=32, law="exponential", progress=False, keep_states=True)
+    res = adhesive_pull_off(mu=8.0, beta0=1.0, n=32, law="exponential", progress=False, options=AdhesiveOptions(keep_states=True))
     assert not res.resolved and res.W_star_error == np.inf
     assert "stronger than the DMT limit" in res.note        # W* < -1 (Eq. 34 of the DMT pull-off) is reported
     assert all(not st.resolved for st in res.path.states)   # every state carries the flag
@@ -182,7 +183,7 @@ def test_zone_narrower_than_a_cell_is_not_resolved():
 @pytest.mark.parametrize("control", ["load", "displacement"])
 def test_resolved_answer_has_a_finite_error_estimate(control):
     # the estimate of the search (or of the fold's fit), never NaN on a returned answer
-    res = adhesive_pull_off(mu=1.0, beta0=1.0, n=64, control=control, progress=False, keep_states=True)
+    res = adhesive_pull_off(mu=1.0, beta0=1.0, n=64, control=control, progress=False, options=AdhesiveOptions(keep_states=True))
     assert res.resolved and res.converged and "unresolved" not in res.note
     assert 0.0 < res.W_star_error < np.inf                   # near lambda = 1 the fold's can be a few %
     assert -1.0 < res.W_star < 0.0                          # between the DMT and zero-adhesion limits

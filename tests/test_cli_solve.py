@@ -41,8 +41,10 @@ def test_solve_reports_non_convergence(monkeypatch, capsys):
     """A path whose states cannot converge (2 CG iterations each) exits 3 with one line."""
     import dhfield.bem
 
+    from dhfield.adhesive_start import AdhesiveOptions
+
     monkeypatch.setattr(dhfield.bem, "adhesive_pull_off",
-                        functools.partial(dhfield.bem.adhesive_pull_off, max_iter=2))
+                        functools.partial(dhfield.bem.adhesive_pull_off, options=AdhesiveOptions(max_iter=2)))
     rc = main(["solve", "--beta0", "0.8", "--mu", "1", "--n", "16", "--json"])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == EXIT_UNCONVERGED

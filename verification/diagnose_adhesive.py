@@ -99,9 +99,10 @@ def main(argv=None) -> int:
               f"d = {d_:.4f}, (c - a)/dx = {nx:.2f}, (d - b)/dy = {ny:.2f} ({el:.0f} s)", flush=True)
     if args.path:
         from dhfield.bem import adhesive_pull_off
+        from dhfield.adhesive_start import AdhesiveOptions
 
         t0 = time.perf_counter()
-        res = adhesive_pull_off(mu=m, beta0=b, n=n, max_iter=args.max_iter, keep_states=True, progress=sys.stderr.isatty())
+        res = adhesive_pull_off(mu=m, beta0=b, n=n, progress=sys.stderr.isatty(), options=AdhesiveOptions(max_iter=args.max_iter, keep_states=True))
         path = res.path
         print(f"path: W* = {res.W_star:.6f}, converged = {res.converged}, resolved = {res.resolved}, "
               f"{res.n_steps} states, {res.iterations} CG iterations ({time.perf_counter() - t0:.0f} s)")

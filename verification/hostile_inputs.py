@@ -737,10 +737,16 @@ CLOSURE_03_10 = -0.485
 def _bem_verdict(mu, beta0, n, reference, rtol=BEM_SILENT_RTOL, **kw):
     """An API case: the BEM pull-off must be flagged (resolved/converged false) or near ``reference``."""
     def run():
+        from dataclasses import fields
+
         from dhfield import bem, compare
+        from dhfield.adhesive_start import AdhesiveOptions
 
         ref = compare.pull_off("md", mu=mu, beta0=1.0)["W_star"] if reference == "md" else reference
-        res = bem.adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False, **kw)
+        numerics = {f.name for f in fields(AdhesiveOptions)}
+        res = bem.adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False,
+                                    **{k: v for k, v in kw.items() if k not in numerics},
+                                    options=AdhesiveOptions(**{k: v for k, v in kw.items() if k in numerics}))
         ok = bool(getattr(res, "resolved", True)) and bool(res.converged)
         w = float(res.W_star)
         if ok and not (abs(w - ref) <= rtol * abs(ref)):
@@ -867,6 +873,7 @@ def _peer_setup(case, behaviour):
 def hardening_cases(quick):
     """Issue 18's classes: API dtypes, file contents, TOML values, environment, network peers, BEM answers."""
     from dhfield import bem, compare, dimensional, model
+    from dhfield.adhesive_start import AdhesiveOptions
 
     cases = []
 
@@ -894,8 +901,7 @@ def hardening_cases(quick):
         "skew_angle", "either")
     api("bem.adhesive_pull_off(mu=array([1.0]))", lambda: bem.adhesive_pull_off(mu=np.array([1.0]), beta0=0.9, n=16,
                                                                                 progress=False), "mu", "either")
-    api("bem.adhesive_pull_off(max_iter=0)", lambda: bem.adhesive_pull_off(mu=1.0, beta0=0.9, n=16, max_iter=0,
-                                                                         progress=False), "max_iter", "either")
+    api("bem.adhesive_pull_off(max_iter=0)", lambda: bem.adhesive_pull_off(mu=1.0, beta0=0.9, n=16, progress=False, options=AdhesiveOptions(max_iter=0)), "max_iter", "either")
     api("bem.adhesive_pull_off(mu=complex)", lambda: bem.adhesive_pull_off(mu=1 + 0j, beta0=0.9, n=16, progress=False),
         "mu", "reject")
 
