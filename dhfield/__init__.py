@@ -29,9 +29,12 @@ itself); ``tests/test_layout.py`` checks this against the import statements::
     bem          bem/                                      DC-FFT boundary elements:      foundations (+ one
                                                            operator, laws, solver, paths, lazy forward of
                                                            pull-off                       adhesive_start)
-    bridge       adhesive_start fields bem_compliance      BEM start from the analytic    all of the above
-                                                           models; analytic-vs-BEM
-                                                           fields; the BEM under a spring
+    bridge       adhesive_start fields field_sampling      BEM start from the analytic    all of the above
+                 field_metrics polar refinement            models; analytic-vs-BEM
+                 bem_compliance                            fields (grid sampling, error
+                                                           metrics, polar resampling,
+                                                           refinement studies); the BEM
+                                                           under a spring
     edges        io/ plotting sweep/ cli/                  files (xarray, netCDF,         io: the core;
                                                            pandas), figures (matplotlib), plotting: io; sweep:
                                                            dask sweeps, the command       core + io; cli: all

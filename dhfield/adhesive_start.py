@@ -48,7 +48,7 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
-           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart"]
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -111,10 +111,10 @@ def _check_margin(margin) -> float:
 
 def _start(mu, beta0, n_steps, margin) -> PullOffStart:
     """:func:`pull_off_start` of checked inputs."""
-    po = model.pull_off(mu, beta0)
-    pod = model.pull_off(mu, beta0, control="displacement")
+    po = model.pull_off(mu=mu, beta0=beta0)
+    pod = model.pull_off(mu=mu, beta0=beta0, control="displacement")
     a_start = 1.1 * float(po.a_star) + 0.15
-    cur = model.load_curve(mu, beta0, [a_start])
+    cur = model.load_curve(mu=mu, beta0=beta0, a_star=[a_start])
     c_start = float(cur.c_star[0])
     d_max = float(cur.delta_star[0])
     d_end = float(pod.delta_star) - 0.2 * (d_max - float(pod.delta_star))
@@ -127,7 +127,7 @@ def _start(mu, beta0, n_steps, margin) -> PullOffStart:
         half_x = max(half_x, SLENDER_DOMAIN_MARGIN * start[1][0])
         half_y = max(half_y, SLENDER_DOMAIN_MARGIN * start[1][1])
     if start is None:
-        at_po = model.load_curve(mu, beta0, [max(float(po.a_star), 1e-3 * a_start)])
+        at_po = model.load_curve(mu=mu, beta0=beta0, a_star=[max(float(po.a_star), 1e-3 * a_start)])
         start = (float(po.delta_star), (float(at_po.c_star[0]), float(at_po.d_star[0])))
     return PullOffStart(half_x, half_y, d_max, (d_max - d_end) / int(n_steps), start[0], start[1])
 
@@ -165,7 +165,7 @@ def _two_axis_start(mu, beta0):
     from . import compare
 
     try:
-        rec = compare.pull_off("dh-elliptic-two-axis", mu, beta0, "load")
+        rec = compare.pull_off("dh-elliptic-two-axis", mu=mu, beta0=beta0, control="load")
         out = (float(rec["delta_star"]), (float(rec["c_star"]), float(rec["d_star"])))
     except (ValueError, ArithmeticError):
         return None
@@ -473,30 +473,12 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
                     memory_limit(), max_seconds, w_star)
 
 
-def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
-                      refine_levels=2, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER,
-                      margin=DOMAIN_MARGIN, threads=None, keep_states=False,
-                      progress=None, search="located", nested=None,
-                      max_seconds=DEFAULT_MAX_SECONDS) -> AdhesivePullOff:
-    """Compute the BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
+@dataclass(frozen=True)
+class AdhesiveOptions:
+    """Numerical settings of :func:`adhesive_pull_off` (the defaults are the tested ones).
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
-    beta0 : float
-        Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
-    n : int, optional
-        Cells per axis (even) [-].  Default: chosen from the expected zone width and the
-        law's edge (:func:`plan_grid`, ``n_needed``), refused with
-        :class:`UnresolvableCaseError` before anything is solved when that grid does not fit
-        the memory available or ``max_seconds``.
-    law : {'dugdale', 'exponential'}
-        Traction law (:mod:`dhfield.bem.laws`).
-    control : {'load', 'displacement'}
-        Load control: the minimum of the unloading load.  Displacement control:
-        the jump, the minimum of the approach along the branch (its fold, or
-        the loss of contact; :mod:`dhfield.bem.continuation`).
     n_steps : int, default DEFAULT_STEPS
         Unloading steps (4 to 1e6) [-]; see :func:`pull_off_start`.
     refine_levels : int, default 2
@@ -507,12 +489,42 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         Iteration cap per state [-]; see :class:`dhfield.bem.path.PathOptions`.
     margin : float, default DOMAIN_MARGIN
         Domain half-width per expected zone semi-axis, > 1 [-]; see :func:`pull_off_start`.
-    threads : int, optional
-        FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
     keep_states : bool, default False
         Keep every state of the path; see :class:`dhfield.bem.path.PathOptions`.
-    progress : bool, optional
-        Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Automatic n only: the estimated time allowed [s] (:func:`plan_grid`).
+    """
+
+    n_steps: int = DEFAULT_STEPS
+    refine_levels: int = 2
+    tol: float = DEFAULT_TOL
+    max_iter: int = DEFAULT_MAX_ITER
+    margin: float = DOMAIN_MARGIN
+    keep_states: bool = False
+    max_seconds: float = DEFAULT_MAX_SECONDS
+
+
+def adhesive_pull_off(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None,
+                      threads=None, progress=None, options=None) -> AdhesivePullOff:
+    """Compute the BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
+    mu : float
+        Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
+    n : int, optional
+        Cells per axis (even) [-].  Default: chosen from the expected zone width and the
+        law's edge (:func:`plan_grid`, ``n_needed``), refused with
+        :class:`UnresolvableCaseError` before anything is solved when that grid does not fit
+        the memory available or ``options.max_seconds``.
+    law : {'dugdale', 'exponential'}
+        Traction law (:mod:`dhfield.bem.laws`).
+    control : {'load', 'displacement'}
+        Load control: the minimum of the unloading load.  Displacement control:
+        the jump, the minimum of the approach along the branch (its fold, or
+        the loss of contact; :mod:`dhfield.bem.continuation`).
     search : {'located', 'bracket', 'march'}, default 'located'
         Load control only (the route taken is :attr:`AdhesivePullOff.search`).
         'located' (default) is 'bracket' with the minimum located on coarser
@@ -526,7 +538,7 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         coarsest resolved one; three samples of the approach lattice
         ``approach_max - j approach_step/2`` around the coarser level's minimum
         on every finer one), and on this grid only those lattice samples and at
-        most one parabola vertex (none with ``refine_levels=0``) are solved,
+        most one parabola vertex (none with ``options.refine_levels=0``) are solved,
         each from the same approach on the grid half as fine: 3-4 fine states
         instead of 4-6 (measured at N = 256), the same pull-off to the
         jaggedness of the discrete load curve (~5e-4).  Falls back to 'bracket'
@@ -538,8 +550,13 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         Bracket search only: start every state from the same approach solved
         on a grid half as fine (:class:`dhfield.bem.pull_off.NestedWarmStart`).
         Default: when ``n >= 2 * NESTED_MIN_N``.
-    max_seconds : float, default DEFAULT_MAX_SECONDS
-        Automatic n only: the estimated time allowed [s] (:func:`plan_grid`).
+    threads : int, optional
+        FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
+    progress : bool, optional
+        Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
+    options : AdhesiveOptions, optional
+        Numerical settings (steps, refinements, tolerance, iteration cap, domain margin,
+        kept states, time allowed); default ``AdhesiveOptions()``.
 
     Returns
     -------
@@ -567,6 +584,13 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
     (Eq. 34).  The domain and the path come from :func:`nondimensional_problem`.
     """
     from .bem.pull_off import SEARCHES
+
+    if options is None:
+        options = AdhesiveOptions()
+    elif not isinstance(options, AdhesiveOptions):
+        raise ValueError(f"options must be an AdhesiveOptions (numerical settings); got {type(options).__name__}")
+    n_steps, refine_levels, tol, max_iter = options.n_steps, options.refine_levels, options.tol, options.max_iter
+    margin, keep_states, max_seconds = options.margin, options.keep_states, options.max_seconds
 
     for name, value in (("mu", mu), ("beta0", beta0)):  # one case per call: scalars only
         if np.ndim(value) != 0:

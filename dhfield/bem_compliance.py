@@ -399,9 +399,9 @@ def _cycle_margin(mu, beta0, k_positive):
     from .adhesive_start import pull_off_start
     from .bem.pull_off import DOMAIN_MARGIN
 
-    rec = compliance.loading_cycle("md", mu, 1.0, float(np.min(k_positive)))
+    rec = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=float(np.min(k_positive)))
     a_in = max(float(rec["jump_in_a_star"]), 1e-3)
-    c_land = float(np.asarray(model.load_curve(mu, beta0, [a_in]).c_star)[0])
+    c_land = float(np.asarray(model.load_curve(mu=mu, beta0=beta0, a_star=[a_in]).c_star)[0])
     if not np.isfinite(c_land):
         c_land = 1.5 * a_in
     c_start = pull_off_start(mu, beta0).half_width_x / DOMAIN_MARGIN

@@ -322,7 +322,7 @@ def equal_beta_spread(mu, beta0, *, control="load", n_theta=N_THETA):
         With Delta gamma(0) = 1 (Eq. 31) at pull-off, ``work_ratio`` is
         Delta gamma(pi/2) itself.
     """
-    po = model.pull_off(mu, beta0, control=control)
+    po = model.pull_off(mu=mu, beta0=beta0, control=control)
     a = np.where(np.asarray(po.a_star) > 0, po.a_star, 1e-9 * np.asarray(po.c_star))
     return _spread_from_state(a, po.c_star, po.ellipticity, po.v, n_theta)
 
@@ -346,7 +346,7 @@ def equal_beta_spread_along_curve(mu, beta0, a_star, *, n_theta=N_THETA):
     EqualBetaSpread
         Arrays over ``a_star``.
     """
-    curve = model.load_curve(mu, beta0, a_star)
+    curve = model.load_curve(mu=mu, beta0=beta0, a_star=a_star)
     return _spread_from_state(curve.a_star, curve.c_star, curve.ellipticity, curve.v, n_theta)
 
 

@@ -194,17 +194,17 @@ def _check_model(model):
     return model
 
 
-def pull_off(model, mu, beta0, control="load", *, check_closure=True):
+def pull_off(model, *, beta0, mu, control="load", check_closure=True):
     """Compute the pull-off of one model, in the paper's normalisation (Eq. 34).
 
     Parameters
     ----------
     model : str
         One of :data:`MODEL_NAMES`.
+    beta0 : array_like
+        Hertz ellipticity b/a of the geometry, in (0, 1] [-] (keyword-only, as ``mu``).
     mu : array_like
         Transition parameter of Eq. (35), > 0 [-].
-    beta0 : array_like
-        Hertz ellipticity b/a of the geometry, in (0, 1] [-].
     control : {'load', 'displacement'}
         Loading mode.
 
@@ -231,7 +231,7 @@ def pull_off(model, mu, beta0, control="load", *, check_closure=True):
     return _pull_off(model, beta0, mu, control, check_closure=check_closure)
 
 
-def compare(mu, beta0, control="load", models=None, *, check_closure=True):
+def compare(*, beta0, mu, control="load", models=None, check_closure=True):
     """Compute the pull-off of every model side by side, on the axes of Fig. 9.
 
     All models apply to any beta0: the circular ones (dh-circular, jkr, dmt, md)
@@ -240,10 +240,11 @@ def compare(mu, beta0, control="load", models=None, *, check_closure=True):
 
     Parameters
     ----------
+    beta0 : array_like
+        Hertz ellipticity b/a of the geometry, in (0, 1] [-] (keyword-only, as every
+        parameter).
     mu : array_like
         Transition parameter of Eq. (35), > 0 [-].
-    beta0 : array_like
-        Hertz ellipticity b/a of the geometry, in (0, 1] [-].
     control : {'load', 'displacement'}
         Loading mode.
     models : sequence of str, optional
@@ -295,7 +296,7 @@ def compare(mu, beta0, control="load", models=None, *, check_closure=True):
 def _curve_paper(a, mu, beta0):
     from .model import load_curve as dh_load_curve
 
-    c = dh_load_curve(mu, beta0, a)
+    c = dh_load_curve(mu=mu, beta0=beta0, a_star=a)
     return {"a_star": c.a_star, "b_star": c.b_star, "c_star": c.c_star, "d_star": c.d_star, "v": c.v,
             "W_star": c.W_star, "delta_star": c.delta_star}
 

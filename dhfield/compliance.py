@@ -240,8 +240,8 @@ class _Curve:
     def __init__(self, model, mu, beta0):
         compare.load_curve(model, mu, beta0, [1.0])  # validates model, mu, beta0 (scalars)
         self.model, self.mu, self.beta0 = model, float(mu), float(beta0)
-        self.load = compare.pull_off(model, mu, beta0, "load", check_closure=False)
-        self.disp = compare.pull_off(model, mu, beta0, "displacement", check_closure=False)
+        self.load = compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False)
+        self.disp = compare.pull_off(model, mu=mu, beta0=beta0, control="displacement", check_closure=False)
         self.separated = model == "md"
         self.c_end = float(zone_radius_at_contact(mu)) if self.separated else 0.0
         if bool(self.disp["at_zero_contact"]):
@@ -453,15 +453,15 @@ def _state_record(curve, t):
     return out
 
 
-def pull_off_under_spring(model, mu, beta0, machine_stiffness):
+def pull_off_under_spring(model, *, beta0, mu, machine_stiffness):
     """Pull-off of a model under a machine spring of stiffness K*, vectorised over K*.
 
     Parameters
     ----------
     model : str
         One of :data:`dhfield.compare.CURVE_MODEL_NAMES`.
-    mu, beta0 : float
-        Transition parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    beta0, mu : float
+        Hertz ellipticity of the geometry and transition parameter (Eq. 35) [-], keyword-only.
     machine_stiffness : array_like
         K* >= 0, finite, in the paper's units (:func:`stiffness_star`) [-]; 0 is
         load control.
@@ -513,7 +513,7 @@ def _pull_off(curve, s, k):
     return {key: (v.reshape(shape)[()] if key != "_t" else v) for key, v in rec.items()}
 
 
-def spring_pull_off_record(model, mu, beta0, machine_stiffness):
+def spring_pull_off_record(model, *, beta0, mu, machine_stiffness):
     """Build a pull-off record (keys of :data:`dhfield.schema.PULL_OFF_KEYS`) under a spring of stiffness K*.
 
     ``control`` is ``'spring'``; the state is the one at the jump out
@@ -524,8 +524,8 @@ def spring_pull_off_record(model, mu, beta0, machine_stiffness):
     ----------
     model : str
         One of :data:`dhfield.compare.CURVE_MODEL_NAMES`.
-    mu, beta0 : float
-        Transition parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    beta0, mu : float
+        Hertz ellipticity of the geometry and transition parameter (Eq. 35) [-], keyword-only.
     machine_stiffness : float
         K* >= 0 in the paper's units (:func:`stiffness_star`) [-]; a scalar.
 
@@ -543,8 +543,8 @@ def spring_pull_off_record(model, mu, beta0, machine_stiffness):
     """
     if np.ndim(machine_stiffness):
         raise ValueError("machine_stiffness of a pull-off record must be a scalar")
-    po = pull_off_under_spring(model, mu, beta0, machine_stiffness)
-    rec = dict(compare.pull_off(model, mu, beta0, "load", check_closure=False))
+    po = pull_off_under_spring(model, mu=mu, beta0=beta0, machine_stiffness=machine_stiffness)
+    rec = dict(compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False))
     rec["control"] = "spring"
     for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star"):
         rec[key] = float(po[key])
@@ -577,7 +577,7 @@ def pull_off_force_under_spring(params, machine_stiffness, model=compare.DEFAULT
     from .dimensional import pull_off_record_si
 
     k_star = _si_stiffness_star(params, machine_stiffness, model)
-    return pull_off_record_si(spring_pull_off_record(model, params.mu, params.beta0, k_star), params)
+    return pull_off_record_si(spring_pull_off_record(model, mu=params.mu, beta0=params.beta0, machine_stiffness=k_star), params)
 
 
 def _sin_skew(model, params):
@@ -589,15 +589,15 @@ def _si_stiffness_star(params, machine_stiffness, model):
                           params.work_of_adhesion, _sin_skew(model, params))
 
 
-def loading_cycle(model, mu, beta0, machine_stiffness=None, *, with_path=False):
+def loading_cycle(model, *, beta0, mu, machine_stiffness=None, with_path=False):
     """Loading-unloading cycle of a model under a machine spring: both jumps and the energy lost.
 
     Parameters
     ----------
     model : str
         One of :data:`dhfield.compare.CURVE_MODEL_NAMES`.
-    mu, beta0 : float
-        Transition parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    beta0, mu : float
+        Hertz ellipticity of the geometry and transition parameter (Eq. 35) [-], keyword-only.
     machine_stiffness : array_like or None
         K* >= 0 in the paper's units (:func:`stiffness_star`) [-]; None: a rigid
         machine (displacement control); 0: load control (infinite energy lost).
@@ -714,7 +714,7 @@ def loading_cycle_si(params, machine_stiffness=None, model=compare.DEFAULT_MODEL
     if np.ndim(params.mu) or np.ndim(params.beta0):
         raise ValueError("params of a cycle must be scalars; got array-valued ContactParameters")
     k_star = None if machine_stiffness is None else _si_stiffness_star(params, machine_stiffness, model)
-    rec = loading_cycle(model, params.mu, params.beta0, k_star)
+    rec = loading_cycle(model, mu=params.mu, beta0=params.beta0, machine_stiffness=k_star)
     force = float(load_unit(params.effective_radius, params.work_of_adhesion, rec["sin_skew"]))  # Eq. (34)
     length, approach = float(params.length_unit), float(params.approach_unit)  # Eqs. (32), (33)
     si = {
@@ -734,15 +734,15 @@ def loading_cycle_si(params, machine_stiffness=None, model=compare.DEFAULT_MODEL
     return {**rec, **si, "warning": warning}
 
 
-def cycle_path(model, mu, beta0, machine_stiffness=None, *, n=200, overshoot=0.3):
+def cycle_path(model, *, beta0, mu, machine_stiffness=None, n=200, overshoot=0.3):
     """Trace the closed cycle as polylines in the (delta*, W*) plane, for plotting.
 
     Parameters
     ----------
     model : str
         One of :data:`dhfield.compare.CURVE_MODEL_NAMES`.
-    mu, beta0 : float
-        Transition parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    beta0, mu : float
+        Hertz ellipticity of the geometry and transition parameter (Eq. 35) [-], keyword-only.
     machine_stiffness : float or None
         K* >= 0 in the paper's units [-], a scalar; None: a rigid machine
         (as :func:`loading_cycle`).
@@ -761,7 +761,7 @@ def cycle_path(model, mu, beta0, machine_stiffness=None, *, n=200, overshoot=0.3
         ``jump_out`` (two-point segments of slope -K*), ``loop`` (delta*, W*: the
         closed boundary of the energy lost).
     """
-    rec = loading_cycle(model, mu, beta0, machine_stiffness, with_path=True)
+    rec = loading_cycle(model, mu=mu, beta0=beta0, machine_stiffness=machine_stiffness, with_path=True)
     curve = rec.pop("_curve")
     t_out, t_in = (float(x) for x in rec.pop("_t"))
     t = np.linspace(t_out, t_in + overshoot * max(t_in - t_out, 0.5), n)

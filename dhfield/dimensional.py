@@ -295,7 +295,7 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
         For ``dh-elliptic``: compare with the two-axis closure and fill ``warning``
         (:func:`dhfield.compare.pull_off`).
     """
-    return pull_off_record_si(compare.pull_off(model, params.mu, params.beta0, control,
+    return pull_off_record_si(compare.pull_off(model, mu=params.mu, beta0=params.beta0, control=control,
                                                check_closure=check_closure), params)
 
 

@@ -459,7 +459,7 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
 
 def _validity_warning(model, p, control, check_closure):
     """The warning :func:`dhfield.compare.pull_off` (and ``dhfield pulloff``) gives at ``p``'s (mu, beta0)."""
-    return str(compare.pull_off(model, p.mu, p.beta0, control, check_closure=check_closure)["warning"])
+    return str(compare.pull_off(model, mu=p.mu, beta0=p.beta0, control=control, check_closure=check_closure)["warning"])
 
 
 def _reject_complex(name, value):

@@ -359,17 +359,17 @@ def _state_chunked(a, mu, shape, derivatives=False):
     return {k: v.reshape(out_shape) for k, v in out.items()}
 
 
-def solve_adhesive_axis(a_star, mu, beta0, *, ellipticity=None):
+def solve_adhesive_axis(a_star, *, beta0, mu, ellipticity=None):
     """Solve Eqs. (24), (31), (35) for the adhesive semi-axis c* and the factor v.
 
     Parameters
     ----------
     a_star : array_like
         Contact semi-major axis a* = a/c_r in :data:`CONTACT_SIZE_RANGE` [-].
-    mu : array_like
-        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     beta0 : array_like
         Initial (Hertz) ellipticity in :data:`ELLIPTICITY_RANGE` [-].
+    mu : array_like
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     ellipticity : array_like, optional
         Ellipticity of both ellipses if different from beta0 (see :func:`pull_off`).
 
@@ -467,15 +467,15 @@ class LoadCurve:
         return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}
 
 
-def load_curve(mu, beta0, a_star=None, *, ellipticity=None, n=200):
+def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
     """Load curve of the elliptical DH model at Tabor parameter ``mu`` and ellipticity ``beta0``.
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     beta0 : float
         Initial ellipticity beta0 = b/a (Eq. 9) in :data:`ELLIPTICITY_RANGE` [-].
+    mu : float
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     a_star : array_like, optional
         Contact semi-major axes a* in :data:`CONTACT_SIZE_RANGE` [-], at most
         :data:`MAX_CURVE_POINTS` of them; default ``n`` points evenly spaced over
@@ -508,7 +508,7 @@ def load_curve(mu, beta0, a_star=None, *, ellipticity=None, n=200):
                      st["v"], st["W"], st["delta"])
 
 
-def load_curve_nondimensional(a_star, mu, beta0, *, ellipticity=None, derivatives=False):
+def load_curve_nondimensional(a_star, *, beta0, mu, ellipticity=None, derivatives=False):
     """Elliptical DH states at contact semi-major axes a*, vectorised, with their slopes.
 
     The nondimensional core of :func:`load_curve` (paper units, R = E* = dgamma = 1):
@@ -519,10 +519,10 @@ def load_curve_nondimensional(a_star, mu, beta0, *, ellipticity=None, derivative
     ----------
     a_star : array_like
         Contact semi-major axes a* in :data:`CONTACT_SIZE_RANGE` [-].
-    mu : array_like
-        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     beta0 : array_like
         Initial ellipticity (Eq. 9) in :data:`ELLIPTICITY_RANGE` [-].
+    mu : array_like
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     ellipticity : array_like, optional
         Ellipticity of both ellipses if it differs from beta0 (Eq. 34 keeps
         sin(theta_skew) of beta0).
@@ -661,15 +661,15 @@ def _pull_off_ratio_scan(mu, shape):
     return x_ends[..., :1] * (x_ends[..., 1:] / x_ends[..., :1]) ** unit
 
 
-def pull_off(mu, beta0, *, control="load", ellipticity=None):
+def pull_off(*, beta0, mu, control="load", ellipticity=None):
     """Pull-off point of the elliptical DH model, vectorised over ``mu`` and ``beta0``.
 
     Parameters
     ----------
-    mu : array_like
-        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     beta0 : array_like
         Initial ellipticity in :data:`ELLIPTICITY_RANGE` [-].
+    mu : array_like
+        Tabor parameter, Eq. (35), in :data:`TABOR_RANGE` [-].
     control : {"load", "displacement"}
         Load control: the minimum of W*(a*) at the end of the stable branch.
         Displacement control: the minimum of delta*(a*).

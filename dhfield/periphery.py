@@ -559,7 +559,7 @@ def pull_off_periphery(mu, beta0, theta=None, *, control="load", ellipticity=Non
         Nondimensional (R = E* = Delta gamma = 1): lengths in c_r (Eq. 33),
         stresses in E* c_r/R (sigma0(0) = mu), Delta gamma(0) = 1 by construction.
     """
-    po = model.pull_off(mu, beta0, control=control, ellipticity=ellipticity)
+    po = model.pull_off(mu=mu, beta0=beta0, control=control, ellipticity=ellipticity)
     beta = np.asarray(po.ellipticity, float)
     a = np.asarray(po.a_star, float)
     # a* = 0 (DMT-side pull-off): the rays start at the centre; use a tiny contact.
@@ -592,7 +592,7 @@ def load_curve_periphery(mu, beta0, a_star=None, theta=None, *, ellipticity=None
     profile : PeripheryProfile
         Shape ``(len(a_star), len(theta))``, nondimensional as in :func:`pull_off_periphery`.
     """
-    curve = model.load_curve(mu, beta0, a_star, ellipticity=ellipticity, n=n)
+    curve = model.load_curve(mu=mu, beta0=beta0, a_star=a_star, ellipticity=ellipticity, n=n)
     return curve, periphery(curve.a_star, curve.c_star, curve.ellipticity, curve.v, theta)
 
 

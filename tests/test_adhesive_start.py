@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from dhfield import adhesive_start, compare, model
+from dhfield.adhesive_start import AdhesiveOptions
 
 #: The start is copied from the closure's pull-off record: only round-off can differ.
 RTOL_SAME_NUMBER = 1e-12
@@ -20,13 +21,13 @@ def test_cold_start_is_the_two_axis_pull_off_for_an_ellipse_and_the_dh_one_for_t
     closure's pull-off state, whose adhesive ellipse is rounder than beta0 (like the BEM's), not
     from the paper's zone d = beta0 c (48 cells short along y at N = 512: no convergence)."""
     start = adhesive_start.pull_off_start(5.0, 0.5)
-    ref = compare.pull_off("dh-elliptic-two-axis", 5.0, 0.5, "load")
+    ref = compare.pull_off("dh-elliptic-two-axis", mu=5.0, beta0=0.5, control="load")
     c, d = start.zone
     assert start.approach == pytest.approx(float(ref["delta_star"]), rel=RTOL_SAME_NUMBER)
     assert (c, d) == pytest.approx((float(ref["c_star"]), float(ref["d_star"])), rel=RTOL_SAME_NUMBER)
     assert d / c > 0.5 + 0.05                      # rounder than beta0 (two-axis: 0.596)
     sphere = adhesive_start.pull_off_start(5.0, 1.0)
-    assert sphere.approach == float(model.pull_off(5.0, 1.0).delta_star)
+    assert sphere.approach == float(model.pull_off(mu=5.0, beta0=1.0).delta_star)
     assert sphere.zone[0] == sphere.zone[1]
 
 
@@ -34,7 +35,7 @@ def test_cold_start_is_the_two_axis_pull_off_for_an_ellipse_and_the_dh_one_for_t
 def test_domain_too_small_for_the_contact_is_refused_before_solving(margin):
     # issue 18: margin = 0.3 gave W* = -0.261 and 0.1 gave -0.029 (about -0.79): the domain cut the zone
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
-        adhesive_start.adhesive_pull_off(1.0, 0.9, 64, margin=margin)
+        adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.9, n=64, options=AdhesiveOptions(margin=margin))
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
         adhesive_start.pull_off_start(1.0, 0.9, margin=margin)
 
@@ -104,7 +105,7 @@ def test_case_beyond_time_is_refused_before_solving_with_the_analytic_value(monk
     calls = []
     monkeypatch.setattr(adhesive_start, "solve_pull_off", lambda *a, **k: calls.append(a))
     with pytest.raises(adhesive_start.UnresolvableCaseError) as info:
-        adhesive_start.adhesive_pull_off(10.0, 0.4826, max_seconds=1.0)
+        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, options=AdhesiveOptions(max_seconds=1.0))
     err = info.value
     assert not calls                                              # nothing solved
     assert err.n_needed == adhesive_start.plan_grid(10.0, 0.4826).n_needed
@@ -120,7 +121,7 @@ def test_case_beyond_memory_is_refused(monkeypatch):
     plan = adhesive_start.plan_grid(5.0, 0.5)
     assert not plan.affordable and "GiB available" in plan.reason()
     with pytest.raises(adhesive_start.UnresolvableCaseError, match="GiB available"):
-        adhesive_start.adhesive_pull_off(5.0, 0.5)
+        adhesive_start.adhesive_pull_off(mu=5.0, beta0=0.5)
 
 
 def test_explicit_grid_far_too_coarse_is_named():
@@ -139,7 +140,7 @@ def test_automatic_grid_on_the_sphere_at_mu_5_is_within_1_percent_of_maugis_dugd
 
     plan = adhesive_start.plan_grid(5.0, 1.0)
     assert not adhesive_start._half_grid_locates(plan, "dugdale", adhesive_start.DOMAIN_MARGIN)
-    res = adhesive_start.adhesive_pull_off(5.0, 1.0, progress=False)
+    res = adhesive_start.adhesive_pull_off(mu=5.0, beta0=1.0, progress=False)
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 5.0, control="load").W_star)
     assert res.n == plan.n_needed and res.converged and res.resolved
     assert res.W_star == pytest.approx(md, rel=0.01)
@@ -166,5 +167,12 @@ def test_bad_counts_and_arrays_are_named_errors(kwargs, name):
     """Issue 18 item 13: max_iter = 0 and an array mu raised TypeError from inside the solver."""
     args = {"mu": 1.0, "beta0": 0.9, **kwargs}
     with pytest.raises(ValueError, match=name):
-        adhesive_start.adhesive_pull_off(args["mu"], args["beta0"], 16,
-                                         **{k: v for k, v in kwargs.items() if k not in ("mu", "beta0")})
+        adhesive_start.adhesive_pull_off(mu=args["mu"], beta0=args["beta0"], n=16,
+                                         options=AdhesiveOptions(**{k: v for k, v in kwargs.items()
+                                                                    if k not in ("mu", "beta0")}))
+
+
+def test_adhesive_pull_off_takes_beta0_and_mu_by_keyword():
+    """(mu, beta0) was the old positional order: a positional call would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        adhesive_start.adhesive_pull_off(1.0, 0.9, 16)

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from dhfield import hertz, jkr_elliptic, maugis_dugdale, transition
+from dhfield.adhesive_start import AdhesiveOptions
 from dhfield.bem import Grid, adhesive_pull_off, solve_adhesive
 from dhfield.bem import nondimensional_problem, richardson_extrapolation
 from dhfield.geometry import radius_ratio, sin_skew_angle
@@ -65,7 +66,7 @@ def test_no_adhesion_is_elliptical_hertz(beta):
 def test_dugdale_sphere_pull_off_matches_maugis_dugdale():
     lam = 1.0
     mu = float(transition.tabor_from_maugis(lam))
-    res = adhesive_pull_off(mu, 1.0, 64, progress=False)
+    res = adhesive_pull_off(mu=mu, beta0=1.0, n=64, progress=False)
     ref = maugis_dugdale.pull_off_nondimensional(1.0, mu)  # Maugis (1992) in the paper's units
     assert res.converged
     assert res.W_star == pytest.approx(float(ref["W_star"]), rel=RTOL_MD_64)
@@ -75,7 +76,7 @@ def test_dugdale_sphere_pull_off_matches_maugis_dugdale():
 
 def test_small_mu_tends_to_dmt_force():
     beta0 = 0.8
-    res = adhesive_pull_off(0.08, beta0, 48, progress=False)
+    res = adhesive_pull_off(mu=0.08, beta0=beta0, n=48, progress=False)
     # DMT: W = -2 pi dgamma sqrt(R'R'') = -2 pi (R = 1): W* = -sin(theta_skew), Eq. (34)
     assert res.W_star == pytest.approx(-float(sin_skew_angle(beta0)), rel=RTOL_DMT)
     assert res.converged
@@ -84,8 +85,8 @@ def test_small_mu_tends_to_dmt_force():
 def test_large_mu_tends_to_elliptical_jkr():
     beta0 = 0.8
     ref = float(jkr_elliptic.pull_off_nondimensional(np.asarray(beta0), 1.0)["W_star"])
-    near = adhesive_pull_off(2.5, beta0, 96, progress=False)
-    far = adhesive_pull_off(1.0, beta0, 64, progress=False)
+    near = adhesive_pull_off(mu=2.5, beta0=beta0, n=96, progress=False)
+    far = adhesive_pull_off(mu=1.0, beta0=beta0, n=64, progress=False)
     assert near.resolved and near.converged
     assert near.W_star == pytest.approx(ref, rel=RTOL_JKR)
     # the approach to JKR: much closer at mu = 2.5 than at mu = 1
@@ -94,7 +95,7 @@ def test_large_mu_tends_to_elliptical_jkr():
 
 def test_under_resolved_grid_is_flagged():
     res = nondimensional_problem(6.0, 1.0, 32)
-    flagged = adhesive_pull_off(6.0, 1.0, 32, progress=False, n_steps=4, refine_levels=0, max_iter=50)
+    flagged = adhesive_pull_off(mu=6.0, beta0=1.0, n=32, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0, max_iter=50))
     assert res.grid.nx == 32
     assert not flagged.resolved
     assert not flagged.converged and len(flagged.failures) > 0   # flagged, not dropped
@@ -114,7 +115,7 @@ def test_bad_input_names_the_parameter():
     with pytest.raises(ValueError, match="n must be an even integer"):
         nondimensional_problem(1.0, 0.5, 63)
     with pytest.raises(ValueError, match="control"):
-        adhesive_pull_off(1.0, 1.0, 16, control="force")
+        adhesive_pull_off(mu=1.0, beta0=1.0, n=16, control="force")
 
 
 def test_richardson_extrapolation_recovers_power_law():
@@ -139,9 +140,9 @@ def test_coarse_to_fine_equals_the_full_path():
     from dhfield.bem import refine_pull_off
 
     mu = float(transition.tabor_from_maugis(1.0))
-    coarse = adhesive_pull_off(mu, 1.0, 64, progress=False, search="march")
+    coarse = adhesive_pull_off(mu=mu, beta0=1.0, n=64, progress=False, search="march")
     fine = refine_pull_off(coarse, 128)
-    full = adhesive_pull_off(mu, 1.0, 128, progress=False, search="march")
+    full = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, search="march")
     assert fine.converged and full.converged
     assert fine.n == 128 and fine.n_steps < full.n_steps / 2          # only the window is solved
     assert fine.W_star == pytest.approx(full.W_star, rel=RTOL_REFINE_VS_FULL)
@@ -155,7 +156,7 @@ def test_coarse_to_fine_equals_the_full_path():
 def test_refine_pull_off_rejects_bad_input():
     from dhfield.bem import refine_pull_off
 
-    coarse = adhesive_pull_off(1.0, 1.0, 16, progress=False, n_steps=4, refine_levels=0)
+    coarse = adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0))
     with pytest.raises(ValueError, match="n must be an integer > coarse.n"):
         refine_pull_off(coarse, 16)
     with pytest.raises(ValueError, match="coarse must be an AdhesivePullOff"):
@@ -177,8 +178,8 @@ RTOL_COLD_VS_WARM = 1e-5
 
 @pytest.mark.parametrize("mu, beta0, n", [(float(transition.tabor_from_maugis(1.0)), 1.0, 64), (1.0, 0.5, 48)])
 def test_bracket_search_equals_the_marching_path_with_a_fifth_of_the_states(mu, beta0, n):
-    new = adhesive_pull_off(mu, beta0, n, progress=False, search="bracket")
-    old = adhesive_pull_off(mu, beta0, n, progress=False, search="march")
+    new = adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False, search="bracket")
+    old = adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False, search="march")
     assert new.converged and old.converged
     assert (new.search, old.search) == ("bracket", "march")
     assert new.W_star == pytest.approx(old.W_star, rel=RTOL_BRACKET_VS_MARCH)
@@ -198,13 +199,13 @@ def test_bracket_search_rejects_bad_input():
     with pytest.raises(ValueError, match="start_stress"):
         unloading_path(*args, approach_guess=-0.5, start_stress=np.zeros((4, 4)))
     with pytest.raises(ValueError, match="search"):
-        adhesive_pull_off(1.0, 1.0, 16, search="newton")
+        adhesive_pull_off(mu=1.0, beta0=1.0, n=16, search="newton")
 
 
 def test_nested_warm_starts_reach_the_same_states():
     mu = float(transition.tabor_from_maugis(3.0))
-    plain = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=False, search="bracket")
-    nested = adhesive_pull_off(mu, 1.0, 128, progress=False, nested=True, search="bracket")
+    plain = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, nested=False, search="bracket")
+    nested = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, nested=True, search="bracket")
     assert plain.converged and nested.converged
     assert nested.path.coarse_states >= nested.n_steps and plain.path.coarse_states == 0
     # the bracket: the same approaches, hence the same discrete states, found from other warm starts

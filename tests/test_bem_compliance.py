@@ -45,11 +45,11 @@ def _md_branch(mu, a_lo, a_hi, n=33, window=3):
 @pytest.mark.parametrize("k", [0.0, 0.3, 1.0, 3.0, None])
 def test_jump_on_the_exact_md_curve_is_compliance_s(k):
     mu = _mu(3.0)  # the MD fold lies in contact (a* > 0) at lambda = 3: the curve alone, no separated branch
-    lo = compliance.pull_off_under_spring("md", mu, 1.0, None)
-    hi = compliance.pull_off_under_spring("md", mu, 1.0, 0.0)
+    lo = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=None)
+    hi = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=0.0)
     a_lo, a_hi = 0.6 * float(lo["a_star"]), 1.4 * float(hi["a_star"])
     got = bem_pull_off_under_spring(_md_branch(mu, a_lo, a_hi), k)
-    ref = compliance.pull_off_under_spring("md", mu, 1.0, k)
+    ref = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=k)
     assert got["resolved"]
     assert got["W_star"] == pytest.approx(float(ref["W_star"]), abs=ATOL_FIT_EXACT)
     assert got["W_star_error"] < 10 * ATOL_FIT_EXACT
@@ -57,8 +57,8 @@ def test_jump_on_the_exact_md_curve_is_compliance_s(k):
 
 def test_jump_moves_from_the_load_minimum_to_the_approach_minimum_with_stiffness():
     mu = _mu(3.0)
-    lo = compliance.pull_off_under_spring("md", mu, 1.0, None)
-    hi = compliance.pull_off_under_spring("md", mu, 1.0, 0.0)
+    lo = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=None)
+    hi = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=0.0)
     br = _md_branch(mu, 0.6 * float(lo["a_star"]), 1.4 * float(hi["a_star"]))
     w = bem_pull_off_under_spring(br, [0.0, 0.1, 1.0, 10.0, 1e3])["W_star"]
     assert np.all(np.diff(w) > 0)  # a stiffer machine holds the contact past the load minimum: less tension
@@ -73,7 +73,7 @@ def branch_lambda_3():
 def test_soft_spring_is_the_bem_load_control_pull_off(branch_lambda_3):
     br = branch_lambda_3
     got = bem_pull_off_under_spring(br, [0.0, 1e-9])
-    ref = adhesive_pull_off(br.mu, 1.0, N, control="load")
+    ref = adhesive_pull_off(mu=br.mu, beta0=1.0, n=N, control="load")
     assert np.all(got["resolved"])
     assert got["W_star"][0] == got["W_star"][1]  # the discrete minimum cannot move for K* = 1e-9
     assert got["W_star"][0] == pytest.approx(ref.W_star, abs=got["W_star_error"][0] + ref.W_star_error
@@ -83,7 +83,7 @@ def test_soft_spring_is_the_bem_load_control_pull_off(branch_lambda_3):
 def test_stiff_spring_is_the_bem_displacement_control_pull_off(branch_lambda_3):
     br = branch_lambda_3
     stiff, rigid = bem_pull_off_under_spring(br, 1e9), bem_pull_off_under_spring(br, None)
-    ref = adhesive_pull_off(br.mu, 1.0, N, control="displacement")
+    ref = adhesive_pull_off(mu=br.mu, beta0=1.0, n=N, control="displacement")
     assert rigid["resolved"] and rigid["in_contact"]  # the fold lies in contact at lambda = 3
     assert stiff["W_star"] == pytest.approx(rigid["W_star"], abs=1e-6)  # s = 1 - 1e-9
     # the same fit as the fold's, over samples on another F_a lattice: within both estimates
@@ -95,8 +95,8 @@ def test_ellipse_limits_are_the_bem_pull_offs():
     br = bem_unloading_branch(2.0, 0.5, N)
     soft, rigid = bem_pull_off_under_spring(br, 0.0), bem_pull_off_under_spring(br, None)
     mid = bem_pull_off_under_spring(br, 1.0)
-    load = adhesive_pull_off(2.0, 0.5, N, control="load")
-    disp = adhesive_pull_off(2.0, 0.5, N, control="displacement")
+    load = adhesive_pull_off(mu=2.0, beta0=0.5, n=N, control="load")
+    disp = adhesive_pull_off(mu=2.0, beta0=0.5, n=N, control="displacement")
     assert soft["resolved"] and rigid["resolved"] and mid["resolved"]
     assert soft["W_star"] == pytest.approx(load.W_star, abs=soft["W_star_error"] + load.W_star_error
                                            + JAGGEDNESS_N64)
@@ -145,8 +145,8 @@ def test_cycle_on_the_exact_md_curve_is_compliance_s():
 
     mu = _mu(3.0)
     ks = [0.3, 1.0, 10.0]
-    ref = compliance.loading_cycle("md", mu, 1.0, ks)
-    a_lo = 0.6 * float(compliance.pull_off_under_spring("md", mu, 1.0, None)["a_star"])
+    ref = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=ks)
+    a_lo = 0.6 * float(compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=None)["a_star"])
     a_hi = 1.2 * float(np.max(ref["jump_in_a_star"]))
     br = _md_branch(mu, a_lo, a_hi, n=121)
     br = BemBranch(**{**br.__dict__, "start_delta": -1.0 / mu})  # the Dugdale range h0 = 1/mu (Eq. 35 units)

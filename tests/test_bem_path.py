@@ -35,7 +35,7 @@ def _md_displacement_pull_off(mu):
 def test_displacement_pull_off_is_the_maugis_dugdale_fold_interpolated_not_extrapolated():
     mu = _mu(2.0)                    # fold at a = 0.57 (8 cells at N = 64)
     ref = _md_displacement_pull_off(mu)
-    res = adhesive_pull_off(mu, 1.0, 64, control="displacement", progress=False)
+    res = adhesive_pull_off(mu=mu, beta0=1.0, n=64, control="displacement", progress=False)
     assert res.converged and res.resolved
     assert res.path.pull_off_note == "" and res.note == DISPLACEMENT_CONTROL_NOTE   # a fold, not a loss
     actual = abs(res.W_star - float(ref["W_star"]))
@@ -54,7 +54,7 @@ def test_displacement_pull_off_on_the_dmt_side_ends_at_the_loss_of_contact():
     mu = _mu(0.6)                    # MD: delta(a) falls down to a = 0, the end of the curve
     ref = _md_displacement_pull_off(mu)
     assert float(ref["a_star"]) == 0.0
-    res = adhesive_pull_off(mu, 1.0, 64, control="displacement", progress=False)
+    res = adhesive_pull_off(mu=mu, beta0=1.0, n=64, control="displacement", progress=False)
     assert res.converged
     assert res.path.pull_off_note == CONTACT_LOSS_NOTE and CONTACT_LOSS_NOTE in res.note
     actual = abs(res.W_star - float(ref["W_star"]))
@@ -151,9 +151,9 @@ def test_displacement_control_results_carry_their_measured_caveat():
     """Every displacement-control result carries its measured accuracy (DISPLACEMENT_CONTROL_NOTE)."""
     from dhfield.bem import DISPLACEMENT_CONTROL_NOTE
 
-    disp = adhesive_pull_off(2.0, 1.0, 32, control="displacement", progress=False)
+    disp = adhesive_pull_off(mu=2.0, beta0=1.0, n=32, control="displacement", progress=False)
     assert DISPLACEMENT_CONTROL_NOTE in disp.note and disp.as_dict()["note"] == disp.note
-    load = adhesive_pull_off(2.0, 1.0, 32, control="load", progress=False)
+    load = adhesive_pull_off(mu=2.0, beta0=1.0, n=32, control="load", progress=False)
     # load control has no such caveat (its note holds only why it is unresolved: N = 32 is too coarse
     # for lambda = 2, so its W_star_error is infinite, never NaN)
     assert DISPLACEMENT_CONTROL_NOTE not in load.note and not np.isnan(load.W_star_error)

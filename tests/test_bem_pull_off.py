@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from dhfield import compare, transition
+from dhfield.adhesive_start import AdhesiveOptions
 from dhfield.bem import adhesive_pull_off, refine_pull_off
 from dhfield.bem import pull_off as pull_off_module
 from dhfield.bem import nondimensional_problem
@@ -25,7 +26,7 @@ from dhfield.bem.solver import DEFAULT_TOL, solve_problem
 @pytest.fixture(scope="module")
 def coarse():
     # the cheapest load-control pull-off there is (16 x 16 cells, 4 steps): only its type matters
-    return adhesive_pull_off(1.0, 1.0, 16, progress=False, n_steps=4, refine_levels=0)
+    return adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0))
 
 
 @pytest.mark.parametrize("kwargs, name", [
@@ -63,8 +64,8 @@ RTOL_SAME_STATE = 1e-5
 @pytest.mark.parametrize("lam, beta0, mu", [(1.0, 1.0, None), (None, 0.5, 1.0)])
 def test_located_search_equals_the_bracket_search(lam, beta0, mu):
     mu = float(transition.tabor_from_maugis(lam)) if mu is None else mu
-    located = adhesive_pull_off(mu, beta0, 128, progress=False, search="located")
-    bracket = adhesive_pull_off(mu, beta0, 128, progress=False, search="bracket")
+    located = adhesive_pull_off(mu=mu, beta0=beta0, n=128, progress=False, search="located")
+    bracket = adhesive_pull_off(mu=mu, beta0=beta0, n=128, progress=False, search="bracket")
     assert located.converged and bracket.converged
     assert (located.search, bracket.search) == ("located", "bracket")    # the route taken is recorded
     assert located.W_star == pytest.approx(bracket.W_star, rel=RTOL_LOCATED_VS_BRACKET)
@@ -75,15 +76,15 @@ def test_located_search_equals_the_bracket_search(lam, beta0, mu):
     # the reported minimum is interior: fine samples on both sides of it
     assert located.path.approach.min() < located.delta_star < located.path.approach.max()
     if beta0 == 1.0:
-        md = compare.pull_off("md", mu, 1.0)
+        md = compare.pull_off("md", mu=mu, beta0=1.0)
         assert located.W_star == pytest.approx(float(md["W_star"]), rel=RTOL_MD_128)
 
 
 def test_located_search_falls_back_to_the_bracket_search_below_two_levels():
     # N = 64 has no coarser level (NESTED_MIN_N = 64): the bracket search, the same states
     mu = float(transition.tabor_from_maugis(1.0))
-    located = adhesive_pull_off(mu, 1.0, 64, progress=False, search="located")
-    bracket = adhesive_pull_off(mu, 1.0, 64, progress=False, search="bracket")
+    located = adhesive_pull_off(mu=mu, beta0=1.0, n=64, progress=False, search="located")
+    bracket = adhesive_pull_off(mu=mu, beta0=1.0, n=64, progress=False, search="bracket")
     assert located.W_star == bracket.W_star
     assert located.search == "bracket"                                  # the fallback is recorded
     np.testing.assert_array_equal(located.path.approach, bracket.path.approach)
@@ -93,9 +94,9 @@ def test_loose_coarse_tolerance_does_not_move_the_located_pull_off(monkeypatch):
     # the coarse grids only locate the minimum and start the fine states (LOCATE_COARSE_TOL):
     # solved to the fine tolerance instead, they lead to the same fine states
     mu = float(transition.tabor_from_maugis(3.0))
-    loose = adhesive_pull_off(mu, 1.0, 128, progress=False, search="located")
+    loose = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, search="located")
     monkeypatch.setattr(pull_off_module, "LOCATE_COARSE_TOL", DEFAULT_TOL)
-    tight = adhesive_pull_off(mu, 1.0, 128, progress=False, search="located")
+    tight = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, search="located")
     assert loose.converged and tight.converged
     np.testing.assert_array_equal(np.sort(loose.path.approach[loose.path.phase == "unloading"]),
                                   np.sort(tight.path.approach[tight.path.phase == "unloading"]))
@@ -159,7 +160,7 @@ def test_located_search_does_not_locate_on_a_grid_too_coarse_for_the_edge():
 def test_exponential_law_has_its_own_resolution_criterion():
     # issue 18: the sphere at mu = 8, N = 32 under the exponential law gave W* = -2.43 (+224 %) with
     # resolved = True; its steepest slope sigma0/rho times kappa dx/E* is ~24 there (resolved iff <= 1)
-    res = adhesive_pull_off(8.0, 1.0, 32, law="exponential", progress=False, keep_states=True)
+    res = adhesive_pull_off(mu=8.0, beta0=1.0, n=32, law="exponential", progress=False, options=AdhesiveOptions(keep_states=True))
     assert not res.resolved and res.W_star_error == np.inf
     assert "stronger than the DMT limit" in res.note        # W* < -1 (Eq. 34 of the DMT pull-off) is reported
     assert all(not st.resolved for st in res.path.states)   # every state carries the flag
@@ -167,7 +168,7 @@ def test_exponential_law_has_its_own_resolution_criterion():
 
 def test_collapsed_dugdale_zone_is_not_a_resolved_answer():
     # issue 18: mu = 30, N = 64 gave W* = -7.24 with c* = a*: the zone is narrower than a cell
-    res = adhesive_pull_off(30.0, 1.0, 64, progress=False)
+    res = adhesive_pull_off(mu=30.0, beta0=1.0, n=64, progress=False)
     assert not res.resolved and res.c_star <= res.a_star
     assert "collapsed onto the contact" in res.note and "stronger than the DMT limit" in res.note
     assert res.W_star < -1.0                                # reported as computed, not clipped
@@ -175,14 +176,14 @@ def test_collapsed_dugdale_zone_is_not_a_resolved_answer():
 
 def test_zone_narrower_than_a_cell_is_not_resolved():
     # issue 18: N = 8 gave W* = -0.859 (about -0.79 true) with resolved = True
-    res = adhesive_pull_off(1.0, 0.9, 8, progress=False)
+    res = adhesive_pull_off(mu=1.0, beta0=0.9, n=8, progress=False)
     assert not res.resolved and "narrower than 1 cell" in res.note and res.W_star_error == np.inf
 
 
 @pytest.mark.parametrize("control", ["load", "displacement"])
 def test_resolved_answer_has_a_finite_error_estimate(control):
     # the estimate of the search (or of the fold's fit), never NaN on a returned answer
-    res = adhesive_pull_off(1.0, 1.0, 64, control=control, progress=False, keep_states=True)
+    res = adhesive_pull_off(mu=1.0, beta0=1.0, n=64, control=control, progress=False, options=AdhesiveOptions(keep_states=True))
     assert res.resolved and res.converged and "unresolved" not in res.note
     assert 0.0 < res.W_star_error < np.inf                   # near lambda = 1 the fold's can be a few %
     assert -1.0 < res.W_star < 0.0                          # between the DMT and zero-adhesion limits
@@ -205,9 +206,9 @@ def test_resolved_pull_off_is_within_its_stated_error_of_maugis_dugdale(mu, n):
     # issue 18, "a BEM answer is right within its stated error": the sphere against Maugis-Dugdale
     # (Maugis 1992, exact). Before the discretisation error was part of W_star_error, the search's
     # error alone was stated: mu = 1, N = 32 is -0.38 % off MD with W_star_error 3.5e-6 relative.
-    res = adhesive_pull_off(mu, 1.0, n, progress=False)
+    res = adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False)
     assert res.resolved and res.converged
-    md = float(compare.pull_off("md", mu, 1.0)["W_star"])
+    md = float(compare.pull_off("md", mu=mu, beta0=1.0)["W_star"])
     assert abs(res.W_star - md) <= res.W_star_error
     # still a usable statement: the grid's error at these resolutions is a fraction of a percent
     # to a few percent (the estimate is K |W*| / cells with K = 0.05 and >= 2.5 cells here)
@@ -234,6 +235,6 @@ def test_contact_on_the_centre_cells_is_not_a_resolved_answer(mu, n):
     # found by verification/bem_resolution_sweep.py's probes: the sphere at mu = 0.2, N = 8 gave
     # W* 7.1 % stronger than Maugis-Dugdale with resolved and converged True and W_star_error = inf
     # (the load minimum at an end of its samples); the contact was the 2 x 2 centre cells (a* = dx)
-    res = adhesive_pull_off(mu, 1.0, n, progress=False)
+    res = adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False)
     assert not res.resolved and "the contact spans fewer than" in res.note
     assert res.W_star_error == np.inf

@@ -96,10 +96,10 @@ def test_adhesive_box_solve_is_the_whole_grid_solve(lam, monkeypatch):
         return out
 
     monkeypatch.setattr(bem_solver, "_box", counting_box)
-    boxed = adhesive_pull_off(mu, 1.0, 96, progress=False)
+    boxed = adhesive_pull_off(mu=mu, beta0=1.0, n=96, progress=False)
     assert sum(boxes) > 0                                            # the box is exercised
     monkeypatch.setattr(bem_solver, "ACTIVE_BOX_MAX_FRACTION", 0.0)   # never box
-    whole = adhesive_pull_off(mu, 1.0, 96, progress=False)
+    whole = adhesive_pull_off(mu=mu, beta0=1.0, n=96, progress=False)
     assert boxed.converged and whole.converged
     assert boxed.W_star == pytest.approx(whole.W_star, rel=RTOL_ACTIVE_BOX)
     assert boxed.a_star == pytest.approx(whole.a_star, rel=RTOL_ACTIVE_BOX)

@@ -65,7 +65,7 @@ def _write(ds, path):
 
 
 def _curve_nd(tmp):
-    return io_curves.write_load_curve(model.load_curve(1.0, 0.9, n=5), tmp / "curve.nc")
+    return io_curves.write_load_curve(model.load_curve(mu=1.0, beta0=0.9, n=5), tmp / "curve.nc")
 
 
 def _curve_si(tmp):
@@ -75,13 +75,13 @@ def _curve_si(tmp):
 
 def _pull_off_grid(tmp):
     mu, beta0 = np.array([0.5, 2.0]), np.array([0.8, 0.9, 1.0])
-    p = model.pull_off(mu[:, None], beta0[None, :])
+    p = model.pull_off(mu=mu[:, None], beta0=beta0[None, :])
     return _write(io_curves.pull_off_dataset(mu, beta0, {"W_star": p.W_star, "a_star_load": p.a_star}),
                   tmp / "pull_off.nc")
 
 
 def _compare(tmp):
-    recs = compare.compare(2.0, 0.9, models=("dh-elliptic", "dh-circular", "jkr", "md", "jkr-elliptic"),
+    recs = compare.compare(mu=2.0, beta0=0.9, models=("dh-elliptic", "dh-circular", "jkr", "md", "jkr-elliptic"),
                            check_closure=False)
     return _write(comparison_dataset(recs), tmp / "compare.nc")
 
@@ -134,7 +134,7 @@ def _solution(tmp):
     from dhfield.bem import adhesive_pull_off
     from dhfield.io.solution import write_solution
 
-    return write_solution(adhesive_pull_off(1.0, 0.9, 8), tmp / "solution.nc")
+    return write_solution(adhesive_pull_off(mu=1.0, beta0=0.9, n=8), tmp / "solution.nc")
 
 
 def _sweep(tmp):

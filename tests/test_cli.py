@@ -19,7 +19,7 @@ def test_pulloff_json(capsys):
     rec = json.loads(capsys.readouterr().out)
     for k in KEYS:
         assert k in rec
-    assert rec["W_star"] == pytest.approx(float(model.pull_off(1.0, 0.9).W_star), rel=1e-15)
+    assert rec["W_star"] == pytest.approx(float(model.pull_off(mu=1.0, beta0=0.9).W_star), rel=1e-15)
 
 
 def test_curve_netcdf_and_csv(tmp_path):
@@ -27,7 +27,7 @@ def test_curve_netcdf_and_csv(tmp_path):
     assert main(["curve", "--beta0", "0.9", "--mu", "1", "--out", str(nc)]) == 0
     assert main(["curve", "--beta0", "0.9", "--mu", "1", "--n", "7", "--out", str(csv)]) == 0
     ds = read_netcdf(nc)
-    ref = model.load_curve(1.0, 0.9)
+    ref = model.load_curve(mu=1.0, beta0=0.9)
     np.testing.assert_array_equal(ds["W_star"].values, ref.W_star)
     assert ds["W_star"].attrs["units"] == "1" and "Eq. 34" in ds["W_star"].attrs["long_name"]
     assert ds.attrs["param_mu"] == 1.0 and "10.1007/s11249-017-0976-8" in ds.attrs["references"]
@@ -93,7 +93,7 @@ def test_netcdf_round_trip_in_fresh_process(tmp_path):
             "print(json.dumps({'W': ds['W_star'].values.tolist(), 'attrs': {k: str(v) for k, v in ds.attrs.items()}}))")
     r = subprocess.run([sys.executable, "-c", code, str(nc)], capture_output=True, text=True, check=True)
     out = json.loads(r.stdout)
-    ref = model.load_curve(5.0, 0.8, n=11)
+    ref = model.load_curve(mu=5.0, beta0=0.8, n=11)
     assert out["W"] == ref.W_star.tolist()  # bit-identical
     ds = read_netcdf(nc)
     assert out["attrs"] == {k: str(v) for k, v in ds.attrs.items()}
@@ -112,7 +112,7 @@ def test_periphery_subcommand(tmp_path, capsys):
     nc = tmp_path / "p.nc"
     assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--n-theta", "3", "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
-    p = model.pull_off(3.0, 0.85)
+    p = model.pull_off(mu=3.0, beta0=0.85)
     assert rec["W_star"] == pytest.approx(float(p.W_star), rel=1e-12)
     # Delta gamma on each ray from the independent Eq. (31) routine; 1 on the major axis.
     ref = work_of_adhesion(float(p.a_star), float(p.c_star), 0.85, float(p.v), np.array(rec["rays"]["theta"]))

@@ -23,7 +23,7 @@ def _json(capsys, argv):
 def test_cycle_json_equals_api(capsys):
     rec = _json(capsys, ["cycle", "--model", "jkr", "--beta0", "1", "--mu", "5", "--machine-stiffness", "1",
                          "--json"])
-    api = compliance.loading_cycle("jkr", 5.0, 1.0, 1.0)
+    api = compliance.loading_cycle("jkr", mu=5.0, beta0=1.0, machine_stiffness=1.0)
     for k in ("jump_in_W_star", "jump_out_W_star", "energy_lost_star", "separation_delta_star"):
         assert rec[k] == pytest.approx(api[k], rel=TOL_CLI_API)
     assert rec["units"]["energy_lost_star"] == "1"
@@ -64,7 +64,7 @@ def test_pulloff_machine_stiffness(capsys):
     rec = _json(capsys, ["pulloff", "--model", "jkr", "--beta0", "1", "--mu", "5", "--machine-stiffness", "0.3",
                          "--json"])
     assert rec["control"] == "spring"
-    assert rec["W_star"] == pytest.approx(compliance.pull_off_under_spring("jkr", 5.0, 1.0, 0.3)["W_star"],
+    assert rec["W_star"] == pytest.approx(compliance.pull_off_under_spring("jkr", mu=5.0, beta0=1.0, machine_stiffness=0.3)["W_star"],
                                           rel=TOL_CLI_API)
     si = _json(capsys, ["pulloff", "--model", "jkr", *PDMS, "--machine-stiffness", "1e-9", "--json"])
     assert si["force"] == pytest.approx(-1.5 * np.pi * si["effective_radius"] * 0.05, rel=1e-6)  # K -> 0: JKR

@@ -28,7 +28,7 @@ def test_solve_json_and_netcdf(tmp_path, capsys):
     assert rc == (0 if rec["converged"] else EXIT_UNCONVERGED)
     if rc or rec["failures"]:  # a failure, or a note on states beyond the pull-off: one line naming the case
         assert len(captured.err.strip().splitlines()) == 1 and "beta0=1, mu=1, n=32" in captured.err
-    md = compare.pull_off("md", 1.0, 1.0)["W_star"]  # Maugis-Dugdale at lambda = 1.1272 mu
+    md = compare.pull_off("md", mu=1.0, beta0=1.0)["W_star"]  # Maugis-Dugdale at lambda = 1.1272 mu
     assert rec["W_star"] == pytest.approx(md, rel=COARSE_MD_RTOL)
     assert rec["beta_ab"] == pytest.approx(1.0, abs=1e-12) and rec["beta_cd"] == pytest.approx(1.0, abs=1e-12)
     assert rec["search"] == "bracket"     # the default 'located' needs N >= 128: the fallback is reported
@@ -42,8 +42,10 @@ def test_solve_reports_non_convergence(monkeypatch, capsys):
     """A path whose states cannot converge (2 CG iterations each) exits 3 with one line."""
     import dhfield.bem
 
+    from dhfield.adhesive_start import AdhesiveOptions
+
     monkeypatch.setattr(dhfield.bem, "adhesive_pull_off",
-                        functools.partial(dhfield.bem.adhesive_pull_off, max_iter=2))
+                        functools.partial(dhfield.bem.adhesive_pull_off, options=AdhesiveOptions(max_iter=2)))
     rc = main(["solve", "--beta0", "0.8", "--mu", "1", "--n", "16", "--json"])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == EXIT_UNCONVERGED

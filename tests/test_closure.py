@@ -18,7 +18,7 @@ CONTACT_ATOL = 1e-12
 def test_paper_closure_equals_model_pull_off():
     mu, beta0 = np.array([0.5, 2.0]), 0.8
     got = closure.pull_off_closure(mu, beta0, "paper")
-    ref = model.pull_off(mu, beta0)
+    ref = model.pull_off(mu=mu, beta0=beta0)
     assert_allclose(got.W_star, ref.W_star, rtol=PULL_OFF_RTOL)
     assert_allclose(got.a_star, ref.a_star, rtol=1e-6)  # a* of a flat minimum: sqrt(tolerance)
     assert_allclose(got.work_major, 1.0, rtol=1e-12)
@@ -28,12 +28,12 @@ def test_paper_closure_equals_model_pull_off():
 def test_alternative_closures_reduce_to_paper_at_circle(solver):
     a = np.array([0.05, 0.7, 1.5, 2.5])
     got = solver(a, 1.3, 1.0)
-    c, v = model.solve_adhesive_axis(a, 1.3, 1.0)
+    c, v = model.solve_adhesive_axis(a, mu=1.3, beta0=1.0)
     assert_allclose(got.c_star, c, rtol=SOLVE_RTOL)
     assert_allclose(got.d_star, c, rtol=SOLVE_RTOL)
     assert_allclose(got.b_star, a, rtol=SOLVE_RTOL)
     assert_allclose(got.adhesive_amplitude, v * hertz.max_pressure(c, 1.0), rtol=SOLVE_RTOL)
-    lc = model.load_curve(1.3, 1.0, a)
+    lc = model.load_curve(mu=1.3, beta0=1.0, a_star=a)
     assert_allclose(got.W_star, lc.W_star, rtol=SOLVE_RTOL)
     assert_allclose(got.delta_star, lc.delta_star, rtol=SOLVE_RTOL, atol=1e-12)
 
@@ -41,7 +41,7 @@ def test_alternative_closures_reduce_to_paper_at_circle(solver):
 @pytest.mark.parametrize("name", ["ray_average", "two_axis"])
 def test_alternative_pull_off_reduces_to_paper_at_circle(name):
     got = closure.pull_off_closure(1.0, 1.0, name)
-    ref = model.pull_off(1.0, 1.0)
+    ref = model.pull_off(mu=1.0, beta0=1.0)
     assert_allclose(got.W_star, ref.W_star, rtol=PULL_OFF_RTOL)
 
 
@@ -111,7 +111,7 @@ def test_equal_beta_spread():
     # more elliptical -> further from one law; at pull-off Delta gamma(0) = 1
     assert np.all(s.work_ratio[0] < s.work_ratio[1])
     assert np.all(s.law_spread[0] > s.law_spread[1])
-    po = model.pull_off(mu, 0.8)
+    po = model.pull_off(mu=mu, beta0=0.8)
     w90 = periphery.periphery(po.a_star, po.c_star, 0.8, po.v, [np.pi / 2]).work_of_adhesion[..., 0]
     assert_allclose(s.work_ratio[0], w90, rtol=1e-12)
     assert_allclose(s.width_ratio[:2], np.array([[0.8], [0.9]]) * np.ones(3), rtol=1e-12)  # r_cd - r_ab scales as beta
@@ -142,12 +142,12 @@ def test_displacement_control_and_zero_contact():
     # mu = 0.5: displacement-controlled pull-off at zero contact (DMT side); mu = 5: interior minimum.
     for mu in (0.5, 5.0):
         got = closure.pull_off_closure(mu, 0.8, "paper", control="displacement")
-        ref = model.pull_off(mu, 0.8, control="displacement")
+        ref = model.pull_off(mu=mu, beta0=0.8, control="displacement")
         assert_allclose(got.delta_star, ref.delta_star, rtol=1e-9)
         assert_allclose(got.W_star, ref.W_star, rtol=1e-6)
         assert bool(got.at_zero_contact) == bool(ref.at_zero_contact)
     two = closure.pull_off_closure(0.5, 1.0, "two_axis", control="displacement")
-    assert_allclose(two.delta_star, model.pull_off(0.5, 1.0, control="displacement").delta_star, rtol=1e-9)
+    assert_allclose(two.delta_star, model.pull_off(mu=0.5, beta0=1.0, control="displacement").delta_star, rtol=1e-9)
 
 
 @pytest.mark.parametrize("theta", [0.0, 0.6, np.pi / 2])

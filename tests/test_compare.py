@@ -33,7 +33,7 @@ def test_registry_names():
 @functools.lru_cache(maxsize=None)
 def _record(name, control="load"):
     """Pull-off at (mu, beta0) = (2, 0.9), computed once per model (the closures cost ~1 s a point)."""
-    return compare.pull_off(name, 2.0, 0.9, control, check_closure=False)
+    return compare.pull_off(name, mu=2.0, beta0=0.9, control=control, check_closure=False)
 
 
 @pytest.mark.parametrize("name", sorted(compare.MODELS))
@@ -57,7 +57,7 @@ CLOSURES = ("dh-elliptic-two-axis", "dh-elliptic-ray-average")
 def test_vectorised_over_mu():
     for name in compare.MODELS:
         mu = np.array([0.5, 2.0]) if name in CLOSURES else np.array([0.5, 2.0, 5.0])
-        rec = compare.pull_off(name, mu, 0.9, check_closure=False)
+        rec = compare.pull_off(name, mu=mu, beta0=0.9, check_closure=False)
         for k in PULL_OFF_KEYS[3:]:
             assert np.shape(rec[k]) == mu.shape, (name, k)
         one = _record(name)
@@ -68,7 +68,7 @@ def test_vectorised_over_mu():
 @pytest.mark.parametrize("mu", [0.5, 2.0, 5.0])
 def test_circle_all_dh_variants_agree(mu):
     pytest.importorskip("dhfield.model")
-    res = compare.compare(mu, 1.0)
+    res = compare.compare(mu=mu, beta0=1.0)
     w = res["dh-circular"]["W_star"]
     for name in ("dh-elliptic", "dh-elliptic-jkr-beta"):
         assert_allclose(res[name]["W_star"], w, atol=TOL_CORE)
@@ -79,7 +79,7 @@ def test_circle_all_dh_variants_agree(mu):
 
 def test_normalisation_eq34():
     beta0 = 0.8
-    res = compare.compare(5.0, beta0)
+    res = compare.compare(mu=5.0, beta0=beta0)
     for name, rec in res.items():
         expected = 1.0 if rec["geometry"] == "circle" else sin_skew_angle(beta0)
         assert_allclose(rec["sin_skew"], expected, rtol=1e-15, err_msg=name)
@@ -92,31 +92,31 @@ def test_jkr_beta_variant_definition():
     """beta_JKR(pull-off) replaces beta for both ellipses; Eq. (34) keeps sin(theta_skew(beta0))."""
     model = pytest.importorskip("dhfield.model")
     mu, beta0 = 5.0, 0.9
-    rec = compare.pull_off("dh-elliptic-jkr-beta", mu, beta0)
+    rec = compare.pull_off("dh-elliptic-jkr-beta", mu=mu, beta0=beta0)
     bj = jkr_elliptic.pull_off_ellipticity(beta0=beta0)
     assert_allclose(rec["ellipticity"], bj, rtol=1e-15)
-    ref = model.pull_off(mu, beta0, ellipticity=bj)
+    ref = model.pull_off(mu=mu, beta0=beta0, ellipticity=bj)
     assert_allclose(rec["W_star"], ref.W_star, rtol=1e-14)
     # the normalisation: same as the paper's model evaluated at beta = beta_JKR, rescaled by
     # sin(theta_skew(beta0))/sin(theta_skew(beta_JKR))
-    alone = model.pull_off(mu, bj)
+    alone = model.pull_off(mu=mu, beta0=bj)
     assert_allclose(rec["W_star"], alone.W_star * sin_skew_angle(beta0) / sin_skew_angle(bj), rtol=1e-10)
     # the paper's claim at mu = 5: the variant narrows the gap to elliptical JKR
-    w_dh = compare.pull_off("dh-elliptic", mu, beta0, check_closure=False)["W_star"]
-    w_jkr = compare.pull_off("jkr-elliptic", mu, beta0)["W_star"]
+    w_dh = compare.pull_off("dh-elliptic", mu=mu, beta0=beta0, check_closure=False)["W_star"]
+    w_jkr = compare.pull_off("jkr-elliptic", mu=mu, beta0=beta0)["W_star"]
     assert abs(rec["W_star"] - w_jkr) < abs(w_dh - w_jkr)
 
 
 def test_bad_input():
     with pytest.raises(ValueError, match="model"):
-        compare.pull_off("hertz", 1.0, 0.9)
+        compare.pull_off("hertz", mu=1.0, beta0=0.9)
     for name in compare.MODELS:
         with pytest.raises(ValueError, match="beta0"):
-            compare.pull_off(name, 1.0, 1.5)
+            compare.pull_off(name, mu=1.0, beta0=1.5)
         with pytest.raises(ValueError, match="mu"):
-            compare.pull_off(name, -1.0, 0.9)
+            compare.pull_off(name, mu=-1.0, beta0=0.9)
         with pytest.raises(ValueError, match="control"):
-            compare.pull_off(name, 1.0, 0.9, "force")
+            compare.pull_off(name, mu=1.0, beta0=0.9, control="force")
 
 
 def test_one_record_type_for_every_model():
@@ -124,7 +124,7 @@ def test_one_record_type_for_every_model():
     from dhfield.records import PullOff
 
     for name in compare.MODELS:
-        rec = compare.pull_off(name, 1.0, 0.9, check_closure=False)
+        rec = compare.pull_off(name, mu=1.0, beta0=0.9, check_closure=False)
         assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS and rec.model == name
         assert all(rec[k] is getattr(rec, k) for k in PULL_OFF_KEYS)
 
@@ -142,7 +142,7 @@ def test_cli_compare_json_and_netcdf(tmp_path, capsys):
     payload = json.loads(capsys.readouterr().out)
     names = [r["model"] for r in payload["models"]]
     assert names == list(compare.MODELS)
-    ref = compare.compare(5.0, 0.9, models=[n for n in names if n not in CLOSURES], check_closure=False)
+    ref = compare.compare(mu=5.0, beta0=0.9, models=[n for n in names if n not in CLOSURES], check_closure=False)
     for r in payload["models"]:
         if r["model"] in ref:
             assert r["W_star"] == pytest.approx(float(ref[r["model"]]["W_star"]), rel=1e-15)
@@ -163,7 +163,7 @@ def test_cli_pulloff_model(name, capsys):
     assert main(["pulloff", "--beta0", "0.9", "--mu", "2", "--model", name, "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
     assert rec["model"] == name
-    ref = compare.pull_off(name, 2.0, 0.9, check_closure=False)
+    ref = compare.pull_off(name, mu=2.0, beta0=0.9, check_closure=False)
     assert rec["W_star"] == pytest.approx(float(ref["W_star"]), rel=1e-15)
 
 
@@ -182,8 +182,8 @@ def test_cli_bad_input(capsys, tmp_path):
 @pytest.mark.parametrize("name", ["dh-elliptic-two-axis", "dh-elliptic-ray-average"])
 def test_closures_are_the_circle_at_beta0_one(name):
     """At beta0 = 1 every closure is the circular DH model (Greenwood & Johnson 1998)."""
-    rec = compare.pull_off(name, 2.0, 1.0)
-    ref = compare.pull_off("dh-circular", 2.0, 1.0)
+    rec = compare.pull_off(name, mu=2.0, beta0=1.0)
+    ref = compare.pull_off("dh-circular", mu=2.0, beta0=1.0)
     for k in ("W_star", "a_star", "c_star", "delta_star"):
         assert_allclose(rec[k], ref[k], rtol=TOL_CLOSURE_CIRCLE, err_msg=k)
     assert np.isnan(rec["v"]) and rec["warning"] == ""
@@ -193,7 +193,7 @@ def test_warning_appears_and_disappears():
     """The paper's model departs from the two-axis closure by more than 2 % at (mu, beta0) = (1, 0.9)
     (-4.0 %) and by less at (1, 0.99) (-0.4 %) (issue 10)."""
     beta0 = np.array([0.9, 0.99])
-    res = compare.compare(1.0, beta0, models=["dh-elliptic", "dh-elliptic-two-axis"])
+    res = compare.compare(mu=1.0, beta0=beta0, models=["dh-elliptic", "dh-elliptic-two-axis"])
     rec, two = res["dh-elliptic"], res["dh-elliptic-two-axis"]
     dep = compare.closure_departure(1.0, beta0)
     assert_allclose(rec["W_star"] / two["W_star"] - 1, dep, rtol=1e-12)
@@ -201,13 +201,13 @@ def test_warning_appears_and_disappears():
     assert [bool(w) for w in rec["warning"]] == [True, False]
     assert "two-axis" in rec["warning"][0] and f"{100 * dep[0]:+.1f} %" in rec["warning"][0]
     assert list(two["warning"]) == ["", ""]
-    assert compare.pull_off("dh-elliptic", 1.0, 0.9, check_closure=False)["warning"] == ""
+    assert compare.pull_off("dh-elliptic", mu=1.0, beta0=0.9, check_closure=False)["warning"] == ""
 
 
 @pytest.mark.parametrize("name", compare.CURVE_MODEL_NAMES)
 def test_curve_through_the_pull_off_state(name):
     mu, beta0 = 2.0, 0.8
-    po = compare.pull_off(name, mu, beta0, check_closure=False)
+    po = compare.pull_off(name, mu=mu, beta0=beta0, check_closure=False)
     if po["a_star"] == 0:  # DMT: pull-off at vanishing contact; the curve starts there
         a = 1e-6  # the smallest accepted contact size (dhfield._validation.CONTACT_SIZE_RANGE)
     else:
@@ -222,7 +222,7 @@ def test_curve_through_the_pull_off_state(name):
 @pytest.mark.parametrize("name", ["dh-elliptic", "jkr-elliptic", "md"])
 def test_curve_at_load(name):
     mu, beta0 = 2.0, 0.8
-    w_po = float(compare.pull_off(name, mu, beta0, check_closure=False)["W_star"])
+    w_po = float(compare.pull_off(name, mu=mu, beta0=beta0, check_closure=False)["W_star"])
     w = np.array([w_po, 0.5 * w_po, 0.0, 3.0])
     c = compare.load_curve_at_load(name, mu, beta0, w)
     assert_allclose(c["W_star"], w, rtol=TOL_LOAD_INVERSION, atol=TOL_LOAD_INVERSION)
@@ -243,12 +243,12 @@ def test_curve_bad_input():
 def test_validity_ranges_warn_without_refusing():
     """Outside its validated range a model still computes and says so (issue 10)."""
     assert set(compare.VALIDITY_RANGES) == set(compare.MODELS)
-    rec = compare.pull_off("jkr", [1.0, 10.0], [0.9, 1.0])
+    rec = compare.pull_off("jkr", mu=[1.0, 10.0], beta0=[0.9, 1.0])
     assert np.all(np.isfinite(rec["W_star"]))
     assert "jkr is validated for beta0 = 1" in rec["warning"][0] and rec["warning"][1] == ""
-    assert compare.pull_off("dmt", 0.05, 1.0)["warning"] == ""
-    assert "mu <= 0.09" in compare.pull_off("dmt", 1.0, 1.0)["warning"]
-    only_range = compare.pull_off("dh-elliptic", 1.0, 0.5, check_closure=False)["warning"]
+    assert compare.pull_off("dmt", mu=0.05, beta0=1.0)["warning"] == ""
+    assert "mu <= 0.09" in compare.pull_off("dmt", mu=1.0, beta0=1.0)["warning"]
+    only_range = compare.pull_off("dh-elliptic", mu=1.0, beta0=0.5, check_closure=False)["warning"]
     assert only_range.startswith("dh-elliptic is validated for beta0 in [0.8, 1]") and "two-axis" not in only_range
     for name in compare.MODELS:
         assert name in compare.validity_table()
@@ -260,7 +260,7 @@ def test_warning_when_the_closure_check_fails(monkeypatch):
         raise RuntimeError("two-axis closure solve did not converge")
 
     monkeypatch.setattr(compare.closure, "pull_off_two_axis", fail)
-    rec = compare.pull_off("dh-elliptic", 1.0, 0.9)
+    rec = compare.pull_off("dh-elliptic", mu=1.0, beta0=0.9)
     assert np.isfinite(rec["W_star"]) and "could not be checked" in rec["warning"]
 
 
@@ -271,20 +271,20 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
 
     monkeypatch.setattr(compare.closure, "pull_off_two_axis", refuse)
     monkeypatch.setitem(compare.MODELS, "dh-elliptic-two-axis", refuse)
-    res = compare.compare(1.0, 0.9, models=["dh-elliptic", "dh-elliptic-two-axis", "jkr"])
+    res = compare.compare(mu=1.0, beta0=0.9, models=["dh-elliptic", "dh-elliptic-two-axis", "jkr"])
     assert np.isnan(res["dh-elliptic-two-axis"]["W_star"]) and "failed" in res["dh-elliptic-two-axis"]["warning"]
     assert tuple(res["dh-elliptic-two-axis"]) == PULL_OFF_KEYS
     assert "could not be checked" in res["dh-elliptic"]["warning"] and np.isfinite(res["dh-elliptic"]["W_star"])
     assert res["jkr"]["W_star"] == -0.75
     with pytest.raises(ValueError, match="beta0"):
-        compare.compare(1.0, 1.5)
+        compare.compare(mu=1.0, beta0=1.5)
 
 
 def test_jkr_stands_in_above_the_closure_cap(monkeypatch):
     """Above the closures' mu cap (mu >= 10), elliptical JKR, their high-mu limit, is the reference."""
     monkeypatch.setattr(compare.closure, "CLOSURE_MU_RANGE", (1e-6, 20.0), raising=False)
-    rec = compare.pull_off("dh-elliptic", 25.0, 0.9)
-    w_jkr = compare.pull_off("jkr-elliptic", 25.0, 0.9)["W_star"]
+    rec = compare.pull_off("dh-elliptic", mu=25.0, beta0=0.9)
+    w_jkr = compare.pull_off("jkr-elliptic", mu=25.0, beta0=0.9)["W_star"]
     assert "elliptical JKR" in rec["warning"] and f"{100 * (rec['W_star'] / w_jkr - 1):+.1f} %" in rec["warning"]
     assert "prefer the model jkr-elliptic" in rec["warning"]
 
@@ -297,9 +297,9 @@ def test_issue18_item2_near_circle_is_the_circle_for_every_model(control):
     beta0 = 1'."""
     mu = 1.0
     for name in compare.MODEL_NAMES:
-        ref = compare.pull_off(name, mu, 1.0, control, check_closure=False)
+        ref = compare.pull_off(name, mu=mu, beta0=1.0, control=control, check_closure=False)
         for k in (1, 3, 5):
-            rec = compare.pull_off(name, mu, 1.0 - k * 2.0**-53, control, check_closure=False)
+            rec = compare.pull_off(name, mu=mu, beta0=1.0 - k * 2.0**-53, control=control, check_closure=False)
             for key in PULL_OFF_KEYS:
                 if key != "warning":
                     np.testing.assert_array_equal(rec[key], ref[key], err_msg=f"{name} {key} k={k}")
@@ -315,3 +315,11 @@ def test_issue18_item2_ninety_degrees_from_si_input_warns_like_the_sphere():
     for name in ("md", "jkr", "dh-circular", "jkr-elliptic"):
         rec = pull_off_force(params, model=name)
         assert rec["warning"] == "" and rec["beta0"] == 1.0, name
+
+
+@pytest.mark.parametrize("call", [lambda: compare.pull_off("md", 1.0, 0.9),
+                                  lambda: compare.compare(1.0, 0.9)])
+def test_beta0_and_mu_are_keyword_only(call):
+    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        call()

@@ -62,7 +62,7 @@ def _jkr_spring(k):
 @pytest.mark.parametrize("k", [1e-3, 0.05, 0.3, 1.0, 3.0, 30.0, 1e3])
 def test_jkr_spring_pull_off_matches_the_quintic(k):
     ref = _jkr_spring(k)
-    po = compliance.pull_off_under_spring("jkr", 10.0, 1.0, k)
+    po = compliance.pull_off_under_spring("jkr", mu=10.0, beta0=1.0, machine_stiffness=k)
     assert abs(po["a_star"] - ref["t_out"] ** 2) < TOL_JKR
     assert abs(po["W_star"] - ref["w_o"]) < TOL_JKR
     assert abs(po["delta_star"] - ref["d_o"]) < TOL_JKR
@@ -70,7 +70,7 @@ def test_jkr_spring_pull_off_matches_the_quintic(k):
 
 
 def test_jkr_spring_pull_off_tends_to_load_and_displacement_control():
-    po = compliance.pull_off_under_spring("jkr", 10.0, 1.0, [0.0, 1e-9, 1e9])
+    po = compliance.pull_off_under_spring("jkr", mu=10.0, beta0=1.0, machine_stiffness=[0.0, 1e-9, 1e9])
     assert po["W_star"][0] == pytest.approx(-0.75, abs=1e-12)  # K = 0 is load control exactly
     assert po["W_star"][1] == pytest.approx(-0.75, abs=TOL_JKR)  # dW/d(delta) ~ K a*/pi near a_W
     assert po["W_star"][2] == pytest.approx(-5.0 / 12.0, abs=TOL_JKR)  # displacement control
@@ -80,7 +80,7 @@ def test_jkr_spring_pull_off_tends_to_load_and_displacement_control():
 @pytest.mark.parametrize("k", [0.05, 0.3, 1.0, 3.0, 30.0])
 def test_jkr_cycle_matches_closed_forms(k):
     ref = _jkr_spring(k)
-    cyc = compliance.loading_cycle("jkr", 10.0, 1.0, k)
+    cyc = compliance.loading_cycle("jkr", mu=10.0, beta0=1.0, machine_stiffness=k)
     assert cyc["jump_in_start_delta_star"] == 0.0
     assert abs(cyc["jump_in_a_star"] - ref["t_in"] ** 2) < TOL_JKR
     assert abs(cyc["jump_in_W_star"] - ref["w_i"]) < TOL_JKR
@@ -91,7 +91,7 @@ def test_jkr_cycle_matches_closed_forms(k):
 
 
 def test_jkr_cycle_rigid_machine():
-    cyc = compliance.loading_cycle("jkr", 10.0, 1.0, None)
+    cyc = compliance.loading_cycle("jkr", mu=10.0, beta0=1.0, machine_stiffness=None)
     t_out, t_in = (np.pi / 8.0) ** (1.0 / 6.0), (2.0 * np.pi) ** (1.0 / 6.0)
     assert cyc["machine_stiffness_star"] == math.inf
     assert abs(cyc["jump_out_W_star"] + 5.0 / 12.0) < TOL_JKR
@@ -105,7 +105,7 @@ def test_jkr_cycle_rigid_machine():
 
 
 def test_jkr_cycle_load_control():
-    cyc = compliance.loading_cycle("jkr", 10.0, 1.0, 0.0)
+    cyc = compliance.loading_cycle("jkr", mu=10.0, beta0=1.0, machine_stiffness=0.0)
     assert abs(cyc["jump_out_W_star"] + 0.75) < TOL_JKR
     assert abs(cyc["jump_in_W_star"]) < TOL_JKR
     assert abs(cyc["jump_in_a_star"] ** 3 - 4.5 * np.pi) < TOL_JKR
@@ -117,7 +117,7 @@ def test_jkr_cycle_load_control():
 def test_jkr_spring_invariants(k):
     # over the accepted domain: the jump lies between the two controls, the curve's stiffness is -K
     # there, the landing shares the machine position of the start (Delta = 0), energy >= 0
-    cyc = compliance.loading_cycle("jkr", 10.0, 1.0, k)
+    cyc = compliance.loading_cycle("jkr", mu=10.0, beta0=1.0, machine_stiffness=k)
     a = cyc["jump_out_a_star"]
     assert (np.pi / 8.0) ** (1 / 3) - 1e-9 <= a <= (9.0 * np.pi / 8.0) ** (1 / 3) + 1e-9
     assert -0.75 - 1e-12 <= cyc["jump_out_W_star"] <= -5.0 / 12.0 + 1e-9
@@ -220,7 +220,7 @@ class _MDReference:
 @pytest.mark.parametrize("k", [None, 0.3, 3.0])
 def test_md_cycle_matches_maugis(mu, k):
     ref = _MDReference(mu).cycle(k)
-    cyc = compliance.loading_cycle("md", mu, 1.0, k)
+    cyc = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=k)
     assert abs(cyc["jump_out_W_star"] - ref["w_o"]) < TOL_MD
     assert abs(cyc["jump_out_delta_star"] - ref["d_o"]) < TOL_MD
     assert abs(cyc["jump_in_W_star"] - ref["w_i"]) < TOL_MD
@@ -232,7 +232,7 @@ def test_md_cycle_matches_maugis(mu, k):
 def test_md_stiff_machine_small_lambda_jumps_on_the_separated_branch():
     # lambda = 0.34: the minimum of delta lies out of contact, at c* = 4 mu/pi (d(delta*)/dc = 0)
     mu = 0.3
-    po = compliance.pull_off_under_spring("md", mu, 1.0, 1e9)
+    po = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=1e9)
     assert po["on_separated_branch"] and po["at_zero_contact"]
     c = 4.0 * mu / np.pi
     assert po["c_star"] == pytest.approx(c, abs=1e-6)
@@ -246,14 +246,14 @@ def test_other_models_between_the_two_controls(model, beta0):
     from dhfield import compare
 
     mu = 2.0
-    w_load = float(compare.pull_off(model, mu, beta0, "load", check_closure=False)["W_star"])
-    w_disp = float(compare.pull_off(model, mu, beta0, "displacement", check_closure=False)["W_star"])
-    po = compliance.pull_off_under_spring(model, mu, beta0, [0.0, 0.1, 1.0, 1e9])
+    w_load = float(compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False)["W_star"])
+    w_disp = float(compare.pull_off(model, mu=mu, beta0=beta0, control="displacement", check_closure=False)["W_star"])
+    po = compliance.pull_off_under_spring(model, mu=mu, beta0=beta0, machine_stiffness=[0.0, 0.1, 1.0, 1e9])
     w = po["W_star"]
     assert w[0] == pytest.approx(w_load, abs=1e-9)
     assert w[-1] == pytest.approx(w_disp, abs=1e-5)
     assert np.all(np.diff(w) >= -1e-9)  # a stiffer machine holds on to a less tensile load
-    cyc = compliance.loading_cycle(model, mu, beta0, 1.0)
+    cyc = compliance.loading_cycle(model, mu=mu, beta0=beta0, machine_stiffness=1.0)
     assert cyc["energy_lost_star"] >= 0 and cyc["energy_lost_error_star"] < 1e-8
     if model in ("dh-circular", "dh-elliptic", "dmt"):
         assert "no force out of contact" in cyc["warning"]
@@ -268,7 +268,7 @@ def test_si_wrappers_scale_back():
     assert k_star == pytest.approx(k_si * params.approach_unit / (2 * np.pi * params.effective_radius * 0.05),
                                    rel=1e-14)
     rec = compliance.pull_off_force_under_spring(params, k_si, model="jkr")
-    nd = compliance.pull_off_under_spring("jkr", params.mu, params.beta0, k_star)
+    nd = compliance.pull_off_under_spring("jkr", mu=params.mu, beta0=params.beta0, machine_stiffness=k_star)
     assert rec["control"] == "spring"
     assert rec["force"] == pytest.approx(nd["W_star"] * 2 * np.pi * params.effective_radius * 0.05, rel=1e-12)
     cyc = compliance.loading_cycle_si(params, k_si, model="jkr")
@@ -280,14 +280,14 @@ def test_si_wrappers_scale_back():
 @pytest.mark.parametrize("bad", [-1.0, math.nan, math.inf, "stiff"])
 def test_bad_stiffness_is_named(bad):
     with pytest.raises(ValueError, match="machine_stiffness"):
-        compliance.pull_off_under_spring("jkr", 1.0, 1.0, bad)
+        compliance.pull_off_under_spring("jkr", mu=1.0, beta0=1.0, machine_stiffness=bad)
     with pytest.raises(ValueError, match="machine_stiffness"):
-        compliance.loading_cycle("jkr", 1.0, 1.0, bad)
+        compliance.loading_cycle("jkr", mu=1.0, beta0=1.0, machine_stiffness=bad)
 
 
 def test_model_without_a_curve_is_refused():
     with pytest.raises(ValueError, match="load curve"):
-        compliance.loading_cycle("dh-elliptic-jkr-beta", 1.0, 0.9, 1.0)
+        compliance.loading_cycle("dh-elliptic-jkr-beta", mu=1.0, beta0=0.9, machine_stiffness=1.0)
 
 
 def test_machine_displacement_of_a_vanishing_stiffness_is_a_named_error():
@@ -296,3 +296,13 @@ def test_machine_displacement_of_a_vanishing_stiffness_is_a_named_error():
     with pytest.raises(ValueError, match="machine_stiffness.*too small"):
         compliance.add_machine_displacement(curve, 1e-308)
     assert np.all(np.isfinite(compliance.add_machine_displacement(curve, 1e-3)["machine_displacement"]))
+
+
+@pytest.mark.parametrize("call", [lambda: compliance.pull_off_under_spring("md", 1.0, 1.0, 1.0),
+                                  lambda: compliance.spring_pull_off_record("md", 1.0, 1.0, 1.0),
+                                  lambda: compliance.loading_cycle("md", 1.0, 1.0),
+                                  lambda: compliance.cycle_path("md", 1.0, 1.0)])
+def test_beta0_and_mu_are_keyword_only(call):
+    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        call()

@@ -64,12 +64,12 @@ def test_jkr_and_dmt_limits():
 def test_agrees_with_elliptical_core_at_circle(mu):
     model = pytest.importorskip("dhfield.model")
     a = np.linspace(*model.DEFAULT_A_STAR, 200)
-    ref = model.load_curve(mu, 1.0, a)
+    ref = model.load_curve(mu=mu, beta0=1.0, a_star=a)
     st = dh_circular.load_curve_nondimensional(a, mu)
     for key in ("W_star", "c_star", "v", "delta_star"):
         assert_allclose(st[key], getattr(ref, key), rtol=TOL_CORE, atol=TOL_CORE, err_msg=key)
     for control in ("load", "displacement"):
-        po, pref = dh_circular.pull_off_nondimensional(1.0, mu, control=control), model.pull_off(mu, 1.0, control=control)
+        po, pref = dh_circular.pull_off_nondimensional(1.0, mu, control=control), model.pull_off(mu=mu, beta0=1.0, control=control)
         assert_allclose([po["W_star"], po["a_star"], po["delta_star"]],
                         [pref.W_star, pref.a_star, pref.delta_star], atol=TOL_CORE)
 

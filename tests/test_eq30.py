@@ -101,7 +101,7 @@ def test_cartesian_on_analytic_samples():
 
 
 def test_periphery_average_between_axes_and_pull_off_values():
-    po = model.pull_off([0.5, 1.0, 5.0], 0.8)
+    po = model.pull_off(mu=[0.5, 1.0, 5.0], beta0=0.8)
     mean = eq30.periphery_work_of_adhesion(po.a_star, po.c_star, 0.8, po.v)
     w90 = adhesion.work_of_adhesion(po.a_star, po.c_star, 0.8, po.v, theta=np.pi / 2)
     assert np.all(mean < 1.0) and np.all(mean > w90)

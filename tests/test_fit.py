@@ -224,7 +224,7 @@ def test_exported_at_the_top_level():
 def test_uniqueness_condition_holds(model, beta0):
     # fit_work_of_adhesion's root is unique if d ln|W*max| / d ln mu < 3 (Notes); it is far below
     mu = np.geomspace(1e-4, 1e6, 21)
-    w = np.abs(np.asarray(compare.pull_off(model, mu, beta0, check_closure=False)["W_star"], float))
+    w = np.abs(np.asarray(compare.pull_off(model, mu=mu, beta0=beta0, check_closure=False)["W_star"], float))
     slope = np.diff(np.log(w)) / np.diff(np.log(mu))
     assert np.all(slope < 0.01) and np.all(slope > -1.0), slope
 
@@ -369,7 +369,7 @@ def test_pull_off_fit_warns_outside_the_validated_range(model, mu, flagged):
     force = float(dim.pull_off_force(p, model)["force"])
     res = fit_work_of_adhesion([force, 1.01 * force], p, model=model)
     # the warning pulloff gives at the fitted state, word for word
-    assert res.warning == str(compare.pull_off(model, res.mu, res.beta0)["warning"])
+    assert res.warning == str(compare.pull_off(model, mu=res.mu, beta0=res.beta0)["warning"])
     assert bool(res.warning) is flagged
     if flagged:
         assert res.warning.startswith(f"{model} is validated for") and "mu = " in res.warning
@@ -380,7 +380,7 @@ def test_curve_fit_warns_like_pulloff():
     p = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
     a, w, _ = _curve_data(p, "dh-elliptic", n=12)
     res = fit_curve(w, a, _start())
-    assert res.warning == str(compare.pull_off("dh-elliptic", res.mu, res.beta0)["warning"])
+    assert res.warning == str(compare.pull_off("dh-elliptic", mu=res.mu, beta0=res.beta0)["warning"])
     assert "dh-elliptic is validated for beta0 in [0.8, 1]" in res.warning and res.as_record()["warning"]
     # inside the range: none (MD on the sphere is validated for every mu)
     s = _sphere(1.0)

@@ -250,3 +250,18 @@ def test_non_utf8_netcdf_name_is_refused_in_one_line(tmp_path):
     with pytest.raises(ValueError, match="UTF-8"):
         dio.validate_output_path(bad, (".nc",))
     dio.validate_output_path(os.fsdecode(os.fsencode(str(tmp_path)) + b"/\xff.csv"), (".csv",))  # CSV is fine
+
+
+def test_git_commit_names_the_checkout():
+    """One provenance helper (dhfield.io.git_commit) for the report, the study and the library: a
+    hash of the requested length, marked when tracked files differ from it; never raises."""
+    import re
+
+    from dhfield.io import git_commit
+
+    full, short = git_commit(), git_commit(short=12, paths=("dhfield/bem",))
+    if full == "unavailable":  # not a git checkout (an installed copy)
+        pytest.skip("not run from a git checkout")
+    assert re.fullmatch(r"[0-9a-f]{40}( \(uncommitted changes\))?", full)
+    assert re.fullmatch(r"[0-9a-f]{12}( \(uncommitted changes in dhfield/bem\))?", short)
+    assert full.startswith(short[:12])

@@ -11,7 +11,7 @@ MODELS = ("dh-elliptic", "dh-circular", "jkr", "jkr-elliptic")
 
 @pytest.fixture(scope="module")
 def records():
-    return compare.compare(2.0, 0.9, models=MODELS, check_closure=False)
+    return compare.compare(mu=2.0, beta0=0.9, models=MODELS, check_closure=False)
 
 
 def test_variables_follow_the_record_schema(records):

@@ -13,7 +13,7 @@ from dhfield.io.table import read_table, sidecar_path, write_table
 
 
 def test_every_variable_takes_its_metadata_from_the_schema():
-    ds = load_curve_dataset(model.load_curve(1.0, 0.9, n=5))
+    ds = load_curve_dataset(model.load_curve(mu=1.0, beta0=0.9, n=5))
     assert tuple(ds.data_vars) == schema.LOAD_CURVE_KEYS
     for name in CURVE_VARIABLES:
         assert ds[name].attrs == schema.attrs(name, nondimensional=True), name
@@ -33,7 +33,7 @@ def test_si_curve_has_si_units():
 
 
 def test_round_trip_values_and_attrs(tmp_path):
-    curve = model.load_curve(2.0, 0.8, n=9)
+    curve = model.load_curve(mu=2.0, beta0=0.8, n=9)
     path = write_load_curve(curve, tmp_path / "x.nc")
     ds = read_netcdf(path)
     ref = load_curve_dataset(curve)
@@ -45,7 +45,7 @@ def test_round_trip_values_and_attrs(tmp_path):
 
 
 def test_csv_opens_with_pandas_defaults_and_has_a_sidecar(tmp_path):
-    curve = model.load_curve(2.0, 0.8, n=7)
+    curve = model.load_curve(mu=2.0, beta0=0.8, n=7)
     path = write_load_curve(curve, tmp_path / "x.csv")
     frame = pd.read_csv(path)  # no arguments: plain header row, one row per point
     assert list(frame.columns) == list(CURVE_VARIABLES)
@@ -80,11 +80,11 @@ def test_table_rejects_ragged_columns_and_unknown_names(tmp_path):
 
 def test_pull_off_dataset_is_on_beta0_mu():
     mu, beta0 = np.array([0.5, 1.0, 5.0]), np.array([0.8, 0.9])
-    p = model.pull_off(mu[:, None], beta0[None, :])
+    p = model.pull_off(mu=mu[:, None], beta0=beta0[None, :])
     ds = pull_off_dataset(mu, beta0, {"W_star": p.W_star, "a_star_displacement_control": p.a_star})
     assert ds["W_star"].dims == schema.GRID_DIMS and ds["W_star"].shape == (2, 3)
     # transposed, not reshaped: the value at (beta0=0.8, mu=5) is that point's pull-off
-    assert ds["W_star"].sel(beta0=0.8, mu=5.0).item() == model.pull_off(5.0, 0.8).W_star
+    assert ds["W_star"].sel(beta0=0.8, mu=5.0).item() == model.pull_off(mu=5.0, beta0=0.8).W_star
     assert ds["W_star"].attrs["units"] == "1" and "at pull-off" in ds["W_star"].attrs["long_name"]
     assert "displacement control" in ds["a_star_displacement_control"].attrs["long_name"]
     same = pull_off_dataset(mu, beta0, {"W_star": p.W_star.T}, input_dims=("beta0", "mu"))
@@ -95,13 +95,13 @@ def test_pull_off_dataset_is_on_beta0_mu():
 
 def test_unknown_suffix_is_an_error(tmp_path):
     with pytest.raises(ValueError, match=r"\.nc or \.csv"):
-        write_load_curve(model.load_curve(1.0, 0.9, n=3), tmp_path / "x.txt")
+        write_load_curve(model.load_curve(mu=1.0, beta0=0.9, n=3), tmp_path / "x.txt")
     assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize("name", ["x.nc", "x.csv"])
 def test_written_files_get_default_permissions(tmp_path, name):
-    path = write_load_curve(model.load_curve(1.0, 0.9, n=3), tmp_path / name)
+    path = write_load_curve(model.load_curve(mu=1.0, beta0=0.9, n=3), tmp_path / name)
     umask = os.umask(0)
     os.umask(umask)
     for p in [path] + ([sidecar_path(path)] if name.endswith(".csv") else []):
@@ -109,7 +109,7 @@ def test_written_files_get_default_permissions(tmp_path, name):
 
 
 def test_failed_csv_write_leaves_nothing_and_keeps_the_old_file(tmp_path, monkeypatch):
-    path = write_load_curve(model.load_curve(1.0, 0.9, n=3), tmp_path / "x.csv")
+    path = write_load_curve(model.load_curve(mu=1.0, beta0=0.9, n=3), tmp_path / "x.csv")
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
 
     def boom(*args, **kwargs):
@@ -117,7 +117,7 @@ def test_failed_csv_write_leaves_nothing_and_keeps_the_old_file(tmp_path, monkey
 
     monkeypatch.setattr(json, "dump", boom)
     with pytest.raises(OSError, match="disk full"):
-        write_load_curve(model.load_curve(2.0, 0.9, n=5), path)
+        write_load_curve(model.load_curve(mu=2.0, beta0=0.9, n=5), path)
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
 
 

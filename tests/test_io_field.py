@@ -10,9 +10,9 @@ import textwrap
 import numpy as np
 import pytest
 
-from dhfield import PAPER_DOI, fields
+from dhfield import PAPER_DOI, field_metrics, fields
 from dhfield.io import read_netcdf
-from dhfield.io.field import FIELD_VARIABLES, compute_and_write_case, field_dataset, write_field
+from dhfield.io.field import FIELD_VARIABLES, field_dataset, write_field
 
 CASE = dict(beta0=0.9, mu=1.0, a_star=1.2)
 N = 32
@@ -103,41 +103,39 @@ def test_polar_variables_match_the_cartesian_ones(case):
     scale = np.abs(case.displacement_analytic).max()
     assert np.nanmax(np.abs(ds["gap_difference_polar"].values)) <= RTOL_POLAR_GAP_32 * scale
     # the annulus identity per ray is stored on the same theta_p coordinate
-    ident = fields.annulus_identity(case, n_theta=19)
+    ident = field_metrics.annulus_identity(case, n_theta=19)
     assert np.array_equal(ds["annulus_identity_error"].values, ident["rel_error"])
 
 
-def test_compute_and_write_case(tmp_path):
-    out = compute_and_write_case(CASE["beta0"], CASE["mu"], CASE["a_star"], 16, tmp_path / "c.nc", polar=False)
+def test_write_field_of_a_model_case(tmp_path):
+    out = write_field(fields.model_case(16, CASE["beta0"], CASE["mu"], CASE["a_star"]), tmp_path / "c.nc",
+                      polar=False)
     ds = read_netcdf(out)
     assert ds.sizes["x"] == 16 and "gap_numerical_polar" not in ds
     assert sorted(p.name for p in tmp_path.iterdir()) == ["c.nc"]
 
 
 def test_bad_output_paths_leave_nothing_behind(tmp_path):
+    case = fields.model_case(16, 0.9, 1.0, 1.2)
     before = sorted(tmp_path.iterdir())
     with pytest.raises(ValueError, match="output path"):
-        compute_and_write_case(0.9, 1.0, 1.2, 16, tmp_path / "missing" / "c.nc")
+        write_field(case, tmp_path / "missing" / "c.nc")
     with pytest.raises(ValueError, match="output path"):
-        compute_and_write_case(0.9, 1.0, 1.2, 16, tmp_path)
+        write_field(case, tmp_path)
     blocker = tmp_path / "file"
     blocker.write_text("keep")
     with pytest.raises(ValueError, match="output path"):
-        compute_and_write_case(0.9, 1.0, 1.2, 16, blocker / "c.nc")
+        write_field(case, blocker / "c.nc")
     assert sorted(tmp_path.iterdir()) == sorted(before + [blocker])
 
 
-def test_bad_parameters_do_not_clobber_an_existing_file(tmp_path):
-    target = tmp_path / "c.nc"
-    target.write_bytes(b"old")
+def test_bad_parameters_are_named_before_anything_is_solved():
     for kwargs, name in [(dict(beta0=1.5), "beta0"), (dict(mu=-1.0), "mu"), (dict(a_star=0.0), "a_star"),
                          (dict(n=7), "n")]:
         args = dict(CASE, n=16)
         args.update(kwargs)
         with pytest.raises(ValueError, match=name):
-            compute_and_write_case(args["beta0"], args["mu"], args["a_star"], args["n"], target)
-    assert target.read_bytes() == b"old"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.nc"]
+            fields.model_case(args["n"], args["beta0"], args["mu"], args["a_star"])
 
 
 def test_cli_field(tmp_path, capsys):

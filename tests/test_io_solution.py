@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_array_equal
 
+from dhfield.adhesive_start import AdhesiveOptions
 from dhfield.bem import adhesive_pull_off
 from dhfield.io.solution import (PHASES, REGIONS, pull_off_dataset, read_solution, state_dataset,
                                  write_solution)
@@ -12,7 +13,7 @@ from dhfield.io.solution import (PHASES, REGIONS, pull_off_dataset, read_solutio
 def small_result():
     # N = 16: a coarse but complete path (loading, unloading, refinement); 300 CG iterations
     # per state bound the cost of the states that do not converge on so coarse a grid.
-    return adhesive_pull_off(1.0, 0.8, 16, progress=False, max_iter=300)
+    return adhesive_pull_off(mu=1.0, beta0=0.8, n=16, progress=False, options=AdhesiveOptions(max_iter=300))
 
 
 def _attrs_round_trip(ds, back):

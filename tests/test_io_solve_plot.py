@@ -13,7 +13,7 @@ from dhfield.io.solve_plot import _prefix, solve_figure, write_solve_plot
 def pdms():
     """README's PDMS cylinders at sigma0 = 23.1 kPa (mu = 1.0003) and their BEM pull-off at N = 64."""
     params = contact_parameters(2e6, 0.5, 2e6, 0.5, 5e-3, math.radians(60.0), 0.04, 2.31e4)
-    return params, adhesive_pull_off(float(params.mu), float(params.beta0), 64, progress=False)
+    return params, adhesive_pull_off(mu=float(params.mu), beta0=float(params.beta0), n=64, progress=False)
 
 
 def test_figure_si_axes(pdms):

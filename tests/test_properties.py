@@ -59,8 +59,8 @@ def dmt_limit(beta0):
 @example(mu=100.0, beta0=0.001)  # item 2: was the zero-contact limit
 @example(mu=10.0, beta0=1e-4)    # pull-off at 6x the JKR-limit contact
 def test_dh_pull_off_is_finite_bounded_and_load_beats_displacement(mu, beta0):
-    load = model.pull_off(mu, beta0)
-    disp = model.pull_off(mu, beta0, control="displacement")
+    load = model.pull_off(mu=mu, beta0=beta0)
+    disp = model.pull_off(mu=mu, beta0=beta0, control="displacement")
     for p in (load, disp):
         for k in ("W_star", "a_star", "c_star", "delta_star"):
             assert np.isfinite(getattr(p, k)), k
@@ -76,14 +76,14 @@ def test_dh_pull_off_magnitude_decreases_with_mu(mu, beta0, factor):
     mu2 = min(mu * factor, TABOR_RANGE[1])
     if mu2 <= mu:
         return
-    w1, w2 = (abs(float(model.pull_off(m, beta0).W_star)) for m in (mu, mu2))
+    w1, w2 = (abs(float(model.pull_off(mu=m, beta0=beta0).W_star)) for m in (mu, mu2))
     assert w2 <= w1 * (1 + MONO_RTOL)
 
 
 @given(mu=mus, beta0=betas, lo=st.floats(-6.0, 6.0), span=st.floats(0.0, 3.0))
 def test_load_curve_is_finite_and_never_below_the_pull_off(mu, beta0, lo, span):
     a = np.clip(np.geomspace(10.0**lo, 10.0 ** (lo + span), 7), *CONTACT_SIZE_RANGE)
-    c = model.load_curve(mu, beta0, a)
+    c = model.load_curve(mu=mu, beta0=beta0, a_star=a)
     for k in ("W_star", "c_star", "v", "delta_star"):
         assert np.all(np.isfinite(getattr(c, k))), k
     assert np.all(c.c_star >= c.a_star)
@@ -95,7 +95,7 @@ def test_load_curve_is_finite_and_never_below_the_pull_off(mu, beta0, lo, span):
 @given(mu=mus, beta0=betas)
 def test_comparison_models_finite_or_reject_by_name(name, mu, beta0):
     try:
-        rec = compare.pull_off(name, mu, beta0)
+        rec = compare.pull_off(name, mu=mu, beta0=beta0)
     except ValueError as exc:  # a narrower domain (the closures): must name mu or beta0
         assert str(exc).startswith(("mu ", "beta0 ")), str(exc)
         return
@@ -112,8 +112,8 @@ def test_comparison_models_finite_or_reject_by_name(name, mu, beta0):
 @given(mu=mus.filter(lambda m: m < 1e11))
 def test_md_and_dh_circle_decrease_in_mu(mu):
     for name in ("md", "dh-circular"):
-        w1 = abs(float(compare.pull_off(name, mu, 1.0)["W_star"]))
-        w2 = abs(float(compare.pull_off(name, mu * 3.0, 1.0)["W_star"]))
+        w1 = abs(float(compare.pull_off(name, mu=mu, beta0=1.0)["W_star"]))
+        w2 = abs(float(compare.pull_off(name, mu=mu * 3.0, beta0=1.0)["W_star"]))
         assert w2 <= w1 * (1 + MONO_RTOL), name
 
 
@@ -129,13 +129,13 @@ def test_every_rejection_names_the_parameter(value, which):
     with pytest.raises(ValueError, match=rf"^{which} "):
         compare.pull_off("md", **kw)
     with pytest.raises(ValueError, match=rf"^{which} "):
-        model.load_curve(kw["mu"], kw["beta0"], [1.0])
+        model.load_curve(mu=kw["mu"], beta0=kw["beta0"], a_star=[1.0])
 
 
 @given(value=bad_values)
 def test_rejected_contact_sizes_name_a_star(value):
     with pytest.raises(ValueError, match=r"^a_star "):
-        model.load_curve(1.0, 0.8, [1.0, value])
+        model.load_curve(mu=1.0, beta0=0.8, a_star=[1.0, value])
 
 
 _SI = dict(youngs_modulus_1=1e6, poisson_ratio_1=0.5, youngs_modulus_2=1e6, poisson_ratio_2=0.5,

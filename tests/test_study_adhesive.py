@@ -45,9 +45,13 @@ def test_resume_failures_and_extrapolation(tmp_path):
     solver = _stand_in(calls, fail=(0.8, 2.0, 32), unconverged=(1.0, 2.0, 64))
     recs = sa.run_study([0.8, 1.0], [1.0, 2.0], [16, 32, 64], work_dir=tmp_path, solver=solver, progress=False)
     assert len(recs) == len(calls) == 12
-    # resume: nothing is recomputed, every record is read back
+    # resume (dhfield.sweep.store): the finished cases are read back, the one that raised is solved again
+    assert sorted(p.name for p in tmp_path.glob("*.failed.nc")) == ["b0.8_m2_n32_dugdale_load.failed.nc"]
     again = sa.run_study([0.8, 1.0], [1.0, 2.0], [16, 32, 64], work_dir=tmp_path, solver=solver, progress=False)
-    assert len(calls) == 12 and len(again) == 12
+    assert len(calls) == 13 and calls[-1] == (0.8, 2.0, 32) and len(again) == 12
+    for first, back in zip(recs, again):
+        if first["status"] != "failed":
+            assert back == first  # every field of a record survives the store
     failed = [r for r in again if r["status"] == "failed"]
     assert len(failed) == 1 and "beta0=0.8, mu=2, n=32" in failed[0]["message"]
     assert math.isnan(failed[0]["W_star"])
@@ -162,6 +166,7 @@ def test_coarse_to_fine_from_a_stored_coarse_level(tmp_path):
     """The route that made beta0 = 0.5, mu = 5 converge at N = 512 (`--n 256 512 --coarse-to-fine 256`
     with the N = 256 record already stored): the coarse level is read for the record but re-solved in
     memory as the start, and the fine record says it was refined from it."""
+    from dhfield.adhesive_start import AdhesiveOptions
     from dhfield.bem import adhesive_pull_off, refine_pull_off
 
     opts = dict(n_steps=4, refine_levels=0, max_iter=sa.STUDY_MAX_ITER)
@@ -171,7 +176,8 @@ def test_coarse_to_fine_from_a_stored_coarse_level(tmp_path):
     fine = next(r for r in recs if r["n"] == 32)
     assert fine["route"] == "coarse to fine from n=16" and fine["search"] == "refine"
     assert fine["status"] == "ok" and fine["converged"]
-    direct = refine_pull_off(adhesive_pull_off(1.0, 1.0, 16, progress=False, **opts), 32, progress=False, **opts)
+    direct = refine_pull_off(adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, options=AdhesiveOptions(**opts)),
+                             32, progress=False, **opts)
     assert fine["W_star"] == pytest.approx(direct.W_star, rel=RTOL_SAME_ROUTE)
     assert fine["n_steps"] == direct.n_steps
 

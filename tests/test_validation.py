@@ -56,10 +56,10 @@ def test_issue18_item4_complex_arrays_are_rejected_by_name():
 
     params = dhfield.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.0, 0.05, 2e5)
     calls = [
-        (lambda: dhfield.pull_off(np.array([1 + 5j]), 0.9), "mu"),
-        (lambda: dhfield.pull_off(1.0, np.array([0.9 + 0j])), "beta0"),
-        (lambda: compare.pull_off("jkr", [1 + 1j], 0.9), "mu"),
-        (lambda: dhfield.load_curve(1.0, 0.9, np.array([1 + 0j])), "a_star"),
+        (lambda: dhfield.pull_off(mu=np.array([1 + 5j]), beta0=0.9), "mu"),
+        (lambda: dhfield.pull_off(mu=1.0, beta0=np.array([0.9 + 0j])), "beta0"),
+        (lambda: compare.pull_off("jkr", mu=[1 + 1j], beta0=0.9), "mu"),
+        (lambda: dhfield.load_curve(mu=1.0, beta0=0.9, a_star=np.array([1 + 0j])), "a_star"),
         (lambda: dhfield.contact_parameters(np.array([1e6 + 0j]), 0.5, 1e6, 0.5, 0.01, 1.0, 0.05, 2e5),
          "youngs_modulus_1"),
         (lambda: dhfield.fit_curve(np.array([1e-3 + 1j, 2e-3, 3e-3]), np.array([1e-4, 2e-4, 3e-4]), params),

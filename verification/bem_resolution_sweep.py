@@ -130,7 +130,7 @@ def _solve(queue, mu, beta0, n):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            r = adhesive_pull_off(mu, beta0, n)
+            r = adhesive_pull_off(mu=mu, beta0=beta0, n=n)
         except ValueError as exc:
             queue.put({"refused": str(exc)})
             return

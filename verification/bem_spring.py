@@ -74,7 +74,7 @@ def main(argv=None) -> int:
         ks = [0.0, *args.k, None]
         for k in ks:
             got = bem_pull_off_under_spring(br, k)
-            ref = float(compliance.pull_off_under_spring("md", mu, 1.0, k)["W_star"])
+            ref = float(compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=k)["W_star"])
             w, est = float(got["W_star"]), float(got["W_star_error"])
             err = w / ref - 1.0
             bounded = abs(w - ref) <= est
@@ -111,7 +111,7 @@ def cycle(args) -> int:
         mu = float(transition.tabor_from_maugis(lam))
         t0 = time.perf_counter()
         got = bem_loading_cycle(mu, 1.0, args.n, list(args.k))
-        ref = compliance.loading_cycle("md", mu, 1.0, list(args.k))
+        ref = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=list(args.k))
         for j, k in enumerate(args.k):
             for name, key, ekey in (("jump in", "jump_in_W_star", "jump_in_W_star_error"),
                                     ("jump out", "jump_out_W_star", "jump_out_W_star_error"),

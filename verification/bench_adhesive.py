@@ -302,10 +302,10 @@ def bench_path(n, lambdas, tm, march=False):
     ratios = []
     for lam in lambdas:
         mu = lam / LAMBDA_PER_MU
-        md = compare.pull_off("md", mu, 1.0)
+        md = compare.pull_off("md", mu=mu, beta0=1.0)
         prob = nondimensional_problem(mu, 1.0, n)
-        adhesive_pull_off(mu, 1.0, n, progress=False, search=SEARCH)   # warm-up: FFT plans, imports
-        adhesive_pull_off(mu, 1.0, n, progress=False, search="bracket")
+        adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False, search=SEARCH)   # warm-up: FFT plans, imports
+        adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False, search="bracket")
 
         def row(label, seconds, states, its, w, outer=None):
             err = f"{100 * (w / md['W_star'] - 1):+7.3f}%" if np.isfinite(w) else "    n/a"
@@ -315,7 +315,7 @@ def bench_path(n, lambdas, tm, march=False):
 
         def ours(label, search):
             t0 = _now()
-            r = adhesive_pull_off(mu, 1.0, n, progress=False, search=search)
+            r = adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False, search=search)
             t = _since(t0)
             row(label, t, r.n_steps, r.iterations / r.n_steps, r.W_star, float(np.mean(r.path.outer_iterations)))
             if r.path.coarse_states:
@@ -331,7 +331,7 @@ def bench_path(n, lambdas, tm, march=False):
               f"time ratio {t_ours.wall / t_ref.wall:.3f} (cpu {t_ours.cpu / t_ref.cpu:.3f})")
         if march:
             t0 = _now()
-            old = adhesive_pull_off(mu, 1.0, n, progress=False, search="march")
+            old = adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False, search="march")
             row("dhfield march (first session)", _since(t0), old.n_steps,
                 old.iterations / old.n_steps, old.W_star, float(np.mean(old.path.outer_iterations)))
             print(f"           {SEARCH} vs march W*: {res.W_star / old.W_star - 1:+.2e} relative")
@@ -355,7 +355,7 @@ def bench_path(n, lambdas, tm, march=False):
         def again():
             # ours once more, right after a tamaas run: each ratio pairs runs timed side by side
             t0 = _now()
-            adhesive_pull_off(mu, 1.0, n, progress=False, search=SEARCH)
+            adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False, search=SEARCH)
             return _since(t0)
 
         loads_s, t_same = tamaas_same_states(tm, mu, n, zone, prob.approach_max, approaches)

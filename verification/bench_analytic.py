@@ -22,11 +22,11 @@ def main() -> int:
     mu60 = np.geomspace(0.05, 20.0, 60)
     beta3 = np.array([0.8, 0.9, 0.99])
     cases = [
-        ("load curve, 200 points (mu=1, beta0=0.9)", lambda: model.load_curve(1.0, 0.9, n=200), 0.050, 20),
-        ("pull-off, load control (mu=1, beta0=0.9)", lambda: model.pull_off(1.0, 0.9), 0.030, 20),
+        ("load curve, 200 points (mu=1, beta0=0.9)", lambda: model.load_curve(mu=1.0, beta0=0.9, n=200), 0.050, 20),
+        ("pull-off, load control (mu=1, beta0=0.9)", lambda: model.pull_off(mu=1.0, beta0=0.9), 0.030, 20),
         ("pull-off, displacement control (mu=1, beta0=0.9)",
-         lambda: model.pull_off(1.0, 0.9, control="displacement"), None, 20),
-        ("Fig. 9a dataset: 60 mu x 3 beta0 pull-offs", lambda: model.pull_off(mu60[:, None], beta3[None, :]),
+         lambda: model.pull_off(mu=1.0, beta0=0.9, control="displacement"), None, 20),
+        ("Fig. 9a dataset: 60 mu x 3 beta0 pull-offs", lambda: model.pull_off(mu=mu60[:, None], beta0=beta3[None, :]),
          2.0, 5),
     ]
     return run_cases("dhfield analytic benchmark", cases, width=52)

@@ -35,7 +35,7 @@ import time
 import numpy as np
 import pyfftw
 
-from dhfield import bem, fields
+from dhfield import bem, field_sampling
 
 TARGET_RAW = 1.15
 TARGET_SYMMETRIC = 0.5
@@ -88,7 +88,7 @@ def main(argv=None) -> int:
     effort = "FFTW_MEASURE"
 
     grid = bem.Grid.centered(n, 2.0)
-    p = fields.hertz_pressure(grid, 1.0, 0.7)
+    p = field_sampling.hertz_pressure(grid, 1.0, 0.7)
     pq = bem.quadrant(p)
 
     t0 = time.perf_counter()

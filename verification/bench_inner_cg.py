@@ -88,7 +88,7 @@ def main(argv=None) -> int:
     for lam in (1.0, 3.0):
         mu = float(transition.tabor_from_maugis(lam))
         _compare(f"sphere pull-off path, lambda = {lam:g}, N = {args.n_path}",
-                 lambda: adhesive_pull_off(mu, 1.0, args.n_path, progress=False),
+                 lambda: adhesive_pull_off(mu=mu, beta0=1.0, n=args.n_path, progress=False),
                  lambda r: f"W* {r.W_star:.9f}, {r.n_steps} states, CG it {r.iterations}", args.repeats)
     print(f"(benchmark wall time {time.perf_counter() - t_start:.0f} s)")
     return 0

@@ -38,7 +38,7 @@ def main() -> int:
          lambda: jkr_elliptic.pull_off(R, E, W, beta0=0.9, control="displacement"), None, 30),
         ("circular DH pull-off, load control (mu ~ 0.89)",
          lambda: dh_circular.pull_off(R, E, W, SIGMA_LAM1), None, 30),
-        ("compare(mu = 5, beta0 = 0.9): all 7 models", lambda: compare.compare(5.0, 0.9), None, 10),
+        ("compare(mu = 5, beta0 = 0.9): all 7 models", lambda: compare.compare(mu=5.0, beta0=0.9), None, 10),
     ]
     return run_cases("dhfield comparison-model benchmark", cases, width=62)
 

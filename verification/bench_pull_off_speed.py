@@ -107,7 +107,7 @@ def condition(p, control):
     h = 1e-3 * a
 
     def slope(x):
-        return model.load_curve_nondimensional(x, p.mu, beta0, derivatives=True)[key]
+        return model.load_curve_nondimensional(x, mu=p.mu, beta0=beta0, derivatives=True)[key]
 
     d2 = (slope(a + h) - slope(a - h)) / (2 * h)
     return np.abs(np.asarray(val)) / (np.abs(d2) * a * a)
@@ -145,7 +145,7 @@ def main(argv=None) -> int:
     ref = load_reference(args.ref)
     print(f"bench_pull_off_speed on {os.cpu_count()} cores, reference {args.ref}, load average "
           + " ".join(f"{x:.2f}" for x in os.getloadavg()))
-    model.pull_off(1.0, 0.8)
+    model.pull_off(mu=1.0, beta0=0.8)
     ref.pull_off(1.0, 0.8)  # warm-up: imports, quadrature caches
     ok = True
 
@@ -153,7 +153,7 @@ def main(argv=None) -> int:
     mu = np.geomspace(0.1, 10.0, n)[None, :]
     beta0 = np.linspace(0.3, 1.0, n)[:, None]
     old, t_old = _timed(ref.pull_off, mu, beta0)
-    new, t_new = _timed(model.pull_off, mu, beta0)
+    new, t_new = _timed(model.pull_off, mu=mu, beta0=beta0)
     dw, da, tol_a, _, same = compare(new, old)
     speed = t_old / t_new
     ok_s = speed >= TARGET_SPEEDUP
@@ -167,7 +167,7 @@ def main(argv=None) -> int:
     mu_s, b_s = sample(args.sample, args.seed)
     for control in ("load", "displacement"):
         old, t_old = _timed(ref.pull_off, mu_s, b_s, control=control)
-        new, t_new = _timed(model.pull_off, mu_s, b_s, control=control)
+        new, t_new = _timed(model.pull_off, mu=mu_s, beta0=b_s, control=control)
         dw, da, tol_a, both, same = compare(new, old, control)
         m = mu_s.size
         # The reference sized its quadrature by the smallest scale in its batch, so its own a* moves

@@ -28,7 +28,7 @@ search.DEFAULT_CHUNK_BYTES = chunk
 mu = np.geomspace(0.01, 100.0, n)[:, None]
 beta0 = np.linspace(0.3, 1.0, n)[None, :]
 t0 = time.perf_counter()
-p = model.pull_off(mu, beta0)
+p = model.pull_off(mu=mu, beta0=beta0)
 wall = time.perf_counter() - t0
 ok = bool(np.all(np.isfinite(p.W_star)))
 with open("/proc/self/status") as f:

@@ -74,7 +74,7 @@ def sphere_row(lam, n, start=None):
     mu = float(transition.tabor_from_maugis(lam))
     t0 = time.perf_counter()
     # the whole marching path at the coarsest N: the contact radius along the curve needs it
-    res = adhesive_pull_off(mu, 1.0, n, progress=None, search="march") if start is None else \
+    res = adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=None, search="march") if start is None else \
         refine_pull_off(start, n)
     el = time.perf_counter() - t0
     ref = maugis_dugdale.pull_off_nondimensional(1.0, mu)

@@ -30,7 +30,7 @@ import time
 
 import numpy as np
 
-from dhfield import fields
+from dhfield import fields, refinement
 
 #: Targets of issue 4.
 TARGETS = {512: 1e-3, 1024: 3e-4}
@@ -70,12 +70,12 @@ def study(make_case, ns):
         case = make_case(n)
         rows.append((n, case.grid.dx, *errors(case)))
     arr = np.array(rows)
-    orders = [np.concatenate([[np.nan], fields.observed_orders(arr[:, 1], arr[:, k])]) for k in (2, 3, 4)]
+    orders = [np.concatenate([[np.nan], refinement.observed_orders(arr[:, 1], arr[:, k])]) for k in (2, 3, 4)]
     return arr, np.array(orders).T
 
 
 def dh_parameters():
-    return fields.adhesive_state(DH_CASE["a_star"], DH_CASE["mu"], DH_CASE["beta0"])
+    return fields.adhesive_state(DH_CASE["a_star"], mu=DH_CASE["mu"], beta0=DH_CASE["beta0"])
 
 
 def format_table(arr, orders) -> str:

@@ -25,10 +25,10 @@ def jkr_quintic(k):
 
 def main():
     ks = np.array([0.0, 0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0, 1e4])
-    po = compliance.pull_off_under_spring("jkr", 10.0, 1.0, ks)
+    po = compliance.pull_off_under_spring("jkr", mu=10.0, beta0=1.0, machine_stiffness=ks)
     dev = max(abs(w - jkr_quintic(k)) for k, w in zip(ks, po["W_star"]))
     print(f"JKR pull-off under a spring vs quintic root, K* in {ks.min():g}..{ks.max():g}: max |dW*| = {dev:.2e}")
-    cyc = compliance.loading_cycle("jkr", 10.0, 1.0, None)
+    cyc = compliance.loading_cycle("jkr", mu=10.0, beta0=1.0, machine_stiffness=None)
     t1, t2 = (np.pi / 8) ** (1 / 6), (2 * np.pi) ** (1 / 6)
     prim = lambda t: (8 / 15 * t**10 - 4 / 3 * C * t**7 + C**2 / 2 * t**4) / (2 * np.pi)  # noqa: E731
     print(f"JKR rigid machine: jump out W* {cyc['jump_out_W_star']:.12f} (-5/12 = {-5 / 12:.12f}), "
@@ -37,8 +37,8 @@ def main():
     print()
     print(f"{'model':14s} " + " ".join(f"K*={k:<8g}" for k in (0.0, 0.1, 1.0, 10.0)) + "  rigid     | U* at K*=1, rigid")
     for model, beta0 in (("jkr", 1.0), ("md", 1.0), ("dh-circular", 1.0), ("dmt", 1.0), ("jkr-elliptic", 0.8)):
-        r = compliance.loading_cycle(model, 1.0, beta0, [0.0, 0.1, 1.0, 10.0])
-        rr = compliance.loading_cycle(model, 1.0, beta0, None)
+        r = compliance.loading_cycle(model, mu=1.0, beta0=beta0, machine_stiffness=[0.0, 0.1, 1.0, 10.0])
+        rr = compliance.loading_cycle(model, mu=1.0, beta0=beta0, machine_stiffness=None)
         print(f"{model:14s} " + " ".join(f"{w:<10.5f}" for w in r["jump_out_W_star"])
               + f"  {rr['jump_out_W_star']:<9.5f} | {r['energy_lost_star'][2]:.5f}, {rr['energy_lost_star']:.5f}")
 

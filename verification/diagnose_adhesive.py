@@ -56,8 +56,8 @@ def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000):
     from dhfield.bem.solver import Prediction, solve_problem
 
     nd = nondimensional_problem(mu, beta0, n)
-    dh = compare.pull_off("dh-elliptic", mu, beta0, "load")
-    ta = compare.pull_off("dh-elliptic-two-axis", mu, beta0, "load")
+    dh = compare.pull_off("dh-elliptic", mu=mu, beta0=beta0, control="load")
+    ta = compare.pull_off("dh-elliptic-two-axis", mu=mu, beta0=beta0, control="load")
     if start == "two-axis":
         approach, c, d = float(ta["delta_star"]), float(ta["c_star"]), float(ta["d_star"])
     else:
@@ -99,9 +99,10 @@ def main(argv=None) -> int:
               f"d = {d_:.4f}, (c - a)/dx = {nx:.2f}, (d - b)/dy = {ny:.2f} ({el:.0f} s)", flush=True)
     if args.path:
         from dhfield.bem import adhesive_pull_off
+        from dhfield.adhesive_start import AdhesiveOptions
 
         t0 = time.perf_counter()
-        res = adhesive_pull_off(m, b, n, max_iter=args.max_iter, keep_states=True, progress=sys.stderr.isatty())
+        res = adhesive_pull_off(mu=m, beta0=b, n=n, progress=sys.stderr.isatty(), options=AdhesiveOptions(max_iter=args.max_iter, keep_states=True))
         path = res.path
         print(f"path: W* = {res.W_star:.6f}, converged = {res.converged}, resolved = {res.resolved}, "
               f"{res.n_steps} states, {res.iterations} CG iterations ({time.perf_counter() - t0:.0f} s)")

@@ -61,7 +61,7 @@ def main(argv=None) -> int:
         ref = float(maugis_dugdale.pull_off(1.0, 1.0, 1.0, mu, control="displacement").load) / (2.0 * np.pi)
         for n in args.n:
             t0 = time.perf_counter()
-            res = adhesive_pull_off(mu, 1.0, n, control="displacement", progress=False)
+            res = adhesive_pull_off(mu=mu, beta0=1.0, n=n, control="displacement", progress=False)
             sec = time.perf_counter() - t0
             err = (res.W_star - ref) / abs(ref)
             bounded = abs(res.W_star - ref) <= res.W_star_error

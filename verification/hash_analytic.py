@@ -90,22 +90,22 @@ def main(argv=None) -> int:
         for name in names:
             if quick and name == "dh-elliptic-ray-average":
                 continue
-            emit(f"pull_off[{name},{control}]", compare.pull_off(name, m, b, control))
+            emit(f"pull_off[{name},{control}]", compare.pull_off(name, mu=m, beta0=b, control=control))
         res = dhfield.pull_off(mu=m, beta0=b, control=control)
         emit(f"dhfield.pull_off[{control}]", {k: getattr(res, k) for k in (
             "mu", "beta0", "ellipticity", "control", "W_star", "a_star", "c_star", "v", "delta_star",
             "at_zero_contact")})
         for beta0, mu in POINTS:
             for name in names:
-                emit(f"pull_off_scalar[{name},{control},{beta0},{mu}]", compare.pull_off(name, mu, beta0, control))
-            emit(f"compare[{control},{beta0},{mu}]", compare.compare(mu, beta0, control))
+                emit(f"pull_off_scalar[{name},{control},{beta0},{mu}]", compare.pull_off(name, mu=mu, beta0=beta0, control=control))
+            emit(f"compare[{control},{beta0},{mu}]", compare.compare(mu=mu, beta0=beta0, control=control))
     for beta0, mu in POINTS:
         c = dhfield.load_curve(mu=mu, beta0=beta0, n=40)
         emit(f"dhfield.load_curve[{beta0},{mu}]", {k: getattr(c, k) for k in (
             "mu", "beta0", "ellipticity", "a_star", "b_star", "c_star", "d_star", "v", "W_star", "delta_star")})
         for name in compare.CURVE_MODEL_NAMES:
             emit(f"load_curve[{name},{beta0},{mu}]", compare.load_curve(name, mu, beta0, n=40))
-            w_po = float(compare.pull_off(name, mu, beta0, "load", check_closure=False)["W_star"])
+            w_po = float(compare.pull_off(name, mu=mu, beta0=beta0, control="load", check_closure=False)["W_star"])
             w = w_po + np.array([0.0, 0.01, 0.5, 3.0])
             emit(f"load_curve_at_load[{name},{beta0},{mu}]", compare.load_curve_at_load(name, mu, beta0, w))
     for beta0, mu in POINTS:

@@ -89,6 +89,7 @@ def main(argv=None):
     """``argv``: case labels to run (default all); ``--skip FIELD`` leaves a field out everywhere
     (e.g. a field added since the reference run, to compare the rest)."""
     from dhfield.bem import adhesive_pull_off, refine_pull_off
+    from dhfield.adhesive_start import AdhesiveOptions
 
     argv = list(argv or ())
     while "--skip" in argv:
@@ -100,7 +101,7 @@ def main(argv=None):
     for label, mu, beta0, n, kw in CASES:
         if only and label not in only:
             continue
-        res = adhesive_pull_off(mu, beta0, n, progress=False, keep_states=True, **kw)
+        res = adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False, **kw, options=AdhesiveOptions(keep_states=True))
         results[label] = res
         print(f"{label} route={res.search} W_star={res.W_star!r}", flush=True)
         for line in result_lines(label, res):

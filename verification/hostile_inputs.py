@@ -685,21 +685,21 @@ def api_cases(quick):
     for lab, v in bad_scalars:
         # True is the integer 1 and an empty array may give an empty result: either answer is fine
         must = "reject" if lab in ("nan", "inf", "-1", "0", "'abc'", "None") else "either"
-        add(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(v, 0.9), "mu", must)
-        add(f"model.pull_off(beta0={lab})", lambda v=v: model.pull_off(1.0, v), "beta0", must)
-        add(f"model.load_curve(mu={lab})", lambda v=v: model.load_curve(v, 0.9, n=5), "mu", must)
-        add(f"model.load_curve(beta0={lab})", lambda v=v: model.load_curve(1.0, v, n=5), "beta0", must)
+        add(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(mu=v, beta0=0.9), "mu", must)
+        add(f"model.pull_off(beta0={lab})", lambda v=v: model.pull_off(mu=1.0, beta0=v), "beta0", must)
+        add(f"model.load_curve(mu={lab})", lambda v=v: model.load_curve(mu=v, beta0=0.9, n=5), "mu", must)
+        add(f"model.load_curve(beta0={lab})", lambda v=v: model.load_curve(mu=1.0, beta0=v, n=5), "beta0", must)
         for name in ("jkr", "dmt", "md", "dh-circular", "jkr-elliptic"):
-            add(f"compare.pull_off({name!r}, mu={lab})", lambda v=v, n=name: compare.pull_off(n, v, 0.9), "mu", must)
+            add(f"compare.pull_off({name!r}, mu={lab})", lambda v=v, n=name: compare.pull_off(n, mu=v, beta0=0.9), "mu", must)
         add(f"fields.model_case(n={lab})", lambda v=v: fields.model_case(v, 0.9, 1.0, 1.2), "n",
             "reject" if lab != "1e-308" else "reject")
         add(f"bem.Grid(nx={lab})", lambda v=v: bem.Grid(v, 16, 0.1, 0.1), "nx", "reject")
         add(f"bem.Grid(dx={lab})", lambda v=v: bem.Grid(16, 16, v, 0.1), "dx",
             "reject" if lab not in ("1e308", "1e-308", "True", "[]", "masked") else "either")
     for n in (2.5, 0, -3, 1, "5"):
-        add(f"model.load_curve(n={n!r})", lambda n=n: model.load_curve(1.0, 0.9, n=n), "n", "reject")
-    add("model.pull_off(mu=array with nan)", lambda: model.pull_off(np.array([1.0, np.nan]), 0.9), "mu", "reject")
-    add("model.pull_off(empty arrays)", lambda: model.pull_off(np.array([]), np.array([])), "mu", "either")
+        add(f"model.load_curve(n={n!r})", lambda n=n: model.load_curve(mu=1.0, beta0=0.9, n=n), "n", "reject")
+    add("model.pull_off(mu=array with nan)", lambda: model.pull_off(mu=np.array([1.0, np.nan]), beta0=0.9), "mu", "reject")
+    add("model.pull_off(empty arrays)", lambda: model.pull_off(mu=np.array([]), beta0=np.array([])), "mu", "either")
     add("bem.surface_displacement(nan pressure)",
         lambda: bem.surface_displacement(np.full((16, 16), np.nan), 0.1), "pressure", "reject")
     add("bem.surface_displacement(1-D)", lambda: bem.surface_displacement(np.ones(16), 0.1), "pressure", "reject")
@@ -737,10 +737,16 @@ CLOSURE_03_10 = -0.485
 def _bem_verdict(mu, beta0, n, reference, rtol=BEM_SILENT_RTOL, **kw):
     """An API case: the BEM pull-off must be flagged (resolved/converged false) or near ``reference``."""
     def run():
-        from dhfield import bem, compare
+        from dataclasses import fields
 
-        ref = compare.pull_off("md", mu, 1.0)["W_star"] if reference == "md" else reference
-        res = bem.adhesive_pull_off(mu, beta0, n, progress=False, **kw)
+        from dhfield import bem, compare
+        from dhfield.adhesive_start import AdhesiveOptions
+
+        ref = compare.pull_off("md", mu=mu, beta0=1.0)["W_star"] if reference == "md" else reference
+        numerics = {f.name for f in fields(AdhesiveOptions)}
+        res = bem.adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False,
+                                    **{k: v for k, v in kw.items() if k not in numerics},
+                                    options=AdhesiveOptions(**{k: v for k, v in kw.items() if k in numerics}))
         ok = bool(getattr(res, "resolved", True)) and bool(res.converged)
         w = float(res.W_star)
         if ok and not (abs(w - ref) <= rtol * abs(ref)):
@@ -761,7 +767,7 @@ def _json_w_check(reference, rtol=BEM_SILENT_RTOL):
             return ("silent wrong", "unparsable JSON from solve")
         from dhfield import compare
 
-        ref = compare.pull_off("md", rec["mu"], 1.0)["W_star"] if reference == "md" else reference
+        ref = compare.pull_off("md", mu=rec["mu"], beta0=1.0)["W_star"] if reference == "md" else reference
         w = rec.get("W_star")
         if w is None or abs(w - ref) > rtol * abs(ref):
             return ("silent wrong", f"exit 0 with W* = {w}, reference {ref:.4g}")
@@ -867,6 +873,7 @@ def _peer_setup(case, behaviour):
 def hardening_cases(quick):
     """Issue 18's classes: API dtypes, file contents, TOML values, environment, network peers, BEM answers."""
     from dhfield import bem, compare, dimensional, model
+    from dhfield.adhesive_start import AdhesiveOptions
 
     cases = []
 
@@ -874,29 +881,28 @@ def hardening_cases(quick):
         cases.append(Case("api", label, api=fn, param=param, expect=expect))
 
     # --- API dtypes: complex refused by name; other numeric dtypes accepted or refused by name
-    api("model.pull_off(mu=complex array)", lambda: model.pull_off(np.array([1 + 5j]), 0.9), "mu", "reject")
-    api("model.pull_off(beta0=complex array)", lambda: model.pull_off(1.0, np.array([0.9 + 0j])), "beta0", "reject")
+    api("model.pull_off(mu=complex array)", lambda: model.pull_off(mu=np.array([1 + 5j]), beta0=0.9), "mu", "reject")
+    api("model.pull_off(beta0=complex array)", lambda: model.pull_off(mu=1.0, beta0=np.array([0.9 + 0j])), "beta0", "reject")
     api("compare.pull_off('jkr', mu=complex array)",
-        lambda: compare.pull_off("jkr", np.array([1 + 1j]), 0.9), "mu", "reject")
-    api("compare.pull_off('md', mu=complex scalar)", lambda: compare.pull_off("md", 1 + 0j, 0.9), "mu", "reject")
+        lambda: compare.pull_off("jkr", mu=np.array([1 + 1j]), beta0=0.9), "mu", "reject")
+    api("compare.pull_off('md', mu=complex scalar)", lambda: compare.pull_off("md", mu=1 + 0j, beta0=0.9), "mu", "reject")
     for lab, v in [("float32", np.float32(1.0)), ("float16", np.float16(1.0)), ("int64 array", np.array([1])),
                    ("bool array", np.array([True])), ("object array", np.array([1.0], dtype=object)),
                    ("big-endian array", np.array([1.0], dtype=">f8")), ("0-d array", np.array(1.0)),
                    ("uint8 array", np.array([3], dtype=np.uint8)), ("longdouble", np.longdouble(1.0))]:
-        api(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(v, 0.9), "mu", "either")
+        api(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(mu=v, beta0=0.9), "mu", "either")
     for lab, v in [("datetime64", np.datetime64("2020-01-01")), ("timedelta64", np.timedelta64(1, "s")),
                    ("dict", {"mu": 1.0}), ("set", {1.0})]:
-        api(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(v, 0.9), "mu", "reject")
+        api(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(mu=v, beta0=0.9), "mu", "reject")
     for lab, v in [("str array '1.0'", np.array(["1.0"])), ("bytes b'1'", b"1")]:  # a numeric text may parse
-        api(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(v, 0.9), "mu", "either")
+        api(f"model.pull_off(mu={lab})", lambda v=v: model.pull_off(mu=v, beta0=0.9), "mu", "either")
     api("dimensional.contact_parameters(skew_angle=float32(pi/2))",
         lambda: dimensional.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, np.float32(np.pi / 2), 0.05, 1e6),
         "skew_angle", "either")
-    api("bem.adhesive_pull_off(mu=array([1.0]))", lambda: bem.adhesive_pull_off(np.array([1.0]), 0.9, 16,
+    api("bem.adhesive_pull_off(mu=array([1.0]))", lambda: bem.adhesive_pull_off(mu=np.array([1.0]), beta0=0.9, n=16,
                                                                                 progress=False), "mu", "either")
-    api("bem.adhesive_pull_off(max_iter=0)", lambda: bem.adhesive_pull_off(1.0, 0.9, 16, max_iter=0,
-                                                                         progress=False), "max_iter", "either")
-    api("bem.adhesive_pull_off(mu=complex)", lambda: bem.adhesive_pull_off(1 + 0j, 0.9, 16, progress=False),
+    api("bem.adhesive_pull_off(max_iter=0)", lambda: bem.adhesive_pull_off(mu=1.0, beta0=0.9, n=16, progress=False, options=AdhesiveOptions(max_iter=0)), "max_iter", "either")
+    api("bem.adhesive_pull_off(mu=complex)", lambda: bem.adhesive_pull_off(mu=1 + 0j, beta0=0.9, n=16, progress=False),
         "mu", "reject")
 
     # --- BEM answers: flagged, or within their error of the reference (issue 18 item 1)

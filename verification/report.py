@@ -45,7 +45,6 @@ import os
 import platform
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
@@ -282,16 +281,9 @@ def clean_output(out: Path):
 
 
 def _git_commit():
-    try:
-        rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=_ROOT, capture_output=True,
-                             text=True, timeout=10)
-        if rev.returncode != 0:
-            return "unavailable"
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=_ROOT,
-                               capture_output=True, text=True, timeout=10)
-        return rev.stdout.strip() + (" (uncommitted changes)" if dirty.stdout.strip() else "")
-    except (OSError, subprocess.SubprocessError):
-        return "unavailable"
+    from dhfield.io import git_commit
+
+    return git_commit(short=12)
 
 
 def collect_metadata(argv, quick):

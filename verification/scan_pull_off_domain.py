@@ -41,8 +41,8 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     for i, b in enumerate(beta0):
         try:
-            w_load[i] = model.pull_off(mu, b).W_star
-            w_disp[i] = model.pull_off(mu, b, control="displacement").W_star
+            w_load[i] = model.pull_off(mu=mu, beta0=b).W_star
+            w_disp[i] = model.pull_off(mu=mu, beta0=b, control="displacement").W_star
         except Exception as exc:  # noqa: BLE001 - counted and reported, the scan goes on
             failed += 1
             print(f"beta0 = {b:.4g}: {type(exc).__name__}: {exc}", file=sys.stderr)

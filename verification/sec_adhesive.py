@@ -294,6 +294,7 @@ def _sphere_convergence():
 def _rerun(ds, quick, progress):
     """Re-solve the cheap cases at the coarsest stored N; return checks and a text line."""
     from dhfield.bem import adhesive_pull_off
+    from dhfield.adhesive_start import AdhesiveOptions
     from dhfield.bem.pull_off import SEARCHES
     from verification.study_adhesive import STATUSES, STUDY_MAX_ITER, USABLE
 
@@ -309,8 +310,7 @@ def _rerun(ds, quick, progress):
         t0 = time.perf_counter()
         # the same load-minimum search as the stored case (march for cases stored before 'search')
         search = str(ds["search"].sel(**sel).values) if "search" in ds else "march"
-        res = adhesive_pull_off(m, b, n0, max_iter=STUDY_MAX_ITER, progress=False,
-                                search=search if search in SEARCHES else "bracket")
+        res = adhesive_pull_off(mu=m, beta0=b, n=n0, progress=False, search=search if search in SEARCHES else "bracket", options=AdhesiveOptions(max_iter=STUDY_MAX_ITER))
         el = time.perf_counter() - t0
         progress(f"re-run β0 = {b:g}, μ = {m:g}, N = {n0}: {el:.1f} s")
         err = abs(res.W_star / stored - 1.0)

@@ -236,7 +236,7 @@ def _check_eq31_quadrature(n_per_curve, quick):
     cases = [(mu, b) for mu in (0.05, 0.5, 1.0, 5.0, 20.0) for b in (0.3, 0.8, 0.9, 0.99, 1.0)]
     grid = np.geomspace(0.01, 3.0, n_per_curve)
     for mu, beta0 in cases:
-        cv = load_curve(mu, beta0, grid)
+        cv = load_curve(mu=mu, beta0=beta0, a_star=grid)
         for a, c, v in zip(cv.a_star, cv.c_star, cv.v):
             worst = max(worst, abs(_eq31_by_quadrature(a, c, cv.ellipticity, v) - 1.0))
             n += 1
@@ -252,7 +252,7 @@ def _check_eq31_quadrature(n_per_curve, quick):
 def _check_limits():
     from dhfield.model import pull_off
 
-    po = pull_off(np.array([20.0, 0.05]), 1.0)
+    po = pull_off(mu=np.array([20.0, 0.05]), beta0=1.0)
     jkr = abs(po.W_star[0] / -0.75 - 1)
     dmt = abs(po.W_star[1] / -1.0 - 1)
     return [
@@ -302,14 +302,14 @@ def _check_stationary(mu_beta):
 
     worst, rows = 0.0, []
     for mu, beta0 in mu_beta:
-        po = pull_off(mu, beta0)
+        po = pull_off(mu=mu, beta0=beta0)
         if po.at_zero_contact:
             continue
         a0 = float(po.a_star)
         # 2000 points: the grid does not contain a0 itself, so the scan is independent of the root
         grid = a0 + 0.01 * np.linspace(-1.0, 1.0, 2000)
         grid = grid[grid > 0]
-        w = load_curve(mu, beta0, grid).W_star
+        w = load_curve(mu=mu, beta0=beta0, a_star=grid).W_star
         dev = abs(float(w.min()) - float(po.W_star))
         worst = max(worst, dev)
         rows.append((mu, beta0, dev))
@@ -327,7 +327,7 @@ def _continuity(n_beta):
     mus = np.asarray(MU_CONTINUITY)
     out, checks = {}, []
     for control in ("load", "displacement"):
-        po = pull_off(mus[:, None], betas[None, :], control=control)
+        po = pull_off(mu=mus[:, None], beta0=betas[None, :], control=control)
         out[control] = po
         w = np.asarray(po.W_star)
         d = np.diff(w, axis=1)
@@ -428,7 +428,7 @@ def _fig_load_approach(curves_by, outdir, dpi, fname, caption):
         ax.legend()
     # displacement-controlled pull-off points (minimum of delta*) on the right panel
     for mu in MU_FIG67:
-        p = pull_off(mu, np.asarray(BETA_FIG67), control="displacement")
+        p = pull_off(mu=mu, beta0=np.asarray(BETA_FIG67), control="displacement")
         axes[1].plot(p.delta_star, p.W_star, "v", color="k", ms=4)
     fig.tight_layout()
     return Figure(save_figure(fig, outdir / fname, dpi), caption)
@@ -485,7 +485,7 @@ def _fig3_state(mu, beta0):
     """(a, c, beta, v) of the load-controlled pull-off state used for Fig. 3."""
     from dhfield.model import pull_off
 
-    po = pull_off(mu, beta0)
+    po = pull_off(mu=mu, beta0=beta0)
     return float(po.a_star), float(po.c_star), float(po.ellipticity), float(po.v)
 
 
@@ -598,12 +598,12 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
     jkr_note = ""
     cmap = plt.get_cmap("viridis")
     for ax, (mu, beta0) in zip(axes, cases):
-        po = pull_off(mu, beta0)
+        po = pull_off(mu=mu, beta0=beta0)
         grid = np.linspace(max(float(po.a_star), 1e-3), 6.0, 600)
-        cv = load_curve(mu, beta0, grid)
+        cv = load_curve(mu=mu, beta0=beta0, a_star=grid)
         a_init = float(np.interp(1.0, cv.W_star, cv.a_star))  # W* = 1 on the stable branch
         a_states = np.linspace(a_init, max(float(po.a_star), 1e-3), n_states)
-        st = load_curve(mu, beta0, a_states)
+        st = load_curve(mu=mu, beta0=beta0, a_star=a_states)
         t = np.linspace(0, 2 * np.pi, 361)
         for k in range(n_states):
             col = cmap(k / max(n_states - 1, 1))
@@ -670,9 +670,9 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     grid = _curve_grid(cfg["n_curve"])
     curves_by, pulloffs, pulloffs_d = {}, {}, {}
     for mu, beta0 in cases:
-        curves_by[(mu, beta0)] = load_curve(mu, beta0, grid)
-        pulloffs[(mu, beta0)] = pull_off(mu, beta0, control="load")
-        pulloffs_d[(mu, beta0)] = pull_off(mu, beta0, control="displacement")
+        curves_by[(mu, beta0)] = load_curve(mu=mu, beta0=beta0, a_star=grid)
+        pulloffs[(mu, beta0)] = pull_off(mu=mu, beta0=beta0, control="load")
+        pulloffs_d[(mu, beta0)] = pull_off(mu=mu, beta0=beta0, control="displacement")
     progress(f"{len(cases)} load curves of {grid.size} points and their pull-off points")
     for (mu, beta0), cv in curves_by.items():
         p = outdir / f"load_curve_mu{mu:g}_beta0{beta0:g}.nc"

@@ -234,7 +234,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
 
     matplotlib.use("Agg")
 
-    from dhfield import bem, fields
+    from dhfield import bem, field_metrics, field_sampling, fields, refinement
     from dhfield.io.field import write_field
     from dhfield.sweep import map_cases
     from verification.convergence_bem import format_table
@@ -252,7 +252,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
                            abs(u_c / ref - 1.0), TOL_CLOSED_FORM, "closed form (Johnson 1985, §3.2)"))
     n = cfg["n_case"]
     case = fields.model_case(n, **CASE)
-    full = fields.numerical_displacement(case.pressure, case.grid, symmetric=False)
+    full = field_sampling.numerical_displacement(case.pressure, case.grid, symmetric=False)
     sym_err = float(np.max(np.abs(full - case.displacement_numerical)) / np.max(np.abs(full)))
     checks.append(check_le(f"symmetry (DCT quadrant) mode vs full grid, DH case, N = {n}", sym_err, TOL_SYMMETRY,
                            "same discrete convolution, required to 1e-12"))
@@ -262,7 +262,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     # ---- accuracy and convergence (Hertz ellipse, cell averages)
     # one sweep-engine task per N (report.py --scheduler runs them in parallel; serial by default)
     arr = np.array(map_cases(_hertz_refinement_row, [(m,) for m in cfg["ns"]]))
-    orders = np.array([np.concatenate([[np.nan], fields.observed_orders(arr[:, 1], arr[:, k])])
+    orders = np.array([np.concatenate([[np.nan], refinement.observed_orders(arr[:, 1], arr[:, k])])
                        for k in (2, 3, 4)]).T
     progress(f"refinement study N = {cfg['ns']}")
     tables.append("**Accuracy of the BEM against Eq. (13)**: Hertz ellipse a = 1, β = 0.7 (R = E* = 1), "
@@ -291,7 +291,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     results = {}
     for m in (n // 2, n):
         c_m = case if m == n else fields.model_case(m, **CASE)
-        results[m] = fields.annulus_identity(c_m, n_theta=cfg["n_theta"])
+        results[m] = field_metrics.annulus_identity(c_m, n_theta=cfg["n_theta"])
         checks.append(check_le(f"annulus identity h_BEM = (1+v) h_H, worst ray of θp ∈ [0°, 90°], N = {m}",
                                results[m]["worst"], tol_annulus(m),
                                "Eq. (27) rearranged: h = (1+v) h_H in the annulus (README, Notes on the paper); tolerance 2× the measured C h^1.5"))

@@ -170,12 +170,12 @@ def _checks_dh_circular():
     worst = 0.0
     a = np.linspace(*model.DEFAULT_A_STAR, 200)
     for mu in MU_TABLE:
-        ref = model.load_curve(mu, 1.0, a)
+        ref = model.load_curve(mu=mu, beta0=1.0, a_star=a)
         st = dh_circular.load_curve_nondimensional(a, mu)
         for key in ("W_star", "c_star", "v", "delta_star"):
             worst = max(worst, np.max(np.abs(st[key] - getattr(ref, key)) / np.maximum(1, np.abs(getattr(ref, key)))))
         for control in ("load", "displacement"):
-            po, pr = dh_circular.pull_off_nondimensional(1.0, mu, control=control), model.pull_off(mu, 1.0, control=control)
+            po, pr = dh_circular.pull_off_nondimensional(1.0, mu, control=control), model.pull_off(mu=mu, beta0=1.0, control=control)
             worst = max(worst, abs(po["W_star"] - pr.W_star), abs(po["a_star"] - pr.a_star))
     out.append(check_le("circular DH (closed form) vs elliptical DH core at β0 = 1: W*, c*, v, δ* on a* ∈ "
                         f"[{model.DEFAULT_A_STAR[0]:g}, {model.DEFAULT_A_STAR[1]:g}] and the pull-off (both "
@@ -223,9 +223,9 @@ def _fig8(outdir, dpi, n):
     a = np.unique(np.concatenate([np.geomspace(0.05, 0.6, n // 3), np.linspace(0.6, 3.2, n - n // 3)]))
     for b0 in BETA0:
         col = _COLORS[b0]
-        cv = load_curve(MU_FIG8, b0, a)
+        cv = load_curve(mu=MU_FIG8, beta0=b0, a_star=a)
         ax.plot(cv.W_star, cv.a_star, "-", color=col, lw=1.6, label=f"DH elliptic β0 = {b0:g}, μ = {MU_FIG8:g}")
-        po = pull_off(MU_FIG8, b0)
+        po = pull_off(mu=MU_FIG8, beta0=b0)
         ax.plot(po.W_star, po.a_star, "o", color=col, ms=5)
         st = je.load_curve_nondimensional(a, b0)
         ax.plot(st["W_star"], st["a_star"], "--", color=col, lw=1.2, label=f"JKR elliptical, β0 = {b0:g}")
@@ -439,12 +439,12 @@ def run(outdir: Path, quick: bool, progress) -> Section:
 
     mu = np.unique(np.concatenate([np.geomspace(0.3, 8.0, cfg["n_mu"]), MU_TABLE]))
     # the closures that need a solve per point (two-axis, ray average) are in the periphery section
-    grid = compare.compare(mu[:, None], np.array(BETA0)[None, :], models=FIG9_MODELS, check_closure=False)
+    grid = compare.compare(mu=mu[:, None], beta0=np.array(BETA0)[None, :], models=FIG9_MODELS, check_closure=False)
     res = {name: np.broadcast_to(rec["W_star"], (mu.size, len(BETA0))).copy() for name, rec in grid.items()}
     progress(f"W*max of {len(res)} models on {mu.size} × {len(BETA0)} (μ, β0)")
     tab = {(m, b): {name: float(res[name][np.flatnonzero(mu == m)[0], j]) for name in res}
            for m in MU_TABLE for j, b in enumerate(BETA0)}
-    circ = compare.compare(MU_FIG8, 1.0, models=["dh-circular", "jkr"])
+    circ = compare.compare(mu=MU_FIG8, beta0=1.0, models=["dh-circular", "jkr"])
     tab[(MU_FIG8, 1.0)] = {name: float(rec["W_star"]) for name, rec in circ.items()}
     figures = [_fig8(outdir, cfg["dpi"], cfg["n_curve"]), _fig9(outdir, cfg["dpi"], mu, res)]
     datasets = [_dataset(mu, res, outdir)]

@@ -102,7 +102,7 @@ def compute(quick=False, progress=print):
         closures[name] = closure.pull_off_closure(cm[None, :], cb[:, None], name)
         progress(f"closure '{name}': pull-off on {cb.size} × {cm.size} (β0, μ) "
                  f"({time.perf_counter() - t0:.1f} s)")
-    ref = compare.compare(cm[None, :], cb[:, None], models=["jkr-elliptic", "dh-circular"])
+    ref = compare.compare(mu=cm[None, :], beta0=cb[:, None], models=["jkr-elliptic", "dh-circular"])
     return dict(cfg=cfg, mu=mu, beta0=beta0, theta=th, pull_off=po, profile=prof, law=law, law_theta=law_theta,
                 eq30_area=area, eq30_boundary=bnd, mean_work=mean, mean_work_angle=mean_angle, spread=spread,
                 closure_beta=cb, closure_mu=cm, closures=closures,
@@ -140,7 +140,7 @@ def _bem_case(b0, m, ns, theta, with_eq30):
 
     out = []
     eq30_grid = None
-    po = model.pull_off(m, b0)
+    po = model.pull_off(mu=m, beta0=b0)
     a, c, v = float(po.a_star), float(po.c_star), float(po.v)
     ref = periphery.periphery(a, c, b0, v, theta)
     errs = []
@@ -295,7 +295,7 @@ def _checks(res):
     i30_1 = eq30.eq30_area(po1.a_star, po1.c_star, 1.0, po1.v)
     out.append(check_le("β0 = 1: Eq. (30) vanishes although Δγ = 1, max abs(Eq. 30)", np.max(np.abs(i30_1)),
                         TOL_CIRCLE, "Green's form: 4[Δγ(0) − Δγ(π/2)] = 0 by symmetry"))
-    wc = [abs(closure.pull_off_closure(m, 1.0, name).W_star / model.pull_off(m, 1.0).W_star - 1)
+    wc = [abs(closure.pull_off_closure(m, 1.0, name).W_star / model.pull_off(mu=m, beta0=1.0).W_star - 1)
           for name in ("ray_average", "two_axis") for m in (0.5, 5.0)]
     out.append(check_le("alternative closures at β0 = 1 (μ = 0.5, 5) vs the paper's pull-off W*, max rel.",
                         max(wc), TOL_CLOSURE_CIRCLE, "reduction to the paper's model at the circle"))
@@ -611,7 +611,7 @@ def verdict_lines(res, recs):
         "**Range.** The paper's closure departs from the two-axis closure " + "; ".join(where) + ". In skew "
         "angle: β0 = " + ", ".join(f"{b:g} is θ_skew = {d:.1f}°" for b, d in zip(cb, deg)) + " (Eq. 3), so "
         "the paper's validated range β0 ≥ 0.8 covers crossing angles of about 80–90° only.")
-    circle = model.pull_off(res["mu"], 1.0)
+    circle = model.pull_off(mu=res["mu"], beta0=1.0)
     i30_circle = np.abs(eq30.eq30_area(circle.a_star, circle.c_star, 1.0, circle.v))
     agree = np.max(np.abs(res["eq30_area"] - res["eq30_boundary"].total) / (4 * w[..., 0]))
     verdict.append(

@@ -17,10 +17,12 @@ two-axis closures, elliptical JKR (Johnson & Greenwood 2005) and Maugis-Dugdale
 
 Resumable
 ---------
-Every finished (beta0, mu, N) case is written at once, atomically, as a small
-JSON file under ``--work-dir`` (one file per case, named by its parameters);
-a rerun skips the cases already there.  A case that raises, or whose path has
-unconverged states, is recorded with its status and message, never dropped.
+The cases live in the sweeps' resumable store (:class:`dhfield.sweep.store.CaseStore`)
+under ``--work-dir``: every finished (beta0, mu, N) case is written at once,
+atomically, as a small netCDF file named by its parameters, and a rerun reads the
+cases already there.  A case whose path has unconverged states is recorded with its
+status and message; a case that raised is recorded too (status 'failed', kept in the
+consolidated file) and, as in a sweep, solved again by the next run.
 The cases run N by N (all of the coarsest N first; mu = 5, the costly column, after
 everything else), so an interrupted run still covers the grid at the coarser N.
 
@@ -51,7 +53,6 @@ import functools
 import json
 import math
 import shlex
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -133,10 +134,24 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=
     return _solve_case(beta0, mu, n, law=law, control=control, solver=solver, start=start, **options)[0]
 
 
+def _adhesive_pull_off(*, beta0, mu, n, law, control, progress, **options):
+    """:func:`dhfield.bem.adhesive_pull_off` with the study's flat options (its numerical
+    settings, the fields of :class:`dhfield.adhesive_start.AdhesiveOptions`, gathered)."""
+    from dataclasses import fields
+
+    from dhfield.adhesive_start import AdhesiveOptions
+    from dhfield.bem import adhesive_pull_off
+
+    numerics = {f.name for f in fields(AdhesiveOptions)}
+    return adhesive_pull_off(beta0=beta0, mu=mu, n=n, law=law, control=control, progress=progress,
+                             **{k: v for k, v in options.items() if k not in numerics},
+                             options=AdhesiveOptions(**{k: v for k, v in options.items() if k in numerics}))
+
+
 def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=None, **options):
     """(record, result or None) of one case: :func:`run_case` keeping the solver's result."""
     if solver is None:
-        from dhfield.bem import adhesive_pull_off as solver
+        solver = _adhesive_pull_off
     rec = {"beta0": float(beta0), "mu": float(mu), "n": int(n), "law": law, "control": control,
            "max_iter": int(options.get("max_iter", -1)),
            "route": "full path" if start is None else f"coarse to fine from n={int(start.n)}",
@@ -145,7 +160,7 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
     t0 = time.perf_counter()
     try:
         if start is None:
-            res = solver(float(mu), float(beta0), int(n), law=law, control=control, progress=False, **options)
+            res = solver(mu=float(mu), beta0=float(beta0), n=int(n), law=law, control=control, progress=False, **options)
         else:
             from dhfield.bem import refine_pull_off
 
@@ -193,19 +208,49 @@ def cases(beta0s, mus, ns):
     return sorted(todo, key=lambda c: (c[1] >= DEFER_MU, c[2], c[1], c[0]))
 
 
+#: Fingerprint of the study's case store (:class:`dhfield.sweep.store.CaseStore`): the layout of a
+#: record.  A case's parameters are in its key (:func:`case_name`), its options in its record.
+STORE_FINGERPRINT = "verification.study_adhesive case records v1"
+
+
+def case_store(work_dir=DEFAULT_WORK_DIR):
+    """The study's resumable case store in ``work_dir`` (created if missing)."""
+    from dhfield.sweep.store import CaseStore
+
+    return CaseStore(work_dir, STORE_FINGERPRINT, {"study": "verification.study_adhesive"})
+
+
+def _record_dataset(rec: dict):
+    """A case record as a store Dataset: its scalars as variables, the rest as a JSON attribute."""
+    import xarray as xr
+
+    ds = xr.Dataset({k: ((), float(rec[k])) for k in CASE_FLOATS if k in rec})
+    # the store's status: a case that raised goes to its failure file and is retried by the next run
+    ds.attrs.update(status="failed" if rec["status"] == "failed" else "ok", message=str(rec.get("message", "")),
+                    record=json.dumps({k: v for k, v in rec.items() if k not in CASE_FLOATS},
+                                      default=_json_default))
+    return ds
+
+
+def _dataset_record(ds) -> dict:
+    rec = json.loads(ds.attrs["record"])
+    rec.update({k: float(ds[k].values) for k in CASE_FLOATS if k in ds})
+    return rec
+
+
 def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, law="dugdale",
               control="load", solver=None, progress=None, coarse_to_fine=None, **options) -> list[dict]:
     """Run every case not yet in ``work_dir``; return all records of the requested cases.
 
-    Each finished case is written at once to ``work_dir/<case_name>.json``
-    (atomic); existing files are read, not recomputed (resume).  With
+    Each finished case is written at once to the study's :func:`case_store`
+    (atomic); finished cases are read, not recomputed (resume), and cases that
+    raised are solved again.  With
     ``coarse_to_fine=N0`` every n > N0 of the ladder is solved coarse to fine
     (:func:`dhfield.bem.refine_pull_off`) from the next coarser level solved in
     this run (the level N0 is re-solved in memory when its file already exists);
     the record's ``route`` says which.
     """
-    work_dir = Path(work_dir)
-    work_dir.mkdir(parents=True, exist_ok=True)
+    store = case_store(work_dir)
     if progress is None:
         progress = sys.stderr.isatty()
     todo = cases(beta0s, mus, ns)
@@ -213,10 +258,10 @@ def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, l
     t0 = time.perf_counter()
     solved = {}                                   # (beta0, mu) -> result at the last n (coarse to fine)
     for k, (b, m, n) in enumerate(todo, 1):
-        path = work_dir / f"{case_name(b, m, n, law, control)}.json"
+        key = case_name(b, m, n, law, control)
         fine = coarse_to_fine is not None and n > int(coarse_to_fine) and control == "load"
-        if path.is_file():
-            out.append(json.loads(path.read_text()))
+        if store.is_done(key):
+            out.append(_dataset_record(store.read(key)))
             continue
         start = solved.get((b, m)) if fine else None
         if fine and start is None:
@@ -228,7 +273,7 @@ def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, l
                                **options)
         if coarse_to_fine is not None and res is not None and n >= int(coarse_to_fine):
             solved[(b, m)] = res
-        _write_json(rec, path)
+        store.write(key, _record_dataset(rec))
         out.append(rec)
         msg = (f"[{k}/{len(todo)}] beta0={b:g} mu={m:g} n={n}: {rec['status']} W*={rec['W_star']:.5f} "
                f"beta_ab={rec['beta_ab']:.4f} beta_cd={rec['beta_cd']:.4f} ({rec['elapsed']:.1f} s; "
@@ -241,19 +286,17 @@ def run_study(beta0s=BETA0, mus=MU, ns=N_LADDER, *, work_dir=DEFAULT_WORK_DIR, l
 
 def load_records(work_dir=DEFAULT_WORK_DIR, law="dugdale", control="load") -> list[dict]:
     """Every case record stored in ``work_dir`` for ``law`` and ``control``."""
-    out = []
-    for p in sorted(Path(work_dir).glob(f"*_{law}_{control}.json")):
-        out.append(json.loads(p.read_text()))
-    return out
+    store = case_store(work_dir)
+    failed = [p.name[:-len(".failed.nc")] for p in store.directory.glob("*.failed.nc")]
+    keys = sorted(k for k in set(store.keys()) | set(failed) if k.endswith(f"_{law}_{control}"))
+    return [_dataset_record(store.read(k)) for k in keys]
 
 
 # --------------------------------------------------------------------------- consolidation
 def _git_commit() -> str:
-    try:
-        return subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True,
-                              check=True).stdout.strip()
-    except Exception:  # noqa: BLE001 - provenance is best effort outside a checkout
-        return "unknown"
+    from dhfield.io import git_commit
+
+    return git_commit()
 
 
 @functools.lru_cache(maxsize=1)
@@ -263,12 +306,9 @@ def _solver_source() -> str:
     Taken once per process: the solver is imported once, so later edits of the
     tree do not change the code that runs.
     """
-    try:
-        dirty = subprocess.run(["git", "status", "--porcelain", "--", "dhfield/bem"], cwd=ROOT,
-                               capture_output=True, text=True, check=True).stdout.strip()
-    except Exception:  # noqa: BLE001
-        dirty = ""
-    return _git_commit() + (" (dhfield/bem modified)" if dirty else "")
+    from dhfield.io import git_commit
+
+    return git_commit(paths=("dhfield/bem",))
 
 
 #: Observed orders for which the Richardson value is used.  The sub-cell zone edge makes the
@@ -313,7 +353,7 @@ def reference_table(beta0s, mus, models=REFERENCE_MODELS, control="load") -> dic
     m = np.asarray(mus, float)[None, :]
     out = {}
     for name in models:
-        rec = compare.pull_off(name, m, b, control)
+        rec = compare.pull_off(name, mu=m, beta0=b, control=control)
         out[name] = {k: np.broadcast_to(np.asarray(rec.get(k, np.nan), float), (b.size, m.size)).copy()
                      for k in ("W_star", "ellipticity", "adhesive_ellipticity")}
     return out

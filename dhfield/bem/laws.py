@@ -101,9 +101,14 @@ def cell_fraction_below(excess, spread_x, spread_y):
     return np.clip(out, 0.0, 1.0)
 
 
+@dataclass(frozen=True)
 class _TwoParameterLaw:
     """What both laws share: a peak stress sigma0 [Pa] and a length scale [m] whose
-    product is the work of adhesion.  Subclasses name the two in ``_labels``."""
+    product is the work of adhesion, checked once; the public evaluations and the
+    mapping.  Subclasses name the two in ``_labels`` and give ``_stress`` and ``_energy``."""
+
+    max_stress: float
+    range: float
 
     _labels = ("sigma0, Pa", "length, m")
 
@@ -129,6 +134,49 @@ class _TwoParameterLaw:
         """Gap bounding the reported cohesive zone: the range (h0, or rho) [m]."""
         return self.range
 
+    def stress(self, gap):
+        """Evaluate the tensile adhesive stress sigma(h) >= 0 [Pa].
+
+        Parameters
+        ----------
+        gap : array_like
+            Gap h >= 0 [m].
+
+        Returns
+        -------
+        ndarray
+            The stress [Pa] (the law's formula: its class Notes).
+        """
+        return self._stress(np.asarray(gap, dtype=float))
+
+    def energy(self, gap):
+        """Evaluate the adhesive energy per unit area still to be paid to separate to infinity.
+
+        ``int_h^inf sigma dh`` [J/m^2]: sigma0 max(h0 - h, 0) for the Dugdale law,
+        sigma0 rho exp(-h/rho) for the exponential law.
+
+        Parameters
+        ----------
+        gap : array_like
+            Gap h >= 0 [m].
+
+        Returns
+        -------
+        ndarray
+            The energy per unit area [J/m^2].
+        """
+        return self._energy(np.asarray(gap, dtype=float))
+
+    def as_dict(self) -> dict:
+        """Return the law as a mapping.
+
+        Returns
+        -------
+        dict
+            ``law`` (the name), ``max_stress`` [Pa] and ``range`` [m].
+        """
+        return {"law": self.name, "max_stress": self.max_stress, "range": self.range}
+
 
 @dataclass(frozen=True)
 class DugdaleLaw(_TwoParameterLaw):
@@ -152,56 +200,15 @@ class DugdaleLaw(_TwoParameterLaw):
     edge below the cell size with :func:`cell_fraction_below`.
     """
 
-    max_stress: float
-    range: float
-
     name = "dugdale"
     smooth = False
     _labels = ("Dugdale stress sigma0, Pa", "cut-off gap h0, m")
 
-    def stress(self, gap):
-        """Evaluate the tensile adhesive stress sigma(h) >= 0 [Pa].
+    def _stress(self, g):
+        return np.where(g < self.range, self.max_stress, 0.0)  # sigma0 [h < h0]
 
-        Parameters
-        ----------
-        gap : array_like
-            Gap h >= 0 [m].
-
-        Returns
-        -------
-        ndarray
-            The stress [Pa].
-        """
-        g = np.asarray(gap, dtype=float)
-        return np.where(g < self.range, self.max_stress, 0.0)
-
-    def energy(self, gap):
-        """Evaluate the adhesive energy per unit area still to be paid to separate to infinity.
-
-        ``int_h^inf sigma dh`` = sigma0 max(h0 - h, 0) [J/m^2].
-
-        Parameters
-        ----------
-        gap : array_like
-            Gap h >= 0 [m].
-
-        Returns
-        -------
-        ndarray
-            The energy per unit area [J/m^2].
-        """
-        g = np.asarray(gap, dtype=float)
-        return self.max_stress * np.maximum(self.range - g, 0.0)
-
-    def as_dict(self) -> dict:
-        """Return the law as a mapping.
-
-        Returns
-        -------
-        dict
-            ``law`` (the name), ``max_stress`` [Pa] and ``range`` [m].
-        """
-        return {"law": self.name, "max_stress": self.max_stress, "range": self.range}
+    def _energy(self, g):
+        return self.max_stress * np.maximum(self.range - g, 0.0)  # sigma0 max(h0 - h, 0)
 
 
 @dataclass(frozen=True)
@@ -226,28 +233,15 @@ class ExponentialLaw(_TwoParameterLaw):
     the same sigma0 and Delta gamma); the law itself has unbounded support.
     """
 
-    max_stress: float
-    range: float
-
     name = "exponential"
     smooth = True
     _labels = ("peak stress sigma0, Pa", "decay length rho, m")
 
-    def stress(self, gap):
-        """Evaluate the tensile adhesive stress sigma(h) >= 0 [Pa].
+    def _stress(self, g):
+        return self.max_stress * np.exp(-np.maximum(g, 0.0) / self.range)  # sigma0 exp(-h/rho)
 
-        Parameters
-        ----------
-        gap : array_like
-            Gap h >= 0 [m].
-
-        Returns
-        -------
-        ndarray
-            The stress [Pa].
-        """
-        g = np.maximum(np.asarray(gap, dtype=float), 0.0)
-        return self.max_stress * np.exp(-g / self.range)
+    def _energy(self, g):
+        return self.work_of_adhesion * np.exp(-np.maximum(g, 0.0) / self.range)  # sigma0 rho exp(-h/rho)
 
     def stress_slope(self, gap):
         """Evaluate the slope d sigma/dh <= 0 [Pa/m].
@@ -264,31 +258,6 @@ class ExponentialLaw(_TwoParameterLaw):
         """
         return -self.stress(gap) / self.range
 
-    def energy(self, gap):
-        """Evaluate ``int_h^inf sigma dh`` = sigma0 rho exp(-h/rho) [J/m^2].
-
-        Parameters
-        ----------
-        gap : array_like
-            Gap h >= 0 [m].
-
-        Returns
-        -------
-        ndarray
-            The energy per unit area [J/m^2].
-        """
-        g = np.maximum(np.asarray(gap, dtype=float), 0.0)
-        return self.work_of_adhesion * np.exp(-g / self.range)
-
-    def as_dict(self) -> dict:
-        """Return the law as a mapping.
-
-        Returns
-        -------
-        dict
-            ``law`` (the name), ``max_stress`` [Pa] and ``range`` [m].
-        """
-        return {"law": self.name, "max_stress": self.max_stress, "range": self.range}
 
 
 #: The traction laws the solver accepts.

@@ -48,11 +48,11 @@ def run(args) -> int:
         raise ValueError(f"output file must end in .nc; got {args.out!r}")
     params = contact_parameters_from_args(args)
     if params is None:
-        recs = {name: plain_record(r) for name, r in compare(args.mu, args.beta0, args.control).items()}
+        recs = {name: plain_record(r) for name, r in compare(mu=args.mu, beta0=args.beta0, control=args.control).items()}
         keys, nondim = PULL_OFF_KEYS, True
     else:
         recs = {name: plain_record(pull_off_record_si(r, params))
-                for name, r in compare(params.mu, params.beta0, args.control).items()}
+                for name, r in compare(mu=params.mu, beta0=params.beta0, control=args.control).items()}
         keys, nondim = PULL_OFF_SI_KEYS, False
     first = next(iter(recs.values()))
     print_warning(recs.get("dh-elliptic", {}))

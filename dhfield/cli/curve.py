@@ -78,7 +78,7 @@ def curve_record(args) -> dict:
         if args.ellipticity is not None:
             if args.model != "dh-elliptic":
                 raise UsageError("--ellipticity applies to --model dh-elliptic only")
-            c = load_curve(args.mu, args.beta0, a_star, ellipticity=args.ellipticity, n=args.n)
+            c = load_curve(mu=args.mu, beta0=args.beta0, a_star=a_star, ellipticity=args.ellipticity, n=args.n)
             rec = dict(compare.load_curve("dh-elliptic", args.mu, args.beta0, [1.0]))
             rec.update({k: getattr(c, k) for k in ("a_star", "b_star", "c_star", "d_star", "v", "W_star",
                                                     "delta_star")})

@@ -71,7 +71,7 @@ def run(args) -> int:
     if args.n is not None or args.threads is not None:
         raise UsageError("--n and --threads go with --model bem")
     if params is None:
-        rec = compliance.loading_cycle(args.model, args.mu, args.beta0, args.machine_stiffness)
+        rec = compliance.loading_cycle(args.model, mu=args.mu, beta0=args.beta0, machine_stiffness=args.machine_stiffness)
         k_star, mu, beta0 = args.machine_stiffness, args.mu, args.beta0
     else:
         rec = compliance.loading_cycle_si(params, args.machine_stiffness, model=args.model)
@@ -82,7 +82,7 @@ def run(args) -> int:
     if args.plot is not None:
         from ..io.cycle import write_cycle_plot
 
-        data = compliance.cycle_path(args.model, mu, beta0, k_star)
+        data = compliance.cycle_path(args.model, mu=mu, beta0=beta0, machine_stiffness=k_star)
         data["record"].update(rec)
         if params is None:
             write_cycle_plot(data, args.plot)

@@ -31,9 +31,9 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from ..bem import default_threads
-    from ..fields import check_case_memory
+    from ..fields import check_case_memory, model_case
     from ..io import validate_output_path
-    from ..io.field import compute_and_write_case
+    from ..io.field import write_field
 
     # everything that can be checked is checked before the computation
     validate_output_path(args.out, (".nc",), "out")
@@ -41,6 +41,7 @@ def run(args) -> int:
     check_case_memory(args.n)
     if sys.stderr.isatty():  # progress only for a person watching
         print(f"dhfield field: computing the {args.n} x {args.n} case and writing {args.out} ...", file=sys.stderr)
-    path = compute_and_write_case(args.beta0, args.mu, args.a_star, args.n, args.out, threads=threads)
+    case = model_case(args.n, args.beta0, args.mu, args.a_star, threads=threads)
+    path = write_field(case, args.out)
     print(f"wrote {path}")
     return 0

@@ -41,10 +41,10 @@ def pull_off_record(args) -> dict:
         if args.control != "load":
             raise ValueError("control goes with no machine spring; --machine-stiffness sets the machine itself")
         if params is None:
-            return plain_record(spring_pull_off_record(args.model, args.mu, args.beta0, args.machine_stiffness))
+            return plain_record(spring_pull_off_record(args.model, mu=args.mu, beta0=args.beta0, machine_stiffness=args.machine_stiffness))
         return plain_record(pull_off_force_under_spring(params, args.machine_stiffness, model=args.model))
     if params is None:
-        return plain_record(pull_off(args.model, args.mu, args.beta0, args.control))
+        return plain_record(pull_off(args.model, mu=args.mu, beta0=args.beta0, control=args.control))
     return plain_record(pull_off_force(params, model=args.model, control=args.control))
 
 

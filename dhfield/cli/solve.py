@@ -357,7 +357,7 @@ def run(args) -> int:
         print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {plan.n} path)",
               file=sys.stderr, flush=True)
     try:
-        res = adhesive_pull_off(args.mu, args.beta0, args.n, law=args.law, control=args.control,
+        res = adhesive_pull_off(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, control=args.control,
                                 threads=args.threads, progress=progress, search=args.search or "located")
     except UnresolvableCaseError as exc:
         print(f"dhfield: solve refused: {exc}", file=sys.stderr)

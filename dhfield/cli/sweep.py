@@ -119,6 +119,9 @@ def run(args) -> int:
                f"{len(res.failed)} failed")
     if flagged:
         summary += f", {len(flagged)} flagged (not converged or unresolved: see status and adhesive_message)"
+    warned = int(getattr(res, "warned", 0))
+    if warned:
+        summary += f", {warned} pull-off point(s) outside their model's validated range (see the warning variable)"
     if not args.quiet or res.failed or flagged:
         print(summary, file=sys.stderr)
     return 1 if res.failed else EXIT_FLAGGED if flagged else 0

@@ -50,7 +50,7 @@ from pathlib import Path
 
 from .. import PAPER_DOI, __version__
 
-__all__ = ["atomic_path", "provenance_attrs", "write_netcdf", "read_netcdf", "check_writable",
+__all__ = ["atomic_path", "provenance_attrs", "git_commit", "write_netcdf", "read_netcdf", "check_writable",
            "validate_output_path", "require_utf8_path", "format_size", "SignalExit", "CAUGHT_SIGNALS"]
 
 REFERENCES = (
@@ -378,6 +378,51 @@ def provenance_attrs(title: str, **parameters) -> dict:
             value = int(value)
         attrs[f"param_{key}"] = value
     return attrs
+
+
+#: The checkout dhfield runs from (``git_commit`` asks git about it).
+_CHECKOUT = Path(__file__).resolve().parents[2]
+
+
+def git_commit(*, short=None, paths=None) -> str:
+    """Name the git commit of the checkout dhfield runs from, for provenance.
+
+    Parameters
+    ----------
+    short : int, optional
+        Abbreviate the hash to this many hex digits (default: the full hash).
+    paths : sequence of str, optional
+        Report uncommitted changes of these paths only (relative to the checkout);
+        default: of every tracked file.
+
+    Returns
+    -------
+    str
+        The hash, followed by ``" (uncommitted changes)"`` (or ``" (uncommitted
+        changes in <paths>)"``) when tracked files differ from it; ``"unavailable"``
+        outside a git checkout or without git.
+
+    Examples
+    --------
+    >>> from dhfield.io import git_commit
+    >>> isinstance(git_commit(short=12), str)
+    True
+    """
+    import subprocess
+
+    if not (_CHECKOUT / ".git").exists():  # an installed package: no checkout to name
+        return "unavailable"
+    rev = ["git", "rev-parse"] + ([f"--short={int(short)}"] if short else []) + ["HEAD"]
+    status = ["git", "status", "--porcelain", "--untracked-files=no"] + (["--", *paths] if paths else [])
+    try:
+        head = subprocess.run(rev, cwd=_CHECKOUT, capture_output=True, text=True, timeout=10)
+        if head.returncode != 0:
+            return "unavailable"
+        dirty = subprocess.run(status, cwd=_CHECKOUT, capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return "unavailable"
+    where = f" in {' '.join(paths)}" if paths else ""
+    return head.stdout.strip() + (f" (uncommitted changes{where})" if dirty.stdout.strip() else "")
 
 
 # --------------------------------------------------------------------------- netCDF

@@ -29,11 +29,11 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .. import fields
+from .. import field_metrics, fields, polar
 from . import check_writable, provenance_attrs, write_netcdf
 from .cf import coordinate, finalize, flag_variable, variable
 
-__all__ = ["field_dataset", "polar_dataset", "write_field", "compute_and_write_case", "FIELD_VARIABLES"]
+__all__ = ["field_dataset", "polar_dataset", "write_field", "FIELD_VARIABLES"]
 
 #: name -> (schema quantity, qualifier of its long_name) of the Cartesian variables.
 FIELD_VARIABLES = {
@@ -95,7 +95,7 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
     g = case.grid
     if r_max is None:
         r_max = 0.95 * min(g.x[-1], g.y[-1])
-    r, theta = fields.polar_grid(r_max, n_r, n_theta)
+    r, theta = polar.polar_grid(r_max, n_r, n_theta)
     x = r[:, None] * np.cos(theta)[None, :]
     y = r[:, None] * np.sin(theta)[None, :]
     ana = fields.analytic_fields(case, x, y)
@@ -103,7 +103,7 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
     dims = ("r", "theta_p")
     data = {}
     for qty in ("displacement", "gap"):
-        num = fields.to_polar(getattr(case, f"{qty}_numerical"), g, r, theta)
+        num = polar.to_polar(getattr(case, f"{qty}_numerical"), g, r, theta)
         data[f"{qty}_analytic_polar"] = variable(f"{qty}_analytic_polar", dims, ana[qty], nondimensional=nd,
                                                  quantity=qty, qualifier=FIELD_VARIABLES[f"{qty}_analytic"][1])
         data[f"{qty}_numerical_polar"] = variable(
@@ -115,7 +115,7 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
     data["pressure_analytic_polar"] = variable("pressure_analytic_polar", dims, ana["pressure"], nondimensional=nd,
                                                quantity="pressure", qualifier="analytic (Eqs. 7/22)")
     if case.parameters.get("model") == "double_hertz":
-        ident = fields.annulus_identity(case, n_theta=n_theta)
+        ident = field_metrics.annulus_identity(case, n_theta=n_theta)
         data["annulus_identity_error"] = variable("annulus_identity_error", "theta_p", ident["rel_error"])
     coords = {"r": coordinate("r", r, nondimensional=nd), "theta_p": coordinate("theta_p", theta)}
     ds = xr.Dataset(data, coords=coords)
@@ -195,42 +195,3 @@ def write_field(case, path, **options) -> Path:
     """
     check_writable(path)
     return write_netcdf(field_dataset(case, **options), path)
-
-
-def compute_and_write_case(beta0, mu, a_star, n, out, *, half_width=None, sampling="average", threads=None,
-                           polar=True) -> Path:
-    """Compute one nondimensional DH case on an ``n`` x ``n`` grid and write it to ``out``.
-
-    Parameters
-    ----------
-    beta0 : float
-        Ellipticity of both ellipses, (0, 1] [-].
-    mu : float
-        Tabor parameter, Eq. (35) [-].
-    a_star : float
-        Contact semi-major axis a/c_r [-].
-    n : int
-        Cells per axis (>= 8; even uses the symmetry mode) [-].
-    out : path-like
-        Output netCDF file; its directory must exist and be writable.  Checked
-        before anything is computed; the write is atomic.
-    half_width : float, optional
-        Half-width of the square domain [-]; default 1.5 c*.
-    sampling : {"average", "centre"}
-    threads : int, optional
-        FFTW threads.
-    polar : bool, default True
-        Include the polar resampling.
-
-    Returns
-    -------
-    pathlib.Path
-        The file written.
-    """
-    check_writable(out)
-    from ..bem.operator import MIN_CELLS
-
-    if isinstance(n, bool) or int(n) != n or n < MIN_CELLS:
-        raise ValueError(f"n must be an integer >= {MIN_CELLS} (cells per axis); got {n!r}")
-    case = fields.model_case(n, beta0, mu, a_star, half_width=half_width, sampling=sampling, threads=threads)
-    return write_field(case, out, polar=polar)

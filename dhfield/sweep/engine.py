@@ -49,6 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import schema
 from .config import SweepConfig, check_scheduler_address, scheduler_host_port
 from .store import CaseStore, output_paths
 from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
@@ -500,6 +501,10 @@ def map_cases(fn, arguments, *, scheduler=None, workers=None, progress=False) ->
 
 
 # --------------------------------------------------------------------------- case records
+#: Attributes of the per-point ``warning`` of the analytic pull-off (a string: no units).
+_WARNING_ATTRS = {k: v for k, v in schema.attrs("warning").items() if k != "units"}
+
+
 def _case_dataset(values: dict, status: str, message: str, dims=(), seconds=float("nan")):
     """One case record; ``seconds`` (its wall time) is kept in the case file only, never in the sweep."""
     import xarray as xr
@@ -523,13 +528,35 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
         ds = store.read(key)
         return np.stack([ds[k].values for k in PULL_OFF_FIELDS], axis=-1)
     try:
-        out = pull_off_block(model, control, mu, beta0)
+        out, warnings = pull_off_block(model, beta0=beta0, mu=mu, control=control)
         status, message = "ok", ""
     except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
         out = np.full(mu.shape + (len(PULL_OFF_FIELDS),), np.nan)
+        warnings = np.full(mu.shape, "", dtype=object)
         status, message = "failed", _failure(exc)
-    store.write(key, _case_dataset({k: out[..., i] for i, k in enumerate(PULL_OFF_FIELDS)}, status, message,
-                                   ("i", "j")))
+    ds = _case_dataset({k: out[..., i] for i, k in enumerate(PULL_OFF_FIELDS)}, status, message, ("i", "j"))
+    # the records' validity warnings travel through the store (read back by _consolidate):
+    # the dask kernel returns numbers only
+    ds["warning"] = (("i", "j"), warnings, _WARNING_ATTRS)
+    store.write(key, ds)
+    return out
+
+
+def _pull_off_warnings(store, models, shape):
+    """{model: object array ``shape`` of the stored pull-off blocks' warnings ("" where none)}."""
+    out = {m: np.full(shape, "", dtype=object) for m in models}
+    for key in store.keys():
+        if not key.startswith("pull_off__"):
+            continue
+        _, model, idx = key.split("__")
+        if model not in out:
+            continue
+        ds = store.read(key)
+        if "warning" not in ds:  # a block stored before warnings were kept: none known
+            continue
+        i0, j0 = (int(t) for t in idx.split("_"))
+        w = ds["warning"].values.T  # a block is (mu, ell) (_pull_off_collections' broadcast order)
+        out[model][i0:i0 + w.shape[0], j0:j0 + w.shape[1]] = w
     return out
 
 
@@ -673,6 +700,9 @@ class SweepResult:
     flagged : list of str
         Keys of the BEM cases stored with a result that is not an answer: status
         "not_converged" or "unresolved" (with their message).
+    warned : int
+        Number of analytic pull-off points (model, beta0, mu) whose record carries a
+        validity warning (the ``warning`` variable; :mod:`dhfield.validity`).
     """
 
     dataset: object
@@ -681,6 +711,7 @@ class SweepResult:
     reused: list = field(default_factory=list)
     failed: list = field(default_factory=list)
     flagged: list = field(default_factory=list)
+    warned: int = 0
 
 
 def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, progress=None) -> SweepResult:
@@ -778,8 +809,12 @@ def _run(config, executor, store, final, progress):
     flagged = sorted(key for (kind, _), res in zip(kinds, results) if kind != "pull_off"
                      for key, (_, st, _, _) in res.items() if st in ("not_converged", "unresolved"))
     write_netcdf(ds, final)
+    warned = 0
+    if "warning" in ds:  # the pull-off is broadcast over the adhesive BEM's n and law: count it once
+        w = ds["warning"].isel({d: 0 for d in ("n", "law") if d in ds["warning"].dims})
+        warned = int(np.count_nonzero(w.values != ""))
     return SweepResult(ds, final, computed=sorted(after - before), reused=sorted(before), failed=failed,
-                       flagged=flagged)
+                       flagged=flagged, warned=warned)
 
 
 # --------------------------------------------------------------------------- consolidation
@@ -803,7 +838,6 @@ def _status_attrs(what):
 def _consolidate(config: SweepConfig, kinds, results, store):
     import xarray as xr
 
-    from .. import schema
     from ..io import provenance_attrs
 
     ell = config.ellipticity_axis
@@ -851,7 +885,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
             key = p.name[:-len(".failed.nc")]
             _, model, idx = key.split("__")
             i0, j0 = (int(t) for t in idx.split("_"))
-            shp = ds["W_star"].shape
+            shp = ds["W_star"].shape[::-1]  # a block is (mu, ell): _pull_off_collections' broadcast order
             mstatus[models.index(model), i0:i0 + shp[0], j0:j0 + shp[1]] = _STATUS["failed"]
             blocks_msgs.append(f"{model} block {ell}[{i0}:{i0 + shp[0]}] mu[{j0}:{j0 + shp[1]}]: "
                                f"{ds.attrs['message']}")
@@ -887,6 +921,11 @@ def _consolidate(config: SweepConfig, kinds, results, store):
     if {"pull_off", "adhesive"} & set(config.quantities):
         for k in PULL_OFF_FIELDS:
             data[k] = (mdims, mvars[k], schema.attrs(k, nondimensional=True))
+        warning = np.full(mvars["W_star"].shape, "", dtype=object)
+        if "pull_off" in config.quantities:
+            for model, w in _pull_off_warnings(store, config.models, (n_ell, n_mu)).items():
+                warning[models.index(model)] = w.reshape((n_ell, n_mu) + (1,) * len(extra))
+        data["warning"] = (mdims, warning, _WARNING_ATTRS)
         st_attrs = _status_attrs("pull-off")
         if blocks_msgs:
             st_attrs["messages"] = "; ".join(blocks_msgs)

@@ -3,9 +3,10 @@
 Each quantity is a public function of plain numbers or arrays:
 
 * :func:`pull_off_block` -- the analytic pull-off of one comparison model over a
-  block of (mu, beta0) points (vectorised; :func:`dhfield.compare.pull_off`).
+  block of (beta0, mu) points, with each point's validity warning (one vectorised
+  call of :func:`dhfield.compare.pull_off`).
 * :func:`bem_field_case` -- the forward BEM check of one DH state
-  (:func:`dhfield.fields.model_case`, :func:`dhfield.fields.annulus_identity`).
+  (:func:`dhfield.fields.model_case`, :func:`dhfield.field_metrics.annulus_identity`).
 * :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off
   (:func:`dhfield.adhesive_start.adhesive_pull_off`).
 * :func:`expected_seconds` -- a cost model of one case, used by the engine only
@@ -54,40 +55,49 @@ def cohesive_laws() -> tuple:
     return tuple(LAWS)
 
 
-def pull_off_block(model: str, control: str, mu, beta0) -> np.ndarray:
-    """Analytic pull-off of one model on a block of points, stacked on a last axis.
+def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> tuple[np.ndarray, np.ndarray]:
+    """Analytic pull-off of one model on a block of points, stacked on a last axis, with its warnings.
+
+    One vectorised call of :func:`dhfield.compare.pull_off` on the whole block.
 
     Parameters
     ----------
     model : str
         One of :data:`dhfield.compare.MODEL_NAMES`.
+    beta0, mu : array_like
+        Hertz ellipticity [-] and Tabor parameter (Eq. 35) [-], broadcast together
+        (keyword-only, as ``control``).
     control : {"load", "displacement"}
         Loading mode of the pull-off.
-    mu, beta0 : array_like
-        Tabor parameter (Eq. 35) [-] and Hertz ellipticity [-], broadcast together.
 
     Returns
     -------
-    ndarray
+    values : ndarray
         Shape ``broadcast(mu, beta0).shape + (len(PULL_OFF_FIELDS),)``, fields in
         the order of :data:`PULL_OFF_FIELDS` (NaN where the model has none).
+    warnings : ndarray of str
+        Shape ``broadcast(mu, beta0).shape``: each record's ``warning`` (its
+        validity warning, :mod:`dhfield.validity`; empty inside the validated
+        range).
     """
     from ..compare import pull_off
 
     mu, beta0 = np.broadcast_arrays(np.asarray(mu, float), np.asarray(beta0, float))
     shape = mu.shape
     out = np.empty(shape + (len(PULL_OFF_FIELDS),))
+    warnings = np.full(shape, "", dtype=object)
     if mu.size == 0:
-        return out
-    # The two-axis closure behind dh-elliptic's warning is a model of its own
+        return out, warnings
+    # The two-axis closure behind dh-elliptic's departure warning is a model of its own
     # ("dh-elliptic-two-axis"): sweep it, and map the departure, rather than solve it twice.
-    rec = pull_off(model, mu.ravel(), beta0.ravel(), control, check_closure=False)
+    rec = pull_off(model, mu=mu.ravel(), beta0=beta0.ravel(), control=control, check_closure=False)
     for i, k in enumerate(PULL_OFF_FIELDS):
         out[..., i] = np.broadcast_to(np.asarray(rec[k], dtype=float), (mu.size,)).reshape(shape)
-    return out
+    warnings[...] = np.broadcast_to(np.asarray(rec["warning"], dtype=object), (mu.size,)).reshape(shape)
+    return out, warnings
 
 
-def load_curve_case(model: str, beta0: float, mu: float, a_star) -> dict:
+def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> dict:
     """Compute the load curve of one model at the contact sizes ``a_star``.
 
     Parameters
@@ -143,7 +153,8 @@ def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width
         grid relative to max |omega| [-], worst relative annulus-identity error
         [-], and the solved c* and v of the state.
     """
-    from ..fields import annulus_identity, model_case
+    from ..field_metrics import annulus_identity
+    from ..fields import model_case
 
     case = model_case(int(n), float(beta0), float(mu), float(a_star), half_width=half_width,
                       sampling=sampling, threads=1)
@@ -208,7 +219,7 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
         solver gives none) plus ``converged`` (bool), ``resolved`` (bool: the grid
         resolves the cohesive zone) and ``message`` (str).
     """
-    res = adhesive_solver(solver)(float(mu), float(beta0), int(n), law=law, control=control, threads=1)
+    res = adhesive_solver(solver)(beta0=float(beta0), mu=float(mu), n=int(n), law=law, control=control, threads=1)
 
     def get(*names):
         for nm in names:
