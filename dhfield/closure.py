@@ -352,8 +352,9 @@ def equal_beta_spread_along_curve(mu, beta0, a_star, *, n_theta=N_THETA):
 
 # --------------------------------------------------------------------------- shared pieces
 def _geometry(beta0):
-    rho0 = radius_ratio(beta0)
-    return np.sqrt(rho0), 1.0 / np.sqrt(rho0), sin_skew_angle(beta0)  # R', R'' (R = 1), Eq. (34) factor
+    """R', R'' (R = 1) and the Eq. (34) factor of a validated beta0 (not checked again: the solves call it often)."""
+    rho0 = radius_ratio(beta0, checked=False)
+    return np.sqrt(rho0), 1.0 / np.sqrt(rho0), sin_skew_angle(beta0, checked=False)
 
 
 def _two_field_state(closure, mu, beta0, a, b, c, d, amp_a, amp_b):
@@ -474,7 +475,8 @@ def _two_axis_fields(a, log_c, log_d, mu, r1, r2):
     ok = ok & np.isfinite(rho_ab) & (rho_ab >= 1.0)
     beta_ab = np.full(np.shape(rho_ab), np.nan)
     if np.any(ok):
-        beta_ab[ok] = ellipticity_from_radius_ratio(np.asarray(rho_ab)[ok])
+        # an intermediate value, finite and >= 1 by ``ok``: not validated again (issue 16, validate once)
+        beta_ab[ok] = ellipticity_from_radius_ratio(np.asarray(rho_ab)[ok], checked=False)
     b = beta_ab * a
     _, j2, _ = ellipsoid_integrals(0.0, a, b)
     amp_a = bottom / (a * b * j2)  # first curvature condition
@@ -638,7 +640,7 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
 def _record(model, beta0, mu, state, control):
     return pull_off_record(model, beta0, mu, {k: getattr(state, k) for k in (
         "W_star", "a_star", "b_star", "c_star", "d_star", "delta_star", "at_zero_contact")}, control=control,
-        sin_skew=sin_skew_angle(beta0), geometry="ellipse")
+        sin_skew=sin_skew_angle(beta0, checked=False), geometry="ellipse")
 
 
 def pull_off_ray_average(beta0, mu, *, control="load"):
