@@ -135,11 +135,11 @@ def test_pull_off_shape():
 def test_dimensional():
     r, e, dg = 1e-6, 1e9, 0.05
     po = je.pull_off(r, e, dg, beta0=0.9)
-    assert_allclose(po.load, je.pull_off_nondimensional(0.9, 1.0)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
+    assert_allclose(po.force, je.pull_off_nondimensional(0.9, 1.0)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
                     rtol=1e-12)
     assert_allclose(po.ellipticity, je.pull_off_ellipticity(beta0=0.9))
     rho = radius_ratio(0.9)
-    assert_allclose(je.pull_off_force(r, e, dg, radius_ratio=rho), po.load, rtol=1e-9)
+    assert_allclose(je.pull_off_force(r, e, dg, radius_ratio=rho), po.force, rtol=1e-9)
     c = je.load_curve(np.array([0.5, 2.0]) * np.cbrt(r * r * dg / e), r, e, dg, beta0=0.9)
     assert np.all(c.semi_minor < c.semi_major)
 
