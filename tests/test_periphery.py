@@ -251,7 +251,7 @@ def test_datasets_round_trip(tmp_path):
     assert_allclose(back.attrs["param_mu"], mu)
 
     spread = closure.equal_beta_spread(mu[None, :], beta0[:, None])
-    paper = closure.pull_off_closure(mu[None, :], beta0[:, None], "paper")
+    paper = closure.state_at_pull_off(mu[None, :], beta0[:, None], "paper")
     ds2 = iop.equal_beta_dataset(mu, beta0, spread, {"paper": paper, "paper2": paper})
     back2 = read_netcdf(iop.write_dataset(ds2, tmp_path / "equal_beta.nc"))
     assert list(back2["closure"].values) == ["paper", "paper2"]

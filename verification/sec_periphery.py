@@ -99,7 +99,7 @@ def compute(quick=False, progress=print):
     closures = {}
     for name in closure.CLOSURES:
         t0 = time.perf_counter()
-        closures[name] = closure.pull_off_closure(cm[None, :], cb[:, None], name)
+        closures[name] = closure.state_at_pull_off(cm[None, :], cb[:, None], name)
         progress(f"closure '{name}': pull-off on {cb.size} × {cm.size} (β0, μ) "
                  f"({time.perf_counter() - t0:.1f} s)")
     ref = compare.compare(cm[None, :], cb[:, None], models=["jkr-elliptic", "dh-circular"])
