@@ -179,25 +179,17 @@ def shape_coefficients(beta, k2, rho_m1):
     return g2 + dg, g2, dg, j0, j1, j2
 
 
+def _griffith_at_axis_ends(one_m_beta, beta, k2, g1, g2, dg):
+    """JG's condition: the size a and alpha0 at ellipticity beta (K_I = sqrt(2 E* dgamma) at both axis ends)."""
+    root = np.expm1(-0.5 * np.log1p(-one_m_beta))  # beta^(-1/2) - 1
+    a = (np.sqrt(2.0 / np.pi) * root / dg) ** (2.0 / 3.0)  # JG (2005): K_I equal at both axis ends
+    a = np.where(np.isnan(np.real(a)), np.inf, a)
+    return a, -(a * g1) - np.sqrt(2.0 / (np.pi * a))  # JG (2005): K_I = sqrt(2 E* dgamma) at the end of a
+
+
 def _state_u(u, beta0, rho_m1, sin_skew):
     """Closed-form elliptical JKR state at beta = beta0 + (1 - beta0) u (paper units)."""
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # a = inf at u -> 0
-        one_m_beta = (1.0 - beta0) * (1.0 - u)
-        beta = 1.0 - one_m_beta
-        k2 = one_m_beta * (1.0 + beta)
-        g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
-        # at u -> 0 (beta -> beta0, a -> infinity) rounding can leave dg <= 0: a = infinity
-        dg = np.where(np.real(dg) > 0.0, dg, np.nan)
-        root = np.expm1(-0.5 * np.log1p(-one_m_beta))  # beta^(-1/2) - 1
-        a = (np.sqrt(2.0 / np.pi) * root / dg) ** (2.0 / 3.0)  # JG (2005): K_I equal at both axis ends
-        a = np.where(np.isnan(np.real(a)), np.inf, a)
-        al1, al2 = a * g1, a * g2
-        al0 = -al1 - np.sqrt(2.0 / (np.pi * a))  # JG (2005): K_I = sqrt(2 E* dgamma) at the end of a
-        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
-        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # approach (derived)
-    return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,
-            "delta_star": delta, "beta": beta,  # Eq. (34)
-            "alpha": (al0, al1, al2)}
+    return JG.state_u(u, beta0, rho_m1, sin_skew)
 
 
 def circle_state(a_star, sin_skew=1.0):
@@ -268,15 +260,48 @@ class EllipticJKR:
     model : str
         The model's name in :mod:`dhfield.compare` (``jkr-elliptic`` or
         ``jkr-elliptic-energy``).
-    state_u : callable
-        ``state_u(u, beta0, rho_m1, sin_skew)`` -> dict of ``W_star``, ``a_star``,
-        ``b_star``, ``delta_star``, ``beta`` and ``alpha`` (paper units, Eqs. 32-35),
-        complex-safe (the pull-off uses its complex-step derivative).
+    condition : callable
+        ``condition(one_m_beta, beta, k2, g1, g2, dg)`` -> ``(a, alpha0)``: the contact
+        size a (inf where it diverges) and the pressure's alpha0 at ellipticity beta,
+        from 1 - beta, k^2 = 1 - beta^2 and the shape coefficients g1, g2 and
+        dg = g1 - g2 of :func:`shape_coefficients` (dg NaN where rounding leaves it <= 0);
+        complex-safe (the pull-off uses the complex-step derivative of the state).
     """
 
-    def __init__(self, model, state_u):
+    def __init__(self, model, condition):
         self.model = model
-        self.state_u = state_u
+        self.condition = condition
+
+    def state_u(self, u, beta0, rho_m1, sin_skew):
+        """Compute the closed-form state at beta = beta0 + (1 - beta0) u (paper units, R = E* = dgamma = 1).
+
+        Parameters
+        ----------
+        u : array_like
+            Path parameter in (0, 1) (complex allowed) [-].
+        beta0, rho_m1, sin_skew : array_like
+            The geometry: Hertz ellipticity, R'/R'' - 1 and sin(theta_skew) (:func:`geometry_terms`).
+
+        Returns
+        -------
+        dict
+            ``W_star`` (Eq. 34), ``a_star``, ``b_star``, ``delta_star``, ``beta`` and
+            ``alpha`` = (alpha0, alpha1, alpha2), alpha1,2 = a g1,2 from the curvatures.
+        """
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # a = inf at u -> 0
+            one_m_beta = (1.0 - beta0) * (1.0 - u)
+            beta = 1.0 - one_m_beta
+            k2 = one_m_beta * (1.0 + beta)
+            g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
+            # at u -> 0 (beta -> beta0, a -> infinity) rounding can leave dg <= 0: a = infinity
+            dg = np.where(np.real(dg) > 0.0, dg, np.nan)
+            a, al0 = self.condition(one_m_beta, beta, k2, g1, g2, dg)
+            al1, al2 = a * g1, a * g2
+            load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
+            delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # approach (derived)
+        return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,
+                "delta_star": delta, "beta": beta,  # Eq. (34)
+                "alpha": (al0, al1, al2)}
 
     def state_at_ellipticity(self, beta, beta0):
         """Compute the state whose contact ellipse has ellipticity beta (closed form, paper units).
@@ -543,7 +568,7 @@ def check_geometry(radius_ratio_, beta0):
 
 
 #: Johnson & Greenwood (2005): Griffith's criterion at both axis ends.
-JG = EllipticJKR("jkr-elliptic", _state_u)
+JG = EllipticJKR("jkr-elliptic", _griffith_at_axis_ends)
 
 
 def state_at_ellipticity(beta, beta0):

@@ -91,7 +91,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import special
 
-from .jkr_elliptic import EllipticJKR, shape_coefficients
+from .jkr_elliptic import EllipticJKR
 
 __all__ = [
     "load_curve",
@@ -141,29 +141,18 @@ def _edge_moments(m):
     return out
 
 
-def _state_u(u, beta0, rho_m1, sin_skew):
-    """Closed-form GVG state at beta = beta0 + (1 - beta0) u (paper units, R = E* = dgamma = 1)."""
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # a = inf at u -> 0
-        one_m_beta = (1.0 - beta0) * (1.0 - u)
-        beta = 1.0 - one_m_beta
-        k2 = one_m_beta * (1.0 + beta)
-        g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
-        i1, i2, i3, a2, a1, a0 = _edge_moments(k2)
-        eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (G3), the root with K_I of one sign
-        dg = np.where(np.real(dg) > 0.0, dg, np.nan)  # rounding at u -> 0: a = infinity
-        a3 = eps * eps / (2.0 * beta * (i1 + 2.0 * eps * i2 + eps * eps * i3) * dg * dg)  # Eq. (G4)
-        a = a3 ** (1.0 / 3.0)
-        a = np.where(np.isnan(np.real(a)), np.inf, a)
-        al1, al2 = a * g1, a * g2
-        al0 = a * dg / eps - al2  # s = alpha0 + alpha2 = (alpha1 - alpha2)/eps, Eq. (G3)
-        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
-        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # JG (2005): approach
-    return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,  # Eq. (34)
-            "delta_star": delta, "beta": beta, "alpha": (al0, al1, al2)}
+def _energy_stationary(one_m_beta, beta, k2, g1, g2, dg):
+    """GVG's condition: the size a and alpha0 at ellipticity beta, Eqs. (G3)-(G4) (R = E* = dgamma = 1)."""
+    i1, i2, i3, a2, a1, a0 = _edge_moments(k2)
+    eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (G3), the root with K_I of one sign
+    a3 = eps * eps / (2.0 * beta * (i1 + 2.0 * eps * i2 + eps * eps * i3) * dg * dg)  # Eq. (G4)
+    a = a3 ** (1.0 / 3.0)
+    a = np.where(np.isnan(np.real(a)), np.inf, a)
+    return a, a * dg / eps - a * g2  # s = alpha0 + alpha2 = (alpha1 - alpha2)/eps, Eq. (G3)
 
 
 #: Giudici, Vella & Griffiths (2025): the energy stationary in both semi-axes.
-GVG = EllipticJKR("jkr-elliptic-energy", _state_u)
+GVG = EllipticJKR("jkr-elliptic-energy", _energy_stationary)
 
 
 def state_at_ellipticity(beta, beta0):
@@ -171,19 +160,15 @@ def state_at_ellipticity(beta, beta0):
 
     Parameters
     ----------
-    beta : array_like
-        Contact ellipticity b/a in (beta0, 1) [-]: beta runs from beta0 (a -> infinity,
-        high load) to 1 (a -> 0) on unloading.
-    beta0 : array_like
-        Hertz ellipticity of the geometry, in (0, 1) [-] (beta0 = 1 is circular
-        JKR, :func:`dhfield.jkr.load_curve_nondimensional`).
+    beta, beta0 : array_like
+        The contact's ellipticity b/a in (beta0, 1) and the geometry's Hertz one in (0, 1)
+        [-], as for :func:`dhfield.jkr_elliptic.state_at_ellipticity`.
 
     Returns
     -------
     dict
-        ``W_star`` (W sin(theta_skew)/(2 pi R dgamma), Eq. 34), ``a_star``, ``b_star``
-        (semi-axes / c_r), ``delta_star``, ``beta`` [-] and ``alpha``, the
-        coefficients (alpha0, alpha1, alpha2) of the pressure [E* = 1].
+        The state's W* (Eq. 34), a*, b*, delta*, beta and the pressure coefficients alpha,
+        with GVG's size at that ellipticity.
 
     Notes
     -----
@@ -203,16 +188,15 @@ def load_curve_nondimensional(a_star, beta0):
 
     Parameters
     ----------
-    a_star : array_like
-        Contact semi-major axis a* = a/c_r > 0, Eq. (32) [-].
-    beta0 : array_like
-        Hertz ellipticity of the geometry in (0, 1] [-]; broadcasts with ``a_star``.
+    a_star, beta0 : array_like
+        Contact semi-major axis a* > 0 (Eq. 32) and the Hertz ellipticity in (0, 1] [-],
+        broadcast together.
 
     Returns
     -------
     dict
-        ``W_star`` (Eq. 34, with sin(theta_skew) of beta0), ``a_star``, ``b_star``,
-        ``delta_star`` and the contact ellipticity ``beta`` [-].
+        W*, a*, b*, delta* and the contact ellipticity beta [-] (keys as in
+        :func:`dhfield.jkr_elliptic.load_curve_nondimensional`).
     """
     return GVG.load_curve_nondimensional(a_star, beta0)
 
@@ -280,19 +264,17 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
     Parameters
     ----------
     effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+        The contact's R = sqrt(R'R'') [m], E* [Pa] and dgamma [J/m^2].
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+        The geometry, by R'/R'' >= 1 or by beta0 in (0, 1] (one of the two) [-].
     control : {'load', 'displacement'}
-        First minimum of the load (load control) or of the approach (displacement
-        control) met on unloading; both are true minima of the energy over both
-        semi-axes up to the displacement-control pull-off (module docstring).
+        The loading mode: the first minimum of W or of delta on unloading; states up to
+        the displacement-control pull-off are energy minima over both semi-axes.
 
     Returns
     -------
     dhfield.records.PullOffSI
-        ``force`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m], the SI inputs
-        and the nondimensional record (``ellipticity`` b/a at pull-off).
+        The one SI pull-off record (its ``ellipticity``: b/a at pull-off).
     """
     return GVG.pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
                         beta0=beta0, control=control)
@@ -305,19 +287,19 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radiu
     Parameters
     ----------
     effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+        As in :func:`pull_off` [m, Pa, J/m^2].
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or beta0 in (0, 1] (give one) [-].
+        As in :func:`pull_off` [-].
     control : {'load', 'displacement'}
-        Loading mode.
+        As in :func:`pull_off`.
 
     Returns
     -------
     ndarray
         :func:`pull_off`'s ``force`` [N].
     """
-    return GVG.pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
-                        beta0=beta0, control=control).force
+    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio, beta0=beta0,
+                    control=control).force
 
 
 def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
@@ -326,9 +308,9 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
     Parameters
     ----------
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or beta0 in (0, 1] (give one) [-]; R = sqrt(R'R'').
+        As in :func:`pull_off` [-]; the ratio depends on the shape R'/R'' only (R = sqrt(R'R'')).
     control : {'load', 'displacement'}
-        Loading mode.
+        As in :func:`pull_off`.
 
     Returns
     -------
@@ -344,9 +326,9 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
     Parameters
     ----------
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or beta0 in (0, 1] (give one) [-].
+        As in :func:`pull_off` [-].
     control : {'load', 'displacement'}
-        Loading mode.
+        As in :func:`pull_off`.
 
     Returns
     -------
