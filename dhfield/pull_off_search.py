@@ -154,7 +154,7 @@ def stable_minimum_index(values=None, *, slopes=None, floor=0.0, first=True):
 
 
 def fitted_slopes(x, values, window):
-    """Slopes of a noisy sampled path: least-squares quadratics over +-``window`` samples.
+    """Estimate the slopes of a noisy sampled path by least-squares quadratics over +-``window`` samples.
 
     Parameters
     ----------
@@ -170,7 +170,7 @@ def fitted_slopes(x, values, window):
     Returns
     -------
     ndarray, shape (n,)
-        d values / d(x[i] - x) at each sample, along unloading; NaN where fewer than
+        The slope d values / d(x[i] - x) at each sample, along unloading; NaN where fewer than
         three samples lie in the window.  For :func:`stable_minimum_index` (``slopes=``).
 
     Notes

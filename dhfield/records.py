@@ -133,7 +133,8 @@ class PullOffSI(_Record):
     work_of_adhesion : ndarray or float
         Delta gamma [J m^-2].
     max_adhesive_stress : ndarray or float
-        sigma0 [Pa] (NaN for the models without one: JKR, DMT, elliptical JKR).
+        The peak adhesive stress sigma0 [Pa] (NaN for the models without one: JKR, DMT,
+        elliptical JKR).
     reduced_modulus : ndarray or float
         E* [Pa].
     r_major, r_minor, effective_radius : ndarray or float
@@ -141,7 +142,7 @@ class PullOffSI(_Record):
     W_star, a_star, b_star, c_star, d_star, v, delta_star : ndarray or float
         The nondimensional record's values (:class:`PullOff`) [-].
     ellipticity, adhesive_ellipticity : ndarray or float
-        b/a and d/c at pull-off [-].
+        The ellipticities b/a and d/c at pull-off [-].
     at_zero_contact : ndarray or bool
         As in :class:`PullOff`.
     warning : ndarray or str
