@@ -9,7 +9,7 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
   (SI functions with a PDMS-like contact, a machine stiffness K* = 1) with its parameters filled by
   name; a result type is the returned class with, for a mapping, its set of keys (scalar/array
   results, e.g. a force, are not records and are not counted); a tuple is named by the types it
-  holds (``periphery.pull_off_periphery`` returns the pull-off record with its periphery profile);
+  holds;
 * the number of minimum-search implementations outside ``dhfield/bem`` (target 1): functions that
   decide which sample is the minimum: ``np.argmin``/``nanargmin`` on samples, or a discrete
   local-minimum test on neighbouring samples (a comparison of slices such as
