@@ -13,7 +13,7 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
 * the number of minimum-search implementations outside ``dhfield/bem`` (target 1): functions that
   decide which sample is the minimum: ``np.argmin``/``nanargmin`` on samples, or a discrete
   local-minimum test on neighbouring samples (a comparison of slices such as
-  ``v[1:-1] <= v[:-2]``, or ``f[i - 1] < f[i]``); of those, the local-minimum rules (the neighbour
+  ``v[1:-1] <= v[:-2]`` or ``f[1:] >= f[:-1]``, or ``f[i - 1] < f[i]``); of those, the local-minimum rules (the neighbour
   comparisons, in all of ``dhfield/``: one rule and one tie rule is the target).  Listed apart,
   not counted as searches: the *refinements*, functions that polish a bracket the search gave,
   with scipy's ``find_minimum``/``minimize_scalar``/``fminbound``/``golden``/``brent`` or
@@ -68,13 +68,15 @@ def _call_name(call):
 
 
 def _has_neighbour_rule(fn) -> bool:
-    """A discrete local-minimum test: a sample compared with its neighbours (v[1:-1] <= v[:-2], f[i] <= f[i - 1])."""
+    """A discrete local-minimum test: a sample compared with its neighbours (v[1:-1] <= v[:-2],
+    f[1:] >= f[:-1], f[i] <= f[i - 1])."""
     for node in ast.walk(fn):
-        if isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.LtE, ast.Lt)):
+        if isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.LtE, ast.Lt, ast.GtE, ast.Gt)):
             sides = [node.left, *node.comparators]
             if all(isinstance(q, ast.Subscript) for q in sides):
                 src = ast.unparse(node)
-                if ("1:-1" in src and ":-2" in src) or ("i - 1]" in src or "i + 1]" in src):
+                if (("1:-1" in src and ":-2" in src) or ("1:]" in src and ":-1]" in src)
+                        or ("i - 1]" in src or "i + 1]" in src)):
                     return True
     return False
 
