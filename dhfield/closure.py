@@ -662,14 +662,12 @@ def state_at_pull_off(mu, beta0, closure="two_axis", *, control="load"):
 
     Parameters
     ----------
-    mu : array_like
-        Tabor parameter (Eq. 35) [-].
-    beta0 : array_like
-        Hertz ellipticity of the geometry [-]; broadcast against ``mu``.
+    mu, beta0 : array_like
+        The grid point, as in :func:`pull_off_closure` [-].
     closure : {"paper", "ray_average", "two_axis"}
         As in :func:`pull_off_closure`.
     control : {"load", "displacement"}
-        Pull-off control mode.
+        As in :func:`pull_off_closure`.
 
     Returns
     -------

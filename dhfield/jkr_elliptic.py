@@ -331,10 +331,9 @@ class EllipticJKR:
 
         Parameters
         ----------
-        a_star : array_like
-            Contact semi-major axis a* = a/c_r > 0, Eq. (32) [-].
-        beta0 : array_like
-            Hertz ellipticity of the geometry in (0, 1] [-]; broadcasts with ``a_star``.
+        a_star, beta0 : array_like
+            The contact semi-major axis a* > 0 (Eq. 32) and the geometry's Hertz
+            ellipticity in (0, 1], broadcast together [-].
 
         Returns
         -------
@@ -406,15 +405,14 @@ class EllipticJKR:
         Parameters
         ----------
         beta0, mu : array_like
-            Hertz ellipticity and Tabor parameter (Eq. 35) [-]; JKR does not depend on mu,
-            the record has their broadcast shape.
+            The grid point [-] (mu only sets the record's shape: the family has no mu).
         control : {'load', 'displacement'}
-            Loading mode of the pull-off.
+            The minimum of W* or of delta* (:meth:`pull_off_state`).
 
         Returns
         -------
         dhfield.records.PullOff
-            ``ellipticity`` is the contact ellipticity b/a at pull-off.
+            Model :attr:`model`, ``ellipticity`` b/a at pull-off.
         """
         beta0 = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[0]
         st = self.pull_off_state(beta0, control)
@@ -496,9 +494,9 @@ class EllipticJKR:
         Parameters
         ----------
         radius_ratio, beta0 : array_like, optional
-            R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+            The geometry, as in :meth:`pull_off_force_ratio` [-].
         control : {'load', 'displacement'}
-            Loading mode of the pull-off.
+            As in :meth:`pull_off_force_ratio`.
 
         Returns
         -------
