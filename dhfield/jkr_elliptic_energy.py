@@ -212,15 +212,14 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     Parameters
     ----------
     beta0, mu : array_like
-        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; GVG does not depend on mu, the
-        record has their broadcast shape.
+        The grid point [-]; GVG has no mu (it sets the record's shape only).
     control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+        The minimum of W* (load) or of delta* (displacement) met on unloading.
 
     Returns
     -------
     dhfield.records.PullOff
-        ``ellipticity`` is the contact ellipticity b/a at pull-off.
+        Model ``jkr-elliptic-energy``; ``ellipticity`` is b/a at pull-off.
     """
     return GVG.pull_off_nondimensional(beta0, mu, control=control)
 
@@ -228,6 +227,8 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, *,
                radius_ratio=None, beta0=None):
     """Energy-minimising elliptical JKR (Giudici, Vella & Griffiths 2025) states at contact semi-axis a.
+
+    In SI units, on the family's machinery (:meth:`dhfield.jkr_elliptic.EllipticJKR.load_curve`).
 
     Parameters
     ----------
@@ -261,6 +262,9 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
              control="load"):
     """Energy-minimising elliptical JKR state at pull-off, in SI units.
 
+    The GVG pull-off (:func:`pull_off_nondimensional`) converted by
+    :func:`dhfield._adhesion.pull_off_si`.
+
     Parameters
     ----------
     effective_radius, reduced_modulus, work_of_adhesion : array_like
@@ -283,6 +287,8 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
                    beta0=None, control="load"):
     """Compute the energy-minimising elliptical JKR pull-off force W [N] (negative: tensile).
+
+    The ``force`` of the SI record of :func:`pull_off`.
 
     Parameters
     ----------
