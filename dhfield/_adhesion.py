@@ -24,18 +24,11 @@ from typing import NamedTuple
 import numpy as np
 
 from ._validation import check_interval, check_positive
+from .records import pull_off_record_si
 
 
 class LoadCurve(NamedTuple):
     """Equilibrium states along a load curve (dimensional or nondimensional)."""
-
-    load: np.ndarray
-    contact_radius: np.ndarray
-    approach: np.ndarray
-
-
-class PullOff(NamedTuple):
-    """The state at pull-off (dimensional or nondimensional)."""
 
     load: np.ndarray
     contact_radius: np.ndarray
@@ -58,21 +51,73 @@ def check_contact_size(name, value):
 
 def length_unit(effective_radius, reduced_modulus, work_of_adhesion):
     """c_r = (R^2 dgamma/E*)^(1/3), Eq. (33) [m]."""
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    return np.cbrt(r * r * w / e)  # Eq. (33)
+    return _length(*check_material(effective_radius, reduced_modulus, work_of_adhesion))
 
 
 def approach_unit(effective_radius, reduced_modulus, work_of_adhesion):
     """c_r^2/R = (R dgamma^2/E*^2)^(1/3) [m], the unit of delta*."""
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    return np.cbrt(r * w * w / (e * e))
+    return _approach(*check_material(effective_radius, reduced_modulus, work_of_adhesion))
 
 
 def load_unit(effective_radius, work_of_adhesion, sin_skew=1.0):
     """2 pi R dgamma / sin(theta_skew), Eq. (34) [N]; sin_skew = 1 for the circle."""
     r = check_positive("effective_radius", effective_radius, "m")
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    return _load(r, w, sin_skew)
+
+
+def _length(r, e, w):
+    return np.cbrt(r * r * w / e)  # Eq. (33)
+
+
+def _approach(r, e, w):
+    return np.cbrt(r * w * w / (e * e))
+
+
+def _load(r, w, sin_skew):
     return 2.0 * np.pi * r * w / np.asarray(sin_skew, dtype=float)  # Eq. (34)
+
+
+#: The SI inputs of a pull-off record (:data:`dhfield.schema.PULL_OFF_SI_KEYS`), in order.
+SI_INPUT_KEYS = ("work_of_adhesion", "max_adhesive_stress", "reduced_modulus", "r_major", "r_minor",
+                 "effective_radius")
+
+
+def pull_off_si(rec, inputs):
+    """Convert a nondimensional pull-off record to the one SI record (Eqs. 32-34 inverted).
+
+    ``rec`` is a :class:`dhfield.records.PullOff`; ``inputs`` maps :data:`SI_INPUT_KEYS` to
+    validated values (R, E*, dgamma, sigma0 or NaN, R', R'').  W = W* 2 pi R dgamma/sin(theta_skew)
+    with the record's own sin(theta_skew) (Eq. 34), a = a* c_r and c = c* c_r (Eqs. 32-33),
+    delta = delta* c_r^2/R.  Returns a :class:`dhfield.records.PullOffSI`.
+    """
+    r, e, w = inputs["effective_radius"], inputs["reduced_modulus"], inputs["work_of_adhesion"]
+    lu, au = _length(r, e, w), _approach(r, e, w)
+    si = {
+        "force": rec["W_star"] * _load(r, w, rec["sin_skew"]),  # Eq. (34)
+        "semi_major": rec["a_star"] * lu, "semi_minor": rec["b_star"] * lu,  # Eq. (32)
+        "adhesive_semi_major": rec["c_star"] * lu, "adhesive_semi_minor": rec["d_star"] * lu,
+        "approach": rec["delta_star"] * au,
+    }
+    return pull_off_record_si(rec, {**si, **{k: inputs[k] for k in SI_INPUT_KEYS}})
+
+
+def si_inputs(r, e, w, max_adhesive_stress=float("nan"), radius_ratio=1.0):
+    """The SI inputs of :func:`pull_off_si` from validated R, E*, dgamma (and sigma0, R'/R''):
+    R' = R sqrt(rho), R'' = R/sqrt(rho) (Eq. 5), both R for the circle."""
+    sq = np.sqrt(np.asarray(radius_ratio, dtype=float))
+    return {"work_of_adhesion": w, "max_adhesive_stress": np.asarray(max_adhesive_stress, dtype=float),
+            "reduced_modulus": e, "r_major": r * sq, "r_minor": r / sq, "effective_radius": r}
+
+
+def pull_off_si_of(core, inputs, *, control, beta0=1.0, mu=float("nan")):
+    """The SI pull-off record of a model: its nondimensional core ``core(beta0, mu, control=...)``
+    (a :class:`dhfield.records.PullOff`) over the broadcast shape of the inputs, then
+    :func:`pull_off_si`.  ``mu`` NaN for the models that have none (JKR, DMT, elliptical JKR)."""
+    shape = np.broadcast_shapes(*(np.shape(v) for v in inputs.values()), np.shape(beta0), np.shape(mu))
+    rec = core(np.broadcast_to(np.asarray(beta0, dtype=float), shape), np.asarray(mu, dtype=float),
+               control=control)
+    return pull_off_si(rec, inputs)
 
 
 def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion):

@@ -54,6 +54,7 @@ from .bem.branch import Branch
 from .bem.continuation import adhesive_force, fit_fold, solve_at_adhesive_force
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
 from .compliance import spring_weight
+from .pull_off_search import fitted_slopes, stable_minimum_index
 
 __all__ = ["BemBranch", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle", "BRANCH_STEPS",
            "BRANCH_WINDOW"]
@@ -125,20 +126,13 @@ class BemBranch:
 def _first_rise(x, f, window):
     """Index of the first sample, walking down the branch (index 0: highest F_a), where f stops falling.
 
-    The slope df/d(-F_a) at each sample is that of a least-squares quadratic over the
-    samples within +-``window`` indices (the lattice jaggedness of the BEM's loads and
-    approaches, ~1e-3 at N = 64, makes single differences change sign before the
-    minimum).  Returns ``f.size`` when f falls at every sample (no minimum met).
+    The one rule of :func:`dhfield.pull_off_search.stable_minimum_index` on the slopes
+    df/d(-F_a) of least-squares quadratics over +-``window`` samples
+    (:func:`dhfield.pull_off_search.fitted_slopes`: the lattice jaggedness of the BEM's
+    loads and approaches, ~1e-3 at N = 64, makes single differences change sign before
+    the minimum).  Returns ``f.size`` when f falls at every sample (no minimum met).
     """
-    x, f = np.asarray(x, float), np.asarray(f, float)
-    for i in range(f.size):
-        lo, hi = max(0, i - window), min(f.size, i + window + 1)
-        if hi - lo < 3:
-            continue
-        u = x[i] - x[lo:hi]  # increases along unloading, 0 at sample i
-        if np.polyfit(u, f[lo:hi], 2)[1] >= 0.0:
-            return i
-    return f.size
+    return int(stable_minimum_index(slopes=fitted_slopes(x, f, window)))
 
 
 def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WINDOW, landing=None, margin=None,
@@ -347,8 +341,8 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
         f = sm * d + (1.0 - sm) * w
         rise = _first_rise(x, f, win)
         i = min(rise, x.size - 1)
-        if 0 < i < x.size - 1 and f[i - 1] < f[i]:
-            i -= 1  # the discrete minimum is the sample before the first rising one
+        if 0 < i < x.size - 1:
+            i += int(stable_minimum_index(f[i - 1:i + 1])) - 1  # the lower of the two samples (the one rule)
         fit = sel = None
         for half in range(win, 2 * win + 1):  # widened while the lattice noise hides the vertex
             near = np.abs(np.arange(x.size) - i) <= half

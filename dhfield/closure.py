@@ -88,6 +88,8 @@ __all__ = [
     "pull_off_ray_average",
     "pull_off_two_axis",
     "pull_off_closure",
+    "state_at_pull_off",
+    "MODEL_NAMES",
 ]
 
 CLOSURES = ("paper", "ray_average", "two_axis")
@@ -182,8 +184,12 @@ class ClosureState:
         Delta gamma(0) and Delta gamma(pi/2), in Delta gamma [-].
     sigma0_major, sigma0_minor : ndarray
         Adhesive stress at the contact edge on the two axes, in E* c_r/R [-].
-    at_zero_contact : ndarray, optional
-        For pull-off states: True where the minimum sits at the smallest scanned contact.
+
+    Notes
+    -----
+    The state type of the closure solves (:func:`solve_two_axis`, :func:`solve_ray_average`,
+    :func:`state_at_pull_off`), not a pull-off record: the pull-off is
+    :func:`pull_off_closure`'s :class:`dhfield.records.PullOff`.
     """
 
     closure: str
@@ -201,7 +207,6 @@ class ClosureState:
     work_minor: np.ndarray
     sigma0_major: np.ndarray
     sigma0_minor: np.ndarray
-    at_zero_contact: np.ndarray = None
 
     @property
     def beta_contact(self):
@@ -352,8 +357,9 @@ def equal_beta_spread_along_curve(mu, beta0, a_star, *, n_theta=N_THETA):
 
 # --------------------------------------------------------------------------- shared pieces
 def _geometry(beta0):
-    rho0 = radius_ratio(beta0)
-    return np.sqrt(rho0), 1.0 / np.sqrt(rho0), sin_skew_angle(beta0)  # R', R'' (R = 1), Eq. (34) factor
+    """R', R'' (R = 1) and the Eq. (34) factor of a validated beta0 (not checked again: the solves call it often)."""
+    rho0 = radius_ratio(beta0, checked=False)
+    return np.sqrt(rho0), 1.0 / np.sqrt(rho0), sin_skew_angle(beta0, checked=False)
 
 
 def _two_field_state(closure, mu, beta0, a, b, c, d, amp_a, amp_b):
@@ -474,7 +480,8 @@ def _two_axis_fields(a, log_c, log_d, mu, r1, r2):
     ok = ok & np.isfinite(rho_ab) & (rho_ab >= 1.0)
     beta_ab = np.full(np.shape(rho_ab), np.nan)
     if np.any(ok):
-        beta_ab[ok] = ellipticity_from_radius_ratio(np.asarray(rho_ab)[ok])
+        # an intermediate value, finite and >= 1 by ``ok``: not validated again (issue 16, validate once)
+        beta_ab[ok] = ellipticity_from_radius_ratio(np.asarray(rho_ab)[ok], checked=False)
     b = beta_ab * a
     _, j2, _ = ellipsoid_integrals(0.0, a, b)
     amp_a = bottom / (a * b * j2)  # first curvature condition
@@ -591,6 +598,31 @@ _SOLVERS = {
 }
 
 
+#: closure -> the model name of its pull-off record (``paper``: the paper's model, Eqs. 17-19, 31).
+MODEL_NAMES = {"paper": "dh-elliptic", "ray_average": "dh-elliptic-ray-average", "two_axis": "dh-elliptic-two-axis"}
+
+
+def _check_pull_off(mu, beta0, closure, control):
+    if closure not in CLOSURES:
+        raise ValueError(f"closure must be one of {CLOSURES}; got {closure!r}")
+    check_control(control)
+    return np.broadcast_arrays(*_check_domain(mu, beta0))
+
+
+def _pull_off_state(mu, beta0, closure, control):
+    """The closure's state at its pull-off and where that is the zero-contact limit (validated inputs)."""
+    solver = _SOLVERS[closure]
+    key = "W_star" if control == "load" else "delta_star"
+
+    def objective(a, m, b):
+        return getattr(solver(a, m, b), key)
+
+    end = last_local_minimum(objective, _SCAN, (np.ravel(mu), np.ravel(beta0)))
+    has = end.found.reshape(mu.shape)
+    a_best = np.where(has, end.x.reshape(mu.shape), A_ZERO)
+    return solver(a_best, mu, beta0), ~has
+
+
 def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
     """Find the pull-off point of a closure: the minimum of W* (load) or delta* (displacement).
 
@@ -608,37 +640,45 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
 
     Returns
     -------
-    ClosureState
-        At the pull-off point.  Found as the last local minimum, seen from high
-        load, of W*(a*) (or delta*(a*)) on a geometric scan of a*, refined with
-        :func:`scipy.optimize.elementwise.find_minimum`
+    dhfield.records.PullOff
+        The pull-off record (model :data:`MODEL_NAMES` of the closure).  Found as the
+        last local minimum, seen from high load, of W*(a*) (or delta*(a*)) on a
+        geometric scan of a*, refined with :func:`scipy.optimize.elementwise.find_minimum`
         (:func:`dhfield.pull_off_search.last_local_minimum`); ``at_zero_contact`` is True
         where W* (delta*) rises monotonically from the smallest scanned a*, and the
-        state is then reported at a* = :data:`A_ZERO`, standing for a* -> 0.
+        state is then reported at a* = :data:`A_ZERO`, standing for a* -> 0.  The
+        closure's own state there (amplitudes, Delta gamma and sigma0 on both axes):
+        :func:`state_at_pull_off`.
     """
-    if closure not in CLOSURES:
-        raise ValueError(f"closure must be one of {CLOSURES}; got {closure!r}")
-    check_control(control)
-    mu, beta0 = _check_domain(mu, beta0)
-    mu, beta0 = np.broadcast_arrays(mu, beta0)
-    solver = _SOLVERS[closure]
-    key = "W_star" if control == "load" else "delta_star"
-
-    def objective(a, m, b):
-        return getattr(solver(a, m, b), key)
-
-    end = last_local_minimum(objective, _SCAN, (np.ravel(mu), np.ravel(beta0)))
-    has = end.found.reshape(mu.shape)
-    a_best = np.where(has, end.x.reshape(mu.shape), A_ZERO)
-    state = solver(a_best, mu, beta0)
-    return ClosureState(**{**{f.name: getattr(state, f.name) for f in fields(state)},
-                           "at_zero_contact": ~has})
+    mu, beta0 = _check_pull_off(mu, beta0, closure, control)
+    state, zero = _pull_off_state(mu, beta0, closure, control)
+    return pull_off_record(MODEL_NAMES[closure], beta0, mu, {**{k: getattr(state, k) for k in (
+        "W_star", "a_star", "b_star", "c_star", "d_star", "delta_star")}, "at_zero_contact": zero},
+        control=control, sin_skew=sin_skew_angle(beta0, checked=False), geometry="ellipse")
 
 
-def _record(model, beta0, mu, state, control):
-    return pull_off_record(model, beta0, mu, {k: getattr(state, k) for k in (
-        "W_star", "a_star", "b_star", "c_star", "d_star", "delta_star", "at_zero_contact")}, control=control,
-        sin_skew=sin_skew_angle(beta0), geometry="ellipse")
+def state_at_pull_off(mu, beta0, closure="two_axis", *, control="load"):
+    """Compute the closure's equilibrium state at its pull-off point (the diagnostics of the closure).
+
+    Parameters
+    ----------
+    mu, beta0 : array_like
+        The grid point, as in :func:`pull_off_closure` [-].
+    closure : {"paper", "ray_average", "two_axis"}
+        As in :func:`pull_off_closure`.
+    control : {"load", "displacement"}
+        As in :func:`pull_off_closure`.
+
+    Returns
+    -------
+    ClosureState
+        The state :func:`solve_two_axis` (or :func:`solve_ray_average`) gives at the a* of
+        :func:`pull_off_closure`'s record: the same point, with the amplitudes and
+        Delta gamma, sigma0 on both axes.  Not a pull-off record: the state type of the
+        closure solves.
+    """
+    mu, beta0 = _check_pull_off(mu, beta0, closure, control)
+    return _pull_off_state(mu, beta0, closure, control)[0]
 
 
 def pull_off_ray_average(beta0, mu, *, control="load"):
@@ -657,8 +697,7 @@ def pull_off_ray_average(beta0, mu, *, control="load"):
     dhfield.records.PullOff
         The pull-off point (:func:`pull_off_closure`), nondimensional.
     """
-    state = pull_off_closure(mu, beta0, "ray_average", control=control)
-    return _record("dh-elliptic-ray-average", *np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float)), state, control)
+    return pull_off_closure(mu, beta0, "ray_average", control=control)
 
 
 def pull_off_two_axis(beta0, mu, *, control="load"):
@@ -677,5 +716,4 @@ def pull_off_two_axis(beta0, mu, *, control="load"):
     dhfield.records.PullOff
         The pull-off point (:func:`pull_off_closure`), nondimensional.
     """
-    state = pull_off_closure(mu, beta0, "two_axis", control=control)
-    return _record("dh-elliptic-two-axis", *np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float)), state, control)
+    return pull_off_closure(mu, beta0, "two_axis", control=control)

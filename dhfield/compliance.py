@@ -103,6 +103,7 @@ from scipy.optimize import elementwise
 from . import compare
 from ._validation import check_interval
 from .dugdale_separation import dugdale_range, separated_branch, zone_radius_at_contact
+from .pull_off_search import stable_minimum_index
 
 __all__ = ["stiffness_star", "check_machine_stiffness", "add_machine_displacement", "pull_off_under_spring", "spring_pull_off_record",
            "pull_off_force_under_spring", "loading_cycle", "loading_cycle_si", "cycle_path",
@@ -292,12 +293,6 @@ class _Curve:
         return s * d + (1.0 - s) * w
 
 
-def _first_local_minimum(f):
-    """Index of the first local minimum of the rows of f, walking from column 0."""
-    rising = f[..., 1:] >= f[..., :-1]
-    return np.where(rising.any(axis=-1), np.argmax(rising, axis=-1), f.shape[-1] - 1)
-
-
 def _jump_out(curve, s):
     """Parameter t of the jump out (first minimum of F_s from high load), vectorised over s."""
     hi = np.full(s.shape, curve.t_hi)
@@ -310,7 +305,7 @@ def _jump_out(curve, s):
         frac = np.linspace(0.0, 1.0, n)
         t = hi[:, None] + (lo - hi)[:, None] * frac  # descending from the high-load end
         f = curve.machine(t, s[:, None])
-        i = _first_local_minimum(f)
+        i = stable_minimum_index(f)  # the one rule: the first local minimum from the high-load end
         j = np.arange(s.size)
         new_hi = t[j, np.maximum(i - 1, 0)]
         new_lo = t[j, np.minimum(i + 1, n - 1)]

@@ -44,7 +44,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material,
+from ._adhesion import (LoadCurve, approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
                         length_unit, load_unit, scalar_or_array, tabor_parameter)
 from ._validation import check_control, check_positive, check_tabor
 from .pull_off_search import scan_minimum
@@ -299,14 +299,16 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
 
     Returns
     -------
-    PullOff
-        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+    dhfield.records.PullOffSI
+        ``force`` [N], ``semi_major`` = ``semi_minor`` (the contact radius) and the
+        adhesive radius [m], ``approach`` [m], the SI inputs and the nondimensional record.
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
     check_tabor("mu", mu)
     check_control(control)
-    return PullOff(*(scalar_or_array(x) for x in _dimensional(_pull_off_state(mu, control), r, e, w)))
+    s0 = np.asarray(max_adhesive_stress, dtype=float)
+    return pull_off_si_of(pull_off_nondimensional, si_inputs(r, e, w, s0), control=control, mu=mu)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
@@ -325,7 +327,7 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhe
     Returns
     -------
     ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+        The pull-off force W [N] (:func:`pull_off`'s ``force``).
     """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
-                    control=control).load
+                    control=control).force

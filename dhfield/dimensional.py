@@ -38,7 +38,7 @@ import numpy as np
 from . import _adhesion as units
 from . import compare, geometry
 from ._validation import ELLIPTICITY_RANGE, TABOR_RANGE, check_interval, check_positive
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_SI_KEYS
+from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS
 
 __all__ = ["ContactParameters", "contact_parameters", "contact_parameters_from_principal_radii",
            "crossed_cylinder_radii", "load_curve_si", "pull_off_force", "pull_off_record_si"]
@@ -282,7 +282,7 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
 
     Returns
     -------
-    dict
+    dhfield.records.PullOffSI
         The keys of :data:`dhfield.schema.PULL_OFF_SI_KEYS`, in that order, for
         every model: ``force`` [N] (negative: tensile), ``semi_major``,
         ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor``,
@@ -304,7 +304,7 @@ def pull_off_record_si(rec, params: ContactParameters):
 
     Parameters
     ----------
-    rec : dict
+    rec : dhfield.records.PullOff
         From :func:`dhfield.compare.pull_off` or :func:`dhfield.compare.compare`, at
         ``params.mu`` and ``params.beta0``.
     params : ContactParameters
@@ -312,26 +312,16 @@ def pull_off_record_si(rec, params: ContactParameters):
 
     Returns
     -------
-    dict
+    dhfield.records.PullOffSI
         The keys of :data:`dhfield.schema.PULL_OFF_SI_KEYS` (see :func:`pull_off_force`).
 
     Notes
     -----
     Inverts Eqs. (32)-(34): W = W* 2 pi R dgamma/sin(theta_skew), a = a* c_r,
-    delta = delta* c_r^2/R, with the record's own sin(theta_skew).
+    delta = delta* c_r^2/R, with the record's own sin(theta_skew)
+    (:func:`dhfield._adhesion.pull_off_si`, the one conversion of every model).
     """
-    lu, au = params.length_unit, params.approach_unit
-    si = {
-        "force": rec["W_star"] * units.load_unit(params.effective_radius, params.work_of_adhesion,
-                                                 rec["sin_skew"]),  # Eq. (34)
-        "semi_major": rec["a_star"] * lu, "semi_minor": rec["b_star"] * lu,  # Eq. (32)
-        "adhesive_semi_major": rec["c_star"] * lu, "adhesive_semi_minor": rec["d_star"] * lu,
-        "approach": rec["delta_star"] * au,
-    }
-    shape = np.shape(rec["W_star"])
-    si = {k: _s(np.broadcast_to(v, shape)) for k, v in {**si, **_si_inputs(params)}.items()}
-    out = {k: (si[k] if k in si else rec[k]) for k in PULL_OFF_SI_KEYS}
-    return out
+    return units.pull_off_si(rec, _si_inputs(params))
 
 
 def load_curve_si(params: ContactParameters, semi_major=None, n=200, *, model=compare.DEFAULT_MODEL,

@@ -133,13 +133,16 @@ def _radius_ratio(beta):
         return special.elliprd(0.0, 1.0, b2) / special.elliprd(0.0, b2, 1.0)
 
 
-def radius_ratio(beta):
+def radius_ratio(beta, *, checked=True):
     """The radius ratio R'/R'' that gives the Hertz ellipticity ``beta`` (Eqs. 8, 14).
 
     Parameters
     ----------
     beta : array_like
         Ellipticity ratio b/a in (0, 1] [-].
+    checked : bool, default True
+        Validate ``beta``; False for internal callers that validated their inputs once
+        at their public entry and evaluate intermediate values (the closure solves).
 
     Returns
     -------
@@ -152,10 +155,10 @@ def radius_ratio(beta):
     >>> float(geometry.radius_ratio(1.0))
     1.0
     """
-    return _radius_ratio(check_ellipticity("beta", beta))
+    return _radius_ratio(check_ellipticity("beta", beta) if checked else beta)
 
 
-def ellipticity_from_radius_ratio(ratio):
+def ellipticity_from_radius_ratio(ratio, *, checked=True):
     """Inverse of :func:`radius_ratio`: the Hertz beta for R'/R'' >= 1.
 
     Solved element-wise with a bracketing root finder in log(beta), to
@@ -165,6 +168,9 @@ def ellipticity_from_radius_ratio(ratio):
     ----------
     ratio : array_like
         Radius ratio R'/R'' >= 1 [-].
+    checked : bool, default True
+        Validate ``ratio``; False for internal callers whose ratio is an intermediate
+        value already known to be finite and >= 1 (the two-axis closure solve).
 
     Returns
     -------
@@ -177,9 +183,10 @@ def ellipticity_from_radius_ratio(ratio):
     >>> round(float(geometry.ellipticity_from_radius_ratio(geometry.radius_ratio(0.8))), 12)
     0.8
     """
-    rho = check_interval("ratio", ratio, 1.0, np.inf, low_open=False, high_open=True,
-                         what="R'/R'', dimensionless")
-    rho = np.asarray(rho, dtype=float)
+    if checked:
+        ratio = check_interval("ratio", ratio, 1.0, np.inf, low_open=False, high_open=True,
+                               what="R'/R'', dimensionless")
+    rho = np.asarray(ratio, dtype=float)
     out = np.ones_like(rho)
     mask = rho > 1.0
     if np.any(mask):
@@ -222,7 +229,7 @@ def skew_angle(beta):
     return np.arccos((rho - 1.0) / (rho + 1.0))
 
 
-def sin_skew_angle(beta):
+def sin_skew_angle(beta, *, checked=True):
     """Sine of the crossing angle, sin(theta_skew), for Hertz ellipticity ``beta``.
 
     The factor of Eqs. (34) and (36), computed as 2 sqrt(rho)/(1 + rho), rho =
@@ -232,13 +239,15 @@ def sin_skew_angle(beta):
     ----------
     beta : array_like
         Ellipticity b/a in (0, 1] [-].
+    checked : bool, default True
+        Validate ``beta`` (:func:`radius_ratio`); False on inputs validated once already.
 
     Returns
     -------
     ndarray
         The sine, in (0, 1] [-].
     """
-    rho = radius_ratio(beta)
+    rho = radius_ratio(beta, checked=checked)
     return 2.0 * np.sqrt(rho) / (1.0 + rho)
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material, length_unit,
+from ._adhesion import (LoadCurve, approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs, length_unit,
                         load_unit, scalar_or_array)
 from ._validation import check_control, check_finite
 from .records import pull_off_record
@@ -180,8 +180,10 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
 
     Returns
     -------
-    PullOff
-        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+    dhfield.records.PullOffSI
+        ``force`` [N], ``semi_major`` = ``semi_minor`` (the contact radius) [m],
+        ``approach`` [m], the SI inputs (``max_adhesive_stress`` NaN) and the
+        nondimensional record (``mu`` NaN: JKR has none).
 
     Notes
     -----
@@ -190,10 +192,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
     """
     check_control(control)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = _pull_off_state(control)
-    return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w)),
-                   scalar_or_array(s["a_star"] * length_unit(r, e, w)),
-                   scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+    return pull_off_si_of(pull_off_nondimensional, si_inputs(r, e, w), control=control)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
@@ -209,6 +208,6 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, contr
     Returns
     -------
     ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+        The pull-off force W [N] (:func:`pull_off`'s ``force``).
     """
-    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).load
+    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).force

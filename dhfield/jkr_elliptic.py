@@ -78,7 +78,8 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ._adhesion import approach_unit, check_material, length_unit, load_unit, scalar_or_array
+from ._adhesion import (approach_unit, check_material, length_unit, load_unit, pull_off_si_of, scalar_or_array,
+                        si_inputs)
 from ._validation import as_circle, check_control, check_ellipticity, check_finite, check_interval
 from .geometry import ellipticity_from_radius_ratio, sin_skew_angle
 from .pull_off_search import scan_minimum
@@ -86,7 +87,7 @@ from .records import pull_off_record
 
 __all__ = [
     "EllipticLoadCurve",
-    "EllipticPullOff",
+    "EllipticJKR",
     "load_curve",
     "pull_off",
     "pull_off_force",
@@ -110,7 +111,7 @@ _SERIES_COEF = np.cumprod(np.concatenate([[1.0], (1.5 + _N[:-1]) / (_N[:-1] + 1.
 
 
 class EllipticLoadCurve(NamedTuple):
-    """Elliptical JKR states (also the pull-off state, :data:`EllipticPullOff`).
+    """Elliptical JKR states along a load curve, in SI units (both models of :class:`EllipticJKR`).
 
     Parameters
     ----------
@@ -130,8 +131,6 @@ class EllipticLoadCurve(NamedTuple):
     approach: np.ndarray
     ellipticity: np.ndarray
 
-
-EllipticPullOff = EllipticLoadCurve
 
 
 def _integrals(beta, k2):
@@ -180,25 +179,17 @@ def shape_coefficients(beta, k2, rho_m1):
     return g2 + dg, g2, dg, j0, j1, j2
 
 
+def _griffith_at_axis_ends(one_m_beta, beta, k2, g1, g2, dg):
+    """JG's condition: the size a and alpha0 at ellipticity beta (K_I = sqrt(2 E* dgamma) at both axis ends)."""
+    root = np.expm1(-0.5 * np.log1p(-one_m_beta))  # beta^(-1/2) - 1
+    a = (np.sqrt(2.0 / np.pi) * root / dg) ** (2.0 / 3.0)  # JG (2005): K_I equal at both axis ends
+    a = np.where(np.isnan(np.real(a)), np.inf, a)
+    return a, -(a * g1) - np.sqrt(2.0 / (np.pi * a))  # JG (2005): K_I = sqrt(2 E* dgamma) at the end of a
+
+
 def _state_u(u, beta0, rho_m1, sin_skew):
     """Closed-form elliptical JKR state at beta = beta0 + (1 - beta0) u (paper units)."""
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # a = inf at u -> 0
-        one_m_beta = (1.0 - beta0) * (1.0 - u)
-        beta = 1.0 - one_m_beta
-        k2 = one_m_beta * (1.0 + beta)
-        g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
-        # at u -> 0 (beta -> beta0, a -> infinity) rounding can leave dg <= 0: a = infinity
-        dg = np.where(np.real(dg) > 0.0, dg, np.nan)
-        root = np.expm1(-0.5 * np.log1p(-one_m_beta))  # beta^(-1/2) - 1
-        a = (np.sqrt(2.0 / np.pi) * root / dg) ** (2.0 / 3.0)  # JG (2005): K_I equal at both axis ends
-        a = np.where(np.isnan(np.real(a)), np.inf, a)
-        al1, al2 = a * g1, a * g2
-        al0 = -al1 - np.sqrt(2.0 / (np.pi * a))  # JG (2005): K_I = sqrt(2 E* dgamma) at the end of a
-        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
-        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # approach (derived)
-    return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,
-            "delta_star": delta, "beta": beta,  # Eq. (34)
-            "alpha": (al0, al1, al2)}
+    return JG.state_u(u, beta0, rho_m1, sin_skew)
 
 
 def circle_state(a_star, sin_skew=1.0):
@@ -215,13 +206,11 @@ def geometry_terms(beta0):
     rho_m1 = _radius_ratio_m1(beta0)
     return beta0, rho_m1, 2.0 * np.sqrt(1.0 + rho_m1) / (2.0 + rho_m1)
 
-def state_si(record_type, state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
-    """Convert a nondimensional elliptical-JKR state (Eqs. 32-34) to SI, as ``record_type``.
+def state_si(state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
+    """Convert nondimensional elliptical-JKR states (Eqs. 32-34) to an SI load curve.
 
     Parameters
     ----------
-    record_type : type
-        A NamedTuple of fields (load, semi_major, semi_minor, approach, ellipticity).
     state : dict
         ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] in the paper's units.
     beta0 : array_like
@@ -231,37 +220,353 @@ def state_si(record_type, state, beta0, effective_radius, reduced_modulus, work_
 
     Returns
     -------
-    record_type
+    EllipticLoadCurve
         Load [N], semi-axes [m], approach [m] and ellipticity [-].
     """
     r, e, w = effective_radius, reduced_modulus, work_of_adhesion
     cr = length_unit(r, e, w)
     sn = geometry_terms(beta0)[2]
-    return record_type(scalar_or_array(state["W_star"] / sn * load_unit(r, w)),  # Eq. (34)
-                       scalar_or_array(state["a_star"] * cr), scalar_or_array(state["b_star"] * cr),
-                       scalar_or_array(state["delta_star"] * approach_unit(r, e, w)),
-                       scalar_or_array(state["beta"]))
+    return EllipticLoadCurve(scalar_or_array(state["W_star"] / sn * load_unit(r, w)),  # Eq. (34)
+                             scalar_or_array(state["a_star"] * cr), scalar_or_array(state["b_star"] * cr),
+                             scalar_or_array(state["delta_star"] * approach_unit(r, e, w)),
+                             scalar_or_array(state["beta"]))
 
 
-def _merge(mask, circ, ell, shape):
-    out = {}
-    for k in circ:
-        arr = np.empty(shape)
-        arr[mask] = np.broadcast_to(circ[k], shape)[mask]
-        arr[~mask] = np.broadcast_to(ell[k], shape)[~mask] if np.ndim(ell[k]) else ell[k]
-        out[k] = arr
-    return out
-
-
-def _u_at_contact(a_star, beta0, rho_m1, sin_skew):
+def _u_at_contact(state_u, a_star, beta0, rho_m1, sin_skew):
     def f(u, at, b0, r, s):
         with np.errstate(divide="ignore"):  # a = 0 at u -> 1; arctan keeps f finite
-            return np.arctan(np.log(_state_u(u, b0, r, s)["a_star"] / at))
+            return np.arctan(np.log(state_u(u, b0, r, s)["a_star"] / at))
 
     lo = np.full(np.shape(a_star), _U_EDGE)
     res = elementwise.find_root(f, (lo, 1.0 - lo), args=(a_star, beta0, rho_m1, sin_skew),
                                 tolerances=dict(xatol=1e-16, xrtol=1e-15))
     return res.x
+
+
+class EllipticJKR:
+    """Elliptical JKR with the contact shape fixed by one condition: the family of JG 2005 and GVG 2025.
+
+    Both keep Johnson & Greenwood's elliptical contact and pressure and have the state in
+    closed form along the ellipticity, beta = beta0 + (1 - beta0) u, u in (0, 1): beta0
+    (a -> infinity, high load) to 1 (a -> 0).  They differ only in the condition that
+    fixes the size at each ellipticity: Griffith's criterion at both axis ends (JG,
+    :mod:`dhfield.jkr_elliptic`) or the energy stationary in both semi-axes (GVG,
+    :mod:`dhfield.jkr_elliptic_energy`), the ``state_u`` of the family.  The load curve,
+    the pull-off search and the SI conversions are this class's, once for both models;
+    beta0 = 1 is circular JKR (:func:`circle_state`).
+
+    Parameters
+    ----------
+    model : str
+        The model's name in :mod:`dhfield.compare` (``jkr-elliptic`` or
+        ``jkr-elliptic-energy``).
+    condition : callable
+        ``condition(one_m_beta, beta, k2, g1, g2, dg)`` -> ``(a, alpha0)``: the contact
+        size a (inf where it diverges) and the pressure's alpha0 at ellipticity beta,
+        from 1 - beta, k^2 = 1 - beta^2 and the shape coefficients g1, g2 and
+        dg = g1 - g2 of :func:`shape_coefficients` (dg NaN where rounding leaves it <= 0);
+        complex-safe (the pull-off uses the complex-step derivative of the state).
+    """
+
+    def __init__(self, model, condition):
+        self.model = model
+        self.condition = condition
+
+    def state_u(self, u, beta0, rho_m1, sin_skew):
+        """Compute the closed-form state at beta = beta0 + (1 - beta0) u (paper units, R = E* = dgamma = 1).
+
+        Parameters
+        ----------
+        u : array_like
+            Path parameter in (0, 1) (complex allowed) [-].
+        beta0, rho_m1, sin_skew : array_like
+            The geometry: Hertz ellipticity, R'/R'' - 1 and sin(theta_skew) (:func:`geometry_terms`).
+
+        Returns
+        -------
+        dict
+            ``W_star`` (Eq. 34), ``a_star``, ``b_star``, ``delta_star``, ``beta`` and
+            ``alpha`` = (alpha0, alpha1, alpha2), alpha1,2 = a g1,2 from the curvatures.
+        """
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # a = inf at u -> 0
+            one_m_beta = (1.0 - beta0) * (1.0 - u)
+            beta = 1.0 - one_m_beta
+            k2 = one_m_beta * (1.0 + beta)
+            g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
+            # at u -> 0 (beta -> beta0, a -> infinity) rounding can leave dg <= 0: a = infinity
+            dg = np.where(np.real(dg) > 0.0, dg, np.nan)
+            a, al0 = self.condition(one_m_beta, beta, k2, g1, g2, dg)
+            al1, al2 = a * g1, a * g2
+            load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
+            delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # approach (derived)
+        return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,
+                "delta_star": delta, "beta": beta,  # Eq. (34)
+                "alpha": (al0, al1, al2)}
+
+    def state_at_ellipticity(self, beta, beta0):
+        """Compute the state whose contact ellipse has ellipticity beta (closed form, paper units).
+
+        Parameters
+        ----------
+        beta : array_like
+            Contact ellipticity b/a in (beta0, 1) [-].
+        beta0 : array_like
+            Hertz ellipticity of the geometry, in (0, 1) [-].
+
+        Returns
+        -------
+        dict
+            ``W_star`` (Eq. 34), ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] and
+            ``alpha``, the coefficients (alpha0, alpha1, alpha2) of the pressure [E* = 1].
+        """
+        b0 = check_interval("beta0", beta0, 0.0, 1.0, high_open=True, what="Hertz ellipticity, dimensionless")
+        b = np.asarray(check_finite("beta", beta, "contact ellipticity b/a, dimensionless"), dtype=float)
+        if np.any((b <= b0) | (b >= 1.0)):
+            raise ValueError("beta must lie in (beta0, 1) (contact ellipticity b/a, dimensionless)")
+        b0, rho_m1, sn = geometry_terms(b0)
+        return self.state_u((b - b0) / (1.0 - b0), b0, rho_m1, sn)
+
+    def load_curve_nondimensional(self, a_star, beta0):
+        """Compute the state at contact semi-major axis a*, in the paper's units (Eqs. 32-35).
+
+        Parameters
+        ----------
+        a_star, beta0 : array_like
+            The contact semi-major axis a* > 0 (Eq. 32) and the geometry's Hertz
+            ellipticity in (0, 1], broadcast together [-].
+
+        Returns
+        -------
+        dict
+            ``W_star`` (Eq. 34), ``a_star``, ``b_star``, ``delta_star`` and the contact
+            ellipticity ``beta`` [-]: a* decreases monotonically along the closed-form
+            curve, so its ellipticity is found by a bracketing root finder.
+        """
+        beta0, rho_m1, sn = geometry_terms(beta0)
+        a_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(a_star, float), beta0, rho_m1, sn)
+        circ = beta0 == 1.0
+        out = circle_state(a_star, sn)
+        if np.any(~circ):
+            sel = ~circ
+            u = _u_at_contact(self.state_u, a_star[sel], beta0[sel], rho_m1[sel], sn[sel])
+            st = self.state_u(u, beta0[sel], rho_m1[sel], sn[sel])
+            for k in out:
+                out[k] = np.array(out[k], dtype=float)
+                out[k][sel] = st[k]
+            out["a_star"][sel] = a_star[sel]
+            out["b_star"][sel] = st["beta"] * a_star[sel]
+        return out
+
+    def pull_off_state(self, beta0, control="load"):
+        """Compute the state at pull-off in the paper's units (Eqs. 32-35), vectorised over beta0.
+
+        Parameters
+        ----------
+        beta0 : array_like
+            Hertz ellipticity of the geometry in (0, 1] [-].
+        control : {'load', 'displacement'}
+            The first minimum of W* (load control) or delta* (displacement control) met
+            on unloading from high load, beta = beta0 towards 1.
+
+        Returns
+        -------
+        dict
+            ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] as in
+            :meth:`load_curve_nondimensional`.
+
+        Notes
+        -----
+        :func:`dhfield.pull_off_search.scan_minimum` on the closed-form curve, refined on its
+        complex-step derivative (~1e-15 in beta).  beta0 = 1: JKR, W* = -3/4 (load control,
+        a*^3 = 9 pi/8) and -5/12 (displacement control, a*^3 = pi/8).
+        """
+        beta0, rho_m1, sn = geometry_terms(beta0)
+        a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
+        out = circle_state(np.full(beta0.shape, np.cbrt(a3)), sn)
+        circ = beta0 == 1.0
+        if np.any(~circ):
+            sel = ~circ
+            key = "W_star" if control == "load" else "delta_star"
+            state_u = self.state_u
+
+            def f(u, b0, r, s):
+                return state_u(u, b0, r, s)[key]
+
+            u, _ = scan_minimum(f, _SCAN_U, (beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15)
+            st = state_u(u, beta0[sel], rho_m1[sel], sn[sel])
+            for k in out:
+                out[k] = np.array(out[k], dtype=float)
+                out[k][sel] = st[k]
+        return out
+
+    def pull_off_nondimensional(self, beta0, mu, *, control="load"):
+        """Compute the pull-off record in the paper's units, Eqs. (32)-(35); inputs not validated.
+
+        Parameters
+        ----------
+        beta0, mu : array_like
+            The grid point [-] (mu only sets the record's shape: the family has no mu).
+        control : {'load', 'displacement'}
+            The minimum of W* or of delta* (:meth:`pull_off_state`).
+
+        Returns
+        -------
+        dhfield.records.PullOff
+            Model :attr:`model`, ``ellipticity`` b/a at pull-off.
+        """
+        beta0 = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[0]
+        st = self.pull_off_state(beta0, control)
+        return pull_off_record(self.model, beta0, mu, {**st, "ellipticity": st["beta"]}, control=control,
+                               sin_skew=sin_skew_angle(beta0, checked=False), geometry="ellipse")
+
+    def load_curve(self, semi_major, effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
+                   beta0=None):
+        """Compute the states at contact semi-axis a, in SI units (inputs validated here).
+
+        Parameters
+        ----------
+        semi_major : array_like
+            Contact semi-axis a > 0 along the larger principal radius R' [m].
+        effective_radius, reduced_modulus, work_of_adhesion : array_like
+            R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+        radius_ratio, beta0 : array_like, optional
+            R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+
+        Returns
+        -------
+        EllipticLoadCurve
+            ``load`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m],
+            ``ellipticity`` b/a [-].
+        """
+        b0 = check_geometry(radius_ratio, beta0)
+        a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
+        r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+        return state_si(self.load_curve_nondimensional(a / length_unit(r, e, w), b0), b0, r, e, w)
+
+    def pull_off(self, effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
+                 control="load"):
+        """Compute the pull-off in SI units (inputs validated here).
+
+        Parameters
+        ----------
+        effective_radius, reduced_modulus, work_of_adhesion : array_like
+            R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+        radius_ratio, beta0 : array_like, optional
+            R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+        control : {'load', 'displacement'}
+            Loading mode of the pull-off.
+
+        Returns
+        -------
+        dhfield.records.PullOffSI
+            With R' = R sqrt(rho), R'' = R/sqrt(rho) and ``max_adhesive_stress`` NaN.
+        """
+        b0 = check_geometry(radius_ratio, beta0)
+        r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+        check_control(control)
+        rho = 1.0 + geometry_terms(b0)[1]  # R'/R''
+        return pull_off_si_of(self.pull_off_nondimensional, si_inputs(r, e, w, radius_ratio=rho), control=control,
+                              beta0=b0)
+
+    def pull_off_force_ratio(self, *, radius_ratio=None, beta0=None, control="load"):
+        """Compute the pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
+
+        Parameters
+        ----------
+        radius_ratio, beta0 : array_like, optional
+            R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+        control : {'load', 'displacement'}
+            Loading mode of the pull-off.
+
+        Returns
+        -------
+        ndarray
+            The ratio [-]: 1 at the circle (5/9 under displacement control).
+        """
+        b0 = check_geometry(radius_ratio, beta0)
+        check_control(control)
+        st = self.pull_off_state(b0, control)
+        return scalar_or_array(st["W_star"] / geometry_terms(b0)[2] / -0.75)
+
+    def pull_off_ellipticity(self, *, radius_ratio=None, beta0=None, control="load"):
+        """Compute the contact ellipticity b/a at pull-off [-].
+
+        Parameters
+        ----------
+        radius_ratio, beta0 : array_like, optional
+            The geometry, as in :meth:`pull_off_force_ratio` [-].
+        control : {'load', 'displacement'}
+            As in :meth:`pull_off_force_ratio`.
+
+        Returns
+        -------
+        ndarray
+            The ellipticity, in [beta0, 1] [-]; 1 at the circle.
+        """
+        b0 = check_geometry(radius_ratio, beta0)
+        check_control(control)
+        return scalar_or_array(self.pull_off_state(b0, control)["beta"])
+
+    def beta_at_load(self, w_star, beta0):
+        """Compute beta on the stable (load-controlled) branch at load W* >= W*_pull-off (not validated).
+
+        Parameters
+        ----------
+        w_star : array_like
+            Load W* of Eq. (34) [-].
+        beta0 : array_like
+            Hertz ellipticity of the geometry in (0, 1] [-].
+
+        Returns
+        -------
+        ndarray
+            The contact ellipticity [-].
+        """
+        beta0, rho_m1, sn = geometry_terms(beta0)
+        w_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(w_star, float), beta0, rho_m1, sn)
+        out = np.ones(w_star.shape)
+        sel = beta0 < 1.0
+        if np.any(sel):
+            po = self.pull_off_state(beta0[sel])
+            u_po = (po["beta"] - beta0[sel]) / (1.0 - beta0[sel])
+            state_u = self.state_u
+
+            def f(u, w, b0, r, s):
+                return state_u(u, b0, r, s)["W_star"] - w
+
+            res = elementwise.find_root(f, (np.full(u_po.shape, _U_EDGE), u_po),
+                                        args=(w_star[sel], beta0[sel], rho_m1[sel], sn[sel]),
+                                        tolerances=dict(xatol=1e-16, xrtol=1e-15))
+            out[sel] = beta0[sel] + (1.0 - beta0[sel]) * res.x
+        return out
+
+
+def check_geometry(radius_ratio_, beta0):
+    """Validate one of R'/R'' >= 1 and its Hertz ellipticity beta0 in (0, 1]; return beta0.
+
+    Parameters
+    ----------
+    radius_ratio_ : array_like or None
+        R'/R'' >= 1 [-].
+    beta0 : array_like or None
+        Hertz ellipticity in (0, 1] [-] (give exactly one of the two).
+
+    Returns
+    -------
+    ndarray
+        beta0, exactly 1 within :data:`dhfield._validation.CIRCLE_TOLERANCE` of the circle.
+    """
+    if (radius_ratio_ is None) == (beta0 is None):
+        raise ValueError("give exactly one of radius_ratio (R'/R'' >= 1) and beta0 (Hertz b/a in (0, 1])")
+    if beta0 is not None:
+        return as_circle(check_ellipticity("beta0", beta0))
+    rho = check_interval("radius_ratio", radius_ratio_, 1.0, np.inf, low_open=False, high_open=True,
+                         what="R'/R'' >= 1, dimensionless")
+    return as_circle(ellipticity_from_radius_ratio(rho))
+
+
+#: Johnson & Greenwood (2005): Griffith's criterion at both axis ends.
+JG = EllipticJKR("jkr-elliptic", _griffith_at_axis_ends)
 
 
 def state_at_ellipticity(beta, beta0):
@@ -292,18 +597,13 @@ def state_at_ellipticity(beta, beta0):
     .. math:: a^{3/2} = \\sqrt{\\frac{2\\Delta\\gamma}{\\pi E^*}}\\,
               \\frac{\\beta^{-1/2} - 1}{g_1(\\beta) - g_2(\\beta)}
     """
-    b0 = check_interval("beta0", beta0, 0.0, 1.0, high_open=True, what="Hertz ellipticity, dimensionless")
-    b = np.asarray(check_finite("beta", beta, "contact ellipticity b/a, dimensionless"), dtype=float)
-    if np.any((b <= b0) | (b >= 1.0)):
-        raise ValueError("beta must lie in (beta0, 1) (contact ellipticity b/a, dimensionless)")
-    b0, rho_m1, sn = geometry_terms(b0)
-    return _state_u((b - b0) / (1.0 - b0), b0, rho_m1, sn)
+    return JG.state_at_ellipticity(beta, beta0)
 
 
 def load_curve_nondimensional(a_star, beta0):
     """Elliptical JKR state at contact semi-major axis a*, in the paper's units (Eqs. 32-35).
 
-    The nondimensional core of :func:`load_curve`.
+    The nondimensional core of :func:`load_curve` (:meth:`EllipticJKR.load_curve_nondimensional`).
 
     Parameters
     ----------
@@ -317,64 +617,8 @@ def load_curve_nondimensional(a_star, beta0):
     dict
         ``W_star`` (Eq. 34, with sin(theta_skew) of beta0), ``a_star``, ``b_star``,
         ``delta_star`` and the contact ellipticity ``beta`` [-].
-
-    Notes
-    -----
-    The contact ellipticity is found by a root finder on the closed-form curve of
-    :func:`state_at_ellipticity`; beta0 = 1 is circular JKR.
     """
-    beta0, rho_m1, sn = geometry_terms(beta0)
-    a_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(a_star, float), beta0, rho_m1, sn)
-    circ = beta0 == 1.0
-    out = circle_state(a_star, sn)
-    if np.any(~circ):
-        sel = ~circ
-        u = _u_at_contact(a_star[sel], beta0[sel], rho_m1[sel], sn[sel])
-        st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
-        for k in out:
-            out[k] = np.array(out[k], dtype=float)
-            out[k][sel] = st[k]
-        out["a_star"][sel] = a_star[sel]
-        out["b_star"][sel] = st["beta"] * a_star[sel]
-    return out
-
-
-def _pull_off_state(beta0, control="load"):
-    """Elliptical JKR state at pull-off in the paper's units (Eqs. 32-35), vectorised over beta0.
-
-    The first minimum of W* (load
-    control) or delta* (displacement control) met on unloading from high load,
-    i.e. from beta = beta0 towards beta = 1.
-
-    Parameters
-    ----------
-    beta0 : array_like
-        Hertz ellipticity of the geometry in (0, 1] [-].
-    control : {'load', 'displacement'}
-
-    Returns
-    -------
-    dict
-        ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] as in
-        :func:`load_curve_nondimensional`.
-    """
-    beta0, rho_m1, sn = geometry_terms(beta0)
-    a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
-    out = circle_state(np.full(beta0.shape, np.cbrt(a3)), sn)
-    circ = beta0 == 1.0
-    if np.any(~circ):
-        sel = ~circ
-        key = "W_star" if control == "load" else "delta_star"
-
-        def f(u, b0, r, s):
-            return _state_u(u, b0, r, s)[key]
-
-        u, _ = scan_minimum(f, _SCAN_U, (beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15)
-        st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
-        for k in out:
-            out[k] = np.array(out[k], dtype=float)
-            out[k][sel] = st[k]
-    return out
+    return JG.load_curve_nondimensional(a_star, beta0)
 
 
 def pull_off_nondimensional(beta0, mu, *, control="load"):
@@ -389,46 +633,14 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
         Hertz ellipticity and Tabor parameter (Eq. 35) [-]; JKR does not depend on mu, the
         record has their broadcast shape.
     control : {'load', 'displacement'}
+        Loading mode of the pull-off.
 
     Returns
     -------
     dhfield.records.PullOff
         ``ellipticity`` is beta_JKR(pull-off).
     """
-    beta0 = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[0]
-    st = _pull_off_state(beta0, control)
-    return pull_off_record("jkr-elliptic", beta0, mu, {**st, "ellipticity": st["beta"]}, control=control,
-                           sin_skew=sin_skew_angle(beta0), geometry="ellipse")
-
-
-def _beta_at_load(w_star, beta0):
-    """beta on the stable (load-controlled) branch at load W* >= W*_pull-off."""
-    beta0, rho_m1, sn = geometry_terms(beta0)
-    w_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(w_star, float), beta0, rho_m1, sn)
-    out = np.ones(w_star.shape)
-    sel = beta0 < 1.0
-    if np.any(sel):
-        po = _pull_off_state(beta0[sel])
-        u_po = (po["beta"] - beta0[sel]) / (1.0 - beta0[sel])
-
-        def f(u, w, b0, r, s):
-            return _state_u(u, b0, r, s)["W_star"] - w
-
-        res = elementwise.find_root(f, (np.full(u_po.shape, _U_EDGE), u_po),
-                                    args=(w_star[sel], beta0[sel], rho_m1[sel], sn[sel]),
-                                    tolerances=dict(xatol=1e-16, xrtol=1e-15))
-        out[sel] = beta0[sel] + (1.0 - beta0[sel]) * res.x
-    return out
-
-
-def check_geometry(radius_ratio_, beta0):
-    if (radius_ratio_ is None) == (beta0 is None):
-        raise ValueError("give exactly one of radius_ratio (R'/R'' >= 1) and beta0 (Hertz b/a in (0, 1])")
-    if beta0 is not None:
-        return as_circle(check_ellipticity("beta0", beta0))
-    rho = check_interval("radius_ratio", radius_ratio_, 1.0, np.inf, low_open=False, high_open=True,
-                         what="R'/R'' >= 1, dimensionless")
-    return as_circle(ellipticity_from_radius_ratio(rho))
+    return JG.pull_off_nondimensional(beta0, mu, control=control)
 
 
 def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, *,
@@ -468,16 +680,13 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     .. [1] K. L. Johnson, J. A. Greenwood, J. Phys. D 38 (2005) 1042,
        doi:10.1088/0022-3727/38/7/012
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    st = load_curve_nondimensional(a / length_unit(r, e, w), b0)
-    return state_si(EllipticLoadCurve, st, b0, r, e, w)
+    return JG.load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion,
+                         radius_ratio=radius_ratio, beta0=beta0)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
              control="load"):
-    """Elliptical JKR state at pull-off.
+    """Elliptical JKR state at pull-off, in SI units.
 
     Parameters
     ----------
@@ -491,14 +700,12 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
 
     Returns
     -------
-    EllipticPullOff
-        ``load`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m] and
-        ``ellipticity`` beta_JKR(pull-off) [-].
+    dhfield.records.PullOffSI
+        ``force`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m], the SI inputs
+        and the nondimensional record (``ellipticity`` beta_JKR(pull-off)).
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    check_control(control)
-    return state_si(EllipticPullOff, _pull_off_state(b0, control), b0, r, e, w)
+    return JG.pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
+                       beta0=beta0, control=control)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
@@ -517,10 +724,10 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radiu
     Returns
     -------
     ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+        The pull-off force W [N] (:func:`pull_off`'s ``force``).
     """
-    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
-                    beta0=beta0, control=control).load
+    return JG.pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
+                       beta0=beta0, control=control).force
 
 
 def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
@@ -541,10 +748,7 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
         The ratio [-]: 1 at the circle (and 5/9 under displacement control, the
         circular fixed-grips value).
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    check_control(control)
-    st = _pull_off_state(b0, control)
-    return scalar_or_array(st["W_star"] / geometry_terms(b0)[2] / -0.75)
+    return JG.pull_off_force_ratio(radius_ratio=radius_ratio, beta0=beta0, control=control)
 
 
 def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
@@ -562,9 +766,7 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
     ndarray
         The ellipticity at pull-off, in [beta0, 1] [-]; 1 at the circle.
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    check_control(control)
-    return scalar_or_array(_pull_off_state(b0, control)["beta"])
+    return JG.pull_off_ellipticity(radius_ratio=radius_ratio, beta0=beta0, control=control)
 
 
 def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
@@ -585,8 +787,8 @@ def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
     b0 = check_geometry(radius_ratio, beta0)
     w = check_interval("load_star", load_star, -1.0, np.inf, high_open=True,
                        what="W* of Eq. (34), above the pull-off load")
-    po = _pull_off_state(b0)["W_star"]
+    po = JG.pull_off_state(b0)["W_star"]
     if np.any(w < po):
         raise ValueError(f"load_star must be >= the pull-off load W* = {np.min(po):.6g}; "
                          f"got {np.min(w)!r}")
-    return scalar_or_array(_beta_at_load(w, b0))
+    return scalar_or_array(JG.beta_at_load(w, b0))

@@ -88,22 +88,12 @@ in units of the circular JKR value 1.5 pi R dgamma instead (no sin(theta_skew)).
 """
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 from scipy import special
-from scipy.optimize import elementwise
 
-from ._adhesion import check_material, length_unit, scalar_or_array
-from ._validation import check_control, check_finite, check_interval
-from .geometry import sin_skew_angle
-from .jkr_elliptic import check_geometry, circle_state, geometry_terms, shape_coefficients, state_si
-from .pull_off_search import scan_minimum
-from .records import pull_off_record
+from .jkr_elliptic import EllipticJKR
 
 __all__ = [
-    "EnergyEllipticLoadCurve",
-    "EnergyEllipticPullOff",
     "load_curve",
     "pull_off",
     "pull_off_force",
@@ -116,8 +106,6 @@ __all__ = [
 
 _SERIES_M = 0.25  # below this m = 1 - beta^2 the A_j of Eq. (G3) are summed from their series
 _SERIES_TERMS = 32  # 0.25^32 ~ 5e-20
-_U_EDGE = 1e-12  # parameter u in (0, 1) kept this far from the ends (a -> inf, a -> 0)
-_SCAN_U = np.clip(0.5 * (1.0 - np.cos(np.pi * np.linspace(0.0, 1.0, 80))), 1e-9, 1.0 - 1e-9)
 
 _n = np.arange(_SERIES_TERMS + 3, dtype=float)
 #: c_n = (1/2)_n / n!, so that I_j(m) = (pi/2) sum_n c_n c_{n+j} m^n
@@ -127,31 +115,6 @@ _COEF_A2 = 0.5 * np.pi * _C[:-3] * _C[:-3] * _N / (_N + 1.0)  # 2 I1 - I0 (deriv
 _COEF_A1 = 0.5 * np.pi * _C[:-3] * _C[1:-2] * (_N + 1.0) / (_N + 2.0)  # 2 I2 - I1
 _COEF_A0 = 0.5 * np.pi * _C[:-3] * _C[2:-1] * (_N + 2.0) / (_N + 3.0)  # 2 I3 - I2
 _COEF_I = [0.5 * np.pi * _C[:-3] * _C[j:j + _SERIES_TERMS] for j in range(4)]
-
-
-class EnergyEllipticLoadCurve(NamedTuple):
-    """Energy-minimising elliptical JKR states.
-
-    Parameters
-    ----------
-    load : ndarray
-        Load W [N].
-    semi_major, semi_minor : ndarray
-        Contact semi-axes a and b [m].
-    approach : ndarray
-        Approach delta [m].
-    ellipticity : ndarray
-        Contact ellipticity b/a [-].
-    """
-
-    load: np.ndarray
-    semi_major: np.ndarray
-    semi_minor: np.ndarray
-    approach: np.ndarray
-    ellipticity: np.ndarray
-
-
-EnergyEllipticPullOff = EnergyEllipticLoadCurve
 
 
 def _edge_moments(m):
@@ -178,25 +141,18 @@ def _edge_moments(m):
     return out
 
 
-def _state_u(u, beta0, rho_m1, sin_skew):
-    """Closed-form GVG state at beta = beta0 + (1 - beta0) u (paper units, R = E* = dgamma = 1)."""
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # a = inf at u -> 0
-        one_m_beta = (1.0 - beta0) * (1.0 - u)
-        beta = 1.0 - one_m_beta
-        k2 = one_m_beta * (1.0 + beta)
-        g1, g2, dg, j0, j1, j2 = shape_coefficients(beta, k2, rho_m1)
-        i1, i2, i3, a2, a1, a0 = _edge_moments(k2)
-        eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (G3), the root with K_I of one sign
-        dg = np.where(np.real(dg) > 0.0, dg, np.nan)  # rounding at u -> 0: a = infinity
-        a3 = eps * eps / (2.0 * beta * (i1 + 2.0 * eps * i2 + eps * eps * i3) * dg * dg)  # Eq. (G4)
-        a = a3 ** (1.0 / 3.0)
-        a = np.where(np.isnan(np.real(a)), np.inf, a)
-        al1, al2 = a * g1, a * g2
-        al0 = a * dg / eps - al2  # s = alpha0 + alpha2 = (alpha1 - alpha2)/eps, Eq. (G3)
-        load = 2.0 * np.pi * a * a * beta * (al0 + (al1 + al2) / 3.0)  # JG (2005): W = 2 pi a b [a0 + (a1+a2)/3]
-        delta = 0.5 * a * beta * (2.0 * al0 * j0 + al1 * beta * beta * j2 + al2 * j1)  # JG (2005): approach
-    return {"W_star": load * sin_skew / (2.0 * np.pi), "a_star": a, "b_star": beta * a,  # Eq. (34)
-            "delta_star": delta, "beta": beta, "alpha": (al0, al1, al2)}
+def _energy_stationary(one_m_beta, beta, k2, g1, g2, dg):
+    """GVG's condition: the size a and alpha0 at ellipticity beta, Eqs. (G3)-(G4) (R = E* = dgamma = 1)."""
+    i1, i2, i3, a2, a1, a0 = _edge_moments(k2)
+    eps = -a2 / (a1 + np.sqrt(a1 * a1 - a0 * a2))  # Eq. (G3), the root with K_I of one sign
+    a3 = eps * eps / (2.0 * beta * (i1 + 2.0 * eps * i2 + eps * eps * i3) * dg * dg)  # Eq. (G4)
+    a = a3 ** (1.0 / 3.0)
+    a = np.where(np.isnan(np.real(a)), np.inf, a)
+    return a, a * dg / eps - a * g2  # s = alpha0 + alpha2 = (alpha1 - alpha2)/eps, Eq. (G3)
+
+
+#: Giudici, Vella & Griffiths (2025): the energy stationary in both semi-axes.
+GVG = EllipticJKR("jkr-elliptic-energy", _energy_stationary)
 
 
 def state_at_ellipticity(beta, beta0):
@@ -204,19 +160,15 @@ def state_at_ellipticity(beta, beta0):
 
     Parameters
     ----------
-    beta : array_like
-        Contact ellipticity b/a in (beta0, 1) [-]: beta runs from beta0 (a -> infinity,
-        high load) to 1 (a -> 0) on unloading.
-    beta0 : array_like
-        Hertz ellipticity of the geometry, in (0, 1) [-] (beta0 = 1 is circular
-        JKR, :func:`dhfield.jkr.load_curve_nondimensional`).
+    beta, beta0 : array_like
+        The contact's ellipticity b/a in (beta0, 1) and the geometry's Hertz one in (0, 1)
+        [-], as for :func:`dhfield.jkr_elliptic.state_at_ellipticity`.
 
     Returns
     -------
     dict
-        ``W_star`` (W sin(theta_skew)/(2 pi R dgamma), Eq. 34), ``a_star``, ``b_star``
-        (semi-axes / c_r), ``delta_star``, ``beta`` [-] and ``alpha``, the
-        coefficients (alpha0, alpha1, alpha2) of the pressure [E* = 1].
+        The state's W* (Eq. 34), a*, b*, delta*, beta and the pressure coefficients alpha,
+        with GVG's size at that ellipticity.
 
     Notes
     -----
@@ -225,155 +177,71 @@ def state_at_ellipticity(beta, beta0):
     .. math:: a^3 = \\frac{\\varepsilon^2}{2\\beta\\,(I_1 + 2\\varepsilon I_2 + \\varepsilon^2 I_3)
               \\,(g_1 - g_2)^2}
     """
-    b0 = check_interval("beta0", beta0, 0.0, 1.0, high_open=True, what="Hertz ellipticity, dimensionless")
-    b = np.asarray(check_finite("beta", beta, "contact ellipticity b/a, dimensionless"), dtype=float)
-    if np.any((b <= b0) | (b >= 1.0)):
-        raise ValueError("beta must lie in (beta0, 1) (contact ellipticity b/a, dimensionless)")
-    b0, rho_m1, sn = geometry_terms(b0)
-    return _state_u((b - b0) / (1.0 - b0), b0, rho_m1, sn)
-
-
-def _u_at_contact(a_star, beta0, rho_m1, sin_skew):
-    def f(u, at, b0, r, s):
-        with np.errstate(divide="ignore"):  # a = 0 at u -> 1; arctan keeps f finite
-            return np.arctan(np.log(_state_u(u, b0, r, s)["a_star"] / at))
-
-    lo = np.full(np.shape(a_star), _U_EDGE)
-    res = elementwise.find_root(f, (lo, 1.0 - lo), args=(a_star, beta0, rho_m1, sin_skew),
-                                tolerances=dict(xatol=1e-16, xrtol=1e-15))
-    return res.x
+    return GVG.state_at_ellipticity(beta, beta0)
 
 
 def load_curve_nondimensional(a_star, beta0):
     """GVG state at contact semi-major axis a*, in the paper's units (Eqs. 32-35).
 
-    The nondimensional core of :func:`load_curve`.
+    The nondimensional core of :func:`load_curve`, on the family's machinery
+    (:meth:`dhfield.jkr_elliptic.EllipticJKR.load_curve_nondimensional`).
 
     Parameters
     ----------
-    a_star : array_like
-        Contact semi-major axis a* = a/c_r > 0, Eq. (32) [-].
-    beta0 : array_like
-        Hertz ellipticity of the geometry in (0, 1] [-]; broadcasts with ``a_star``.
+    a_star, beta0 : array_like
+        Contact semi-major axis a* > 0 (Eq. 32) and the Hertz ellipticity in (0, 1] [-],
+        broadcast together.
 
     Returns
     -------
     dict
-        ``W_star`` (Eq. 34, with sin(theta_skew) of beta0), ``a_star``, ``b_star``,
-        ``delta_star`` and the contact ellipticity ``beta`` [-].
-
-    Notes
-    -----
-    a decreases monotonically along the closed-form curve of
-    :func:`state_at_ellipticity` (beta0 -> 1); its ellipticity at a* is found by a
-    bracketing root finder.  beta0 = 1 is circular JKR.
+        W*, a*, b*, delta* and the contact ellipticity beta [-] (keys as in
+        :func:`dhfield.jkr_elliptic.load_curve_nondimensional`).
     """
-    beta0, rho_m1, sn = geometry_terms(beta0)
-    a_star, beta0, rho_m1, sn = np.broadcast_arrays(np.asarray(a_star, float), beta0, rho_m1, sn)
-    circ = beta0 == 1.0
-    out = circle_state(a_star, sn)
-    if np.any(~circ):
-        sel = ~circ
-        u = _u_at_contact(a_star[sel], beta0[sel], rho_m1[sel], sn[sel])
-        st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
-        for k in out:
-            out[k] = np.array(out[k], dtype=float)
-            out[k][sel] = st[k]
-        out["a_star"][sel] = a_star[sel]
-        out["b_star"][sel] = st["beta"] * a_star[sel]
-    return out
+    return GVG.load_curve_nondimensional(a_star, beta0)
 
 
 def pull_off_nondimensional(beta0, mu, *, control="load"):
     """GVG pull-off record in the paper's units, Eqs. (32)-(35).
 
     The nondimensional core of :func:`pull_off`; inputs are not validated here
-    (:func:`dhfield.compare.pull_off` does).
+    (:func:`dhfield.compare.pull_off` does).  The first minimum of W* (load control) or
+    delta* (displacement control) met on unloading, refined on the complex-step derivative
+    of the closed-form curve (:meth:`dhfield.jkr_elliptic.EllipticJKR.pull_off_state`).
 
     Parameters
     ----------
     beta0, mu : array_like
-        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; JKR does not depend on mu, the
-        record has their broadcast shape.
+        The grid point [-]; GVG has no mu (it sets the record's shape only).
     control : {'load', 'displacement'}
+        The minimum of W* (load) or of delta* (displacement) met on unloading.
 
     Returns
     -------
     dhfield.records.PullOff
-        ``ellipticity`` is the contact ellipticity b/a at pull-off.
+        Model ``jkr-elliptic-energy``; ``ellipticity`` is b/a at pull-off.
     """
-    beta0 = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[0]
-    st = _pull_off_state(beta0, control)
-    return pull_off_record("jkr-elliptic-energy", beta0, mu, {**st, "ellipticity": st["beta"]},
-                           control=control, sin_skew=sin_skew_angle(beta0), geometry="ellipse")
-
-
-def _pull_off_state(beta0, control="load"):
-    """GVG state at pull-off in the paper's units (Eqs. 32-35), vectorised over beta0.
-
-    The first minimum of W* (load
-    control) or delta* (displacement control) met on unloading from high load,
-    i.e. from beta = beta0 towards beta = 1.
-
-    Parameters
-    ----------
-    beta0 : array_like
-        Hertz ellipticity of the geometry in (0, 1] [-].
-    control : {'load', 'displacement'}
-
-    Returns
-    -------
-    dict
-        ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] as in
-        :func:`load_curve_nondimensional`.
-
-    Notes
-    -----
-    The minimiser is refined on the complex-step derivative of the closed-form
-    curve (accurate to ~1e-15 in beta).  beta0 = 1: JKR, W* = -3/4 (load control,
-    a*^3 = 9 pi/8) and -5/12 (displacement control, a*^3 = pi/8).
-    """
-    beta0, rho_m1, sn = geometry_terms(beta0)
-    a3 = 9.0 * np.pi / 8.0 if control == "load" else np.pi / 8.0  # JKR (1971), circle
-    out = circle_state(np.full(beta0.shape, np.cbrt(a3)), sn)
-    circ = beta0 == 1.0
-    if np.any(~circ):
-        sel = ~circ
-        key = "W_star" if control == "load" else "delta_star"
-
-        def f(u, b0, r, s):
-            return _state_u(u, b0, r, s)[key]
-
-        u, _ = scan_minimum(f, _SCAN_U, (beta0[sel], rho_m1[sel], sn[sel]), xatol=1e-15)
-        st = _state_u(u, beta0[sel], rho_m1[sel], sn[sel])
-        for k in out:
-            out[k] = np.array(out[k], dtype=float)
-            out[k][sel] = st[k]
-    return out
+    return GVG.pull_off_nondimensional(beta0, mu, control=control)
 
 
 def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, *,
                radius_ratio=None, beta0=None):
     """Energy-minimising elliptical JKR (Giudici, Vella & Griffiths 2025) states at contact semi-axis a.
 
+    In SI units, on the family's machinery (:meth:`dhfield.jkr_elliptic.EllipticJKR.load_curve`).
+
     Parameters
     ----------
     semi_major : array_like
         Contact semi-axis a > 0 along the larger principal radius R' [m].
-    effective_radius : array_like
-        Equivalent radius R = sqrt(R' R''), Eq. (5) [m].
-    reduced_modulus : array_like
-        Reduced modulus E*, Eq. (6) [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
-    radius_ratio : array_like, optional
-        R'/R'' >= 1 [-].
-    beta0 : array_like, optional
-        The Hertz ellipticity of that geometry in (0, 1] [-] (give one of the two).
+    effective_radius, reduced_modulus, work_of_adhesion : array_like
+        R = sqrt(R' R''), Eq. (5) [m]; E*, Eq. (6) [Pa]; dgamma [J/m^2].
+    radius_ratio, beta0 : array_like, optional
+        R'/R'' >= 1, or the Hertz ellipticity of that geometry in (0, 1] [-] (give one).
 
     Returns
     -------
-    EnergyEllipticLoadCurve
+    dhfield.jkr_elliptic.EllipticLoadCurve
         ``load`` [N] (compressive positive), ``semi_major``, ``semi_minor`` [m],
         ``approach`` [m], ``ellipticity`` b/a [-].
 
@@ -386,100 +254,91 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     ----------
     .. [1] A. Giudici, D. Vella, I. Griffiths, J. Phys. D (2025), arXiv:2407.00378
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    st = load_curve_nondimensional(a / length_unit(r, e, w), b0)
-    return state_si(EnergyEllipticLoadCurve, st, b0, r, e, w)
+    return GVG.load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion,
+                          radius_ratio=radius_ratio, beta0=beta0)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
              control="load"):
-    """Energy-minimising elliptical JKR state at pull-off.
+    """Energy-minimising elliptical JKR state at pull-off, in SI units.
+
+    The GVG pull-off (:func:`pull_off_nondimensional`) converted by
+    :func:`dhfield._adhesion.pull_off_si`.
 
     Parameters
     ----------
     effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+        The contact's R = sqrt(R'R'') [m], E* [Pa] and dgamma [J/m^2].
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+        The geometry, by R'/R'' >= 1 or by beta0 in (0, 1] (one of the two) [-].
     control : {'load', 'displacement'}
-        First minimum of the load (load control) or of the approach
-        (displacement control) met on unloading.
+        The loading mode: the first minimum of W or of delta on unloading; states up to
+        the displacement-control pull-off are energy minima over both semi-axes.
 
     Returns
     -------
-    EnergyEllipticPullOff
-        ``load`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m] and
-        ``ellipticity`` b/a at pull-off [-].
+    dhfield.records.PullOffSI
+        The one SI pull-off record (its ``ellipticity``: b/a at pull-off).
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    check_control(control)
-    return state_si(EnergyEllipticPullOff, _pull_off_state(b0, control), b0, r, e, w)
+    return GVG.pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
+                        beta0=beta0, control=control)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
                    beta0=None, control="load"):
-    """Compute the energy-minimising elliptical JKR pull-off force [N] (negative).
+    """Compute the energy-minimising elliptical JKR pull-off force W [N] (negative: tensile).
+
+    The ``force`` of the SI record of :func:`pull_off`.
 
     Parameters
     ----------
     effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+        As in :func:`pull_off` [m, Pa, J/m^2].
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+        As in :func:`pull_off` [-].
     control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+        As in :func:`pull_off`.
 
     Returns
     -------
     ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+        :func:`pull_off`'s ``force`` [N].
     """
-    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
-                    beta0=beta0, control=control).load
+    return pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio, beta0=beta0,
+                    control=control).force
 
 
 def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
-    """Compute the pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
-
-    R = sqrt(R'R''); depends on R'/R'' only.
+    """Compute the GVG pull-off force in units of the circular JKR one, W/(-1.5 pi R dgamma) [-].
 
     Parameters
     ----------
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+        As in :func:`pull_off` [-]; the ratio depends on the shape R'/R'' only (R = sqrt(R'R'')).
     control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+        As in :func:`pull_off`.
 
     Returns
     -------
     ndarray
-        The ratio [-]: 1 at the circle (5/9 under displacement control, the
-        circular fixed-grips value).
+        The ratio [-]: 1 at the circle (5/9 under displacement control).
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    check_control(control)
-    st = _pull_off_state(b0, control)
-    return scalar_or_array(st["W_star"] / geometry_terms(b0)[2] / -0.75)
+    return GVG.pull_off_force_ratio(radius_ratio=radius_ratio, beta0=beta0, control=control)
 
 
 def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
-    """Compute the contact ellipticity b/a at pull-off [-].
+    """Compute the contact ellipticity b/a at the GVG pull-off [-].
 
     Parameters
     ----------
     radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+        As in :func:`pull_off` [-].
     control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+        As in :func:`pull_off`.
 
     Returns
     -------
     ndarray
-        The ellipticity, in [beta0, 1] [-]; 1 at the circle.
+        In [beta0, 1] [-]; 1 at the circle.
     """
-    b0 = check_geometry(radius_ratio, beta0)
-    check_control(control)
-    return scalar_or_array(_pull_off_state(b0, control)["beta"])
+    return GVG.pull_off_ellipticity(radius_ratio=radius_ratio, beta0=beta0, control=control)

@@ -45,7 +45,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, PullOff, approach_unit, check_contact_size, check_material,
+from ._adhesion import (LoadCurve, approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
                         length_unit, load_unit, scalar_or_array, tabor_parameter)
 from ._validation import check_control, check_positive
 from .pull_off_search import scan_minimum
@@ -53,8 +53,7 @@ from .records import pull_off_record
 from .transition import maugis_parameter
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "LAMBDA_RANGE", "load_curve_nondimensional",
-           "pull_off_nondimensional", "load_curve_maugis_units", "pull_off_maugis_units", "MaugisCurve",
-           "MaugisPullOff"]
+           "pull_off_nondimensional", "load_curve_maugis_units", "MaugisCurve"]
 
 #: lambda range over which the solver is tested (DMT side, JKR side)
 LAMBDA_RANGE = (1e-3, 1e3)
@@ -141,8 +140,10 @@ class MaugisCurve(NamedTuple):
     zone_ratio: np.ndarray
 
 
-class MaugisPullOff(NamedTuple):
-    """MD pull-off in Maugis units.
+class _MaugisPullOff(NamedTuple):
+    """MD pull-off in Maugis units: the solver's internal state (the model's pull-off records are
+    :func:`pull_off_nondimensional`'s :class:`dhfield.records.PullOff` and :func:`pull_off`'s
+    :class:`dhfield.records.PullOffSI`).
 
     Parameters
     ----------
@@ -233,7 +234,7 @@ def load_curve_nondimensional(a_star, mu):
     return {"W_star": 0.5 * p, "a_star": a_star, "c_star": c_star, "delta_star": d * _D_UNIT}
 
 
-def pull_off_maugis_units(lam, control="load"):
+def _pull_off_maugis_units(lam, control="load"):
     """MD pull-off in Maugis' own units, vectorised over lambda.
 
     Parameters
@@ -246,7 +247,7 @@ def pull_off_maugis_units(lam, control="load"):
 
     Returns
     -------
-    MaugisPullOff
+    _MaugisPullOff
         A, P, D and m = c/a (inf at A = 0) [-].
     """
     check_control(control)
@@ -268,13 +269,13 @@ def pull_off_maugis_units(lam, control="load"):
     p = np.where(end, p0, p)
     d = np.where(end, d0, d)
     m = np.where(end, np.inf, m)
-    return MaugisPullOff(a, p, d, m)
+    return _MaugisPullOff(a, p, d, m)
 
 
 def _pull_off_state(mu, control):
-    """MD ``W_star``, ``a_star``, ``c_star``, ``delta_star`` [-] at pull-off (:func:`pull_off_maugis_units`)."""
+    """MD ``W_star``, ``a_star``, ``c_star``, ``delta_star`` [-] at pull-off (:func:`_pull_off_maugis_units`)."""
     lam = maugis_parameter(mu)
-    a, p, d, m = pull_off_maugis_units(lam, control)
+    a, p, d, m = _pull_off_maugis_units(lam, control)
     with np.errstate(invalid="ignore"):
         c_star = np.where(a > 0, m * a, _zero_contact_zone(lam)) * _A_UNIT
     return {"W_star": 0.5 * p, "a_star": a * _A_UNIT, "c_star": c_star, "delta_star": d * _D_UNIT}
@@ -283,7 +284,8 @@ def _pull_off_state(mu, control):
 def pull_off_nondimensional(beta0, mu, *, control="load"):
     """MD pull-off record in the paper's units (Eqs. 32-35), vectorised, at lambda = 1.1272 mu.
 
-    The nondimensional core of :func:`pull_off` (see :func:`pull_off_maugis_units`).
+    The nondimensional core of :func:`pull_off`, solved in Maugis units (scan and complex-step
+    refinement, :func:`dhfield.pull_off_search.scan_minimum`).
 
     Parameters
     ----------
@@ -360,15 +362,16 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
 
     Returns
     -------
-    PullOff
-        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+    dhfield.records.PullOffSI
+        ``force`` [N], ``semi_major`` = ``semi_minor`` (the contact radius) and the
+        Dugdale-zone radius [m], ``approach`` [m], the SI inputs and the nondimensional
+        record.
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    s = _pull_off_state(mu, control)
-    return PullOff(scalar_or_array(s["W_star"] * load_unit(r, w)),
-                   scalar_or_array(s["a_star"] * length_unit(r, e, w)),
-                   scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+    check_control(control)
+    s0 = np.asarray(max_adhesive_stress, dtype=float)
+    return pull_off_si_of(pull_off_nondimensional, si_inputs(r, e, w, s0), control=control, mu=mu)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
@@ -387,8 +390,8 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhe
     Returns
     -------
     ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``load``).
+        The pull-off force W [N] (:func:`pull_off`'s ``force``).
     """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
-                    control=control).load
+                    control=control).force
 

@@ -411,7 +411,7 @@ def adhesive_axis_state(a_star, beta0, mu, *, ellipticity=None):
         DH scaling factor [-].
     """
     ell = beta0 if ellipticity is None else ellipticity
-    st = _state_chunked(a_star, mu, _shape(ell, sin_skew_angle(beta0)))
+    st = _state_chunked(a_star, mu, _shape(ell, sin_skew_angle(beta0, checked=False)))
     return _scalar(st["c"]), _scalar(st["v"])
 
 
@@ -727,7 +727,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load", ellipticity=None):
     mu, beta0, ell = np.broadcast_arrays(mu, beta0, ell)
     out_shape = mu.shape
     mu, beta0, ell = (np.ravel(q) for q in (mu, beta0, ell))
-    shape = _shape(ell, sin_skew_angle(beta0))
+    shape = _shape(ell, sin_skew_angle(beta0, checked=False))
     key = "dW" if control == "load" else "ddelta"
     fields = astuple(shape)  # in _Shape's field order
     zero = _zero_contact_state(mu, shape)

@@ -11,7 +11,7 @@ r_ab(theta_p) <= r <= r_cd(theta_p) (Eqs. A1, A2),
 * the sigma-h curve along the ray: the cohesive law that ray "sees",
 
 from the analytic fields (:func:`periphery`, :func:`cohesive_law`, and the pull-off
-and load-curve wrappers :func:`pull_off_periphery`, :func:`load_curve_periphery`),
+and load-curve wrappers :func:`periphery_at_pull_off`, :func:`load_curve_periphery`),
 and from a numerical gap field on a Cartesian grid, e.g. a boundary-element
 (BEM) field (:func:`periphery_from_gap_grid`).
 
@@ -52,7 +52,7 @@ Units
 -----
 SI at the public boundary (lengths [m], stresses [Pa], Delta gamma [J m^-2]);
 with R = E* = 1 everything is nondimensional in the units of Eqs. (32)-(35), which
-is what :func:`pull_off_periphery` and :func:`load_curve_periphery` return.
+is what :func:`periphery_at_pull_off` and :func:`load_curve_periphery` return.
 
 References
 ----------
@@ -83,7 +83,7 @@ __all__ = [
     "periphery",
     "cohesive_law",
     "ray_average",
-    "pull_off_periphery",
+    "periphery_at_pull_off",
     "load_curve_periphery",
     "periphery_from_gap_grid",
     "adhesive_traction",
@@ -535,36 +535,28 @@ def ray_average(values, theta, contact_radius=None, weight="area"):
 
 
 # --------------------------------------------------------------------------- pull-off, load curves
-def pull_off_periphery(mu, beta0, theta=None, *, control="load", ellipticity=None):
+def periphery_at_pull_off(pull_off, theta=None):
     """The periphery quantities at the pull-off point of the paper's model.
 
     Parameters
     ----------
-    mu : array_like
-        Tabor parameter, Eq. (35) [-].
-    beta0 : array_like
-        Initial ellipticity in (0, 1] [-].
+    pull_off : dhfield.records.PullOff
+        The pull-off record of :func:`dhfield.model.pull_off` (nondimensional, Eqs. 32-36).
     theta : array_like, optional
         Ray angles, 1-D [rad].
-    control : {"load", "displacement"}
-        Pull-off control mode (:func:`dhfield.model.pull_off`).
-    ellipticity : array_like, optional
-        Ellipticity of both ellipses if it differs from beta0.
 
     Returns
     -------
-    pull_off : dhfield.model.PullOff
-        The pull-off state (nondimensional, Eqs. 32-36).
-    profile : PeripheryProfile
+    PeripheryProfile
         Nondimensional (R = E* = Delta gamma = 1): lengths in c_r (Eq. 33),
-        stresses in E* c_r/R (sigma0(0) = mu), Delta gamma(0) = 1 by construction.
+        stresses in E* c_r/R (sigma0(0) = mu), Delta gamma(0) = 1 by construction;
+        shape of the record followed by ``theta``.
     """
-    po = model.pull_off(mu=mu, beta0=beta0, control=control, ellipticity=ellipticity)
-    beta = np.asarray(po.ellipticity, float)
-    a = np.asarray(po.a_star, float)
+    beta = np.asarray(pull_off.ellipticity, float)
+    a = np.asarray(pull_off.a_star, float)
     # a* = 0 (DMT-side pull-off): the rays start at the centre; use a tiny contact.
-    a = np.where(a > 0, a, 1e-9 * np.asarray(po.c_star, float))
-    return po, periphery(a, po.c_star, beta, po.v, theta)
+    a = np.where(a > 0, a, 1e-9 * np.asarray(pull_off.c_star, float))
+    return periphery(a, pull_off.c_star, beta, pull_off.v, theta)
 
 
 def load_curve_periphery(mu, beta0, a_star=None, theta=None, *, ellipticity=None, n=60):
@@ -590,7 +582,7 @@ def load_curve_periphery(mu, beta0, a_star=None, theta=None, *, ellipticity=None
     curve : dhfield.model.LoadCurve
         The load curve.
     profile : PeripheryProfile
-        Shape ``(len(a_star), len(theta))``, nondimensional as in :func:`pull_off_periphery`.
+        Shape ``(len(a_star), len(theta))``, nondimensional as in :func:`periphery_at_pull_off`.
     """
     curve = model.load_curve(mu=mu, beta0=beta0, a_star=a_star, ellipticity=ellipticity, n=n)
     return curve, periphery(curve.a_star, curve.c_star, curve.ellipticity, curve.v, theta)

@@ -5,8 +5,9 @@ of the load W (load control) or of the approach delta (displacement control)
 reached from the high-load end of the path.  On sampled values every search here
 applies one rule, :func:`stable_minimum_index`: walking from the high-load end,
 sample i is the pull-off when v_i <= v_(i-1) (ties go to the lower-load sample)
-and v_i < v_(i+1); the low-load end point when v_last <= v_(last-1).  dhfield meets
-the pull-off in four forms:
+and v_i < v_(i+1); the low-load end point when v_last <= v_(last-1); on slopes, the
+first sample whose slope is above zero (or a noise floor).  dhfield meets the
+pull-off in five forms:
 
 * **a smooth family with an analytic derivative** (the analytic DH model and its
   closures): the pull-off is the *largest* contact size a at which dW/da (or
@@ -26,9 +27,14 @@ the pull-off in four forms:
 * **a discretely sampled path** (the BEM unloading path): the pull-off is the
   minimum of sampled values; :func:`refine_sampled_minimum` takes the first
   (or global) discrete minimum and refines it with the parabola through the
-  three samples around it.
+  three samples around it;
+* **a noisy sampled path** (the BEM branch under a machine spring,
+  :mod:`dhfield.bem_compliance`): the rule on the :func:`fitted_slopes` of the
+  samples, then on the two samples around the first rise.
 
-Both are pure numpy/scipy functions with no knowledge of the physics.
+The machine-spring jump of the analytic models (:mod:`dhfield.compliance`) takes
+its zoom brackets from :func:`stable_minimum_index` too.  Every function here is
+pure numpy/scipy, with no knowledge of the physics.
 """
 from __future__ import annotations
 
@@ -37,7 +43,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import elementwise
 
-__all__ = ["SampledMinimum", "BranchEnd", "stable_minimum_index", "refine_sampled_minimum", "stable_branch_end",
+__all__ = ["SampledMinimum", "BranchEnd", "stable_minimum_index", "fitted_slopes", "refine_sampled_minimum",
+           "stable_branch_end",
            "last_local_minimum", "scan_minimum", "DEFAULT_CHUNK_BYTES", "SCAN_BLOCK"]
 
 #: Default working-memory budget of one chunk of :func:`stable_branch_end`
@@ -89,36 +96,97 @@ class BranchEnd:
     found: np.ndarray
 
 
-def stable_minimum_index(values):
-    """Index of the pull-off sample: the local minimum nearest the high-load end (index 0).
+def stable_minimum_index(values=None, *, slopes=None, floor=0.0, first=True):
+    """Index of the pull-off sample: the one local-minimum rule and tie rule of dhfield.
 
     Parameters
     ----------
-    values : array_like, shape (..., n)
+    values : array_like, shape (..., n), optional
         Values along the path, the high-load end first (rounding noise included:
         the rule, not a tolerance, decides ties).
+    slopes : array_like, shape (..., n), optional
+        Instead of ``values``: the slope of the path at each sample, along unloading
+        (negative: still falling), from a derivative or a fit to noisy samples.
+    floor : array_like, default 0
+        With ``slopes``: the noise floor; only ``slopes > floor`` is a rise.
+    first : bool, default True
+        With ``values``: False takes the global minimum instead of the local minimum
+        nearest the high-load end (the same tie rule).
 
     Returns
     -------
     ndarray of int, shape (...)
-        The first i (from index 0) with ``v[i] <= v[i-1]`` and ``v[i] < v[i+1]``, or
-        ``n - 1`` when none is interior and ``v[-1] <= v[-2]`` (the low-load end is the
-        minimum); -1 where neither (the values rise from the high-load end).
+        With ``values``: the first i (from index 0) with ``v[i] <= v[i-1]`` and
+        ``v[i] < v[i+1]``; ``n - 1`` when none is interior and ``v[-1] <= v[-2]`` (the
+        low-load end is the minimum); 0 where neither (the values rise strictly from the
+        high-load end, which is then the lowest sample).  ``first=False``: the lowest
+        sample, the last of equal ones.  With ``slopes``: the first sample where the path
+        rises (``slopes > floor``; the minimum lies between it and the sample before it),
+        ``n`` where it never does.
 
     Notes
     -----
-    The one local-minimum rule and tie rule of every pull-off search in dhfield: on a
+    The one local-minimum rule and tie rule of every pull-off search in dhfield: walking
+    from the high-load end, the pull-off is where the path stops falling, and a flat step
+    (equal samples, a zero slope or one within the noise floor) is not a rise.  On a
     plateau of equal samples the pull-off is the plateau's lowest-load sample that is
-    followed by a rise, so a flat stretch of the path is walked down, never stopped on.
+    followed by a rise, so a flat stretch of the path is walked down, never stopped on;
+    of equal global minima the lowest-load one is taken.  The searches differ only in
+    how the samples or slopes are obtained and how the sample is refined: a parabola
+    (:func:`refine_sampled_minimum`), a bracketing minimiser (:func:`last_local_minimum`),
+    the complex-step derivative (:func:`scan_minimum`), the analytic derivative
+    (:func:`stable_branch_end`, whose scan gives ``slopes``), and the fitted slopes of
+    the BEM's noisy branch (:mod:`dhfield.bem_compliance`).
     """
+    if slopes is not None:
+        rises = np.asarray(slopes) > np.asarray(floor)
+        return np.where(rises.any(axis=-1), np.argmax(rises, axis=-1), rises.shape[-1])
     v = np.asarray(values)
     n = v.shape[-1]
+    if not first:
+        return n - 1 - np.argmin(v[..., ::-1], axis=-1)
     loc = np.zeros(v.shape, dtype=bool)
     if n >= 3:
         loc[..., 1:-1] = (v[..., 1:-1] <= v[..., :-2]) & (v[..., 1:-1] < v[..., 2:])
     if n >= 2:
         loc[..., -1] = v[..., -1] <= v[..., -2]
-    return np.where(loc.any(axis=-1), np.argmax(loc, axis=-1), -1)
+    return np.where(loc.any(axis=-1), np.argmax(loc, axis=-1), 0)
+
+
+def fitted_slopes(x, values, window):
+    """Estimate the slopes of a noisy sampled path by least-squares quadratics over +-``window`` samples.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Path parameter, decreasing along the path (high-load end first), so that
+        ``x[i] - x`` grows along unloading (e.g. the square root of a decreasing force)
+        [any unit].
+    values : array_like, shape (n,)
+        Sampled values (e.g. the BEM's loads or approaches) [any unit].
+    window : int
+        Half-width of the fit, in samples.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The slope d values / d(x[i] - x) at each sample, along unloading; NaN where fewer than
+        three samples lie in the window.  For :func:`stable_minimum_index` (``slopes=``).
+
+    Notes
+    -----
+    The lattice jaggedness of the BEM's loads and approaches (~1e-3 at N = 64) makes
+    single differences change sign before the minimum; the fitted slope does not.
+    """
+    x, f = np.asarray(x, float), np.asarray(values, float)
+    out = np.full(f.size, np.nan)
+    for i in range(f.size):
+        lo, hi = max(0, i - window), min(f.size, i + window + 1)
+        if hi - lo < 3:
+            continue
+        u = x[i] - x[lo:hi]  # increases along unloading, 0 at sample i
+        out[i] = np.polyfit(u, f[lo:hi], 2)[1]
+    return out
 
 
 def refine_sampled_minimum(x, y, *, first=True):
@@ -135,7 +203,8 @@ def refine_sampled_minimum(x, y, *, first=True):
     first : bool, default True
         Take the first discrete local minimum met from ``x[0]`` (put the high-load
         end of an unloading path first: this is the end of the stable branch);
-        otherwise the global minimum of the samples.
+        otherwise the global minimum of the samples.  Both by
+        :func:`stable_minimum_index` (ties to the later sample).
 
     Returns
     -------
@@ -169,9 +238,7 @@ def refine_sampled_minimum(x, y, *, first=True):
     if xs.size > 1 and not (np.all(dx > 0) or np.all(dx < 0)):
         raise ValueError("x must be strictly monotone over the finite samples")
     n = xs.size
-    i = int(np.argmin(ys))
-    if first and n >= 3:
-        i = max(0, int(stable_minimum_index(ys)))
+    i = int(stable_minimum_index(ys, first=first))
     if i == 0 or i == n - 1:
         return SampledMinimum(float(xs[i]), float(ys[i]), int(idx[i]), True)
     (x0, x1, x2), (y0, y1, y2) = xs[i - 1:i + 2], ys[i - 1:i + 2]
@@ -292,9 +359,10 @@ def stable_branch_end(derivative, scan, args=(), *, floor=0.0, extend=8.0, max_e
             bottom = max(0, top - block)
             rows = np.nonzero(active)[0]
             d[rows, bottom:top] = derivative(sub_scan[rows, bottom:top], *(q[rows][:, None] for q in sub_args))
-            neg = d[rows, bottom:top] < -sub_floor[rows][:, None]
-            hit = neg.any(axis=-1)
-            last[rows[hit]] = top - 1 - np.argmax(neg[hit, ::-1], axis=-1)
+            # the rule of stable_minimum_index on the slopes along unloading, -dW/da from the top down
+            j = stable_minimum_index(slopes=-d[rows, bottom:top][:, ::-1], floor=sub_floor[rows][:, None])
+            hit = j < top - bottom
+            last[rows[hit]] = top - 1 - j[hit]
             active[rows[hit]] = False
             top = bottom
         rows = np.nonzero(last >= 0)[0]
@@ -410,8 +478,8 @@ def scan_minimum(func, scan, args=(), *, xatol=1e-13):
 
     Notes
     -----
-    The scan point is chosen by :func:`stable_minimum_index` (the global minimum of the
-    scan where no point qualifies); an end point is returned as is.  An interior one is
+    The scan point is chosen by :func:`stable_minimum_index` (the high-load end where the
+    values rise strictly from it); an end point is returned as is.  An interior one is
     refined at the root of the complex-step derivative Im f(t + ih)/h on its two
     neighbours (Chandrupatla, :func:`scipy.optimize.elementwise.find_root`, xrtol 1e-15):
     the minimiser is then accurate to ~1e-15 rather than ~sqrt(eps).  The refined point
@@ -425,7 +493,6 @@ def scan_minimum(func, scan, args=(), *, xatol=1e-13):
     vals = func(grid, *(a[..., None] for a in args))
     vals = np.where(np.isfinite(vals), vals, np.inf)
     i = stable_minimum_index(vals)
-    i = np.where(i >= 0, i, np.argmin(vals, axis=-1))
     t = np.take_along_axis(grid, i[..., None], -1)[..., 0]
     f = np.take_along_axis(vals, i[..., None], -1)[..., 0]
     inner = (i > 0) & (i < n - 1)

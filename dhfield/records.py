@@ -1,11 +1,17 @@
 """The one pull-off record and the one load-curve record of every analytic model.
 
-Every analytic model answers with the same two types, whose fields are named by
+Every analytic model answers with the same types, whose fields are named by
 :mod:`dhfield.schema`:
 
 * :class:`PullOff`: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in that order
   (the model, control and geometry; beta0, mu and sin(theta_skew); W*, the semi-axes,
   v, delta* and the ellipticities at pull-off; ``at_zero_contact`` and ``warning``);
+* :class:`PullOffSI`: the same pull-off from physical inputs, the keys of
+  :data:`dhfield.schema.PULL_OFF_SI_KEYS`: the force, semi-axes and approach in SI
+  units and the SI inputs, then every field of the :class:`PullOff` it was converted
+  from (built by :func:`pull_off_record_si`; the conversion, Eqs. 32-34 inverted, is
+  :func:`dhfield._adhesion.pull_off_si`).  The one SI record: every model's SI
+  ``pull_off`` and :func:`dhfield.dimensional.pull_off_force` return it;
 * :class:`LoadCurve`: :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS` (scalars) then
   :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size).
 
@@ -21,9 +27,9 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
+from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS, PULL_OFF_SI_KEYS
 
-__all__ = ["PullOff", "LoadCurve", "pull_off_record", "load_curve_record"]
+__all__ = ["PullOff", "PullOffSI", "LoadCurve", "pull_off_record", "pull_off_record_si", "load_curve_record"]
 
 _NAN = float("nan")
 
@@ -107,6 +113,76 @@ class PullOff(_Record):
 
 
 @dataclass(frozen=True, eq=False)
+class PullOffSI(_Record):
+    """The pull-off point of a model from physical inputs (fields: :data:`dhfield.schema.PULL_OFF_SI_KEYS`).
+
+    Parameters
+    ----------
+    model, control, geometry : str
+        As in :class:`PullOff`.
+    beta0, mu, sin_skew : ndarray or float
+        As in :class:`PullOff` [-].
+    force : ndarray or float
+        Pull-off load W [N] (negative: tensile).
+    semi_major, semi_minor : ndarray or float
+        Contact semi-axes a, b [m].
+    adhesive_semi_major, adhesive_semi_minor : ndarray or float
+        Adhesive-zone semi-axes c, d [m] (NaN: no zone).
+    approach : ndarray or float
+        Approach delta [m].
+    work_of_adhesion : ndarray or float
+        Delta gamma [J m^-2].
+    max_adhesive_stress : ndarray or float
+        The peak adhesive stress sigma0 [Pa] (NaN for the models without one: JKR, DMT,
+        elliptical JKR).
+    reduced_modulus : ndarray or float
+        E* [Pa].
+    r_major, r_minor, effective_radius : ndarray or float
+        R', R'' and R = sqrt(R'R'') [m].
+    W_star, a_star, b_star, c_star, d_star, v, delta_star : ndarray or float
+        The nondimensional record's values (:class:`PullOff`) [-].
+    ellipticity, adhesive_ellipticity : ndarray or float
+        The ellipticities b/a and d/c at pull-off [-].
+    at_zero_contact : ndarray or bool
+        As in :class:`PullOff`.
+    warning : ndarray or str
+        As in :class:`PullOff`.
+    """
+
+    model: str
+    control: str
+    geometry: str
+    beta0: np.ndarray
+    mu: np.ndarray
+    sin_skew: np.ndarray
+    force: np.ndarray
+    semi_major: np.ndarray
+    semi_minor: np.ndarray
+    adhesive_semi_major: np.ndarray
+    adhesive_semi_minor: np.ndarray
+    approach: np.ndarray
+    work_of_adhesion: np.ndarray
+    max_adhesive_stress: np.ndarray
+    reduced_modulus: np.ndarray
+    r_major: np.ndarray
+    r_minor: np.ndarray
+    effective_radius: np.ndarray
+    W_star: np.ndarray
+    a_star: np.ndarray
+    b_star: np.ndarray
+    c_star: np.ndarray
+    d_star: np.ndarray
+    v: np.ndarray
+    delta_star: np.ndarray
+    ellipticity: np.ndarray
+    adhesive_ellipticity: np.ndarray
+    at_zero_contact: np.ndarray
+    warning: np.ndarray
+
+    _KEYS = PULL_OFF_SI_KEYS
+
+
+@dataclass(frozen=True, eq=False)
 class LoadCurve(_Record):
     """A load curve of an analytic model (fields: the schema's load-curve keys).
 
@@ -138,6 +214,7 @@ class LoadCurve(_Record):
 
 
 assert tuple(f.name for f in fields(PullOff)) == PULL_OFF_KEYS
+assert tuple(f.name for f in fields(PullOffSI)) == PULL_OFF_SI_KEYS
 assert tuple(f.name for f in fields(LoadCurve)) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
 
 
@@ -192,6 +269,32 @@ def pull_off_record(model, beta0, mu, state, *, control, sin_skew, geometry, war
                    _arr(state["W_star"], shape), _arr(a, shape), _arr(b, shape), _arr(c, shape),
                    _arr(d, shape), _arr(state.get("v", _NAN), shape), _arr(state["delta_star"], shape),
                    _arr(ell, shape), _arr(adh, shape), _arr(zero, shape, bool), _arr(warning, shape, object))
+
+
+def pull_off_record_si(rec, si):
+    """Build the :class:`PullOffSI` of a pull-off record and its SI values.
+
+    Parameters
+    ----------
+    rec : PullOff or mapping
+        The nondimensional record (the keys of :data:`dhfield.schema.PULL_OFF_KEYS`).
+    si : mapping
+        The keys of :data:`dhfield.schema.PULL_OFF_SI_KEYS` that the nondimensional
+        record has not (force, semi-axes, approach in SI units, the SI inputs),
+        broadcast to the record's shape.
+
+    Returns
+    -------
+    PullOffSI
+        Scalars where the record is scalar.
+    """
+    shape = np.shape(rec["W_star"])
+    si = {k: _scalar(np.broadcast_to(np.asarray(v, dtype=float), shape)) for k, v in si.items()}
+    return PullOffSI(**{k: (si[k] if k in si else rec[k]) for k in PULL_OFF_SI_KEYS})
+
+
+def _scalar(x):
+    return x[()] if x.ndim == 0 else x
 
 
 def load_curve_record(model, beta0, mu, arrays, *, sin_skew, geometry):

@@ -92,7 +92,8 @@ def _field(tmp):
 
 def _periphery(tmp):
     mu, beta0 = np.array([[1.0]]), np.array([[0.85]])
-    po, prof = periphery.pull_off_periphery(mu, beta0, THETA)
+    po = model.pull_off(mu=mu, beta0=beta0)
+    prof = periphery.periphery_at_pull_off(po, THETA)
     law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, THETA[[0, -1]], n_points=5)
     ds = io_periphery.pull_off_periphery_dataset(mu[0], beta0[:, 0], po, prof, law)
     return io_periphery.write_dataset(ds, tmp / "periphery.nc")

@@ -19,9 +19,12 @@ def test_paper_closure_equals_model_pull_off():
     mu, beta0 = np.array([0.5, 2.0]), 0.8
     got = closure.pull_off_closure(mu, beta0, "paper")
     ref = model.pull_off(mu=mu, beta0=beta0)
+    assert got.model == "dh-elliptic" and got.control == "load"
     assert_allclose(got.W_star, ref.W_star, rtol=PULL_OFF_RTOL)
     assert_allclose(got.a_star, ref.a_star, rtol=1e-6)  # a* of a flat minimum: sqrt(tolerance)
-    assert_allclose(got.work_major, 1.0, rtol=1e-12)
+    state = closure.state_at_pull_off(mu, beta0, "paper")  # the closure's own state at that point
+    assert np.array_equal(state.a_star, got.a_star) and np.array_equal(state.W_star, got.W_star)
+    assert_allclose(state.work_major, 1.0, rtol=1e-12)
 
 
 @pytest.mark.parametrize("solver", [closure.solve_ray_average, closure.solve_two_axis])

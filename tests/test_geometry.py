@@ -74,3 +74,15 @@ def test_issue9_principal_radii_at_tiny_angles_are_finite():
 
     r1, r2 = g.principal_radii(1.0, 1e-12)
     assert float(r1) == pytest.approx(2e24, rel=1e-12) and float(r2) == pytest.approx(0.5, rel=1e-12)
+
+
+def test_unchecked_path_is_the_same_computation():
+    # checked=False (inputs validated once at a public entry, issue 16) skips only the check:
+    # the values are bit-identical to the checked path, and the checked path still refuses.
+    beta = np.array([0.05, 0.3, 0.8, 0.999, 1.0])
+    assert np.array_equal(g.radius_ratio(beta, checked=False), g.radius_ratio(beta))
+    assert np.array_equal(g.sin_skew_angle(beta, checked=False), g.sin_skew_angle(beta))
+    rho = g.radius_ratio(beta)
+    assert np.array_equal(g.ellipticity_from_radius_ratio(rho, checked=False), g.ellipticity_from_radius_ratio(rho))
+    with pytest.raises(ValueError, match="ratio"):
+        g.ellipticity_from_radius_ratio(0.5)

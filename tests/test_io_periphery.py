@@ -1,7 +1,7 @@
 """Periphery Datasets (dhfield.io.periphery): schema units, canonical (beta0, mu) dims, round trip."""
 import numpy as np
 
-from dhfield import periphery, schema
+from dhfield import model, periphery, schema
 from dhfield.io import read_netcdf
 from dhfield.io import periphery as iop
 
@@ -10,7 +10,8 @@ THETA = np.linspace(0.0, 0.5 * np.pi, 4)
 
 def test_pull_off_periphery_round_trip(tmp_path):
     mu, beta0 = np.array([[1.0, 3.0]]), np.array([[0.85]])
-    po, prof = periphery.pull_off_periphery(mu, beta0, THETA)
+    po = model.pull_off(mu=mu, beta0=beta0)
+    prof = periphery.periphery_at_pull_off(po, THETA)
     law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, THETA[[0, -1]], n_points=5)
     ds = iop.pull_off_periphery_dataset(mu[0], beta0[:, 0], po, prof, law)
     for name in iop.PROFILE_VARIABLES:

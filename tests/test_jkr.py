@@ -32,11 +32,11 @@ def test_pull_off_is_stationary(control, key):
 
 def test_dimensional_and_inverse():
     po = jkr.pull_off(R, E, DG)
-    assert_allclose(po.load, -1.5 * np.pi * R * DG, rtol=TOL_EXACT)
-    assert_allclose(po.contact_radius ** 3, 9 * np.pi * DG * R**2 / (8 * E), rtol=TOL_EXACT)
+    assert_allclose(po.force, -1.5 * np.pi * R * DG, rtol=TOL_EXACT)
+    assert_allclose(po.semi_major ** 3, 9 * np.pi * DG * R**2 / (8 * E), rtol=TOL_EXACT)
     assert_allclose(jkr.pull_off_force(R, E, DG, control="displacement"), -5 / 6 * np.pi * R * DG,
                     rtol=TOL_EXACT)
-    a = np.linspace(po.contact_radius, 5 * po.contact_radius, 7)
+    a = np.linspace(po.semi_major, 5 * po.semi_major, 7)
     c = jkr.load_curve(a, R, E, DG)
     assert_allclose(jkr.contact_radius(c.load, R, E, DG), a, rtol=1e-7)  # sqrt at pull-off: ~sqrt(eps)
     assert_allclose(c.approach, a**2 / R - np.sqrt(2 * np.pi * a * DG / E), rtol=1e-12)

@@ -135,11 +135,11 @@ def test_pull_off_shape():
 def test_dimensional():
     r, e, dg = 1e-6, 1e9, 0.05
     po = je.pull_off(r, e, dg, beta0=0.9)
-    assert_allclose(po.load, je.pull_off_nondimensional(0.9, 1.0)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
+    assert_allclose(po.force, je.pull_off_nondimensional(0.9, 1.0)["W_star"] / sin_skew_angle(0.9) * 2 * np.pi * r * dg,
                     rtol=1e-12)
     assert_allclose(po.ellipticity, je.pull_off_ellipticity(beta0=0.9))
     rho = radius_ratio(0.9)
-    assert_allclose(je.pull_off_force(r, e, dg, radius_ratio=rho), po.load, rtol=1e-9)
+    assert_allclose(je.pull_off_force(r, e, dg, radius_ratio=rho), po.force, rtol=1e-9)
     c = je.load_curve(np.array([0.5, 2.0]) * np.cbrt(r * r * dg / e), r, e, dg, beta0=0.9)
     assert np.all(c.semi_minor < c.semi_major)
 
@@ -173,3 +173,16 @@ def test_state_at_ellipticity_is_the_curve_at_its_contact_size():
     for bad in (dict(beta=0.5, beta0=0.6), dict(beta=1.0, beta0=0.6), dict(beta=0.9, beta0=1.0)):
         with pytest.raises(ValueError, match="beta"):
             je.state_at_ellipticity(**bad)
+
+
+def test_si_pull_off_is_the_one_si_record():
+    """jkr_elliptic.pull_off returns records.PullOffSI (issue 16): the principal radii satisfy
+    R'R'' = R^2 and R'/R'' = the given ratio (Eq. 5), JKR has no sigma0 (NaN), and the nondimensional
+    fields are the nondimensional core's."""
+    r, e, dg = 1e-3, 1e6, 0.05
+    po = je.pull_off(r, e, dg, radius_ratio=4.0)
+    assert po.model == "jkr-elliptic" and po.geometry == "ellipse"
+    assert_allclose([po.r_major / po.r_minor, np.sqrt(po.r_major * po.r_minor)], [4.0, r], rtol=1e-14)
+    assert np.isnan(po.max_adhesive_stress)
+    nd = je.pull_off_nondimensional(po.beta0, 1.0)
+    assert po.W_star == nd.W_star and po.a_star == nd.a_star and po.ellipticity == nd.ellipticity

@@ -198,9 +198,9 @@ def test_si_scaling_and_invariance():
     # R, E*, dgamma all x8: c_r = (R^2 dgamma/E*)^(1/3) x 4, c_r^2/R x 2, load (R dgamma) x 64
     assert_allclose(p2.semi_major, 4 * p1.semi_major, rtol=1e-12)
     assert_allclose(p2.approach, 2 * p1.approach, rtol=1e-12)
-    assert_allclose(p2.load, 64 * p1.load, rtol=1e-12)
+    assert_allclose(p2.force, 64 * p1.force, rtol=1e-12)
     c = ee.load_curve(p1.semi_major, r, e, w, radius_ratio=4.0)
-    assert_allclose([c.load, c.approach, c.ellipticity], [p1.load, p1.approach, p1.ellipticity], rtol=1e-9)
+    assert_allclose([c.load, c.approach, c.ellipticity], [p1.force, p1.approach, p1.ellipticity], rtol=1e-9)
 
 
 def test_broadcasting():

@@ -57,15 +57,15 @@ def test_series_branch_matches_direct_form():
 
 @pytest.mark.parametrize("control,jkr_value", [("load", -1.5), ("displacement", -5 / 6)])
 def test_pull_off_limits(control, jkr_value):
-    _, p_dmt, _, _ = md.pull_off_maugis_units(0.01, control)
-    _, p_jkr, _, _ = md.pull_off_maugis_units(100.0, control)
+    _, p_dmt, _, _ = md._pull_off_maugis_units(0.01, control)
+    _, p_jkr, _, _ = md._pull_off_maugis_units(100.0, control)
     assert abs(p_dmt / -2.0 - 1) <= TOL_PULL_OFF
     assert abs(p_jkr / jkr_value - 1) <= TOL_PULL_OFF
 
 
 def test_pull_off_monotone_in_lambda():
     lam = np.geomspace(0.01, 100, 41)
-    _, p, _, _ = md.pull_off_maugis_units(lam)
+    _, p, _, _ = md._pull_off_maugis_units(lam)
     assert np.all(np.diff(p) > 0)  # from -2 (DMT) up to -1.5 (JKR)
 
 
@@ -103,15 +103,15 @@ def test_zero_contact_end_point():
 def test_paper_units_and_mapping():
     mu = np.array([0.5, 1.0, 5.0])
     st = md.pull_off_nondimensional(1.0, mu)
-    _, p, _, _ = md.pull_off_maugis_units(maugis_parameter(mu))
+    _, p, _, _ = md._pull_off_maugis_units(maugis_parameter(mu))
     assert_allclose(st["W_star"], p / 2, rtol=1e-14)
 
 
 def test_vectorised_and_fast():
     lam = np.geomspace(0.01, 100, 25)
-    a, p, d, m = md.pull_off_maugis_units(lam)
+    a, p, d, m = md._pull_off_maugis_units(lam)
     for i in (0, 12, 24):
-        assert_allclose(md.pull_off_maugis_units(lam[i])[1], p[i], rtol=1e-12)
+        assert_allclose(md._pull_off_maugis_units(lam[i])[1], p[i], rtol=1e-12)
     t0 = time.perf_counter()
     md.pull_off_nondimensional(1.0, 1.0)
     assert time.perf_counter() - t0 < 0.2  # loose here; verification/bench_models.py measures <= 20 ms

@@ -4,7 +4,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy import integrate
 
-from dhfield import adhesion, double_hertz, hertz, periphery
+from dhfield import adhesion, double_hertz, hertz, model, periphery
 
 #: Ray quadrature is exponentially convergent (graded Gauss rule): ~1e-13 relative.
 QUAD_RTOL = 1e-11
@@ -139,7 +139,8 @@ def test_elliptical_work_decreases_towards_minor_axis():
 def test_pull_off_periphery_imposes_eq31_and_eq24():
     mu = np.array([0.5, 1.0, 5.0])
     beta0 = np.array([[0.8], [0.99]])
-    po, prof = periphery.pull_off_periphery(mu, beta0, theta=THETA)
+    po = model.pull_off(mu=mu, beta0=beta0)
+    prof = periphery.periphery_at_pull_off(po, theta=THETA)
     assert prof.work_of_adhesion.shape == (2, 3, THETA.size)
     assert_allclose(prof.work_of_adhesion[..., 0], 1.0, rtol=1e-12)  # Eq. (31), Delta gamma = 1
     assert_allclose(prof.max_adhesive_stress, np.broadcast_to(mu[:, None], (2, 3, THETA.size)),
@@ -223,7 +224,6 @@ def test_gap_grid_full_equals_quadrant_and_trend():
      "shape"),
     (lambda: periphery.periphery_from_gap_grid(np.arange(5.0), np.arange(5.0), np.zeros((5, 5)), 1, 2, 0.8, 1,
                                                method="fd"), "method"),
-    (lambda: periphery.pull_off_periphery(-1.0, 0.8), "mu"),
 ])
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
@@ -237,7 +237,8 @@ def test_datasets_round_trip(tmp_path):
 
     mu, beta0 = np.array([1.0, 5.0]), np.array([0.8, 0.99])
     th = np.linspace(0, np.pi / 2, 5)
-    po, prof = periphery.pull_off_periphery(mu[None, :], beta0[:, None], th)
+    po = model.pull_off(mu=mu[None, :], beta0=beta0[:, None])
+    prof = periphery.periphery_at_pull_off(po, th)
     law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, theta=[0.0, np.pi / 2], n_points=7)
     ds = iop.pull_off_periphery_dataset(mu, beta0, po, prof, law)
     p = iop.write_dataset(ds, tmp_path / "periphery.nc")
@@ -251,7 +252,7 @@ def test_datasets_round_trip(tmp_path):
     assert_allclose(back.attrs["param_mu"], mu)
 
     spread = closure.equal_beta_spread(mu[None, :], beta0[:, None])
-    paper = closure.pull_off_closure(mu[None, :], beta0[:, None], "paper")
+    paper = closure.state_at_pull_off(mu[None, :], beta0[:, None], "paper")
     ds2 = iop.equal_beta_dataset(mu, beta0, spread, {"paper": paper, "paper2": paper})
     back2 = read_netcdf(iop.write_dataset(ds2, tmp_path / "equal_beta.nc"))
     assert list(back2["closure"].values) == ["paper", "paper2"]

@@ -158,7 +158,8 @@ def test_last_local_minimum_is_the_one_nearest_the_top_whatever_the_block():
     ([5.0, 1.0, 3.0, 0.0, 2.0], 1),        # the minimum nearest the high-load end, not the global one
     ([5.0, 4.0, 3.0], 2),                  # still falling: the low-load end point
     ([5.0, 4.0, 4.0], 2),                  # a tie at the end counts as falling
-    ([1.0, 2.0, 3.0], -1),                 # rising from the high-load end: none
+    ([1.0, 2.0, 3.0], 0),                  # rising strictly from the high-load end: that end
+    ([5.0, 5.0], 1),                       # two equal samples: the tie goes to the lower-load one
 ])
 def test_stable_minimum_index_one_rule(values, index):
     """The one local-minimum and tie rule (issue 16), checked by hand on sequences."""
@@ -180,3 +181,26 @@ def test_every_sampled_search_takes_the_same_sample_on_a_plateau():
     # refined on the bracket (2, 4); the plateau's other end (a = 5, bracket (4, 6)) is not taken
     end = last_local_minimum(lambda a, s: s * np.interp(a, x, y[::-1]), x, (np.array([1.0]),))
     assert end.found[0] and 2.0 <= end.x[0] <= 4.0
+
+
+def test_global_minimum_and_slopes_follow_the_same_tie_rule():
+    """first=False (the global minimum) and the slope form (analytic or fitted slopes) apply the
+    same rule: equal minima go to the lower-load sample, a zero slope (or one within the floor)
+    is not a rise (issue 16: one local-minimum rule, one tie rule)."""
+    from dhfield.pull_off_search import stable_minimum_index
+
+    assert int(stable_minimum_index(np.array([3.0, 1.0, 2.0, 1.0, 4.0]), first=False)) == 3
+    assert int(stable_minimum_index(slopes=np.array([-2.0, -1.0, 0.0, 0.5, 1.0]))) == 3
+    assert int(stable_minimum_index(slopes=np.array([-2.0, -1.0, 0.0, 0.5, 1.0]), floor=0.7)) == 4
+    assert int(stable_minimum_index(slopes=np.array([-2.0, np.nan, -1.0]))) == 3  # never rises
+
+
+def test_fitted_slopes_are_exact_on_a_quadratic():
+    """A least-squares quadratic reproduces a quadratic path: its slope is the derivative (closed form)."""
+    from dhfield.pull_off_search import fitted_slopes
+
+    x = np.linspace(2.0, 0.0, 9)  # decreasing along the path, like sqrt(F_a) on unloading
+    f = (x - 0.8) ** 2  # along unloading u = x[i] - x: d f/du = -d f/dx = -2 (x - 0.8)
+    s = fitted_slopes(x, f, 2)
+    assert np.allclose(s, -2.0 * (x - 0.8), atol=1e-12)  # rounding of the least-squares solve
+    assert np.all(np.isfinite(fitted_slopes(x, f, 1)[1:-1])) and np.isnan(fitted_slopes(x, f, 1)[0])

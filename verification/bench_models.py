@@ -16,6 +16,7 @@ import sys
 import numpy as np
 
 from dhfield import compare, dh_circular, jkr_elliptic, maugis_dugdale
+from dhfield.transition import tabor_from_maugis
 from verification._bench import run_cases
 
 # SI inputs of the public wrappers: R = 1 mm, E* = 1 GPa, dgamma = 0.1 J/m^2 (any values do).
@@ -30,7 +31,7 @@ def main() -> int:
          lambda: maugis_dugdale.pull_off(R, E, W, SIGMA_LAM1), 0.020, 30),
         ("MD pull-off, displacement control (lambda ~ 1)",
          lambda: maugis_dugdale.pull_off(R, E, W, SIGMA_LAM1, control="displacement"), None, 30),
-        ("MD pull-off, 100 lambda in [0.01, 100], vectorised", lambda: maugis_dugdale.pull_off_maugis_units(lam100),
+        ("MD pull-off, 100 lambda in [0.01, 100], vectorised", lambda: maugis_dugdale.pull_off_nondimensional(1.0, tabor_from_maugis(lam100)),
          None, 10),
         ("elliptical JKR pull-off, load control (beta0 = 0.9)",
          lambda: jkr_elliptic.pull_off(R, E, W, beta0=0.9), 0.050, 30),

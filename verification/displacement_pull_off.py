@@ -58,7 +58,7 @@ def main(argv=None) -> int:
     for lam in args.lam:
         mu = float(transition.tabor_from_maugis(lam))
         # Maugis (1992) in the paper's units R = E* = Delta gamma = 1, sigma0 = mu: W* = W/(2 pi) (Eq. 34)
-        ref = float(maugis_dugdale.pull_off(1.0, 1.0, 1.0, mu, control="displacement").load) / (2.0 * np.pi)
+        ref = float(maugis_dugdale.pull_off(1.0, 1.0, 1.0, mu, control="displacement").force) / (2.0 * np.pi)
         for n in args.n:
             t0 = time.perf_counter()
             res = adhesive_pull_off(mu=mu, beta0=1.0, n=n, control="displacement", progress=False)

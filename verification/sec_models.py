@@ -82,11 +82,13 @@ def _plt():
 
 def _checks_md():
     from dhfield import maugis_dugdale as md
+    from dhfield.transition import tabor_from_maugis
 
     out = []
     for control, jkr_value in (("load", -1.5), ("displacement", -5.0 / 6.0)):
-        p_dmt = md.pull_off_maugis_units(0.01, control)[1]
-        p_jkr = md.pull_off_maugis_units(100.0, control)[1]
+        # P = W/(pi R dgamma) = 2 W* (Eq. 34, the circle); lambda = 1.1272 mu
+        p_dmt = 2.0 * float(md.pull_off_nondimensional(1.0, tabor_from_maugis(0.01), control=control).W_star)
+        p_jkr = 2.0 * float(md.pull_off_nondimensional(1.0, tabor_from_maugis(100.0), control=control).W_star)
         out.append(check_le(f"MD pull-off ({control} control) at λ = 0.01 vs DMT −2πRΔγ, rel. error",
                             abs(p_dmt / -2.0 - 1), TOL_MD_PULL_OFF, "DMT closed form (Derjaguin et al. 1975)"))
         out.append(check_le(f"MD pull-off ({control} control) at λ = 100 vs JKR {jkr_value:.4g} πRΔγ, "

@@ -79,12 +79,13 @@ def _plt():
 # --------------------------------------------------------------------------- computations
 def compute(quick=False, progress=print):
     """All numbers of the section (no files).  Returns a dict of results."""
-    from dhfield import closure, compare, eq30, periphery
+    from dhfield import closure, compare, eq30, model, periphery
 
     cfg = _settings(quick)
     mu, beta0 = np.array(MU), np.array(BETA0)
     th = np.linspace(0.0, 0.5 * np.pi, cfg["n_theta"])
-    po, prof = periphery.pull_off_periphery(mu[None, :], beta0[:, None], th)
+    po = model.pull_off(mu=mu[None, :], beta0=beta0[:, None])
+    prof = periphery.periphery_at_pull_off(po, th)
     law_theta = np.deg2rad([0.0, 30.0, 60.0, 90.0])
     law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, law_theta, n_points=cfg["n_law"])
     progress(f"ray quantities at pull-off, {beta0.size} × {mu.size} (β0, μ) × {th.size} rays")
@@ -99,7 +100,7 @@ def compute(quick=False, progress=print):
     closures = {}
     for name in closure.CLOSURES:
         t0 = time.perf_counter()
-        closures[name] = closure.pull_off_closure(cm[None, :], cb[:, None], name)
+        closures[name] = closure.state_at_pull_off(cm[None, :], cb[:, None], name)
         progress(f"closure '{name}': pull-off on {cb.size} × {cm.size} (β0, μ) "
                  f"({time.perf_counter() - t0:.1f} s)")
     ref = compare.compare(mu=cm[None, :], beta0=cb[:, None], models=["jkr-elliptic", "dh-circular"])
@@ -284,7 +285,8 @@ def _checks(res):
                         np.max(np.abs(s0 / res["mu"][None, :, None] - 1)), TOL_SIGMA0,
                         "closed form: r_ab/r_cd = a/c on every ray when b/a = d/c"))
     # beta0 = 1: theta-independence and the GJ98 closed form
-    po1, prof1 = periphery.pull_off_periphery(res["mu"], 1.0, th)
+    po1 = model.pull_off(mu=res["mu"], beta0=1.0)
+    prof1 = periphery.periphery_at_pull_off(po1, th)
     gj = po1.v * (1 + po1.v) * 2 / (3 * np.pi) * (po1.c_star - po1.a_star) ** 2 * (po1.c_star + 2 * po1.a_star)
     err = max(np.max(np.abs(prof1.work_of_adhesion / gj[:, None] - 1)),
               np.max(np.abs(prof1.edge_separation / prof1.edge_separation[:, :1] - 1)),

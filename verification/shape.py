@@ -6,15 +6,19 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
   functions above the target;
 * the number of pull-off result types of the analytic models (target 1): every public function
   outside ``dhfield/bem`` whose name starts with ``pull_off`` is called at beta0 = 0.9, mu = 1
-  (SI functions with a PDMS-like contact) with its parameters filled by name; a result type is the
-  returned class with, for a mapping, its set of keys (scalar/array results, e.g. a force, are not
-  records and are not counted);
+  (SI functions with a PDMS-like contact, a machine stiffness K* = 1) with its parameters filled by
+  name; a result type is the returned class with, for a mapping, its set of keys (scalar/array
+  results, e.g. a force, are not records and are not counted); a tuple is named by the types it
+  holds;
 * the number of minimum-search implementations outside ``dhfield/bem`` (target 1): functions that
-  call scipy's ``find_minimum``/``minimize_scalar``/``fminbound``/``golden``/``brent``,
-  ``np.argmin``, test a discrete local minimum on neighbouring samples (a comparison of slices such
-  as ``v[1:-1] <= v[:-2]``), or bracket the root of a derivative (``find_root`` on a callable
-  whose name starts with ``d``); and, of those, the local-minimum rules (the neighbour
-  comparisons, in all of ``dhfield/``: one rule and one tie rule is the target);
+  decide which sample is the minimum: ``np.argmin``/``nanargmin`` on samples, or a discrete
+  local-minimum test on neighbouring samples (a comparison of slices such as
+  ``v[1:-1] <= v[:-2]`` or ``f[1:] >= f[:-1]``, or ``f[i - 1] < f[i]``); of those, the local-minimum rules (the neighbour
+  comparisons, in all of ``dhfield/``: one rule and one tie rule is the target).  Listed apart,
+  not counted as searches: the *refinements*, functions that polish a bracket the search gave,
+  with scipy's ``find_minimum``/``minimize_scalar``/``fminbound``/``golden``/``brent`` or
+  ``find_root`` on a derivative (a callable whose name starts with ``d`` or ``slope``).  Before
+  issue 16's one rule (commit cb04ac6) a refinement was counted as a search;
 * the number of ``dhfield._validation`` calls on one ``dhfield pulloff --beta0 0.9 --mu 1 --json``
   (outermost calls only, counted per parameter name; target: each input once);
 * whether ``dhfield/bem/`` imports an analytic model module;
@@ -38,7 +42,8 @@ from pathlib import Path
 #: Modules of the analytic models (the BEM must not import them).
 ANALYTIC_MODULES = {"model", "compare", "closure", "dh_circular", "jkr", "dmt", "maugis_dugdale", "jkr_elliptic",
                     "dimensional", "transition", "validity", "analytic", "gvg", "jkr_elliptic_gvg"}
-MIN_CALLS = {"find_minimum", "minimize_scalar", "fminbound", "golden", "brent", "argmin", "nanargmin"}
+SEARCH_CALLS = {"argmin", "nanargmin"}
+REFINE_CALLS = {"find_minimum", "minimize_scalar", "fminbound", "golden", "brent"}
 
 
 def _functions(root: Path):
@@ -63,27 +68,35 @@ def _call_name(call):
 
 
 def _has_neighbour_rule(fn) -> bool:
-    """A discrete local-minimum test: a sample compared with its neighbours (v[1:-1] <= v[:-2], f[i] <= f[i - 1])."""
+    """A discrete local-minimum test: a sample compared with its neighbours (v[1:-1] <= v[:-2],
+    f[1:] >= f[:-1], f[i] <= f[i - 1])."""
     for node in ast.walk(fn):
-        if isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.LtE, ast.Lt)):
+        if isinstance(node, ast.Compare) and isinstance(node.ops[0], (ast.LtE, ast.Lt, ast.GtE, ast.Gt)):
             sides = [node.left, *node.comparators]
             if all(isinstance(q, ast.Subscript) for q in sides):
                 src = ast.unparse(node)
-                if ("1:-1" in src and ":-2" in src) or ("i - 1]" in src or "i + 1]" in src):
+                if (("1:-1" in src and ":-2" in src) or ("1:]" in src and ":-1]" in src)
+                        or ("i - 1]" in src or "i + 1]" in src)):
                     return True
     return False
 
 
 def _is_min_search(fn) -> bool:
+    """Decides the minimum's sample: a neighbour rule or an argmin over samples."""
     if _has_neighbour_rule(fn):
         return True
+    return any(isinstance(node, ast.Call) and _call_name(node) in SEARCH_CALLS for node in ast.walk(fn))
+
+
+def _is_refinement(fn) -> bool:
+    """Polishes a bracket: a scalar minimiser, or a root of a derivative (d*, slope*)."""
     for node in ast.walk(fn):
         if isinstance(node, ast.Call):
             name = _call_name(node)
-            if name in MIN_CALLS:
+            if name in REFINE_CALLS:
                 return True
             if name == "find_root" and node.args and isinstance(node.args[0], ast.Name) \
-                    and node.args[0].id.startswith("d"):
+                    and node.args[0].id.startswith(("d", "slope")):
                 return True
     return False
 
@@ -103,6 +116,8 @@ def static(root: Path) -> dict:
     searches = _top_level([(p, fn) for p, fn in _functions(root)
                            if not str(p).startswith("dhfield/bem") and _is_min_search(fn)])
     rules = _top_level([(p, fn) for p, fn in _functions(root) if _has_neighbour_rule(fn)])
+    refinements = _top_level([(p, fn) for p, fn in _functions(root)
+                              if not str(p).startswith("dhfield/bem") and _is_refinement(fn)])
     bem_imports = []
     for path in sorted((root / "dhfield" / "bem").rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text())):
@@ -125,6 +140,7 @@ def static(root: Path) -> dict:
     return {"max_params": params[0][2], "over_10": [f"{p}:{ln} {n} ({k})" for p, n, k, ln in params if k > 10],
             "min_searches": [f"{p}:{fn.lineno} {fn.name}" for p, fn in searches],
             "min_rules": [f"{p}:{fn.lineno} {fn.name}" for p, fn in rules],
+            "refinements": [f"{p}:{fn.lineno} {fn.name}" for p, fn in refinements],
             "bem_imports_analytic": bem_imports, "lines": lines, "nonblank_lines": nonblank}
 
 
@@ -160,7 +176,7 @@ from dhfield.dimensional import contact_parameters
 params = contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
 values = {"mu": 1.0, "beta0": 0.9, "lam": 1.1272, "control": "load", "model": "dh-elliptic",
           "effective_radius": 1e-2, "reduced_modulus": 1.33e6, "work_of_adhesion": 0.05,
-          "max_adhesive_stress": 2e5, "params": params, "parameters": params}
+          "max_adhesive_stress": 2e5, "params": params, "parameters": params, "machine_stiffness": 1.0}
 types, skipped = {}, []
 names = sorted(m.name for m in pkgutil.walk_packages(dhfield.__path__, "dhfield.")
                if not m.name.startswith(("dhfield.bem", "dhfield.cli")))
@@ -195,6 +211,8 @@ for modname in names:
         key = f"{t.__module__}.{t.__qualname__}"
         if isinstance(r, dict):
             key += "{" + ",".join(sorted(r)) + "}"
+        elif isinstance(r, tuple) and not hasattr(r, "_fields"):
+            key += "(" + ", ".join(f"{type(x).__module__}.{type(x).__qualname__}" for x in r) + ")"
         types.setdefault(key, []).append(f"{modname}.{fname}")
 print(json.dumps({"rc": rc, "validation": validation, "types": types, "skipped": skipped}))
 '''
@@ -229,6 +247,9 @@ def main(argv=None) -> int:
     print(f"local-minimum rules (a sample compared with its neighbours, all of dhfield/): {len(s['min_rules'])} "
           f"(target 1)")
     for x in s["min_rules"]:
+        print(f"    {x}")
+    print(f"refinements of a bracketed minimum (outside dhfield/bem; not searches): {len(s['refinements'])}")
+    for x in s["refinements"]:
         print(f"    {x}")
     total = sum(d["validation"].values())
     print(f"_validation calls on one `dhfield pulloff --beta0 0.9 --mu 1 --json`: {total} "

@@ -24,7 +24,8 @@ def run(args) -> int:
     import numpy as np
 
     from ..io.periphery import pull_off_periphery_dataset, write_dataset
-    from ..periphery import pull_off_periphery
+    from ..model import pull_off
+    from ..periphery import periphery_at_pull_off
 
     from ..io import validate_output_path
 
@@ -34,7 +35,8 @@ def run(args) -> int:
         validate_output_path(args.out, (".nc",), "out")
     theta = np.linspace(0.0, 0.5 * np.pi, args.n_theta)
     beta0, mu = np.array([[args.beta0]]), np.array([[args.mu]])
-    po, prof = pull_off_periphery(mu, beta0, theta, control=args.control)
+    po = pull_off(mu=mu, beta0=beta0, control=args.control)
+    prof = periphery_at_pull_off(po, theta)
     if args.out is not None:
         ds = pull_off_periphery_dataset(mu[0], beta0[:, 0], po, prof, control=args.control)
         write_dataset(ds, args.out)
