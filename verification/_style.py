@@ -121,7 +121,7 @@ def tidy_log_ticks(ax):
     """Ticks of the log axes of ``ax`` whose labels never overlap.
 
     Decades only (labelled ``10^n``, at most about six of them) when the axis spans
-    more than three decades; 1-2-5 (or 1-2-3-5 within 1.3 decades) when it spans
+    more than three decades; 1-2-5 (or 1-2-3-5 within 1.5 decades) when it spans
     fewer, so that a short axis still carries labels, written as plain numbers
     where they all lie in [1e-3, 1e5] and as m×10^n otherwise; minor ticks never
     carry labels.  Hand-placed ticks (a FixedLocator) are kept.  Call after the
@@ -140,7 +140,7 @@ def tidy_log_ticks(ax):
             continue
         decades = math.log10(hi / lo)
         if decades <= 3.0:
-            subs = (1.0, 2.0, 3.0, 5.0) if decades <= 1.3 else (1.0, 2.0, 5.0)  # 0.3 labelled on 0.3..5
+            subs = (1.0, 2.0, 3.0, 5.0) if decades <= 1.5 else (1.0, 2.0, 5.0)  # 0.3 labelled on 0.3..5
             plain = 1e-3 <= lo and hi < 1e5
             axis.set_major_locator(LogLocator(base=10.0, subs=subs, numticks=12))
             axis.set_major_formatter(FuncFormatter(lambda v, _pos, plain=plain: _tick_label(v, plain)))
