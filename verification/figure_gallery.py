@@ -227,7 +227,8 @@ def collect(work, out, notes, log, seconds) -> dict:
             drawn.append(name)
         else:
             missing[name] = notes.get(source, "not drawn")
-    manifest = {"figures": drawn, "not_drawn": missing, "notes": notes, "commands": log,
+    commands = json.loads(json.dumps(log).replace(str(work.resolve()), "<work>"))  # no scratch paths
+    manifest = {"figures": drawn, "not_drawn": missing, "notes": notes, "commands": commands,
                 "seconds": round(seconds, 1)}
     (out / "manifest.json").write_text(json.dumps(manifest, indent=1, ensure_ascii=False) + "\n")
     return manifest
