@@ -21,7 +21,6 @@ The numpy core never imports this module; matplotlib is used through
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np

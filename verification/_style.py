@@ -19,7 +19,7 @@ import math
 
 # The readable name of each model slug: the library's one table (``dhfield plot``, ``fit --plot``,
 # ``solve --plot`` and ``cycle --plot`` use it too), so that a model has one name everywhere.
-from dhfield.io._figures import MODEL_LABELS, model_label
+from dhfield.io._figures import MODEL_LABELS, model_label  # noqa: F401 - re-exported for the sections
 
 #: Width of a single-column figure [in] (a two-column journal page's column).
 SINGLE_COLUMN_IN = 3.3
