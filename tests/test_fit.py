@@ -459,7 +459,12 @@ def test_fit_plot_draws_the_model_smoothly_over_the_data_range(params):
     fig = residual_figure(res)
     try:
         line = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "-"][0]
-        x, y = 1e-3 * np.asarray(line.get_xdata()), 1e-3 * np.asarray(line.get_ydata())  # mm -> m, mN -> N
+        prefix = {"": 1.0, "m": 1e-3, "µ": 1e-6, "n": 1e-9}  # axes in SI units with a prefix, e.g. [µm], [mN]
+        x_label = next(ax.get_xlabel() for ax in fig.axes if "semi-major" in ax.get_xlabel())
+        x_unit, y_unit = (t.rsplit("[", 1)[1].rstrip("]") for t in (x_label, fig.axes[0].get_ylabel()))
+        assert x_unit[-1] == "m" and y_unit[-1] == "N"
+        x = prefix[x_unit[:-1]] * np.asarray(line.get_xdata())
+        y = prefix[y_unit[:-1]] * np.asarray(line.get_ydata())
         assert x.size == 200 and x[0] == pytest.approx(a.min()) and x[-1] == pytest.approx(a.max())
         # the model itself at those sizes, computed independently of the fit
         truth = dim.load_curve_si(dim.contact_parameters(**PDMS, work_of_adhesion=res.work_of_adhesion,

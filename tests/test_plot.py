@@ -25,8 +25,9 @@ def test_error_map_draws_the_relative_difference(sweep):
     ax = Figure().add_subplot()
     plotting.error_map(sweep.dataset, "dmt", "jkr", ax)
     drawn = np.asarray(ax.collections[0].get_array())
-    # DMT W* = -1, JKR W* = -3/4 (closed forms): (W_dmt - W_jkr)/|W_jkr| = -1/3 everywhere.
-    np.testing.assert_allclose(drawn, -1.0 / 3.0, rtol=CLOSED_FORM_RTOL)
+    # DMT W* = -1, JKR W* = -3/4 (closed forms): the report's convention, model/ref - 1 in percent,
+    # is 100 (-1/(-3/4) - 1) = +100/3 everywhere (positive: DMT's pull-off is the stronger).
+    np.testing.assert_allclose(drawn, 100.0 / 3.0, rtol=CLOSED_FORM_RTOL)
     assert drawn.size == 3 * 4
 
 
@@ -42,14 +43,15 @@ def test_pull_off_and_ellipticity_maps(sweep):
     assert ax.get_xscale() == "log"
 
 
-def test_cli_writes_png_and_svg(sweep, tmp_path, capsys):
+def test_cli_writes_png_svg_and_pdf(sweep, tmp_path, capsys):
     assert main(["plot", str(sweep.path), "--out", str(tmp_path), "--reference", "jkr"]) == 0
     names = sorted(p.name for p in tmp_path.iterdir())
     assert names == sorted(f"s_{kind}.{fmt}" for kind in ("pull_off", "error", "ellipticity")
-                           for fmt in ("png", "svg"))
+                           for fmt in ("png", "svg", "pdf"))
     assert (tmp_path / "s_error.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "<svg" in (tmp_path / "s_error.svg").read_text()[:2000]
-    assert capsys.readouterr().out.count("wrote ") == 6
+    assert (tmp_path / "s_error.pdf").read_bytes()[:5] == b"%PDF-"
+    assert capsys.readouterr().out.count("wrote ") == 9
 
 
 def test_default_reference_is_the_papers_model():

@@ -7,7 +7,7 @@ below :data:`MIN_FONT_PT` on paper: a single-panel figure is one journal column
 context the report draws in; :func:`tidy_log_ticks` (called by
 :func:`verification._api.save_figure` on every log axis) gives log axes ticks whose
 labels never overlap; :data:`MODEL_LABELS` holds the readable name of every model
-slug (``dhfield.compare`` has no display-name table); :func:`rel_diff_label` writes
+slug (the library's table of ``dhfield.io._figures``); :func:`rel_diff_label` writes
 the one sign convention of a relative difference, ``model/ref − 1``.
 
 matplotlib is imported inside the functions: importing this module costs nothing.
@@ -16,6 +16,10 @@ from __future__ import annotations
 
 import contextlib
 import math
+
+# The readable name of each model slug: the library's one table (``dhfield plot``, ``fit --plot``,
+# ``solve --plot`` and ``cycle --plot`` use it too), so that a model has one name everywhere.
+from dhfield.io._figures import MODEL_LABELS, model_label  # noqa: F401 - re-exported for the sections
 
 #: Width of a single-column figure [in] (a two-column journal page's column).
 SINGLE_COLUMN_IN = 3.3
@@ -51,32 +55,6 @@ RC = {
     # against 0.35 s for a two-panel figure), and the report's runtime budget is 10 % over the PNG + SVG one
     "savefig.pad_inches": 0.03,
 }
-
-#: Readable name of each model slug (``--model`` names of ``dhfield.compare`` and the
-#: closures of the periphery section).  ``dhfield.compare`` has no display-name table;
-#: this is the one the report uses.
-MODEL_LABELS = {
-    "hertz": "Hertz",
-    "jkr": "JKR",
-    "dmt": "DMT",
-    "md": "Maugis–Dugdale",
-    "maugis-dugdale": "Maugis–Dugdale",
-    "dh-circular": "DH circular",
-    "dh-elliptic": "DH elliptic (paper)",
-    "dh-elliptic-jkr-beta": "DH elliptic, β from JKR",
-    "dh-elliptic-ray-average": "DH elliptic, ray average",
-    "dh-elliptic-two-axis": "DH elliptic, two axes",
-    "jkr-elliptic": "JKR elliptical (JG05)",
-    "jkr-elliptic-energy": "JKR elliptical (energy)",
-    "recommended": "recommended",
-    "bem": "BEM",
-}
-
-
-def model_label(slug: str) -> str:
-    """The readable name of a model slug (the slug itself when the table has none)."""
-    return MODEL_LABELS.get(str(slug), str(slug))
-
 
 def rel_diff_label(quantity: str = "", model: str = "model", ref: str = "BEM", percent: bool = True,
                    absolute: bool = False) -> str:
@@ -143,7 +121,7 @@ def tidy_log_ticks(ax):
     """Ticks of the log axes of ``ax`` whose labels never overlap.
 
     Decades only (labelled ``10^n``, at most about six of them) when the axis spans
-    more than three decades; 1-2-5 (or 1-2-3-5 within one decade) when it spans
+    more than three decades; 1-2-5 (or 1-2-3-5 within 1.5 decades) when it spans
     fewer, so that a short axis still carries labels, written as plain numbers
     where they all lie in [1e-3, 1e5] and as m×10^n otherwise; minor ticks never
     carry labels.  Hand-placed ticks (a FixedLocator) are kept.  Call after the
@@ -162,7 +140,7 @@ def tidy_log_ticks(ax):
             continue
         decades = math.log10(hi / lo)
         if decades <= 3.0:
-            subs = (1.0, 2.0, 3.0, 5.0) if decades <= 1.0 else (1.0, 2.0, 5.0)
+            subs = (1.0, 2.0, 3.0, 5.0) if decades <= 1.5 else (1.0, 2.0, 5.0)  # 0.3 labelled on 0.3..5
             plain = 1e-3 <= lo and hi < 1e5
             axis.set_major_locator(LogLocator(base=10.0, subs=subs, numticks=12))
             axis.set_major_formatter(FuncFormatter(lambda v, _pos, plain=plain: _tick_label(v, plain)))

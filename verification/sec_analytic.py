@@ -594,19 +594,26 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
     from dhfield.model import load_curve, pull_off
 
     cases = [(5.0, 0.8), (5.0, 0.9), (0.5, 0.8)]
-    fig, axes = plt.subplots(1, len(cases), figsize=figsize(2, 0.32))
+    fig, axes = plt.subplots(1, len(cases), figsize=figsize(2, 0.34), layout="constrained")
     jkr_note = ""
     cmap = plt.get_cmap("viridis")
-    for ax, (mu, beta0) in zip(axes, cases):
+    states = []
+    for mu, beta0 in cases:
         po = pull_off(mu=mu, beta0=beta0)
         grid = np.linspace(max(float(po.a_star), 1e-3), 6.0, 600)
         cv = load_curve(mu=mu, beta0=beta0, a_star=grid)
-        a_init = float(np.interp(1.0, cv.W_star, cv.a_star))  # W* = 1 on the stable branch
-        a_states = np.linspace(a_init, max(float(po.a_star), 1e-3), n_states)
-        st = load_curve(mu=mu, beta0=beta0, a_star=a_states)
+        # states evenly spaced in W* from 1 to the pull-off, on the stable branch (W* rises with a* there)
+        w_states = np.linspace(1.0, float(po.W_star), n_states)
+        a_states = np.interp(w_states, cv.W_star, grid)
+        a_states[-1] = max(float(po.a_star), 1e-3)
+        states.append(load_curve(mu=mu, beta0=beta0, a_star=a_states))
+    # one colour scale for the three panels: the colour is the state's W*, the same quantity in each
+    norm = plt.Normalize(min(float(np.min(st.W_star)) for st in states), max(float(np.max(st.W_star))
+                                                                            for st in states))
+    for ax, (mu, beta0), st in zip(axes, cases, states):
         t = np.linspace(0, 2 * np.pi, 361)
         for k in range(n_states):
-            col = cmap(k / max(n_states - 1, 1))
+            col = cmap(norm(float(st.W_star[k])))
             lab = "pull-off" if k == n_states - 1 else ("initial" if k == 0 else None)
             ax.plot(st.a_star[k] * np.cos(t), st.b_star[k] * np.sin(t), "-", color=col, lw=1.5,
                     label=f"contact ellipse ({lab})" if lab else None)
@@ -623,13 +630,11 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
             except Exception as exc:  # noqa: BLE001 - optional overlay
                 jkr_note = f"{type(exc).__name__}: {exc}"
         ax.set_aspect("equal")
-        sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, max(n_states - 1, 1)))
-        cb = fig.colorbar(sm, ax=ax, ticks=np.arange(n_states), shrink=0.6, pad=0.02)
-        cb.ax.set_yticklabels([f"{w:.2f}".replace("-", "−") for w in st.W_star])
-        cb.set_label("W* of the state", labelpad=0)
         ax.set_title(f"μ = {mu:g}, β0 = {beta0:g}")
-        ax.set_xlabel("x/c_r (θp = 0)" + jkr_line)  # under the panel: clear of the colour bars
+        ax.set_xlabel("x/c_r (θp = 0)" + jkr_line)  # under the panel
         ax.grid(alpha=0.3)
+    sm = plt.cm.ScalarMappable(cmap=cmap, norm=norm)
+    fig.colorbar(sm, ax=list(axes), shrink=0.9, pad=0.02, label="W* of the state (Eq. 34)")
     axes[0].set_ylabel("y/c_r")
     handles, labels = axes[0].get_legend_handles_labels()
     legend_below(fig, handles, labels, ncol=3)
@@ -775,8 +780,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     fig10, jkr_note = _fig_evolution(outdir, cfg["dpi"], "fig10_ellipse_evolution.png")
     cap10 = ("Reproduces paper Fig. 10: evolution of the contact ellipse (solid, semi-axes a*, b* = β0 a*, "
              "Eqs. 9, 17) and the adhesive ellipse (dashed, c*, d* = β0 c*, Eqs. 17, 19) from W* = 1 to the "
-             "load-controlled pull-off; the colour bar gives W* (Eq. 34) of each state, from W* = 1 (dark) to "
-             "pull-off (yellow).")
+             "load-controlled pull-off, five states evenly spaced in W*; the colour gives W* (Eq. 34) of each "
+             "state on one scale for the three panels, from W* = 1 (yellow) to the pull-off (dark).")
     if jkr_note:
         cap10 += (" The elliptical-JKR contact is omitted: dhfield.jkr_elliptic is not available "
                   f"({jkr_note}).")

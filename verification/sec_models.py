@@ -26,6 +26,7 @@ import numpy as np
 
 from verification._api import Figure, Section, check_le, save_figure
 from verification._oracles import boussinesq_displacement
+from verification._style import QUICK_DPI, REPORT_DPI, figsize, legend_below, model_label, rel_diff_label
 
 TITLE = "Comparison models (JKR, DMT, Maugis–Dugdale, circular DH, elliptical JKR): Figs. 8–9"
 
@@ -62,8 +63,8 @@ _MODEL_STYLE = {"dh-circular": ("k", "-"), "jkr": ("0.4", ":"), "dmt": ("0.4", "
 
 def _settings(quick):
     if quick:
-        return dict(n_mu=14, n_curve=150, dpi=72)
-    return dict(n_mu=60, n_curve=500, dpi=110)
+        return dict(n_mu=14, n_curve=150, dpi=QUICK_DPI)
+    return dict(n_mu=60, n_curve=500, dpi=REPORT_DPI)
 
 
 
@@ -221,28 +222,28 @@ def _fig8(outdir, dpi, n):
     from dhfield.model import load_curve, pull_off
 
     plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = plt.subplots(figsize=figsize(1, 0.8))
     a = np.unique(np.concatenate([np.geomspace(0.05, 0.6, n // 3), np.linspace(0.6, 3.2, n - n // 3)]))
     for b0 in BETA0:
         col = _COLORS[b0]
         cv = load_curve(mu=MU_FIG8, beta0=b0, a_star=a)
-        ax.plot(cv.W_star, cv.a_star, "-", color=col, lw=1.6, label=f"DH elliptic β0 = {b0:g}, μ = {MU_FIG8:g}")
+        ax.plot(cv.W_star, cv.a_star, "-", color=col, lw=1.6, label=f"{model_label('dh-elliptic')}, β0 = {b0:g}")
         po = pull_off(mu=MU_FIG8, beta0=b0)
         ax.plot(po.W_star, po.a_star, "o", color=col, ms=5)
         st = je.load_curve_nondimensional(a, b0)
-        ax.plot(st["W_star"], st["a_star"], "--", color=col, lw=1.2, label=f"JKR elliptical, β0 = {b0:g}")
+        ax.plot(st["W_star"], st["a_star"], "--", color=col, lw=1.2, label=f"{model_label('jkr-elliptic')}, β0 = {b0:g}")
         pj = je.pull_off_nondimensional(b0, 1.0)
         ax.plot(pj["W_star"], pj["a_star"], "s", color=col, mfc="none", ms=5)
     j = jkr.load_curve_nondimensional(a)
     ax.plot(j["W_star"], j["a_star"], ":", color="0.3", lw=1.5, label="JKR circular")
-    ax.set_xlabel("normalised load W* = W sinθ_skew / (2πRΔγ)  (Eq. 34)")
+    ax.set_xlabel("load W* = W sinθ / (2πRΔγ)  (Eq. 34)")
     ax.set_ylabel("contact semi-major axis a* (Eq. 32)")
     ax.set_xlim(-0.85, 1.2)
     ax.set_ylim(0, 3.2)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="lower right")
-    ax.set_title(f"Fig. 8: a* vs W* at μ = {MU_FIG8:g}, DH elliptic vs JKR elliptical")
+    ax.set_title(f"Fig. 8: a* vs W* at μ = {MU_FIG8:g}")
     fig.tight_layout()
+    legend_below(fig, ncol=2)
     cap = ("Reproduces Fig. 8 of Zini et al. (2018): contact semi-major axis a* against W* (Eq. 34) at μ = 5 "
            "for β0 = 0.8, 0.9, 0.99; solid: elliptical DH (Eqs. 31–36, β = β0), dashed: approximate elliptical "
            "JKR (Johnson & Greenwood 2005, same normalisation with sinθ_skew(β0)), dotted: circular JKR. "
@@ -252,37 +253,35 @@ def _fig8(outdir, dpi, n):
 
 def _fig9(outdir, dpi, mu, res):
     plt = _plt()
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11.5, 4.6))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=figsize(2, 0.42))
     for name, (col, ls) in _MODEL_STYLE.items():
-        ax.plot(mu, res[name][:, 0], ls, color=col, lw=1.4, label=name)
+        ax.plot(mu, res[name][:, 0], ls, color=col, lw=1.4, label=model_label(name))
     for j, b0 in enumerate(BETA0):
         col = _COLORS[b0]
-        ax.plot(mu, res["dh-elliptic"][:, j], "-", color=col, lw=1.6, label=f"DH elliptic β = β0 = {b0:g}")
+        ax.plot(mu, res["dh-elliptic"][:, j], "-", color=col, lw=1.6, label=f"DH elliptic (paper), β = β0 = {b0:g}")
         ax.plot(mu, res["dh-elliptic-jkr-beta"][:, j], "-.", color=col, lw=1.3,
-                label=f"DH elliptic β = β_JKR(pull-off), β0 = {b0:g}")
-        ax.plot(mu, res["jkr-elliptic"][:, j], ":", color=col, lw=1.6, label=f"JKR elliptical, β0 = {b0:g}")
+                label=f"DH elliptic, β = β_JKR(pull-off), β0 = {b0:g}")
+        ax.plot(mu, res["jkr-elliptic"][:, j], ":", color=col, lw=1.6,
+                label=f"{model_label('jkr-elliptic')}, β0 = {b0:g}")
         jk = res["jkr-elliptic"][:, j]
-        bx.plot(mu, 100 * (res["dh-elliptic"][:, j] / jk - 1), "-", color=col, lw=1.6,
-                label=f"β = β0, β0 = {b0:g}")
-        bx.plot(mu, 100 * (res["dh-elliptic-jkr-beta"][:, j] / jk - 1), "-.", color=col, lw=1.3,
-                label=f"β = β_JKR(pull-off), β0 = {b0:g}")
+        bx.plot(mu, 100 * (res["dh-elliptic"][:, j] / jk - 1), "-", color=col, lw=1.6)
+        bx.plot(mu, 100 * (res["dh-elliptic-jkr-beta"][:, j] / jk - 1), "-.", color=col, lw=1.3)
     for axis in (ax, bx):
         axis.set_xscale("log")
         axis.set_xticks([0.3, 0.5, 1, 2, 5, 8])
         axis.xaxis.set_major_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
         axis.xaxis.set_minor_formatter(plt.matplotlib.ticker.NullFormatter())
     ax.set_xlabel("Tabor parameter μ (Eq. 35)")
-    ax.set_ylabel("normalised pull-off force W*max (Eq. 34)")
+    ax.set_ylabel("pull-off load W*max (Eq. 34)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=6, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.14))  # below: hides no curve
     ax.set_title("Fig. 9a: W*max vs μ")
     bx.axhline(0, color="0.5", lw=0.8)
     bx.set_xlabel("Tabor parameter μ (Eq. 35)")
-    bx.set_ylabel("relative error vs JKR elliptical  (W*_DH/W*_JKR − 1) [%]")
+    bx.set_ylabel(rel_diff_label("W*max", "DH", "JKR ell."))
     bx.grid(alpha=0.3, which="both")
-    bx.legend(fontsize=7, loc="upper right")
-    bx.set_title("Fig. 9b: relative error of both DH assumptions")
+    bx.set_title("Fig. 9b: both DH assumptions vs elliptical JKR")
     fig.tight_layout()
+    legend_below(fig, ncol=3, axes=[ax])  # panel (b) uses the same colours and line styles as (a)
     cap = ("Reproduces Fig. 9a/9b of Zini et al. (2018). (a) Load-controlled pull-off W*max (Eq. 34) against μ "
            "(Eq. 35) for the elliptical DH model with β = β0 (Eq. 19) and with β_(pull-off) = β_JKR(pull-off), "
            "approximate elliptical JKR (Johnson & Greenwood 2005), and the circular models (DH of Greenwood & "

@@ -63,6 +63,9 @@ def run(args) -> int:
 
     if args.plot is not None:
         validate_output_path(args.plot, (".png",), "plot")
+        from ..io._figures import figure_paths
+
+        figure_paths(args.plot)  # the .svg and .pdf beside it checked before computing
     if args.machine_stiffness is not None:
         compliance.check_machine_stiffness("machine-stiffness", args.machine_stiffness)
     params = contact_parameters_from_args(args)
@@ -92,7 +95,7 @@ def run(args) -> int:
             force = float(load_unit(params.effective_radius, params.work_of_adhesion, rec["sin_skew"]))
             write_cycle_plot(data, args.plot, force_unit=force, approach_unit=float(params.approach_unit))
         if not args.json:   # the JSON stays one object
-            print(f"wrote {args.plot}")
+            print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
     return 0
 
 
@@ -216,7 +219,7 @@ def _run_bem(args, params) -> int:
             write_cycle_plot(data, args.plot, force_unit=float(params.load_unit),
                              approach_unit=float(params.approach_unit))
         if not args.json:   # the JSON stays one object
-            print(f"wrote {args.plot}")
+            print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
     if not rec["resolved"]:
         return EXIT_UNRESOLVED
     if rec["failures"]:

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import atomic_path, check_writable
+from ._figures import figure_paths, model_label, save_figure
 
 __all__ = ["write_cycle_plot"]
 
@@ -18,7 +18,8 @@ def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dp
     path_data : dict
         From :func:`dhfield.compliance.cycle_path`.
     path : path-like
-        PNG file to write (atomically).
+        PNG file to write; an SVG and a PDF are written beside it (same path, suffixes
+        ``.svg`` and ``.pdf``), all three checked first and written atomically.
     force_unit, approach_unit : float, optional
         SI scales [N] and [m] of W* and delta* (both or neither); the axes are then
         in mN and um, else nondimensional (Eq. 34 and c_r^2/R).
@@ -35,10 +36,8 @@ def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dp
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    png = Path(path)
-    if png.suffix.lower() != ".png":
-        raise ValueError(f"plot must be a .png file path; got {str(png)!r}")
-    check_writable(png, "plot")
+    paths = figure_paths(path)
+    png = paths[0]
     rec = path_data["record"]
     si = force_unit is not None
     fs = 1e3 * force_unit if si else 1.0  # mN
@@ -87,11 +86,14 @@ def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dp
     inn = rec["jump_in_W_star"] * fs
     inn = 0.0 if abs(inn) < 1e-12 * max(1.0, abs(out)) else inn  # rounding of a zero-load landing
     unit = " mN" if si else ""
-    ax.set_title(f"{rec['model']}: β0 = {rec['beta0']:.3g}, μ = {rec['mu']:.3g}; {machine}\n"
+    ax.set_title(f"{model_label(rec['model'])}: β0 = {rec['beta0']:.3g}, μ = {rec['mu']:.3g}; {machine}\n"
                  f"jump in at W = {inn:.4g}{unit}, jump out at W = {out:.4g}{unit}; {energy}", fontsize=9)
-    ax.legend(fontsize=8, loc="lower right", framealpha=0.9)
-    fig.tight_layout()
-    with atomic_path(png, "plot") as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
-    plt.close(fig)
+    handles, labels = ax.get_legend_handles_labels()  # below the axes: inside, it hid the curve's minimum
+    fig.legend(handles, labels, fontsize=8, loc="lower center", ncol=2, frameon=False)
+    fig.set_size_inches(6.4, 5.2)
+    fig.tight_layout(rect=(0, 0.13, 1, 1))
+    try:
+        save_figure(fig, paths, dpi)
+    finally:
+        plt.close(fig)
     return png

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._figures import figure_paths, save_figure
+from ._figures import figure_paths, model_label, save_figure, si_prefix
 
 __all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
            "FORCE_UNITS", "LENGTH_UNITS"]
@@ -267,31 +267,35 @@ def residual_figure(fit, *, n=200):
     import matplotlib.pyplot as plt
 
     a_curve, w_curve, d_curve = fit.model_curve(n)
-    a_mm = 1e3 * np.asarray(fit.contact_size)
+    a_scale, a_unit = si_prefix(np.nanmax(np.abs(fit.contact_size)), "m")
+    a_data = np.asarray(fit.contact_size) / a_scale
     with_approach = fit.approach is not None
     cols = 2 if with_approach else 1
     fig, axes = plt.subplots(2, cols, figsize=(5.2 * cols, 5.6), sharex=True, squeeze=False,
                              gridspec_kw={"height_ratios": (2.2, 1.0)})
-    blocks = [("load W [mN]", "load residual [mN]", 1e3, fit.load, w_curve, fit.load_residuals, "o", "C0")]
+    blocks = [("load W", "load residual", "N", fit.load, w_curve, fit.load_residuals, "o", "C0")]
     if with_approach:
-        blocks.append(("approach δ [µm]", "approach residual [µm]", 1e6, fit.approach, d_curve,
-                       fit.approach_residuals, "s", "C2"))
-    for k, (label, res_label, scale, data, curve, residuals, marker, colour) in enumerate(blocks):
+        blocks.append(("approach δ", "approach residual", "m", fit.approach, d_curve, fit.approach_residuals,
+                       "s", "C2"))
+    for k, (label, res_label, unit, data, curve, residuals, marker, colour) in enumerate(blocks):
+        scale, prefixed = si_prefix(np.nanmax(np.abs(data)), unit)
+        r_scale, r_prefixed = si_prefix(np.nanmax(np.abs(residuals)), unit)  # residuals: their own prefix
         ax = axes[0, k]
-        ax.plot(a_mm, scale * np.asarray(data), marker, ms=4.5, color=colour, label="data", zorder=3)
-        ax.plot(1e3 * a_curve, scale * np.asarray(curve), "-", lw=1.6, color="C1", label=f"{fit.model} fit")
-        ax.set_ylabel(label)
+        ax.plot(a_data, np.asarray(data) / scale, marker, ms=4.5, color=colour, label="data", zorder=3)
+        ax.plot(np.asarray(a_curve) / a_scale, np.asarray(curve) / scale, "-", lw=1.6, color="C1",
+                label=f"{model_label(fit.model)}, fitted")
+        ax.set_ylabel(f"{label} [{prefixed}]")
         ax.legend(fontsize=9, loc="best", frameon=False)
         ax.grid(alpha=0.25)
         ax = axes[1, k]
         ax.axhline(0.0, color="0.5", lw=0.8)
-        ax.plot(a_mm, scale * np.asarray(residuals), marker, ms=4.5, color=colour)
-        ax.set_ylabel(res_label)
-        ax.set_xlabel("contact semi-major axis a [mm]")
+        ax.plot(a_data, np.asarray(residuals) / r_scale, marker, ms=4.5, color=colour)
+        ax.set_ylabel(f"{res_label} [{r_prefixed}]")
+        ax.set_xlabel(f"contact semi-major axis a [{a_unit}]")
         ax.grid(alpha=0.25)
     title = (f"Δγ = {format_with_uncertainty(fit.work_of_adhesion, fit.work_of_adhesion_stderr, 'J/m²')},  "
              f"σ₀ = {format_with_uncertainty(fit.max_adhesive_stress, fit.max_adhesive_stress_stderr, 'Pa')}"
-             f"  (± 1 s.e.; μ = {_three_digits(fit.mu)}, β₀ = {_three_digits(fit.beta0)})")
+             f"\n(± 1 s.e.; μ = {_three_digits(fit.mu)}, β₀ = {_three_digits(fit.beta0)})")
     fig.suptitle(title, fontsize=10)
     notes = [m for m in (("not identifiable: see the fit's message" if not fit.success else ""),
                          ("model outside its validated range: see the fit's warning" if fit.warning else "")) if m]

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._figures import figure_paths, save_figure
+from ._figures import figure_paths, model_label, save_figure
 
 __all__ = ["solve_figure", "write_solve_plot", "REFERENCE_MODEL"]
 
@@ -239,7 +239,7 @@ def _reference_curve(ax, result, ak, fk):
     span = max(top - float(np.nanmin(delta[ok])), 1e-12)
     ok &= delta <= top + 0.6 * span  # the unloading end of the curve, where the BEM path lies
     ax.plot(delta[ok] * ak, load[ok] * fk, "-", color="0.55", lw=1.3,
-            label=f"{REFERENCE_MODEL} (analytic)")
+            label=f"{model_label(REFERENCE_MODEL)} (analytic)")
 
 
 def write_solve_plot(result, path, *, params=None, dpi=150) -> tuple[Path, Path, Path]:
