@@ -42,33 +42,47 @@ itself: no parameter was fitted to the ground truth.
 
 Load curve
 ----------
-Each point of the ellipse's curve is a point of the sphere's MD curve at the same mu,
-contact radius a_s, plus the corrections that turn the sphere into the ellipse at the two
-ends of the transition, each taken at the same position relative to its own pull-off
-(load control: a_MD, a_JKR, a_GVG the pull-off contact sizes of MD on the sphere, JKR and
-GVG; the DMT curves have theirs at a = 0).  Above the pull-off, with the shift x >= 0,
+The ellipse's curve is built from the limits' curves, each taken at the same position
+relative to its own pull-off (load control; a_MD, a_JKR, a_GVG the pull-off contact sizes
+of MD on the sphere, JKR and GVG; DMT has its pull-off at a = 0).  Above the pull-off, with
+the shift x >= 0,
 
 .. math::
 
-    W^* &= W^*_{MD}(a_{MD} + x) + g\,[W^*_{GVG}(a_{GVG} + x) - W^*_{JKR}(a_{JKR} + x)]
-           + (1 - g)\,[(C_{ell} - C_{sph})\,x^3 + 1 - \sin\theta_{skew}],  \qquad (T2)
+    W^* &= (1 - g)\\,(C_{ell}\\,x^3 - \\sin\\theta_{skew}) + g\\,W^*_{GVG}(a_{GVG} + x)
+           + \\sin\\theta_{skew}\\,\\epsilon(x),  \\qquad (T2)
 
-    \delta^* &= \delta^*_{MD}(a_{MD} + x) + g\,[\delta^*_{GVG}(a_{GVG} + x)
-           - \delta^*_{JKR}(a_{JKR} + x)] + (1 - g)(D_{ell} - 1)\,x^2,  \qquad (T3)
+    \\epsilon(x) &= W^*_{MD}(a_{MD} + x) - (1 - g)\\,(C_{sph}\\,x^3 - 1) - g\\,W^*_{JKR}(a_{JKR} + x),
 
-    a^* &= a_p + x, \quad a_p = a_{MD} + g\,(a_{GVG} - a_{JKR}), \qquad
-    b^* = a^*\,[(1 - g)\,\beta_0 + g\,\beta_{GVG}],  \qquad (T4)
+    \\delta^* &= \\delta^*_{MD}(a_{MD} + x) + g\\,[\\delta^*_{GVG}(a_{GVG} + x)
+           - \\delta^*_{JKR}(a_{JKR} + x)] + (1 - g)(D_{ell} - 1)\\,x^2,  \\qquad (T3)
+
+    a^* &= a_p + x, \\quad a_p = a_{MD} + g\\,(a_{GVG} - a_{JKR}), \\qquad
+    b^* = a^*\\,[(1 - g)\\,\\beta_0 + g\\,\\beta_{GVG}],  \\qquad (T4)
 
 where ``C_sph = 2/(3 pi)`` and ``C_ell`` are the Hertz loads per a*^3 of the sphere and the
 ellipse (Eq. 10 with sin(theta_skew), Eq. 34), ``D_ell`` the ellipse's Hertz approach per
-a*^2 (Eq. 14a; 1 for the sphere) and beta_GVG GVG's contact ellipticity at its argument:
-the DMT brackets are the elliptical DMT curve minus the sphere's, both Hertz minus a
-constant.  Below the pull-off (a* < a_p, the unstable branch under load control) the
-shift becomes a scale, ``t = a*/a_p`` in [0, 1): every curve is taken at t times its
-pull-off size and the DMT brackets at a = 0 (1 - sin(theta_skew) and 0), so the curve runs
-down to a* = 0 and the JKR and GVG curves are covered entirely.  At a* = a_p both forms
-agree with zero slope, since every curve is at its pull-off: the curve is continuously
-differentiable there, smooth elsewhere.
+a*^2 (Eq. 14a; 1 for the sphere) and beta_GVG GVG's contact ellipticity at its argument.
+Eq. (T2) is the blend of the elliptical DMT and GVG curves with the weight g of Eq. (T1),
+plus epsilon, the sphere's departure of MD from the same blend of its own limits, scaled
+by the ellipse's adhesive load sin(theta_skew); epsilon and its slope vanish at x = 0.
+Below the pull-off (a* < a_p, the unstable branch under load control) the shift becomes
+a scale, ``t = a*/a_p`` in [0, 1): every curve is taken at t times its pull-off size and
+
+.. math::
+
+    W^* = -\\sin\\theta_{skew} + (W^*_{GVG,po} + \\sin\\theta_{skew})\\,g\\,R_{MD}
+          \\left(R_{GVG}/R_{JKR}\\right)^{g^2},  \\qquad (T5)
+
+with ``R_MD = (W*_MD + 1)/(W*_MD,po + 1)``, ``R_JKR = (W*_JKR + 1)/(W*_JKR,po + 1)``,
+``R_GVG = (W*_GVG + sin)/(W*_GVG,po + sin)`` the growths of the three loads above their
+pull-offs (all >= 1, 1 at t = 1; the exponent g^2 keeps W* above the pull-off load on this
+branch, checked on a grid by the tests); the approach is Eq. (T3) at the scaled sizes
+(the DMT bracket 0) plus ``m a_p (t - 1) t^2`` (Eq. T6), with m the difference of the two
+forms' slopes d(delta*)/da* at a_p, so that delta* is continuously differentiable there.
+The curve runs down to a* = 0, where W* = sin(theta_skew) W*_MD(0), and covers the JKR
+and GVG curves entirely.  At a* = a_p both forms of W* agree with zero slope, since every
+curve is at its pull-off.
 
 Limits, exact: mu -> 0 (g -> 0, a_MD -> 0, MD -> DMT) gives the Hertz ellipse minus
 sin(theta_skew), the elliptical DMT; mu -> infinity (g -> 1, MD -> JKR, a_MD -> a_JKR)
@@ -90,7 +104,7 @@ limits' (Hertz's beta0 and GVG's), a model quantity, not a solved one.
 
 Cost: one GVG pull-off per distinct beta0 and one MD pull-off per distinct mu (about
 0.2 ms each, vectorised); a (beta0 x mu) map costs the sum, not the product.  Equation
-labels (T1)-(T4) are this module's.
+labels (T1)-(T6) are this module's.
 """
 from __future__ import annotations
 
@@ -288,9 +302,11 @@ def load_curve_nondimensional(a_star, beta0, mu, *, control="load"):
         t = np.where(above, 1.0, a_e / a_p)  # scale below it (a_p > 0 there)
     md_c, jk_c, gv_c = _limit_curves(t * sph["a"] + x, t * jk["a"] + x, t * ell["a"] + x, beta0, mu)
     # above: Eqs. (T2), (T3)
-    dmt_w = (ell["c_ell"] - _C_SPHERE) * x**3 + 1.0 - ell["sin"]  # elliptical DMT minus the sphere's
+    # the sphere's MD minus its shift-aligned DMT-JKR blend: 0 with zero slope at x = 0
+    resid = md_c["W_star"] - (1.0 - g) * (_C_SPHERE * x**3 - 1.0) - g * jk_c["W_star"]
+    w = np.array((1.0 - g) * (ell["c_ell"] * x**3 - ell["sin"]) + g * gv_c["W_star"]
+                 + ell["sin"] * resid)  # Eq. (T2)
     dmt_d = (ell["d_ell"] - 1.0) * x**2
-    w = np.array(md_c["W_star"] + g * (gv_c["W_star"] - jk_c["W_star"]) + (1.0 - g) * dmt_w)  # Eq. (T2)
     d = np.array(md_c["delta_star"] + g * (gv_c["delta_star"] - jk_c["delta_star"])
                  + (1.0 - g) * dmt_d)  # Eq. (T3)
     below = ~above
