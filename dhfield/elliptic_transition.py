@@ -109,10 +109,12 @@ labels (T1)-(T6) are this module's.
 from __future__ import annotations
 
 import numpy as np
+from scipy import special
 
-from . import hertz, jkr, jkr_elliptic_energy, maugis_dugdale
+from . import jkr, jkr_elliptic_energy, maugis_dugdale
 from ._adhesion import check_material, load_unit, scalar_or_array, tabor_parameter
 from ._validation import check_control, check_interval, check_tabor
+from .elliptic import complete_k
 from .geometry import sin_skew_angle
 from .jkr_elliptic import check_geometry
 from .records import pull_off_record
@@ -150,7 +152,7 @@ def transition_weight(mu, control="load"):
     Returns
     -------
     ndarray
-        g [-]: 0 at the DMT limit (mu -> 0), 1 at the JKR limit (mu -> infinity).
+        The weight g [-]: 0 at the DMT limit (mu -> 0), 1 at the JKR limit (mu -> infinity).
     """
     check_control(control)
     mu = check_tabor("mu", mu)
@@ -159,10 +161,18 @@ def transition_weight(mu, control="load"):
 
 
 def _hertz_constants(beta0):
-    """C_ell (Hertz W* per a*^3) and D_ell (Hertz delta* per a*^2) of the ellipse, Eqs. (10), (14a), (34)."""
+    """C_ell (Hertz W* per a*^3) and D_ell (Hertz delta* per a*^2) of the ellipse (R = E* = 1).
+
+    Eq. (10) with Eq. (11)'s Carlson form, ``W = pi a^3/sqrt(R_D(0, beta^2, 1) R_D(0, 1, beta^2))``,
+    times sin(theta_skew)/(2 pi) (Eq. 34); Eq. (14a), ``delta = Po b K(k) = 3 W K(k)/(2 pi a)``.
+    Both are those of :mod:`dhfield.hertz` (1 and 2/(3 pi) at the circle), restated here to keep this
+    module on the comparison layer.
+    """
     beta0 = np.asarray(beta0, float)
-    c_ell = sin_skew_angle(beta0) * hertz.load(1.0, beta0) / (2.0 * np.pi)  # Eqs. (10), (34), R = E* = 1
-    return c_ell, hertz.approach(1.0, beta0)  # Eq. (14a)
+    b2 = beta0 * beta0
+    w1 = np.pi / np.sqrt(special.elliprd(0.0, b2, 1.0) * special.elliprd(0.0, 1.0, b2))  # Eqs. (10), (11)
+    c_ell = sin_skew_angle(beta0) * w1 / (2.0 * np.pi)  # Eq. (34)
+    return c_ell, 3.0 * w1 * complete_k(beta0) / (2.0 * np.pi)  # Eq. (14a)
 
 
 def _sphere(mu, control):

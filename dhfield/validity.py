@@ -146,13 +146,13 @@ JKR_PROXY_MU = 10.0
 _REFERENCE = elliptic_transition.MODEL_NAME
 
 
-def _departure_warning(w_paper, w_ref):
+def _departure_warning(w_paper, w_ref, reason=""):
     w_paper, w_ref = np.broadcast_arrays(np.asarray(w_paper, float), np.asarray(w_ref, float))
     dep = w_paper / w_ref - 1.0
 
     def one(x):
         if np.isnan(x):
-            return f"dh-elliptic could not be checked against {_REFERENCE}"
+            return f"dh-elliptic could not be checked against {_REFERENCE}{reason}"
         if not abs(x) > WARNING_THRESHOLD:
             return ""
         return (f"dh-elliptic pull-off departs from the recommended model {_REFERENCE} by {100 * x:+.1f} % "
@@ -213,9 +213,13 @@ def departure_warning(w_paper, mu, beta0, control, reference_w_star=None):
         Empty where the departure W*_paper/W*_md-elliptic - 1 is at most
         :data:`WARNING_THRESHOLD` in magnitude.
     """
+    reason = ""
     if reference_w_star is None:
-        reference_w_star = elliptic_transition.pull_off_nondimensional(beta0, mu, control=control).W_star
-    return _departure_warning(w_paper, np.reshape(reference_w_star, np.shape(w_paper)))
+        try:
+            reference_w_star = elliptic_transition.pull_off_nondimensional(beta0, mu, control=control).W_star
+        except (ValueError, RuntimeError) as exc:  # never take the paper's result down with the check
+            reference_w_star, reason = np.nan, f" ({exc})"
+    return _departure_warning(w_paper, np.broadcast_to(reference_w_star, np.shape(w_paper)), reason)
 
 
 def _known(model):
