@@ -278,7 +278,7 @@ def _evaluate(model, mu, beta0):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         if model == REFERENCE_MODEL:
-            st = elliptic_transition.pull_off_nondimensional(mu, beta0, "load")
+            st = elliptic_transition.pull_off_nondimensional(beta0, mu, control="load")
             force = 2.0 * st["W_star"] / sin_skew_angle(beta0)  # Eq. (34)
             warned = np.zeros(np.shape(force), bool)
         else:
