@@ -43,9 +43,9 @@ itself: no parameter was fitted to the ground truth.
 Load curve
 ----------
 The ellipse's curve is built from the limits' curves, each taken at the same position
-relative to its own pull-off (load control; a_MD, a_JKR, a_GVG the pull-off contact sizes
-of MD on the sphere, JKR and GVG; DMT has its pull-off at a = 0).  Above the pull-off, with
-the shift x >= 0,
+relative to its own pull-off (a_MD, a_JKR, a_GVG the load-control pull-off contact sizes of
+MD on the sphere, JKR and GVG; DMT has its pull-offs at a = 0).  Above the load-control
+pull-off, with the shift x >= 0,
 
 .. math::
 
@@ -54,20 +54,36 @@ the shift x >= 0,
 
     \\epsilon(x) &= W^*_{MD}(a_{MD} + x) - (1 - g)\\,(C_{sph}\\,x^3 - 1) - g\\,W^*_{JKR}(a_{JKR} + x),
 
-    \\delta^* &= \\delta^*_{MD}(a_{MD} + x) + g\\,[\\delta^*_{GVG}(a_{GVG} + x)
-           - \\delta^*_{JKR}(a_{JKR} + x)] + (1 - g)(D_{ell} - 1)\\,x^2,  \\qquad (T3)
+    \\delta^* &= (1 - g)\\,D_{ell}\\,x^2 + g\\,\\delta^*_{GVG}(a_{GVG} + x)
+           + \\kappa\\,[\\delta^*_{MD}(a_{MD} + x) - (1 - g)\\,x^2 - g\\,\\delta^*_{JKR}(a_{JKR} + x)],
+           \\qquad (T3)
 
     a^* &= a_p + x, \\quad a_p = a_{MD} + g\\,(a_{GVG} - a_{JKR}), \\qquad
     b^* = a^*\\,[(1 - g)\\,\\beta_0 + g\\,\\beta_{GVG}],  \\qquad (T4)
 
 where ``C_sph = 2/(3 pi)`` and ``C_ell`` are the Hertz loads per a*^3 of the sphere and the
-ellipse (Eq. 10 with sin(theta_skew), Eq. 34), ``D_ell`` the ellipse's Hertz approach per
-a*^2 (Eq. 14a; 1 for the sphere) and beta_GVG GVG's contact ellipticity at its argument.
-Eq. (T2) is the blend of the elliptical DMT and GVG curves with the weight g of Eq. (T1),
-plus epsilon, the sphere's departure of MD from the same blend of its own limits, scaled
-by the ellipse's adhesive load sin(theta_skew); epsilon and its slope vanish at x = 0.
-Below the pull-off (a* < a_p, the unstable branch under load control) the shift becomes
-a scale, ``t = a*/a_p`` in [0, 1): every curve is taken at t times its pull-off size and
+ellipse (Eqs. 10-11 with sin(theta_skew), Eq. 34), ``D_ell`` the ellipse's Hertz approach
+per a*^2 (Eq. 14a; 1 for the sphere), beta_GVG GVG's contact ellipticity at its argument and
+``kappa = delta*_GVG,d/delta*_JKR,d`` the ratio of the two JKR limits' approaches at their
+displacement-control pull-offs.  Eq. (T2) is the blend of the elliptical DMT and GVG curves
+with the weight g of Eq. (T1), plus epsilon, the sphere's departure of MD from the same
+blend of its own limits, scaled by the ellipse's adhesive load sin(theta_skew); epsilon
+and its slope vanish at x = 0.  Eq. (T3) is the same construction for the approach, the
+sphere's departure scaled by kappa.
+
+Below a_p (the unstable branch under load control) every limit is taken at a mapped size:
+the monotone C1 cubic (Fritsch-Butland slopes) through (0, 0), (a_d, a_X,d) and (a_p, a_X)
+for each limit X, with
+
+.. math::
+
+    a_d = a_{MD,d} + g\\,(a_{GVG,d} - a_{JKR,d}), \\qquad (T7)
+
+the sizes a_X,d of the displacement-control pull-offs; the approach is Eq. (T3) at the
+mapped sizes (its DMT terms vanish there: DMT's pull-offs are at a = 0) plus, on
+[a_d, a_p], ``m (a_p - a_d) u^2 (u - 1)``, u = (a* - a_d)/(a_p - a_d), m the difference of
+the two forms' slopes d(delta*)/da* at a_p (Eq. T6), so that delta* is continuously
+differentiable there; the load is
 
 .. math::
 
@@ -76,34 +92,39 @@ a scale, ``t = a*/a_p`` in [0, 1): every curve is taken at t times its pull-off 
 
 with ``R_MD = (W*_MD + 1)/(W*_MD,po + 1)``, ``R_JKR = (W*_JKR + 1)/(W*_JKR,po + 1)``,
 ``R_GVG = (W*_GVG + sin)/(W*_GVG,po + sin)`` the growths of the three loads above their
-pull-offs (all >= 1, 1 at t = 1; the exponent g^2 keeps W* above the pull-off load on this
-branch, checked on a grid by the tests); the approach is Eq. (T3) at the scaled sizes
-(the DMT bracket 0) plus ``m a_p (t - 1) t^2`` (Eq. T6), with m the difference of the two
-forms' slopes d(delta*)/da* at a_p, so that delta* is continuously differentiable there.
-The curve runs down to a* = 0, where W* = sin(theta_skew) W*_MD(0), and covers the JKR
-and GVG curves entirely.  At a* = a_p both forms of W* agree with zero slope, since every
-curve is at its pull-off.
+load-control pull-offs at the mapped sizes (all >= 1, 1 at a_p; the exponent g^2 keeps W*
+above the pull-off load on this branch, checked on a grid by the tests).  The curve runs
+down to a* = 0, where W* = sin(theta_skew) W*_MD(0), and covers the JKR and GVG curves
+entirely.  At a_p both forms of W* agree with zero slope, since every curve is at its
+pull-off.
 
 Limits, exact: mu -> 0 (g -> 0, a_MD -> 0, MD -> DMT) gives the Hertz ellipse minus
 sin(theta_skew), the elliptical DMT; mu -> infinity (g -> 1, MD -> JKR, a_MD -> a_JKR)
 gives GVG's curve; beta0 = 1 (GVG = JKR, C_ell = C_sph, D_ell = 1) gives MD.  At high load
 the curve tends to the Hertz ellipse to leading order in a*.
 
-**One model.** Every curve of Eq. (T2) is stationary at its own pull-off (x = 0), so the
-load curve is stationary at x = 0 with the value of Eq. (T1): under load control the
-pull-off of :func:`pull_off_nondimensional` is the minimum of :func:`load_curve_nondimensional`
-(tests check it).  Under displacement control the record is Eqs. (T1)-(T4) aligned at the
-minima of delta* of MD, JKR and GVG instead (the minimum of delta* of that
-displacement-aligned curve); the load curve here is the load-aligned one, whose own minimum
-of delta* differs from the displacement-control record (``python -m
-verification.bench_recommended`` prints by how much).
+**One model.**  Every curve of Eq. (T2) is stationary at its own pull-off (x = 0), so the
+load curve is stationary at a_p with the value of Eq. (T1), and no state of the curve lies
+below it (tests): the load-control record of :func:`pull_off_nondimensional` is the
+minimum of :func:`load_curve_nondimensional`, exactly.  The displacement-control record
+takes its contact size a_d and approach ``kappa delta*_MD,d`` from the curve's state at
+a_d, where every limit is at its minimum of delta* (so delta* is stationary there), and its
+load from Eq. (T1) with the displacement-control pull-offs and the sphere's
+displacement-control weight, which keeps it between the elliptical DMT and GVG's
+displacement-control pull-off (the curve's own W* at a_d, Eq. T5, can fall short of GVG's
+by up to 4 % at 10 deg).  Taken by dhfield's one pull-off rule (the local minimum of delta*
+nearest the high-load end) on a dense grid, the curve's displacement-control pull-off
+differs from this record by the figures ``python -m verification.bench_recommended``
+prints (10-90 deg x mu 0.01-100).
 
 The model defines no adhesive zone (``c_star``, ``d_star``: NaN) and no double-Hertz factor
 (``v``: NaN).  The contact ellipticity b*/a* of Eq. (T4) is the interpolation of the two
 limits' (Hertz's beta0 and GVG's), a model quantity, not a solved one.
 
-Cost: one GVG pull-off per distinct beta0 and one MD pull-off per distinct mu (about
-0.2 ms each, vectorised); a (beta0 x mu) map costs the sum, not the product.  Equation
+Cost: two GVG pull-offs (both controls) per distinct beta0 and one MD pull-off per distinct
+mu (two under displacement control), vectorised: below 1 ms per point for scattered points
+(``python -m verification.bench_recommended``); a (beta0 x mu) map costs the sum, not the
+product.  Equation
 labels (T1)-(T6) are this module's.
 """
 from __future__ import annotations
@@ -175,28 +196,46 @@ def _hertz_constants(beta0):
     return c_ell, 3.0 * w1 * complete_k(beta0) / (2.0 * np.pi)  # Eq. (14a)
 
 
-def _sphere(mu, control):
-    """MD pull-off state and the weight g per mu (distinct values evaluated once)."""
+def _sphere(mu, displacement=False):
+    """MD pull-off states and the weight g per mu (distinct values evaluated once).
+
+    Load control always (``g``, ``W``, ``a``, ``delta``); displacement control (``Wd``, ``ad``,
+    ``deltad``) where asked.
+    """
     u, inv = np.unique(np.ravel(mu), return_inverse=True)
-    rec = maugis_dugdale.pull_off_nondimensional(1.0, u, control=control)
-    g = (np.asarray(rec.W_star, float) + 1.0) / (_JKR_W_STAR[control] + 1.0)
-    out = {"g": g, "W": rec.W_star, "a": rec.a_star, "delta": rec.delta_star}
+    rec = maugis_dugdale.pull_off_nondimensional(1.0, u, control="load")
+    out = {"g": (np.asarray(rec.W_star, float) + 1.0) / (_JKR_W_STAR["load"] + 1.0), "W": rec.W_star,
+           "a": rec.a_star, "delta": rec.delta_star}
+    if displacement:
+        rd = maugis_dugdale.pull_off_nondimensional(1.0, u, control="displacement")
+        out.update(Wd=rd.W_star, ad=rd.a_star, deltad=rd.delta_star)
     return {k: np.asarray(v, float)[inv].reshape(np.shape(mu)) for k, v in out.items()}
 
 
-def _ellipse(beta0, control):
-    """GVG pull-off state, sin(theta_skew) and the Hertz constants per beta0 (distinct values once)."""
+def _ellipse(beta0, displacement=False):
+    """GVG pull-off states, sin(theta_skew) and the Hertz constants per beta0 (distinct values once)."""
     u, inv = np.unique(np.ravel(beta0), return_inverse=True)
-    rec = jkr_elliptic_energy.pull_off_nondimensional(u, 1.0, control=control)
+    rec = jkr_elliptic_energy.pull_off_nondimensional(u, 1.0, control="load")
     c_ell, d_ell = _hertz_constants(u)
     out = {"W": rec.W_star, "a": rec.a_star, "delta": rec.delta_star, "beta": rec.ellipticity,
            "sin": sin_skew_angle(u), "c_ell": c_ell, "d_ell": d_ell}
+    if displacement:
+        rd = jkr_elliptic_energy.pull_off_nondimensional(u, 1.0, control="displacement")
+        out.update(Wd=rd.W_star, ad=rd.a_star, deltad=rd.delta_star, betad=rd.ellipticity)
     return {k: np.asarray(v, float)[inv].reshape(np.shape(beta0)) for k, v in out.items()}
 
 
 def _jkr_state(control):
     rec = jkr.pull_off_nondimensional(1.0, 1.0, control=control)
     return {"W": float(rec.W_star), "a": float(rec.a_star), "delta": float(rec.delta_star)}
+
+
+def _weight_below(g, sph, jk, ell, w_md, w_jkr, w_gvg):
+    """Eq. (T5): W* below the pull-off from the three loads' growths above their pull-offs."""
+    r_md = (w_md + 1.0) / (sph["W"] + 1.0)
+    r_gvg = (w_gvg + ell["sin"]) / (ell["W"] + ell["sin"])
+    r_jkr = (w_jkr + 1.0) / (jk["W"] + 1.0)
+    return -ell["sin"] + (ell["W"] + ell["sin"]) * g * r_md * (r_gvg / r_jkr) ** (g * g)  # Eq. (T5)
 
 
 def pull_off_nondimensional(beta0, mu, *, control="load"):
@@ -211,14 +250,16 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     mu : array_like
         Tabor parameter of Eq. (35) [-]; broadcasts with ``beta0``.
     control : {'load', 'displacement'}
-        Loading mode: the minimum of W* (load) or of delta* (displacement) of the curve of
-        Eqs. (T2)-(T4) aligned at the pull-offs of that mode.
+        Loading mode: the minimum of W* (load) or of delta* (displacement) of the model's
+        load curve (:func:`load_curve_nondimensional`).
 
     Returns
     -------
     dhfield.records.PullOff
-        ``W_star`` of Eq. (T1); ``a_star``, ``b_star``, ``delta_star`` and ``ellipticity``
-        of Eqs. (T3)-(T4) at x = 0; ``c_star``, ``d_star``, ``v`` and
+        Load control: ``W_star`` of Eq. (T1), ``a_star`` = a_p, ``b_star``, ``delta_star``
+        and ``ellipticity`` of Eqs. (T3)-(T4) at x = 0.  Displacement control: ``W_star``
+        of Eq. (T1) with the displacement-control pull-offs, the size, shape and approach
+        of the curve at a_d (Eq. T7).  ``c_star``, ``d_star``, ``v`` and
         ``adhesive_ellipticity`` are NaN (the model defines no adhesive zone);
         ``at_zero_contact`` where a* = 0 (beta0 = 1 with MD's pull-off at zero contact).
 
@@ -226,15 +267,25 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     -----
     .. math:: W^* = -\\sin\\theta_{skew} + \\left(W^*_{GVG} + \\sin\\theta_{skew}\\right) g(\\mu)
 
-    (Eq. T1 of the module docstring; Eq. T2 at x = 0 is the same sum.)
+    (Eq. T1 of the module docstring, load control; Eq. T2 at x = 0 is the same sum.)
     """
     beta0, mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))
-    sph, ell, jk = _sphere(mu, control), _ellipse(beta0, control), _jkr_state(control)
+    disp = control == "displacement"
+    sph, ell = _sphere(mu, disp), _ellipse(beta0, True)
+    jk, jd = _jkr_state("load"), _jkr_state("displacement")
     g = sph["g"]
-    w = -ell["sin"] + (ell["W"] + ell["sin"]) * g  # Eq. (T1)
-    a = sph["a"] + g * (ell["a"] - jk["a"])  # Eq. (T4), x = 0
-    d = sph["delta"] + g * (ell["delta"] - jk["delta"])  # Eq. (T3), x = 0
-    beta = (1.0 - g) * beta0 + g * ell["beta"]  # Eq. (T4)
+    kappa = ell["deltad"] / jd["delta"]  # Eq. (T3)
+    if not disp:
+        w = -ell["sin"] + (ell["W"] + ell["sin"]) * g  # Eq. (T1)
+        a = sph["a"] + g * (ell["a"] - jk["a"])  # Eq. (T4), x = 0
+        d = g * ell["delta"] + kappa * (sph["delta"] - g * jk["delta"])  # Eq. (T3), x = 0
+        beta = (1.0 - g) * beta0 + g * ell["beta"]  # Eq. (T4)
+    else:  # the curve at a_d, where every limit is at its displacement-control pull-off (Eq. T7)
+        g_d = (sph["Wd"] + 1.0) / (jd["W"] + 1.0)  # the sphere's weight under displacement control
+        w = -ell["sin"] + (ell["Wd"] + ell["sin"]) * g_d  # Eq. (T1), displacement control
+        a = sph["ad"] + g * (ell["ad"] - jd["a"])  # Eq. (T7)
+        d = kappa * sph["deltad"]  # Eq. (T6) at a_d, every limit at its minimum of delta*
+        beta = (1.0 - g) * beta0 + g * ell["betad"]  # Eq. (T4)
     st = {"W_star": w, "a_star": a, "b_star": beta * a, "delta_star": d, "c_star": _NAN, "d_star": _NAN,
           "ellipticity": beta, "at_zero_contact": a == 0.0}
     return pull_off_record(MODEL_NAME, beta0, mu, st, control=control, sin_skew=ell["sin"], geometry="ellipse")
@@ -251,24 +302,37 @@ def _limit_curves(a_md, a_jkr, a_gvg, beta0, mu):
     return md_c, jk_c, gv_c
 
 
-def _slope_mismatch(sph, jk, ell, g, a_p, beta0, mu):
-    """d(delta*)/da* at a_p of the shifted form (T3) minus that of the scaled form (T6) [-].
+def _hermite_map(a, a_d, a_p, x_d, x_p):
+    """Eq. (T7): the monotone C1 cubic through (0, 0), (a_d, x_d), (a_p, x_p), and its slope at a_p.
 
-    Central differences (relative step 1e-6) of the three limit curves at their pull-off sizes.
+    Slopes: the secants at the ends, their harmonic mean at a_d (Fritsch & Butland 1984), which
+    keeps the cubic monotone.  a_d = 0 (no left piece) gives the straight line to (a_p, x_p).
     """
-    if a_p <= 0.0:
-        return 0.0
-    sizes = np.array([sph["a"], jk["a"], ell["a"]])
-    h = 1e-6 * np.maximum(sizes, 1e-3)
-    lo = _limit_curves(*(sizes - h), beta0, mu)
-    hi = _limit_curves(*(sizes + h), beta0, mu)
-    dd = [(float(hi[i]["delta_star"]) - float(lo[i]["delta_star"])) / (2.0 * h[i]) for i in range(3)]
-    shifted = dd[0] + g * (dd[2] - dd[1])
-    scaled = (sizes[0] * dd[0] + g * (sizes[2] * dd[2] - sizes[1] * dd[1])) / a_p
-    return shifted - scaled
+    s2 = (x_p - x_d) / (a_p - a_d)
+    if a_d <= 0.0:
+        return a * (x_p / a_p), x_p / a_p
+    s1 = x_d / a_d
+    m1 = 2.0 * s1 * s2 / (s1 + s2) if s1 * s2 > 0.0 else 0.0
+
+    def cubic(u, h, y0, y1, m0, m_1):
+        h00, h10 = 2 * u**3 - 3 * u**2 + 1, u**3 - 2 * u**2 + u
+        h01, h11 = -2 * u**3 + 3 * u**2, u**3 - u**2
+        return h00 * y0 + h10 * h * m0 + h01 * y1 + h11 * h * m_1
+
+    left = a < a_d
+    out = np.where(left, cubic(a / a_d, a_d, 0.0, x_d, s1, m1),
+                   cubic((a - a_d) / (a_p - a_d), a_p - a_d, x_d, x_p, m1, s2))
+    return out, s2
 
 
-def load_curve_nondimensional(a_star, beta0, mu, *, control="load"):
+def _slope(curve, size, beta0, mu):
+    """d(delta*)/da* of one limit curve at one size, by a central difference (relative step 1e-6)."""
+    h = 1e-6 * max(size, 1e-3)
+    lo, hi = curve(np.array([size - h, size + h]), beta0, mu)
+    return (hi - lo) / (2.0 * h)
+
+
+def load_curve_nondimensional(a_star, beta0, mu):
     """State of the recommended model at contact semi-major axis a*, in the paper's units.
 
     Parameters
@@ -279,9 +343,6 @@ def load_curve_nondimensional(a_star, beta0, mu, *, control="load"):
         Hertz ellipticity b/a of the geometry, in (0, 1] [-].
     mu : float
         Tabor parameter of Eq. (35) [-].
-    control : {'load', 'displacement'}
-        The pull-offs the curve is aligned at (module docstring); 'load', the default, is
-        the model's load curve, whose minimum of W* is the load-control pull-off record.
 
     Returns
     -------
@@ -291,45 +352,58 @@ def load_curve_nondimensional(a_star, beta0, mu, *, control="load"):
 
     Notes
     -----
-    Eqs. (T2)-(T4) of the module docstring above the pull-off size a_p, the scaled form
-    below it.  Each point costs one MD and one GVG state at a given contact size
-    (bracketing root finders).
+    Eqs. (T2)-(T4) of the module docstring above the pull-off size a_p, Eqs. (T5)-(T7)
+    below it.  Its minimum of W* is the load-control record, its minimum of delta* the
+    displacement-control record of :func:`pull_off_nondimensional`.  Each point costs one MD
+    and one GVG state at a given contact size (bracketing root finders).
     """
-    check_control(control)
     a_in = np.asarray(check_interval("a_star", a_star, 0.0, np.inf, low_open=False,
                                      what="contact semi-major axis a/c_r, dimensionless"), float)
     a_e = np.atleast_1d(a_in)
     beta0 = float(check_interval("beta0", beta0, 0.0, 1.0, what="Hertz ellipticity b/a, dimensionless"))
     mu = float(check_tabor("mu", mu))
-    sph = {k: float(v) for k, v in _sphere(np.asarray(mu), control).items()}
-    ell = {k: float(v) for k, v in _ellipse(np.asarray(beta0), control).items()}
-    jk = _jkr_state(control)
+    sph = {k: float(v) for k, v in _sphere(np.asarray(mu), True).items()}
+    ell = {k: float(v) for k, v in _ellipse(np.asarray(beta0), True).items()}
+    jk, jd = _jkr_state("load"), _jkr_state("displacement")
     g = sph["g"]
-    a_p = sph["a"] + g * (ell["a"] - jk["a"])  # Eq. (T4), the pull-off size
+    a_p = sph["a"] + g * (ell["a"] - jk["a"])  # Eq. (T4), the load-control pull-off size
+    a_d = sph["ad"] + g * (ell["ad"] - jd["a"])  # Eq. (T7), the displacement-control one
     above = a_e >= a_p
     x = np.where(above, a_e - a_p, 0.0)  # shift above the pull-off
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.where(above, 1.0, a_e / a_p)  # scale below it (a_p > 0 there)
-    md_c, jk_c, gv_c = _limit_curves(t * sph["a"] + x, t * jk["a"] + x, t * ell["a"] + x, beta0, mu)
-    # above: Eqs. (T2), (T3)
-    # the sphere's MD minus its shift-aligned DMT-JKR blend: 0 with zero slope at x = 0
+    md_c, jk_c, gv_c = _limit_curves(sph["a"] + x, jk["a"] + x, ell["a"] + x, beta0, mu)
+    # above: Eqs. (T2), (T3); the sphere's MD minus its shift-aligned DMT-JKR blend, 0 with zero slope at x = 0
     resid = md_c["W_star"] - (1.0 - g) * (_C_SPHERE * x**3 - 1.0) - g * jk_c["W_star"]
     w = np.array((1.0 - g) * (ell["c_ell"] * x**3 - ell["sin"]) + g * gv_c["W_star"]
                  + ell["sin"] * resid)  # Eq. (T2)
-    dmt_d = (ell["d_ell"] - 1.0) * x**2
-    d = np.array(md_c["delta_star"] + g * (gv_c["delta_star"] - jk_c["delta_star"])
-                 + (1.0 - g) * dmt_d)  # Eq. (T3)
+    kappa = ell["deltad"] / jd["delta"]  # Eq. (T3)
+    d = np.array((1.0 - g) * ell["d_ell"] * x**2 + g * gv_c["delta_star"]
+                 + kappa * (md_c["delta_star"] - (1.0 - g) * x**2 - g * jk_c["delta_star"]))  # Eq. (T3)
+    beta = np.array((1.0 - g) * beta0 + g * gv_c["beta"])  # Eq. (T4)
     below = ~above
     if np.any(below):
-        # Eq. (T5): relative growths of the three loads above their pull-offs, all 1 at t = 1
-        r_md = (md_c["W_star"][below] + 1.0) / (sph["W"] + 1.0)
-        r_gvg = (gv_c["W_star"][below] + ell["sin"]) / (ell["W"] + ell["sin"])
-        r_jkr = (jk_c["W_star"][below] + 1.0) / (jk["W"] + 1.0)
-        w[below] = -ell["sin"] + (ell["W"] + ell["sin"]) * g * r_md * (r_gvg / r_jkr) ** (g * g)  # Eq. (T5)
-        # Eq. (T6): the approach, C1 at a_p through the slope term m a_p (t - 1) t^2
-        tb = t[below]
-        d[below] += _slope_mismatch(sph, jk, ell, g, a_p, beta0, mu) * a_p * (tb - 1.0) * tb * tb
-    beta = (1.0 - g) * beta0 + g * gv_c["beta"]  # Eq. (T4)
+        ab = a_e[below]
+        maps = [_hermite_map(ab, a_d, a_p, lim["ad"], lim["a"]) for lim in (sph, jd | {"ad": jd["a"], "a": jk["a"]},
+                                                                              ell)]
+        (s_md, e_md), (s_jk, e_jk), (s_gv, e_gv) = maps
+        mb, jb, gb = _limit_curves(s_md, s_jk, s_gv, beta0, mu)
+        w[below] = _weight_below(g, sph, jk, ell, mb["W_star"], jb["W_star"], gb["W_star"])  # Eq. (T5)
+        # Eq. (T6): Eq. (T3) at the mapped sizes (the DMT terms vanish there), kappa delta*_MD at a_d
+        d_below = g * gb["delta_star"] + kappa * (mb["delta_star"] - g * jb["delta_star"])  # Eq. (T6)
+        if a_p > a_d:
+            # on [a_d, a_p] the cubic m (a_p - a_d) u^2 (u - 1), zero with zero slope at a_d and zero at
+            # a_p with slope m, joins the slope of Eq. (T3) there
+            def delta(i):
+                return lambda a, b, m: _limit_curves(a, a, a, b, m)[i]["delta_star"]
+
+            sl = [_slope(delta(i), size, beta0, mu) for i, size in enumerate((sph["a"], jk["a"], ell["a"]))]
+            if beta0 == 1.0:
+                sl[2] = sl[1]
+            shifted = g * sl[2] + kappa * (sl[0] - g * sl[1])
+            scaled = g * sl[2] * e_gv + kappa * (sl[0] * e_md - g * sl[1] * e_jk)
+            u = np.clip((ab - a_d) / (a_p - a_d), 0.0, None)
+            d_below = d_below + np.where(ab >= a_d, (shifted - scaled) * (a_p - a_d) * u * u * (u - 1.0), 0.0)
+        d[below] = d_below
+        beta[below] = (1.0 - g) * beta0 + g * gb["beta"]  # Eq. (T4)
     out = {"W_star": w, "a_star": a_e, "b_star": beta * a_e, "delta_star": d, "beta": beta}
     return {k: np.reshape(v, a_in.shape) for k, v in out.items()}
 

@@ -258,3 +258,21 @@ def test_jkr_and_dmt_sphere_helpers_are_the_limits_used():
     assert float(jkr.pull_off_nondimensional(1.0, 1.0).W_star) == -0.75
     a = np.array([0.5, 2.0])
     assert_allclose(dmt.load_curve_nondimensional(a)["W_star"] + 1.0, 2 * a**3 / (3 * np.pi), rtol=1e-15)
+
+
+@pytest.mark.parametrize("beta0", [0.05, 0.3, 0.8])
+@pytest.mark.parametrize("mu", [0.3, 2.0, 20.0])
+def test_displacement_record_is_the_curves_stationary_approach(beta0, mu):
+    """The displacement-control record's size and approach are the load curve's state at a_d, where
+    delta* is stationary (every limit at its own minimum of delta*); its load is Eq. (T1) with the
+    displacement-control pull-offs (module docstring), between DMT and GVG's."""
+    rec = _pull_off(beta0, mu, "displacement")
+    a_d = float(rec.a_star)
+    h = 1e-5 * a_d
+    c = et.load_curve_nondimensional(np.array([a_d - h, a_d, a_d + h]), beta0, mu)
+    assert c["delta_star"][1] == pytest.approx(float(rec.delta_star), rel=1e-9)
+    assert c["b_star"][1] == pytest.approx(float(rec.b_star), rel=1e-9)
+    slope = (c["delta_star"][2] - c["delta_star"][0]) / (2 * h)
+    assert abs(slope) < 1e-3  # O(h delta'') at a stationary point, against slopes of O(1) elsewhere
+    w_gvg = float(ee.pull_off_nondimensional(beta0, 1.0, control="displacement").W_star)
+    assert -sin_skew_angle(beta0) <= float(rec.W_star) <= w_gvg + 1e-12
