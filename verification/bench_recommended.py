@@ -66,7 +66,7 @@ def jkr_limit():
     got = et.pull_off_nondimensional(b0, 1e4).W_star
     gvg = jkr_elliptic_energy.pull_off_nondimensional(b0, 1.0).W_star
     print("JKR limit, mu = 1e4: W*_md-elliptic/W*_GVG - 1 at "
-          + ", ".join(f"{d:g} deg {100 * (g / r - 1):+.4f} %" for d, g, r in zip(deg, got, gvg)))
+          + ", ".join(f"{d:g} deg {100 * (g / r - 1):+.1e} %" for d, g, r in zip(deg, got, gvg)))
     sphere = float(maugis_dugdale.pull_off_nondimensional(1.0, 1e4).W_star)
     print(f"  at 90 deg: {float(got[-1]):.15f} against MD on the sphere {sphere:.15f}")
 
