@@ -9,7 +9,7 @@ from ._common import validity_epilog as _epilog
 
 
 def add_parser(sub) -> None:
-    from ..compare import CURVE_MODEL_NAMES
+    from ..compare import CURVE_MODEL_NAMES, DEFAULT_MODEL
 
     p = sub.add_parser("cycle", help="loading-unloading cycle: jump in, jump out, energy lost per cycle",
                        description="Approach from separation, jump into contact, unload to the jump out, under a "
@@ -18,8 +18,9 @@ def add_parser(sub) -> None:
                        "at the jump) or physical inputs in SI units (K in N/m).  See dhfield.compliance.",
                        epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
-    p.add_argument("--model", choices=CURVE_MODEL_NAMES, default="dh-elliptic",
-                   help="model (default: dh-elliptic, the paper's); dh-elliptic-jkr-beta has no curve")
+    p.add_argument("--model", choices=CURVE_MODEL_NAMES, default=DEFAULT_MODEL,
+                   help="model (default: md-elliptic, the recommended one; dh-elliptic is the paper's); "
+                   "dh-elliptic-jkr-beta has no curve")
     p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
                    help="machine stiffness, >= 0: N/m with physical inputs, K* (paper's units) with --beta0/--mu; "
                    "0 is load control; default: a rigid machine (displacement control)")
