@@ -64,8 +64,8 @@ pull-off, with the shift x >= 0,
 where ``C_sph = 2/(3 pi)`` and ``C_ell`` are the Hertz loads per a*^3 of the sphere and the
 ellipse (Eqs. 10-11 with sin(theta_skew), Eq. 34), ``D_ell`` the ellipse's Hertz approach
 per a*^2 (Eq. 14a; 1 for the sphere), beta_GVG GVG's contact ellipticity at its argument and
-``kappa = delta*_GVG,d/delta*_JKR,d`` the ratio of the two JKR limits' approaches at their
-displacement-control pull-offs.  Eq. (T2) is the blend of the elliptical DMT and GVG curves
+``kappa = delta*_GVG,po/delta*_JKR,po`` the ratio of the two JKR limits' approaches at their
+load-control pull-offs.  Eq. (T2) is the blend of the elliptical DMT and GVG curves
 with the weight g of Eq. (T1), plus epsilon, the sphere's departure of MD from the same
 blend of its own limits, scaled by the ellipse's adhesive load sin(theta_skew); epsilon
 and its slope vanish at x = 0.  Eq. (T3) is the same construction for the approach, the
@@ -107,8 +107,9 @@ the curve tends to the Hertz ellipse to leading order in a*.
 load curve is stationary at a_p with the value of Eq. (T1), and no state of the curve lies
 below it (tests): the load-control record of :func:`pull_off_nondimensional` is the
 minimum of :func:`load_curve_nondimensional`, exactly.  The displacement-control record
-takes its contact size a_d and approach ``kappa delta*_MD,d`` from the curve's state at
-a_d, where every limit is at its minimum of delta* (so delta* is stationary there), and its
+takes its contact size a_d and approach from the curve's state at
+a_d, where every limit is at its minimum of delta* (so delta* is stationary there:
+``g delta*_GVG,d + kappa (delta*_MD,d - g delta*_JKR,d)``), and its
 load from Eq. (T1) with the displacement-control pull-offs and the sphere's
 displacement-control weight, which keeps it between the elliptical DMT and GVG's
 displacement-control pull-off (the curve's own W* at a_d, Eq. T5, can fall short of GVG's
@@ -121,8 +122,8 @@ The model defines no adhesive zone (``c_star``, ``d_star``: NaN) and no double-H
 (``v``: NaN).  The contact ellipticity b*/a* of Eq. (T4) is the interpolation of the two
 limits' (Hertz's beta0 and GVG's), a model quantity, not a solved one.
 
-Cost: two GVG pull-offs (both controls) per distinct beta0 and one MD pull-off per distinct
-mu (two under displacement control), vectorised: below 1 ms per point for scattered points
+Cost: one GVG pull-off per distinct beta0 and one MD pull-off per distinct mu (of each
+control under displacement control), vectorised and kept per value for the process: below 1 ms per point for scattered points
 (``python -m verification.bench_recommended``); a (beta0 x mu) map costs the sum, not the
 product.  Equation
 labels (T1)-(T6) are this module's.
@@ -196,33 +197,68 @@ def _hertz_constants(beta0):
     return c_ell, 3.0 * w1 * complete_k(beta0) / (2.0 * np.pi)  # Eq. (14a)
 
 
+#: States of the limits per distinct input value, computed once per process: a fit or a CLI call at
+#: one beta0 and many mu (or the reverse) pays each GVG and MD pull-off once.  Pure functions of
+#: their key; cleared whole when it reaches :data:`_CACHE_SIZE` entries.
+_CACHE: dict = {}
+_CACHE_SIZE = 1 << 16
+
+
+def _per_value(kind, values, compute):
+    """``compute`` (a vectorised function of a 1-D array -> dict of arrays) at each distinct value of
+    ``values``, from the cache where it was computed before; dict of arrays of the shape of ``values``."""
+    u, inv = np.unique(np.ravel(values), return_inverse=True)
+    cache = _CACHE.setdefault(kind, {})
+    missing = [x for x in u.tolist() if x not in cache]
+    if missing:
+        res = compute(np.asarray(missing, float))
+        if len(cache) + len(missing) > _CACHE_SIZE:
+            cache.clear()
+        for i, x in enumerate(missing):
+            cache[x] = {k: float(np.asarray(v, float).ravel()[i]) for k, v in res.items()}
+    rows = [cache[x] for x in u.tolist()]
+    return {k: np.array([r[k] for r in rows])[inv].reshape(np.shape(values)) for k in rows[0]}
+
+
 def _sphere(mu, displacement=False):
     """MD pull-off states and the weight g per mu (distinct values evaluated once).
 
     Load control always (``g``, ``W``, ``a``, ``delta``); displacement control (``Wd``, ``ad``,
     ``deltad``) where asked.
     """
-    u, inv = np.unique(np.ravel(mu), return_inverse=True)
-    rec = maugis_dugdale.pull_off_nondimensional(1.0, u, control="load")
-    out = {"g": (np.asarray(rec.W_star, float) + 1.0) / (_JKR_W_STAR["load"] + 1.0), "W": rec.W_star,
-           "a": rec.a_star, "delta": rec.delta_star}
+    def load(m):
+        rec = maugis_dugdale.pull_off_nondimensional(1.0, m, control="load")
+        return {"g": (np.asarray(rec.W_star, float) + 1.0) / (_JKR_W_STAR["load"] + 1.0), "W": rec.W_star,
+                "a": rec.a_star, "delta": rec.delta_star}
+
+    def disp(m):
+        rd = maugis_dugdale.pull_off_nondimensional(1.0, m, control="displacement")
+        return {"Wd": rd.W_star, "ad": rd.a_star, "deltad": rd.delta_star}
+
+    out = _per_value("md-load", mu, load)
     if displacement:
-        rd = maugis_dugdale.pull_off_nondimensional(1.0, u, control="displacement")
-        out.update(Wd=rd.W_star, ad=rd.a_star, deltad=rd.delta_star)
-    return {k: np.asarray(v, float)[inv].reshape(np.shape(mu)) for k, v in out.items()}
+        out.update(_per_value("md-displacement", mu, disp))
+    return out
 
 
 def _ellipse(beta0, displacement=False):
-    """GVG pull-off states, sin(theta_skew) and the Hertz constants per beta0 (distinct values once)."""
-    u, inv = np.unique(np.ravel(beta0), return_inverse=True)
-    rec = jkr_elliptic_energy.pull_off_nondimensional(u, 1.0, control="load")
-    c_ell, d_ell = _hertz_constants(u)
-    out = {"W": rec.W_star, "a": rec.a_star, "delta": rec.delta_star, "beta": rec.ellipticity,
-           "sin": sin_skew_angle(u), "c_ell": c_ell, "d_ell": d_ell}
+    """GVG pull-off states, sin(theta_skew), the Hertz constants and kappa per beta0 (load control;
+    ``Wd``, ``ad``, ``deltad``, ``betad`` of displacement control where asked)."""
+    def load(b):
+        rec = jkr_elliptic_energy.pull_off_nondimensional(b, 1.0, control="load")
+        c_ell, d_ell = _hertz_constants(b)
+        return {"W": rec.W_star, "a": rec.a_star, "delta": rec.delta_star, "beta": rec.ellipticity,
+                "sin": sin_skew_angle(b), "c_ell": c_ell, "d_ell": d_ell,
+                "kappa": np.asarray(rec.delta_star, float) / _jkr_state("load")["delta"]}  # Eq. (T3)
+
+    def disp(b):
+        rd = jkr_elliptic_energy.pull_off_nondimensional(b, 1.0, control="displacement")
+        return {"Wd": rd.W_star, "ad": rd.a_star, "deltad": rd.delta_star, "betad": rd.ellipticity}
+
+    out = _per_value("gvg-load", beta0, load)
     if displacement:
-        rd = jkr_elliptic_energy.pull_off_nondimensional(u, 1.0, control="displacement")
-        out.update(Wd=rd.W_star, ad=rd.a_star, deltad=rd.delta_star, betad=rd.ellipticity)
-    return {k: np.asarray(v, float)[inv].reshape(np.shape(beta0)) for k, v in out.items()}
+        out.update(_per_value("gvg-displacement", beta0, disp))
+    return out
 
 
 def _jkr_state(control):
@@ -271,10 +307,9 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     """
     beta0, mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))
     disp = control == "displacement"
-    sph, ell = _sphere(mu, disp), _ellipse(beta0, True)
+    sph, ell = _sphere(mu, disp), _ellipse(beta0, disp)
     jk, jd = _jkr_state("load"), _jkr_state("displacement")
-    g = sph["g"]
-    kappa = ell["deltad"] / jd["delta"]  # Eq. (T3)
+    g, kappa = sph["g"], ell["kappa"]
     if not disp:
         w = -ell["sin"] + (ell["W"] + ell["sin"]) * g  # Eq. (T1)
         a = sph["a"] + g * (ell["a"] - jk["a"])  # Eq. (T4), x = 0
@@ -284,7 +319,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
         g_d = (sph["Wd"] + 1.0) / (jd["W"] + 1.0)  # the sphere's weight under displacement control
         w = -ell["sin"] + (ell["Wd"] + ell["sin"]) * g_d  # Eq. (T1), displacement control
         a = sph["ad"] + g * (ell["ad"] - jd["a"])  # Eq. (T7)
-        d = kappa * sph["deltad"]  # Eq. (T6) at a_d, every limit at its minimum of delta*
+        d = g * ell["deltad"] + kappa * (sph["deltad"] - g * jd["delta"])  # Eq. (T6) at a_d
         beta = (1.0 - g) * beta0 + g * ell["betad"]  # Eq. (T4)
     st = {"W_star": w, "a_star": a, "b_star": beta * a, "delta_star": d, "c_star": _NAN, "d_star": _NAN,
           "ellipticity": beta, "at_zero_contact": a == 0.0}
@@ -375,7 +410,7 @@ def load_curve_nondimensional(a_star, beta0, mu):
     resid = md_c["W_star"] - (1.0 - g) * (_C_SPHERE * x**3 - 1.0) - g * jk_c["W_star"]
     w = np.array((1.0 - g) * (ell["c_ell"] * x**3 - ell["sin"]) + g * gv_c["W_star"]
                  + ell["sin"] * resid)  # Eq. (T2)
-    kappa = ell["deltad"] / jd["delta"]  # Eq. (T3)
+    kappa = ell["kappa"]  # Eq. (T3)
     d = np.array((1.0 - g) * ell["d_ell"] * x**2 + g * gv_c["delta_star"]
                  + kappa * (md_c["delta_star"] - (1.0 - g) * x**2 - g * jk_c["delta_star"]))  # Eq. (T3)
     beta = np.array((1.0 - g) * beta0 + g * gv_c["beta"])  # Eq. (T4)
@@ -387,7 +422,7 @@ def load_curve_nondimensional(a_star, beta0, mu):
         (s_md, e_md), (s_jk, e_jk), (s_gv, e_gv) = maps
         mb, jb, gb = _limit_curves(s_md, s_jk, s_gv, beta0, mu)
         w[below] = _weight_below(g, sph, jk, ell, mb["W_star"], jb["W_star"], gb["W_star"])  # Eq. (T5)
-        # Eq. (T6): Eq. (T3) at the mapped sizes (the DMT terms vanish there), kappa delta*_MD at a_d
+        # Eq. (T6): Eq. (T3) at the mapped sizes (the DMT terms vanish there)
         d_below = g * gb["delta_star"] + kappa * (mb["delta_star"] - g * jb["delta_star"])  # Eq. (T6)
         if a_p > a_d:
             # on [a_d, a_p] the cubic m (a_p - a_d) u^2 (u - 1), zero with zero slope at a_d and zero at
