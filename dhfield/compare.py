@@ -66,7 +66,7 @@ Which model to use when
   angles 10-90 deg (beta0 down to 0.047 and below) and any mu: within 0.34 % of every
   stored BEM case (beta0 0.5-1, mu 0.3-5, load control;
   ``python -m verification.elliptic_transition``), exactly DMT as mu -> 0, GVG as
-  mu -> infinity and MD at beta0 = 1; about 0.2 ms per point vectorised; never warns.
+  mu -> infinity and MD at beta0 = 1; under 1 ms per point vectorised; never warns.
 * **dh-elliptic** (the paper's) to reproduce the paper.  It under-predicts the
   adhesion increasingly as the contact gets more elliptical and mu larger (table
   below); its records carry a ``warning`` where its pull-off departs from
