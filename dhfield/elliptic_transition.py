@@ -115,18 +115,19 @@ displacement-control weight, which keeps it between the elliptical DMT and GVG's
 displacement-control pull-off (the curve's own W* at a_d, Eq. T5, can fall short of GVG's
 by up to 4 % at 10 deg).  Taken by dhfield's one pull-off rule (the local minimum of delta*
 nearest the high-load end) on a dense grid, the curve's displacement-control pull-off
-differs from this record by the figures ``python -m verification.bench_recommended``
-prints (10-90 deg x mu 0.01-100).
+differs from this record by up to 8.6 % in W* (10 deg, mu = 1) and 1 % in delta* (75 deg,
+mu = 0.3) over 10-90 deg x mu 0.01-100, and not at all at beta0 = 1 or for mu >= 3 (``python
+-m verification.bench_recommended``).
 
 The model defines no adhesive zone (``c_star``, ``d_star``: NaN) and no double-Hertz factor
 (``v``: NaN).  The contact ellipticity b*/a* of Eq. (T4) is the interpolation of the two
 limits' (Hertz's beta0 and GVG's), a model quantity, not a solved one.
 
 Cost: one GVG pull-off per distinct beta0 and one MD pull-off per distinct mu (of each
-control under displacement control), vectorised and kept per value for the process: below 1 ms per point for scattered points
-(``python -m verification.bench_recommended``); a (beta0 x mu) map costs the sum, not the
-product.  Equation
-labels (T1)-(T6) are this module's.
+control under displacement control), vectorised and kept per value for the process: below
+1 ms per point for scattered points (``python -m verification.bench_recommended``); a
+(beta0 x mu) map costs the sum, not the product.  Equation labels (T1)-(T7) are this
+module's.
 """
 from __future__ import annotations
 
