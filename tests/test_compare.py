@@ -194,7 +194,7 @@ def test_warning_appears_and_disappears():
     """The paper's model departs from the recommended model (issue 20; the two-axis closure before) by
     more than 2 % at (mu, beta0) = (1, 0.9) and by less at (1, 0.99) (issue 10's threshold)."""
     beta0 = np.array([0.9, 0.99])
-    res = compare.compare(1.0, beta0, models=["dh-elliptic", "md-elliptic"])
+    res = compare.compare(mu=1.0, beta0=beta0, models=["dh-elliptic", "md-elliptic"])
     rec, ref = res["dh-elliptic"], res["md-elliptic"]
     dep = rec["W_star"] / ref["W_star"] - 1
     assert list(np.abs(dep) > compare.WARNING_THRESHOLD) == [True, False]
@@ -202,7 +202,7 @@ def test_warning_appears_and_disappears():
     assert "md-elliptic" in rec["warning"][0] and f"{100 * dep[0]:+.1f} %" in rec["warning"][0]
     assert list(ref["warning"]) == ["", ""]
     # the same warning without compare's shared reference
-    assert compare.pull_off("dh-elliptic", 1.0, 0.9)["warning"] == rec["warning"][0]
+    assert compare.pull_off("dh-elliptic", mu=1.0, beta0=0.9)["warning"] == rec["warning"][0]
     assert compare.pull_off("dh-elliptic", 1.0, 0.9, check_closure=False)["warning"] == ""
 
 
@@ -210,7 +210,7 @@ def test_closure_departure_is_still_the_two_axis_one():
     """closure_departure keeps its meaning: the paper's pull-off against the two-axis closure
     (-4.0 % at (1, 0.9), -0.4 % at (1, 0.99), issue 10)."""
     beta0 = np.array([0.9, 0.99])
-    res = compare.compare(1.0, beta0, models=["dh-elliptic", "dh-elliptic-two-axis"], check_closure=False)
+    res = compare.compare(mu=1.0, beta0=beta0, models=["dh-elliptic", "dh-elliptic-two-axis"], check_closure=False)
     dep = compare.closure_departure(1.0, beta0)
     assert_allclose(res["dh-elliptic"]["W_star"] / res["dh-elliptic-two-axis"]["W_star"] - 1, dep, rtol=1e-12)
     assert list(np.abs(dep) > compare.WARNING_THRESHOLD) == [True, False]
@@ -288,7 +288,7 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
 
     monkeypatch.setattr(validity.elliptic_transition, "pull_off_nondimensional", refuse)
     monkeypatch.setitem(compare.MODELS, "md-elliptic", refuse)
-    res = compare.compare(1.0, 0.9, models=["dh-elliptic", "md-elliptic", "jkr"])
+    res = compare.compare(mu=1.0, beta0=0.9, models=["dh-elliptic", "md-elliptic", "jkr"])
     assert np.isnan(res["md-elliptic"]["W_star"]) and "failed" in res["md-elliptic"]["warning"]
     assert tuple(res["md-elliptic"]) == PULL_OFF_KEYS
     assert "could not be checked" in res["dh-elliptic"]["warning"] and np.isfinite(res["dh-elliptic"]["W_star"])
@@ -301,8 +301,8 @@ def test_paper_model_is_checked_beyond_the_closure_cap():
     """Above the closures' mu cap (30) and below their beta0 floor (0.3), where elliptical JKR stood in
     or nothing did before issue 20, the paper's model is checked against the recommended model."""
     for mu, beta0 in ((100.0, 0.9), (2.0, 0.1)):
-        rec = compare.pull_off("dh-elliptic", mu, beta0)
-        ref = compare.pull_off("md-elliptic", mu, beta0)["W_star"]
+        rec = compare.pull_off("dh-elliptic", mu=mu, beta0=beta0)
+        ref = compare.pull_off("md-elliptic", mu=mu, beta0=beta0)["W_star"]
         assert f"{100 * (rec['W_star'] / ref - 1):+.1f} %" in rec["warning"]
         assert "prefer the model md-elliptic" in rec["warning"]
 

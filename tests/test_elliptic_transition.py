@@ -35,14 +35,8 @@ def _pull_off(beta0, mu, control="load"):
 def test_registered_as_the_default():
     assert compare.DEFAULT_MODEL == NAME == "md-elliptic" and compare.MODEL_NAMES[0] == NAME
     assert NAME in compare.CURVE_MODEL_NAMES
-    rec = compare.pull_off(NAME, beta0=0.5, mu=2.0) if _keyword_api() else compare.pull_off(NAME, 2.0, 0.5)
+    rec = compare.pull_off(NAME, beta0=0.5, mu=2.0)
     assert rec.model == NAME and rec.geometry == "ellipse" and rec.warning == ""
-
-
-def _keyword_api():
-    import inspect
-
-    return list(inspect.signature(compare.pull_off).parameters)[1] == "beta0"
 
 
 @pytest.mark.parametrize("control", ["load", "displacement"])
@@ -166,7 +160,7 @@ def test_bad_input():
     with pytest.raises(ValueError, match="exactly one"):
         et.pull_off_force(1e-3, 1e6, 0.05, 1e5)
     with pytest.raises(ValueError, match="mu"):
-        compare.pull_off(NAME, -1.0, 0.5)
+        compare.pull_off(NAME, mu=-1.0, beta0=0.5)
 
 
 @settings(max_examples=40, deadline=None)
@@ -176,7 +170,7 @@ def test_bad_input():
 def test_accepted_domain_answers_without_warning(beta0, log_mu, control):
     """Every (beta0, mu) compare accepts: finite, between the DMT and GVG limits, no warning."""
     mu = 10.0**log_mu
-    r = compare.pull_off(NAME, mu, beta0, control)
+    r = compare.pull_off(NAME, mu=mu, beta0=beta0, control=control)
     assert r.warning == ""
     assert np.isfinite(r.W_star) and np.isfinite(r.a_star) and np.isfinite(r.delta_star)
     w_dmt = -sin_skew_angle(beta0)
@@ -219,7 +213,7 @@ def test_jkr_side_at_mu_1e4_is_gvg():
     assert_allclose(got, gvg, rtol=1e-4)
     sphere = md.pull_off_nondimensional(1.0, 1e4)
     assert _pull_off(1.0, 1e4).W_star == pytest.approx(float(sphere.W_star), rel=1e-14)
-    assert compare.pull_off(NAME, 1e4, 1.0).W_star == pytest.approx(float(sphere.W_star), rel=1e-14)
+    assert compare.pull_off(NAME, mu=1e4, beta0=1.0).W_star == pytest.approx(float(sphere.W_star), rel=1e-14)
 
 
 #: issue 20's practitioner: PDMS (E = 1.8 MPa, nu = 0.49) cylinders R = 3 mm, dgamma = 45 mJ/m^2,
@@ -244,13 +238,13 @@ def test_si_pulloff_answers_at_every_angle_without_warning(capsys, deg):
 
 def test_paper_model_warns_against_the_recommended_model():
     """dh-elliptic's departure warning now uses md-elliptic: the same departure, measured directly."""
-    rec = compare.pull_off("dh-elliptic", 2.0, 0.5)
+    rec = compare.pull_off("dh-elliptic", mu=2.0, beta0=0.5)
     ref = float(_pull_off(0.5, 2.0).W_star)
     dep = float(rec.W_star) / ref - 1
     assert abs(dep) > compare.WARNING_THRESHOLD
     assert f"{100 * dep:+.1f} %" in rec.warning and "md-elliptic" in rec.warning
     # near the circle both are the circular models (DH vs MD: within 2 % there), so no departure warning
-    assert "departs" not in compare.pull_off("dh-elliptic", 1.0, 0.99)["warning"]
+    assert "departs" not in compare.pull_off("dh-elliptic", mu=1.0, beta0=0.99)["warning"]
 
 
 def test_jkr_and_dmt_sphere_helpers_are_the_limits_used():

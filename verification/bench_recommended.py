@@ -134,14 +134,14 @@ def cost():
     bb, mm = points()
     core_disp = per_point(lambda: et.pull_off_nondimensional(bb, mm, control="displacement"), bb.size)
     bb, mm = points()
-    public = per_point(lambda: compare.pull_off("md-elliptic", mm, bb), bb.size)
+    public = per_point(lambda: compare.pull_off("md-elliptic", mu=mm, beta0=bb), bb.size)
     bb, mm = points(200)
-    paper = per_point(lambda: compare.pull_off("dh-elliptic", mm, bb), 200)
+    paper = per_point(lambda: compare.pull_off("dh-elliptic", mu=mm, beta0=bb), 200)
     bb, mm = points(200)
-    paper_alone = per_point(lambda: compare.pull_off("dh-elliptic", mm, bb, check_closure=False), 200)
+    paper_alone = per_point(lambda: compare.pull_off("dh-elliptic", mu=mm, beta0=bb, check_closure=False), 200)
     bb, mm = points(20)
-    single = per_point(lambda: [compare.pull_off("md-elliptic", float(m), float(b)) for b, m in zip(bb, mm)], 20)
-    curve = per_point(lambda: compare.load_curve("md-elliptic", 2.0, 0.3, n=200), 1)
+    single = per_point(lambda: [compare.pull_off("md-elliptic", mu=float(m), beta0=float(b)) for b, m in zip(bb, mm)], 20)
+    curve = per_point(lambda: compare.load_curve("md-elliptic", mu=2.0, beta0=0.3, n=200), 1)
     print(f"cost per point (1000 fresh random points, vectorised): record core {core:.3f} ms (load), "
           f"{core_disp:.3f} ms (displacement); compare.pull_off {public:.3f} ms "
           f"(target <= {TARGET_MS:g} ms: {'PASS' if public <= TARGET_MS else 'FAIL'}); one scalar call "
