@@ -467,7 +467,7 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
                                                      AUTO_ZONE_CELLS * g.dx / zone) / 2))
     n = n_needed if n is None else check_cells(n)
     cells = float(n_needed) ** 2
-    w_star = float(elliptic_transition.pull_off_nondimensional(mu, beta0)["W_star"])
+    w_star = float(elliptic_transition.pull_off_nondimensional(beta0, mu).W_star)
     return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n), law_obj)),
                     PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
                     memory_limit(), max_seconds, w_star)

@@ -276,7 +276,8 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
         From :func:`contact_parameters` or :func:`contact_parameters_from_principal_radii`
         (scalars or arrays).
     model : str
-        One of :data:`dhfield.compare.MODEL_NAMES`; default the paper's ``dh-elliptic``.
+        One of :data:`dhfield.compare.MODEL_NAMES`; default the recommended ``md-elliptic``
+        (:data:`dhfield.compare.DEFAULT_MODEL`).
     control : {'load', 'displacement'}
         Loading mode.
 
@@ -292,7 +293,7 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
     Other Parameters
     ----------------
     check_closure : bool
-        For ``dh-elliptic``: compare with the two-axis closure and fill ``warning``
+        For ``dh-elliptic``: compare with the recommended model and fill ``warning``
         (:func:`dhfield.compare.pull_off`).
     """
     return pull_off_record_si(compare.pull_off(model, mu=params.mu, beta0=params.beta0, control=control,
@@ -338,7 +339,8 @@ def load_curve_si(params: ContactParameters, semi_major=None, n=200, *, model=co
     n : int
         Number of points of the default grid.
     model : str
-        One of :data:`dhfield.compare.CURVE_MODEL_NAMES`; default ``dh-elliptic``.
+        One of :data:`dhfield.compare.CURVE_MODEL_NAMES`; default the recommended
+        ``md-elliptic``.
     force : array_like, optional
         Loads W [N] (positive compressive), each at least the pull-off force:
         the curve is then evaluated on its stable branch at these loads

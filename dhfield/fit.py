@@ -13,7 +13,7 @@ fitted is exactly what ``dhfield pulloff`` and ``dhfield curve`` compute):
   standard errors, NaN with the reason where the data cannot determine them.
 
 Both carry the warning ``dhfield pulloff`` gives at the fitted state (a model
-outside its validated range; dh-elliptic departing from the two-axis closure).
+outside its validated range; dh-elliptic departing from the recommended model md-elliptic).
 
 Both take the geometry and the material as a
 :class:`dhfield.dimensional.ContactParameters` (from
@@ -99,7 +99,7 @@ class WorkOfAdhesionFit:
         :func:`dhfield.compare.pull_off` (and ``dhfield pulloff``) gives at the
         fitted (mu, beta0) -- a model outside its validated range
         (:func:`dhfield.compare.validity_message`) or, for ``dh-elliptic``, a
-        departure from the two-axis closure above
+        departure from the recommended model ``md-elliptic`` above
         :data:`dhfield.compare.WARNING_THRESHOLD` (dgamma biased).
     work_of_adhesion_stderr : float
         Standard error of dgamma [J m^-2], t-adjusted: the replicates' standard
@@ -256,8 +256,8 @@ class CurveFit:
     warning : str
         Empty, or the warning :func:`dhfield.compare.pull_off` (and
         ``dhfield pulloff``) gives at the fitted (mu, beta0): the model outside
-        its validated range, or ``dh-elliptic`` departing from the two-axis
-        closure (the estimates are then biased).
+        its validated range, or ``dh-elliptic`` departing from the recommended
+        model ``md-elliptic`` (the estimates are then biased).
     params : dhfield.dimensional.ContactParameters
         The contact at the estimates (for :meth:`model_curve`).
     """
@@ -401,9 +401,9 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
     Other Parameters
     ----------------
     check_closure : bool
-        For ``dh-elliptic``: solve the two-axis closure once at the fitted
-        state (a few seconds) and add its departure to ``warning`` as
-        :func:`dhfield.compare.pull_off` does.  The validity range of every
+        For ``dh-elliptic``: evaluate the recommended model ``md-elliptic`` at
+        the fitted state (about a millisecond) and add the departure to ``warning``
+        as :func:`dhfield.compare.pull_off` does.  The validity range of every
         model is checked regardless.
 
     Raises
@@ -738,9 +738,9 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     Other Parameters
     ----------------
     check_closure : bool
-        For ``dh-elliptic``: compare with the two-axis closure at the fitted
-        state (about a second) and add its departure to ``warning``, as
-        :func:`dhfield.compare.pull_off` does.  The validity range of every
+        For ``dh-elliptic``: compare with the recommended model ``md-elliptic``
+        at the fitted state (about a millisecond) and add the departure to
+        ``warning``, as :func:`dhfield.compare.pull_off` does.  The validity range of every
         model is checked regardless.
 
     Notes
@@ -779,8 +779,7 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     On 40 seeded noisy PDMS curves the truth was within 2 standard errors 38/40 (dgamma) and 39/40 (sigma0)
     times (``python -m verification.fit_round_trip``).  A fit takes 20-35
     load-curve evaluations: under a second for dh-elliptic, MD and DH circular,
-    15-35 s for the two closures; the warning's closure check adds about a
-    second for dh-elliptic.
+    15-35 s for the two closures.
     """
     _check_params(params)
     if model not in CURVE_FIT_MODEL_NAMES:

@@ -110,7 +110,7 @@ def test_case_beyond_time_is_refused_before_solving_with_the_analytic_value(monk
     assert not calls                                              # nothing solved
     assert err.n_needed == adhesive_start.plan_grid(10.0, 0.4826).n_needed
     assert err.seconds > 1.0 and err.memory_bytes > 0.0
-    ref = float(elliptic_transition.pull_off_nondimensional(10.0, 0.4826)["W_star"])
+    ref = float(elliptic_transition.pull_off_nondimensional(0.4826, 10.0).W_star)
     assert err.analytic_W_star == pytest.approx(ref, rel=RTOL_SAME_NUMBER)
     msg = str(err)
     assert "\n" not in msg and f"n >= {err.n_needed}" in msg and f"{ref:.4f}" in msg and "1 s allowed" in msg

@@ -15,7 +15,8 @@ KEYS = ("beta0", "mu", "W_star", "a_star", "c_star", "v", "delta_star", "model")
 
 
 def test_pulloff_json(capsys):
-    assert main(["pulloff", "--beta0", "0.9", "--mu", "1", "--json"]) == 0
+    # the paper's model through the CLI (the default is md-elliptic since issue 20)
+    assert main(["pulloff", "--beta0", "0.9", "--mu", "1", "--model", "dh-elliptic", "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
     for k in KEYS:
         assert k in rec
@@ -24,8 +25,9 @@ def test_pulloff_json(capsys):
 
 def test_curve_netcdf_and_csv(tmp_path):
     nc, csv = tmp_path / "c.nc", tmp_path / "c.csv"
-    assert main(["curve", "--beta0", "0.9", "--mu", "1", "--out", str(nc)]) == 0
-    assert main(["curve", "--beta0", "0.9", "--mu", "1", "--n", "7", "--out", str(csv)]) == 0
+    paper = ["--model", "dh-elliptic"]  # compared with dhfield.model below
+    assert main(["curve", "--beta0", "0.9", "--mu", "1", *paper, "--out", str(nc)]) == 0
+    assert main(["curve", "--beta0", "0.9", "--mu", "1", "--n", "7", *paper, "--out", str(csv)]) == 0
     ds = read_netcdf(nc)
     ref = model.load_curve(mu=1.0, beta0=0.9)
     np.testing.assert_array_equal(ds["W_star"].values, ref.W_star)
@@ -88,7 +90,7 @@ def test_console_script_no_traceback():
 
 def test_netcdf_round_trip_in_fresh_process(tmp_path):
     nc = tmp_path / "c.nc"
-    assert main(["curve", "--beta0", "0.8", "--mu", "5", "--n", "11", "--out", str(nc)]) == 0
+    assert main(["curve", "--beta0", "0.8", "--mu", "5", "--n", "11", "--model", "dh-elliptic", "--out", str(nc)]) == 0
     code = ("import sys, json, numpy as np; from dhfield.io import read_netcdf; ds = read_netcdf(sys.argv[1]);"
             "print(json.dumps({'W': ds['W_star'].values.tolist(), 'attrs': {k: str(v) for k, v in ds.attrs.items()}}))")
     r = subprocess.run([sys.executable, "-c", code, str(nc)], capture_output=True, text=True, check=True)

@@ -31,7 +31,8 @@ ISSUE = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder-rad
 
 def test_replicate_forces_give_a_standard_error(capsys):
     # issue 17's must-show command: three replicates, the paper's model (which warns here, mu ~ 9.7)
-    code, out, err = _run(capsys, ["fit", "--pull-off-force", "-0.80e-3", "-0.83e-3", "-0.78e-3", *ISSUE, "--json"])
+    code, out, err = _run(capsys, ["fit", "--pull-off-force", "-0.80e-3", "-0.83e-3", "-0.78e-3", *ISSUE,
+                                   "--model", "dh-elliptic", "--json"])
     assert code == 0, err
     rec = json.loads(out)
     assert rec["n_replicates"] == 3 and rec["forces"] == [-0.80e-3, -0.83e-3, -0.78e-3]
@@ -84,21 +85,28 @@ def test_pull_off_fit_warns_exactly_like_pulloff(capsys):
     assert code == 0 and err == fit_err and json.loads(out)["warning"] == rec["warning"]
 
 
-def test_curve_fit_with_the_default_model_warns(capsys, tmp_path):
-    # issue 17: 'fit --data' with the default model printed nothing on stderr (beta0 = 0.48 at 60 degrees)
+@pytest.mark.parametrize("model", ["dh-elliptic", None])
+def test_curve_fit_with_the_paper_model_warns(capsys, tmp_path, model):
+    # issue 17: 'fit --data' with the then-default paper's model printed nothing on stderr (beta0 = 0.48 at
+    # 60 degrees); it warns now.  The default is the recommended md-elliptic since issue 20, validated
+    # everywhere: silent (None below).
     from dhfield import dimensional as dim
 
     p = dim.contact_parameters(2e6, 0.5, 2e6, 0.5, 5e-3, math.pi / 3, 0.04, 2.5e4)
     a = p.length_unit * np.linspace(0.3, 3.0, 12)
-    w = dim.load_curve_si(p, semi_major=a)["force"]
+    w = dim.load_curve_si(p, semi_major=a, model=model or "md-elliptic")["force"]
     (tmp_path / "d.csv").write_text("force,semi_major\n" + "".join(f"{x!r},{y!r}\n" for x, y in zip(map(float, w), map(float, a))))
     code, out, err = _run(capsys, ["fit", "--data", str(tmp_path / "d.csv"), "--youngs-modulus", "2e6",
                                    "--poisson-ratio", "0.5", "--cylinder-radius", "5e-3", "--skew-angle-deg", "60",
-                                   "--json"])
+                                   "--json"] + (["--model", model] if model else []))
     assert code == 0, err
     rec = json.loads(out)
-    assert "dh-elliptic is validated for" in rec["warning"]
-    assert err == f"dhfield: warning: {rec['warning']}\n"
+    if model:
+        assert "dh-elliptic is validated for" in rec["warning"]
+        assert err == f"dhfield: warning: {rec['warning']}\n"
+    else:
+        assert rec["model"] == "md-elliptic" and rec["warning"] == "" and err == ""
+        assert rec["work_of_adhesion"] == pytest.approx(0.04, rel=1e-6)  # its own synthetic curve back
 
 
 # ------------------------------------------------------------------------- data files: units, degenerate data

@@ -23,10 +23,11 @@ TOL_LOAD_INVERSION = 1e-9
 
 
 def test_registry_names():
-    assert set(compare.MODELS) == {"dh-elliptic", "dh-elliptic-two-axis", "dh-elliptic-ray-average",
+    assert set(compare.MODELS) == {"md-elliptic", "dh-elliptic", "dh-elliptic-two-axis", "dh-elliptic-ray-average",
                                    "dh-elliptic-jkr-beta", "dh-circular", "jkr", "dmt", "md", "jkr-elliptic",
                                    "jkr-elliptic-energy"}
-    assert compare.MODEL_NAMES[0] == compare.DEFAULT_MODEL == "dh-elliptic"
+    # issue 20: the recommended model is the default and the first column of compare
+    assert compare.MODEL_NAMES[0] == compare.DEFAULT_MODEL == compare.RECOMMENDED_MODEL == "md-elliptic"
     assert set(compare.CURVE_MODEL_NAMES) == set(compare.MODEL_NAMES) - {"dh-elliptic-jkr-beta"}
 
 
@@ -190,18 +191,29 @@ def test_closures_are_the_circle_at_beta0_one(name):
 
 
 def test_warning_appears_and_disappears():
-    """The paper's model departs from the two-axis closure by more than 2 % at (mu, beta0) = (1, 0.9)
-    (-4.0 %) and by less at (1, 0.99) (-0.4 %) (issue 10)."""
+    """The paper's model departs from the recommended model (issue 20; the two-axis closure before) by
+    more than 2 % at (mu, beta0) = (1, 0.9) and by less at (1, 0.99) (issue 10's threshold)."""
     beta0 = np.array([0.9, 0.99])
-    res = compare.compare(mu=1.0, beta0=beta0, models=["dh-elliptic", "dh-elliptic-two-axis"])
-    rec, two = res["dh-elliptic"], res["dh-elliptic-two-axis"]
-    dep = compare.closure_departure(1.0, beta0)
-    assert_allclose(rec["W_star"] / two["W_star"] - 1, dep, rtol=1e-12)
+    res = compare.compare(mu=1.0, beta0=beta0, models=["dh-elliptic", "md-elliptic"])
+    rec, ref = res["dh-elliptic"], res["md-elliptic"]
+    dep = rec["W_star"] / ref["W_star"] - 1
     assert list(np.abs(dep) > compare.WARNING_THRESHOLD) == [True, False]
     assert [bool(w) for w in rec["warning"]] == [True, False]
-    assert "two-axis" in rec["warning"][0] and f"{100 * dep[0]:+.1f} %" in rec["warning"][0]
-    assert list(two["warning"]) == ["", ""]
+    assert "md-elliptic" in rec["warning"][0] and f"{100 * dep[0]:+.1f} %" in rec["warning"][0]
+    assert list(ref["warning"]) == ["", ""]
+    # the same warning without compare's shared reference
+    assert compare.pull_off("dh-elliptic", mu=1.0, beta0=0.9)["warning"] == rec["warning"][0]
     assert compare.pull_off("dh-elliptic", mu=1.0, beta0=0.9, check_closure=False)["warning"] == ""
+
+
+def test_closure_departure_is_still_the_two_axis_one():
+    """closure_departure keeps its meaning: the paper's pull-off against the two-axis closure
+    (-4.0 % at (1, 0.9), -0.4 % at (1, 0.99), issue 10)."""
+    beta0 = np.array([0.9, 0.99])
+    res = compare.compare(mu=1.0, beta0=beta0, models=["dh-elliptic", "dh-elliptic-two-axis"], check_closure=False)
+    dep = compare.closure_departure(1.0, beta0)
+    assert_allclose(res["dh-elliptic"]["W_star"] / res["dh-elliptic-two-axis"]["W_star"] - 1, dep, rtol=1e-12)
+    assert list(np.abs(dep) > compare.WARNING_THRESHOLD) == [True, False]
 
 
 @pytest.mark.parametrize("name", compare.CURVE_MODEL_NAMES)
@@ -254,14 +266,17 @@ def test_validity_ranges_warn_without_refusing():
         assert name in compare.validity_table()
 
 
-def test_warning_when_the_closure_check_fails(monkeypatch):
-    """A failed two-axis solve does not take the paper's result down with it."""
-    def fail(*args, **kwargs):
-        raise RuntimeError("two-axis closure solve did not converge")
+def test_warning_when_the_reference_check_fails(monkeypatch):
+    """A failing reference (the recommended model) does not take the paper's result down with it."""
+    from dhfield import validity
 
-    monkeypatch.setattr(compare.closure, "pull_off_two_axis", fail)
+    def fail(*args, **kwargs):
+        raise RuntimeError("reference failed")
+
+    monkeypatch.setattr(validity.elliptic_transition, "pull_off_nondimensional", fail)
     rec = compare.pull_off("dh-elliptic", mu=1.0, beta0=0.9)
     assert np.isfinite(rec["W_star"]) and "could not be checked" in rec["warning"]
+    assert "reference failed" in rec["warning"]
 
 
 def test_compare_survives_a_model_that_refuses(monkeypatch):
@@ -269,24 +284,27 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
     def refuse(*args, **kwargs):
         raise ValueError("mu must be in [1e-06, 20] (closure domain); got 22.0")
 
-    monkeypatch.setattr(compare.closure, "pull_off_two_axis", refuse)
-    monkeypatch.setitem(compare.MODELS, "dh-elliptic-two-axis", refuse)
-    res = compare.compare(mu=1.0, beta0=0.9, models=["dh-elliptic", "dh-elliptic-two-axis", "jkr"])
-    assert np.isnan(res["dh-elliptic-two-axis"]["W_star"]) and "failed" in res["dh-elliptic-two-axis"]["warning"]
-    assert tuple(res["dh-elliptic-two-axis"]) == PULL_OFF_KEYS
+    from dhfield import validity
+
+    monkeypatch.setattr(validity.elliptic_transition, "pull_off_nondimensional", refuse)
+    monkeypatch.setitem(compare.MODELS, "md-elliptic", refuse)
+    res = compare.compare(mu=1.0, beta0=0.9, models=["dh-elliptic", "md-elliptic", "jkr"])
+    assert np.isnan(res["md-elliptic"]["W_star"]) and "failed" in res["md-elliptic"]["warning"]
+    assert tuple(res["md-elliptic"]) == PULL_OFF_KEYS
     assert "could not be checked" in res["dh-elliptic"]["warning"] and np.isfinite(res["dh-elliptic"]["W_star"])
     assert res["jkr"]["W_star"] == -0.75
     with pytest.raises(ValueError, match="beta0"):
         compare.compare(mu=1.0, beta0=1.5)
 
 
-def test_jkr_stands_in_above_the_closure_cap(monkeypatch):
-    """Above the closures' mu cap (mu >= 10), elliptical JKR, their high-mu limit, is the reference."""
-    monkeypatch.setattr(compare.closure, "CLOSURE_MU_RANGE", (1e-6, 20.0), raising=False)
-    rec = compare.pull_off("dh-elliptic", mu=25.0, beta0=0.9)
-    w_jkr = compare.pull_off("jkr-elliptic", mu=25.0, beta0=0.9)["W_star"]
-    assert "elliptical JKR" in rec["warning"] and f"{100 * (rec['W_star'] / w_jkr - 1):+.1f} %" in rec["warning"]
-    assert "prefer the model jkr-elliptic" in rec["warning"]
+def test_paper_model_is_checked_beyond_the_closure_cap():
+    """Above the closures' mu cap (30) and below their beta0 floor (0.3), where elliptical JKR stood in
+    or nothing did before issue 20, the paper's model is checked against the recommended model."""
+    for mu, beta0 in ((100.0, 0.9), (2.0, 0.1)):
+        rec = compare.pull_off("dh-elliptic", mu=mu, beta0=beta0)
+        ref = compare.pull_off("md-elliptic", mu=mu, beta0=beta0)["W_star"]
+        assert f"{100 * (rec['W_star'] / ref - 1):+.1f} %" in rec["warning"]
+        assert "prefer the model md-elliptic" in rec["warning"]
 
 
 @pytest.mark.parametrize("control", ["load", "displacement"])

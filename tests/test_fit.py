@@ -97,7 +97,7 @@ def _start():
     return dim.contact_parameters(**PDMS, work_of_adhesion=WORK / 2, max_adhesive_stress=2 * STRESS)
 
 
-@pytest.mark.parametrize("model", ["dh-elliptic", "md"])
+@pytest.mark.parametrize("model", ["md-elliptic", "dh-elliptic", "md"])
 def test_curve_fit_without_noise_is_exact(params, model):
     a, w, _ = _curve_data(params, model)
     res = fit_curve(w, a, _start(), model=model)
@@ -112,7 +112,7 @@ def test_curve_fit_recovers_the_truth_within_two_standard_errors(params, with_ap
     a, w, d = _curve_data(params, "dh-elliptic")
     w_noisy = w + rng.normal(0.0, 0.01 * np.ptp(w), w.size)  # 1 % of the load range
     d_noisy = d + rng.normal(0.0, 0.01 * np.ptp(d), d.size) if with_approach else None
-    res = fit_curve(w_noisy, a, _start(), approach=d_noisy)
+    res = fit_curve(w_noisy, a, _start(), approach=d_noisy, model="dh-elliptic")
     assert res.success, res.message
     assert 0 < res.work_of_adhesion_stderr < 0.05 * WORK and 0 < res.max_adhesive_stress_stderr < 0.2 * STRESS
     assert abs(res.work_of_adhesion - WORK) < N_SIGMA * res.work_of_adhesion_stderr
@@ -127,7 +127,7 @@ def test_curve_fit_reports_an_unidentifiable_stress():
     p = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=5e5)
     a, w, _ = _curve_data(p, "dh-elliptic")
     w_noisy = w + np.random.default_rng(1).normal(0.0, 0.01 * np.ptp(w), w.size)
-    res = fit_curve(w_noisy, a, p, initial=(WORK / 2, 1e6))
+    res = fit_curve(w_noisy, a, p, initial=(WORK / 2, 1e6), model="dh-elliptic")
     assert not res.success and res.message.startswith("max_adhesive_stress not identifiable")
     assert not res.max_adhesive_stress_stderr < res.max_adhesive_stress
     # dgamma is still well determined there (the JKR pull-off force is proportional to it)
@@ -158,15 +158,16 @@ def _run(capsys, argv):
 
 def test_cli_pull_off_round_trip(params, capsys):
     # the pull-off CLI gives the API's force (tests/test_cli.py); the API is 5 s cheaper here
-    force = float(dim.pull_off_force(params, check_closure=False)["force"])
+    # about the paper's model (the default until issue 20), named
+    force = float(dim.pull_off_force(params, "dh-elliptic", check_closure=False)["force"])
     code, out, err = _run(capsys, ["fit", "--pull-off-force", repr(force), *PDMS_FLAGS, "--adhesive-stress",
-                                   str(STRESS), "--json"])
+                                   str(STRESS), "--model", "dh-elliptic", "--json"])
     assert code == 0, err
     rec = json.loads(out)
     assert rec["work_of_adhesion"] == pytest.approx(WORK, rel=RTOL_ROUND_TRIP)
     assert {"work_of_adhesion", "mu", "beta0", "warning"} <= set(rec)
-    # mu ~ 1.08, beta0 = 0.48: the paper's closure departs from the two-axis one by > 2 % (issue 10)
-    assert "two-axis" in rec["warning"] and err.startswith("dhfield: warning: ") and err.count("\n") == 1
+    # mu ~ 1.08, beta0 = 0.48: the paper's closure departs from the recommended model by > 2 % (issue 10, 20)
+    assert "md-elliptic" in rec["warning"] and err.startswith("dhfield: warning: ") and err.count("\n") == 1
     assert rec["units"]["work_of_adhesion"] == "J m-2" and rec["units"]["force"] == "N"
 
 
@@ -174,7 +175,7 @@ def test_cli_curve_fit_with_plot(params, capsys, tmp_path):
     a, w, d = _curve_data(params, "dh-elliptic", n=15)
     data = write_table({"semi_major": a, "force": w, "approach": d}, tmp_path / "d.csv", title="test data")
     code, out, err = _run(capsys, ["fit", "--data", str(data), *PDMS_FLAGS, "--plot", str(tmp_path / "r.png"),
-                                   "--json"])
+                                   "--model", "dh-elliptic", "--json"])
     assert code == 0, err
     rec = json.loads(out)
     assert rec["work_of_adhesion"] == pytest.approx(WORK, rel=RTOL_CURVE_EXACT)
@@ -379,7 +380,7 @@ def test_curve_fit_warns_like_pulloff():
     # issue 17: 'fit --data' with the default model was silent where pulloff warns (beta0 = 0.48 at 60 degrees)
     p = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
     a, w, _ = _curve_data(p, "dh-elliptic", n=12)
-    res = fit_curve(w, a, _start())
+    res = fit_curve(w, a, _start(), model="dh-elliptic")
     assert res.warning == str(compare.pull_off("dh-elliptic", mu=res.mu, beta0=res.beta0)["warning"])
     assert "dh-elliptic is validated for beta0 in [0.8, 1]" in res.warning and res.as_record()["warning"]
     # inside the range: none (MD on the sphere is validated for every mu)
@@ -401,9 +402,9 @@ def test_copies_of_one_row_are_refused(params):
 def test_ill_conditioned_data_give_no_standard_error_for_what_they_cannot_determine(params):
     # loads far on the compressive side (a* = 5-20): the curve hardly depends on sigma0 there
     a = params.length_unit * np.linspace(5.0, 20.0, 25)
-    w = np.asarray(dim.load_curve_si(params, semi_major=a)["force"])
+    w = np.asarray(dim.load_curve_si(params, semi_major=a, model="dh-elliptic")["force"])
     w = w + np.random.default_rng(1).normal(0.0, 0.01 * np.ptp(w), w.size)
-    res = fit_curve(w, a, _start(), check_closure=False)
+    res = fit_curve(w, a, _start(), check_closure=False, model="dh-elliptic")
     assert not res.success and "ill-conditioned" in res.message and "max_adhesive_stress" in res.message
     assert math.isnan(res.max_adhesive_stress_stderr) and math.isnan(res.correlation)
     # dgamma keeps a standard error, one that does not pretend: the truth is within 2 of them

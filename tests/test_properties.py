@@ -150,11 +150,15 @@ def test_si_front_end_finite_or_rejected_by_name(sigma0, angle):
     except ValueError as exc:
         assert str(exc).startswith(("max_adhesive_stress ", "skew_angle ")), str(exc)
         return
-    rec = dimensional.pull_off_force(p, check_closure=False)
+    rec = dimensional.pull_off_force(p, "dh-elliptic", check_closure=False)
     force = float(rec["force"])
     assert np.isfinite(force) and force < 0.0
     # Bounded by the DMT force of the same contact: W* >= W*_DMT, W = W* 2 pi R dgamma/sin.
     assert float(rec["W_star"]) >= float(dmt_limit(p.beta0)) * (1 + BOUND_RTOL)
+    # the default (md-elliptic since issue 20): bounded by the paraboloid's DMT force -2 pi dgamma sqrt(R'R'')
+    rec = dimensional.pull_off_force(p)
+    assert np.isfinite(float(rec["force"])) and float(rec["force"]) < 0.0 and rec["warning"] == ""
+    assert float(rec["W_star"]) >= -float(sin_skew_angle(p.beta0)) * (1 + BOUND_RTOL)
 
 
 @given(bad=st.sampled_from([0.0, 1e-12, -0.1, 2.0, float("nan")]))

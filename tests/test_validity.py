@@ -22,7 +22,26 @@ def test_join_warnings_skips_empty_and_broadcasts():
 
 
 def test_departure_warning_threshold():
-    """2 % threshold (issue 10): -1 % is silent, -3 % warns and names the better model."""
-    assert validity.departure_warning(-0.99, 1.0, 0.9, "load", two_axis_w_star=-1.0) == ""
-    w = validity.departure_warning(-0.97, 1.0, 0.9, "load", two_axis_w_star=-1.0)
-    assert "-3.0 %" in w and "dh-elliptic-two-axis" in w
+    """2 % threshold (issue 10): -1 % is silent, -3 % warns and names the better model, now the
+    recommended md-elliptic (issue 20; the two-axis closure before)."""
+    assert validity.departure_warning(-0.99, 1.0, 0.9, "load", reference_w_star=-1.0) == ""
+    w = validity.departure_warning(-0.97, 1.0, 0.9, "load", reference_w_star=-1.0)
+    assert "-3.0 %" in w and "prefer the model md-elliptic" in w
+
+
+def test_departure_warning_computes_its_reference():
+    """Without a reference, the recommended model is evaluated: the same departure as computed by hand."""
+    from dhfield import elliptic_transition, model
+
+    w_paper = float(model.pull_off_nondimensional(0.5, 2.0).W_star)
+    ref = float(elliptic_transition.pull_off_nondimensional(0.5, 2.0).W_star)
+    w = validity.departure_warning(w_paper, 2.0, 0.5, "load")
+    assert f"{100 * (w_paper / ref - 1):+.1f} %" in w
+
+
+def test_recommended_model_is_validated_everywhere():
+    """md-elliptic answers the whole accepted domain without a warning (issue 20)."""
+    from dhfield._validation import ELLIPTICITY_RANGE, TABOR_RANGE
+
+    assert validity.validity_message("md-elliptic", TABOR_RANGE, ELLIPTICITY_RANGE).tolist() == ["", ""]
+    assert validity.validity_message("md-elliptic", [1e-6, 1e12], [1.0, 1e-4]).tolist() == ["", ""]

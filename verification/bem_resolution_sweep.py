@@ -106,7 +106,7 @@ def reference(beta0, mu, truth):
     if (beta0, mu) in truth:
         w, u = truth[(beta0, mu)]
         return w, u, "GT"
-    w = float(elliptic_transition.pull_off_nondimensional(mu, beta0)["W_star"])
+    w = float(elliptic_transition.pull_off_nondimensional(beta0, mu).W_star)
     label = "ET" if (beta0 >= 0.5 and mu <= 5.0) else "ET*"
     return w, ET_UNCERTAINTY * abs(w), label
 

@@ -9,7 +9,7 @@ from ._common import validity_epilog as _epilog
 
 
 def add_parser(sub) -> None:
-    from ..compare import CURVE_MODEL_NAMES
+    from ..compare import CURVE_MODEL_NAMES, DEFAULT_MODEL
 
     p = sub.add_parser("curve", help="load curve of a model (nondimensional, Eqs. 32-36, or SI)",
                        description="Load curve of one model.  Inputs: --beta0 and --mu (nondimensional; range "
@@ -17,8 +17,9 @@ def add_parser(sub) -> None:
                        "--semi-major-max [m] or --load-min/--load-max [N] on the stable branch).",
                        epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
-    p.add_argument("--model", choices=CURVE_MODEL_NAMES, default="dh-elliptic",
-                   help="model (default: dh-elliptic, the paper's); dh-elliptic-jkr-beta has no curve")
+    p.add_argument("--model", choices=CURVE_MODEL_NAMES, default=DEFAULT_MODEL,
+                   help="model (default: md-elliptic, the recommended one; dh-elliptic is the paper's); "
+                   "dh-elliptic-jkr-beta has no curve")
     p.add_argument("--ellipticity", type=float, default=None,
                    help="dh-elliptic only: ellipticity of both ellipses if different from beta0")
     p.add_argument("--a-min", type=float, default=None, help="smallest contact semi-major axis a* (> 0)")

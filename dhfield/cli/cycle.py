@@ -10,7 +10,7 @@ from .solve import EXIT_UNCONVERGED, EXIT_UNRESOLVABLE, EXIT_UNRESOLVED  # --mod
 
 
 def add_parser(sub) -> None:
-    from ..compare import CURVE_MODEL_NAMES
+    from ..compare import CURVE_MODEL_NAMES, DEFAULT_MODEL
 
     p = sub.add_parser("cycle", help="loading-unloading cycle: jump in, jump out, energy lost per cycle",
                        description="Approach from separation, jump into contact, unload to the jump out, under a "
@@ -19,8 +19,9 @@ def add_parser(sub) -> None:
                        "at the jump) or physical inputs in SI units (K in N/m).  See dhfield.compliance.",
                        epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
-    p.add_argument("--model", choices=(*CURVE_MODEL_NAMES, "bem"), default="dh-elliptic",
-                   help="model (default: dh-elliptic, the paper's); dh-elliptic-jkr-beta has no curve; bem: the "
+    p.add_argument("--model", choices=(*CURVE_MODEL_NAMES, "bem"), default=DEFAULT_MODEL,
+                   help="model (default: md-elliptic, the recommended one; dh-elliptic is the paper's); "
+                   "dh-elliptic-jkr-beta has no curve; bem: the "
                    "self-consistent adhesive BEM (Dugdale law) on an N x N grid, its unloading branch sampled at "
                    "prescribed adhesive force (dhfield.bem_compliance.bem_loading_cycle; exit 3 if no state "
                    "converges, 4 if a jump is not resolved on the branch)")

@@ -38,8 +38,8 @@ identify them.  With --data, --work-of-adhesion and --adhesive-stress are
 starting values (default 0.05 J/m^2 and mu = 1).
 
 Geometry and material as for 'dhfield pulloff'.  Outside a model's validated
-range, and for dh-elliptic where it departs from the two-axis closure, the
-result carries the warning 'dhfield pulloff' gives."""
+range, and for dh-elliptic where it departs from the recommended model
+md-elliptic, the result carries the warning 'dhfield pulloff' gives."""
 
 
 def add_parser(sub) -> None:
@@ -50,8 +50,10 @@ def add_parser(sub) -> None:
     what.add_argument("--pull-off-force", type=float, nargs="+", metavar="F",
                       help="measured pull-off force(s) [N] (negative); several values are replicates")
     what.add_argument("--data", metavar="FILE.csv", help="measured load curve (CSV with a header row)")
-    p.add_argument("--model", choices=model_names(), default="dh-elliptic",
-                   help="model (default: dh-elliptic, the paper's)")
+    from ..compare import DEFAULT_MODEL
+
+    p.add_argument("--model", choices=model_names(), default=DEFAULT_MODEL,
+                   help="model (default: md-elliptic, the recommended one; dh-elliptic is the paper's)")
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="loading mode of the pull-off measurement (default load)")
     p.add_argument("--plot", metavar="FILE.png", default=None,

@@ -7,8 +7,8 @@ from ._common import validity_epilog as _epilog
 from ._common import (add_model_arguments, add_physical_arguments, contact_parameters_from_args, model_names,
                       plain_record, print_json, print_warning)
 
-_MODEL_HELP = ("model (default: dh-elliptic, the paper's; dh-elliptic-two-axis agrees with elliptical JKR "
-               "at high mu, where dh-elliptic under-predicts adhesion and warns)")
+_MODEL_HELP = ("model (default: md-elliptic, the recommended model, validated at every crossing angle and mu; "
+               "dh-elliptic is the paper's, which under-predicts the adhesion of elliptical contacts and warns)")
 
 
 def add_parser(sub) -> None:
@@ -20,7 +20,9 @@ def add_parser(sub) -> None:
     add_model_arguments(p, required=False)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="load control (default) or displacement control")
-    p.add_argument("--model", choices=model_names(), default="dh-elliptic", help=_MODEL_HELP)
+    from ..compare import DEFAULT_MODEL
+
+    p.add_argument("--model", choices=model_names(), default=DEFAULT_MODEL, help=_MODEL_HELP)
     p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
     p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
                    help="pull-off under a machine spring (control 'spring'): K >= 0 in N/m with physical inputs, "

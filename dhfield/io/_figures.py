@@ -32,6 +32,7 @@ MODEL_LABELS = {
     "dh-elliptic-two-axis": "DH elliptic, two axes",
     "jkr-elliptic": "JKR elliptical (JG05)",
     "jkr-elliptic-energy": "JKR elliptical (energy)",
+    "md-elliptic": "MD elliptical (recommended)",
     "bem-adhesive": "adhesive BEM",
     "bem": "BEM",
     "recommended": "recommended",

@@ -152,7 +152,7 @@ class SweepConfig:
 
     axes: dict
     quantities: tuple = ("pull_off",)
-    models: tuple = ("dh-elliptic",)
+    models: tuple = ("md-elliptic",)
     control: str = "load"
     chunk_points: int = 2048
     curve_a_star: tuple = (0.02, 3.0)
@@ -394,7 +394,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     SweepConfig
         The validated sweep.
     """
-    from ..compare import MODEL_NAMES
+    from ..compare import DEFAULT_MODEL, MODEL_NAMES
 
     _check_keys(mapping, _TOP_KEYS, "")
     sweep = mapping.get("sweep", {})
@@ -409,7 +409,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     _check_keys(axes_in, AXES, "axes")
 
     quantities = _name_list(sweep, "quantities", QUANTITIES, "pull_off")
-    models = _name_list(sweep, "models", MODEL_NAMES, "dh-elliptic")
+    models = _name_list(sweep, "models", MODEL_NAMES, DEFAULT_MODEL)
     control = sweep.get("control", "load")
     if control not in _CONTROLS:
         _fail("sweep.control", "'load' or 'displacement'", control)
