@@ -248,3 +248,25 @@ def test_bad_ny_is_named(ny):
         adhesive_start.nondimensional_problem(1.0, 0.3, 64, ny=ny)
     with pytest.raises(ValueError, match=r"^ny must be"):
         adhesive_start.plan_grid(1.0, 0.3, 64, ny=ny)
+
+
+def test_shaped_and_stretched_grids_give_the_same_slender_pull_off_within_their_stated_errors():
+    # beta0 = 0.1806 (30 deg), mu = 1: the automatic grid (256 x 72, about square cells) and 256 x 256
+    # cells stretched 3.6x along x are two discretisations of one problem (independent routes to the
+    # same pull-off); each must be converged, resolved, and within the sum of their stated errors
+    shaped = adhesive_start.adhesive_pull_off(1.0, 0.1806, progress=False)
+    g = shaped.path.pull_off_state.grid
+    assert g.ny < g.nx and 0.8 < g.dy / g.dx <= 1.0
+    stretched = adhesive_start.adhesive_pull_off(1.0, 0.1806, g.nx, progress=False)
+    assert stretched.path.pull_off_state.grid.shape == (g.nx, g.nx)
+    for res in (shaped, stretched):
+        assert res.converged and res.resolved and np.isfinite(res.W_star_error)
+    assert abs(shaped.W_star - stretched.W_star) <= shaped.W_star_error + stretched.W_star_error
+    # and both lie between the DMT limit -sin(theta) and the JKR limit (GVG) of Eq. (34)
+    from dhfield import jkr_elliptic_energy
+
+    from dhfield.geometry import sin_skew_angle
+
+    gvg = float(jkr_elliptic_energy.pull_off_nondimensional(0.1806, 1.0, control="load")["W_star"])
+    for res in (shaped, stretched):
+        assert -float(sin_skew_angle(0.1806)) < res.W_star < gvg
