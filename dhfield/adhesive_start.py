@@ -48,7 +48,8 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
-           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "SHAPED_CELLS_MAX_BETA0", "AUTO_MIN_CELLS_Y", "shaped_cells_y"]
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "SHAPED_CELLS_MAX_BETA0", "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS",
+           "shaped_cells_y"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -289,12 +290,19 @@ def _fft_sizes(low=AUTO_MIN_CELLS, a_min=4):
 #: are left n x n (bit-identical to before; the saving there is ~1.6x at mu <= 5, ~1x at
 #: mu = 10 where the edge criterion binds, and untested against the stored ground truth).
 SHAPED_CELLS_MAX_BETA0 = 0.45
-#: Fewest cells along y of a shaped automatic grid (the contact's minor axis b* must span
-#: > CONTACT_MIN_CELLS cells, and the nested grids 2x, 4x coarser keep a few).
+#: Fewest cells along y of a shaped automatic grid (the nested grids 2x, 4x coarser keep a few).
 AUTO_MIN_CELLS_Y = 64
+#: Fewest cells across each expected contact semi-axis at pull-off (the DH model's a*, b*,
+#: :func:`dhfield.model.pull_off`) of a shaped automatic grid, along x and along y.  On the DMT
+#: side the contact at pull-off is small inside a wide zone: at beta0 = 0.1806, mu = 0.1 the
+#: square cells of 256 x 72 put one cell across the BEM's b* = 0.093 (flagged unresolved);
+#: the DH model's b* (0.073 there) is 20-45 % below the BEM's at beta0 = 0.18-0.3, mu = 0.1-5
+#: (measured), so 5 cells on it are ~7 on the BEM's, a discretisation error estimate
+#: (DISCRETISATION_ERROR_PER_CELL / cells) below 1 %.  It binds only at mu <~ 0.5.
+AUTO_CONTACT_CELLS = 5.0
 
 
-def shaped_cells_y(n, half_width_x, half_width_y) -> int:
+def shaped_cells_y(n, half_width_x, half_width_y, max_dy=None) -> int:
     """Cells along y that make the cells about square on the domain ``2 half_width_x x 2 half_width_y``.
 
     Parameters
@@ -303,11 +311,14 @@ def shaped_cells_y(n, half_width_x, half_width_y) -> int:
         Cells along x (an automatic size, a multiple of 16) [-].
     half_width_x, half_width_y : float
         Domain half-widths [c_r].
+    max_dy : float, optional
+        Largest cell size along y wanted besides ``dx`` (e.g. to resolve the contact's
+        minor semi-axis) [c_r].
 
     Returns
     -------
     int
-        The smallest 2^a 3^b 5^c >= AUTO_MIN_CELLS_Y with ``dy <= dx`` and divisible by the
+        The smallest 2^a 3^b 5^c >= AUTO_MIN_CELLS_Y with ``dy <= min(dx, max_dy)`` and divisible by the
         largest power of 2, k, that divides ``n`` with ``n/k >= NESTED_MIN_N``: every coarser
         grid of the nested and located searches (``n/2, n/4, ... >= NESTED_MIN_N`` along x)
         then halves y exactly too, and keeps >= AUTO_MIN_CELLS_Y/k cells along it [-].
@@ -317,7 +328,8 @@ def shaped_cells_y(n, half_width_x, half_width_y) -> int:
     while n % (2 * q) == 0 and n // (2 * q) >= NESTED_MIN_N:
         q *= 2
     a_min = q.bit_length() - 1
-    want = 2.0 * float(half_width_y) / (2.0 * float(half_width_x) / int(n))
+    dy = 2.0 * float(half_width_x) / n if max_dy is None else min(2.0 * float(half_width_x) / n, float(max_dy))
+    want = 2.0 * float(half_width_y) / dy
     return next(k for k in _fft_sizes(max(AUTO_MIN_CELLS_Y, q), a_min) if k >= want * (1.0 - 1e-12))
 
 
@@ -509,7 +521,9 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     2^a 3^b 5^c (a multiple of 16, at least :data:`AUTO_MIN_CELLS`) whose
     :func:`dhfield.bem.solver.edge_width_ratio` is <= 1 (resolved: in the paper's units
     ``sqrt(dx dy) <= 2/(kappa mu^2)``) and whose cells number >= :data:`AUTO_ZONE_CELLS`
-    across :func:`expected_zone_width` along x and along y.  Both fall like 1/mu^2, so N
+    across :func:`expected_zone_width` along x and along y (for shaped grids also >=
+    :data:`AUTO_CONTACT_CELLS` across the DH model's contact semi-axes at pull-off, along x
+    and y: the binding criterion on the DMT side, mu <~ 0.5).  Both fall like 1/mu^2, so N
     grows like mu^2 (ln-corrected): ~512 at mu = 5, ~1440 at mu = 10 for beta0 = 0.5.
     Memory ``PATH_BYTES_PER_CELL nx ny`` and time
     ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS`` (measured constants; the solver
@@ -525,9 +539,12 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     zone = expected_zone_width(mu)
 
     shaped = beta0 < SHAPED_CELLS_MAX_BETA0
+    if shaped:                  # the contact at pull-off must be resolved along both axes
+        po = model.pull_off(mu, beta0)
+        contact_dx, contact_dy = (float(po.a_star) / AUTO_CONTACT_CELLS, float(po.b_star) / AUTO_CONTACT_CELLS)
 
     def cells_y(k):
-        return shaped_cells_y(k, start.half_width_x, start.half_width_y) if shaped else k
+        return shaped_cells_y(k, start.half_width_x, start.half_width_y, contact_dy) if shaped else k
 
     def grid(k, k_y=None):
         return Grid.centered(k, start.half_width_x, ny=cells_y(k) if k_y is None else k_y,
@@ -535,7 +552,8 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
 
     def good(k):
         g = grid(k)
-        return edge_width_ratio(g, law_obj) <= 1.0 and zone / max(g.dx, g.dy) >= AUTO_ZONE_CELLS
+        fine = edge_width_ratio(g, law_obj) <= 1.0 and zone / max(g.dx, g.dy) >= AUTO_ZONE_CELLS
+        return fine and (not shaped or g.dx <= contact_dx)
 
     sizes = _fft_sizes()
     n_needed = next((k for k in sizes if good(k)), None)

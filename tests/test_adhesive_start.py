@@ -270,3 +270,16 @@ def test_shaped_and_stretched_grids_give_the_same_slender_pull_off_within_their_
     gvg = float(jkr_elliptic_energy.pull_off_nondimensional(0.1806, 1.0, control="load")["W_star"])
     for res in (shaped, stretched):
         assert -float(sin_skew_angle(0.1806)) < res.W_star < gvg
+
+
+@pytest.mark.parametrize("mu, beta0", [(0.1, 0.1806), (0.3, 0.1806), (0.1, 0.3)])
+def test_slender_automatic_grid_resolves_the_small_dmt_side_contact(mu, beta0):
+    # on the DMT side the pull-off contact is small inside a wide zone (beta0 = 0.1806, mu = 0.1: the BEM's
+    # b* = 0.093 spanned one square cell of 256 x 72): >= AUTO_CONTACT_CELLS cells across the DH model's a*, b*
+    plan = adhesive_start.plan_grid(mu, beta0)
+    start = adhesive_start.pull_off_start(mu, beta0)
+    po = model.pull_off(mu, beta0)
+    dx, dy = 2 * start.half_width_x / plan.n_needed, 2 * start.half_width_y / plan.ny_needed
+    assert float(po.a_star) / dx >= adhesive_start.AUTO_CONTACT_CELLS
+    assert float(po.b_star) / dy >= adhesive_start.AUTO_CONTACT_CELLS
+    assert dy <= dx * (1 + 1e-12)
