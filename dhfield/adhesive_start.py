@@ -303,7 +303,7 @@ AUTO_CONTACT_CELLS = 5.0
 
 
 def shaped_cells_y(n, half_width_x, half_width_y, max_dy=None) -> int:
-    """Cells along y that make the cells about square on the domain ``2 half_width_x x 2 half_width_y``.
+    """Choose the cells along y that make the cells about square on the domain ``2 half_width_x x 2 half_width_y``.
 
     Parameters
     ----------
