@@ -48,8 +48,8 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
-           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "SHAPED_CELLS_MAX_BETA0", "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS",
-           "shaped_cells_y"]
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "SHAPED_CELLS_MAX_BETA0", "AUTO_MIN_CELLS_Y",
+           "AUTO_CONTACT_CELLS", "shaped_cells_y"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:

@@ -170,7 +170,7 @@ def test_bad_counts_and_arrays_are_named_errors(kwargs, name):
                                          **{k: v for k, v in kwargs.items() if k not in ("mu", "beta0")})
 
 
-# ============================================================================ cells shaped to slender contacts (issue 20)
+# ======================================================================== cells shaped to slender contacts (issue 20)
 def _paper_edge_ratio_xy(mu, nx, ny, start):
     """As :func:`_paper_edge_ratio` on an nx x ny grid: kappa = EDGE_WIDTH_FACTOR (1 + (2/pi) ln sqrt(nx ny))."""
     import math

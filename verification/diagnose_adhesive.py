@@ -215,7 +215,8 @@ def main(argv=None) -> int:
             g = nd.grid
             print(f"beta0 = {b:g}, mu = {m:g}, {g.nx} x {g.ny} cells: dx = {g.dx:.5f}, dy = {g.dy:.5f} "
                   f"(dx/dy = {g.dx / g.dy:.3f}); Dugdale edge spread >= {prob.min_spread:.4f} "
-                  f"(2 h0 = {2 * nd.law.range:.4f}, edge ratio {prob.edge_width_ratio:.3f}), resolved = {prob.resolved}")
+                  f"(2 h0 = {2 * nd.law.range:.4f}, edge ratio {prob.edge_width_ratio:.3f}), "
+                  f"resolved = {prob.resolved}")
         a_, b_, c_, d_, nx, nyc = _across(st, nd.grid)
         print(f"cold start '{name}' ({STARTS[name]}): approach {approach:+.5f}, zone c = {c:.4f}, d = {d:.4f} -> "
               f"converged = {st.converged}, outer = {st.outer_iterations}, CG = {st.iterations}, "
