@@ -13,9 +13,12 @@ from the models:
   pull-off for beta0 < 1 (``dh-elliptic-two-axis``, :func:`dhfield.compare.pull_off`),
   the DH model's at beta0 = 1.
 
-The grid: :func:`plan_grid` chooses the cells per axis a case needs from the law's edge
+The grid: :func:`plan_grid` chooses the cells a case needs from the law's edge
 (:func:`dhfield.bem.solver.edge_width_ratio` <= 1, i.e. ``sqrt(dx dy) <= 2/(kappa mu^2)``)
-and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2), estimates its memory
+and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2) -- n x n cells for
+beta0 >= SHAPED_CELLS_MAX_BETA0, about square cells below (nx x ny, :func:`shaped_cells_y`:
+n x n cells stretched along x put the Dugdale edge at a slender contact's tips near
+instability, and waste cells along y) -- estimates its memory
 and time, and names the analytic value to use instead
 (:func:`dhfield.elliptic_transition.pull_off_nondimensional`); :func:`adhesive_pull_off`
 without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
