@@ -31,10 +31,13 @@ Usage::
     DHFIELD_THREADS=1 .venv/bin/python -m verification.bem_slender truth --beta0 0.1806 0.3 --mu 0.3 1
     .venv/bin/python -m verification.bem_slender truth --consolidate-only
 
-Measured (2026-11-26, shared 2-core machine, DHFIELD_THREADS=1), beta0 = 0.1806, mu = 5:
-480 x 480: 13 unconverged states, W* = -0.36157 (no error bound), exit 3, 525 s wall /
-153 s CPU, 13948 CG; 576 x 160: converged and resolved, W* = -0.361370 +- 0.0075, 6 states,
-6087 CG, 61 s wall / 15 s CPU (GVG -0.358366, candidate -0.359791).
+Measured with ``measure`` (2026-11-26, shared 2-core machine, DHFIELD_THREADS=1), beta0 =
+0.1806, mu = 5: 480 x 480 (230k cells, 2.35 cells across the zone along x, 7.2 along y):
+16 states, 13 unconverged, W* = -0.361569 (no error bound), 16230 CG and 1403 outer
+iterations, 441 s wall / 202 s CPU; 576 x 160 (92k cells, 2.7 and 2.4 cells): 6 states, all
+converged, resolved, W* = -0.361370 +- 0.0075, 3886 CG and 274 outer iterations, 28 s wall /
+15 s CPU (GVG -0.358366, candidate -0.359791).  ``truth`` at level 2 (1152 x 320):
+W* = -0.361064 +- 0.0037, located, 3 states, 1669 CG, 60 s wall / 22 s CPU.
 """
 from __future__ import annotations
 
