@@ -15,7 +15,8 @@ outer iteration counts:
 
 ``truth``
     The slender part of the extended ground truth: every (beta0, mu) at the automatic
-    grid (level 1) and at twice its cells along each axis (level 2), run one at a time,
+    grid and route (level 1, as ``dhfield solve`` without ``--n``) and at twice its cells
+    along each axis (level 2, an explicit grid), run one at a time,
     each case written at once as a JSON file under ``--work-dir`` (a rerun skips the cases
     there), then consolidated into ``--out`` (default ``data/adhesive_ground_truth_slender.nc``,
     dims ``(beta0, mu, level)``) with provenance: git commit, command line, per-case wall
@@ -73,17 +74,28 @@ def references(beta0, mu) -> dict:
     return {"W_star_gvg": gvg, "W_star_candidate": cand}
 
 
-def solve_case(beta0, mu, nx, ny, *, max_iter=None) -> dict:
-    """One load-control BEM pull-off on nx x ny cells: the result's scalars, timings and iteration counts."""
+def solve_case(beta0, mu, nx, ny, *, max_iter=None, automatic=False) -> dict:
+    """One load-control BEM pull-off on nx x ny cells: the result's scalars, timings and iteration counts.
+
+    ``automatic``: solve without ``n`` (the automatic grid, which must be nx x ny, and its route:
+    the relaxed coarse-to-fine start where the grid half as fine cannot hold the Dugdale edge), as
+    ``dhfield solve`` without ``--n`` does; else the explicit nx x ny grid.
+    """
     from dhfield.adhesive_start import adhesive_pull_off
 
     kw = {} if max_iter is None else {"max_iter": int(max_iter)}
     t0, c0 = time.perf_counter(), time.process_time()
-    res = adhesive_pull_off(float(mu), float(beta0), int(nx), ny=int(ny), progress=False, **kw)
+    if automatic:
+        res = adhesive_pull_off(float(mu), float(beta0), progress=False, **kw)
+    else:
+        res = adhesive_pull_off(float(mu), float(beta0), int(nx), ny=int(ny), progress=False, **kw)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     g = res.path.pull_off_state.grid if res.path.pull_off_state is not None else None
+    if automatic and (g is None or g.shape != (int(nx), int(ny))):
+        raise RuntimeError(f"the automatic grid is not {nx} x {ny}")
     dx, dy = (g.dx, g.dy) if g is not None else (float("nan"), float("nan"))
-    rec = {"beta0": float(beta0), "mu": float(mu), "nx": int(nx), "ny": int(ny), "W_star": res.W_star,
+    rec = {"beta0": float(beta0), "mu": float(mu), "nx": int(nx), "ny": int(ny), "automatic": bool(automatic),
+           "W_star": res.W_star,
            "W_star_error": res.W_star_error, "converged": bool(res.converged), "resolved": bool(res.resolved),
            "search": res.search, "states": int(res.n_steps), "unconverged": len(res.failures),
            "iterations": int(res.iterations), "outer_iterations": int(np.sum(res.path.outer_iterations)),
@@ -115,11 +127,11 @@ def auto_grid(beta0, mu, level=1):
 
 def measure(args) -> int:
     """The ``measure`` job: n x n (stretched) against the automatic shaped grid."""
-    grids = [(n, n, "n x n cells (stretched)") for n in args.stretched]
+    grids = [(n, n, False, "n x n cells (stretched)") for n in args.stretched]
     nx, ny = auto_grid(args.beta0, args.mu)
-    grids.append((nx, ny, "automatic grid (about square cells)"))
-    for nx, ny, label in grids:
-        print_case(solve_case(args.beta0, args.mu, nx, ny, max_iter=args.max_iter), f"{label}: ")
+    grids.append((nx, ny, True, "automatic grid (about square cells)"))
+    for nx, ny, auto, label in grids:
+        print_case(solve_case(args.beta0, args.mu, nx, ny, max_iter=args.max_iter, automatic=auto), f"{label}: ")
     return 0
 
 
@@ -153,7 +165,7 @@ def truth(args) -> int:
                         print_case(json.loads(path.read_text()), "(stored) ")
                         continue
                     nx, ny = auto_grid(beta0, mu, level)
-                    rec = solve_case(beta0, mu, nx, ny, max_iter=args.max_iter)
+                    rec = solve_case(beta0, mu, nx, ny, max_iter=args.max_iter, automatic=level == 1)
                     rec.update(level=int(level), commit=_git_commit(),
                                command=shlex.join([sys.executable, "-m", "verification.bem_slender", *sys.argv[1:]]),
                                threads=os.environ.get("DHFIELD_THREADS", ""),
