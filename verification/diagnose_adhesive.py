@@ -213,7 +213,7 @@ def main(argv=None) -> int:
                                                               history=args.history)
         if name == starts[0]:
             g = nd.grid
-            print(f"beta0 = {b:g}, mu = {m:g}, {g.nx} x {g.ny} cells: dx = {g.dx:.5f}, dy = {g.dy:.5f} "
+            print(f"beta0 = {b:g}, mu = {m:g}, N = {g.nx} x {g.ny} cells: dx = {g.dx:.5f}, dy = {g.dy:.5f} "
                   f"(dx/dy = {g.dx / g.dy:.3f}); Dugdale edge spread >= {prob.min_spread:.4f} "
                   f"(2 h0 = {2 * nd.law.range:.4f}, edge ratio {prob.edge_width_ratio:.3f}), "
                   f"resolved = {prob.resolved}")
