@@ -13,9 +13,12 @@ from the models:
   pull-off for beta0 < 1 (``dh-elliptic-two-axis``, :func:`dhfield.compare.pull_off`),
   the DH model's at beta0 = 1.
 
-The grid: :func:`plan_grid` chooses the cells per axis a case needs from the law's edge
+The grid: :func:`plan_grid` chooses the cells a case needs from the law's edge
 (:func:`dhfield.bem.solver.edge_width_ratio` <= 1, i.e. ``sqrt(dx dy) <= 2/(kappa mu^2)``)
-and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2), estimates its memory
+and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2) -- n x n cells for
+beta0 >= SHAPED_CELLS_MAX_BETA0, about square cells below (nx x ny, :func:`shaped_cells_y`:
+n x n cells stretched along x put the Dugdale edge at a slender contact's tips near
+instability, and waste cells along y) -- estimates its memory
 and time, and names the analytic value to use instead
 (:func:`dhfield.elliptic_transition.pull_off_nondimensional`); :func:`adhesive_pull_off`
 without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
@@ -42,13 +45,14 @@ from ._validation import check_count, check_ellipticity, check_positive
 from .bem.laws import law_from_name
 from .bem.operator import Grid
 from .bem.path import PathOptions
-from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_CELLS, MAX_STEPS, AdhesivePullOff,
+from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_CELLS, MAX_STEPS, NESTED_MIN_N, AdhesivePullOff,
                            NondimensionalProblem, PullOffStart, check_cells, paper_problem, refine, solve_pull_off)
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
-           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions"]
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
+           "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -173,7 +177,7 @@ def _two_axis_start(mu, beta0):
 
 
 def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS,
-                           margin=DOMAIN_MARGIN) -> NondimensionalProblem:
+                           margin=DOMAIN_MARGIN, ny=None) -> NondimensionalProblem:
     """Set up the grid, initial gap, law and path range of the paper's problem at (mu, beta0).
 
     The start comes from the analytic models (:func:`pull_off_start`).
@@ -185,13 +189,16 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
     n : int
-        Cells per axis, even, 8 to 65536 [-].
+        Cells along x (and along y unless ``ny`` is given), even, 8 to 65536 [-].
     law : {'dugdale', 'exponential'}, default 'dugdale'
         Traction law, as in :func:`dhfield.bem.pull_off.paper_problem`.
     n_steps : int, default DEFAULT_STEPS
         Unloading steps (4 to 1e6) [-], as in :func:`pull_off_start`.
     margin : float, default DOMAIN_MARGIN
         Domain half-width per expected zone semi-axis, > 1 [-], as in :func:`pull_off_start`.
+    ny : int, optional
+        Cells along y, even, 8 to 65536 [-]; default ``n`` (e.g. :attr:`GridPlan.ny_needed`
+        for cells shaped to a slender contact).
 
     Returns
     -------
@@ -206,8 +213,9 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
     n = check_cells(n)
+    ny = None if ny is None else check_cells(ny, "ny")
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    return paper_problem(mu, beta0, n, _start(mu, beta0, n_steps, _check_margin(margin)), law=law)
+    return paper_problem(mu, beta0, n, _start(mu, beta0, n_steps, _check_margin(margin)), law=law, ny=ny)
 
 
 # ============================================================================ the grid a case needs
@@ -263,16 +271,69 @@ def expected_zone_width(mu) -> float:
     return math.pi / 8.0 * 2.0 / float(mu) ** 2
 
 
-def _fft_sizes():
-    """Even cell counts with small prime factors (2, 3, 5; multiples of 16), AUTO_MIN_CELLS to MAX_CELLS."""
+def _fft_sizes(low=AUTO_MIN_CELLS, a_min=4):
+    """Even cell counts with small prime factors (2^a 3^b 5^c, a >= a_min: multiples of 16), low to MAX_CELLS."""
     out = set()
-    for a in range(4, 17):
+    for a in range(a_min, 17):
         for b in range(0, 4):
             for c in range(0, 3):
                 n = 2 ** a * 3 ** b * 5 ** c
-                if AUTO_MIN_CELLS <= n <= MAX_CELLS:
+                if low <= n <= MAX_CELLS:
                     out.add(n)
     return sorted(out)
+
+
+#: Below this beta0 an automatic grid has as many cells along y as make them about square
+#: (``dy <= dx``; :func:`shaped_cells_y`) instead of n x n cells stretched along x.  Measured
+#: at beta0 = 0.1806, mu = 5 (``python -m verification.bem_slender``): the n x n grid puts
+#: 2.35 cells across the Dugdale zone c - a along x and 7.2 along y (dx = 3.6 dy); the
+#: zone is as wide on both axes (0.036, 0.030), so 2.5x fewer cells resolve it as well
+#: (:func:`plan_grid`: 576 x 160 instead of 480 x 480), and the coarser grids of the
+#: located search keep >= 1 cell across it along x.  At beta0 >= 0.45 the automatic grids
+#: are left n x n (bit-identical to before; the saving there is ~1.6x at mu <= 5, ~1x at
+#: mu = 10 where the edge criterion binds, and untested against the stored ground truth).
+SHAPED_CELLS_MAX_BETA0 = 0.45
+#: Fewest cells along y of a shaped automatic grid (the nested grids 2x, 4x coarser keep a few).
+AUTO_MIN_CELLS_Y = 64
+#: Fewest cells across each expected contact semi-axis at pull-off (the DH model's a*, b*,
+#: :func:`dhfield.model.pull_off`) of a shaped automatic grid, along x and along y.  On the DMT
+#: side the contact at pull-off is small inside a wide zone: at beta0 = 0.1806, mu = 0.1 the
+#: square cells of 256 x 72 put one cell across the BEM's b* = 0.093 (flagged unresolved);
+#: the DH model's b* (0.073 there) is 20-45 % below the BEM's at beta0 = 0.18-0.3, mu = 0.1-5
+#: (measured), so 5 cells on it are ~7 on the BEM's, a discretisation error estimate
+#: (DISCRETISATION_ERROR_PER_CELL / cells) below 1 %.  It binds only at mu <~ 0.5.
+AUTO_CONTACT_CELLS = 5.0
+
+
+def shaped_cells_y(n, half_width_x, half_width_y, max_dy=None) -> int:
+    """Choose the cells along y that make the cells about square on the domain ``2 half_width_x x 2 half_width_y``.
+
+    Parameters
+    ----------
+    n : int
+        Cells along x (an automatic size, a multiple of 16) [-].
+    half_width_x, half_width_y : float
+        Domain half-widths [c_r].
+    max_dy : float, optional
+        Largest cell size along y wanted besides ``dx`` (e.g. to resolve the contact's
+        minor semi-axis) [c_r].
+
+    Returns
+    -------
+    int
+        The smallest 2^a 3^b 5^c >= AUTO_MIN_CELLS_Y with ``dy <= min(dx, max_dy)`` and divisible by the
+        largest power of 2, k, that divides ``n`` with ``n/k >= NESTED_MIN_N``: every coarser
+        grid of the nested and located searches (``n/2, n/4, ... >= NESTED_MIN_N`` along x)
+        then halves y exactly too, and keeps >= AUTO_MIN_CELLS_Y/k cells along it [-].
+    """
+    n = int(n)
+    q = 1
+    while n % (2 * q) == 0 and n // (2 * q) >= NESTED_MIN_N:
+        q *= 2
+    a_min = q.bit_length() - 1
+    dy = 2.0 * float(half_width_x) / n if max_dy is None else min(2.0 * float(half_width_x) / n, float(max_dy))
+    want = 2.0 * float(half_width_y) / dy
+    return next(k for k in _fft_sizes(max(AUTO_MIN_CELLS_Y, q), a_min) if k >= want * (1.0 - 1e-12))
 
 
 @dataclass(frozen=True)
@@ -286,16 +347,17 @@ class GridPlan:
     beta0 : float
         Initial ellipticity of the case [-].
     n : int
-        Cells per axis asked for (the automatic choice when none was given) [-].
+        Cells along x asked for (the automatic choice when none was given) [-].
     n_needed : int
-        Fewest cells per axis (from the FFT-friendly sizes) that resolve the law's edge
-        (``edge_width_ratio <= 1``) with >= AUTO_ZONE_CELLS cells across the expected zone [-].
+        Fewest cells along x (from the FFT-friendly sizes) that resolve the law's edge
+        (``edge_width_ratio <= 1``) with >= AUTO_ZONE_CELLS cells across the expected zone
+        along x and y [-].
     edge_width_ratio : float
-        :func:`dhfield.bem.solver.edge_width_ratio` of the grid of ``n`` (resolved iff <= 1) [-].
+        :func:`dhfield.bem.solver.edge_width_ratio` of the grid of ``n`` (x ``ny``) (resolved iff <= 1) [-].
     memory_bytes : float
-        Estimated memory of the pull-off on the grid of ``n_needed`` [bytes].
+        Estimated memory of the pull-off on the grid of ``n_needed`` x ``ny_needed`` [bytes].
     seconds : float
-        Estimated wall time of the pull-off on the grid of ``n_needed`` [s].
+        Estimated wall time of the pull-off on that grid [s].
     memory_limit : float or None
         The memory one computation may claim now [bytes] (None: unknown, no limit).
     max_seconds : float
@@ -304,6 +366,12 @@ class GridPlan:
         The best analytic value, :func:`dhfield.elliptic_transition.pull_off_nondimensional`
         (GVG x the sphere's MD/JKR transition; within 0.34 % of the stored BEM at beta0 >= 0.5,
         mu <= 5) [-].
+    ny : int, optional
+        Cells along y of the grid of ``n`` [-]; default ``n``.
+    ny_needed : int, optional
+        Cells along y of the automatic grid [-]: ``n_needed`` for beta0 >=
+        :data:`SHAPED_CELLS_MAX_BETA0`, else about square cells (:func:`shaped_cells_y`);
+        default ``n_needed``.
     """
 
     mu: float
@@ -316,6 +384,14 @@ class GridPlan:
     memory_limit: float | None
     max_seconds: float
     analytic_W_star: float
+    ny: int | None = None
+    ny_needed: int | None = None
+
+    def __post_init__(self):
+        if self.ny is None:
+            object.__setattr__(self, "ny", self.n)
+        if self.ny_needed is None:
+            object.__setattr__(self, "ny_needed", self.n_needed)
 
     @property
     def affordable(self) -> bool:
@@ -347,12 +423,16 @@ class GridPlan:
             why.append(f"n={self.n} is too coarse for the Dugdale edge at mu={self.mu:g} (it wants "
                        f"{self.edge_width_ratio:.2f}x its cap 2 h0: no stable discrete state, no convergence)")
         if self.memory_limit is not None and self.memory_bytes > self.memory_limit:
-            why.append(f"n={self.n_needed} needs ~{self.memory_bytes / 2**30:.3g} GiB, more than the "
+            why.append(f"n={self._needed()} needs ~{self.memory_bytes / 2**30:.3g} GiB, more than the "
                        f"{self.memory_limit / 2**30:.3g} GiB available")
         if self.seconds > self.max_seconds:
-            why.append(f"n={self.n_needed} would take ~{self.seconds:.0f} s, more than the "
+            why.append(f"n={self._needed()} would take ~{self.seconds:.0f} s, more than the "
                        f"{self.max_seconds:.0f} s allowed")
         return "; ".join(why)
+
+    def _needed(self) -> str:
+        """The automatic grid: ``n_needed``, and ``x ny_needed`` when not square."""
+        return f"{self.n_needed}" + (f" x {self.ny_needed}" if self.ny_needed != self.n_needed else "")
 
     def message(self) -> str:
         """Describe the plan in one line.
@@ -364,7 +444,7 @@ class GridPlan:
             memory and time, and the analytic W* to use instead.
         """
         return (f"beta0={self.beta0:g}, mu={self.mu:g}: {self.reason() or 'can be solved'}; a resolved BEM "
-                f"needs n >= {self.n_needed} (~{self.memory_bytes / 2**30:.2g} GiB, ~{self.seconds / 60:.0f} min "
+                f"needs n >= {self._needed()} (~{self.memory_bytes / 2**30:.2g} GiB, ~{self.seconds / 60:.0f} min "
                 f"estimated); use the analytic W* = {self.analytic_W_star:.4f} (elliptic_transition: GVG x the "
                 "sphere's MD/JKR transition) instead")
 
@@ -402,7 +482,7 @@ class UnresolvableCaseError(RuntimeError):
 
 
 def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
-              max_seconds=DEFAULT_MAX_SECONDS) -> GridPlan:
+              max_seconds=DEFAULT_MAX_SECONDS, ny=None) -> GridPlan:
     """Plan the grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
 
     Parameters
@@ -412,13 +492,16 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
     n : int, optional
-        Cells per axis asked for [-]; default: the automatic choice ``n_needed``.
+        Cells along x asked for [-]; default: the automatic choice ``n_needed``.
     law : {'dugdale', 'exponential'}, default 'dugdale'
         Traction law (sigma0 = mu, Delta gamma = 1).
     margin : float, default DOMAIN_MARGIN
         As in :func:`pull_off_start` (the domain) [-].
     max_seconds : float, default DEFAULT_MAX_SECONDS
         Time allowed [s] (:attr:`GridPlan.affordable`).
+    ny : int, optional
+        Cells along y of the grid of ``n`` [-]; default ``n`` (``ny_needed`` when ``n`` is
+        not given either).
 
     Returns
     -------
@@ -433,14 +516,20 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
 
     Notes
     -----
-    The domain is :func:`pull_off_start`'s (n x n cells over it, rectangular cells for
-    beta0 < 1).  ``n_needed`` is the smallest size of 2^a 3^b 5^c (a multiple of 16, at
-    least :data:`AUTO_MIN_CELLS`) whose :func:`dhfield.bem.solver.edge_width_ratio` is <= 1
-    (resolved: in the paper's units ``sqrt(dx dy) <= 2/(kappa mu^2)``) and whose cells along x
-    number >= :data:`AUTO_ZONE_CELLS` across :func:`expected_zone_width`.  Both fall like
-    1/mu^2, so N grows like mu^2 (ln-corrected): ~512 at mu = 5, ~1440 at mu = 10 for
-    beta0 = 0.5.  Memory ``PATH_BYTES_PER_CELL n^2`` and time
-    ``SECONDS_PER_CELL_ITERATION n^2 PULL_OFF_ITERATIONS`` (measured constants; the solver
+    The domain is :func:`pull_off_start`'s.  For beta0 >= :data:`SHAPED_CELLS_MAX_BETA0` the
+    grid has n x n cells over it (rectangular cells for beta0 < 1); below, n along x and
+    ``ny = shaped_cells_y(n, ...)`` along y, about square cells (the Dugdale zone is about
+    as wide along both axes, so it is resolved along both with fewer cells: 2.5x fewer at
+    beta0 = 0.18, mu = 5; 4.6x at beta0 = 0.1).  ``n_needed`` is the smallest size of
+    2^a 3^b 5^c (a multiple of 16, at least :data:`AUTO_MIN_CELLS`) whose
+    :func:`dhfield.bem.solver.edge_width_ratio` is <= 1 (resolved: in the paper's units
+    ``sqrt(dx dy) <= 2/(kappa mu^2)``) and whose cells number >= :data:`AUTO_ZONE_CELLS`
+    across :func:`expected_zone_width` along x and along y (for shaped grids also >=
+    :data:`AUTO_CONTACT_CELLS` across the DH model's contact semi-axes at pull-off, along x
+    and y: the binding criterion on the DMT side, mu <~ 0.5).  Both fall like 1/mu^2, so N
+    grows like mu^2 (ln-corrected): ~512 at mu = 5, ~1440 at mu = 10 for beta0 = 0.5.
+    Memory ``PATH_BYTES_PER_CELL nx ny`` and time
+    ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS`` (measured constants; the solver
     works on the quadrant, which these include).
     """
     from . import elliptic_transition
@@ -452,25 +541,42 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     law_obj = law_from_name(law, mu, 1.0)
     zone = expected_zone_width(mu)
 
-    def grid(k):
-        return Grid.centered(k, start.half_width_x, half_width_y=start.half_width_y)
+    shaped = beta0 < SHAPED_CELLS_MAX_BETA0
+    if shaped:                  # the contact at pull-off must be resolved along both axes
+        po = model.pull_off(mu=mu, beta0=beta0)
+        contact_dx, contact_dy = (float(po.a_star) / AUTO_CONTACT_CELLS, float(po.b_star) / AUTO_CONTACT_CELLS)
+
+    def cells_y(k):
+        return shaped_cells_y(k, start.half_width_x, start.half_width_y, contact_dy) if shaped else k
+
+    def grid(k, k_y=None):
+        return Grid.centered(k, start.half_width_x, ny=cells_y(k) if k_y is None else k_y,
+                             half_width_y=start.half_width_y)
 
     def good(k):
         g = grid(k)
-        return edge_width_ratio(g, law_obj) <= 1.0 and zone / g.dx >= AUTO_ZONE_CELLS
+        fine = edge_width_ratio(g, law_obj) <= 1.0 and zone / max(g.dx, g.dy) >= AUTO_ZONE_CELLS
+        return fine and (not shaped or g.dx <= contact_dx)
 
     sizes = _fft_sizes()
     n_needed = next((k for k in sizes if good(k)), None)
     if n_needed is None:        # beyond MAX_CELLS: extrapolate (N grows like mu^2)
         g = grid(MAX_CELLS)
         n_needed = int(2 * math.ceil(MAX_CELLS * max(edge_width_ratio(g, law_obj),
-                                                     AUTO_ZONE_CELLS * g.dx / zone) / 2))
-    n = n_needed if n is None else check_cells(n)
-    cells = float(n_needed) ** 2
+                                                     AUTO_ZONE_CELLS * max(g.dx, g.dy) / zone) / 2))
+        ny_needed = int(2 * math.ceil(n_needed * g.ny / MAX_CELLS / 2))
+    else:
+        ny_needed = cells_y(n_needed)
+    if n is None:
+        n, ny = n_needed, (ny_needed if ny is None else check_cells(ny, "ny"))
+    else:
+        n = check_cells(n)
+        ny = n if ny is None else check_cells(ny, "ny")
+    cells = float(n_needed) * float(ny_needed)
     w_star = float(elliptic_transition.pull_off_nondimensional(beta0, mu).W_star)
-    return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n), law_obj)),
+    return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n, ny), law_obj)),
                     PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
-                    memory_limit(), max_seconds, w_star)
+                    memory_limit(), max_seconds, w_star, int(ny), int(ny_needed))
 
 
 @dataclass(frozen=True)
@@ -493,6 +599,10 @@ class AdhesiveOptions:
         Keep every state of the path; see :class:`dhfield.bem.path.PathOptions`.
     max_seconds : float, default DEFAULT_MAX_SECONDS
         Automatic n only: the estimated time allowed [s] (:func:`plan_grid`).
+    nested : bool, optional
+        Bracket search only: start every state from the same approach solved
+        on a grid half as fine (:class:`dhfield.bem.pull_off.NestedWarmStart`).
+        Default (None): when ``n >= 2 * NESTED_MIN_N``.
     """
 
     n_steps: int = DEFAULT_STEPS
@@ -502,9 +612,10 @@ class AdhesiveOptions:
     margin: float = DOMAIN_MARGIN
     keep_states: bool = False
     max_seconds: float = DEFAULT_MAX_SECONDS
+    nested: bool | None = None
 
 
-def adhesive_pull_off(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None,
+def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="load", search="located",
                       threads=None, progress=None, options=None) -> AdhesivePullOff:
     """Compute the BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
 
@@ -515,10 +626,14 @@ def adhesive_pull_off(*, beta0, mu, n=None, law="dugdale", control="load", searc
     mu : float
         Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
     n : int, optional
-        Cells per axis (even) [-].  Default: chosen from the expected zone width and the
-        law's edge (:func:`plan_grid`, ``n_needed``), refused with
+        Cells along x (even; and along y unless ``ny`` is given) [-].  Default: chosen from
+        the expected zone width and the law's edge (:func:`plan_grid`, ``n_needed`` x
+        ``ny_needed``: about square cells below beta0 = SHAPED_CELLS_MAX_BETA0), refused with
         :class:`UnresolvableCaseError` before anything is solved when that grid does not fit
         the memory available or ``options.max_seconds``.
+    ny : int, optional
+        Cells along y (even) [-]; default ``n``, or the automatic ``ny_needed`` when ``n``
+        is not given.
     law : {'dugdale', 'exponential'}
         Traction law (:mod:`dhfield.bem.laws`).
     control : {'load', 'displacement'}
@@ -546,17 +661,13 @@ def adhesive_pull_off(*, beta0, mu, n=None, law="dugdale", control="load", searc
         half as fine is too coarse for the Dugdale edge
         (:data:`dhfield.bem.pull_off.LOCATE_MAX_EDGE_RATIO`), when the located
         minimum is not interior, or when a fine state does not converge.
-    nested : bool, optional
-        Bracket search only: start every state from the same approach solved
-        on a grid half as fine (:class:`dhfield.bem.pull_off.NestedWarmStart`).
-        Default: when ``n >= 2 * NESTED_MIN_N``.
     threads : int, optional
         FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
     progress : bool, optional
         Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
     options : AdhesiveOptions, optional
         Numerical settings (steps, refinements, tolerance, iteration cap, domain margin,
-        kept states, time allowed); default ``AdhesiveOptions()``.
+        kept states, time allowed, nested warm starts); default ``AdhesiveOptions()``.
 
     Returns
     -------
@@ -591,6 +702,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, law="dugdale", control="load", searc
         raise ValueError(f"options must be an AdhesiveOptions (numerical settings); got {type(options).__name__}")
     n_steps, refine_levels, tol, max_iter = options.n_steps, options.refine_levels, options.tol, options.max_iter
     margin, keep_states, max_seconds = options.margin, options.keep_states, options.max_seconds
+    nested = options.nested
 
     for name, value in (("mu", mu), ("beta0", beta0)):  # one case per call: scalars only
         if np.ndim(value) != 0:
@@ -605,11 +717,12 @@ def adhesive_pull_off(*, beta0, mu, n=None, law="dugdale", control="load", searc
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
         n = plan.n_needed
+        ny = plan.ny_needed if ny is None else ny
         relaxed = (control == "load" and search == "located" and nested is None and law == "dugdale"
-                   and n % 4 == 0 and not _half_grid_locates(plan, law, margin))
+                   and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin))
     else:
         relaxed = False
-    prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
+    prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin, ny=ny)
     options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
                           keep_states=keep_states, progress=progress)
     if relaxed and prob.has_cold_start:
@@ -786,7 +899,8 @@ def _half_grid_locates(plan, law, margin) -> bool:
     from .bem.pull_off import LOCATE_MAX_EDGE_RATIO
 
     start = _start(plan.mu, plan.beta0, DEFAULT_STEPS, _check_margin(margin))
-    half = Grid.centered(plan.n_needed // 2, start.half_width_x, half_width_y=start.half_width_y)
+    half = Grid.centered(plan.n_needed // 2, start.half_width_x, ny=plan.ny_needed // 2,
+                         half_width_y=start.half_width_y)
     return edge_width_ratio(half, law_from_name(law, plan.mu, 1.0)) <= LOCATE_MAX_EDGE_RATIO
 
 

@@ -176,3 +176,118 @@ def test_adhesive_pull_off_takes_beta0_and_mu_by_keyword():
     """(mu, beta0) was the old positional order: a positional call would swap them silently."""
     with pytest.raises(TypeError, match="positional"):
         adhesive_start.adhesive_pull_off(1.0, 0.9, 16)
+
+
+# ======================================================================== cells shaped to slender contacts (issue 20)
+def _paper_edge_ratio_xy(mu, nx, ny, start):
+    """As :func:`_paper_edge_ratio` on an nx x ny grid: kappa = EDGE_WIDTH_FACTOR (1 + (2/pi) ln sqrt(nx ny))."""
+    import math
+
+    from dhfield.bem.solver import EDGE_WIDTH_FACTOR
+
+    dx, dy = 2 * start.half_width_x / nx, 2 * start.half_width_y / ny
+    kappa = EDGE_WIDTH_FACTOR * (1 + 2 / math.pi * math.log(math.sqrt(nx * ny)))
+    return kappa * mu * mu * math.sqrt(dx * dy) / 2
+
+
+@pytest.mark.parametrize("mu, beta0", [(5.0, 0.1806), (5.0, 0.1), (10.0, 0.1806), (1.0, 0.3), (5.0, 0.05)])
+def test_slender_automatic_grid_has_about_square_cells_resolving_the_zone_on_both_axes(mu, beta0):
+    plan = adhesive_start.plan_grid(mu, beta0)
+    start = adhesive_start.pull_off_start(mu, beta0)
+    nx, ny = plan.n_needed, plan.ny_needed
+    assert (plan.n, plan.ny) == (nx, ny) and ny < nx
+    dx, dy = 2 * start.half_width_x / nx, 2 * start.half_width_y / ny
+    # dy <= dx, and about square: 2^a 3^b 5^c multiples of 32 are at most ~20 % apart above 256
+    # (640, 768; 1200, 1440), so dy >= dx/1.25 unless the 64-cell floor binds
+    assert dy <= dx * (1 + 1e-12)
+    assert ny == adhesive_start.AUTO_MIN_CELLS_Y or dy >= dx / 1.25
+    assert plan.edge_width_ratio == pytest.approx(_paper_edge_ratio_xy(mu, nx, ny, start), rel=1e-12)
+    zone = adhesive_start.expected_zone_width(mu)
+    assert plan.edge_width_ratio <= 1.0 and min(zone / dx, zone / dy) >= adhesive_start.AUTO_ZONE_CELLS
+    smaller = [k for k in adhesive_start._fft_sizes() if k < nx]
+    if smaller:   # the next smaller size along x (with its own ny) fails the edge or a zone criterion
+        k = smaller[-1]
+        ky = adhesive_start.shaped_cells_y(k, start.half_width_x, start.half_width_y)
+        kdx, kdy = 2 * start.half_width_x / k, 2 * start.half_width_y / ky
+        assert _paper_edge_ratio_xy(mu, k, ky, start) > 1.0 or zone / max(kdx, kdy) < adhesive_start.AUTO_ZONE_CELLS
+
+
+@pytest.mark.parametrize("mu, beta0", [(5.0, 0.5), (10.0, 0.4826), (5.0, 1.0), (1.0, 0.45)])
+def test_automatic_grid_stays_n_by_n_from_the_shaping_threshold_up(mu, beta0):
+    plan = adhesive_start.plan_grid(mu, beta0)
+    assert plan.ny_needed == plan.n_needed and plan.ny == plan.n
+
+
+def test_slender_grid_coarsens_exactly_for_the_nested_searches():
+    # every coarser grid of the located/nested searches (n/2, n/4, ... along x) must halve y exactly and
+    # keep the domain (Grid(n/k, ny/k, k dx, k dy)); shaped_cells_y makes ny divisible by n's power of 2
+    for mu, beta0 in [(5.0, 0.1806), (10.0, 0.1806), (5.0, 0.1), (7.0, 0.25)]:
+        plan = adhesive_start.plan_grid(mu, beta0)
+        nd = adhesive_start.nondimensional_problem(mu, beta0, plan.n_needed, ny=plan.ny_needed)
+        assert nd.grid.shape == (plan.n_needed, plan.ny_needed)
+        k = 2
+        while plan.n_needed // k >= 64 and plan.n_needed % k == 0:
+            c = nd.coarser(plan.n_needed // k)
+            assert c.grid.ny * k == plan.ny_needed
+            assert c.grid.nx * c.grid.dx == pytest.approx(nd.grid.nx * nd.grid.dx, rel=1e-12)
+            assert c.grid.ny * c.grid.dy == pytest.approx(nd.grid.ny * nd.grid.dy, rel=1e-12)
+            k *= 2
+
+
+def test_nx_by_ny_problem_has_the_crossed_cylinder_gap_of_eq_2():
+    # z = x^2/(2R') + y^2/(2R'') with R' = sqrt(rho), R'' = 1/sqrt(rho) (Eq. 2, R'R'' = 1), on the cell centres
+    import math
+
+    from dhfield import geometry
+
+    nd = adhesive_start.nondimensional_problem(5.0, 0.1806, 96, ny=32)
+    g = nd.grid
+    assert g.shape == (96, 32)
+    rho = float(geometry.radius_ratio(0.1806))
+    x = (np.arange(96) - 47.5) * g.dx
+    y = (np.arange(32) - 15.5) * g.dy
+    z = x[:, None] ** 2 / (2 * math.sqrt(rho)) + y[None, :] ** 2 * math.sqrt(rho) / 2
+    np.testing.assert_allclose(nd.initial_gap, z, rtol=1e-13, atol=1e-15)
+
+
+@pytest.mark.parametrize("ny", [7, 31, 0, 2.5])
+def test_bad_ny_is_named(ny):
+    with pytest.raises(ValueError, match=r"^ny must be"):
+        adhesive_start.nondimensional_problem(1.0, 0.3, 64, ny=ny)
+    with pytest.raises(ValueError, match=r"^ny must be"):
+        adhesive_start.plan_grid(1.0, 0.3, 64, ny=ny)
+
+
+def test_shaped_and_stretched_grids_give_the_same_slender_pull_off_within_their_stated_errors():
+    # beta0 = 0.1806 (30 deg), mu = 1: the automatic grid (256 x 72, about square cells) and 256 x 256
+    # cells stretched 3.6x along x are two discretisations of one problem (independent routes to the
+    # same pull-off); each must be converged, resolved, and within the sum of their stated errors
+    shaped = adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.1806, progress=False)
+    g = shaped.path.pull_off_state.grid
+    assert g.ny < g.nx and 0.8 < g.dy / g.dx <= 1.0
+    stretched = adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.1806, n=g.nx, progress=False)
+    assert stretched.path.pull_off_state.grid.shape == (g.nx, g.nx)
+    for res in (shaped, stretched):
+        assert res.converged and res.resolved and np.isfinite(res.W_star_error)
+    assert abs(shaped.W_star - stretched.W_star) <= shaped.W_star_error + stretched.W_star_error
+    # and both lie between the DMT limit -sin(theta) and the JKR limit (GVG) of Eq. (34)
+    from dhfield import jkr_elliptic_energy
+
+    from dhfield.geometry import sin_skew_angle
+
+    gvg = float(jkr_elliptic_energy.pull_off_nondimensional(0.1806, 1.0, control="load")["W_star"])
+    for res in (shaped, stretched):
+        assert -float(sin_skew_angle(0.1806)) < res.W_star < gvg
+
+
+@pytest.mark.parametrize("mu, beta0", [(0.1, 0.1806), (0.3, 0.1806), (0.1, 0.3)])
+def test_slender_automatic_grid_resolves_the_small_dmt_side_contact(mu, beta0):
+    # on the DMT side the pull-off contact is small inside a wide zone (beta0 = 0.1806, mu = 0.1: the BEM's
+    # b* = 0.093 spanned one square cell of 256 x 72): >= AUTO_CONTACT_CELLS cells across the DH model's a*, b*
+    plan = adhesive_start.plan_grid(mu, beta0)
+    start = adhesive_start.pull_off_start(mu, beta0)
+    po = model.pull_off(mu=mu, beta0=beta0)
+    dx, dy = 2 * start.half_width_x / plan.n_needed, 2 * start.half_width_y / plan.ny_needed
+    assert float(po.a_star) / dx >= adhesive_start.AUTO_CONTACT_CELLS
+    assert float(po.b_star) / dy >= adhesive_start.AUTO_CONTACT_CELLS
+    assert dy <= dx * (1 + 1e-12)

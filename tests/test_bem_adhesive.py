@@ -204,8 +204,8 @@ def test_bracket_search_rejects_bad_input():
 
 def test_nested_warm_starts_reach_the_same_states():
     mu = float(transition.tabor_from_maugis(3.0))
-    plain = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, nested=False, search="bracket")
-    nested = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, nested=True, search="bracket")
+    plain = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, search="bracket", options=AdhesiveOptions(nested=False))
+    nested = adhesive_pull_off(mu=mu, beta0=1.0, n=128, progress=False, search="bracket", options=AdhesiveOptions(nested=True))
     assert plain.converged and nested.converged
     assert nested.path.coarse_states >= nested.n_steps and plain.path.coarse_states == 0
     # the bracket: the same approaches, hence the same discrete states, found from other warm starts

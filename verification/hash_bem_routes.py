@@ -101,7 +101,10 @@ def main(argv=None):
     for label, mu, beta0, n, kw in CASES:
         if only and label not in only:
             continue
-        res = adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False, **kw, options=AdhesiveOptions(keep_states=True))
+        kw = dict(kw)
+        nested = kw.pop("nested", None)     # a numerical setting: AdhesiveOptions.nested
+        res = adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=False, **kw,
+                                options=AdhesiveOptions(keep_states=True, nested=nested))
         results[label] = res
         print(f"{label} route={res.search} W_star={res.W_star!r}", flush=True)
         for line in result_lines(label, res):

@@ -202,15 +202,15 @@ def _initial_gap(grid, beta0):
     return x * x / (2.0 * r_major) + y * y / (2.0 * r_minor)  # Eq. (2)
 
 
-def check_cells(n) -> int:
-    """``n`` as cells per axis: an even integer in [8, MAX_CELLS] (ValueError naming it otherwise)."""
-    n = check_count("n", n, 8, MAX_CELLS, "cells per axis, even")
+def check_cells(n, name="n") -> int:
+    """``n`` as cells per axis: an even integer in [8, MAX_CELLS] (ValueError naming ``name`` otherwise)."""
+    n = check_count(name, n, 8, MAX_CELLS, "cells per axis, even")
     if n % 2:
-        raise ValueError(f"n must be an even integer in [8, {MAX_CELLS}] (cells per axis); got {n!r}")
+        raise ValueError(f"{name} must be an even integer in [8, {MAX_CELLS}] (cells per axis); got {n!r}")
     return n
 
 
-def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProblem:
+def paper_problem(mu, beta0, n, start, *, law="dugdale", ny=None) -> NondimensionalProblem:
     """Grid, initial gap and law of the paper's problem at (mu, beta0), from a given start.
 
     Parameters
@@ -220,16 +220,18 @@ def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProble
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
     n : int
-        Cells along each axis (even, 8 to 65536) [-].
+        Cells along x, and along y unless ``ny`` is given (even, 8 to 65536) [-].
     start : PullOffStart
         The domain, the path range and the cold start.
     law : {'dugdale', 'exponential'} or a law
         Traction law with sigma0 = mu and Delta gamma = 1.
+    ny : int, optional
+        Cells along y (even, 8 to 65536) [-]; default ``n`` (rectangular cells when beta0 < 1).
 
     Returns
     -------
     NondimensionalProblem
-        The grid (n x n cells over the start's domain), the initial gap
+        The grid (n x ny cells over the start's domain), the initial gap
         (Eq. 2), the law, sin(theta_skew) (Eq. 34) and the start.
 
     Raises
@@ -241,6 +243,7 @@ def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProble
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
     n = check_cells(n)
+    ny = n if ny is None else check_cells(ny, "ny")
     law_obj = law_from_name(law, mu, 1.0) if isinstance(law, str) else check_law(law)
     if law_obj is None:
         raise ValueError("law must be 'dugdale' or 'exponential'; got None")
@@ -251,7 +254,7 @@ def paper_problem(mu, beta0, n, start, *, law="dugdale") -> NondimensionalProble
         raise ValueError(f"start.zone {start.zone!r} must lie inside the domain (half-widths "
                          f"{start.half_width_x:.4g} x {start.half_width_y:.4g}): the domain is too small for the "
                          "contact")
-    grid = Grid.centered(n, start.half_width_x, half_width_y=start.half_width_y)
+    grid = Grid.centered(n, start.half_width_x, ny=ny, half_width_y=start.half_width_y)
     return NondimensionalProblem(mu, beta0, grid, _initial_gap(grid, beta0), law_obj, float(sin_skew_angle(beta0)),
                                  start.approach_max, start.approach_step, start.approach, start.zone)
 

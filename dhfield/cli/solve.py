@@ -348,13 +348,14 @@ def run(args) -> int:
     if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
         print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
+    cells = f"{plan.n}" + (f" x {plan.ny}" if plan.ny != plan.n else "")    # nx x ny: slender automatic grids
     control = args.control if args.machine_stiffness is None else "spring"
-    where = f"beta0={args.beta0:g}, mu={args.mu:g}, n={plan.n}, law={args.law}, control={control}"
+    where = f"beta0={args.beta0:g}, mu={args.mu:g}, n={cells}, law={args.law}, control={control}"
     progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if args.machine_stiffness is not None:
         return _run_spring(args, params, plan, where, progress)
     if progress:  # on a terminal: say what runs now; the solver then draws its progress line (stderr)
-        print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {plan.n} path)",
+        print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {cells} path)",
               file=sys.stderr, flush=True)
     try:
         res = adhesive_pull_off(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, control=args.control,
@@ -383,7 +384,7 @@ def run(args) -> int:
         rec = {**rec, **si}
         print_json({**rec, "units": _units(rec, si_keys=tuple(si))})
     else:
-        print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {res.n}, {res.law}, {res.control} control")
+        print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {cells}, {res.law}, {res.control} control")
         # the stated error: under load control the search's plus the grid's (W_star_error), the fold
         # fit's under displacement control; infinite when the answer is not resolved
         err = (f" (stated error {res.W_star_error:.2g})" if math.isfinite(res.W_star_error)
