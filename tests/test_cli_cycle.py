@@ -98,7 +98,7 @@ def test_bem_cycle_matches_md_and_plots(capsys, tmp_path):
     out = capsys.readouterr()
     assert rc == 0, out.err
     rec = json.loads(out.out)   # one JSON object: no "wrote" line after it
-    ref = compliance.loading_cycle("md", BEM_MU, 1.0, 1.0)
+    ref = compliance.loading_cycle("md", beta0=1.0, mu=BEM_MU, machine_stiffness=1.0)
     assert rec["model"] == "bem" and rec["resolved"] and rec["n"] == 64
     for key, err in (("jump_in_W_star", "jump_in_W_star_error"), ("jump_out_W_star", "jump_out_W_star_error"),
                      ("energy_lost_star", "energy_lost_error_star")):

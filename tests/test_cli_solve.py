@@ -305,7 +305,7 @@ def test_solve_under_a_spring_matches_md_under_the_same_spring(tmp_path, capsys)
                "--json", "--out", str(out)])
     rec = json.loads(capsys.readouterr().out)
     assert rc == 0 and rec["control"] == "spring" and rec["resolved"] and rec["machine_stiffness_star"] == 1.0
-    md = float(compliance.pull_off_under_spring("md", SPRING_MU, 1.0, 1.0)["W_star"])
+    md = float(compliance.pull_off_under_spring("md", beta0=1.0, mu=SPRING_MU, machine_stiffness=1.0)["W_star"])
     assert abs(rec["W_star"] - md) <= rec["W_star_error"] + 2e-3
     assert rec["W_star"] == pytest.approx(md, rel=SPRING_RTOL)
     assert rec["separation_delta_star"] == pytest.approx(rec["delta_star"] + rec["W_star"] / 1.0, rel=1e-14)
