@@ -56,8 +56,8 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
 from .compliance import spring_weight
 from .pull_off_search import fitted_slopes, stable_minimum_index
 
-__all__ = ["BemBranch", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle", "BRANCH_STEPS",
-           "BRANCH_WINDOW"]
+__all__ = ["BemBranch", "BranchOptions", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle",
+           "BRANCH_STEPS", "BRANCH_WINDOW"]
 
 #: Adhesive-force steps from the cold start (near the load-control pull-off) to zero force:
 #: the sampling step dF = F_a(start)/BRANCH_STEPS of the whole branch.
@@ -123,6 +123,28 @@ class BemBranch:
     start_delta: float = float("nan")
 
 
+@dataclass(frozen=True)
+class BranchOptions:
+    """Numerical settings of :func:`bem_unloading_branch` (the defaults are the tested ones).
+
+    Parameters
+    ----------
+    steps : int, default BRANCH_STEPS
+        The step dF of adhesive force is F_a(start)/steps (8 to 10000) [-].
+    window : int, default BRANCH_WINDOW
+        Samples kept beyond each minimum (and fitted each side of it), 2 to 100 [-].
+    tol : float, default DEFAULT_TOL
+        Solver tolerance of every state (:func:`dhfield.bem.continuation.solve_at_adhesive_force`) [-].
+    max_iter : int, default DEFAULT_MAX_ITER
+        Inner iterations allowed per state [-].
+    """
+
+    steps: int = BRANCH_STEPS
+    window: int = BRANCH_WINDOW
+    tol: float = DEFAULT_TOL
+    max_iter: int = DEFAULT_MAX_ITER
+
+
 def _first_rise(x, f, window):
     """Index of the first sample, walking down the branch (index 0: highest F_a), where f stops falling.
 
@@ -135,22 +157,18 @@ def _first_rise(x, f, window):
     return int(stable_minimum_index(slopes=fitted_slopes(x, f, window)))
 
 
-def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WINDOW, landing=None, margin=None,
-                         law="dugdale", tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None) -> BemBranch:
+def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdale", threads=None,
+                         options=None) -> BemBranch:
     """Sample the BEM's unloading branch at prescribed adhesive force, from above the load minimum past the fold.
 
     Parameters
     ----------
-    mu : float
-        Transition parameter of Eq. (35), > 0 [-].
     beta0 : float
         Hertz ellipticity of the geometry, in (0, 1] [-].
+    mu : float
+        Transition parameter of Eq. (35), > 0 [-].
     n : int
         Cells per axis (even, >= 8).
-    steps : int
-        The step dF is F_a(start)/steps (8 to 10000).
-    window : int
-        Samples kept beyond each minimum (and fitted each side of it), 2 to 100.
     landing : array_like, optional
         Machine stiffnesses K* >= 0 whose jump in must land on the samples: the
         branch is extended up until their machine position passes that of the end
@@ -161,12 +179,11 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
         domain must hold the cohesive zone of the top state.
     law : {'dugdale', 'exponential'}
         Traction law (:mod:`dhfield.bem.laws`).
-    tol : float
-        Solver tolerance of every state (:func:`dhfield.bem.continuation.solve_at_adhesive_force`).
-    max_iter : int
-        Inner iterations allowed per state.
     threads : int, optional
         FFT threads.
+    options : BranchOptions, optional
+        Numerical settings (force steps, fitted window, solver tolerance, iteration cap);
+        default ``BranchOptions()``.
 
     Returns
     -------
@@ -190,8 +207,12 @@ def bem_unloading_branch(mu, beta0, n, *, steps=BRANCH_STEPS, window=BRANCH_WIND
 
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
-    steps = check_count("steps", steps, 8, 10_000, "adhesive-force steps to zero")
-    window = check_count("window", window, 2, 100, "samples each side of a minimum")
+    options = BranchOptions() if options is None else options
+    if not isinstance(options, BranchOptions):
+        raise ValueError(f"options must be a BranchOptions; got {type(options).__name__}")
+    steps = check_count("steps", options.steps, 8, 10_000, "adhesive-force steps to zero")
+    window = check_count("window", options.window, 2, 100, "samples each side of a minimum")
+    tol, max_iter = options.tol, options.max_iter
     t0 = time.perf_counter()
     problem = nondimensional_problem(mu, beta0, n, law=law, **({} if margin is None else {"margin": margin}))
     prob = problem.adhesive_problem(threads)
@@ -442,16 +463,16 @@ def _trapezoid(w, d):
     return float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(d)))
 
 
-def bem_loading_cycle(mu, beta0, n, machine_stiffness=None, *, branch=None, steps=BRANCH_STEPS,
-                      window=BRANCH_WINDOW, margin=None, **options):
+def bem_loading_cycle(*, beta0, mu, n, machine_stiffness=None, branch=None, margin=None, law="dugdale",
+                      threads=None, options=None):
     """Loading-unloading cycle of the BEM under a machine spring: both jumps and the energy lost.
 
     Parameters
     ----------
-    mu : float
-        Transition parameter of Eq. (35), > 0 [-].
     beta0 : float
         Hertz ellipticity of the geometry, in (0, 1] [-].
+    mu : float
+        Transition parameter of Eq. (35), > 0 [-].
     n : int
         Cells per axis (even, >= 8).
     machine_stiffness : array_like or None
@@ -461,15 +482,15 @@ def bem_loading_cycle(mu, beta0, n, machine_stiffness=None, *, branch=None, step
     branch : BemBranch, optional
         A branch sampled with ``landing`` holding these stiffnesses (default:
         sampled here).
-    steps : int
-        As :func:`bem_unloading_branch`.
-    window : int
-        As :func:`bem_unloading_branch`.
     margin : float, optional
         Domain margin; default one whose domain holds the softest spring's landing
         state (:func:`_cycle_margin`, from MD and the DH zone).
-    **options
-        ``law``, ``tol``, ``max_iter``, ``threads`` of :func:`bem_unloading_branch`.
+    law : {'dugdale', 'exponential'}
+        As :func:`bem_unloading_branch`.
+    threads : int, optional
+        As :func:`bem_unloading_branch`.
+    options : BranchOptions, optional
+        As :func:`bem_unloading_branch`.
 
     Returns
     -------
@@ -514,8 +535,8 @@ def bem_loading_cycle(mu, beta0, n, machine_stiffness=None, *, branch=None, step
             finite = k1[np.isfinite(k1)]
             margin = _cycle_margin(mu, beta0, finite) if finite.size else None
         landing = [1e300 if not np.isfinite(v) else v for v in k1]
-        branch = bem_unloading_branch(mu, beta0, n, steps=steps, window=window, landing=landing,
-                                      margin=margin, **options)
+        branch = bem_unloading_branch(beta0=beta0, mu=mu, n=n, landing=landing, margin=margin, law=law,
+                                      threads=threads, options=options)
     elif not isinstance(branch, BemBranch):
         raise ValueError(f"branch must be a BemBranch (from bem_unloading_branch); got {type(branch).__name__}")
     x = np.sqrt(branch.adhesive_force)

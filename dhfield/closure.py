@@ -307,15 +307,15 @@ def _spread_from_state(a, c, beta, v, n_theta=N_THETA, n_law=129):
     )
 
 
-def equal_beta_spread(mu, beta0, *, control="load", n_theta=N_THETA):
+def equal_beta_spread(*, beta0, mu, control="load", n_theta=N_THETA):
     """Run the equal-beta test at the pull-off point of the paper's model.
 
     Parameters
     ----------
-    mu : array_like
-        Tabor parameter, Eq. (35) [-].
     beta0 : array_like
         Ellipticity (Eqs. 17-19) [-]; broadcast against ``mu``.
+    mu : array_like
+        Tabor parameter, Eq. (35) [-].
     control : {"load", "displacement"}
         Pull-off control mode.
     n_theta : int
@@ -332,17 +332,17 @@ def equal_beta_spread(mu, beta0, *, control="load", n_theta=N_THETA):
     return _spread_from_state(a, po.c_star, po.ellipticity, po.v, n_theta)
 
 
-def equal_beta_spread_along_curve(mu, beta0, a_star, *, n_theta=N_THETA):
+def equal_beta_spread_along_curve(a_star, *, beta0, mu, n_theta=N_THETA):
     """Run the equal-beta test along a load curve of the paper's model (one mu, beta0).
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter, Eq. (35) [-].
-    beta0 : float
-        Ellipticity (Eqs. 17-19) [-].
     a_star : array_like
         Contact semi-major axes a* of the curve [-].
+    beta0 : float
+        Ellipticity (Eqs. 17-19) [-].
+    mu : float
+        Tabor parameter, Eq. (35) [-].
     n_theta : int
         Rays on [0, pi/2].
 
@@ -405,17 +405,17 @@ def _ray_average_log_residual(log_s, a, mu, beta, weight, n_theta):
     return np.log(v) + np.log1p(v) + np.log(mean)  # log of the mean Delta gamma, target 0
 
 
-def solve_ray_average(a_star, mu, beta0, *, weight="area", n_theta=None):
+def solve_ray_average(a_star, *, beta0, mu, weight="area", n_theta=None):
     """Solve the ray-average closure: equal beta (Eq. 17), sigma0 = mu, mean Delta gamma = 1.
 
     Parameters
     ----------
     a_star : array_like
         Contact semi-major axis a* [-].
-    mu : array_like
-        Tabor parameter, Eq. (35) [-].
     beta0 : array_like
         Ellipticity of both ellipses (Eq. 19) [-].
+    mu : array_like
+        Tabor parameter, Eq. (35) [-].
     weight : {"area", "angle"}
         Periphery average (:func:`dhfield.periphery.ray_average`).
     n_theta : int, optional
@@ -501,17 +501,17 @@ def _two_axis_residual(a, log_c, log_d, mu, r1, r2):
     return r[..., 0], r[..., 1]  # log Delta gamma on the two axes (Eq. 31 on both)
 
 
-def solve_two_axis(a_star, mu, beta0):
+def solve_two_axis(a_star, *, beta0, mu):
     """Solve the two-axis closure: Delta gamma = 1 on both axes, beta_cd != beta_ab, contact exact.
 
     Parameters
     ----------
     a_star : array_like
         Contact semi-major axis a* [-].
-    mu : array_like
-        Tabor parameter; sigma0 = mu on the major axis (Eqs. 24, 35) [-].
     beta0 : array_like
         Hertz ellipticity of the geometry, fixing R'/R'' [-].
+    mu : array_like
+        Tabor parameter; sigma0 = mu on the major axis (Eqs. 24, 35) [-].
 
     Returns
     -------
@@ -623,15 +623,15 @@ def _pull_off_state(mu, beta0, closure, control):
     return solver(a_best, mu, beta0), ~has
 
 
-def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
+def pull_off_closure(*, beta0, mu, closure="two_axis", control="load"):
     """Find the pull-off point of a closure: the minimum of W* (load) or delta* (displacement).
 
     Parameters
     ----------
-    mu : array_like
-        Tabor parameter (Eq. 35) [-].
     beta0 : array_like
         Hertz ellipticity of the geometry [-]; broadcast against ``mu``.
+    mu : array_like
+        Tabor parameter (Eq. 35) [-].
     closure : {"paper", "ray_average", "two_axis"}
         "paper" is Eqs. (17)-(19), (24), (31) (equal to :func:`dhfield.model.pull_off`
         to the solver tolerance; used as the like-for-like baseline).
@@ -657,12 +657,12 @@ def pull_off_closure(mu, beta0, closure="two_axis", *, control="load"):
         control=control, sin_skew=sin_skew_angle(beta0, checked=False), geometry="ellipse")
 
 
-def state_at_pull_off(mu, beta0, closure="two_axis", *, control="load"):
+def state_at_pull_off(*, beta0, mu, closure="two_axis", control="load"):
     """Compute the closure's equilibrium state at its pull-off point (the diagnostics of the closure).
 
     Parameters
     ----------
-    mu, beta0 : array_like
+    beta0, mu : array_like
         The grid point, as in :func:`pull_off_closure` [-].
     closure : {"paper", "ray_average", "two_axis"}
         As in :func:`pull_off_closure`.
@@ -697,7 +697,7 @@ def pull_off_ray_average(beta0, mu, *, control="load"):
     dhfield.records.PullOff
         The pull-off point (:func:`pull_off_closure`), nondimensional.
     """
-    return pull_off_closure(mu, beta0, "ray_average", control=control)
+    return pull_off_closure(beta0=beta0, mu=mu, closure="ray_average", control=control)
 
 
 def pull_off_two_axis(beta0, mu, *, control="load"):
@@ -716,4 +716,4 @@ def pull_off_two_axis(beta0, mu, *, control="load"):
     dhfield.records.PullOff
         The pull-off point (:func:`pull_off_closure`), nondimensional.
     """
-    return pull_off_closure(mu, beta0, "two_axis", control=control)
+    return pull_off_closure(beta0=beta0, mu=mu, closure="two_axis", control=control)

@@ -317,7 +317,7 @@ def _curve_paper(a, mu, beta0):
 
 def _curve_closure(solver):
     def curve(a, mu, beta0):
-        st = solver(a, mu, beta0)
+        st = solver(a, beta0=beta0, mu=mu)
         return {"a_star": st.a_star, "b_star": st.b_star, "c_star": st.c_star, "d_star": st.d_star,
                 "v": np.full(np.shape(st.a_star), _NAN), "W_star": st.W_star, "delta_star": st.delta_star}
     return curve

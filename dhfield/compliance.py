@@ -104,6 +104,7 @@ from . import compare
 from ._validation import check_interval
 from .dugdale_separation import dugdale_range, separated_branch, zone_radius_at_contact
 from .pull_off_search import stable_minimum_index
+from .records import SPRING_PULL_OFF_KEYS, SpringPullOff
 
 __all__ = ["stiffness_star", "check_machine_stiffness", "add_machine_displacement", "pull_off_under_spring", "spring_pull_off_record",
            "pull_off_force_under_spring", "loading_cycle", "loading_cycle_si", "cycle_path",
@@ -463,8 +464,9 @@ def pull_off_under_spring(model, *, beta0, mu, machine_stiffness):
 
     Returns
     -------
-    dict
-        Arrays of the shape of K*: ``machine_stiffness_star``, ``W_star`` (load at
+    dhfield.records.SpringPullOff
+        Arrays of the shape of K* (read as attributes or as a mapping):
+        ``machine_stiffness_star``, ``W_star`` (load at
         the jump out, Eq. 34), ``delta_star``, ``a_star``, ``b_star``, ``c_star``,
         ``d_star``, ``v`` at the jump, ``separation_delta_star`` (the approach
         after the jump, W = 0: the machine position Delta* = delta* + W*/K*),
@@ -487,8 +489,7 @@ def pull_off_under_spring(model, *, beta0, mu, machine_stiffness):
     """
     s, k = _as_weight(machine_stiffness)
     out = _pull_off(_Curve(model, mu, beta0), s, k)
-    out.pop("_t")  # the internal curve parameter
-    return out
+    return SpringPullOff(**{key: out[key] for key in SPRING_PULL_OFF_KEYS})  # not "_t", the curve parameter
 
 
 def _pull_off(curve, s, k):
@@ -526,10 +527,10 @@ def spring_pull_off_record(model, *, beta0, mu, machine_stiffness):
 
     Returns
     -------
-    dict
+    dhfield.records.PullOff
         The record: ``control = 'spring'``, W*, a*, b*, c*, d*, v and delta* at
         the jump out, the ellipticities b/a and d/c, ``at_zero_contact``, and the
-        other keys of :func:`dhfield.compare.pull_off`.
+        other fields of :func:`dhfield.compare.pull_off`'s record (load control).
 
     Raises
     ------
@@ -539,15 +540,14 @@ def spring_pull_off_record(model, *, beta0, mu, machine_stiffness):
     if np.ndim(machine_stiffness):
         raise ValueError("machine_stiffness of a pull-off record must be a scalar")
     po = pull_off_under_spring(model, mu=mu, beta0=beta0, machine_stiffness=machine_stiffness)
-    rec = dict(compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False))
-    rec["control"] = "spring"
-    for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star"):
-        rec[key] = float(po[key])
-    a, b, c, dd = (float(po[x]) for x in ("a_star", "b_star", "c_star", "d_star"))
-    rec["ellipticity"] = b / a if a > 0 else float(rec["ellipticity"]) if po["at_zero_contact"] else 1.0
-    rec["adhesive_ellipticity"] = dd / c if np.isfinite(c) and c > 0 and np.isfinite(dd) else float("nan")
-    rec["at_zero_contact"] = bool(po["at_zero_contact"])
-    return rec
+    load = compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False)
+    jump = {key: float(po[key]) for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star")}
+    a, b, c, dd = (jump[x] for x in ("a_star", "b_star", "c_star", "d_star"))
+    return load.replace(
+        control="spring", **jump,
+        ellipticity=b / a if a > 0 else float(load.ellipticity) if po["at_zero_contact"] else 1.0,
+        adhesive_ellipticity=dd / c if np.isfinite(c) and c > 0 and np.isfinite(dd) else float("nan"),
+        at_zero_contact=bool(po["at_zero_contact"]))
 
 
 def pull_off_force_under_spring(params, machine_stiffness, model=compare.DEFAULT_MODEL):

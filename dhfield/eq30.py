@@ -432,8 +432,8 @@ def eq30_boundary_from_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
     float
         I_30 [J m^-2].
     """
-    prof = periphery.periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, scaling,
-                                             [0.0, 0.5 * np.pi], effective_radius, reduced_modulus, **kwargs)
+    state = (semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus)
+    prof = periphery.periphery_from_gap_grid(x, y, gap, state, [0.0, 0.5 * np.pi], **kwargs)
     return float(4.0 * (prof.work_of_adhesion[0] - prof.work_of_adhesion[1]))
 
 

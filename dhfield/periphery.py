@@ -559,13 +559,13 @@ def periphery_at_pull_off(pull_off, theta=None):
     return periphery(a, pull_off.c_star, beta, pull_off.v, theta)
 
 
-def load_curve_periphery(mu, beta0, a_star=None, theta=None, *, ellipticity=None, n=60):
+def load_curve_periphery(*, beta0, mu, a_star=None, theta=None, ellipticity=None, n=60):
     """The periphery quantities along a load curve of the paper's model.
 
     Parameters
     ----------
-    mu, beta0 : float
-        Tabor parameter (Eq. 35) and initial ellipticity [-].
+    beta0, mu : float
+        Initial ellipticity and Tabor parameter (Eq. 35) [-].
     a_star : array_like, optional
         Contact semi-major axes a* [-]; default ``n`` points over
         :data:`dhfield.model.DEFAULT_A_STAR`.
@@ -612,8 +612,7 @@ def _grid_spline(x, y, gap):
     return RectBivariateSpline(x, y, gap, kx=3, ky=3)
 
 
-def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, scaling, theta=None,
-                            effective_radius=1.0, reduced_modulus=1.0, *, method="parts", trend=None):
+def periphery_from_gap_grid(x, y, gap, state, theta=None, *, method="parts", trend=None):
     """Periphery quantities from a numerical gap field on a Cartesian grid (e.g. BEM).
 
     The adhesive stress is the DH stress of the given state (Eq. 23), which is the
@@ -627,20 +626,15 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
         covers only x > 0 (or y > 0) is extended by even symmetry.
     gap : array_like
         Gap h on the grid, shape ``(len(x), len(y))`` ('ij' indexing) [m].
-    semi_major : array_like
-        Contact semi-major axis a of the DH state that produced the field [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a of that state [m].
-    beta : array_like
-        Its common ellipticity b/a = d/c (Eq. 17) [-].
-    scaling : array_like
-        Its DH scaling factor v >= 0 [-].
+    state : tuple
+        The (scalar) DH state that produced the field, ``(semi_major, adhesive_semi_major, beta,
+        scaling)`` or ``(semi_major, adhesive_semi_major, beta, scaling, effective_radius,
+        reduced_modulus)``, as :class:`dhfield.double_hertz.DoubleHertzParameters`: contact
+        semi-major axis a [m], adhesive semi-major axis c >= a [m], common ellipticity
+        b/a = d/c (Eq. 17) [-], DH scaling factor v >= 0 [-], R = sqrt(R'R'') [m] (default 1)
+        and E* [Pa] (default 1).
     theta : array_like, optional
         Ray angles, 1-D [rad].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
     method : {"parts", "slope"}
         ``"parts"``: Delta gamma = -sigma0 h(r_ab) - int h (d sigma/dr) dr, which
         uses only values of the interpolated gap (integration by parts;
@@ -669,8 +663,11 @@ def periphery_from_gap_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
     """
     if method not in ("parts", "slope"):
         raise ValueError(f"method must be 'parts' or 'slope'; got {method!r}")
-    a, c, beta, v, r, e, amp_a, amp_b = field_parameters(semi_major, adhesive_semi_major, beta, scaling,
-                                                         effective_radius, reduced_modulus)
+    if not isinstance(state, tuple) or len(state) not in (4, 6):
+        raise ValueError("state must be a tuple (semi_major, adhesive_semi_major, beta, scaling"
+                         "[, effective_radius, reduced_modulus]); got "
+                         f"{type(state).__name__} of length {len(state) if isinstance(state, tuple) else '-'}")
+    a, c, beta, v, r, e, amp_a, amp_b = field_parameters(*state, *(1.0, 1.0)[:6 - len(state)])
     if np.ndim(a) or np.ndim(c) or np.ndim(beta) or np.ndim(v):
         raise ValueError("periphery_from_gap_grid takes one (scalar) DH state")
     th = _check_theta(theta)

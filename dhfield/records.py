@@ -13,7 +13,12 @@ Every analytic model answers with the same types, whose fields are named by
   :func:`dhfield._adhesion.pull_off_si`).  The one SI record: every model's SI
   ``pull_off`` and :func:`dhfield.dimensional.pull_off_force` return it;
 * :class:`LoadCurve`: :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS` (scalars) then
-  :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size).
+  :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size);
+* :class:`SpringPullOff`: the jump out under a machine spring of stiffness K*
+  (:func:`dhfield.compliance.pull_off_under_spring`), the keys of
+  :data:`SPRING_PULL_OFF_KEYS`: the state at the jump and the machine's quantities,
+  vectorised over K*.  Its scalar pull-off record is a :class:`PullOff` with
+  ``control = 'spring'`` (:func:`dhfield.compliance.spring_pull_off_record`).
 
 Both are read as attributes (``p.W_star``) or as a mapping (``p["W_star"]``, ``dict(p)``,
 ``{**p}``), so a record goes straight into JSON, netCDF and tables.  NaN stands for a
@@ -29,7 +34,8 @@ import numpy as np
 
 from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS, PULL_OFF_SI_KEYS
 
-__all__ = ["PullOff", "PullOffSI", "LoadCurve", "pull_off_record", "pull_off_record_si", "load_curve_record"]
+__all__ = ["PullOff", "PullOffSI", "LoadCurve", "SpringPullOff", "SPRING_PULL_OFF_KEYS", "pull_off_record",
+           "pull_off_record_si", "load_curve_record"]
 
 _NAN = float("nan")
 
@@ -68,7 +74,8 @@ class PullOff(_Record):
     model : str
         A name of :data:`dhfield.compare.MODEL_NAMES`.
     control : str
-        'load' or 'displacement'.
+        'load' or 'displacement' ('spring' under a machine spring:
+        :func:`dhfield.compliance.spring_pull_off_record`).
     geometry : str
         'ellipse', or 'circle' for the circular models (R = sqrt(R'R''), sin_skew = 1).
     beta0, mu : ndarray or float
@@ -213,7 +220,58 @@ class LoadCurve(_Record):
     _KEYS = LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
 
 
+#: The fields of :class:`SpringPullOff`, in order (the keys of the dict it replaced).
+SPRING_PULL_OFF_KEYS = ("machine_stiffness_star", "W_star", "delta_star", "a_star", "b_star", "c_star", "d_star",
+                        "v", "separation_delta_star", "max_tension_W_star", "at_zero_contact", "on_separated_branch")
+
+
+@dataclass(frozen=True, eq=False)
+class SpringPullOff(_Record):
+    """The jump out of a model under a machine spring of stiffness K* (fields: :data:`SPRING_PULL_OFF_KEYS`).
+
+    Every field has the shape of K* (scalars for a scalar K*).
+
+    Parameters
+    ----------
+    machine_stiffness_star : ndarray or float
+        K* in the paper's units (:func:`dhfield.compliance.stiffness_star`); inf: a rigid machine [-].
+    W_star : ndarray or float
+        Load at the jump out, Eq. (34) [-].
+    delta_star : ndarray or float
+        Approach at the jump out, in c_r^2/R [-].
+    a_star, b_star, c_star, d_star : ndarray or float
+        Contact and adhesive-zone semi-axes at the jump out, in c_r (Eq. 33) [-] (NaN: no zone).
+    v : ndarray or float
+        Double-Hertz factor of Eq. (22) at the jump out [-] (NaN outside the equal-beta DH models).
+    separation_delta_star : ndarray or float
+        Approach after the jump, W = 0: the machine position delta* + W*/K* [-].
+    max_tension_W_star : ndarray or float
+        The smallest W* met from high load to the jump (the largest tensile force a
+        recording shows) [-].
+    at_zero_contact : ndarray or bool
+        True where the jump starts at or beyond the loss of contact (a = 0).
+    on_separated_branch : ndarray or bool
+        True where the jump starts out of contact (MD only, :mod:`dhfield.dugdale_separation`).
+    """
+
+    machine_stiffness_star: np.ndarray
+    W_star: np.ndarray
+    delta_star: np.ndarray
+    a_star: np.ndarray
+    b_star: np.ndarray
+    c_star: np.ndarray
+    d_star: np.ndarray
+    v: np.ndarray
+    separation_delta_star: np.ndarray
+    max_tension_W_star: np.ndarray
+    at_zero_contact: np.ndarray
+    on_separated_branch: np.ndarray
+
+    _KEYS = SPRING_PULL_OFF_KEYS
+
+
 assert tuple(f.name for f in fields(PullOff)) == PULL_OFF_KEYS
+assert tuple(f.name for f in fields(SpringPullOff)) == SPRING_PULL_OFF_KEYS
 assert tuple(f.name for f in fields(PullOffSI)) == PULL_OFF_SI_KEYS
 assert tuple(f.name for f in fields(LoadCurve)) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
 

@@ -15,7 +15,8 @@ import pytest
 
 from dhfield import compare, compliance, transition
 from dhfield.adhesive_start import adhesive_pull_off
-from dhfield.bem_compliance import BemBranch, bem_pull_off_under_spring, bem_unloading_branch
+from dhfield.bem_compliance import (BemBranch, BranchOptions, bem_loading_cycle, bem_pull_off_under_spring,
+                                    bem_unloading_branch)
 
 N = 64
 #: The K* -> 0 jump (a cubic fit over the branch sampled by adhesive force) and the load-control
@@ -67,7 +68,7 @@ def test_jump_moves_from_the_load_minimum_to_the_approach_minimum_with_stiffness
 # ============================================================================ the BEM: limits K* -> 0, inf
 @pytest.fixture(scope="module")
 def branch_lambda_3():
-    return bem_unloading_branch(_mu(3.0), 1.0, N)
+    return bem_unloading_branch(beta0=1.0, mu=_mu(3.0), n=N)
 
 
 def test_soft_spring_is_the_bem_load_control_pull_off(branch_lambda_3):
@@ -92,7 +93,7 @@ def test_stiff_spring_is_the_bem_displacement_control_pull_off(branch_lambda_3):
 
 def test_ellipse_limits_are_the_bem_pull_offs():
     """beta0 = 0.5, mu = 2: both limits against the BEM's own pull-offs on the same grid."""
-    br = bem_unloading_branch(2.0, 0.5, N)
+    br = bem_unloading_branch(beta0=0.5, mu=2.0, n=N)
     soft, rigid = bem_pull_off_under_spring(br, 0.0), bem_pull_off_under_spring(br, None)
     mid = bem_pull_off_under_spring(br, 1.0)
     load = adhesive_pull_off(mu=2.0, beta0=0.5, n=N, control="load")
@@ -122,15 +123,25 @@ def test_bad_input_named():
     with pytest.raises(ValueError, match="machine_stiffness"):
         bem_pull_off_under_spring(br, np.nan)
     with pytest.raises(ValueError, match="mu"):
-        bem_unloading_branch(0.0, 1.0, N)
+        bem_unloading_branch(beta0=1.0, mu=0.0, n=N)
     with pytest.raises(ValueError, match="beta0"):
-        bem_unloading_branch(1.0, 1.5, N)
+        bem_unloading_branch(beta0=1.5, mu=1.0, n=N)
     with pytest.raises(ValueError, match="steps"):
-        bem_unloading_branch(1.0, 1.0, N, steps=2)
+        bem_unloading_branch(beta0=1.0, mu=1.0, n=N, options=BranchOptions(steps=2))
     with pytest.raises(ValueError, match="window"):
-        bem_unloading_branch(1.0, 1.0, N, window=1)
+        bem_unloading_branch(beta0=1.0, mu=1.0, n=N, options=BranchOptions(window=1))
+    with pytest.raises(ValueError, match="options"):
+        bem_unloading_branch(beta0=1.0, mu=1.0, n=N, options={"steps": 8})
     with pytest.raises(ValueError, match="n"):
-        bem_unloading_branch(1.0, 1.0, 7)
+        bem_unloading_branch(beta0=1.0, mu=1.0, n=7)
+
+
+@pytest.mark.parametrize("call", [lambda: bem_unloading_branch(1.0, 1.0, N),
+                                  lambda: bem_loading_cycle(1.0, 1.0, N, 1.0)])
+def test_beta0_and_mu_are_keyword_only(call):
+    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        call()
 
 
 # ============================================================================ the cycle
@@ -141,8 +152,6 @@ RTOL_CYCLE_EXACT = 1e-3
 
 
 def test_cycle_on_the_exact_md_curve_is_compliance_s():
-    from dhfield.bem_compliance import bem_loading_cycle
-
     mu = _mu(3.0)
     ks = [0.3, 1.0, 10.0]
     ref = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=ks)
@@ -150,7 +159,7 @@ def test_cycle_on_the_exact_md_curve_is_compliance_s():
     a_hi = 1.2 * float(np.max(ref["jump_in_a_star"]))
     br = _md_branch(mu, a_lo, a_hi, n=121)
     br = BemBranch(**{**br.__dict__, "start_delta": -1.0 / mu})  # the Dugdale range h0 = 1/mu (Eq. 35 units)
-    got = bem_loading_cycle(mu, 1.0, 0, ks, branch=br)
+    got = bem_loading_cycle(beta0=1.0, mu=mu, n=0, machine_stiffness=ks, branch=br)
     assert np.all(got["resolved"])
     np.testing.assert_allclose(got["jump_in_W_star"], ref["jump_in_W_star"], atol=ATOL_FIT_EXACT)
     np.testing.assert_allclose(got["jump_out_W_star"], ref["jump_out_W_star"], atol=ATOL_FIT_EXACT)
@@ -160,12 +169,11 @@ def test_cycle_on_the_exact_md_curve_is_compliance_s():
 
 
 def test_cycle_bad_input_named():
-    from dhfield.bem_compliance import bem_loading_cycle
-
     br = _md_branch(_mu(3.0), 0.5, 2.0)
     with pytest.raises(ValueError, match="machine_stiffness"):
-        bem_loading_cycle(1.0, 1.0, N, 0.0, branch=br)  # load control: infinite energy lost
+        # load control: infinite energy lost
+        bem_loading_cycle(beta0=1.0, mu=1.0, n=N, machine_stiffness=0.0, branch=br)
     with pytest.raises(ValueError, match="machine_stiffness"):
-        bem_loading_cycle(1.0, 1.0, N, -2.0, branch=br)
+        bem_loading_cycle(beta0=1.0, mu=1.0, n=N, machine_stiffness=-2.0, branch=br)
     with pytest.raises(ValueError, match="branch"):
-        bem_loading_cycle(1.0, 1.0, N, 1.0, branch="nope")
+        bem_loading_cycle(beta0=1.0, mu=1.0, n=N, machine_stiffness=1.0, branch="nope")

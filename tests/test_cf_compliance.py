@@ -76,7 +76,7 @@ def _curve_si(tmp):
 def _pull_off_grid(tmp):
     mu, beta0 = np.array([0.5, 2.0]), np.array([0.8, 0.9, 1.0])
     p = model.pull_off(mu=mu[:, None], beta0=beta0[None, :])
-    return _write(io_curves.pull_off_dataset(mu, beta0, {"W_star": p.W_star, "a_star_load": p.a_star}),
+    return _write(io_curves.pull_off_dataset({"W_star": p.W_star, "a_star_load": p.a_star}, beta0=beta0, mu=mu),
                   tmp / "pull_off.nc")
 
 
@@ -95,7 +95,7 @@ def _periphery(tmp):
     po = model.pull_off(mu=mu, beta0=beta0)
     prof = periphery.periphery_at_pull_off(po, THETA)
     law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, THETA[[0, -1]], n_points=5)
-    ds = io_periphery.pull_off_periphery_dataset(mu[0], beta0[:, 0], po, prof, law)
+    ds = io_periphery.pull_off_periphery_dataset(po, prof, law, beta0=beta0[:, 0], mu=mu[0])
     return io_periphery.write_dataset(ds, tmp / "periphery.nc")
 
 
@@ -109,19 +109,20 @@ def _equal_beta(tmp):
     state = SimpleNamespace(**{k: rng.random(shape) for k in (
         "W_star", "a_star", "c_star", "beta_contact", "beta_adhesive", "work_major", "work_minor",
         "sigma0_minor")})
-    ds = io_periphery.equal_beta_dataset([0.5, 1.0, 2.0], [0.8, 0.9], spread, {"paper": state, "two_axis": state})
+    ds = io_periphery.equal_beta_dataset(spread, {"paper": state, "two_axis": state}, beta0=[0.8, 0.9],
+                                      mu=[0.5, 1.0, 2.0])
     return io_periphery.write_dataset(ds, tmp / "equal_beta.nc")
 
 
 def _eq30(tmp):
     a = np.ones((2, 3))
-    ds = io_periphery.eq30_dataset([0.5, 1.0, 2.0], [0.8, 0.9], a, a, a, a, a)
+    ds = io_periphery.eq30_dataset(a, a, a, a, a, beta0=[0.8, 0.9], mu=[0.5, 1.0, 2.0])
     return io_periphery.write_dataset(ds, tmp / "eq30.nc")
 
 
 def _load_curve_periphery(tmp):
-    lc, pr = periphery.load_curve_periphery(1.0, 0.9, [0.5, 1.0], THETA)
-    ds = io_periphery.load_curve_periphery_dataset([1.0], [0.9], {(0.9, 1.0): lc}, {(0.9, 1.0): pr})
+    lc, pr = periphery.load_curve_periphery(beta0=0.9, mu=1.0, a_star=[0.5, 1.0], theta=THETA)
+    ds = io_periphery.load_curve_periphery_dataset({(0.9, 1.0): lc}, {(0.9, 1.0): pr}, beta0=[0.9], mu=[1.0])
     return io_periphery.write_dataset(ds, tmp / "lc_periphery.nc")
 
 

@@ -17,12 +17,12 @@ CONTACT_ATOL = 1e-12
 
 def test_paper_closure_equals_model_pull_off():
     mu, beta0 = np.array([0.5, 2.0]), 0.8
-    got = closure.pull_off_closure(mu, beta0, "paper")
+    got = closure.pull_off_closure(beta0=beta0, mu=mu, closure="paper")
     ref = model.pull_off(mu=mu, beta0=beta0)
     assert got.model == "dh-elliptic" and got.control == "load"
     assert_allclose(got.W_star, ref.W_star, rtol=PULL_OFF_RTOL)
     assert_allclose(got.a_star, ref.a_star, rtol=1e-6)  # a* of a flat minimum: sqrt(tolerance)
-    state = closure.state_at_pull_off(mu, beta0, "paper")  # the closure's own state at that point
+    state = closure.state_at_pull_off(beta0=beta0, mu=mu, closure="paper")  # the closure's own state at that point
     assert np.array_equal(state.a_star, got.a_star) and np.array_equal(state.W_star, got.W_star)
     assert_allclose(state.work_major, 1.0, rtol=1e-12)
 
@@ -30,7 +30,7 @@ def test_paper_closure_equals_model_pull_off():
 @pytest.mark.parametrize("solver", [closure.solve_ray_average, closure.solve_two_axis])
 def test_alternative_closures_reduce_to_paper_at_circle(solver):
     a = np.array([0.05, 0.7, 1.5, 2.5])
-    got = solver(a, 1.3, 1.0)
+    got = solver(a, beta0=1.0, mu=1.3)
     c, v = model.solve_adhesive_axis(a, mu=1.3, beta0=1.0)
     assert_allclose(got.c_star, c, rtol=SOLVE_RTOL)
     assert_allclose(got.d_star, c, rtol=SOLVE_RTOL)
@@ -43,14 +43,14 @@ def test_alternative_closures_reduce_to_paper_at_circle(solver):
 
 @pytest.mark.parametrize("name", ["ray_average", "two_axis"])
 def test_alternative_pull_off_reduces_to_paper_at_circle(name):
-    got = closure.pull_off_closure(1.0, 1.0, name)
+    got = closure.pull_off_closure(beta0=1.0, mu=1.0, closure=name)
     ref = model.pull_off(mu=1.0, beta0=1.0)
     assert_allclose(got.W_star, ref.W_star, rtol=PULL_OFF_RTOL)
 
 
 def test_two_axis_constraints_and_contact_condition():
     mu, beta0 = 2.0, 0.8
-    st = closure.solve_two_axis(np.array([0.4, 1.2, 2.0]), mu, beta0)
+    st = closure.solve_two_axis(np.array([0.4, 1.2, 2.0]), beta0=beta0, mu=mu)
     assert_allclose(st.work_major, 1.0, rtol=1e-11)  # Eq. (31) on theta_p = 0
     assert_allclose(st.work_minor, 1.0, rtol=1e-11)  # ... and on theta_p = pi/2
     assert_allclose(st.sigma0_major, mu, rtol=1e-12)  # Eq. (24) with Eq. (35)
@@ -84,14 +84,14 @@ def test_two_axis_constraints_and_contact_condition():
 def test_two_axis_ellipticities_same_side_of_beta0():
     # Derived in the module docstring: A ab I2_ab [rho(beta_ab) - rho0] = B cd I2_cd [rho(beta_cd) - rho0]
     # with A ab I2_ab > B cd I2_cd > 0: same side, adhesive ellipse further from beta0.
-    st = closure.solve_two_axis(np.array([0.3, 1.0, 1.8]), np.array([[0.5], [5.0]]), 0.8)
+    st = closure.solve_two_axis(np.array([0.3, 1.0, 1.8]), beta0=0.8, mu=np.array([[0.5], [5.0]]))
     assert np.all(st.beta_contact > 0.8)
     assert np.all(st.beta_adhesive > st.beta_contact)
 
 
 def test_ray_average_constraints():
     a, mu, beta0 = np.array([0.3, 1.0, 2.0]), 1.0, 0.8
-    st = closure.solve_ray_average(a, mu, beta0)
+    st = closure.solve_ray_average(a, beta0=beta0, mu=mu)
     th = np.linspace(0, np.pi / 2, 41)
     v = st.adhesive_amplitude / hertz.max_pressure(st.c_star, beta0)
     prof = periphery.periphery(a[:, None], st.c_star[:, None], beta0, v[:, None], th)
@@ -100,13 +100,13 @@ def test_ray_average_constraints():
     assert_allclose(prof.max_adhesive_stress, mu, rtol=1e-12)
     assert np.all(prof.work_of_adhesion[..., 0] > 1.0)
     assert np.all(prof.work_of_adhesion[..., -1] < 1.0)
-    angle = closure.solve_ray_average(a, mu, beta0, weight="angle")
+    angle = closure.solve_ray_average(a, beta0=beta0, mu=mu, weight="angle")
     assert not np.allclose(angle.c_star, st.c_star, rtol=1e-6)
 
 
 def test_equal_beta_spread():
     mu = np.array([0.5, 1.0, 5.0])
-    s = closure.equal_beta_spread(mu, np.array([[0.8], [0.9], [1.0]]))
+    s = closure.equal_beta_spread(beta0=np.array([[0.8], [0.9], [1.0]]), mu=mu)
     # circle: one cohesive law on every ray
     for q in (s.work_spread[2], s.law_spread[2], s.law_sup_spread[2]):
         assert np.all(np.abs(q) < 1e-10)
@@ -121,19 +121,19 @@ def test_equal_beta_spread():
 
 
 def test_spread_along_curve_and_law_spread_identity():
-    s = closure.equal_beta_spread_along_curve(1.0, 0.9, [0.5, 1.0, 2.0])
+    s = closure.equal_beta_spread_along_curve([0.5, 1.0, 2.0], beta0=0.9, mu=1.0)
     assert s.work_ratio.shape == (3,)
     law = periphery.cohesive_law(1.3, 2.0, 1.0, 1.1, theta=[0.0, 0.5, 1.0])
     assert closure.law_spread(law) < 1e-12
 
 
 @pytest.mark.parametrize("call, match", [
-    (lambda: closure.pull_off_closure(1.0, 0.8, "bogus"), "closure"),
-    (lambda: closure.pull_off_closure(1.0, 0.8, control="force"), "control"),
-    (lambda: closure.solve_two_axis(-1.0, 1.0, 0.8), "a_star"),
-    (lambda: closure.solve_ray_average(1.0, 0.0, 0.8), "mu"),
-    (lambda: closure.solve_ray_average(1.0, 1.0, 0.8, weight="x"), "weight"),
-    (lambda: closure.equal_beta_spread(1.0, 1.5), "beta0"),
+    (lambda: closure.pull_off_closure(beta0=0.8, mu=1.0, closure="bogus"), "closure"),
+    (lambda: closure.pull_off_closure(beta0=0.8, mu=1.0, control="force"), "control"),
+    (lambda: closure.solve_two_axis(-1.0, beta0=0.8, mu=1.0), "a_star"),
+    (lambda: closure.solve_ray_average(1.0, beta0=0.8, mu=0.0), "mu"),
+    (lambda: closure.solve_ray_average(1.0, beta0=0.8, mu=1.0, weight="x"), "weight"),
+    (lambda: closure.equal_beta_spread(beta0=1.5, mu=1.0), "beta0"),
     (lambda: closure.law_spread(periphery.cohesive_law(1.3, 2.0, 0.8, 1.1, theta=[0.0, 1.0]), "l2"), "norm"),
 ])
 def test_bad_input(call, match):
@@ -141,15 +141,28 @@ def test_bad_input(call, match):
         call()
 
 
+@pytest.mark.parametrize("call", [lambda: closure.equal_beta_spread(1.0, 0.9),
+                                  lambda: closure.equal_beta_spread_along_curve([0.5, 1.0], 1.0, 0.9),
+                                  lambda: closure.solve_ray_average(1.0, 1.0, 0.9),
+                                  lambda: closure.solve_two_axis(1.0, 1.0, 0.9),
+                                  lambda: closure.pull_off_closure(1.0, 0.9),
+                                  lambda: closure.state_at_pull_off(1.0, 0.9)])
+def test_beta0_and_mu_are_keyword_only(call):
+    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently.
+    (``pull_off_two_axis``/``pull_off_ray_average`` are the registry's ``f(beta0, mu, *, control)`` cores.)"""
+    with pytest.raises(TypeError, match="positional"):
+        call()
+
+
 def test_displacement_control_and_zero_contact():
     # mu = 0.5: displacement-controlled pull-off at zero contact (DMT side); mu = 5: interior minimum.
     for mu in (0.5, 5.0):
-        got = closure.pull_off_closure(mu, 0.8, "paper", control="displacement")
+        got = closure.pull_off_closure(beta0=0.8, mu=mu, closure="paper", control="displacement")
         ref = model.pull_off(mu=mu, beta0=0.8, control="displacement")
         assert_allclose(got.delta_star, ref.delta_star, rtol=1e-9)
         assert_allclose(got.W_star, ref.W_star, rtol=1e-6)
         assert bool(got.at_zero_contact) == bool(ref.at_zero_contact)
-    two = closure.pull_off_closure(0.5, 1.0, "two_axis", control="displacement")
+    two = closure.pull_off_closure(beta0=1.0, mu=0.5, closure="two_axis", control="displacement")
     assert_allclose(two.delta_star, model.pull_off(mu=0.5, beta0=1.0, control="displacement").delta_star, rtol=1e-9)
 
 
@@ -159,7 +172,7 @@ def test_two_axis_ray_work_against_quad(theta):
     # gap gradient built from both Hertz displacement gradients (Eq. 13) and the geometry (Eq. 2).
     from scipy import integrate
 
-    st = closure.solve_two_axis(1.0, 2.0, 0.8)
+    st = closure.solve_two_axis(1.0, beta0=0.8, mu=2.0)
     a, b, c, d = (float(q) for q in (st.a_star, st.b_star, st.c_star, st.d_star))
     amp_a, amp_b = float(st.contact_amplitude), float(st.adhesive_amplitude)
     rho = radius_ratio(0.8)

@@ -306,3 +306,17 @@ def test_beta0_and_mu_are_keyword_only(call):
     """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
     with pytest.raises(TypeError, match="positional"):
         call()
+
+
+def test_spring_records_are_typed_with_the_old_keys():
+    """pull_off_under_spring -> records.SpringPullOff and spring_pull_off_record -> records.PullOff
+    (control 'spring'), read as mappings with the keys the dicts had, so JSON and the CLI are unchanged."""
+    from dhfield.records import SPRING_PULL_OFF_KEYS, PullOff, SpringPullOff
+    from dhfield.schema import PULL_OFF_KEYS
+
+    po = compliance.pull_off_under_spring("jkr", beta0=1.0, mu=10.0, machine_stiffness=[0.0, 1.0])
+    assert type(po) is SpringPullOff and tuple(po) == SPRING_PULL_OFF_KEYS and "_t" not in po
+    assert po.W_star is po["W_star"] and np.shape(po.W_star) == (2,)
+    rec = compliance.spring_pull_off_record("jkr", beta0=1.0, mu=10.0, machine_stiffness=1.0)
+    assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS and rec.control == "spring"
+    assert rec.W_star == float(po.W_star[1]) and rec.at_zero_contact is False

@@ -81,16 +81,16 @@ def test_table_rejects_ragged_columns_and_unknown_names(tmp_path):
 def test_pull_off_dataset_is_on_beta0_mu():
     mu, beta0 = np.array([0.5, 1.0, 5.0]), np.array([0.8, 0.9])
     p = model.pull_off(mu=mu[:, None], beta0=beta0[None, :])
-    ds = pull_off_dataset(mu, beta0, {"W_star": p.W_star, "a_star_displacement_control": p.a_star})
+    ds = pull_off_dataset({"W_star": p.W_star, "a_star_displacement_control": p.a_star}, beta0=beta0, mu=mu)
     assert ds["W_star"].dims == schema.GRID_DIMS and ds["W_star"].shape == (2, 3)
     # transposed, not reshaped: the value at (beta0=0.8, mu=5) is that point's pull-off
     assert ds["W_star"].sel(beta0=0.8, mu=5.0).item() == model.pull_off(mu=5.0, beta0=0.8).W_star
     assert ds["W_star"].attrs["units"] == "1" and "at pull-off" in ds["W_star"].attrs["long_name"]
     assert "displacement control" in ds["a_star_displacement_control"].attrs["long_name"]
-    same = pull_off_dataset(mu, beta0, {"W_star": p.W_star.T}, input_dims=("beta0", "mu"))
+    same = pull_off_dataset({"W_star": p.W_star.T}, beta0=beta0, mu=mu, input_dims=("beta0", "mu"))
     np.testing.assert_array_equal(same["W_star"].values, ds["W_star"].values)
     with pytest.raises(ValueError, match="input_dims"):
-        pull_off_dataset(mu, beta0, {"W_star": p.W_star}, input_dims=("mu", "x"))
+        pull_off_dataset({"W_star": p.W_star}, beta0=beta0, mu=mu, input_dims=("mu", "x"))
 
 
 def test_unknown_suffix_is_an_error(tmp_path):
@@ -134,3 +134,9 @@ def test_bad_tables_name_the_file_and_column(tmp_path, content, match):
     with pytest.raises(ValueError, match=match) as err:
         read_table(path, required=("force", "semi_major"))
     assert "d.csv" in str(err.value) and "\n" not in str(err.value)
+
+
+def test_pull_off_dataset_beta0_and_mu_are_keyword_only():
+    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional grid would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        pull_off_dataset([1.0], [0.9], {"W_star": [[1.0]]})

@@ -1,5 +1,6 @@
 """Periphery Datasets (dhfield.io.periphery): schema units, canonical (beta0, mu) dims, round trip."""
 import numpy as np
+import pytest
 
 from dhfield import model, periphery, schema
 from dhfield.io import read_netcdf
@@ -13,7 +14,7 @@ def test_pull_off_periphery_round_trip(tmp_path):
     po = model.pull_off(mu=mu, beta0=beta0)
     prof = periphery.periphery_at_pull_off(po, THETA)
     law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, THETA[[0, -1]], n_points=5)
-    ds = iop.pull_off_periphery_dataset(mu[0], beta0[:, 0], po, prof, law)
+    ds = iop.pull_off_periphery_dataset(po, prof, law, beta0=beta0[:, 0], mu=mu[0])
     for name in iop.PROFILE_VARIABLES:
         assert ds[name].dims == ("beta0", "mu", "theta")
         assert ds[name].attrs["units"] == "1"
@@ -28,3 +29,14 @@ def test_pull_off_periphery_round_trip(tmp_path):
     for name in ds.coords:
         assert "_FillValue" not in back[name].encoding, name
     np.testing.assert_array_equal(back["work_of_adhesion"].values[0, 1], prof.work_of_adhesion[0, 1])
+
+
+def test_beta0_and_mu_are_keyword_only():
+    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional grid would swap them silently."""
+    grid = ([1.0], [0.9])
+    for call in (lambda: iop.pull_off_periphery_dataset(*grid, None, None),
+                 lambda: iop.equal_beta_dataset(*grid, None, {}),
+                 lambda: iop.eq30_dataset(*grid, 1, 1, 1, 1, 1),
+                 lambda: iop.load_curve_periphery_dataset(*grid, {}, {})):
+        with pytest.raises(TypeError, match="positional"):
+            call()

@@ -149,7 +149,7 @@ def test_pull_off_periphery_imposes_eq31_and_eq24():
 
 
 def test_load_curve_periphery():
-    curve, prof = periphery.load_curve_periphery(1.0, 0.9, a_star=[0.3, 1.0, 2.0], theta=THETA)
+    curve, prof = periphery.load_curve_periphery(beta0=0.9, mu=1.0, a_star=[0.3, 1.0, 2.0], theta=THETA)
     assert prof.work_of_adhesion.shape == (3, THETA.size)
     assert_allclose(prof.work_of_adhesion[:, 0], 1.0, rtol=1e-12)
     assert np.all(prof.work_of_adhesion[:, -1] < 1.0)
@@ -184,7 +184,7 @@ def test_gap_grid_direct_interpolation():
     x, g, _ = _grid(512, a, c, beta, v)
     ref = periphery.periphery(a, c, beta, v, THETA)
     for method in ("parts", "slope"):
-        got = periphery.periphery_from_gap_grid(x, x, g, a, c, beta, v, THETA, method=method)
+        got = periphery.periphery_from_gap_grid(x, x, g, (a, c, beta, v), THETA, method=method)
         assert_allclose(got.work_of_adhesion, ref.work_of_adhesion, rtol=GRID_RTOL_512)
         assert_allclose(got.edge_separation, ref.edge_separation, rtol=GRID_RTOL_512)
         assert np.max(np.abs(got.contact_edge_gap)) < 1e-3 * np.max(ref.edge_separation)
@@ -194,8 +194,8 @@ def test_gap_grid_full_equals_quadrant_and_trend():
     a, c, beta, v = 1.3, 2.0, 0.8, 1.1
     xq, gq, xxq = _grid(128, a, c, beta, v)
     xf, gf, _ = _grid(128, a, c, beta, v, quadrant=False)
-    pq = periphery.periphery_from_gap_grid(xq, xq, gq, a, c, beta, v, THETA)
-    pf = periphery.periphery_from_gap_grid(xf, xf, gf, a, c, beta, v, THETA)
+    pq = periphery.periphery_from_gap_grid(xq, xq, gq, (a, c, beta, v), THETA)
+    pf = periphery.periphery_from_gap_grid(xf, xf, gf, (a, c, beta, v), THETA)
     assert_allclose(pq.work_of_adhesion, pf.work_of_adhesion, rtol=1e-6)
     ref = periphery.periphery(a, c, beta, v, THETA)
 
@@ -204,10 +204,10 @@ def test_gap_grid_full_equals_quadrant_and_trend():
 
     noisy = gq * (1 + 1e-6 * np.sin(3 * xxq))
     for method in ("parts", "slope"):
-        got = periphery.periphery_from_gap_grid(xq, xq, noisy, a, c, beta, v, THETA, method=method,
+        got = periphery.periphery_from_gap_grid(xq, xq, noisy, (a, c, beta, v), THETA, method=method,
                                                 trend=trend)
         assert_allclose(got.work_of_adhesion, ref.work_of_adhesion, rtol=2e-6)
-        exact = periphery.periphery_from_gap_grid(xq, xq, gq, a, c, beta, v, THETA, method=method,
+        exact = periphery.periphery_from_gap_grid(xq, xq, gq, (a, c, beta, v), THETA, method=method,
                                                   trend=trend)
         assert_allclose(exact.work_of_adhesion, ref.work_of_adhesion, rtol=TREND_RTOL)
 
@@ -220,14 +220,32 @@ def test_gap_grid_full_equals_quadrant_and_trend():
     (lambda: periphery.periphery(1.0, 2.0, 0.8, 1.0, theta=[[0.0]]), "theta"),
     (lambda: periphery.cohesive_law(1.0, 2.0, 0.8, 1.0, n_points=1), "n_points"),
     (lambda: periphery.contact_edge_radius(-1.0, 0.8, 0.0), "semi_major"),
-    (lambda: periphery.periphery_from_gap_grid([0, 1, 2, 3], [0, 1, 2, 3], np.zeros((3, 4)), 1, 2, 0.8, 1),
+    (lambda: periphery.periphery_from_gap_grid([0, 1, 2, 3], [0, 1, 2, 3], np.zeros((3, 4)), (1, 2, 0.8, 1)),
      "shape"),
-    (lambda: periphery.periphery_from_gap_grid(np.arange(5.0), np.arange(5.0), np.zeros((5, 5)), 1, 2, 0.8, 1,
+    (lambda: periphery.periphery_from_gap_grid(np.arange(5.0), np.arange(5.0), np.zeros((5, 5)), (1, 2, 0.8, 1),
                                                method="fd"), "method"),
 ])
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_gap_grid_state_is_one_tuple():
+    """The DH state travels as one tuple (4 entries, or 6 with R and E*); anything else is named."""
+    a, c, beta, v = 1.3, 2.0, 0.8, 1.1
+    x, g, _ = _grid(64, a, c, beta, v)
+    four = periphery.periphery_from_gap_grid(x, x, g, (a, c, beta, v), THETA)
+    six = periphery.periphery_from_gap_grid(x, x, g, (a, c, beta, v, 1.0, 1.0), THETA)
+    assert np.array_equal(four.work_of_adhesion, six.work_of_adhesion)  # R = E* = 1 are the defaults
+    for bad in ((a, c, beta), [a, c, beta, v]):
+        with pytest.raises(ValueError, match="^state must be a tuple"):
+            periphery.periphery_from_gap_grid(x, x, g, bad, THETA)
+
+
+def test_load_curve_periphery_beta0_and_mu_are_keyword_only():
+    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        periphery.load_curve_periphery(1.0, 0.9)
 
 
 def test_datasets_round_trip(tmp_path):
@@ -240,7 +258,7 @@ def test_datasets_round_trip(tmp_path):
     po = model.pull_off(mu=mu[None, :], beta0=beta0[:, None])
     prof = periphery.periphery_at_pull_off(po, th)
     law = periphery.cohesive_law(po.a_star, po.c_star, po.ellipticity, po.v, theta=[0.0, np.pi / 2], n_points=7)
-    ds = iop.pull_off_periphery_dataset(mu, beta0, po, prof, law)
+    ds = iop.pull_off_periphery_dataset(po, prof, law, beta0=beta0, mu=mu)
     p = iop.write_dataset(ds, tmp_path / "periphery.nc")
     back = read_netcdf(p)
     assert_allclose(back["work_of_adhesion"].values, prof.work_of_adhesion, rtol=0)
@@ -251,16 +269,16 @@ def test_datasets_round_trip(tmp_path):
     assert back.attrs["references"].endswith("10.1007/s11249-017-0976-8")
     assert_allclose(back.attrs["param_mu"], mu)
 
-    spread = closure.equal_beta_spread(mu[None, :], beta0[:, None])
-    paper = closure.state_at_pull_off(mu[None, :], beta0[:, None], "paper")
-    ds2 = iop.equal_beta_dataset(mu, beta0, spread, {"paper": paper, "paper2": paper})
+    spread = closure.equal_beta_spread(beta0=beta0[:, None], mu=mu[None, :])
+    paper = closure.state_at_pull_off(beta0=beta0[:, None], mu=mu[None, :], closure="paper")
+    ds2 = iop.equal_beta_dataset(spread, {"paper": paper, "paper2": paper}, beta0=beta0, mu=mu)
     back2 = read_netcdf(iop.write_dataset(ds2, tmp_path / "equal_beta.nc"))
     assert list(back2["closure"].values) == ["paper", "paper2"]
     assert_allclose(back2["closure_W_star"].values[0], paper.W_star, rtol=0)
 
     area = eq30.eq30_area(po.a_star, po.c_star, po.ellipticity, po.v)
-    ds3 = iop.eq30_dataset(mu, beta0, area, area, prof.work_of_adhesion[..., 0], prof.work_of_adhesion[..., -1],
-                           area)
+    ds3 = iop.eq30_dataset(area, area, prof.work_of_adhesion[..., 0], prof.work_of_adhesion[..., -1], area,
+                           beta0=beta0, mu=mu)
     back3 = read_netcdf(iop.write_dataset(ds3, tmp_path / "eq30.nc"))
     assert_allclose(back3["eq30_area"].values, area, rtol=0)
     with pytest.raises(ValueError, match="directory"):
@@ -273,9 +291,9 @@ def test_load_curve_dataset(tmp_path):
 
     curves, profs = {}, {}
     for b in (0.8, 0.9):
-        lc, pr = periphery.load_curve_periphery(1.0, b, [0.5, 1.0, 2.0], THETA)
+        lc, pr = periphery.load_curve_periphery(beta0=b, mu=1.0, a_star=[0.5, 1.0, 2.0], theta=THETA)
         curves[(b, 1.0)], profs[(b, 1.0)] = lc, pr
-    ds = iop.load_curve_periphery_dataset([1.0], [0.8, 0.9], curves, profs)
+    ds = iop.load_curve_periphery_dataset(curves, profs, beta0=[0.8, 0.9], mu=[1.0])
     back = read_netcdf(iop.write_dataset(ds, tmp_path / "lc.nc"))
     assert back["work_of_adhesion"].shape == (2, 1, 3, THETA.size)
     assert_allclose(back["work_of_adhesion"].values[1, 0], profs[(0.9, 1.0)].work_of_adhesion, rtol=0)

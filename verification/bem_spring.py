@@ -70,7 +70,7 @@ def main(argv=None) -> int:
     for lam in args.lam:
         mu = float(transition.tabor_from_maugis(lam))
         t0 = time.perf_counter()
-        br = bem_unloading_branch(mu, 1.0, args.n)
+        br = bem_unloading_branch(beta0=1.0, mu=mu, n=args.n)
         ks = [0.0, *args.k, None]
         for k in ks:
             got = bem_pull_off_under_spring(br, k)
@@ -110,7 +110,7 @@ def cycle(args) -> int:
     for lam in args.lam:
         mu = float(transition.tabor_from_maugis(lam))
         t0 = time.perf_counter()
-        got = bem_loading_cycle(mu, 1.0, args.n, list(args.k))
+        got = bem_loading_cycle(beta0=1.0, mu=mu, n=args.n, machine_stiffness=list(args.k))
         ref = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=list(args.k))
         for j, k in enumerate(args.k):
             for name, key, ekey in (("jump in", "jump_in_W_star", "jump_in_W_star_error"),

@@ -717,7 +717,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
             suffix = "" if control == "load" else "_displacement_control"
             for k in ("W_star", "a_star", "c_star", "v", "delta_star"):
                 res[k + suffix] = np.asarray(getattr(p, k))
-        ds = pull_off_dataset(mus, betas, res, produced_by="verification.sec_analytic",
+        ds = pull_off_dataset(res, beta0=betas, mu=mus, produced_by="verification.sec_analytic",
                               note="variables without suffix: load control")
     except ImportError:
         import xarray as xr

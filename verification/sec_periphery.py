@@ -94,13 +94,13 @@ def compute(quick=False, progress=print):
     mean = eq30.periphery_work_of_adhesion(po.a_star, po.c_star, po.ellipticity, po.v)
     mean_angle = eq30.periphery_work_of_adhesion(po.a_star, po.c_star, po.ellipticity, po.v, weight="angle")
     progress("Eq. (30): polar area integral and Green's boundary form")
-    spread = closure.equal_beta_spread(mu[None, :], beta0[:, None], n_theta=31)
+    spread = closure.equal_beta_spread(beta0=beta0[:, None], mu=mu[None, :], n_theta=31)
     progress("equal-β spread of Δγ(θp) and of the σ–h curves")
     cb, cm = np.array(cfg["closure_beta"]), np.array(cfg["closure_mu"])
     closures = {}
     for name in closure.CLOSURES:
         t0 = time.perf_counter()
-        closures[name] = closure.state_at_pull_off(cm[None, :], cb[:, None], name)
+        closures[name] = closure.state_at_pull_off(beta0=cb[:, None], mu=cm[None, :], closure=name)
         progress(f"closure '{name}': pull-off on {cb.size} × {cm.size} (β0, μ) "
                  f"({time.perf_counter() - t0:.1f} s)")
     ref = compare.compare(mu=cm[None, :], beta0=cb[:, None], models=["jkr-elliptic", "dh-circular"])
@@ -149,12 +149,12 @@ def _bem_case(b0, m, ns, theta, with_eq30):
         t0 = time.perf_counter()
         case = fields.dh_case(n, a, c, b0, v, half_width=1.05 * c)
         g = case.grid
-        prof = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, a, c, b0, v, theta)
+        prof = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, (a, c, b0, v), theta)
         err = np.abs(prof.work_of_adhesion / ref.work_of_adhesion - 1.0)
         errs.append(float(err.max()))
         # the two sources apart: spline of the analytic gap sampled on the same grid (interpolation only),
         # and the BEM gap with the analytic gap as interpolation trend (BEM only)
-        interp = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_analytic, a, c, b0, v, theta)
+        interp = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_analytic, (a, c, b0, v), theta)
         xx, yy = g.mesh()
         known = {"grid": case.gap_analytic}
 
@@ -163,7 +163,7 @@ def _bem_case(b0, m, ns, theta, with_eq30):
                 return known["grid"]
             return double_hertz.gap(px, py, a, c, b0, v)
 
-        bem_only = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, a, c, b0, v, theta,
+        bem_only = periphery.periphery_from_gap_grid(g.x, g.y, case.gap_numerical, (a, c, b0, v), theta,
                                                      trend=trend)
         rel = (lambda p: float(np.max(np.abs(p.work_of_adhesion / ref.work_of_adhesion - 1.0))))
         rec = dict(beta0=b0, mu=m, n=n, error=err, max_error=float(err.max()), profile=prof, analytic=ref,
@@ -297,7 +297,7 @@ def _checks(res):
     i30_1 = eq30.eq30_area(po1.a_star, po1.c_star, 1.0, po1.v)
     out.append(check_le("β0 = 1: Eq. (30) vanishes although Δγ = 1, max abs(Eq. 30)", np.max(np.abs(i30_1)),
                         TOL_CIRCLE, "Green's form: 4[Δγ(0) − Δγ(π/2)] = 0 by symmetry"))
-    wc = [abs(closure.pull_off_closure(m, 1.0, name).W_star / model.pull_off(mu=m, beta0=1.0).W_star - 1)
+    wc = [abs(closure.pull_off_closure(beta0=1.0, mu=m, closure=name).W_star / model.pull_off(mu=m, beta0=1.0).W_star - 1)
           for name in ("ray_average", "two_axis") for m in (0.5, 5.0)]
     out.append(check_le("alternative closures at β0 = 1 (μ = 0.5, 5) vs the paper's pull-off W*, max rel.",
                         max(wc), TOL_CLOSURE_CIRCLE, "reduction to the paper's model at the circle"))
@@ -391,7 +391,7 @@ def _fig_curves(res, outdir, dpi, n):
     th = np.linspace(0.0, 0.5 * np.pi, 19)
     for b in res["beta0"]:
         for m in (1.0, 5.0):
-            lc, pr = periphery.load_curve_periphery(m, b, a, th)
+            lc, pr = periphery.load_curve_periphery(beta0=b, mu=m, a_star=a, theta=th)
             ratio = pr.work_of_adhesion[:, -1] / pr.work_of_adhesion[:, 0]
             curves[(float(b), m)] = (lc, pr)
             ax.plot(lc.W_star, ratio, _STYLES[b], color=_COLORS[m], label=f"β0 = {b:g}, μ = {m:g}")
@@ -664,14 +664,14 @@ def _datasets(res, recs, outdir):
     from dhfield.io import periphery as iop
 
     out = []
-    ds = iop.pull_off_periphery_dataset(res["mu"], res["beta0"], res["pull_off"], res["profile"], res["law"])
+    ds = iop.pull_off_periphery_dataset(res["pull_off"], res["profile"], res["law"], beta0=res["beta0"], mu=res["mu"])
     out.append(iop.write_dataset(ds, outdir / "periphery_pull_off.nc"))
-    ds = iop.equal_beta_dataset(res["closure_mu"], res["closure_beta"],
-                                _sub_spread(res), res["closures"])
+    ds = iop.equal_beta_dataset(_sub_spread(res), res["closures"], beta0=res["closure_beta"],
+                                mu=res["closure_mu"])
     out.append(iop.write_dataset(ds, outdir / "equal_beta_closures.nc"))
-    ds = iop.eq30_dataset(res["mu"], res["beta0"], res["eq30_area"], res["eq30_boundary"].total,
+    ds = iop.eq30_dataset(res["eq30_area"], res["eq30_boundary"].total,
                           res["profile"].work_of_adhesion[..., 0], res["profile"].work_of_adhesion[..., -1],
-                          res["mean_work"])
+                          res["mean_work"], beta0=res["beta0"], mu=res["mu"])
     out.append(iop.write_dataset(ds, outdir / "eq30.nc"))
     if recs:
         nmax = max(r["n"] for r in recs)
@@ -734,8 +734,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     datasets = _datasets(res, recs, outdir)
     from dhfield.io import periphery as iop
 
-    ds = iop.load_curve_periphery_dataset([1.0, 5.0], res["beta0"], {k: v[0] for k, v in curves.items()},
-                                          {k: v[1] for k, v in curves.items()})
+    ds = iop.load_curve_periphery_dataset({k: v[0] for k, v in curves.items()},
+                                          {k: v[1] for k, v in curves.items()}, beta0=res["beta0"], mu=[1.0, 5.0])
     datasets.append(iop.write_dataset(ds, outdir / "periphery_load_curves.nc"))
     progress("netCDF")
     tables = [

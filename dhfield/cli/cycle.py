@@ -201,7 +201,7 @@ def _run_bem(args, params) -> int:
         print(f"dhfield: cycle refused: {plan.message()}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
     try:
-        cyc = bem_loading_cycle(mu, beta0, plan.n, k, threads=args.threads)
+        cyc = bem_loading_cycle(beta0=beta0, mu=mu, n=plan.n, machine_stiffness=k, threads=args.threads)
     except RuntimeError as exc:
         print(f"dhfield: cycle did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED

@@ -38,7 +38,7 @@ def run(args) -> int:
     po = pull_off(mu=mu, beta0=beta0, control=args.control)
     prof = periphery_at_pull_off(po, theta)
     if args.out is not None:
-        ds = pull_off_periphery_dataset(mu[0], beta0[:, 0], po, prof, control=args.control)
+        ds = pull_off_periphery_dataset(po, prof, beta0=beta0[:, 0], mu=mu[0], control=args.control)
         write_dataset(ds, args.out)
     cols = ("theta", "contact_radius", "adhesive_radius", "zone_width", "max_adhesive_stress",
             "edge_separation", "work_of_adhesion")

@@ -253,7 +253,7 @@ def _run_spring(args, params, plan, where, progress) -> int:
         print(f"dhfield: solving {where} (the unloading branch at prescribed adhesive force, K* = {k_star:.4g})",
               file=sys.stderr, flush=True)
     try:
-        branch = bem_unloading_branch(args.mu, args.beta0, plan.n, law=args.law, threads=args.threads)
+        branch = bem_unloading_branch(beta0=args.beta0, mu=args.mu, n=plan.n, law=args.law, threads=args.threads)
     except RuntimeError as exc:  # no converged state to start from
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED

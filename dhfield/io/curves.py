@@ -94,18 +94,18 @@ def load_curve_dataset(curve, **extra_attrs) -> xr.Dataset:
     return finalize(ds)
 
 
-def pull_off_dataset(mu, beta0, results: dict, *, input_dims=("mu", "beta0"), **extra_attrs) -> xr.Dataset:
+def pull_off_dataset(results: dict, *, beta0, mu, input_dims=("mu", "beta0"), **extra_attrs) -> xr.Dataset:
     """Build the Dataset of pull-off results on a ``(beta0, mu)`` grid.
 
     Parameters
     ----------
-    mu, beta0 : array_like
-        1-D grids [-].
     results : dict
         Name -> array on the two grids, laid out as ``input_dims`` says.  A
         name is a key of :data:`dhfield.schema.VARIABLES`, optionally followed
         by ``_<qualifier>`` (e.g. ``W_star_displacement_control``), which is
         added to the ``long_name``.
+    beta0, mu : array_like
+        1-D grids [-].
     input_dims : tuple
         Layout of the arrays of ``results``: ``("mu", "beta0")`` (shape
         (len(mu), len(beta0)), the default) or ``("beta0", "mu")``.  The

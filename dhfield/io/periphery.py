@@ -48,19 +48,19 @@ def _var(dims, arr, quantity, qualifier=None):
     return variable(quantity, dims, arr, nondimensional=True, qualifier=qualifier)
 
 
-def pull_off_periphery_dataset(mu, beta0, pull_off, profile, law=None, *, control="load") -> xr.Dataset:
+def pull_off_periphery_dataset(pull_off, profile, law=None, *, beta0, mu, control="load") -> xr.Dataset:
     """Dataset of the ray quantities at pull-off on a (beta0, mu) grid.
 
     Parameters
     ----------
-    mu, beta0 : array_like
-        1-D grids [-]; ``pull_off`` and ``profile`` have shape (len(beta0), len(mu)).
-    pull_off : dhfield.model.PullOff
+    pull_off : dhfield.records.PullOff
         The pull-off points.
     profile : dhfield.periphery.PeripheryProfile
         Shape (len(beta0), len(mu), len(theta)).
     law : dhfield.periphery.CohesiveLaw, optional
         The sigma-h curves, shape (len(beta0), len(mu), n_law_theta, n_sample).
+    beta0, mu : array_like
+        1-D grids [-]; ``pull_off`` and ``profile`` have shape (len(beta0), len(mu)).
     control : str
         Pull-off control mode (recorded).
 
@@ -92,18 +92,18 @@ def pull_off_periphery_dataset(mu, beta0, pull_off, profile, law=None, *, contro
     return finalize(ds)
 
 
-def equal_beta_dataset(mu, beta0, spread, closures: dict, *, control="load") -> xr.Dataset:
+def equal_beta_dataset(spread, closures: dict, *, beta0, mu, control="load") -> xr.Dataset:
     """Dataset of the equal-beta test and of the closures' pull-off points.
 
     Parameters
     ----------
-    mu, beta0 : array_like
-        1-D grids; arrays have shape (len(beta0), len(mu)).
     spread : dhfield.closure.EqualBetaSpread
         The equal-beta test at pull-off.
     closures : dict
         Name -> dhfield.closure.ClosureState at pull-off (e.g. "paper",
         "ray_average", "two_axis").
+    beta0, mu : array_like
+        1-D grids [-]; arrays have shape (len(beta0), len(mu)).
     control : str
         Pull-off control mode (recorded).
 
@@ -142,13 +142,11 @@ def equal_beta_dataset(mu, beta0, spread, closures: dict, *, control="load") -> 
     return finalize(ds)
 
 
-def eq30_dataset(mu, beta0, area, boundary, work_major, work_minor, mean_work) -> xr.Dataset:
+def eq30_dataset(area, boundary, work_major, work_minor, mean_work, *, beta0, mu) -> xr.Dataset:
     """Dataset of Eq. (30) (area and Green's forms) next to the ray works, at pull-off.
 
     Parameters
     ----------
-    mu, beta0 : array_like
-        1-D grids; the other arrays have shape (len(beta0), len(mu)).
     area : array_like
         Eq. (30) as an area integral (:func:`dhfield.eq30.eq30_area`).
     boundary : array_like
@@ -157,6 +155,8 @@ def eq30_dataset(mu, beta0, area, boundary, work_major, work_minor, mean_work) -
         Delta gamma(0) and Delta gamma(pi/2).
     mean_work : array_like
         The periphery average of Delta gamma (:func:`dhfield.eq30.periphery_work_of_adhesion`).
+    beta0, mu : array_like
+        1-D grids [-]; the other arrays have shape (len(beta0), len(mu)).
 
     Returns
     -------
@@ -211,17 +211,17 @@ def grid_periphery_dataset(theta, analytic, numerical: dict, **parameters) -> xr
     return finalize(ds)
 
 
-def load_curve_periphery_dataset(mu, beta0, curves: dict, profiles: dict) -> xr.Dataset:
+def load_curve_periphery_dataset(curves: dict, profiles: dict, *, beta0, mu) -> xr.Dataset:
     """Dataset of the ray quantities along load curves.
 
     Parameters
     ----------
-    mu, beta0 : array_like
-        1-D grids.
     curves : dict
         (beta0, mu) -> dhfield.model.LoadCurve, all on the same a* points.
     profiles : dict
         (beta0, mu) -> dhfield.periphery.PeripheryProfile of shape (len(a_star), len(theta)).
+    beta0, mu : array_like
+        1-D grids [-].
 
     Returns
     -------

@@ -19,7 +19,7 @@ from dhfield import closure
 
 mu = np.geomspace(0.3, 10, 14)
 beta0 = np.linspace(0.5, 1.0, 11)
-spread = closure.equal_beta_spread(mu[None, :], beta0[:, None], n_theta=15)
+spread = closure.equal_beta_spread(beta0=beta0[:, None], mu=mu[None, :], n_theta=15)
 
 print("Delta gamma(pi/2)/Delta gamma(0) at mu = 1:",
       np.round(np.interp(1.0, mu, spread.work_ratio[0]), 3), "(beta0 = 0.5),",
