@@ -388,17 +388,17 @@ def _curve_record(model, mu, beta0, arrays):
                              geometry="circle" if circle else "ellipse")
 
 
-def load_curve(model, mu, beta0, a_star=None, *, n=200):
+def load_curve(model, *, beta0, mu, a_star=None, n=200):
     """Load curve of one model at given contact semi-major axes (nondimensional).
 
     Parameters
     ----------
     model : str
         One of :data:`CURVE_MODEL_NAMES`.
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-].
     beta0 : float
         Hertz ellipticity of the geometry, in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
     a_star : array_like, optional
         Contact semi-major axes a/c_r > 0 (Eq. 32) [-]; default ``n`` points
         evenly spaced over :data:`dhfield.model.DEFAULT_A_STAR`.
@@ -433,15 +433,15 @@ def _check_scalar(mu, beta0):
     return mu, beta0
 
 
-def load_curve_at_load(model, mu, beta0, w_star):
+def load_curve_at_load(model, *, beta0, mu, w_star):
     """Load curve of one model at given loads, on its stable branch under load control.
 
     Parameters
     ----------
     model : str
         One of :data:`CURVE_MODEL_NAMES`.
-    mu, beta0 : float
-        Tabor parameter (Eq. 35) and Hertz ellipticity of the geometry [-].
+    beta0, mu : float
+        Hertz ellipticity of the geometry and Tabor parameter (Eq. 35) [-].
     w_star : array_like
         Loads W* = W sin(theta_skew)/(2 pi R dgamma) (Eq. 34) [-], each at least the
         pull-off load of the model (the stable branch starts there).

@@ -240,7 +240,7 @@ class _Curve:
     for MD only, the separated branch c* = c_end + t for t in [-c_end, 0]."""
 
     def __init__(self, model, mu, beta0):
-        compare.load_curve(model, mu, beta0, [1.0])  # validates model, mu, beta0 (scalars)
+        compare.load_curve(model, mu=mu, beta0=beta0, a_star=[1.0])  # validates model, mu, beta0 (scalars)
         self.model, self.mu, self.beta0 = model, float(mu), float(beta0)
         self.load = compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False)
         self.disp = compare.pull_off(model, mu=mu, beta0=beta0, control="displacement", check_closure=False)
@@ -251,7 +251,7 @@ class _Curve:
         elif model in _JKR_TYPE:
             self.end = (0.0, 0.0)  # JKR (1971): W and delta -> 0 as a -> 0
         else:  # error O(a^2) ~ 1e-12 (checked against the exact a = 0 of dh-circular and md)
-            c = compare.load_curve(model, mu, beta0, [_A_MIN])
+            c = compare.load_curve(model, mu=mu, beta0=beta0, a_star=[_A_MIN])
             self.end = (float(c["W_star"][0]), float(c["delta_star"][0]))
         self.t_start = -self.c_end  # where the curve leaves the force-free state (MD) or starts (others)
         if self.separated:
@@ -272,7 +272,7 @@ class _Curve:
         d = np.empty(t.shape)
         pos = t > 0
         if np.any(pos):
-            c = compare.load_curve(self.model, self.mu, self.beta0, np.maximum(t[pos], _A_MIN))
+            c = compare.load_curve(self.model, mu=self.mu, beta0=self.beta0, a_star=np.maximum(t[pos], _A_MIN))
             w[pos], d[pos] = c["W_star"], c["delta_star"]
             small = t[pos] < _A_MIN
             if np.any(small):  # below the smallest size the curves accept: the end state
@@ -436,7 +436,7 @@ def _state_record(curve, t):
            "d_star": nan.copy(), "v": nan.copy()}
     pos = t >= _A_MIN
     if np.any(pos):
-        c = compare.load_curve(curve.model, curve.mu, curve.beta0, t[pos])
+        c = compare.load_curve(curve.model, mu=curve.mu, beta0=curve.beta0, a_star=t[pos])
         for k in out:
             out[k][pos] = c[k]
     end = ~pos
@@ -659,7 +659,7 @@ def loading_cycle(model, *, beta0, mu, machine_stiffness=None, with_path=False):
     circle = model in compare.CIRCULAR_MODEL_NAMES
     rec = {
         "model": model, "geometry": "circle" if circle else "ellipse", "beta0": float(beta0),
-        "mu": float(mu), "sin_skew": float(compare.load_curve(model, mu, beta0, [1.0])["sin_skew"]),
+        "mu": float(mu), "sin_skew": float(compare.load_curve(model, mu=mu, beta0=beta0, a_star=[1.0])["sin_skew"]),
         "machine_stiffness_star": k1, "jump_in_rule": rule,
         "jump_in_start_delta_star": np.full(s1.shape, curve.start_delta),
         "jump_in_W_star": w_in, "jump_in_delta_star": d_in, "jump_in_a_star": land_state["a_star"],

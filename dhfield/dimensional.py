@@ -364,10 +364,10 @@ def load_curve_si(params: ContactParameters, semi_major=None, n=200, *, model=co
         f = np.asarray(force, dtype=float)
         sin_skew = 1.0 if model in compare.CIRCULAR_MODEL_NAMES else params.sin_skew
         unit = units.load_unit(params.effective_radius, params.work_of_adhesion, sin_skew)  # Eq. (34)
-        c = compare.load_curve_at_load(model, params.mu, params.beta0, f / unit)
+        c = compare.load_curve_at_load(model, mu=params.mu, beta0=params.beta0, w_star=f / unit)
     else:
         a_star = None if semi_major is None else check_positive("semi_major", semi_major, "m") / lu
-        c = compare.load_curve(model, params.mu, params.beta0, a_star, n=n)
+        c = compare.load_curve(model, mu=params.mu, beta0=params.beta0, a_star=a_star, n=n)
     unit = units.load_unit(params.effective_radius, params.work_of_adhesion, c["sin_skew"])
     arrays = {
         "semi_major": c["a_star"] * lu, "semi_minor": c["b_star"] * lu,  # Eq. (32)

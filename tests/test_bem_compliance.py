@@ -37,7 +37,7 @@ def _mu(lam):
 def _md_branch(mu, a_lo, a_hi, n=33, window=3):
     """A BemBranch of the exact MD curve, parameter a* (descending like F_a on unloading)."""
     a = np.linspace(a_hi, a_lo, n)
-    c = compare.load_curve("md", mu, 1.0, a)
+    c = compare.load_curve("md", mu=mu, beta0=1.0, a_star=a)
     w, d = np.asarray(c["W_star"], float), np.asarray(c["delta_star"], float)
     return BemBranch(mu, 1.0, 0, a, w, d, np.ones(n, bool), float(a[0] - a[1]), window, 0, True, 0.0)
 

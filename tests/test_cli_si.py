@@ -123,7 +123,7 @@ def test_bad_input_one_line(capsys, argv, needle):
 
 def test_curve_json_nondimensional(capsys):
     rec, _ = _json(capsys, ["curve", "--beta0", "0.8", "--mu", "2", "--model", "jkr-elliptic", "--n", "5", "--json"])
-    ref = compare.load_curve("jkr-elliptic", 2.0, 0.8, n=5)
+    ref = compare.load_curve("jkr-elliptic", mu=2.0, beta0=0.8, n=5)
     assert list(rec)[:-1] == list(ref)
     np.testing.assert_allclose(rec["W_star"], ref["W_star"], rtol=1e-15)
 

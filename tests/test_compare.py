@@ -224,7 +224,7 @@ def test_curve_through_the_pull_off_state(name):
         a = 1e-6  # the smallest accepted contact size (dhfield._validation.CONTACT_SIZE_RANGE)
     else:
         a = float(po["a_star"])
-    c = compare.load_curve(name, mu, beta0, [a, 2 * a + 0.1])
+    c = compare.load_curve(name, mu=mu, beta0=beta0, a_star=[a, 2 * a + 0.1])
     assert tuple(c) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
     assert c["geometry"] == po["geometry"] and c["sin_skew"] == pytest.approx(float(po["sin_skew"]), rel=1e-15)
     assert_allclose(c["W_star"][0], po["W_star"], rtol=TOL_CURVE_AT_PULL_OFF, atol=1e-12)
@@ -236,20 +236,20 @@ def test_curve_at_load(name):
     mu, beta0 = 2.0, 0.8
     w_po = float(compare.pull_off(name, mu=mu, beta0=beta0, check_closure=False)["W_star"])
     w = np.array([w_po, 0.5 * w_po, 0.0, 3.0])
-    c = compare.load_curve_at_load(name, mu, beta0, w)
+    c = compare.load_curve_at_load(name, mu=mu, beta0=beta0, w_star=w)
     assert_allclose(c["W_star"], w, rtol=TOL_LOAD_INVERSION, atol=TOL_LOAD_INVERSION)
     assert np.all(np.diff(c["a_star"]) > 0)
     with pytest.raises(ValueError, match="load"):
-        compare.load_curve_at_load(name, mu, beta0, [w_po - 0.01])
+        compare.load_curve_at_load(name, mu=mu, beta0=beta0, w_star=[w_po - 0.01])
 
 
 def test_curve_bad_input():
     with pytest.raises(ValueError, match="model"):
-        compare.load_curve("dh-elliptic-jkr-beta", 1.0, 0.9)
+        compare.load_curve("dh-elliptic-jkr-beta", mu=1.0, beta0=0.9)
     with pytest.raises(ValueError, match="a_star"):
-        compare.load_curve("jkr", 1.0, 0.9, [-1.0])
+        compare.load_curve("jkr", mu=1.0, beta0=0.9, a_star=[-1.0])
     with pytest.raises(ValueError, match="mu"):
-        compare.load_curve("jkr", [1.0, 2.0], 0.9)
+        compare.load_curve("jkr", mu=[1.0, 2.0], beta0=0.9)
 
 
 def test_validity_ranges_warn_without_refusing():
@@ -339,5 +339,13 @@ def test_issue18_item2_ninety_degrees_from_si_input_warns_like_the_sphere():
                                   lambda: compare.compare(1.0, 0.9)])
 def test_beta0_and_mu_are_keyword_only(call):
     """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
+    with pytest.raises(TypeError, match="positional"):
+        call()
+
+
+@pytest.mark.parametrize("call", [lambda: compare.load_curve("jkr", 1.0, 0.9),
+                                  lambda: compare.load_curve_at_load("jkr", 1.0, 0.9, [0.5])])
+def test_load_curves_take_beta0_and_mu_by_keyword(call):
+    """(mu, beta0) was the old positional order: a positional call would swap them silently (issue 16)."""
     with pytest.raises(TypeError, match="positional"):
         call()

@@ -237,7 +237,7 @@ def test_load_curves(tmp_path):
     for b in (0.8, 1.0):
         np.testing.assert_allclose(ds["curve_W_star"].sel(model="jkr", beta0=b, mu=2.0).values, jkr,
                                    rtol=JKR_CURVE_RTOL)
-    ref = compare.load_curve("md", 0.5, 0.8, a)
+    ref = compare.load_curve("md", mu=0.5, beta0=0.8, a_star=a)
     np.testing.assert_array_equal(ds["curve_W_star"].sel(model="md", beta0=0.8, mu=0.5).values, ref["W_star"])
     assert (ds["load_curve_status"].values == 0).all()
 

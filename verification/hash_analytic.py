@@ -104,10 +104,10 @@ def main(argv=None) -> int:
         emit(f"dhfield.load_curve[{beta0},{mu}]", {k: getattr(c, k) for k in (
             "mu", "beta0", "ellipticity", "a_star", "b_star", "c_star", "d_star", "v", "W_star", "delta_star")})
         for name in compare.CURVE_MODEL_NAMES:
-            emit(f"load_curve[{name},{beta0},{mu}]", compare.load_curve(name, mu, beta0, n=40))
+            emit(f"load_curve[{name},{beta0},{mu}]", compare.load_curve(name, mu=mu, beta0=beta0, n=40))
             w_po = float(compare.pull_off(name, mu=mu, beta0=beta0, control="load", check_closure=False)["W_star"])
             w = w_po + np.array([0.0, 0.01, 0.5, 3.0])
-            emit(f"load_curve_at_load[{name},{beta0},{mu}]", compare.load_curve_at_load(name, mu, beta0, w))
+            emit(f"load_curve_at_load[{name},{beta0},{mu}]", compare.load_curve_at_load(name, mu=mu, beta0=beta0, w_star=w))
     for beta0, mu in POINTS:
         nd = ["--beta0", str(beta0), "--mu", str(mu)]
         for control in CONTROLS:

@@ -80,12 +80,12 @@ def curve_record(args) -> dict:
             if args.model != "dh-elliptic":
                 raise UsageError("--ellipticity applies to --model dh-elliptic only")
             c = load_curve(mu=args.mu, beta0=args.beta0, a_star=a_star, ellipticity=args.ellipticity, n=args.n)
-            rec = dict(compare.load_curve("dh-elliptic", args.mu, args.beta0, [1.0]))
+            rec = dict(compare.load_curve("dh-elliptic", mu=args.mu, beta0=args.beta0, a_star=[1.0]))
             rec.update({k: getattr(c, k) for k in ("a_star", "b_star", "c_star", "d_star", "v", "W_star",
                                                     "delta_star")})
             rec["ellipticity"] = float(args.ellipticity)
             return rec
-        return compare.load_curve(args.model, args.mu, args.beta0, a_star, n=args.n)
+        return compare.load_curve(args.model, mu=args.mu, beta0=args.beta0, a_star=a_star, n=args.n)
     if args.a_min is not None or args.a_max is not None or args.ellipticity is not None:
         raise UsageError("--a-min/--a-max/--ellipticity go with --beta0/--mu; with physical inputs use "
                          "--semi-major-min/--semi-major-max or --load-min/--load-max")

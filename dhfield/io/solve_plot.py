@@ -228,7 +228,7 @@ def _reference_curve(ax, result, ak, fk):
     from ..geometry import sin_skew_angle
 
     try:
-        c = compare.load_curve(REFERENCE_MODEL, result.mu, result.beta0)
+        c = compare.load_curve(REFERENCE_MODEL, mu=result.mu, beta0=result.beta0)
     except (ValueError, RuntimeError, ArithmeticError):  # no reference curve here: the BEM states alone
         return
     load = np.asarray(c["W_star"], float) * 2.0 * math.pi / float(sin_skew_angle(result.beta0))  # Eq. (34)

@@ -118,7 +118,7 @@ def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> dict:
     """
     from ..compare import load_curve
 
-    rec = load_curve(model, float(mu), float(beta0), np.asarray(a_star, dtype=float))
+    rec = load_curve(model, mu=float(mu), beta0=float(beta0), a_star=np.asarray(a_star, dtype=float))
     return {k: np.asarray(rec[k], dtype=float) for k in CURVE_FIELDS}
 
 
