@@ -588,6 +588,10 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
     prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
     options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
                           keep_states=keep_states, progress=progress)
+    if relaxed and prob.has_cold_start and prob.mu >= PREDICTED_MIN_MU:
+        # high mu: neither the grid half as fine nor its relaxed states converge; the fine lattice
+        # samples around GVG's pull-off instead
+        return _predicted_pull_off(prob, options)
     if relaxed and prob.has_cold_start:
         # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
         # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
@@ -755,6 +759,38 @@ def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
     path = path_on(work, prob.path_start(work, ws), prob.approach_max, prob.approach_step, control="load",
                    options=options)
     return pull_off_result(prob, prob.grid.nx, path, "bracket")
+
+
+#: Smallest mu at which an automatic grid whose half grid cannot hold the Dugdale edge solves
+#: only fine lattice samples around GVG's pull-off (:func:`_predicted_pull_off`) instead of
+#: warm starts from the relaxed half grid (:class:`RelaxedWarmStart`).  Measured at beta0 =
+#: 0.4826, mu = 10: the relaxed cold start stalls at residual 0.04-0.5 on N = 180, 360 and 720
+#: (from the two-axis zone and from GVG's alike; 32 CPU s at N = 720), after which the old route
+#: cold-started the bracket search on N = 1440 (8443 CG iterations for its first state); at
+#: mu = 5 (sphere N = 160, beta0 = 0.5 N = 192) the relaxed states converge.
+PREDICTED_MIN_MU = 7.5
+
+
+def _predicted_pull_off(prob, options) -> AdhesivePullOff:
+    """Load-control pull-off at high mu from fine lattice samples around GVG's pull-off.
+
+    The cold start is GVG's load-control pull-off (:func:`_gvg_start`: its approach, its
+    contact ellipse widened by the expected zone), which at high mu lies within a lattice
+    step of the BEM's (the two-axis closure's zone at beta0 = 0.4826, mu = 10, c = 1.960,
+    is inside GVG's contact a = 1.984); :func:`dhfield.bem.pull_off.predicted_path` solves
+    the samples around it.  The relaxed route (:func:`_relaxed_pull_off`) when that fails.
+    """
+    from dataclasses import replace
+
+    from .bem.pull_off import predicted_path, pull_off_result
+
+    options = options.checked()
+    approach, zone = _gvg_start(prob.mu, prob.beta0)
+    inside = zone[0] < 0.5 * prob.grid.nx * prob.grid.dx and zone[1] < 0.5 * prob.grid.ny * prob.grid.dy
+    path = predicted_path(replace(prob, pull_off_approach=approach, pull_off_zone=zone), options) if inside else None
+    if path is not None:
+        return pull_off_result(prob, prob.grid.nx, path, "located")
+    return _relaxed_pull_off(prob, options)
 
 
 def _half_grid_locates(plan, law, margin) -> bool:

@@ -168,3 +168,28 @@ def test_bad_counts_and_arrays_are_named_errors(kwargs, name):
     with pytest.raises(ValueError, match=name):
         adhesive_start.adhesive_pull_off(args["mu"], args["beta0"], 16,
                                          **{k: v for k, v in kwargs.items() if k not in ("mu", "beta0")})
+
+
+def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
+    # mu >= PREDICTED_MIN_MU with a half grid that cannot hold the Dugdale edge: fine lattice samples
+    # around GVG's pull-off (the relaxed half grid's states stall at mu = 10); nothing solved here
+    calls = []
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts: calls.append(prob.grid.nx) or "p")
+    monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
+    assert adhesive_start.adhesive_pull_off(10.0, 0.4826) == "p"
+    assert calls == [adhesive_start.plan_grid(10.0, 0.4826).n_needed]
+    assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the relaxed route (measured)
+
+
+def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugdale():
+    # the predicted route on a small resolved grid (mu = 2, N = 128: lambda = 2.26): MD (Maugis 1992) is
+    # exact on the sphere; the answer must lie within its own stated error (search + grid) of it
+    from dhfield import maugis_dugdale
+    from dhfield.bem.path import PathOptions
+
+    prob = adhesive_start.nondimensional_problem(2.0, 1.0, 128)
+    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False))
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
+    assert res.search == "located" and res.converged and res.resolved
+    assert 3 <= res.n_steps <= 4                                  # three samples (+ at most one vertex)
+    assert abs(res.W_star - md) <= res.W_star_error

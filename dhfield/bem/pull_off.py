@@ -604,6 +604,86 @@ def located_path(problem, ws, options):
                      error=b.minimum_error(order, sm))
 
 
+#: The predicted route (:func:`predicted_path`) solves the parabola's vertex only when the
+#: samples' own error (:meth:`Branch.minimum_error`, the vertex against the best sample) exceeds
+#: this fraction of the grid's discretisation error (:func:`discretisation_error`): below it one
+#: more fine state changes the stated error by less than this fraction.
+VERTEX_ERROR_FRACTION = 0.1
+
+
+def predicted_path(problem, options):
+    """The load-control pull-off from fine lattice samples around the problem's cold start, or None.
+
+    For grids whose coarser levels cannot locate the minimum (high mu: the grid half as
+    fine cannot hold the Dugdale edge, and its relaxed states do not converge), the
+    caller's predicted pull-off (:attr:`NondimensionalProblem.pull_off_approach`, e.g.
+    the JKR limit's) stands in for the coarse search: the lattice sample
+    ``approach_max - j approach_step / LOCATE_DIVISIONS`` nearest it is solved first from
+    the cold start (sigma0 on :attr:`NondimensionalProblem.pull_off_zone`), then its
+    neighbours, each from the nearest solved state (secant over the two nearest), until
+    the discrete load minimum is interior (:func:`_lattice_minimum`).  The parabola's
+    vertex is solved only when the samples' error exceeds ``VERTEX_ERROR_FRACTION`` of
+    the grid's discretisation error.  None when the minimum is not interior or a state
+    did not converge.
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The fine grid's problem, with a cold start (:attr:`NondimensionalProblem.has_cold_start`).
+    options : PathOptions
+        Checked path settings (tolerances, ``refine_levels``: no vertex state when 0).
+
+    Returns
+    -------
+    UnloadingPath or None
+        The samples' path with the pull-off at the parabola's vertex; None on failure.
+    """
+    spacing = problem.approach_step / LOCATE_DIVISIONS
+    prob = problem.adhesive_problem(options.threads)
+    cold = problem.path_start(prob).stress
+    b = Branch(prob, options.tol, options.max_iter, label=f"predicted N={problem.grid.nx}",
+               progress=options.progress, keep_states=options.keep_states)
+
+    def solve(d):
+        if any(b.approach(i) == d for i in range(len(b.records))):
+            return                              # solved already (the first sample)
+        near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
+        if not near:
+            guess = Prediction(np.zeros_like(cold), cold.copy())
+        else:
+            guess = b.guess(d, near[0], near[1] if len(near) > 1 else None)
+        b.solve(d, guess, "unloading")
+
+    top = problem.approach_max
+    j0 = int(round((top - problem.pull_off_approach) / spacing))
+    solve(top - j0 * spacing)                   # the sample nearest the prediction first (cold)
+    if not b.usable(0):
+        return None
+    for j in (j0 - 1, j0 + 1):                  # its neighbours, then beyond the lowest end until interior
+        solve(top - j * spacing)
+
+    def next_approach(i, up):
+        j = int(round((top - b.approach(i)) / spacing))
+        return top - (j - 1 if up else j + 1) * spacing
+
+    _, order = b.extend_until_interior(range(len(b.records)), next_approach, LOCATE_MAX_EXTEND)
+    sm = b.minimum(order)[1]
+    every = range(len(b.records))
+    if sm is None or sm.at_boundary or not all(r["converged"] for r in b.records):
+        return None
+    order, sm = b.minimum(every)
+    rec = b.records[order[sm.index]]
+    grid_error = discretisation_error(sm.y, (rec["a"], rec["b"], rec["c"], rec["d"]), problem.grid)
+    if b.minimum_error(order, sm) > VERTEX_ERROR_FRACTION * grid_error:
+        xtol = problem.approach_step / options.refine_factor ** options.refine_levels
+        b.refine_vertex(every, xtol, min(options.refine_levels, 1))
+        order, sm = b.minimum(range(len(b.records)))
+        if sm.at_boundary or not all(r["converged"] for r in b.records):
+            return None
+    return b.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=order[sm.index], converged=True,
+                     error=b.minimum_error(order, sm))
+
+
 def solve_pull_off(problem, *, control="load", search="located", nested=None, options=PathOptions()) -> AdhesivePullOff:
     """The BEM pull-off of a problem in the paper's units, by the route of ``control`` and ``search``.
 
