@@ -48,7 +48,7 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
-           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart"]
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "predicted_start", "predicted_problem", "PREDICTED_MIN_MU"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -304,6 +304,10 @@ class GridPlan:
         The best analytic value, :func:`dhfield.elliptic_transition.pull_off_nondimensional`
         (GVG x the sphere's MD/JKR transition; within 0.34 % of the stored BEM at beta0 >= 0.5,
         mu <= 5) [-].
+    predicted : bool, default False
+        True when ``n_needed`` is planned on the domain of the predicted route
+        (:func:`predicted_start`: only states near the pull-off are solved, so the domain
+        holds GVG's pull-off zone instead of the zone at the start of unloading).
     """
 
     mu: float
@@ -316,6 +320,7 @@ class GridPlan:
     memory_limit: float | None
     max_seconds: float
     analytic_W_star: float
+    predicted: bool = False
 
     @property
     def affordable(self) -> bool:
@@ -402,7 +407,7 @@ class UnresolvableCaseError(RuntimeError):
 
 
 def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
-              max_seconds=DEFAULT_MAX_SECONDS) -> GridPlan:
+              max_seconds=DEFAULT_MAX_SECONDS, predicted=None) -> GridPlan:
     """Plan the grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
 
     Parameters
@@ -419,6 +424,10 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
         As in :func:`pull_off_start` (the domain) [-].
     max_seconds : float, default DEFAULT_MAX_SECONDS
         Time allowed [s] (:attr:`GridPlan.affordable`).
+    predicted : bool, optional
+        Plan the automatic grid on the predicted route's domain (:func:`predicted_start`);
+        default: for the Dugdale law at mu >= :data:`PREDICTED_MIN_MU` when ``n`` is not given
+        (the load-control route :func:`adhesive_pull_off` then takes).
 
     Returns
     -------
@@ -448,7 +457,10 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
     max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
-    start = _start(mu, beta0, DEFAULT_STEPS, _check_margin(margin))
+    if predicted is None:
+        predicted = n is None and law == "dugdale" and mu >= PREDICTED_MIN_MU
+    predicted = bool(predicted)
+    start = (predicted_start if predicted else _start)(mu, beta0, DEFAULT_STEPS, _check_margin(margin))
     law_obj = law_from_name(law, mu, 1.0)
     zone = expected_zone_width(mu)
 
@@ -470,7 +482,7 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     w_star = float(elliptic_transition.pull_off_nondimensional(mu, beta0)["W_star"])
     return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n), law_obj)),
                     PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
-                    memory_limit(), max_seconds, w_star)
+                    memory_limit(), max_seconds, w_star, predicted)
 
 
 def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_steps=DEFAULT_STEPS,
@@ -576,22 +588,23 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         raise ValueError(f"search must be one of {SEARCHES} (load-control path); got {search!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
+    options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
+                          keep_states=keep_states, progress=progress)
     if n is None:
-        plan = plan_grid(mu, beta0, law=law, margin=margin, max_seconds=max_seconds)
+        coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
+        plan = plan_grid(mu, beta0, law=law, margin=margin, max_seconds=max_seconds,
+                         predicted=coarse_route and float(mu) >= PREDICTED_MIN_MU)
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
         n = plan.n_needed
-        relaxed = (control == "load" and search == "located" and nested is None and law == "dugdale"
-                   and n % 4 == 0 and not _half_grid_locates(plan, law, margin))
+        if plan.predicted:
+            # high mu: neither the grid half as fine nor its relaxed states converge; only fine
+            # lattice samples around GVG's pull-off, on a domain holding its zone
+            return _predicted_pull_off(predicted_problem(mu, beta0, n, n_steps=n_steps, margin=margin), options)
+        relaxed = coarse_route and n % 4 == 0 and not _half_grid_locates(plan, law, margin)
     else:
         relaxed = False
     prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin)
-    options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
-                          keep_states=keep_states, progress=progress)
-    if relaxed and prob.has_cold_start and prob.mu >= PREDICTED_MIN_MU:
-        # high mu: neither the grid half as fine nor its relaxed states converge; the fine lattice
-        # samples around GVG's pull-off instead
-        return _predicted_pull_off(prob, options)
     if relaxed and prob.has_cold_start:
         # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
         # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
@@ -771,23 +784,89 @@ def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
 PREDICTED_MIN_MU = 7.5
 
 
-def _predicted_pull_off(prob, options) -> AdhesivePullOff:
-    """Load-control pull-off at high mu from fine lattice samples around GVG's pull-off.
+def predicted_start(mu, beta0, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
+    """The start of the predicted route: GVG's pull-off, on a domain holding its zone.
 
-    The cold start is GVG's load-control pull-off (:func:`_gvg_start`: its approach, its
-    contact ellipse widened by the expected zone), which at high mu lies within a lattice
-    step of the BEM's (the two-axis closure's zone at beta0 = 0.4826, mu = 10, c = 1.960,
-    is inside GVG's contact a = 1.984); :func:`dhfield.bem.pull_off.predicted_path` solves
-    the samples around it.  The relaxed route (:func:`_relaxed_pull_off`) when that fails.
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps, as in :func:`pull_off_start` (the approach lattice) [-].
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per semi-axis of the cold start's zone, > 1 [-].
+
+    Returns
+    -------
+    PullOffStart
+        :func:`pull_off_start`'s path range (``approach_max``, ``approach_step``: the same
+        approach lattice), with GVG's load-control pull-off as the cold start
+        (:func:`_gvg_start`: its approach, its contact ellipse widened by
+        :func:`expected_zone_width`) and half-widths ``margin`` times that zone's semi-axes
+        (never wider than :func:`pull_off_start`'s).
+
+    Notes
+    -----
+    Only states near the pull-off are solved (:func:`dhfield.bem.pull_off.predicted_path`),
+    so the domain need not hold the zone at the start of unloading: at beta0 = 0.4826,
+    mu = 10 it is 2.29 x 1.33 instead of 2.56 x 1.48, and the edge is resolved with
+    N = 1280 instead of 1440 (sphere: 1280 instead of 1536).  The zone grows by ~1.5 % per
+    lattice sample above the pull-off (measured, sphere mu = 5: c = 1.516, 1.539, 1.562),
+    so ``margin`` = 1.15 holds about ten samples above it (the search adds at most
+    ``LOCATE_MAX_EXTEND`` = 6).
     """
     from dataclasses import replace
 
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    margin = _check_margin(margin)
+    base = _start(mu, beta0, n_steps, margin)
+    approach, zone = _gvg_start(mu, beta0)
+    return replace(base, half_width_x=min(base.half_width_x, margin * zone[0]),
+                   half_width_y=min(base.half_width_y, margin * zone[1]), approach=approach, zone=zone)
+
+
+def predicted_problem(mu, beta0, n, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
+    """The paper's problem (Dugdale law) on the predicted route's domain with its start (:func:`predicted_start`).
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    n : int
+        Cells per axis, even, 8 to 65536 [-].
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps (4 to 1e6) [-].
+    margin : float, default DOMAIN_MARGIN
+        As in :func:`predicted_start` [-].
+
+    Returns
+    -------
+    NondimensionalProblem
+        :func:`dhfield.bem.pull_off.paper_problem` with :func:`predicted_start`.
+    """
+    n = check_cells(n)
+    n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
+    return paper_problem(mu, beta0, n, predicted_start(mu, beta0, n_steps, margin))
+
+
+def _predicted_pull_off(prob, options) -> AdhesivePullOff:
+    """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
+
+    ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off,
+    which at high mu lies within a lattice step of the BEM's (the two-axis closure's zone at
+    beta0 = 0.4826, mu = 10, c = 1.960, is inside GVG's contact a = 1.984);
+    :func:`dhfield.bem.pull_off.predicted_path` solves the samples around it.  The relaxed
+    route (:func:`_relaxed_pull_off`) when that fails.
+    """
     from .bem.pull_off import predicted_path, pull_off_result
 
     options = options.checked()
-    approach, zone = _gvg_start(prob.mu, prob.beta0)
-    inside = zone[0] < 0.5 * prob.grid.nx * prob.grid.dx and zone[1] < 0.5 * prob.grid.ny * prob.grid.dy
-    path = predicted_path(replace(prob, pull_off_approach=approach, pull_off_zone=zone), options) if inside else None
+    path = predicted_path(prob, options)
     if path is not None:
         return pull_off_result(prob, prob.grid.nx, path, "located")
     return _relaxed_pull_off(prob, options)

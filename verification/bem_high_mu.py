@@ -48,10 +48,12 @@ def run(mu, beta0, route, n=None, progress=False):
     if route == "auto":
         res = ast.adhesive_pull_off(mu, beta0, n, progress=progress)
     else:
-        n = n or ast.plan_grid(mu, beta0).n_needed
-        prob = ast.nondimensional_problem(mu, beta0, n)
+        n = n or ast.plan_grid(mu, beta0, predicted=route == "predicted").n_needed
         opts = PathOptions(progress=progress)
-        res = (ast._predicted_pull_off(prob, opts) if route == "predicted" else ast._relaxed_pull_off(prob, opts))
+        if route == "predicted":
+            res = ast._predicted_pull_off(ast.predicted_problem(mu, beta0, n), opts)
+        else:
+            res = ast._relaxed_pull_off(ast.nondimensional_problem(mu, beta0, n), opts)
     return res, time.perf_counter() - t0, time.process_time() - c0
 
 
