@@ -20,8 +20,10 @@ and time, and names the analytic value to use instead
 (:func:`dhfield.elliptic_transition.pull_off_nondimensional`); :func:`adhesive_pull_off`
 without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
 allowed (:class:`UnresolvableCaseError`).  Where the grid half as fine cannot hold the
-Dugdale edge (high mu), the states are warm-started from it with the edge relaxed
-(:class:`RelaxedWarmStart`).
+Dugdale edge, the states are warm-started from it with the edge relaxed
+(:class:`RelaxedWarmStart`); at mu >= :data:`PREDICTED_MIN_MU`, where the relaxed states do
+not converge either, only fine lattice samples around GVG's pull-off are solved, on a
+domain holding its zone (:func:`predicted_start`, :func:`dhfield.bem.pull_off.predicted_path`).
 
 :func:`adhesive_pull_off` and :func:`refine_pull_off`, the user-facing BEM
 pull-offs, set the problem up here and run :func:`dhfield.bem.pull_off.solve_pull_off`
@@ -500,7 +502,9 @@ def adhesive_pull_off(mu, beta0, n=None, *, law="dugdale", control="load", n_ste
         Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
     n : int, optional
         Cells per axis (even) [-].  Default: chosen from the expected zone width and the
-        law's edge (:func:`plan_grid`, ``n_needed``), refused with
+        law's edge (:func:`plan_grid`, ``n_needed``; at mu >= :data:`PREDICTED_MIN_MU` under
+        the default load-control search on the domain of :func:`predicted_start`, solved by
+        fine lattice samples around GVG's pull-off only), refused with
         :class:`UnresolvableCaseError` before anything is solved when that grid does not fit
         the memory available or ``max_seconds``.
     law : {'dugdale', 'exponential'}
@@ -802,10 +806,10 @@ def predicted_start(mu, beta0, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> P
     -------
     PullOffStart
         :func:`pull_off_start`'s path range (``approach_max``, ``approach_step``: the same
-        approach lattice), with GVG's load-control pull-off as the cold start
-        (:func:`_gvg_start`: its approach, its contact ellipse widened by
-        :func:`expected_zone_width`) and half-widths ``margin`` times that zone's semi-axes
-        (never wider than :func:`pull_off_start`'s).
+        approach lattice), with GVG's load-control pull-off corrected by the sphere's MD as
+        the cold start (:func:`_gvg_md_start`: its approach, its contact ellipse widened by
+        the MD zone) and half-widths ``margin`` times that zone's semi-axes (never wider than
+        :func:`pull_off_start`'s).
 
     Notes
     -----
@@ -823,9 +827,32 @@ def predicted_start(mu, beta0, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> P
     beta0 = float(check_ellipticity("beta0", beta0))
     margin = _check_margin(margin)
     base = _start(mu, beta0, n_steps, margin)
-    approach, zone = _gvg_start(mu, beta0)
+    approach, zone = _gvg_md_start(mu, beta0)
     return replace(base, half_width_x=min(base.half_width_x, margin * zone[0]),
                    half_width_y=min(base.half_width_y, margin * zone[1]), approach=approach, zone=zone)
+
+
+def _gvg_md_start(mu, beta0):
+    """(approach, (c, d)) of GVG's JKR load-control pull-off corrected to finite mu by the sphere's MD.
+
+    The contact semi-axes of :mod:`dhfield.jkr_elliptic_energy` times the sphere's
+    a_MD/a_JKR at pull-off, widened by the sphere's MD zone width c_MD - a_MD
+    (:mod:`dhfield.maugis_dugdale`), at GVG's approach plus the sphere's
+    delta_MD - delta_JKR.  Only a start (any converging start gives the same state): on the
+    sphere at mu = 5 the BEM's pull-off contact (N = 256: a* = 1.510, c* = 1.539) is within
+    0.4 cell of it (a = 1.504, c = 1.534) and 1.1 cells from GVG's widened by
+    :func:`expected_zone_width` (c = 1.555); the edge's creep from a start a cell off costs
+    most of the outer iterations of a cold state.
+    """
+    from . import jkr_elliptic_energy, maugis_dugdale
+
+    gvg = jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")
+    jkr = jkr_elliptic_energy.pull_off_nondimensional(1.0, mu, control="load")
+    md = maugis_dugdale.pull_off_nondimensional(1.0, mu, control="load")
+    ratio = float(md.a_star) / float(jkr["a_star"])
+    w = float(md.c_star) - float(md.a_star)
+    approach = float(gvg["delta_star"]) + float(md.delta_star) - float(jkr["delta_star"])
+    return approach, (ratio * float(gvg["a_star"]) + w, ratio * float(gvg["b_star"]) + w)
 
 
 def predicted_problem(mu, beta0, n, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
@@ -857,8 +884,8 @@ def predicted_problem(mu, beta0, n, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
 def _predicted_pull_off(prob, options) -> AdhesivePullOff:
     """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
 
-    ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off,
-    which at high mu lies within a lattice step of the BEM's (the two-axis closure's zone at
+    ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
+    (corrected by the sphere's MD), which at high mu lies within a lattice step of the BEM's (the two-axis closure's zone at
     beta0 = 0.4826, mu = 10, c = 1.960, is inside GVG's contact a = 1.984);
     :func:`dhfield.bem.pull_off.predicted_path` solves the samples around it.  The relaxed
     route (:func:`_relaxed_pull_off`) when that fails.
