@@ -784,7 +784,11 @@ def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
 #: 0.4826, mu = 10: the relaxed cold start stalls at residual 0.04-0.5 on N = 180, 360 and 720
 #: (from the two-axis zone and from GVG's alike; 32 CPU s at N = 720), after which the old route
 #: cold-started the bracket search on N = 1440 (8443 CG iterations for its first state); at
-#: mu = 5 (sphere N = 160, beta0 = 0.5 N = 192) the relaxed states converge.
+#: mu = 5 (sphere N = 160, beta0 = 0.5 N = 192) the relaxed states converge.  The predicted
+#: route is faster at mu = 5 too (``verification/bem_high_mu.py --route predicted``: sphere N =
+#: 256, 1.9 CPU s, MD +0.13 %; beta0 = 0.5 N = 288, 4.5 CPU s, +0.06 % of the stored N = 1024)
+#: than the relaxed one (sphere N = 320, 9.0 CPU s, +0.04 %; beta0 = 0.5 N = 384, ~36 CPU s),
+#: but mu = 5 (and its slender cases) keeps the relaxed route until measured more widely.
 PREDICTED_MIN_MU = 7.5
 
 
