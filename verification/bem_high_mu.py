@@ -16,8 +16,18 @@ or ``relaxed`` (warm starts from the relaxed half grid, :class:`dhfield.adhesive
     DHFIELD_THREADS=1 .venv/bin/python -m verification.bem_high_mu --beta0 1 --mu 10
     DHFIELD_THREADS=1 .venv/bin/python -m verification.bem_high_mu --beta0 0.4826 --mu 10
 
-Measured: see the commit that added each figure (the machine is shared: the CPU seconds and
-iteration counts compare, the wall seconds depend on the load).
+Measured 2026-11-26 on the shared 2-core machine (CPU seconds and iteration counts compare; wall
+seconds depend on the load):
+
+* ``dhfield solve --beta0 0.4826 --mu 10`` (auto N = 1200, predicted route): W* = -0.644437 +- 0.016,
+  converged and resolved, 3 fine states, 7733 CG, 366 s CPU (16:44 wall at load ~6); GVG x MD/JKR
+  -0.644178: +0.04 %.  Before (N = 1440, the relaxed half grid stalling, then the fine bracket
+  search): its first fine state alone took 669.5 s and 8443 CG; the command did not finish.
+* ``--beta0 1 --mu 7.5`` (N = 640): W* = -0.751323 +- 0.015, MD +0.025 %, 4 fine states, 7399 CG
+  (the 4th, an extension below the minimum towards the fold, 3271 CG / 169 outer), 104 s CPU.
+* ``--beta0 1 --mu 5 --route predicted`` (N = 256): MD +0.13 %, 3 states, 1226 CG, 1.9 s CPU;
+  ``--beta0 0.5 --mu 5 --route predicted`` (N = 288): +0.06 % of the stored N = 1024, 4.5 s CPU.
+* ``dhfield solve --beta0 1 --mu 10`` (N = 1280) was stopped unfinished after 675 s CPU.
 """
 from __future__ import annotations
 
