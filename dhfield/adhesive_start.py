@@ -23,8 +23,10 @@ and time, and names the analytic value to use instead
 (:func:`dhfield.elliptic_transition.pull_off_nondimensional`); :func:`adhesive_pull_off`
 without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
 allowed (:class:`UnresolvableCaseError`).  Where the grid half as fine cannot hold the
-Dugdale edge (high mu), the states are warm-started from it with the edge relaxed
-(:class:`RelaxedWarmStart`).
+Dugdale edge, the states are warm-started from it with the edge relaxed
+(:class:`RelaxedWarmStart`); at mu >= :data:`PREDICTED_MIN_MU`, where the relaxed states do
+not converge either, only fine lattice samples around GVG's pull-off are solved, on a
+domain holding its zone (:func:`predicted_start`, :func:`dhfield.bem.pull_off.predicted_path`).
 
 :func:`adhesive_pull_off` and :func:`refine_pull_off`, the user-facing BEM
 pull-offs, set the problem up here and run :func:`dhfield.bem.pull_off.solve_pull_off`
@@ -52,7 +54,8 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
-           "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y"]
+           "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
+           "PREDICTED_MIN_MU"]
 
 
 def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -372,6 +375,10 @@ class GridPlan:
         Cells along y of the automatic grid [-]: ``n_needed`` for beta0 >=
         :data:`SHAPED_CELLS_MAX_BETA0`, else about square cells (:func:`shaped_cells_y`);
         default ``n_needed``.
+    predicted : bool, default False
+        True when ``n_needed`` is planned on the domain of the predicted route
+        (:func:`predicted_start`: only states near the pull-off are solved, so the domain
+        holds GVG's pull-off zone instead of the zone at the start of unloading).
     """
 
     mu: float
@@ -386,6 +393,7 @@ class GridPlan:
     analytic_W_star: float
     ny: int | None = None
     ny_needed: int | None = None
+    predicted: bool = False
 
     def __post_init__(self):
         if self.ny is None:
@@ -482,7 +490,7 @@ class UnresolvableCaseError(RuntimeError):
 
 
 def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
-              max_seconds=DEFAULT_MAX_SECONDS, ny=None) -> GridPlan:
+              max_seconds=DEFAULT_MAX_SECONDS, ny=None, predicted=None) -> GridPlan:
     """Plan the grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
 
     Parameters
@@ -502,6 +510,11 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     ny : int, optional
         Cells along y of the grid of ``n`` [-]; default ``n`` (``ny_needed`` when ``n`` is
         not given either).
+    predicted : bool, optional
+        Plan the automatic grid on the predicted route's domain (:func:`predicted_start`);
+        default: for the Dugdale law at mu >= :data:`PREDICTED_MIN_MU` when ``n`` is not given
+        (the load-control route :func:`adhesive_pull_off` then takes), except on shaped grids
+        (beta0 < :data:`SHAPED_CELLS_MAX_BETA0`), which keep the coarse-to-fine route.
 
     Returns
     -------
@@ -537,11 +550,14 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
     max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
-    start = _start(mu, beta0, DEFAULT_STEPS, _check_margin(margin))
+    if predicted is None:
+        predicted = n is None and law == "dugdale" and mu >= PREDICTED_MIN_MU and beta0 >= SHAPED_CELLS_MAX_BETA0
+    predicted = bool(predicted)
+    start = (predicted_start if predicted else _start)(mu, beta0, DEFAULT_STEPS, _check_margin(margin))
     law_obj = law_from_name(law, mu, 1.0)
     zone = expected_zone_width(mu)
 
-    shaped = beta0 < SHAPED_CELLS_MAX_BETA0
+    shaped = beta0 < SHAPED_CELLS_MAX_BETA0 and not predicted   # the predicted route solves n x n cells
     if shaped:                  # the contact at pull-off must be resolved along both axes
         po = model.pull_off(mu=mu, beta0=beta0)
         contact_dx, contact_dy = (float(po.a_star) / AUTO_CONTACT_CELLS, float(po.b_star) / AUTO_CONTACT_CELLS)
@@ -576,7 +592,7 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     w_star = float(elliptic_transition.pull_off_nondimensional(beta0, mu).W_star)
     return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n, ny), law_obj)),
                     PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
-                    memory_limit(), max_seconds, w_star, int(ny), int(ny_needed))
+                    memory_limit(), max_seconds, w_star, int(ny), int(ny_needed), predicted)
 
 
 @dataclass(frozen=True)
@@ -712,19 +728,25 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         raise ValueError(f"search must be one of {SEARCHES} (load-control path); got {search!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
+    options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
+                          keep_states=keep_states, progress=progress)
     if n is None:
-        plan = plan_grid(mu, beta0, law=law, margin=margin, max_seconds=max_seconds)
+        coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
+        plan = plan_grid(mu, beta0, law=law, margin=margin, max_seconds=max_seconds,
+                         predicted=(coarse_route and float(mu) >= PREDICTED_MIN_MU
+                                    and float(beta0) >= SHAPED_CELLS_MAX_BETA0))
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
         n = plan.n_needed
         ny = plan.ny_needed if ny is None else ny
-        relaxed = (control == "load" and search == "located" and nested is None and law == "dugdale"
-                   and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin))
+        if plan.predicted:
+            # high mu: neither the grid half as fine nor its relaxed states converge; only fine
+            # lattice samples around GVG's pull-off, on a domain holding its zone (n x n cells)
+            return _predicted_pull_off(predicted_problem(mu, beta0, n, n_steps=n_steps, margin=margin), options)
+        relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     else:
         relaxed = False
     prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin, ny=ny)
-    options = PathOptions(refine_levels=refine_levels, tol=tol, max_iter=max_iter, threads=threads,
-                          keep_states=keep_states, progress=progress)
     if relaxed and prob.has_cold_start:
         # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
         # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
@@ -892,6 +914,131 @@ def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
     path = path_on(work, prob.path_start(work, ws), prob.approach_max, prob.approach_step, control="load",
                    options=options)
     return pull_off_result(prob, prob.grid.nx, path, "bracket")
+
+
+#: Smallest mu at which an automatic grid whose half grid cannot hold the Dugdale edge solves
+#: only fine lattice samples around GVG's pull-off (:func:`_predicted_pull_off`) instead of
+#: warm starts from the relaxed half grid (:class:`RelaxedWarmStart`).  Measured at beta0 =
+#: 0.4826, mu = 10: the relaxed cold start stalls at residual 0.04-0.5 on N = 180, 360 and 720
+#: (from the two-axis zone and from GVG's alike; 32 CPU s at N = 720), after which the old route
+#: cold-started the bracket search on N = 1440 (8443 CG iterations for its first state); at
+#: mu = 5 (sphere N = 160, beta0 = 0.5 N = 192) the relaxed states converge.  The predicted
+#: route is faster at mu = 5 too (``verification/bem_high_mu.py --route predicted``: sphere N =
+#: 256, 1.9 CPU s, MD +0.13 %; beta0 = 0.5 N = 288, 4.5 CPU s, +0.06 % of the stored N = 1024)
+#: than the relaxed one (sphere N = 320, 9.0 CPU s, +0.04 %; beta0 = 0.5 N = 384, ~36 CPU s),
+#: but mu = 5 (and its slender cases) keeps the relaxed route until measured more widely.
+PREDICTED_MIN_MU = 7.5
+
+
+def predicted_start(mu, beta0, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
+    """The start of the predicted route: GVG's pull-off, on a domain holding its zone.
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps, as in :func:`pull_off_start` (the approach lattice) [-].
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per semi-axis of the cold start's zone, > 1 [-].
+
+    Returns
+    -------
+    PullOffStart
+        :func:`pull_off_start`'s path range (``approach_max``, ``approach_step``: the same
+        approach lattice), with GVG's load-control pull-off corrected by the sphere's MD as
+        the cold start (:func:`_gvg_md_start`: its approach, its contact ellipse widened by
+        the MD zone) and half-widths ``margin`` times that zone's semi-axes (never wider than
+        :func:`pull_off_start`'s).
+
+    Notes
+    -----
+    Only states near the pull-off are solved (:func:`dhfield.bem.pull_off.predicted_path`),
+    so the domain need not hold the zone at the start of unloading: at beta0 = 0.4826,
+    mu = 10 it is 2.29 x 1.33 instead of 2.56 x 1.48, and the edge is resolved with
+    N = 1280 instead of 1440 (sphere: 1280 instead of 1536).  The zone grows by ~1.5 % per
+    lattice sample above the pull-off (measured, sphere mu = 5: c = 1.516, 1.539, 1.562),
+    so ``margin`` = 1.15 holds about ten samples above it (the search adds at most
+    ``LOCATE_MAX_EXTEND`` = 6).
+    """
+    from dataclasses import replace
+
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    margin = _check_margin(margin)
+    base = _start(mu, beta0, n_steps, margin)
+    approach, zone = _gvg_md_start(mu, beta0)
+    return replace(base, half_width_x=min(base.half_width_x, margin * zone[0]),
+                   half_width_y=min(base.half_width_y, margin * zone[1]), approach=approach, zone=zone)
+
+
+def _gvg_md_start(mu, beta0):
+    """(approach, (c, d)) of GVG's JKR load-control pull-off corrected to finite mu by the sphere's MD.
+
+    The contact semi-axes of :mod:`dhfield.jkr_elliptic_energy` times the sphere's
+    a_MD/a_JKR at pull-off, widened by the sphere's MD zone width c_MD - a_MD
+    (:mod:`dhfield.maugis_dugdale`), at GVG's approach plus the sphere's
+    delta_MD - delta_JKR.  Only a start (any converging start gives the same state): on the
+    sphere at mu = 5 the BEM's pull-off contact (N = 256: a* = 1.510, c* = 1.539) is within
+    0.4 cell of it (a = 1.504, c = 1.534) and 1.1 cells from GVG's widened by
+    :func:`expected_zone_width` (c = 1.555); the edge's creep from a start a cell off costs
+    most of the outer iterations of a cold state.
+    """
+    from . import jkr_elliptic_energy, maugis_dugdale
+
+    gvg = jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")
+    jkr = jkr_elliptic_energy.pull_off_nondimensional(1.0, mu, control="load")
+    md = maugis_dugdale.pull_off_nondimensional(1.0, mu, control="load")
+    ratio = float(md.a_star) / float(jkr["a_star"])
+    w = float(md.c_star) - float(md.a_star)
+    approach = float(gvg["delta_star"]) + float(md.delta_star) - float(jkr["delta_star"])
+    return approach, (ratio * float(gvg["a_star"]) + w, ratio * float(gvg["b_star"]) + w)
+
+
+def predicted_problem(mu, beta0, n, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
+    """The paper's problem (Dugdale law) on the predicted route's domain with its start (:func:`predicted_start`).
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    n : int
+        Cells per axis, even, 8 to 65536 [-].
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps (4 to 1e6) [-].
+    margin : float, default DOMAIN_MARGIN
+        As in :func:`predicted_start` [-].
+
+    Returns
+    -------
+    NondimensionalProblem
+        :func:`dhfield.bem.pull_off.paper_problem` with :func:`predicted_start`.
+    """
+    n = check_cells(n)
+    n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
+    return paper_problem(mu, beta0, n, predicted_start(mu, beta0, n_steps, margin))
+
+
+def _predicted_pull_off(prob, options) -> AdhesivePullOff:
+    """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
+
+    ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
+    (corrected by the sphere's MD), which at high mu lies within a lattice step of the BEM's (the two-axis closure's zone at
+    beta0 = 0.4826, mu = 10, c = 1.960, is inside GVG's contact a = 1.984);
+    :func:`dhfield.bem.pull_off.predicted_path` solves the samples around it.  The relaxed
+    route (:func:`_relaxed_pull_off`) when that fails.
+    """
+    from .bem.pull_off import predicted_path, pull_off_result
+
+    options = options.checked()
+    path = predicted_path(prob, options)
+    if path is not None:
+        return pull_off_result(prob, prob.grid.nx, path, "located")
+    return _relaxed_pull_off(prob, options)
 
 
 def _half_grid_locates(plan, law, margin) -> bool:

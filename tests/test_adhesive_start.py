@@ -64,7 +64,9 @@ def _paper_edge_ratio(mu, n, start):
 @pytest.mark.parametrize("mu, beta0", [(5.0, 0.5), (10.0, 0.4826), (5.0, 1.0), (2.0, 0.8)])
 def test_automatic_grid_is_the_smallest_that_resolves_the_dugdale_edge(mu, beta0):
     plan = adhesive_start.plan_grid(mu, beta0)
-    start = adhesive_start.pull_off_start(mu, beta0)
+    # the domain of the route the automatic grid takes (high mu: the predicted route's, GVG's zone)
+    start = (adhesive_start.predicted_start if plan.predicted else adhesive_start.pull_off_start)(mu, beta0)
+    assert plan.predicted == (mu >= adhesive_start.PREDICTED_MIN_MU)
     assert plan.n == plan.n_needed and plan.n_needed >= adhesive_start.AUTO_MIN_CELLS
     # the edge criterion, written out in the paper's units (independent of the solver's code)
     assert plan.edge_width_ratio == pytest.approx(_paper_edge_ratio(mu, plan.n, start), rel=1e-12)
@@ -291,3 +293,31 @@ def test_slender_automatic_grid_resolves_the_small_dmt_side_contact(mu, beta0):
     assert float(po.a_star) / dx >= adhesive_start.AUTO_CONTACT_CELLS
     assert float(po.b_star) / dy >= adhesive_start.AUTO_CONTACT_CELLS
     assert dy <= dx * (1 + 1e-12)
+
+
+def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
+    # mu >= PREDICTED_MIN_MU with a half grid that cannot hold the Dugdale edge: fine lattice samples
+    # around GVG's pull-off (the relaxed half grid's states stall at mu = 10); nothing solved here
+    calls = []
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts: calls.append(prob.grid.nx) or "p")
+    monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) == "p"
+    plan = adhesive_start.plan_grid(10.0, 0.4826)
+    assert calls == [plan.n_needed] and plan.predicted
+    # its domain holds GVG's pull-off zone only: N = 1280 instead of 1440 on the unloading path's domain
+    assert plan.n_needed < adhesive_start.plan_grid(10.0, 0.4826, predicted=False).n_needed
+    assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the relaxed route (measured)
+
+
+def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugdale():
+    # the predicted route on a small resolved grid (mu = 2, N = 128: lambda = 2.26): MD (Maugis 1992) is
+    # exact on the sphere; the answer must lie within its own stated error (search + grid) of it
+    from dhfield import maugis_dugdale
+    from dhfield.bem.path import PathOptions
+
+    prob = adhesive_start.predicted_problem(2.0, 1.0, 128)
+    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False))
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
+    assert res.search == "located" and res.converged and res.resolved
+    assert 3 <= res.n_steps <= 4                                  # three samples (+ at most one vertex)
+    assert abs(res.W_star - md) <= res.W_star_error

@@ -238,3 +238,20 @@ def test_contact_on_the_centre_cells_is_not_a_resolved_answer(mu, n):
     res = adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False)
     assert not res.resolved and "the contact spans fewer than" in res.note
     assert res.W_star_error == np.inf
+
+
+def test_dilated_state_stretches_the_contact_and_is_the_state_itself_without_stretch():
+    # bilinear interpolation at the grid's own points is exact; a stretch by s moves the contact's
+    # second-moment semi-axes by s to within a cell (the edge is carried, then re-thresholded at p > 0)
+    from dhfield.bem.pull_off import dilate_state
+
+    nd = nondimensional_problem(1.0, 0.8, 64)
+    prob = nd.adhesive_problem()
+    st = solve_problem(prob, nd.pull_off_approach + 0.2, None, DEFAULT_TOL, 20000)
+    same = dilate_state(st, 1.0, 1.0)
+    assert np.array_equal(same.repulsive_pressure, st.repulsive_pressure)
+    assert np.array_equal(same.contact, st.contact) and not same.converged
+    a, b = st.contact_semi_axes()
+    assert st.converged and a > 4 * nd.grid.dx
+    a2, b2 = dilate_state(st, 1.2, 1.1).contact_semi_axes()
+    assert abs(a2 - 1.2 * a) <= nd.grid.dx and abs(b2 - 1.1 * b) <= nd.grid.dy

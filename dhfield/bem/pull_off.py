@@ -607,6 +607,150 @@ def located_path(problem, ws, options):
                      error=b.minimum_error(order, sm))
 
 
+#: The predicted route (:func:`predicted_path`) solves the parabola's vertex only when the
+#: samples' own error (:meth:`Branch.minimum_error`, the vertex against the best sample) exceeds
+#: this fraction of the grid's discretisation error (:func:`discretisation_error`): below it one
+#: more fine state changes the stated error by less than this fraction.
+VERTEX_ERROR_FRACTION = 0.1
+
+
+def _dilated_start(branch, near, approach):
+    """Warm start at ``approach``: the nearest solved state dilated to the contact it should have.
+
+    Between neighbouring samples the contact and its zone grow or shrink by a cell or two;
+    a state started from its neighbour as it is (or from the secant blend of two, which
+    leaves two edges instead of moving one) spends most of its outer iterations creeping
+    the edge by a fraction of a cell each (measured, sphere mu = 5, N = 256: the contact
+    loses a ring of 227 cells over ~40 outer iterations).  Here the nearest state's fields
+    are stretched about the centre by the semi-axis change expected at ``approach``: from
+    the two nearest states when there are two (their a*, b* per approach), else from JKR's
+    sphere of the same mean radius, d delta/d a = 2 a - sqrt(2 pi / a)/2 in the paper's
+    units (0.49 measured against 0.50 for the sphere at mu = 5, pull-off).
+    """
+    i = near[0]
+    r = branch.records[i]
+    a, b = r["a"], r["b"]
+    dd = approach - r["approach"]
+    if len(near) > 1 and branch.records[near[1]]["approach"] != r["approach"]:
+        q = branch.records[near[1]]
+        step = r["approach"] - q["approach"]
+        da, db = (r["a"] - q["a"]) / step * dd, (r["b"] - q["b"]) / step * dd
+    else:
+        m = math.sqrt(a * b)
+        slope = 1.0 / (2.0 * m - 0.5 * math.sqrt(2.0 * math.pi / m))       # JKR sphere: da/d delta
+        da, db = slope * dd * a / m, slope * dd * b / m
+    return dilate_state(branch.states[i], 1.0 + da / a, 1.0 + db / b)
+
+
+def dilate_state(state, sx, sy):
+    """A solved state stretched about the centre, ``f(x, y) -> f(x/sx, y/sy)`` (a warm start).
+
+    Parameters
+    ----------
+    state : ContactState
+        A solved state (with its repulsive pressure).
+    sx, sy : float
+        Stretch factors along x and y, > 0 [-].
+
+    Returns
+    -------
+    ContactState
+        Repulsive pressure, adhesive zone fraction and gap carried bilinearly (clipped as in
+        :func:`interpolate_state`); a guess (``converged=False``), not a solution.
+    """
+    from scipy.interpolate import RegularGridInterpolator
+
+    g = state.grid
+    x, y = g.mesh()
+    pts = np.stack([(x / sx).ravel(), (y / sy).ravel()], axis=-1)
+
+    def carry(f):
+        it = RegularGridInterpolator((g.x, g.y), np.asarray(f, float), bounds_error=False, fill_value=None)
+        return it(pts).reshape(g.shape)
+
+    p = np.maximum(carry(state.repulsive_pressure), 0.0)
+    zone = np.clip(carry(state.adhesive_zone), 0.0, 1.0)
+    contact = p > 0
+    sigma0 = state.law.max_stress
+    return ContactState(grid=g, pressure=p - sigma0 * zone, gap=np.maximum(carry(state.gap), 0.0),
+                        approach=state.approach, load=float("nan"), contact=contact,
+                        cohesive=np.where(contact, 0.0, zone), law=state.law, converged=False, iterations=0,
+                        residual=float("inf"), repulsive_pressure=p)
+
+
+def predicted_path(problem, options):
+    """The load-control pull-off from fine lattice samples around the problem's cold start, or None.
+
+    For grids whose coarser levels cannot locate the minimum (high mu: the grid half as
+    fine cannot hold the Dugdale edge, and its relaxed states do not converge), the
+    caller's predicted pull-off (:attr:`NondimensionalProblem.pull_off_approach`, e.g.
+    the JKR limit's) stands in for the coarse search: the lattice sample
+    ``approach_max - j approach_step / LOCATE_DIVISIONS`` nearest it is solved first from
+    the cold start (sigma0 on :attr:`NondimensionalProblem.pull_off_zone`), then its
+    neighbours, each from the nearest solved state (secant over the two nearest), until
+    the discrete load minimum is interior (:func:`_lattice_minimum`).  The parabola's
+    vertex is solved only when the samples' error exceeds ``VERTEX_ERROR_FRACTION`` of
+    the grid's discretisation error.  None when the minimum is not interior or a state
+    did not converge.
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The fine grid's problem, with a cold start (:attr:`NondimensionalProblem.has_cold_start`).
+    options : PathOptions
+        Checked path settings (tolerances, ``refine_levels``: no vertex state when 0).
+
+    Returns
+    -------
+    UnloadingPath or None
+        The samples' path with the pull-off at the parabola's vertex; None on failure.
+    """
+    spacing = problem.approach_step / LOCATE_DIVISIONS
+    prob = problem.adhesive_problem(options.threads)
+    cold = problem.path_start(prob).stress
+    b = Branch(prob, options.tol, options.max_iter, label=f"predicted N={problem.grid.nx}",
+               progress=options.progress, keep_states=options.keep_states)
+
+    def solve(d):
+        if any(b.approach(i) == d for i in range(len(b.records))):
+            return                              # solved already (the first sample)
+        near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
+        if not near:
+            guess = Prediction(np.zeros_like(cold), cold.copy())
+        else:
+            guess = _dilated_start(b, near, d)
+        b.solve(d, guess, "unloading")
+
+    top = problem.approach_max
+    j0 = int(round((top - problem.pull_off_approach) / spacing))
+    solve(top - j0 * spacing)                   # the sample nearest the prediction first (cold)
+    if not b.usable(0):
+        return None
+    for j in (j0 - 1, j0 + 1):                  # its neighbours, then beyond the lowest end until interior
+        solve(top - j * spacing)
+
+    def next_approach(i, up):
+        j = int(round((top - b.approach(i)) / spacing))
+        return top - (j - 1 if up else j + 1) * spacing
+
+    _, order = b.extend_until_interior(range(len(b.records)), next_approach, LOCATE_MAX_EXTEND)
+    sm = b.minimum(order)[1]
+    every = range(len(b.records))
+    if sm is None or sm.at_boundary or not all(r["converged"] for r in b.records):
+        return None
+    order, sm = b.minimum(every)
+    rec = b.records[order[sm.index]]
+    grid_error = discretisation_error(sm.y, (rec["a"], rec["b"], rec["c"], rec["d"]), problem.grid)
+    if b.minimum_error(order, sm) > VERTEX_ERROR_FRACTION * grid_error:
+        xtol = problem.approach_step / options.refine_factor ** options.refine_levels
+        b.refine_vertex(every, xtol, min(options.refine_levels, 1))
+        order, sm = b.minimum(range(len(b.records)))
+        if sm.at_boundary or not all(r["converged"] for r in b.records):
+            return None
+    return b.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=order[sm.index], converged=True,
+                     error=b.minimum_error(order, sm))
+
+
 def solve_pull_off(problem, *, control="load", search="located", nested=None, options=PathOptions()) -> AdhesivePullOff:
     """The BEM pull-off of a problem in the paper's units, by the route of ``control`` and ``search``.
 
