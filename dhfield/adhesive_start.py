@@ -58,15 +58,15 @@ __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "ref
            "PREDICTED_MIN_MU"]
 
 
-def pull_off_start(mu, beta0, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
+def pull_off_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
     """Choose the start of the BEM pull-off at (mu, beta0) from the analytic models.
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-].
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
     n_steps : int, default DEFAULT_STEPS
         Unloading steps from the start of unloading to the expected jump (4 to 1e6) [-].
     margin : float, default DOMAIN_MARGIN
@@ -179,7 +179,7 @@ def _two_axis_start(mu, beta0):
     return out if np.all(np.isfinite([out[0], *out[1]])) and min(out[1]) > 0 else None
 
 
-def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS,
+def nondimensional_problem(*, beta0, mu, n, law="dugdale", n_steps=DEFAULT_STEPS,
                            margin=DOMAIN_MARGIN, ny=None) -> NondimensionalProblem:
     """Set up the grid, initial gap, law and path range of the paper's problem at (mu, beta0).
 
@@ -187,10 +187,10 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-].
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
     n : int
         Cells along x (and along y unless ``ny`` is given), even, 8 to 65536 [-].
     law : {'dugdale', 'exponential'}, default 'dugdale'
@@ -218,7 +218,7 @@ def nondimensional_problem(mu, beta0, n, *, law="dugdale", n_steps=DEFAULT_STEPS
     n = check_cells(n)
     ny = None if ny is None else check_cells(ny, "ny")
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    return paper_problem(mu, beta0, n, _start(mu, beta0, n_steps, _check_margin(margin)), law=law, ny=ny)
+    return paper_problem(mu=mu, beta0=beta0, n=n, start=_start(mu, beta0, n_steps, _check_margin(margin)), law=law, ny=ny)
 
 
 # ============================================================================ the grid a case needs
@@ -489,16 +489,16 @@ class UnresolvableCaseError(RuntimeError):
         super().__init__(plan.message())
 
 
-def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
+def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
               max_seconds=DEFAULT_MAX_SECONDS, ny=None, predicted=None) -> GridPlan:
     """Plan the grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-].
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
     n : int, optional
         Cells along x asked for [-]; default: the automatic choice ``n_needed``.
     law : {'dugdale', 'exponential'}, default 'dugdale'
@@ -553,7 +553,9 @@ def plan_grid(mu, beta0, n=None, *, law="dugdale", margin=DOMAIN_MARGIN,
     if predicted is None:
         predicted = n is None and law == "dugdale" and mu >= PREDICTED_MIN_MU and beta0 >= SHAPED_CELLS_MAX_BETA0
     predicted = bool(predicted)
-    start = (predicted_start if predicted else _start)(mu, beta0, DEFAULT_STEPS, _check_margin(margin))
+    margin = _check_margin(margin)
+    start = (predicted_start(mu=mu, beta0=beta0, n_steps=DEFAULT_STEPS, margin=margin) if predicted
+             else _start(mu, beta0, DEFAULT_STEPS, margin))
     law_obj = law_from_name(law, mu, 1.0)
     zone = expected_zone_width(mu)
 
@@ -732,8 +734,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                           keep_states=keep_states, progress=progress)
     if n is None:
         coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
-        plan = plan_grid(mu, beta0, law=law, margin=margin, max_seconds=max_seconds,
-                         predicted=(coarse_route and float(mu) >= PREDICTED_MIN_MU
+        plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=(coarse_route and float(mu) >= PREDICTED_MIN_MU
                                     and float(beta0) >= SHAPED_CELLS_MAX_BETA0))
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
@@ -742,11 +743,11 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         if plan.predicted:
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
             # lattice samples around GVG's pull-off, on a domain holding its zone (n x n cells)
-            return _predicted_pull_off(predicted_problem(mu, beta0, n, n_steps=n_steps, margin=margin), options)
+            return _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin), options)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     else:
         relaxed = False
-    prob = nondimensional_problem(mu, beta0, n, law=law, n_steps=n_steps, margin=margin, ny=ny)
+    prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
     if relaxed and prob.has_cold_start:
         # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
         # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
@@ -930,15 +931,15 @@ def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
 PREDICTED_MIN_MU = 7.5
 
 
-def predicted_start(mu, beta0, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
+def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
     """The start of the predicted route: GVG's pull-off, on a domain holding its zone.
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-].
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
     n_steps : int, default DEFAULT_STEPS
         Unloading steps, as in :func:`pull_off_start` (the approach lattice) [-].
     margin : float, default DOMAIN_MARGIN
@@ -997,15 +998,15 @@ def _gvg_md_start(mu, beta0):
     return approach, (ratio * float(gvg["a_star"]) + w, ratio * float(gvg["b_star"]) + w)
 
 
-def predicted_problem(mu, beta0, n, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
+def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
     """The paper's problem (Dugdale law) on the predicted route's domain with its start (:func:`predicted_start`).
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-].
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
     n : int
         Cells per axis, even, 8 to 65536 [-].
     n_steps : int, default DEFAULT_STEPS
@@ -1020,7 +1021,8 @@ def predicted_problem(mu, beta0, n, *, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
     """
     n = check_cells(n)
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    return paper_problem(mu, beta0, n, predicted_start(mu, beta0, n_steps, margin))
+    return paper_problem(mu=mu, beta0=beta0, n=n, start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps,
+                                                                        margin=margin))
 
 
 def _predicted_pull_off(prob, options) -> AdhesivePullOff:
@@ -1051,14 +1053,14 @@ def _half_grid_locates(plan, law, margin) -> bool:
     return edge_width_ratio(half, law_from_name(law, plan.mu, 1.0)) <= LOCATE_MAX_EDGE_RATIO
 
 
-def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine_factor=4,
-                    window=3, tol=DEFAULT_TOL, max_iter=DEFAULT_MAX_ITER, threads=None,
-                    keep_states=False, progress=None) -> AdhesivePullOff:
+def refine_pull_off(coarse, n, *, refine_factor=4, window=3, threads=None, progress=None,
+                    options=None) -> AdhesivePullOff:
     """Compute the load-control pull-off on a finer grid, started from a coarser solution.
 
-    The fine states sit on the finest approach lattice of the full path set by ``n_steps``,
-    ``refine_levels`` and ``refine_factor`` (:func:`adhesive_pull_off`), so that the fine
-    pull-off equals the full fine path's wherever both bracket the same samples.
+    The fine states sit on the finest approach lattice of the full path set by
+    ``options.n_steps``, ``options.refine_levels`` and ``refine_factor``
+    (:func:`adhesive_pull_off`), so that the fine pull-off equals the full fine path's
+    wherever both bracket the same samples.
 
     Parameters
     ----------
@@ -1068,25 +1070,19 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
         previous call of this function.
     n : int
         Cells per axis of the fine grid (even, > ``coarse.n``) [-].
-    n_steps : int, default DEFAULT_STEPS
-        Unloading steps of the full path (4 to 1e6) [-].
-    refine_levels : int, default 2
-        Refinements of the full path's pull-off bracket (0-20) [-].
     refine_factor : int, default 4
         Step division per refinement (2-100) [-].
     window : int, default 3
         Half-width of the window of fine states around the coarse pull-off, in
         finest path steps (extended while the fine minimum sits on its edge) [-].
-    tol : float, default DEFAULT_TOL
-        Solver tolerance [-]; see :class:`dhfield.bem.path.PathOptions`.
-    max_iter : int, default DEFAULT_MAX_ITER
-        Iteration cap per state; see :class:`dhfield.bem.path.PathOptions`.
     threads : int, optional
         FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
-    keep_states : bool, default False
-        Keep every state; see :class:`dhfield.bem.path.PathOptions`.
     progress : bool, optional
         Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
+    options : AdhesiveOptions, optional
+        Numerical settings, as for :func:`adhesive_pull_off`; used here: ``n_steps`` (unloading
+        steps of the full path), ``refine_levels`` (refinements of its pull-off bracket),
+        ``tol``, ``max_iter`` and ``keep_states``; default ``AdhesiveOptions()``.
 
     Returns
     -------
@@ -1106,8 +1102,13 @@ def refine_pull_off(coarse, n, *, n_steps=DEFAULT_STEPS, refine_levels=2, refine
     if n <= coarse.n:
         raise ValueError(f"n must be an integer > coarse.n = {coarse.n} (cells per axis); got {n!r}")
     window = check_count("window", window, 1, MAX_STEPS, "finest path steps")
-    options = PathOptions(refine_levels=refine_levels, refine_factor=refine_factor, tol=tol, max_iter=max_iter,
-                          threads=threads, keep_states=keep_states, progress=progress).checked()
-    prob = nondimensional_problem(coarse.mu, coarse.beta0, n, law=coarse.law, n_steps=n_steps)
-    return refine(prob, coarse, window=window, options=options)
+    if options is None:
+        options = AdhesiveOptions()
+    elif not isinstance(options, AdhesiveOptions):
+        raise ValueError(f"options must be an AdhesiveOptions (numerical settings); got {type(options).__name__}")
+    path_options = PathOptions(refine_levels=options.refine_levels, refine_factor=refine_factor, tol=options.tol,
+                               max_iter=options.max_iter, threads=threads, keep_states=options.keep_states,
+                               progress=progress).checked()
+    prob = nondimensional_problem(mu=coarse.mu, beta0=coarse.beta0, n=n, law=coarse.law, n_steps=options.n_steps)
+    return refine(prob, coarse, window=window, options=path_options)
 

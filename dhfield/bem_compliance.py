@@ -214,7 +214,7 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
     window = check_count("window", options.window, 2, 100, "samples each side of a minimum")
     tol, max_iter = options.tol, options.max_iter
     t0 = time.perf_counter()
-    problem = nondimensional_problem(mu, beta0, n, law=law, **({} if margin is None else {"margin": margin}))
+    problem = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, **({} if margin is None else {"margin": margin}))
     prob = problem.adhesive_problem(threads)
     branch = Branch(prob, tol, max_iter, label="spring")
     first = problem.path_start(prob).cold_start(branch)
@@ -419,7 +419,7 @@ def _cycle_margin(mu, beta0, k_positive):
     c_land = float(np.asarray(model.load_curve(mu=mu, beta0=beta0, a_star=[a_in]).c_star)[0])
     if not np.isfinite(c_land):
         c_land = 1.5 * a_in
-    c_start = pull_off_start(mu, beta0).half_width_x / DOMAIN_MARGIN
+    c_start = pull_off_start(mu=mu, beta0=beta0).half_width_x / DOMAIN_MARGIN
     return DOMAIN_MARGIN * max(1.0, 1.1 * c_land / c_start)
 
 

@@ -20,13 +20,13 @@ def test_cold_start_is_the_two_axis_pull_off_for_an_ellipse_and_the_dh_one_for_t
     """The fix of beta0 = 0.5, mu = 5 (issue 8): the bracket search cold-starts from the two-axis
     closure's pull-off state, whose adhesive ellipse is rounder than beta0 (like the BEM's), not
     from the paper's zone d = beta0 c (48 cells short along y at N = 512: no convergence)."""
-    start = adhesive_start.pull_off_start(5.0, 0.5)
+    start = adhesive_start.pull_off_start(mu=5.0, beta0=0.5)
     ref = compare.pull_off("dh-elliptic-two-axis", mu=5.0, beta0=0.5, control="load")
     c, d = start.zone
     assert start.approach == pytest.approx(float(ref["delta_star"]), rel=RTOL_SAME_NUMBER)
     assert (c, d) == pytest.approx((float(ref["c_star"]), float(ref["d_star"])), rel=RTOL_SAME_NUMBER)
     assert d / c > 0.5 + 0.05                      # rounder than beta0 (two-axis: 0.596)
-    sphere = adhesive_start.pull_off_start(5.0, 1.0)
+    sphere = adhesive_start.pull_off_start(mu=5.0, beta0=1.0)
     assert sphere.approach == float(model.pull_off(mu=5.0, beta0=1.0).delta_star)
     assert sphere.zone[0] == sphere.zone[1]
 
@@ -37,7 +37,7 @@ def test_domain_too_small_for_the_contact_is_refused_before_solving(margin):
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
         adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.9, n=64, options=AdhesiveOptions(margin=margin))
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
-        adhesive_start.pull_off_start(1.0, 0.9, margin=margin)
+        adhesive_start.pull_off_start(mu=1.0, beta0=0.9, margin=margin)
 
 
 def test_the_bem_facade_forwards_the_convenience_functions():
@@ -63,9 +63,9 @@ def _paper_edge_ratio(mu, n, start):
 
 @pytest.mark.parametrize("mu, beta0", [(5.0, 0.5), (10.0, 0.4826), (5.0, 1.0), (2.0, 0.8)])
 def test_automatic_grid_is_the_smallest_that_resolves_the_dugdale_edge(mu, beta0):
-    plan = adhesive_start.plan_grid(mu, beta0)
+    plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
     # the domain of the route the automatic grid takes (high mu: the predicted route's, GVG's zone)
-    start = (adhesive_start.predicted_start if plan.predicted else adhesive_start.pull_off_start)(mu, beta0)
+    start = (adhesive_start.predicted_start if plan.predicted else adhesive_start.pull_off_start)(mu=mu, beta0=beta0)
     assert plan.predicted == (mu >= adhesive_start.PREDICTED_MIN_MU)
     assert plan.n == plan.n_needed and plan.n_needed >= adhesive_start.AUTO_MIN_CELLS
     # the edge criterion, written out in the paper's units (independent of the solver's code)
@@ -80,7 +80,7 @@ def test_automatic_grid_is_the_smallest_that_resolves_the_dugdale_edge(mu, beta0
 
 def test_automatic_grid_grows_like_mu_squared():
     # both criteria scale as 1/mu^2 (ln-corrected by kappa): 2x mu -> ~4x cells per axis, less the ln
-    n5, n10 = (adhesive_start.plan_grid(mu, 0.4826).n_needed for mu in (5.0, 10.0))
+    n5, n10 = (adhesive_start.plan_grid(mu=mu, beta0=0.4826).n_needed for mu in (5.0, 10.0))
     assert 2.5 < n10 / n5 <= 4.5
 
 
@@ -110,7 +110,7 @@ def test_case_beyond_time_is_refused_before_solving_with_the_analytic_value(monk
         adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, options=AdhesiveOptions(max_seconds=1.0))
     err = info.value
     assert not calls                                              # nothing solved
-    assert err.n_needed == adhesive_start.plan_grid(10.0, 0.4826).n_needed
+    assert err.n_needed == adhesive_start.plan_grid(mu=10.0, beta0=0.4826).n_needed
     assert err.seconds > 1.0 and err.memory_bytes > 0.0
     ref = float(elliptic_transition.pull_off_nondimensional(0.4826, 10.0).W_star)
     assert err.analytic_W_star == pytest.approx(ref, rel=RTOL_SAME_NUMBER)
@@ -120,7 +120,7 @@ def test_case_beyond_time_is_refused_before_solving_with_the_analytic_value(monk
 
 def test_case_beyond_memory_is_refused(monkeypatch):
     monkeypatch.setattr(adhesive_start, "memory_limit", lambda: 1024)
-    plan = adhesive_start.plan_grid(5.0, 0.5)
+    plan = adhesive_start.plan_grid(mu=5.0, beta0=0.5)
     assert not plan.affordable and "GiB available" in plan.reason()
     with pytest.raises(adhesive_start.UnresolvableCaseError, match="GiB available"):
         adhesive_start.adhesive_pull_off(mu=5.0, beta0=0.5)
@@ -128,10 +128,10 @@ def test_case_beyond_memory_is_refused(monkeypatch):
 
 def test_explicit_grid_far_too_coarse_is_named():
     # the issue's case: N = 512 at mu = 11.4 wants ~3x the edge's cap (no stable discrete state)
-    plan = adhesive_start.plan_grid(11.4, 0.4826, 512)
+    plan = adhesive_start.plan_grid(mu=11.4, beta0=0.4826, n=512)
     assert plan.n == 512 and plan.too_coarse and plan.n_needed > 512
     assert "n=512 is too coarse for the Dugdale edge" in plan.reason()
-    assert not adhesive_start.plan_grid(1.0, 0.9, 64).too_coarse
+    assert not adhesive_start.plan_grid(mu=1.0, beta0=0.9, n=64).too_coarse
 
 
 def test_automatic_grid_on_the_sphere_at_mu_5_is_within_1_percent_of_maugis_dugdale():
@@ -140,7 +140,7 @@ def test_automatic_grid_on_the_sphere_at_mu_5_is_within_1_percent_of_maugis_dugd
     # sphere; 1 % is the BEM's stated accuracy where resolved (DMT_BOUND_SLACK; measured +0.04 %)
     from dhfield import maugis_dugdale
 
-    plan = adhesive_start.plan_grid(5.0, 1.0)
+    plan = adhesive_start.plan_grid(mu=5.0, beta0=1.0)
     assert not adhesive_start._half_grid_locates(plan, "dugdale", adhesive_start.DOMAIN_MARGIN)
     res = adhesive_start.adhesive_pull_off(mu=5.0, beta0=1.0, progress=False)
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 5.0, control="load").W_star)
@@ -153,7 +153,7 @@ def test_slender_contact_starts_from_the_gvg_ellipse_and_its_domain_holds_it():
     # is far inside GVG's contact (2.79 x 0.74); the start is GVG's pull-off ellipse widened by the zone
     from dhfield import jkr_elliptic_energy
 
-    start = adhesive_start.pull_off_start(5.0, 0.1806)
+    start = adhesive_start.pull_off_start(mu=5.0, beta0=0.1806)
     gvg = jkr_elliptic_energy.pull_off_nondimensional(0.1806, 5.0, control="load")
     w = adhesive_start.expected_zone_width(5.0)
     assert start.approach == pytest.approx(float(gvg["delta_star"]), rel=RTOL_SAME_NUMBER)
@@ -194,8 +194,8 @@ def _paper_edge_ratio_xy(mu, nx, ny, start):
 
 @pytest.mark.parametrize("mu, beta0", [(5.0, 0.1806), (5.0, 0.1), (10.0, 0.1806), (1.0, 0.3), (5.0, 0.05)])
 def test_slender_automatic_grid_has_about_square_cells_resolving_the_zone_on_both_axes(mu, beta0):
-    plan = adhesive_start.plan_grid(mu, beta0)
-    start = adhesive_start.pull_off_start(mu, beta0)
+    plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
+    start = adhesive_start.pull_off_start(mu=mu, beta0=beta0)
     nx, ny = plan.n_needed, plan.ny_needed
     assert (plan.n, plan.ny) == (nx, ny) and ny < nx
     dx, dy = 2 * start.half_width_x / nx, 2 * start.half_width_y / ny
@@ -216,7 +216,7 @@ def test_slender_automatic_grid_has_about_square_cells_resolving_the_zone_on_bot
 
 @pytest.mark.parametrize("mu, beta0", [(5.0, 0.5), (10.0, 0.4826), (5.0, 1.0), (1.0, 0.45)])
 def test_automatic_grid_stays_n_by_n_from_the_shaping_threshold_up(mu, beta0):
-    plan = adhesive_start.plan_grid(mu, beta0)
+    plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
     assert plan.ny_needed == plan.n_needed and plan.ny == plan.n
 
 
@@ -224,8 +224,8 @@ def test_slender_grid_coarsens_exactly_for_the_nested_searches():
     # every coarser grid of the located/nested searches (n/2, n/4, ... along x) must halve y exactly and
     # keep the domain (Grid(n/k, ny/k, k dx, k dy)); shaped_cells_y makes ny divisible by n's power of 2
     for mu, beta0 in [(5.0, 0.1806), (10.0, 0.1806), (5.0, 0.1), (7.0, 0.25)]:
-        plan = adhesive_start.plan_grid(mu, beta0)
-        nd = adhesive_start.nondimensional_problem(mu, beta0, plan.n_needed, ny=plan.ny_needed)
+        plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
+        nd = adhesive_start.nondimensional_problem(mu=mu, beta0=beta0, n=plan.n_needed, ny=plan.ny_needed)
         assert nd.grid.shape == (plan.n_needed, plan.ny_needed)
         k = 2
         while plan.n_needed // k >= 64 and plan.n_needed % k == 0:
@@ -242,7 +242,7 @@ def test_nx_by_ny_problem_has_the_crossed_cylinder_gap_of_eq_2():
 
     from dhfield import geometry
 
-    nd = adhesive_start.nondimensional_problem(5.0, 0.1806, 96, ny=32)
+    nd = adhesive_start.nondimensional_problem(mu=5.0, beta0=0.1806, n=96, ny=32)
     g = nd.grid
     assert g.shape == (96, 32)
     rho = float(geometry.radius_ratio(0.1806))
@@ -255,9 +255,9 @@ def test_nx_by_ny_problem_has_the_crossed_cylinder_gap_of_eq_2():
 @pytest.mark.parametrize("ny", [7, 31, 0, 2.5])
 def test_bad_ny_is_named(ny):
     with pytest.raises(ValueError, match=r"^ny must be"):
-        adhesive_start.nondimensional_problem(1.0, 0.3, 64, ny=ny)
+        adhesive_start.nondimensional_problem(mu=1.0, beta0=0.3, n=64, ny=ny)
     with pytest.raises(ValueError, match=r"^ny must be"):
-        adhesive_start.plan_grid(1.0, 0.3, 64, ny=ny)
+        adhesive_start.plan_grid(mu=1.0, beta0=0.3, n=64, ny=ny)
 
 
 def test_shaped_and_stretched_grids_give_the_same_slender_pull_off_within_their_stated_errors():
@@ -286,8 +286,8 @@ def test_shaped_and_stretched_grids_give_the_same_slender_pull_off_within_their_
 def test_slender_automatic_grid_resolves_the_small_dmt_side_contact(mu, beta0):
     # on the DMT side the pull-off contact is small inside a wide zone (beta0 = 0.1806, mu = 0.1: the BEM's
     # b* = 0.093 spanned one square cell of 256 x 72): >= AUTO_CONTACT_CELLS cells across the DH model's a*, b*
-    plan = adhesive_start.plan_grid(mu, beta0)
-    start = adhesive_start.pull_off_start(mu, beta0)
+    plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
+    start = adhesive_start.pull_off_start(mu=mu, beta0=beta0)
     po = model.pull_off(mu=mu, beta0=beta0)
     dx, dy = 2 * start.half_width_x / plan.n_needed, 2 * start.half_width_y / plan.ny_needed
     assert float(po.a_star) / dx >= adhesive_start.AUTO_CONTACT_CELLS
@@ -302,10 +302,10 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts: calls.append(prob.grid.nx) or "p")
     monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) == "p"
-    plan = adhesive_start.plan_grid(10.0, 0.4826)
+    plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
     assert calls == [plan.n_needed] and plan.predicted
     # its domain holds GVG's pull-off zone only: N = 1280 instead of 1440 on the unloading path's domain
-    assert plan.n_needed < adhesive_start.plan_grid(10.0, 0.4826, predicted=False).n_needed
+    assert plan.n_needed < adhesive_start.plan_grid(mu=10.0, beta0=0.4826, predicted=False).n_needed
     assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the relaxed route (measured)
 
 
@@ -315,9 +315,20 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     from dhfield import maugis_dugdale
     from dhfield.bem.path import PathOptions
 
-    prob = adhesive_start.predicted_problem(2.0, 1.0, 128)
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
     res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False))
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
     assert res.search == "located" and res.converged and res.resolved
     assert 3 <= res.n_steps <= 4                                  # three samples (+ at most one vertex)
     assert abs(res.W_star - md) <= res.W_star_error
+
+
+@pytest.mark.parametrize("call", [lambda: adhesive_start.pull_off_start(1.0, 0.9),
+                                  lambda: adhesive_start.nondimensional_problem(1.0, 0.9, 16),
+                                  lambda: adhesive_start.plan_grid(1.0, 0.9),
+                                  lambda: adhesive_start.predicted_start(1.0, 0.9),
+                                  lambda: adhesive_start.predicted_problem(1.0, 0.9, 16)])
+def test_start_and_plan_take_beta0_and_mu_by_keyword(call):
+    """(mu, beta0) was the old positional order: a positional call would swap them silently (issue 16)."""
+    with pytest.raises(TypeError, match="positional"):
+        call()

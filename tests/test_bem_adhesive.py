@@ -94,7 +94,7 @@ def test_large_mu_tends_to_elliptical_jkr():
 
 
 def test_under_resolved_grid_is_flagged():
-    res = nondimensional_problem(6.0, 1.0, 32)
+    res = nondimensional_problem(mu=6.0, beta0=1.0, n=32)
     flagged = adhesive_pull_off(mu=6.0, beta0=1.0, n=32, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0, max_iter=50))
     assert res.grid.nx == 32
     assert not flagged.resolved
@@ -111,9 +111,9 @@ def test_bad_input_names_the_parameter():
     with pytest.raises(ValueError, match="approach"):
         solve_adhesive(z, grid, float("nan"), None)
     with pytest.raises(ValueError, match="beta0"):
-        nondimensional_problem(1.0, 1.5, 64)
+        nondimensional_problem(mu=1.0, beta0=1.5, n=64)
     with pytest.raises(ValueError, match="n must be an even integer"):
-        nondimensional_problem(1.0, 0.5, 63)
+        nondimensional_problem(mu=1.0, beta0=0.5, n=63)
     with pytest.raises(ValueError, match="control"):
         adhesive_pull_off(mu=1.0, beta0=1.0, n=16, control="force")
 
@@ -192,7 +192,7 @@ def test_bracket_search_equals_the_marching_path_with_a_fifth_of_the_states(mu, 
 def test_bracket_search_rejects_bad_input():
     from dhfield.bem import unloading_path
 
-    prob = nondimensional_problem(1.0, 1.0, 16)
+    prob = nondimensional_problem(mu=1.0, beta0=1.0, n=16)
     args = (prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step)
     with pytest.raises(ValueError, match="approach_guess"):
         unloading_path(*args, approach_guess=float("nan"))

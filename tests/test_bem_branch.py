@@ -21,7 +21,7 @@ from dhfield.pull_off_search import refine_sampled_minimum
 @pytest.fixture(scope="module")
 def sphere():
     # lambda = 1 on 32 x 32 cells: each state solves in milliseconds
-    nd = nondimensional_problem(float(transition.tabor_from_maugis(1.0)), 1.0, 32)
+    nd = nondimensional_problem(mu=float(transition.tabor_from_maugis(1.0)), beta0=1.0, n=32)
     return nd, nd.adhesive_problem()
 
 
@@ -75,7 +75,7 @@ def test_path_holds_the_records_in_the_order_asked(sphere):
 
 def test_warm_start_of_another_grid_is_not_used(sphere):
     nd, prob = sphere
-    other = nondimensional_problem(nd.mu, 1.0, 16).adhesive_problem()
+    other = nondimensional_problem(mu=nd.mu, beta0=1.0, n=16).adhesive_problem()
     foreign = _branch(other).solve(nd.pull_off_approach, None, "unloading")[1]
     b = _branch(prob, warm_start=lambda d: foreign)
     assert b.external(nd.pull_off_approach) is None

@@ -39,7 +39,7 @@ def _md_displacement_pull_off(mu):
 @pytest.fixture(scope="module")
 def sphere_lambda_2():
     mu = _mu(2.0)
-    nd = nondimensional_problem(mu, 1.0, 64)
+    nd = nondimensional_problem(mu=mu, beta0=1.0, n=64)
     prob = nd.adhesive_problem()
     start = solve_problem(prob, nd.pull_off_approach,
                           Prediction(np.zeros_like(prob.z), prob.to_work(nd.start_stress())), TOL_SOLVE, 20000)

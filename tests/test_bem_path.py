@@ -68,7 +68,7 @@ def test_bad_input_names_the_parameter():
         fold_of_branch(["x", "y", "z"], [1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match="points"):
         fold_of_branch([1.0, 2.0, 3.0], [3.0, 2.0, 1.0], points=2)
-    nd = nondimensional_problem(1.0, 1.0, 16)
+    nd = nondimensional_problem(mu=1.0, beta0=1.0, n=16)
     with pytest.raises(ValueError, match="n_loading"):
         unloading_path(nd.initial_gap, nd.grid, nd.law, nd.approach_max, nd.approach_step, n_loading=1.5)
     with pytest.raises(ValueError, match="refine_factor"):
@@ -114,7 +114,7 @@ def test_cold_start_at_the_guess_is_the_state_of_the_warm_path():
     from dhfield.bem import unloading_path
 
     mu = float(transition.tabor_from_maugis(1.0))
-    prob = nondimensional_problem(mu, 1.0, 48)
+    prob = nondimensional_problem(mu=mu, beta0=1.0, n=48)
     # an approach of the marching lattice next to the analytic guess
     k = round((prob.approach_max - prob.pull_off_approach) / prob.approach_step)
     guess = prob.approach_max - k * prob.approach_step
@@ -135,7 +135,7 @@ def test_failed_cold_start_is_kept_flagged_and_the_path_marches():
     from dhfield.bem import unloading_path
 
     mu = float(transition.tabor_from_maugis(1.0))
-    prob = nondimensional_problem(mu, 1.0, 32)
+    prob = nondimensional_problem(mu=mu, beta0=1.0, n=32)
     # far beyond the jump: the cold start has no contact, so the search gives way to the marching path
     path = unloading_path(prob.initial_gap, prob.grid, prob.law, prob.approach_max, prob.approach_step,
                           approach_guess=-10.0, start_stress=prob.start_stress(), progress=False)

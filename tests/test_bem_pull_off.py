@@ -35,13 +35,14 @@ def coarse():
 ])
 def test_nondimensional_problem_names_a_bad_count(kwargs, name):
     with pytest.raises(ValueError, match=rf"^{name} must be an (even )?integer"):
-        nondimensional_problem(1.0, 0.8, **kwargs)
+        nondimensional_problem(mu=1.0, beta0=0.8, **kwargs)
 
 
 @pytest.mark.parametrize("kwargs, name", [
     (dict(n="32"), "n"), (dict(n=32.5), "n"), (dict(n=16), "n"),
     (dict(n=32, window="3"), "window"), (dict(n=32, window=0), "window"),
-    (dict(n=32, refine_levels=None), "refine_levels"), (dict(n=32, refine_factor=1), "refine_factor"),
+    (dict(n=32, options=AdhesiveOptions(refine_levels=None)), "refine_levels"),
+    (dict(n=32, refine_factor=1), "refine_factor"),
 ])
 def test_refine_pull_off_names_a_bad_count(coarse, kwargs, name):
     with pytest.raises(ValueError, match=rf"^{name} must be an integer"):
@@ -107,7 +108,7 @@ def test_loose_coarse_tolerance_does_not_move_the_located_pull_off(monkeypatch):
 def test_nested_warm_start_reaches_the_state_of_the_plain_interpolation_in_fewer_iterations():
     # the warm start takes the fine grid's own sub-cell zone of the interpolated gap
     mu = float(transition.tabor_from_maugis(3.0))
-    nd = nondimensional_problem(mu, 1.0, 128)
+    nd = nondimensional_problem(mu=mu, beta0=1.0, n=128)
     ws = NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
     delta = nd.pull_off_approach
     prob = nd.adhesive_problem()
@@ -121,7 +122,7 @@ def test_nested_warm_start_reaches_the_state_of_the_plain_interpolation_in_fewer
 
 def test_nested_warm_start_rejects_a_grid_without_a_coarser_level():
     # n = 64: the grid half as fine (32) is below NESTED_MIN_N
-    nd = nondimensional_problem(1.0, 1.0, 64)
+    nd = nondimensional_problem(mu=1.0, beta0=1.0, n=64)
     with pytest.raises(ValueError, match="^problem must have an even n >= 128"):
         NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
     with pytest.raises(ValueError, match="^problem must be a NondimensionalProblem"):
@@ -134,10 +135,10 @@ def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n)
     # the nested levels reuse the fine grid's analytic set-up: every field equals a fresh set-up, bit for bit
     import dataclasses
 
-    fine = nondimensional_problem(mu, beta0, n)
+    fine = nondimensional_problem(mu=mu, beta0=beta0, n=n)
     for k in (2, 4):
         derived = fine.coarser(n // k)
-        fresh = nondimensional_problem(mu, beta0, n // k)
+        fresh = nondimensional_problem(mu=mu, beta0=beta0, n=n // k)
         assert derived.grid == fresh.grid
         for f in dataclasses.fields(fresh):
             a, b = getattr(derived, f.name), getattr(fresh, f.name)
@@ -149,7 +150,7 @@ def test_coarser_problem_is_the_problem_set_up_on_the_coarser_grid(mu, beta0, n)
 
 def test_located_search_does_not_locate_on_a_grid_too_coarse_for_the_edge():
     # mu = 5 at N = 64: the edge wants ~3.8x its cap 2 h0 (unconverged states): no location, nothing solved
-    nd = nondimensional_problem(5.0, 1.0, 128)
+    nd = nondimensional_problem(mu=5.0, beta0=1.0, n=128)
     ws = NestedWarmStart(nd, tol=DEFAULT_TOL, max_iter=20000)
     assert ws._prob.edge_width_ratio > pull_off_module.LOCATE_MAX_EDGE_RATIO
     assert np.isnan(ws.locate_pull_off(nd.approach_step / 2))
@@ -192,12 +193,12 @@ def test_resolved_answer_has_a_finite_error_estimate(control):
 
 
 def test_cold_start_outside_the_domain_is_rejected():
-    nd = nondimensional_problem(1.0, 1.0, 16)
+    nd = nondimensional_problem(mu=1.0, beta0=1.0, n=16)
     hw = 0.5 * nd.grid.nx * nd.grid.dx
     start = pull_off_module.PullOffStart(hw, hw, nd.approach_max, nd.approach_step, nd.pull_off_approach,
                                          (1.5 * hw, 0.5 * hw))
     with pytest.raises(ValueError, match="must lie inside the domain"):
-        pull_off_module.paper_problem(1.0, 1.0, 16, start)
+        pull_off_module.paper_problem(mu=1.0, beta0=1.0, n=16, start=start)
 
 
 # ============================================================================ the stated error includes the grid's (issue 18)
@@ -245,7 +246,7 @@ def test_dilated_state_stretches_the_contact_and_is_the_state_itself_without_str
     # second-moment semi-axes by s to within a cell (the edge is carried, then re-thresholded at p > 0)
     from dhfield.bem.pull_off import dilate_state
 
-    nd = nondimensional_problem(1.0, 0.8, 64)
+    nd = nondimensional_problem(mu=1.0, beta0=0.8, n=64)
     prob = nd.adhesive_problem()
     st = solve_problem(prob, nd.pull_off_approach + 0.2, None, DEFAULT_TOL, 20000)
     same = dilate_state(st, 1.0, 1.0)

@@ -177,7 +177,7 @@ def test_coarse_to_fine_from_a_stored_coarse_level(tmp_path):
     assert fine["route"] == "coarse to fine from n=16" and fine["search"] == "refine"
     assert fine["status"] == "ok" and fine["converged"]
     direct = refine_pull_off(adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, options=AdhesiveOptions(**opts)),
-                             32, progress=False, **opts)
+                             32, progress=False, options=AdhesiveOptions(**opts))
     assert fine["W_star"] == pytest.approx(direct.W_star, rel=RTOL_SAME_ROUTE)
     assert fine["n_steps"] == direct.n_steps
 

@@ -58,12 +58,12 @@ def run(mu, beta0, route, n=None, progress=False):
     if route == "auto":
         res = ast.adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=progress)
     else:
-        n = n or ast.plan_grid(mu, beta0, predicted=route == "predicted").n_needed
+        n = n or ast.plan_grid(mu=mu, beta0=beta0, predicted=route == "predicted").n_needed
         opts = PathOptions(progress=progress)
         if route == "predicted":
-            res = ast._predicted_pull_off(ast.predicted_problem(mu, beta0, n), opts)
+            res = ast._predicted_pull_off(ast.predicted_problem(mu=mu, beta0=beta0, n=n), opts)
         else:
-            res = ast._relaxed_pull_off(ast.nondimensional_problem(mu, beta0, n), opts)
+            res = ast._relaxed_pull_off(ast.nondimensional_problem(mu=mu, beta0=beta0, n=n), opts)
     return res, time.perf_counter() - t0, time.process_time() - c0
 
 

@@ -121,7 +121,7 @@ def auto_grid(beta0, mu, level=1):
     """(nx, ny) of the automatic grid (:func:`dhfield.adhesive_start.plan_grid`) times ``level`` per axis."""
     from dhfield.adhesive_start import plan_grid
 
-    plan = plan_grid(mu, beta0)
+    plan = plan_grid(mu=mu, beta0=beta0)
     return plan.n_needed * int(level), plan.ny_needed * int(level)
 
 

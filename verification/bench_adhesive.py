@@ -303,7 +303,7 @@ def bench_path(n, lambdas, tm, march=False):
     for lam in lambdas:
         mu = lam / LAMBDA_PER_MU
         md = compare.pull_off("md", mu=mu, beta0=1.0)
-        prob = nondimensional_problem(mu, 1.0, n)
+        prob = nondimensional_problem(mu=mu, beta0=1.0, n=n)
         adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False, search=SEARCH)   # warm-up: FFT plans, imports
         adhesive_pull_off(mu=mu, beta0=1.0, n=n, progress=False, search="bracket")
 

@@ -117,9 +117,9 @@ def _problem(mu, beta0, n, ny):
     from dhfield.adhesive_start import nondimensional_problem, plan_grid
 
     if n is None:
-        plan = plan_grid(mu, beta0)
+        plan = plan_grid(mu=mu, beta0=beta0)
         n, ny = plan.n_needed, plan.ny_needed
-    return nondimensional_problem(mu, beta0, n, ny=ny)
+    return nondimensional_problem(mu=mu, beta0=beta0, n=n, ny=ny)
 
 
 def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000, ny=None, history=False):

@@ -111,7 +111,8 @@ def main(argv=None):
             print(line, flush=True)
     for label, coarse in (("refine-sphere", "march-sphere"), ("refine-ellipse", "march-ellipse")):
         if coarse in results:
-            res = refine_pull_off(results[coarse], 2 * results[coarse].n, progress=False, keep_states=True)
+            res = refine_pull_off(results[coarse], 2 * results[coarse].n, progress=False,
+                                  options=AdhesiveOptions(keep_states=True))
             print(f"{label} route={res.search} W_star={res.W_star!r}", flush=True)
             for line in result_lines(label, res):
                 print(line, flush=True)

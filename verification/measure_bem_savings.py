@@ -61,7 +61,7 @@ def main(argv=None) -> int:
     p.add_argument("--variants", nargs="+", default=["quadrant", "full", "no-box", "coarse-to-fine", "neighbour",
                                                      "dilated"])
     args = p.parse_args(argv)
-    nd = nondimensional_problem(args.mu, args.beta0, args.n)
+    nd = nondimensional_problem(mu=args.mu, beta0=args.beta0, n=args.n)
     delta = nd.pull_off_approach
     g = nd.grid
     print(f"beta0 = {args.beta0:g}, mu = {args.mu:g}, N = {args.n} (dx = {g.dx:.5f}, dy = {g.dy:.5f}), "

@@ -162,9 +162,15 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
         if start is None:
             res = solver(mu=float(mu), beta0=float(beta0), n=int(n), law=law, control=control, progress=False, **options)
         else:
+            from dataclasses import fields
+
+            from dhfield.adhesive_start import AdhesiveOptions
             from dhfield.bem import refine_pull_off
 
-            res = refine_pull_off(start, int(n), progress=False, **options)
+            numerics = {f.name for f in fields(AdhesiveOptions)}
+            res = refine_pull_off(start, int(n), progress=False,
+                                  **{k: v for k, v in options.items() if k not in numerics and k != "search"},
+                                  options=AdhesiveOptions(**{k: v for k, v in options.items() if k in numerics}))
     except Exception as exc:  # noqa: BLE001 - a failed case is recorded, never dropped
         rec.update({k: float("nan") for k in CASE_FLOATS})
         rec.update(status="failed", message=f"{where}: {type(exc).__name__}: {exc}",

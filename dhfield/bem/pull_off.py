@@ -210,15 +210,15 @@ def check_cells(n, name="n") -> int:
     return n
 
 
-def paper_problem(mu, beta0, n, start, *, law="dugdale", ny=None) -> NondimensionalProblem:
+def paper_problem(*, beta0, mu, n, start, law="dugdale", ny=None) -> NondimensionalProblem:
     """Grid, initial gap and law of the paper's problem at (mu, beta0), from a given start.
 
     Parameters
     ----------
-    mu : float
-        Tabor parameter of Eq. (35), > 0 [-]; sigma0 = mu in these units.
     beta0 : float
         Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-]; sigma0 = mu in these units.
     n : int
         Cells along x, and along y unless ``ny`` is given (even, 8 to 65536) [-].
     start : PullOffStart

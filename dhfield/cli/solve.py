@@ -344,7 +344,7 @@ def run(args) -> int:
     check_solve_memory(args.n)
     if args.machine_stiffness is not None:
         _check_spring_arguments(args, params)
-    plan = plan_grid(args.mu, args.beta0, args.n, law=args.law)
+    plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law)
     if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
         print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
