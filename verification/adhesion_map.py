@@ -246,8 +246,8 @@ def map_figure(r, truth, dev_truth, stem, dpi=200):
     fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8, frameon=False)
     fig.suptitle("Adhesion map for elliptical contacts (equal cylinders, load control): deviation of the pull-off "
                  "force from the reference\nThe reference is the recommended model, validated against the BEM only "
-                 f"\ninside the dashed box (θ ≥ {a_lo:.0f}°: β0 ≥ {r.validated_beta0[0]:g}; "
-                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g}; {truth['force'].size} BEM cases, "
+                 f"inside the dashed box (θ ≥ {a_lo:.0f}°: β0 ≥ {r.validated_beta0[0]:g}; "
+                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g})\n({truth['force'].size} BEM cases, "
                  f"{_below_box(r, truth)} of them at μ = {_fmt_mus(truth['mu'][truth['mu'] < r.validated_mu[0]])} "
                  "below it); outside it, deviations are from the recommended model, "
                  "not from the truth.\nThe two-axis double-Hertz closure (0.2-0.4 s per point) is not mapped: see the "
