@@ -151,7 +151,7 @@ def verdict_lines(stored, truth, dev_truth, jkr_rows):
     (n_wide, w_wide), (n_sl, w_sl) = _slender_split(truth, dev_truth[ref])
     below = truth["mu"] < vm[0]
     lines = [
-        f"**Recommended model `{ref}` ({am.MODEL_LABELS.get(ref, ref)}: the sphere's Maugis–Dugdale transition "
+        f"**Recommended model `{ref}` ({am.MODEL_LABELS.get(ref, ref).replace(' (recommended)', '')}: the sphere's Maugis–Dugdale transition "
         f"between elliptical DMT and GVG, at μ_e = μ sin^(1/4)θ): within {100 * worst:.2f} % of every one "
         f"of the {n} stored BEM cases** (worst {100 * signed:+.2f} % at β0 = {b:g}, θ = {a:.0f}°, μ = {m:g}); it "
         f"answers at {100 * answered:.0f} % of the map (crossing angle {stored.crossing_angle_deg[0]:g}–"
