@@ -34,6 +34,22 @@ def limits():
     return am.adhesion_map(ANGLES, [TABOR_RANGE[0], 0.3, 1.0, 1e4])
 
 
+def test_reference_is_the_registered_recommended_model():
+    # the map's reference is the library's default model under its registered name, labelled as the
+    # figures label it, and listed once even when the caller names it again
+    from dhfield.io._figures import MODEL_LABELS as FIGURE_LABELS
+
+    assert am.REFERENCE_MODEL == "md-elliptic" == compare.DEFAULT_MODEL
+    assert am.REFERENCE_MODEL in compare.MODEL_NAMES
+    assert am.MODEL_LABELS[am.REFERENCE_MODEL] == FIGURE_LABELS["md-elliptic"] == "MD elliptical (recommended)"
+    assert len(set(am.MAP_MODEL_NAMES)) == len(am.MAP_MODEL_NAMES)
+    r = am.adhesion_map([60.0], [1.0], models=("dmt", "md-elliptic", "dmt"))
+    assert r.models == ("md-elliptic", "dmt")
+    with pytest.raises(ValueError, match="models") as exc:
+        am.adhesion_map([60.0], [1.0], models=("no-such-model",))
+    assert str(exc.value).count("md-elliptic") == 1
+
+
 def test_shapes_types_and_order(limits):
     r = limits
     assert r.models == am.MAP_MODEL_NAMES and r.models[0] == am.REFERENCE_MODEL == r.reference
@@ -88,9 +104,11 @@ def test_jkr_limit_is_gvg(limits):
 
 
 def test_validated_region_marks_the_ground_truth_extent(limits):
-    v = limits.validated  # beta0 >= 0.5 is 61 deg and above; mu 0.3 and 1 inside, 1e-6 and 1e4 outside
+    # beta0 >= 0.1 is 18.8 deg and above (both stored ground truths: 0.1-0.3 and 0.5-1); mu 0.3 and 1
+    # inside, 1e-6 and 1e4 outside
+    v = limits.validated
     expected = np.zeros_like(v)
-    expected[ANGLES >= 61.0, 1:3] = True
+    expected[ANGLES >= 18.8, 1:3] = True
     np.testing.assert_array_equal(v, expected)
     r = am.adhesion_map([30.0, 90.0], [1.0, 10.0], models=("dmt",), validated_beta0=(0.1, 1.0),
                         validated_mu=(0.1, 10.0))
@@ -174,9 +192,9 @@ def test_every_map_model_answers_in_the_domain(angle, log_mu):
 
 
 def test_recommended_pull_off_is_the_reference_of_the_map():
-    # the one adapter that names the recommended model: W* = -s + (W*_GVG + s) g, g = (W*_MD + 1)/(1/4)
-    # from MD on the sphere and GVG's elliptical JKR (built here from those two models), and the map's
-    # reference column is its force 2 W*/s (Eq. 34)
+    # the one adapter that names the recommended model: W* = -s + (W*_GVG + s) g(mu_e) (Eq. T1),
+    # g = (W*_MD + 1)/(1/4) from MD on the sphere at mu_e = mu s^(1/4) (Eq. T0) and GVG's elliptical JKR
+    # (built here from those two models), and the map's reference column is its force 2 W*/s (Eq. 34)
     from dhfield import jkr_elliptic_energy, maugis_dugdale
     from dhfield.geometry import sin_skew_angle
 
@@ -184,7 +202,7 @@ def test_recommended_pull_off_is_the_reference_of_the_map():
     b, m = np.meshgrid(r.beta0, r.mu, indexing="ij")
     w = am.recommended_pull_off(beta0=b, mu=m)
     s = sin_skew_angle(b)
-    g = (maugis_dugdale.pull_off_nondimensional(beta0=1.0, mu=m).W_star + 1.0) / 0.25
+    g = (maugis_dugdale.pull_off_nondimensional(beta0=1.0, mu=m * s ** 0.25).W_star + 1.0) / 0.25
     expected = -s + (jkr_elliptic_energy.pull_off_nondimensional(beta0=b, mu=1.0).W_star + s) * g
     np.testing.assert_allclose(w, expected, rtol=1e-12)
     np.testing.assert_allclose(2.0 * w / s, r.reference_force, rtol=EXACT)

@@ -25,11 +25,13 @@ def test_dataset_metadata_from_the_schema(small):
         assert ds[v].attrs["long_name"].startswith(want["long_name"])
     assert ds["skew_angle_deg"].attrs["units"] == "degree"
     assert ds["model_status"].attrs["flag_meanings"].split() == list(am.STATUS_MEANINGS)
-    # every output says the reference is the candidate model, validated against the BEM only in part
+    # every output says the reference is the recommended model md-elliptic, validated against the BEM only
+    # in part
     assert "validated against the BEM only" in ds.attrs["reference_note"]
     assert ds["relative_deviation"].attrs["comment"] == ds.attrs["reference_note"]
     assert ds.attrs["reference_model"] == am.REFERENCE_MODEL and ds.attrs["param_command"] == "pytest"
-    assert "Giudici" in ds.attrs["model_labels"]
+    assert "Giudici" in ds.attrs["model_labels"] and "md-elliptic: MD elliptical (recommended)" in ds.attrs["model_labels"]
+    assert "md-elliptic" in ds.attrs["reference_note"] and "elliptic-transition" not in str(ds.attrs)
 
 
 def test_round_trip(small, tmp_path):

@@ -2,8 +2,11 @@
 its reference is validated.
 
 Provenance: the recommended model's worst deviation from the stored BEM is re-derived here from
-the ground truth (data/adhesive_ground_truth.nc, W* of Eq. 34) and dhfield.adhesion_map's
-adapter, independently of the section's own code path.
+both ground truths (data/adhesive_ground_truth.nc, W_star_extrapolated, and
+data/adhesive_ground_truth_slender.nc, W_star at its finest level; W* of Eq. 34), read here with
+xarray directly, and dhfield.adhesion_map's adapter, independently of the section's own code path.
+The validated box is the datasets' own coordinates: beta0 0.1-1 and the mu stored at every beta0,
+0.3-5.
 """
 from __future__ import annotations
 
@@ -38,19 +41,32 @@ def test_map_section_runs_and_passes(section):
 
 
 def test_map_section_states_the_validated_box_and_the_worst_case(section):
+    import xarray as xr
+
     from dhfield.adhesion_map import recommended_pull_off
-    from verification.adhesion_map import read_truth
+    from dhfield.geometry import sin_skew_angle
 
     sec, _, _ = section
     text = " ".join(sec.verdict)
-    assert "validated against the BEM only inside β0 ≥ 0.5" in text and "0.3 ≤ μ ≤ 5" in text
+    assert "validated against the BEM only inside β0 ≥ 0.1 (θ ≥ 19°), 0.3 ≤ μ ≤ 5" in text
+    assert "slender cases at μ = 0.1, below the box" in text
     assert "BEM-validated" not in text  # that label is on the figure; the verdict says it in words
-    truth = read_truth()
-    w = recommended_pull_off(beta0=truth["beta0"], mu=truth["mu"])
-    from dhfield.geometry import sin_skew_angle
-
-    dev = (2.0 * w / sin_skew_angle(truth["beta0"])) / truth["force"] - 1.0
+    b, m, w_bem = [], [], []
+    for name, read in (("adhesive_ground_truth.nc", lambda ds: ds["W_star_extrapolated"]),
+                       ("adhesive_ground_truth_slender.nc", lambda ds: ds["W_star"].isel(level=-1))):
+        with xr.open_dataset(sec_map.ROOT / "data" / name) as ds:
+            w = read(ds).transpose("beta0", "mu")
+            bb, mm = np.meshgrid(ds["beta0"].values, ds["mu"].values, indexing="ij")
+            ok = np.isfinite(w.values)
+            b.append(bb[ok]), m.append(mm[ok]), w_bem.append(w.values[ok])
+    b, m, w_bem = (np.concatenate(x) for x in (b, m, w_bem))
+    assert b.size == 42  # 6 x 5 + 3 x 4 stored cases
+    dev = recommended_pull_off(beta0=b, mu=m) / w_bem - 1.0  # W*/W*_BEM - 1 = F/F_BEM - 1 (same sin)
     assert f"within {100 * np.max(np.abs(dev)):.2f} % of every one of the {dev.size} stored BEM cases" in text
+    from verification.adhesion_map import read_truth, validated_extent
+
+    assert validated_extent(read_truth()) == ((0.1, 1.0), (0.3, 5.0))
+    np.testing.assert_allclose(2.0 * w_bem / sin_skew_angle(b), read_truth()["force"], rtol=1e-15)
     assert re.search(r"Numerical JKR limit.*GVG is within \d+\.\d+ %", text)
 
 

@@ -6,15 +6,18 @@ Builds :func:`dhfield.adhesion_map.adhesion_map` over crossing angle 10-90 deg x
 
 1. ``adhesion_map``: one panel per model, crossing angle (x) vs mu (y, log): where its
    load-control pull-off force is within 1 % and within 5 % of the reference; the stored BEM
-   ground truth (``data/adhesive_ground_truth.nc``) overlaid, each point filled where that
-   model is within 1 % of the BEM; the validated region (the ground truth's extent) outlined.
+   ground truth overlaid (both datasets, 42 cases: ``data/adhesive_ground_truth.nc``, beta0
+   0.5-1 x mu 0.3-5, and ``data/adhesive_ground_truth_slender.nc``, beta0 0.1-0.3 x mu 0.1-5),
+   each point filled where that model is within 1 % of the BEM; the validated region (the
+   ground truth's common extent) outlined.
 2. ``practitioner_pull_off``: pull-off force -W/(pi R dgamma), R = sqrt(R'R''), against the
    crossing angle at mu = 0.1, 1, 10, 100, every model on the same axes, the BEM where it
-   exists (mu = 1) and the two-axis double-Hertz closure on a coarse subset (45-90 deg:
+   exists (mu = 0.1 below 61 deg, mu = 1) and the two-axis double-Hertz closure on a coarse subset (45-90 deg:
    it refuses beta0 < 0.3, and costs 0.2-0.4 s per point, so it is not on the full map).
 
-The reference is the recommended model (:mod:`dhfield.elliptic_transition`), validated
-against the BEM only inside the outlined region (beta0 >= 0.5, mu 0.3-5): a deviation
+The reference is the recommended model ``md-elliptic`` (:mod:`dhfield.elliptic_transition`),
+validated against the BEM only inside the outlined region (beta0 >= 0.1, i.e. crossing angles
+>= 19 deg, and mu 0.3-5; the slender set's cases at mu = 0.1 lie below it): a deviation
 outside it is from the recommended model, not from the truth.  Prints the figure paths and, per
 model, the fraction of the map within 1 % and 5 % of the reference and its worst
 deviation from the BEM.
@@ -35,6 +38,9 @@ from dhfield.geometry import sin_skew_angle, skew_angle
 
 ROOT = Path(__file__).resolve().parent.parent
 GROUND_TRUTH = ROOT / "data" / "adhesive_ground_truth.nc"
+GROUND_TRUTH_SLENDER = ROOT / "data" / "adhesive_ground_truth_slender.nc"
+#: Both stored BEM ground truths (beta0 0.5-1 x mu 0.3-5; beta0 0.1-0.3 x mu 0.1-5).
+GROUND_TRUTHS = (GROUND_TRUTH, GROUND_TRUTH_SLENDER)
 DEFAULT_NC = ROOT / "data" / "adhesion_map.nc"
 DEFAULT_FIG_DIR = ROOT / "out" / "adhesion_map"
 FORMATS = ("png", "svg", "pdf")
@@ -55,17 +61,59 @@ _STYLE = {  # model -> (colour, linestyle): distinguishable in greyscale too
 }
 
 
-def read_truth(path=GROUND_TRUTH):
-    """Stored BEM cases: beta0, mu, crossing angle [deg] and F = 2 W*/sin(theta) (finite only)."""
+def read_truth(paths=GROUND_TRUTHS):
+    """Stored BEM cases: beta0, mu, crossing angle [deg] and F = 2 W*/sin(theta) (finite only).
+
+    Parameters
+    ----------
+    paths : path-like or sequence of path-like
+        Ground-truth files, concatenated: the default ground truth's ``W_star_extrapolated``
+        (Richardson-extrapolated where three levels converged), the slender one's ``W_star`` at
+        its finest ``level``.  Default both stored files (:data:`GROUND_TRUTHS`).
+
+    Returns
+    -------
+    dict of ndarray
+        ``beta0``, ``mu``, ``angle`` [deg], ``force`` = W/(pi R dgamma) (Eq. 34 inverted) and
+        ``source`` (the index of the file of each case).
+    """
     import xarray as xr
 
-    with xr.open_dataset(path) as ds:
-        w = ds["W_star_extrapolated"].values
-        b0, mu = np.meshgrid(ds["beta0"].values, ds["mu"].values, indexing="ij")
-    ok = np.isfinite(w)
-    b0, mu, w = b0[ok], mu[ok], w[ok]
+    if isinstance(paths, (str, Path)):
+        paths = (paths,)
+    parts = []
+    for k, path in enumerate(paths):
+        with xr.open_dataset(path) as ds:
+            if "W_star_extrapolated" in ds:
+                w = ds["W_star_extrapolated"].transpose("beta0", "mu").values
+            elif "W_star" in ds and "level" in ds["W_star"].dims:
+                w = ds["W_star"].isel(level=-1).transpose("beta0", "mu").values
+            else:
+                raise ValueError(f"paths must be BEM ground-truth files (W_star_extrapolated, or W_star on "
+                                 f"level); {str(path)!r} has neither")
+            b0, mu = np.meshgrid(ds["beta0"].values, ds["mu"].values, indexing="ij")
+        ok = np.isfinite(w)
+        parts.append((b0[ok], mu[ok], w[ok], np.full(int(ok.sum()), k)))
+    b0, mu, w, src = (np.concatenate(x) for x in zip(*parts))
     angle = np.degrees(skew_angle(b0))
-    return {"beta0": b0, "mu": mu, "angle": angle, "force": 2.0 * w / sin_skew_angle(b0)}  # Eq. (34)
+    return {"beta0": b0, "mu": mu, "angle": angle, "force": 2.0 * w / sin_skew_angle(b0),  # Eq. (34)
+            "source": src}
+
+
+def validated_extent(truth):
+    """The box the stored cases validate: beta0 from the smallest to the largest stored, and the
+    mu range stored at EVERY beta0 (the largest per-beta0 minimum to the smallest maximum).
+
+    Returns
+    -------
+    tuple
+        ``(beta0_min, beta0_max), (mu_min, mu_max)`` [-]; for the two stored files
+        (0.1, 1) and (0.3, 5): the slender file's mu = 0.1 is not stored at beta0 >= 0.5.
+    """
+    b = np.unique(truth["beta0"])
+    lo = max(float(truth["mu"][truth["beta0"] == x].min()) for x in b)
+    hi = min(float(truth["mu"][truth["beta0"] == x].max()) for x in b)
+    return (float(b[0]), float(b[-1])), (lo, hi)
 
 
 def truth_deviation(truth):
@@ -119,7 +167,7 @@ def _mu_at(r, k, level, angle):
     return 10.0 ** np.interp(level, f[order], np.log10(r.mu[order]))
 
 
-def _label_at(r, k, level, angle=22.0):
+def _label_at(r, k, level, angle=14.0):
     """Where to label a reference contour: at ``angle`` if the level is crossed there, else at mu = 20."""
     i = int(np.argmin(np.abs(r.crossing_angle_deg - angle)))
     f = -r.force[k, i]
@@ -153,10 +201,10 @@ def map_figure(r, truth, dev_truth, stem, dpi=200):
             ax.set_facecolor("#deebf7")
             cs = ax.contour(r.crossing_angle_deg, r.mu, -r.force[k].T, levels=_REF_LEVELS, colors="#08519c",
                             linewidths=0.8)
-            # labels on the left half, clear of the ground-truth box and its markers
+            # labels at 14 deg, left of the ground-truth box (from 19 deg) and its markers
             ax.clabel(cs, fmt="%.2f", fontsize=7, inline_spacing=2,
                       manual=[_label_at(r, k, lev) for lev in cs.levels])
-            title = "Reference: DMT-JKR transition (recommended)\ncontours: pull-off force −W/(πRΔγ)"
+            title = f"Reference: {am.MODEL_LABELS.get(m, m)}\ncontours: pull-off force −W/(πRΔγ)"
         else:
             # bands of |deviation| (contourf: boundaries interpolated between grid points)
             ax.contourf(r.crossing_angle_deg, r.mu, np.nan_to_num(d, nan=np.inf).T,
@@ -198,12 +246,22 @@ def map_figure(r, truth, dev_truth, stem, dpi=200):
     fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8, frameon=False)
     fig.suptitle("Adhesion map for elliptical contacts (equal cylinders, load control): deviation of the pull-off "
                  "force from the reference\nThe reference is the recommended model, validated against the BEM only "
-                 f"\ninside the dashed box (θ ≥ {a_lo:.0f}°: β0 ≥ {r.validated_beta0[0]:g}; "
-                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g}); outside it, deviations are from the "
-                 "recommended model, "
+                 f"inside the dashed box (θ ≥ {a_lo:.0f}°: β0 ≥ {r.validated_beta0[0]:g}; "
+                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g})\n({truth['force'].size} BEM cases, "
+                 f"{_below_box(r, truth)} of them at μ = {_fmt_mus(truth['mu'][truth['mu'] < r.validated_mu[0]])} "
+                 "below it); outside it, deviations are from the recommended model, "
                  "not from the truth.\nThe two-axis double-Hertz closure (0.2-0.4 s per point) is not mapped: see the "
                  "practitioner's figure.", fontsize=9)
     return _save(fig, stem, dpi)
+
+
+def _below_box(r, truth):
+    """Number of stored cases below the validated box's mu range."""
+    return int(np.sum(truth["mu"] < r.validated_mu[0]))
+
+
+def _fmt_mus(mus):
+    return ", ".join(f"{m:g}" for m in np.unique(mus)) or "none"
 
 
 def practitioner_figure(curves, two_axis, truth, stem, dpi=200):
@@ -213,6 +271,8 @@ def practitioner_figure(curves, two_axis, truth, stem, dpi=200):
     fig = Figure(figsize=(10.5, 3.9), layout="constrained")
     axes = fig.subplots(1, mus.size, sharey=True)
     handles = []
+    bem_label = (f"BEM ground truth (stored at μ = {float(truth['mu'].min()):g}–{float(truth['mu'].max()):g} "
+                 "only)")
     for j, (ax, mu) in enumerate(zip(axes, mus)):
         for k, m in enumerate(curves.models):
             colour, ls = _STYLE.get(m, ("C0", "-"))
@@ -232,9 +292,9 @@ def practitioner_figure(curves, two_axis, truth, stem, dpi=200):
         sel = np.isclose(truth["mu"], mu)
         if sel.any():
             (h,) = ax.plot(truth["angle"][sel], -truth["force"][sel], ls="", marker="o", ms=5, c="black",
-                           mec="white", mew=0.8, zorder=4,
-                           label="BEM ground truth (stored at μ = 0.3-5 only)")
-            handles.append(h)
+                           mec="white", mew=0.8, zorder=4, label=bem_label)
+            if not any(x.get_label() == bem_label for x in handles):
+                handles.append(h)
         ax.set_title(f"μ = {mu:g}", fontsize=10)
         ax.set_xlabel("crossing angle θ (deg)", fontsize=9)
         ax.set_xticks([10, 30, 50, 70, 90])
@@ -286,14 +346,14 @@ def main(argv=None) -> int:
         return 2
     t0 = time.perf_counter()
     truth = read_truth()
-    vb = (float(truth["beta0"].min()), float(truth["beta0"].max()))
-    vm = (float(truth["mu"].min()), float(truth["mu"].max()))
+    vb, vm = validated_extent(truth)
     r = am.adhesion_map(angles, mus, validated_beta0=vb, validated_mu=vm)
     t_map = time.perf_counter() - t0
     from dhfield.io.adhesion_map import write_adhesion_map
 
     cmd = "python -m verification.adhesion_map " + " ".join(argv if argv is not None else sys.argv[1:])
-    nc = write_adhesion_map(r, args.out, command=cmd.strip(), ground_truth="data/adhesive_ground_truth.nc",
+    nc = write_adhesion_map(r, args.out, command=cmd.strip(),
+                            ground_truth=", ".join(str(q.relative_to(ROOT)) for q in GROUND_TRUTHS),
                             git_commit=_git_commit())
     dev_truth = truth_deviation(truth)
     curves = am.adhesion_map(np.linspace(10.0, 90.0, 81), PRACTITIONER_MU, validated_beta0=vb, validated_mu=vm)

@@ -15,6 +15,9 @@ load-control pull-off F/(pi sqrt(R'R'') dgamma) of
 and the relative differences.  Then, for context, the stored BEM ground truth
 (``data/adhesive_ground_truth.nc``, Dugdale law, Richardson-extrapolated W*) at its
 largest mu, beside GVG corrected by the sphere's Maugis-Dugdale/JKR ratio at that mu.
+The slender ground truth (``data/adhesive_ground_truth_slender.nc``, beta0 0.1-0.3) is not
+used here: it stores mu = 0.1, 0.3, 1, 5 only, two of them on the JKR side (mu >= 1), too few
+for the family of fits below.
 
 Finally, a **numerical JKR limit that does not assume an elliptical contact**: the stored
 BEM W*(mu) at each beta0 extrapolated to mu -> infinity (:func:`extrapolate_jkr_limit`,
@@ -344,8 +347,11 @@ def print_bem_jkr_limits(rows):
     print("Family of fits per beta0 (W*_inf):")
     for r in rows:
         print(f"  beta0 = {r['beta0']:g}: " + "; ".join(f"{k}: {v:.5f}" for k, v in r["limit"].estimates.items()))
-    print("Below beta0 = 0.5 (crossing angles < 61 deg) the stored BEM has no case: the numerical limit "
-          "cannot judge GVG there.")
+    print(f"Below beta0 = {min(r['beta0'] for r in rows):g} (crossing angles < "
+          f"{min(r['angle_deg'] for r in rows):.0f} deg) only the slender ground truth is stored "
+          "(data/adhesive_ground_truth_slender.nc: beta0 0.1, 0.1806, 0.3 at mu = 0.1, 0.3, 1, 5): mu <= 5, "
+          f"with only mu = 1, 5 >= MU_JKR_SIDE = {MU_JKR_SIDE:g}, too few for the family of fits; the numerical "
+          "limit does not judge GVG there.")
 
 
 def main():

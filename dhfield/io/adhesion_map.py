@@ -68,7 +68,7 @@ def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
         ds[v].encoding.update(zlib=True, complevel=4, shuffle=True)  # lossless; the map is smooth
     ds.attrs.update(provenance_attrs(
         "Adhesion map for elliptical contacts: load-control pull-off of each model against the recommended "
-        "DMT-to-JKR transition model, over crossing angle and mu",
+        "model md-elliptic (MD elliptical), over crossing angle and mu",
         control="load", validated_beta0_min=result.validated_beta0[0],
         validated_beta0_max=result.validated_beta0[1], validated_mu_min=result.validated_mu[0],
         validated_mu_max=result.validated_mu[1], **extra_attrs))
