@@ -212,12 +212,12 @@ def write_figure(build, path, dpi):
     path : path-like
         PNG file (:func:`figure_paths`).
     dpi : int
-        Resolution of the PNG.
+        PNG resolution [dots per inch].
 
     Returns
     -------
-    (Path, Path, Path)
-        The PNG, SVG and PDF paths.
+    paths : (Path, Path, Path)
+        Those of :func:`figure_paths`, written.
     """
     import matplotlib
 
