@@ -107,7 +107,7 @@ from .pull_off_search import stable_minimum_index
 from .records import SPRING_PULL_OFF_KEYS, SpringPullOff
 
 __all__ = ["stiffness_star", "check_machine_stiffness", "add_machine_displacement", "pull_off_under_spring", "spring_pull_off_record",
-           "pull_off_force_under_spring", "loading_cycle", "loading_cycle_si", "cycle_path",
+           "pull_off_force_under_spring", "loading_cycle", "loading_cycle_si", "cycle_si_values", "cycle_path",
            "JUMP_IN_RULES", "CYCLE_UNITS", "spring_weight"]
 
 #: How each model's force-free approach ends (module docstring).
@@ -678,6 +678,54 @@ def loading_cycle(model, *, beta0, mu, machine_stiffness=None, with_path=False):
     return rec
 
 
+#: The SI entries of a cycle record, in order: (SI key, nondimensional key, unit of :func:`cycle_si_values`).
+_CYCLE_SI_ENTRIES = (
+    ("jump_in_start_approach", "jump_in_start_delta_star", "approach"),
+    ("jump_in_force", "jump_in_W_star", "force"),
+    ("jump_in_force_error", "jump_in_W_star_error", "force"),
+    ("jump_in_approach", "jump_in_delta_star", "approach"),
+    ("jump_in_semi_major", "jump_in_a_star", "length"),
+    ("jump_out_force", "jump_out_W_star", "force"),
+    ("jump_out_force_error", "jump_out_W_star_error", "force"),
+    ("jump_out_approach", "jump_out_delta_star", "approach"),
+    ("jump_out_semi_major", "jump_out_a_star", "length"),
+    ("separation_approach", "separation_delta_star", "approach"),
+    ("max_tension_force", "max_tension_W_star", "force"),
+    ("energy_lost", "energy_lost_star", "energy"),
+    ("energy_lost_error", "energy_lost_error_star", "energy"),
+)
+
+
+def cycle_si_values(rec, *, force, approach, length=None):
+    """SI values of the nondimensional entries of a cycle record (analytic or BEM), Eqs. (32)-(34) inverted.
+
+    Parameters
+    ----------
+    rec : dict
+        A record of :func:`loading_cycle` (or the BEM's cycle record of ``dhfield cycle``).
+    force : float
+        Load unit 2 pi R dgamma/sin(theta_skew) [N] (Eq. 34).
+    approach : float
+        Approach unit c_r^2/R [m] (Eq. 33).
+    length : float, optional
+        Length unit c_r [m] (Eq. 32); needed where ``rec`` has semi-axes (``jump_in_a_star``).
+
+    Returns
+    -------
+    dict
+        Each SI key whose nondimensional key is in ``rec``, in a fixed order: forces (and their
+        error estimates) x ``force``, approaches x ``approach``, semi-axes x ``length``,
+        energies x ``force`` x ``approach`` [N, m, J].
+    """
+    out = {}
+    for key, star, unit in _CYCLE_SI_ENTRIES:
+        if star in rec:
+            v = rec[star]
+            out[key] = (v * force * approach if unit == "energy" else
+                        v * {"force": force, "approach": approach, "length": length}[unit])
+    return out
+
+
 def loading_cycle_si(params, machine_stiffness=None, model=compare.DEFAULT_MODEL):
     """Loading-unloading cycle in SI units under a machine spring of stiffness K [N/m].
 
@@ -712,19 +760,8 @@ def loading_cycle_si(params, machine_stiffness=None, model=compare.DEFAULT_MODEL
     rec = loading_cycle(model, mu=params.mu, beta0=params.beta0, machine_stiffness=k_star)
     force = float(load_unit(params.effective_radius, params.work_of_adhesion, rec["sin_skew"]))  # Eq. (34)
     length, approach = float(params.length_unit), float(params.approach_unit)  # Eqs. (32), (33)
-    si = {
-        "machine_stiffness": float("inf") if machine_stiffness is None else float(machine_stiffness),
-        "jump_in_start_approach": rec["jump_in_start_delta_star"] * approach,
-        "jump_in_force": rec["jump_in_W_star"] * force, "jump_in_approach": rec["jump_in_delta_star"] * approach,
-        "jump_in_semi_major": rec["jump_in_a_star"] * length,
-        "jump_out_force": rec["jump_out_W_star"] * force,
-        "jump_out_approach": rec["jump_out_delta_star"] * approach,
-        "jump_out_semi_major": rec["jump_out_a_star"] * length,
-        "separation_approach": rec["separation_delta_star"] * approach,
-        "max_tension_force": rec["max_tension_W_star"] * force,
-        "energy_lost": rec["energy_lost_star"] * force * approach,
-        "energy_lost_error": rec["energy_lost_error_star"] * force * approach,
-    }
+    si = {"machine_stiffness": float("inf") if machine_stiffness is None else float(machine_stiffness),
+          **cycle_si_values(rec, force=force, approach=approach, length=length)}
     warning = rec.pop("warning")
     return {**rec, **si, "warning": warning}
 

@@ -89,15 +89,20 @@ PHYSICAL_FLAGS = {
 }
 
 
-def add_physical_arguments(p) -> None:
-    """Physical inputs in SI units, an alternative to ``--beta0/--mu``."""
-    g = p.add_argument_group("physical inputs (SI units; instead of --beta0/--mu)")
+def add_material_arguments(g) -> None:
+    """The elastic constants of both bodies (``--youngs-modulus``, ``--poisson-ratio`` and their ``-2``)."""
     g.add_argument("--youngs-modulus", type=float, metavar="E1", help="Young's modulus of body 1 [Pa]")
     g.add_argument("--poisson-ratio", type=float, metavar="NU1", help="Poisson's ratio of body 1, in (-1, 0.5]")
     g.add_argument("--youngs-modulus-2", type=float, metavar="E2", help="Young's modulus of body 2 [Pa] "
                    "(default: body 1)")
     g.add_argument("--poisson-ratio-2", type=float, metavar="NU2", help="Poisson's ratio of body 2 "
                    "(default: body 1)")
+
+
+def add_physical_arguments(p) -> None:
+    """Physical inputs in SI units, an alternative to ``--beta0/--mu``."""
+    g = p.add_argument_group("physical inputs (SI units; instead of --beta0/--mu)")
+    add_material_arguments(g)
     g.add_argument("--cylinder-radius", type=float, metavar="RC", help="radius of two equal crossed "
                    "cylinders [m] (with --skew-angle-deg)")
     g.add_argument("--radii", type=float, nargs=2, metavar=("R1", "R2"), help="radii of two unequal "

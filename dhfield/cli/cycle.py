@@ -114,6 +114,7 @@ def bem_cycle_record(cyc, k_star, params=None) -> dict:
     diagnostics and, with ``params``, the SI values of :func:`dhfield.compliance.loading_cycle_si`."""
     import numpy as np
 
+    from ..compliance import cycle_si_values
     from ..geometry import sin_skew_angle
 
     br = cyc["branch"]
@@ -131,17 +132,8 @@ def bem_cycle_record(cyc, k_star, params=None) -> dict:
            "failures": int(br.failures), "elapsed": float(br.elapsed)}
     if params is not None:  # inverts Eqs. 33-34 with the contact's scales (its sin(theta_skew): the BEM's)
         force, approach = float(params.load_unit), float(params.approach_unit)
-        rec.update({
-            "machine_stiffness": rec["machine_stiffness_star"] * force / approach,
-            "jump_in_start_approach": rec["jump_in_start_delta_star"] * approach,
-            "jump_in_force": rec["jump_in_W_star"] * force, "jump_in_force_error": rec["jump_in_W_star_error"] * force,
-            "jump_in_approach": rec["jump_in_delta_star"] * approach,
-            "jump_out_force": rec["jump_out_W_star"] * force,
-            "jump_out_force_error": rec["jump_out_W_star_error"] * force,
-            "jump_out_approach": rec["jump_out_delta_star"] * approach,
-            "separation_approach": rec["separation_delta_star"] * approach,
-            "energy_lost": rec["energy_lost_star"] * force * approach,
-            "energy_lost_error": rec["energy_lost_error_star"] * force * approach})
+        rec.update({"machine_stiffness": rec["machine_stiffness_star"] * force / approach,
+                    **cycle_si_values(rec, force=force, approach=approach)})
     rec["warning"] = ("" if rec["resolved"] else "a jump is not resolved on the sampled branch: the cycle is not "
                       "an answer (increase --n)")
     return rec

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ._common import UsageError
+from ._common import UsageError, add_material_arguments
 
 #: The SI flags of ``plot``: a material and equal crossed cylinders; the sweep supplies the angle and mu.
 _SI_FLAGS = {"youngs_modulus": "--youngs-modulus", "poisson_ratio": "--poisson-ratio",
@@ -27,12 +27,7 @@ def add_parser(sub) -> None:
                    "bem-adhesive, dh-elliptic-two-axis, jkr-elliptic, then dh-elliptic)")
     g = p.add_argument_group("SI axes (all of --youngs-modulus, --poisson-ratio, --cylinder-radius, "
                              "--work-of-adhesion)")
-    g.add_argument("--youngs-modulus", type=float, metavar="E1", help="Young's modulus of body 1 [Pa]")
-    g.add_argument("--poisson-ratio", type=float, metavar="NU1", help="Poisson's ratio of body 1, in (-1, 0.5]")
-    g.add_argument("--youngs-modulus-2", type=float, metavar="E2", help="Young's modulus of body 2 [Pa] "
-                   "(default: body 1)")
-    g.add_argument("--poisson-ratio-2", type=float, metavar="NU2", help="Poisson's ratio of body 2 "
-                   "(default: body 1)")
+    add_material_arguments(g)
     g.add_argument("--cylinder-radius", type=float, metavar="RC", help="radius of the two equal crossed "
                    "cylinders [m]")
     g.add_argument("--work-of-adhesion", type=float, metavar="DGAMMA", help="work of adhesion [J/m^2]")

@@ -1,7 +1,7 @@
 """What every dhfield figure shares: PNG, SVG and PDF files, model names, SI prefixes, SI axes.
 
-* :func:`figure_paths` and :func:`save_figure`: a figure written as PNG, SVG and PDF side by
-  side, all checked before any is written, atomically;
+* :func:`figure_paths`, :func:`save_figure` and :func:`write_figure`: a figure written as PNG,
+  SVG and PDF side by side, all checked before any is written, atomically;
 * :data:`MODEL_LABELS` and :func:`model_label`: the readable name of each model slug, for
   titles and legends (the report uses the same table);
 * :func:`si_prefix`: a scale and prefixed unit for axis labels;
@@ -55,11 +55,12 @@ def model_label(slug) -> str:
     return MODEL_LABELS.get(str(slug), str(slug))
 
 
-_PREFIXES = ((1e-12, "p"), (1e-9, "n"), (1e-6, "µ"), (1e-3, "m"), (1.0, ""), (1e3, "k"), (1e6, "M"),
+#: ``(scale, prefix)`` of the SI prefixes of :func:`si_prefix`, smallest first.
+SI_PREFIXES = ((1e-12, "p"), (1e-9, "n"), (1e-6, "µ"), (1e-3, "m"), (1.0, ""), (1e3, "k"), (1e6, "M"),
              (1e9, "G"))
 
 
-def si_prefix(magnitude, unit):
+def si_prefix(magnitude, unit, *, prefixes=SI_PREFIXES):
     """Return ``(scale, label)`` that puts ``magnitude`` [unit] between 1 and 1000 in a prefixed unit.
 
     Parameters
@@ -68,6 +69,9 @@ def si_prefix(magnitude, unit):
         A typical value (its absolute value is used) [unit].
     unit : str
         The SI unit without prefix, e.g. ``"N"``.
+    prefixes : tuple of (float, str), default :data:`SI_PREFIXES`
+        The ``(scale, prefix)`` pairs allowed, smallest first; magnitudes below the first
+        take the first.
 
     Returns
     -------
@@ -77,8 +81,8 @@ def si_prefix(magnitude, unit):
     m = abs(float(magnitude))
     if not math.isfinite(m) or m == 0.0:
         return 1.0, unit
-    scale, p = _PREFIXES[0]
-    for s, name in _PREFIXES:
+    scale, p = prefixes[0]
+    for s, name in prefixes:
         if m >= s:
             scale, p = s, name
     return scale, f"{p}{unit}"
@@ -195,3 +199,35 @@ def save_figure(fig, paths, dpi):
         fig.savefig(tmp_png, format="png", dpi=dpi)
         fig.savefig(tmp_svg, format="svg", metadata={"Date": None})
         fig.savefig(tmp_pdf, format="pdf", metadata={"CreationDate": None})
+
+
+def write_figure(build, path, dpi):
+    """Check the three paths of ``path``, build the figure and write it as PNG, SVG and PDF, atomically.
+
+    Parameters
+    ----------
+    build : callable
+        ``build()`` returns the :class:`matplotlib.figure.Figure`; called after the paths are
+        checked, with matplotlib on its ``Agg`` backend.  The figure is closed afterwards.
+    path : path-like
+        PNG file (:func:`figure_paths`).
+    dpi : int
+        PNG resolution [dots per inch].
+
+    Returns
+    -------
+    paths : (Path, Path, Path)
+        Those of :func:`figure_paths`, written.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    paths = figure_paths(path)
+    fig = build()
+    try:
+        save_figure(fig, paths, dpi)
+    finally:
+        plt.close(fig)
+    return paths

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._figures import figure_paths, model_label, save_figure, si_prefix
+from ._figures import model_label, si_prefix, write_figure
 
 __all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
            "FORCE_UNITS", "LENGTH_UNITS"]
@@ -329,15 +329,4 @@ def write_residual_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
     (Path, Path, Path)
         The PNG, SVG and PDF paths.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    paths = figure_paths(path)
-    fig = residual_figure(fit)
-    try:
-        save_figure(fig, paths, dpi)
-    finally:
-        plt.close(fig)
-    return paths
+    return write_figure(lambda: residual_figure(fit), path, dpi)

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._figures import figure_paths, model_label, save_figure
+from ._figures import SI_PREFIXES, model_label, si_prefix, write_figure
 
 __all__ = ["solve_figure", "write_solve_plot", "REFERENCE_MODEL"]
 
@@ -29,19 +29,13 @@ __all__ = ["solve_figure", "write_solve_plot", "REFERENCE_MODEL"]
 #: two-axis closure, the one that agrees with the BEM across mu (README, model choice).
 REFERENCE_MODEL = "dh-elliptic-two-axis"
 
-_PREFIXES = ((1e-9, "n"), (1e-6, "µ"), (1e-3, "m"), (1.0, ""), (1e3, "k"), (1e6, "M"), (1e9, "G"))
+#: SI prefixes of this figure's axes: those of :func:`si_prefix` from nano up (no pico).
+_PREFIXES = tuple(p for p in SI_PREFIXES if p[0] >= 1e-9)
 
 
 def _prefix(magnitude: float, unit: str) -> tuple[float, str]:
-    """(scale, label) that puts ``magnitude`` [unit] between 1 and 1000 in a prefixed unit."""
-    m = abs(float(magnitude))
-    if not math.isfinite(m) or m == 0.0:
-        return 1.0, unit
-    scale, p = _PREFIXES[0]
-    for s, name in _PREFIXES:
-        if m >= s:
-            scale, p = s, name
-    return scale, f"{p}{unit}"
+    """(scale, label) that puts ``magnitude`` [unit] between 1 and 1000 in a prefixed unit (nano up)."""
+    return si_prefix(magnitude, unit, prefixes=_PREFIXES)
 
 
 def _scales(result, params):
@@ -262,15 +256,4 @@ def write_solve_plot(result, path, *, params=None, dpi=150) -> tuple[Path, Path,
     (Path, Path, Path)
         The PNG, SVG and PDF paths.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    paths = figure_paths(path)
-    fig = solve_figure(result, params)
-    try:
-        save_figure(fig, paths, dpi)
-    finally:
-        plt.close(fig)
-    return paths
+    return write_figure(lambda: solve_figure(result, params), path, dpi)
