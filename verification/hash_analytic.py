@@ -128,7 +128,7 @@ def main(argv=None) -> int:
                                                 "--load-min=-1e-4", "--load-max", "1e-3"]))
     emit("cli.pulloff.default", cli(["pulloff", "--beta0", "0.9", "--mu", "1"]))
     emit("cli.curve.ellipticity", cli(["curve", "--beta0", "0.9", "--mu", "1", "--ellipticity", "0.8", "--n", "20",
-                                       "--json"]))
+                                       "--model", "dh-elliptic", "--json"]))
     return 0
 
 

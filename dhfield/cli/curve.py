@@ -78,7 +78,9 @@ def curve_record(args) -> dict:
             a_star = _range(lo, hi, args.n, "a-min", "a-max")
         if args.ellipticity is not None:
             if args.model != "dh-elliptic":
-                raise UsageError("--ellipticity applies to --model dh-elliptic only")
+                raise UsageError(f"--ellipticity applies to --model dh-elliptic only (the paper's model, whose "
+                                 f"ellipticity is a free parameter); got --model {args.model}, the default "
+                                 "being md-elliptic: add --model dh-elliptic")
             c = load_curve(mu=args.mu, beta0=args.beta0, a_star=a_star, ellipticity=args.ellipticity, n=args.n)
             rec = dict(compare.load_curve("dh-elliptic", mu=args.mu, beta0=args.beta0, a_star=[1.0]))
             rec.update({k: getattr(c, k) for k in ("a_star", "b_star", "c_star", "d_star", "v", "W_star",
