@@ -218,7 +218,8 @@ def nondimensional_problem(*, beta0, mu, n, law="dugdale", n_steps=DEFAULT_STEPS
     n = check_cells(n)
     ny = None if ny is None else check_cells(ny, "ny")
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    return paper_problem(mu=mu, beta0=beta0, n=n, start=_start(mu, beta0, n_steps, _check_margin(margin)), law=law, ny=ny)
+    start = _start(mu, beta0, n_steps, _check_margin(margin))
+    return paper_problem(mu=mu, beta0=beta0, n=n, start=start, law=law, ny=ny)
 
 
 # ============================================================================ the grid a case needs
@@ -734,8 +735,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                           keep_states=keep_states, progress=progress)
     if n is None:
         coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
-        plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=(coarse_route and float(mu) >= PREDICTED_MIN_MU
-                                    and float(beta0) >= SHAPED_CELLS_MAX_BETA0))
+        predicted = coarse_route and float(mu) >= PREDICTED_MIN_MU and float(beta0) >= SHAPED_CELLS_MAX_BETA0
+        plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=predicted)
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
         n = plan.n_needed
@@ -743,7 +744,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         if plan.predicted:
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
             # lattice samples around GVG's pull-off, on a domain holding its zone (n x n cells)
-            return _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin), options)
+            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin)
+            return _predicted_pull_off(prob, options)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     else:
         relaxed = False

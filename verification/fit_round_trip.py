@@ -55,7 +55,7 @@ def curve_round_trips(models):
     params = dim.contact_parameters(**PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
     start = dim.contact_parameters(**PDMS, work_of_adhesion=WORK / 2, max_adhesive_stress=2 * STRESS)
     a = params.length_unit * np.linspace(0.3, 3.0, 25)
-    print(f"\nnoiseless curve round trip (25 points, start dgamma/2, 2 sigma0):")
+    print("\nnoiseless curve round trip (25 points, start dgamma/2, 2 sigma0):")
     print(f"{'model':26s}{'dgamma rel. err':>17s}{'sigma0 rel. err':>17s}{'evals':>7s}{'time [s]':>10s}")
     worst = 0.0
     for m in models:

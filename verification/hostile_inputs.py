@@ -36,7 +36,6 @@ import argparse
 import contextlib
 import io
 import json
-import math
 import os
 import pickle
 import signal
