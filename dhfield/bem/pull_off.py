@@ -595,11 +595,16 @@ def located_path(problem, ws, options):
                warm_start=ws)
     sm = _lattice_minimum(b, lambda d: b.solve(d, b.guess(d, b.nearest_usable(d)), "unloading"), d_coarse,
                           problem.approach_max, spacing)
-    every = range(len(b.records))
     if sm is None or sm.at_boundary or not all(r["converged"] for r in b.records):
         return None
+    return _vertex_path(b, problem, options)
+
+
+def _vertex_path(b, problem, options):
+    """Solve the parabola vertex of the branch's minimum, take the minimum again, and return the load-control
+    path (None when it then lies at the lattice's boundary or a state did not converge)."""
     xtol = problem.approach_step / options.refine_factor ** options.refine_levels
-    b.refine_vertex(every, xtol, min(options.refine_levels, 1))
+    b.refine_vertex(range(len(b.records)), xtol, min(options.refine_levels, 1))
     order, sm = b.minimum(range(len(b.records)))
     if sm.at_boundary or not all(r["converged"] for r in b.records):
         return None
@@ -742,11 +747,7 @@ def predicted_path(problem, options):
     rec = b.records[order[sm.index]]
     grid_error = discretisation_error(sm.y, (rec["a"], rec["b"], rec["c"], rec["d"]), problem.grid)
     if b.minimum_error(order, sm) > VERTEX_ERROR_FRACTION * grid_error:
-        xtol = problem.approach_step / options.refine_factor ** options.refine_levels
-        b.refine_vertex(every, xtol, min(options.refine_levels, 1))
-        order, sm = b.minimum(range(len(b.records)))
-        if sm.at_boundary or not all(r["converged"] for r in b.records):
-            return None
+        return _vertex_path(b, problem, options)
     return b.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=order[sm.index], converged=True,
                      error=b.minimum_error(order, sm))
 
