@@ -55,7 +55,7 @@ __all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "ref
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
-           "PREDICTED_MIN_MU"]
+           "PREDICTED_MIN_MU", "takes_predicted_route"]
 
 
 def pull_off_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
@@ -552,7 +552,7 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
     beta0 = float(check_ellipticity("beta0", beta0))
     max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
     if predicted is None:
-        predicted = n is None and law == "dugdale" and mu >= PREDICTED_MIN_MU and beta0 >= SHAPED_CELLS_MAX_BETA0
+        predicted = takes_predicted_route(beta0=beta0, mu=mu, n=n, law=law)
     predicted = bool(predicted)
     margin = _check_margin(margin)
     start = (predicted_start(mu=mu, beta0=beta0, n_steps=DEFAULT_STEPS, margin=margin) if predicted
@@ -735,7 +735,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                           keep_states=keep_states, progress=progress)
     if n is None:
         coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
-        predicted = coarse_route and float(mu) >= PREDICTED_MIN_MU and float(beta0) >= SHAPED_CELLS_MAX_BETA0
+        predicted = takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control, search=search, nested=nested)
         plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=predicted)
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
@@ -931,6 +931,43 @@ def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
 #: than the relaxed one (sphere N = 320, 9.0 CPU s, +0.04 %; beta0 = 0.5 N = 384, ~36 CPU s),
 #: but mu = 5 (and its slender cases) keeps the relaxed route until measured more widely.
 PREDICTED_MIN_MU = 7.5
+
+
+def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None) -> bool:
+    """Tell whether :func:`adhesive_pull_off` solves a case by the predicted route.
+
+    The route solves fine lattice samples around GVG's pull-off only
+    (:func:`dhfield.bem.pull_off.predicted_path`).
+
+    :func:`adhesive_pull_off`, :func:`plan_grid` (its default) and the command line share this
+    rule, so that a plan is made on the domain the solve will use.
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n : int, optional
+        Cells along x asked for; the route is taken by automatic grids only (``n`` None).
+    law : {'dugdale', 'exponential'}, default 'dugdale'
+        Traction law.
+    control : {'load', 'displacement'}, default 'load'
+        Loading mode.
+    search : str, default 'located'
+        Load-control search of :func:`adhesive_pull_off`.
+    nested : bool, optional
+        :attr:`AdhesiveOptions.nested`; the route needs the default (None).
+
+    Returns
+    -------
+    bool
+        True for an automatic grid under the default load-control search with the Dugdale law
+        at mu >= :data:`PREDICTED_MIN_MU` and beta0 >= :data:`SHAPED_CELLS_MAX_BETA0` (shaped
+        slender grids keep the coarse-to-fine route).
+    """
+    return bool(n is None and law == "dugdale" and control == "load" and search == "located" and nested is None
+                and float(mu) >= PREDICTED_MIN_MU and float(beta0) >= SHAPED_CELLS_MAX_BETA0)
 
 
 def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:

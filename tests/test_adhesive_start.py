@@ -332,3 +332,16 @@ def test_start_and_plan_take_beta0_and_mu_by_keyword(call):
     """(mu, beta0) was the old positional order: a positional call would swap them silently (issue 16)."""
     with pytest.raises(TypeError, match="positional"):
         call()
+
+
+def test_one_route_rule_for_the_plan_and_the_solve():
+    """plan_grid's default and adhesive_pull_off decide the predicted route by one rule
+    (takes_predicted_route), so a caller planning for another route (displacement control, another
+    search, an explicit n, the spring's unloading branch) plans on the unloading path's domain."""
+    assert adhesive_start.takes_predicted_route(beta0=0.4826, mu=10.0)
+    assert adhesive_start.plan_grid(beta0=0.4826, mu=10.0).predicted
+    for kw in (dict(control="displacement"), dict(search="bracket"), dict(n=1440), dict(law="exponential"),
+               dict(nested=True)):
+        assert not adhesive_start.takes_predicted_route(beta0=0.4826, mu=10.0, **kw), kw
+    assert not adhesive_start.takes_predicted_route(beta0=0.3, mu=10.0)     # shaped grids keep their route
+    assert not adhesive_start.takes_predicted_route(beta0=0.4826, mu=5.0)   # below PREDICTED_MIN_MU

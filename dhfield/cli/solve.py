@@ -339,12 +339,15 @@ def run(args) -> int:
     _check_plot(args)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
-    from ..adhesive_start import UnresolvableCaseError, plan_grid
+    from ..adhesive_start import UnresolvableCaseError, plan_grid, takes_predicted_route
 
     check_solve_memory(args.n)
     if args.machine_stiffness is not None:
         _check_spring_arguments(args, params)
-    plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law)
+    # the plan of the domain the solve uses: the spring samples the unloading branch, never the predicted route
+    predicted = args.machine_stiffness is None and takes_predicted_route(
+        beta0=args.beta0, mu=args.mu, n=args.n, law=args.law, control=args.control, search=args.search or "located")
+    plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, predicted=predicted)
     if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
         print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
