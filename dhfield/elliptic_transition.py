@@ -137,11 +137,13 @@ The model defines no adhesive zone (``c_star``, ``d_star``: NaN) and no double-H
 (``v``: NaN).  The contact ellipticity b*/a* of Eq. (T4) is the interpolation of the two
 limits' (Hertz's beta0 and GVG's), a model quantity, not a solved one.
 
-Cost: one GVG pull-off per distinct beta0 and one MD pull-off per distinct mu (of each
-control under displacement control), vectorised and kept per value for the process: below
-1 ms per point for scattered points (``python -m verification.bench_recommended``); a
-(beta0 x mu) map costs the sum, not the product.  Equation labels (T1)-(T7) are this
-module's.
+Cost: one GVG pull-off per distinct beta0 and one MD pull-off per distinct effective mu_e
+of Eq. (T0) (of each control under displacement control), vectorised and kept per value for
+the process: below 1 ms per point for scattered points (``python -m
+verification.bench_recommended``: 0.3 ms).  Since mu_e depends on beta0 too, a (beta0 x mu)
+map pays one MD pull-off per point (0.3 ms each; a 200 x 200 map 8 s through ``dhfield sweep
+--workers 2``), not one per distinct mu as before Eq. (T0).  Equation labels (T0)-(T7) are
+this module's.
 """
 from __future__ import annotations
 
