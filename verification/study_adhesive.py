@@ -134,18 +134,24 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=
     return _solve_case(beta0, mu, n, law=law, control=control, solver=solver, start=start, **options)[0]
 
 
-def _adhesive_pull_off(*, beta0, mu, n, law, control, progress, **options):
-    """:func:`dhfield.bem.adhesive_pull_off` with the study's flat options (its numerical
-    settings, the fields of :class:`dhfield.adhesive_start.AdhesiveOptions`, gathered)."""
+def _gathered(options) -> dict:
+    """The study's flat options as keyword arguments of the library's pull-offs: the numerical
+    settings (the fields of :class:`dhfield.adhesive_start.AdhesiveOptions`) gathered as ``options``."""
     from dataclasses import fields
 
     from dhfield.adhesive_start import AdhesiveOptions
-    from dhfield.bem import adhesive_pull_off
 
     numerics = {f.name for f in fields(AdhesiveOptions)}
+    return {**{k: v for k, v in options.items() if k not in numerics},
+            "options": AdhesiveOptions(**{k: v for k, v in options.items() if k in numerics})}
+
+
+def _adhesive_pull_off(*, beta0, mu, n, law, control, progress, **options):
+    """:func:`dhfield.bem.adhesive_pull_off` with the study's flat options (:func:`_gathered`)."""
+    from dhfield.bem import adhesive_pull_off
+
     return adhesive_pull_off(beta0=beta0, mu=mu, n=n, law=law, control=control, progress=progress,
-                             **{k: v for k, v in options.items() if k not in numerics},
-                             options=AdhesiveOptions(**{k: v for k, v in options.items() if k in numerics}))
+                             **_gathered(options))
 
 
 def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=None, **options):
@@ -162,15 +168,9 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
         if start is None:
             res = solver(mu=float(mu), beta0=float(beta0), n=int(n), law=law, control=control, progress=False, **options)
         else:
-            from dataclasses import fields
-
-            from dhfield.adhesive_start import AdhesiveOptions
             from dhfield.bem import refine_pull_off
 
-            numerics = {f.name for f in fields(AdhesiveOptions)}
-            res = refine_pull_off(start, int(n), progress=False,
-                                  **{k: v for k, v in options.items() if k not in numerics and k != "search"},
-                                  options=AdhesiveOptions(**{k: v for k, v in options.items() if k in numerics}))
+            res = refine_pull_off(start, int(n), progress=False, **_gathered(options))
     except Exception as exc:  # noqa: BLE001 - a failed case is recorded, never dropped
         rec.update({k: float("nan") for k in CASE_FLOATS})
         rec.update(status="failed", message=f"{where}: {type(exc).__name__}: {exc}",
