@@ -89,7 +89,7 @@ def pull_off_si(rec, inputs):
     ``rec`` is a :class:`dhfield.records.PullOff`; ``inputs`` maps :data:`SI_INPUT_KEYS` to
     validated values (R, E*, dgamma, sigma0 or NaN, R', R'').  W = W* 2 pi R dgamma/sin(theta_skew)
     with the record's own sin(theta_skew) (Eq. 34), a = a* c_r and c = c* c_r (Eqs. 32-33),
-    delta = delta* c_r^2/R.  Returns a :class:`dhfield.records.PullOffSI`.
+    delta = delta* c_r^2/R.  Returns a :class:`dhfield.records.PullOff` (its SI group).
     """
     r, e, w = inputs["effective_radius"], inputs["reduced_modulus"], inputs["work_of_adhesion"]
     lu, au = _length(r, e, w), _approach(r, e, w)

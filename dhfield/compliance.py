@@ -104,7 +104,8 @@ from . import compare
 from ._validation import check_interval
 from .dugdale_separation import dugdale_range, separated_branch, zone_radius_at_contact
 from .pull_off_search import stable_minimum_index
-from .records import SPRING_PULL_OFF_KEYS, SpringPullOff
+from .records import PullOff
+from .schema import PULL_OFF_SPRING_KEYS
 
 __all__ = ["stiffness_star", "check_machine_stiffness", "add_machine_displacement", "pull_off_under_spring", "spring_pull_off_record",
            "pull_off_force_under_spring", "loading_cycle", "loading_cycle_si", "cycle_si_values", "cycle_path",
@@ -464,8 +465,9 @@ def pull_off_under_spring(model, *, beta0, mu, machine_stiffness):
 
     Returns
     -------
-    dhfield.records.SpringPullOff
-        Arrays of the shape of K* (read as attributes or as a mapping):
+    dhfield.records.PullOff
+        ``control = 'spring'``, the spring group filled; arrays of the shape of K* (read as
+        attributes or as a mapping): the record's fields at the jump out and
         ``machine_stiffness_star``, ``W_star`` (load at
         the jump out, Eq. 34), ``delta_star``, ``a_star``, ``b_star``, ``c_star``,
         ``d_star``, ``v`` at the jump, ``separation_delta_star`` (the approach
@@ -488,8 +490,34 @@ def pull_off_under_spring(model, *, beta0, mu, machine_stiffness):
     :func:`dhfield.maugis_dugdale.pull_off` reports under displacement control.
     """
     s, k = _as_weight(machine_stiffness)
-    out = _pull_off(_Curve(model, mu, beta0), s, k)
-    return SpringPullOff(**{key: out[key] for key in SPRING_PULL_OFF_KEYS})  # not "_t", the curve parameter
+    curve = _Curve(model, mu, beta0)
+    out = _pull_off(curve, s, k)
+    return _spring_record(curve.load, out)
+
+
+def _spring_record(load, out):
+    """The :class:`dhfield.records.PullOff` (spring group filled) of the jump out ``out`` (arrays over K*);
+    the model, geometry, inputs and warning are those of the load-control record ``load``."""
+    shape = np.shape(out["W_star"])
+    a, b, c, d = (np.asarray(out[x], float) for x in ("a_star", "b_star", "c_star", "d_star"))
+    zero = np.asarray(out["at_zero_contact"], bool)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ell = np.where(a > 0, b / np.where(a > 0, a, 1.0), np.where(zero, float(load.ellipticity), 1.0))
+        ok = np.isfinite(c) & (c > 0) & np.isfinite(d)
+        adh = np.where(ok, d / np.where(ok, c, 1.0), np.nan)
+
+    def full(x, dtype=float):
+        y = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
+        return y[()] if y.ndim == 0 else y
+
+    return PullOff(model=load.model, control="spring", geometry=load.geometry, beta0=full(load.beta0),
+                   mu=full(load.mu), sin_skew=full(load.sin_skew), W_star=out["W_star"], a_star=out["a_star"],
+                   b_star=out["b_star"], c_star=out["c_star"], d_star=out["d_star"], v=out["v"],
+                   delta_star=out["delta_star"], ellipticity=full(ell), adhesive_ellipticity=full(adh),
+                   at_zero_contact=out["at_zero_contact"], warning=full(load.warning, object),
+                   machine_stiffness_star=out["machine_stiffness_star"],
+                   separation_delta_star=out["separation_delta_star"],
+                   max_tension_W_star=out["max_tension_W_star"], on_separated_branch=out["on_separated_branch"])
 
 
 def _pull_off(curve, s, k):
@@ -540,14 +568,7 @@ def spring_pull_off_record(model, *, beta0, mu, machine_stiffness):
     if np.ndim(machine_stiffness):
         raise ValueError("machine_stiffness of a pull-off record must be a scalar")
     po = pull_off_under_spring(model, mu=mu, beta0=beta0, machine_stiffness=machine_stiffness)
-    load = compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False)
-    jump = {key: float(po[key]) for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "v", "delta_star")}
-    a, b, c, dd = (jump[x] for x in ("a_star", "b_star", "c_star", "d_star"))
-    return load.replace(
-        control="spring", **jump,
-        ellipticity=b / a if a > 0 else float(load.ellipticity) if po["at_zero_contact"] else 1.0,
-        adhesive_ellipticity=dd / c if np.isfinite(c) and c > 0 and np.isfinite(dd) else float("nan"),
-        at_zero_contact=bool(po["at_zero_contact"]))
+    return po.replace(**{key: None for key in PULL_OFF_SPRING_KEYS})
 
 
 def pull_off_force_under_spring(params, machine_stiffness, model=compare.DEFAULT_MODEL):

@@ -299,7 +299,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
 
     Returns
     -------
-    dhfield.records.PullOffSI
+    dhfield.records.PullOff
         ``force`` [N], ``semi_major`` = ``semi_minor`` (the contact radius) and the
         adhesive radius [m], ``approach`` [m], the SI inputs and the nondimensional record.
     """

@@ -283,7 +283,7 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
 
     Returns
     -------
-    dhfield.records.PullOffSI
+    dhfield.records.PullOff
         The keys of :data:`dhfield.schema.PULL_OFF_SI_KEYS`, in that order, for
         every model: ``force`` [N] (negative: tensile), ``semi_major``,
         ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor``,
@@ -313,7 +313,7 @@ def pull_off_record_si(rec, params: ContactParameters):
 
     Returns
     -------
-    dhfield.records.PullOffSI
+    dhfield.records.PullOff
         The keys of :data:`dhfield.schema.PULL_OFF_SI_KEYS` (see :func:`pull_off_force`).
 
     Notes

@@ -149,7 +149,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
 
     Returns
     -------
-    dhfield.records.PullOffSI
+    dhfield.records.PullOff
         ``force`` [N], ``semi_major`` = ``semi_minor`` = 0, ``approach`` = 0 [m], the SI
         inputs (``max_adhesive_stress`` NaN) and the nondimensional record (``mu`` NaN).
     """

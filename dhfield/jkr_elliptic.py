@@ -458,7 +458,7 @@ class EllipticJKR:
 
         Returns
         -------
-        dhfield.records.PullOffSI
+        dhfield.records.PullOff
             With R' = R sqrt(rho), R'' = R/sqrt(rho) and ``max_adhesive_stress`` NaN.
         """
         b0 = check_geometry(radius_ratio, beta0)
@@ -700,7 +700,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
 
     Returns
     -------
-    dhfield.records.PullOffSI
+    dhfield.records.PullOff
         ``force`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m], the SI inputs
         and the nondimensional record (``ellipticity`` beta_JKR(pull-off)).
     """

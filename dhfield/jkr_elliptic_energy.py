@@ -277,7 +277,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
 
     Returns
     -------
-    dhfield.records.PullOffSI
+    dhfield.records.PullOff
         The one SI pull-off record (its ``ellipticity``: b/a at pull-off).
     """
     return GVG.pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,

@@ -143,7 +143,7 @@ class MaugisCurve(NamedTuple):
 class _MaugisPullOff(NamedTuple):
     """MD pull-off in Maugis units: the solver's internal state (the model's pull-off records are
     :func:`pull_off_nondimensional`'s :class:`dhfield.records.PullOff` and :func:`pull_off`'s
-    :class:`dhfield.records.PullOffSI`).
+    :class:`dhfield.records.PullOff` (its SI group)).
 
     Parameters
     ----------
@@ -362,7 +362,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
 
     Returns
     -------
-    dhfield.records.PullOffSI
+    dhfield.records.PullOff
         ``force`` [N], ``semi_major`` = ``semi_minor`` (the contact radius) and the
         Dugdale-zone radius [m], ``approach`` [m], the SI inputs and the nondimensional
         record.

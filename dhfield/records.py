@@ -1,41 +1,43 @@
-"""The one pull-off record and the one load-curve record of every analytic model.
+"""The one pull-off record and the one load-curve record of every model.
 
-Every analytic model answers with the same types, whose fields are named by
-:mod:`dhfield.schema`:
+Every model answers with the same types, whose fields are named by :mod:`dhfield.schema`:
 
 * :class:`PullOff`: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`, in that order
   (the model, control and geometry; beta0, mu and sin(theta_skew); W*, the semi-axes,
-  v, delta* and the ellipticities at pull-off; ``at_zero_contact`` and ``warning``);
-* :class:`PullOffSI`: the same pull-off from physical inputs, the keys of
-  :data:`dhfield.schema.PULL_OFF_SI_KEYS`: the force, semi-axes and approach in SI
-  units and the SI inputs, then every field of the :class:`PullOff` it was converted
-  from (built by :func:`pull_off_record_si`; the conversion, Eqs. 32-34 inverted, is
-  :func:`dhfield._adhesion.pull_off_si`).  The one SI record: every model's SI
-  ``pull_off`` and :func:`dhfield.dimensional.pull_off_force` return it;
+  v, delta* and the ellipticities at pull-off; ``at_zero_contact`` and ``warning``),
+  and, where they apply, three optional groups, each ``None`` (and not a key) elsewhere:
+
+  - *SI*: the force, semi-axes and approach in SI units and the SI inputs, so that the
+    record's keys are :data:`dhfield.schema.PULL_OFF_SI_KEYS` (built by
+    :func:`pull_off_record_si`; the conversion, Eqs. 32-34 inverted, is
+    :func:`dhfield._adhesion.pull_off_si`): every model's SI ``pull_off`` and
+    :func:`dhfield.dimensional.pull_off_force` return it;
+  - *spring*: the jump out under a machine spring of stiffness K*
+    (:func:`dhfield.compliance.pull_off_under_spring`, vectorised over K*;
+    :data:`dhfield.schema.PULL_OFF_SPRING_KEYS`);
+  - *solver*: a numerical pull-off's stated error, convergence, route and cost (the
+    adhesive BEM, :func:`dhfield.adhesive_start.adhesive_pull_off`;
+    :data:`dhfield.schema.PULL_OFF_SOLVER_KEYS`);
+
 * :class:`LoadCurve`: :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS` (scalars) then
-  :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size);
-* :class:`SpringPullOff`: the jump out under a machine spring of stiffness K*
-  (:func:`dhfield.compliance.pull_off_under_spring`), the keys of
-  :data:`SPRING_PULL_OFF_KEYS`: the state at the jump and the machine's quantities,
-  vectorised over K*.  Its scalar pull-off record is a :class:`PullOff` with
-  ``control = 'spring'`` (:func:`dhfield.compliance.spring_pull_off_record`).
+  :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size).
 
 Both are read as attributes (``p.W_star``) or as a mapping (``p["W_star"]``, ``dict(p)``,
 ``{**p}``), so a record goes straight into JSON, netCDF and tables.  NaN stands for a
 quantity the model does not have (the adhesive zone of JKR, the DH factor ``v`` outside
-the equal-beta DH models).  Units: the paper's nondimensional ones, Eqs. (32)-(35).
+the equal-beta DH models).  Units: the paper's nondimensional ones, Eqs. (32)-(35), and SI
+in the SI group.
 """
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS, PULL_OFF_SI_KEYS
+from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_ALL_KEYS, PULL_OFF_SI_KEYS
 
-__all__ = ["PullOff", "PullOffSI", "LoadCurve", "SpringPullOff", "SPRING_PULL_OFF_KEYS", "pull_off_record",
-           "pull_off_record_si", "load_curve_record"]
+__all__ = ["PullOff", "LoadCurve", "pull_off_record", "pull_off_record_si", "load_curve_record"]
 
 _NAN = float("nan")
 
@@ -65,27 +67,54 @@ class _Record(Mapping):
         return {k: getattr(self, k) for k in self._KEYS}
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class PullOff(_Record):
-    """The pull-off point of an analytic model (fields: :data:`dhfield.schema.PULL_OFF_KEYS`).
+    """The pull-off point of a model: the one pull-off record of dhfield (keys: :data:`dhfield.schema.PULL_OFF_ALL_KEYS`).
+
+    Every model answers with this type: the analytic models in the paper's units, their SI
+    ``pull_off`` functions with the SI group filled, :func:`dhfield.compliance.pull_off_under_spring`
+    with the spring group, the adhesive BEM (:func:`dhfield.adhesive_start.adhesive_pull_off`) with
+    the solver group.  A group that does not apply is ``None`` and is not a key: iterating a record
+    gives :data:`dhfield.schema.PULL_OFF_KEYS` for a nondimensional pull-off and
+    :data:`dhfield.schema.PULL_OFF_SI_KEYS` for one from physical inputs, then the spring or
+    solver keys where present.  Construct with keywords.
 
     Parameters
     ----------
     model : str
-        A name of :data:`dhfield.compare.MODEL_NAMES`.
+        A name of :data:`dhfield.compare.MODEL_NAMES`, or 'bem' for the adhesive BEM.
     control : str
         'load' or 'displacement' ('spring' under a machine spring:
-        :func:`dhfield.compliance.spring_pull_off_record`).
+        :func:`dhfield.compliance.spring_pull_off_record` and
+        :func:`dhfield.compliance.pull_off_under_spring`).
     geometry : str
         'ellipse', or 'circle' for the circular models (R = sqrt(R'R''), sin_skew = 1).
     beta0, mu : ndarray or float
         Hertz ellipticity of the geometry and Tabor parameter (Eq. 35) [-].
     sin_skew : ndarray or float
         The sin(theta_skew) of the load normalisation, Eq. (34) [-].
+    force : ndarray or float, optional
+        SI group: pull-off load W [N] (negative: tensile).
+    semi_major, semi_minor : ndarray or float, optional
+        SI group: contact semi-axes a, b [m].
+    adhesive_semi_major, adhesive_semi_minor : ndarray or float, optional
+        SI group: adhesive-zone semi-axes c, d [m] (NaN: no zone).
+    approach : ndarray or float, optional
+        SI group: approach delta [m].
+    work_of_adhesion : ndarray or float, optional
+        SI group: Delta gamma [J m^-2].
+    max_adhesive_stress : ndarray or float, optional
+        SI group: the peak adhesive stress sigma0 [Pa] (NaN for the models without one: JKR,
+        DMT, elliptical JKR).
+    reduced_modulus : ndarray or float, optional
+        SI group: E* [Pa].
+    r_major, r_minor, effective_radius : ndarray or float, optional
+        SI group: R', R'' and R = sqrt(R'R'') [m].
     W_star : ndarray or float
         Pull-off load W sin(theta_skew)/(2 pi R dgamma), Eq. (34) (negative: tensile) [-].
     a_star, b_star, c_star, d_star : ndarray or float
-        Contact and adhesive-zone semi-axes in c_r, Eq. (33) [-] (NaN: no zone).
+        Contact and adhesive-zone semi-axes in c_r, Eq. (33) [-] (NaN: no zone).  For the
+        BEM the second-moment semi-axes of the contact and of contact U cohesive zone.
     v : ndarray or float
         Double-Hertz factor of Eq. (22) [-] (NaN outside the equal-beta DH models).
     delta_star : ndarray or float
@@ -96,6 +125,45 @@ class PullOff(_Record):
         True where the pull-off is reached as the contact vanishes.
     warning : ndarray or str
         Empty inside the model's validated range (:mod:`dhfield.validity`).
+    machine_stiffness_star : ndarray or float, optional
+        Spring group: K* in the paper's units (:func:`dhfield.compliance.stiffness_star`);
+        inf: a rigid machine [-].
+    separation_delta_star : ndarray or float, optional
+        Spring group: approach after the jump, W = 0: the machine position delta* + W*/K* [-].
+    max_tension_W_star : ndarray or float, optional
+        Spring group: the smallest W* met from high load to the jump (the largest tensile
+        force a recording shows) [-].
+    on_separated_branch : ndarray or bool, optional
+        Spring group: True where the jump starts out of contact (MD only,
+        :mod:`dhfield.dugdale_separation`).
+    W_star_error : float, optional
+        Solver group: stated error of ``W_star``; a resolved and converged answer lies within
+        it of the grid-converged pull-off; infinite when there is no estimate [-].
+    converged : bool, optional
+        Solver group: every state of the path down to the pull-off converged.
+    resolved : bool, optional
+        Solver group: False when the answer is not trustworthy, the reasons in ``note``.
+    note : str, optional
+        Solver group: caveats on the pull-off (empty for a resolved load-control pull-off).
+    search : str, optional
+        Solver group: the route that gave the pull-off ('located', 'bracket', 'march',
+        'predicted', 'continuation', 'refine').
+    n : int, optional
+        Solver group: cells along x.
+    law : str, optional
+        Solver group: the cohesive law.
+    n_steps, iterations : int, optional
+        Solver group: solved states on the path and their inner CG iterations.
+    residual : float, optional
+        Solver group: largest residual over the path.
+    failures : tuple of dict, optional
+        Solver group: unconverged states (approach, residual, iterations, phase).
+    half_width_x, half_width_y : float, optional
+        Solver group: domain half-widths [c_r].
+    elapsed : float, optional
+        Solver group: wall time of the path [s].
+    path : object, optional
+        The BEM's whole path (:class:`dhfield.bem.path.UnloadingPath`); not a key.
     """
 
     model: str
@@ -104,6 +172,18 @@ class PullOff(_Record):
     beta0: np.ndarray
     mu: np.ndarray
     sin_skew: np.ndarray
+    force: np.ndarray = None
+    semi_major: np.ndarray = None
+    semi_minor: np.ndarray = None
+    adhesive_semi_major: np.ndarray = None
+    adhesive_semi_minor: np.ndarray = None
+    approach: np.ndarray = None
+    work_of_adhesion: np.ndarray = None
+    max_adhesive_stress: np.ndarray = None
+    reduced_modulus: np.ndarray = None
+    r_major: np.ndarray = None
+    r_minor: np.ndarray = None
+    effective_radius: np.ndarray = None
     W_star: np.ndarray
     a_star: np.ndarray
     b_star: np.ndarray
@@ -115,78 +195,35 @@ class PullOff(_Record):
     adhesive_ellipticity: np.ndarray
     at_zero_contact: np.ndarray
     warning: np.ndarray
+    machine_stiffness_star: np.ndarray = None
+    separation_delta_star: np.ndarray = None
+    max_tension_W_star: np.ndarray = None
+    on_separated_branch: np.ndarray = None
+    W_star_error: float = None
+    converged: bool = None
+    resolved: bool = None
+    note: str = None
+    search: str = None
+    n: int = None
+    law: str = None
+    n_steps: int = None
+    iterations: int = None
+    residual: float = None
+    failures: tuple = None
+    half_width_x: float = None
+    half_width_y: float = None
+    elapsed: float = None
+    path: object = field(default=None, repr=False)
 
-    _KEYS = PULL_OFF_KEYS
+    @property
+    def _KEYS(self):
+        return tuple(k for k in PULL_OFF_ALL_KEYS if getattr(self, k) is not None)
 
-
-@dataclass(frozen=True, eq=False)
-class PullOffSI(_Record):
-    """The pull-off point of a model from physical inputs (fields: :data:`dhfield.schema.PULL_OFF_SI_KEYS`).
-
-    Parameters
-    ----------
-    model, control, geometry : str
-        As in :class:`PullOff`.
-    beta0, mu, sin_skew : ndarray or float
-        As in :class:`PullOff` [-].
-    force : ndarray or float
-        Pull-off load W [N] (negative: tensile).
-    semi_major, semi_minor : ndarray or float
-        Contact semi-axes a, b [m].
-    adhesive_semi_major, adhesive_semi_minor : ndarray or float
-        Adhesive-zone semi-axes c, d [m] (NaN: no zone).
-    approach : ndarray or float
-        Approach delta [m].
-    work_of_adhesion : ndarray or float
-        Delta gamma [J m^-2].
-    max_adhesive_stress : ndarray or float
-        The peak adhesive stress sigma0 [Pa] (NaN for the models without one: JKR, DMT,
-        elliptical JKR).
-    reduced_modulus : ndarray or float
-        E* [Pa].
-    r_major, r_minor, effective_radius : ndarray or float
-        R', R'' and R = sqrt(R'R'') [m].
-    W_star, a_star, b_star, c_star, d_star, v, delta_star : ndarray or float
-        The nondimensional record's values (:class:`PullOff`) [-].
-    ellipticity, adhesive_ellipticity : ndarray or float
-        The ellipticities b/a and d/c at pull-off [-].
-    at_zero_contact : ndarray or bool
-        As in :class:`PullOff`.
-    warning : ndarray or str
-        As in :class:`PullOff`.
-    """
-
-    model: str
-    control: str
-    geometry: str
-    beta0: np.ndarray
-    mu: np.ndarray
-    sin_skew: np.ndarray
-    force: np.ndarray
-    semi_major: np.ndarray
-    semi_minor: np.ndarray
-    adhesive_semi_major: np.ndarray
-    adhesive_semi_minor: np.ndarray
-    approach: np.ndarray
-    work_of_adhesion: np.ndarray
-    max_adhesive_stress: np.ndarray
-    reduced_modulus: np.ndarray
-    r_major: np.ndarray
-    r_minor: np.ndarray
-    effective_radius: np.ndarray
-    W_star: np.ndarray
-    a_star: np.ndarray
-    b_star: np.ndarray
-    c_star: np.ndarray
-    d_star: np.ndarray
-    v: np.ndarray
-    delta_star: np.ndarray
-    ellipticity: np.ndarray
-    adhesive_ellipticity: np.ndarray
-    at_zero_contact: np.ndarray
-    warning: np.ndarray
-
-    _KEYS = PULL_OFF_SI_KEYS
+    @property
+    def groups(self) -> tuple:
+        """The optional groups this record holds: any of 'si', 'spring', 'solver'."""
+        return tuple(g for g, k in (("si", "force"), ("spring", "machine_stiffness_star"), ("solver", "converged"))
+                     if getattr(self, k) is not None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -220,59 +257,7 @@ class LoadCurve(_Record):
     _KEYS = LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
 
 
-#: The fields of :class:`SpringPullOff`, in order (the keys of the dict it replaced).
-SPRING_PULL_OFF_KEYS = ("machine_stiffness_star", "W_star", "delta_star", "a_star", "b_star", "c_star", "d_star",
-                        "v", "separation_delta_star", "max_tension_W_star", "at_zero_contact", "on_separated_branch")
-
-
-@dataclass(frozen=True, eq=False)
-class SpringPullOff(_Record):
-    """The jump out of a model under a machine spring of stiffness K* (fields: :data:`SPRING_PULL_OFF_KEYS`).
-
-    Every field has the shape of K* (scalars for a scalar K*).
-
-    Parameters
-    ----------
-    machine_stiffness_star : ndarray or float
-        K* in the paper's units (:func:`dhfield.compliance.stiffness_star`); inf: a rigid machine [-].
-    W_star : ndarray or float
-        Load at the jump out, Eq. (34) [-].
-    delta_star : ndarray or float
-        Approach at the jump out, in c_r^2/R [-].
-    a_star, b_star, c_star, d_star : ndarray or float
-        Contact and adhesive-zone semi-axes at the jump out, in c_r (Eq. 33) [-] (NaN: no zone).
-    v : ndarray or float
-        Double-Hertz factor of Eq. (22) at the jump out [-] (NaN outside the equal-beta DH models).
-    separation_delta_star : ndarray or float
-        Approach after the jump, W = 0: the machine position delta* + W*/K* [-].
-    max_tension_W_star : ndarray or float
-        The smallest W* met from high load to the jump (the largest tensile force a
-        recording shows) [-].
-    at_zero_contact : ndarray or bool
-        True where the jump starts at or beyond the loss of contact (a = 0).
-    on_separated_branch : ndarray or bool
-        True where the jump starts out of contact (MD only, :mod:`dhfield.dugdale_separation`).
-    """
-
-    machine_stiffness_star: np.ndarray
-    W_star: np.ndarray
-    delta_star: np.ndarray
-    a_star: np.ndarray
-    b_star: np.ndarray
-    c_star: np.ndarray
-    d_star: np.ndarray
-    v: np.ndarray
-    separation_delta_star: np.ndarray
-    max_tension_W_star: np.ndarray
-    at_zero_contact: np.ndarray
-    on_separated_branch: np.ndarray
-
-    _KEYS = SPRING_PULL_OFF_KEYS
-
-
-assert tuple(f.name for f in fields(PullOff)) == PULL_OFF_KEYS
-assert tuple(f.name for f in fields(SpringPullOff)) == SPRING_PULL_OFF_KEYS
-assert tuple(f.name for f in fields(PullOffSI)) == PULL_OFF_SI_KEYS
+assert tuple(f.name for f in fields(PullOff)) == PULL_OFF_ALL_KEYS + ("path",)
 assert tuple(f.name for f in fields(LoadCurve)) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
 
 
@@ -323,14 +308,16 @@ def pull_off_record(model, beta0, mu, state, *, control, sin_skew, geometry, war
         ell = np.asarray(state.get("ellipticity", _ratio(b, a)), float)
         adh = np.where(np.isfinite(c) & (c > 0), d / np.where(c > 0, c, 1.0), _NAN)
     zero = state.get("at_zero_contact", a == 0)
-    return PullOff(model, control, geometry, _arr(beta0, shape), _arr(mu, shape), _arr(sin_skew, shape),
-                   _arr(state["W_star"], shape), _arr(a, shape), _arr(b, shape), _arr(c, shape),
-                   _arr(d, shape), _arr(state.get("v", _NAN), shape), _arr(state["delta_star"], shape),
-                   _arr(ell, shape), _arr(adh, shape), _arr(zero, shape, bool), _arr(warning, shape, object))
+    return PullOff(model=model, control=control, geometry=geometry, beta0=_arr(beta0, shape), mu=_arr(mu, shape),
+                   sin_skew=_arr(sin_skew, shape), W_star=_arr(state["W_star"], shape), a_star=_arr(a, shape),
+                   b_star=_arr(b, shape), c_star=_arr(c, shape), d_star=_arr(d, shape),
+                   v=_arr(state.get("v", _NAN), shape), delta_star=_arr(state["delta_star"], shape),
+                   ellipticity=_arr(ell, shape), adhesive_ellipticity=_arr(adh, shape),
+                   at_zero_contact=_arr(zero, shape, bool), warning=_arr(warning, shape, object))
 
 
 def pull_off_record_si(rec, si):
-    """Build the :class:`PullOffSI` of a pull-off record and its SI values.
+    """Build the SI :class:`PullOff` (its SI group filled) of a pull-off record and its SI values.
 
     Parameters
     ----------
@@ -343,12 +330,13 @@ def pull_off_record_si(rec, si):
 
     Returns
     -------
-    PullOffSI
-        Scalars where the record is scalar.
+    PullOff
+        With the SI group (keys :data:`dhfield.schema.PULL_OFF_SI_KEYS`); scalars where the
+        record is scalar.
     """
     shape = np.shape(rec["W_star"])
     si = {k: _scalar(np.broadcast_to(np.asarray(v, dtype=float), shape)) for k, v in si.items()}
-    return PullOffSI(**{k: (si[k] if k in si else rec[k]) for k in PULL_OFF_SI_KEYS})
+    return PullOff(**{k: (si[k] if k in si else rec[k]) for k in PULL_OFF_SI_KEYS})
 
 
 def _scalar(x):

@@ -22,7 +22,11 @@ Records
 -------
 :data:`PULL_OFF_KEYS` (nondimensional) and :data:`PULL_OFF_SI_KEYS` (physical
 inputs) are the keys, in order, of a pull-off record of every model: a value
-that does not apply to a model is NaN (JSON ``null``), never missing.
+that does not apply to a model is NaN (JSON ``null``), never missing.  The one
+record type, :class:`dhfield.records.PullOff`, adds the groups
+:data:`PULL_OFF_SPRING_KEYS` (under a machine spring) and
+:data:`PULL_OFF_SOLVER_KEYS` (a numerical solution, the adhesive BEM) where they
+apply; :data:`PULL_OFF_ALL_KEYS` lists every key in order.
 :data:`LOAD_CURVE_KEYS` and :data:`LOAD_CURVE_SI_KEYS` are the array keys of a
 load curve, after the scalar header :data:`LOAD_CURVE_HEADER_KEYS`.
 """
@@ -37,6 +41,9 @@ __all__ = [
     "DIM_ORDER",
     "PULL_OFF_KEYS",
     "PULL_OFF_SI_KEYS",
+    "PULL_OFF_SPRING_KEYS",
+    "PULL_OFF_SOLVER_KEYS",
+    "PULL_OFF_ALL_KEYS",
     "LOAD_CURVE_HEADER_KEYS",
     "LOAD_CURVE_KEYS",
     "LOAD_CURVE_SI_KEYS",
@@ -234,6 +241,16 @@ _TAIL = ("at_zero_contact", "warning")
 PULL_OFF_KEYS = _HEAD + _NONDIM + _TAIL
 #: Keys, in order, of a pull-off record from physical inputs (every model).
 PULL_OFF_SI_KEYS = _HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL
+#: Keys of a pull-off under a machine spring (:func:`dhfield.compliance.pull_off_under_spring`), after the SI and
+#: nondimensional ones.
+PULL_OFF_SPRING_KEYS = ("machine_stiffness_star", "separation_delta_star", "max_tension_W_star", "on_separated_branch")
+#: Keys of a numerical pull-off (the adhesive BEM, :func:`dhfield.adhesive_start.adhesive_pull_off`): its stated
+#: error, convergence, route and cost.
+PULL_OFF_SOLVER_KEYS = ("W_star_error", "converged", "resolved", "note", "search", "n", "law", "n_steps",
+                        "iterations", "residual", "failures", "half_width_x", "half_width_y", "elapsed")
+#: Every key a :class:`dhfield.records.PullOff` may carry, in order; a record holds the groups it has
+#: (:data:`PULL_OFF_KEYS` always; the SI, spring and solver groups where they apply).
+PULL_OFF_ALL_KEYS = _HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL + PULL_OFF_SPRING_KEYS + PULL_OFF_SOLVER_KEYS
 #: Scalar keys that head a load-curve record.
 LOAD_CURVE_HEADER_KEYS = ("model", "geometry", "beta0", "mu", "sin_skew")
 #: Array keys of a nondimensional load curve, in order.

@@ -309,14 +309,16 @@ def test_beta0_and_mu_are_keyword_only(call):
 
 
 def test_spring_records_are_typed_with_the_old_keys():
-    """pull_off_under_spring -> records.SpringPullOff and spring_pull_off_record -> records.PullOff
-    (control 'spring'), read as mappings with the keys the dicts had, so JSON and the CLI are unchanged."""
-    from dhfield.records import SPRING_PULL_OFF_KEYS, PullOff, SpringPullOff
-    from dhfield.schema import PULL_OFF_KEYS
+    """pull_off_under_spring -> the one records.PullOff with its spring group (issue 16), and
+    spring_pull_off_record -> records.PullOff (control 'spring') with the nondimensional keys only,
+    so the CLI's JSON is unchanged."""
+    from dhfield.records import PullOff
+    from dhfield.schema import PULL_OFF_KEYS, PULL_OFF_SPRING_KEYS
 
     po = compliance.pull_off_under_spring("jkr", beta0=1.0, mu=10.0, machine_stiffness=[0.0, 1.0])
-    assert type(po) is SpringPullOff and tuple(po) == SPRING_PULL_OFF_KEYS and "_t" not in po
-    assert po.W_star is po["W_star"] and np.shape(po.W_star) == (2,)
+    assert type(po) is PullOff and tuple(po) == PULL_OFF_KEYS + PULL_OFF_SPRING_KEYS and "_t" not in po
+    assert po.groups == ("spring",) and po.control == "spring" and po.model == "jkr"
+    assert po.W_star is po["W_star"] and np.shape(po.W_star) == (2,) and np.shape(po.beta0) == (2,)
     rec = compliance.spring_pull_off_record("jkr", beta0=1.0, mu=10.0, machine_stiffness=1.0)
     assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS and rec.control == "spring"
-    assert rec.W_star == float(po.W_star[1]) and rec.at_zero_contact is False
+    assert rec.W_star == float(po.W_star[1]) and not rec.at_zero_contact

@@ -176,7 +176,7 @@ def test_state_at_ellipticity_is_the_curve_at_its_contact_size():
 
 
 def test_si_pull_off_is_the_one_si_record():
-    """jkr_elliptic.pull_off returns records.PullOffSI (issue 16): the principal radii satisfy
+    """jkr_elliptic.pull_off returns the SI records.PullOff (issue 16): the principal radii satisfy
     R'R'' = R^2 and R'/R'' = the given ratio (Eq. 5), JKR has no sigma0 (NaN), and the nondimensional
     fields are the nondimensional core's."""
     r, e, dg = 1e-3, 1e6, 0.05

@@ -47,13 +47,13 @@ def test_pull_off_si_record_is_the_nondimensional_one_in_si_units():
     unchanged; W = W* 2 pi R dgamma / sin(theta_skew), a = a* c_r, delta = delta* c_r^2/R (Eqs. 32-34,
     here with R = 8, E* = 1, dgamma = 1: c_r = 4, c_r^2/R = 2, exact in binary)."""
     from dhfield._adhesion import pull_off_si, si_inputs
-    from dhfield.records import PullOffSI
+    from dhfield.records import PullOff
     from dhfield.schema import PULL_OFF_SI_KEYS
 
     st = {"W_star": -0.75, "a_star": 1.5, "c_star": 2.0, "delta_star": -0.5}
     rec = pull_off_record("md", 1.0, [1.0, 2.0], st, control="load", sin_skew=0.5, geometry="circle")
     si = pull_off_si(rec, si_inputs(np.float64(8.0), np.float64(1.0), np.float64(1.0), 3.0, radius_ratio=4.0))
-    assert type(si) is PullOffSI and tuple(si) == PULL_OFF_SI_KEYS
+    assert type(si) is PullOff and tuple(si) == PULL_OFF_SI_KEYS and si.groups == ("si",)
     assert si.force.tolist() == [-0.75 * 2 * np.pi * 8.0 / 0.5] * 2
     assert si.semi_major.tolist() == [6.0, 6.0] and si.adhesive_semi_major.tolist() == [8.0, 8.0]
     assert si.approach.tolist() == [-1.0, -1.0]

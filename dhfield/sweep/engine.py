@@ -53,7 +53,7 @@ from .. import schema
 from .config import SweepConfig, check_scheduler_address, scheduler_host_port
 from .store import CaseStore, output_paths
 from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
-                    adhesive_case, adhesive_solver, bem_field_case, expected_seconds, load_curve_case, pull_off_block)
+                    adhesive_case, adhesive_solver, bem_field_case, block_values, expected_seconds, load_curve_case, pull_off_block)
 
 _FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS + ADHESIVE_BEM_FIELDS,
            "load_curve": CURVE_FIELDS}
@@ -528,7 +528,8 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
         ds = store.read(key)
         return np.stack([ds[k].values for k in PULL_OFF_FIELDS], axis=-1)
     try:
-        out, warnings = pull_off_block(model, beta0=beta0, mu=mu, control=control)
+        rec = pull_off_block(model, beta0=beta0, mu=mu, control=control)
+        out, warnings = block_values(rec), np.asarray(rec.warning, dtype=object)
         status, message = "ok", ""
     except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
         out = np.full(mu.shape + (len(PULL_OFF_FIELDS),), np.nan)

@@ -20,8 +20,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..records import PullOff
+
 __all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_BEM_FIELDS", "ADHESIVE_MODEL",
-           "pull_off_block", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver",
+           "pull_off_block", "block_values", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver",
            "expected_seconds"]
 
 #: Output fields of the analytic pull-off, in the order of the stacked block (names of
@@ -55,8 +57,8 @@ def cohesive_laws() -> tuple:
     return tuple(LAWS)
 
 
-def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> tuple[np.ndarray, np.ndarray]:
-    """Analytic pull-off of one model on a block of points, stacked on a last axis, with its warnings.
+def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> PullOff:
+    """Analytic pull-off of one model on a block of points: the record of :func:`dhfield.compare.pull_off`.
 
     One vectorised call of :func:`dhfield.compare.pull_off` on the whole block.
 
@@ -72,29 +74,36 @@ def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> tuple[np.
 
     Returns
     -------
-    values : ndarray
-        Shape ``broadcast(mu, beta0).shape + (len(PULL_OFF_FIELDS),)``, fields in
-        the order of :data:`PULL_OFF_FIELDS` (NaN where the model has none).
-    warnings : ndarray of str
-        Shape ``broadcast(mu, beta0).shape``: each record's ``warning`` (its
-        validity warning, :mod:`dhfield.validity`; empty inside the validated
-        range).
+    dhfield.records.PullOff
+        Every array field of the shape ``broadcast(beta0, mu).shape`` (the sweep stores
+        :data:`PULL_OFF_FIELDS` and ``warning``, each record's validity warning,
+        :mod:`dhfield.validity`; empty inside the validated range).
     """
     from ..compare import pull_off
 
-    mu, beta0 = np.broadcast_arrays(np.asarray(mu, float), np.asarray(beta0, float))
+    beta0, mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))
     shape = mu.shape
-    out = np.empty(shape + (len(PULL_OFF_FIELDS),))
-    warnings = np.full(shape, "", dtype=object)
-    if mu.size == 0:
-        return out, warnings
     # The two-axis closure behind dh-elliptic's departure warning is a model of its own
     # ("dh-elliptic-two-axis"): sweep it, and map the departure, rather than solve it twice.
-    rec = pull_off(model, mu=mu.ravel(), beta0=beta0.ravel(), control=control, check_closure=False)
-    for i, k in enumerate(PULL_OFF_FIELDS):
-        out[..., i] = np.broadcast_to(np.asarray(rec[k], dtype=float), (mu.size,)).reshape(shape)
-    warnings[...] = np.broadcast_to(np.asarray(rec["warning"], dtype=object), (mu.size,)).reshape(shape)
-    return out, warnings
+    rec = pull_off(model, beta0=beta0.ravel(), mu=mu.ravel(), control=control, check_closure=False)
+    return rec.replace(**{k: np.broadcast_to(np.asarray(rec[k]), (mu.size,)).reshape(shape)
+                          for k in rec if k not in ("model", "control", "geometry")})
+
+
+def block_values(rec: PullOff) -> np.ndarray:
+    """Stack the :data:`PULL_OFF_FIELDS` of a block's record on a last axis.
+
+    Parameters
+    ----------
+    rec : dhfield.records.PullOff
+        A block's record (:func:`pull_off_block`).
+
+    Returns
+    -------
+    ndarray
+        Shape ``rec.W_star.shape + (len(PULL_OFF_FIELDS),)``, float (NaN where the model has none).
+    """
+    return np.stack([np.asarray(rec[k], dtype=float) for k in PULL_OFF_FIELDS], axis=-1)
 
 
 def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> dict:
