@@ -1,7 +1,7 @@
 """The adhesive BEM on slender contacts (crossing angles 10-45 deg): cell shapes measured, ground truth stored.
 
 Two jobs (issue 20), both printing every case beside GVG
-(:mod:`dhfield.jkr_elliptic_energy`) and the candidate DMT-to-JKR model
+(:mod:`dhfield.jkr_elliptic_energy`) and the recommended DMT-to-JKR model ``md-elliptic``
 (:mod:`dhfield.elliptic_transition`), with the wall time, the CPU time and the CG and
 outer iteration counts:
 
@@ -37,7 +37,8 @@ Measured with ``measure`` (2026-11-26, shared 2-core machine, DHFIELD_THREADS=1)
 16 states, 13 unconverged, W* = -0.361569 (no error bound), 16230 CG and 1403 outer
 iterations, 441 s wall / 202 s CPU; 576 x 160 (92k cells, 2.7 and 2.4 cells): 6 states, all
 converged, resolved, W* = -0.361370 +- 0.0075, 3886 CG and 274 outer iterations, 28 s wall /
-15 s CPU (GVG -0.358366, candidate -0.359791).  ``truth`` at level 2 (1152 x 320):
+15 s CPU (GVG -0.358366; the candidate model of that time, md-elliptic before its Eq. T0, -0.359791;
+md-elliptic -0.360362).  ``truth`` at level 2 (1152 x 320):
 W* = -0.361064 +- 0.0037, located, 3 states, 1669 CG, 60 s wall / 22 s CPU.
 """
 from __future__ import annotations
@@ -66,12 +67,16 @@ LEVELS = (1, 2)
 
 
 def references(beta0, mu) -> dict:
-    """W* of GVG (JKR limit, :mod:`dhfield.jkr_elliptic_energy`) and of the candidate model at (beta0, mu)."""
+    """W* of GVG (JKR limit, :mod:`dhfield.jkr_elliptic_energy`) and of the recommended model at (beta0, mu).
+
+    The stored dataset's ``W_star_candidate`` is the model of the time of the run (md-elliptic before
+    its effective Tabor parameter, Eq. T0); a new run stores ``W_star_md_elliptic``.
+    """
     from dhfield import elliptic_transition, jkr_elliptic_energy
 
     gvg = float(jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")["W_star"])
-    cand = float(elliptic_transition.pull_off_nondimensional(mu, beta0)["W_star"])
-    return {"W_star_gvg": gvg, "W_star_candidate": cand}
+    rec = float(elliptic_transition.pull_off_nondimensional(beta0, mu)["W_star"])
+    return {"W_star_gvg": gvg, "W_star_md_elliptic": rec}
 
 
 def solve_case(beta0, mu, nx, ny, *, max_iter=None, automatic=False) -> dict:
@@ -107,12 +112,12 @@ def solve_case(beta0, mu, nx, ny, *, max_iter=None, automatic=False) -> dict:
 
 
 def print_case(rec, label=""):
-    """One line: the grid, the flags, W* with its error beside GVG and the candidate, the cost."""
-    w, g, c = rec["W_star"], rec["W_star_gvg"], rec["W_star_candidate"]
+    """One line: the grid, the flags, W* with its error beside GVG and md-elliptic, the cost."""
+    w, g, c = rec["W_star"], rec["W_star_gvg"], rec["W_star_md_elliptic"]
     print(f"{label}beta0 = {rec['beta0']:g}, mu = {rec['mu']:g}, {rec['nx']} x {rec['ny']}: W* = {w:.6f} "
           f"(error {rec['W_star_error']:.2g}) converged = {rec['converged']} resolved = {rec['resolved']} "
           f"[{rec['search']}, {rec['states']} states, {rec['unconverged']} unconverged] | GVG {g:.6f} "
-          f"({100 * (w / g - 1):+.2f} %), candidate {c:.6f} ({100 * (w / c - 1):+.2f} %) | zone cells "
+          f"({100 * (w / g - 1):+.2f} %), md-elliptic {c:.6f} ({100 * (w / c - 1):+.2f} %) | zone cells "
           f"x {rec['zone_cells_x']:.2f}, y {rec['zone_cells_y']:.2f} | {rec['iterations']} CG, "
           f"{rec['outer_iterations']} outer, {rec['wall_s']:.0f} s wall, {rec['cpu_s']:.0f} s CPU", flush=True)
 
@@ -210,7 +215,8 @@ def consolidate(work_dir, out) -> int:
         flags["converged"][i], flags["resolved"][i], flags["present"][i] = r["converged"], r["resolved"], 1
         for k in text:
             text[k][i] = str(r.get(k, ""))
-    refs = {k: np.array([[references(b, m)[k] for m in mus] for b in b0]) for k in ("W_star_gvg", "W_star_candidate")}
+    refs = {k: np.array([[references(b, m)[k] for m in mus] for b in b0])
+            for k in ("W_star_gvg", "W_star_md_elliptic")}
     dims = ("beta0", "mu", "level")
     ds = xr.Dataset(
         {**{k: (dims, v) for k, v in data.items()}, **{k: (dims, v) for k, v in flags.items()},
@@ -222,8 +228,8 @@ def consolidate(work_dir, out) -> int:
         description=("BEM pull-off W* (Eq. 34 normalisation) at beta0 < 0.45 on the automatic grid with about "
                      "square cells (level 1: dhfield.adhesive_start.plan_grid's n_needed x ny_needed) and twice "
                      "its cells per axis (level 2); converged/resolved flags and the stated W_star_error of each "
-                     "case; GVG (jkr_elliptic_energy) and the candidate model (elliptic_transition) at the same "
-                     "points. dhfield output: never a test reference."),
+                     "case; GVG (jkr_elliptic_energy) and the recommended model md-elliptic "
+                     "(elliptic_transition) at the same points. dhfield output: never a test reference."),
         provenance="python -m verification.bem_slender truth (per case: commit, command, finished, wall_s, cpu_s)",
         consolidated=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), consolidate_commit=_git_commit())
     ds["W_star_error"].attrs["note"] = "stated error of W_star (search + discretisation); inf when not resolved"
