@@ -42,11 +42,14 @@ import time
 
 def reference(mu, beta0):
     """(name, W*) of the reference: MD on the sphere, GVG x MD/JKR otherwise."""
-    from dhfield import elliptic_transition, maugis_dugdale
+    from dhfield import jkr_elliptic_energy, maugis_dugdale
 
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, mu, control="load").W_star)
     if beta0 == 1.0:
-        return "Maugis-Dugdale", float(maugis_dugdale.pull_off_nondimensional(1.0, mu, control="load").W_star)
-    return "GVG x MD/JKR", float(elliptic_transition.pull_off_nondimensional(mu, beta0)["W_star"])
+        return "Maugis-Dugdale", md
+    # GVG's exact-energy elliptical JKR times the sphere's MD/JKR ratio at the same mu (JKR sphere: -3/4)
+    gvg = float(jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load").W_star)
+    return "GVG x MD/JKR", gvg * md / -0.75
 
 
 def run(mu, beta0, route, n=None, progress=False):
