@@ -175,7 +175,7 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
         of the force-free approach (for the cycle, :func:`bem_loading_cycle`).
     margin : float, optional
         Domain half-width per zone semi-axis of the start of unloading
-        (:func:`dhfield.adhesive_start.pull_off_start`; default its own).  The
+        (:func:`dhfield.adhesive_start.unloading_start`; default its own).  The
         domain must hold the cohesive zone of the top state.
     law : {'dugdale', 'exponential'}
         Traction law (:mod:`dhfield.bem.laws`).
@@ -403,7 +403,7 @@ def _cycle_margin(mu, beta0, k_positive):
     """Domain margin holding the jump-in landing state of the softest spring.
 
     The landing of a soft spring lies near W* = 0, above the start of unloading the
-    pull-off's domain is sized for (:func:`dhfield.adhesive_start.pull_off_start`).
+    pull-off's domain is sized for (:func:`dhfield.adhesive_start.unloading_start`).
     Maugis-Dugdale's landing contact radius a* (the sphere's), the DH model's zone
     semi-axis c* there (:func:`dhfield.model.load_curve`, as the pull-off's domain
     is sized), 10 % beyond, sets the margin (measured at lambda = 3, N = 128, K* = 0.1:
@@ -411,7 +411,7 @@ def _cycle_margin(mu, beta0, k_positive):
     off MD).
     """
     from . import compliance, model
-    from .adhesive_start import pull_off_start
+    from .adhesive_start import unloading_start
     from .bem.pull_off import DOMAIN_MARGIN
 
     rec = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=float(np.min(k_positive)))
@@ -419,7 +419,7 @@ def _cycle_margin(mu, beta0, k_positive):
     c_land = float(np.asarray(model.load_curve(mu=mu, beta0=beta0, a_star=[a_in]).c_star)[0])
     if not np.isfinite(c_land):
         c_land = 1.5 * a_in
-    c_start = pull_off_start(mu=mu, beta0=beta0).half_width_x / DOMAIN_MARGIN
+    c_start = unloading_start(mu=mu, beta0=beta0).half_width_x / DOMAIN_MARGIN
     return DOMAIN_MARGIN * max(1.0, 1.1 * c_land / c_start)
 
 

@@ -92,20 +92,15 @@ def add_parser(sub) -> None:
 
 
 def _record(res) -> dict:
-    from ..schema import BEM_ADHESIVE_KEYS
+    """The solve record: the BEM's pull-off record, JSON-ready (the keys of the one pull-off record)."""
+    from ..bem.pull_off import pull_off_summary
 
-    d = res.as_dict()
-    out = {"beta0": d["beta0"], "mu": d["mu"], "n": d["n"], "law": d["law"], "control": d["control"]}
-    out.update({k: d[k] for k in BEM_ADHESIVE_KEYS})
-    out["resolved"] = bool(getattr(res, "resolved", True))
-    out.update(W_star_error=d["W_star_error"], residual=d["residual"], elapsed=d["elapsed"],
-               failures=d["failures"], note=d["note"], search=d["search"])
-    return out
+    return pull_off_summary(res)
 
 
 #: Units of the solve record's keys that :mod:`dhfield.schema` does not list.
 _LOCAL_UNITS = {"n": "1", "W_star_error": "1", "residual": "1", "elapsed": "s", "resolved": "1", "n_steps": "1",
-                "iterations": "1", "converged": "1"}
+                "iterations": "1", "converged": "1", "half_width_x": "1", "half_width_y": "1"}
 
 
 def _units(rec, si_keys=()) -> dict:
@@ -394,7 +389,7 @@ def run(args) -> int:
                else " (no error bound: not resolved)")
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
-        print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
+        print(f"b/a = {res.ellipticity:.5f}  d/c = {res.adhesive_ellipticity:.5f}  delta* = {res.delta_star:.5f}")
         print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  "
               f"CG iterations = {res.iterations}  search = {res.search}  ({res.elapsed:.1f} s)")
         if si:
