@@ -162,13 +162,13 @@ def spring_record(branch, k_star, params=None) -> dict:
 
     from ..bem_compliance import bem_pull_off_under_spring
 
-    po = bem_pull_off_under_spring(branch, k_star)
-    w, d = float(po["W_star"]), float(po["delta_star"])
-    sep = d + w / k_star if k_star > 0 else float("-inf")  # Delta* = delta* + W*/K*
-    rec = {"beta0": branch.beta0, "mu": branch.mu, "n": branch.n, "law": None, "control": "spring",
-           "machine_stiffness_star": float(k_star), "W_star": w, "W_star_error": float(po["W_star_error"]),
-           "delta_star": d, "separation_delta_star": sep, "in_contact": bool(po["in_contact"]),
-           "resolved": bool(po["resolved"]), "branch_states": int(np.size(branch.adhesive_force)),
+    po = bem_pull_off_under_spring(branch, k_star)     # the BEM's PullOff, spring group filled
+    w, d = float(po.W_star), float(po.delta_star)
+    sep = float(po.separation_delta_star)  # Delta* = delta* + W*/K*
+    rec = {"beta0": branch.beta0, "mu": branch.mu, "n": branch.n, "law": po.law, "control": "spring",
+           "machine_stiffness_star": float(k_star), "W_star": w, "W_star_error": float(po.W_star_error),
+           "delta_star": d, "separation_delta_star": sep, "in_contact": not bool(po.on_separated_branch),
+           "resolved": bool(po.resolved), "branch_states": int(np.size(branch.adhesive_force)),
            "branch_complete": bool(branch.complete), "failures": int(branch.failures),
            "elapsed": float(branch.elapsed)}
     if params is not None:
