@@ -2,7 +2,7 @@
 
 The BEM engine (:mod:`dhfield.bem`) is the ground truth the analytic models are
 judged against, so it imports none of them: it takes its start as an argument
-(:class:`dhfield.bem.pull_off.PullOffStart`).  This module chooses that start
+(:class:`dhfield.bem.pull_off.UnloadingStart`).  This module chooses that start
 from the models:
 
 * the domain, from the DH model's cohesive zone at the start of unloading
@@ -47,19 +47,20 @@ from ._validation import check_count, check_ellipticity, check_positive
 from .bem.laws import law_from_name
 from .bem.operator import Grid
 from .bem.path import PathOptions
-from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_CELLS, MAX_STEPS, NESTED_MIN_N, AdhesivePullOff,
-                           NondimensionalProblem, PullOffStart, check_cells, paper_problem, refine, solve_pull_off)
+from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_CELLS, MAX_STEPS, NESTED_MIN_N, NondimensionalProblem,
+                           UnloadingStart, check_bem_pull_off, check_cells, paper_problem, refine, solve_pull_off)
+from .records import PullOff
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
-__all__ = ["pull_off_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
+__all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "takes_predicted_route"]
 
 
-def pull_off_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
-    """Choose the start of the BEM pull-off at (mu, beta0) from the analytic models.
+def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
+    """Choose where the BEM's unloading path starts at (mu, beta0), from the analytic models (an input, not a result).
 
     Parameters
     ----------
@@ -74,7 +75,7 @@ def pull_off_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) ->
 
     Returns
     -------
-    PullOffStart
+    UnloadingStart
         Domain half-widths [c_r], ``approach_max`` and the unloading step [c_r^2/R], and the
         bracket search's cold start (approach [c_r^2/R] and zone semi-axes (c, d) [c_r]).
 
@@ -116,8 +117,8 @@ def _check_margin(margin) -> float:
     return margin
 
 
-def _start(mu, beta0, n_steps, margin) -> PullOffStart:
-    """:func:`pull_off_start` of checked inputs."""
+def _start(mu, beta0, n_steps, margin) -> UnloadingStart:
+    """:func:`unloading_start` of checked inputs."""
     po = model.pull_off(mu=mu, beta0=beta0)
     pod = model.pull_off(mu=mu, beta0=beta0, control="displacement")
     a_start = 1.1 * float(po.a_star) + 0.15
@@ -136,7 +137,7 @@ def _start(mu, beta0, n_steps, margin) -> PullOffStart:
     if start is None:
         at_po = model.load_curve(mu=mu, beta0=beta0, a_star=[max(float(po.a_star), 1e-3 * a_start)])
         start = (float(po.delta_star), (float(at_po.c_star[0]), float(at_po.d_star[0])))
-    return PullOffStart(half_x, half_y, d_max, (d_max - d_end) / int(n_steps), start[0], start[1])
+    return UnloadingStart(half_x, half_y, d_max, (d_max - d_end) / int(n_steps), start[0], start[1])
 
 
 #: Smallest mu at which slender contacts (no two-axis start) start from GVG's JKR pull-off ellipse.
@@ -183,7 +184,7 @@ def nondimensional_problem(*, beta0, mu, n, law="dugdale", n_steps=DEFAULT_STEPS
                            margin=DOMAIN_MARGIN, ny=None) -> NondimensionalProblem:
     """Set up the grid, initial gap, law and path range of the paper's problem at (mu, beta0).
 
-    The start comes from the analytic models (:func:`pull_off_start`).
+    The start comes from the analytic models (:func:`unloading_start`).
 
     Parameters
     ----------
@@ -196,9 +197,9 @@ def nondimensional_problem(*, beta0, mu, n, law="dugdale", n_steps=DEFAULT_STEPS
     law : {'dugdale', 'exponential'}, default 'dugdale'
         Traction law, as in :func:`dhfield.bem.pull_off.paper_problem`.
     n_steps : int, default DEFAULT_STEPS
-        Unloading steps (4 to 1e6) [-], as in :func:`pull_off_start`.
+        Unloading steps (4 to 1e6) [-], as in :func:`unloading_start`.
     margin : float, default DOMAIN_MARGIN
-        Domain half-width per expected zone semi-axis, > 1 [-], as in :func:`pull_off_start`.
+        Domain half-width per expected zone semi-axis, > 1 [-], as in :func:`unloading_start`.
     ny : int, optional
         Cells along y, even, 8 to 65536 [-]; default ``n`` (e.g. :attr:`GridPlan.ny_needed`
         for cells shaped to a slender contact).
@@ -206,7 +207,7 @@ def nondimensional_problem(*, beta0, mu, n, law="dugdale", n_steps=DEFAULT_STEPS
     Returns
     -------
     NondimensionalProblem
-        :func:`dhfield.bem.pull_off.paper_problem` with the start of :func:`pull_off_start`.
+        :func:`dhfield.bem.pull_off.paper_problem` with the start of :func:`unloading_start`.
 
     Raises
     ------
@@ -505,7 +506,7 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
     law : {'dugdale', 'exponential'}, default 'dugdale'
         Traction law (sigma0 = mu, Delta gamma = 1).
     margin : float, default DOMAIN_MARGIN
-        As in :func:`pull_off_start` (the domain) [-].
+        As in :func:`unloading_start` (the domain) [-].
     max_seconds : float, default DEFAULT_MAX_SECONDS
         Time allowed [s] (:attr:`GridPlan.affordable`).
     ny : int, optional
@@ -530,7 +531,7 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
 
     Notes
     -----
-    The domain is :func:`pull_off_start`'s.  For beta0 >= :data:`SHAPED_CELLS_MAX_BETA0` the
+    The domain is :func:`unloading_start`'s.  For beta0 >= :data:`SHAPED_CELLS_MAX_BETA0` the
     grid has n x n cells over it (rectangular cells for beta0 < 1); below, n along x and
     ``ny = shaped_cells_y(n, ...)`` along y, about square cells (the Dugdale zone is about
     as wide along both axes, so it is resolved along both with fewer cells: 2.5x fewer at
@@ -605,7 +606,7 @@ class AdhesiveOptions:
     Parameters
     ----------
     n_steps : int, default DEFAULT_STEPS
-        Unloading steps (4 to 1e6) [-]; see :func:`pull_off_start`.
+        Unloading steps (4 to 1e6) [-]; see :func:`unloading_start`.
     refine_levels : int, default 2
         Refinements of the pull-off bracket (0-20) [-]; see :class:`dhfield.bem.path.PathOptions`.
     tol : float, default DEFAULT_TOL
@@ -613,7 +614,7 @@ class AdhesiveOptions:
     max_iter : int, default DEFAULT_MAX_ITER
         Iteration cap per state [-]; see :class:`dhfield.bem.path.PathOptions`.
     margin : float, default DOMAIN_MARGIN
-        Domain half-width per expected zone semi-axis, > 1 [-]; see :func:`pull_off_start`.
+        Domain half-width per expected zone semi-axis, > 1 [-]; see :func:`unloading_start`.
     keep_states : bool, default False
         Keep every state of the path; see :class:`dhfield.bem.path.PathOptions`.
     max_seconds : float, default DEFAULT_MAX_SECONDS
@@ -635,7 +636,7 @@ class AdhesiveOptions:
 
 
 def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="load", search="located",
-                      threads=None, progress=None, options=None) -> AdhesivePullOff:
+                      threads=None, progress=None, options=None) -> PullOff:
     """Compute the BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
 
     Parameters
@@ -660,10 +661,10 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
     search : {'located', 'bracket', 'march'}, default 'located'
-        Load control only (the route taken is :attr:`AdhesivePullOff.search`).
+        Load control only (the route taken is the record's ``search``).
         'located' (default) is 'bracket' with the minimum located on coarser
         grids first (below).  'bracket': cold-start at the analytic
-        pull-off approach from its cohesive zone (:func:`pull_off_start`) and
+        pull-off approach from its cohesive zone (:func:`unloading_start`) and
         bracket the load minimum there (a handful of states;
         :func:`dhfield.bem.path.bracket_search`).  'march': unload from
         ``approach_max`` in uniform steps to the jump and refine the minimum's
@@ -690,9 +691,11 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
 
     Returns
     -------
-    AdhesivePullOff
-        W* in the normalisation of Eq. (34) with sin(theta_skew) of beta0, like
-        every other model of :mod:`dhfield.compare`; semi-axes in c_r.
+    dhfield.records.PullOff
+        The one pull-off record of every model, with ``model='bem'`` and its solver group
+        (:func:`dhfield.bem.pull_off.pull_off_result` lists the BEM's fields): W* in the
+        normalisation of Eq. (34) with sin(theta_skew) of beta0, like every other model of
+        :mod:`dhfield.compare`; semi-axes in c_r; the whole path in ``path``.
 
     Raises
     ------
@@ -898,7 +901,7 @@ class RelaxedWarmStart:
         return float(b.load_pull_off(current).pull_off_approach)
 
 
-def _relaxed_pull_off(prob, options) -> AdhesivePullOff:
+def _relaxed_pull_off(prob, options) -> PullOff:
     """Load-control pull-off on ``prob`` with every state warm-started by :class:`RelaxedWarmStart`.
 
     The minimum located on the relaxed coarse grid first, then 3-4 fine lattice samples
@@ -970,7 +973,7 @@ def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", s
                 and float(mu) >= PREDICTED_MIN_MU and float(beta0) >= SHAPED_CELLS_MAX_BETA0)
 
 
-def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> PullOffStart:
+def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
     """The start of the predicted route: GVG's pull-off, on a domain holding its zone.
 
     Parameters
@@ -980,18 +983,18 @@ def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -
     mu : float
         Tabor parameter of Eq. (35), > 0 [-].
     n_steps : int, default DEFAULT_STEPS
-        Unloading steps, as in :func:`pull_off_start` (the approach lattice) [-].
+        Unloading steps, as in :func:`unloading_start` (the approach lattice) [-].
     margin : float, default DOMAIN_MARGIN
         Domain half-width per semi-axis of the cold start's zone, > 1 [-].
 
     Returns
     -------
-    PullOffStart
-        :func:`pull_off_start`'s path range (``approach_max``, ``approach_step``: the same
+    UnloadingStart
+        :func:`unloading_start`'s path range (``approach_max``, ``approach_step``: the same
         approach lattice), with GVG's load-control pull-off corrected by the sphere's MD as
         the cold start (:func:`_gvg_md_start`: its approach, its contact ellipse widened by
         the MD zone) and half-widths ``margin`` times that zone's semi-axes (never wider than
-        :func:`pull_off_start`'s).
+        :func:`unloading_start`'s).
 
     Notes
     -----
@@ -1064,7 +1067,7 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
                                                                         margin=margin))
 
 
-def _predicted_pull_off(prob, options) -> AdhesivePullOff:
+def _predicted_pull_off(prob, options) -> PullOff:
     """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
 
     ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
@@ -1093,7 +1096,7 @@ def _half_grid_locates(plan, law, margin) -> bool:
 
 
 def refine_pull_off(coarse, n, *, refine_factor=4, window=3, threads=None, progress=None,
-                    options=None) -> AdhesivePullOff:
+                    options=None) -> PullOff:
     """Compute the load-control pull-off on a finer grid, started from a coarser solution.
 
     The fine states sit on the finest approach lattice of the full path set by
@@ -1103,8 +1106,8 @@ def refine_pull_off(coarse, n, *, refine_factor=4, window=3, threads=None, progr
 
     Parameters
     ----------
-    coarse : AdhesivePullOff
-        A pull-off of the same (mu, beta0, law) on a coarser grid (load
+    coarse : dhfield.records.PullOff
+        A BEM pull-off of the same (mu, beta0, law) on a coarser grid (load
         control), e.g. from :func:`adhesive_pull_off` at N = 256 or from a
         previous call of this function.
     n : int
@@ -1125,18 +1128,17 @@ def refine_pull_off(coarse, n, *, refine_factor=4, window=3, threads=None, progr
 
     Returns
     -------
-    AdhesivePullOff
-        As :func:`adhesive_pull_off`, with ``path.phase == 'refine'`` for every
+    dhfield.records.PullOff
+        As :func:`adhesive_pull_off` (``search='refine'``), with ``path.phase == 'refine'`` for every
         state (:func:`dhfield.bem.pull_off.refine`).
 
     Raises
     ------
     ValueError
-        If ``coarse`` is not an :class:`~dhfield.bem.pull_off.AdhesivePullOff`, ``n`` is not
+        If ``coarse`` is not a BEM :class:`~dhfield.records.PullOff`, ``n`` is not
         above ``coarse.n``, or another argument is out of range (naming it).
     """
-    if not isinstance(coarse, AdhesivePullOff):
-        raise ValueError(f"coarse must be an AdhesivePullOff; got {type(coarse).__name__}")
+    check_bem_pull_off("coarse", coarse)
     n = check_count("n", n, 8, 2 ** 16, "cells per axis")
     if n <= coarse.n:
         raise ValueError(f"n must be an integer > coarse.n = {coarse.n} (cells per axis); got {n!r}")

@@ -54,10 +54,12 @@ from .bem.branch import Branch
 from .bem.continuation import adhesive_force, fit_fold, solve_at_adhesive_force
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
 from .compliance import spring_weight
+from .geometry import sin_skew_angle
 from .pull_off_search import fitted_slopes, stable_minimum_index
+from .records import PullOff
 
 __all__ = ["BemBranch", "BranchOptions", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle",
-           "BRANCH_STEPS", "BRANCH_WINDOW"]
+           "BRANCH_STEPS", "BRANCH_WINDOW", "SPRING_NOTE"]
 
 #: Adhesive-force steps from the cold start (near the load-control pull-off) to zero force:
 #: the sampling step dF = F_a(start)/BRANCH_STEPS of the whole branch.
@@ -106,6 +108,19 @@ class BemBranch:
     start_delta : float
         Approach where the force-free approach from separation ends, -h0 (the
         law's range: the central gap reaches it) [c_r^2/R].
+    law : str
+        The traction law's name.
+    a_star, b_star, c_star, d_star : ndarray, optional
+        Second-moment semi-axes of the contact and of contact U cohesive zone of
+        each converged state [c_r] (None: not kept, e.g. a branch built from a curve).
+    iterations : int
+        Inner CG iterations over every state solved.
+    residual : float
+        Largest residual over every state solved.
+    failed_states : tuple of dict
+        The unconverged states (approach, residual, iterations, phase).
+    half_width_x, half_width_y : float
+        Domain half-widths [c_r].
     """
 
     mu: float
@@ -121,6 +136,16 @@ class BemBranch:
     complete: bool
     elapsed: float
     start_delta: float = float("nan")
+    law: str = "dugdale"
+    a_star: np.ndarray = field(default=None, repr=False)
+    b_star: np.ndarray = field(default=None, repr=False)
+    c_star: np.ndarray = field(default=None, repr=False)
+    d_star: np.ndarray = field(default=None, repr=False)
+    iterations: int = 0
+    residual: float = float("nan")
+    failed_states: tuple = ()
+    half_width_x: float = float("nan")
+    half_width_y: float = float("nan")
 
 
 @dataclass(frozen=True)
@@ -175,7 +200,7 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
         of the force-free approach (for the cycle, :func:`bem_loading_cycle`).
     margin : float, optional
         Domain half-width per zone semi-axis of the start of unloading
-        (:func:`dhfield.adhesive_start.pull_off_start`; default its own).  The
+        (:func:`dhfield.adhesive_start.unloading_start`; default its own).  The
         domain must hold the cohesive zone of the top state.
     law : {'dugdale', 'exponential'}
         Traction law (:mod:`dhfield.bem.laws`).
@@ -303,13 +328,22 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
         st = solve(force)
         misses = 0 if st.converged else misses + 1
     fs = np.array(sorted(samples, reverse=True))
+    axes = np.array([samples[f].contact_semi_axes() + samples[f].cohesive_semi_axes() for f in fs], float)
+    failed = tuple({"approach": float(r["approach"]), "residual": float(r["residual"]),
+                    "iterations": int(r["iterations"]), "phase": r["phase"]}
+                   for r in branch.records if not r["converged"])
+    g = problem.grid
     return BemBranch(mu, beta0, int(n), fs, np.array([samples[f].load for f in fs]) * scale,
                      np.array([samples[f].approach for f in fs]),
                      np.array([samples[f].in_contact for f in fs]), df, window, failures, complete,
-                     time.perf_counter() - t0, start_delta)
+                     time.perf_counter() - t0, start_delta, law=problem.law.name, a_star=axes[:, 0],
+                     b_star=axes[:, 1], c_star=axes[:, 2], d_star=axes[:, 3],
+                     iterations=int(sum(r["iterations"] for r in branch.records)),
+                     residual=float(max(r["residual"] for r in branch.records)), failed_states=failed,
+                     half_width_x=0.5 * g.nx * g.dx, half_width_y=0.5 * g.ny * g.dy)
 
 
-def bem_pull_off_under_spring(branch, machine_stiffness):
+def bem_pull_off_under_spring(branch, machine_stiffness) -> PullOff:
     """Pull-off of the BEM under a machine spring of stiffness K*, from a sampled branch.
 
     Parameters
@@ -322,14 +356,20 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
 
     Returns
     -------
-    dict
-        Arrays of the shape of K*: ``machine_stiffness_star``, ``W_star`` (load at
-        the jump out, Eq. 34), ``W_star_error`` (the fit's error estimate, without
-        the grid's discretisation error; inf when the minimum is not bracketed),
-        ``delta_star`` (approach at the jump [c_r^2/R]), ``adhesive_force``
-        (F_a there), ``in_contact`` (the jump starts from a contact state; False:
-        from the separated branch) and ``resolved`` (a bracketed interior minimum
-        was fitted).
+    dhfield.records.PullOff
+        The one pull-off record of every model (as :func:`dhfield.compliance.pull_off_under_spring`
+        for the analytic models), ``model='bem'``, ``control='spring'``, arrays of the shape of
+        K*: ``W_star`` (load at the jump out, Eq. 34), ``delta_star`` (approach at the jump
+        [c_r^2/R]), the semi-axes and ellipticities of the sample nearest the jump (NaN when
+        the branch keeps none), ``v`` NaN, ``at_zero_contact`` (the jump starts out of contact);
+        the spring group: ``machine_stiffness_star``, ``separation_delta_star`` (the machine
+        position delta* + W*/K*; -inf at K* = 0, delta* for a rigid machine),
+        ``max_tension_W_star`` (the smallest W* met from high load to the jump: the K* = 0 jump
+        once passed), ``on_separated_branch``; the solver group: ``W_star_error`` (the fit's error
+        estimate, without the grid's discretisation error; inf when the minimum is not
+        bracketed), ``resolved`` (a bracketed interior minimum was fitted; ``warning`` says
+        so where not), ``converged`` (every state of the branch converged), ``note``
+        (:data:`SPRING_NOTE`), ``search`` ('branch') and the branch's cost.
 
     Notes
     -----
@@ -344,6 +384,63 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
     displacement-control pull-off (the same fit as
     :func:`dhfield.bem.continuation.fold_by_adhesive_force`).
     """
+    jump = _jump_out(branch, machine_stiffness)
+    soft = _jump_out(branch, 0.0)
+    return _spring_record(branch, jump, float(soft["W_star"]))
+
+
+#: Caveat carried by every BEM pull-off under a spring (the ``note`` of its record), measured on the
+#: sphere at N = 256 against Maugis-Dugdale under the same spring (``python -m verification.bem_spring``,
+#: 2026-11-26).
+SPRING_NOTE = ("pull-off under a machine spring: the first minimum of the machine position on the BEM's unloading "
+               "branch sampled at prescribed adhesive force; W_star_error is the fit's, without the grid's "
+               "discretisation error; on the sphere within 0.4 % of Maugis-Dugdale for lambda = 0.5-3, "
+               "K* = 0.1-10 at N = 256")
+#: ``warning`` of a BEM pull-off under a spring whose jump is not bracketed and fitted.
+UNRESOLVED_SPRING_WARNING = "the jump out is not bracketed on the sampled branch: not an answer (increase n)"
+
+
+def _spring_record(branch, jump, soft_w):
+    """The :class:`dhfield.records.PullOff` (spring and solver groups) of the jump ``jump`` (:func:`_jump_out`)
+    on ``branch``; ``soft_w``: W* of its K* = 0 jump (the load minimum, passed before every other jump)."""
+    shape = np.shape(jump["W_star"])
+    k, w, d = (np.asarray(jump[key], float) for key in ("machine_stiffness_star", "W_star", "delta_star"))
+    i = np.asarray(jump["index"], int)
+    nan = np.full(shape, np.nan)
+    a, b, c, e = ((nan if getattr(branch, key) is None else np.asarray(getattr(branch, key), float)[i])
+                  for key in ("a_star", "b_star", "c_star", "d_star"))
+    separated = ~np.asarray(jump["in_contact"], bool)
+    resolved = np.asarray(jump["resolved"], bool)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sep = np.where(k > 0, d + w / k, -np.inf)  # Delta* = delta* + W*/K*
+        sep = np.where(np.isinf(k), d, sep)
+        ell = np.where(a > 0, b / np.where(a > 0, a, 1.0), np.nan)
+        adh = np.where(c > 0, e / np.where(c > 0, c, 1.0), np.nan)
+    w_min = np.fmin(w, soft_w)  # every jump lies at or beyond the load minimum (dW*/d delta* = -K* <= 0)
+
+    def full(x, dtype=float):
+        y = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
+        return y[()] if y.ndim == 0 else y
+
+    return PullOff(model="bem", control="spring", geometry="ellipse", beta0=full(branch.beta0), mu=full(branch.mu),
+                   sin_skew=full(float(sin_skew_angle(branch.beta0))), W_star=full(w), a_star=full(a),
+                   b_star=full(b), c_star=full(c), d_star=full(e), v=full(np.nan), delta_star=full(d),
+                   ellipticity=full(ell), adhesive_ellipticity=full(adh), at_zero_contact=full(separated, bool),
+                   warning=full(np.where(resolved, "", UNRESOLVED_SPRING_WARNING), object),
+                   machine_stiffness_star=full(k), separation_delta_star=full(sep), max_tension_W_star=full(w_min),
+                   on_separated_branch=full(separated, bool), W_star_error=full(jump["W_star_error"]),
+                   converged=branch.failures == 0, resolved=full(resolved, bool),
+                   note=SPRING_NOTE, search="branch", n=int(branch.n), law=branch.law,
+                   n_steps=int(np.size(branch.adhesive_force)) + int(branch.failures),
+                   iterations=int(branch.iterations), residual=float(branch.residual),
+                   failures=tuple(branch.failed_states), half_width_x=float(branch.half_width_x),
+                   half_width_y=float(branch.half_width_y), elapsed=float(branch.elapsed))
+
+
+def _jump_out(branch, machine_stiffness):
+    """The jump out of :func:`bem_pull_off_under_spring` as a dict of arrays over K*: ``machine_stiffness_star``,
+    ``W_star``, ``W_star_error``, ``delta_star``, ``adhesive_force`` (F_a there), ``in_contact``, ``resolved``
+    and ``index`` (the sample nearest the jump)."""
     if not isinstance(branch, BemBranch):
         raise ValueError(f"branch must be a BemBranch (from bem_unloading_branch); got {type(branch).__name__}")
     s, k = spring_weight(machine_stiffness)
@@ -395,6 +492,9 @@ def bem_pull_off_under_spring(branch, machine_stiffness):
         out["in_contact"][m] = bool(c[i])
         if not out["resolved"][m]:
             out["W_star_error"][m] = np.inf
+    with np.errstate(invalid="ignore"):
+        # the sample nearest the jump: its state gives the semi-axes (as the BEM's other pull-offs)
+        out["index"] = np.argmin(np.abs(x[None, :] - np.sqrt(out["adhesive_force"])[:, None]), axis=1)
     rec = {"machine_stiffness_star": k1, **out}
     return {key: v.reshape(shape)[()] for key, v in rec.items()}
 
@@ -403,7 +503,7 @@ def _cycle_margin(mu, beta0, k_positive):
     """Domain margin holding the jump-in landing state of the softest spring.
 
     The landing of a soft spring lies near W* = 0, above the start of unloading the
-    pull-off's domain is sized for (:func:`dhfield.adhesive_start.pull_off_start`).
+    pull-off's domain is sized for (:func:`dhfield.adhesive_start.unloading_start`).
     Maugis-Dugdale's landing contact radius a* (the sphere's), the DH model's zone
     semi-axis c* there (:func:`dhfield.model.load_curve`, as the pull-off's domain
     is sized), 10 % beyond, sets the margin (measured at lambda = 3, N = 128, K* = 0.1:
@@ -411,7 +511,7 @@ def _cycle_margin(mu, beta0, k_positive):
     off MD).
     """
     from . import compliance, model
-    from .adhesive_start import pull_off_start
+    from .adhesive_start import unloading_start
     from .bem.pull_off import DOMAIN_MARGIN
 
     rec = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=float(np.min(k_positive)))
@@ -419,7 +519,7 @@ def _cycle_margin(mu, beta0, k_positive):
     c_land = float(np.asarray(model.load_curve(mu=mu, beta0=beta0, a_star=[a_in]).c_star)[0])
     if not np.isfinite(c_land):
         c_land = 1.5 * a_in
-    c_start = pull_off_start(mu=mu, beta0=beta0).half_width_x / DOMAIN_MARGIN
+    c_start = unloading_start(mu=mu, beta0=beta0).half_width_x / DOMAIN_MARGIN
     return DOMAIN_MARGIN * max(1.0, 1.1 * c_land / c_start)
 
 
@@ -499,7 +599,8 @@ def bem_loading_cycle(*, beta0, mu, n, machine_stiffness=None, branch=None, marg
         ``jump_in_start_delta_star`` (-h0: where the force-free approach ends),
         ``jump_in_W_star``, ``jump_in_W_star_error``, ``jump_in_delta_star`` (where
         it lands); ``jump_out_W_star``, ``jump_out_W_star_error``,
-        ``jump_out_delta_star``; ``separation_delta_star``; ``energy_lost_star``
+        ``jump_out_delta_star``, ``jump_out_adhesive_force`` (F_a where the jump out starts,
+        on the branch's abscissa); ``separation_delta_star``; ``energy_lost_star``
         and ``energy_lost_error_star`` (units of :func:`dhfield.compliance.loading_cycle`);
         ``resolved``; and ``branch``.
 
@@ -547,10 +648,12 @@ def bem_loading_cycle(*, beta0, mu, n, machine_stiffness=None, branch=None, marg
             "energy_lost_error_star")
     out = {key: np.full(s1.shape, np.nan) for key in keys}
     out["resolved"] = np.zeros(s1.shape, bool)
+    out["jump_out_adhesive_force"] = np.full(s1.shape, np.nan)
     for m, (sm, km) in enumerate(zip(s1, k1)):
-        po = bem_pull_off_under_spring(branch, None if not np.isfinite(km) else km)
+        po = _jump_out(branch, None if not np.isfinite(km) else km)
         w_o, d_o, e_o = float(po["W_star"]), float(po["delta_star"]), float(po["W_star_error"])
         x_o = math.sqrt(float(po["adhesive_force"]))
+        out["jump_out_adhesive_force"][m] = po["adhesive_force"]
         f = sm * d + (1.0 - sm) * w
         w_i, d_i, e_i = _landing(x, f, w, d, x_o, sm * ds, branch.window)
         sep = d_o if not np.isfinite(km) else d_o + w_o / km

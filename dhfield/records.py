@@ -13,7 +13,8 @@ Every model answers with the same types, whose fields are named by :mod:`dhfield
     :func:`dhfield._adhesion.pull_off_si`): every model's SI ``pull_off`` and
     :func:`dhfield.dimensional.pull_off_force` return it;
   - *spring*: the jump out under a machine spring of stiffness K*
-    (:func:`dhfield.compliance.pull_off_under_spring`, vectorised over K*;
+    (:func:`dhfield.compliance.pull_off_under_spring`, vectorised over K*, and the BEM's
+    :func:`dhfield.bem_compliance.bem_pull_off_under_spring`;
     :data:`dhfield.schema.PULL_OFF_SPRING_KEYS`);
   - *solver*: a numerical pull-off's stated error, convergence, route and cost (the
     adhesive BEM, :func:`dhfield.adhesive_start.adhesive_pull_off`;
@@ -136,18 +137,19 @@ class PullOff(_Record):
     on_separated_branch : ndarray or bool, optional
         Spring group: True where the jump starts out of contact (MD only,
         :mod:`dhfield.dugdale_separation`).
-    W_star_error : float, optional
+    W_star_error : float or ndarray, optional
         Solver group: stated error of ``W_star``; a resolved and converged answer lies within
         it of the grid-converged pull-off; infinite when there is no estimate [-].
     converged : bool, optional
         Solver group: every state of the path down to the pull-off converged.
-    resolved : bool, optional
+    resolved : bool or ndarray, optional
         Solver group: False when the answer is not trustworthy, the reasons in ``note``.
     note : str, optional
         Solver group: caveats on the pull-off (empty for a resolved load-control pull-off).
     search : str, optional
         Solver group: the route that gave the pull-off ('located', 'bracket', 'march',
-        'predicted', 'continuation', 'refine').
+        'continuation', 'refine'; 'branch' under a spring,
+        :func:`dhfield.bem_compliance.bem_pull_off_under_spring`).
     n : int, optional
         Solver group: cells along x.
     law : str, optional

@@ -20,13 +20,13 @@ def test_cold_start_is_the_two_axis_pull_off_for_an_ellipse_and_the_dh_one_for_t
     """The fix of beta0 = 0.5, mu = 5 (issue 8): the bracket search cold-starts from the two-axis
     closure's pull-off state, whose adhesive ellipse is rounder than beta0 (like the BEM's), not
     from the paper's zone d = beta0 c (48 cells short along y at N = 512: no convergence)."""
-    start = adhesive_start.pull_off_start(mu=5.0, beta0=0.5)
+    start = adhesive_start.unloading_start(mu=5.0, beta0=0.5)
     ref = compare.pull_off("dh-elliptic-two-axis", mu=5.0, beta0=0.5, control="load")
     c, d = start.zone
     assert start.approach == pytest.approx(float(ref["delta_star"]), rel=RTOL_SAME_NUMBER)
     assert (c, d) == pytest.approx((float(ref["c_star"]), float(ref["d_star"])), rel=RTOL_SAME_NUMBER)
     assert d / c > 0.5 + 0.05                      # rounder than beta0 (two-axis: 0.596)
-    sphere = adhesive_start.pull_off_start(mu=5.0, beta0=1.0)
+    sphere = adhesive_start.unloading_start(mu=5.0, beta0=1.0)
     assert sphere.approach == float(model.pull_off(mu=5.0, beta0=1.0).delta_star)
     assert sphere.zone[0] == sphere.zone[1]
 
@@ -37,7 +37,7 @@ def test_domain_too_small_for_the_contact_is_refused_before_solving(margin):
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
         adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.9, n=64, options=AdhesiveOptions(margin=margin))
     with pytest.raises(ValueError, match=r"^margin must be > 1"):
-        adhesive_start.pull_off_start(mu=1.0, beta0=0.9, margin=margin)
+        adhesive_start.unloading_start(mu=1.0, beta0=0.9, margin=margin)
 
 
 def test_the_bem_facade_forwards_the_convenience_functions():
@@ -65,7 +65,7 @@ def _paper_edge_ratio(mu, n, start):
 def test_automatic_grid_is_the_smallest_that_resolves_the_dugdale_edge(mu, beta0):
     plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
     # the domain of the route the automatic grid takes (high mu: the predicted route's, GVG's zone)
-    start = (adhesive_start.predicted_start if plan.predicted else adhesive_start.pull_off_start)(mu=mu, beta0=beta0)
+    start = (adhesive_start.predicted_start if plan.predicted else adhesive_start.unloading_start)(mu=mu, beta0=beta0)
     assert plan.predicted == (mu >= adhesive_start.PREDICTED_MIN_MU)
     assert plan.n == plan.n_needed and plan.n_needed >= adhesive_start.AUTO_MIN_CELLS
     # the edge criterion, written out in the paper's units (independent of the solver's code)
@@ -153,7 +153,7 @@ def test_slender_contact_starts_from_the_gvg_ellipse_and_its_domain_holds_it():
     # is far inside GVG's contact (2.79 x 0.74); the start is GVG's pull-off ellipse widened by the zone
     from dhfield import jkr_elliptic_energy
 
-    start = adhesive_start.pull_off_start(mu=5.0, beta0=0.1806)
+    start = adhesive_start.unloading_start(mu=5.0, beta0=0.1806)
     gvg = jkr_elliptic_energy.pull_off_nondimensional(0.1806, 5.0, control="load")
     w = adhesive_start.expected_zone_width(5.0)
     assert start.approach == pytest.approx(float(gvg["delta_star"]), rel=RTOL_SAME_NUMBER)
@@ -195,7 +195,7 @@ def _paper_edge_ratio_xy(mu, nx, ny, start):
 @pytest.mark.parametrize("mu, beta0", [(5.0, 0.1806), (5.0, 0.1), (10.0, 0.1806), (1.0, 0.3), (5.0, 0.05)])
 def test_slender_automatic_grid_has_about_square_cells_resolving_the_zone_on_both_axes(mu, beta0):
     plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
-    start = adhesive_start.pull_off_start(mu=mu, beta0=beta0)
+    start = adhesive_start.unloading_start(mu=mu, beta0=beta0)
     nx, ny = plan.n_needed, plan.ny_needed
     assert (plan.n, plan.ny) == (nx, ny) and ny < nx
     dx, dy = 2 * start.half_width_x / nx, 2 * start.half_width_y / ny
@@ -287,7 +287,7 @@ def test_slender_automatic_grid_resolves_the_small_dmt_side_contact(mu, beta0):
     # on the DMT side the pull-off contact is small inside a wide zone (beta0 = 0.1806, mu = 0.1: the BEM's
     # b* = 0.093 spanned one square cell of 256 x 72): >= AUTO_CONTACT_CELLS cells across the DH model's a*, b*
     plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
-    start = adhesive_start.pull_off_start(mu=mu, beta0=beta0)
+    start = adhesive_start.unloading_start(mu=mu, beta0=beta0)
     po = model.pull_off(mu=mu, beta0=beta0)
     dx, dy = 2 * start.half_width_x / plan.n_needed, 2 * start.half_width_y / plan.ny_needed
     assert float(po.a_star) / dx >= adhesive_start.AUTO_CONTACT_CELLS
@@ -323,7 +323,7 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     assert abs(res.W_star - md) <= res.W_star_error
 
 
-@pytest.mark.parametrize("call", [lambda: adhesive_start.pull_off_start(1.0, 0.9),
+@pytest.mark.parametrize("call", [lambda: adhesive_start.unloading_start(1.0, 0.9),
                                   lambda: adhesive_start.nondimensional_problem(1.0, 0.9, 16),
                                   lambda: adhesive_start.plan_grid(1.0, 0.9),
                                   lambda: adhesive_start.predicted_start(1.0, 0.9),

@@ -70,7 +70,7 @@ def test_dugdale_sphere_pull_off_matches_maugis_dugdale():
     ref = maugis_dugdale.pull_off_nondimensional(1.0, mu)  # Maugis (1992) in the paper's units
     assert res.converged
     assert res.W_star == pytest.approx(float(ref["W_star"]), rel=RTOL_MD_64)
-    assert res.beta_ab == pytest.approx(1.0, abs=1e-12)   # the symmetric sphere stays round
+    assert res.ellipticity == pytest.approx(1.0, abs=1e-12)   # the symmetric sphere stays round
     assert res.c_star > res.a_star > 0
 
 
@@ -159,7 +159,7 @@ def test_refine_pull_off_rejects_bad_input():
     coarse = adhesive_pull_off(mu=1.0, beta0=1.0, n=16, progress=False, options=AdhesiveOptions(n_steps=4, refine_levels=0))
     with pytest.raises(ValueError, match="n must be an integer > coarse.n"):
         refine_pull_off(coarse, 16)
-    with pytest.raises(ValueError, match="coarse must be an AdhesivePullOff"):
+    with pytest.raises(ValueError, match="coarse must be a BEM pull-off"):
         refine_pull_off(coarse.path, 32)
     with pytest.raises(ValueError, match="window"):
         refine_pull_off(coarse, 32, window=0)

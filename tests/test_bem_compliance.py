@@ -56,6 +56,31 @@ def test_jump_on_the_exact_md_curve_is_compliance_s(k):
     assert got["W_star_error"] < 10 * ATOL_FIT_EXACT
 
 
+#: separation_delta_star = delta* + W*/K*: the cubic's delta* at the jump is within 1.3e-4 of MD's on the exact
+#: curve (measured, K* = 0-3) and W* within ATOL_FIT_EXACT, divided by K* >= 0.3; 1e-3 leaves a factor 3.
+ATOL_SEPARATION_EXACT = 1e-3
+
+
+@pytest.mark.parametrize("k", [0.3, 1.0, 3.0])
+def test_jump_is_the_one_pull_off_record_with_its_spring_group(k):
+    """The BEM under a spring answers with every model's PullOff (spring and solver groups, keys in the
+    schema's order); its spring group on the exact MD curve is compliance's (Maugis-Dugdale's)."""
+    from dhfield.records import PullOff
+    from dhfield.schema import PULL_OFF_KEYS, PULL_OFF_SOLVER_KEYS, PULL_OFF_SPRING_KEYS
+
+    mu = _mu(3.0)
+    lo = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=None)
+    hi = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=0.0)
+    got = bem_pull_off_under_spring(_md_branch(mu, 0.6 * float(lo["a_star"]), 1.4 * float(hi["a_star"])), k)
+    ref = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=k)
+    assert type(got) is PullOff and tuple(got) == PULL_OFF_KEYS + PULL_OFF_SPRING_KEYS + PULL_OFF_SOLVER_KEYS
+    assert (got.model, got.control, got.machine_stiffness_star) == ("bem", "spring", k)
+    assert got.separation_delta_star == pytest.approx(float(ref.separation_delta_star), abs=ATOL_SEPARATION_EXACT)
+    assert got.max_tension_W_star == pytest.approx(float(ref.max_tension_W_star), abs=ATOL_FIT_EXACT)
+    assert not got.on_separated_branch and not got.at_zero_contact and got.warning == ""
+    assert np.isnan(got.a_star)         # a branch built from a curve keeps no semi-axes
+
+
 def test_jump_moves_from_the_load_minimum_to_the_approach_minimum_with_stiffness():
     mu = _mu(3.0)
     lo = compliance.pull_off_under_spring("md", mu=mu, beta0=1.0, machine_stiffness=None)
@@ -85,7 +110,8 @@ def test_stiff_spring_is_the_bem_displacement_control_pull_off(branch_lambda_3):
     br = branch_lambda_3
     stiff, rigid = bem_pull_off_under_spring(br, 1e9), bem_pull_off_under_spring(br, None)
     ref = adhesive_pull_off(mu=br.mu, beta0=1.0, n=N, control="displacement")
-    assert rigid["resolved"] and rigid["in_contact"]  # the fold lies in contact at lambda = 3
+    assert rigid["resolved"] and not rigid["on_separated_branch"]  # the fold lies in contact at lambda = 3
+    assert rigid.c_star > rigid.a_star > 0      # the semi-axes of the state nearest the jump: contact and zone
     assert stiff["W_star"] == pytest.approx(rigid["W_star"], abs=1e-6)  # s = 1 - 1e-9
     # the same fit as the fold's, over samples on another F_a lattice: within both estimates
     assert rigid["W_star"] == pytest.approx(ref.W_star, abs=rigid["W_star_error"] + ref.W_star_error)

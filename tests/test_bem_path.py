@@ -14,7 +14,8 @@ import pytest
 
 from dhfield import maugis_dugdale, transition
 from dhfield.bem import adhesive_pull_off
-from dhfield.bem import DISPLACEMENT_CONTROL_NOTE, fold_of_branch, nondimensional_problem, unloading_path
+from dhfield.bem import (DISPLACEMENT_CONTROL_NOTE, fold_of_branch, nondimensional_problem, pull_off_summary,
+                         unloading_path)
 from dhfield.bem.path import CONTACT_LOSS_NOTE
 
 #: BEM vs MD, displacement-control pull-off at N = 64: the self-set target of issue 8
@@ -152,7 +153,7 @@ def test_displacement_control_results_carry_their_measured_caveat():
     from dhfield.bem import DISPLACEMENT_CONTROL_NOTE
 
     disp = adhesive_pull_off(mu=2.0, beta0=1.0, n=32, control="displacement", progress=False)
-    assert DISPLACEMENT_CONTROL_NOTE in disp.note and disp.as_dict()["note"] == disp.note
+    assert DISPLACEMENT_CONTROL_NOTE in disp.note and pull_off_summary(disp)["note"] == disp.note
     load = adhesive_pull_off(mu=2.0, beta0=1.0, n=32, control="load", progress=False)
     # load control has no such caveat (its note holds only why it is unresolved: N = 32 is too coarse
     # for lambda = 2, so its W_star_error is infinite, never NaN)

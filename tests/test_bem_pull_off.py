@@ -195,8 +195,8 @@ def test_resolved_answer_has_a_finite_error_estimate(control):
 def test_cold_start_outside_the_domain_is_rejected():
     nd = nondimensional_problem(mu=1.0, beta0=1.0, n=16)
     hw = 0.5 * nd.grid.nx * nd.grid.dx
-    start = pull_off_module.PullOffStart(hw, hw, nd.approach_max, nd.approach_step, nd.pull_off_approach,
-                                         (1.5 * hw, 0.5 * hw))
+    start = pull_off_module.UnloadingStart(hw, hw, nd.approach_max, nd.approach_step, nd.pull_off_approach,
+                                           (1.5 * hw, 0.5 * hw))
     with pytest.raises(ValueError, match="must lie inside the domain"):
         pull_off_module.paper_problem(mu=1.0, beta0=1.0, n=16, start=start)
 

@@ -9,7 +9,7 @@ from dhfield import compare
 from dhfield.cli import main
 from dhfield.cli.solve import EXIT_UNCONVERGED
 from dhfield.io.solution import read_solution
-from dhfield.schema import BEM_ADHESIVE_KEYS
+from dhfield.schema import PULL_OFF_KEYS, PULL_OFF_SOLVER_KEYS
 
 #: N = 32 is a smoke-test grid (about 6 cells across the Dugdale zone at mu = 1); the
 #: accuracy targets (1 % of MD at N = 256) belong to tests/test_bem_adhesive.py.  At
@@ -23,14 +23,16 @@ def test_solve_json_and_netcdf(tmp_path, capsys):
     rc = main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json", "--out", str(out)])
     captured = capsys.readouterr()
     rec = json.loads(captured.out)
-    for key in BEM_ADHESIVE_KEYS:
-        assert key in rec
+    # the BEM's pull-off record, JSON-ready: the keys of every model's record, then its solver group
+    assert tuple(rec) == PULL_OFF_KEYS + PULL_OFF_SOLVER_KEYS + ("units",)
+    assert rec["model"] == "bem" and rec["v"] is None   # v (NaN: no DH factor) prints as null
     assert rc == (0 if rec["converged"] else EXIT_UNCONVERGED)
     if rc or rec["failures"]:  # a failure, or a note on states beyond the pull-off: one line naming the case
         assert len(captured.err.strip().splitlines()) == 1 and "beta0=1, mu=1, n=32" in captured.err
     md = compare.pull_off("md", mu=1.0, beta0=1.0)["W_star"]  # Maugis-Dugdale at lambda = 1.1272 mu
     assert rec["W_star"] == pytest.approx(md, rel=COARSE_MD_RTOL)
-    assert rec["beta_ab"] == pytest.approx(1.0, abs=1e-12) and rec["beta_cd"] == pytest.approx(1.0, abs=1e-12)
+    assert rec["ellipticity"] == pytest.approx(1.0, abs=1e-12)
+    assert rec["adhesive_ellipticity"] == pytest.approx(1.0, abs=1e-12)
     assert rec["search"] == "bracket"     # the default 'located' needs N >= 128: the fallback is reported
     ds = read_solution(out)
     assert ds.attrs["search"] == "bracket"

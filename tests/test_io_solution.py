@@ -28,8 +28,11 @@ def test_pull_off_round_trip(tmp_path, small_result):
     ds = pull_off_dataset(res)
     back = read_solution(write_solution(res, tmp_path / "po.nc"))
     _attrs_round_trip(ds, back)
-    for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star", "beta_ab", "beta_cd"):
+    for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star"):
         assert float(back[f"{key}_pull_off"]) == getattr(res, key)
+    # the record's ellipticities, stored under the names of the state's (beta_ab, beta_cd)
+    assert float(back["beta_ab_pull_off"]) == res.ellipticity
+    assert float(back["beta_cd_pull_off"]) == res.adhesive_ellipticity
     assert back["W_star_pull_off"].attrs["units"] == "1" and "Eq. (34)" in back["W_star_pull_off"].attrs["description"]
     st = res.path.pull_off_state
     # fields are stored (y, x) (rows y, columns x); the solver's arrays are (x, y)

@@ -62,3 +62,31 @@ def test_pull_off_si_record_is_the_nondimensional_one_in_si_units():
     for k in PULL_OFF_KEYS:
         x, y = np.asarray(si[k]), np.asarray(rec[k])
         assert np.array_equal(x, y, equal_nan=x.dtype.kind == "f"), k
+
+
+def test_bem_pull_off_is_the_one_record_with_its_solver_group():
+    """The adhesive BEM answers with the same PullOff as every model, its solver group filled (keys
+    PULL_OFF_KEYS then PULL_OFF_SOLVER_KEYS, in order) and its path as a non-key attribute."""
+    import json
+
+    from dhfield.adhesive_start import adhesive_pull_off, refine_pull_off
+    from dhfield.bem.branch import UnloadingPath
+    from dhfield.bem.pull_off import pull_off_summary
+    from dhfield.geometry import sin_skew_angle
+    from dhfield.schema import PULL_OFF_SOLVER_KEYS
+
+    rec = adhesive_pull_off(beta0=0.9, mu=1.0, n=32, progress=False)
+    assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS + PULL_OFF_SOLVER_KEYS and rec.groups == ("solver",)
+    assert (rec.model, rec.geometry, rec.control, rec.n, rec.law) == ("bem", "ellipse", "load", 32, "dugdale")
+    assert rec.sin_skew == float(sin_skew_angle(0.9)) and np.isnan(rec.v)   # Eq. (34); no DH factor
+    assert rec.ellipticity == rec.b_star / rec.a_star and rec.adhesive_ellipticity == rec.d_star / rec.c_star
+    assert rec.at_zero_contact == (not rec.a_star > 0)
+    assert rec.warning == ("" if rec.resolved else rec.note)
+    assert isinstance(rec.path, UnloadingPath) and "path" not in rec and isinstance(rec.failures, tuple)
+    summary = pull_off_summary(rec)
+    assert tuple(summary) == tuple(rec) and isinstance(summary["failures"], list)
+    json.dumps(summary)         # JSON-ready: scalars, strings and a list of dicts
+    analytic = pull_off_record("md", 0.9, 1.0, {"W_star": -0.8, "a_star": 1.0, "delta_star": 0.0},
+                               control="load", sin_skew=1.0, geometry="ellipse")
+    with pytest.raises(ValueError, match="coarse must be a BEM pull-off"):
+        refine_pull_off(analytic, 64)

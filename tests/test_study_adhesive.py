@@ -4,7 +4,6 @@ A stand-in solver with a known closed-form dependence on N keeps these tests fas
 the solver itself is tested in tests/test_bem_adhesive.py.
 """
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -27,10 +26,10 @@ def _stand_in(calls, fail=None, unconverged=None):
         failures = []
         if unconverged == (beta0, mu, n):
             failures = [{"approach": 5.0, "residual": 0.3, "iterations": 300, "phase": "unloading"}]
-        d = dict(W_star=w, a_star=1.0, b_star=beta0, c_star=1.5, d_star=1.5 * beta0, beta_ab=beta0,
-                 beta_cd=beta0 + 1.0 / n, delta_star=-1.0, residual=1e-7, elapsed=0.01, iterations=100,
+        d = dict(W_star=w, a_star=1.0, b_star=beta0, c_star=1.5, d_star=1.5 * beta0, ellipticity=beta0,
+                 adhesive_ellipticity=beta0 + 1.0 / n, delta_star=-1.0, residual=1e-7, elapsed=0.01, iterations=100,
                  n_steps=30, half_width_x=2.0, half_width_y=2.0, converged=not failures, failures=failures)
-        return SimpleNamespace(as_dict=lambda: d)
+        return d        # the keys of the BEM's pull-off record (a mapping) that the study reads
     return solver
 
 
@@ -80,10 +79,10 @@ def test_unconverged_after_pull_off_is_usable(tmp_path):
     solver = _stand_in(calls)
 
     def after(*args, **kw):
-        res = solver(*args, **kw).as_dict()
+        res = dict(solver(*args, **kw))
         res.update(converged=False, failures=[{"approach": -3.0, "residual": 0.2, "iterations": 9,
                                                "phase": "unloading"}])
-        return SimpleNamespace(as_dict=lambda: res)
+        return res
 
     rec = sa.run_case(0.9, 1.0, 32, solver=after)
     assert rec["status"] == "unconverged_after_pull_off" and "beyond the pull-off" in rec["message"]

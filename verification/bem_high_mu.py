@@ -53,7 +53,7 @@ def reference(mu, beta0):
 
 
 def run(mu, beta0, route, n=None, progress=False):
-    """Solve one case by ``route``; returns (AdhesivePullOff, wall s, CPU s)."""
+    """Solve one case by ``route``; returns (the BEM's dhfield.records.PullOff, wall s, CPU s)."""
     from dhfield import adhesive_start as ast
     from dhfield.bem.path import PathOptions
 

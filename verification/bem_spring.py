@@ -87,7 +87,7 @@ def main(argv=None) -> int:
                 n_fail += not ok
             label = "rigid" if k is None else f"{k:g}"
             print(f"{lam:6.2f} {mu:6.3f} {label:>6} {w:9.5f} {est:7.1e} {ref:9.5f} {err:+8.2%} "
-                  f"{'yes' if bounded else 'no':>7} {'contact' if got['in_contact'] else 'sep.':>7}  {verdict}")
+                  f"{'yes' if bounded else 'no':>7} {'sep.' if got['on_separated_branch'] else 'contact':>7}  {verdict}")
         print(f"{'':>6} branch: {br.adhesive_force.size} states ({int(br.in_contact.sum())} in contact), "
               f"{br.failures} unconverged, complete={br.complete}, {time.perf_counter() - t0:.1f} s")
     print(f"N = {args.n}; total {time.perf_counter() - t_all:.1f} s; "

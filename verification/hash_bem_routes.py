@@ -71,18 +71,28 @@ def digest(value) -> str:
     return h.hexdigest()
 
 
+#: The hashed fields of a BEM pull-off record (:class:`dhfield.records.PullOff`), in the order of
+#: the BEM's former record type (AdhesivePullOff), so that the lines of a run before and after
+#: the one-record change match; ``ellipticity`` and ``adhesive_ellipticity`` were ``beta_ab`` and
+#: ``beta_cd``.  The record's other keys (model, geometry, sin_skew, v, at_zero_contact, warning)
+#: are constants or functions of these.
+FIELDS = ("mu", "beta0", "n", "law", "control", "W_star", "a_star", "b_star", "c_star", "d_star", "ellipticity",
+          "adhesive_ellipticity", "delta_star", "converged", "n_steps", "iterations", "residual", "failures",
+          "resolved", "half_width_x", "half_width_y", "elapsed", "path", "W_star_error", "note", "search")
+
+
 def result_lines(label, res):
-    """One line per field of an AdhesivePullOff (its path: one line per path field)."""
-    for f in dataclasses.fields(res):
-        if f.name in SKIP:
+    """One line per field of :data:`FIELDS` of a BEM pull-off record (its path: one line per path field)."""
+    for name in FIELDS:
+        if name in SKIP:
             continue
-        v = getattr(res, f.name)
-        if f.name == "path":
+        v = getattr(res, name)
+        if name == "path":
             for g in dataclasses.fields(v):
                 if g.name not in SKIP:
                     yield f"{label} path.{g.name} {digest(getattr(v, g.name))}"
         else:
-            yield f"{label} {f.name} {digest(v)}"
+            yield f"{label} {name} {digest(v)}"
 
 
 def main(argv=None):

@@ -317,7 +317,8 @@ def _rerun(ds, quick, progress):
         checks.append(check_le(f"re-run reproduces the stored W*max at β0 = {b:g}, μ = {m:g}, N = {n0}", err,
                                TOL_REPRODUCE, "data/adhesive_ground_truth.nc (stored study), same solver "
                                               "options"))
-        berr = max(abs(res.beta_ab - float(ds["beta_ab"].sel(**sel))), abs(res.beta_cd - float(ds["beta_cd"].sel(**sel))))
+        berr = max(abs(res.ellipticity - float(ds["beta_ab"].sel(**sel))),
+                   abs(res.adhesive_ellipticity - float(ds["beta_cd"].sel(**sel))))
         checks.append(check_le(f"re-run reproduces the stored β_ab, β_cd at β0 = {b:g}, μ = {m:g}, N = {n0}",
                                berr, TOL_REPRODUCE, "data/adhesive_ground_truth.nc (stored study)"))
         lines.append(f"β0 = {b:g}, μ = {m:g}, N = {n0}: stored W* = {stored:.6f}, re-run {res.W_star:.6f} "

@@ -9,7 +9,8 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
   (SI functions with a PDMS-like contact, a machine stiffness K* = 1) with its parameters filled by
   name; a result type is the returned class with, for a mapping, its set of keys (scalar/array
   results, e.g. a force, are not records and are not counted); a tuple is named by the types it
-  holds;
+  holds; then with the BEM's (``adhesive_start.adhesive_pull_off`` at N = 32 and
+  ``bem_compliance.bem_pull_off_under_spring`` at K* = 1 on an N = 32 branch), every model's;
 * the number of minimum-search implementations outside ``dhfield/bem`` (target 1): functions that
   decide which sample is the minimum: ``np.argmin``/``nanargmin`` on samples, or a discrete
   local-minimum test on neighbouring samples (a comparison of slices such as
@@ -178,6 +179,21 @@ values = {"mu": 1.0, "beta0": 0.9, "lam": 1.1272, "control": "load", "model": "d
           "effective_radius": 1e-2, "reduced_modulus": 1.33e6, "work_of_adhesion": 0.05,
           "max_adhesive_stress": 2e5, "params": params, "parameters": params, "machine_stiffness": 1.0}
 types, skipped = {}, []
+
+
+def result_type(r):
+    """The result type of a pull-off function's answer (None: a scalar or array, not a record)."""
+    t = type(r)
+    if t.__module__ == "numpy" or t in (float, int):
+        return None
+    key = f"{t.__module__}.{t.__qualname__}"
+    if isinstance(r, dict):
+        key += "{" + ",".join(sorted(r)) + "}"
+    elif isinstance(r, tuple) and not hasattr(r, "_fields"):
+        key += "(" + ", ".join(f"{type(x).__module__}.{type(x).__qualname__}" for x in r) + ")"
+    return key
+
+
 names = sorted(m.name for m in pkgutil.walk_packages(dhfield.__path__, "dhfield.")
                if not m.name.startswith(("dhfield.bem", "dhfield.cli")))
 for modname in names:
@@ -205,16 +221,26 @@ for modname in names:
         except Exception as exc:  # noqa: BLE001
             skipped.append(f"{modname}.{fname} ({type(exc).__name__}: {exc})"[:160])
             continue
-        t = type(r)
-        if t.__module__ == "numpy" or t in (float, int):
-            continue
-        key = f"{t.__module__}.{t.__qualname__}"
-        if isinstance(r, dict):
-            key += "{" + ",".join(sorted(r)) + "}"
-        elif isinstance(r, tuple) and not hasattr(r, "_fields"):
-            key += "(" + ", ".join(f"{type(x).__module__}.{type(x).__qualname__}" for x in r) + ")"
-        types.setdefault(key, []).append(f"{modname}.{fname}")
-print(json.dumps({"rc": rc, "validation": validation, "types": types, "skipped": skipped}))
+        key = result_type(r)
+        if key is not None:
+            types.setdefault(key, []).append(f"{modname}.{fname}")
+# the BEM's pull-offs (the smallest grid that runs in seconds): load control, and under a spring K* = 1
+from dhfield.adhesive_start import adhesive_pull_off
+from dhfield.bem_compliance import bem_pull_off_under_spring, bem_unloading_branch
+bem_types = {}
+for fname, call in (("dhfield.adhesive_start.adhesive_pull_off",
+                     lambda: adhesive_pull_off(beta0=0.9, mu=1.0, n=32, progress=False)),
+                    ("dhfield.bem_compliance.bem_pull_off_under_spring",
+                     lambda: bem_pull_off_under_spring(bem_unloading_branch(beta0=0.9, mu=1.0, n=32), 1.0))):
+    try:
+        with contextlib.redirect_stderr(io.StringIO()):
+            key = result_type(call())
+    except Exception as exc:  # noqa: BLE001
+        skipped.append(f"{fname} ({type(exc).__name__}: {exc})"[:160])
+        continue
+    if key is not None:
+        bem_types.setdefault(key, []).append(fname)
+print(json.dumps({"rc": rc, "validation": validation, "types": types, "bem_types": bem_types, "skipped": skipped}))
 '''
 
 
@@ -241,6 +267,10 @@ def main(argv=None) -> int:
         print(f"    {k}: {', '.join(v)}")
     if d["skipped"]:
         print(f"    (not called: {'; '.join(d['skipped'])})")
+    every = {k: d["types"].get(k, []) + d["bem_types"].get(k, []) for k in {**d["types"], **d["bem_types"]}}
+    print(f"pull-off result types (every model, the BEM included): {len(every)} (target 1)")
+    for k, v in d["bem_types"].items():
+        print(f"    {k}: {', '.join(v)}")
     print(f"minimum-search implementations (outside dhfield/bem): {len(s['min_searches'])} (target 1)")
     for x in s["min_searches"]:
         print(f"    {x}")

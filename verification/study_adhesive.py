@@ -118,9 +118,9 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=
     n : int
         Cells per axis [-].
     solver : callable, optional
-        ``solver(mu, beta0, n, law=..., control=..., **options) -> AdhesivePullOff``;
+        ``solver(mu, beta0, n, law=..., control=..., **options) -> dhfield.records.PullOff``;
         default :func:`dhfield.bem.adhesive_pull_off` (tests pass a stand-in).
-    start : AdhesivePullOff, optional
+    start : dhfield.records.PullOff, optional
         The same case at a coarser N: then only the states around its pull-off are
         solved at ``n`` (:func:`dhfield.bem.refine_pull_off`, coarse to fine).
 
@@ -176,12 +176,15 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
         rec.update(status="failed", message=f"{where}: {type(exc).__name__}: {exc}",
                    elapsed=time.perf_counter() - t0, converged=False, failures=[])
         return rec, None
-    d = res.as_dict()
+    d = dict(res)   # the BEM's pull-off record (dhfield.records.PullOff, a mapping)
+    for stored, key in (("beta_ab", "ellipticity"), ("beta_cd", "adhesive_ellipticity")):
+        if key in d:
+            d[stored] = d[key]      # the study's case files and dataset keep their names
     if d.get("search"):
         rec["search"] = str(d["search"])    # the route actually taken (a search may fall back)
     rec.update({k: float(d[k]) for k in CASE_FLOATS if k in d})
     rec["converged"] = bool(d["converged"])
-    rec["failures"] = d.get("failures", [])
+    rec["failures"] = [dict(f) for f in d.get("failures", ())]
     rec["solver_source"] = _solver_source()
     if not rec["failures"]:
         rec.update(status="ok", message="")

@@ -11,7 +11,8 @@
 * :mod:`dhfield.bem.path` -- loading-unloading paths: the bracket search, the
   marching path, the continuation (:func:`unloading_path` dispatches).
 * :mod:`dhfield.bem.pull_off` -- the pull-off in the paper's units from a given
-  start (:class:`PullOffStart`): located, bracket, march, continuation, coarse to fine.
+  start (:class:`UnloadingStart`): located, bracket, march, continuation, coarse to fine,
+  each answering with the one pull-off record :class:`dhfield.records.PullOff`.
 
 This package imports no analytic model: the start of the paper's problem is chosen
 from the models by :mod:`dhfield.adhesive_start`, whose :func:`adhesive_pull_off`,
@@ -32,20 +33,20 @@ from .continuation import (FoldSearch, adhesive_force, fit_fold, fold_by_adhesiv
 from .branch import UnloadingPath  # noqa: E402
 from .path import Fold, PathOptions, fold_of_branch, unloading_path  # noqa: E402
 from .pull_off import (DEFAULT_STEPS, DISPLACEMENT_CONTROL_NOTE, DOMAIN_MARGIN, SEARCHES,  # noqa: E402
-                       AdhesivePullOff, NestedWarmStart, NondimensionalProblem, PullOffStart, interpolate_state,
+                       NestedWarmStart, NondimensionalProblem, UnloadingStart, interpolate_state, pull_off_summary,
                        paper_problem, richardson_extrapolation, solve_pull_off)
 
 #: Names of :mod:`dhfield.adhesive_start` forwarded on first use (it imports the analytic models).
-_FROM_START = ("adhesive_pull_off", "refine_pull_off", "nondimensional_problem", "pull_off_start")
+_FROM_START = ("adhesive_pull_off", "refine_pull_off", "nondimensional_problem", "unloading_start")
 
 __all__ = list(_operator_all) + [
     "DugdaleLaw", "ExponentialLaw", "cell_fraction_below", "ContactState", "mask_semi_axes",
     "DEFAULT_MAX_ITER", "DEFAULT_TOL", "ContactPressureSolution", "solve_adhesive", "solve_contact_pressure",
     "FoldSearch", "adhesive_force", "fit_fold", "fold_by_adhesive_force", "solve_at_adhesive_force",
     "UnloadingPath", "Fold", "PathOptions", "fold_of_branch", "unloading_path",
-    "DEFAULT_STEPS", "DISPLACEMENT_CONTROL_NOTE", "DOMAIN_MARGIN", "SEARCHES", "AdhesivePullOff",
-    "NestedWarmStart", "NondimensionalProblem", "PullOffStart", "interpolate_state", "paper_problem", "solve_pull_off",
-    "richardson_extrapolation", *_FROM_START]
+    "DEFAULT_STEPS", "DISPLACEMENT_CONTROL_NOTE", "DOMAIN_MARGIN", "SEARCHES", "pull_off_summary",
+    "NestedWarmStart", "NondimensionalProblem", "UnloadingStart", "interpolate_state", "paper_problem",
+    "solve_pull_off", "richardson_extrapolation", *_FROM_START]
 
 
 def __getattr__(name):

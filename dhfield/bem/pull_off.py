@@ -1,6 +1,6 @@
 """The adhesive BEM pull-off in the paper's units (R = E* = Delta gamma = 1, Eqs. 32-35).
 
-The engine takes its start as an argument: :class:`PullOffStart` (the domain, the
+The engine takes its start as an argument: :class:`UnloadingStart` (the domain, the
 range of the unloading path and the cold start of the bracket search) is chosen by
 the caller -- :mod:`dhfield.adhesive_start` chooses it from the analytic models, so
 that this package imports none of the models it is the ground truth for.
@@ -14,7 +14,9 @@ minimum on the coarser grids and solves only 3-4 states on the fine one (half th
 time at lambda = 3, N = 256).  :func:`refine` carries a pull-off to a finer grid
 (coarse to fine, :func:`interpolate_state`); :func:`richardson_extrapolation`
 extrapolates pull-offs over N.  Every route is a short function on one
-:class:`dhfield.bem.branch.Branch`.
+:class:`dhfield.bem.branch.Branch`, and every route answers with the one pull-off
+record of dhfield, :class:`dhfield.records.PullOff` with its solver group
+(:func:`pull_off_result`; :func:`pull_off_summary` is its JSON-ready form).
 """
 from __future__ import annotations
 
@@ -25,6 +27,7 @@ import numpy as np
 
 from .._validation import check_count, check_ellipticity, check_positive
 from ..geometry import radius_ratio, sin_skew_angle
+from ..records import PullOff
 from .branch import Branch, UnloadingPath
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
@@ -32,9 +35,10 @@ from .path import PathOptions, PathStart, load_control_path, path_on
 from .solver import AdhesiveProblem, Prediction
 from .state import ContactState
 
-__all__ = ["solve_pull_off", "refine", "paper_problem", "PullOffStart", "AdhesivePullOff", "NondimensionalProblem",
+__all__ = ["solve_pull_off", "refine", "paper_problem", "UnloadingStart", "NondimensionalProblem",
            "NestedWarmStart", "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
-           "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS", "pull_off_result"]
+           "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS", "pull_off_result",
+           "pull_off_summary", "check_bem_pull_off"]
 
 
 #: Half-width of the domain per expected semi-axis of the largest cohesive zone of
@@ -51,8 +55,11 @@ SEARCHES = ("bracket", "march", "located")
 
 
 @dataclass(frozen=True)
-class PullOffStart:
-    """Where the BEM pull-off starts, chosen by the caller (e.g. :func:`dhfield.adhesive_start.pull_off_start`).
+class UnloadingStart:
+    """Where the BEM's unloading path starts (an input, not a result), chosen by the caller.
+
+    The domain, the range of the unloading path and the cold start of the bracket search,
+    e.g. from :func:`dhfield.adhesive_start.unloading_start`.
 
     Parameters
     ----------
@@ -97,11 +104,11 @@ class NondimensionalProblem:
     sin_skew : float
         The sine of the skew angle, sin(theta_skew), of beta0: the factor of Eq. (34) [-].
     approach_max, approach_step : float
-        Start of unloading and unloading step [c_r^2/R] (:class:`PullOffStart`).
+        Start of unloading and unloading step [c_r^2/R] (:class:`UnloadingStart`).
     pull_off_approach : float
-        Approach of the bracket search's cold start [c_r^2/R] (:attr:`PullOffStart.approach`).
+        Approach of the bracket search's cold start [c_r^2/R] (:attr:`UnloadingStart.approach`).
     pull_off_zone : (float, float)
-        Semi-axes (c, d) of its cohesive zone [c_r] (:attr:`PullOffStart.zone`).
+        Semi-axes (c, d) of its cohesive zone [c_r] (:attr:`UnloadingStart.zone`).
     """
 
     mu: float
@@ -221,7 +228,7 @@ def paper_problem(*, beta0, mu, n, start, law="dugdale", ny=None) -> Nondimensio
         Tabor parameter of Eq. (35), > 0 [-]; sigma0 = mu in these units.
     n : int
         Cells along x, and along y unless ``ny`` is given (even, 8 to 65536) [-].
-    start : PullOffStart
+    start : UnloadingStart
         The domain, the path range and the cold start.
     law : {'dugdale', 'exponential'} or a law
         Traction law with sigma0 = mu and Delta gamma = 1.
@@ -247,8 +254,8 @@ def paper_problem(*, beta0, mu, n, start, law="dugdale", ny=None) -> Nondimensio
     law_obj = law_from_name(law, mu, 1.0) if isinstance(law, str) else check_law(law)
     if law_obj is None:
         raise ValueError("law must be 'dugdale' or 'exponential'; got None")
-    if not isinstance(start, PullOffStart):
-        raise ValueError(f"start must be a PullOffStart; got {type(start).__name__}")
+    if not isinstance(start, UnloadingStart):
+        raise ValueError(f"start must be a UnloadingStart; got {type(start).__name__}")
     c, d = start.zone
     if not (c < start.half_width_x and d < start.half_width_y) and np.all(np.isfinite(start.zone)):
         raise ValueError(f"start.zone {start.zone!r} must lie inside the domain (half-widths "
@@ -257,123 +264,6 @@ def paper_problem(*, beta0, mu, n, start, law="dugdale", ny=None) -> Nondimensio
     grid = Grid.centered(n, start.half_width_x, ny=ny, half_width_y=start.half_width_y)
     return NondimensionalProblem(mu, beta0, grid, _initial_gap(grid, beta0), law_obj, float(sin_skew_angle(beta0)),
                                  start.approach_max, start.approach_step, start.approach, start.zone)
-
-
-@dataclass(frozen=True)
-class AdhesivePullOff:
-    """Pull-off of the BEM adhesive contact in the paper's units (Eqs. 32-35).
-
-    Parameters
-    ----------
-    mu, beta0 : float
-        Tabor parameter (Eq. 35) and initial ellipticity [-].
-    n : int
-        Cells per axis.
-    law, control : str
-        Traction law name; 'load' or 'displacement'.
-    W_star : float
-        W sin(theta_skew(beta0))/(2 pi R Delta gamma), Eq. (34) (negative: tensile).
-    a_star, b_star, c_star, d_star : float
-        Second-moment semi-axes of the contact and of contact U cohesive zone
-        at pull-off [c_r].
-    beta_ab, beta_cd : float
-        Ellipticities b/a and d/c at pull-off [-] (NaN without contact).
-    delta_star : float
-        Approach at pull-off [c_r^2/R].
-    converged : bool
-        True when every state of the path down to the pull-off converged
-        (:attr:`UnloadingPath.pull_off_converged`); ``failures`` lists all.
-    n_steps : int
-        Solved states on the path.
-    iterations : int
-        Inner CG iterations over the whole path.
-    residual : float
-        Largest residual over the path.
-    failures : tuple of dict
-        Unconverged states (approach, residual, iterations, phase).
-    resolved : bool
-        False when the answer is not trustworthy, the reasons in ``note``: the
-        grid is too coarse for the law's edge (``EDGE_WIDTH_FACTOR``), W* is
-        stronger than the DMT limit -sin(theta_skew) or above 0, or the Dugdale
-        zone is collapsed onto the contact (c* <= a*) or narrower than
-        ``ZONE_MIN_CELLS`` cells; under load control also when the contact spans
-        fewer than ``CONTACT_MIN_CELLS`` cells or ``W_star_error`` is infinite (no
-        estimate).  The values are reported, never clipped.
-    half_width_x, half_width_y : float
-        Domain half-widths [c_r].
-    elapsed : float
-        Wall time of the path [s].
-    path : UnloadingPath
-        The whole path.
-    W_star_error : float
-        Stated error of ``W_star``: a resolved and converged answer lies within it
-        of the grid-converged pull-off.  Under load control the search's error
-        (the samples around the minimum, :meth:`dhfield.bem.branch.Branch.minimum_error`)
-        plus the grid's discretisation error (:func:`discretisation_error`:
-        ``DISCRETISATION_ERROR_PER_CELL |W*|`` per cell across the narrowest of the
-        contact and cohesive-zone widths, an upper bound of the errors measured
-        against Maugis-Dugdale and the stored ground truth).  Under displacement
-        control from the fit around the fold
-        (:func:`dhfield.bem.continuation.fold_by_adhesive_force`; its measured
-        accuracy in :data:`DISPLACEMENT_CONTROL_NOTE`).  Never NaN: infinite
-        when there is no estimate or the answer is not ``resolved``.
-    note : str
-        Caveats on the pull-off (empty for a resolved load-control pull-off): why it is
-        not ``resolved``; every
-        displacement-control result carries :data:`DISPLACEMENT_CONTROL_NOTE`
-        (its measured errors against Maugis-Dugdale), and says when the branch
-        ends by loss of contact or no fold was bracketed.
-    search : str
-        The route that gave the pull-off: under load control the search that
-        bracketed the minimum ('located', 'bracket', or 'march', also when a
-        requested search fell back to it); 'continuation' under displacement
-        control (:mod:`dhfield.bem.continuation`); 'refine' for
-        :func:`refine`.
-    """
-
-    mu: float
-    beta0: float
-    n: int
-    law: str
-    control: str
-    W_star: float
-    a_star: float
-    b_star: float
-    c_star: float
-    d_star: float
-    beta_ab: float
-    beta_cd: float
-    delta_star: float
-    converged: bool
-    n_steps: int
-    iterations: int
-    residual: float
-    failures: tuple
-    resolved: bool
-    half_width_x: float
-    half_width_y: float
-    elapsed: float
-    path: UnloadingPath = field(repr=False, compare=False)
-    W_star_error: float = float("nan")
-    note: str = ""
-    search: str = ""
-
-    def as_dict(self) -> dict:
-        """Return the JSON-ready scalars (the path and failures summarised).
-
-        Returns
-        -------
-        dict
-            The scalar fields (not ``path``), ``failures`` as a list of dicts, and
-            ``iterations_per_step``.
-        """
-        out = {k: getattr(self, k) for k in (
-            "mu", "beta0", "n", "law", "control", "W_star", "W_star_error", "a_star", "b_star", "c_star",
-            "d_star", "beta_ab", "beta_cd", "delta_star", "converged", "resolved", "n_steps", "iterations",
-            "residual", "half_width_x", "half_width_y", "elapsed", "note", "search")}
-        out["failures"] = [dict(f) for f in self.failures]
-        out["iterations_per_step"] = self.iterations / max(self.n_steps, 1)
-        return out
 
 
 #: Coarsest grid (cells per axis) solved for nested warm starts (:class:`NestedWarmStart`).
@@ -752,7 +642,7 @@ def predicted_path(problem, options):
                      error=b.minimum_error(order, sm))
 
 
-def solve_pull_off(problem, *, control="load", search="located", nested=None, options=PathOptions()) -> AdhesivePullOff:
+def solve_pull_off(problem, *, control="load", search="located", nested=None, options=PathOptions()) -> PullOff:
     """The BEM pull-off of a problem in the paper's units, by the route of ``control`` and ``search``.
 
     Parameters
@@ -774,8 +664,9 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
 
     Returns
     -------
-    AdhesivePullOff
-        W* in the normalisation of Eq. (34); ``search`` names the route taken.
+    dhfield.records.PullOff
+        The BEM's record (:func:`pull_off_result`): W* in the normalisation of Eq. (34);
+        ``search`` names the route taken.
     """
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
@@ -810,7 +701,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
     return pull_off_result(problem, n, path, route)
 
 
-#: Accuracy carried by every displacement-control pull-off (:attr:`AdhesivePullOff.note`).
+#: Accuracy carried by every displacement-control pull-off (the ``note`` of its :class:`dhfield.records.PullOff`).
 #: Measured on the sphere against Maugis-Dugdale's displacement-control pull-off (the
 #: minimum of delta(a), or its end a = 0) with
 #: ``.venv/bin/python -m verification.displacement_pull_off`` (2026-11-23), N = 128 / 256:
@@ -930,15 +821,15 @@ def _unresolved_reasons(prob, path, w_star, error, axes, stated_error=None):
     return reasons
 
 
-def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str) -> AdhesivePullOff:
-    """Build the pull-off of a path in the paper's units (Eq. 34), with the semi-axes of its state.
+def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str) -> PullOff:
+    """Build the BEM's pull-off record of a path in the paper's units (Eq. 34), with the semi-axes of its state.
 
     Parameters
     ----------
     prob : NondimensionalProblem
         The problem the path was solved on.
     n : int
-        Cells per axis of its grid.
+        Cells along x of its grid.
     path : UnloadingPath
         The path, with its pull-off state.
     search : str
@@ -946,11 +837,44 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
 
     Returns
     -------
-    AdhesivePullOff
-        ``resolved`` is False, with the reasons in ``note``, when the grid is too coarse or
-        the answer breaks a physical bound; ``W_star_error`` is then infinite (no bound), as
-        it is when the path gives no estimate.  Under load control ``W_star_error`` is the
-        search's error plus :func:`discretisation_error`.
+    dhfield.records.PullOff
+        The one pull-off record of dhfield, with ``model='bem'``, ``geometry='ellipse'``,
+        ``sin_skew`` of beta0 (Eq. 34), ``v`` NaN, and its solver group
+        (:data:`dhfield.schema.PULL_OFF_SOLVER_KEYS`); ``path`` holds the whole
+        :class:`~dhfield.bem.branch.UnloadingPath`.  The BEM's fields:
+
+        - ``a_star`` ... ``d_star``: second-moment semi-axes of the contact and of
+          contact U cohesive zone at pull-off [c_r]; ``ellipticity`` = b*/a* and
+          ``adhesive_ellipticity`` = d*/c* (NaN without contact or zone);
+          ``at_zero_contact``: no contact cell at pull-off;
+        - ``converged``: every state of the path down to the pull-off converged
+          (:attr:`UnloadingPath.pull_off_converged`); ``failures`` lists every
+          unconverged state (approach, residual, iterations, phase);
+        - ``resolved``: False when the answer is not trustworthy, the reasons in
+          ``note``: the grid is too coarse for the law's edge (``EDGE_WIDTH_FACTOR``),
+          W* is stronger than the DMT limit -sin(theta_skew) or above 0, or the
+          Dugdale zone is collapsed onto the contact (c* <= a*) or narrower than
+          :data:`ZONE_MIN_CELLS` cells; under load control also when the contact spans
+          fewer than :data:`CONTACT_MIN_CELLS` cells or the error has no estimate.  The
+          values are reported, never clipped; ``warning`` is then the ``note`` (empty
+          for a resolved pull-off);
+        - ``W_star_error``: a resolved and converged answer lies within it of the
+          grid-converged pull-off.  Under load control the search's error (the samples
+          around the minimum, :meth:`dhfield.bem.branch.Branch.minimum_error`) plus
+          :func:`discretisation_error`; under displacement control from the fit around
+          the fold (:func:`dhfield.bem.continuation.fold_by_adhesive_force`; its
+          measured accuracy in :data:`DISPLACEMENT_CONTROL_NOTE`).  Never NaN: infinite
+          when there is no estimate or the answer is not ``resolved``;
+        - ``note``: caveats (empty for a resolved load-control pull-off); every
+          displacement-control result carries :data:`DISPLACEMENT_CONTROL_NOTE`, and says
+          when the branch ends by loss of contact or no fold was bracketed;
+        - ``search``: the route: under load control the search that bracketed the
+          minimum ('located', 'bracket' or 'march', also when a requested search fell
+          back to it); 'continuation' under displacement control
+          (:mod:`dhfield.bem.continuation`); 'refine' for :func:`refine`;
+        - ``n``, ``law``, ``n_steps``, ``iterations`` (inner CG iterations over the
+          path), ``residual`` (largest over the path), ``half_width_x``,
+          ``half_width_y`` (domain [c_r]) and ``elapsed`` (wall time of the path [s]).
     """
     note = path.pull_off_note
     if path.control == "displacement":
@@ -972,15 +896,57 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
         error = float("inf")
     if reasons:
         note = "; ".join(filter(None, (note, "unresolved: " + "; ".join(reasons))))
-    return AdhesivePullOff(
-        mu=prob.mu, beta0=prob.beta0, n=int(n), law=prob.law.name, control=path.control,
-        W_star=w_star, a_star=a, b_star=b, c_star=c, d_star=d,
-        beta_ab=b / a if a > 0 else float("nan"), beta_cd=d / c if c > 0 else float("nan"),
-        delta_star=float(path.pull_off_approach), converged=path.pull_off_converged, n_steps=path.n_steps,
+    return PullOff(
+        model="bem", control=path.control, geometry="ellipse", beta0=prob.beta0, mu=prob.mu,
+        sin_skew=prob.sin_skew, W_star=w_star, a_star=a, b_star=b, c_star=c, d_star=d, v=float("nan"),
+        delta_star=float(path.pull_off_approach), ellipticity=b / a if a > 0 else float("nan"),
+        adhesive_ellipticity=d / c if c > 0 else float("nan"), at_zero_contact=not a > 0,
+        warning=note if reasons else "", W_star_error=error, converged=path.pull_off_converged,
+        resolved=not reasons, note=note, search=search, n=int(n), law=prob.law.name, n_steps=path.n_steps,
         iterations=int(path.iterations.sum()), residual=float(path.residual.max()), failures=path.failures,
-        resolved=not reasons, half_width_x=0.5 * prob.grid.nx * prob.grid.dx,
-        half_width_y=0.5 * prob.grid.ny * prob.grid.dy, elapsed=path.elapsed, path=path,
-        W_star_error=error, note=note, search=search)
+        half_width_x=0.5 * prob.grid.nx * prob.grid.dx, half_width_y=0.5 * prob.grid.ny * prob.grid.dy,
+        elapsed=path.elapsed, path=path)
+
+
+def check_bem_pull_off(name, value) -> PullOff:
+    """``value`` if it is a BEM pull-off record (a :class:`dhfield.records.PullOff` with its path), else ValueError.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    value : object
+        The argument.
+
+    Returns
+    -------
+    dhfield.records.PullOff
+        ``value``.
+    """
+    if not (isinstance(value, PullOff) and value.model == "bem" and value.path is not None):
+        raise ValueError(f"{name} must be a BEM pull-off (the dhfield.records.PullOff of adhesive_pull_off, "
+                         f"with its path); got {type(value).__name__}")
+    return value
+
+
+def pull_off_summary(result) -> dict:
+    """The JSON-ready summary of a BEM pull-off record (``dhfield solve --json``, case files).
+
+    Parameters
+    ----------
+    result : dhfield.records.PullOff
+        A BEM pull-off (:func:`pull_off_result`).
+
+    Returns
+    -------
+    dict
+        Every key of the record in its order (:data:`dhfield.schema.PULL_OFF_KEYS` then
+        :data:`dhfield.schema.PULL_OFF_SOLVER_KEYS`), ``failures`` as a list of dicts
+        (not the path).
+    """
+    out = dict(check_bem_pull_off("result", result))
+    out["failures"] = [dict(f) for f in result.failures]
+    return out
 
 
 def richardson_extrapolation(n, values):
@@ -1075,15 +1041,15 @@ REFINE_WINDOW = 3
 REFINE_MAX_EXTEND = 12
 
 
-def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> AdhesivePullOff:
+def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> PullOff:
     """Load-control pull-off on a finer grid, started from a coarser solution (coarse to fine).
 
     Parameters
     ----------
     problem : NondimensionalProblem
         The fine grid's problem, over the same domain and path range as ``coarse``'s.
-    coarse : AdhesivePullOff
-        A load-control pull-off of the same (mu, beta0, law) on a coarser grid.
+    coarse : dhfield.records.PullOff
+        A BEM load-control pull-off of the same (mu, beta0, law) on a coarser grid.
     window : int
         Half-width of the window of fine states around the coarse pull-off, in
         finest path steps (extended while the fine minimum sits on its edge).
@@ -1094,8 +1060,9 @@ def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> A
 
     Returns
     -------
-    AdhesivePullOff
-        With ``path.phase == 'refine'`` for every state; ``converged`` when every
+    dhfield.records.PullOff
+        The BEM's record (:func:`pull_off_result`, ``search='refine'``), with
+        ``path.phase == 'refine'`` for every state; ``converged`` when every
         state of the window converged and the minimum is interior.
 
     Notes
@@ -1109,8 +1076,7 @@ def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> A
     the stable branch of displacement control, so the warm start stays on the
     branch of the full path; multistability after the jump does not enter.
     """
-    if not isinstance(coarse, AdhesivePullOff):
-        raise ValueError(f"coarse must be an AdhesivePullOff; got {type(coarse).__name__}")
+    check_bem_pull_off("coarse", coarse)
     if coarse.control != "load":
         raise ValueError(f"coarse must be a load-control pull-off; got control={coarse.control!r}")
     if not np.isfinite(coarse.delta_star):

@@ -143,13 +143,11 @@ def bem_cycle_path(cyc, rec) -> dict:
     """The BEM cycle as the polylines of :func:`dhfield.compliance.cycle_path`, from the branch's samples."""
     import numpy as np
 
-    from ..bem_compliance import bem_pull_off_under_spring
-
     br = cyc["branch"]
     k = rec["machine_stiffness_star"]
     s = 1.0 if not np.isfinite(k) else k / (1.0 + k)
     x, w, d = np.sqrt(br.adhesive_force), br.W_star, br.delta_star
-    x_o = float(np.sqrt(bem_pull_off_under_spring(br, None if not np.isfinite(k) else k)["adhesive_force"]))
+    x_o = float(np.sqrt(cyc["jump_out_adhesive_force"]))
     ds, dsep = rec["jump_in_start_delta_star"], rec["separation_delta_star"]
     d_o, w_o, d_i, w_i = (rec[key] for key in ("jump_out_delta_star", "jump_out_W_star", "jump_in_delta_star",
                                                "jump_in_W_star"))

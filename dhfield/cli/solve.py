@@ -92,20 +92,15 @@ def add_parser(sub) -> None:
 
 
 def _record(res) -> dict:
-    from ..schema import BEM_ADHESIVE_KEYS
+    """The solve record: the BEM's pull-off record, JSON-ready (the keys of the one pull-off record)."""
+    from ..bem.pull_off import pull_off_summary
 
-    d = res.as_dict()
-    out = {"beta0": d["beta0"], "mu": d["mu"], "n": d["n"], "law": d["law"], "control": d["control"]}
-    out.update({k: d[k] for k in BEM_ADHESIVE_KEYS})
-    out["resolved"] = bool(getattr(res, "resolved", True))
-    out.update(W_star_error=d["W_star_error"], residual=d["residual"], elapsed=d["elapsed"],
-               failures=d["failures"], note=d["note"], search=d["search"])
-    return out
+    return pull_off_summary(res)
 
 
 #: Units of the solve record's keys that :mod:`dhfield.schema` does not list.
 _LOCAL_UNITS = {"n": "1", "W_star_error": "1", "residual": "1", "elapsed": "s", "resolved": "1", "n_steps": "1",
-                "iterations": "1", "converged": "1"}
+                "iterations": "1", "converged": "1", "half_width_x": "1", "half_width_y": "1"}
 
 
 def _units(rec, si_keys=()) -> dict:
@@ -167,13 +162,13 @@ def spring_record(branch, k_star, params=None) -> dict:
 
     from ..bem_compliance import bem_pull_off_under_spring
 
-    po = bem_pull_off_under_spring(branch, k_star)
-    w, d = float(po["W_star"]), float(po["delta_star"])
-    sep = d + w / k_star if k_star > 0 else float("-inf")  # Delta* = delta* + W*/K*
-    rec = {"beta0": branch.beta0, "mu": branch.mu, "n": branch.n, "law": None, "control": "spring",
-           "machine_stiffness_star": float(k_star), "W_star": w, "W_star_error": float(po["W_star_error"]),
-           "delta_star": d, "separation_delta_star": sep, "in_contact": bool(po["in_contact"]),
-           "resolved": bool(po["resolved"]), "branch_states": int(np.size(branch.adhesive_force)),
+    po = bem_pull_off_under_spring(branch, k_star)     # the BEM's PullOff, spring group filled
+    w, d = float(po.W_star), float(po.delta_star)
+    sep = float(po.separation_delta_star)  # Delta* = delta* + W*/K*
+    rec = {"beta0": branch.beta0, "mu": branch.mu, "n": branch.n, "law": po.law, "control": "spring",
+           "machine_stiffness_star": float(k_star), "W_star": w, "W_star_error": float(po.W_star_error),
+           "delta_star": d, "separation_delta_star": sep, "in_contact": not bool(po.on_separated_branch),
+           "resolved": bool(po.resolved), "branch_states": int(np.size(branch.adhesive_force)),
            "branch_complete": bool(branch.complete), "failures": int(branch.failures),
            "elapsed": float(branch.elapsed)}
     if params is not None:
@@ -394,7 +389,7 @@ def run(args) -> int:
                else " (no error bound: not resolved)")
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
               f"d* = {res.d_star:.5f}")
-        print(f"beta_ab = {res.beta_ab:.5f}  beta_cd = {res.beta_cd:.5f}  delta* = {res.delta_star:.5f}")
+        print(f"b/a = {res.ellipticity:.5f}  d/c = {res.adhesive_ellipticity:.5f}  delta* = {res.delta_star:.5f}")
         print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  "
               f"CG iterations = {res.iterations}  search = {res.search}  ({res.elapsed:.1f} s)")
         if si:

@@ -16,9 +16,12 @@ In the style of :mod:`dhfield.io.field`, one :class:`xarray.Dataset` per solutio
 * for a path (:class:`dhfield.bem.UnloadingPath`), on the dimension ``step``
   (solve order): approach, load, semi-axes, contact area, phase (CF flags),
   converged (CF flags), iterations, residual per step, and the pull-off;
-* for a nondimensional pull-off (:class:`dhfield.bem.AdhesivePullOff`), the
-  paper's quantities W*, a*, b*, c*, d*, delta* (Eqs. 32-34) per step and at
-  pull-off, with ``units = "1"`` and the scale in ``long_name``;
+* for a nondimensional BEM pull-off (the :class:`dhfield.records.PullOff` of
+  :func:`dhfield.adhesive_start.adhesive_pull_off`), the paper's quantities W*, a*,
+  b*, c*, d*, delta* (Eqs. 32-34) per step and at pull-off, with ``units = "1"``
+  and the scale in ``long_name``, and its ellipticities at pull-off as
+  ``beta_ab_pull_off``, ``beta_cd_pull_off`` (the record's ``ellipticity`` and
+  ``adhesive_ellipticity``, named as the state's ``beta_ab``, ``beta_cd``);
 * with the physical inputs of the contact (``params``, a
   :class:`dhfield.dimensional.ContactParameters`): the same pull-off in SI
   (``force_pull_off`` [N], ``semi_major_pull_off`` ... [m], ``approach_pull_off``
@@ -227,16 +230,18 @@ def path_dataset(path, *, nondimensional: bool = False, sin_skew: float | None =
 
 
 def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
-    """Build the Dataset of a nondimensional :class:`dhfield.bem.AdhesivePullOff`.
+    """Build the Dataset of a nondimensional BEM pull-off record (:class:`dhfield.records.PullOff`).
 
-    The pull-off scalars (W*, a*, b*, c*, d*, beta_ab, beta_cd, delta*, Eqs.
-    32-34), the whole path, and (``fields=True``) the fields of the pull-off
-    state, all in the paper's units.
+    The pull-off scalars (W*, a*, b*, c*, d*, delta*, Eqs. 32-34, and the
+    ellipticities b/a, d/c as ``beta_ab_pull_off``, ``beta_cd_pull_off``), the
+    whole path, and (``fields=True``) the fields of the pull-off state, all in
+    the paper's units.
 
     Parameters
     ----------
-    result : dhfield.bem.AdhesivePullOff
-        The BEM pull-off, in the paper's units (R = E* = dgamma = 1).
+    result : dhfield.records.PullOff
+        The BEM pull-off (:func:`dhfield.adhesive_start.adhesive_pull_off`), in the
+        paper's units (R = E* = dgamma = 1), with its path.
     fields : bool, default True
         Include the fields of the pull-off state on ``(y, x)``; False keeps
         only the scalars and the path.
@@ -248,9 +253,7 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
         ``step``, the flags ``resolved`` and ``converged_pull_off`` and,
         with ``fields``, the pull-off state's fields.
     """
-    from ..geometry import sin_skew_angle
-
-    sin_skew = float(sin_skew_angle(result.beta0))
+    sin_skew = float(result.sin_skew)
     params = dict(beta0=result.beta0, mu=result.mu, n=result.n, control=result.control,
                   half_width_x=result.half_width_x, half_width_y=result.half_width_y, sin_skew=sin_skew)
     if fields:
@@ -267,8 +270,8 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
     q = "BEM at pull-off"
     for key in ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star"):
         ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), nondimensional=True, qualifier=q)
-    for key in ("beta_ab", "beta_cd"):
-        ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, key), qualifier=q)
+    for key, field in (("beta_ab", "ellipticity"), ("beta_cd", "adhesive_ellipticity")):
+        ds[f"{key}_pull_off"] = cf.variable(key, (), getattr(result, field), qualifier=q)
     resolved = bool(getattr(result, "resolved", True))
     ds["resolved"] = _flag("resolved", (), int(resolved), ("false", "true"),
                            "grid resolves the cohesive zone (false: the pull-off is not an answer; refine n)")
@@ -304,8 +307,8 @@ def pull_off_si(result, params) -> dict:
 
     Parameters
     ----------
-    result : dhfield.bem.AdhesivePullOff
-        Solved at ``params.beta0`` and ``params.mu``.
+    result : dhfield.records.PullOff
+        A BEM pull-off solved at ``params.beta0`` and ``params.mu``.
     params : dhfield.dimensional.ContactParameters
         The contact (scalar parameters).
 
@@ -358,11 +361,11 @@ def _add_si(ds, result, params):
 
 
 def write_solution(result, path, *, fields: bool = True, params=None) -> Path:
-    """Write a pull-off (:class:`AdhesivePullOff`) or a ContactState to netCDF atomically.
+    """Write a BEM pull-off (:class:`dhfield.records.PullOff`) or a ContactState to netCDF atomically.
 
     Parameters
     ----------
-    result : dhfield.bem.AdhesivePullOff or dhfield.bem.ContactState
+    result : dhfield.records.PullOff or dhfield.bem.ContactState
         What to write (:func:`pull_off_dataset` or :func:`state_dataset`).
     path : path-like
         The netCDF file; checked before the Dataset is built, written atomically.
@@ -378,7 +381,7 @@ def write_solution(result, path, *, fields: bool = True, params=None) -> Path:
         The file written.
     """
     check_writable(path)
-    if hasattr(result, "path") and hasattr(result, "W_star"):
+    if getattr(result, "path", None) is not None and hasattr(result, "W_star"):
         ds = pull_off_dataset(result, fields=fields)
         if params is not None:
             ds = cf.finalize(_add_si(ds, result, params))

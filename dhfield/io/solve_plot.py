@@ -1,6 +1,6 @@
 """Figure of an adhesive BEM pull-off (``dhfield solve --plot``): matplotlib at the edge.
 
-Three panels of a :class:`dhfield.bem.AdhesivePullOff`:
+Three panels of a BEM pull-off (:class:`dhfield.records.PullOff` with its path):
 
 * the contact and the cohesive (adhesive) zone of the pull-off state, with the
   ellipses of semi-axes (a, b) and (c, d) fitted from the second moments of the
@@ -99,7 +99,7 @@ def solve_figure(result, params=None):
 
     Parameters
     ----------
-    result : dhfield.bem.AdhesivePullOff
+    result : dhfield.records.PullOff
         The pull-off, with its path and the state at pull-off.
     params : dhfield.dimensional.ContactParameters, optional
         The contact solved (same beta0 and mu): SI axes.  Without it the paper's units.
@@ -241,7 +241,7 @@ def write_solve_plot(result, path, *, params=None, dpi=150) -> tuple[Path, Path,
 
     Parameters
     ----------
-    result : dhfield.bem.AdhesivePullOff
+    result : dhfield.records.PullOff
         The pull-off, with its path and the state at pull-off.
     path : path-like
         PNG file; the SVG and PDF are the same path with suffixes ``.svg`` and

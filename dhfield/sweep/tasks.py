@@ -239,7 +239,9 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
     out = {"W_star": get("W_star"), "a_star": get("a_star"), "c_star": get("c_star"),
            "ellipticity": get("ellipticity", "beta_ab"), "delta_star": get("delta_star"),
            "iterations": get("iterations")}
-    out.update({k: get(k) for k in ADHESIVE_BEM_FIELDS})
+    # the BEM's pull-off record names its ellipticities as every model's; the sweep stores them as beta_ab, beta_cd
+    record_name = {"beta_ab": "ellipticity", "beta_cd": "adhesive_ellipticity"}
+    out.update({k: get(record_name.get(k, k), k) for k in ADHESIVE_BEM_FIELDS})
     out["converged"] = bool(getattr(res, "converged", True))
     out["resolved"] = bool(getattr(res, "resolved", True))
     message = str(getattr(res, "message", "") or "")

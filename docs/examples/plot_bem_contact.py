@@ -19,8 +19,8 @@ from dhfield import bem
 
 mu, beta0 = 1.0, 0.8
 res = bem.adhesive_pull_off(mu=mu, beta0=beta0, n=128)
-print(f"BEM: W*max = {res.W_star:.4f}, a* = {res.a_star:.3f}, beta_ab = {res.beta_ab:.3f}, "
-      f"beta_cd = {res.beta_cd:.3f}, converged = {res.converged}, {res.n_steps} states")
+print(f"BEM: W*max = {res.W_star:.4f}, a* = {res.a_star:.3f}, b/a = {res.ellipticity:.3f}, "
+      f"d/c = {res.adhesive_ellipticity:.3f}, converged = {res.converged}, {res.n_steps} states")
 paper = dhfield.pull_off(mu=mu, beta0=beta0)
 print(f"paper's model: W*max = {float(paper.W_star):.4f}, a* = {float(paper.a_star):.3f}")
 
