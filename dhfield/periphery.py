@@ -579,8 +579,8 @@ def load_curve_periphery(*, beta0, mu, a_star=None, theta=None, ellipticity=None
 
     Returns
     -------
-    curve : dhfield.model.LoadCurve
-        The load curve.
+    curve : dhfield.records.LoadCurve
+        The load curve (:func:`dhfield.model.load_curve`).
     profile : PeripheryProfile
         Shape ``(len(a_star), len(theta))``, nondimensional as in :func:`periphery_at_pull_off`.
     """
