@@ -150,6 +150,9 @@ def test_pull_off_periphery_imposes_eq31_and_eq24():
 
 def test_load_curve_periphery():
     curve, prof = periphery.load_curve_periphery(beta0=0.9, mu=1.0, a_star=[0.3, 1.0, 2.0], theta=THETA)
+    from dhfield.records import LoadCurve
+
+    assert type(curve) is LoadCurve and curve.ellipticity == 0.9  # the one load-curve type (issue 16)
     assert prof.work_of_adhesion.shape == (3, THETA.size)
     assert_allclose(prof.work_of_adhesion[:, 0], 1.0, rtol=1e-12)
     assert np.all(prof.work_of_adhesion[:, -1] < 1.0)
