@@ -261,16 +261,17 @@ class LoadCurve(_Record):
     a_star, b_star, c_star, d_star : ndarray, optional
         Nondimensional group: contact and adhesive-zone semi-axes in c_r, Eq. (33) [-]
         (NaN: no zone).
-    v : ndarray
-        Double-Hertz factor of Eq. (22) [-] (NaN outside the DH models that report it).
-    W_star : ndarray, optional
-        Nondimensional group: load W sin(theta_skew)/(2 pi R dgamma), Eq. (34) [-].
-    delta_star : ndarray, optional
-        Nondimensional group: approach delta/(c_r^2/R) [-].
     semi_major, semi_minor : ndarray, optional
         SI group: contact semi-axes a, b [m] (both the contact radius for a circle).
     adhesive_semi_major, adhesive_semi_minor : ndarray, optional
         SI group: adhesive-zone semi-axes c, d [m] (NaN: no zone).
+    v : ndarray
+        Double-Hertz factor of Eq. (22) [-] (NaN outside the DH models that report it);
+        in both groups.
+    W_star : ndarray, optional
+        Nondimensional group: load W sin(theta_skew)/(2 pi R dgamma), Eq. (34) [-].
+    delta_star : ndarray, optional
+        Nondimensional group: approach delta/(c_r^2/R) [-].
     force : ndarray, optional
         SI group: load W [N] (positive compressive).
     approach : ndarray, optional
