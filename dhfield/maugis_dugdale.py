@@ -346,8 +346,8 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     s = load_curve_nondimensional(a / length_unit(r, e, w), mu)
     zone = s["c_star"] * length_unit(r, e, w)  # Eq. (32)
     return si_curve("md", {"semi_major": a, "adhesive_semi_major": zone, "adhesive_semi_minor": zone,
-                           "force": s["W_star"] * load_unit(r, w), "approach": s["delta_star"] * approach_unit(r, e, w)},
-                    mu=mu)
+                           "force": s["W_star"] * load_unit(r, w),
+                           "approach": s["delta_star"] * approach_unit(r, e, w)}, mu=mu)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
