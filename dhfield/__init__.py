@@ -50,7 +50,7 @@ import importlib as _importlib  # noqa: E402
 #: Public names and the module each comes from.  They are imported on first use, so that
 #: ``import dhfield.cli`` stays light: a Ctrl-C while the CLI starts then reaches its
 #: one-line handler instead of printing a traceback from inside scipy's import.
-_LAZY = {"LoadCurve": "model", "PullOff": "model", "load_curve": "model", "pull_off": "model",
+_LAZY = {"LoadCurve": "records", "PullOff": "model", "load_curve": "model", "pull_off": "model",
          "solve_adhesive_axis": "model", "MODEL_NAMES": "compare", "contact_parameters": "dimensional",
          "contact_parameters_from_principal_radii": "dimensional", "crossed_cylinder_radii": "dimensional",
          "load_curve_si": "dimensional", "pull_off_force": "dimensional",

@@ -19,20 +19,10 @@ The dimensional public wrappers convert with :func:`length_unit`,
 """
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 
 from ._validation import check_interval, check_positive
-from .records import pull_off_record_si
-
-
-class LoadCurve(NamedTuple):
-    """Equilibrium states along a load curve (dimensional or nondimensional)."""
-
-    load: np.ndarray
-    contact_radius: np.ndarray
-    approach: np.ndarray
+from .records import load_curve_record, pull_off_record_si
 
 
 def check_material(effective_radius, reduced_modulus, work_of_adhesion):
@@ -118,6 +108,20 @@ def pull_off_si_of(core, inputs, *, control, beta0=1.0, mu=float("nan")):
     rec = core(np.broadcast_to(np.asarray(beta0, dtype=float), shape), np.asarray(mu, dtype=float),
                control=control)
     return pull_off_si(rec, inputs)
+
+
+def si_curve(model, arrays, *, mu=float("nan"), beta0=1.0, sin_skew=1.0, geometry="circle", ellipticity=None):
+    """The SI :class:`dhfield.records.LoadCurve` of a model's SI ``load_curve``.
+
+    ``arrays`` holds ``semi_major``, ``force``, ``approach`` [SI] and, where the model has them,
+    ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor`` [m] and ``v`` [-]; they are
+    broadcast to one shape (that of the contact sizes and the material inputs together).
+    ``mu`` NaN for the models that have none (JKR, DMT, elliptical JKR); ``beta0`` and
+    ``sin_skew`` 1 for the circle.
+    """
+    values = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in arrays.values()))
+    return load_curve_record(model, beta0, mu, dict(zip(arrays, values)), sin_skew=sin_skew, geometry=geometry,
+                             ellipticity=ellipticity)
 
 
 def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion):

@@ -311,8 +311,7 @@ def _curve_paper(a, mu, beta0):
     from .model import load_curve as dh_load_curve
 
     c = dh_load_curve(mu=mu, beta0=beta0, a_star=a)
-    return {"a_star": c.a_star, "b_star": c.b_star, "c_star": c.c_star, "d_star": c.d_star, "v": c.v,
-            "W_star": c.W_star, "delta_star": c.delta_star}
+    return {k: c[k] for k in LOAD_CURVE_KEYS}
 
 
 def _curve_closure(solver):
@@ -328,9 +327,9 @@ def _curve_circle(module, with_stress):
     def curve(a, mu, beta0):
         args = (a, 1.0, 1.0, 1.0) + ((mu,) if with_stress else ())
         c = module.load_curve(*args)
-        a = np.asarray(c.contact_radius, float)
+        a = np.asarray(c.semi_major, float)
         return {"a_star": a, "b_star": a, "c_star": np.full(a.shape, _NAN), "d_star": np.full(a.shape, _NAN),
-                "v": np.full(a.shape, _NAN), "W_star": np.asarray(c.load) / (2 * np.pi),  # Eq. (34), sin = 1
+                "v": np.full(a.shape, _NAN), "W_star": np.asarray(c.force) / (2 * np.pi),  # Eq. (34), sin = 1
                 "delta_star": np.asarray(c.approach, float)}
     return curve
 
@@ -340,7 +339,7 @@ def _curve_jkr_elliptic(a, mu, beta0, module=jkr_elliptic):
     shape = np.shape(c.semi_major)
     return {"a_star": np.asarray(c.semi_major, float), "b_star": np.asarray(c.semi_minor, float),
             "c_star": np.full(shape, _NAN), "d_star": np.full(shape, _NAN), "v": np.full(shape, _NAN),
-            "W_star": np.asarray(c.load) * sin_skew_angle(beta0) / (2 * np.pi),  # Eq. (34)
+            "W_star": np.asarray(c.force) * sin_skew_angle(beta0) / (2 * np.pi),  # Eq. (34)
             "delta_star": np.asarray(c.approach, float)}
 
 
@@ -448,7 +447,7 @@ def load_curve_at_load(model, *, beta0, mu, w_star):
 
     Returns
     -------
-    dict
+    dhfield.records.LoadCurve
         As :func:`load_curve`, at the contact sizes whose load is ``w_star``.
 
     Notes

@@ -44,8 +44,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
-                        length_unit, load_unit, scalar_or_array, tabor_parameter)
+from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
+                        length_unit, load_unit, scalar_or_array, si_curve, tabor_parameter)
 from ._validation import check_control, check_positive, check_tabor
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
@@ -256,8 +256,11 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
 
     Returns
     -------
-    LoadCurve
-        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+    dhfield.records.LoadCurve
+        The SI curve (model ``dh-circular``, circle): ``semi_major`` = ``semi_minor`` = a [m],
+        ``adhesive_semi_major`` = ``adhesive_semi_minor`` = c [m], the DH factor ``v`` [-],
+        ``force`` W [N] (positive compressive), ``approach`` delta [m].  The header's ``mu`` is the
+        Tabor parameter of the inputs, Eq. (35).
 
     Notes
     -----
@@ -279,8 +282,9 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
     st = load_curve_nondimensional(a / length_unit(r, e, w), mu)
     load, _, approach = _dimensional(st, r, e, w)
-    return LoadCurve(scalar_or_array(load), scalar_or_array(np.broadcast_to(a, load.shape)),
-                     scalar_or_array(approach))
+    zone = st["c_star"] * length_unit(r, e, w)  # Eq. (32)
+    return si_curve("dh-circular", {"semi_major": a, "adhesive_semi_major": zone, "adhesive_semi_minor": zone,
+                                    "v": st["v"], "force": load, "approach": approach}, mu=mu)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

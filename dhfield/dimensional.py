@@ -38,7 +38,7 @@ import numpy as np
 from . import _adhesion as units
 from . import compare, geometry
 from ._validation import ELLIPTICITY_RANGE, TABOR_RANGE, check_interval, check_positive
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS
+from .records import load_curve_record
 
 __all__ = ["ContactParameters", "contact_parameters", "contact_parameters_from_principal_radii",
            "crossed_cylinder_radii", "load_curve_si", "pull_off_force", "pull_off_record_si"]
@@ -349,8 +349,8 @@ def load_curve_si(params: ContactParameters, semi_major=None, n=200, *, model=co
 
     Returns
     -------
-    dict
-        The scalar keys of :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
+    dhfield.records.LoadCurve
+        The SI curve: the scalar keys of :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS`, then the
         arrays of :data:`dhfield.schema.LOAD_CURVE_SI_KEYS`: ``semi_major``,
         ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor`` [m], ``v``
         [-], ``force`` W [N] (positive compressive), ``approach`` delta [m].
@@ -375,4 +375,4 @@ def load_curve_si(params: ContactParameters, semi_major=None, n=200, *, model=co
         "v": c["v"], "force": c["W_star"] * unit,  # Eq. (34)
         "approach": c["delta_star"] * params.approach_unit,
     }
-    return {**{k: c[k] for k in LOAD_CURVE_HEADER_KEYS}, **{k: arrays[k] for k in LOAD_CURVE_SI_KEYS}}
+    return load_curve_record(c.model, c.beta0, c.mu, arrays, sin_skew=c.sin_skew, geometry=c.geometry)

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (LoadCurve, approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs, length_unit,
-                        load_unit, scalar_or_array)
+from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs, length_unit,
+                        load_unit, scalar_or_array, si_curve)
 from ._validation import check_control, check_finite
 from .records import pull_off_record
 
@@ -99,8 +99,9 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
 
     Returns
     -------
-    LoadCurve
-        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+    dhfield.records.LoadCurve
+        The SI curve (model ``dmt``, circle): ``semi_major`` = ``semi_minor`` = a [m],
+        ``force`` W [N] (positive compressive), ``approach`` delta [m].
 
     Notes
     -----
@@ -109,8 +110,8 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     s = load_curve_nondimensional(a / length_unit(r, e, w))
-    return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)), scalar_or_array(a),
-                     scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+    return si_curve("dmt", {"semi_major": a, "force": s["W_star"] * load_unit(r, w),
+                            "approach": s["delta_star"] * approach_unit(r, e, w)})
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):

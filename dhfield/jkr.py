@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (LoadCurve, approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs, length_unit,
-                        load_unit, scalar_or_array)
+from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs, length_unit,
+                        load_unit, scalar_or_array, si_curve)
 from ._validation import check_control, check_finite
 from .records import pull_off_record
 
@@ -115,8 +115,9 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
 
     Returns
     -------
-    LoadCurve
-        ``load`` [N] (positive compressive), ``contact_radius`` [m], ``approach`` [m].
+    dhfield.records.LoadCurve
+        The SI curve (model ``jkr``, circle): ``semi_major`` = ``semi_minor`` = a [m],
+        ``force`` W [N] (positive compressive), ``approach`` delta [m].
 
     Notes
     -----
@@ -134,8 +135,8 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     cr = length_unit(r, e, w)
     s = load_curve_nondimensional(a / cr)
-    return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)), scalar_or_array(a),
-                     scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+    return si_curve("jkr", {"semi_major": a, "force": s["W_star"] * load_unit(r, w),
+                            "approach": s["delta_star"] * approach_unit(r, e, w)})
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):

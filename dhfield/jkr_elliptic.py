@@ -72,21 +72,18 @@ value 1.5 pi R dgamma instead (no sin(theta_skew)).
 """
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
 from ._adhesion import (approach_unit, check_material, length_unit, load_unit, pull_off_si_of, scalar_or_array,
-                        si_inputs)
+                        si_curve, si_inputs)
 from ._validation import as_circle, check_control, check_ellipticity, check_finite, check_interval
 from .geometry import ellipticity_from_radius_ratio, sin_skew_angle
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
 
 __all__ = [
-    "EllipticLoadCurve",
     "EllipticJKR",
     "load_curve",
     "pull_off",
@@ -108,29 +105,6 @@ _SCAN_U = np.clip(_SCAN_U, 1e-9, 1.0 - 1e-9)
 _N = np.arange(_SERIES_TERMS)
 _SERIES_COEF = np.cumprod(np.concatenate([[1.0], (1.5 + _N[:-1]) / (_N[:-1] + 1.0)])) * \
     np.cumprod(np.concatenate([[3.0 * np.pi / 8.0], (_N[:-1] + 2.5) / (_N[:-1] + 3.0)]))
-
-
-class EllipticLoadCurve(NamedTuple):
-    """Elliptical JKR states along a load curve, in SI units (both models of :class:`EllipticJKR`).
-
-    Parameters
-    ----------
-    load : ndarray
-        Load W [N].
-    semi_major, semi_minor : ndarray
-        Contact semi-axes a and b [m].
-    approach : ndarray
-        Approach delta [m].
-    ellipticity : ndarray
-        Contact ellipticity b/a [-].
-    """
-
-    load: np.ndarray
-    semi_major: np.ndarray
-    semi_minor: np.ndarray
-    approach: np.ndarray
-    ellipticity: np.ndarray
-
 
 
 def _integrals(beta, k2):
@@ -206,11 +180,13 @@ def geometry_terms(beta0):
     rho_m1 = _radius_ratio_m1(beta0)
     return beta0, rho_m1, 2.0 * np.sqrt(1.0 + rho_m1) / (2.0 + rho_m1)
 
-def state_si(state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
+def state_si(model, state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
     """Convert nondimensional elliptical-JKR states (Eqs. 32-34) to an SI load curve.
 
     Parameters
     ----------
+    model : str
+        The model's name (:attr:`EllipticJKR.model`).
     state : dict
         ``W_star``, ``a_star``, ``b_star``, ``delta_star``, ``beta`` [-] in the paper's units.
     beta0 : array_like
@@ -220,16 +196,17 @@ def state_si(state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
 
     Returns
     -------
-    EllipticLoadCurve
-        Load [N], semi-axes [m], approach [m] and ellipticity [-].
+    dhfield.records.LoadCurve
+        The SI curve: semi-axes [m], force [N], approach [m], and ``ellipticity`` b/a [-].
     """
     r, e, w = effective_radius, reduced_modulus, work_of_adhesion
     cr = length_unit(r, e, w)
     sn = geometry_terms(beta0)[2]
-    return EllipticLoadCurve(scalar_or_array(state["W_star"] / sn * load_unit(r, w)),  # Eq. (34)
-                             scalar_or_array(state["a_star"] * cr), scalar_or_array(state["b_star"] * cr),
-                             scalar_or_array(state["delta_star"] * approach_unit(r, e, w)),
-                             scalar_or_array(state["beta"]))
+    arrays = {"semi_major": state["a_star"] * cr, "semi_minor": state["b_star"] * cr,
+              "force": state["W_star"] / sn * load_unit(r, w),  # Eq. (34)
+              "approach": state["delta_star"] * approach_unit(r, e, w)}
+    return si_curve(model, arrays, beta0=scalar_or_array(beta0), sin_skew=scalar_or_array(sn), geometry="ellipse",
+                    ellipticity=scalar_or_array(state["beta"]))
 
 
 def _u_at_contact(state_u, a_star, beta0, rho_m1, sin_skew):
@@ -434,14 +411,14 @@ class EllipticJKR:
 
         Returns
         -------
-        EllipticLoadCurve
-            ``load`` [N], ``semi_major``, ``semi_minor`` [m], ``approach`` [m],
-            ``ellipticity`` b/a [-].
+        dhfield.records.LoadCurve
+            Model :attr:`model`: ``semi_major``, ``semi_minor`` [m], ``force`` [N],
+            ``approach`` [m], and ``ellipticity`` b/a along the curve [-].
         """
         b0 = check_geometry(radius_ratio, beta0)
         a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
         r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-        return state_si(self.load_curve_nondimensional(a / length_unit(r, e, w), b0), b0, r, e, w)
+        return state_si(self.model, self.load_curve_nondimensional(a / length_unit(r, e, w), b0), b0, r, e, w)
 
     def pull_off(self, effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
                  control="load"):
@@ -664,9 +641,10 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
 
     Returns
     -------
-    EllipticLoadCurve
-        ``load`` [N] (compressive positive), ``semi_major``, ``semi_minor`` [m],
-        ``approach`` [m], ``ellipticity`` b/a [-].
+    dhfield.records.LoadCurve
+        The SI curve: ``semi_major``, ``semi_minor`` [m], ``force`` W [N] (compressive
+        positive), ``approach`` [m] (no adhesive zone: NaN), and ``ellipticity``, b/a along
+        the curve [-].
 
     Notes
     -----

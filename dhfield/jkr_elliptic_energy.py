@@ -241,9 +241,10 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
 
     Returns
     -------
-    dhfield.jkr_elliptic.EllipticLoadCurve
-        ``load`` [N] (compressive positive), ``semi_major``, ``semi_minor`` [m],
-        ``approach`` [m], ``ellipticity`` b/a [-].
+    dhfield.records.LoadCurve
+        The SI curve (model ``jkr-elliptic-energy``): ``semi_major``, ``semi_minor`` [m], ``force`` W [N] (compressive
+        positive), ``approach`` [m] (no adhesive zone: NaN), and ``ellipticity``, b/a along
+        the curve [-].
 
     Notes
     -----

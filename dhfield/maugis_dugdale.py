@@ -45,8 +45,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (LoadCurve, approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
-                        length_unit, load_unit, scalar_or_array, tabor_parameter)
+from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
+                        length_unit, load_unit, si_curve, tabor_parameter)
 from ._validation import check_control, check_positive
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
@@ -324,8 +324,11 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
 
     Returns
     -------
-    LoadCurve
-        ``load`` [N], ``contact_radius`` [m], ``approach`` [m].
+    dhfield.records.LoadCurve
+        The SI curve (model ``md``, circle): ``semi_major`` = ``semi_minor`` = a [m],
+        ``adhesive_semi_major`` = ``adhesive_semi_minor`` = c, the Dugdale zone's
+        radius [m], ``force`` W [N] (positive compressive), ``approach`` delta [m].  The header's ``mu`` is the
+        Tabor parameter of the inputs, Eq. (35).
 
     Notes
     -----
@@ -341,9 +344,10 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
     s = load_curve_nondimensional(a / length_unit(r, e, w), mu)
-    return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)),
-                     scalar_or_array(np.broadcast_to(a, s["W_star"].shape)),
-                     scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+    zone = s["c_star"] * length_unit(r, e, w)  # Eq. (32)
+    return si_curve("md", {"semi_major": a, "adhesive_semi_major": zone, "adhesive_semi_minor": zone,
+                           "force": s["W_star"] * load_unit(r, w),
+                           "approach": s["delta_star"] * approach_unit(r, e, w)}, mu=mu)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

@@ -48,7 +48,7 @@ states are evaluated in bounded chunks.
 """
 from __future__ import annotations
 
-from dataclasses import asdict, astuple, dataclass
+from dataclasses import astuple, dataclass
 
 import numpy as np
 from scipy import special
@@ -58,7 +58,7 @@ from ._validation import (CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE, ch
 from .adhesion import NODES_PER_PANEL, graded_panel_counts, ragged_graded_rule
 from .geometry import sin_skew_angle
 from .pull_off_search import stable_branch_end
-from .records import PullOff, pull_off_record
+from .records import LoadCurve, PullOff, load_curve_record, pull_off_record
 
 __all__ = ["solve_adhesive_axis", "adhesive_axis_state", "load_curve", "load_curve_nondimensional", "pull_off", "pull_off_nondimensional",
            "jkr_limit_pull_off", "LoadCurve",
@@ -420,53 +420,6 @@ def _scalar(x):
     return x[()] if x.ndim == 0 else x
 
 
-@dataclass(frozen=True)
-class LoadCurve:
-    """A nondimensional load curve of the elliptical DH model (Eqs. 32-36).
-
-    The array fields are arrays over the contact size.
-
-    Parameters
-    ----------
-    mu : float
-        Tabor parameter, Eq. (35) [-].
-    beta0 : float
-        Initial (Hertz) ellipticity [-].
-    ellipticity : float
-        Ellipticity of both ellipses [-].
-    a_star, b_star : ndarray
-        Contact semi-axes a/c_r, b/c_r [-].
-    c_star, d_star : ndarray
-        Adhesive semi-axes c/c_r, d/c_r [-].
-    v : ndarray
-        DH scaling factor [-].
-    W_star : ndarray
-        Load W sin(theta_skew)/(2 pi R Delta gamma), Eq. (34) [-].
-    delta_star : ndarray
-        Approach delta/(c_r^2/R) [-].
-    """
-    mu: float
-    beta0: float
-    ellipticity: float
-    a_star: np.ndarray
-    b_star: np.ndarray
-    c_star: np.ndarray
-    d_star: np.ndarray
-    v: np.ndarray
-    W_star: np.ndarray
-    delta_star: np.ndarray
-
-    def as_dict(self):
-        """Return the curve as a JSON-ready dict.
-
-        Returns
-        -------
-        dict
-            Field name -> value, arrays as lists.
-        """
-        return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}
-
-
 def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
     """Load curve of the elliptical DH model at Tabor parameter ``mu`` and ellipticity ``beta0``.
 
@@ -489,8 +442,9 @@ def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
 
     Returns
     -------
-    LoadCurve
-        The curve, nondimensional (Eqs. 32-36).
+    dhfield.records.LoadCurve
+        The curve, nondimensional (Eqs. 32-36): model ``dh-elliptic``, and ``ellipticity``,
+        the ellipticity of both ellipses (beta0 unless given), after the arrays.
     """
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
     for name, val in (("mu", mu), ("beta0", beta0), ("ellipticity", ell)):
@@ -503,9 +457,12 @@ def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
     if a.size > MAX_CURVE_POINTS:
         raise ValueError(f"a_star must have at most {MAX_CURVE_POINTS} points (MAX_CURVE_POINTS); "
                          f"got {a.size}")
-    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)))
-    return LoadCurve(float(mu), float(beta0), float(ell), st["a"], ell * st["a"], st["c"], ell * st["c"],
-                     st["v"], st["W"], st["delta"])
+    sin_skew = sin_skew_angle(beta0)
+    st = _state_chunked(a, mu, _shape(ell, sin_skew))
+    arrays = {"a_star": st["a"], "b_star": ell * st["a"], "c_star": st["c"], "d_star": ell * st["c"], "v": st["v"],
+              "W_star": st["W"], "delta_star": st["delta"]}
+    return load_curve_record("dh-elliptic", beta0, mu, arrays, sin_skew=sin_skew, geometry="ellipse",
+                             ellipticity=ell)
 
 
 def load_curve_nondimensional(a_star, *, beta0, mu, ellipticity=None, derivatives=False):

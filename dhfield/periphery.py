@@ -11,7 +11,7 @@ r_ab(theta_p) <= r <= r_cd(theta_p) (Eqs. A1, A2),
 * the sigma-h curve along the ray: the cohesive law that ray "sees",
 
 from the analytic fields (:func:`periphery`, :func:`cohesive_law`, and the pull-off
-and load-curve wrappers :func:`periphery_at_pull_off`, :func:`load_curve_periphery`),
+and load-curve wrappers :func:`periphery_at_pull_off`, :func:`periphery_along_curve`),
 and from a numerical gap field on a Cartesian grid, e.g. a boundary-element
 (BEM) field (:func:`periphery_from_gap_grid`).
 
@@ -52,7 +52,7 @@ Units
 -----
 SI at the public boundary (lengths [m], stresses [Pa], Delta gamma [J m^-2]);
 with R = E* = 1 everything is nondimensional in the units of Eqs. (32)-(35), which
-is what :func:`periphery_at_pull_off` and :func:`load_curve_periphery` return.
+is what :func:`periphery_at_pull_off` and :func:`periphery_along_curve` return.
 
 References
 ----------
@@ -69,7 +69,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import double_hertz, hertz, model
+from . import double_hertz, hertz
 from ._validation import check_ellipticity, check_finite, check_positive
 from ._rays import edge_radius as _edge_radius, ray_geometry as _rays, ray_nodes as _ray_nodes
 from .elliptic import ellipsoid_integrals
@@ -84,7 +84,7 @@ __all__ = [
     "cohesive_law",
     "ray_average",
     "periphery_at_pull_off",
-    "load_curve_periphery",
+    "periphery_along_curve",
     "periphery_from_gap_grid",
     "adhesive_traction",
     "periphery_from_state",
@@ -559,33 +559,28 @@ def periphery_at_pull_off(pull_off, theta=None):
     return periphery(a, pull_off.c_star, beta, pull_off.v, theta)
 
 
-def load_curve_periphery(*, beta0, mu, a_star=None, theta=None, ellipticity=None, n=60):
+def periphery_along_curve(curve, theta=None):
     """The periphery quantities along a load curve of the paper's model.
 
     Parameters
     ----------
-    beta0, mu : float
-        Initial ellipticity and Tabor parameter (Eq. 35) [-].
-    a_star : array_like, optional
-        Contact semi-major axes a* [-]; default ``n`` points over
-        :data:`dhfield.model.DEFAULT_A_STAR`.
+    curve : dhfield.records.LoadCurve
+        A nondimensional curve of the paper's model, model ``dh-elliptic``
+        (:func:`dhfield.model.load_curve`, whose ``ellipticity`` is that of both ellipses,
+        or :func:`dhfield.compare.load_curve`, whose ellipses have beta0).
     theta : array_like, optional
         Ray angles, 1-D [rad].
-    ellipticity : float, optional
-        Ellipticity of both ellipses if different from beta0 (see
-        :func:`dhfield.model.load_curve`) [-].
-    n : int
-        Number of contact sizes when ``a_star`` is not given.
 
     Returns
     -------
-    curve : dhfield.model.LoadCurve
-        The load curve.
-    profile : PeripheryProfile
+    PeripheryProfile
         Shape ``(len(a_star), len(theta))``, nondimensional as in :func:`periphery_at_pull_off`.
     """
-    curve = model.load_curve(mu=mu, beta0=beta0, a_star=a_star, ellipticity=ellipticity, n=n)
-    return curve, periphery(curve.a_star, curve.c_star, curve.ellipticity, curve.v, theta)
+    if getattr(curve, "model", None) != "dh-elliptic" or not curve.nondimensional:
+        raise ValueError("curve must be a nondimensional load curve of the paper's model (model 'dh-elliptic', "
+                         f"dhfield.model.load_curve); got {getattr(curve, 'model', type(curve).__name__)!r}")
+    ell = curve.beta0 if curve.ellipticity is None else curve.ellipticity
+    return periphery(curve.a_star, curve.c_star, ell, curve.v, theta)
 
 
 # --------------------------------------------------------------------------- numerical (BEM) fields

@@ -21,7 +21,10 @@ Every model answers with the same types, whose fields are named by :mod:`dhfield
     :data:`dhfield.schema.PULL_OFF_SOLVER_KEYS`);
 
 * :class:`LoadCurve`: :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS` (scalars) then
-  :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size).
+  :data:`dhfield.schema.LOAD_CURVE_KEYS` (arrays over the contact size, the paper's units)
+  or, for a curve from physical inputs, :data:`dhfield.schema.LOAD_CURVE_SI_KEYS` (SI),
+  then ``ellipticity`` where the model records it (the paper's model): every model's
+  ``load_curve``, nondimensional or SI, returns it (built by :func:`load_curve_record`).
 
 Both are read as attributes (``p.W_star``) or as a mapping (``p["W_star"]``, ``dict(p)``,
 ``{**p}``), so a record goes straight into JSON, netCDF and tables.  NaN stands for a
@@ -36,7 +39,8 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from .schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_ALL_KEYS, PULL_OFF_SI_KEYS
+from .schema import (LOAD_CURVE_ALL_KEYS, LOAD_CURVE_KEYS, LOAD_CURVE_SI_KEYS,
+                     PULL_OFF_ALL_KEYS, PULL_OFF_SI_KEYS)
 
 __all__ = ["PullOff", "LoadCurve", "pull_off_record", "pull_off_record_si", "load_curve_record"]
 
@@ -228,19 +232,57 @@ class PullOff(_Record):
                      if getattr(self, k) is not None)
 
 
-@dataclass(frozen=True, eq=False)
+#: The two array groups of a load curve, less ``v`` (in both).
+_CURVE_ND = tuple(k for k in LOAD_CURVE_KEYS if k != "v")
+_CURVE_SI = tuple(k for k in LOAD_CURVE_SI_KEYS if k != "v")
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
 class LoadCurve(_Record):
-    """A load curve of an analytic model (fields: the schema's load-curve keys).
+    """A load curve of a model: the one load-curve record of dhfield (keys: :data:`dhfield.schema.LOAD_CURVE_ALL_KEYS`).
+
+    Every model's load curve is this type: the registry's (:func:`dhfield.compare.load_curve`,
+    :func:`dhfield.compare.load_curve_at_load`) and the paper's model's
+    (:func:`dhfield.model.load_curve`) in the paper's units; the SI ``load_curve`` of every
+    comparison model (JKR, DMT, MD, DH circular, the elliptical JKR models) and
+    :func:`dhfield.dimensional.load_curve_si` with the SI group.  A curve holds one of two
+    array groups, the other ``None`` and not a key: iterating a nondimensional curve gives
+    :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS` + :data:`dhfield.schema.LOAD_CURVE_KEYS`,
+    an SI one :data:`dhfield.schema.LOAD_CURVE_HEADER_KEYS` +
+    :data:`dhfield.schema.LOAD_CURVE_SI_KEYS` (``v``, dimensionless, is in both), then
+    ``ellipticity`` where the model records it.  Construct with keywords.
 
     Parameters
     ----------
     model, geometry : str
         As in :class:`PullOff`.
-    beta0, mu, sin_skew : float
-        As in :class:`PullOff`.
-    a_star, b_star, c_star, d_star, v, W_star, delta_star : ndarray
-        The states along the curve, over the contact size (NaN where the model has no
-        such quantity).
+    beta0, mu, sin_skew : float or ndarray
+        As in :class:`PullOff` (NaN ``mu`` for the models without one: JKR, DMT, the
+        elliptical JKR models).  Floats, except for an SI curve of array-valued material
+        inputs [-].
+    a_star, b_star, c_star, d_star : ndarray, optional
+        Nondimensional group: contact and adhesive-zone semi-axes in c_r, Eq. (33) [-]
+        (NaN: no zone).
+    semi_major, semi_minor : ndarray, optional
+        SI group: contact semi-axes a, b [m] (both the contact radius for a circle).
+    adhesive_semi_major, adhesive_semi_minor : ndarray, optional
+        SI group: adhesive-zone semi-axes c, d [m] (NaN: no zone).
+    v : ndarray
+        Double-Hertz factor of Eq. (22) [-] (NaN outside the DH models that report it);
+        in both groups.
+    W_star : ndarray, optional
+        Nondimensional group: load W sin(theta_skew)/(2 pi R dgamma), Eq. (34) [-].
+    delta_star : ndarray, optional
+        Nondimensional group: approach delta/(c_r^2/R) [-].
+    force : ndarray, optional
+        SI group: load W [N] (positive compressive).
+    approach : ndarray, optional
+        SI group: approach delta [m].
+    ellipticity : float or ndarray, optional
+        The contact's ellipticity b/a where the model sets it: the ellipticity of both
+        ellipses of the paper's model (:func:`dhfield.model.load_curve`: beta0, or its free
+        ``ellipticity``; a float), b/a along the curve of the SI elliptical JKR curves (an
+        array); ``None`` elsewhere (b*/a* or semi_minor/semi_major gives it) [-].
     """
 
     model: str
@@ -248,19 +290,39 @@ class LoadCurve(_Record):
     beta0: float
     mu: float
     sin_skew: float
-    a_star: np.ndarray
-    b_star: np.ndarray
-    c_star: np.ndarray
-    d_star: np.ndarray
+    a_star: np.ndarray = None
+    b_star: np.ndarray = None
+    c_star: np.ndarray = None
+    d_star: np.ndarray = None
+    semi_major: np.ndarray = None
+    semi_minor: np.ndarray = None
+    adhesive_semi_major: np.ndarray = None
+    adhesive_semi_minor: np.ndarray = None
     v: np.ndarray
-    W_star: np.ndarray
-    delta_star: np.ndarray
+    W_star: np.ndarray = None
+    delta_star: np.ndarray = None
+    force: np.ndarray = None
+    approach: np.ndarray = None
+    ellipticity: float = None
 
-    _KEYS = LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
+    def __post_init__(self):
+        nd, si = ([getattr(self, k) is not None for k in group] for group in (_CURVE_ND, _CURVE_SI))
+        if not ((all(nd) and not any(si)) or (all(si) and not any(nd))):
+            raise ValueError(f"a load curve holds either every key of {LOAD_CURVE_KEYS} (the paper's units) or "
+                             f"every key of {LOAD_CURVE_SI_KEYS} (SI), not a mixture")
+
+    @property
+    def _KEYS(self):
+        return tuple(k for k in LOAD_CURVE_ALL_KEYS if getattr(self, k) is not None)
+
+    @property
+    def nondimensional(self) -> bool:
+        """True for a curve in the paper's units, False for an SI one."""
+        return self.force is None
 
 
 assert tuple(f.name for f in fields(PullOff)) == PULL_OFF_ALL_KEYS + ("path",)
-assert tuple(f.name for f in fields(LoadCurve)) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS
+assert tuple(f.name for f in fields(LoadCurve)) == LOAD_CURVE_ALL_KEYS
 
 
 def _arr(x, shape, dtype=float):
@@ -345,32 +407,45 @@ def _scalar(x):
     return x[()] if x.ndim == 0 else x
 
 
-def load_curve_record(model, beta0, mu, arrays, *, sin_skew, geometry):
+def load_curve_record(model, beta0, mu, arrays, *, sin_skew, geometry, ellipticity=None):
     """Build the :class:`LoadCurve` of a model from its arrays over the contact size.
 
     Parameters
     ----------
     model : str
         The model's name.
-    beta0, mu : float
-        The inputs [-].
+    beta0, mu : float or ndarray
+        The inputs [-] (arrays only for an SI curve of array-valued material inputs).
     arrays : mapping
-        ``a_star``, ``W_star``, ``delta_star`` and, where the model has them, ``b_star``
-        (default a*), ``c_star``, ``d_star``, ``v`` (default NaN).
-    sin_skew : float
+        Nondimensional: ``a_star``, ``W_star``, ``delta_star`` and, where the model has them,
+        ``b_star`` (default a*), ``c_star``, ``d_star``, ``v`` (default NaN).  SI (recognised by
+        ``force``): ``semi_major``, ``force``, ``approach`` and, where the model has them,
+        ``semi_minor`` (default the semi-major axis), ``adhesive_semi_major``,
+        ``adhesive_semi_minor``, ``v`` (default NaN).
+    sin_skew : float or ndarray
         The sin(theta_skew) of Eq. (34) (1 for the circle) [-].
     geometry : {'ellipse', 'circle'}
         The contact's shape.
+    ellipticity : float or array_like, optional
+        The contact's b/a where the model sets it (:class:`LoadCurve`) [-].
 
     Returns
     -------
     LoadCurve
-        The curve, nondimensional.
+        The curve, nondimensional or SI; arrays of the contact sizes' shape (numpy scalars
+        for a scalar contact size).
     """
-    a = np.asarray(arrays["a_star"], float)
+    keys = LOAD_CURVE_SI_KEYS if "force" in arrays else LOAD_CURVE_KEYS
+    major, minor, zone_major, zone_minor = keys[:4]
+    a = np.asarray(arrays[major], float)
     nan = np.full(a.shape, _NAN)
-    get = {"a_star": a, "b_star": arrays.get("b_star", a), "c_star": arrays.get("c_star", nan),
-           "d_star": arrays.get("d_star", nan), "v": arrays.get("v", nan), "W_star": arrays["W_star"],
-           "delta_star": arrays["delta_star"]}
-    return LoadCurve(model, geometry, float(beta0), float(mu), float(sin_skew),
-                     *(np.asarray(get[k], float) for k in LOAD_CURVE_KEYS))
+    get = {major: a, minor: arrays.get(minor, a), zone_major: arrays.get(zone_major, nan),
+           zone_minor: arrays.get(zone_minor, nan), "v": arrays.get("v", nan), keys[5]: arrays[keys[5]],
+           keys[6]: arrays[keys[6]]}
+    return LoadCurve(model=model, geometry=geometry, beta0=_header(beta0), mu=_header(mu), sin_skew=_header(sin_skew),
+                     **{k: _scalar(np.asarray(get[k], float)) for k in keys},
+                     ellipticity=None if ellipticity is None else _header(ellipticity))
+
+
+def _header(x):
+    return float(x) if np.ndim(x) == 0 else np.asarray(x, dtype=float)

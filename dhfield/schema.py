@@ -28,7 +28,11 @@ record type, :class:`dhfield.records.PullOff`, adds the groups
 :data:`PULL_OFF_SOLVER_KEYS` (a numerical solution, the adhesive BEM) where they
 apply; :data:`PULL_OFF_ALL_KEYS` lists every key in order.
 :data:`LOAD_CURVE_KEYS` and :data:`LOAD_CURVE_SI_KEYS` are the array keys of a
-load curve, after the scalar header :data:`LOAD_CURVE_HEADER_KEYS`.
+load curve, after the scalar header :data:`LOAD_CURVE_HEADER_KEYS`: the one
+load-curve type, :class:`dhfield.records.LoadCurve`, holds one of the two array
+groups (the paper's units or SI) and, where the model records it, the optional
+key :data:`LOAD_CURVE_OPTIONAL_KEYS` after them; :data:`LOAD_CURVE_ALL_KEYS`
+lists every key in order.
 """
 from __future__ import annotations
 
@@ -47,6 +51,8 @@ __all__ = [
     "LOAD_CURVE_HEADER_KEYS",
     "LOAD_CURVE_KEYS",
     "LOAD_CURVE_SI_KEYS",
+    "LOAD_CURVE_OPTIONAL_KEYS",
+    "LOAD_CURVE_ALL_KEYS",
     "BEM_ADHESIVE_KEYS",
     "attrs",
     "units",
@@ -258,6 +264,14 @@ LOAD_CURVE_KEYS = ("a_star", "b_star", "c_star", "d_star", "v", "W_star", "delta
 #: Array keys of a load curve from physical inputs, in order.
 LOAD_CURVE_SI_KEYS = ("semi_major", "semi_minor", "adhesive_semi_major", "adhesive_semi_minor", "v", "force",
                       "approach")
+#: Optional key of a load curve, after its arrays: ``ellipticity``, the contact's b/a where the model sets it
+#: (the paper's model: the ellipticity of both ellipses; the SI elliptical JKR curves: b/a along the curve).
+LOAD_CURVE_OPTIONAL_KEYS = ("ellipticity",)
+#: Every key a :class:`dhfield.records.LoadCurve` may carry, in order.  ``v`` belongs to both array groups,
+#: so a nondimensional curve iterates ``LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS`` and an SI one
+#: ``LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_SI_KEYS`` (then the optional key where present).
+LOAD_CURVE_ALL_KEYS = (LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS[:4] + LOAD_CURVE_SI_KEYS[:4] + ("v",)
+                       + LOAD_CURVE_KEYS[5:] + LOAD_CURVE_SI_KEYS[5:] + LOAD_CURVE_OPTIONAL_KEYS)
 #: Outputs of the adhesive BEM solve at one state.
 BEM_ADHESIVE_KEYS = ("a_star", "b_star", "c_star", "d_star", "beta_ab", "beta_cd", "W_star", "delta_star",
                      "converged", "n_steps", "iterations")

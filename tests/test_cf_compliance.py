@@ -121,7 +121,8 @@ def _eq30(tmp):
 
 
 def _load_curve_periphery(tmp):
-    lc, pr = periphery.load_curve_periphery(beta0=0.9, mu=1.0, a_star=[0.5, 1.0], theta=THETA)
+    lc = model.load_curve(beta0=0.9, mu=1.0, a_star=[0.5, 1.0])
+    pr = periphery.periphery_along_curve(lc, THETA)
     ds = io_periphery.load_curve_periphery_dataset({(0.9, 1.0): lc}, {(0.9, 1.0): pr}, beta0=[0.9], mu=[1.0])
     return io_periphery.write_dataset(ds, tmp / "lc_periphery.nc")
 

@@ -89,7 +89,8 @@ def test_dimensional_wrapper():
     assert_allclose(po.force, dh_circular.pull_off_nondimensional(1.0, mu)["W_star"] * 2 * np.pi * R * DG, rtol=1e-12)
     cr = np.cbrt(R * R * DG / E)
     c = dh_circular.load_curve(np.array([0.5, 1.0]) * cr, R, E, DG, sigma0)
-    assert_allclose(c.load, dh_circular.load_curve_nondimensional(np.array([0.5, 1.0]), mu)["W_star"] * 2 * np.pi * R * DG,
+    assert_allclose(c.force,
+                    dh_circular.load_curve_nondimensional(np.array([0.5, 1.0]), mu)["W_star"] * 2 * np.pi * R * DG,
                     rtol=1e-12)
 
 

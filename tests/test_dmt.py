@@ -24,9 +24,9 @@ def test_pull_off(control):
 def test_curve_and_inverse():
     a = np.geomspace(1e-9, 1e-6, 9)
     c = dmt.load_curve(a, R, E, DG)
-    assert_allclose(c.load, 4 * E * a**3 / (3 * R) - 2 * np.pi * R * DG, rtol=TOL_EXACT)
+    assert_allclose(c.force, 4 * E * a**3 / (3 * R) - 2 * np.pi * R * DG, rtol=TOL_EXACT)
     assert_allclose(c.approach, a**2 / R, rtol=TOL_EXACT)
-    assert_allclose(dmt.contact_radius(c.load, R, E, DG), a, rtol=1e-6)  # a^3 from a difference ~ 2 pi R dg
+    assert_allclose(dmt.contact_radius(c.force, R, E, DG), a, rtol=1e-6)  # a^3 from a difference ~ 2 pi R dg
 
 
 def test_bad_input():

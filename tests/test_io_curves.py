@@ -32,6 +32,20 @@ def test_si_curve_has_si_units():
     assert ds["approach"].attrs["units"] == "m" and ds.attrs["param_sin_skew"] == 0.8
 
 
+def test_si_and_ellipticity_records_write_their_own_groups(tmp_path):
+    """The one load-curve type (issue 16): an SI record writes the SI columns, the paper's model's
+    record its header and free ellipticity as attributes."""
+    from dhfield import dimensional
+
+    p = dimensional.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
+    ds = load_curve_dataset(dimensional.load_curve_si(p, n=4, model="jkr"))
+    assert tuple(ds.data_vars) == schema.LOAD_CURVE_SI_KEYS and ds["force"].attrs["units"] == "N"
+    assert ds.attrs["param_model"] == "jkr" and ds.attrs["param_geometry"] == "circle"
+    ds = load_curve_dataset(model.load_curve(mu=1.0, beta0=0.9, ellipticity=0.85, n=4))
+    assert tuple(ds.data_vars) == schema.LOAD_CURVE_KEYS
+    assert ds.attrs["param_ellipticity"] == 0.85 and ds.attrs["param_model"] == "dh-elliptic"
+
+
 def test_round_trip_values_and_attrs(tmp_path):
     curve = model.load_curve(mu=2.0, beta0=0.8, n=9)
     path = write_load_curve(curve, tmp_path / "x.nc")

@@ -38,7 +38,7 @@ def test_dimensional_and_inverse():
                     rtol=TOL_EXACT)
     a = np.linspace(po.semi_major, 5 * po.semi_major, 7)
     c = jkr.load_curve(a, R, E, DG)
-    assert_allclose(jkr.contact_radius(c.load, R, E, DG), a, rtol=1e-7)  # sqrt at pull-off: ~sqrt(eps)
+    assert_allclose(jkr.contact_radius(c.force, R, E, DG), a, rtol=1e-7)  # sqrt at pull-off: ~sqrt(eps)
     assert_allclose(c.approach, a**2 / R - np.sqrt(2 * np.pi * a * DG / E), rtol=1e-12)
 
 
@@ -48,7 +48,7 @@ def test_unit_neutral():
     c1 = jkr.load_curve(a, R, E, DG)
     # um, uN, MPa (= uN/um^2); J/m^2 = uN/um is unchanged
     c2 = jkr.load_curve(a * 1e6, R * 1e6, E * 1e-6, DG)
-    assert_allclose(c2.load, c1.load * 1e6, rtol=1e-12)  # uN
+    assert_allclose(c2.force, c1.force * 1e6, rtol=1e-12)  # uN
     assert_allclose(c2.approach, c1.approach * 1e6, rtol=1e-12)
 
 

@@ -200,7 +200,7 @@ def test_si_scaling_and_invariance():
     assert_allclose(p2.approach, 2 * p1.approach, rtol=1e-12)
     assert_allclose(p2.force, 64 * p1.force, rtol=1e-12)
     c = ee.load_curve(p1.semi_major, r, e, w, radius_ratio=4.0)
-    assert_allclose([c.load, c.approach, c.ellipticity], [p1.force, p1.approach, p1.ellipticity], rtol=1e-9)
+    assert_allclose([c.force, c.approach, c.ellipticity], [p1.force, p1.approach, p1.ellipticity], rtol=1e-9)
 
 
 def test_broadcasting():

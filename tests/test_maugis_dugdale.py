@@ -123,7 +123,7 @@ def test_dimensional():
     assert_allclose(md.pull_off_force(r, e, dg, s0), md.pull_off_nondimensional(1.0, mu)["W_star"] * 2 * np.pi * r * dg,
                     rtol=1e-12)
     c = md.load_curve(np.array([1e-8, 3e-8]), r, e, dg, s0)
-    assert c.load.shape == (2,) and np.all(np.isfinite(c.approach))
+    assert c.force.shape == (2,) and np.all(np.isfinite(c.approach))
 
 
 def test_bad_input():

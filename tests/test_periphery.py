@@ -148,8 +148,16 @@ def test_pull_off_periphery_imposes_eq31_and_eq24():
     assert_allclose(prof.zone_width[..., 0], po.c_star - po.a_star, rtol=1e-12)
 
 
-def test_load_curve_periphery():
-    curve, prof = periphery.load_curve_periphery(beta0=0.9, mu=1.0, a_star=[0.3, 1.0, 2.0], theta=THETA)
+def test_periphery_along_curve():
+    """The periphery of the paper's model's one load-curve record (issue 16); the registry's curve of
+    the same model (ellipses of beta0) gives the same profile."""
+    from dhfield import compare
+
+    curve = model.load_curve(beta0=0.9, mu=1.0, a_star=[0.3, 1.0, 2.0])
+    prof = periphery.periphery_along_curve(curve, THETA)
+    again = periphery.periphery_along_curve(compare.load_curve("dh-elliptic", beta0=0.9, mu=1.0,
+                                                               a_star=[0.3, 1.0, 2.0]), THETA)
+    assert_allclose(again.work_of_adhesion, prof.work_of_adhesion, rtol=0)  # same arrays, same computation
     assert prof.work_of_adhesion.shape == (3, THETA.size)
     assert_allclose(prof.work_of_adhesion[:, 0], 1.0, rtol=1e-12)
     assert np.all(prof.work_of_adhesion[:, -1] < 1.0)
@@ -242,10 +250,12 @@ def test_gap_grid_state_is_one_tuple():
             periphery.periphery_from_gap_grid(x, x, g, bad, THETA)
 
 
-def test_load_curve_periphery_beta0_and_mu_are_keyword_only():
-    """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
-    with pytest.raises(TypeError, match="positional"):
-        periphery.load_curve_periphery(1.0, 0.9)
+def test_periphery_along_curve_takes_the_paper_models_curve_only():
+    """The ray formulas are the elliptical DH model's: another model's curve, or an SI one, is refused."""
+    from dhfield import compare
+
+    with pytest.raises(ValueError, match="dh-elliptic"):
+        periphery.periphery_along_curve(compare.load_curve("md", beta0=0.9, mu=1.0, n=3), THETA)
 
 
 def test_datasets_round_trip(tmp_path):
@@ -291,8 +301,8 @@ def test_load_curve_dataset(tmp_path):
 
     curves, profs = {}, {}
     for b in (0.8, 0.9):
-        lc, pr = periphery.load_curve_periphery(beta0=b, mu=1.0, a_star=[0.5, 1.0, 2.0], theta=THETA)
-        curves[(b, 1.0)], profs[(b, 1.0)] = lc, pr
+        lc = model.load_curve(beta0=b, mu=1.0, a_star=[0.5, 1.0, 2.0])
+        curves[(b, 1.0)], profs[(b, 1.0)] = lc, periphery.periphery_along_curve(lc, THETA)
     ds = iop.load_curve_periphery_dataset(curves, profs, beta0=[0.8, 0.9], mu=[1.0])
     back = read_netcdf(iop.write_dataset(ds, tmp_path / "lc.nc"))
     assert back["work_of_adhesion"].shape == (2, 1, 3, THETA.size)

@@ -90,3 +90,78 @@ def test_bem_pull_off_is_the_one_record_with_its_solver_group():
                                control="load", sin_skew=1.0, geometry="ellipse")
     with pytest.raises(ValueError, match="coarse must be a BEM pull-off"):
         refine_pull_off(analytic, 64)
+
+
+def test_load_curve_si_record_and_groups():
+    """An SI curve holds the SI array group (the schema's SI keys, in order) and no nondimensional
+    one; a mixture of the two groups is refused; ``ellipticity`` is a key only where set."""
+    from dhfield.schema import LOAD_CURVE_ALL_KEYS, LOAD_CURVE_SI_KEYS
+
+    c = load_curve_record("jkr", 1.0, float("nan"), {"semi_major": [1.0, 2.0], "force": [0.1, 0.2],
+                                                      "approach": [0, 1]}, sin_skew=1.0, geometry="circle")
+    assert type(c) is LoadCurve and tuple(c) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_SI_KEYS and not c.nondimensional
+    assert c.semi_minor.tolist() == [1.0, 2.0] and np.all(np.isnan(c.adhesive_semi_major)) and c.a_star is None
+    with pytest.raises(KeyError):
+        c["W_star"]
+    e = load_curve_record("x", 0.9, 1.0, {"a_star": [1.0], "W_star": [0.1], "delta_star": [0.0]}, sin_skew=0.9,
+                          geometry="ellipse", ellipticity=0.8)
+    assert tuple(e) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS + ("ellipticity",) and e.ellipticity == 0.8
+    assert tuple(f for f in LOAD_CURVE_ALL_KEYS if f in e or f in c) == LOAD_CURVE_ALL_KEYS
+    with pytest.raises(ValueError, match="not a mixture"):
+        c.replace(W_star=np.zeros(2))
+
+
+def _si_curves():
+    """Every model's SI load_curve at two contact sizes (R = 1 um, E* = 1 GPa, dgamma = 0.05 J/m^2)."""
+    from dhfield import dh_circular, dimensional, dmt, jkr, jkr_elliptic, jkr_elliptic_energy, maugis_dugdale
+
+    r, e, w, s0 = 1e-6, 1e9, 0.05, 3e8
+    a = np.array([5e-9, 2e-8])
+    p = dimensional.contact_parameters(1e9, 0.5, 1e9, 0.5, 1e-6, 1.2, 0.05, 3e8)
+    return {"jkr": jkr.load_curve(a, r, e, w), "dmt": dmt.load_curve(a, r, e, w),
+            "md": maugis_dugdale.load_curve(a, r, e, w, s0), "dh-circular": dh_circular.load_curve(a, r, e, w, s0),
+            "jkr-elliptic": jkr_elliptic.load_curve(a, r, e, w, beta0=0.8),
+            "jkr-elliptic-energy": jkr_elliptic_energy.load_curve(a, r, e, w, beta0=0.8),
+            "load_curve_si": dimensional.load_curve_si(p, n=3, model="md")}
+
+
+def test_every_model_load_curve_is_the_one_type():
+    """The one load-curve type (issue 16): the registry's and the paper's model's curves in the paper's
+    units (header + LOAD_CURVE_KEYS; the paper's model adds its ellipticity), every SI load_curve with
+    the SI keys, in the schema's order."""
+    from dhfield import compare, model
+    from dhfield.schema import LOAD_CURVE_SI_KEYS
+
+    for name in compare.CURVE_MODEL_NAMES:
+        c = compare.load_curve(name, mu=1.0, beta0=0.9, n=3)
+        assert type(c) is LoadCurve and tuple(c) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS and c.model == name
+    m = model.load_curve(mu=1.0, beta0=0.9, n=3, ellipticity=0.85)
+    assert type(m) is LoadCurve and tuple(m) == LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_KEYS + ("ellipticity",)
+    assert m.ellipticity == 0.85 and m.model == "dh-elliptic" and np.allclose(m.b_star, 0.85 * m.a_star, rtol=0)
+    for name, c in _si_curves().items():
+        keys = LOAD_CURVE_HEADER_KEYS + LOAD_CURVE_SI_KEYS + (("ellipticity",) if name.startswith("jkr-elliptic")
+                                                               else ())
+        assert type(c) is LoadCurve and tuple(c) == keys, name
+        assert np.shape(c.force) == np.shape(c.semi_major) == np.shape(c.approach) == np.shape(c.v), name
+
+
+def test_si_curves_match_their_nondimensional_cores():
+    """Each SI curve is its core's nondimensional state in SI units: a = a* c_r, W = W* 2 pi R dgamma /
+    sin(theta_skew), the zone c = c* c_r where the model has one (Eqs. 32-34); the header's mu is the
+    Tabor parameter of Eq. (35) for MD and DH circular and NaN for the models without one."""
+    from dhfield import dh_circular, maugis_dugdale
+
+    r, e, w, s0 = 1e-6, 1e9, 0.05, 3e8
+    cr, mu = np.cbrt(r * r * w / e), s0 * np.cbrt(r / (e * e * w))
+    curves = _si_curves()
+    for name, module in (("md", maugis_dugdale), ("dh-circular", dh_circular)):
+        c = curves[name]
+        st = module.load_curve_nondimensional(c.semi_major / cr, mu)
+        np.testing.assert_allclose(c.adhesive_semi_major, st["c_star"] * cr, rtol=1e-12)  # round-off of c_r
+        np.testing.assert_allclose(c.force, st["W_star"] * 2 * np.pi * r * w, rtol=1e-12)
+        assert c.mu == pytest.approx(mu, rel=1e-15) and c.geometry == "circle" and c.beta0 == 1.0
+    assert np.all(np.isnan(curves["jkr"].adhesive_semi_major)) and np.isnan(curves["jkr"].mu)
+    assert np.all(np.isfinite(curves["dh-circular"].v)) and np.all(np.isnan(curves["md"].v))
+    je = curves["jkr-elliptic"]
+    assert je.geometry == "ellipse" and je.beta0 == 0.8
+    np.testing.assert_allclose(je.ellipticity, je.semi_minor / je.semi_major, rtol=1e-12)  # b/a, rounded once

@@ -579,7 +579,7 @@ def _jkr_elliptic_contacts(w_star, beta0):
     po = jkr_elliptic.pull_off(1.0, 1.0, 1.0, beta0=beta0)  # R = E* = dgamma = 1: lengths are a*
     grid = np.linspace(float(po.semi_major), 8.0, 800)  # stable branch: W* increases with a*
     lc = jkr_elliptic.load_curve(grid, 1.0, 1.0, 1.0, beta0=beta0)
-    w_grid = np.asarray(lc.load) * sn / (2 * np.pi)  # Eq. (34)
+    w_grid = np.asarray(lc.force) * sn / (2 * np.pi)  # Eq. (34)
     w = np.maximum(np.asarray(w_star, float), w_grid[0])
     w[-1] = w_grid[0]
     a = np.interp(w, w_grid, grid)
@@ -737,7 +737,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         from dhfield import jkr
         a_j = np.linspace(1e-3, 3.0, 300)
         lc = jkr.load_curve(a_j, 1.0, 1.0, 1.0)  # R = E* = dgamma = 1: W* = W/(2 pi)
-        jkr_curve = (np.asarray(lc.load) / (2 * np.pi), a_j)
+        jkr_curve = (np.asarray(lc.force) / (2 * np.pi), a_j)
     except Exception:  # noqa: BLE001 - optional overlay
         jkr_curve = None
     figures.append(_fig_axes_vs_load(

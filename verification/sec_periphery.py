@@ -382,7 +382,7 @@ def _fig_laws(res, outdir, dpi):
 
 
 def _fig_curves(res, outdir, dpi, n):
-    from dhfield import periphery
+    from dhfield import model, periphery
 
     plt = _plt()
     fig, ax = plt.subplots(figsize=figsize(1))
@@ -391,7 +391,8 @@ def _fig_curves(res, outdir, dpi, n):
     th = np.linspace(0.0, 0.5 * np.pi, 19)
     for b in res["beta0"]:
         for m in (1.0, 5.0):
-            lc, pr = periphery.load_curve_periphery(beta0=b, mu=m, a_star=a, theta=th)
+            lc = model.load_curve(beta0=b, mu=m, a_star=a)
+            pr = periphery.periphery_along_curve(lc, th)
             ratio = pr.work_of_adhesion[:, -1] / pr.work_of_adhesion[:, 0]
             curves[(float(b), m)] = (lc, pr)
             ax.plot(lc.W_star, ratio, _STYLES[b], color=_COLORS[m], label=f"β0 = {b:g}, μ = {m:g}")

@@ -23,6 +23,8 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
 * the number of ``dhfield._validation`` calls on one ``dhfield pulloff --beta0 0.9 --mu 1 --json``
   (outermost calls only, counted per parameter name; target: each input once);
 * whether ``dhfield/bem/`` imports an analytic model module;
+* the number of load-curve result types (target 1): every function outside ``dhfield/bem`` whose
+  name starts with ``load_curve``, called as the pull-off functions are (:data:`_CURVE_PROBE`);
 * the library's line count.
 
 Usage::
@@ -251,6 +253,68 @@ def dynamic(root: Path) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+#: The load-curve probe (issue 16, "one load-curve type"): every function outside ``dhfield/bem`` and
+#: ``dhfield/cli`` whose name starts with ``load_curve`` is called as the pull-off probe calls the pull-off
+#: functions, its parameters filled by name (beta0 = 0.9, mu = 1; SI functions with the same PDMS-like
+#: contact, contact sizes of about one c_r); a result type is the returned class (with its keys for a dict,
+#: its element types for a plain tuple).
+_CURVE_PROBE = r'''
+import contextlib, importlib, inspect, io, json, pkgutil
+import numpy as np
+import dhfield
+from dhfield.dimensional import contact_parameters
+
+params = contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
+size = np.array([1e-4, 3e-4])  # [m], c_r ~ 1.6e-4 m
+values = {"mu": 1.0, "beta0": 0.9, "lam": 1.1272, "model": "dh-elliptic", "a_star": np.array([0.5, 1.0]),
+          "a_maugis": np.array([0.5, 1.0]), "w_star": np.array([0.0, 1.0]), "contact_radius": size,
+          "semi_major": size, "effective_radius": 1e-2, "reduced_modulus": 1.33e6, "work_of_adhesion": 0.05,
+          "max_adhesive_stress": 2e5, "params": params}
+types, skipped = {}, []
+names = sorted(m.name for m in pkgutil.walk_packages(dhfield.__path__, "dhfield.")
+               if not m.name.startswith(("dhfield.bem", "dhfield.cli")))
+for modname in names:
+    try:
+        mod = importlib.import_module(modname)
+    except Exception:  # noqa: BLE001
+        continue
+    for fname, f in sorted(vars(mod).items()):
+        if not (fname.startswith("load_curve") and inspect.isfunction(f) and f.__module__ == modname):
+            continue
+        kw, ok = {}, True
+        for p in inspect.signature(f).parameters.values():
+            if p.name in values:
+                kw[p.name] = values[p.name]
+            elif p.default is inspect.Parameter.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+                ok = False
+        if not ok:
+            skipped.append(f"{modname}.{fname}")
+            continue
+        try:
+            with contextlib.redirect_stderr(io.StringIO()):
+                r = f(**kw)
+        except Exception as exc:  # noqa: BLE001
+            skipped.append(f"{modname}.{fname} ({type(exc).__name__}: {exc})"[:160])
+            continue
+        t = type(r)
+        key = f"{t.__module__}.{t.__qualname__}"
+        if isinstance(r, dict):
+            key += "{" + ",".join(sorted(r)) + "}"
+        elif isinstance(r, tuple) and not hasattr(r, "_fields"):
+            key += "(" + ", ".join(f"{type(x).__module__}.{type(x).__qualname__}" for x in r) + ")"
+        types.setdefault(key, []).append(f"{modname}.{fname}")
+print(json.dumps({"types": types, "skipped": skipped}))
+'''
+
+
+def curve_types(root: Path) -> dict:
+    """The load-curve result types (:data:`_CURVE_PROBE`) of the checkout at ``root``."""
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    out = subprocess.run([sys.executable, "-c", _CURVE_PROBE], env=env, cwd=root, capture_output=True, text=True,
+                         check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--root", default=str(Path(__file__).resolve().parents[1]))
@@ -289,6 +353,12 @@ def main(argv=None) -> int:
     print(f"dhfield/bem imports an analytic model: {'yes' if s['bem_imports_analytic'] else 'no'}")
     for x in s["bem_imports_analytic"]:
         print(f"    {x}")
+    c = curve_types(root)  # the load-curve result types (issue 16: one load-curve type)
+    print(f"load-curve result types (functions load_curve*, outside dhfield/bem): {len(c['types'])} (target 1)")
+    for k, v in c["types"].items():
+        print(f"    {k}: {', '.join(v)}")
+    if c["skipped"]:
+        print(f"    (not called: {'; '.join(c['skipped'])})")
     print(f"library lines (dhfield/**/*.py): {s['lines']} ({s['nonblank_lines']} non-blank)")
     return 0
 

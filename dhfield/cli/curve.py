@@ -56,8 +56,8 @@ def _range(lo, hi, n, name_lo, name_hi):
     return np.linspace(lo, hi, n)
 
 
-def curve_record(args) -> dict:
-    """The load-curve record (schema LOAD_CURVE_* keys) the arguments ask for."""
+def curve_record(args):
+    """The load curve (a :class:`dhfield.records.LoadCurve`) the arguments ask for."""
     from .. import compare, dimensional
     from ..model import DEFAULT_A_STAR, load_curve
 
@@ -81,12 +81,8 @@ def curve_record(args) -> dict:
                 raise UsageError(f"--ellipticity applies to --model dh-elliptic only (the paper's model, whose "
                                  f"ellipticity is a free parameter); got --model {args.model}, the default "
                                  "being md-elliptic: add --model dh-elliptic")
-            c = load_curve(mu=args.mu, beta0=args.beta0, a_star=a_star, ellipticity=args.ellipticity, n=args.n)
-            rec = dict(compare.load_curve("dh-elliptic", mu=args.mu, beta0=args.beta0, a_star=[1.0]))
-            rec.update({k: getattr(c, k) for k in ("a_star", "b_star", "c_star", "d_star", "v", "W_star",
-                                                    "delta_star")})
-            rec["ellipticity"] = float(args.ellipticity)
-            return rec
+            # the paper's model's own curve: the registry's keys, then its free ellipticity
+            return load_curve(mu=args.mu, beta0=args.beta0, a_star=a_star, ellipticity=args.ellipticity, n=args.n)
         return compare.load_curve(args.model, mu=args.mu, beta0=args.beta0, a_star=a_star, n=args.n)
     if args.a_min is not None or args.a_max is not None or args.ellipticity is not None:
         raise UsageError("--a-min/--a-max/--ellipticity go with --beta0/--mu; with physical inputs use "

@@ -33,7 +33,7 @@ def load_curve_columns(curve):
 
     Parameters
     ----------
-    curve : dhfield.model.LoadCurve or mapping
+    curve : dhfield.records.LoadCurve or mapping
         A nondimensional curve (attributes or keys
         :data:`dhfield.schema.LOAD_CURVE_KEYS`), or an SI curve (keys
         :data:`dhfield.schema.LOAD_CURVE_SI_KEYS`, recognised by ``force``).
@@ -75,7 +75,7 @@ def load_curve_dataset(curve, **extra_attrs) -> xr.Dataset:
 
     Parameters
     ----------
-    curve : dhfield.model.LoadCurve or mapping
+    curve : dhfield.records.LoadCurve or mapping
         See :func:`load_curve_columns`.
     **extra_attrs
         Recorded as ``param_*`` global attributes.
@@ -145,7 +145,7 @@ def write_load_curve(curve, path, **extra_attrs) -> Path:
 
     Parameters
     ----------
-    curve : dhfield.model.LoadCurve or mapping
+    curve : dhfield.records.LoadCurve or mapping
         See :func:`load_curve_columns`.
     path : str or path-like
         The output file, ending in ``.nc`` or ``.csv``.

@@ -217,7 +217,7 @@ def load_curve_periphery_dataset(curves: dict, profiles: dict, *, beta0, mu) -> 
     Parameters
     ----------
     curves : dict
-        (beta0, mu) -> dhfield.model.LoadCurve, all on the same a* points.
+        (beta0, mu) -> dhfield.records.LoadCurve, all on the same a* points.
     profiles : dict
         (beta0, mu) -> dhfield.periphery.PeripheryProfile of shape (len(a_star), len(theta)).
     beta0, mu : array_like
