@@ -39,6 +39,10 @@ itself); ``tests/test_layout.py`` checks this against the import statements::
                                                            pandas), figures (matplotlib), plotting: io; sweep:
                                                            dask sweeps, the command       core + io; cli: all
 
+Every model, the BEM included, answers with the two records of :mod:`dhfield.records`:
+``PullOff`` (nondimensional; with an SI group for physical inputs, a spring group under a
+machine spring and a solver group for the BEM) and ``LoadCurve`` (nondimensional or SI).
+
 The core (every layer but the edges) is numpy/scipy only: it imports no xarray, matplotlib,
 pandas, netCDF4 or dask, and no edge module.
 """
