@@ -345,7 +345,7 @@ def _curve_jkr_elliptic(a, mu, beta0, module=jkr_elliptic):
 
 
 def _curve_recommended(a, mu, beta0):
-    c = elliptic_transition.load_curve_nondimensional(a, beta0, mu)
+    c = elliptic_transition.load_curve_nondimensional(a, beta0, mu, checked=False)  # validated by load_curve
     nan = np.full(np.shape(c["a_star"]), _NAN)
     return {"a_star": c["a_star"], "b_star": c["b_star"], "c_star": nan, "d_star": nan, "v": nan,
             "W_star": c["W_star"], "delta_star": c["delta_star"]}
@@ -384,8 +384,8 @@ def _curve_arrays(model, a_star, mu, beta0):
 
 def _curve_record(model, mu, beta0, arrays):
     circle = model in CIRCULAR_MODEL_NAMES
-    return load_curve_record(model, beta0, mu, arrays, sin_skew=1.0 if circle else float(sin_skew_angle(beta0)),
-                             geometry="circle" if circle else "ellipse")
+    sin_skew = 1.0 if circle else float(sin_skew_angle(beta0, checked=False))  # beta0 validated by the caller
+    return load_curve_record(model, beta0, mu, arrays, sin_skew=sin_skew, geometry="circle" if circle else "ellipse")
 
 
 def load_curve(model, *, beta0, mu, a_star=None, n=200):
