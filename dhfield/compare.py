@@ -310,7 +310,7 @@ def compare(*, beta0, mu, control="load", models=None, check_closure=True):
 def _curve_paper(a, mu, beta0):
     from .model import load_curve as dh_load_curve
 
-    c = dh_load_curve(mu=mu, beta0=beta0, a_star=a)
+    c = dh_load_curve(mu=mu, beta0=beta0, a_star=a, checked=False)  # validated by compare.load_curve
     return {"a_star": c.a_star, "b_star": c.b_star, "c_star": c.c_star, "d_star": c.d_star, "v": c.v,
             "W_star": c.W_star, "delta_star": c.delta_star}
 
@@ -340,7 +340,7 @@ def _curve_jkr_elliptic(a, mu, beta0, module=jkr_elliptic):
     shape = np.shape(c.semi_major)
     return {"a_star": np.asarray(c.semi_major, float), "b_star": np.asarray(c.semi_minor, float),
             "c_star": np.full(shape, _NAN), "d_star": np.full(shape, _NAN), "v": np.full(shape, _NAN),
-            "W_star": np.asarray(c.load) * sin_skew_angle(beta0) / (2 * np.pi),  # Eq. (34)
+            "W_star": np.asarray(c.load) * sin_skew_angle(beta0, checked=False) / (2 * np.pi),  # Eq. (34)
             "delta_star": np.asarray(c.approach, float)}
 
 

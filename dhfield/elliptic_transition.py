@@ -522,4 +522,4 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhe
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = check_tabor("mu", tabor_parameter(max_adhesive_stress, r, e, w))
     st = pull_off_nondimensional(b0, mu, control=control)
-    return scalar_or_array(st.W_star / sin_skew_angle(b0) * load_unit(r, w))
+    return scalar_or_array(st.W_star / sin_skew_angle(b0) * load_unit(r, w, checked=False))

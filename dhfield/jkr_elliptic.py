@@ -206,7 +206,7 @@ def geometry_terms(beta0):
     rho_m1 = _radius_ratio_m1(beta0)
     return beta0, rho_m1, 2.0 * np.sqrt(1.0 + rho_m1) / (2.0 + rho_m1)
 
-def state_si(state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
+def _state_si(state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
     """Convert nondimensional elliptical-JKR states (Eqs. 32-34) to an SI load curve.
 
     Parameters
@@ -224,11 +224,11 @@ def state_si(state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
         Load [N], semi-axes [m], approach [m] and ellipticity [-].
     """
     r, e, w = effective_radius, reduced_modulus, work_of_adhesion
-    cr = length_unit(r, e, w)
+    cr = length_unit(r, e, w, checked=False)
     sn = geometry_terms(beta0)[2]
-    return EllipticLoadCurve(scalar_or_array(state["W_star"] / sn * load_unit(r, w)),  # Eq. (34)
+    return EllipticLoadCurve(scalar_or_array(state["W_star"] / sn * load_unit(r, w, checked=False)),  # Eq. (34)
                              scalar_or_array(state["a_star"] * cr), scalar_or_array(state["b_star"] * cr),
-                             scalar_or_array(state["delta_star"] * approach_unit(r, e, w)),
+                             scalar_or_array(state["delta_star"] * approach_unit(r, e, w, checked=False)),
                              scalar_or_array(state["beta"]))
 
 
@@ -441,7 +441,7 @@ class EllipticJKR:
         b0 = check_geometry(radius_ratio, beta0)
         a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
         r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-        return state_si(self.load_curve_nondimensional(a / length_unit(r, e, w), b0), b0, r, e, w)
+        return _state_si(self.load_curve_nondimensional(a / length_unit(r, e, w, checked=False), b0), b0, r, e, w)
 
     def pull_off(self, effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
                  control="load"):

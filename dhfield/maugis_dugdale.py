@@ -349,10 +349,10 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    s = load_curve_nondimensional(a / length_unit(r, e, w), mu)
-    return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w)),
+    s = load_curve_nondimensional(a / length_unit(r, e, w, checked=False), mu)
+    return LoadCurve(scalar_or_array(s["W_star"] * load_unit(r, w, checked=False)),
                      scalar_or_array(np.broadcast_to(a, s["W_star"].shape)),
-                     scalar_or_array(s["delta_star"] * approach_unit(r, e, w)))
+                     scalar_or_array(s["delta_star"] * approach_unit(r, e, w, checked=False)))
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

@@ -467,7 +467,7 @@ class LoadCurve:
         return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in asdict(self).items()}
 
 
-def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
+def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200, checked=True):
     """Load curve of the elliptical DH model at Tabor parameter ``mu`` and ellipticity ``beta0``.
 
     Parameters
@@ -486,12 +486,21 @@ def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
         Eq. (34) keeps sin(theta_skew) of beta0.
     n : int
         Number of points of the default a* grid, an integer in [2, :data:`MAX_CURVE_POINTS`].
+    checked : bool, default True
+        Validate ``beta0``, ``mu`` and ``a_star``; False for a caller that validated them
+        once at its public entry (:func:`dhfield.compare.load_curve`: scalars, ``a_star`` given).
 
     Returns
     -------
     LoadCurve
         The curve, nondimensional (Eqs. 32-36).
     """
+    if not checked:
+        a = np.asarray(a_star, dtype=float)
+        ell = beta0 if ellipticity is None else ellipticity
+        st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0, checked=False)))
+        return LoadCurve(float(mu), float(beta0), float(ell), st["a"], ell * st["a"], st["c"], ell * st["c"],
+                         st["v"], st["W"], st["delta"])
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
     for name, val in (("mu", mu), ("beta0", beta0), ("ellipticity", ell)):
         if np.ndim(val) != 0:
@@ -503,7 +512,7 @@ def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
     if a.size > MAX_CURVE_POINTS:
         raise ValueError(f"a_star must have at most {MAX_CURVE_POINTS} points (MAX_CURVE_POINTS); "
                          f"got {a.size}")
-    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)))
+    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0, checked=False)))
     return LoadCurve(float(mu), float(beta0), float(ell), st["a"], ell * st["a"], st["c"], ell * st["c"],
                      st["v"], st["W"], st["delta"])
 
@@ -545,7 +554,7 @@ def load_curve_nondimensional(a_star, *, beta0, mu, ellipticity=None, derivative
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
     a = check_contact_size_star("a_star", a_star)
     a, mu, beta0, ell = np.broadcast_arrays(a, mu, beta0, ell)
-    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)), derivatives)
+    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0, checked=False)), derivatives)
     names = dict(a="a_star", c="c_star", v="v", W="W_star", delta="delta_star", dW="dW_star", ddelta="ddelta_star")
     return {names[k]: val for k, val in st.items() if k in names}
 
