@@ -82,7 +82,6 @@ __all__ = [
     "law_spread",
     "rays_for",
     "equal_beta_spread",
-    "equal_beta_spread_along_curve",
     "solve_ray_average",
     "solve_two_axis",
     "pull_off_ray_average",
@@ -330,29 +329,6 @@ def equal_beta_spread(*, beta0, mu, control="load", n_theta=N_THETA):
     po = model.pull_off(mu=mu, beta0=beta0, control=control)
     a = np.where(np.asarray(po.a_star) > 0, po.a_star, 1e-9 * np.asarray(po.c_star))
     return _spread_from_state(a, po.c_star, po.ellipticity, po.v, n_theta)
-
-
-def equal_beta_spread_along_curve(a_star, *, beta0, mu, n_theta=N_THETA):
-    """Run the equal-beta test along a load curve of the paper's model (one mu, beta0).
-
-    Parameters
-    ----------
-    a_star : array_like
-        Contact semi-major axes a* of the curve [-].
-    beta0 : float
-        Ellipticity (Eqs. 17-19) [-].
-    mu : float
-        Tabor parameter, Eq. (35) [-].
-    n_theta : int
-        Rays on [0, pi/2].
-
-    Returns
-    -------
-    EqualBetaSpread
-        Arrays over ``a_star``.
-    """
-    curve = model.load_curve(mu=mu, beta0=beta0, a_star=a_star)
-    return _spread_from_state(curve.a_star, curve.c_star, curve.ellipticity, curve.v, n_theta)
 
 
 # --------------------------------------------------------------------------- shared pieces
