@@ -125,10 +125,13 @@ def pull_off_si_of(core, inputs, *, control, beta0=1.0, mu=float("nan")):
     return pull_off_si(rec, inputs)
 
 
-def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion):
-    """mu = sigma0 (R/(E*^2 dgamma))^(1/3), Eq. (35) [-]."""
-    s = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
+    """mu = sigma0 (R/(E*^2 dgamma))^(1/3), Eq. (35) [-]; ``checked=False`` on inputs validated already."""
+    if checked:
+        s = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
+        r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    else:
+        s, r, e, w = max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         # extreme but finite inputs give 0 or inf here; the caller's range check names the input
         return s * np.cbrt(r / (e * e * w))  # Eq. (35)
