@@ -22,7 +22,8 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
 * the number of ``dhfield._validation`` calls on one ``dhfield pulloff --beta0 0.9 --mu 1 --json``
   (outermost calls only, counted per parameter name; target: each input once), and the same count,
   each in a fresh process, on ``dhfield curve --beta0 0.9 --mu 1 --json`` and ``dhfield compare
-  --beta0 0.9 --mu 1`` (``check_grid_point`` checks beta0, mu and control together);
+  --beta0 0.9 --mu 1`` and ``dhfield pulloff`` with SI inputs (``check_grid_point`` checks beta0, mu and
+  control together);
 * whether ``dhfield/bem/`` imports an analytic model module;
 * the library's line count.
 
@@ -221,7 +222,10 @@ print(json.dumps({"rc": rc, "validation": validation, "types": types, "skipped":
 
 
 #: Further CLI calls whose _validation calls are counted, each in a fresh process (no cached state).
-COUNTED_CALLS = (["curve", "--beta0", "0.9", "--mu", "1", "--json"], ["compare", "--beta0", "0.9", "--mu", "1"])
+COUNTED_CALLS = (["curve", "--beta0", "0.9", "--mu", "1", "--json"], ["compare", "--beta0", "0.9", "--mu", "1"],
+                 # SI inputs (dhfield.dimensional): each SI input once, then the grid point they give
+                 ["pulloff", "--youngs-modulus", "1e6", "--poisson-ratio", "0.5", "--cylinder-radius", "0.01",
+                  "--skew-angle-deg", "60", "--work-of-adhesion", "0.05", "--adhesive-stress", "2e5", "--json"])
 
 _COUNT = _PROBE.split("validation = dict(counts)")[0].replace(
     'main(["pulloff", "--beta0", "0.9", "--mu", "1", "--json"])', "main(json.loads(sys.argv[1]))") + \
