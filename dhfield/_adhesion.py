@@ -39,18 +39,23 @@ def check_contact_size(name, value):
                           what="contact radius, >= 0")
 
 
-def length_unit(effective_radius, reduced_modulus, work_of_adhesion):
-    """c_r = (R^2 dgamma/E*)^(1/3), Eq. (33) [m]."""
-    return _length(*check_material(effective_radius, reduced_modulus, work_of_adhesion))
+def length_unit(effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
+    """c_r = (R^2 dgamma/E*)^(1/3), Eq. (33) [m]; ``checked=False`` on R, E*, dgamma validated already."""
+    args = (effective_radius, reduced_modulus, work_of_adhesion)
+    return _length(*(check_material(*args) if checked else args))
 
 
-def approach_unit(effective_radius, reduced_modulus, work_of_adhesion):
-    """c_r^2/R = (R dgamma^2/E*^2)^(1/3) [m], the unit of delta*."""
-    return _approach(*check_material(effective_radius, reduced_modulus, work_of_adhesion))
+def approach_unit(effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
+    """c_r^2/R = (R dgamma^2/E*^2)^(1/3) [m], the unit of delta*; ``checked=False`` on validated inputs."""
+    args = (effective_radius, reduced_modulus, work_of_adhesion)
+    return _approach(*(check_material(*args) if checked else args))
 
 
-def load_unit(effective_radius, work_of_adhesion, sin_skew=1.0):
-    """2 pi R dgamma / sin(theta_skew), Eq. (34) [N]; sin_skew = 1 for the circle."""
+def load_unit(effective_radius, work_of_adhesion, sin_skew=1.0, *, checked=True):
+    """2 pi R dgamma / sin(theta_skew), Eq. (34) [N]; sin_skew = 1 for the circle; ``checked=False`` on
+    validated R, dgamma."""
+    if not checked:
+        return _load(effective_radius, work_of_adhesion, sin_skew)
     r = check_positive("effective_radius", effective_radius, "m")
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
     return _load(r, w, sin_skew)
@@ -124,10 +129,13 @@ def si_curve(model, arrays, *, mu=float("nan"), beta0=1.0, sin_skew=1.0, geometr
                              ellipticity=ellipticity)
 
 
-def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion):
-    """mu = sigma0 (R/(E*^2 dgamma))^(1/3), Eq. (35) [-]."""
-    s = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
+    """mu = sigma0 (R/(E*^2 dgamma))^(1/3), Eq. (35) [-]; ``checked=False`` on inputs validated already."""
+    if checked:
+        s = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
+        r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    else:
+        s, r, e, w = max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         # extreme but finite inputs give 0 or inf here; the caller's range check names the input
         return s * np.cbrt(r / (e * e * w))  # Eq. (35)

@@ -82,7 +82,6 @@ __all__ = [
     "law_spread",
     "rays_for",
     "equal_beta_spread",
-    "equal_beta_spread_along_curve",
     "solve_ray_average",
     "solve_two_axis",
     "pull_off_ray_average",
@@ -332,29 +331,6 @@ def equal_beta_spread(*, beta0, mu, control="load", n_theta=N_THETA):
     return _spread_from_state(a, po.c_star, po.ellipticity, po.v, n_theta)
 
 
-def equal_beta_spread_along_curve(a_star, *, beta0, mu, n_theta=N_THETA):
-    """Run the equal-beta test along a load curve of the paper's model (one mu, beta0).
-
-    Parameters
-    ----------
-    a_star : array_like
-        Contact semi-major axes a* of the curve [-].
-    beta0 : float
-        Ellipticity (Eqs. 17-19) [-].
-    mu : float
-        Tabor parameter, Eq. (35) [-].
-    n_theta : int
-        Rays on [0, pi/2].
-
-    Returns
-    -------
-    EqualBetaSpread
-        Arrays over ``a_star``.
-    """
-    curve = model.load_curve(mu=mu, beta0=beta0, a_star=a_star)
-    return _spread_from_state(curve.a_star, curve.c_star, curve.ellipticity, curve.v, n_theta)
-
-
 # --------------------------------------------------------------------------- shared pieces
 def _geometry(beta0):
     """R', R'' (R = 1) and the Eq. (34) factor of a validated beta0 (not checked again: the solves call it often)."""
@@ -396,8 +372,8 @@ def _check(a_star, mu, beta0):
 def _ray_average_log_residual(log_s, a, mu, beta, weight, n_theta):
     s = np.exp(log_s)
     c = np.sqrt(a * a + s * s)
-    po_ab = hertz.max_pressure(a, beta)  # Eq. (8)
-    po_cd = hertz.max_pressure(c, beta)  # Eq. (20)
+    po_ab = hertz.max_pressure(a, beta, checked=False)  # Eq. (8)
+    po_cd = hertz.max_pressure(c, beta, checked=False)  # Eq. (20)
     v = mu / (po_cd * s / c)  # Eq. (24) with sigma0 = mu: mu = v Po_cd sqrt(1 - a^2/c^2)
     th = np.linspace(0.0, 0.5 * np.pi, n_theta)
     prof = periphery.periphery_two_ellipses(a, beta * a, c, beta * c, po_ab, po_cd, th)  # v-free J(theta)
@@ -460,7 +436,7 @@ def _solve_ray_average(a, mu, beta0, *, weight="area", n_theta=None):
         raise RuntimeError("ray-average closure solve failed; please report the inputs")
     s = np.exp(res.x)
     c = np.sqrt(a * a + s * s)
-    po_ab, po_cd = hertz.max_pressure(a, beta0), hertz.max_pressure(c, beta0)
+    po_ab, po_cd = hertz.max_pressure(a, beta0, checked=False), hertz.max_pressure(c, beta0, checked=False)
     v = mu / (po_cd * s / c)  # Eq. (24)
     return _two_field_state("ray_average", mu, beta0, a, beta0 * a, c, beta0 * c, (1 + v) * po_ab,
                             v * po_cd)  # Eq. (22)
@@ -586,7 +562,8 @@ def _paper_state(a_star, mu, beta0):
     c = np.asarray(c, float)
     v = np.asarray(v, float)
     return _two_field_state("paper", mu, beta0, a, beta0 * a, c, beta0 * c,
-                            (1 + v) * hertz.max_pressure(a, beta0), v * hertz.max_pressure(c, beta0))  # Eq. (22)
+                            (1 + v) * hertz.max_pressure(a, beta0, checked=False),
+                            v * hertz.max_pressure(c, beta0, checked=False))  # Eq. (22)
 
 
 #: closure -> its state on validated inputs ``f(a_star, mu, beta0)`` (the pull-off search evaluates it

@@ -310,7 +310,7 @@ def compare(*, beta0, mu, control="load", models=None, check_closure=True):
 def _curve_paper(a, mu, beta0):
     from .model import load_curve as dh_load_curve
 
-    c = dh_load_curve(mu=mu, beta0=beta0, a_star=a)
+    c = dh_load_curve(mu=mu, beta0=beta0, a_star=a, checked=False)  # validated by compare.load_curve
     return {k: c[k] for k in LOAD_CURVE_KEYS}
 
 
@@ -339,12 +339,12 @@ def _curve_jkr_elliptic(a, mu, beta0, module=jkr_elliptic):
     shape = np.shape(c.semi_major)
     return {"a_star": np.asarray(c.semi_major, float), "b_star": np.asarray(c.semi_minor, float),
             "c_star": np.full(shape, _NAN), "d_star": np.full(shape, _NAN), "v": np.full(shape, _NAN),
-            "W_star": np.asarray(c.force) * sin_skew_angle(beta0) / (2 * np.pi),  # Eq. (34)
+            "W_star": np.asarray(c.force) * sin_skew_angle(beta0, checked=False) / (2 * np.pi),  # Eq. (34)
             "delta_star": np.asarray(c.approach, float)}
 
 
 def _curve_recommended(a, mu, beta0):
-    c = elliptic_transition.load_curve_nondimensional(a, beta0, mu)
+    c = elliptic_transition.load_curve_nondimensional(a, beta0, mu, checked=False)  # validated by load_curve
     nan = np.full(np.shape(c["a_star"]), _NAN)
     return {"a_star": c["a_star"], "b_star": c["b_star"], "c_star": nan, "d_star": nan, "v": nan,
             "W_star": c["W_star"], "delta_star": c["delta_star"]}
@@ -383,8 +383,8 @@ def _curve_arrays(model, a_star, mu, beta0):
 
 def _curve_record(model, mu, beta0, arrays):
     circle = model in CIRCULAR_MODEL_NAMES
-    return load_curve_record(model, beta0, mu, arrays, sin_skew=1.0 if circle else float(sin_skew_angle(beta0)),
-                             geometry="circle" if circle else "ellipse")
+    sin_skew = 1.0 if circle else float(sin_skew_angle(beta0, checked=False))  # beta0 validated by the caller
+    return load_curve_record(model, beta0, mu, arrays, sin_skew=sin_skew, geometry="circle" if circle else "ellipse")
 
 
 def load_curve(model, *, beta0, mu, a_star=None, n=200):

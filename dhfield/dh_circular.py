@@ -233,8 +233,8 @@ def work_of_adhesion(contact_radius, adhesive_radius, scaling, effective_radius,
 
 
 def _dimensional(st, r, e, w):
-    return (st["W_star"] * load_unit(r, w), st["a_star"] * length_unit(r, e, w),
-            st["delta_star"] * approach_unit(r, e, w))
+    return (st["W_star"] * load_unit(r, w, checked=False), st["a_star"] * length_unit(r, e, w, checked=False),
+            st["delta_star"] * approach_unit(r, e, w, checked=False))
 
 
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
@@ -280,7 +280,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    st = load_curve_nondimensional(a / length_unit(r, e, w), mu)
+    st = load_curve_nondimensional(a / length_unit(r, e, w, checked=False), mu)
     load, _, approach = _dimensional(st, r, e, w)
     zone = st["c_star"] * length_unit(r, e, w)  # Eq. (32)
     return si_curve("dh-circular", {"semi_major": a, "adhesive_semi_major": zone, "adhesive_semi_minor": zone,

@@ -89,12 +89,16 @@ class ContactParameters:
     max_adhesive_stress: float = float("nan")
 
 
+#: The smallest crossing angle of the models' domain, beta0 >= 1e-4 (H3, issue 9) [rad].
+_SKEW_ANGLE_MIN = float(geometry.skew_angle(ELLIPTICITY_RANGE[0], checked=False))
+
+
 def _reduced_modulus(e1, nu1, e2, nu2):
     e1 = check_positive("youngs_modulus_1", e1, "Pa")
     e2 = check_positive("youngs_modulus_2", e2, "Pa")
     nu1 = check_interval("poisson_ratio_1", nu1, -1.0, 0.5, what="Poisson's ratio")
     nu2 = check_interval("poisson_ratio_2", nu2, -1.0, 0.5, what="Poisson's ratio")
-    return geometry.reduced_modulus(e1, nu1, e2, nu2)  # Eq. (6)
+    return geometry.reduced_modulus(e1, nu1, e2, nu2, checked=False)  # Eq. (6)
 
 
 def crossed_cylinder_radii(radius_1, radius_2, skew_angle):
@@ -183,17 +187,18 @@ def contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, y
     if not np.all(np.isfinite(ratio)):
         raise ValueError(f"r_major/r_minor must be finite (principal radii of one contact); got R' = {float(np.max(r1)):g}, "
                          f"R'' = {float(np.min(r2)):g}")
-    r = geometry.effective_radius(r1, r2)  # Eq. (5)
-    beta0 = geometry.ellipticity_from_radius_ratio(ratio)  # Eq. (9)
-    sin_skew = geometry.sin_skew_angle(beta0)
+    # validated above: the radii (> 0, a finite ratio >= 1), E*, dgamma and sigma0
+    r = geometry.effective_radius(r1, r2, checked=False)  # Eq. (5)
+    beta0 = geometry.ellipticity_from_radius_ratio(ratio, checked=False)  # Eq. (9)
+    sin_skew = geometry.sin_skew_angle(beta0, checked=False)
     e_star, r1, r2, r, beta0, sin_skew, w, s0 = np.broadcast_arrays(e_star, r1, r2, r, beta0, sin_skew, w, s0)
-    mu = units.tabor_parameter(s0, r, e_star, w)  # Eq. (35)
+    mu = units.tabor_parameter(s0, r, e_star, w, checked=False)  # Eq. (35)
     _check_model_domain(ratio, beta0, mu, s0)
     return ContactParameters(
         _s(e_star), _s(r1), _s(r2), _s(r), _s(beta0), _s(sin_skew), _s(mu),
-        _s(units.length_unit(r, e_star, w)),  # Eq. (33)
-        _s(units.approach_unit(r, e_star, w)),
-        _s(units.load_unit(r, w, sin_skew)),  # Eq. (34)
+        _s(units.length_unit(r, e_star, w, checked=False)),  # Eq. (33)
+        _s(units.approach_unit(r, e_star, w, checked=False)),
+        _s(units.load_unit(r, w, sin_skew, checked=False)),  # Eq. (34)
         _s(w), _s(s0))
 
 
@@ -247,11 +252,13 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
     ContactParameters
         Floats for scalar inputs, arrays broadcast over all inputs otherwise.
     """
-    th_min = float(geometry.skew_angle(ELLIPTICITY_RANGE[0]))  # beta0 >= 1e-4 (H3, issue 9)
-    check_interval("skew_angle", skew_angle, th_min, np.pi / 2, low_open=False,
-                   what=f"rad; below {th_min:.4g} rad the contact is a line contact, beta0 < {ELLIPTICITY_RANGE[0]:g}")
+    th_min = _SKEW_ANGLE_MIN
+    th = check_interval("skew_angle", skew_angle, th_min, np.pi / 2, low_open=False,
+                        what=f"rad; below {th_min:.4g} rad the contact is a line contact, "
+                             f"beta0 < {ELLIPTICITY_RANGE[0]:g}")
+    rc = check_positive("cylinder_radius", cylinder_radius, "m")
     with np.errstate(divide="ignore"):  # R' = inf for a vanishing angle: rejected below, by name
-        r1, r2 = geometry.principal_radii(cylinder_radius, skew_angle)  # Eqs. (3)-(4)
+        r1, r2 = geometry.principal_radii(rc, th, checked=False)  # Eqs. (3)-(4)
     if not np.all(np.isfinite(r1)):
         raise ValueError(f"cylinder_radius must be finite after Eq. (3), R' = R_c/(1 - cos theta_skew) < "
                          f"{np.finfo(float).max:.4g} m; got {float(np.max(cylinder_radius))!r}")

@@ -109,9 +109,9 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     """
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = load_curve_nondimensional(a / length_unit(r, e, w))
-    return si_curve("dmt", {"semi_major": a, "force": s["W_star"] * load_unit(r, w),
-                            "approach": s["delta_star"] * approach_unit(r, e, w)})
+    s = load_curve_nondimensional(a / length_unit(r, e, w, checked=False))
+    return si_curve("dmt", {"semi_major": a, "force": s["W_star"] * load_unit(r, w, checked=False),
+                            "approach": s["delta_star"] * approach_unit(r, e, w, checked=False)})
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
@@ -131,11 +131,11 @@ def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     p = check_finite("load", load, "N")
-    ws = p / load_unit(r, w)
+    ws = p / load_unit(r, w, checked=False)
     if np.any(ws < -1.0):
         raise ValueError(f"load must be >= -2 pi R dgamma (the DMT pull-off force) [N]; "
                          f"got {p[ws < -1.0].flat[0]!r}")
-    return scalar_or_array(np.cbrt(1.5 * np.pi * (ws + 1.0)) * length_unit(r, e, w))
+    return scalar_or_array(np.cbrt(1.5 * np.pi * (ws + 1.0)) * length_unit(r, e, w, checked=False))
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):

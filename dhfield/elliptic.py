@@ -31,7 +31,6 @@ from scipy import special
 
 __all__ = [
     "complete_k",
-    "complete_e",
     "ellipsoid_integrals",
     "ellipsoid_integrals_legendre",
 ]
@@ -59,30 +58,6 @@ def complete_k(beta):
     """
     beta = np.asarray(beta, dtype=float)
     return special.elliprf(0.0, beta**2, 1.0)  # K(k) = R_F(0, 1 - k^2, 1)
-
-
-def complete_e(beta):
-    """Complete elliptic integral of the second kind E(k), k**2 = 1 - beta**2.
-
-    Parameters
-    ----------
-    beta : array_like
-        Ellipticity ratio b/a in [0, 1] [-].
-
-    Returns
-    -------
-    ndarray
-        E(k) [-]; pi/2 at the circle (beta = 1) and 1 at beta = 0.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from dhfield import elliptic
-    >>> [round(float(elliptic.complete_e(b)), 15) for b in (0.0, 1.0)] == [1.0, round(np.pi / 2, 15)]
-    True
-    """
-    beta = np.asarray(beta, dtype=float)
-    return special.ellipe(1.0 - beta**2)
 
 
 def ellipsoid_integrals(l, a, b):

@@ -239,7 +239,7 @@ def _hertz_constants(beta0):
     beta0 = np.asarray(beta0, float)
     b2 = beta0 * beta0
     w1 = np.pi / np.sqrt(special.elliprd(0.0, b2, 1.0) * special.elliprd(0.0, 1.0, b2))  # Eqs. (10), (11)
-    c_ell = sin_skew_angle(beta0) * w1 / (2.0 * np.pi)  # Eq. (34)
+    c_ell = sin_skew_angle(beta0, checked=False) * w1 / (2.0 * np.pi)  # Eq. (34)
     return c_ell, 3.0 * w1 * complete_k(beta0) / (2.0 * np.pi)  # Eq. (14a)
 
 
@@ -294,7 +294,7 @@ def _ellipse(beta0, displacement=False):
         rec = jkr_elliptic_energy.pull_off_nondimensional(b, 1.0, control="load")
         c_ell, d_ell = _hertz_constants(b)
         return {"W": rec.W_star, "a": rec.a_star, "delta": rec.delta_star, "beta": rec.ellipticity,
-                "sin": sin_skew_angle(b), "c_ell": c_ell, "d_ell": d_ell,
+                "sin": sin_skew_angle(b, checked=False), "c_ell": c_ell, "d_ell": d_ell,
                 "kappa": np.asarray(rec.delta_star, float) / _jkr_state("load")["delta"]}  # Eq. (T3)
 
     def disp(b):
@@ -375,7 +375,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 
 def _limit_curves(a_md, a_jkr, a_gvg, beta0, mu):
     """MD (sphere), JKR (sphere) and GVG (ellipse) states at the given contact sizes."""
-    md_c = maugis_dugdale.load_curve_nondimensional(a_md, mu)
+    md_c = maugis_dugdale.load_curve_nondimensional(a_md, mu, checked=False)
     jk_c = jkr.load_curve_nondimensional(a_jkr)
     if beta0 == 1.0:  # GVG is JKR at the circle: the corrections vanish identically
         gv_c = {**jkr.load_curve_nondimensional(a_gvg), "beta": np.ones(np.shape(a_gvg))}
@@ -414,7 +414,7 @@ def _slope(curve, size, beta0, mu):
     return (hi - lo) / (2.0 * h)
 
 
-def load_curve_nondimensional(a_star, beta0, mu):
+def load_curve_nondimensional(a_star, beta0, mu, *, checked=True):
     """State of the recommended model at contact semi-major axis a*, in the paper's units.
 
     Parameters
@@ -425,6 +425,9 @@ def load_curve_nondimensional(a_star, beta0, mu):
         Hertz ellipticity b/a of the geometry, in (0, 1] [-].
     mu : float
         Tabor parameter of Eq. (35) [-].
+    checked : bool, default True
+        Validate ``a_star``, ``beta0`` and ``mu``; False for internal callers that validated
+        them once at their public entry (:func:`dhfield.compare.load_curve`).
 
     Returns
     -------
@@ -439,11 +442,14 @@ def load_curve_nondimensional(a_star, beta0, mu):
     displacement-control record of :func:`pull_off_nondimensional`.  Each point costs one MD
     and one GVG state at a given contact size (bracketing root finders).
     """
-    a_in = np.asarray(check_interval("a_star", a_star, 0.0, np.inf, low_open=False,
-                                     what="contact semi-major axis a/c_r, dimensionless"), float)
+    if checked:
+        a_star = check_interval("a_star", a_star, 0.0, np.inf, low_open=False,
+                                what="contact semi-major axis a/c_r, dimensionless")
+        beta0 = check_interval("beta0", beta0, 0.0, 1.0, what="Hertz ellipticity b/a, dimensionless")
+        mu = check_tabor("mu", mu)
+    a_in = np.asarray(a_star, float)
     a_e = np.atleast_1d(a_in)
-    beta0 = float(check_interval("beta0", beta0, 0.0, 1.0, what="Hertz ellipticity b/a, dimensionless"))
-    mu = float(check_tabor("mu", mu))
+    beta0, mu = float(beta0), float(mu)
     mu = float(_mu_e(beta0, mu))  # Eq. (T0): the sphere's curves below are taken at mu_e
     sph = {k: float(v) for k, v in _sphere(np.asarray(mu), True).items()}
     ell = {k: float(v) for k, v in _ellipse(np.asarray(beta0), True).items()}
@@ -516,4 +522,4 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhe
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = check_tabor("mu", tabor_parameter(max_adhesive_stress, r, e, w))
     st = pull_off_nondimensional(b0, mu, control=control)
-    return scalar_or_array(st.W_star / sin_skew_angle(b0) * load_unit(r, w))
+    return scalar_or_array(st.W_star / sin_skew_angle(b0) * load_unit(r, w, checked=False))

@@ -36,7 +36,7 @@ __all__ = [
 ]
 
 
-def principal_radii(cylinder_radius, skew_angle):
+def principal_radii(cylinder_radius, skew_angle, *, checked=True):
     """Principal relative radii R', R'' of two crossed cylinders, Eqs. (3)-(4).
 
     Parameters
@@ -45,6 +45,9 @@ def principal_radii(cylinder_radius, skew_angle):
         Radius R_c of each of the two (equal) cylinders [m].
     skew_angle : array_like
         Crossing angle theta_skew between the cylinder axes, in (0, pi/2] [rad].
+    checked : bool, default True
+        Validate the inputs; False for internal callers that validated them once at their
+        public entry (:mod:`dhfield.dimensional`).
 
     Returns
     -------
@@ -62,20 +65,26 @@ def principal_radii(cylinder_radius, skew_angle):
     >>> [round(float(r), 12) for r in geometry.principal_radii(5e-3, np.pi / 2)]
     [0.005, 0.005]
     """
-    rc = check_positive("cylinder_radius", cylinder_radius, "m")
-    th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
+    if checked:
+        rc = check_positive("cylinder_radius", cylinder_radius, "m")
+        th = check_interval("skew_angle", skew_angle, 0.0, np.pi / 2, what="rad")
+    else:
+        rc, th = np.asarray(cylinder_radius, dtype=float), np.asarray(skew_angle, dtype=float)
     # 1 - cos = 2 sin^2(theta/2): no cancellation at small crossing angles.
     with np.errstate(over="ignore"):  # R' = inf for extreme inputs: the caller's range check names them
         return rc / (2.0 * np.sin(0.5 * th) ** 2), rc / (1.0 + np.cos(th))  # Eq. (3), Eq. (4)
 
 
-def effective_radius(r_major, r_minor):
+def effective_radius(r_major, r_minor, *, checked=True):
     """Equivalent radius R = sqrt(R' R''), Eq. (5).
 
     Parameters
     ----------
     r_major, r_minor : array_like
         Principal relative radii R' and R'' > 0 [m].
+    checked : bool, default True
+        Validate the inputs; False for internal callers that validated them once at their
+        public entry (:mod:`dhfield.dimensional`).
 
     Returns
     -------
@@ -88,12 +97,15 @@ def effective_radius(r_major, r_minor):
     >>> float(geometry.effective_radius(4.0, 1.0))
     2.0
     """
-    r1 = check_positive("r_major", r_major, "m")
-    r2 = check_positive("r_minor", r_minor, "m")
+    if checked:
+        r1 = check_positive("r_major", r_major, "m")
+        r2 = check_positive("r_minor", r_minor, "m")
+    else:
+        r1, r2 = np.asarray(r_major, dtype=float), np.asarray(r_minor, dtype=float)
     return np.sqrt(r1 * r2)  # Eq. (5)
 
 
-def reduced_modulus(e1, nu1, e2, nu2):
+def reduced_modulus(e1, nu1, e2, nu2, *, checked=True):
     """Reduced Young's modulus E* of Eq. (6) [Pa].
 
     Parameters
@@ -106,6 +118,9 @@ def reduced_modulus(e1, nu1, e2, nu2):
         Young's modulus of body 2 [Pa].
     nu2 : array_like
         Poisson's ratios, in (-1, 0.5] [-].
+    checked : bool, default True
+        Validate the inputs; False for internal callers that validated them once at their
+        public entry (:mod:`dhfield.dimensional`).
 
     Returns
     -------
@@ -120,10 +135,13 @@ def reduced_modulus(e1, nu1, e2, nu2):
     >>> float(geometry.reduced_modulus(2e6, 0.5, 2e6, 0.5)) / 1e6
     1.3333333333333333
     """
-    e1 = check_positive("e1", e1, "Pa")
-    e2 = check_positive("e2", e2, "Pa")
-    nu1 = check_interval("nu1", nu1, -1.0, 0.5, what="Poisson's ratio")
-    nu2 = check_interval("nu2", nu2, -1.0, 0.5, what="Poisson's ratio")
+    if checked:
+        e1 = check_positive("e1", e1, "Pa")
+        e2 = check_positive("e2", e2, "Pa")
+        nu1 = check_interval("nu1", nu1, -1.0, 0.5, what="Poisson's ratio")
+        nu2 = check_interval("nu2", nu2, -1.0, 0.5, what="Poisson's ratio")
+    else:
+        e1, nu1, e2, nu2 = (np.asarray(x, dtype=float) for x in (e1, nu1, e2, nu2))
     return 1.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)  # Eq. (6)
 
 
@@ -203,7 +221,7 @@ def ellipticity_from_radius_ratio(ratio, *, checked=True):
     return out if out.ndim else out[()]
 
 
-def skew_angle(beta):
+def skew_angle(beta, *, checked=True):
     """Crossing angle theta_skew of equal cylinders giving Hertz ellipticity ``beta``.
 
     From Eqs. (3)-(4): cos(theta_skew) = (rho - 1)/(rho + 1), rho = R'/R''.
@@ -212,6 +230,8 @@ def skew_angle(beta):
     ----------
     beta : array_like
         Ellipticity b/a in (0, 1] [-].
+    checked : bool, default True
+        Validate ``beta`` (:func:`radius_ratio`); False on inputs validated once already.
 
     Returns
     -------
@@ -225,7 +245,7 @@ def skew_angle(beta):
     >>> round(float(np.rad2deg(geometry.skew_angle(0.8))), 2)
     80.45
     """
-    rho = radius_ratio(beta)
+    rho = radius_ratio(beta, checked=checked)
     return np.arccos((rho - 1.0) / (rho + 1.0))
 
 

@@ -51,7 +51,7 @@ def _pressure_factor(beta):
     return 1.5 / (np.sqrt(b2) * np.sqrt(special.elliprd(0.0, b2, 1.0) * special.elliprd(0.0, 1.0, b2)))
 
 
-def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
+def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0, *, checked=True):
     """Maximum Hertz pressure Po_ab of the elliptical contact, Eq. (8).
 
     Parameters
@@ -64,6 +64,9 @@ def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
         R = sqrt(R' R'') [m].
     reduced_modulus : array_like, default 1
         E* [Pa].
+    checked : bool, default True
+        Validate the inputs; False for internal callers that validated them once at their
+        public entry and evaluate intermediate sizes (the closure solves).
 
     Returns
     -------
@@ -81,10 +84,13 @@ def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     The second form follows from (K - E)/k^2 = R_D(0, beta^2, 1)/3 and
     (E/beta^2 - K)/k^2 = R_D(0, 1, beta^2)/3; it equals 2 E* a/(pi R) at beta = 1.
     """
-    a = check_positive("semi_major", semi_major, "m")
-    beta = check_ellipticity("beta", beta)
-    r = check_positive("effective_radius", effective_radius, "m")
-    e = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    if checked:
+        a = check_positive("semi_major", semi_major, "m")
+        beta = check_ellipticity("beta", beta)
+        r = check_positive("effective_radius", effective_radius, "m")
+        e = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    else:
+        a, beta, r, e = (np.asarray(x, dtype=float) for x in (semi_major, beta, effective_radius, reduced_modulus))
     return e / r * _pressure_factor(beta) * a  # Eq. (8)
 
 

@@ -133,10 +133,10 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     """
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    cr = length_unit(r, e, w)
+    cr = length_unit(r, e, w, checked=False)
     s = load_curve_nondimensional(a / cr)
-    return si_curve("jkr", {"semi_major": a, "force": s["W_star"] * load_unit(r, w),
-                            "approach": s["delta_star"] * approach_unit(r, e, w)})
+    return si_curve("jkr", {"semi_major": a, "force": s["W_star"] * load_unit(r, w, checked=False),
+                            "approach": s["delta_star"] * approach_unit(r, e, w, checked=False)})
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
@@ -161,11 +161,11 @@ def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     """
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     p = check_finite("load", load, "N")
-    ws = p / load_unit(r, w)
+    ws = p / load_unit(r, w, checked=False)
     if np.any(ws < -0.75):
         raise ValueError(f"load must be >= -(3/2) pi R dgamma (the JKR pull-off force) [N]; "
                          f"got {p[ws < -0.75].flat[0]!r}")
-    return scalar_or_array(_contact_radius(ws) * length_unit(r, e, w))
+    return scalar_or_array(_contact_radius(ws) * length_unit(r, e, w, checked=False))
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):

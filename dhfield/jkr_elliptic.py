@@ -180,7 +180,7 @@ def geometry_terms(beta0):
     rho_m1 = _radius_ratio_m1(beta0)
     return beta0, rho_m1, 2.0 * np.sqrt(1.0 + rho_m1) / (2.0 + rho_m1)
 
-def state_si(model, state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
+def _state_si(model, state, beta0, effective_radius, reduced_modulus, work_of_adhesion):
     """Convert nondimensional elliptical-JKR states (Eqs. 32-34) to an SI load curve.
 
     Parameters
@@ -200,11 +200,11 @@ def state_si(model, state, beta0, effective_radius, reduced_modulus, work_of_adh
         The SI curve: semi-axes [m], force [N], approach [m], and ``ellipticity`` b/a [-].
     """
     r, e, w = effective_radius, reduced_modulus, work_of_adhesion
-    cr = length_unit(r, e, w)
+    cr = length_unit(r, e, w, checked=False)
     sn = geometry_terms(beta0)[2]
     arrays = {"semi_major": state["a_star"] * cr, "semi_minor": state["b_star"] * cr,
-              "force": state["W_star"] / sn * load_unit(r, w),  # Eq. (34)
-              "approach": state["delta_star"] * approach_unit(r, e, w)}
+              "force": state["W_star"] / sn * load_unit(r, w, checked=False),  # Eq. (34)
+              "approach": state["delta_star"] * approach_unit(r, e, w, checked=False)}
     return si_curve(model, arrays, beta0=scalar_or_array(beta0), sin_skew=scalar_or_array(sn), geometry="ellipse",
                     ellipticity=scalar_or_array(state["beta"]))
 
@@ -418,7 +418,8 @@ class EllipticJKR:
         b0 = check_geometry(radius_ratio, beta0)
         a = check_interval("semi_major", semi_major, 0.0, np.inf, high_open=True, what="m, > 0")
         r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-        return state_si(self.model, self.load_curve_nondimensional(a / length_unit(r, e, w), b0), b0, r, e, w)
+        return _state_si(self.model, self.load_curve_nondimensional(a / length_unit(r, e, w, checked=False), b0),
+                         b0, r, e, w)
 
     def pull_off(self, effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
                  control="load"):

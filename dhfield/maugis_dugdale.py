@@ -186,6 +186,11 @@ def load_curve_maugis_units(a_maugis, lam):
     """
     check_contact_size("a_maugis", a_maugis)
     check_positive("lam", lam, "Maugis parameter lambda, dimensionless")
+    return _load_curve_maugis_units(a_maugis, lam)
+
+
+def _load_curve_maugis_units(a_maugis, lam):
+    """:func:`load_curve_maugis_units` on validated inputs."""
     a_maugis, lam = np.broadcast_arrays(np.asarray(a_maugis, dtype=float),
                                         np.asarray(lam, dtype=float))
     p = np.empty(a_maugis.shape)
@@ -201,7 +206,7 @@ def load_curve_maugis_units(a_maugis, lam):
     return MaugisCurve(p, d, m)
 
 
-def load_curve_nondimensional(a_star, mu):
+def load_curve_nondimensional(a_star, mu, *, checked=True):
     """MD state at contact radius a*, in the paper's units (Eqs. 32-35).
 
     The nondimensional core of :func:`load_curve` (R = E* = dgamma = 1,
@@ -213,6 +218,9 @@ def load_curve_nondimensional(a_star, mu):
         Contact radius a* = a/c_r >= 0, Eq. (32) [-].
     mu : array_like
         Transition parameter, Eq. (35), > 0 [-].
+    checked : bool, default True
+        Validate ``a_star`` and ``mu``; False for internal callers that validated them once
+        at their public entry (:func:`load_curve`, :mod:`dhfield.elliptic_transition`).
 
     Returns
     -------
@@ -225,9 +233,11 @@ def load_curve_nondimensional(a_star, mu):
     ``a* = A (3 pi/4)^(1/3)``, ``W* = P/2``, ``delta* = D (9 pi^2/16)^(1/3)`` from
     :func:`load_curve_maugis_units`.
     """
+    lam = maugis_parameter(mu, checked=checked)
+    if checked:
+        check_contact_size("a_star", a_star)
     a_star = np.asarray(a_star, dtype=float)
-    lam = maugis_parameter(mu)
-    p, d, m = load_curve_maugis_units(a_star / _A_UNIT, lam)
+    p, d, m = _load_curve_maugis_units(a_star / _A_UNIT, lam)
     a_star = np.broadcast_to(a_star, p.shape)
     with np.errstate(invalid="ignore"):
         c_star = np.where(a_star > 0, m * a_star, _zero_contact_zone(lam) * _A_UNIT)
@@ -235,7 +245,7 @@ def load_curve_nondimensional(a_star, mu):
 
 
 def _pull_off_maugis_units(lam, control="load"):
-    """MD pull-off in Maugis' own units, vectorised over lambda.
+    """MD pull-off in Maugis' own units, vectorised over lambda, on validated inputs.
 
     Parameters
     ----------
@@ -250,8 +260,6 @@ def _pull_off_maugis_units(lam, control="load"):
     _MaugisPullOff
         A, P, D and m = c/a (inf at A = 0) [-].
     """
-    check_control(control)
-    check_positive("lam", lam, "Maugis parameter lambda, dimensionless")
     lam = np.asarray(lam, dtype=float)
     col = 1 if control == "load" else 2
 
@@ -274,7 +282,7 @@ def _pull_off_maugis_units(lam, control="load"):
 
 def _pull_off_state(mu, control):
     """MD ``W_star``, ``a_star``, ``c_star``, ``delta_star`` [-] at pull-off (:func:`_pull_off_maugis_units`)."""
-    lam = maugis_parameter(mu)
+    lam = maugis_parameter(mu, checked=False)
     a, p, d, m = _pull_off_maugis_units(lam, control)
     with np.errstate(invalid="ignore"):
         c_star = np.where(a > 0, m * a, _zero_contact_zone(lam)) * _A_UNIT
@@ -285,7 +293,8 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     """MD pull-off record in the paper's units (Eqs. 32-35), vectorised, at lambda = 1.1272 mu.
 
     The nondimensional core of :func:`pull_off`, solved in Maugis units (scan and complex-step
-    refinement, :func:`dhfield.pull_off_search.scan_minimum`).
+    refinement, :func:`dhfield.pull_off_search.scan_minimum`).  Inputs are not validated here
+    (:func:`dhfield.compare.pull_off` and :func:`pull_off` do).
 
     Parameters
     ----------
@@ -343,11 +352,11 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    s = load_curve_nondimensional(a / length_unit(r, e, w), mu)
-    zone = s["c_star"] * length_unit(r, e, w)  # Eq. (32)
+    s = load_curve_nondimensional(a / length_unit(r, e, w, checked=False), mu)
+    zone = s["c_star"] * length_unit(r, e, w, checked=False)  # Eq. (32)
     return si_curve("md", {"semi_major": a, "adhesive_semi_major": zone, "adhesive_semi_minor": zone,
-                           "force": s["W_star"] * load_unit(r, w),
-                           "approach": s["delta_star"] * approach_unit(r, e, w)}, mu=mu)
+                           "force": s["W_star"] * load_unit(r, w, checked=False),
+                           "approach": s["delta_star"] * approach_unit(r, e, w, checked=False)}, mu=mu)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

@@ -420,7 +420,7 @@ def _scalar(x):
     return x[()] if x.ndim == 0 else x
 
 
-def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
+def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200, checked=True):
     """Load curve of the elliptical DH model at Tabor parameter ``mu`` and ellipticity ``beta0``.
 
     Parameters
@@ -439,6 +439,9 @@ def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
         Eq. (34) keeps sin(theta_skew) of beta0.
     n : int
         Number of points of the default a* grid, an integer in [2, :data:`MAX_CURVE_POINTS`].
+    checked : bool, default True
+        Validate ``beta0``, ``mu`` and ``a_star``; False for a caller that validated them
+        once at its public entry (:func:`dhfield.compare.load_curve`: scalars, ``a_star`` given).
 
     Returns
     -------
@@ -446,18 +449,22 @@ def load_curve(*, beta0, mu, a_star=None, ellipticity=None, n=200):
         The curve, nondimensional (Eqs. 32-36): model ``dh-elliptic``, and ``ellipticity``,
         the ellipticity of both ellipses (beta0 unless given), after the arrays.
     """
-    mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
-    for name, val in (("mu", mu), ("beta0", beta0), ("ellipticity", ell)):
-        if np.ndim(val) != 0:
-            raise ValueError(f"{name} must be a scalar for a load curve; got an array of shape {np.shape(val)}")
-    if a_star is None:
-        n = check_count("n", n, 2, MAX_CURVE_POINTS, "number of curve points")
-        a_star = np.linspace(*DEFAULT_A_STAR, n)
-    a = check_contact_size_star("a_star", a_star)
-    if a.size > MAX_CURVE_POINTS:
-        raise ValueError(f"a_star must have at most {MAX_CURVE_POINTS} points (MAX_CURVE_POINTS); "
-                         f"got {a.size}")
-    sin_skew = sin_skew_angle(beta0)
+    if not checked:
+        a = np.asarray(a_star, dtype=float)
+        ell = beta0 if ellipticity is None else ellipticity
+    else:
+        mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
+        for name, val in (("mu", mu), ("beta0", beta0), ("ellipticity", ell)):
+            if np.ndim(val) != 0:
+                raise ValueError(f"{name} must be a scalar for a load curve; got an array of shape {np.shape(val)}")
+        if a_star is None:
+            n = check_count("n", n, 2, MAX_CURVE_POINTS, "number of curve points")
+            a_star = np.linspace(*DEFAULT_A_STAR, n)
+        a = check_contact_size_star("a_star", a_star)
+        if a.size > MAX_CURVE_POINTS:
+            raise ValueError(f"a_star must have at most {MAX_CURVE_POINTS} points (MAX_CURVE_POINTS); "
+                             f"got {a.size}")
+    sin_skew = sin_skew_angle(beta0, checked=False)
     st = _state_chunked(a, mu, _shape(ell, sin_skew))
     arrays = {"a_star": st["a"], "b_star": ell * st["a"], "c_star": st["c"], "d_star": ell * st["c"], "v": st["v"],
               "W_star": st["W"], "delta_star": st["delta"]}
@@ -502,7 +509,7 @@ def load_curve_nondimensional(a_star, *, beta0, mu, ellipticity=None, derivative
     mu, beta0, ell = _check_inputs(mu, beta0, ellipticity)
     a = check_contact_size_star("a_star", a_star)
     a, mu, beta0, ell = np.broadcast_arrays(a, mu, beta0, ell)
-    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0)), derivatives)
+    st = _state_chunked(a, mu, _shape(ell, sin_skew_angle(beta0, checked=False)), derivatives)
     names = dict(a="a_star", c="c_star", v="v", W="W_star", delta="delta_star", dW="dW_star", ddelta="ddelta_star")
     return {names[k]: val for k, val in st.items() if k in names}
 

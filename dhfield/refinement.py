@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["observed_orders", "refinement_study"]
+__all__ = ["observed_orders"]
 
 
 def observed_orders(h, err):
@@ -29,29 +29,3 @@ def observed_orders(h, err):
     h = np.asarray(h, dtype=float)
     e = np.asarray(err, dtype=float)
     return np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:])
-
-
-def refinement_study(error_of_n, ns):
-    """Run a grid-refinement study.
-
-    Parameters
-    ----------
-    error_of_n : callable
-        ``error_of_n(n) -> (h, error)`` for ``n`` cells per axis.
-    ns : sequence of int
-        Increasing resolutions.
-
-    Returns
-    -------
-    dict
-        ``n``, ``h``, ``error`` (arrays), ``order`` (between successive grids,
-        NaN-padded in front) and ``fitted_order`` (least-squares slope of
-        log error against log h).
-    """
-    ns = [int(n) for n in ns]
-    hs, errs = zip(*(error_of_n(n) for n in ns))
-    hs = np.asarray(hs, dtype=float)
-    errs = np.asarray(errs, dtype=float)
-    orders = np.concatenate([[np.nan], observed_orders(hs, errs)])
-    fitted = float(np.polyfit(np.log(hs), np.log(errs), 1)[0]) if len(ns) > 1 else float("nan")
-    return {"n": np.asarray(ns), "h": hs, "error": errs, "order": orders, "fitted_order": fitted}

@@ -35,13 +35,16 @@ __all__ = ["MAUGIS_PER_TABOR", "maugis_parameter", "tabor_from_maugis"]
 MAUGIS_PER_TABOR = 2.0 * (9.0 / (16.0 * np.pi)) ** (1.0 / 3.0)
 
 
-def maugis_parameter(mu):
+def maugis_parameter(mu, *, checked=True):
     """Convert the paper's transition parameter mu of Eq. (35) to Maugis' lambda [-].
 
     Parameters
     ----------
     mu : array_like
         Tabor parameter mu = sigma0 (R/(E*^2 dgamma))^(1/3) > 0, Eq. (35) [-].
+    checked : bool, default True
+        Validate ``mu``; False for internal callers that validated it once at their public
+        entry (the MD solves of :mod:`dhfield.maugis_dugdale`).
 
     Returns
     -------
@@ -52,7 +55,10 @@ def maugis_parameter(mu):
     -----
     .. math:: \\lambda = 2\\left(\\frac{9}{16\\pi}\\right)^{1/3}\\mu
     """
-    mu = check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
+    if checked:
+        mu = check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless")
+    else:
+        mu = np.asarray(mu, dtype=float)
     out = MAUGIS_PER_TABOR * mu  # Eq. (35) with Maugis (1992) lambda, same sigma0
     return out[()] if out.ndim == 0 else out
 

@@ -120,9 +120,7 @@ def test_equal_beta_spread():
     assert_allclose(s.width_ratio[:2], np.array([[0.8], [0.9]]) * np.ones(3), rtol=1e-12)  # r_cd - r_ab scales as beta
 
 
-def test_spread_along_curve_and_law_spread_identity():
-    s = closure.equal_beta_spread_along_curve([0.5, 1.0, 2.0], beta0=0.9, mu=1.0)
-    assert s.work_ratio.shape == (3,)
+def test_law_spread_identity():
     law = periphery.cohesive_law(1.3, 2.0, 1.0, 1.1, theta=[0.0, 0.5, 1.0])
     assert closure.law_spread(law) < 1e-12
 
@@ -142,7 +140,6 @@ def test_bad_input(call, match):
 
 
 @pytest.mark.parametrize("call", [lambda: closure.equal_beta_spread(1.0, 0.9),
-                                  lambda: closure.equal_beta_spread_along_curve([0.5, 1.0], 1.0, 0.9),
                                   lambda: closure.solve_ray_average(1.0, 1.0, 0.9),
                                   lambda: closure.solve_two_axis(1.0, 1.0, 0.9),
                                   lambda: closure.pull_off_closure(1.0, 0.9),

@@ -349,3 +349,38 @@ def test_load_curves_take_beta0_and_mu_by_keyword(call):
     """(mu, beta0) was the old positional order: a positional call would swap them silently (issue 16)."""
     with pytest.raises(TypeError, match="positional"):
         call()
+
+
+def _outermost_validation_calls(func):
+    """The dhfield._validation functions ``func()`` enters from outside that module (nested checks not counted)."""
+    import sys
+
+    import dhfield._validation as v
+
+    calls = []
+
+    def profile(frame, event, arg):
+        if event == "call" and frame.f_code.co_filename == v.__file__ \
+                and frame.f_back is not None and frame.f_back.f_code.co_filename != v.__file__:
+            calls.append(frame.f_code.co_name)
+
+    sys.setprofile(profile)
+    try:
+        func()
+    finally:
+        sys.setprofile(None)
+    return calls
+
+
+@pytest.mark.parametrize("model", ["md-elliptic", "dh-elliptic", "md", "jkr-elliptic"])
+@pytest.mark.parametrize("control", ["load", "displacement"])
+def test_pull_off_validates_each_input_once(model, control):
+    """Issue 16: beta0, mu and control are checked once, at the entry (check_grid_point); the model's
+    internals run unchecked cores.  Values off any cached grid, so every internal path runs."""
+    calls = _outermost_validation_calls(lambda: compare.pull_off(model, beta0=0.8123, mu=1.2345, control=control))
+    assert calls == ["check_grid_point"]
+
+
+def test_load_curve_validates_each_input_once():
+    calls = _outermost_validation_calls(lambda: compare.load_curve("md-elliptic", beta0=0.8123, mu=2.345, n=5))
+    assert calls == ["check_grid_point", "check_count", "check_contact_size_star"]

@@ -296,3 +296,12 @@ def test_displacement_record_is_the_curves_stationary_approach(beta0, mu):
     assert abs(slope) < 1e-3  # O(h delta'') at a stationary point, against slopes of O(1) elsewhere
     w_gvg = float(ee.pull_off_nondimensional(beta0, 1.0, control="displacement").W_star)
     assert -sin_skew_angle(beta0) <= float(rec.W_star) <= w_gvg + 1e-12
+
+
+def test_load_curve_validates_unless_told_its_inputs_are_checked():
+    """compare.load_curve validates once and calls checked=False; a direct call still names bad input."""
+    with pytest.raises(ValueError, match="^mu must be"):
+        et.load_curve_nondimensional(1.0, 0.5, -1.0)
+    a = np.array([0.2, 0.8, 1.5])
+    got, ref = et.load_curve_nondimensional(a, 0.7, 2.0, checked=False), et.load_curve_nondimensional(a, 0.7, 2.0)
+    assert all(np.array_equal(got[k], ref[k]) for k in ref)

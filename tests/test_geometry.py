@@ -60,6 +60,9 @@ def test_sin_skew_consistent_with_principal_radii():
     (lambda: g.principal_radii(-1.0, 1.0), "cylinder_radius"),
     (lambda: g.principal_radii(1.0, 2.0), "skew_angle"),
     (lambda: g.reduced_modulus(1e9, 0.7, 1e9, 0.3), "nu1"),
+    (lambda: g.reduced_modulus(-1e9, 0.3, 1e9, 0.3), "e1"),
+    (lambda: g.effective_radius(1.0, 0.0), "r_minor"),
+    (lambda: g.skew_angle(1.5), "beta"),
     (lambda: g.ellipticity_from_radius_ratio(0.5), "ratio"),
 ])
 def test_bad_input_names_parameter(call, name):
@@ -86,3 +89,14 @@ def test_unchecked_path_is_the_same_computation():
     assert np.array_equal(g.ellipticity_from_radius_ratio(rho, checked=False), g.ellipticity_from_radius_ratio(rho))
     with pytest.raises(ValueError, match="ratio"):
         g.ellipticity_from_radius_ratio(0.5)
+
+
+def test_unchecked_cores_are_the_checked_values():
+    """checked=False (dhfield.dimensional validates the SI inputs once) skips the checks, not a digit."""
+    rc, th = np.array([1e-3, 0.02, 5.0]), np.array([0.1, 1.0, np.pi / 2])
+    unchecked, checked = g.principal_radii(rc, th, checked=False), g.principal_radii(rc, th)
+    assert all(np.array_equal(u, c) for u, c in zip(unchecked, checked))
+    assert np.array_equal(g.effective_radius(rc, th, checked=False), g.effective_radius(rc, th))
+    assert np.array_equal(g.reduced_modulus(rc, 0.3, th, 0.5, checked=False), g.reduced_modulus(rc, 0.3, th, 0.5))
+    beta = np.array([1e-4, 0.3, 1.0])
+    assert np.array_equal(g.skew_angle(beta, checked=False), g.skew_angle(beta))

@@ -131,3 +131,11 @@ def test_ellipse_root_solves_its_equation(rng):
 def test_bad_input(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_max_pressure_unchecked_core_is_the_checked_value():
+    """checked=False (the closure solves, inputs validated once) skips the checks, not a digit."""
+    a, beta = np.geomspace(1e-3, 10.0, 7), np.linspace(0.1, 1.0, 7)
+    assert np.array_equal(hertz.max_pressure(a, beta, 2.0, 3.0, checked=False), hertz.max_pressure(a, beta, 2.0, 3.0))
+    with pytest.raises(ValueError, match="reduced_modulus"):
+        hertz.max_pressure(1.0, 0.5, 1.0, -1.0)

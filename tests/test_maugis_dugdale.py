@@ -138,3 +138,22 @@ def test_bad_input():
         md.pull_off(r, e, dg, s0, control="x")
     with pytest.raises(ValueError, match="mu"):
         maugis_parameter(-1.0)
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: md.load_curve_nondimensional(-1.0, 1.0), "a_star"),
+    (lambda: md.load_curve_nondimensional(1.0, 0.0), "mu"),
+    (lambda: md.load_curve_nondimensional(1.0, np.inf), "mu"),
+    (lambda: md.load_curve_maugis_units(-1.0, 1.0), "a_maugis"),
+    (lambda: md.load_curve_maugis_units(1.0, -1.0), "lam"),
+])
+def test_public_functions_still_validate(call, name):
+    """The internal callers skip the checks (checked=False); a user's call to the public function does not."""
+    with pytest.raises(ValueError, match=rf"^{name} must be"):
+        call()
+
+
+def test_unchecked_curve_is_the_checked_curve():
+    a = np.array([0.0, 0.3, 1.0, 2.5])
+    got, ref = md.load_curve_nondimensional(a, 1.7, checked=False), md.load_curve_nondimensional(a, 1.7)
+    assert all(np.array_equal(got[k], ref[k]) for k in ref)

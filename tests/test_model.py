@@ -349,3 +349,12 @@ def test_beta0_and_mu_are_keyword_only(call):
     """(beta0, mu) is GRID_DIMS' order, (mu, beta0) was the old one: a positional call would swap them silently."""
     with pytest.raises(TypeError, match="positional"):
         call()
+
+
+def test_unchecked_load_curve_is_the_checked_curve():
+    """checked=False (compare.load_curve, inputs validated once) skips the checks, not a digit."""
+    a = np.array([0.05, 0.5, 1.0, 3.0])
+    got = model.load_curve(beta0=0.6, mu=1.3, a_star=a, checked=False)
+    ref = model.load_curve(beta0=0.6, mu=1.3, a_star=a)
+    for k in ("a_star", "b_star", "c_star", "d_star", "v", "W_star", "delta_star"):
+        assert np.array_equal(getattr(got, k), getattr(ref, k)), k

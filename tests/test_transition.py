@@ -30,3 +30,10 @@ def test_bad_input(bad):
         maugis_parameter(bad)
     with pytest.raises(ValueError, match="lam"):
         tabor_from_maugis(bad)
+
+
+def test_unchecked_core_is_the_checked_value():
+    """checked=False (internal callers, mu validated once) skips the check, not a digit."""
+    mu = np.array([1e-6, 0.3, 1.0, 7.0, 1e12])
+    assert np.array_equal(maugis_parameter(mu, checked=False), maugis_parameter(mu))
+    assert np.ndim(maugis_parameter(1.0, checked=False)) == 0

@@ -21,7 +21,10 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
   ``find_root`` on a derivative (a callable whose name starts with ``d`` or ``slope``).  Before
   issue 16's one rule (commit cb04ac6) a refinement was counted as a search;
 * the number of ``dhfield._validation`` calls on one ``dhfield pulloff --beta0 0.9 --mu 1 --json``
-  (outermost calls only, counted per parameter name; target: each input once);
+  (outermost calls only, counted per parameter name; target: each input once), and the same count,
+  each in a fresh process, on ``dhfield curve --beta0 0.9 --mu 1 --json`` and ``dhfield compare
+  --beta0 0.9 --mu 1`` and ``dhfield pulloff`` with SI inputs (``check_grid_point`` checks beta0, mu and
+  control together);
 * whether ``dhfield/bem/`` imports an analytic model module;
 * the number of load-curve result types (target 1): every function outside ``dhfield/bem`` whose
   name starts with ``load_curve``, called as the pull-off functions are (:data:`_CURVE_PROBE`);
@@ -246,6 +249,25 @@ print(json.dumps({"rc": rc, "validation": validation, "types": types, "bem_types
 '''
 
 
+#: Further CLI calls whose _validation calls are counted, each in a fresh process (no cached state).
+COUNTED_CALLS = (["curve", "--beta0", "0.9", "--mu", "1", "--json"], ["compare", "--beta0", "0.9", "--mu", "1"],
+                 # SI inputs (dhfield.dimensional): each SI input once, then the grid point they give
+                 ["pulloff", "--youngs-modulus", "1e6", "--poisson-ratio", "0.5", "--cylinder-radius", "0.01",
+                  "--skew-angle-deg", "60", "--work-of-adhesion", "0.05", "--adhesive-stress", "2e5", "--json"])
+
+_COUNT = _PROBE.split("validation = dict(counts)")[0].replace(
+    'main(["pulloff", "--beta0", "0.9", "--mu", "1", "--json"])', "main(json.loads(sys.argv[1]))") + \
+    'print(json.dumps({"rc": rc, "validation": dict(counts)}))\n'
+
+
+def counted(root: Path, argv) -> dict:
+    """``{"rc", "validation"}`` of one CLI call ``argv`` in a fresh process."""
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    out = subprocess.run([sys.executable, "-c", _COUNT, json.dumps(argv)], env=env, cwd=root, capture_output=True,
+                         text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
 def dynamic(root: Path) -> dict:
     env = {**os.environ, "PYTHONPATH": str(root)}
     out = subprocess.run([sys.executable, "-c", _PROBE], env=env, cwd=root, capture_output=True, text=True,
@@ -350,6 +372,12 @@ def main(argv=None) -> int:
           f"(exit {d['rc']}; target: each input once)")
     for k, v in sorted(d["validation"].items()):
         print(f"    {v:3d}  {k}")
+    for argv in COUNTED_CALLS:
+        c = counted(root, argv)
+        print(f"_validation calls on one `dhfield {' '.join(argv)}`: {sum(c['validation'].values())} "
+              f"(exit {c['rc']}; target: each input once)")
+        for k, v in sorted(c["validation"].items()):
+            print(f"    {v:3d}  {k}")
     print(f"dhfield/bem imports an analytic model: {'yes' if s['bem_imports_analytic'] else 'no'}")
     for x in s["bem_imports_analytic"]:
         print(f"    {x}")
