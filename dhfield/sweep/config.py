@@ -46,8 +46,8 @@ skew_angle_deg  crossing angle in (0, 90] degrees (replaces  every quantity
 mu              Tabor parameter > 0 (Eq. 35)                 every quantity
 a_star          contact semi-major axis a/c_r > 0 (Eq. 32)   bem_field
 n               BEM cells per side, even, in [16, 8192]      bem_field, adhesive
-grid_level      integer in [1, 4]: the adhesive BEM's        adhesive (instead of n)
-                automatic grid (1) or k x its cells per axis
+grid_level      integer in [1, 4]: 1 the adhesive BEM's      adhesive (instead of n)
+                automatic grid, k: k x its cells per axis
 law             cohesive law of the adhesive BEM solver      adhesive
 ==============  ===========================================  ==========================
 
