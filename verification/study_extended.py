@@ -26,7 +26,7 @@ load control) on dask, one part per TOML file written under ``--work-dir``
     never changed): dims ``(beta0, mu, level)``, per case the values, the grid (nx, ny,
     half-widths), W_star_error, converged/resolved, the status ('ok', 'not_converged',
     'unresolved', 'failed', 'not run' for a case of the extended study that no source
-    holds, 'absent' outside it), the wall/CPU time and its provenance (``source``, ``commit``,
+    holds, with the attempt stopped at its timeout if any, 'absent' outside it), the wall/CPU time and its provenance (``source``, ``commit``,
     ``command``, ``finished``); per (beta0, mu) the best value ``W_star_truth`` with its
     error and source.  Lists the cases not run.
 
@@ -44,7 +44,9 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import json
 import os
+import resource
 import shlex
 import signal
 import subprocess
@@ -103,6 +105,7 @@ def run_part(name, work_dir, workers=1, timeout=None) -> int:
     cmd = _sweep_command(toml, out, workers)
     print(f"[{name}] {shlex.join(cmd)}", flush=True)
     t0 = time.perf_counter()
+    cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     proc = subprocess.Popen(cmd, start_new_session=True)   # its own group: a timeout stops its workers too
     try:
         rc = proc.wait(timeout=timeout)
@@ -113,13 +116,46 @@ def run_part(name, work_dir, workers=1, timeout=None) -> int:
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
-        print(f"[{name}] stopped after the hard timeout of {timeout:g} s ({time.perf_counter() - t0:.0f} s wall); "
-              "finished cases are in its store", flush=True)
+        cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (cpu1.ru_utime + cpu1.ru_stime) - (cpu0.ru_utime + cpu0.ru_stime)
+        wall = time.perf_counter() - t0
+        write_attempt(work, name, timeout, wall, cpu, shlex.join(cmd))
+        print(f"[{name}] stopped after the hard timeout of {timeout:g} s ({wall:.0f} s wall, {cpu:.0f} s CPU of the "
+              "processes reaped); finished cases are in its store", flush=True)
         return 124
     print(f"[{name}] dhfield sweep exit {rc} after {time.perf_counter() - t0:.0f} s wall", flush=True)
     if out.is_file():
         print_sweep(out)
     return rc
+
+
+def write_attempt(work_dir, name, timeout, wall, cpu, command) -> Path:
+    """Record a part stopped at its hard timeout (read by :func:`build` for the cases it did not finish)."""
+    from dhfield.io import atomic_path, git_commit
+
+    path = Path(work_dir) / f"{name}.timeout.json"
+    beta0, mu, levels = PARTS[name]
+    rec = {"part": name, "beta0": list(beta0), "mu": list(mu), "levels": list(levels), "timeout_s": timeout,
+           "wall_s": wall, "cpu_s": cpu, "command": command, "commit": git_commit(),
+           "stopped": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), "load_average": list(os.getloadavg())}
+    with atomic_path(path) as tmp:
+        Path(tmp).write_text(json.dumps(rec, indent=1))
+    return path
+
+
+def _attempts(work_dir) -> dict:
+    """(beta0, mu, level) -> one line about a timed-out attempt of that case."""
+    out = {}
+    for p in sorted(Path(work_dir).glob("*.timeout.json")):
+        r = json.loads(p.read_text())
+        line = (f"attempted by part {r['part']} ({r['command']}; commit {r['commit']}), stopped at its hard timeout "
+                f"of {r['timeout_s']:g} s on {r['stopped']} ({r['wall_s']:.0f} s wall, {r['cpu_s']:.0f} s CPU, load "
+                f"average {r['load_average'][0]:.1f} on this shared machine)")
+        for b in r["beta0"]:
+            for m in r["mu"]:
+                for lv in r["levels"]:
+                    out[(round(float(b), _KEY), round(float(m), _KEY), int(lv))] = line
+    return out
 
 
 def print_sweep(path) -> None:
@@ -311,7 +347,7 @@ def build(work_dir, out) -> int:
     in_study = np.zeros(shape[:2], dtype=np.int8)
     w_ladder = np.full(shape[:2] + (len(ns),), np.nan)
     st_ladder = np.full(shape[:2] + (len(ns),), -1, dtype=np.int8)
-    not_run = []
+    not_run, attempts = [], _attempts(work_dir)
     for i, b in enumerate(b0):
         for j, m in enumerate(mus):
             key = (b, m)
@@ -321,6 +357,7 @@ def build(work_dir, out) -> int:
                 c = per.get(lv)
                 if c is None:
                     text["status"][i, j, li] = "not run" if key in study else "absent"
+                    text["message"][i, j, li] = attempts.get((b, m, lv), "")
                     if key in study:
                         not_run.append((b, m, lv))
                     continue
@@ -353,7 +390,8 @@ def build(work_dir, out) -> int:
         "status": "ok, not_converged, unresolved, failed, 'not run' (a case of the extended study that no source "
                   "holds) or absent (outside the extended study)",
         "search": "route that gave the pull-off (the solver's search)",
-        "message": "why the case is not an answer, or the source's note on it (empty: none)",
+        "message": "why the case is not an answer, or the source's note on it; for a case not run, the attempt "
+                   "stopped at its timeout if any (empty: none)",
         "source": "file and script (or dhfield sweep part) that produced the case",
         "commit": "git commit of the code that solved the case",
         "command": "command line that solved the case",
@@ -395,6 +433,8 @@ def build(work_dir, out) -> int:
                      + " ".join(f"{m:g}" for m in MU) + " (beta0 0.1806: the stored 30 deg slender case, for the "
                      "issue's 0.18). dhfield output: never a test reference."),
         not_run_cases="; ".join(f"beta0 {b:g} mu {m:g} level {lv}" for b, m, lv in not_run) or "none",
+        attempts_stopped="; ".join(f"beta0 {b:g} mu {m:g} level {lv}: {line}" for (b, m, lv), line in
+                                   sorted(attempts.items())) or "none",
         duplicates_skipped="; ".join(duplicates) or "none",
         nondimensionalisation="R = E* = dgamma = 1 (Eqs. 32-35): lengths in c_r, W* = W sin(theta_skew)/(2 pi R "
                               "dgamma) (Eq. 34), sigma0 = mu, h0 = 1/mu",
@@ -414,6 +454,8 @@ def build(work_dir, out) -> int:
                       f"{truth['W_star_truth_error'][i, j]:.2g}  [{truth_src[i, j] or 'none'}]")
     print(f"not run ({len(not_run)}): " + ("; ".join(f"beta0 {b:g} mu {m:g} level {lv}" for b, m, lv in not_run)
                                           or "none"))
+    for (b, m, lv), line in sorted(attempts.items()):
+        print(f"  beta0 {b:g} mu {m:g} level {lv}: {line}")
     return 0
 
 
