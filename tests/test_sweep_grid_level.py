@@ -124,3 +124,21 @@ def test_failed_level_keeps_its_reason_and_provenance(tmp_path, monkeypatch):
     assert "MemoryError: no room" in str(ds["adhesive_message"].values)
     assert np.isnan(float(ds["W_star"].sel(model=tasks.ADHESIVE_MODEL))) and float(ds["wall_seconds"]) > 0
     assert str(ds["adhesive_commit"].values) and str(ds["adhesive_finished"].values)
+
+
+def test_cli_grid_level_flag(tmp_path, capsys):
+    """`dhfield sweep --grid-level 1 --quantities adhesive` solves on the automatic grid; a bad level exits 2."""
+    import xarray as xr
+
+    from dhfield.cli import main
+
+    out = tmp_path / "cli.nc"
+    rc = main(["sweep", "--beta0", "0.1", "--mu", "1", "--grid-level", "1", "--quantities", "adhesive",
+               "--workers", "1", "--out", str(out), "--quiet"])
+    assert rc == 0
+    with xr.open_dataset(out) as ds:
+        assert int(ds["nx"].values.item()) == plan_grid(beta0=0.1, mu=1.0).n_needed
+    rc = main(["sweep", "--beta0", "0.1", "--mu", "1", "--grid-level", "9", "--quantities", "adhesive",
+               "--out", str(tmp_path / "bad.nc")])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and "axes.grid_level" in err and len(err.splitlines()) == 1
