@@ -26,9 +26,10 @@ load control) on dask, one part per TOML file written under ``--work-dir``
     never changed): dims ``(beta0, mu, level)``, per case the values, the grid (nx, ny,
     half-widths), W_star_error, converged/resolved, the status ('ok', 'not_converged',
     'unresolved', 'failed', 'not run' for a case of the extended study that no source
-    holds, with the attempt stopped at its timeout if any, 'absent' outside it), the wall/CPU time and its provenance (``source``, ``commit``,
-    ``command``, ``finished``); per (beta0, mu) the best value ``W_star_truth`` with its
-    error and source.  Lists the cases not run.
+    holds, with the attempt stopped at its timeout if any, 'absent' outside it), the
+    wall/CPU time and its provenance (``source``, ``commit``, ``command``, ``finished``);
+    per (beta0, mu) the best value ``W_star_truth`` with its error and source.  Lists the
+    cases not run.
 
 Levels of the N-ladder set: its two finest usable N (status ok or unconverged only after the
 pull-off), each twice the cells per axis of the other as levels 1 and 2 are; its whole ladder

@@ -78,7 +78,8 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapping", "axis_values",
-           "check_scheduler_address", "MAX_POINTS", "MAX_GRID_LEVEL", "max_workers", "MAX_CONFIG_BYTES", "DEFAULT_SCHEDULER_PORT"]
+           "check_scheduler_address", "MAX_POINTS", "MAX_GRID_LEVEL", "max_workers", "MAX_CONFIG_BYTES",
+           "DEFAULT_SCHEDULER_PORT"]
 
 #: Quantities a sweep can compute.
 QUANTITIES = ("pull_off", "load_curve", "bem_field", "adhesive")

@@ -16,6 +16,11 @@ Engine
   the whole path of an adhesive pull-off) stay in one task.  The half-space
   operator is built inside the worker on first use and cached there
   (:func:`dhfield.bem.get_operator`): it holds a lock and is never pickled.
+  An adhesive case runs on an explicit ``n`` x ``n`` grid or, on the ``grid_level``
+  axis, on the library's automatic grid (level 1) or k times its cells per axis
+  (:func:`~dhfield.sweep.tasks.automatic_grid`); each stores its grid (nx, ny,
+  half-widths), stated error, flags, wall and CPU time, route, and provenance (the
+  commit that solved it, the sweep's command line, the time it finished).
 * **Costliest first.** Every BEM task carries an estimate of its cost
   (:func:`dhfield.sweep.tasks.expected_seconds`: n^2 log n, times mu^1.1 for an
   adhesive path); the task keys rank them so that dask starts the costliest
