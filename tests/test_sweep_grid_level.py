@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from dhfield.adhesive_start import plan_grid
 from dhfield.sweep import config_from_mapping, engine, load_config, run_sweep, tasks
@@ -142,3 +144,18 @@ def test_cli_grid_level_flag(tmp_path, capsys):
                "--out", str(tmp_path / "bad.nc")])
     err = capsys.readouterr().err.strip()
     assert rc == 2 and "axes.grid_level" in err and len(err.splitlines()) == 1
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.one_of(st.integers(-50, 50), st.floats(allow_nan=True, allow_infinity=True), st.booleans(), st.text()))
+def test_grid_level_domain(value):
+    """Accepted iff an integer (or integral number) in [1, MAX_GRID_LEVEL]; anything else one line naming the axis."""
+    mapping = {"axes": {"beta0": [0.5], "mu": [1.0], "grid_level": [value]}, "sweep": {"quantities": ["adhesive"]}}
+    ok = (not isinstance(value, (bool, str)) and isinstance(value, (int, float)) and np.isfinite(value)
+          and value == int(value) and 1 <= value <= MAX_GRID_LEVEL)
+    if ok:
+        assert config_from_mapping(mapping).axes["grid_level"] == (int(value),)
+    else:
+        with pytest.raises(ValueError, match="axes.grid_level") as exc:
+            config_from_mapping(mapping)
+        assert "\n" not in str(exc.value)
