@@ -46,6 +46,7 @@ Engine
 from __future__ import annotations
 
 import os
+import shlex
 import sys
 import time
 import traceback
@@ -809,8 +810,6 @@ def _run(config, executor, store, final, progress):
             collections.append(arr.data)
             kinds.append(("pull_off", model))
     import dask
-
-    import shlex
 
     command = shlex.join(sys.argv)   # provenance of each case computed by this run
     tasks = []
