@@ -23,7 +23,7 @@ _EPILOG = ("exit status: 0 every case ok; 1 some cases failed (recorded with the
            "A summary line goes to stderr, and with --quiet only when cases failed or are flagged.")
 
 _AXIS_FLAGS = (("beta0", float), ("skew_angle_deg", float), ("mu", float), ("a_star", float), ("n", int),
-               ("law", str))
+               ("grid_level", int), ("law", str))
 
 
 def add_parser(sub) -> None:

@@ -23,6 +23,7 @@ TOML layout (every table and key optional except ``[axes]``)::
     mu = {geomspace = [0.1, 10, 200]}
     a_star = [0.5, 1.0]                # bem_field: contact semi-major axis a/c_r
     n = [256]                          # bem_field, adhesive: BEM cells per side
+    grid_level = [1, 2]                # adhesive (instead of n): 1 = the automatic grid, k = k x its cells per axis
     law = ["dugdale"]                  # adhesive: cohesive law
 
     [bem]
@@ -45,8 +46,18 @@ skew_angle_deg  crossing angle in (0, 90] degrees (replaces  every quantity
 mu              Tabor parameter > 0 (Eq. 35)                 every quantity
 a_star          contact semi-major axis a/c_r > 0 (Eq. 32)   bem_field
 n               BEM cells per side, even, in [16, 8192]      bem_field, adhesive
+grid_level      integer in [1, 4]: 1 the adhesive BEM's      adhesive (instead of n)
+                automatic grid, k: k x its cells per axis
 law             cohesive law of the adhesive BEM solver      adhesive
 ==============  ===========================================  ==========================
+
+The ``adhesive`` quantity takes ``n`` (explicit n x n grids) or ``grid_level``, not
+both.  ``grid_level = 1`` solves each case as ``dhfield solve`` without ``--n``: on the
+grid and route :func:`dhfield.adhesive_start.adhesive_pull_off` plans from the expected
+cohesive-zone width (nx x ny with about square cells below beta0 = 0.45; the predicted
+route at mu >= 7.5).  ``grid_level = k >= 2`` solves the explicit grid of k times the
+cells per axis of that plan (:func:`dhfield.sweep.tasks.automatic_grid`), so
+``grid_level = [1, 2]`` is the convergence over N of every case in one sweep.
 
 ``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
@@ -67,24 +78,28 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapping", "axis_values",
-           "check_scheduler_address", "MAX_POINTS", "max_workers", "MAX_CONFIG_BYTES", "DEFAULT_SCHEDULER_PORT"]
+           "check_scheduler_address", "MAX_POINTS", "MAX_GRID_LEVEL", "max_workers", "MAX_CONFIG_BYTES",
+           "DEFAULT_SCHEDULER_PORT"]
 
 #: Quantities a sweep can compute.
 QUANTITIES = ("pull_off", "load_curve", "bem_field", "adhesive")
 #: Axes a sweep can span, in the canonical order of the output (:data:`dhfield.schema.DIM_ORDER`).
-AXES = ("skew_angle_deg", "beta0", "mu", "a_star", "n", "law")
+AXES = ("skew_angle_deg", "beta0", "mu", "a_star", "n", "grid_level", "law")
 #: Axes each quantity depends on (other axes broadcast).
 QUANTITY_AXES = {
     "pull_off": ("skew_angle_deg", "beta0", "mu"),
     "load_curve": ("skew_angle_deg", "beta0", "mu"),
     "bem_field": ("skew_angle_deg", "beta0", "mu", "a_star", "n"),
-    "adhesive": ("skew_angle_deg", "beta0", "mu", "n", "law"),
+    "adhesive": ("skew_angle_deg", "beta0", "mu", "n", "grid_level", "law"),
 }
 #: Largest number of grid points of one sweep (guards against a typo like 1e9 points).
 MAX_POINTS = 10_000_000
 #: Largest BEM grid (cells per side) a sweep accepts; 8192^2 cells need ~4 GiB per worker.
 MAX_BEM_CELLS = 8192
 _MIN_BEM_CELLS = 16
+#: Finest grid level of the adhesive quantity: k^2 times the cells of the automatic grid
+#: (level 4 is 16x its cells and memory; beyond, a case would not fit a worker).
+MAX_GRID_LEVEL = 4
 _SAMPLINGS = ("average", "centre")
 _CONTROLS = ("load", "displacement")
 
@@ -208,6 +223,11 @@ class SweepConfig:
         return np.asarray(ellipticity_from_skew_angle(np.radians(self.axes["skew_angle_deg"])), dtype=float)
 
     @property
+    def adhesive_grid_axis(self) -> str:
+        """Axis of the adhesive BEM's grid: "grid_level" (the automatic grid) or "n" (explicit n x n cells)."""
+        return "grid_level" if "grid_level" in self.axes else "n"
+
+    @property
     def ellipticity_axis(self) -> str:
         """Name of the ellipticity axis: "beta0" or "skew_angle_deg"."""
         return "beta0" if "beta0" in self.axes else "skew_angle_deg"
@@ -303,7 +323,17 @@ def _check_axis(name, values):
         for v in values:
             if isinstance(v, bool) or not isinstance(v, (int, float)) or v != int(v) or int(v) % 2 \
                     or not _MIN_BEM_CELLS <= v <= MAX_BEM_CELLS:
-                _fail(key, f"even integers in [{_MIN_BEM_CELLS}, {MAX_BEM_CELLS}] (BEM cells per side)", v)
+                _fail(key, f"even integers in [{_MIN_BEM_CELLS}, {MAX_BEM_CELLS}] (BEM cells per side; for the "
+                      "adhesive BEM's automatic grid use the grid_level axis instead)", v)
+            out.append(int(v))
+        out = tuple(out)
+    elif name == "grid_level":
+        out = []
+        for v in values:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v != int(v) \
+                    or not 1 <= v <= MAX_GRID_LEVEL:
+                _fail(key, f"integers in [1, {MAX_GRID_LEVEL}] (1: the adhesive BEM's automatic grid; k: k times "
+                      "its cells per axis)", v)
             out.append(int(v))
         out = tuple(out)
     else:
@@ -436,11 +466,17 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
         raise ValueError("axes must include beta0 (or skew_angle_deg)")
     if "mu" not in axes:
         raise ValueError("axes must include mu (Tabor parameter, Eq. 35)")
-    needed = {"bem_field": ("a_star", "n"), "adhesive": ("n",)}
+    needed = {"bem_field": ("a_star", "n")}
     for q in quantities:
         for ax in needed.get(q, ()):
             if ax not in axes:
                 raise ValueError(f"axes.{ax} is needed by the quantity {q!r}")
+    if "grid_level" in axes and "n" in axes:
+        raise ValueError("axes: give n (explicit n x n grids) or grid_level (the automatic grid and its "
+                         "refinements), not both; the quantity 'bem_field' needs n: run two sweeps")
+    if "adhesive" in quantities and "n" not in axes and "grid_level" not in axes:
+        raise ValueError("axes.n or axes.grid_level is needed by the quantity 'adhesive' (grid_level = [1, 2]: "
+                         "the automatic grid and twice its cells per axis)")
     if "adhesive" in quantities and "law" not in axes:
         axes["law"] = (cohesive_default(),)
     used = set().union(*(QUANTITY_AXES[q] for q in quantities))

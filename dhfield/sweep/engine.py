@@ -16,6 +16,11 @@ Engine
   the whole path of an adhesive pull-off) stay in one task.  The half-space
   operator is built inside the worker on first use and cached there
   (:func:`dhfield.bem.get_operator`): it holds a lock and is never pickled.
+  An adhesive case runs on an explicit ``n`` x ``n`` grid or, on the ``grid_level``
+  axis, on the library's automatic grid (level 1) or k times its cells per axis
+  (:func:`~dhfield.sweep.tasks.automatic_grid`); each stores its grid (nx, ny,
+  half-widths), stated error, flags, wall and CPU time, route, and provenance (the
+  commit that solved it, the sweep's command line, the time it finished).
 * **Costliest first.** Every BEM task carries an estimate of its cost
   (:func:`dhfield.sweep.tasks.expected_seconds`: n^2 log n, times mu^1.1 for an
   adhesive path); the task keys rank them so that dask starts the costliest
@@ -41,6 +46,7 @@ Engine
 from __future__ import annotations
 
 import os
+import shlex
 import sys
 import time
 import traceback
@@ -52,11 +58,14 @@ import numpy as np
 from .. import schema
 from .config import SweepConfig, check_scheduler_address, scheduler_host_port
 from .store import CaseStore, output_paths
-from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_MODEL, BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS,
-                    adhesive_case, adhesive_solver, bem_field_case, block_values, expected_seconds, load_curve_case, pull_off_block)
+from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_GRID_FIELDS, ADHESIVE_MODEL, ADHESIVE_TEXT_FIELDS,
+                    BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS, adhesive_case, adhesive_solver, bem_field_case,
+                    block_values, expected_seconds, load_curve_case, pull_off_block)
 
-_FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS + ADHESIVE_BEM_FIELDS,
+_FIELDS = {"bem_field": BEM_FIELD_FIELDS, "adhesive": ADHESIVE_FIELDS + ADHESIVE_BEM_FIELDS + ADHESIVE_GRID_FIELDS,
            "load_curve": CURVE_FIELDS}
+#: Text kept per case in the case file's attributes (the adhesive case's route, note and provenance).
+_TEXT_FIELDS = {"adhesive": ADHESIVE_TEXT_FIELDS + ("command",)}
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
            "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV", "SINGLE_THREAD_ENV", "WORKER_START_TIMEOUT",
@@ -581,18 +590,30 @@ def _gather(records, fields, shape, status_shape=None):
     return values, status, messages
 
 
-def _run_cases(quantity, cases, store_dir, fingerprint):
+def _gather_text(records, fields, shape):
+    """Object arrays of ``shape`` of the text ``fields`` of finished cases ("" where none)."""
+    out = {k: np.full(shape, "", dtype=object) for k in fields}
+    for key, (rec, _, _, _) in records.items():
+        idx = tuple(int(t) for t in key.split("__")[1].split("_"))
+        for k in fields:
+            out[k][idx] = str(rec.get(k, ""))
+    return out
+
+
+def _run_cases(quantity, cases, store_dir, fingerprint, command=""):
     """One task: the cases of one load path, in order; each written as it finishes."""
     store = CaseStore(store_dir, fingerprint)
     fields = _FIELDS[quantity]
+    text_fields = _TEXT_FIELDS.get(quantity, ())
     dims = ("point",) if quantity == "load_curve" else ()
     out = {}
     for key, params in cases:
         if store.is_done(key):
             ds = store.read(key)
             # A field added after the case was stored reads as NaN (the case is not recomputed).
-            out[key] = ({k: ds[k].values if k in ds else np.nan for k in fields}, ds.attrs["status"],
-                        ds.attrs["message"], False)
+            rec = {k: ds[k].values if k in ds else np.nan for k in fields}
+            rec.update({k: str(ds.attrs.get(f"case_{k}", "")) for k in text_fields})
+            out[key] = (rec, ds.attrs["status"], ds.attrs["message"], False)
             continue
         t0 = time.perf_counter()
         try:
@@ -604,7 +625,8 @@ def _run_cases(quantity, cases, store_dir, fingerprint):
                 status, message = "ok", ""
             else:
                 rec = adhesive_case(**params)
-                converged, resolved = bool(rec.pop("converged")), bool(rec.pop("resolved", True))
+                converged, resolved = bool(rec["converged"]), bool(rec.get("resolved", True))
+                rec["converged"], rec["resolved"] = float(converged), float(resolved)
                 message = rec.pop("message")
                 status = "ok" if converged and resolved else "not_converged" if not converged else "unresolved"
                 if not resolved:
@@ -613,9 +635,20 @@ def _run_cases(quantity, cases, store_dir, fingerprint):
             shape = (len(params["a_star"]),) if dims else ()
             rec = {k: np.full(shape, np.nan) for k in fields}
             status, message = "failed", _failure(exc)
-        store.write(key, _case_dataset({k: rec[k] for k in fields}, status, message, dims,
-                                       time.perf_counter() - t0))
-        out[key] = ({k: np.asarray(rec[k], dtype=float) for k in fields}, status, message, True)
+            if text_fields:
+                from .tasks import _git_commit
+
+                rec.update(commit=_git_commit(), finished=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()))
+        seconds = time.perf_counter() - t0
+        if "wall_seconds" in fields and not np.isfinite(rec["wall_seconds"]):  # a failed case: its time to fail
+            rec["wall_seconds"] = seconds
+        text = {k: str(rec.get(k, "")) for k in text_fields}
+        if text_fields:
+            text["command"] = command
+        case = _case_dataset({k: rec[k] for k in fields}, status, message, dims, seconds)
+        case.attrs.update({f"case_{k}": v for k, v in text.items()})
+        store.write(key, case)
+        out[key] = ({**{k: np.asarray(rec[k], dtype=float) for k in fields}, **text}, status, message, True)
     return out
 
 
@@ -669,13 +702,14 @@ def _case_index(config: SweepConfig, quantity):
                                                             half_width=config.half_width, sampling=config.sampling))
                                    for ia, a in enumerate(a_star)])
     else:
-        ns, laws = config.axes["n"], config.axes["law"]
+        grid_axis = config.adhesive_grid_axis   # "n" (explicit n x n) or "grid_level" (the automatic grid)
+        grids, laws = config.axes[grid_axis], config.axes["law"]
         for ib, b in enumerate(beta0):
             for im, m in enumerate(mu):
-                for i_n, n in enumerate(ns):
+                for i_n, g in enumerate(grids):
                     for il, law in enumerate(laws):
-                        groups.append([((ib, im, i_n, il), dict(beta0=float(b), mu=float(m), n=int(n), law=law,
-                                                                control=config.control))])
+                        groups.append([((ib, im, i_n, il), {"beta0": float(b), "mu": float(m), grid_axis: int(g),
+                                                            "law": law, "control": config.control})])
     return groups
 
 
@@ -778,6 +812,7 @@ def _run(config, executor, store, final, progress):
             kinds.append(("pull_off", model))
     import dask
 
+    command = shlex.join(sys.argv)   # provenance of each case computed by this run
     tasks = []
     for q in ("load_curve", "bem_field", "adhesive"):
         if q in config.quantities:
@@ -793,7 +828,7 @@ def _run(config, executor, store, final, progress):
     rank = {i: len(tasks) - 1 - r for r, i in enumerate(by_cost)}
     for i, (_, q, cases) in enumerate(tasks):
         collections.append(dask.delayed(_run_cases, pure=False)(
-            q, cases, str(store.directory), fp, dask_key_name=f"case-{rank[i]:07d}-{cases[0][0]}"))
+            q, cases, str(store.directory), fp, command, dask_key_name=f"case-{rank[i]:07d}-{cases[0][0]}"))
         kinds.append((q, [key for key, _ in cases]))
     total = sum(len(_output_keys(c)) for c in collections)
     enabled = sys.stderr.isatty() if progress is None else bool(progress)
@@ -812,7 +847,7 @@ def _run(config, executor, store, final, progress):
     write_netcdf(ds, final)
     warned = 0
     if "warning" in ds:  # the pull-off is broadcast over the adhesive BEM's n and law: count it once
-        w = ds["warning"].isel({d: 0 for d in ("n", "law") if d in ds["warning"].dims})
+        w = ds["warning"].isel({d: 0 for d in ("n", "grid_level", "law") if d in ds["warning"].dims})
         warned = int(np.count_nonzero(w.values != ""))
     return SweepResult(ds, final, computed=sorted(after - before), reused=sorted(before), failed=failed,
                        flagged=flagged, warned=warned)
@@ -820,6 +855,29 @@ def _run(config, executor, store, final, progress):
 
 # --------------------------------------------------------------------------- consolidation
 _N_ATTRS = {"long_name": "BEM cells per side", "units": "1"}
+_GRID_LEVEL_ATTRS = {"long_name": "grid level of the adhesive BEM: 1 the automatic grid and route (as dhfield solve "
+                     "without --n), k the explicit grid of k times its cells per axis", "units": "1"}
+#: Per-case numbers of the adhesive BEM beside its outputs (:data:`ADHESIVE_GRID_FIELDS`).
+_ADHESIVE_GRID_ATTRS = {
+    "nx": ("BEM cells along x of the adhesive case", "1"),
+    "ny": ("BEM cells along y of the adhesive case", "1"),
+    "half_width_x": ("domain half-width along x of the adhesive case, in c_r", "1"),
+    "half_width_y": ("domain half-width along y of the adhesive case, in c_r", "1"),
+    "W_star_error": ("stated error of the adhesive BEM's W_star (search + discretisation; inf: no estimate or "
+                     "not resolved)", "1"),
+    "converged": ("1 when every state of the adhesive case's load path down to the pull-off converged", "1"),
+    "resolved": ("1 when the adhesive case's grid resolves its cohesive zone and contact", "1"),
+    "n_steps": ("states solved on the adhesive case's load path", "1"),
+    "wall_seconds": ("wall time of the adhesive case (shared machines: load varies)", "s"),
+    "cpu_seconds": ("CPU time of the adhesive case's process", "s"),
+}
+_ADHESIVE_TEXT_ATTRS = {
+    "search": "route that gave the adhesive pull-off (the solver's search: located, bracket, march, predicted, ...)",
+    "note": "caveats of the adhesive BEM solver on the case (empty: none)",
+    "commit": "git commit of the code that solved the adhesive case",
+    "finished": "UTC time the adhesive case finished",
+    "command": "command line of the sweep run that solved the adhesive case",
+}
 _LAW_ATTRS = {"long_name": "cohesive law of the adhesive BEM solver"}  # a string label has no units
 _BEM_ATTRS = {
     "bem_displacement_error": ("max |omega_BEM - omega_Eq26| over the grid / max |omega| (forward BEM check)", "1"),
@@ -854,6 +912,9 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         coords["a_star"] = ("a_star", np.asarray(config.axes["a_star"]), schema.attrs("a_star", True))
     if "n" in config.axes:
         coords["n"] = ("n", np.asarray(config.axes["n"], dtype=np.int32), _N_ATTRS)
+    if "grid_level" in config.axes:
+        coords["grid_level"] = ("grid_level", np.asarray(config.axes["grid_level"], dtype=np.int32),
+                                _GRID_LEVEL_ATTRS)
     if "law" in config.axes:
         coords["law"] = ("law", np.asarray(config.axes["law"], dtype=object), _LAW_ATTRS)
     models = list(config.models) if {"pull_off", "load_curve"} & set(config.quantities) else []
@@ -864,7 +925,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
                            {k: v for k, v in schema.attrs("model").items() if k != "units"})
     n_ell, n_mu = beta0.size, len(config.axes["mu"])
     data = {}
-    extra = ("n", "law") if "adhesive" in config.quantities else ()
+    extra = (config.adhesive_grid_axis, "law") if "adhesive" in config.quantities else ()
     ex_shape = tuple(len(config.axes[d]) for d in extra)
     if models:
         mdims = ("model", ell, "mu") + extra
@@ -892,9 +953,9 @@ def _consolidate(config: SweepConfig, kinds, results, store):
                                f"{ds.attrs['message']}")
     if "adhesive" in config.quantities:
         m = models.index(ADHESIVE_MODEL)
-        adims = (ell, "mu", "n", "law")
+        adims = (ell, "mu") + extra
         ashape = (n_ell, n_mu) + ex_shape
-        avars, mstatus[m], amsg = _gather(cases["adhesive"], ADHESIVE_FIELDS + ADHESIVE_BEM_FIELDS, ashape)
+        avars, mstatus[m], amsg = _gather(cases["adhesive"], _FIELDS["adhesive"], ashape)
         for k in ADHESIVE_FIELDS:
             if k in mvars:
                 mvars[k][m] = avars[k]
@@ -906,6 +967,13 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         for k in ADHESIVE_BEM_FIELDS:
             data[k] = (adims, avars[k], schema.attrs(k, nondimensional=True))
         data["adhesive_message"] = (adims, amsg, {"long_name": "message of the adhesive BEM solve (empty: ok)"})
+        for k, (ln, u) in _ADHESIVE_GRID_ATTRS.items():
+            v = avars[k]
+            if k in ("converged", "resolved"):  # flags: -1 where no case was stored
+                v = np.where(np.isnan(v), -1, v).astype(np.int8)
+            data[k] = (adims, v, {"long_name": ln, "units": u})
+        for k, text in _gather_text(cases["adhesive"], _TEXT_FIELDS["adhesive"], ashape).items():
+            data[f"adhesive_{k}"] = (adims, text, {"long_name": _ADHESIVE_TEXT_ATTRS[k]})
     if "load_curve" in config.quantities:
         cdims = ("model", ell, "mu", "point")
         cshape = (len(models), n_ell, n_mu, config.curve_points)

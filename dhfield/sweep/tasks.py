@@ -8,7 +8,8 @@ Each quantity is a public function of plain numbers or arrays:
 * :func:`bem_field_case` -- the forward BEM check of one DH state
   (:func:`dhfield.fields.model_case`, :func:`dhfield.field_metrics.annulus_identity`).
 * :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off
-  (:func:`dhfield.adhesive_start.adhesive_pull_off`).
+  (:func:`dhfield.adhesive_start.adhesive_pull_off`), on an explicit n x n grid or on
+  the automatic grid and its refinements (:func:`automatic_grid`).
 * :func:`expected_seconds` -- a cost model of one case, used by the engine only
   to hand out the costliest tasks first.
 
@@ -22,9 +23,10 @@ import numpy as np
 
 from ..records import PullOff
 
-__all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS", "ADHESIVE_BEM_FIELDS", "ADHESIVE_MODEL",
-           "pull_off_block", "block_values", "bem_field_case", "adhesive_case", "cohesive_laws", "adhesive_solver",
-           "expected_seconds"]
+__all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS",
+           "ADHESIVE_BEM_FIELDS", "ADHESIVE_GRID_FIELDS", "ADHESIVE_TEXT_FIELDS", "ADHESIVE_MODEL",
+           "pull_off_block", "block_values", "bem_field_case", "adhesive_case", "automatic_grid", "cohesive_laws",
+           "adhesive_solver", "expected_seconds"]
 
 #: Output fields of the analytic pull-off, in the order of the stacked block (names of
 #: :data:`dhfield.io.compare.COMPARISON_VARIABLES`, metadata from :mod:`dhfield.schema`).
@@ -38,6 +40,15 @@ ADHESIVE_FIELDS = ("W_star", "a_star", "c_star", "ellipticity", "delta_star", "i
 #: Outputs only the adhesive BEM has (the semi-minor axes and both ellipticities from second
 #: moments of the masks), stored per case beside :data:`ADHESIVE_FIELDS`, as `dhfield solve --json`.
 ADHESIVE_BEM_FIELDS = ("b_star", "d_star", "beta_ab", "beta_cd")
+#: Numbers of each adhesive case beside its outputs: the grid solved (cells along x and y,
+#: domain half-widths [c_r]), the stated error of W* (inf when none), the flags (1/0), the
+#: states solved, and the wall and CPU time of the case [s] (on a shared machine: load varies).
+ADHESIVE_GRID_FIELDS = ("nx", "ny", "half_width_x", "half_width_y", "W_star_error", "converged", "resolved",
+                        "n_steps", "wall_seconds", "cpu_seconds")
+#: Text of each adhesive case: the route that gave the pull-off (the solver's ``search``), the
+#: solver's caveats (``note``), and its provenance (the git commit of the code that solved it and
+#: the UTC time it finished; the command line is added by the engine).
+ADHESIVE_TEXT_FIELDS = ("search", "note", "commit", "finished")
 #: Name of the adhesive ground truth on the ``model`` dimension of a sweep.
 ADHESIVE_MODEL = "bem-adhesive"
 
@@ -199,9 +210,88 @@ def adhesive_solver(name: str = "default"):
     return adhesive_pull_off
 
 
-def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "load", *,
-                  solver: str = "default") -> dict:
-    """Compute the adhesive BEM ground truth at pull-off of one (beta0, mu, n, law) case.
+def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "dugdale",
+                   control: str = "load") -> dict:
+    """The grid of an adhesive case at a grid level of the automatic plan.
+
+    Level 1 is the grid :func:`dhfield.adhesive_start.adhesive_pull_off` plans when no ``n``
+    is given (:func:`dhfield.adhesive_start.plan_grid`, on the domain of the route it takes);
+    level k >= 2 is k times the cells per axis of the plan made for an explicit grid
+    (``predicted=False``: the domain an explicit ``n`` is solved on), the same grid as
+    k x level 1 except where level 1 takes the predicted route (mu >= 7.5, beta0 >= 0.45).
+
+    Parameters
+    ----------
+    beta0 : float
+        Hertz ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter, Eq. (35), > 0 [-].
+    grid_level : int, default 1
+        1 (the automatic grid) to :data:`dhfield.sweep.config.MAX_GRID_LEVEL` [-].
+    law : str, default "dugdale"
+        Cohesive law, one of :func:`cohesive_laws`.
+    control : {"load", "displacement"}
+        Loading mode (the route of level 1 depends on it).
+
+    Returns
+    -------
+    dict
+        ``nx``, ``ny`` (cells along x and y [-]), ``automatic`` (True for level 1: the
+        solver plans it itself), ``predicted`` (level 1 on the predicted route),
+        ``seconds`` and ``memory_bytes`` (the library's estimates for that grid [s],
+        [bytes]), ``memory_limit`` (the memory one computation may claim, or None),
+        ``max_seconds`` (the time the library allows [s]) and ``analytic_W_star`` (the
+        analytic value to use where the case cannot be solved [-]).
+
+    Raises
+    ------
+    ValueError
+        If ``grid_level`` is not an integer in [1, MAX_GRID_LEVEL].
+    """
+    from ..adhesive_start import (DEFAULT_MAX_SECONDS, PATH_BYTES_PER_CELL, PULL_OFF_ITERATIONS,
+                                  SECONDS_PER_CELL_ITERATION, plan_grid, takes_predicted_route)
+    from .config import MAX_GRID_LEVEL
+
+    if isinstance(grid_level, bool) or not isinstance(grid_level, (int, np.integer)) \
+            or not 1 <= grid_level <= MAX_GRID_LEVEL:
+        raise ValueError(f"grid_level must be an integer in [1, {MAX_GRID_LEVEL}] (1: the automatic grid); "
+                         f"got {grid_level!r}")
+    k = int(grid_level)
+    predicted = k == 1 and takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control)
+    plan = plan_grid(beta0=beta0, mu=mu, law=law, predicted=predicted)
+    nx, ny = k * int(plan.n_needed), k * int(plan.ny_needed)
+    cells = float(nx) * float(ny)
+    return {"nx": nx, "ny": ny, "automatic": k == 1, "predicted": bool(plan.predicted),
+            "seconds": SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
+            "memory_bytes": PATH_BYTES_PER_CELL * cells, "memory_limit": plan.memory_limit,
+            "max_seconds": float(DEFAULT_MAX_SECONDS), "analytic_W_star": float(plan.analytic_W_star)}
+
+
+def _refuse_unaffordable(beta0, mu, grid_level, grid) -> None:
+    """Raise before solving when an explicit refined grid exceeds the memory or time the library allows."""
+    why = []
+    if grid["memory_limit"] is not None and grid["memory_bytes"] > grid["memory_limit"]:
+        why.append(f"~{grid['memory_bytes'] / 2**30:.3g} GiB, more than the {grid['memory_limit'] / 2**30:.3g} GiB "
+                   "available")
+    if grid["seconds"] > grid["max_seconds"]:
+        why.append(f"~{grid['seconds'] / 60:.0f} min estimated, more than the {grid['max_seconds'] / 60:.0f} min "
+                   "allowed")
+    if why:
+        raise RuntimeError(f"beta0={beta0:g}, mu={mu:g}, grid_level {grid_level}: {grid['nx']} x {grid['ny']} cells "
+                           f"need {' and '.join(why)}; use the analytic W* = {grid['analytic_W_star']:.4f} "
+                           "(elliptic_transition) instead")
+
+
+def _git_commit() -> str:
+    """Commit of the code solving a case (with uncommitted changes under dhfield/ flagged)."""
+    from ..io import git_commit
+
+    return git_commit(paths=["dhfield"])
+
+
+def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dugdale", control: str = "load", *,
+                  grid_level: int | None = None, solver: str = "default") -> dict:
+    """Compute the adhesive BEM ground truth at pull-off of one (beta0, mu, n or grid level, law) case.
 
     The whole load path runs in this one call (each step warm-starts from the
     last).
@@ -212,23 +302,50 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
         Hertz ellipticity [-].
     mu : float
         Tabor parameter, Eq. (35) [-].
-    n : int
-        Cells per axis [-].
+    n : int, optional
+        Cells per axis of an explicit n x n grid [-]; give ``n`` or ``grid_level``.
     law : str
         Cohesive law, one of :func:`cohesive_laws`.
     control : {"load", "displacement"}
         Loading mode of the pull-off.
+    grid_level : int, optional
+        1: the automatic grid and route (the solver plans them, as ``dhfield solve``
+        without ``--n``); k >= 2: the explicit grid of :func:`automatic_grid` (k times the
+        cells per axis), refused before solving (RuntimeError, one line with the analytic
+        W* to use instead) when it exceeds the memory or time the library allows.
     solver : {"default"}
         The solver (:func:`adhesive_solver`).
 
     Returns
     -------
     dict
-        :data:`ADHESIVE_FIELDS` and :data:`ADHESIVE_BEM_FIELDS` (NaN where the
-        solver gives none) plus ``converged`` (bool), ``resolved`` (bool: the grid
-        resolves the cohesive zone) and ``message`` (str).
+        :data:`ADHESIVE_FIELDS`, :data:`ADHESIVE_BEM_FIELDS` and
+        :data:`ADHESIVE_GRID_FIELDS` (NaN where the solver gives none; ``converged``
+        and ``resolved`` as bools), :data:`ADHESIVE_TEXT_FIELDS` (str) and ``message``
+        (str: why the answer is not one, the solver's note when it is not; empty for an answer).
+
+    Raises
+    ------
+    ValueError
+        If neither or both of ``n`` and ``grid_level`` are given.
     """
-    res = adhesive_solver(solver)(beta0=float(beta0), mu=float(mu), n=int(n), law=law, control=control, threads=1)
+    import time
+
+    if (n is None) == (grid_level is None):
+        raise ValueError("give n (an explicit n x n grid) or grid_level (the automatic grid), not both or neither")
+    kwargs = dict(beta0=float(beta0), mu=float(mu), law=law, control=control, threads=1)
+    if grid_level is None:
+        kwargs["n"] = int(n)
+        asked = (int(n), int(n))
+    else:
+        grid = automatic_grid(float(beta0), float(mu), grid_level, law=law, control=control)
+        asked = (grid["nx"], grid["ny"])
+        if not grid["automatic"]:
+            _refuse_unaffordable(beta0, mu, grid_level, grid)
+            kwargs.update(n=grid["nx"], ny=grid["ny"])
+    t0, c0 = time.perf_counter(), time.process_time()
+    res = adhesive_solver(solver)(**kwargs)
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
 
     def get(*names):
         for nm in names:
@@ -239,18 +356,36 @@ def adhesive_case(beta0: float, mu: float, n: int, law: str, control: str = "loa
     out = {"W_star": get("W_star"), "a_star": get("a_star"), "c_star": get("c_star"),
            "ellipticity": get("ellipticity", "beta_ab"), "delta_star": get("delta_star"),
            "iterations": get("iterations")}
-    # the BEM's pull-off record names its ellipticities as every model's; the sweep stores them as beta_ab, beta_cd
-    record_name = {"beta_ab": "ellipticity", "beta_cd": "adhesive_ellipticity"}
-    out.update({k: get(record_name.get(k, k), k) for k in ADHESIVE_BEM_FIELDS})
+    out.update(b_star=get("b_star"), d_star=get("d_star"), beta_ab=get("ellipticity", "beta_ab"),
+               beta_cd=get("adhesive_ellipticity", "beta_cd"))
+    nx, ny = _solved_grid(res, asked)
+    out.update(nx=float(nx), ny=float(ny), half_width_x=get("half_width_x"), half_width_y=get("half_width_y"),
+               W_star_error=get("W_star_error"), n_steps=get("n_steps"), wall_seconds=wall, cpu_seconds=cpu)
     out["converged"] = bool(getattr(res, "converged", True))
     out["resolved"] = bool(getattr(res, "resolved", True))
+    note = str(getattr(res, "note", "") or "")
     message = str(getattr(res, "message", "") or "")
+    if not (out["converged"] and out["resolved"]):   # the solver's reasons (its note) say why it is not an answer
+        message = message or note
     if not out["converged"] and not message:
         failures = getattr(res, "failures", ()) or ()
         residual = getattr(res, "residual", float("nan"))
         message = f"{len(failures)} state(s) of the load path did not converge; largest residual {residual:.3g}"
     out["message"] = message
+    out.update(search=str(getattr(res, "search", "") or ""), note=note, commit=_git_commit(),
+               finished=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()))
     return out
+
+
+def _solved_grid(res, asked) -> tuple:
+    """(nx, ny) the solver used: its own fields, else its pull-off state's grid, else the grid asked for."""
+    nx, ny = getattr(res, "nx", None), getattr(res, "ny", None)
+    if nx is not None and ny is not None:
+        return int(nx), int(ny)
+    try:
+        return tuple(int(v) for v in res.path.pull_off_state.grid.shape)
+    except (AttributeError, TypeError, ValueError):
+        return asked
 
 
 #: Cost model of :func:`expected_seconds`, calibrated on one core of the 2-core development
@@ -297,6 +432,8 @@ def expected_seconds(quantity: str, params: dict) -> float:
 
     Notes
     -----
+    An adhesive case on a ``grid_level`` takes the library's estimate for its planned
+    grid (:func:`automatic_grid`, which plans it: ~0.3 s).
     Forward BEM and adhesive cases scale with the FFT work n^2 log n; an
     adhesive pull-off also with its CG iterations, which grow like mu^1.1 with
     the Tabor parameter (a narrower cohesive zone on the same grid), and by
@@ -306,6 +443,9 @@ def expected_seconds(quantity: str, params: dict) -> float:
     if quantity == "bem_field":
         return _SECONDS_BEM_FIELD_256 * _grid_scale(params["n"])
     if quantity == "adhesive":
+        if params.get("grid_level") is not None:   # the library's estimate of the planned grid
+            return automatic_grid(float(params["beta0"]), float(params["mu"]), params["grid_level"],
+                                  law=params.get("law", "dugdale"), control=params.get("control", "load"))["seconds"]
         ellipse = 1.2 if float(params["beta0"]) < 1.0 else 1.0
         mu_work = float(params["mu"]) ** _ADHESIVE_MU_EXPONENT + _ADHESIVE_MU_OFFSET
         return _SECONDS_ADHESIVE_256 * _grid_scale(params["n"]) * mu_work * ellipse

@@ -1,0 +1,161 @@
+"""The adhesive quantity of a sweep on the library's automatic grid (the ``grid_level`` axis).
+
+Level 1 is the grid and route :func:`dhfield.adhesive_start.adhesive_pull_off` plans when no
+``n`` is given; level k the explicit grid of k times its cells per axis.  Checked: the config
+(parsing, one-line errors), the grid of each level against the library's plan (identities),
+the refusal of an unaffordable level before any solve, and one cheap case end to end through
+the sweep engine (convergence over the two levels within the stated errors, the flags, the
+grid, the timings and the provenance stored per case, and a rerun reusing the cases).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dhfield.adhesive_start import plan_grid
+from dhfield.sweep import config_from_mapping, engine, load_config, run_sweep, tasks
+from dhfield.sweep.config import MAX_GRID_LEVEL
+
+LEVELS = {"axes": {"beta0": [0.1], "mu": [1.0], "grid_level": [1, 2]}, "sweep": {"quantities": ["adhesive"]}}
+
+
+def test_grid_level_axis_from_toml(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text('[sweep]\nquantities = ["adhesive"]\n[axes]\nbeta0 = [0.5, 1.0]\nmu = [0.1, 3]\n'
+                    'grid_level = [1, 2]\n')
+    cfg = load_config(path)
+    assert cfg.axes["grid_level"] == (1, 2) and all(type(v) is int for v in cfg.axes["grid_level"])
+    assert cfg.adhesive_grid_axis == "grid_level" and "n" not in cfg.axes
+    assert config_from_mapping(cfg.as_dict()) == cfg
+    explicit = config_from_mapping({"axes": {"beta0": [0.5, 1.0], "mu": [0.1, 3.0], "n": [256, 512]},
+                                    "sweep": {"quantities": ["adhesive"]}})
+    assert explicit.adhesive_grid_axis == "n"
+    assert explicit.fingerprint() != cfg.fingerprint()
+
+
+@pytest.mark.parametrize("axes, quantities, words", [
+    ({"grid_level": [0]}, ["adhesive"], "axes.grid_level must be integers in [1, 4]"),
+    ({"grid_level": [MAX_GRID_LEVEL + 1]}, ["adhesive"], "axes.grid_level"),
+    ({"grid_level": [1.5]}, ["adhesive"], "axes.grid_level"),
+    ({"grid_level": [True]}, ["adhesive"], "axes.grid_level"),
+    ({"grid_level": ["auto"]}, ["adhesive"], "axes.grid_level"),
+    ({"grid_level": [1, 1]}, ["adhesive"], "distinct"),
+    ({"grid_level": [1], "n": [256]}, ["adhesive"], "give n (explicit n x n grids) or grid_level"),
+    ({}, ["adhesive"], "axes.n or axes.grid_level is needed by the quantity 'adhesive'"),
+    ({"grid_level": [1]}, ["pull_off"], "axes.grid_level is not used"),
+    ({"grid_level": [1], "n": [64], "a_star": [1.0]}, ["bem_field", "adhesive"], "not both"),
+    ({"n": ["auto"]}, ["adhesive"], "use the grid_level axis instead"),
+])
+def test_bad_grid_level_config_is_one_line(axes, quantities, words):
+    mapping = {"axes": {"beta0": [0.5], "mu": [1.0], **axes}, "sweep": {"quantities": quantities}}
+    with pytest.raises(ValueError, match=words.replace("(", r"\(").replace(")", r"\)").replace(".", r"\.")
+                       .replace("[", r"\[").replace("]", r"\]")) as exc:
+        config_from_mapping(mapping)
+    assert "\n" not in str(exc.value)
+
+
+def test_levels_are_the_librarys_plan():
+    """Level 1 is plan_grid's automatic grid; level 2 twice the explicit-route plan per axis."""
+    plan = plan_grid(beta0=0.1806, mu=3.0)
+    one, two = tasks.automatic_grid(0.1806, 3.0, 1), tasks.automatic_grid(0.1806, 3.0, 2)
+    assert (one["nx"], one["ny"]) == (plan.n_needed, plan.ny_needed) and one["automatic"]
+    assert (two["nx"], two["ny"]) == (2 * plan.n_needed, 2 * plan.ny_needed) and not two["automatic"]
+    # At mu >= 7.5 level 1 takes the predicted route (its own domain); level 2 doubles the explicit plan.
+    high = tasks.automatic_grid(0.5, 10.0, 1)
+    assert high["predicted"] and high["nx"] == plan_grid(beta0=0.5, mu=10.0).n_needed
+    assert tasks.automatic_grid(0.5, 10.0, 2)["nx"] == 2 * plan_grid(beta0=0.5, mu=10.0, predicted=False).n_needed
+    with pytest.raises(ValueError, match="grid_level"):
+        tasks.automatic_grid(0.5, 1.0, 0)
+
+
+def test_unaffordable_level_is_refused_before_solving(monkeypatch):
+    def never(**kw):
+        raise AssertionError("the solver must not be called")
+
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": never)
+    with pytest.raises(RuntimeError, match=r"grid_level 4: \d+ x \d+ cells need .*use the analytic W\* = -0\.\d+"):
+        tasks.adhesive_case(0.5, 10.0, grid_level=4)
+    with pytest.raises(ValueError, match="give n .* or grid_level"):
+        tasks.adhesive_case(0.5, 1.0)
+
+
+def test_cheap_case_end_to_end(tmp_path):
+    """beta0 = 0.1 (18 deg crossing), mu = 1: 256 x 64 and 512 x 128 cells, ~2 s in all."""
+    cfg = config_from_mapping(LEVELS)
+    res = run_sweep(cfg, out=tmp_path / "lv.nc", scheduler="synchronous", progress=False)
+    assert res.failed == [] and res.flagged == [] and len(res.computed) == 2
+    ds = res.dataset.sel(beta0=0.1, mu=1.0).isel(law=0)
+    assert ds["W_star"].dims == ("model", "grid_level")
+    plan = plan_grid(beta0=0.1, mu=1.0)
+    np.testing.assert_array_equal(ds["nx"].values, [plan.n_needed, 2 * plan.n_needed])
+    np.testing.assert_array_equal(ds["ny"].values, [plan.ny_needed, 2 * plan.ny_needed])
+    assert (ds["converged"].values == 1).all() and (ds["resolved"].values == 1).all()
+    assert (ds["status"].values == 0).all()
+    w = ds["W_star"].sel(model=tasks.ADHESIVE_MODEL).values
+    err = ds["W_star_error"].values
+    assert np.all(np.isfinite(err)) and np.all(err > 0)
+    # Convergence over N: both levels answer within their stated errors of the same pull-off.
+    assert abs(w[0] - w[1]) <= err[0] + err[1]
+    # Between the DMT limit -sin(theta_skew) (W* is normalised by it, Eq. 34) and zero.
+    sin_skew = float(ds["sin_skew"].sel(model=tasks.ADHESIVE_MODEL)[0])
+    assert np.all((-sin_skew < w) & (w < 0))
+    assert np.all(ds["half_width_x"].values > ds["half_width_y"].values)   # the slender domain
+    assert np.all(ds["wall_seconds"].values > 0) and np.all(ds["cpu_seconds"].values > 0)
+    for k in ("adhesive_search", "adhesive_commit", "adhesive_finished", "adhesive_command"):
+        assert all(str(v) for v in ds[k].values), k
+    assert all(str(v).endswith("Z") for v in ds["adhesive_finished"].values)
+    again = run_sweep(cfg, out=tmp_path / "lv.nc", scheduler="synchronous", progress=False)
+    assert again.computed == [] and len(again.reused) == 2
+    for k in ("W_star", "nx", "wall_seconds", "adhesive_commit", "adhesive_finished"):
+        assert (again.dataset[k].values == res.dataset[k].values).all(), k
+
+
+def test_failed_level_keeps_its_reason_and_provenance(tmp_path, monkeypatch):
+    def broken(**kw):
+        raise MemoryError("no room")
+
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": broken)
+    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": broken)
+    cfg = config_from_mapping({**LEVELS, "axes": {**LEVELS["axes"], "grid_level": [1]}})
+    res = run_sweep(cfg, out=tmp_path / "f.nc", scheduler="synchronous", progress=False)
+    ds = res.dataset.isel(beta0=0, mu=0, grid_level=0, law=0)
+    assert len(res.failed) == 1
+    assert int(ds["status"].sel(model=tasks.ADHESIVE_MODEL)) == engine._STATUS["failed"]
+    assert "MemoryError: no room" in str(ds["adhesive_message"].values)
+    assert np.isnan(float(ds["W_star"].sel(model=tasks.ADHESIVE_MODEL))) and float(ds["wall_seconds"]) > 0
+    assert str(ds["adhesive_commit"].values) and str(ds["adhesive_finished"].values)
+
+
+def test_cli_grid_level_flag(tmp_path, capsys):
+    """`dhfield sweep --grid-level 1 --quantities adhesive` solves on the automatic grid; a bad level exits 2."""
+    import xarray as xr
+
+    from dhfield.cli import main
+
+    out = tmp_path / "cli.nc"
+    rc = main(["sweep", "--beta0", "0.1", "--mu", "1", "--grid-level", "1", "--quantities", "adhesive",
+               "--workers", "1", "--out", str(out), "--quiet"])
+    assert rc == 0
+    with xr.open_dataset(out) as ds:
+        assert int(ds["nx"].values.item()) == plan_grid(beta0=0.1, mu=1.0).n_needed
+    rc = main(["sweep", "--beta0", "0.1", "--mu", "1", "--grid-level", "9", "--quantities", "adhesive",
+               "--out", str(tmp_path / "bad.nc")])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and "axes.grid_level" in err and len(err.splitlines()) == 1
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.one_of(st.integers(-50, 50), st.floats(allow_nan=True, allow_infinity=True), st.booleans(), st.text()))
+def test_grid_level_domain(value):
+    """Accepted iff an integer (or integral number) in [1, MAX_GRID_LEVEL]; anything else one line naming the axis."""
+    mapping = {"axes": {"beta0": [0.5], "mu": [1.0], "grid_level": [value]}, "sweep": {"quantities": ["adhesive"]}}
+    ok = (not isinstance(value, (bool, str)) and isinstance(value, (int, float)) and np.isfinite(value)
+          and value == int(value) and 1 <= value <= MAX_GRID_LEVEL)
+    if ok:
+        assert config_from_mapping(mapping).axes["grid_level"] == (int(value),)
+    else:
+        with pytest.raises(ValueError, match="axes.grid_level") as exc:
+            config_from_mapping(mapping)
+        assert "\n" not in str(exc.value)
