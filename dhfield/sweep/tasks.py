@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..records import PullOff
+from ..records import LoadCurve, PullOff
 
 __all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS",
            "ADHESIVE_BEM_FIELDS", "ADHESIVE_GRID_FIELDS", "ADHESIVE_TEXT_FIELDS", "ADHESIVE_MODEL",
@@ -117,7 +117,7 @@ def block_values(rec: PullOff) -> np.ndarray:
     return np.stack([np.asarray(rec[k], dtype=float) for k in PULL_OFF_FIELDS], axis=-1)
 
 
-def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> dict:
+def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> LoadCurve:
     """Compute the load curve of one model at the contact sizes ``a_star``.
 
     Parameters
@@ -133,13 +133,13 @@ def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> dict:
 
     Returns
     -------
-    dict
-        :data:`CURVE_FIELDS` -> arrays over ``a_star`` (NaN where the model has none).
+    dhfield.records.LoadCurve
+        The model's curve (:func:`dhfield.compare.load_curve`); the sweep stores its
+        :data:`CURVE_FIELDS`, arrays over ``a_star`` (NaN where the model has none).
     """
     from ..compare import load_curve
 
-    rec = load_curve(model, mu=float(mu), beta0=float(beta0), a_star=np.asarray(a_star, dtype=float))
-    return {k: np.asarray(rec[k], dtype=float) for k in CURVE_FIELDS}
+    return load_curve(model, mu=float(mu), beta0=float(beta0), a_star=np.asarray(a_star, dtype=float))
 
 
 def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width=None,
