@@ -129,6 +129,26 @@ def si_curve(model, arrays, *, mu=float("nan"), beta0=1.0, sin_skew=1.0, geometr
                              ellipticity=ellipticity)
 
 
+def circular_si_curve(model, state, a, r, e, w, *, mu=float("nan"), zone=False, dh_factor=False):
+    """The SI load curve of a circular model from its nondimensional state (inputs already checked).
+
+    ``state`` is the model's nondimensional curve over a/c_r (``W_star``, ``delta_star``, and
+    ``c_star``, ``v`` where the model has them); ``a``, ``r``, ``e``, ``w`` the contact radius
+    [m], R [m], E* [Pa] and dgamma [J/m^2].  W = W* 2 pi R dgamma (Eq. 34, sin_skew = 1),
+    delta = delta* c_r^2/R and, with ``zone``, the adhesive radius c = c* c_r (Eqs. 32-33);
+    ``dh_factor`` carries the DH factor v.  Returns :func:`si_curve`'s record.
+    """
+    arrays = {"semi_major": a}
+    if zone:
+        c = state["c_star"] * length_unit(r, e, w, checked=False)  # Eq. (32)
+        arrays.update(adhesive_semi_major=c, adhesive_semi_minor=c)
+    if dh_factor:
+        arrays["v"] = state["v"]
+    arrays.update(force=state["W_star"] * load_unit(r, w, checked=False),  # Eq. (34)
+                  approach=state["delta_star"] * approach_unit(r, e, w, checked=False))
+    return si_curve(model, arrays, mu=mu)
+
+
 def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
     """mu = sigma0 (R/(E*^2 dgamma))^(1/3), Eq. (35) [-]; ``checked=False`` on inputs validated already."""
     if checked:

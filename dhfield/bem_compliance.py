@@ -56,7 +56,7 @@ from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
 from .compliance import spring_weight
 from .geometry import sin_skew_angle
 from .pull_off_search import fitted_slopes, stable_minimum_index
-from .records import PullOff
+from .records import PullOff, broadcast_field
 
 __all__ = ["BemBranch", "BranchOptions", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle",
            "BRANCH_STEPS", "BRANCH_WINDOW", "SPRING_NOTE"]
@@ -419,8 +419,7 @@ def _spring_record(branch, jump, soft_w):
     w_min = np.fmin(w, soft_w)  # every jump lies at or beyond the load minimum (dW*/d delta* = -K* <= 0)
 
     def full(x, dtype=float):
-        y = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
-        return y[()] if y.ndim == 0 else y
+        return broadcast_field(x, shape, dtype)
 
     return PullOff(model="bem", control="spring", geometry="ellipse", beta0=full(branch.beta0), mu=full(branch.mu),
                    sin_skew=full(float(sin_skew_angle(branch.beta0))), W_star=full(w), a_star=full(a),

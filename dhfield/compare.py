@@ -130,7 +130,7 @@ from . import model as paper_model
 from ._validation import check_contact_size_star, check_count, check_grid_point
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
-from .records import load_curve_record, pull_off_record
+from .records import broadcast_field, load_curve_record, pull_off_record
 from .schema import LOAD_CURVE_KEYS
 
 from .validity import (JKR_PROXY_MU, VALIDITY_RANGES, WARNING_THRESHOLD, closure_departure, departure_warning,
@@ -183,13 +183,8 @@ CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
 
 def _warned(rec, warning=""):
     """``rec`` with its validity warning (:mod:`dhfield.validity`) joined to ``warning``."""
-    return rec.replace(warning=_arr(join_warnings(warning, validity_message(rec.model, rec.mu, rec.beta0)),
+    return rec.replace(warning=broadcast_field(join_warnings(warning, validity_message(rec.model, rec.mu, rec.beta0)),
                                     np.shape(rec.W_star), object))
-
-
-def _arr(x, shape, dtype=float):
-    out = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
-    return out[()] if out.ndim == 0 else out
 
 
 def _pull_off(name, beta0, mu, control, *, check_closure=True, reference=None):

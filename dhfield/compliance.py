@@ -104,7 +104,7 @@ from . import compare
 from ._validation import check_interval
 from .dugdale_separation import dugdale_range, separated_branch, zone_radius_at_contact
 from .pull_off_search import stable_minimum_index
-from .records import PullOff
+from .records import PullOff, broadcast_field
 from .schema import PULL_OFF_SPRING_KEYS
 
 __all__ = ["stiffness_star", "check_machine_stiffness", "add_machine_displacement", "pull_off_under_spring", "spring_pull_off_record",
@@ -507,8 +507,7 @@ def _spring_record(load, out):
         adh = np.where(ok, d / np.where(ok, c, 1.0), np.nan)
 
     def full(x, dtype=float):
-        y = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
-        return y[()] if y.ndim == 0 else y
+        return broadcast_field(x, shape, dtype)
 
     return PullOff(model=load.model, control="spring", geometry=load.geometry, beta0=full(load.beta0),
                    mu=full(load.mu), sin_skew=full(load.sin_skew), W_star=out["W_star"], a_star=out["a_star"],

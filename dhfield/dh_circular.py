@@ -44,8 +44,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
-                        length_unit, load_unit, scalar_or_array, si_curve, tabor_parameter)
+from ._adhesion import (approach_unit, check_contact_size, check_material, circular_si_curve, pull_off_si_of,
+                        si_inputs, length_unit, load_unit, scalar_or_array, tabor_parameter)
 from ._validation import check_control, check_positive, check_tabor
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
@@ -281,10 +281,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
     st = load_curve_nondimensional(a / length_unit(r, e, w, checked=False), mu)
-    load, _, approach = _dimensional(st, r, e, w)
-    zone = st["c_star"] * length_unit(r, e, w)  # Eq. (32)
-    return si_curve("dh-circular", {"semi_major": a, "adhesive_semi_major": zone, "adhesive_semi_minor": zone,
-                                    "v": st["v"], "force": load, "approach": approach}, mu=mu)
+    return circular_si_curve("dh-circular", st, a, r, e, w, mu=mu, zone=True, dh_factor=True)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs, length_unit,
-                        load_unit, scalar_or_array, si_curve)
+from ._adhesion import (check_contact_size, check_material, circular_si_curve, pull_off_si_of, si_inputs, length_unit,
+                        load_unit, scalar_or_array)
 from ._validation import check_control, check_finite
 from .records import pull_off_record
 
@@ -109,9 +109,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     """
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    s = load_curve_nondimensional(a / length_unit(r, e, w, checked=False))
-    return si_curve("dmt", {"semi_major": a, "force": s["W_star"] * load_unit(r, w, checked=False),
-                            "approach": s["delta_star"] * approach_unit(r, e, w, checked=False)})
+    return circular_si_curve("dmt", load_curve_nondimensional(a / length_unit(r, e, w, checked=False)), a, r, e, w)
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):

@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs, length_unit,
-                        load_unit, scalar_or_array, si_curve)
+from ._adhesion import (check_contact_size, check_material, circular_si_curve, pull_off_si_of, si_inputs, length_unit,
+                        load_unit, scalar_or_array)
 from ._validation import check_control, check_finite
 from .records import pull_off_record
 
@@ -133,10 +133,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     """
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    cr = length_unit(r, e, w, checked=False)
-    s = load_curve_nondimensional(a / cr)
-    return si_curve("jkr", {"semi_major": a, "force": s["W_star"] * load_unit(r, w, checked=False),
-                            "approach": s["delta_star"] * approach_unit(r, e, w, checked=False)})
+    return circular_si_curve("jkr", load_curve_nondimensional(a / length_unit(r, e, w, checked=False)), a, r, e, w)
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):

@@ -45,8 +45,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import elementwise
 
-from ._adhesion import (approach_unit, check_contact_size, check_material, pull_off_si_of, si_inputs,
-                        length_unit, load_unit, si_curve, tabor_parameter)
+from ._adhesion import (check_contact_size, check_material, circular_si_curve, pull_off_si_of, si_inputs,
+                        length_unit, tabor_parameter)
 from ._validation import check_control, check_positive
 from .pull_off_search import scan_minimum
 from .records import pull_off_record
@@ -353,10 +353,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     mu = tabor_parameter(max_adhesive_stress, r, e, w)
     s = load_curve_nondimensional(a / length_unit(r, e, w, checked=False), mu)
-    zone = s["c_star"] * length_unit(r, e, w, checked=False)  # Eq. (32)
-    return si_curve("md", {"semi_major": a, "adhesive_semi_major": zone, "adhesive_semi_minor": zone,
-                           "force": s["W_star"] * load_unit(r, w, checked=False),
-                           "approach": s["delta_star"] * approach_unit(r, e, w, checked=False)}, mu=mu)
+    return circular_si_curve("md", s, a, r, e, w, mu=mu, zone=True)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

@@ -42,7 +42,7 @@ import numpy as np
 from .schema import (LOAD_CURVE_ALL_KEYS, LOAD_CURVE_KEYS, LOAD_CURVE_SI_KEYS,
                      PULL_OFF_ALL_KEYS, PULL_OFF_SI_KEYS)
 
-__all__ = ["PullOff", "LoadCurve", "pull_off_record", "pull_off_record_si", "load_curve_record"]
+__all__ = ["PullOff", "LoadCurve", "broadcast_field", "pull_off_record", "pull_off_record_si", "load_curve_record"]
 
 _NAN = float("nan")
 
@@ -74,7 +74,7 @@ class _Record(Mapping):
 
 @dataclass(frozen=True, eq=False, kw_only=True)
 class PullOff(_Record):
-    """The pull-off point of a model: the one pull-off record of dhfield (keys: :data:`dhfield.schema.PULL_OFF_ALL_KEYS`).
+    """The pull-off point of a model: dhfield's one pull-off record (keys: :data:`dhfield.schema.PULL_OFF_ALL_KEYS`).
 
     Every model answers with this type: the analytic models in the paper's units, their SI
     ``pull_off`` functions with the SI group filled, :func:`dhfield.compliance.pull_off_under_spring`
@@ -325,7 +325,23 @@ assert tuple(f.name for f in fields(PullOff)) == PULL_OFF_ALL_KEYS + ("path",)
 assert tuple(f.name for f in fields(LoadCurve)) == LOAD_CURVE_ALL_KEYS
 
 
-def _arr(x, shape, dtype=float):
+def broadcast_field(x, shape, dtype=float):
+    """Broadcast a record field to the record's shape, as an owned array (a scalar for shape ``()``).
+
+    Parameters
+    ----------
+    x : array_like
+        The value.
+    shape : tuple of int
+        The record's shape.
+    dtype : data-type, default float
+        The field's type (``bool`` for flags, ``object`` for text).
+
+    Returns
+    -------
+    ndarray or scalar
+        A copy of ``x`` broadcast to ``shape``; a numpy scalar where ``shape`` is ``()``.
+    """
     out = np.broadcast_to(np.asarray(x, dtype=dtype), shape).copy()
     return out[()] if out.ndim == 0 else out
 
@@ -372,12 +388,14 @@ def pull_off_record(model, beta0, mu, state, *, control, sin_skew, geometry, war
         ell = np.asarray(state.get("ellipticity", _ratio(b, a)), float)
         adh = np.where(np.isfinite(c) & (c > 0), d / np.where(c > 0, c, 1.0), _NAN)
     zero = state.get("at_zero_contact", a == 0)
-    return PullOff(model=model, control=control, geometry=geometry, beta0=_arr(beta0, shape), mu=_arr(mu, shape),
-                   sin_skew=_arr(sin_skew, shape), W_star=_arr(state["W_star"], shape), a_star=_arr(a, shape),
-                   b_star=_arr(b, shape), c_star=_arr(c, shape), d_star=_arr(d, shape),
-                   v=_arr(state.get("v", _NAN), shape), delta_star=_arr(state["delta_star"], shape),
-                   ellipticity=_arr(ell, shape), adhesive_ellipticity=_arr(adh, shape),
-                   at_zero_contact=_arr(zero, shape, bool), warning=_arr(warning, shape, object))
+    def full(x, dtype=float):
+        return broadcast_field(x, shape, dtype)
+
+    return PullOff(model=model, control=control, geometry=geometry, beta0=full(beta0), mu=full(mu),
+                   sin_skew=full(sin_skew), W_star=full(state["W_star"]), a_star=full(a), b_star=full(b),
+                   c_star=full(c), d_star=full(d), v=full(state.get("v", _NAN)), delta_star=full(state["delta_star"]),
+                   ellipticity=full(ell), adhesive_ellipticity=full(adh), at_zero_contact=full(zero, bool),
+                   warning=full(warning, object))
 
 
 def pull_off_record_si(rec, si):
