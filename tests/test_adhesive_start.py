@@ -11,6 +11,7 @@ import pytest
 
 from dhfield import adhesive_start, compare, model
 from dhfield.adhesive_start import AdhesiveOptions
+from dhfield.bem.solver import DEFAULT_TOL
 
 #: The start is copied from the closure's pull-off record: only round-off can differ.
 RTOL_SAME_NUMBER = 1e-12
@@ -299,11 +300,16 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     # mu >= PREDICTED_MIN_MU with a half grid that cannot hold the Dugdale edge: fine lattice samples
     # around GVG's pull-off (the relaxed half grid's states stall at mu = 10); nothing solved here
     calls = []
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts: calls.append(prob.grid.nx) or "p")
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
+                        lambda prob, opts, tol=None: calls.append((prob.grid.nx, tol, opts.tol)) or "p")
     monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) == "p"
     plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
-    assert calls == [plan.n_needed] and plan.predicted
+    # its states to PREDICTED_TOL unless a tol is given; the fall-back (relaxed) keeps DEFAULT_TOL
+    assert calls == [(plan.n_needed, adhesive_start.PREDICTED_TOL, DEFAULT_TOL)] and plan.predicted
+    opts = adhesive_start.AdhesiveOptions(tol=2e-6)
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, options=opts) == "p"
+    assert calls[-1][1:] == (2e-6, 2e-6)
     # its domain holds GVG's pull-off zone only: N = 1280 instead of 1440 on the unloading path's domain
     assert plan.n_needed < adhesive_start.plan_grid(mu=10.0, beta0=0.4826, predicted=False).n_needed
     assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the relaxed route (measured)

@@ -222,3 +222,20 @@ def test_help_says_what_the_command_does(capsys, command):
     text = capsys.readouterr().out
     head = text.split("options:")[0]
     assert len(head.split("\n\n", 1)[-1].split()) >= 20, head   # a paragraph beyond the usage lines
+
+
+def test_bem_commands_use_the_machine_unless_told(monkeypatch):
+    """--threads wins, then $DHFIELD_THREADS, then the CPUs this process may use (at most 4); the
+    library's own default stays 1 thread (results reproducible from one machine to another)."""
+    import os
+
+    from dhfield.bem import default_threads
+    from dhfield.cli._common import CLI_DEFAULT_MAX_THREADS, command_threads
+
+    monkeypatch.delenv("DHFIELD_THREADS", raising=False)
+    assert default_threads() == 1
+    assert command_threads(3) == 3
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    assert command_threads() == max(1, min(cpus, CLI_DEFAULT_MAX_THREADS))
+    monkeypatch.setenv("DHFIELD_THREADS", "1")
+    assert command_threads() == 1 and command_threads(2) == 2

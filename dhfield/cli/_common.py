@@ -229,6 +229,34 @@ def max_threads() -> int:
     return _max()
 
 
+#: Most FFTW threads the BEM commands take by default (beyond a few, a 2-D transform of the sizes solved
+#: here gains little).
+CLI_DEFAULT_MAX_THREADS = 4
+
+
+def command_threads(requested=None) -> int:
+    """FFTW threads of a BEM command: ``--threads``, else ``$DHFIELD_THREADS``, else the CPUs this process
+    may use (at most :data:`CLI_DEFAULT_MAX_THREADS`).
+
+    The library's own default stays 1 thread (:func:`dhfield.bem.operator.default_threads`: results
+    reproducible bit for bit from one machine to another); a command run by a person uses the machine.
+    Measured: ``dhfield solve --beta0 0.4826 --mu 10`` on 2 cores took 0.84x the wall time with 2 threads.
+    """
+    import os
+
+    from ..bem import default_threads
+
+    if requested is not None:
+        return int(requested)
+    if os.environ.get("DHFIELD_THREADS", "").strip():
+        return default_threads()
+    try:
+        cpus = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # not on Linux
+        cpus = os.cpu_count() or 1
+    return max(1, min(cpus, CLI_DEFAULT_MAX_THREADS))
+
+
 def thread_count(text: str) -> int:
     """argparse type of ``--threads``: an integer in ``1 .. max_threads()``."""
     try:

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 
 from ._common import UsageError, add_model_arguments, add_physical_arguments, contact_parameters_from_args
-from ._common import print_json, print_warning
+from ._common import command_threads, print_json, print_warning
 from ._common import validity_epilog as _epilog
 from .solve import EXIT_UNCONVERGED, EXIT_UNRESOLVABLE, EXIT_UNRESOLVED  # --model bem: those of solve
 
@@ -31,7 +31,8 @@ def add_parser(sub) -> None:
     p.add_argument("--n", type=int, default=None,
                    help="--model bem: cells per axis (even, >= 8; default: chosen from the Dugdale zone width "
                    "and memory, as 'dhfield solve')")
-    p.add_argument("--threads", type=int, default=None, help="--model bem: FFTW threads")
+    p.add_argument("--threads", type=int, default=None,
+                   help="--model bem: FFTW threads (default $DHFIELD_THREADS, else the CPUs available, at most 4)")
     p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
                    help="draw force against approach with both jumps and the energy lost shaded")
@@ -173,6 +174,7 @@ def _run_bem(args, params) -> int:
     mu, beta0 = (args.mu, args.beta0) if params is None else (float(params.mu), float(params.beta0))
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
+    args.threads = command_threads(args.threads)
     k = args.machine_stiffness
     if k is not None and k == 0:
         raise ValueError("machine-stiffness of a BEM cycle must be > 0 (0 is load control, which loses an "

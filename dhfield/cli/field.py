@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import sys
 
-from ._common import add_model_arguments, thread_count
+from ._common import add_model_arguments, command_threads, thread_count
 
 
 def add_parser(sub) -> None:
@@ -24,20 +24,19 @@ def add_parser(sub) -> None:
     p.add_argument("--n", type=int, default=512,
                    help="cells per axis (>= 8, default 512; refused if the case would not fit in memory)")
     p.add_argument("--threads", type=thread_count, default=None,
-                   help="FFTW threads, 1..4 per CPU (default $DHFIELD_THREADS or 1)")
+                   help="FFTW threads, 1..4 per CPU (default $DHFIELD_THREADS, else the CPUs available, at most 4)")
     p.add_argument("--out", required=True, help="output netCDF file (.nc)")
     p.set_defaults(func=run, out_suffixes=(".nc",))
 
 
 def run(args) -> int:
-    from ..bem import default_threads
     from ..fields import check_case_memory, model_case
     from ..io import validate_output_path
     from ..io.field import write_field
 
     # everything that can be checked is checked before the computation
     validate_output_path(args.out, (".nc",), "out")
-    threads = default_threads() if args.threads is None else args.threads
+    threads = command_threads(args.threads)
     check_case_memory(args.n)
     if sys.stderr.isatty():  # progress only for a person watching
         print(f"dhfield field: computing the {args.n} x {args.n} case and writing {args.out} ...", file=sys.stderr)

@@ -4,7 +4,8 @@ from __future__ import annotations
 import math
 import sys
 
-from ._common import add_model_arguments, add_physical_arguments, contact_parameters_from_args, print_json
+from ._common import (add_model_arguments, add_physical_arguments, command_threads, contact_parameters_from_args,
+                      print_json)
 
 #: Exit status when a state of the path did not converge (the result is still printed/written, flagged).
 EXIT_UNCONVERGED = 3
@@ -80,7 +81,8 @@ def add_parser(sub) -> None:
                    help="load control: how the force minimum is found -- located on coarser grids first, "
                         "then 3-4 states on this one (default); bracket: from the analytic pull-off on this "
                         "grid; march: unload in uniform steps (slowest)")
-    p.add_argument("--threads", type=int, default=None, help="FFTW threads (default $DHFIELD_THREADS or 1)")
+    p.add_argument("--threads", type=int, default=None,
+                   help="FFTW threads (default $DHFIELD_THREADS, else the CPUs available, at most 4)")
     p.add_argument("--out", default=None, help="netCDF file for the pull-off fields and the path")
     p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
@@ -334,6 +336,7 @@ def run(args) -> int:
     _check_plot(args)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
+    args.threads = command_threads(args.threads)
     from ..adhesive_start import UnresolvableCaseError, plan_grid, takes_predicted_route
 
     check_solve_memory(args.n)
