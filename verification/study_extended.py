@@ -175,7 +175,9 @@ def print_sweep(path) -> None:
             for m in ds["mu"].values:
                 for lv in ds["grid_level"].values:
                     c = dict(beta0=b, mu=m, grid_level=lv)
-                    print(f"  beta0 {b:g} mu {m:g} level {lv}: {int(ds['nx'].sel(c)):d} x {int(ds['ny'].sel(c)):d} "
+                    nx, ny = (float(ds[k].sel(c)) for k in ("nx", "ny"))
+                    grid = f"{nx:.0f} x {ny:.0f}" if np.isfinite(nx) and np.isfinite(ny) else "no grid"
+                    print(f"  beta0 {b:g} mu {m:g} level {lv}: {grid} "
                           f"W* = {float(w.sel(c)):.6f} +- {float(ds['W_star_error'].sel(c)):.2g} status "
                           f"{int(st.sel(c))} [{str(ds['adhesive_search'].sel(c).values)}] "
                           f"{float(ds['wall_seconds'].sel(c)):.1f} s wall, {float(ds['cpu_seconds'].sel(c)):.1f} s CPU"
