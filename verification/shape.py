@@ -150,6 +150,58 @@ def static(root: Path) -> dict:
             "bem_imports_analytic": bem_imports, "lines": lines, "nonblank_lines": nonblank}
 
 
+#: Probe code shared by the pull-off and load-curve probes: the result type of an answer, and a call of every
+#: function outside ``dhfield/bem`` and ``dhfield/cli`` whose name starts with a prefix, its parameters filled by
+#: name from ``values``.
+_CALLER = r'''
+def result_type(r):
+    # the result type of an answer (None: a scalar or array, not a record)
+    t = type(r)
+    if t.__module__ == "numpy" or t in (float, int):
+        return None
+    key = f"{t.__module__}.{t.__qualname__}"
+    if isinstance(r, dict):
+        key += "{" + ",".join(sorted(r)) + "}"
+    elif isinstance(r, tuple) and not hasattr(r, "_fields"):
+        key += "(" + ", ".join(f"{type(x).__module__}.{type(x).__qualname__}" for x in r) + ")"
+    return key
+
+
+def probe(prefix, values):
+    # ({result type: [functions]}, [functions not called]) of every function named prefix*
+    import dhfield
+    types, skipped = {}, []
+    names = sorted(m.name for m in pkgutil.walk_packages(dhfield.__path__, "dhfield.")
+                   if not m.name.startswith(("dhfield.bem", "dhfield.cli")))
+    for modname in names:
+        try:
+            mod = importlib.import_module(modname)
+        except Exception:  # noqa: BLE001
+            continue
+        for fname, f in sorted(vars(mod).items()):
+            if not (fname.startswith(prefix) and inspect.isfunction(f) and f.__module__ == modname):
+                continue
+            kw, ok = {}, True
+            for p in inspect.signature(f).parameters.values():
+                if p.name in values:
+                    kw[p.name] = values[p.name]
+                elif p.default is inspect.Parameter.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+                    ok = False
+            if not ok:
+                skipped.append(f"{modname}.{fname}")
+                continue
+            try:
+                with contextlib.redirect_stderr(io.StringIO()):
+                    r = f(**kw)
+            except Exception as exc:  # noqa: BLE001
+                skipped.append(f"{modname}.{fname} ({type(exc).__name__}: {exc})"[:160])
+                continue
+            key = result_type(r)
+            if key is not None:
+                types.setdefault(key, []).append(f"{modname}.{fname}")
+    return types, skipped
+'''
+
 _PROBE = r'''
 import functools, importlib, inspect, io, contextlib, json, pkgutil, sys
 import dhfield._validation as V
@@ -172,6 +224,7 @@ for n, f in list(vars(V).items()):
     if callable(f) and n.startswith("check") and getattr(f, "__module__", "") == V.__name__:
         setattr(V, n, wrap(n, f))
 
+''' + _CALLER + r'''
 import dhfield
 from dhfield.cli import main
 with contextlib.redirect_stdout(io.StringIO()):
@@ -183,52 +236,7 @@ params = contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
 values = {"mu": 1.0, "beta0": 0.9, "lam": 1.1272, "control": "load", "model": "dh-elliptic",
           "effective_radius": 1e-2, "reduced_modulus": 1.33e6, "work_of_adhesion": 0.05,
           "max_adhesive_stress": 2e5, "params": params, "parameters": params, "machine_stiffness": 1.0}
-types, skipped = {}, []
-
-
-def result_type(r):
-    """The result type of a pull-off function's answer (None: a scalar or array, not a record)."""
-    t = type(r)
-    if t.__module__ == "numpy" or t in (float, int):
-        return None
-    key = f"{t.__module__}.{t.__qualname__}"
-    if isinstance(r, dict):
-        key += "{" + ",".join(sorted(r)) + "}"
-    elif isinstance(r, tuple) and not hasattr(r, "_fields"):
-        key += "(" + ", ".join(f"{type(x).__module__}.{type(x).__qualname__}" for x in r) + ")"
-    return key
-
-
-names = sorted(m.name for m in pkgutil.walk_packages(dhfield.__path__, "dhfield.")
-               if not m.name.startswith(("dhfield.bem", "dhfield.cli")))
-for modname in names:
-    try:
-        mod = importlib.import_module(modname)
-    except Exception as exc:  # noqa: BLE001
-        continue
-    for fname, f in sorted(vars(mod).items()):
-        if not (fname.startswith("pull_off") and inspect.isfunction(f) and f.__module__ == modname):
-            continue
-        sig = inspect.signature(f)
-        kw = {}
-        ok = True
-        for p in sig.parameters.values():
-            if p.name in values:
-                kw[p.name] = values[p.name]
-            elif p.default is inspect.Parameter.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
-                ok = False
-        if not ok:
-            skipped.append(f"{modname}.{fname}")
-            continue
-        try:
-            with contextlib.redirect_stderr(io.StringIO()):
-                r = f(**kw)
-        except Exception as exc:  # noqa: BLE001
-            skipped.append(f"{modname}.{fname} ({type(exc).__name__}: {exc})"[:160])
-            continue
-        key = result_type(r)
-        if key is not None:
-            types.setdefault(key, []).append(f"{modname}.{fname}")
+types, skipped = probe("pull_off", values)
 # the BEM's pull-offs (the smallest grid that runs in seconds): load control, and under a spring K* = 1
 from dhfield.adhesive_start import adhesive_pull_off
 from dhfield.bem_compliance import bem_pull_off_under_spring, bem_unloading_branch
@@ -260,19 +268,21 @@ _COUNT = _PROBE.split("validation = dict(counts)")[0].replace(
     'print(json.dumps({"rc": rc, "validation": dict(counts)}))\n'
 
 
+def _run_probe(root: Path, code: str, *args) -> dict:
+    """The JSON last line printed by probe ``code`` run in a fresh process on the checkout at ``root``."""
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    out = subprocess.run([sys.executable, "-c", code, *args], env=env, cwd=root, capture_output=True, text=True,
+                         check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
 def counted(root: Path, argv) -> dict:
     """``{"rc", "validation"}`` of one CLI call ``argv`` in a fresh process."""
-    env = {**os.environ, "PYTHONPATH": str(root)}
-    out = subprocess.run([sys.executable, "-c", _COUNT, json.dumps(argv)], env=env, cwd=root, capture_output=True,
-                         text=True, check=True)
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    return _run_probe(root, _COUNT, json.dumps(argv))
 
 
 def dynamic(root: Path) -> dict:
-    env = {**os.environ, "PYTHONPATH": str(root)}
-    out = subprocess.run([sys.executable, "-c", _PROBE], env=env, cwd=root, capture_output=True, text=True,
-                         check=True)
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    return _run_probe(root, _PROBE)
 
 
 #: The load-curve probe (issue 16, "one load-curve type"): every function outside ``dhfield/bem`` and
@@ -283,7 +293,7 @@ def dynamic(root: Path) -> dict:
 _CURVE_PROBE = r'''
 import contextlib, importlib, inspect, io, json, pkgutil
 import numpy as np
-import dhfield
+''' + _CALLER + r'''
 from dhfield.dimensional import contact_parameters
 
 params = contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
@@ -292,49 +302,14 @@ values = {"mu": 1.0, "beta0": 0.9, "lam": 1.1272, "model": "dh-elliptic", "a_sta
           "a_maugis": np.array([0.5, 1.0]), "w_star": np.array([0.0, 1.0]), "contact_radius": size,
           "semi_major": size, "effective_radius": 1e-2, "reduced_modulus": 1.33e6, "work_of_adhesion": 0.05,
           "max_adhesive_stress": 2e5, "params": params}
-types, skipped = {}, []
-names = sorted(m.name for m in pkgutil.walk_packages(dhfield.__path__, "dhfield.")
-               if not m.name.startswith(("dhfield.bem", "dhfield.cli")))
-for modname in names:
-    try:
-        mod = importlib.import_module(modname)
-    except Exception:  # noqa: BLE001
-        continue
-    for fname, f in sorted(vars(mod).items()):
-        if not (fname.startswith("load_curve") and inspect.isfunction(f) and f.__module__ == modname):
-            continue
-        kw, ok = {}, True
-        for p in inspect.signature(f).parameters.values():
-            if p.name in values:
-                kw[p.name] = values[p.name]
-            elif p.default is inspect.Parameter.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
-                ok = False
-        if not ok:
-            skipped.append(f"{modname}.{fname}")
-            continue
-        try:
-            with contextlib.redirect_stderr(io.StringIO()):
-                r = f(**kw)
-        except Exception as exc:  # noqa: BLE001
-            skipped.append(f"{modname}.{fname} ({type(exc).__name__}: {exc})"[:160])
-            continue
-        t = type(r)
-        key = f"{t.__module__}.{t.__qualname__}"
-        if isinstance(r, dict):
-            key += "{" + ",".join(sorted(r)) + "}"
-        elif isinstance(r, tuple) and not hasattr(r, "_fields"):
-            key += "(" + ", ".join(f"{type(x).__module__}.{type(x).__qualname__}" for x in r) + ")"
-        types.setdefault(key, []).append(f"{modname}.{fname}")
+types, skipped = probe("load_curve", values)
 print(json.dumps({"types": types, "skipped": skipped}))
 '''
 
 
 def curve_types(root: Path) -> dict:
     """The load-curve result types (:data:`_CURVE_PROBE`) of the checkout at ``root``."""
-    env = {**os.environ, "PYTHONPATH": str(root)}
-    out = subprocess.run([sys.executable, "-c", _CURVE_PROBE], env=env, cwd=root, capture_output=True, text=True,
-                         check=True)
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    return _run_probe(root, _CURVE_PROBE)
 
 
 def main(argv=None) -> int:
