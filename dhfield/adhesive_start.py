@@ -1082,16 +1082,23 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     (corrected by the sphere's MD), which at high mu lies within a lattice step of the BEM's (the two-axis closure's zone at
     beta0 = 0.4826, mu = 10, c = 1.960, is inside GVG's contact a = 1.984);
     :func:`dhfield.bem.pull_off.predicted_path` solves the samples around it, to ``tol`` (default
-    ``options.tol``; :func:`adhesive_pull_off` passes :data:`PREDICTED_TOL` unless told).  The relaxed
-    route (:func:`_relaxed_pull_off`, with ``options``) when that fails.
+    ``options.tol``; :func:`adhesive_pull_off` passes :data:`PREDICTED_TOL` unless told).  When that
+    fails the record says so (``converged`` False) and its ``note`` names why and the analytic W*
+    to use instead (:func:`dhfield.elliptic_transition.pull_off_nondimensional`).  No other route
+    is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`), and the
+    fall-back to it ran for hours at beta0 = 0.5, mu = 10 before answering nothing.
     """
+    from . import elliptic_transition
     from .bem.pull_off import predicted_path, pull_off_result
 
     options = options.checked()
     path = predicted_path(prob, options if tol is None else replace(options, tol=tol))
-    if path is not None:
-        return pull_off_result(prob, prob.grid.nx, path, "located")
-    return _relaxed_pull_off(prob, options)
+    res = pull_off_result(prob, prob.grid.nx, path, "located")
+    if res.converged:
+        return res
+    w = float(elliptic_transition.pull_off_nondimensional(prob.beta0, prob.mu).W_star)
+    return replace(res, note="; ".join(filter(None, (res.note, f"use the analytic W* = {w:.4f} "
+                                                                "(elliptic_transition) instead"))))
 
 
 def _half_grid_locates(plan, law, margin) -> bool:

@@ -329,6 +329,25 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     assert abs(res.W_star - md) <= res.W_star_error
 
 
+def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
+    # an iteration cap of 5 CG iterations cannot converge the cold state: the record must say so
+    # (converged and resolved False, no error bound), name the analytic W* to use instead, and not
+    # fall back on the relaxed route (whose states stall at the mu this route serves)
+    from dhfield import elliptic_transition
+    from dhfield.bem.path import PathOptions
+
+    def relaxed(*args, **kwargs):
+        raise AssertionError("the relaxed route was tried")
+
+    monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", relaxed)
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, max_iter=5))
+    assert not res.converged and not res.resolved and res.W_star_error == float("inf")
+    assert len(res.failures) == res.n_steps == 1
+    w = float(elliptic_transition.pull_off_nondimensional(1.0, 2.0).W_star)
+    assert "cold state" in res.note and f"analytic W* = {w:.4f}" in res.note
+
+
 @pytest.mark.parametrize("call", [lambda: adhesive_start.unloading_start(1.0, 0.9),
                                   lambda: adhesive_start.nondimensional_problem(1.0, 0.9, 16),
                                   lambda: adhesive_start.plan_grid(1.0, 0.9),

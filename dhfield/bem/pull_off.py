@@ -597,8 +597,13 @@ def predicted_path(problem, options):
 
     Returns
     -------
-    UnloadingPath or None
-        The samples' path with the pull-off at the parabola's vertex; None on failure.
+    UnloadingPath
+        The samples' path with the pull-off at the parabola's vertex.  On failure the
+        samples' path flagged ``pull_off_converged=False``, its ``pull_off_note`` saying why
+        (the cold state did not converge, a sample did not, or the minimum stayed at an end);
+        its pull-off is the load minimum of the converged samples, NaN when there is none.
+        No other route is tried: at the mu this route serves, the relaxed and bracket routes'
+        states do not converge either, and would spend many times the planned time first.
     """
     spacing = problem.approach_step / LOCATE_DIVISIONS
     prob = problem.adhesive_problem(options.threads)
@@ -616,11 +621,20 @@ def predicted_path(problem, options):
             guess = _dilated_start(b, near, d)
         b.solve(d, guess, "unloading")
 
+    def failed(why):
+        bad = [r for r in b.records if not r["converged"]]
+        if bad:
+            why = (f"{why} ({len(bad)} of {len(b.records)} states unconverged, worst residual "
+                   f"{max(r['residual'] for r in bad):.2g} > tol {b.tol:.2g} after up to "
+                   f"{max(int(r['outer_iterations']) for r in bad)} outer iterations)")
+        path = b.load_pull_off(range(len(b.records)))
+        return replace(path, pull_off_converged=False, pull_off_note=why)
+
     top = problem.approach_max
     j0 = int(round((top - problem.pull_off_approach) / spacing))
     solve(top - j0 * spacing)                   # the sample nearest the prediction first (cold)
     if not b.usable(0):
-        return None
+        return failed("the predicted route's cold state (GVG's pull-off) did not converge")
     for j in (j0 - 1, j0 + 1):                  # its neighbours, then beyond the lowest end until interior
         solve(top - j * spacing)
 
@@ -631,8 +645,11 @@ def predicted_path(problem, options):
     _, order = b.extend_until_interior(range(len(b.records)), next_approach, LOCATE_MAX_EXTEND)
     sm = b.minimum(order)[1]
     every = range(len(b.records))
-    if sm is None or sm.at_boundary or not all(r["converged"] for r in b.records):
-        return None
+    if not all(r["converged"] for r in b.records):
+        return failed("a sample of the predicted route did not converge")
+    if sm is None or sm.at_boundary:
+        return failed(f"the load minimum of the predicted route's samples stayed at an end after "
+                      f"{len(b.records)} samples")
     order, sm = b.minimum(every)
     rec = b.records[order[sm.index]]
     grid_error = discretisation_error(sm.y, (rec["a"], rec["b"], rec["c"], rec["d"]), problem.grid)
