@@ -1,8 +1,12 @@
 """Sweep configuration: TOML and flag forms, and every bad input rejected before work starts."""
 from __future__ import annotations
 
+import types
+
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from dhfield.cli import main
 from dhfield.sweep import config_from_mapping, engine, load_config
@@ -248,3 +252,92 @@ def test_scheduler_peer_that_is_not_one_fails_in_time(tmp_path, capsys, monkeypa
     finally:
         close()
     assert words in err and address in err
+
+
+# --- [bem] max_seconds / --max-seconds: the time allowed per adhesive case (issue 20) ------------------------
+_ADHESIVE_TOML = '[sweep]\nquantities = ["adhesive"]\n[axes]\nbeta0 = [0.5]\nmu = [10.0]\ngrid_level = [1, 2]\n'
+
+
+def test_max_seconds_from_toml(tmp_path):
+    """Parsed as a float [s]; absent: None (the library's default); round-trips; not in the fingerprint
+    (it decides only whether a case is refused, so a rerun with more time resumes the same store)."""
+    path = tmp_path / "t.toml"
+    path.write_text(_ADHESIVE_TOML + "[bem]\nmax_seconds = 3600\n")
+    cfg = load_config(path)
+    assert cfg.max_seconds == 3600.0 and type(cfg.max_seconds) is float
+    assert config_from_mapping(cfg.as_dict()) == cfg
+    path.write_text(_ADHESIVE_TOML)
+    default = load_config(path)
+    assert default.max_seconds is None and "max_seconds" not in default.as_dict()["bem"]
+    assert default.fingerprint() == cfg.fingerprint()
+
+
+@pytest.mark.parametrize("value", [0, 0.0, -1, -3600.0, float("nan"), float("inf"), "3600", "1h", True, [3600]])
+def test_bad_max_seconds_names_the_key(value):
+    mapping = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
+               "bem": {"max_seconds": value}}
+    with pytest.raises(ValueError, match=r"bem\.max_seconds must be a finite number > 0") as exc:
+        config_from_mapping(mapping)
+    assert "\n" not in str(exc.value)
+
+
+@pytest.mark.parametrize("toml", ["max_seconds = 0\n", "max_seconds = -5\n", "max_seconds = nan\n",
+                                  'max_seconds = "long"\n'])
+def test_cli_bad_max_seconds_in_toml(tmp_path, capsys, toml):
+    cfg = tmp_path / "bad.toml"
+    cfg.write_text(_ADHESIVE_TOML + "[bem]\n" + toml)
+    assert "bem.max_seconds" in _cli_fails_before_work(tmp_path, capsys, [str(cfg)])
+
+
+def test_cli_bad_max_seconds_flag(tmp_path, capsys):
+    axes = ["--beta0", "0.5", "--mu", "10", "--grid-level", "2", "--quantities", "adhesive"]
+    for value in ("0", "-1", "nan", "inf"):
+        assert "bem.max_seconds" in _cli_fails_before_work(tmp_path, capsys, [*axes, "--max-seconds", value])
+    assert "--max-seconds" in _cli_fails_before_work(tmp_path, capsys, [*axes, "--max-seconds", "1h"])
+    cfg = tmp_path / "t.toml"
+    cfg.write_text(_ADHESIVE_TOML)
+    assert "bem.max_seconds" in _cli_fails_before_work(tmp_path, capsys, [str(cfg), "--max-seconds", "0"])
+
+
+def test_cli_max_seconds_flag_reaches_the_config(tmp_path, monkeypatch):
+    """The flag form sets [bem] max_seconds; with a config file it overrides the file's (the only [bem] key that
+    may: the others change results); another flag of the config's tables is still refused."""
+    import dhfield.sweep as sweep_pkg
+
+    seen = []
+
+    def fake_run_sweep(config, **kw):
+        seen.append(config)
+        return types.SimpleNamespace(path=kw["out"], computed=[], reused=[], failed=[], flagged=[], warned=0)
+
+    monkeypatch.setattr(sweep_pkg, "run_sweep", fake_run_sweep)
+    axes = ["--beta0", "0.5", "--mu", "10", "--grid-level", "1", "2", "--quantities", "adhesive"]
+    out = str(tmp_path / "s.nc")
+    assert main(["sweep", *axes, "--max-seconds", "3600", "--out", out, "--quiet"]) == 0
+    assert seen[-1].max_seconds == 3600.0 and seen[-1].axes["grid_level"] == (1, 2)
+    assert main(["sweep", *axes, "--out", out, "--quiet"]) == 0
+    assert seen[-1].max_seconds is None
+    cfg = tmp_path / "t.toml"
+    cfg.write_text(_ADHESIVE_TOML + "[bem]\nmax_seconds = 600\n")
+    assert main(["sweep", str(cfg), "--out", out, "--quiet"]) == 0
+    assert seen[-1].max_seconds == 600.0
+    assert main(["sweep", str(cfg), "--max-seconds", "5400", "--out", out, "--quiet"]) == 0
+    assert seen[-1].max_seconds == 5400.0 and seen[-1].fingerprint() == seen[-2].fingerprint()
+    assert main(["sweep", str(cfg), "--half-width", "3", "--out", out, "--quiet"]) == 2
+    assert len(seen) == 4
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.one_of(st.integers(-10**6, 10**6), st.floats(allow_nan=True, allow_infinity=True), st.booleans(),
+                 st.text(max_size=5), st.none()))
+def test_max_seconds_domain(value):
+    """Accepted iff a finite number > 0 (None: the library's default); anything else one line naming the key."""
+    mapping = {"axes": {"beta0": [0.5], "mu": [1.0], "grid_level": [1]}, "sweep": {"quantities": ["adhesive"]},
+               "bem": {"max_seconds": value}}
+    ok = value is None or (not isinstance(value, (bool, str)) and np.isfinite(value) and value > 0)
+    if ok:
+        assert config_from_mapping(mapping).max_seconds == (None if value is None else float(value))
+    else:
+        with pytest.raises(ValueError, match=r"bem\.max_seconds") as exc:
+            config_from_mapping(mapping)
+        assert "\n" not in str(exc.value)

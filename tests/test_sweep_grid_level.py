@@ -159,3 +159,90 @@ def test_grid_level_domain(value):
         with pytest.raises(ValueError, match="axes.grid_level") as exc:
             config_from_mapping(mapping)
         assert "\n" not in str(exc.value)
+
+
+# --- the time allowed per adhesive case ([bem] max_seconds, --max-seconds; issue 20) -------------------------
+class _Answer:
+    """A converged, resolved stub result (the solver is never run: these tests decide refusals only)."""
+    W_star, converged, resolved = -0.6, True, True
+
+
+def _recording_solver(calls):
+    def solver(**kw):
+        calls.append(kw)
+        return _Answer()
+    return solver
+
+
+@pytest.fixture
+def any_memory(monkeypatch):
+    """No memory limit: the refusal is decided by the time allowed alone, on any machine."""
+    from dhfield import adhesive_start
+
+    monkeypatch.setattr(adhesive_start, "memory_limit", lambda: None)
+
+
+def test_max_seconds_decides_the_refusal_of_a_level_before_solving(monkeypatch, any_memory):
+    """Issue 20: beta0 = 0.5, mu = 10 at level 2 is estimated beyond the library's default time
+    (~50 min > 30 min when written).  A max_seconds above a level's estimate solves it, with the
+    solver given that allowance; below, it is refused before the solver is called."""
+    from dhfield.adhesive_start import DEFAULT_MAX_SECONDS, AdhesiveOptions
+
+    calls = []
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": _recording_solver(calls))
+    grid = tasks.automatic_grid(0.5, 10.0, 2)
+    assert grid["max_seconds"] == DEFAULT_MAX_SECONDS and not grid["automatic"]
+    estimate = grid["seconds"]
+    if estimate > DEFAULT_MAX_SECONDS:   # the default refuses it (the case of the issue)
+        with pytest.raises(RuntimeError, match=r"min allowed \(\[bem\] max_seconds, --max-seconds\)"):
+            tasks.adhesive_case(0.5, 10.0, grid_level=2)
+        assert calls == []
+    with pytest.raises(RuntimeError, match="grid_level 2: .* more than the"):
+        tasks.adhesive_case(0.5, 10.0, grid_level=2, max_seconds=0.5 * estimate)
+    assert calls == []                                       # refused before solving
+    allowed = 2.0 * estimate
+    assert tasks.automatic_grid(0.5, 10.0, 2, max_seconds=allowed)["max_seconds"] == allowed
+    rec = tasks.adhesive_case(0.5, 10.0, grid_level=2, max_seconds=allowed)
+    assert rec["W_star"] == -0.6 and len(calls) == 1
+    kw = calls[0]
+    assert (kw["n"], kw["ny"]) == (grid["nx"], grid["ny"])
+    assert isinstance(kw["options"], AdhesiveOptions) and kw["options"].max_seconds == allowed
+    # level 1 and an explicit n: the solver plans (and refuses) with the same allowance
+    tasks.adhesive_case(0.5, 10.0, grid_level=1, max_seconds=allowed)
+    tasks.adhesive_case(0.5, 1.0, 64, max_seconds=allowed)
+    assert "n" not in calls[1] and calls[1]["options"].max_seconds == allowed
+    assert calls[2]["n"] == 64 and calls[2]["options"].max_seconds == allowed
+    tasks.adhesive_case(0.5, 1.0, grid_level=1)              # none given: the library's default, no options
+    assert "options" not in calls[3]
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="max_seconds"):
+            tasks.adhesive_case(0.5, 1.0, grid_level=2, max_seconds=bad)
+    assert len(calls) == 4
+
+
+def test_a_rerun_with_more_time_solves_the_refused_level(tmp_path, monkeypatch, any_memory):
+    """A level refused at the default time is stored failed; the same sweep with a larger [bem] max_seconds
+    (not in the fingerprint) resumes the store and solves it alone, and the file records the time allowed."""
+    from dhfield.adhesive_start import DEFAULT_MAX_SECONDS
+
+    calls = []
+    solver = _recording_solver(calls)
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": solver)
+    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": solver)
+    estimate = tasks.automatic_grid(0.5, 10.0, 2)["seconds"]
+    base = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]}}
+    short = config_from_mapping({**base, "bem": {"max_seconds": 0.5 * estimate}})
+    first = run_sweep(short, out=tmp_path / "t.nc", scheduler="synchronous", progress=False)
+    assert len(first.failed) == 1 and calls == []
+    msg = str(first.dataset["adhesive_message"].values.item())
+    assert "more than the" in msg and "max_seconds" in msg
+    assert first.dataset.attrs["param_bem_max_seconds"] == 0.5 * estimate
+    longer = config_from_mapping({**base, "bem": {"max_seconds": 2.0 * estimate}})
+    assert longer.fingerprint() == short.fingerprint()
+    second = run_sweep(longer, out=tmp_path / "t.nc", scheduler="synchronous", progress=False)
+    assert second.failed == [] and second.computed == first.failed and len(calls) == 1
+    assert calls[0]["options"].max_seconds == 2.0 * estimate
+    assert float(second.dataset["W_star"].sel(model=tasks.ADHESIVE_MODEL).values.item()) == -0.6
+    assert second.dataset.attrs["param_bem_max_seconds"] == 2.0 * estimate
+    default = run_sweep(config_from_mapping(base), out=tmp_path / "d", scheduler="synchronous", progress=False)
+    assert default.dataset.attrs["param_bem_max_seconds"] == DEFAULT_MAX_SECONDS

@@ -6,7 +6,9 @@ Two forms::
     dhfield sweep --beta0 0.8 0.9 1 --mu-geomspace 0.1 10 200 --models dh-elliptic md --out s.nc
 
 The TOML layout is documented in :mod:`dhfield.sweep.config`.  Flags given with
-a config file override its ``[run]`` table only.
+a config file override its ``[run]`` table and ``--max-seconds`` its ``[bem] max_seconds``
+(the time allowed per adhesive case decides only whether a case is refused, never its
+value: a rerun with a larger one resumes the same store), nothing else.
 """
 from __future__ import annotations
 
@@ -48,6 +50,9 @@ def add_parser(sub) -> None:
                    help="load_curve: contact sizes a/c_r, evenly spaced (default 0.02 3)")
     p.add_argument("--curve-points", type=int, default=None, help="load_curve: points per curve (200)")
     p.add_argument("--half-width", type=float, default=None, help="fixed BEM domain half-width [c_r]")
+    p.add_argument("--max-seconds", type=float, default=None, metavar="S",
+                   help="adhesive: estimated time allowed per case [s], > 0 (default 1800); a grid level estimated "
+                        "to take longer is refused before solving ([bem] max_seconds; overrides a config file's)")
     p.add_argument("--scheduler", default=None,
                    help="dask.distributed scheduler address tcp://host:port, or 'synchronous'/'processes'")
     p.add_argument("--workers", type=int, default=None, help="local worker processes, one core each (default: every core; 1 runs in this "
@@ -79,6 +84,8 @@ def _flag_mapping(args) -> dict:
         if getattr(args, key) is not None:
             sweep[key] = getattr(args, key)
     bem = {} if args.half_width is None else {"half_width": args.half_width}
+    if args.max_seconds is not None:
+        bem["max_seconds"] = args.max_seconds
     return {"axes": axes, "sweep": sweep, "bem": bem}
 
 
@@ -88,9 +95,13 @@ def run(args) -> int:
 
     flag_mapping = _flag_mapping(args)
     if args.config is not None:
-        if flag_mapping["axes"] or flag_mapping["sweep"] or flag_mapping["bem"]:
+        if flag_mapping["axes"] or flag_mapping["sweep"] or set(flag_mapping["bem"]) - {"max_seconds"}:
             raise ValueError("give the axes and quantities either in CONFIG.toml or as flags, not both")
         config = load_config(args.config)
+        if args.max_seconds is not None:   # validated as the config's [bem] max_seconds
+            mapping = config.as_dict()
+            mapping["bem"]["max_seconds"] = args.max_seconds
+            config = config_from_mapping(mapping)
     else:
         if not flag_mapping["axes"]:
             raise ValueError("give a CONFIG.toml or the axes as flags (e.g. --beta0 0.9 1 --mu-geomspace 0.1 10 50)")

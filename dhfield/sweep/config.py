@@ -29,6 +29,7 @@ TOML layout (every table and key optional except ``[axes]``)::
     [bem]
     half_width = 3.0                   # fixed domain half-width [c_r] (default 1.5 c* per case)
     sampling = "average"               # or "centre"
+    max_seconds = 3600                 # adhesive: estimated time allowed per case [s] (default 1800 s)
 
     [run]
     workers = 2                        # default: every core
@@ -58,6 +59,16 @@ cohesive-zone width (nx x ny with about square cells below beta0 = 0.45; the pre
 route at mu >= 7.5).  ``grid_level = k >= 2`` solves the explicit grid of k times the
 cells per axis of that plan (:func:`dhfield.sweep.tasks.automatic_grid`), so
 ``grid_level = [1, 2]`` is the convergence over N of every case in one sweep.
+
+``[bem] max_seconds`` (``--max-seconds``) is the estimated time an adhesive case may take
+[s], > 0 (default :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`): a level k >= 2
+whose grid is estimated to take longer is refused before solving
+(:func:`dhfield.sweep.tasks.adhesive_case`), and level 1 is planned with it
+(:class:`dhfield.adhesive_start.AdhesiveOptions`); a case that is solved is not stopped when it
+runs longer than its estimate (no wall-clock limit).  It decides only whether a case is refused,
+never its value, so it is not part of the config's fingerprint: a refused case is stored as
+failed, and a rerun with a larger ``max_seconds`` (the flag also overrides a config file's)
+resumes the same store and solves it.
 
 ``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
@@ -128,7 +139,7 @@ def max_workers() -> int:
 
 _TOP_KEYS = {"sweep", "axes", "bem", "run"}
 _SWEEP_KEYS = {"quantities", "models", "control", "chunk_points", "curve_a_star", "curve_points"}
-_BEM_KEYS = {"half_width", "sampling"}
+_BEM_KEYS = {"half_width", "sampling", "max_seconds"}
 _RUN_KEYS = {"workers", "scheduler", "out"}
 _SPACE_KEYS = ("linspace", "geomspace")
 
@@ -157,6 +168,10 @@ class SweepConfig:
         Fixed BEM domain half-width [c_r]; None: 1.5 c* per case.
     sampling : str
         BEM pressure sampling ("average" or "centre").
+    max_seconds : float or None
+        Estimated time allowed per adhesive BEM case [s], > 0; None: the library's
+        :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`.  Not in the fingerprint (it
+        decides whether a case is refused, never its value).
     workers : int or None
         Local worker processes (None: every core).
     scheduler : str or None
@@ -174,12 +189,17 @@ class SweepConfig:
     curve_points: int = 200
     half_width: float | None = None
     sampling: str = "average"
+    max_seconds: float | None = None
     workers: int | None = None
     scheduler: str | None = None
     out: str | None = None
 
     def fingerprint(self) -> str:
-        """Hash everything that determines the results (not workers, scheduler, out).
+        """Hash everything that determines the results (not workers, scheduler, out, max_seconds).
+
+        ``max_seconds`` only decides whether an adhesive case is refused before solving (stored
+        as failed, retried by the next run), never a stored value: a rerun with another one
+        resumes the same store.
 
         Returns
         -------
@@ -208,6 +228,8 @@ class SweepConfig:
                "bem": {"sampling": self.sampling}, "run": {}}
         if self.half_width is not None:
             out["bem"]["half_width"] = self.half_width
+        if self.max_seconds is not None:
+            out["bem"]["max_seconds"] = self.max_seconds
         for k in ("workers", "scheduler", "out"):
             if getattr(self, k) is not None:
                 out["run"][k] = getattr(self, k)
@@ -497,6 +519,13 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     sampling = bem.get("sampling", "average")
     if sampling not in _SAMPLINGS:
         _fail("bem.sampling", f"one of {_SAMPLINGS}", sampling)
+    max_seconds = bem.get("max_seconds")
+    if max_seconds is not None and (isinstance(max_seconds, bool) or not isinstance(max_seconds, (int, float))
+                                    or not math.isfinite(max_seconds) or max_seconds <= 0):
+        from ..adhesive_start import DEFAULT_MAX_SECONDS
+
+        _fail("bem.max_seconds", f"a finite number > 0 (estimated time allowed per adhesive BEM case, s; default "
+              f"{DEFAULT_MAX_SECONDS:g})", max_seconds)
     workers = run.get("workers")
     if workers is not None:
         _int_at_least("run.workers", workers, 1)
@@ -513,7 +542,8 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
                        control=control, chunk_points=chunk,
                        curve_a_star=(float(curve_a[0]), float(curve_a[1])), curve_points=curve_points,
                        half_width=None if half_width is None else float(half_width), sampling=sampling,
-                       workers=workers, scheduler=scheduler, out=out)
+                       max_seconds=None if max_seconds is None else float(max_seconds), workers=workers,
+                       scheduler=scheduler, out=out)
 
 
 def cohesive_default() -> str:

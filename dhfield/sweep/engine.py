@@ -20,7 +20,10 @@ Engine
   axis, on the library's automatic grid (level 1) or k times its cells per axis
   (:func:`~dhfield.sweep.tasks.automatic_grid`); each stores its grid (nx, ny,
   half-widths), stated error, flags, wall and CPU time, route, and provenance (the
-  commit that solved it, the sweep's command line, the time it finished).
+  commit that solved it, the sweep's command line, the time it finished).  A level
+  whose grid is estimated to take longer than ``[bem] max_seconds`` is refused before
+  solving (status "failed", retried by the next run); the consolidated file records
+  the time allowed by the run that wrote it (attribute ``param_bem_max_seconds``).
 * **Costliest first.** Every BEM task carries an estimate of its cost
   (:func:`dhfield.sweep.tasks.expected_seconds`: n^2 log n, times mu^1.1 for an
   adhesive path); the task keys rank them so that dask starts the costliest
@@ -704,12 +707,14 @@ def _case_index(config: SweepConfig, quantity):
     else:
         grid_axis = config.adhesive_grid_axis   # "n" (explicit n x n) or "grid_level" (the automatic grid)
         grids, laws = config.axes[grid_axis], config.axes["law"]
+        # the time allowed per case goes to adhesive_case only when the config sets one (None: the library's)
+        allowed = {} if config.max_seconds is None else {"max_seconds": float(config.max_seconds)}
         for ib, b in enumerate(beta0):
             for im, m in enumerate(mu):
                 for i_n, g in enumerate(grids):
                     for il, law in enumerate(laws):
                         groups.append([((ib, im, i_n, il), {"beta0": float(b), "mu": float(m), grid_axis: int(g),
-                                                            "law": law, "control": config.control})])
+                                                            "law": law, "control": config.control, **allowed})])
     return groups
 
 
@@ -1011,9 +1016,14 @@ def _consolidate(config: SweepConfig, kinds, results, store):
     ds = ds.transpose(*schema.order_dims(ds.dims))  # one pass over every variable (no per-variable merge)
     for c in ds.coords:
         ds[c].encoding["_FillValue"] = None
+    allowed = {}
+    if "adhesive" in config.quantities:   # the time allowed per adhesive case by this run [s]
+        from ..adhesive_start import DEFAULT_MAX_SECONDS
+
+        allowed["bem_max_seconds"] = float(DEFAULT_MAX_SECONDS if config.max_seconds is None else config.max_seconds)
     ds.attrs.update(provenance_attrs("dhfield sweep (Zini et al. 2018 extended double-Hertz model)",
                                      sweep_fingerprint=config.fingerprint(),
                                      sweep_quantities=" ".join(config.quantities), control=config.control,
                                      chunk_points=config.chunk_points,
-                                     bem_half_width=config.half_width, bem_sampling=config.sampling))
+                                     bem_half_width=config.half_width, bem_sampling=config.sampling, **allowed))
     return ds

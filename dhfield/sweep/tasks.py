@@ -211,7 +211,7 @@ def adhesive_solver(name: str = "default"):
 
 
 def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "dugdale",
-                   control: str = "load") -> dict:
+                   control: str = "load", max_seconds: float | None = None) -> dict:
     """The grid of an adhesive case at a grid level of the automatic plan.
 
     Level 1 is the grid :func:`dhfield.adhesive_start.adhesive_pull_off` plans when no ``n``
@@ -232,6 +232,9 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
         Cohesive law, one of :func:`cohesive_laws`.
     control : {"load", "displacement"}
         Loading mode (the route of level 1 depends on it).
+    max_seconds : float, optional
+        Estimated time allowed [s], > 0; default
+        :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`.
 
     Returns
     -------
@@ -240,13 +243,14 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
         solver plans it itself), ``predicted`` (level 1 on the predicted route),
         ``seconds`` and ``memory_bytes`` (the library's estimates for that grid [s],
         [bytes]), ``memory_limit`` (the memory one computation may claim, or None),
-        ``max_seconds`` (the time the library allows [s]) and ``analytic_W_star`` (the
-        analytic value to use where the case cannot be solved [-]).
+        ``max_seconds`` (the time allowed [s]: ``max_seconds``, or the library's default) and
+        ``analytic_W_star`` (the analytic value to use where the case cannot be solved [-]).
 
     Raises
     ------
     ValueError
-        If ``grid_level`` is not an integer in [1, MAX_GRID_LEVEL].
+        If ``grid_level`` is not an integer in [1, MAX_GRID_LEVEL], or ``max_seconds`` is not
+        a finite number > 0.
     """
     from ..adhesive_start import (DEFAULT_MAX_SECONDS, PATH_BYTES_PER_CELL, PULL_OFF_ITERATIONS,
                                   SECONDS_PER_CELL_ITERATION, plan_grid, takes_predicted_route)
@@ -258,13 +262,14 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
                          f"got {grid_level!r}")
     k = int(grid_level)
     predicted = k == 1 and takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control)
-    plan = plan_grid(beta0=beta0, mu=mu, law=law, predicted=predicted)
+    plan = plan_grid(beta0=beta0, mu=mu, law=law, predicted=predicted,
+                     max_seconds=DEFAULT_MAX_SECONDS if max_seconds is None else max_seconds)
     nx, ny = k * int(plan.n_needed), k * int(plan.ny_needed)
     cells = float(nx) * float(ny)
     return {"nx": nx, "ny": ny, "automatic": k == 1, "predicted": bool(plan.predicted),
             "seconds": SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
             "memory_bytes": PATH_BYTES_PER_CELL * cells, "memory_limit": plan.memory_limit,
-            "max_seconds": float(DEFAULT_MAX_SECONDS), "analytic_W_star": float(plan.analytic_W_star)}
+            "max_seconds": float(plan.max_seconds), "analytic_W_star": float(plan.analytic_W_star)}
 
 
 def _refuse_unaffordable(beta0, mu, grid_level, grid) -> None:
@@ -275,7 +280,7 @@ def _refuse_unaffordable(beta0, mu, grid_level, grid) -> None:
                    "available")
     if grid["seconds"] > grid["max_seconds"]:
         why.append(f"~{grid['seconds'] / 60:.0f} min estimated, more than the {grid['max_seconds'] / 60:.0f} min "
-                   "allowed")
+                   "allowed ([bem] max_seconds, --max-seconds)")
     if why:
         raise RuntimeError(f"beta0={beta0:g}, mu={mu:g}, grid_level {grid_level}: {grid['nx']} x {grid['ny']} cells "
                            f"need {' and '.join(why)}; use the analytic W* = {grid['analytic_W_star']:.4f} "
@@ -290,7 +295,7 @@ def _git_commit() -> str:
 
 
 def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dugdale", control: str = "load", *,
-                  grid_level: int | None = None, solver: str = "default") -> dict:
+                  grid_level: int | None = None, solver: str = "default", max_seconds: float | None = None) -> dict:
     """Compute the adhesive BEM ground truth at pull-off of one (beta0, mu, n or grid level, law) case.
 
     The whole load path runs in this one call (each step warm-starts from the
@@ -312,9 +317,15 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         1: the automatic grid and route (the solver plans them, as ``dhfield solve``
         without ``--n``); k >= 2: the explicit grid of :func:`automatic_grid` (k times the
         cells per axis), refused before solving (RuntimeError, one line with the analytic
-        W* to use instead) when it exceeds the memory or time the library allows.
+        W* to use instead) when it exceeds the memory available or ``max_seconds``.
     solver : {"default"}
         The solver (:func:`adhesive_solver`).
+    max_seconds : float, optional
+        Estimated time allowed [s], > 0: the refusal of a level k >= 2 above, and, given,
+        the solver's ``options=AdhesiveOptions(max_seconds=...)`` (level 1 and the automatic
+        grid: its own refusal, :func:`dhfield.adhesive_start.plan_grid`).  Default (None):
+        :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`, the solver called without options.
+        An estimate checked before solving, not a wall-clock limit.
 
     Returns
     -------
@@ -327,18 +338,25 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
     Raises
     ------
     ValueError
-        If neither or both of ``n`` and ``grid_level`` are given.
+        If neither or both of ``n`` and ``grid_level`` are given, or ``max_seconds`` is not a
+        finite number > 0.
     """
     import time
 
     if (n is None) == (grid_level is None):
         raise ValueError("give n (an explicit n x n grid) or grid_level (the automatic grid), not both or neither")
     kwargs = dict(beta0=float(beta0), mu=float(mu), law=law, control=control, threads=1)
+    if max_seconds is not None:
+        from .._validation import check_positive
+        from ..adhesive_start import AdhesiveOptions
+
+        max_seconds = float(check_positive("max_seconds", max_seconds, "estimated time allowed per case, s"))
+        kwargs["options"] = AdhesiveOptions(max_seconds=max_seconds)
     if grid_level is None:
         kwargs["n"] = int(n)
         asked = (int(n), int(n))
     else:
-        grid = automatic_grid(float(beta0), float(mu), grid_level, law=law, control=control)
+        grid = automatic_grid(float(beta0), float(mu), grid_level, law=law, control=control, max_seconds=max_seconds)
         asked = (grid["nx"], grid["ny"])
         if not grid["automatic"]:
             _refuse_unaffordable(beta0, mu, grid_level, grid)
@@ -445,7 +463,8 @@ def expected_seconds(quantity: str, params: dict) -> float:
     if quantity == "adhesive":
         if params.get("grid_level") is not None:   # the library's estimate of the planned grid
             return automatic_grid(float(params["beta0"]), float(params["mu"]), params["grid_level"],
-                                  law=params.get("law", "dugdale"), control=params.get("control", "load"))["seconds"]
+                                  law=params.get("law", "dugdale"), control=params.get("control", "load"),
+                                  max_seconds=params.get("max_seconds"))["seconds"]
         ellipse = 1.2 if float(params["beta0"]) < 1.0 else 1.0
         mu_work = float(params["mu"]) ** _ADHESIVE_MU_EXPONENT + _ADHESIVE_MU_OFFSET
         return _SECONDS_ADHESIVE_256 * _grid_scale(params["n"]) * mu_work * ellipse
