@@ -26,7 +26,8 @@ load control) on dask, one part per TOML file written under ``--work-dir``
     never changed): dims ``(beta0, mu, level)``, per case the values, the grid (nx, ny,
     half-widths), W_star_error, converged/resolved, the status ('ok', 'not_converged',
     'unresolved', 'failed', 'not run' for a case of the extended study that no source
-    holds, with the attempt stopped at its timeout if any, 'absent' outside it), the
+    holds, with what the case store of a part stopped at its timeout holds of it, if any:
+    finished there, failed, or not finished; 'absent' outside it), the
     wall/CPU time and its provenance (``source``, ``commit``, ``command``, ``finished``);
     per (beta0, mu) the best value ``W_star_truth`` with its error and source.  Lists the
     cases not run.
@@ -40,6 +41,7 @@ Usage::
 
     nice -n 10 .venv/bin/python -m verification.study_extended run cheap-wide cheap-slender
     nice -n 10 .venv/bin/python -m verification.study_extended run high-mu-trial --timeout 600
+    nice -n 10 .venv/bin/python -m verification.study_extended run high-mu-level2 --max-seconds 4000
     .venv/bin/python -m verification.study_extended build
 """
 from __future__ import annotations
@@ -84,13 +86,19 @@ PARTS = {
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
 
-def part_config(name) -> str:
-    """The TOML text of a part (quantity adhesive, Dugdale, load control, grid levels)."""
+def part_config(name, max_seconds=None) -> str:
+    """The TOML text of a part (quantity adhesive, Dugdale, load control, grid levels).
+
+    ``max_seconds`` [s] goes to ``[bem] max_seconds`` (the estimated time allowed per case; default
+    the library's): it is not in the sweep's fingerprint, so a part rerun with more resumes its store.
+    """
     beta0, mu, levels = PARTS[name]
     fmt = lambda v: "[" + ", ".join(f"{x:g}" for x in v) + "]"  # noqa: E731
+    bem = "" if max_seconds is None else f"\n[bem]\nmax_seconds = {float(max_seconds)!r}\n"
     return (f"# issue 20 extended ground truth, part {name!r} (python -m verification.study_extended)\n"
             "[sweep]\nquantities = [\"adhesive\"]\ncontrol = \"load\"\n\n"
-            f"[axes]\nbeta0 = {fmt(beta0)}\nmu = {fmt(mu)}\ngrid_level = {fmt(levels)}\nlaw = [\"dugdale\"]\n")
+            f"[axes]\nbeta0 = {fmt(beta0)}\nmu = {fmt(mu)}\ngrid_level = {fmt(levels)}\nlaw = [\"dugdale\"]\n"
+            + bem)
 
 
 def _sweep_command(toml, out, workers):
@@ -101,12 +109,12 @@ def _sweep_command(toml, out, workers):
                    "--quiet"]
 
 
-def run_part(name, work_dir, workers=1, timeout=None) -> int:
+def run_part(name, work_dir, workers=1, timeout=None, max_seconds=None) -> int:
     """Run one part through ``dhfield sweep``; print its cases and wall time."""
     work = Path(work_dir)
     work.mkdir(parents=True, exist_ok=True)
     toml, out = work / f"{name}.toml", work / f"{name}.nc"
-    toml.write_text(part_config(name))
+    toml.write_text(part_config(name, max_seconds))
     cmd = _sweep_command(toml, out, workers)
     print(f"[{name}] {shlex.join(cmd)}", flush=True)
     t0 = time.perf_counter()
@@ -148,18 +156,59 @@ def write_attempt(work_dir, name, timeout, wall, cpu, command) -> Path:
     return path
 
 
+def _store_state(store_dir, key):
+    """What a part's case store holds of case ``key``: ("finished", status, message), ("failed", message) or None.
+
+    The sweep writes ``<key>.nc`` when a case finishes (status ok, not_converged or unresolved) and
+    ``<key>.failed.nc`` when it raises (:class:`dhfield.sweep.store.CaseStore`); a case it started
+    and did not finish leaves nothing.
+    """
+    from dhfield.io import read_netcdf
+
+    for suffix, state in ((".nc", "finished"), (".failed.nc", "failed")):
+        path = Path(store_dir) / f"{key}{suffix}"
+        if path.is_file():
+            ds = read_netcdf(path)
+            message = str(ds.attrs.get("message", ""))
+            return (state, str(ds.attrs.get("status", "")), message) if state == "finished" else (state, message)
+    return None
+
+
 def _attempts(work_dir) -> dict:
-    """(beta0, mu, level) -> one line about a timed-out attempt of that case."""
+    """(beta0, mu, level) -> one line about a case of a part stopped at its hard timeout.
+
+    The part's case store (``<part>.nc.cases/``, read now) tells which of its cases had finished
+    (or failed) and which had not; the sweep keeps no record of a case it started, so an unfinished
+    case is said to be not finished, not attempted: with W workers, W of them at most were running
+    at the stop (the sweep starts the costliest first) and the rest were not reached.
+    """
+    from dhfield.sweep.store import output_paths
+
     out = {}
     for p in sorted(Path(work_dir).glob("*.timeout.json")):
         r = json.loads(p.read_text())
-        line = (f"attempted by part {r['part']} ({r['command']}; commit {r['commit']}), stopped at its hard timeout "
-                f"of {r['timeout_s']:g} s on {r['stopped']} ({r['wall_s']:.0f} s wall, {r['cpu_s']:.0f} s CPU, load "
+        stop = (f"part {r['part']} stopped at its hard timeout of {r['timeout_s']:g} s on {r['stopped']} "
+                f"({r['command']}; commit {r['commit']}; {r['wall_s']:.0f} s wall, {r['cpu_s']:.0f} s CPU, load "
                 f"average {r['load_average'][0]:.1f} on this shared machine)")
-        for b in r["beta0"]:
-            for m in r["mu"]:
-                for lv in r["levels"]:
-                    out[(round(float(b), _KEY), round(float(m), _KEY), int(lv))] = line
+        store_dir = output_paths(Path(work_dir) / f"{r['part']}.nc")[1]
+        cases = [((ib, im, il), (b, m, lv)) for ib, b in enumerate(r["beta0"]) for im, m in enumerate(r["mu"])
+                 for il, lv in enumerate(r["levels"])]
+        states = {idx: _store_state(store_dir, "adhesive__" + "_".join(f"{i:05d}" for i in (*idx, 0)))
+                  for idx, _ in cases}
+        ended = sum(st is not None for st in states.values())
+        for idx, (b, m, lv) in cases:
+            st = states[idx]
+            if st is None:
+                line = (f"not finished when {stop}: {ended} of the part's {len(cases)} cases had ended (finished or "
+                        f"failed) in its case store {store_dir.name}/, not this one (the sweep solves the costliest "
+                        "first, one per worker, and records no start: this case was running at the stop or was not "
+                        "reached)")
+            elif st[0] == "finished":
+                line = (f"finished (status {st[1]}) in the case store {store_dir.name}/ before {stop}; the part's "
+                        "sweep output was not written: rerun the part to merge it (the store is resumed)")
+            else:
+                line = f"failed in part {r['part']} ({st[1]}), before {stop}"
+            out[(round(float(b), _KEY), round(float(m), _KEY), int(lv))] = line
     return out
 
 
@@ -397,8 +446,8 @@ def build(work_dir, out) -> int:
         "status": "ok, not_converged, unresolved, failed, 'not run' (a case of the extended study that no source "
                   "holds) or absent (outside the extended study)",
         "search": "route that gave the pull-off (the solver's search)",
-        "message": "why the case is not an answer, or the source's note on it; for a case not run, the attempt "
-                   "stopped at its timeout if any (empty: none)",
+        "message": "why the case is not an answer, or the source's note on it; for a case not run, what the case "
+                   "store of a part stopped at its hard timeout holds of it, if any (empty: none)",
         "source": "file and script (or dhfield sweep part) that produced the case",
         "commit": "git commit of the code that solved the case",
         "command": "command line that solved the case",
@@ -473,6 +522,9 @@ def main(argv=None) -> int:
     r.add_argument("parts", nargs="+", choices=sorted(PARTS))
     r.add_argument("--workers", type=int, default=1, help="dask worker processes (default 1)")
     r.add_argument("--timeout", type=float, default=None, help="hard wall-clock limit per part [s]")
+    r.add_argument("--max-seconds", type=float, default=None,
+                   help="estimated time allowed per case [s] ([bem] max_seconds of the part; default the library's "
+                        "1800 s: e.g. 4000 for the mu = 10 level-2 cases, estimated 42-57 min)")
     r.add_argument("--work-dir", default=str(DEFAULT_WORK_DIR))
     b = sub.add_parser("build", help="merge the stored files and the sweep outputs into the extended dataset")
     b.add_argument("--work-dir", default=str(DEFAULT_WORK_DIR))
@@ -481,9 +533,11 @@ def main(argv=None) -> int:
     if args.job == "run":
         if args.workers < 1 or (args.timeout is not None and not args.timeout > 0):
             p.error("--workers must be >= 1 and --timeout > 0")
+        if args.max_seconds is not None and not (np.isfinite(args.max_seconds) and args.max_seconds > 0):
+            p.error("--max-seconds must be a finite number > 0 (estimated time allowed per case, s)")
         rc = 0
         for name in args.parts:
-            rc = max(rc, run_part(name, args.work_dir, args.workers, args.timeout))
+            rc = max(rc, run_part(name, args.work_dir, args.workers, args.timeout, args.max_seconds))
         return rc
     return build(args.work_dir, args.out)
 

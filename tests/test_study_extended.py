@@ -1,0 +1,57 @@
+"""verification.study_extended: what the record of a part stopped at its hard timeout says of each case.
+
+The part's case store (:class:`dhfield.sweep.store.CaseStore`) holds ``<key>.nc`` for a finished case and
+``<key>.failed.nc`` for one that raised, and nothing for a case not finished; the line of each case must say
+which, and never call a case it holds nothing of "attempted".  A fabricated timeout record and store
+(no solve, no timing).
+"""
+import json
+
+from dhfield.sweep import engine
+from dhfield.sweep.store import CaseStore, output_paths
+from verification import study_extended as se
+
+
+def _timed_out_part(work_dir, name="trial"):
+    """A part of 2 beta0 x 1 mu x 2 levels stopped at its timeout: one case finished, one failed, two nothing."""
+    rec = {"part": name, "beta0": [0.5, 1.0], "mu": [10.0], "levels": [1, 2], "timeout_s": 600.0, "wall_s": 600.2,
+           "cpu_s": 590.0, "command": f"dhfield sweep {name}.toml --workers 1", "commit": "abc1234",
+           "stopped": "2026-11-26T14:00:00Z", "load_average": [2.0, 2.0, 2.0]}
+    (work_dir / f"{name}.timeout.json").write_text(json.dumps(rec))
+    store = CaseStore(output_paths(work_dir / f"{name}.nc")[1], "fingerprint")
+    # keys: adhesive__<beta0 index>_<mu index>_<level index>_<law index>, as the engine writes them
+    store.write("adhesive__00000_00000_00000_00000", engine._case_dataset({"W_star": -0.65}, "ok", ""))
+    store.write("adhesive__00001_00000_00001_00000",
+                engine._case_dataset({"W_star": float("nan")}, "failed", "RuntimeError: refused before solving"))
+
+
+def test_timeout_record_says_what_each_case_reached(tmp_path):
+    _timed_out_part(tmp_path)
+    lines = se._attempts(tmp_path)
+    assert set(lines) == {(0.5, 10.0, 1), (0.5, 10.0, 2), (1.0, 10.0, 1), (1.0, 10.0, 2)}
+    assert lines[(0.5, 10.0, 1)].startswith("finished (status ok) in the case store trial.nc.cases/")
+    assert "rerun the part to merge it" in lines[(0.5, 10.0, 1)]
+    assert lines[(1.0, 10.0, 2)].startswith("failed in part trial (RuntimeError: refused before solving)")
+    for key in ((0.5, 10.0, 2), (1.0, 10.0, 1)):
+        line = lines[key]
+        assert line.startswith("not finished when part trial stopped at its hard timeout of 600 s")
+        assert "2 of the part's 4 cases had ended" in line and "running at the stop or was not reached" in line
+    for line in lines.values():
+        assert "attempted" not in line and "commit abc1234" in line and "\n" not in line
+
+
+def test_no_timeout_record_no_lines(tmp_path):
+    assert se._attempts(tmp_path) == {}
+
+
+def test_part_config_carries_the_time_allowed(tmp_path):
+    """A part's TOML is a valid sweep; --max-seconds gives its [bem] max_seconds without changing its fingerprint
+    (a part rerun with more time resumes its case store)."""
+    from dhfield.sweep import load_config
+
+    plain, longer = tmp_path / "a.toml", tmp_path / "b.toml"
+    plain.write_text(se.part_config("high-mu-level2"))
+    longer.write_text(se.part_config("high-mu-level2", 4000))
+    a, b = load_config(plain), load_config(longer)
+    assert a.max_seconds is None and b.max_seconds == 4000.0
+    assert a.axes["grid_level"] == (2,) and a.fingerprint() == b.fingerprint()
