@@ -168,16 +168,16 @@ class SweepConfig:
         Fixed BEM domain half-width [c_r]; None: 1.5 c* per case.
     sampling : str
         BEM pressure sampling ("average" or "centre").
-    max_seconds : float or None
-        Estimated time allowed per adhesive BEM case [s], > 0; None: the library's
-        :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`.  Not in the fingerprint (it
-        decides whether a case is refused, never its value).
     workers : int or None
         Local worker processes (None: every core).
     scheduler : str or None
         Address of a dask.distributed scheduler.
     out : str or None
         Output path (see :func:`dhfield.sweep.store.output_paths`).
+    max_seconds : float or None
+        Estimated time allowed per adhesive BEM case [s], > 0 (``[bem] max_seconds``); None:
+        the library's :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`.  Not in the
+        fingerprint (it decides whether a case is refused, never its value).
     """
 
     axes: dict
@@ -189,10 +189,10 @@ class SweepConfig:
     curve_points: int = 200
     half_width: float | None = None
     sampling: str = "average"
-    max_seconds: float | None = None
     workers: int | None = None
     scheduler: str | None = None
     out: str | None = None
+    max_seconds: float | None = None
 
     def fingerprint(self) -> str:
         """Hash everything that determines the results (not workers, scheduler, out, max_seconds).
