@@ -56,7 +56,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
-           "PREDICTED_MIN_MU", "PREDICTED_TOL", "takes_predicted_route"]
+           "PREDICTED_MIN_MU", "PREDICTED_TOL", "takes_predicted_route", "next_lattice"]
 
 
 def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
@@ -749,8 +749,22 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         if plan.predicted:
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
             # lattice samples around GVG's pull-off, on a domain holding its zone (n x n cells)
-            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin)
-            return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol)
+            tol_route = PREDICTED_TOL if tol is None else tol
+            res = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin),
+                                      options, tol=tol_route)
+            n_next = None if res.converged else next_lattice(n, max_seconds)
+            if n_next is None:
+                return res
+            # a cold state the lattice traps (measured at beta0 = 0.5, mu = 10: stalled at N = 1200,
+            # converged at N = 1280): once more on the next lattice, finer, so still resolved
+            worst = max((f["residual"] for f in res.failures), default=res.residual)
+            why = (f"the N = {n} lattice's states did not converge (worst residual {worst:.2g}, "
+                   f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
+                   f"N = {n_next}")
+            again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
+                                                          margin=margin), options, tol=tol_route)
+            return replace(again, note="; ".join(filter(None, (why, again.note))),
+                           elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     else:
         relaxed = False
@@ -1099,6 +1113,39 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     w = float(elliptic_transition.pull_off_nondimensional(prob.beta0, prob.mu).W_star)
     return replace(res, note="; ".join(filter(None, (res.note, f"use the analytic W* = {w:.4f} "
                                                                 "(elliptic_transition) instead"))))
+
+
+def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS):
+    """The next automatic grid size above ``n`` for a retry, or None when it does not fit.
+
+    A cold state of the predicted route can be trapped by its lattice: at beta0 = 0.5, mu = 10
+    the cold state on N = 1200 stalled at a zone-fraction residual of 2e-3 for 300 outer
+    iterations, while on N = 1280 (the next size) it converged in 149
+    (``verification/bem_high_mu.py``).  :func:`adhesive_pull_off` then solves the case once more on
+    this lattice: finer, so as resolved as ``n``.
+
+    Parameters
+    ----------
+    n : int
+        Cells per axis of the first lattice [-].
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Time allowed [s]; the retry's estimate (as :func:`plan_grid`'s) must fit in it.
+
+    Returns
+    -------
+    int or None
+        The smallest size of :func:`plan_grid`'s list (2^a 3^b 5^c, a multiple of 16) above
+        ``n`` whose estimated memory and time fit; None when there is none.
+    """
+    n = check_cells(n)
+    max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
+    nxt = next((k for k in _fft_sizes() if k > n), None)
+    if nxt is None:
+        return None
+    cells = float(nxt) * float(nxt)
+    limit = memory_limit()
+    fits = limit is None or PATH_BYTES_PER_CELL * cells <= limit
+    return nxt if fits and SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS <= max_seconds else None
 
 
 def _half_grid_locates(plan, law, margin) -> bool:

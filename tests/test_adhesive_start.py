@@ -6,6 +6,8 @@ contact is refused before anything is solved.
 """
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -300,15 +302,16 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     # mu >= PREDICTED_MIN_MU with a half grid that cannot hold the Dugdale edge: fine lattice samples
     # around GVG's pull-off (the relaxed half grid's states stall at mu = 10); nothing solved here
     calls = []
+    answer = SimpleNamespace(converged=True)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None: calls.append((prob.grid.nx, tol, opts.tol)) or "p")
+                        lambda prob, opts, tol=None: calls.append((prob.grid.nx, tol, opts.tol)) or answer)
     monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) == "p"
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is answer
     plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
     # its states to PREDICTED_TOL unless a tol is given; the fall-back (relaxed) keeps DEFAULT_TOL
     assert calls == [(plan.n_needed, adhesive_start.PREDICTED_TOL, DEFAULT_TOL)] and plan.predicted
     opts = adhesive_start.AdhesiveOptions(tol=2e-6)
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, options=opts) == "p"
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, options=opts) is answer
     assert calls[-1][1:] == (2e-6, 2e-6)
     # its domain holds GVG's pull-off zone only: N = 1280 instead of 1440 on the unloading path's domain
     assert plan.n_needed < adhesive_start.plan_grid(mu=10.0, beta0=0.4826, predicted=False).n_needed
@@ -346,6 +349,50 @@ def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch
     assert len(res.failures) == res.n_steps == 1
     w = float(elliptic_transition.pull_off_nondimensional(1.0, 2.0).W_star)
     assert "cold state" in res.note and f"analytic W* = {w:.4f}" in res.note
+
+
+def test_next_lattice_is_the_next_automatic_size_that_fits():
+    sizes = adhesive_start._fft_sizes()
+    for n in (1200, 1280, 512):
+        nxt = adhesive_start.next_lattice(n, max_seconds=1e9)
+        assert nxt == min(k for k in sizes if k > n) and nxt % 16 == 0
+    # the retry's time estimate (plan_grid's constants) must fit the time allowed
+    cells = 1280.0 ** 2
+    est = adhesive_start.SECONDS_PER_CELL_ITERATION * cells * adhesive_start.PULL_OFF_ITERATIONS
+    assert adhesive_start.next_lattice(1200, max_seconds=est * 0.99) is None
+    assert adhesive_start.next_lattice(1200, max_seconds=est * 1.01) == 1280
+    with pytest.raises(ValueError, match="max_seconds"):
+        adhesive_start.next_lattice(1200, max_seconds=0)
+
+
+def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(monkeypatch):
+    # the records are real BEM answers of a small sphere (mu = 2, N = 128): unconverged (5 CG
+    # iterations) and converged; the route's first lattice is made to return the first
+    from dhfield.bem.path import PathOptions
+
+    small = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    failed = adhesive_start._predicted_pull_off(small, PathOptions(progress=False, max_iter=5))
+    good = adhesive_start._predicted_pull_off(small, PathOptions(progress=False))
+    assert not failed.converged and good.converged
+    calls = []
+
+    def route(prob, opts, tol=None):
+        calls.append(prob.grid.nx)
+        return failed if len(calls) == 1 else good
+
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route)
+    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
+    n = adhesive_start.plan_grid(mu=10.0, beta0=0.4826).n_needed
+    assert calls == [n, adhesive_start.next_lattice(n)]
+    assert res.converged and res.W_star == good.W_star
+    assert f"N = {n} lattice" in res.note and res.elapsed == pytest.approx(failed.elapsed + good.elapsed)
+    # a converged first lattice is the answer; a failed one with no affordable next lattice is reported
+    calls.clear()
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None: calls.append(1) or good)
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [1]
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None: failed)
+    monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds: None)
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is failed
 
 
 @pytest.mark.parametrize("call", [lambda: adhesive_start.unloading_start(1.0, 0.9),
