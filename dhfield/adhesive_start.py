@@ -16,7 +16,8 @@ from the models:
 The grid: :func:`plan_grid` chooses the cells a case needs from the law's edge
 (:func:`dhfield.bem.solver.edge_width_ratio` <= 1, i.e. ``sqrt(dx dy) <= 2/(kappa mu^2)``)
 and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2) -- n x n cells for
-beta0 >= SHAPED_CELLS_MAX_BETA0, about square cells below (nx x ny, :func:`shaped_cells_y`:
+beta0 >= SHAPED_CELLS_MAX_BETA0, about square cells below (nx x ny, :func:`shaped_cells_y`,
+also on the predicted route below:
 n x n cells stretched along x put the Dugdale edge at a slender contact's tips near
 instability, and waste cells along y) -- estimates its memory
 and time, and names the analytic value to use instead
@@ -515,8 +516,7 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
     predicted : bool, optional
         Plan the automatic grid on the predicted route's domain (:func:`predicted_start`);
         default: for the Dugdale law at mu >= :data:`PREDICTED_MIN_MU` when ``n`` is not given
-        (the load-control route :func:`adhesive_pull_off` then takes), except on shaped grids
-        (beta0 < :data:`SHAPED_CELLS_MAX_BETA0`), which keep the coarse-to-fine route.
+        (the load-control route :func:`adhesive_pull_off` then takes, :func:`takes_predicted_route`).
 
     Returns
     -------
@@ -561,7 +561,7 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
     law_obj = law_from_name(law, mu, 1.0)
     zone = expected_zone_width(mu)
 
-    shaped = beta0 < SHAPED_CELLS_MAX_BETA0 and not predicted   # the predicted route solves n x n cells
+    shaped = beta0 < SHAPED_CELLS_MAX_BETA0
     if shaped:                  # the contact at pull-off must be resolved along both axes
         po = model.pull_off(mu=mu, beta0=beta0)
         contact_dx, contact_dy = (float(po.a_star) / AUTO_CONTACT_CELLS, float(po.b_star) / AUTO_CONTACT_CELLS)
@@ -748,11 +748,11 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         ny = plan.ny_needed if ny is None else ny
         if plan.predicted:
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
-            # lattice samples around GVG's pull-off, on a domain holding its zone (n x n cells)
+            # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             tol_route = PREDICTED_TOL if tol is None else tol
-            res = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin),
-                                      options, tol=tol_route)
-            n_next = None if res.converged else next_lattice(n, max_seconds)
+            res = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin,
+                                                        ny=ny), options, tol=tol_route)
+            n_next = None if res.converged else next_lattice(n, max_seconds, ny=ny)
             if n_next is None:
                 return res
             # a cold state the lattice traps (measured at beta0 = 0.5, mu = 10: stalled at N = 1200,
@@ -762,7 +762,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                    f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
                    f"N = {n_next}")
             again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
-                                                          margin=margin), options, tol=tol_route)
+                                                          margin=margin, ny=_scaled_cells(ny, n, n_next)),
+                                        options, tol=tol_route)
             return replace(again, note="; ".join(filter(None, (why, again.note))),
                            elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
@@ -990,11 +991,12 @@ def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", s
     -------
     bool
         True for an automatic grid under the default load-control search with the Dugdale law
-        at mu >= :data:`PREDICTED_MIN_MU` and beta0 >= :data:`SHAPED_CELLS_MAX_BETA0` (shaped
-        slender grids keep the coarse-to-fine route).
+        at mu >= :data:`PREDICTED_MIN_MU`, at every beta0 (slender contacts on shaped nx x ny
+        grids too: their coarse-to-fine route's relaxed states do not converge at mu = 10
+        either; measured: beta0 = 0.1 and 0.3 unfinished after 1840 CPU s).
     """
     return bool(n is None and law == "dugdale" and control == "load" and search == "located" and nested is None
-                and float(mu) >= PREDICTED_MIN_MU and float(beta0) >= SHAPED_CELLS_MAX_BETA0)
+                and float(mu) >= PREDICTED_MIN_MU)
 
 
 def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
@@ -1062,7 +1064,7 @@ def _gvg_md_start(mu, beta0):
     return approach, (ratio * float(gvg["a_star"]) + w, ratio * float(gvg["b_star"]) + w)
 
 
-def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
+def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN, ny=None) -> NondimensionalProblem:
     """The paper's problem (Dugdale law) on the predicted route's domain with its start (:func:`predicted_start`).
 
     Parameters
@@ -1077,6 +1079,8 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
         Unloading steps (4 to 1e6) [-].
     margin : float, default DOMAIN_MARGIN
         As in :func:`predicted_start` [-].
+    ny : int, optional
+        Cells along y (even, 8 to 65536) [-]; default ``n``.
 
     Returns
     -------
@@ -1084,9 +1088,10 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
         :func:`dhfield.bem.pull_off.paper_problem` with :func:`predicted_start`.
     """
     n = check_cells(n)
+    ny = n if ny is None else check_cells(ny, "ny")
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    return paper_problem(mu=mu, beta0=beta0, n=n, start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps,
-                                                                        margin=margin))
+    return paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
+                         start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))
 
 
 def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
@@ -1115,7 +1120,12 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
                                                                 "(elliptic_transition) instead"))))
 
 
-def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS):
+def _scaled_cells(ny, n, n_next) -> int:
+    """Cells along y of the lattice of ``n_next`` cells along x with the cells' shape of ``n`` x ``ny`` (even)."""
+    return int(2 * math.ceil(ny * n_next / n / 2))
+
+
+def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):
     """The next automatic grid size above ``n`` for a retry, or None when it does not fit.
 
     A cold state of the predicted route can be trapped by its lattice: at beta0 = 0.5, mu = 10
@@ -1130,6 +1140,9 @@ def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS):
         Cells per axis of the first lattice [-].
     max_seconds : float, default DEFAULT_MAX_SECONDS
         Time allowed [s]; the retry's estimate (as :func:`plan_grid`'s) must fit in it.
+    ny : int, optional
+        Cells along y of the first lattice [-] (default ``n``); the retry keeps the cells'
+        shape (``ny`` scaled as ``n``, even).
 
     Returns
     -------
@@ -1138,11 +1151,12 @@ def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS):
         ``n`` whose estimated memory and time fit; None when there is none.
     """
     n = check_cells(n)
+    ny = n if ny is None else check_cells(ny, "ny")
     max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
     nxt = next((k for k in _fft_sizes() if k > n), None)
     if nxt is None:
         return None
-    cells = float(nxt) * float(nxt)
+    cells = float(nxt) * float(_scaled_cells(ny, n, nxt))
     limit = memory_limit()
     fits = limit is None or PATH_BYTES_PER_CELL * cells <= limit
     return nxt if fits and SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS <= max_seconds else None

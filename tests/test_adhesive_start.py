@@ -198,7 +198,8 @@ def _paper_edge_ratio_xy(mu, nx, ny, start):
 @pytest.mark.parametrize("mu, beta0", [(5.0, 0.1806), (5.0, 0.1), (10.0, 0.1806), (1.0, 0.3), (5.0, 0.05)])
 def test_slender_automatic_grid_has_about_square_cells_resolving_the_zone_on_both_axes(mu, beta0):
     plan = adhesive_start.plan_grid(mu=mu, beta0=beta0)
-    start = adhesive_start.unloading_start(mu=mu, beta0=beta0)
+    # at mu >= PREDICTED_MIN_MU the plan is made on the predicted route's domain
+    start = (adhesive_start.predicted_start if plan.predicted else adhesive_start.unloading_start)(mu=mu, beta0=beta0)
     nx, ny = plan.n_needed, plan.ny_needed
     assert (plan.n, plan.ny) == (nx, ny) and ny < nx
     dx, dy = 2 * start.half_width_x / nx, 2 * start.half_width_y / ny
@@ -363,6 +364,10 @@ def test_next_lattice_is_the_next_automatic_size_that_fits():
     assert adhesive_start.next_lattice(1200, max_seconds=est * 1.01) == 1280
     with pytest.raises(ValueError, match="max_seconds"):
         adhesive_start.next_lattice(1200, max_seconds=0)
+    # a shaped lattice keeps its cells' shape: 2560 x 480 -> 2880 x 540, whose estimate must fit
+    est = adhesive_start.SECONDS_PER_CELL_ITERATION * 2880.0 * 540.0 * adhesive_start.PULL_OFF_ITERATIONS
+    assert adhesive_start.next_lattice(2560, max_seconds=est * 1.01, ny=480) == 2880
+    assert adhesive_start.next_lattice(2560, max_seconds=est * 0.99, ny=480) is None
 
 
 def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(monkeypatch):
@@ -391,7 +396,7 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None: calls.append(1) or good)
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [1]
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None: failed)
-    monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds: None)
+    monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds, ny=None: None)
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is failed
 
 
@@ -415,5 +420,5 @@ def test_one_route_rule_for_the_plan_and_the_solve():
     for kw in (dict(control="displacement"), dict(search="bracket"), dict(n=1440), dict(law="exponential"),
                dict(nested=True)):
         assert not adhesive_start.takes_predicted_route(beta0=0.4826, mu=10.0, **kw), kw
-    assert not adhesive_start.takes_predicted_route(beta0=0.3, mu=10.0)     # shaped grids keep their route
+    assert adhesive_start.takes_predicted_route(beta0=0.3, mu=10.0)         # shaped grids too (nx x ny)
     assert not adhesive_start.takes_predicted_route(beta0=0.4826, mu=5.0)   # below PREDICTED_MIN_MU
