@@ -30,7 +30,7 @@ def test_timeout_record_says_what_each_case_reached(tmp_path):
     lines = se._attempts(tmp_path)
     assert set(lines) == {(0.5, 10.0, 1), (0.5, 10.0, 2), (1.0, 10.0, 1), (1.0, 10.0, 2)}
     assert lines[(0.5, 10.0, 1)].startswith("finished (status ok) in the case store trial.nc.cases/")
-    assert "rerun the part to merge it" in lines[(0.5, 10.0, 1)]
+    assert "build reads the case from the store" in lines[(0.5, 10.0, 1)]
     assert lines[(1.0, 10.0, 2)].startswith("failed in part trial (RuntimeError: refused before solving)")
     for key in ((0.5, 10.0, 2), (1.0, 10.0, 1)):
         line = lines[key]
@@ -55,3 +55,16 @@ def test_part_config_carries_the_time_allowed(tmp_path):
     a, b = load_config(plain), load_config(longer)
     assert a.max_seconds is None and b.max_seconds == 4000.0
     assert a.axes["grid_level"] == (2,) and a.fingerprint() == b.fingerprint()
+
+
+def test_build_reads_the_cases_a_timed_out_part_finished(tmp_path, monkeypatch):
+    """A part stopped at its timeout writes no sweep output; its finished cases come from its case store,
+    the failed and unfinished ones do not."""
+    monkeypatch.setitem(se.PARTS, "trial", ((0.5, 1.0), (10.0,), (1, 2)))
+    _timed_out_part(tmp_path)
+    cases = se._sweep_cases(tmp_path)
+    assert set(cases) == {(0.5, 10.0)} and set(cases[(0.5, 10.0)]) == {1}
+    case = cases[(0.5, 10.0)][1]
+    assert case["W_star"] == -0.65 and case["status"] == "ok" and "case store trial.nc.cases/" in case["source"]
+    (tmp_path / "trial.timeout.json").unlink()          # no timeout record: the store is not read
+    assert se._sweep_cases(tmp_path) == {}

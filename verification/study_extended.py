@@ -205,7 +205,7 @@ def _attempts(work_dir) -> dict:
                         "reached)")
             elif st[0] == "finished":
                 line = (f"finished (status {st[1]}) in the case store {store_dir.name}/ before {stop}; the part's "
-                        "sweep output was not written: rerun the part to merge it (the store is resumed)")
+                        "sweep output was not written, so build reads the case from the store")
             else:
                 line = f"failed in part {r['part']} ({st[1]}), before {stop}"
             out[(round(float(b), _KEY), round(float(m), _KEY), int(lv))] = line
@@ -333,6 +333,8 @@ def _sweep_cases(work_dir):
     for name in PARTS:
         path = Path(work_dir) / f"{name}.nc"
         if not path.is_file():
+            for key, lv, case in _stored_cases(work_dir, name):
+                cases.setdefault(key, {})[lv] = case
             continue
         with xr.open_dataset(path) as ds:
             ds = ds.sel(law="dugdale")
@@ -356,6 +358,53 @@ def _sweep_cases(work_dir):
                             commit=str(c["adhesive_commit"].values), command=str(c["adhesive_command"].values),
                             finished=str(c["adhesive_finished"].values))
     return cases
+
+
+def _finite(v) -> bool:
+    """True for a finite number (a flag stored as a float)."""
+    return bool(np.isfinite(v))
+
+
+def _stored_cases(work_dir, name):
+    """Cases a part stopped at its timeout had finished: ``(key, level, case)`` from its case store.
+
+    A part that hits its hard timeout writes no sweep output, but each case it finished is in its
+    case store (``<key>.nc``, :class:`dhfield.sweep.store.CaseStore`) with the same values and
+    provenance the output would hold; the store's key indexes the part's axes (beta0, mu,
+    grid_level, law) of :data:`PARTS`.  Nothing without the part's ``<name>.timeout.json``.
+    """
+    from dhfield.io import read_netcdf
+    from dhfield.sweep.store import output_paths
+
+    if not (Path(work_dir) / f"{name}.timeout.json").is_file():
+        return []
+    store_dir = output_paths(Path(work_dir) / f"{name}.nc")[1]
+    beta0, mu, levels = PARTS[name]
+    out = []
+    for ib, b in enumerate(beta0):
+        for im, m in enumerate(mu):
+            for il, lv in enumerate(levels):
+                path = store_dir / ("adhesive__" + "_".join(f"{i:05d}" for i in (ib, im, il, 0)) + ".nc")
+                if not path.is_file():
+                    continue
+                ds = read_netcdf(path)
+                a = ds.attrs
+
+                def get(k):
+                    return float(ds[k]) if k in ds else float("nan")
+
+                out.append(((round(float(b), _KEY), round(float(m), _KEY)), int(lv), _case(
+                    **{k: get(k) for k in ("W_star", "a_star", "c_star", "delta_star", "W_star_error", "b_star",
+                                           "d_star", "nx", "ny", "half_width_x", "half_width_y", "iterations",
+                                           "n_steps", "wall_seconds", "cpu_seconds")},
+                    converged=int(get("converged")) if _finite(get("converged")) else -1,
+                    resolved=int(get("resolved")) if _finite(get("resolved")) else -1, status=str(a.get("status", "")),
+                    search=str(a.get("case_search", "")), message=str(a.get("message", "")),
+                    source=(f"dhfield sweep (verification.study_extended part {name}, grid_level {int(lv)}; read "
+                            f"from its case store {store_dir.name}/: the part stopped at its timeout)"),
+                    commit=str(a.get("case_commit", "")), command=str(a.get("case_command", "")),
+                    finished=str(a.get("case_finished", "")))))
+    return out
 
 
 def _truth_of_levels(per):
