@@ -77,9 +77,9 @@ PARTS = {
     "cheap-wide": ((0.5, 0.8, 1.0), (0.1, 3.0), (1, 2)),
     "cheap-slender": ((0.1, 0.1806, 0.3), (3.0,), (1, 2)),
     "high-mu": (BETA0, (10.0,), (1, 2)),
-    "high-mu-wide": ((0.5, 0.8), (10.0,), (1,)),            # the predicted route (beta0 >= 0.45)
+    "high-mu-wide": ((0.5, 0.8), (10.0,), (1,)),            # the predicted route, n x n cells
     "high-mu-sphere": ((1.0,), (10.0,), (1,)),              # the predicted route on the sphere
-    "high-mu-slender": ((0.1, 0.1806, 0.3), (10.0,), (1,)),  # shaped grids, the relaxed route
+    "high-mu-slender": ((0.1, 0.1806, 0.3), (10.0,), (1,)),  # the predicted route on shaped grids
     "high-mu-level2": (BETA0, (10.0,), (2,)),                # planned, refused if beyond memory/time
     "high-mu-trial": ((0.5,), (10.0,), (1,)),
 }

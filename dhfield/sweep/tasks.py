@@ -218,7 +218,7 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
     is given (:func:`dhfield.adhesive_start.plan_grid`, on the domain of the route it takes);
     level k >= 2 is k times the cells per axis of the plan made for an explicit grid
     (``predicted=False``: the domain an explicit ``n`` is solved on), the same grid as
-    k x level 1 except where level 1 takes the predicted route (mu >= 7.5, beta0 >= 0.45).
+    k x level 1 except where level 1 takes the predicted route (mu >= 7.5).
 
     Parameters
     ----------
