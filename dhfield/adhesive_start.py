@@ -1104,8 +1104,8 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     ``options.tol``; :func:`adhesive_pull_off` passes :data:`PREDICTED_TOL` unless told).  When that
     fails the record says so (``converged`` False) and its ``note`` names why and the analytic W*
     to use instead (:func:`dhfield.elliptic_transition.pull_off_nondimensional`).  No other route
-    is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`), and the
-    fall-back to it ran for hours at beta0 = 0.5, mu = 10 before answering nothing.
+    is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`); the
+    fall-back to it had answered nothing after 9 min at beta0 = 0.5, mu = 10 (2 threads).
     """
     from . import elliptic_transition
     from .bem.pull_off import predicted_path, pull_off_result
@@ -1130,9 +1130,12 @@ def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):
 
     A cold state of the predicted route can be trapped by its lattice: at beta0 = 0.5, mu = 10
     the cold state on N = 1200 stalled at a zone-fraction residual of 2e-3 for 300 outer
-    iterations, while on N = 1280 (the next size) it converged in 149
-    (``verification/bem_high_mu.py``).  :func:`adhesive_pull_off` then solves the case once more on
-    this lattice: finer, so as resolved as ``n``.
+    iterations, while on N = 1280 (the next size) it converged in 149 (measured with the route's
+    own states, 2 threads; ``dhfield solve --beta0 0.5 --mu 10`` says both lattices in its note).
+    Over the mu = 10 cases of the extended study (``verification.study_extended``) 4 of 6 first
+    lattices trapped the cold state and 2 of 4 second ones did too (beta0 = 0.8 and 1): a retry,
+    not a cure.  :func:`adhesive_pull_off` then solves the case once more on this lattice: finer,
+    so as resolved as ``n``.
 
     Parameters
     ----------
