@@ -341,3 +341,24 @@ def test_sweep_keeps_each_records_validity_warning(tmp_path, capsys):
                "--out", str(tmp_path / "cli.nc")])
     assert rc == 0
     assert "1 pull-off point(s) outside their model's validated range" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("converged, status, grid_advice", [(False, "not_converged", False),
+                                                             (True, "unresolved", True)])
+def test_adhesive_message_advises_a_finer_grid_only_for_a_converged_unresolved_case(tmp_path, monkeypatch,
+                                                                                   converged, status, grid_advice):
+    """A case that did not converge keeps the solver's own reason (at mu = 10: trapped lattices, the analytic W*);
+    "increase n" is the advice for a converged path on a grid too coarse for its zone only."""
+    fields = engine._FIELDS["adhesive"]
+
+    def solver(**params):
+        rec = {k: float("nan") for k in fields}
+        rec.update({k: "" for k in engine._TEXT_FIELDS.get("adhesive", ())})
+        rec.update(converged=converged, resolved=False, message="the solver's reason")
+        return rec
+
+    monkeypatch.setattr(engine, "adhesive_case", solver)
+    out = engine._run_cases("adhesive", [("adhesive__00000_00000_00000_00000", {})], tmp_path / "store", "fp")
+    rec, st, message, computed = out["adhesive__00000_00000_00000_00000"]
+    assert st == status and computed and message.startswith("the solver's reason")
+    assert (engine.UNRESOLVED_MESSAGE in message) == grid_advice

@@ -632,7 +632,7 @@ def _run_cases(quantity, cases, store_dir, fingerprint, command=""):
                 rec["converged"], rec["resolved"] = float(converged), float(resolved)
                 message = rec.pop("message")
                 status = "ok" if converged and resolved else "not_converged" if not converged else "unresolved"
-                if not resolved:
+                if converged and not resolved:   # an unconverged case has its own reason
                     message = "; ".join(m for m in (message, UNRESOLVED_MESSAGE) if m)
         except Exception as exc:  # noqa: BLE001 - recorded with its message, the sweep goes on
             shape = (len(params["a_star"]),) if dims else ()
