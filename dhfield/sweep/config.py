@@ -385,6 +385,25 @@ def _int_at_least(key, value, low):
     return value
 
 
+def _positive_number(key, value, valid):
+    """``value`` as a float if it is None or a finite number > 0 (not a bool), else :func:`_fail`.
+
+    ``valid`` is the text of the valid range, or a function returning it (built only on failure).
+    """
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+        _fail(key, valid() if callable(valid) else valid, value)
+    return float(value)
+
+
+def _max_seconds_range() -> str:
+    """Valid range of ``[bem] max_seconds`` (imports the solver's default only when an error is raised)."""
+    from ..adhesive_start import DEFAULT_MAX_SECONDS
+
+    return f"a finite number > 0 (estimated time allowed per adhesive BEM case, s; default {DEFAULT_MAX_SECONDS:g})"
+
+
 _ADDRESS = re.compile(r"^tcp://(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+)(:\d{1,5})?$")
 _OTHER_PROTOCOL = re.compile(r"^([A-Za-z][A-Za-z0-9+.-]*)://")
 
@@ -512,20 +531,11 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     if npts > MAX_POINTS:
         _fail("axes", f"at most {MAX_POINTS} grid points in all", npts)
 
-    half_width = bem.get("half_width")
-    if half_width is not None and (isinstance(half_width, bool) or not isinstance(half_width, (int, float))
-                                   or not math.isfinite(half_width) or half_width <= 0):
-        _fail("bem.half_width", "a number > 0 (domain half-width in c_r)", half_width)
+    half_width = _positive_number("bem.half_width", bem.get("half_width"), "a number > 0 (domain half-width in c_r)")
     sampling = bem.get("sampling", "average")
     if sampling not in _SAMPLINGS:
         _fail("bem.sampling", f"one of {_SAMPLINGS}", sampling)
-    max_seconds = bem.get("max_seconds")
-    if max_seconds is not None and (isinstance(max_seconds, bool) or not isinstance(max_seconds, (int, float))
-                                    or not math.isfinite(max_seconds) or max_seconds <= 0):
-        from ..adhesive_start import DEFAULT_MAX_SECONDS
-
-        _fail("bem.max_seconds", f"a finite number > 0 (estimated time allowed per adhesive BEM case, s; default "
-              f"{DEFAULT_MAX_SECONDS:g})", max_seconds)
+    max_seconds = _positive_number("bem.max_seconds", bem.get("max_seconds"), _max_seconds_range)
     workers = run.get("workers")
     if workers is not None:
         _int_at_least("run.workers", workers, 1)
@@ -541,8 +551,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     return SweepConfig(axes=axes, quantities=tuple(dict.fromkeys(quantities)), models=tuple(dict.fromkeys(models)),
                        control=control, chunk_points=chunk,
                        curve_a_star=(float(curve_a[0]), float(curve_a[1])), curve_points=curve_points,
-                       half_width=None if half_width is None else float(half_width), sampling=sampling,
-                       max_seconds=None if max_seconds is None else float(max_seconds), workers=workers,
+                       half_width=half_width, sampling=sampling, max_seconds=max_seconds, workers=workers,
                        scheduler=scheduler, out=out)
 
 
