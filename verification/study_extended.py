@@ -182,6 +182,7 @@ def _attempts(work_dir) -> dict:
     case is said to be not finished, not attempted: with W workers, W of them at most were running
     at the stop (the sweep starts the costliest first) and the rest were not reached.
     """
+    from dhfield.sweep.engine import case_key
     from dhfield.sweep.store import output_paths
 
     out = {}
@@ -193,8 +194,7 @@ def _attempts(work_dir) -> dict:
         store_dir = output_paths(Path(work_dir) / f"{r['part']}.nc")[1]
         cases = [((ib, im, il), (b, m, lv)) for ib, b in enumerate(r["beta0"]) for im, m in enumerate(r["mu"])
                  for il, lv in enumerate(r["levels"])]
-        states = {idx: _store_state(store_dir, "adhesive__" + "_".join(f"{i:05d}" for i in (*idx, 0)))
-                  for idx, _ in cases}
+        states = {idx: _store_state(store_dir, case_key("adhesive", (*idx, 0))) for idx, _ in cases}
         ended = sum(st is not None for st in states.values())
         for idx, (b, m, lv) in cases:
             st = states[idx]
@@ -325,6 +325,13 @@ def _slender_cases():
     return cases
 
 
+#: Values of a case the sweep stores (on the dim ``model`` for :data:`_SWEEP_MODEL_VALUES`), read by
+#: :func:`_sweep_cases` from a part's output and by :func:`_stored_cases` from its case store.
+_SWEEP_MODEL_VALUES = ("W_star", "a_star", "c_star", "delta_star")
+_SWEEP_VALUES = (*_SWEEP_MODEL_VALUES, "W_star_error", "b_star", "d_star", "nx", "ny", "half_width_x", "half_width_y",
+                 "iterations", "n_steps", "wall_seconds", "cpu_seconds")
+
+
 def _sweep_cases(work_dir):
     """Cases of every part's sweep output under ``work_dir``: (beta0, mu) -> {level: case}."""
     import xarray as xr
@@ -348,21 +355,14 @@ def _sweep_cases(work_dir):
                             continue   # not computed (an interrupted sweep)
                         st = _STATUS_SWEEP[int(a["status"])]
                         cases.setdefault(key, {})[int(lv)] = _case(
-                            **{k: float(a[k]) for k in ("W_star", "a_star", "c_star", "delta_star")},
-                            **{k: float(c[k]) for k in ("W_star_error", "b_star", "d_star", "nx", "ny",
-                                                        "half_width_x", "half_width_y", "iterations", "n_steps",
-                                                        "wall_seconds", "cpu_seconds")},
+                            **{k: float(a[k]) for k in _SWEEP_MODEL_VALUES},
+                            **{k: float(c[k]) for k in _SWEEP_VALUES if k not in _SWEEP_MODEL_VALUES},
                             converged=int(c["converged"]), resolved=int(c["resolved"]), status=st,
                             search=str(c["adhesive_search"].values), message=str(c["adhesive_message"].values),
                             source=f"dhfield sweep (verification.study_extended part {name}, grid_level {int(lv)})",
                             commit=str(c["adhesive_commit"].values), command=str(c["adhesive_command"].values),
                             finished=str(c["adhesive_finished"].values))
     return cases
-
-
-def _finite(v) -> bool:
-    """True for a finite number (a flag stored as a float)."""
-    return bool(np.isfinite(v))
 
 
 def _stored_cases(work_dir, name):
@@ -374,6 +374,7 @@ def _stored_cases(work_dir, name):
     grid_level, law) of :data:`PARTS`.  Nothing without the part's ``<name>.timeout.json``.
     """
     from dhfield.io import read_netcdf
+    from dhfield.sweep.engine import case_key
     from dhfield.sweep.store import output_paths
 
     if not (Path(work_dir) / f"{name}.timeout.json").is_file():
@@ -384,21 +385,15 @@ def _stored_cases(work_dir, name):
     for ib, b in enumerate(beta0):
         for im, m in enumerate(mu):
             for il, lv in enumerate(levels):
-                path = store_dir / ("adhesive__" + "_".join(f"{i:05d}" for i in (ib, im, il, 0)) + ".nc")
+                path = store_dir / (case_key("adhesive", (ib, im, il, 0)) + ".nc")
                 if not path.is_file():
                     continue
                 ds = read_netcdf(path)
                 a = ds.attrs
-
-                def get(k):
-                    return float(ds[k]) if k in ds else float("nan")
-
+                num = {k: float(ds[k]) if k in ds else float("nan") for k in _SWEEP_VALUES}
+                flags = {k: int(ds[k]) if k in ds and np.isfinite(float(ds[k])) else -1 for k in ("converged", "resolved")}
                 out.append(((round(float(b), _KEY), round(float(m), _KEY)), int(lv), _case(
-                    **{k: get(k) for k in ("W_star", "a_star", "c_star", "delta_star", "W_star_error", "b_star",
-                                           "d_star", "nx", "ny", "half_width_x", "half_width_y", "iterations",
-                                           "n_steps", "wall_seconds", "cpu_seconds")},
-                    converged=int(get("converged")) if _finite(get("converged")) else -1,
-                    resolved=int(get("resolved")) if _finite(get("resolved")) else -1, status=str(a.get("status", "")),
+                    **num, **flags, status=str(a.get("status", "")),
                     search=str(a.get("case_search", "")), message=str(a.get("message", "")),
                     source=(f"dhfield sweep (verification.study_extended part {name}, grid_level {int(lv)}; read "
                             f"from its case store {store_dir.name}/: the part stopped at its timeout)"),

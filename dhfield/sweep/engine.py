@@ -72,7 +72,7 @@ _TEXT_FIELDS = {"adhesive": ADHESIVE_TEXT_FIELDS + ("command",)}
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
            "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV", "SINGLE_THREAD_ENV", "WORKER_START_TIMEOUT",
-           "QUANTITY_MODULES", "probe_scheduler", "MAX_HANDSHAKE_BYTES", "UNRESOLVED_MESSAGE"]
+           "QUANTITY_MODULES", "probe_scheduler", "MAX_HANDSHAKE_BYTES", "UNRESOLVED_MESSAGE", "case_key"]
 
 #: Seconds to wait for a dask.distributed scheduler (connection and handshake) before reporting it.
 CONNECT_TIMEOUT = 5.0
@@ -718,8 +718,23 @@ def _case_index(config: SweepConfig, quantity):
     return groups
 
 
-def _key(quantity, idx):
-    return f"{quantity}__" + "_".join(f"{i:05d}" for i in idx)
+def case_key(quantity, idx) -> str:
+    """Key of a case in a sweep's case store: ``<quantity>__<i>_<j>_...`` (its indices along the axes, 5 digits).
+
+    Parameters
+    ----------
+    quantity : str
+        One of :data:`dhfield.sweep.config.QUANTITIES`.
+    idx : sequence of int
+        The case's index along each axis of the quantity, in the order of the output's dims
+        (adhesive: beta0, mu, n or grid_level, law).
+
+    Returns
+    -------
+    str
+        The file stem under which :class:`dhfield.sweep.store.CaseStore` keeps the case.
+    """
+    return f"{quantity}__" + "_".join(f"{int(i):05d}" for i in idx)
 
 
 # --------------------------------------------------------------------------- result
@@ -822,7 +837,7 @@ def _run(config, executor, store, final, progress):
     for q in ("load_curve", "bem_field", "adhesive"):
         if q in config.quantities:
             for group in _case_index(config, q):
-                cases = [(_key(q, idx), params) for idx, params in group]
+                cases = [(case_key(q, idx), params) for idx, params in group]
                 cost = sum(0.0 if store.is_done(key) else expected_seconds(q, params) for key, params in cases)
                 tasks.append((cost, q, cases))
     # Longest-processing-time order: dask's schedulers start ready tasks of equal standing in
