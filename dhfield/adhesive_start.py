@@ -57,7 +57,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
-           "PREDICTED_MIN_MU", "PREDICTED_TOL", "takes_predicted_route", "next_lattice"]
+           "PREDICTED_MIN_MU", "PREDICTED_TOL", "takes_predicted_route", "next_lattice", "pull_off_cost"]
 
 
 def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
@@ -247,6 +247,29 @@ SECONDS_PER_CELL_ITERATION = 6e-8
 PULL_OFF_ITERATIONS = 6000
 #: Default time a pull-off with an automatic grid may be estimated to take before it is refused [s].
 DEFAULT_MAX_SECONDS = 1800.0
+
+
+def pull_off_cost(nx, ny) -> tuple:
+    """Estimated memory [bytes] and time [s] of one load-control pull-off on ``nx`` x ``ny`` cells.
+
+    ``PATH_BYTES_PER_CELL nx ny`` and ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS``
+    (measured constants, above): the estimates of :func:`plan_grid`, :func:`next_lattice` and
+    :func:`dhfield.sweep.tasks.automatic_grid`.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells along x and y of the full grid [-].
+
+    Returns
+    -------
+    memory_bytes : float
+        Estimated peak memory [bytes].
+    seconds : float
+        Estimated wall time [s] (a factor 2-3 either way on a loaded machine).
+    """
+    cells = float(nx) * float(ny)
+    return PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS
 #: An explicit grid whose ``edge_width_ratio`` exceeds this has no stable discrete state: its
 #: states do not converge (measured: they converge at 1.10-1.18 and not at 2.1-3.8; at 3.07,
 #: beta0 = 0.4826, mu = 11.4, N = 512, the cold start stalls at residual 4e-2 after 189 outer
@@ -592,11 +615,10 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
     else:
         n = check_cells(n)
         ny = n if ny is None else check_cells(ny, "ny")
-    cells = float(n_needed) * float(ny_needed)
+    memory_bytes, seconds = pull_off_cost(n_needed, ny_needed)
     w_star = float(elliptic_transition.pull_off_nondimensional(beta0, mu).W_star)
     return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n, ny), law_obj)),
-                    PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
-                    memory_limit(), max_seconds, w_star, int(ny), int(ny_needed), predicted)
+                    memory_bytes, seconds, memory_limit(), max_seconds, w_star, int(ny), int(ny_needed), predicted)
 
 
 @dataclass(frozen=True)
@@ -1159,10 +1181,10 @@ def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):
     nxt = next((k for k in _fft_sizes() if k > n), None)
     if nxt is None:
         return None
-    cells = float(nxt) * float(_scaled_cells(ny, n, nxt))
+    memory_bytes, seconds = pull_off_cost(nxt, _scaled_cells(ny, n, nxt))
     limit = memory_limit()
-    fits = limit is None or PATH_BYTES_PER_CELL * cells <= limit
-    return nxt if fits and SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS <= max_seconds else None
+    fits = limit is None or memory_bytes <= limit
+    return nxt if fits and seconds <= max_seconds else None
 
 
 def _half_grid_locates(plan, law, margin) -> bool:

@@ -252,8 +252,7 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
         If ``grid_level`` is not an integer in [1, MAX_GRID_LEVEL], or ``max_seconds`` is not
         a finite number > 0.
     """
-    from ..adhesive_start import (DEFAULT_MAX_SECONDS, PATH_BYTES_PER_CELL, PULL_OFF_ITERATIONS,
-                                  SECONDS_PER_CELL_ITERATION, plan_grid, takes_predicted_route)
+    from ..adhesive_start import DEFAULT_MAX_SECONDS, plan_grid, pull_off_cost, takes_predicted_route
     from .config import MAX_GRID_LEVEL
 
     if isinstance(grid_level, bool) or not isinstance(grid_level, (int, np.integer)) \
@@ -265,10 +264,9 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
     plan = plan_grid(beta0=beta0, mu=mu, law=law, predicted=predicted,
                      max_seconds=DEFAULT_MAX_SECONDS if max_seconds is None else max_seconds)
     nx, ny = k * int(plan.n_needed), k * int(plan.ny_needed)
-    cells = float(nx) * float(ny)
+    memory_bytes, seconds = pull_off_cost(nx, ny)
     return {"nx": nx, "ny": ny, "automatic": k == 1, "predicted": bool(plan.predicted),
-            "seconds": SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS,
-            "memory_bytes": PATH_BYTES_PER_CELL * cells, "memory_limit": plan.memory_limit,
+            "seconds": seconds, "memory_bytes": memory_bytes, "memory_limit": plan.memory_limit,
             "max_seconds": float(plan.max_seconds), "analytic_W_star": float(plan.analytic_W_star)}
 
 
