@@ -68,3 +68,14 @@ def test_build_reads_the_cases_a_timed_out_part_finished(tmp_path, monkeypatch):
     assert case["W_star"] == -0.65 and case["status"] == "ok" and "case store trial.nc.cases/" in case["source"]
     (tmp_path / "trial.timeout.json").unlink()          # no timeout record: the store is not read
     assert se._sweep_cases(tmp_path) == {}
+
+
+def test_build_lists_under_not_run_only_the_cases_not_run():
+    """A stopped part's record has a line for each of its cases; a finished one is not listed as not run."""
+    attempts = {(0.1, 10.0, 1): "not finished when part p stopped", (0.3, 10.0, 1): "finished (status ok) in the store"}
+    lines = se._not_run_lines([(0.1, 10.0, 1)], attempts)
+    assert lines[0] == "not run (1): beta0 0.1 mu 10 level 1"
+    assert lines[1] == "  beta0 0.1 mu 10 level 1: not finished when part p stopped"
+    assert lines[2].startswith("read from the case store of a part stopped at its timeout (1)")
+    assert lines[3] == "  beta0 0.3 mu 10 level 1: finished (status ok) in the store"
+    assert se._not_run_lines([], {}) == ["not run (0): none"]

@@ -552,11 +552,24 @@ def build(work_dir, out) -> int:
             if in_study[i, j]:
                 print(f"  beta0 {b:6g} mu {m:5g}: {truth['W_star_truth'][i, j]:+.6f} +- "
                       f"{truth['W_star_truth_error'][i, j]:.2g}  [{truth_src[i, j] or 'none'}]")
-    print(f"not run ({len(not_run)}): " + ("; ".join(f"beta0 {b:g} mu {m:g} level {lv}" for b, m, lv in not_run)
-                                          or "none"))
-    for (b, m, lv), line in sorted(attempts.items()):
-        print(f"  beta0 {b:g} mu {m:g} level {lv}: {line}")
+    for line in _not_run_lines(not_run, attempts):
+        print(line)
     return 0
+
+
+def _not_run_lines(not_run, attempts) -> list:
+    """The build's closing lines: the cases not run, each with what a stopped part's record says of it,
+    then the cases read from a stopped part's case store (under their own header, not as 'not run')."""
+    missing = {(round(float(b), _KEY), round(float(m), _KEY), int(lv)) for b, m, lv in not_run}
+    lines = [f"not run ({len(not_run)}): " + ("; ".join(f"beta0 {b:g} mu {m:g} level {lv}" for b, m, lv in not_run)
+                                             or "none")]
+    lines += [f"  beta0 {k[0]:g} mu {k[1]:g} level {k[2]}: {line}" for k, line in sorted(attempts.items())
+              if k in missing]
+    read = [(k, line) for k, line in sorted(attempts.items()) if k not in missing]
+    if read:
+        lines.append(f"read from the case store of a part stopped at its timeout ({len(read)}):")
+        lines += [f"  beta0 {k[0]:g} mu {k[1]:g} level {k[2]}: {line}" for k, line in read]
+    return lines
 
 
 def main(argv=None) -> int:
