@@ -286,17 +286,20 @@ def test_bad_max_seconds_names_the_key(value):
 def test_cli_bad_max_seconds_in_toml(tmp_path, capsys, toml):
     cfg = tmp_path / "bad.toml"
     cfg.write_text(_ADHESIVE_TOML + "[bem]\n" + toml)
-    assert "bem.max_seconds" in _cli_fails_before_work(tmp_path, capsys, [str(cfg)])
+    msg = _cli_fails_before_work(tmp_path, capsys, [str(cfg)])
+    assert "bem.max_seconds" in msg and "--max-seconds" not in msg      # typed in the file, not as a flag
 
 
 def test_cli_bad_max_seconds_flag(tmp_path, capsys):
     axes = ["--beta0", "0.5", "--mu", "10", "--grid-level", "2", "--quantities", "adhesive"]
     for value in ("0", "-1", "nan", "inf"):
-        assert "bem.max_seconds" in _cli_fails_before_work(tmp_path, capsys, [*axes, "--max-seconds", value])
+        assert "--max-seconds (bem.max_seconds) must be" in _cli_fails_before_work(tmp_path, capsys,
+                                                                                   [*axes, "--max-seconds", value])
     assert "--max-seconds" in _cli_fails_before_work(tmp_path, capsys, [*axes, "--max-seconds", "1h"])
     cfg = tmp_path / "t.toml"
     cfg.write_text(_ADHESIVE_TOML)
-    assert "bem.max_seconds" in _cli_fails_before_work(tmp_path, capsys, [str(cfg), "--max-seconds", "0"])
+    assert "--max-seconds (bem.max_seconds) must be" in _cli_fails_before_work(tmp_path, capsys,
+                                                                               [str(cfg), "--max-seconds", "0"])
 
 
 def test_cli_max_seconds_flag_reaches_the_config(tmp_path, monkeypatch):
@@ -341,3 +344,14 @@ def test_max_seconds_domain(value):
         with pytest.raises(ValueError, match=r"bem\.max_seconds") as exc:
             config_from_mapping(mapping)
         assert "\n" not in str(exc.value)
+
+
+@pytest.mark.parametrize("flags, named", [
+    (["--mu", "1", "--half-width", "-1"], "--half-width (bem.half_width) must be"),
+    (["--mu", "1", "--beta0", "2"], "--beta0 (axes.beta0) must be"),
+    (["--mu-geomspace", "-1", "10", "5"], "--mu-geomspace (axes.mu.geomspace) start/stop"),
+])
+def test_cli_error_names_the_flag_that_was_typed(tmp_path, capsys, flags, named):
+    """A bad value given as a flag is named by the flag, then by its config key."""
+    axes = ["--beta0", "0.5", "--grid-level", "1", "--quantities", "adhesive"]
+    assert named in _cli_fails_before_work(tmp_path, capsys, [*axes, *flags])

@@ -89,6 +89,27 @@ def _flag_mapping(args) -> dict:
     return {"axes": axes, "sweep": sweep, "bem": bem}
 
 
+def _from_flags(build, mapping, flags):
+    """``build(mapping)``; an error about a value that came from a flag names the flag before its config key.
+
+    The config's checks word their errors with the key (``bem.max_seconds must be ...``); a user who typed
+    ``--max-seconds 0`` reads ``--max-seconds (bem.max_seconds) must be ...``.
+    """
+    try:
+        return build(mapping)
+    except ValueError as e:
+        msg = str(e)
+        for section, keys in flags.items():
+            for key in keys:
+                name = f"{section}.{key}"
+                if msg.startswith((name + " ", name + ".")):
+                    token = msg.split(" ", 1)[0]   # e.g. axes.mu.geomspace
+                    value = keys[key]   # an axis given as --mu-geomspace is {'geomspace': [...]}
+                    flag = key + (f"_{next(iter(value))}" if isinstance(value, dict) and len(value) == 1 else "")
+                    raise ValueError(f"--{flag.replace('_', '-')} ({token}){msg[len(token):]}") from None
+        raise
+
+
 def run(args) -> int:
     from ..sweep import config_from_mapping, load_config, run_sweep
     from ..sweep.config import check_scheduler_address
@@ -101,11 +122,11 @@ def run(args) -> int:
         if args.max_seconds is not None:   # validated as the config's [bem] max_seconds
             mapping = config.as_dict()
             mapping["bem"]["max_seconds"] = args.max_seconds
-            config = config_from_mapping(mapping)
+            config = _from_flags(config_from_mapping, mapping, {"bem": {"max_seconds": args.max_seconds}})
     else:
         if not flag_mapping["axes"]:
             raise ValueError("give a CONFIG.toml or the axes as flags (e.g. --beta0 0.9 1 --mu-geomspace 0.1 10 50)")
-        config = config_from_mapping(flag_mapping)
+        config = _from_flags(config_from_mapping, flag_mapping, flag_mapping)
     from ..sweep.config import WORKERS_PER_CPU, max_workers
 
     if args.workers is not None and not 1 <= args.workers <= max_workers():
