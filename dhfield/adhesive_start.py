@@ -779,8 +779,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                 return res
             # a cold state the lattice traps (measured at beta0 = 0.5, mu = 10: stalled at N = 1200,
             # converged at N = 1280): once more on the next lattice, finer, so still resolved
-            worst = max((f["residual"] for f in res.failures), default=res.residual)
-            why = (f"the N = {n} lattice's states did not converge (worst residual {worst:.2g}, "
+            why = (f"the N = {n} lattice's states did not converge (worst residual {res.worst_residual:.2g}, "
                    f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
                    f"N = {n_next}")
             again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,

@@ -231,6 +231,13 @@ class PullOff(_Record):
         return tuple(g for g, k in (("si", "force"), ("spring", "machine_stiffness_star"), ("solver", "converged"))
                      if getattr(self, k) is not None)
 
+    @property
+    def worst_residual(self) -> float:
+        """Solver group: the largest residual of the unconverged states, else ``residual`` [-] (None without it)."""
+        if self.failures:
+            return max(f.get("residual", float("nan")) for f in self.failures)
+        return self.residual
+
 
 #: The two array groups of a load curve, less ``v`` (in both).
 _CURVE_ND = tuple(k for k in LOAD_CURVE_KEYS if k != "v")

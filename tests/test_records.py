@@ -165,3 +165,14 @@ def test_si_curves_match_their_nondimensional_cores():
     je = curves["jkr-elliptic"]
     assert je.geometry == "ellipse" and je.beta0 == 0.8
     np.testing.assert_allclose(je.ellipticity, je.semi_minor / je.semi_major, rtol=1e-12)  # b/a, rounded once
+
+
+def test_worst_residual_is_the_largest_unconverged_residual_else_the_records():
+    """One expression for the CLI and the lattice retry: the largest residual among the failures."""
+    base = pull_off_record("md", 0.9, 1.0, {"W_star": -0.8, "a_star": 1.0, "delta_star": 0.0},
+                           control="load", sin_skew=1.0, geometry="ellipse")
+    assert base.worst_residual is None                                   # no solver group
+    failed = base.replace(converged=False, residual=1e-5,
+                          failures=({"residual": 3e-3, "approach": -0.7}, {"residual": 7e-3, "approach": -0.8}))
+    assert failed.worst_residual == 7e-3
+    assert failed.replace(failures=()).worst_residual == 1e-5

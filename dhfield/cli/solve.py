@@ -402,9 +402,8 @@ def run(args) -> int:
         if args.plot is not None:
             print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
     if not res.converged:
-        worst = max((f.get("residual", float("nan")) for f in res.failures), default=res.residual)
-        why = "; ".join(filter(None, (f"{len(res.failures)} unconverged state(s), worst residual {worst:.3g}"
-                                      if res.failures else "", res.note)))
+        unconverged = f"{len(res.failures)} unconverged state(s), worst residual {res.worst_residual:.3g}"
+        why = "; ".join(filter(None, (unconverged if res.failures else "", res.note)))
         print(f"dhfield: solve did not converge for {where}: {why}", file=sys.stderr)
         return EXIT_UNCONVERGED
     if not rec["resolved"]:
