@@ -184,3 +184,60 @@ def test_relaxed_edge_is_as_wide_as_stability_wants_and_never_resolved():
     assert capped.edge_width_ratio > 1.0 and capped.min_spread == pytest.approx(2.0 / 7.0)
     assert relaxed.min_spread == pytest.approx(capped.edge_width_ratio * 2.0 / 7.0, rel=1e-12)
     assert not relaxed.resolved and not capped.resolved
+
+
+# --- the stretch step (issue 20: the predicted route's trapped cold states at mu = 10) ---------------------------
+def _sphere_state(n=128, mu=2.0, delta=0.3, symmetric=None):
+    grid = Grid.centered(n, 2.0)
+    x, y = grid.mesh()
+    law = DugdaleLaw(mu, 1.0 / mu)
+    prob = bem_solver.AdhesiveProblem(x * x / 2.0 + y * y / 2.0, grid, law, symmetric, 1, 1.0)
+    return prob, bem_solver.solve_problem(prob, delta, None, 1e-8, 20000)
+
+
+@pytest.mark.parametrize("symmetric", [True, False])
+def test_stretched_field_is_the_field_at_scaled_coordinates(symmetric):
+    """Bilinear interpolation is exact for a linear field: f(x, y) -> f(x/sx, y/sy) inside the grid."""
+    grid = Grid.centered(32, 2.0, ny=16, half_width_y=1.0)
+    law = DugdaleLaw(2.0, 0.5)
+    x, y = grid.mesh()
+    prob = bem_solver.AdhesiveProblem(x * x + y * y, grid, law, symmetric, 1, 1.0)
+    xw, yw = (prob.to_work(x), prob.to_work(y))
+    f = 3.0 * xw - 2.0 * yw + 1.0
+    assert np.array_equal(bem_solver._stretched(prob, f, 1.0, 1.0), f)
+    sx, sy = 1.07, 0.95
+    got = bem_solver._stretched(prob, f, sx, sy)
+    inside = ((xw / sx >= xw.min()) & (xw / sx <= xw.max()) & (yw / sy >= yw.min()) & (yw / sy <= yw.max()))
+    np.testing.assert_allclose(got[inside], (3.0 * xw / sx - 2.0 * yw / sy + 1.0)[inside], atol=1e-12)
+
+
+def test_stretch_step_undoes_a_stretch_of_a_solved_state_to_within_a_cell():
+    """A converged state stretched by (sx, sy) is stretched back: the product of the factors is 1
+    within a cell of the contact radius (the second moments locate the edge to a cell, not better)."""
+    prob, st = _sphere_state()
+    assert st.converged
+    p, s = prob.to_work(st.repulsive_pressure), prob.stress_of_state(st)
+    a = st.summary()["a"]
+    cell = prob.grid.dx / a
+    sigma0 = prob.law.max_stress
+    unchanged = bem_solver.stretch_step(prob, 0.3, p, s, 1e-6, 20000)
+    assert unchanged.factors == (1.0, 1.0)                      # a solution asks for no stretch
+    for sx, sy in [(1.03, 1.03), (1.02, 0.98)]:
+        ps = bem_solver._stretched(prob, p, sx, sy)
+        ss = np.clip(bem_solver._stretched(prob, s, sx, sy), 0.0, sigma0)
+        step = bem_solver.stretch_step(prob, 0.3, ps, ss, 1e-6, 20000)
+        assert abs(step.factors[0] * sx - 1.0) < cell and abs(step.factors[1] * sy - 1.0) < cell
+        assert step.iterations > 0 and np.all((step.stress >= 0) & (step.stress <= sigma0))
+
+
+def test_stretch_steps_leave_the_converged_state_unchanged():
+    """With a stretch step every few outer iterations the solver converges to the same state."""
+    prob, st = _sphere_state()
+    p, s = prob.to_work(st.repulsive_pressure), prob.stress_of_state(st)
+    ps = bem_solver._stretched(prob, p, 1.03, 1.03)
+    ss = np.clip(bem_solver._stretched(prob, s, 1.03, 1.03), 0.0, prob.law.max_stress)
+    for every in (None, 10):
+        again = bem_solver.solve_problem(prob, 0.3, bem_solver.Prediction(ps, ss), 1e-8, 20000, stretch_every=every)
+        assert again.converged
+        # both within the tolerance 1e-8 of h0 in the gap: the load agrees to far better than 1e-6
+        assert abs(again.load - st.load) < 1e-6 * abs(st.load)

@@ -251,6 +251,10 @@ class Branch:
         ContactState, e.g. the same approach on a coarser grid) or None; its
         ``states_solved`` and ``iterations`` attributes, when present, are
         reported as ``coarse_states`` and ``coarse_iterations``.
+    stretch_every : int, optional
+        Every this many outer iterations of a state, a stretch step
+        (:func:`dhfield.bem.solver.stretch_step`; ``stretch_every`` of
+        :func:`dhfield.bem.solver.solve_problem`).  None: none.
 
     Attributes
     ----------
@@ -260,9 +264,11 @@ class Branch:
         Record index -> ContactState, of the states held.
     """
 
-    def __init__(self, prob, tol, max_iter, *, label="path", progress=None, keep_states=False, warm_start=None):
+    def __init__(self, prob, tol, max_iter, *, label="path", progress=None, keep_states=False, warm_start=None,
+                 stretch_every=None):
         self.prob = prob
         self.tol, self.max_iter = float(tol), int(max_iter)
+        self.stretch_every = stretch_every
         self.keep_states = bool(keep_states)
         self.warm_start = warm_start
         self.records = []
@@ -317,7 +323,8 @@ class Branch:
         (int, ContactState)
             The record index and the state.
         """
-        st = solve_problem(self.prob, float(approach), guess, self.tol, self.max_iter)
+        st = solve_problem(self.prob, float(approach), guess, self.tol, self.max_iter,
+                           stretch_every=self.stretch_every)
         return self.record(st, phase), st
 
     def usable(self, i) -> bool:

@@ -507,6 +507,13 @@ def _vertex_path(b, problem, options):
 #: this fraction of the grid's discretisation error (:func:`discretisation_error`): below it one
 #: more fine state changes the stated error by less than this fraction.
 VERTEX_ERROR_FRACTION = 0.1
+#: The predicted route's states take a stretch step (:func:`dhfield.bem.solver.stretch_step`)
+#: every this many outer iterations until they converge.  Without it the cold state's zone,
+#: a few cells off GVG's prediction, creeps by a fraction of a cell per outer iteration and
+#: stalls, trapped by the lattice (measured at mu = 10 with the solver's 300-iteration cap:
+#: beta0 = 0.8 and 1 at N = 1280, residual 4e-4 and 7e-3, the load 1.1-1.3 % off); with it the
+#: same cold states converged in 90 and 133 outer iterations.
+PREDICTED_STRETCH_EVERY = 30
 
 
 def _dilated_start(branch, near, approach):
@@ -609,7 +616,7 @@ def predicted_path(problem, options):
     prob = problem.adhesive_problem(options.threads)
     cold = problem.path_start(prob).stress
     b = Branch(prob, options.tol, options.max_iter, label=f"predicted N={problem.grid.nx}",
-               progress=options.progress, keep_states=options.keep_states)
+               progress=options.progress, keep_states=options.keep_states, stretch_every=PREDICTED_STRETCH_EVERY)
 
     def solve(d):
         if any(b.approach(i) == d for i in range(len(b.records))):
