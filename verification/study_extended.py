@@ -81,6 +81,9 @@ PARTS = {
     "high-mu-sphere": ((1.0,), (10.0,), (1,)),              # the predicted route on the sphere
     "high-mu-slender": ((0.1, 0.1806, 0.3), (10.0,), (1,)),  # the predicted route on shaped grids
     "high-mu-level2": (BETA0, (10.0,), (2,)),                # planned, refused if beyond memory/time
+    # the cases the parts above left without an answer (trapped cold states, a timeout), run again
+    # with the predicted route's stretch step; a later part's case replaces an earlier part's
+    "high-mu-stretch": ((0.1, 0.8, 1.0), (10.0,), (1,)),
     "high-mu-trial": ((0.5,), (10.0,), (1,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
@@ -333,7 +336,11 @@ _SWEEP_VALUES = (*_SWEEP_MODEL_VALUES, "W_star_error", "b_star", "d_star", "nx",
 
 
 def _sweep_cases(work_dir):
-    """Cases of every part's sweep output under ``work_dir``: (beta0, mu) -> {level: case}."""
+    """Cases of every part's sweep output under ``work_dir``: (beta0, mu) -> {level: case}.
+
+    Parts are read in the order of :data:`PARTS`; a case in a later part replaces the same case of
+    an earlier one (a part that runs again the cases others left without an answer comes later).
+    """
     import xarray as xr
 
     cases = {}
