@@ -971,16 +971,24 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None):
 
 
 class StretchStep(NamedTuple):
-    """The result of :func:`stretch_step` (working arrays)."""
+    """Result of :func:`stretch_step` (working arrays of the problem's working grid).
 
-    #: Repulsive pressure solved for the stretched stress [stress].
-    pressure: np.ndarray
-    #: The stretched adhesive stress, in [0, sigma0] [stress].
-    stress: np.ndarray
-    #: Stretch factors along x and y of the stress returned [-].
-    factors: tuple
-    #: Inner CG iterations spent [-].
-    iterations: int
+    Parameters
+    ----------
+    pressure : ndarray
+        Repulsive pressure solved for the stretched stress [stress].
+    stress : ndarray
+        The stretched adhesive stress, in [0, sigma0] [stress].
+    factors : tuple of float
+        Stretch factors (sx, sy) along x and y of the stress returned [-].
+    iterations : int
+        Inner CG iterations spent on the search [-].
+    """
+
+    pressure: np.ndarray     #: repulsive pressure solved for the stretched stress [stress]
+    stress: np.ndarray       #: the stretched adhesive stress, in [0, sigma0] [stress]
+    factors: tuple           #: stretch factors (sx, sy) [-]
+    iterations: int          #: inner CG iterations spent [-]
 
 
 def _stretched(prob, f, sx, sy):
