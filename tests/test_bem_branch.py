@@ -82,3 +82,11 @@ def test_warm_start_of_another_grid_is_not_used(sphere):
     own = b.solve(nd.pull_off_approach, None, "unloading")[1]
     same = _branch(prob, warm_start=lambda d: own)
     assert same.external(nd.pull_off_approach) is own
+
+
+@pytest.mark.parametrize("bad", [0, -30, 2.5, True, "30"])
+def test_stretch_every_is_a_positive_integer_or_none(sphere, bad):
+    _, prob = sphere
+    assert _branch(prob, stretch_every=30).stretch_every == 30 and _branch(prob).stretch_every is None
+    with pytest.raises(ValueError, match="stretch_every must be None or an integer >= 1"):
+        _branch(prob, stretch_every=bad)

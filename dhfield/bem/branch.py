@@ -268,6 +268,10 @@ class Branch:
                  stretch_every=None):
         self.prob = prob
         self.tol, self.max_iter = float(tol), int(max_iter)
+        if stretch_every is not None and (isinstance(stretch_every, bool) or not isinstance(stretch_every, int)
+                                          or stretch_every < 1):
+            raise ValueError(f"stretch_every must be None or an integer >= 1 (outer iterations between stretch "
+                             f"steps); got {stretch_every!r}")
         self.stretch_every = stretch_every
         self.keep_states = bool(keep_states)
         self.warm_start = warm_start
