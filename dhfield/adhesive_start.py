@@ -777,8 +777,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             n_next = None if res.converged else next_lattice(n, max_seconds, ny=ny)
             if n_next is None:
                 return res
-            # a cold state the lattice traps (measured at beta0 = 0.5, mu = 10: stalled at N = 1200,
-            # converged at N = 1280): once more on the next lattice, finer, so still resolved
+            # a state the lattice still traps (before the stretch step: beta0 = 0.5, mu = 10 stalled at
+            # N = 1200, converged at N = 1280): once more on the next lattice, finer, so still resolved
             why = (f"the N = {n} lattice's states did not converge (worst residual {res.worst_residual:.2g}, "
                    f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
                    f"N = {n_next}")
@@ -1155,8 +1155,11 @@ def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):
     own states, 2 threads; ``dhfield solve --beta0 0.5 --mu 10`` says both lattices in its note).
     Over the mu = 10 cases of the extended study (``verification.study_extended``) 4 of 6 first
     lattices trapped the cold state and 2 of 4 second ones did too (beta0 = 0.8 and 1): a retry,
-    not a cure.  :func:`adhesive_pull_off` then solves the case once more on this lattice: finer,
-    so as resolved as ``n``.
+    not a cure.  The cure is the predicted route's stretch step
+    (:data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY`), which moves the whole zone edge at
+    once; this retry stays as the fall-back when a state still fails.
+    :func:`adhesive_pull_off` then solves the case once more on this lattice: finer, so as
+    resolved as ``n``.
 
     Parameters
     ----------
