@@ -76,6 +76,6 @@ def test_build_lists_under_not_run_only_the_cases_not_run():
     lines = se._not_run_lines([(0.1, 10.0, 1)], attempts)
     assert lines[0] == "not run (1): beta0 0.1 mu 10 level 1"
     assert lines[1] == "  beta0 0.1 mu 10 level 1: not finished when part p stopped"
-    assert lines[2].startswith("read from the case store of a part stopped at its timeout (1)")
+    assert lines[2].startswith("cases held, with what the timeout record of a stopped part says of them (1)")
     assert lines[3] == "  beta0 0.3 mu 10 level 1: finished (status ok) in the store"
     assert se._not_run_lines([], {}) == ["not run (0): none"]

@@ -567,7 +567,8 @@ def build(work_dir, out) -> int:
 
 def _not_run_lines(not_run, attempts) -> list:
     """The build's closing lines: the cases not run, each with what a stopped part's record says of it,
-    then the cases read from a stopped part's case store (under their own header, not as 'not run')."""
+    then the cases held (read from a stopped part's case store, or answered by a later part) with what the
+    stopped part's record says of them, under their own header, not as 'not run'."""
     missing = {(round(float(b), _KEY), round(float(m), _KEY), int(lv)) for b, m, lv in not_run}
     lines = [f"not run ({len(not_run)}): " + ("; ".join(f"beta0 {b:g} mu {m:g} level {lv}" for b, m, lv in not_run)
                                              or "none")]
@@ -575,7 +576,7 @@ def _not_run_lines(not_run, attempts) -> list:
               if k in missing]
     read = [(k, line) for k, line in sorted(attempts.items()) if k not in missing]
     if read:
-        lines.append(f"read from the case store of a part stopped at its timeout ({len(read)}):")
+        lines.append(f"cases held, with what the timeout record of a stopped part says of them ({len(read)}):")
         lines += [f"  beta0 {k[0]:g} mu {k[1]:g} level {k[2]}: {line}" for k, line in read]
     return lines
 
