@@ -241,3 +241,13 @@ def test_stretch_steps_leave_the_converged_state_unchanged():
         assert again.converged
         # both within the tolerance 1e-8 of h0 in the gap: the load agrees to far better than 1e-6
         assert abs(again.load - st.load) < 1e-6 * abs(st.load)
+
+
+def test_stretch_is_taken_only_when_the_state_stalls():
+    """A residual halving every few iterations is converging; one that stays put has stalled."""
+    converging = [0.4 * 0.8 ** k for k in range(30)]                # 0.8^15 = 0.035 over half a window
+    flat = [2e-2 * (1.0 + 0.1 * (-1) ** k) for k in range(30)]       # the mu = 10 trapped states
+    slow = [2e-2 * 0.97 ** k for k in range(30)]                    # 0.97^15 = 0.63 > STALL_RATIO
+    assert not bem_solver._stalled(converging, 30)
+    assert bem_solver._stalled(flat, 30) and bem_solver._stalled(slow, 30)
+    assert not bem_solver._stalled(flat[:29], 30)                     # not a whole window yet

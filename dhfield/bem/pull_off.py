@@ -508,11 +508,12 @@ def _vertex_path(b, problem, options):
 #: more fine state changes the stated error by less than this fraction.
 VERTEX_ERROR_FRACTION = 0.1
 #: The predicted route's states take a stretch step (:func:`dhfield.bem.solver.stretch_step`)
-#: every this many outer iterations until they converge.  Without it the cold state's zone,
-#: a few cells off GVG's prediction, creeps by a fraction of a cell per outer iteration and
-#: stalls, trapped by the lattice (measured at mu = 10 with the solver's 300-iteration cap:
-#: beta0 = 0.8 and 1 at N = 1280, residual 4e-4 and 7e-3, the load 1.1-1.3 % off); with it the
-#: same cold states converged in 90 and 133 outer iterations.
+#: every this many outer iterations while they stall (``STRETCH_STALL_RATIO``).  Without it
+#: the cold state's zone, a few cells off GVG's prediction, creeps by a fraction of a cell per
+#: outer iteration and stalls, trapped by the lattice (measured at mu = 10: beta0 = 0.8 and 1
+#: at N = 1280, residual 4e-4 and 7e-3 at the solver's 300-iteration cap; the first stretch
+#: step moved their load by 1.1-1.3 %); with it the same cold states converged in 90 and 113
+#: outer iterations (a stretch step every 30, ungated).
 PREDICTED_STRETCH_EVERY = 30
 
 
