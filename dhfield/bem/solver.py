@@ -1010,14 +1010,20 @@ class StretchStep(NamedTuple):
     iterations: int          #: inner CG iterations spent [-]
 
 
+def _working_axes(prob):
+    """Cell-centre x and y coordinates of the working grid (the quadrant x, y > 0 in symmetric mode)."""
+    g = prob.grid
+    if prob.symmetric:
+        return g.x[g.nx // 2:], g.y[g.ny // 2:]
+    return g.x, g.y
+
+
 def _stretched(prob, f, sx, sy):
     """A working-grid field stretched about the centre, f(x, y) -> f(x/sx, y/sy) (bilinear, edges held)."""
     from scipy.ndimage import map_coordinates
 
     g = prob.grid
-    x, y = g.x, g.y
-    if prob.symmetric:
-        x, y = x[g.nx // 2:], y[g.ny // 2:]
+    x, y = _working_axes(prob)
     i = (x / sx - x[0]) / g.dx
     j = (y / sy - y[0]) / g.dy
     ii, jj = np.meshgrid(i, j, indexing="ij")
@@ -1068,10 +1074,7 @@ def stretch_step(prob, delta, pressure, stress, itol, max_iter) -> StretchStep:
     law = prob.law
     sigma0, scale = law.max_stress, law.range
     zd = prob.z - delta
-    g = prob.grid
-    x, y = g.x, g.y
-    if prob.symmetric:
-        x, y = x[g.nx // 2:], y[g.ny // 2:]
+    x, y = _working_axes(prob)
     x2, y2 = (x * x)[:, None], (y * y)[None, :]
     w = stress / sigma0
     total = max(float(w.sum()), 1e-300)
