@@ -43,6 +43,12 @@ Usage::
     nice -n 10 .venv/bin/python -m verification.study_extended run high-mu-trial --timeout 600
     nice -n 10 .venv/bin/python -m verification.study_extended run high-mu-level2 --max-seconds 4000
     .venv/bin/python -m verification.study_extended build
+
+On a machine with an NVIDIA GPU and CuPy (the parts ``*-gpu``; the dask workers inherit the
+environment, and each case's ``command`` records the backend)::
+
+    DHFIELD_BEM_BACKEND=cupy python -m verification.study_extended run high-mu-level2-gpu \
+        --workers 6 --max-seconds 100000 --timeout 540
 """
 from __future__ import annotations
 
@@ -86,6 +92,10 @@ PARTS = {
     "high-mu-stretch": ((0.1, 0.8, 1.0), (10.0,), (1,)),
     "high-mu-level2-wide": ((0.5,), (10.0,), (2,)),          # one mu = 10 case at level 2 (2400^2 cells)
     "high-mu-trial": ((0.5,), (10.0,), (1,)),
+    # on a GPU (DHFIELD_BEM_BACKEND=cupy, dhfield.bem.backend): the level-2 cases a 2-core machine
+    # cannot afford (~1.5-3 CPU-hours each), and beta0 0.1 at level 1 again
+    "high-mu-level2-gpu": (BETA0, (10.0,), (2,)),
+    "high-mu-slender-gpu": ((0.1,), (10.0,), (1,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 

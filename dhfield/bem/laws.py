@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import check_positive
+from .backend import namespace_of
 
 __all__ = ["DugdaleLaw", "ExponentialLaw", "TractionLaw", "cell_fraction_below"]
 
@@ -77,9 +78,10 @@ def cell_fraction_below(excess, spread_x, spread_y):
     It is exact for a linear field and reduces to a step at ``s = 0`` when both
     spreads vanish.
     """
-    s = np.asarray(excess, dtype=float)
-    a0 = np.abs(np.asarray(spread_x, dtype=float))
-    b0 = np.abs(np.asarray(spread_y, dtype=float))
+    xp = namespace_of(excess)            # numpy, or CuPy on the GPU backend (dhfield.bem.backend)
+    s = xp.asarray(excess, dtype=float)
+    a0 = np.abs(xp.asarray(spread_x, dtype=float))
+    b0 = np.abs(xp.asarray(spread_y, dtype=float))
     a = np.maximum(a0, b0)
     b = np.minimum(a0, b0)
     h = 0.5 * (a + b)
@@ -147,7 +149,7 @@ class _TwoParameterLaw:
         ndarray
             The stress [Pa] (the law's formula: its class Notes).
         """
-        return self._stress(np.asarray(gap, dtype=float))
+        return self._stress(namespace_of(gap).asarray(gap, dtype=float))
 
     def energy(self, gap):
         """Evaluate the adhesive energy per unit area still to be paid to separate to infinity.
@@ -165,7 +167,7 @@ class _TwoParameterLaw:
         ndarray
             The energy per unit area [J/m^2].
         """
-        return self._energy(np.asarray(gap, dtype=float))
+        return self._energy(namespace_of(gap).asarray(gap, dtype=float))
 
     def as_dict(self) -> dict:
         """Return the law as a mapping.

@@ -85,6 +85,7 @@ import scipy.fft
 
 from .._validation import check_finite, check_positive
 from ._wisdom import load_wisdom, save_wisdom
+from .backend import array_module, check_backend, default_backend
 
 __all__ = [
     "MIN_CELLS",
@@ -92,6 +93,7 @@ __all__ = [
     "love_influence",
     "influence_coefficients",
     "HalfSpaceOperator",
+    "ArrayHalfSpaceOperator",
     "get_operator",
     "clear_operator_cache",
     "surface_displacement",
@@ -424,8 +426,14 @@ class HalfSpaceOperator:
     available) and computes the kernel spectrum once; each call then costs one
     forward and one inverse (pruned) transform, one multiplication by the real
     kernel spectrum and two copies.  Calls are serialised by a lock because the
-    work arrays are shared.
+    work arrays are shared.  Its arrays are numpy arrays (``backend = "fftw"``, ``xp = numpy``;
+    :mod:`dhfield.bem.backend`).
     """
+
+    #: Backend name (:mod:`dhfield.bem.backend`).
+    backend = "fftw"
+    #: Array module of the operator's input and output.
+    xp = np
 
     def __init__(self, grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
                  planner_effort="FFTW_MEASURE"):
@@ -548,15 +556,123 @@ class HalfSpaceOperator:
     displacement = __call__
 
 
+class ArrayHalfSpaceOperator:
+    """The DC-FFT operator of :class:`HalfSpaceOperator` on an array backend (numpy or CuPy).
+
+    The same discrete sum, evaluated with the backend's ``scipy.fft``-like module instead of
+    pyfftw plans: full grid, ``rfft2`` of the pressure zero-padded to ``2nx x 2ny`` times the real
+    kernel spectrum, unnormalised ``irfft2``; symmetry mode, DCT-II of the quadrant zero-padded to
+    ``nx x ny`` times the spectrum, DCT-III (the FFTW ``REDFT10``/``REDFT01`` pair of the module's
+    Conventions).  The kernel spectrum is computed on the host (``scipy.fft.dctn``, type 1) and
+    moved to the backend once.
+
+    Parameters
+    ----------
+    grid : Grid
+        The cell grid.
+    reduced_modulus : float, default 1
+        E* [Pa].
+    symmetric : bool, default False
+        Take and return the quadrant ``x > 0, y > 0`` of an even-even field; needs even nx, ny.
+    threads : int, optional
+        ``scipy.fft`` workers of the ``"numpy"`` backend (ignored by ``"cupy"``); default
+        :func:`default_threads`.
+    backend : {"numpy", "cupy"}, default "numpy"
+        Array backend (:mod:`dhfield.bem.backend`).
+
+    Notes
+    -----
+    Input and output are arrays of the backend (``xp``); a numpy input is moved to it.  Unlike
+    :class:`HalfSpaceOperator` it holds no shared work arrays, so calls need no lock.
+    """
+
+    def __init__(self, grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None, backend="numpy"):
+        if not isinstance(grid, Grid):
+            raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
+        backend = check_backend(backend)
+        if backend == "fftw":
+            raise ValueError("backend 'fftw' is HalfSpaceOperator's; ArrayHalfSpaceOperator takes 'numpy' or 'cupy'")
+        self.grid = grid
+        self.reduced_modulus = _check_spacing("reduced_modulus", reduced_modulus)
+        self.symmetric = bool(symmetric)
+        self.threads = default_threads() if threads is None else check_threads(threads)
+        self.backend = backend
+        self.xp, self._fft = array_module(backend)
+        if self.symmetric and not grid.is_even:
+            raise ValueError(f"symmetric mode needs even nx and ny; got nx={grid.nx}, ny={grid.ny}")
+        nx, ny = grid.shape
+        d = scipy.fft.dctn(influence_coefficients(grid, self.reduced_modulus), type=1, workers=self.threads)
+        if self.symmetric:
+            self.input_shape = (nx // 2, ny // 2)
+            spectrum = d[:nx, :ny] / (4.0 * nx * ny)      # DCT-II then DCT-III multiply by (2nx)(2ny)
+        else:
+            self.input_shape = (nx, ny)
+            spectrum = np.empty((2 * nx, ny + 1))
+            spectrum[: nx + 1] = d
+            spectrum[nx + 1:] = d[nx - 1:0:-1]            # the even wrap-around kernel's real DFT
+            spectrum /= 4.0 * nx * ny                     # the inverse DFT's normalisation
+        self._spectrum = self.xp.asarray(spectrum)
+        self._kw = {"workers": self.threads} if backend == "numpy" else {}
+
+    def __call__(self, pressure, out=None):
+        """Surface displacement at the cell centres [m].
+
+        Parameters
+        ----------
+        pressure : array_like
+            Cell pressures [Pa], shape ``input_shape``.
+        out : array, optional
+            Float64 array of the backend, of shape ``input_shape``, to write the result into.
+
+        Returns
+        -------
+        array
+            Displacement, same shape as ``pressure``, an array of the backend [m].
+        """
+        xp = self.xp
+        p = xp.asarray(pressure, dtype=xp.float64)
+        if p.shape != self.input_shape:
+            what = "quadrant (nx/2, ny/2)" if self.symmetric else "grid (nx, ny)"
+            raise ValueError(f"pressure must have the {what} shape {self.input_shape}; got {p.shape}")
+        if not math.isfinite(float(p.sum())):
+            raise ValueError("pressure must be finite (Pa)")
+        rows, cols = self.input_shape
+        nx, ny = self.grid.shape
+        fft = self._fft
+        if self.symmetric:
+            buf = xp.zeros((nx, ny))
+            buf[:rows, :cols] = p
+            w = fft.dctn(buf, type=2, **self._kw)
+            w *= self._spectrum
+            r = fft.dctn(w, type=3, **self._kw)
+        else:
+            buf = xp.zeros((2 * nx, 2 * ny))
+            buf[:rows, :cols] = p
+            w = fft.rfft2(buf, **self._kw)
+            w *= self._spectrum
+            r = fft.irfft2(w, s=(2 * nx, 2 * ny), norm="forward", **self._kw)
+        if out is None:
+            return xp.ascontiguousarray(r[:rows, :cols])
+        if out.shape != self.input_shape:
+            raise ValueError(f"out must be a float64 array of shape {self.input_shape}")
+        out[...] = r[:rows, :cols]
+        return out
+
+    displacement = __call__
+
+
 @functools.lru_cache(maxsize=16)
-def _cached_operator(grid, reduced_modulus, symmetric, threads, planner_effort):
+def _cached_operator(grid, reduced_modulus, symmetric, threads, planner_effort, backend):
+    if backend != "fftw":
+        return ArrayHalfSpaceOperator(grid, reduced_modulus, symmetric=symmetric, threads=threads,
+                                      backend=backend)
     return HalfSpaceOperator(grid, reduced_modulus, symmetric=symmetric, threads=threads,
                              planner_effort=planner_effort)
 
 
 def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
-                 planner_effort="FFTW_MEASURE") -> HalfSpaceOperator:
-    """Return the cached :class:`HalfSpaceOperator` for this grid (built on first use).
+                 planner_effort="FFTW_MEASURE", backend=None):
+    """Return the cached operator for this grid (built on first use).
 
     Parameters
     ----------
@@ -571,21 +687,28 @@ def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=No
     planner_effort : str, default "FFTW_MEASURE"
         FFTW planner flag, one of ``FFTW_ESTIMATE``, ``FFTW_MEASURE``,
         ``FFTW_PATIENT``, ``FFTW_EXHAUSTIVE``.
+    backend : str, optional
+        Array backend, one of ``"fftw"``, ``"numpy"``, ``"cupy"``
+        (:mod:`dhfield.bem.backend`); default :func:`dhfield.bem.backend.default_backend`.
 
     Returns
     -------
-    HalfSpaceOperator
-        The operator, shared by every call with the same arguments.
+    HalfSpaceOperator or ArrayHalfSpaceOperator
+        The operator (``"fftw"``: :class:`HalfSpaceOperator`), shared by every call with the
+        same arguments.
 
     Raises
     ------
     ValueError
-        If ``threads``, ``reduced_modulus`` or ``planner_effort`` is out of
+        If ``threads``, ``reduced_modulus``, ``planner_effort`` or ``backend`` is out of
         range.
     """
     threads = default_threads() if threads is None else check_threads(threads)
     e = _check_spacing("reduced_modulus", reduced_modulus)
-    return _cached_operator(grid, e, bool(symmetric), threads, planner_effort)
+    if planner_effort not in _PLANNER_EFFORTS:
+        raise ValueError(f"planner_effort must be one of {_PLANNER_EFFORTS}; got {planner_effort!r}")
+    backend = default_backend() if backend is None else check_backend(backend)
+    return _cached_operator(grid, e, bool(symmetric), threads, planner_effort, backend)
 
 
 def clear_operator_cache() -> None:

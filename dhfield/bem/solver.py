@@ -90,6 +90,7 @@ import numpy as np
 from scipy.fft import next_fast_len
 
 from .._validation import check_finite, check_positive
+from .backend import array_module, namespace_of, to_host
 from .laws import DugdaleLaw, cell_fraction_below, check_law
 from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, quadrant, unfold_quadrant
 from .state import ContactState
@@ -213,6 +214,10 @@ class AdhesiveProblem:
         E* [stress].
     relaxed_edge : bool, default False
         Widen the Dugdale edge beyond its cap 2 h0 (see above).
+    backend : str, optional
+        Array backend of the working arrays (:mod:`dhfield.bem.backend`); default
+        ``$DHFIELD_BEM_BACKEND`` or ``"fftw"``.  The working arrays (``z``, and those of the
+        solve) are the backend's; :meth:`to_full` returns numpy arrays.
 
     Raises
     ------
@@ -221,7 +226,8 @@ class AdhesiveProblem:
         shape, ``law`` is not a traction law, or ``symmetric=True`` for an uneven problem.
     """
 
-    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus, *, relaxed_edge=False):
+    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus, *, relaxed_edge=False,
+                 backend=None):
         if not isinstance(grid, Grid):
             raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
         z = check_finite("initial_gap", initial_gap, "initial gap z(x, y), length")
@@ -235,8 +241,9 @@ class AdhesiveProblem:
             raise ValueError("symmetric=True needs even nx, ny and an initial_gap even in x and in y")
         self.symmetric = bool(symmetric)
         self.grid = grid
-        self.op = get_operator(grid, reduced_modulus, symmetric=self.symmetric, threads=threads)
-        self.z = quadrant(z) if self.symmetric else np.ascontiguousarray(z)
+        self.op = get_operator(grid, reduced_modulus, symmetric=self.symmetric, threads=threads, backend=backend)
+        self.xp = self.op.xp
+        self.z = self.work_array(quadrant(z) if self.symmetric else z)
         self.z_full = z
         # self-influence K00 (centre of a loaded cell), for the cold-start pressure
         e = float(reduced_modulus)
@@ -260,19 +267,36 @@ class AdhesiveProblem:
             # edge, and resolved = False: only a warm start for a finer grid, never an answer)
             self.min_spread = want if relaxed_edge else min(want, 2.0 * self.law.range)
 
-    def to_full(self, q):
-        """Return a working-grid field on the full grid.
+    def work_array(self, a):
+        """Return an array as a contiguous float array of the working backend (moved there if need be).
 
         Parameters
         ----------
-        q : ndarray
+        a : array_like
+            Field on the working grid.
+
+        Returns
+        -------
+        array
+            ``a`` as an array of ``self.xp`` (no copy when it already is one).
+        """
+        return self.xp.ascontiguousarray(self.xp.asarray(a, dtype=float))
+
+    def to_full(self, q):
+        """Return a working-grid field on the full grid, on the host.
+
+        Parameters
+        ----------
+        q : array
             Field on the working grid (the quadrant in symmetric mode).
 
         Returns
         -------
         ndarray
-            The field on the full grid (unfolded in symmetric mode, else ``q`` itself).
+            The field on the full grid as a numpy array (unfolded in symmetric mode, else
+            ``q`` itself on the fftw and numpy backends).
         """
+        q = to_host(q)
         return unfold_quadrant(q) if self.symmetric else q
 
     def to_work(self, f):
@@ -285,10 +309,12 @@ class AdhesiveProblem:
 
         Returns
         -------
-        ndarray
-            Its quadrant in symmetric mode (a copy), else ``f`` as a contiguous array.
+        array
+            Its quadrant in symmetric mode (a copy), else ``f`` as a contiguous array, on the
+            working backend.
         """
-        return quadrant(f) if self.symmetric else np.ascontiguousarray(f)
+        f = to_host(f)
+        return self.xp.ascontiguousarray(self.xp.asarray(quadrant(f) if self.symmetric else f))
 
     def gradient_spreads(self, h):
         """Compute the gap's variation across each cell, for the sub-cell Dugdale edge.
@@ -432,12 +458,20 @@ def _extended_kernel(grid, reduced_modulus):
     return np.ascontiguousarray(np.concatenate([k[:, :0:-1], k], axis=1))
 
 
+@functools.lru_cache(maxsize=4)
+def _backend_kernel(grid, reduced_modulus, backend):
+    """:func:`_extended_kernel` as an array of the backend (a copy on the GPU)."""
+    ext = _extended_kernel(grid, reduced_modulus)
+    return ext if backend in ("fftw", "numpy") else array_module(backend)[0].asarray(ext)
+
+
 def _add_point_loads(op, h, cells, amounts):
     """h += K(amounts at cells) by direct summation (4 mirror images in symmetric mode)."""
-    ext = _extended_kernel(op.grid, op.reduced_modulus)
+    ext = _backend_kernel(op.grid, op.reduced_modulus, op.backend)
     nx, ny = op.grid.shape
     mx, my = h.shape
-    for (i, j), a in zip(zip(*cells), amounts):
+    cells = tuple(to_host(c).tolist() for c in cells)
+    for (i, j), a in zip(zip(*cells), to_host(amounts).tolist()):
         if op.symmetric:
             rows = (slice(nx - 1 - i, nx - 1 - i + mx), slice(nx + i, nx + i + mx))
             cols = (slice(ny - 1 - j, ny - 1 - j + my), slice(ny + j, ny + j + my))
@@ -463,7 +497,7 @@ def _nested_cold_start(op, g0, scale, tol, max_iter, k0):
     if min(grid.nx, grid.ny) < 2 * NESTED_COLD_MIN_N or grid.nx % 4 or grid.ny % 4:
         return None, 0
     coarse = Grid(grid.nx // 2, grid.ny // 2, 2.0 * grid.dx, 2.0 * grid.dy)
-    cop = get_operator(coarse, op.reduced_modulus, symmetric=op.symmetric, threads=op.threads)
+    cop = get_operator(coarse, op.reduced_modulus, symmetric=op.symmetric, threads=op.threads, backend=op.backend)
     gc = 0.25 * (g0[0::2, 0::2] + g0[1::2, 0::2] + g0[0::2, 1::2] + g0[1::2, 1::2])
     # the self-influence of a cell scales with its size
     pc, _, it, _ = solve_contact_pressure(cop, gc, np.zeros_like(gc), scale, tol, max_iter, 2.0 * k0)
@@ -525,7 +559,7 @@ def _box(op, mask, margin, max_fraction):
     if kx * ky > max_fraction * mx * my or min(sub) < MIN_CELLS:
         return None
     sub_op = get_operator(Grid(sub[0], sub[1], grid.dx, grid.dy), op.reduced_modulus,
-                          symmetric=op.symmetric, threads=op.threads)
+                          symmetric=op.symmetric, threads=op.threads, backend=op.backend)
     return sub_op, (slice(i0, i0 + kx), slice(j0, j0 + ky))
 
 
@@ -613,7 +647,8 @@ def solve_contact_pressure(op, free_gap, pressure, scale, tol, max_iter, self_in
 
 def _contact_pressure(op, g0, p, scale, tol, max_iter, k0, stress):
     """The body of :func:`solve_contact_pressure`: (p, h, iterations, error)."""
-    p = np.array(p, dtype=float, copy=True)
+    xp = op.xp
+    p = xp.array(p, dtype=float, copy=True)
     np.maximum(p, 0.0, out=p)
     if stress is not None:
         return _active_box_cg(op, g0, p, scale, tol, max_iter, k0, stress)
@@ -621,7 +656,7 @@ def _contact_pressure(op, g0, p, scale, tol, max_iter, k0, stress):
     if box is None:
         return _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress)
     sub_op, sl = box
-    pc, _, it, _ = _constrained_cg(sub_op, np.ascontiguousarray(g0[sl]), np.ascontiguousarray(p[sl]),
+    pc, _, it, _ = _constrained_cg(sub_op, xp.ascontiguousarray(g0[sl]), xp.ascontiguousarray(p[sl]),
                                    scale, tol, max_iter, k0, None, exact_gap=False)
     p = np.zeros_like(g0)
     p[sl] = pc
@@ -645,8 +680,8 @@ def _active_box_cg(op, g0, p, scale, tol, max_iter, k0, stress):
     if box is None:
         return _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=h)
     sub_op, sl = box
-    pb = np.ascontiguousarray(p[sl])
-    hb = np.ascontiguousarray(h[sl])
+    pb = op.xp.ascontiguousarray(p[sl])
+    hb = op.xp.ascontiguousarray(h[sl])
     pc, _, it, _ = _constrained_cg(sub_op, hb - sub_op(pb), pb.copy(), scale, tol, max_iter, k0, None,
                                    h=hb.copy(), exact_gap=False)   # (p is updated in place)
     dp = np.zeros_like(p)
@@ -784,9 +819,10 @@ class AndersonMixing:
             a singular least-squares system, which also resets the history).
         """
         xf, ff = x.ravel(), f.ravel()
+        xp = namespace_of(xf)
         if self.dx is None:
-            self.dx = np.empty((self.m, xf.size))
-            self.df = np.empty((self.m, xf.size))
+            self.dx = xp.empty((self.m, xf.size))
+            self.df = xp.empty((self.m, xf.size))
         if self.x_prev is not None:
             k = self.count % self.m
             np.subtract(xf, self.x_prev, out=self.dx[k])
@@ -802,8 +838,10 @@ class AndersonMixing:
             gram = dfm @ dfm.T
             reg = 1e-12 * max(float(np.trace(gram)), 1e-300)
             try:
-                gamma = np.linalg.solve(gram + reg * np.eye(n), dfm @ ff)
+                gamma = xp.linalg.solve(gram + reg * xp.eye(n), dfm @ ff)
             except np.linalg.LinAlgError:
+                gamma = None
+            if gamma is None or not bool(xp.all(xp.isfinite(gamma))):   # (CuPy does not raise)
                 self.reset()
                 return new.reshape(x.shape)
             new -= gamma @ dxm + gamma @ dfm
@@ -916,7 +954,7 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None):
     gain = min(1.0, prob.min_spread / scale) if (law is not None and prob.min_spread > 0.0) else 1.0
     inner_tol = 0.1 * tol * gain
     if isinstance(guess, Prediction):
-        p = guess.pressure.copy()
+        p = prob.work_array(guess.pressure).copy()
     elif guess is not None and guess.repulsive_pressure is not None:
         p = prob.to_work(guess.repulsive_pressure).copy()
     else:
@@ -932,7 +970,7 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None):
     sigma0 = law.max_stress
     # initial adhesive stress
     if isinstance(guess, Prediction):
-        s = guess.stress.copy()
+        s = prob.work_array(guess.stress).copy()
     elif guess is not None:
         s = prob.stress_of_state(guess)
     else:
@@ -1020,14 +1058,17 @@ def _working_axes(prob):
 
 def _stretched(prob, f, sx, sy):
     """A working-grid field stretched about the centre, f(x, y) -> f(x/sx, y/sy) (bilinear, edges held)."""
-    from scipy.ndimage import map_coordinates
+    if prob.xp is np:
+        from scipy.ndimage import map_coordinates
+    else:
+        from cupyx.scipy.ndimage import map_coordinates
 
     g = prob.grid
     x, y = _working_axes(prob)
     i = (x / sx - x[0]) / g.dx
     j = (y / sy - y[0]) / g.dy
     ii, jj = np.meshgrid(i, j, indexing="ij")
-    return map_coordinates(f, [ii, jj], order=1, mode="nearest")
+    return map_coordinates(f, prob.xp.asarray(np.stack([ii, jj])), order=1, mode="nearest")
 
 
 def stretch_step(prob, delta, pressure, stress, itol, max_iter) -> StretchStep:
@@ -1075,7 +1116,7 @@ def stretch_step(prob, delta, pressure, stress, itol, max_iter) -> StretchStep:
     sigma0, scale = law.max_stress, law.range
     zd = prob.z - delta
     x, y = _working_axes(prob)
-    x2, y2 = (x * x)[:, None], (y * y)[None, :]
+    x2, y2 = prob.xp.asarray((x * x)[:, None]), prob.xp.asarray((y * y)[None, :])
     w = stress / sigma0
     total = max(float(w.sum()), 1e-300)
     mx = max(float((w * x2).sum()) / total, 1e-300)

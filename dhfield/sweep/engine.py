@@ -833,6 +833,9 @@ def _run(config, executor, store, final, progress):
     import dask
 
     command = shlex.join(sys.argv)   # provenance of each case computed by this run
+    backend = os.environ.get("DHFIELD_BEM_BACKEND", "").strip()
+    if backend:                      # the BEM's array backend (dhfield.bem.backend) is part of how it ran
+        command = f"DHFIELD_BEM_BACKEND={shlex.quote(backend)} {command}"
     tasks = []
     for q in ("load_curve", "bem_field", "adhesive"):
         if q in config.quantities:
