@@ -57,7 +57,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
-           "PREDICTED_MIN_MU", "PREDICTED_TOL", "takes_predicted_route", "next_lattice", "pull_off_cost"]
+           "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice", "pull_off_cost"]
 
 
 def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
@@ -684,8 +684,14 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         Load control: the minimum of the unloading load.  Displacement control:
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
-    search : {'located', 'bracket', 'march'}, default 'located'
+    search : {'located', 'bracket', 'march', 'predicted'}, default 'located'
         Load control only (the route taken is the record's ``search``).
+        'predicted': the high-mu route (:func:`dhfield.bem.pull_off.predicted_path`: lattice samples around
+        GVG's pull-off, states to :data:`PREDICTED_TOL`, the stretch step) on its own domain,
+        also on an explicit ``n`` x ``ny`` grid (no lattice retry there); Dugdale law only.
+        The default takes it by itself on automatic grids at mu >= :data:`PREDICTED_MIN_MU`
+        (:func:`takes_predicted_route`); asking for it on an explicit grid makes a refined
+        grid of the same route and domain (``dhfield sweep``'s grid levels at those mu).
         'located' (default) is 'bracket' with the minimum located on coarser
         grids first (below).  'bracket': cold-start at the analytic
         pull-off approach from its cohesive zone (:func:`unloading_start`) and
@@ -754,15 +760,20 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         if np.ndim(value) != 0:
             raise ValueError(f"{name} must be a scalar (one BEM case per call); got an array of shape "
                              f"{np.shape(value)}")
-    if search not in SEARCHES:
-        raise ValueError(f"search must be one of {SEARCHES} (load-control path); got {search!r}")
+    if search not in SEARCHES + (PREDICTED_SEARCH,):
+        raise ValueError(f"search must be one of {SEARCHES + (PREDICTED_SEARCH,)} (load-control path); "
+                         f"got {search!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
+    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load" and nested is None):
+        raise ValueError("search='predicted' needs law='dugdale', control='load' and options.nested None "
+                         f"(the predicted route); got law={law!r}, control={control!r}, nested={nested!r}")
     options = PathOptions(refine_levels=refine_levels, tol=DEFAULT_TOL if tol is None else tol,
                           max_iter=max_iter, threads=threads, keep_states=keep_states, progress=progress)
     if n is None:
         coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
-        predicted = takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control, search=search, nested=nested)
+        predicted = search == PREDICTED_SEARCH or takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control,
+                                                                        search=search, nested=nested)
         plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=predicted)
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
@@ -788,6 +799,10 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             return replace(again, note="; ".join(filter(None, (why, again.note))),
                            elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
+    elif search == PREDICTED_SEARCH:
+        # the route on the caller's grid (a refined grid of the same route and domain): no retry
+        return _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny),
+                                   options, tol=PREDICTED_TOL if tol is None else tol)
     else:
         relaxed = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
@@ -980,6 +995,9 @@ PREDICTED_MIN_MU = 7.5
 #: error 0.0149 = 2.3 %); CG iterations 4983, 3858, 3145.  At mu = 10 (N = 1200): W* -0.644437 at
 #: 1e-6 (7103 CG) and 1e-5 (6283 CG), the same to six digits.
 PREDICTED_TOL = 1e-4
+#: The ``search`` of :func:`adhesive_pull_off` that asks for the predicted route, also on an explicit
+#: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
+PREDICTED_SEARCH = "predicted"
 
 
 def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None) -> bool:

@@ -319,6 +319,23 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the relaxed route (measured)
 
 
+def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeypatch):
+    # a refined grid level of the predicted route: the same route and domain on the caller's n x ny cells
+    calls = []
+    answer = SimpleNamespace(converged=False)
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
+                        lambda prob, opts, tol=None: calls.append((prob, tol)) or answer)
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted") is answer
+    prob, tol = calls[0]
+    ref = adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96, ny=64)
+    assert (prob.grid, tol) == (ref.grid, adhesive_start.PREDICTED_TOL)        # no lattice retry on it
+    assert len(calls) == 1
+    with pytest.raises(ValueError, match="search='predicted' needs law='dugdale'"):
+        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, law="exponential", search="predicted")
+    with pytest.raises(ValueError, match="search must be one of .*'predicted'"):
+        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, search="guess")
+
+
 def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugdale():
     # the predicted route on a small resolved grid (mu = 2, N = 128: lambda = 2.26): MD (Maugis 1992) is
     # exact on the sphere; the answer must lie within its own stated error (search + grid) of it

@@ -31,6 +31,7 @@ ROOT = Path(__file__).resolve().parent.parent
 #: the standard with the documentation site).  A new public module goes here.
 STRICT = (
     "dhfield.adhesive_start", "dhfield.bem.state", "dhfield.bem.operator", "dhfield.bem.solver",
+    "dhfield.bem.backend",
     "dhfield", "dhfield.adhesion", "dhfield.adhesion_map", "dhfield.bem", "dhfield.bem.continuation",
     "dhfield.bem_compliance", "dhfield.io.solve_plot",
     "dhfield.bem.branch", "dhfield.bem.pull_off", "dhfield.compliance", "dhfield.io.solution",

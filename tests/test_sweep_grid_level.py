@@ -62,10 +62,11 @@ def test_levels_are_the_librarys_plan():
     one, two = tasks.automatic_grid(0.1806, 3.0, 1), tasks.automatic_grid(0.1806, 3.0, 2)
     assert (one["nx"], one["ny"]) == (plan.n_needed, plan.ny_needed) and one["automatic"]
     assert (two["nx"], two["ny"]) == (2 * plan.n_needed, 2 * plan.ny_needed) and not two["automatic"]
-    # At mu >= 7.5 level 1 takes the predicted route (its own domain); level 2 doubles the explicit plan.
+    # At mu >= 7.5 level 1 takes the predicted route (its own domain); level 2 doubles it, same route.
     high = tasks.automatic_grid(0.5, 10.0, 1)
     assert high["predicted"] and high["nx"] == plan_grid(beta0=0.5, mu=10.0).n_needed
-    assert tasks.automatic_grid(0.5, 10.0, 2)["nx"] == 2 * plan_grid(beta0=0.5, mu=10.0, predicted=False).n_needed
+    two = tasks.automatic_grid(0.5, 10.0, 2)
+    assert two["predicted"] and (two["nx"], two["ny"]) == (2 * high["nx"], 2 * high["ny"])
     with pytest.raises(ValueError, match="grid_level"):
         tasks.automatic_grid(0.5, 1.0, 0)
 
@@ -206,12 +207,14 @@ def test_max_seconds_decides_the_refusal_of_a_level_before_solving(monkeypatch, 
     assert rec["W_star"] == -0.6 and len(calls) == 1
     kw = calls[0]
     assert (kw["n"], kw["ny"]) == (grid["nx"], grid["ny"])
+    assert kw["search"] == "predicted"                       # level 1's route and domain, refined
     assert isinstance(kw["options"], AdhesiveOptions) and kw["options"].max_seconds == allowed
     # level 1 and an explicit n: the solver plans (and refuses) with the same allowance
     tasks.adhesive_case(0.5, 10.0, grid_level=1, max_seconds=allowed)
     tasks.adhesive_case(0.5, 1.0, 64, max_seconds=allowed)
     assert "n" not in calls[1] and calls[1]["options"].max_seconds == allowed
     assert calls[2]["n"] == 64 and calls[2]["options"].max_seconds == allowed
+    assert "search" not in calls[1] and "search" not in calls[2]
     tasks.adhesive_case(0.5, 1.0, grid_level=1)              # none given: the library's default, no options
     assert "options" not in calls[3]
     for bad in (0.0, -1.0, float("nan"), float("inf")):

@@ -47,8 +47,12 @@ Usage::
 On a machine with an NVIDIA GPU and CuPy (the parts ``*-gpu``; the dask workers inherit the
 environment, and each case's ``command`` records the backend)::
 
-    DHFIELD_BEM_BACKEND=cupy python -m verification.study_extended run high-mu-level2-gpu \
-        --workers 6 --max-seconds 100000 --timeout 540
+    DHFIELD_BEM_BACKEND=cupy python -m verification.study_extended run high-mu-level2-gpu \\
+        --workers 1 --max-seconds 100000 --timeout 540
+
+Measured on an H100 (2026-11-26): neither case finished in 540 s, one worker, the process at 100 %
+of one CPU core; six cases on six workers finished none in 490 s.  The GPU route is bound by the
+host's kernel launches (``python -m verification.bench_backend``): not yet a way to level 2.
 """
 from __future__ import annotations
 
@@ -97,6 +101,9 @@ PARTS = {
     # at level 1 again
     "high-mu-level2-gpu": ((0.5, 1.0), (10.0,), (2,)),
     "high-mu-slender-gpu": ((0.1,), (10.0,), (1,)),
+    # level 2 by level 1's route and domain (the predicted route refined, search='predicted'):
+    # the sphere (MD exact) and 60 deg
+    "high-mu-level2-route": ((0.5, 1.0), (10.0,), (2,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 

@@ -216,9 +216,11 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
 
     Level 1 is the grid :func:`dhfield.adhesive_start.adhesive_pull_off` plans when no ``n``
     is given (:func:`dhfield.adhesive_start.plan_grid`, on the domain of the route it takes);
-    level k >= 2 is k times the cells per axis of the plan made for an explicit grid
-    (``predicted=False``: the domain an explicit ``n`` is solved on), the same grid as
-    k x level 1 except where level 1 takes the predicted route (mu >= 7.5).
+    level k >= 2 is k times its cells per axis, on the same domain and by the same route: where
+    level 1 takes the predicted route (mu >= 7.5, :func:`dhfield.adhesive_start.takes_predicted_route`)
+    the refined levels ask for it (``search='predicted'``), so that the levels differ by their
+    cells alone (before, they were solved by the located route on the larger domain of an
+    explicit grid: another route and domain, and 2-4x its cost).
 
     Parameters
     ----------
@@ -240,7 +242,7 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
     -------
     dict
         ``nx``, ``ny`` (cells along x and y [-]), ``automatic`` (True for level 1: the
-        solver plans it itself), ``predicted`` (level 1 on the predicted route),
+        solver plans it itself), ``predicted`` (every level on the predicted route),
         ``seconds`` and ``memory_bytes`` (the library's estimates for that grid [s],
         [bytes]), ``memory_limit`` (the memory one computation may claim, or None),
         ``max_seconds`` (the time allowed [s]: ``max_seconds``, or the library's default) and
@@ -260,7 +262,7 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
         raise ValueError(f"grid_level must be an integer in [1, {MAX_GRID_LEVEL}] (1: the automatic grid); "
                          f"got {grid_level!r}")
     k = int(grid_level)
-    predicted = k == 1 and takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control)
+    predicted = takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control)
     plan = plan_grid(beta0=beta0, mu=mu, law=law, predicted=predicted,
                      max_seconds=DEFAULT_MAX_SECONDS if max_seconds is None else max_seconds)
     nx, ny = k * int(plan.n_needed), k * int(plan.ny_needed)
@@ -359,6 +361,10 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         if not grid["automatic"]:
             _refuse_unaffordable(beta0, mu, grid_level, grid)
             kwargs.update(n=grid["nx"], ny=grid["ny"])
+            if grid["predicted"]:        # the route and domain of level 1, refined
+                from ..adhesive_start import PREDICTED_SEARCH
+
+                kwargs["search"] = PREDICTED_SEARCH
     t0, c0 = time.perf_counter(), time.process_time()
     res = adhesive_solver(solver)(**kwargs)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
