@@ -50,8 +50,9 @@ environment, and each case's ``command`` records the backend)::
     DHFIELD_BEM_BACKEND=cupy python -m verification.study_extended run high-mu-level2-gpu \\
         --workers 1 --max-seconds 100000 --timeout 540
 
-Measured on an H100 (2026-11-26): neither case finished in 540 s, one worker, the process at 100 %
-of one CPU core; six cases on six workers finished none in 490 s.  The GPU route is bound by the
+Measured on an H100 (2026-11-26), when level 2 still took the located route on the larger domain
+of an explicit grid: the first case did not finish in 540 s (one worker, the process at 100 % of
+one CPU core); six cases on six workers finished none in 490 s.  The GPU route is bound by the
 host's kernel launches (``python -m verification.bench_backend``): not yet a way to level 2.
 """
 from __future__ import annotations
