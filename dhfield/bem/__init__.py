@@ -2,6 +2,8 @@
 
 * :mod:`dhfield.bem.operator` -- the forward operator: Love's influence
   coefficients, DC-FFT convolution on pyfftw, cached plans, symmetry mode.
+* :mod:`dhfield.bem.backend` -- where the solver's arrays live: pyfftw (default), numpy with
+  ``scipy.fft``, or CuPy on a GPU (``$DHFIELD_BEM_BACKEND``); states are returned on the host.
 * :mod:`dhfield.bem.laws` -- traction-separation laws (Dugdale, exponential).
 * :mod:`dhfield.bem.state` -- :class:`ContactState`, the one typed BEM solution.
 * :mod:`dhfield.bem.solver` -- the self-consistent adhesive contact solver (one state).
