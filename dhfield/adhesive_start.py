@@ -772,8 +772,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                           max_iter=max_iter, threads=threads, keep_states=keep_states, progress=progress)
     if n is None:
         coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
-        predicted = search == PREDICTED_SEARCH or takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control,
-                                                                        search=search, nested=nested)
+        predicted = takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control, search=search, nested=nested)
         plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=predicted)
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
@@ -1016,13 +1015,14 @@ def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", s
     mu : float
         Tabor parameter of Eq. (35), > 0 [-].
     n : int, optional
-        Cells along x asked for; the route is taken by automatic grids only (``n`` None).
+        Cells along x asked for; by default the route is taken by automatic grids only (``n`` None).
     law : {'dugdale', 'exponential'}, default 'dugdale'
         Traction law.
     control : {'load', 'displacement'}, default 'load'
         Loading mode.
     search : str, default 'located'
-        Load-control search of :func:`adhesive_pull_off`.
+        Load-control search of :func:`adhesive_pull_off`; ``'predicted'`` (:data:`PREDICTED_SEARCH`)
+        asks for the route on any grid and at any mu.
     nested : bool, optional
         :attr:`AdhesiveOptions.nested`; the route needs the default (None).
 
@@ -1034,6 +1034,8 @@ def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", s
         grids too: their coarse-to-fine route's relaxed states do not converge at mu = 10
         either; measured: beta0 = 0.1 and 0.3 unfinished after 1840 CPU s).
     """
+    if search == PREDICTED_SEARCH:      # asked for (adhesive_pull_off refuses it with another law or control)
+        return bool(law == "dugdale" and control == "load" and nested is None)
     return bool(n is None and law == "dugdale" and control == "load" and search == "located" and nested is None
                 and float(mu) >= PREDICTED_MIN_MU)
 

@@ -66,6 +66,7 @@ def test_solve_reports_non_convergence(monkeypatch, capsys):
     (["--beta0", "1", "--mu", "1", "--machine-stiffness", "1", "--control", "displacement"], "control"),
     (["--beta0", "1", "--mu", "1", "--machine-stiffness", "1", "--search", "march"], "search"),
     (["--beta0", "1", "--mu", "1", "--machine-stiffness", "1", "--plot", "x.png"], "plot"),
+    (["--beta0", "1", "--mu", "2", "--n", "64", "--law", "exponential", "--search", "predicted"], "search"),
 ])
 def test_solve_bad_input(argv, word, capsys):
     assert main(["solve", *argv]) == 2
@@ -123,6 +124,18 @@ def test_solve_resolved_case_exits_zero_and_says_so(tmp_path, capsys):
     ds = read_solution(out)
     assert ds.attrs["resolved"] == 1 and int(ds["resolved"]) == 1
     assert rc in (0, EXIT_UNCONVERGED)
+
+
+def test_solve_predicted_search_on_an_explicit_grid_is_within_its_error_of_maugis_dugdale(capsys):
+    # --search predicted with --n: the high-mu route refined on the caller's grid (here mu = 2, N = 128,
+    # resolved, where the route is cheap); MD (Maugis 1992) is exact on the sphere
+    from dhfield import maugis_dugdale
+
+    rc = main(["solve", "--beta0", "1", "--mu", "2", "--n", "128", "--search", "predicted", "--json"])
+    rec = json.loads(capsys.readouterr().out)
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
+    assert rc == 0 and rec["converged"] and rec["n"] == 128
+    assert abs(rec["W_star"] - md) <= rec["W_star_error"]
 
 
 def test_solve_too_large_for_memory_is_refused_before_allocating(monkeypatch, capsys):

@@ -77,10 +77,12 @@ def add_parser(sub) -> None:
                         "--beta0/--mu; 0 is load control.  The BEM's unloading branch is sampled at prescribed "
                         "adhesive force and the jump is the first minimum of the machine position on it "
                         "(dhfield.bem_compliance); --out then holds the branch, --search does not apply")
-    p.add_argument("--search", default=None, choices=("located", "bracket", "march"),
+    p.add_argument("--search", default=None, choices=("located", "bracket", "march", "predicted"),
                    help="load control: how the force minimum is found -- located on coarser grids first, "
                         "then 3-4 states on this one (default); bracket: from the analytic pull-off on this "
-                        "grid; march: unload in uniform steps (slowest)")
+                        "grid; march: unload in uniform steps (slowest); predicted: lattice samples around "
+                        "GVG's pull-off on its own domain (the default's route at mu >= 7.5 on an automatic "
+                        "grid; with --n, that route refined)")
     p.add_argument("--threads", type=int, default=None,
                    help="FFTW threads (default $DHFIELD_THREADS, else the CPUs available, at most 4)")
     p.add_argument("--out", default=None, help="netCDF file for the pull-off fields and the path")
