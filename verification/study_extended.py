@@ -95,7 +95,7 @@ PARTS = {
     # the cases the parts above left without an answer (trapped cold states, a timeout), run again
     # with the predicted route's stretch step; a later part's case replaces an earlier part's
     "high-mu-stretch": ((0.1, 0.8, 1.0), (10.0,), (1,)),
-    "high-mu-level2-wide": ((0.5,), (10.0,), (2,)),          # one mu = 10 case at level 2 (2400^2 cells)
+    "high-mu-level2-wide": ((0.5,), (10.0,), (2,)),          # one mu = 10 case at level 2 (then 2880^2 cells)
     "high-mu-trial": ((0.5,), (10.0,), (1,)),
     # on a GPU (DHFIELD_BEM_BACKEND=cupy, dhfield.bem.backend): level-2 cases a 2-core machine
     # cannot afford (~1.5-3 CPU-hours each), the sphere (MD exact) and 60 deg first, and beta0 0.1
