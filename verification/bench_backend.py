@@ -74,17 +74,12 @@ def stage_operator(backend, threads) -> None:
 
 
 def stage_state(backend, beta0, mu, n, threads, skip_reference) -> None:
-    from dhfield.adhesive_start import PREDICTED_TOL, plan_grid, predicted_problem
+    from dhfield.adhesive_start import PREDICTED_TOL
     from dhfield.bem import solver
-    from dhfield.bem.pull_off import LOCATE_DIVISIONS, PREDICTED_STRETCH_EVERY
+    from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY
+    from verification.bench_stretch import predicted_cold_state
 
-    plan = plan_grid(mu=mu, beta0=beta0)
-    nx = plan.n_needed if n is None else n
-    ny = plan.ny_needed if n is None else None
-    problem = predicted_problem(mu=mu, beta0=beta0, n=nx, ny=ny)
-    spacing = problem.approach_step / LOCATE_DIVISIONS
-    j0 = int(round((problem.approach_max - problem.pull_off_approach) / spacing))
-    delta = problem.approach_max - j0 * spacing
+    problem, delta = predicted_cold_state(beta0, mu, n)
     g = problem.grid
     print(f"  state: beta0 = {beta0:g}, mu = {mu:g}, {g.nx} x {g.ny} cells, approach {delta:+.6f}, "
           f"tol {PREDICTED_TOL:g}", flush=True)

@@ -29,10 +29,27 @@ import time
 import numpy as np
 
 
+def predicted_cold_state(beta0, mu, n=None):
+    """The predicted route's cold state: (its NondimensionalProblem, the approach it is solved at).
+
+    The approach is the lattice sample nearest the predicted pull-off, as
+    :func:`dhfield.bem.pull_off.predicted_path` solves first; ``n`` None: the automatic grid.
+    """
+    from dhfield.adhesive_start import plan_grid, predicted_problem
+    from dhfield.bem.pull_off import LOCATE_DIVISIONS
+
+    plan = plan_grid(mu=mu, beta0=beta0)
+    problem = predicted_problem(mu=mu, beta0=beta0, n=plan.n_needed if n is None else n,
+                                ny=plan.ny_needed if n is None else None)
+    spacing = problem.approach_step / LOCATE_DIVISIONS
+    j0 = int(round((problem.approach_max - problem.pull_off_approach) / spacing))
+    return problem, problem.approach_max - j0 * spacing
+
+
 def main(argv=None) -> int:
-    from dhfield.adhesive_start import PREDICTED_TOL, plan_grid, predicted_problem
+    from dhfield.adhesive_start import PREDICTED_TOL
     from dhfield.bem import solver
-    from dhfield.bem.pull_off import LOCATE_DIVISIONS, PREDICTED_STRETCH_EVERY
+    from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY
 
     p = argparse.ArgumentParser(prog="python -m verification.bench_stretch", description=__doc__.split("\n")[0])
     p.add_argument("--beta0", type=float, default=1.0)
@@ -41,15 +58,9 @@ def main(argv=None) -> int:
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--variants", nargs="+", default=["stretch", "anderson"], choices=["stretch", "anderson"])
     args = p.parse_args(argv)
-    plan = plan_grid(mu=args.mu, beta0=args.beta0)
-    n = plan.n_needed if args.n is None else args.n
-    ny = plan.ny_needed if args.n is None else None
-    problem = predicted_problem(mu=args.mu, beta0=args.beta0, n=n, ny=ny)
+    problem, delta = predicted_cold_state(args.beta0, args.mu, args.n)
     prob = problem.adhesive_problem(args.threads)
     cold = problem.path_start(prob).stress
-    spacing = problem.approach_step / LOCATE_DIVISIONS
-    j0 = int(round((problem.approach_max - problem.pull_off_approach) / spacing))
-    delta = problem.approach_max - j0 * spacing
     g = problem.grid
     print(f"beta0 = {args.beta0:g}, mu = {args.mu:g}: the predicted route's cold state on {g.nx} x {g.ny} cells "
           f"(edge ratio {prob.edge_width_ratio:.3f}) at approach {delta:+.6f}, tol {PREDICTED_TOL:g}, "

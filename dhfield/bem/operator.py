@@ -403,6 +403,37 @@ _default_threads = default_threads  # the name used before
 
 
 # --------------------------------------------------------------------------- operator
+def _operator_arguments(grid, reduced_modulus, symmetric, threads):
+    """Checked (grid, E*, symmetric, threads) of an operator (both implementations)."""
+    if not isinstance(grid, Grid):
+        raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
+    e = _check_spacing("reduced_modulus", reduced_modulus)
+    threads = default_threads() if threads is None else check_threads(threads)
+    if symmetric and not grid.is_even:
+        raise ValueError(f"symmetric mode needs even nx and ny; got nx={grid.nx}, ny={grid.ny}")
+    return grid, e, bool(symmetric), threads
+
+
+def _kernel_spectrum(grid, reduced_modulus, symmetric, workers):
+    """(input shape, real kernel spectrum with the inverse transform's normalisation folded in).
+
+    Full grid: the wrap-around kernel on the 2nx x 2ny grid is even (offset -i at index 2nx - i,
+    K[nx, :] = K[:, ny] = 0), so its DFT is real and equals the DCT-I (REDFT00) of
+    K[0..nx, 0..ny]: S[k, l] = D[min(k, 2nx - k), l] for the rfft layout (2nx, ny + 1).
+    Symmetry mode: the same DCT-I is the DFT of the even kernel of period 2nx, 2ny, and
+    REDFT10 followed by REDFT01 multiplies by (2 nx)(2 ny).  Both fold in 1/(4 nx ny).
+    """
+    nx, ny = grid.shape
+    d = scipy.fft.dctn(influence_coefficients(grid, reduced_modulus), type=1, workers=workers)
+    scale = 1.0 / (4.0 * nx * ny)
+    if symmetric:
+        return (nx // 2, ny // 2), np.multiply(d[:nx, :ny], scale)
+    spectrum = np.empty((2 * nx, ny + 1))
+    np.multiply(d, scale, out=spectrum[: nx + 1])
+    np.multiply(d[nx - 1:0:-1], scale, out=spectrum[nx + 1:])
+    return (nx, ny), spectrum
+
+
 class HalfSpaceOperator:
     """DC-FFT surface-displacement operator of an elastic half-space on one grid.
 
@@ -437,25 +468,22 @@ class HalfSpaceOperator:
 
     def __init__(self, grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
                  planner_effort="FFTW_MEASURE"):
-        if not isinstance(grid, Grid):
-            raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
-        self.grid = grid
-        self.reduced_modulus = _check_spacing("reduced_modulus", reduced_modulus)
-        self.symmetric = bool(symmetric)
-        self.threads = default_threads() if threads is None else check_threads(threads)
+        self.grid, self.reduced_modulus, self.symmetric, self.threads = _operator_arguments(
+            grid, reduced_modulus, symmetric, threads)
         if planner_effort not in _PLANNER_EFFORTS:
             raise ValueError(f"planner_effort must be one of {_PLANNER_EFFORTS}; got {planner_effort!r}")
         self.planner_effort = planner_effort
-        if self.symmetric and not grid.is_even:
-            raise ValueError(f"symmetric mode needs even nx and ny; got nx={grid.nx}, ny={grid.ny}")
         self._lock = threading.Lock()
         load_wisdom()
-        kernel = influence_coefficients(grid, self.reduced_modulus)
+        self.input_shape, spectrum = _kernel_spectrum(self.grid, self.reduced_modulus, self.symmetric, self.threads)
+        self._spectrum = pyfftw.empty_aligned(spectrum.shape, dtype="float64")
+        self._spectrum[...] = spectrum
+        del spectrum
+        rows, cols = self.input_shape
         if self.symmetric:
-            self._build_symmetric(kernel)
+            self._build(rows, cols, self.grid.nx, "float64", "FFTW_REDFT10", "FFTW_REDFT01")
         else:
-            self._build_full(kernel)
-        del kernel
+            self._build(rows, cols, 2 * self.grid.nx, "complex128", None, None)
         save_wisdom()
 
     # -- construction ---------------------------------------------------------
@@ -485,30 +513,6 @@ class HalfSpaceOperator:
         )
         # planning may scribble on the arrays: the right half of _rin must stay zero
         self._rin[...] = 0.0
-
-    def _build_full(self, kernel):
-        nx, ny = self.grid.shape
-        self.input_shape = (nx, ny)
-        # The wrap-around kernel on the 2nx x 2ny grid is even (offset -i at index 2nx - i,
-        # K[nx, :] = K[:, ny] = 0), so its DFT is real and equals the DCT-I (REDFT00) of
-        # K[0..nx, 0..ny]: S[k, l] = D[min(k, 2nx - k), l] for the rfft layout (2nx, ny + 1).
-        d = scipy.fft.dctn(kernel, type=1, workers=self.threads)
-        self._spectrum = pyfftw.empty_aligned((2 * nx, ny + 1), dtype="float64")
-        scale = 1.0 / (4.0 * nx * ny)  # inverse-DFT normalisation folded in
-        np.multiply(d, scale, out=self._spectrum[: nx + 1])
-        np.multiply(d[nx - 1:0:-1], scale, out=self._spectrum[nx + 1:])
-        self._build(nx, ny, 2 * nx, "complex128", None, None)
-
-    def _build_symmetric(self, kernel):
-        nx, ny = self.grid.shape
-        mx, my = nx // 2, ny // 2
-        self.input_shape = (mx, my)
-        # REDFT00 (DCT-I) of K[0..nx, 0..ny] is the (real) DFT of the even kernel of period 2nx, 2ny;
-        # REDFT10 followed by REDFT01 multiplies by (2 nx)(2 ny): fold it in.
-        d = scipy.fft.dctn(kernel, type=1, workers=self.threads)
-        self._spectrum = pyfftw.empty_aligned((nx, ny), dtype="float64")
-        np.multiply(d[:nx, :ny], 1.0 / (4.0 * nx * ny), out=self._spectrum)
-        self._build(mx, my, nx, "float64", "FFTW_REDFT10", "FFTW_REDFT01")
 
     # -- evaluation -----------------------------------------------------------
     def _run(self, p, out):
@@ -587,30 +591,14 @@ class ArrayHalfSpaceOperator:
     """
 
     def __init__(self, grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None, backend="numpy"):
-        if not isinstance(grid, Grid):
-            raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
+        self.grid, self.reduced_modulus, self.symmetric, self.threads = _operator_arguments(
+            grid, reduced_modulus, symmetric, threads)
         backend = check_backend(backend)
         if backend == "fftw":
             raise ValueError("backend 'fftw' is HalfSpaceOperator's; ArrayHalfSpaceOperator takes 'numpy' or 'cupy'")
-        self.grid = grid
-        self.reduced_modulus = _check_spacing("reduced_modulus", reduced_modulus)
-        self.symmetric = bool(symmetric)
-        self.threads = default_threads() if threads is None else check_threads(threads)
         self.backend = backend
         self.xp, self._fft = array_module(backend)
-        if self.symmetric and not grid.is_even:
-            raise ValueError(f"symmetric mode needs even nx and ny; got nx={grid.nx}, ny={grid.ny}")
-        nx, ny = grid.shape
-        d = scipy.fft.dctn(influence_coefficients(grid, self.reduced_modulus), type=1, workers=self.threads)
-        if self.symmetric:
-            self.input_shape = (nx // 2, ny // 2)
-            spectrum = d[:nx, :ny] / (4.0 * nx * ny)      # DCT-II then DCT-III multiply by (2nx)(2ny)
-        else:
-            self.input_shape = (nx, ny)
-            spectrum = np.empty((2 * nx, ny + 1))
-            spectrum[: nx + 1] = d
-            spectrum[nx + 1:] = d[nx - 1:0:-1]            # the even wrap-around kernel's real DFT
-            spectrum /= 4.0 * nx * ny                     # the inverse DFT's normalisation
+        self.input_shape, spectrum = _kernel_spectrum(self.grid, self.reduced_modulus, self.symmetric, self.threads)
         self._spectrum = self.xp.asarray(spectrum)
         self._kw = {"workers": self.threads} if backend == "numpy" else {}
 
