@@ -58,6 +58,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
+           "refined_start_possible",
            "pull_off_cost"]
 
 
@@ -766,9 +767,10 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                          f"got {search!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
-    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load" and nested is None):
-        raise ValueError("search='predicted' needs law='dugdale', control='load' and options.nested None "
-                         f"(the predicted route); got law={law!r}, control={control!r}, nested={nested!r}")
+    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load" and (nested is None or n is not None)):
+        raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None on the "
+                         f"automatic grid (the predicted route); got law={law!r}, control={control!r}, "
+                         f"nested={nested!r}, n={n!r}")
     options = PathOptions(refine_levels=refine_levels, tol=DEFAULT_TOL if tol is None else tol,
                           max_iter=max_iter, threads=threads, keep_states=keep_states, progress=progress)
     if n is None:
@@ -800,9 +802,12 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                            elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
-        # the route on the caller's grid (a refined grid of the same route and domain): no retry
-        return _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny),
-                                   options, tol=PREDICTED_TOL if tol is None else tol)
+        # the route on the caller's grid (a refined grid of the same route and domain): no retry; each
+        # state warm-started from the route on the grid half as fine where that grid holds the edge
+        prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
+        if nested is None:
+            nested = refined_start_possible(prob)
+        return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol, nested=bool(nested))
     else:
         relaxed = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
@@ -1136,7 +1141,30 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
                          start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))
 
 
-def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
+def refined_start_possible(problem) -> bool:
+    """Tell whether the refined predicted route can start from the grid half as fine.
+
+    True when ``problem``'s cells per axis are multiples of 4 and the grid half as fine
+    resolves the Dugdale edge (:func:`dhfield.bem.solver.edge_width_ratio` <= 1), as the
+    automatic grid of the predicted route does: ``dhfield sweep``'s grid level 2 at high mu
+    is twice level 1's cells over level 1's domain, so its half grid is level 1's.
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The refined grid's problem (:func:`predicted_problem`).
+
+    Returns
+    -------
+    bool
+    """
+    g = problem.grid
+    if g.nx % 4 or g.ny % 4:
+        return False
+    return bool(edge_width_ratio(problem.coarser(g.nx // 2).grid, problem.law) <= 1.0)
+
+
+def _predicted_pull_off(prob, options, *, tol=None, nested=False) -> PullOff:
     """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
 
     ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
@@ -1152,8 +1180,14 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     from . import elliptic_transition
     from .bem.pull_off import predicted_path, pull_off_result
 
+    from .bem.pull_off import PredictedWarmStart
+
     options = options.checked()
-    path = predicted_path(prob, options if tol is None else replace(options, tol=tol))
+    if tol is not None:
+        options = replace(options, tol=tol)
+    ws = (PredictedWarmStart(prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads) if nested
+          else None)
+    path = predicted_path(prob, options, warm_start=ws)
     res = pull_off_result(prob, prob.grid.nx, path, "located")
     if res.converged:
         return res

@@ -105,6 +105,11 @@ PARTS = {
     # level 2 by level 1's route and domain (the predicted route refined, search='predicted'):
     # the sphere (MD exact) and 60 deg
     "high-mu-level2-route": ((0.5, 1.0), (10.0,), (2,)),
+    # level 2 by the refined route with each state started from level 1's state at the same approach
+    # (dhfield.bem.pull_off.PredictedWarmStart): the sphere (MD exact) first
+    "high-mu-level2-refined": ((1.0,), (10.0,), (2,)),
+    "high-mu-level2-refined-wide": ((0.5, 0.8), (10.0,), (2,)),
+    "high-mu-level2-refined-slender": ((0.1806, 0.3), (10.0,), (2,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
