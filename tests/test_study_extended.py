@@ -79,3 +79,33 @@ def test_build_lists_under_not_run_only_the_cases_not_run():
     assert lines[2].startswith("cases held, with what the timeout record of a stopped part says of them (1)")
     assert lines[3] == "  beta0 0.3 mu 10 level 1: finished (status ok) in the store"
     assert se._not_run_lines([], {}) == ["not run (0): none"]
+
+
+def test_build_keeps_the_sweep_cases_the_previous_build_holds(tmp_path, monkeypatch):
+    """A later session's work dir lacks the parts earlier sessions ran: a rebuild keeps their cases as the
+    previous build holds them, and a part in the work dir replaces the same case."""
+    import shutil
+
+    import numpy as np
+    import xarray as xr
+
+    out = tmp_path / "extended.nc"
+    shutil.copy(se.DEFAULT_OUT, out)
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.setitem(se.PARTS, "trial", ((0.5, 1.0), (10.0,), (1, 2)))
+    _timed_out_part(work)                                   # beta0 0.5, mu 10, level 1: W* = -0.65, ok
+    assert se.build(work, out) == 0
+    with xr.open_dataset(se.DEFAULT_OUT) as before, xr.open_dataset(out) as after:
+        swept = np.char.startswith(before["source"].values.astype(str), "dhfield sweep")
+        assert swept.sum() >= 30
+        replaced = dict(beta0=0.5, mu=10.0, level=1)
+        keep = swept.copy()
+        keep[list(before["beta0"].values).index(0.5), list(before["mu"].values).index(10.0), 0] = False
+        for name in ("W_star", "W_star_error", "nx", "cpu_seconds"):
+            np.testing.assert_array_equal(after[name].values[keep], before[name].values[keep])
+        np.testing.assert_array_equal(after["status"].values[keep], before["status"].values[keep])
+        assert all(se._HELD in s for s in after["source"].values[keep])
+        assert float(after["W_star"].sel(replaced)) == -0.65
+        assert "part trial" in str(after["source"].sel(replaced).values)
+        assert se._HELD not in str(after["source"].sel(replaced).values)

@@ -21,7 +21,9 @@ load control) on dask, one part per TOML file written under ``--work-dir``
     (a dask process pool) under an optional hard ``--timeout``; print every case with its
     grid, W*, stated error, flags and wall/CPU time, and the part's wall time.
 ``build``
-    Merge the stored files and every part's sweep output found under ``--work-dir`` into
+    Merge the stored files, the sweep cases the previous build of the output holds (the parts
+    earlier sessions ran: their work dirs are gone) and every part's sweep output found under
+    ``--work-dir`` (replacing the same case held) into
     ``data/adhesive_ground_truth_extended.nc`` (atomic write; the stored files are read,
     never changed): dims ``(beta0, mu, level)``, per case the values, the grid (nx, ny,
     half-widths), W_star_error, converged/resolved, the status ('ok', 'not_converged',
@@ -434,6 +436,45 @@ def _stored_cases(work_dir, name):
     return out
 
 
+#: Marks the source of a case read back from the previous build (:func:`_previous_cases`).
+_HELD = "held from the previous build"
+
+
+def _previous_cases(path):
+    """Cases of the sweep parts that the previous build at ``path`` holds: (beta0, mu) -> {level: case}.
+
+    A part's sweep output and case store live under ``--work-dir`` (``out/``, not in git), so a
+    later session's work dir holds only the parts it ran; the cases earlier sessions ran are held
+    in the dataset itself.  Every case of it whose source is a ``dhfield sweep`` part (the N-ladder
+    and slender files are read again from themselves) is kept, with its values and provenance as
+    stored and its source marked; a part's output in the work dir replaces it (:func:`build`).
+    None of it when no file is there.
+    """
+    import xarray as xr
+
+    path = Path(path)
+    cases = {}
+    if not path.is_file():
+        return cases
+    with xr.open_dataset(path) as ds:
+        built = f"{ds.attrs.get('built', '?')}, build commit {str(ds.attrs.get('build_commit', '?'))[:12]}"
+        for i, b in enumerate(ds["beta0"].values):
+            for j, m in enumerate(ds["mu"].values):
+                for k, lv in enumerate(ds["level"].values):
+                    src = str(ds["source"].values[i, j, k])
+                    if not src.startswith("dhfield sweep"):
+                        continue
+                    if _HELD not in src:
+                        src = f"{src} [{_HELD} of {path.name}, {built}]"
+                    num = {key: float(ds[key].values[i, j, k]) for key in NUMERIC}
+                    text = {key: str(ds[key].values[i, j, k]) for key in TEXT}
+                    text["source"] = src
+                    cases.setdefault((round(float(b), _KEY), round(float(m), _KEY)), {})[int(lv)] = _case(
+                        **num, **text, converged=int(ds["converged"].values[i, j, k]),
+                        resolved=int(ds["resolved"].values[i, j, k]))
+    return cases
+
+
 def _truth_of_levels(per):
     """Best W* of a two-level case: the finest answer, its error max(stated, |level 2 - level 1|)."""
     ok = {lv: c for lv, c in per.items() if c["status"] == "ok" and np.isfinite(c["W_star"])}
@@ -456,8 +497,12 @@ def build(work_dir, out) -> int:
     from dhfield.io import git_commit, write_netcdf
 
     old, old_truth, ladder, ns = _old_cases()
+    swept = _previous_cases(out)          # the parts earlier sessions ran, as the last build holds them
+    held = sum(len(per) for per in swept.values())
+    for key, per in _sweep_cases(work_dir).items():
+        swept.setdefault(key, {}).update(per)   # a part's output in the work dir replaces the held case
     sources = [("adhesive_ground_truth.nc", old), ("adhesive_ground_truth_slender.nc", _slender_cases()),
-               ("dhfield sweep", _sweep_cases(work_dir))]
+               ("dhfield sweep", swept)]
     merged, duplicates = {}, []
     for label, cases in sources:
         for key, per in cases.items():
@@ -573,6 +618,8 @@ def build(work_dir, out) -> int:
         built=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), build_commit=git_commit(),
         build_command=shlex.join([sys.executable, "-m", "verification.study_extended", *sys.argv[1:]]))
     write_netcdf(ds, out)
+    print(f"read {held} sweep cases held by the previous build of {Path(out).name}; the work dir's parts replace "
+          "the same cases")
     print(f"wrote {out}: {len(b0)} beta0 x {len(mus)} mu x {len(LEVELS)} levels; "
           f"{int(np.sum(text['status'] != 'absent') - len(not_run))} cases held, {len(not_run)} of the extended "
           "study not run")
