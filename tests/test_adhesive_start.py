@@ -324,12 +324,22 @@ def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeyp
     calls = []
     answer = SimpleNamespace(converged=False)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None: calls.append((prob, tol)) or answer)
+                        lambda prob, opts, tol=None, nested=False: calls.append((prob, tol, nested)) or answer)
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted") is answer
-    prob, tol = calls[0]
+    prob, tol, nested = calls[0]
     ref = adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96, ny=64)
     assert (prob.grid, tol) == (ref.grid, adhesive_start.PREDICTED_TOL)        # no lattice retry on it
     assert len(calls) == 1
+    # 96 x 64 at mu = 10: the grid half as fine does not hold the edge, so no warm starts from it
+    assert nested is False and not adhesive_start.refined_start_possible(ref)
+    # nested=False asks for the cold start even where the half grid would serve
+    calls.clear()
+    opts = adhesive_start.AdhesiveOptions(nested=False)
+    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted", options=opts)
+    assert calls[0][2] is False
+    with pytest.raises(ValueError, match="options.nested None on the automatic grid"):
+        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, search="predicted",
+                                         options=adhesive_start.AdhesiveOptions(nested=True))
     with pytest.raises(ValueError, match="search='predicted' needs law='dugdale'"):
         adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, law="exponential", search="predicted")
     with pytest.raises(ValueError, match="search must be one of .*'predicted'"):
@@ -348,6 +358,55 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     assert res.search == "located" and res.converged and res.resolved
     assert 3 <= res.n_steps <= 4                                  # three samples (+ at most one vertex)
     assert abs(res.W_star - md) <= res.W_star_error
+
+
+def test_refined_start_is_possible_where_the_half_grid_holds_the_edge():
+    # dhfield sweep's level 2 at mu = 10 is twice level 1's automatic grid over level 1's domain:
+    # its half grid is level 1's, which resolves the edge (edge_width_ratio <= 1) by construction
+    from dhfield.bem.solver import edge_width_ratio
+
+    for beta0 in (1.0, 0.5, 0.1):
+        plan = adhesive_start.plan_grid(mu=10.0, beta0=beta0, predicted=True, max_seconds=1e9)
+        fine = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=2 * plan.n_needed, ny=2 * plan.ny_needed)
+        assert fine.coarser(plan.n_needed).grid.ny == plan.ny_needed
+        assert adhesive_start.refined_start_possible(fine)
+        # level 1 itself is planned just fine enough (ratio <= 1): its half grid, ~1.8 measured, does not
+        # hold the edge (its states do not converge, LOCATE_MAX_EDGE_RATIO), so level 1 starts cold
+        level1 = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=plan.n_needed, ny=plan.ny_needed)
+        half = level1.coarser(plan.n_needed // 2)
+        assert edge_width_ratio(level1.grid, level1.law) <= 1.0 < edge_width_ratio(half.grid, half.law)
+        assert not adhesive_start.refined_start_possible(level1)
+    # cells not multiples of 4: no half grid of even cells
+    assert not adhesive_start.refined_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=130))
+
+
+def test_refined_predicted_route_starts_from_the_half_grid_and_agrees_with_maugis_dugdale():
+    # the sphere at mu = 2 on 128^2 (its half grid 64^2 holds the edge): each fine state starts from the
+    # state at the same approach on 64^2; MD (Maugis 1992) is exact on the sphere, so the answer must lie
+    # within its stated error of it, and within the two routes' stated errors of the cold-started route
+    from dhfield import maugis_dugdale
+    from dhfield.bem.path import PathOptions
+
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    assert adhesive_start.refined_start_possible(prob)
+    warm = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, keep_states=True), nested=True)
+    cold = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, keep_states=True))
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
+    assert warm.converged and warm.resolved
+    assert abs(warm.W_star - md) <= warm.W_star_error
+    assert abs(warm.W_star - cold.W_star) <= warm.W_star_error + cold.W_star_error
+    assert warm.path.coarse_states >= warm.n_steps and warm.path.coarse_iterations > 0
+    assert cold.path.coarse_states == 0
+    # the fine states start nearer their solutions: fewer fine CG iterations than from cold and dilated starts
+    assert warm.iterations < cold.iterations
+
+
+def test_predicted_warm_start_needs_cells_in_multiples_of_four():
+    from dhfield.bem.pull_off import PredictedWarmStart
+
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=130)
+    with pytest.raises(ValueError, match="multiples of 4"):
+        PredictedWarmStart(prob, tol=1e-4, max_iter=100)
 
 
 def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
@@ -398,7 +457,7 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     assert not failed.converged and good.converged
     calls = []
 
-    def route(prob, opts, tol=None):
+    def route(prob, opts, tol=None, nested=False):
         calls.append(prob.grid.nx)
         return failed if len(calls) == 1 else good
 
