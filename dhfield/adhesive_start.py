@@ -1157,6 +1157,7 @@ def refined_start_possible(problem) -> bool:
     Returns
     -------
     bool
+        True: :func:`_predicted_pull_off` may take ``nested=True`` on ``problem``.
     """
     g = problem.grid
     if g.nx % 4 or g.ny % 4:

@@ -288,7 +288,34 @@ def _carried_to_fine(state, fine_prob):
                    cohesive=np.where(guess.contact, 0.0, zone))
 
 
-class NestedWarmStart:
+class _HalfGridWarmStart:
+    """Warm starts on a fine grid from the same approach solved on a coarser grid (the subclass's ``coarse_state``)."""
+
+    _fine_nd = None       # the fine grid's NondimensionalProblem
+    _fine_prob = None     # its working arrays, built on first use
+    _threads = None
+
+    def coarse_state(self, approach) -> ContactState:    # pragma: no cover - every subclass defines it
+        raise NotImplementedError
+
+    def __call__(self, approach):
+        """Warm start on the fine grid, or None when the coarse state is not a converged contact state.
+
+        The coarse state interpolated onto the fine grid (:func:`interpolate_state`); for the
+        Dugdale law its zone fraction is then the fine grid's own sub-cell fraction of the
+        interpolated gap (the fine edge is sharper: its width scales with the cell), which
+        starts the fine state ~10 % fewer outer and ~20 % fewer CG iterations from its
+        solution (measured, lambda = 3, N = 256).
+        """
+        st = self.coarse_state(approach)
+        if not (st.converged and st.in_contact):
+            return None
+        if self._fine_prob is None:
+            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
+        return _carried_to_fine(st, self._fine_prob)
+
+
+class NestedWarmStart(_HalfGridWarmStart):
     """Warm starts from the same approach solved on grids 2x, 4x, ... coarser (same domain).
 
     ``start(approach)`` solves the paper's problem at that approach on the grid with
@@ -371,22 +398,6 @@ class NestedWarmStart:
             guess = b.guess(d, b.nearest_usable(d))
             self._states[d] = b.solve(d, guess if guess is not None else self._cold, "unloading")[1]
         return self._states[d]
-
-    def __call__(self, approach):
-        """Warm start on the fine grid, or None when the coarse state is not a converged contact state.
-
-        The coarse state interpolated onto the fine grid (:func:`interpolate_state`); for the
-        Dugdale law its zone fraction is then the fine grid's own sub-cell fraction of the
-        interpolated gap (the fine edge is sharper: its width scales with the cell), which
-        starts the fine state ~10 % fewer outer and ~20 % fewer CG iterations from its
-        solution (measured, lambda = 3, N = 256).
-        """
-        st = self.coarse_state(approach)
-        if not (st.converged and st.in_contact):
-            return None
-        if self._fine_prob is None:
-            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
-        return _carried_to_fine(st, self._fine_prob)
 
     def locate_pull_off(self, spacing):
         """Locate the approach of the load-control pull-off on the coarse grid (NaN when not found).
@@ -615,7 +626,7 @@ def _predicted_solver(branch, cold):
     return solve
 
 
-class PredictedWarmStart:
+class PredictedWarmStart(_HalfGridWarmStart):
     """Warm starts of the refined predicted route: the same approach solved by that route on the grid half as fine.
 
     On a grid twice as fine as the one the predicted route resolves (``dhfield sweep``'s grid
@@ -674,17 +685,19 @@ class PredictedWarmStart:
         return list(self._branch.records)
 
     def coarse_state(self, approach) -> ContactState:
-        """Solve the state at ``approach`` on the grid half as fine (once; later calls reuse it)."""
-        return self._branch.states[self._solve(float(approach))]
+        """Solve the state at ``approach`` on the grid half as fine (once; later calls reuse it).
 
-    def __call__(self, approach):
-        """Warm start on the fine grid, or None when the coarse state is not a converged contact state."""
-        st = self.coarse_state(approach)
-        if not (st.converged and st.in_contact):
-            return None
-        if self._fine_prob is None:
-            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
-        return _carried_to_fine(st, self._fine_prob)
+        Parameters
+        ----------
+        approach : float
+            Approach [c_r^2/R].
+
+        Returns
+        -------
+        ContactState
+            The coarse grid's state, converged or not.
+        """
+        return self._branch.states[self._solve(float(approach))]
 
 
 def predicted_path(problem, options, warm_start=None):
