@@ -48,8 +48,8 @@ from ._validation import check_count, check_ellipticity, check_positive
 from .bem.laws import law_from_name
 from .bem.operator import Grid
 from .bem.path import PathOptions
-from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_CELLS, MAX_STEPS, NESTED_MIN_N, NondimensionalProblem,
-                           UnloadingStart, check_bem_pull_off, check_cells, paper_problem, refine, solve_pull_off)
+from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, LOWER_MU_RATIO, MAX_CELLS, MAX_STEPS, NESTED_MIN_N,
+                           NondimensionalProblem, UnloadingStart, check_bem_pull_off, check_cells, paper_problem, refine, solve_pull_off)
 from .records import PullOff
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
@@ -58,7 +58,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
-           "refined_start_possible",
+           "refined_start_possible", "lower_mu_start_possible", "PREDICTED_STARTS",
            "pull_off_cost"]
 
 
@@ -785,8 +785,25 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
             # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             tol_route = PREDICTED_TOL if tol is None else tol
-            res = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin,
-                                                        ny=ny), options, tol=tol_route)
+            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
+            # GVG's elliptical start is far off a slender contact's tips (beta0 = 0.1, mu = 10 wandered from
+            # it): there each state starts from the same approach at mu/2 on the grid half as fine first
+            starts = ["cold", "lower-mu"] if lower_mu_start_possible(prob) else ["cold"]
+            if beta0 < SHAPED_CELLS_MAX_BETA0:
+                starts.reverse()
+            label = {"cold": "GVG's start", "lower-mu": f"the lower-mu start (mu = {LOWER_MU_RATIO * mu:g} on the "
+                                                         "grid half as fine)"}
+            res = _predicted_pull_off(prob, options, tol=tol_route, start=starts[0])
+            tried = []                            # why each retry was made, for the record's note
+            if not res.converged and len(starts) > 1:
+                # once more on this lattice from the other start
+                why = (f"the N = {n} lattice's states from {label[starts[0]]} did not converge (worst residual "
+                       f"{res.worst_residual:.2g}, {res.iterations} CG iterations, {res.elapsed:.0f} s): solved again "
+                       f"from {label[starts[1]]}")
+                again = _predicted_pull_off(prob, options, tol=tol_route, start=starts[1])
+                tried.append(why)
+                res = replace(again, note="; ".join(filter(None, (why, again.note))),
+                              elapsed=res.elapsed + again.elapsed)
             n_next = None if res.converged else next_lattice(n, max_seconds, ny=ny)
             if n_next is None:
                 return res
@@ -797,8 +814,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                    f"N = {n_next}")
             again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
                                                           margin=margin, ny=_scaled_cells(ny, n, n_next)),
-                                        options, tol=tol_route)
-            return replace(again, note="; ".join(filter(None, (why, again.note))),
+                                        options, tol=tol_route, start=starts[0])
+            return replace(again, note="; ".join(filter(None, (*tried, why, again.note))),
                            elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
@@ -807,7 +824,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
         if nested is None:
             nested = refined_start_possible(prob)
-        return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol, nested=bool(nested))
+        return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol,
+                                   start="refined" if nested else "cold")
     else:
         relaxed = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
@@ -1157,7 +1175,7 @@ def refined_start_possible(problem) -> bool:
     Returns
     -------
     bool
-        True: :func:`_predicted_pull_off` may take ``nested=True`` on ``problem``.
+        True: :func:`_predicted_pull_off` may take ``start='refined'`` on ``problem``.
     """
     g = problem.grid
     if g.nx % 4 or g.ny % 4:
@@ -1165,7 +1183,37 @@ def refined_start_possible(problem) -> bool:
     return bool(edge_width_ratio(problem.coarser(g.nx // 2).grid, problem.law) <= 1.0)
 
 
-def _predicted_pull_off(prob, options, *, tol=None, nested=False) -> PullOff:
+def lower_mu_start_possible(problem) -> bool:
+    """Tell whether the predicted route can start from a lower mu on the grid half as fine.
+
+    True when ``problem`` has the Dugdale law and cells per axis in multiples of 4, and the grid
+    half as fine resolves the Dugdale edge at ``LOWER_MU_RATIO`` mu
+    (:func:`dhfield.bem.solver.edge_width_ratio` <= 1; the ratio scales as mu^2).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The problem of the predicted route (:func:`predicted_problem`).
+
+    Returns
+    -------
+    bool
+        True: :func:`_predicted_pull_off` may take ``start='lower-mu'`` on ``problem``.
+    """
+    from .bem.laws import DugdaleLaw
+
+    g = problem.grid
+    if g.nx % 4 or g.ny % 4 or not isinstance(problem.law, DugdaleLaw):
+        return False
+    mu_lo = LOWER_MU_RATIO * problem.mu
+    return bool(edge_width_ratio(problem.coarser(g.nx // 2).grid, law_from_name("dugdale", mu_lo, 1.0)) <= 1.0)
+
+
+#: Starts of the predicted route's states (:func:`_predicted_pull_off`).
+PREDICTED_STARTS = ("cold", "refined", "lower-mu")
+
+
+def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
 
     ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
@@ -1181,13 +1229,17 @@ def _predicted_pull_off(prob, options, *, tol=None, nested=False) -> PullOff:
     from . import elliptic_transition
     from .bem.pull_off import predicted_path, pull_off_result
 
-    from .bem.pull_off import PredictedWarmStart
+    from .bem.pull_off import LowerMuWarmStart, PredictedWarmStart
 
+    if start not in PREDICTED_STARTS:
+        raise ValueError(f"start must be one of {PREDICTED_STARTS} (start of the predicted route's states); "
+                         f"got {start!r}")
     options = options.checked()
     if tol is not None:
         options = replace(options, tol=tol)
-    ws = (PredictedWarmStart(prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads) if nested
-          else None)
+    kinds = {"refined": PredictedWarmStart, "lower-mu": LowerMuWarmStart}
+    ws = (kinds[start](prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
+          if start in kinds else None)
     path = predicted_path(prob, options, warm_start=ws)
     res = pull_off_result(prob, prob.grid.nx, path, "located")
     if res.converged:

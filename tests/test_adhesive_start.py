@@ -305,7 +305,7 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     calls = []
     answer = SimpleNamespace(converged=True)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None: calls.append((prob.grid.nx, tol, opts.tol)) or answer)
+                        lambda prob, opts, tol=None, start="cold": calls.append((prob.grid.nx, tol, opts.tol)) or answer)
     monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is answer
     plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
@@ -324,19 +324,19 @@ def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeyp
     calls = []
     answer = SimpleNamespace(converged=False)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None, nested=False: calls.append((prob, tol, nested)) or answer)
+                        lambda prob, opts, tol=None, start="cold": calls.append((prob, tol, start)) or answer)
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted") is answer
-    prob, tol, nested = calls[0]
+    prob, tol, start = calls[0]
     ref = adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96, ny=64)
     assert (prob.grid, tol) == (ref.grid, adhesive_start.PREDICTED_TOL)        # no lattice retry on it
     assert len(calls) == 1
     # 96 x 64 at mu = 10: the grid half as fine does not hold the edge, so no warm starts from it
-    assert nested is False and not adhesive_start.refined_start_possible(ref)
+    assert start == "cold" and not adhesive_start.refined_start_possible(ref)
     # nested=False asks for the cold start even where the half grid would serve
     calls.clear()
     opts = adhesive_start.AdhesiveOptions(nested=False)
     adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted", options=opts)
-    assert calls[0][2] is False
+    assert calls[0][2] == "cold"
     with pytest.raises(ValueError, match="options.nested None on the automatic grid"):
         adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, search="predicted",
                                          options=adhesive_start.AdhesiveOptions(nested=True))
@@ -389,7 +389,7 @@ def test_refined_predicted_route_starts_from_the_half_grid_and_agrees_with_maugi
 
     prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
     assert adhesive_start.refined_start_possible(prob)
-    warm = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, keep_states=True), nested=True)
+    warm = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, keep_states=True), start="refined")
     cold = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, keep_states=True))
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
     assert warm.converged and warm.resolved
@@ -448,7 +448,7 @@ def test_next_lattice_is_the_next_automatic_size_that_fits():
 
 def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(monkeypatch):
     # the records are real BEM answers of a small sphere (mu = 2, N = 128): unconverged (5 CG
-    # iterations) and converged; the route's first lattice is made to return the first
+    # iterations) and converged; the route's first tries are made to return the first
     from dhfield.bem.path import PathOptions
 
     small = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
@@ -457,23 +457,68 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     assert not failed.converged and good.converged
     calls = []
 
-    def route(prob, opts, tol=None, nested=False):
-        calls.append(prob.grid.nx)
-        return failed if len(calls) == 1 else good
+    def route(fails):
+        def run(prob, opts, tol=None, start="cold"):
+            calls.append((prob.grid.nx, start))
+            return failed if len(calls) <= fails else good
+        return run
 
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route)
-    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
     n = adhesive_start.plan_grid(mu=10.0, beta0=0.4826).n_needed
-    assert calls == [n, adhesive_start.next_lattice(n)]
-    assert res.converged and res.W_star == good.W_star
-    assert f"N = {n} lattice" in res.note and res.elapsed == pytest.approx(failed.elapsed + good.elapsed)
-    # a converged first lattice is the answer; a failed one with no affordable next lattice is reported
+    n_next = adhesive_start.next_lattice(n)
+    prob = adhesive_start.predicted_problem(mu=10.0, beta0=0.4826, n=n)
+    assert adhesive_start.lower_mu_start_possible(prob)
+    # GVG's start fails, the lower-mu start on the same lattice answers
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
+    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
+    assert calls == [(n, "cold"), (n, "lower-mu")]
+    assert res.converged and res.W_star == good.W_star and "from the lower-mu start (mu = 5" in res.note
+    assert res.elapsed == pytest.approx(failed.elapsed + good.elapsed)
+    # both fail on the first lattice: once more on the next, from GVG's start
     calls.clear()
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None: calls.append(1) or good)
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [1]
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None: failed)
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(2))
+    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
+    assert calls == [(n, "cold"), (n, "lower-mu"), (n_next, "cold")]
+    assert res.converged and res.W_star == good.W_star
+    assert f"N = {n} lattice" in res.note and f"N = {n_next}" in res.note and "lower-mu start" in res.note
+    assert res.elapsed == pytest.approx(2 * failed.elapsed + good.elapsed)
+    # a slender contact (beta0 < SHAPED_CELLS_MAX_BETA0) starts from the lower mu first
+    calls.clear()
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
+    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.1)
+    n_slender = adhesive_start.plan_grid(mu=10.0, beta0=0.1).n_needed
+    assert calls == [(n_slender, "lower-mu"), (n_slender, "cold")] and "from GVG's start" in res.note
+    # a converged first try is the answer; failed ones with no affordable next lattice are reported
+    calls.clear()
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(0))
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [(n, "cold")]
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None, start="cold": failed)
     monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds, ny=None: None)
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is failed
+    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
+    assert not res.converged and res.W_star_error == float("inf") and "lower-mu start" in res.note
+
+
+def test_lower_mu_start_from_the_half_grid_agrees_with_the_cold_route():
+    # the sphere at mu = 2 on 128^2: each state starts from mu = 1 at the same approach on 64^2 (solved by
+    # nested starts); the converged answer must not depend on the start (to its stated error), and MD
+    # (exact on the sphere) must lie within that error of it
+    from dhfield import maugis_dugdale
+    from dhfield.bem.path import PathOptions
+    from dhfield.bem.pull_off import LowerMuWarmStart
+
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    assert adhesive_start.lower_mu_start_possible(prob)
+    low = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="lower-mu")
+    cold = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="cold")
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
+    assert low.converged and low.resolved and low.path.coarse_states > 0
+    assert abs(low.W_star - cold.W_star) <= low.W_star_error and abs(low.W_star - md) <= low.W_star_error
+    ws = LowerMuWarmStart(prob, tol=1e-4, max_iter=10 ** 6)
+    guess = ws(prob.pull_off_approach)
+    assert ws.mu == 1.0 and guess.law == prob.law and guess.grid == prob.grid   # the fine law, the fine grid
+    with pytest.raises(ValueError, match="mu_ratio"):
+        LowerMuWarmStart(prob, tol=1e-4, max_iter=100, mu_ratio=1.0)
+    with pytest.raises(ValueError, match="start must be one of"):
+        adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="warm")
 
 
 @pytest.mark.parametrize("call", [lambda: adhesive_start.unloading_start(1.0, 0.9),

@@ -112,6 +112,9 @@ PARTS = {
     "high-mu-level2-refined": ((1.0,), (10.0,), (2,)),
     "high-mu-level2-refined-wide": ((0.5, 0.8), (10.0,), (2,)),
     "high-mu-level2-refined-slender": ((0.1806, 0.3), (10.0,), (2,)),
+    # beta0 0.1 at level 1 with the lower-mu start first (slender contacts: the state at the same
+    # approach at mu/2 on the grid half as fine, dhfield.bem.pull_off.LowerMuWarmStart)
+    "high-mu-slender-lower-mu": ((0.1,), (10.0,), (1,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 

@@ -36,7 +36,8 @@ from .solver import AdhesiveProblem, Prediction
 from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "UnloadingStart", "NondimensionalProblem",
-           "NestedWarmStart", "PredictedWarmStart", "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
+           "NestedWarmStart", "PredictedWarmStart", "LowerMuWarmStart", "LOWER_MU_RATIO",
+           "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
            "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS", "pull_off_result",
            "pull_off_summary", "check_bem_pull_off"]
 
@@ -273,16 +274,18 @@ NESTED_MIN_N = 64
 def _carried_to_fine(state, fine_prob):
     """A converged coarse state carried onto the fine grid of ``fine_prob`` as a warm start.
 
-    The state interpolated (:func:`interpolate_state`); for the Dugdale law its zone fraction
-    is then the fine grid's own sub-cell fraction of the interpolated gap (the fine edge is
+    The state interpolated (:func:`interpolate_state`), under the fine problem's law; for the
+    Dugdale law its zone fraction is then the fine grid's own sub-cell fraction of the
+    interpolated gap under that law (a state of another mu starts the fine one with the fine
+    one's zone) (the fine edge is
     sharper: its width scales with the cell), which starts the fine state ~10 % fewer outer
     and ~20 % fewer CG iterations from its solution (measured, lambda = 3, N = 256).
     """
-    guess = interpolate_state(state, fine_prob.grid)
-    law = guess.law
+    fp = fine_prob
+    guess = replace(interpolate_state(state, fp.grid), law=fp.law)   # the fine problem's law (its mu, if another)
+    law = fp.law
     if not isinstance(law, DugdaleLaw):
         return guess
-    fp = fine_prob
     zone = fp.to_full(fp.stress_from_gap(fp.to_work(guess.gap), fp.to_work(guess.contact)) / law.max_stress)
     return replace(guess, pressure=guess.repulsive_pressure - law.max_stress * zone,
                    cohesive=np.where(guess.contact, 0.0, zone))
@@ -700,6 +703,90 @@ class PredictedWarmStart(_HalfGridWarmStart):
         return self._branch.states[self._solve(float(approach))]
 
 
+#: Tabor parameter of the lower-mu start (:class:`LowerMuWarmStart`) per the problem's: mu/2 makes
+#: the Dugdale edge's ``edge_width_ratio`` (~ mu^2) 4x smaller, so that the grid half as fine of a
+#: level-1 grid of the predicted route (ratio ~1.8 at mu = 10) holds it (~0.45).
+LOWER_MU_RATIO = 0.5
+
+
+class LowerMuWarmStart(_HalfGridWarmStart):
+    """Warm starts from the same approach at a lower Tabor parameter, solved on the grid half as fine.
+
+    The predicted route's cold start is GVG's elliptical contact (corrected by the sphere's MD).
+    On a slender contact the contact's tips are not where an ellipse puts them, and at high
+    mu the fixed point moves them by a fraction of a cell per iteration: at beta0 = 0.1, mu = 10
+    on 2560 x 480 the cold state wandered (the contact tip between x = 3.35 and 3.54, residual
+    0.02-0.3 after 150 outer iterations, the stretch step stretching the wrong way), and so did the
+    mu = 5 state solved on that grid from the same start (residual 3.3e-3 after 300).  At
+    ``LOWER_MU_RATIO`` mu the grid half as fine holds the edge, and the state there, solved by
+    nested warm starts from coarser grids (:class:`NestedWarmStart`, the located route's starts),
+    has its contact where the grid's own solution has it (measured: converged in 11 s).  Carried
+    to the fine grid with the fine law's zone (:func:`_carried_to_fine`), it started the mu = 10
+    state that converged in 148 outer iterations (330 s, 1 thread).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The fine grid's problem (Dugdale law), with a cold start; ``nx`` and ``ny`` multiples of 4.
+    tol : float
+        Solver tolerance of the lower-mu states.
+    max_iter : int
+        Cap on CG iterations of a lower-mu state.
+    threads : int, optional
+        FFTW threads.
+    mu_ratio : float, default LOWER_MU_RATIO
+        The lower Tabor parameter per the problem's, in (0, 1) [-].
+
+    Attributes
+    ----------
+    states_solved, iterations : int
+        Lower-mu states solved (on every grid of the nest) and their CG iterations.
+    """
+
+    def __init__(self, problem, *, tol, max_iter, threads=None, mu_ratio=LOWER_MU_RATIO):
+        if not isinstance(problem, NondimensionalProblem) or not problem.has_cold_start:
+            raise ValueError("problem must be a NondimensionalProblem with a cold start")
+        if not isinstance(problem.law, DugdaleLaw):
+            raise ValueError(f"problem must have a Dugdale law for a lower-mu start; got {type(problem.law).__name__}")
+        mu_ratio = float(mu_ratio)
+        if not 0.0 < mu_ratio < 1.0:
+            raise ValueError(f"mu_ratio must be in (0, 1) (lower Tabor parameter per the problem's); got {mu_ratio!r}")
+        g = problem.grid
+        if g.nx % 4 or g.ny % 4:
+            raise ValueError(f"problem must have nx and ny multiples of 4 for warm starts from the grid half as "
+                             f"fine; got {g.nx} x {g.ny}")
+        mu_lo = mu_ratio * problem.mu
+        lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0))
+        self.mu = mu_lo
+        self._fine_nd, self._threads, self._fine_prob = problem, threads, None
+        self._nested = NestedWarmStart(lower, tol=tol, max_iter=max_iter, threads=threads)
+
+    @property
+    def states_solved(self) -> int:
+        """Lower-mu states solved, over all grids."""
+        return self._nested.states_solved
+
+    @property
+    def iterations(self) -> int:
+        """CG iterations of the lower-mu states, over all grids."""
+        return self._nested.iterations
+
+    def coarse_state(self, approach) -> ContactState:
+        """Solve the lower-mu state at ``approach`` on the grid half as fine (once; later calls reuse it).
+
+        Parameters
+        ----------
+        approach : float
+            Approach [c_r^2/R].
+
+        Returns
+        -------
+        ContactState
+            The lower-mu state on the grid half as fine, converged or not.
+        """
+        return self._nested.coarse_state(approach)
+
+
 def predicted_path(problem, options, warm_start=None):
     """The load-control pull-off from fine lattice samples around the problem's cold start, or None.
 
@@ -721,9 +808,10 @@ def predicted_path(problem, options, warm_start=None):
         The fine grid's problem, with a cold start (:attr:`NondimensionalProblem.has_cold_start`).
     options : PathOptions
         Checked path settings (tolerances, ``refine_levels``: no vertex state when 0).
-    warm_start : PredictedWarmStart, optional
+    warm_start : PredictedWarmStart or LowerMuWarmStart, optional
         Start every state from the same approach solved on the grid half as fine (the
-        refined route); a state it gives nothing for starts as above.
+        refined route), or at a lower mu there (the retry of a failed route); a state it
+        gives nothing for starts as above.
 
     Returns
     -------
