@@ -115,6 +115,8 @@ PARTS = {
     # beta0 0.1 at level 1 with the lower-mu start first (slender contacts: the state at the same
     # approach at mu/2 on the grid half as fine, dhfield.bem.pull_off.LowerMuWarmStart)
     "high-mu-slender-lower-mu": ((0.1,), (10.0,), (1,)),
+    # the slender cases GVG's start answered, again by the route that now starts them from the lower mu
+    "high-mu-slender-lower-mu-check": ((0.1806, 0.3), (10.0,), (1,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
