@@ -58,7 +58,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
-           "refined_start_possible", "lower_mu_start_possible", "PREDICTED_STARTS",
+           "lower_mu_start_possible", "PREDICTED_STARTS",
            "pull_off_cost"]
 
 
@@ -786,11 +786,10 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             tol_route = PREDICTED_TOL if tol is None else tol
             prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-            # GVG's elliptical start is far off a slender contact's tips (beta0 = 0.1, mu = 10 wandered from
-            # it): there each state starts from the same approach at mu/2 on the grid half as fine first
-            starts = ["cold", "lower-mu"] if lower_mu_start_possible(prob) else ["cold"]
-            if beta0 < SHAPED_CELLS_MAX_BETA0:
-                starts.reverse()
+            # each state from the same approach at mu/2 on the grid half as fine first (LowerMuWarmStart), then
+            # GVG's elliptical start: at mu = 10 GVG's cold state wandered at beta0 = 0.1 and stalled or took
+            # 116 outer iterations on the sphere (N = 1280), the lower-mu start's converged in 148 and 45
+            starts = ["lower-mu", "cold"] if lower_mu_start_possible(prob) else ["cold"]
             label = {"cold": "GVG's start", "lower-mu": f"the lower-mu start (mu = {LOWER_MU_RATIO * mu:g} on the "
                                                          "grid half as fine)"}
             res = _predicted_pull_off(prob, options, tol=tol_route, start=starts[0])
@@ -820,12 +819,15 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
         # the route on the caller's grid (a refined grid of the same route and domain): no retry; each
-        # state warm-started from the route on the grid half as fine where that grid holds the edge
+        # state from the lower-mu start where the grid half as fine holds its edge (nested True: required,
+        # False: GVG's cold start)
         prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-        if nested is None:
-            nested = refined_start_possible(prob)
+        possible = lower_mu_start_possible(prob)
+        if nested and not possible:
+            raise ValueError(f"options.nested=True needs a grid whose half holds the Dugdale edge at mu/2, with nx and "
+                             f"ny multiples of 4 (lower_mu_start_possible); got {n} x {ny} cells at mu = {mu:g}")
         return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol,
-                                   start="refined" if nested else "cold")
+                                   start="lower-mu" if (possible if nested is None else nested) else "cold")
     else:
         relaxed = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
@@ -1159,30 +1161,6 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
                          start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))
 
 
-def refined_start_possible(problem) -> bool:
-    """Tell whether the refined predicted route can start from the grid half as fine.
-
-    True when ``problem``'s cells per axis are multiples of 4 and the grid half as fine
-    resolves the Dugdale edge (:func:`dhfield.bem.solver.edge_width_ratio` <= 1), as the
-    automatic grid of the predicted route does: ``dhfield sweep``'s grid level 2 at high mu
-    is twice level 1's cells over level 1's domain, so its half grid is level 1's.
-
-    Parameters
-    ----------
-    problem : NondimensionalProblem
-        The refined grid's problem (:func:`predicted_problem`).
-
-    Returns
-    -------
-    bool
-        True: :func:`_predicted_pull_off` may take ``start='refined'`` on ``problem``.
-    """
-    g = problem.grid
-    if g.nx % 4 or g.ny % 4:
-        return False
-    return bool(edge_width_ratio(problem.coarser(g.nx // 2).grid, problem.law) <= 1.0)
-
-
 def lower_mu_start_possible(problem) -> bool:
     """Tell whether the predicted route can start from a lower mu on the grid half as fine.
 
@@ -1210,7 +1188,7 @@ def lower_mu_start_possible(problem) -> bool:
 
 
 #: Starts of the predicted route's states (:func:`_predicted_pull_off`).
-PREDICTED_STARTS = ("cold", "refined", "lower-mu")
+PREDICTED_STARTS = ("cold", "lower-mu")
 
 
 def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
@@ -1225,11 +1203,16 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     to use instead (:func:`dhfield.elliptic_transition.pull_off_nondimensional`).  No other route
     is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`); the
     fall-back to it had answered nothing after 9 min at beta0 = 0.5, mu = 10 (2 threads).
+
+    ``start`` (one of :data:`PREDICTED_STARTS`): 'cold', the first state from GVG's zone and each
+    other from its nearest solved neighbour; 'lower-mu', every state from the same approach at
+    mu/2 on the grid half as fine (:class:`dhfield.bem.pull_off.LowerMuWarmStart`, where
+    :func:`lower_mu_start_possible`).
     """
     from . import elliptic_transition
     from .bem.pull_off import predicted_path, pull_off_result
 
-    from .bem.pull_off import LowerMuWarmStart, PredictedWarmStart
+    from .bem.pull_off import LowerMuWarmStart
 
     if start not in PREDICTED_STARTS:
         raise ValueError(f"start must be one of {PREDICTED_STARTS} (start of the predicted route's states); "
@@ -1237,9 +1220,8 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     options = options.checked()
     if tol is not None:
         options = replace(options, tol=tol)
-    kinds = {"refined": PredictedWarmStart, "lower-mu": LowerMuWarmStart}
-    ws = (kinds[start](prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
-          if start in kinds else None)
+    ws = (LowerMuWarmStart(prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
+          if start == "lower-mu" else None)
     path = predicted_path(prob, options, warm_start=ws)
     res = pull_off_result(prob, prob.grid.nx, path, "located")
     if res.converged:

@@ -306,6 +306,7 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     answer = SimpleNamespace(converged=True)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
                         lambda prob, opts, tol=None, start="cold": calls.append((prob.grid.nx, tol, opts.tol)) or answer)
+    # (the start of its states: test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next)
     monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is answer
     plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
@@ -330,13 +331,17 @@ def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeyp
     ref = adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96, ny=64)
     assert (prob.grid, tol) == (ref.grid, adhesive_start.PREDICTED_TOL)        # no lattice retry on it
     assert len(calls) == 1
-    # 96 x 64 at mu = 10: the grid half as fine does not hold the edge, so no warm starts from it
-    assert start == "cold" and not adhesive_start.refined_start_possible(ref)
-    # nested=False asks for the cold start even where the half grid would serve
+    # 96 x 64 at mu = 10: the grid half as fine does not hold the edge even at mu/2, so GVG's cold start
+    assert start == "cold" and not adhesive_start.lower_mu_start_possible(ref)
+    with pytest.raises(ValueError, match="options.nested=True needs a grid whose half holds"):
+        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted",
+                                         options=adhesive_start.AdhesiveOptions(nested=True))
+    # where the half grid serves: the lower-mu start by default, the cold start with nested=False
     calls.clear()
-    opts = adhesive_start.AdhesiveOptions(nested=False)
-    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted", options=opts)
-    assert calls[0][2] == "cold"
+    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted")
+    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted",
+                                     options=adhesive_start.AdhesiveOptions(nested=False))
+    assert [c[2] for c in calls] == ["lower-mu", "cold"]
     with pytest.raises(ValueError, match="options.nested None on the automatic grid"):
         adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, search="predicted",
                                          options=adhesive_start.AdhesiveOptions(nested=True))
@@ -360,53 +365,27 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     assert abs(res.W_star - md) <= res.W_star_error
 
 
-def test_refined_start_is_possible_where_the_half_grid_holds_the_edge():
-    # dhfield sweep's level 2 at mu = 10 is twice level 1's automatic grid over level 1's domain:
-    # its half grid is level 1's, which resolves the edge (edge_width_ratio <= 1) by construction
+def test_lower_mu_start_is_possible_where_the_half_grid_holds_the_edge_at_half_mu():
+    # the automatic grid of the predicted route holds the edge at mu (ratio <= 1) and its half grid does
+    # not (~1.8 measured): at mu/2 the ratio (~ mu^2) is 4x smaller, so the half grid holds it
+    from dhfield.bem.laws import law_from_name
     from dhfield.bem.solver import edge_width_ratio
 
     for beta0 in (1.0, 0.5, 0.1):
         plan = adhesive_start.plan_grid(mu=10.0, beta0=beta0, predicted=True, max_seconds=1e9)
-        fine = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=2 * plan.n_needed, ny=2 * plan.ny_needed)
-        assert fine.coarser(plan.n_needed).grid.ny == plan.ny_needed
-        assert adhesive_start.refined_start_possible(fine)
-        # level 1 itself is planned just fine enough (ratio <= 1): its half grid, ~1.8 measured, does not
-        # hold the edge (its states do not converge, LOCATE_MAX_EDGE_RATIO), so level 1 starts cold
         level1 = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=plan.n_needed, ny=plan.ny_needed)
         half = level1.coarser(plan.n_needed // 2)
         assert edge_width_ratio(level1.grid, level1.law) <= 1.0 < edge_width_ratio(half.grid, half.law)
-        assert not adhesive_start.refined_start_possible(level1)
-    # cells not multiples of 4: no half grid of even cells
-    assert not adhesive_start.refined_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=130))
-
-
-def test_refined_predicted_route_starts_from_the_half_grid_and_agrees_with_maugis_dugdale():
-    # the sphere at mu = 2 on 128^2 (its half grid 64^2 holds the edge): each fine state starts from the
-    # state at the same approach on 64^2; MD (Maugis 1992) is exact on the sphere, so the answer must lie
-    # within its stated error of it, and within the two routes' stated errors of the cold-started route
-    from dhfield import maugis_dugdale
-    from dhfield.bem.path import PathOptions
-
-    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
-    assert adhesive_start.refined_start_possible(prob)
-    warm = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, keep_states=True), start="refined")
-    cold = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, keep_states=True))
-    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
-    assert warm.converged and warm.resolved
-    assert abs(warm.W_star - md) <= warm.W_star_error
-    assert abs(warm.W_star - cold.W_star) <= warm.W_star_error + cold.W_star_error
-    assert warm.path.coarse_states >= warm.n_steps and warm.path.coarse_iterations > 0
-    assert cold.path.coarse_states == 0
-    # the fine states start nearer their solutions: fewer fine CG iterations than from cold and dilated starts
-    assert warm.iterations < cold.iterations
-
-
-def test_predicted_warm_start_needs_cells_in_multiples_of_four():
-    from dhfield.bem.pull_off import PredictedWarmStart
-
-    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=130)
-    with pytest.raises(ValueError, match="multiples of 4"):
-        PredictedWarmStart(prob, tol=1e-4, max_iter=100)
+        low = edge_width_ratio(half.grid, law_from_name("dugdale", 5.0, 1.0))
+        assert low == pytest.approx(edge_width_ratio(half.grid, half.law) / 4) and low <= 1.0
+        assert adhesive_start.lower_mu_start_possible(level1)
+        # level 2 (twice the cells): its half grid is level 1
+        fine = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=2 * plan.n_needed, ny=2 * plan.ny_needed)
+        assert fine.coarser(plan.n_needed).grid == level1.grid and adhesive_start.lower_mu_start_possible(fine)
+    # cells not multiples of 4, or a grid whose half is far too coarse even at mu/2: not possible
+    assert not adhesive_start.lower_mu_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=130))
+    assert not adhesive_start.lower_mu_start_possible(adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96,
+                                                                                       ny=64))
 
 
 def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
@@ -467,30 +446,32 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     n_next = adhesive_start.next_lattice(n)
     prob = adhesive_start.predicted_problem(mu=10.0, beta0=0.4826, n=n)
     assert adhesive_start.lower_mu_start_possible(prob)
-    # GVG's start fails, the lower-mu start on the same lattice answers
+    # the lower-mu start fails, GVG's start on the same lattice answers
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
     res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
-    assert calls == [(n, "cold"), (n, "lower-mu")]
-    assert res.converged and res.W_star == good.W_star and "from the lower-mu start (mu = 5" in res.note
+    assert calls == [(n, "lower-mu"), (n, "cold")]
+    assert res.converged and res.W_star == good.W_star
+    assert "from the lower-mu start (mu = 5 on the grid half as fine) did not converge" in res.note
+    assert "solved again from GVG's start" in res.note
     assert res.elapsed == pytest.approx(failed.elapsed + good.elapsed)
-    # both fail on the first lattice: once more on the next, from GVG's start
+    # both fail on the first lattice: once more on the next, from the lower-mu start
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(2))
     res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
-    assert calls == [(n, "cold"), (n, "lower-mu"), (n_next, "cold")]
+    assert calls == [(n, "lower-mu"), (n, "cold"), (n_next, "lower-mu")]
     assert res.converged and res.W_star == good.W_star
     assert f"N = {n} lattice" in res.note and f"N = {n_next}" in res.note and "lower-mu start" in res.note
     assert res.elapsed == pytest.approx(2 * failed.elapsed + good.elapsed)
-    # a slender contact (beta0 < SHAPED_CELLS_MAX_BETA0) starts from the lower mu first
+    # the same order on a slender contact
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
-    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.1)
+    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.1)
     n_slender = adhesive_start.plan_grid(mu=10.0, beta0=0.1).n_needed
-    assert calls == [(n_slender, "lower-mu"), (n_slender, "cold")] and "from GVG's start" in res.note
+    assert calls == [(n_slender, "lower-mu"), (n_slender, "cold")]
     # a converged first try is the answer; failed ones with no affordable next lattice are reported
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(0))
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [(n, "cold")]
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [(n, "lower-mu")]
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None, start="cold": failed)
     monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds, ny=None: None)
     res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)

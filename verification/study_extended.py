@@ -107,13 +107,15 @@ PARTS = {
     # level 2 by level 1's route and domain (the predicted route refined, search='predicted'):
     # the sphere (MD exact) and 60 deg
     "high-mu-level2-route": ((0.5, 1.0), (10.0,), (2,)),
-    # level 2 by the refined route with each state started from level 1's state at the same approach
-    # (dhfield.bem.pull_off.PredictedWarmStart): the sphere (MD exact) first
-    "high-mu-level2-refined": ((1.0,), (10.0,), (2,)),
-    "high-mu-level2-refined-wide": ((0.5, 0.8), (10.0,), (2,)),
-    "high-mu-level2-refined-slender": ((0.1806, 0.3), (10.0,), (2,)),
-    # beta0 0.1 at level 1 with the lower-mu start first (slender contacts: the state at the same
-    # approach at mu/2 on the grid half as fine, dhfield.bem.pull_off.LowerMuWarmStart)
+    # level 2 by the route whose states start from the lower mu (mu/2 on level 1's grid,
+    # dhfield.bem.pull_off.LowerMuWarmStart): the sphere (MD exact) first
+    "high-mu-level2-lower-mu": ((1.0,), (10.0,), (2,)),
+    "high-mu-level2-lower-mu-wide": ((0.5, 0.8), (10.0,), (2,)),
+    "high-mu-level2-lower-mu-slender": ((0.1806, 0.3), (10.0,), (2,)),
+    # the mu = 10 cases GVG's start answered, again by the route that now starts from the lower mu
+    "high-mu-lower-mu-check-sphere": ((1.0,), (10.0,), (1,)),
+    # beta0 0.1 at level 1 with the lower-mu start first (the state at the same approach at mu/2 on the
+    # grid half as fine, dhfield.bem.pull_off.LowerMuWarmStart)
     "high-mu-slender-lower-mu": ((0.1,), (10.0,), (1,)),
     # the slender cases GVG's start answered, again by the route that now starts them from the lower mu
     "high-mu-slender-lower-mu-check": ((0.1806, 0.3), (10.0,), (1,)),

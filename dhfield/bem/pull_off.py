@@ -36,7 +36,7 @@ from .solver import AdhesiveProblem, Prediction
 from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "UnloadingStart", "NondimensionalProblem",
-           "NestedWarmStart", "PredictedWarmStart", "LowerMuWarmStart", "LOWER_MU_RATIO",
+           "NestedWarmStart", "LowerMuWarmStart", "LOWER_MU_RATIO",
            "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
            "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS", "pull_off_result",
            "pull_off_summary", "check_bem_pull_off"]
@@ -629,80 +629,6 @@ def _predicted_solver(branch, cold):
     return solve
 
 
-class PredictedWarmStart(_HalfGridWarmStart):
-    """Warm starts of the refined predicted route: the same approach solved by that route on the grid half as fine.
-
-    On a grid twice as fine as the one the predicted route resolves (``dhfield sweep``'s grid
-    level 2 at high mu), GVG's cold start lies twice as many cells from the discrete solution
-    (~6 instead of ~3 at mu = 10), and the cold states were trapped by the lattice (beta0 = 0.5
-    on 2400^2 and the sphere on 2560^2 at mu = 10 each stalled one of three samples).  Here
-    each fine state starts from the state at the same approach on the grid half as fine, solved
-    by the predicted route's own rules there (:func:`_predicted_solver`: the first cold, the
-    others dilated from their nearest, the stretch step), then carried over as
-    :class:`NestedWarmStart` carries its states.
-
-    Parameters
-    ----------
-    problem : NondimensionalProblem
-        The fine grid's problem, with a cold start; ``nx`` and ``ny`` multiples of 4.
-    tol : float
-        Solver tolerance of the coarse states, as in :func:`dhfield.bem.solve_adhesive`.
-    max_iter : int
-        Cap on CG iterations of a coarse state.
-    threads : int, optional
-        FFTW threads.
-
-    Attributes
-    ----------
-    states_solved, iterations : int
-        Coarse states solved and their CG iterations.
-    """
-
-    def __init__(self, problem, *, tol, max_iter, threads=None):
-        if not isinstance(problem, NondimensionalProblem) or not problem.has_cold_start:
-            raise ValueError("problem must be a NondimensionalProblem with a cold start")
-        g = problem.grid
-        if g.nx % 4 or g.ny % 4:
-            raise ValueError(f"problem must have nx and ny multiples of 4 for warm starts from the grid half as "
-                             f"fine; got {g.nx} x {g.ny}")
-        coarse = problem.coarser(g.nx // 2)
-        self._fine_nd, self._threads, self._fine_prob = problem, threads, None
-        self._prob = coarse.adhesive_problem(threads)
-        self._branch = Branch(self._prob, tol, max_iter, progress=False, keep_states=True,
-                              label=f"predicted N={coarse.grid.nx}", stretch_every=PREDICTED_STRETCH_EVERY)
-        self._solve = _predicted_solver(self._branch, coarse.path_start(self._prob).stress)
-
-    @property
-    def states_solved(self) -> int:
-        """Coarse states solved."""
-        return len(self._branch.records)
-
-    @property
-    def iterations(self) -> int:
-        """CG iterations of the coarse states."""
-        return int(sum(r["iterations"] for r in self._branch.records))
-
-    @property
-    def records(self) -> list:
-        """:meth:`ContactState.summary` of every coarse state, in solve order."""
-        return list(self._branch.records)
-
-    def coarse_state(self, approach) -> ContactState:
-        """Solve the state at ``approach`` on the grid half as fine (once; later calls reuse it).
-
-        Parameters
-        ----------
-        approach : float
-            Approach [c_r^2/R].
-
-        Returns
-        -------
-        ContactState
-            The coarse grid's state, converged or not.
-        """
-        return self._branch.states[self._solve(float(approach))]
-
-
 #: Tabor parameter of the lower-mu start (:class:`LowerMuWarmStart`) per the problem's: mu/2 makes
 #: the Dugdale edge's ``edge_width_ratio`` (~ mu^2) 4x smaller, so that the grid half as fine of a
 #: level-1 grid of the predicted route (ratio ~1.8 at mu = 10) holds it (~0.45).
@@ -722,7 +648,10 @@ class LowerMuWarmStart(_HalfGridWarmStart):
     nested warm starts from coarser grids (:class:`NestedWarmStart`, the located route's starts),
     has its contact where the grid's own solution has it (measured: converged in 11 s).  Carried
     to the fine grid with the fine law's zone (:func:`_carried_to_fine`), it started the mu = 10
-    state that converged in 148 outer iterations (330 s, 1 thread).
+    state that converged in 148 outer iterations (330 s, 1 thread).  On the sphere at mu = 10
+    (N = 1280) the state started so converged in 45 outer iterations (89 s, the start's 4 states
+    7 s included), where GVG's cold start took 116 (322 s) in one run and stalled at a residual of
+    1.6e-3 in another (instrumented copies of the solver's loop, 1 thread).
 
     Parameters
     ----------
@@ -808,10 +737,9 @@ def predicted_path(problem, options, warm_start=None):
         The fine grid's problem, with a cold start (:attr:`NondimensionalProblem.has_cold_start`).
     options : PathOptions
         Checked path settings (tolerances, ``refine_levels``: no vertex state when 0).
-    warm_start : PredictedWarmStart or LowerMuWarmStart, optional
-        Start every state from the same approach solved on the grid half as fine (the
-        refined route), or at a lower mu there (the retry of a failed route); a state it
-        gives nothing for starts as above.
+    warm_start : LowerMuWarmStart, optional
+        Start every state from the same approach solved at a lower mu on the grid half as
+        fine; a state it gives nothing for starts as above.
 
     Returns
     -------
@@ -843,7 +771,8 @@ def predicted_path(problem, options, warm_start=None):
     j0 = int(round((top - problem.pull_off_approach) / spacing))
     solve(top - j0 * spacing)                   # the sample nearest the prediction first (cold)
     if not b.usable(0):
-        return failed("the predicted route's cold state (GVG's pull-off) did not converge")
+        first = "cold state" if warm_start is None else "first state (started from the grid half as fine)"
+        return failed(f"the predicted route's {first} at GVG's pull-off did not converge")
     for j in (j0 - 1, j0 + 1):                  # its neighbours, then beyond the lowest end until interior
         solve(top - j * spacing)
 
