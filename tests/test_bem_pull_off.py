@@ -256,3 +256,19 @@ def test_dilated_state_stretches_the_contact_and_is_the_state_itself_without_str
     assert st.converged and a > 4 * nd.grid.dx
     a2, b2 = dilate_state(st, 1.2, 1.1).contact_semi_axes()
     assert abs(a2 - 1.2 * a) <= nd.grid.dx and abs(b2 - 1.1 * b) <= nd.grid.dy
+
+
+def test_nested_warm_starts_stop_where_a_level_does_not_halve_along_y():
+    # 2880 x 540 halves to 1440 x 270 and 720 x 135, whose half (360 x 67) would cover another domain:
+    # the nest stops at 720 x 135 (issue 20: the beta0 = 0.1, mu = 10 retry lattice raised there)
+    from dhfield.adhesive_start import predicted_problem
+    from dhfield.bem.pull_off import NestedWarmStart
+
+    ws = NestedWarmStart(predicted_problem(mu=5.0, beta0=0.1, n=2880, ny=540), tol=1e-4, max_iter=10)
+    grids = []
+    while ws is not None:
+        grids.append((ws._nd.grid.nx, ws._nd.grid.ny))
+        ws = ws._inner
+    assert grids == [(1440, 270), (720, 135)]
+    with pytest.raises(ValueError, match="an even ny"):
+        NestedWarmStart(predicted_problem(mu=5.0, beta0=0.1, n=1440, ny=270).coarser(720), tol=1e-4, max_iter=10)

@@ -352,9 +352,9 @@ class NestedWarmStart(_HalfGridWarmStart):
             raise ValueError(f"problem must be a NondimensionalProblem; got {type(problem).__name__}")
         n = problem.grid.nx
         nc = int(n) // 2
-        if nc < NESTED_MIN_N or nc % 2:
-            raise ValueError(f"problem must have an even n >= {2 * NESTED_MIN_N} cells per axis for nested "
-                             f"warm starts; got {n!r}")
+        if nc < NESTED_MIN_N or nc % 2 or problem.grid.ny % 2:
+            raise ValueError(f"problem must have an even n >= {2 * NESTED_MIN_N} cells per axis and an even ny "
+                             f"for nested warm starts; got {n!r} x {problem.grid.ny!r}")
         coarse = problem.coarser(nc)
         self.fine_grid = problem.grid
         self._fine_nd = problem
@@ -364,8 +364,10 @@ class NestedWarmStart(_HalfGridWarmStart):
         self._prob = coarse.adhesive_problem(threads)
         self._cold = Prediction(np.zeros_like(self._prob.z), self._prob.to_work(coarse.start_stress()))
         self._tol, self._max_iter = float(tol), int(max_iter)
+        # a coarser level only where this one halves exactly along y too (2880 x 540 reached 720 x 135, whose
+        # half, 360 x 67, covered another domain: the warm start raised)
         self._inner = (NestedWarmStart(coarse, tol=tol, max_iter=max_iter, threads=threads)
-                       if nc // 2 >= NESTED_MIN_N and nc % 4 == 0 else None)
+                       if nc // 2 >= NESTED_MIN_N and nc % 4 == 0 and coarse.grid.ny % 2 == 0 else None)
         # the coarse states, solved on one branch (kept: they are the warm starts), by approach
         self._branch = Branch(self._prob, self._tol, self._max_iter, progress=False, keep_states=True,
                               warm_start=self._inner)
