@@ -49,7 +49,8 @@ from .bem.laws import law_from_name
 from .bem.operator import Grid
 from .bem.path import PathOptions
 from .bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, LOWER_MU_RATIO, MAX_CELLS, MAX_STEPS, NESTED_MIN_N,
-                           NondimensionalProblem, UnloadingStart, check_bem_pull_off, check_cells, paper_problem, refine, solve_pull_off)
+                           NondimensionalProblem, UnloadingStart, check_bem_pull_off, check_cells, paper_problem,
+                           refine, solve_pull_off)
 from .records import PullOff
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
@@ -767,7 +768,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                          f"got {search!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
-    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load" and (nested is None or n is not None)):
+    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load"
+                                           and (nested is None or n is not None)):
         raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None on the "
                          f"automatic grid (the predicted route); got law={law!r}, control={control!r}, "
                          f"nested={nested!r}, n={n!r}")
@@ -1210,9 +1212,7 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     :func:`lower_mu_start_possible`).
     """
     from . import elliptic_transition
-    from .bem.pull_off import predicted_path, pull_off_result
-
-    from .bem.pull_off import LowerMuWarmStart
+    from .bem.pull_off import LowerMuWarmStart, predicted_path, pull_off_result
 
     if start not in PREDICTED_STARTS:
         raise ValueError(f"start must be one of {PREDICTED_STARTS} (start of the predicted route's states); "

@@ -305,7 +305,8 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     calls = []
     answer = SimpleNamespace(converged=True)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None, start="cold": calls.append((prob.grid.nx, tol, opts.tol)) or answer)
+                        lambda prob, opts, tol=None, start="cold":
+                        calls.append((prob.grid.nx, tol, opts.tol)) or answer)
     # (the start of its states: test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next)
     monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is answer
