@@ -5,6 +5,15 @@ import sys
 # One BLAS thread: the adhesive solver's small dense products stall when OpenBLAS threads
 # compete with the test process on the 2-core CI machine (the study and benchmarks pin it too).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+# A fresh FFTW wisdom cache per test session (unless one is named): FFTW_MEASURE plans taken from
+# the user's ~/.cache/dhfield, grown by long studies, round differently, and the cold 32^2 sphere state
+# of test_bem_branch.py then stalled (20001 CG iterations, residual 0.23) where it converges with
+# fresh plans, as on CI's fresh machine.  Tests that test the cache name their own directory.
+_SESSION_CACHE = None
+if not os.environ.get("DHFIELD_CACHE"):
+    import tempfile
+
+    _SESSION_CACHE = os.environ["DHFIELD_CACHE"] = tempfile.mkdtemp(prefix="dhfield-test-cache-")
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +29,10 @@ def pytest_sessionfinish(session, exitstatus):
     # "No tests collected" (exit status 5) is not a failure for CI.
     if exitstatus == 5:
         session.exitstatus = 0
+    if _SESSION_CACHE is not None:
+        import shutil
+
+        shutil.rmtree(_SESSION_CACHE, ignore_errors=True)
 
 
 @pytest.fixture
