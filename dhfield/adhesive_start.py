@@ -788,10 +788,12 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             tol_route = PREDICTED_TOL if tol is None else tol
             prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-            # each state from the same approach at mu/2 on the grid half as fine first (LowerMuWarmStart), then
-            # GVG's elliptical start: at mu = 10 GVG's cold state wandered at beta0 = 0.1 and stalled or took
-            # 116 outer iterations on the sphere (N = 1280), the lower-mu start's converged in 148 and 45
-            starts = ["lower-mu", "cold"] if lower_mu_start_possible(prob) else ["cold"]
+            # GVG's start first (measured: every mu = 10 case answered so far, beta0 = 0.4826 in 272 s), then
+            # each state from the same approach at mu/2 on the grid half as fine (LowerMuWarmStart) on the same
+            # lattice: at mu = 10 GVG's cold state wandered at beta0 = 0.1 and stalled in one run on the sphere
+            # (N = 1280), where the lower-mu start's converged in 148 and 45 outer iterations.  Lower-mu first
+            # made dhfield solve --beta0 0.4826 --mu 10 take > 8 min (1 thread): not the default
+            starts = ["cold", "lower-mu"] if lower_mu_start_possible(prob) else ["cold"]
             label = {"cold": "GVG's start", "lower-mu": f"the lower-mu start (mu = {LOWER_MU_RATIO * mu:g} on the "
                                                          "grid half as fine)"}
             res = _predicted_pull_off(prob, options, tol=tol_route, start=starts[0])

@@ -447,19 +447,19 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     n_next = adhesive_start.next_lattice(n)
     prob = adhesive_start.predicted_problem(mu=10.0, beta0=0.4826, n=n)
     assert adhesive_start.lower_mu_start_possible(prob)
-    # the lower-mu start fails, GVG's start on the same lattice answers
+    # GVG's start fails, the lower-mu start on the same lattice answers
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
     res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
-    assert calls == [(n, "lower-mu"), (n, "cold")]
+    assert calls == [(n, "cold"), (n, "lower-mu")]
     assert res.converged and res.W_star == good.W_star
-    assert "from the lower-mu start (mu = 5 on the grid half as fine) did not converge" in res.note
-    assert "solved again from GVG's start" in res.note
+    assert "from GVG's start did not converge" in res.note
+    assert "solved again from the lower-mu start (mu = 5 on the grid half as fine)" in res.note
     assert res.elapsed == pytest.approx(failed.elapsed + good.elapsed)
-    # both fail on the first lattice: once more on the next, from the lower-mu start
+    # both fail on the first lattice: once more on the next, from GVG's start
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(2))
     res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
-    assert calls == [(n, "lower-mu"), (n, "cold"), (n_next, "lower-mu")]
+    assert calls == [(n, "cold"), (n, "lower-mu"), (n_next, "cold")]
     assert res.converged and res.W_star == good.W_star
     assert f"N = {n} lattice" in res.note and f"N = {n_next}" in res.note and "lower-mu start" in res.note
     assert res.elapsed == pytest.approx(2 * failed.elapsed + good.elapsed)
@@ -468,11 +468,11 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
     adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.1)
     n_slender = adhesive_start.plan_grid(mu=10.0, beta0=0.1).n_needed
-    assert calls == [(n_slender, "lower-mu"), (n_slender, "cold")]
+    assert calls == [(n_slender, "cold"), (n_slender, "lower-mu")]
     # a converged first try is the answer; failed ones with no affordable next lattice are reported
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(0))
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [(n, "lower-mu")]
+    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [(n, "cold")]
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None, start="cold": failed)
     monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds, ny=None: None)
     res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
