@@ -112,12 +112,11 @@ PARTS = {
     "high-mu-level2-lower-mu": ((1.0,), (10.0,), (2,)),
     "high-mu-level2-lower-mu-wide": ((0.5, 0.8), (10.0,), (2,)),
     "high-mu-level2-lower-mu-slender": ((0.1806, 0.3), (10.0,), (2,)),
-    # the mu = 10 cases GVG's start answered, again by the route that now starts from the lower mu
+    # run when the automatic route took the lower-mu start first (commits 7a99f24-76286e6; since cdd2470
+    # it is the retry after GVG's start): the sphere (stored, converged), beta0 0.1 (58688f9: stored
+    # not_converged after all three tries), beta0 0.1806 and 0.3 (stopped unfinished after 53 CPU min)
     "high-mu-lower-mu-check-sphere": ((1.0,), (10.0,), (1,)),
-    # beta0 0.1 at level 1 with the lower-mu start first (the state at the same approach at mu/2 on the
-    # grid half as fine, dhfield.bem.pull_off.LowerMuWarmStart)
     "high-mu-slender-lower-mu": ((0.1,), (10.0,), (1,)),
-    # the slender cases GVG's start answered, again by the route that now starts them from the lower mu
     "high-mu-slender-lower-mu-check": ((0.1806, 0.3), (10.0,), (1,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
