@@ -793,19 +793,14 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             # lattice: at mu = 10 GVG's cold state wandered at beta0 = 0.1 and stalled in one run on the sphere
             # (N = 1280), where the lower-mu start's converged in 148 and 45 outer iterations.  Lower-mu first
             # made dhfield solve --beta0 0.4826 --mu 10 take > 8 min (1 thread): not the default
-            starts = ["cold", "lower-mu"] if lower_mu_start_possible(prob) else ["cold"]
-            label = {"cold": "GVG's start", "lower-mu": f"the lower-mu start (mu = {LOWER_MU_RATIO * mu:g} on the "
-                                                         "grid half as fine)"}
-            res = _predicted_pull_off(prob, options, tol=tol_route, start=starts[0])
-            tried = []                            # why each retry was made, for the record's note
-            if not res.converged and len(starts) > 1:
-                # once more on this lattice from the other start
-                why = (f"the N = {n} lattice's states from {label[starts[0]]} did not converge (worst residual "
-                       f"{res.worst_residual:.2g}, {res.iterations} CG iterations, {res.elapsed:.0f} s): solved again "
-                       f"from {label[starts[1]]}")
-                again = _predicted_pull_off(prob, options, tol=tol_route, start=starts[1])
-                tried.append(why)
-                res = replace(again, note="; ".join(filter(None, (why, again.note))),
+            res = _predicted_pull_off(prob, options, tol=tol_route)
+            tried = ()                            # why the retry on this lattice was made, for the record's note
+            if not res.converged and lower_mu_start_possible(prob):
+                tried = (f"the N = {n} lattice's states from GVG's start did not converge (worst residual "
+                         f"{res.worst_residual:.2g}, {res.iterations} CG iterations, {res.elapsed:.0f} s): solved "
+                         f"again from the lower-mu start (mu = {LOWER_MU_RATIO * mu:g} on the grid half as fine)",)
+                again = _predicted_pull_off(prob, options, tol=tol_route, start="lower-mu")
+                res = replace(again, note="; ".join(filter(None, (*tried, again.note))),
                               elapsed=res.elapsed + again.elapsed)
             n_next = None if res.converged else next_lattice(n, max_seconds, ny=ny)
             if n_next is None:
@@ -817,7 +812,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                    f"N = {n_next}")
             again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
                                                           margin=margin, ny=_scaled_cells(ny, n, n_next)),
-                                        options, tol=tol_route, start=starts[0])
+                                        options, tol=tol_route)
             return replace(again, note="; ".join(filter(None, (*tried, why, again.note))),
                            elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)

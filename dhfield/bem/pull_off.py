@@ -355,7 +355,6 @@ class NestedWarmStart(_HalfGridWarmStart):
             raise ValueError(f"problem must have an even n >= {2 * NESTED_MIN_N} cells per axis and an even ny "
                              f"for nested warm starts; got {n!r} x {problem.grid.ny!r}")
         coarse = problem.coarser(nc)
-        self.fine_grid = problem.grid
         self._fine_nd = problem
         self._fine_prob = None
         self._nd = coarse
