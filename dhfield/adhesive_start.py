@@ -238,8 +238,10 @@ AUTO_ZONE_CELLS = 2.0
 #: Memory of one load-control pull-off per cell of the full grid [bytes].  Measured: 185 and 179
 #: B/cell of peak RSS for one state solve at N = 512 and 1024 (mu = 1, beta0 = 0.5; operator,
 #: CG and Anderson arrays, quadrant mode), plus ~33 B/cell per full-grid state held by a path
-#: (pressure, gap, repulsive pressure, masks; ~8 held) -> 450.
-PATH_BYTES_PER_CELL = 450.0
+#: (pressure, gap, repulsive pressure, masks; ~8 held) -> 450; plus 96 B/cell for the high-mu
+#: route's Anderson memory of 30 (dhfield.bem.solver.STRETCH_ANDERSON_MEMORY: 2 x 24 more
+#: quadrant arrays) -> 550.
+PATH_BYTES_PER_CELL = 550.0
 #: Wall time per cell of the full grid and per CG iteration [s]: the stored ground truth at
 #: mu = 5, N = 512 and 1024 (data/adhesive_ground_truth.nc, 'elapsed'/'iterations'/N^2) gives
 #: 0.023-0.12 us on this shared 2-core machine, median ~0.06 us.

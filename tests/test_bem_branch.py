@@ -90,3 +90,11 @@ def test_stretch_every_is_a_positive_integer_or_none(sphere, bad):
     assert _branch(prob, stretch_every=30).stretch_every == 30 and _branch(prob).stretch_every is None
     with pytest.raises(ValueError, match="stretch_every must be None or an integer >= 1"):
         _branch(prob, stretch_every=bad)
+
+
+@pytest.mark.parametrize("bad", [0, -6, 2.5, True, "30"])
+def test_anderson_memory_is_a_positive_integer_or_none(sphere, bad):
+    _, prob = sphere
+    assert _branch(prob, anderson_memory=30).anderson_memory == 30 and _branch(prob).anderson_memory is None
+    with pytest.raises(ValueError, match="anderson_memory must be None or an integer >= 1"):
+        _branch(prob, anderson_memory=bad)

@@ -243,6 +243,26 @@ def test_stretch_steps_leave_the_converged_state_unchanged():
         assert abs(again.load - st.load) < 1e-6 * abs(st.load)
 
 
+def test_a_longer_anderson_memory_converges_to_the_same_state():
+    """Memory 30 without restarts (the high-mu route's mixing) solves the same discrete problem."""
+    prob, st = _sphere_state()
+    p, s = prob.to_work(st.repulsive_pressure), prob.stress_of_state(st)
+    ps = bem_solver._stretched(prob, p, 1.03, 1.03)
+    ss = np.clip(bem_solver._stretched(prob, s, 1.03, 1.03), 0.0, prob.law.max_stress)
+    again = bem_solver.solve_problem(prob, 0.3, bem_solver.Prediction(ps, ss), 1e-8, 20000,
+                                     stretch_every=10, anderson_memory=bem_solver.STRETCH_ANDERSON_MEMORY)
+    assert again.converged
+    # both within the tolerance 1e-8 of h0 in the gap: the load agrees to far better than 1e-6
+    assert abs(again.load - st.load) < 1e-6 * abs(st.load)
+
+
+@pytest.mark.parametrize("bad", [0, -3, 2.5, True, "30"])
+def test_anderson_memory_is_a_positive_integer_or_none(bad):
+    prob, st = _sphere_state()
+    with pytest.raises(ValueError, match="anderson_memory must be None or an integer >= 1"):
+        bem_solver.solve_problem(prob, 0.3, st, 1e-6, 100, anderson_memory=bad)
+
+
 def test_stretch_is_taken_only_when_the_state_stalls():
     """A residual halving every few iterations is converging; one that stays put has stalled."""
     converging = [0.4 * 0.8 ** k for k in range(30)]                # 0.8^15 = 0.035 over half a window

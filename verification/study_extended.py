@@ -118,6 +118,13 @@ PARTS = {
     "high-mu-lower-mu-check-sphere": ((1.0,), (10.0,), (1,)),
     "high-mu-slender-lower-mu": ((0.1,), (10.0,), (1,)),
     "high-mu-slender-lower-mu-check": ((0.1806, 0.3), (10.0,), (1,)),
+    # the route's states mixed with Anderson memory STRETCH_ANDERSON_MEMORY = 30, no periodic restarts
+    # (seventh session; python -m verification.bench_anderson): beta0 0.1 at level 1, and level 2 of
+    # the sphere (MD exact), then of the others
+    "high-mu-anderson-slender": ((0.1,), (10.0,), (1,)),
+    "high-mu-level2-anderson-sphere": ((1.0,), (10.0,), (2,)),
+    "high-mu-level2-anderson-wide": ((0.5, 0.8), (10.0,), (2,)),
+    "high-mu-level2-anderson-slender": ((0.1806, 0.3), (10.0,), (2,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 

@@ -255,6 +255,9 @@ class Branch:
         Every this many outer iterations of a state, a stretch step
         (:func:`dhfield.bem.solver.stretch_step`; ``stretch_every`` of
         :func:`dhfield.bem.solver.solve_problem`).  None: none.
+    anderson_memory : int, optional
+        Anderson memory of the states, mixed without periodic restarts (``anderson_memory`` of
+        :func:`dhfield.bem.solver.solve_problem`).  None: the solver's default.
 
     Attributes
     ----------
@@ -265,7 +268,7 @@ class Branch:
     """
 
     def __init__(self, prob, tol, max_iter, *, label="path", progress=None, keep_states=False, warm_start=None,
-                 stretch_every=None):
+                 stretch_every=None, anderson_memory=None):
         self.prob = prob
         self.tol, self.max_iter = float(tol), int(max_iter)
         if stretch_every is not None and (isinstance(stretch_every, bool) or not isinstance(stretch_every, int)
@@ -273,6 +276,10 @@ class Branch:
             raise ValueError(f"stretch_every must be None or an integer >= 1 (outer iterations between stretch "
                              f"steps); got {stretch_every!r}")
         self.stretch_every = stretch_every
+        if anderson_memory is not None and (isinstance(anderson_memory, bool) or not isinstance(anderson_memory, int)
+                                            or anderson_memory < 1):
+            raise ValueError(f"anderson_memory must be None or an integer >= 1; got {anderson_memory!r}")
+        self.anderson_memory = anderson_memory
         self.keep_states = bool(keep_states)
         self.warm_start = warm_start
         self.records = []
@@ -328,7 +335,7 @@ class Branch:
             The record index and the state.
         """
         st = solve_problem(self.prob, float(approach), guess, self.tol, self.max_iter,
-                           stretch_every=self.stretch_every)
+                           stretch_every=self.stretch_every, anderson_memory=self.anderson_memory)
         return self.record(st, phase), st
 
     def usable(self, i) -> bool:

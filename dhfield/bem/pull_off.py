@@ -32,7 +32,7 @@ from .branch import Branch, UnloadingPath
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
 from .path import PathOptions, PathStart, load_control_path, path_on
-from .solver import AdhesiveProblem, Prediction
+from .solver import STRETCH_ANDERSON_MEMORY, AdhesiveProblem, Prediction
 from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "UnloadingStart", "NondimensionalProblem",
@@ -755,7 +755,7 @@ def predicted_path(problem, options, warm_start=None):
     prob = problem.adhesive_problem(options.threads)
     b = Branch(prob, options.tol, options.max_iter, label=f"predicted N={problem.grid.nx}",
                progress=options.progress, keep_states=options.keep_states, stretch_every=PREDICTED_STRETCH_EVERY,
-               warm_start=warm_start)
+               anderson_memory=STRETCH_ANDERSON_MEMORY, warm_start=warm_start)
     solve = _predicted_solver(b, problem.path_start(prob).stress)
 
     def failed(why):

@@ -97,7 +97,7 @@ from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "edge_width_ratio", "Prediction", "solve_problem", "secant_prediction",
            "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution",
-           "AndersonMixing", "assemble_state", "extrapolated_start", "stretch_step", "StretchStep"]
+           "AndersonMixing", "assemble_state", "STRETCH_ANDERSON_MEMORY", "extrapolated_start", "stretch_step", "StretchStep"]
 
 #: Default solver tolerance: complementarity error of the contact problem relative to
 #: the law's range (or |delta| without adhesion), and largest change of the zone
@@ -128,6 +128,13 @@ STALL_OUTER = 60
 ANDERSON_RESTART = 40
 #: Anderson memory (number of previous iterates mixed).
 ANDERSON_MEMORY = 6
+#: Anderson memory of the states that take stretch steps (``stretch_every``: the high-mu route),
+#: mixed without the periodic restarts (only a stretch step restarts it).  Their residual sits in a
+#: ring of ~5000 edge cells whose undulations are many slow modes, more than 6 differences span.
+#: Measured on the same warm start (beta0 = 0.1, mu = 10, 2560 x 480, approach -0.6867, 1 thread):
+#: memory 6 with restarts every 40 stalled at residual ~9e-4, memory 30 converged in 146 outer
+#: iterations (python -m verification.bench_anderson).
+STRETCH_ANDERSON_MEMORY = 30
 #: Stretch step (:func:`stretch_step`): finite-difference increment of the stretch factors [-].
 STRETCH_INCREMENT = 2e-3
 #: Stretch step: largest change of a stretch factor per Broyden step [-].
@@ -913,7 +920,7 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
     return solve_problem(prob, delta, guess, tol, int(max_iter))
 
 
-def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None):
+def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, anderson_memory=None):
     """Solve a prepared problem at one approach (the body of :func:`solve_adhesive`).
 
     Parameters
@@ -934,6 +941,10 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None):
         stretch step (:func:`stretch_step`) instead of an Anderson step when the state stalls
         (``STRETCH_STALL_RATIO``), and Anderson's history restarts.  None (default): Anderson
         steps only.
+    anderson_memory : int, optional
+        Anderson memory, mixed without periodic restarts (a stretch step still restarts it);
+        None (default): ``ANDERSON_MEMORY``, restarted every ``ANDERSON_RESTART`` outer
+        iterations.
 
     Returns
     -------
@@ -976,7 +987,11 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None):
     else:
         h_rigid = zd.copy()
         s = prob.stress_from_gap(np.maximum(h_rigid, 0.0), h_rigid <= 0)
-    acc = AndersonMixing()
+    if anderson_memory is not None and (isinstance(anderson_memory, bool)
+                                        or not isinstance(anderson_memory, (int, np.integer)) or anderson_memory < 1):
+        raise ValueError(f"anderson_memory must be None or an integer >= 1; got {anderson_memory!r}")
+    acc = AndersonMixing() if anderson_memory is None else AndersonMixing(int(anderson_memory))
+    restart = ANDERSON_RESTART if anderson_memory is None else 0
     res = np.inf
     err = np.inf
     outer = 0
@@ -1009,7 +1024,7 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None):
             acc.reset()
             continue
         s = np.clip(acc.step(s, f), 0.0, sigma0)
-        if outer % ANDERSON_RESTART == 0:
+        if restart and outer % restart == 0:
             acc.reset()
     else:
         # out of iterations: report the best iterate, flagged
