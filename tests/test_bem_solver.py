@@ -271,3 +271,57 @@ def test_stretch_is_taken_only_when_the_state_stalls():
     assert not bem_solver._stalled(converging, 30)
     assert bem_solver._stalled(flat, 30) and bem_solver._stalled(slow, 30)
     assert not bem_solver._stalled(flat[:29], 30)                     # not a whole window yet
+
+
+def _anderson_reference(x0, fixed_point, memory, steps):
+    """Type-II Anderson mixing written out from its definition (Walker & Ni 2011, Eq. 1.2 with
+    beta = 1): the least-squares gamma of the last ``memory`` residual differences, by lstsq."""
+    xs, fs = [x0], [fixed_point(x0) - x0]
+    for _ in range(steps):
+        x, f = xs[-1], fs[-1]
+        n = min(len(xs) - 1, memory)
+        if n:
+            dX = np.array([xs[-i] - xs[-i - 1] for i in range(n, 0, -1)]).T
+            dF = np.array([fs[-i] - fs[-i - 1] for i in range(n, 0, -1)]).T
+            gamma = np.linalg.lstsq(dF, f, rcond=None)[0]
+            new = x + f - (dX + dF) @ gamma
+        else:
+            new = x + f
+        xs.append(new)
+        fs.append(fixed_point(new) - new)
+    return xs
+
+
+def test_anderson_mixing_is_type_two_anderson_past_its_ring_buffer():
+    """The ring buffer and the Gram matrix updated row by row give the textbook iterates, also after
+    the history wraps (memory 3, 8 steps), on a contracting linear map."""
+    rng = np.random.default_rng(1)
+    a = 0.15 * rng.standard_normal((12, 12))          # spectral radius ~0.5: a contraction
+    b = rng.standard_normal(12)
+
+    def g(x):
+        return a @ x + b
+
+    ref = _anderson_reference(np.zeros(12), g, 3, 8)
+    acc = bem_solver.AndersonMixing(memory=3)
+    x = np.zeros(12)
+    for k in range(8):
+        x = acc.step(x, g(x) - x)
+        # the Tikhonov term (1e-12 of the Gram trace) moves gamma by ~1e-12 relative
+        np.testing.assert_allclose(x, ref[k + 1], rtol=1e-8, atol=1e-10)
+
+
+def test_anderson_mixing_solves_a_linear_fixed_point_in_dimension_plus_one_steps():
+    """With memory >= the dimension, type-II Anderson on x = A x + b is GMRES in disguise
+    (Walker & Ni 2011, Thm 2.2): the fixed point is reached after dim + 1 steps."""
+    rng = np.random.default_rng(2)
+    dim = 6
+    a = 0.9 * np.linalg.qr(rng.standard_normal((dim, dim)))[0]     # eigenvalues of modulus 0.9
+    b = rng.standard_normal(dim)
+    exact = np.linalg.solve(np.eye(dim) - a, b)
+    acc = bem_solver.AndersonMixing(memory=dim)
+    x = np.zeros(dim)
+    for _ in range(dim + 1):
+        x = acc.step(x, a @ x + b - x)
+    # plain iteration would still be 0.9^7 ~ 0.48 of the way off; the residual is rounding only
+    np.testing.assert_allclose(x, exact, rtol=1e-6)
