@@ -98,3 +98,30 @@ def test_anderson_memory_is_a_positive_integer_or_none(sphere, bad):
     assert _branch(prob, anderson_memory=30).anderson_memory == 30 and _branch(prob).anderson_memory is None
     with pytest.raises(ValueError, match="anderson_memory must be None or an integer >= 1"):
         _branch(prob, anderson_memory=bad)
+
+
+def test_external_fallback_starts_from_neighbours_and_falls_back_on_the_external_start(sphere):
+    nd, prob = sphere
+    d0, d1 = nd.pull_off_approach, nd.pull_off_approach - nd.approach_step
+    own = {d: _branch(prob).solve(d, None, "unloading")[1] for d in (d0, d1)}   # converged references
+    asked = []
+
+    def external(d):
+        asked.append(d)
+        return own[d]
+
+    b = _branch(prob, warm_start=external, external_fallback=True)
+    assert b.guess(d0, None) is own[d0] and asked == [d0]          # no neighbour: the external start
+    k0, st0 = b.solve(d0, own[d0], "unloading")
+    assert st0.converged and not b.guess(d1, k0) is own[d1] and asked == [d0]   # a neighbour: not asked
+    # a neighbour's start that fails (a CG cap of 1 iteration) is solved again from the external start
+    b.max_iter = 1
+    k1, st1 = b.solve(d1, b.guess(d1, k0), "unloading")
+    assert asked == [d0, d1] and b.records[k1 - 1]["phase"] == "discarded" and b.records[k1]["phase"] == "unloading"
+    assert len(b.records) == 3 and not b.records[k1 - 1]["converged"]
+    # without the fallback the external start is asked first, and a failure is left as it is
+    plain = _branch(prob, warm_start=external)
+    assert plain.guess(d1, b.states[k0]) is own[d1]
+    plain.max_iter = 1
+    k, st = plain.solve(d1, b.states[k0], "unloading")
+    assert not st.converged and len(plain.records) == 1 and plain.records[k]["phase"] == "unloading"

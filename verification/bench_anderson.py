@@ -3,7 +3,7 @@
 One state of the predicted (high-mu) route, on its automatic grid (``--level 2``: twice the
 cells per axis), started from the lower-mu warm start
 (:class:`dhfield.bem.pull_off.LowerMuWarmStart`: the same approach at mu/2 on the grid half as
-fine), solved to the route's tolerance (``PREDICTED_TOL``) with a stretch step every
+fine), solved to the route's tolerance (``PREDICTED_TOL``) and CG cap (``DEFAULT_MAX_ITER``) with a stretch step every
 ``PREDICTED_STRETCH_EVERY`` outer iterations, once per variant from the same start:
 
 * ``memory 6``: Anderson memory ``ANDERSON_MEMORY``, restarted every ``ANDERSON_RESTART``
@@ -51,7 +51,7 @@ def main(argv=None) -> int:
     nd = A.predicted_problem(mu=args.mu, beta0=args.beta0, n=plan.n_needed * args.level,
                              ny=plan.ny_needed * args.level)
     t0 = time.perf_counter()
-    ws = LowerMuWarmStart(nd, tol=A.PREDICTED_TOL, max_iter=10**7, threads=args.threads)
+    ws = LowerMuWarmStart(nd, tol=A.PREDICTED_TOL, max_iter=S.DEFAULT_MAX_ITER, threads=args.threads)
     guess = ws(args.approach)
     print(f"beta0 {args.beta0:g}, mu {args.mu:g}, level {args.level}: {nd.grid.nx} x {nd.grid.ny} cells, "
           f"approach {args.approach:.6g}; lower-mu start {time.perf_counter() - t0:.0f} s "
@@ -63,7 +63,7 @@ def main(argv=None) -> int:
     print(f"{'variant':>10} {'converged':>9} {'outer':>6} {'CG':>7} {'residual':>9} {'load':>12} {'wall s':>7}")
     for memory in [None] + list(args.memory):
         t = time.perf_counter()
-        st = S.solve_problem(prob, args.approach, guess, A.PREDICTED_TOL, 10**7,
+        st = S.solve_problem(prob, args.approach, guess, A.PREDICTED_TOL, S.DEFAULT_MAX_ITER,
                              stretch_every=PREDICTED_STRETCH_EVERY, anderson_memory=memory)
         name = f"memory {memory or S.ANDERSON_MEMORY}"
         print(f"{name:>10} {str(st.converged):>9} {st.summary().get('outer_iterations', -1):>6} {st.iterations:>7} "

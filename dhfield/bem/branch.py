@@ -258,6 +258,12 @@ class Branch:
     anderson_memory : int, optional
         Anderson memory of the states, mixed without periodic restarts (``anderson_memory`` of
         :func:`dhfield.bem.solver.solve_problem`).  None: the solver's default.
+    external_fallback : bool, default False
+        False: ``warm_start`` starts every state it answers for (:meth:`guess`).  True: it
+        starts only a state without a held neighbour, and a state started from its neighbours
+        that fails is solved once more from it, the failed record marked 'discarded'
+        (:meth:`solve`; the high-mu route, whose lower-mu start is costly and, away from the
+        first state, less reliable than a converged neighbour).
 
     Attributes
     ----------
@@ -268,8 +274,10 @@ class Branch:
     """
 
     def __init__(self, prob, tol, max_iter, *, label="path", progress=None, keep_states=False, warm_start=None,
-                 stretch_every=None, anderson_memory=None):
+                 stretch_every=None, anderson_memory=None, external_fallback=False):
         self.prob = prob
+        self.external_fallback = bool(external_fallback)
+        self._external_guess = None   # the last guess that came from warm_start (external_fallback)
         self.tol, self.max_iter = float(tol), int(max_iter)
         if stretch_every is not None and (isinstance(stretch_every, bool) or not isinstance(stretch_every, int)
                                           or stretch_every < 1):
@@ -332,9 +340,21 @@ class Branch:
         Returns
         -------
         (int, ContactState)
-            The record index and the state.
+            The record index and the state.  With ``external_fallback``, a state started from
+            its neighbours that fails is solved once more from :meth:`external` when that gives
+            a start: the failed record is kept, marked 'discarded', and the second one returned.
         """
         st = solve_problem(self.prob, float(approach), guess, self.tol, self.max_iter,
+                           stretch_every=self.stretch_every, anderson_memory=self.anderson_memory)
+        k = self.record(st, phase)
+        if (st.converged or not self.external_fallback or guess is None or guess is self._external_guess
+                or not any(self.usable(i) for i in self.states if i != k)):    # (not started from a neighbour)
+            return k, st
+        g = self.external(approach)
+        if g is None:
+            return k, st
+        self.records[k]["phase"] = "discarded"          # solved again from the external start
+        st = solve_problem(self.prob, float(approach), g, self.tol, self.max_iter,
                            stretch_every=self.stretch_every, anderson_memory=self.anderson_memory)
         return self.record(st, phase), st
 
@@ -408,7 +428,8 @@ class Branch:
 
         The warm start of the coarser grid when there is one (:meth:`external`),
         else the secant extrapolation of ``prev`` and ``last`` when they allow it,
-        else ``last``.
+        else ``last``.  With ``external_fallback`` the external start only when
+        ``last`` is None (:meth:`solve` falls back on it).
 
         Parameters
         ----------
@@ -424,10 +445,12 @@ class Branch:
         ContactState or Prediction or None
             The warm start (None: ``last`` is None or not held).
         """
-        g = self.external(approach)
-        if g is not None:
-            return g
         last, prev = (self.states.get(s) if isinstance(s, int) else s for s in (last, prev))
+        if not self.external_fallback or last is None:
+            g = self.external(approach)
+            if g is not None:
+                self._external_guess = g
+                return g
         return secant_prediction(self.prob, prev, last, approach)
 
     def nearest_usable(self, approach):
