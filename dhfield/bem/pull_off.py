@@ -540,6 +540,13 @@ VERTEX_ERROR_FRACTION = 0.1
 #: step moved their load by 1.1-1.3 %); with it the same cold states converged in 90 and 113
 #: outer iterations (a stretch step every 30, ungated).
 PREDICTED_STRETCH_EVERY = 30
+#: The predicted route mixes with ``STRETCH_ANDERSON_MEMORY`` (30, no periodic restart) when its
+#: first state starts from an external start (the lower-mu start: the retry of a failed case, and
+#: the refined grid levels), and with the solver's default (6, restarted every 40) from GVG's cold
+#: start.  Measured: memory 30 from the lower-mu start converged beta0 = 0.1, mu = 10's hardest state
+#: in 92 outer iterations where memory 6 stalled at 7.5e-4 (python -m verification.bench_anderson);
+#: from GVG's start, ``dhfield solve --beta0 0.4826 --mu 10`` took over 16 min with memory 30 (killed;
+#: a 1-core benchmark beside it), where memory 6 takes ~4.
 
 
 def _dilated_start(branch, near, approach):
@@ -763,7 +770,8 @@ def predicted_path(problem, options, warm_start=None):
     prob = problem.adhesive_problem(options.threads)
     b = Branch(prob, options.tol, options.max_iter, label=f"predicted N={problem.grid.nx}",
                progress=options.progress, keep_states=options.keep_states, stretch_every=PREDICTED_STRETCH_EVERY,
-               anderson_memory=STRETCH_ANDERSON_MEMORY, warm_start=warm_start, external_fallback=True)
+               anderson_memory=None if warm_start is None else STRETCH_ANDERSON_MEMORY, warm_start=warm_start,
+               external_fallback=True)
     solve = _predicted_solver(b, problem.path_start(prob).stress)
 
     def kept():

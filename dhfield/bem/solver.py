@@ -128,12 +128,13 @@ STALL_OUTER = 60
 ANDERSON_RESTART = 40
 #: Anderson memory (number of previous iterates mixed).
 ANDERSON_MEMORY = 6
-#: Anderson memory of the states that take stretch steps (``stretch_every``: the high-mu route),
-#: mixed without the periodic restarts (only a stretch step restarts it).  Their residual sits in a
-#: ring of ~5000 edge cells whose undulations are many slow modes, more than 6 differences span.
-#: Measured on the same warm start (beta0 = 0.1, mu = 10, 2560 x 480, approach -0.6867, 1 thread):
-#: memory 6 with restarts every 40 stalled at residual ~9e-4, memory 30 converged in 146 outer
-#: iterations (python -m verification.bench_anderson).
+#: Anderson memory of the high-mu route's states started from the lower-mu start
+#: (:data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY` says where), mixed without the periodic
+#: restarts (only a stretch step restarts it).  Their residual sits in a ring of ~5000 edge cells
+#: whose undulations are many slow modes, more than 6 differences span.  Measured on one warm start
+#: (beta0 = 0.1, mu = 10, 2560 x 480, approach -0.6867, 1 thread; python -m
+#: verification.bench_anderson): memory 6 with restarts every 40 stalled at residual 7.5e-4 after
+#: 109 outer iterations, memory 30 converged in 92 (184 s).
 STRETCH_ANDERSON_MEMORY = 30
 #: Stretch step (:func:`stretch_step`): finite-difference increment of the stretch factors [-].
 STRETCH_INCREMENT = 2e-3
