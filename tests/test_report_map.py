@@ -70,6 +70,27 @@ def test_map_section_states_the_validated_box_and_the_worst_case(section):
     assert re.search(r"Numerical JKR limit.*GVG is within \d+\.\d+ %", text)
 
 
+def test_map_section_states_the_worst_case_of_the_extended_ground_truth(section):
+    # re-derived from data/adhesive_ground_truth_extended.nc (W_star_truth, each case's best BEM value,
+    # read here with xarray directly) and dhfield.adhesion_map's adapter
+    import xarray as xr
+
+    from dhfield.adhesion_map import recommended_pull_off
+
+    sec, _, _ = section
+    with xr.open_dataset(sec_map.ROOT / "data" / "adhesive_ground_truth_extended.nc") as ds:
+        w = ds["W_star_truth"].transpose("beta0", "mu").values
+        bb, mm = np.meshgrid(ds["beta0"].values, ds["mu"].values, indexing="ij")
+        study = ds["extended_study"].transpose("beta0", "mu").values.astype(bool)
+    ok = np.isfinite(w)
+    dev = recommended_pull_off(beta0=bb[ok], mu=mm[ok]) / w[ok] - 1.0
+    text = " ".join(sec.verdict)
+    assert (f"{int((ok & study).sum())} of the {int(study.sum())} points of the extended study answered" in text
+            and f"within {100 * np.max(np.abs(dev)):.2f} % of every case" in text and f"{ok.sum()} cases" in text)
+    row = [c for c in sec.checks if "extended BEM ground truth" in c.name]
+    assert len(row) == 1 and row[0].value == pytest.approx(np.max(np.abs(dev)), rel=1e-12)
+
+
 def test_map_leads_the_report():
     assert report.SECTION_ORDER[0] == "map" and report.VERDICT_ORDER[0] == "map"
     from verification._api import Check, Section

@@ -41,6 +41,9 @@ GROUND_TRUTH = ROOT / "data" / "adhesive_ground_truth.nc"
 GROUND_TRUTH_SLENDER = ROOT / "data" / "adhesive_ground_truth_slender.nc"
 #: Both stored BEM ground truths (beta0 0.5-1 x mu 0.3-5; beta0 0.1-0.3 x mu 0.1-5).
 GROUND_TRUTHS = (GROUND_TRUTH, GROUND_TRUTH_SLENDER)
+#: Issue 20's extended ground truth (their successor: every case of the two, mu = 10, the extended
+#: study's beta0 x mu); its ``W_star_truth`` is each case's best value.
+GROUND_TRUTH_EXTENDED = ROOT / "data" / "adhesive_ground_truth_extended.nc"
 DEFAULT_NC = ROOT / "data" / "adhesion_map.nc"
 DEFAULT_FIG_DIR = ROOT / "out" / "adhesion_map"
 FORMATS = ("png", "svg", "pdf")
@@ -67,9 +70,10 @@ def read_truth(paths=GROUND_TRUTHS):
     Parameters
     ----------
     paths : path-like or sequence of path-like
-        Ground-truth files, concatenated: the default ground truth's ``W_star_extrapolated``
-        (Richardson-extrapolated where three levels converged), the slender one's ``W_star`` at
-        its finest ``level``.  Default both stored files (:data:`GROUND_TRUTHS`).
+        Ground-truth files, concatenated: the extended one's ``W_star_truth`` (each case's best
+        value), the default ground truth's ``W_star_extrapolated`` (Richardson-extrapolated where
+        three levels converged), the slender one's ``W_star`` at its finest ``level``.  Default
+        the two first stored files (:data:`GROUND_TRUTHS`).
 
     Returns
     -------
@@ -84,7 +88,9 @@ def read_truth(paths=GROUND_TRUTHS):
     parts = []
     for k, path in enumerate(paths):
         with xr.open_dataset(path) as ds:
-            if "W_star_extrapolated" in ds:
+            if "W_star_truth" in ds:
+                w = ds["W_star_truth"].transpose("beta0", "mu").values
+            elif "W_star_extrapolated" in ds:
                 w = ds["W_star_extrapolated"].transpose("beta0", "mu").values
             elif "W_star" in ds and "level" in ds["W_star"].dims:
                 w = ds["W_star"].isel(level=-1).transpose("beta0", "mu").values
