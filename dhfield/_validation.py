@@ -135,6 +135,15 @@ def check_count(name: str, value, low: int, high: int, what: str = "") -> int:
     return int(value)
 
 
+def check_optional_count(name: str, value, what: str = ""):
+    """Check ``value`` is None or an integer >= 1 (no bools, no floats); return it (an int) or None."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"{name} must be None or an integer >= 1{_what(what)}; got {value!r}")
+    return int(value)
+
+
 def check_tabor(name: str, value) -> np.ndarray:
     """Check a Tabor parameter mu (Eq. 35) against :data:`TABOR_RANGE`."""
     return check_interval(name, value, *TABOR_RANGE, low_open=False,

@@ -84,20 +84,14 @@ def test_warm_start_of_another_grid_is_not_used(sphere):
     assert same.external(nd.pull_off_approach) is own
 
 
+@pytest.mark.parametrize("option", ["stretch_every", "anderson_memory"])
 @pytest.mark.parametrize("bad", [0, -30, 2.5, True, "30"])
-def test_stretch_every_is_a_positive_integer_or_none(sphere, bad):
+def test_integer_options_are_positive_integers_or_none(sphere, option, bad):
     _, prob = sphere
-    assert _branch(prob, stretch_every=30).stretch_every == 30 and _branch(prob).stretch_every is None
-    with pytest.raises(ValueError, match="stretch_every must be None or an integer >= 1"):
-        _branch(prob, stretch_every=bad)
+    assert getattr(_branch(prob, **{option: 30}), option) == 30 and getattr(_branch(prob), option) is None
+    with pytest.raises(ValueError, match=f"{option} must be None or an integer >= 1"):
+        _branch(prob, **{option: bad})
 
-
-@pytest.mark.parametrize("bad", [0, -6, 2.5, True, "30"])
-def test_anderson_memory_is_a_positive_integer_or_none(sphere, bad):
-    _, prob = sphere
-    assert _branch(prob, anderson_memory=30).anderson_memory == 30 and _branch(prob).anderson_memory is None
-    with pytest.raises(ValueError, match="anderson_memory must be None or an integer >= 1"):
-        _branch(prob, anderson_memory=bad)
 
 
 def test_external_fallback_starts_from_neighbours_and_falls_back_on_the_external_start(sphere):

@@ -37,6 +37,17 @@ def test_count_rejects_non_integers_and_out_of_range(bad):
         v.check_count("n", bad, 2, 10)
 
 
+@pytest.mark.parametrize("good, expect", [(None, None), (1, 1), (np.int64(30), 30)])
+def test_optional_count_accepts_none_and_positive_integers(good, expect):
+    assert v.check_optional_count("m", good) == expect
+
+
+@pytest.mark.parametrize("bad", [0, -1, 2.5, 3.0, True, "3", float("nan")])
+def test_optional_count_rejects_the_rest_by_name(bad):
+    with pytest.raises(ValueError, match=r"^m must be None or an integer >= 1 \(what it is\); got"):
+        v.check_optional_count("m", bad, "what it is")
+
+
 def test_as_circle_is_the_one_near_circle_decision():
     """Within sqrt(eps) of 1 an ellipticity is exactly the circle (issue 18, item 2); outside it is kept."""
     eps = np.finfo(float).eps

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._validation import check_optional_count
 from ..pull_off_search import refine_sampled_minimum
 from .solver import secant_prediction, solve_problem
 from .state import ContactState
@@ -279,15 +280,9 @@ class Branch:
         self.external_fallback = bool(external_fallback)
         self._external_guess = None   # the last guess that came from warm_start (external_fallback)
         self.tol, self.max_iter = float(tol), int(max_iter)
-        if stretch_every is not None and (isinstance(stretch_every, bool) or not isinstance(stretch_every, int)
-                                          or stretch_every < 1):
-            raise ValueError(f"stretch_every must be None or an integer >= 1 (outer iterations between stretch "
-                             f"steps); got {stretch_every!r}")
-        self.stretch_every = stretch_every
-        if anderson_memory is not None and (isinstance(anderson_memory, bool) or not isinstance(anderson_memory, int)
-                                            or anderson_memory < 1):
-            raise ValueError(f"anderson_memory must be None or an integer >= 1; got {anderson_memory!r}")
-        self.anderson_memory = anderson_memory
+        self.stretch_every = check_optional_count("stretch_every", stretch_every,
+                                                  "outer iterations between stretch steps")
+        self.anderson_memory = check_optional_count("anderson_memory", anderson_memory)
         self.keep_states = bool(keep_states)
         self.warm_start = warm_start
         self.records = []
@@ -344,9 +339,12 @@ class Branch:
             its neighbours that fails is solved once more from :meth:`external` when that gives
             a start: the failed record is kept, marked 'discarded', and the second one returned.
         """
-        st = solve_problem(self.prob, float(approach), guess, self.tol, self.max_iter,
-                           stretch_every=self.stretch_every, anderson_memory=self.anderson_memory)
-        k = self.record(st, phase)
+        def solved(start):
+            st = solve_problem(self.prob, float(approach), start, self.tol, self.max_iter,
+                               stretch_every=self.stretch_every, anderson_memory=self.anderson_memory)
+            return self.record(st, phase), st
+
+        k, st = solved(guess)
         if (st.converged or not self.external_fallback or guess is None or guess is self._external_guess
                 or not any(self.usable(i) for i in self.states if i != k)):    # (not started from a neighbour)
             return k, st
@@ -354,9 +352,7 @@ class Branch:
         if g is None:
             return k, st
         self.records[k]["phase"] = "discarded"          # solved again from the external start
-        st = solve_problem(self.prob, float(approach), g, self.tol, self.max_iter,
-                           stretch_every=self.stretch_every, anderson_memory=self.anderson_memory)
-        return self.record(st, phase), st
+        return solved(g)
 
     def usable(self, i) -> bool:
         """Tell whether record ``i`` is a converged contact state on the branch.

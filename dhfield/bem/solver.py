@@ -89,7 +89,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.fft import next_fast_len
 
-from .._validation import check_finite, check_positive
+from .._validation import check_finite, check_optional_count, check_positive
 from .backend import array_module, namespace_of, to_host
 from .laws import DugdaleLaw, cell_fraction_below, check_law
 from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, quadrant, unfold_quadrant
@@ -995,10 +995,8 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, ande
     else:
         h_rigid = zd.copy()
         s = prob.stress_from_gap(np.maximum(h_rigid, 0.0), h_rigid <= 0)
-    if anderson_memory is not None and (isinstance(anderson_memory, bool)
-                                        or not isinstance(anderson_memory, (int, np.integer)) or anderson_memory < 1):
-        raise ValueError(f"anderson_memory must be None or an integer >= 1; got {anderson_memory!r}")
-    acc = AndersonMixing() if anderson_memory is None else AndersonMixing(int(anderson_memory))
+    anderson_memory = check_optional_count("anderson_memory", anderson_memory)
+    acc = AndersonMixing() if anderson_memory is None else AndersonMixing(anderson_memory)
     restart = ANDERSON_RESTART if anderson_memory is None else 0
     res = np.inf
     err = np.inf
