@@ -91,6 +91,41 @@ def test_map_section_states_the_worst_case_of_the_extended_ground_truth(section)
     assert len(row) == 1 and row[0].value == pytest.approx(np.max(np.abs(dev)), rel=1e-12)
 
 
+def _top_mu_dataset(status2, w2):
+    import xarray as xr
+
+    # beta0 (0.5, 1) x mu (1, 10) x level (1, 2); the study is every point; mu = 10 level 1: W* -0.65
+    # and -0.75 with stated errors 0.01 and 0.02
+    w = np.full((2, 2, 2), -0.5)
+    w[:, 1, 0] = (-0.65, -0.75)
+    w[:, 1, 1] = w2
+    err = np.full((2, 2, 2), 0.01)
+    err[1, 1, 0] = 0.02
+    status = np.full((2, 2, 2), "ok", dtype=object)
+    status[:, 1, 1] = status2
+    dims = ("beta0", "mu", "level")
+    return xr.Dataset({"W_star": (dims, w), "W_star_error": (dims, err), "status": (dims, status),
+                       "extended_study": (("beta0", "mu"), np.ones((2, 2), dtype=np.int8))},
+                      coords={"beta0": [0.5, 1.0], "mu": [1.0, 10.0], "level": [1, 2]})
+
+
+def test_top_mu_levels_counts_the_cases_converged_on_both_levels():
+    none = sec_map.top_mu_levels(_top_mu_dataset(("failed", "not_converged"), (np.nan, -0.7)))
+    assert (none["mu"], none["n"], none["n_level2"]) == (10.0, 2, 0) and np.isnan(none["max_step"])
+    assert "not yet measured" in sec_map.top_mu_sentence(none)
+    # beta0 1 converged on level 2 at -0.751: step 0.001 = 0.001/0.75 of W*, 0.05 of its error 0.02
+    one = sec_map.top_mu_levels(_top_mu_dataset(("failed", "ok"), (np.nan, -0.751)))
+    assert (one["n"], one["n_level2"], one["beta0_level2"]) == (2, 1, [1.0])
+    assert one["max_step"] == pytest.approx(0.001 / 0.75) and one["max_step_over_error"] == pytest.approx(0.05)
+    line = sec_map.top_mu_sentence(one)
+    assert "1 of 2 cases (β0 = 1) converged on level 2" in line and "at most 0.133 %" in line
+    assert "the other 1 are single-grid" in line
+    # both: beta0 0.5 steps 0.005 (0.5 of its error 0.01, 0.77 % of W*): the largest of each kind
+    both = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751)))
+    assert both["n_level2"] == 2 and both["max_step_over_error"] == pytest.approx(0.5)
+    assert both["max_step"] == pytest.approx(0.005 / 0.65) and "the other" not in sec_map.top_mu_sentence(both)
+
+
 def test_map_leads_the_report():
     assert report.SECTION_ORDER[0] == "map" and report.VERDICT_ORDER[0] == "map"
     from verification._api import Check, Section

@@ -324,6 +324,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         with xr.open_dataset(vam.GROUND_TRUTH_EXTENDED) as ds:
             study = ds["extended_study"].values.astype(bool)
             answered = int(np.sum(np.isfinite(ds["W_star_truth"].values) & study))
+            top = top_mu_levels(ds)
     except (OSError, ValueError, KeyError) as exc:
         return _failed(f"{type(exc).__name__}: {exc}")
     worst_x, signed_x, bx, mx, ax = _truth_worst(ext, vam.truth_deviation(ext)[ref])
@@ -334,6 +335,11 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     checks.append(check_ge(f"extended study (β0 0.1–1 × μ 0.1–10) cases with a BEM value, of {int(study.sum())}",
                            answered, int(study.sum()), f"{vam.GROUND_TRUTH_EXTENDED.relative_to(ROOT)} "
                            "(extended_study, W_star_truth)"))
+    if top["n_level2"]:
+        checks.append(check_le(f"μ = {top['mu']:g}: level 2 (twice the cells per axis) within level 1's stated error, "
+                               f"{top['n_level2']} of {top['n']} cases converged on both: max |W*₂ − W*₁| / error₁",
+                               top["max_step_over_error"], 1.0,
+                               f"{vam.GROUND_TRUTH_EXTENDED.relative_to(ROOT)} (W_star, W_star_error on level)"))
     (tb, tm) = vam.validated_extent(truth)
     box_gap = float(np.max(np.abs(np.subtract((tb, tm), (stored.validated_beta0, stored.validated_mu)))))
     checks.append(check_le("the stored map's validated box is the stored ground truths' common extent "
@@ -421,12 +427,44 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     verdict.insert(1, f"**Against the extended ground truth** ({ext['force'].size} cases, μ up to "
                       f"{float(ext['mu'].max()):g}; {answered} of the {int(study.sum())} points of the extended "
                       f"study answered): the recommended model is within {100 * worst_x:.2f} % of every case (worst "
-                      f"{100 * signed_x:+.2f} % at β0 = {bx:g}, θ = {ax:.0f}°, μ = {mx:g}).  Its μ = 10 cases are "
-                      "single-grid (level 1) values with a calibrated error: their convergence over N is not yet "
-                      "measured.")
+                      f"{100 * signed_x:+.2f} % at β0 = {bx:g}, θ = {ax:.0f}°, μ = {mx:g}).  " + top_mu_sentence(top))
     return Section(TITLE, text="\n\n".join(text), checks=checks, figures=figs,
                    tables=[fraction_table(stored, truth, dev_truth), jkr_table(rows)], datasets=[MAP_DATASET],
                    verdict=verdict, guide=guide_lines(stored, truth, dev_truth))
+
+
+def top_mu_levels(ds):
+    """The extended study's largest mu: how many of its cases converged on level 2 as well.
+
+    ``ds`` is the extended ground truth (``W_star``, ``W_star_error``, ``status`` on
+    ``(beta0, mu, level)``).  Returns ``mu``, ``n`` (cases of the study at that mu with a level-1
+    answer), ``n_level2`` (of those, the ones whose level 2 is 'ok' too), ``beta0_level2``,
+    ``max_step`` (largest |W*_2 / W*_1 - 1|) and ``max_step_over_error`` (largest
+    |W*_2 - W*_1| / stated error of level 1); NaN where no case has both levels.
+    """
+    mu = float(ds["mu"].where(ds["extended_study"].any("beta0"), drop=True).max())
+    s = ds.sel(mu=mu)
+    ok = s["status"] == "ok"
+    l1, l2 = (s.sel(level=lv) for lv in (1, 2))
+    one = ok.sel(level=1) & s["extended_study"].astype(bool)
+    both = one & ok.sel(level=2)
+    step = np.abs(l2["W_star"] - l1["W_star"]).where(both)
+    return {"mu": mu, "n": int(one.sum()), "n_level2": int(both.sum()),
+            "beta0_level2": [float(b) for b in s["beta0"].values[both.values]],
+            "max_step": float((step / np.abs(l1["W_star"])).max()) if both.any() else float("nan"),
+            "max_step_over_error": float((step / l1["W_star_error"]).max()) if both.any() else float("nan")}
+
+
+def top_mu_sentence(top):
+    """What the verdict says of the convergence over N at the extended study's largest mu."""
+    mu, n, n2 = top["mu"], top["n"], top["n_level2"]
+    single = "single-grid (level 1) values with a calibrated error (from the cases at μ ≤ 5)"
+    if n2 == 0:
+        return f"Its μ = {mu:g} cases are {single}: their convergence over N is not yet measured."
+    rest = f"; the other {n - n2} are {single}." if n2 < n else "."
+    return (f"At μ = {mu:g}, {n2} of {n} cases (β0 = {', '.join(f'{b:g}' for b in top['beta0_level2'])}) converged "
+            f"on level 2 too (twice the cells per axis): the levels differ by at most {100 * top['max_step']:.3f} %, "
+            f"{top['max_step_over_error']:.2f} of level 1's stated error{rest}")
 
 
 def stored_attr(name):
