@@ -113,6 +113,7 @@ def test_external_fallback_starts_from_neighbours_and_falls_back_on_the_external
     k1, st1 = b.solve(d1, b.guess(d1, k0), "unloading")
     assert asked == [d0, d1] and b.records[k1 - 1]["phase"] == "discarded" and b.records[k1]["phase"] == "unloading"
     assert len(b.records) == 3 and not b.records[k1 - 1]["converged"]
+    assert b.kept() == [k0, k1]                                     # the discarded record is not kept
     # without the fallback the external start is asked first, and a failure is left as it is
     plain = _branch(prob, warm_start=external)
     assert plain.guess(d1, b.states[k0]) is own[d1]

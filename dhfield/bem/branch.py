@@ -354,6 +354,16 @@ class Branch:
         self.records[k]["phase"] = "discarded"          # solved again from the external start
         return solved(g)
 
+    def kept(self) -> list:
+        """Indices of the records not 'discarded' (a discarded state was solved again).
+
+        Returns
+        -------
+        list of int
+            Record indices in solve order, every phase but 'discarded'.
+        """
+        return [i for i, r in enumerate(self.records) if r["phase"] != "discarded"]
+
     def usable(self, i) -> bool:
         """Tell whether record ``i`` is a converged contact state on the branch.
 

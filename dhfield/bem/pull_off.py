@@ -521,7 +521,7 @@ def _vertex_path(b, problem, options):
     xtol = problem.approach_step / options.refine_factor ** options.refine_levels
     b.refine_vertex(range(len(b.records)), xtol, min(options.refine_levels, 1))
     order, sm = b.minimum(range(len(b.records)))
-    if sm.at_boundary or not all(r["converged"] for r in b.records if r["phase"] != "discarded"):
+    if sm.at_boundary or not all(b.records[i]["converged"] for i in b.kept()):
         return None
     return b.to_path(control="load", load=sm.y, approach=sm.x, pull_off_index=order[sm.index], converged=True,
                      error=b.minimum_error(order, sm))
@@ -629,7 +629,7 @@ def _predicted_solver(branch, cold):
     b = branch
 
     def solve(d):
-        done = [i for i in range(len(b.records)) if b.approach(i) == d and b.records[i]["phase"] != "discarded"]
+        done = [i for i in b.kept() if b.approach(i) == d]
         if done:
             return done[0]                      # solved already (e.g. the first sample)
         near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
@@ -775,7 +775,7 @@ def predicted_path(problem, options, warm_start=None):
     solve = _predicted_solver(b, problem.path_start(prob).stress)
 
     def kept():
-        return [r for r in b.records if r["phase"] != "discarded"]   # (a discarded state was solved again)
+        return [b.records[i] for i in b.kept()]
 
     def failed(why):
         bad = [r for r in kept() if not r["converged"]]
