@@ -59,7 +59,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
-           "lower_mu_start_possible", "PREDICTED_STARTS",
+           "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
            "pull_off_cost"]
 
 
@@ -819,16 +819,18 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                            elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
-        # the route on the caller's grid (a refined grid of the same route and domain): no retry; each
-        # state from the lower-mu start where the grid half as fine holds its edge (nested True: required,
-        # False: GVG's cold start)
+        # the route on the caller's grid (a refined grid of the same route and domain): no retry.  The first
+        # state from this route's own state on the grid half as fine where that grid holds the edge at mu
+        # (a refined level), else from the lower-mu start where the grid half as fine holds the edge at mu/2
+        # (nested True: one of the two required, False: GVG's cold start)
         prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-        possible = lower_mu_start_possible(prob)
-        if nested and not possible:
+        start = ("coarse-route" if coarse_route_start_possible(prob) else
+                 "lower-mu" if lower_mu_start_possible(prob) else "cold")
+        if nested and start == "cold":
             raise ValueError(f"options.nested=True needs a grid whose half holds the Dugdale edge at mu/2, with nx and "
                              f"ny multiples of 4 (lower_mu_start_possible); got {n} x {ny} cells at mu = {mu:g}")
         return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol,
-                                   start="lower-mu" if (possible if nested is None else nested) else "cold")
+                                   start="cold" if nested is False else start)
     else:
         relaxed = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
@@ -1165,8 +1167,8 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
 def lower_mu_start_possible(problem) -> bool:
     """Tell whether the predicted route can start from a lower mu on the grid half as fine.
 
-    True when ``problem`` has the Dugdale law and cells per axis in multiples of 4, and the grid
-    half as fine resolves the Dugdale edge at ``LOWER_MU_RATIO`` mu
+    True when ``problem`` has the Dugdale law, cells per axis in multiples of 4 and at least
+    ``2 NESTED_MIN_N`` along x, and the grid half as fine resolves the Dugdale edge at ``LOWER_MU_RATIO`` mu
     (:func:`dhfield.bem.solver.edge_width_ratio` <= 1; the ratio scales as mu^2).
 
     Parameters
@@ -1182,14 +1184,42 @@ def lower_mu_start_possible(problem) -> bool:
     from .bem.laws import DugdaleLaw
 
     g = problem.grid
-    if g.nx % 4 or g.ny % 4 or not isinstance(problem.law, DugdaleLaw):
-        return False
+    if g.nx % 4 or g.ny % 4 or g.nx < 2 * NESTED_MIN_N or not isinstance(problem.law, DugdaleLaw):
+        return False       # (the grid half as fine is solved by nested starts from its own half)
     mu_lo = LOWER_MU_RATIO * problem.mu
     return bool(edge_width_ratio(problem.coarser(g.nx // 2).grid, law_from_name("dugdale", mu_lo, 1.0)) <= 1.0)
 
 
+def coarse_route_start_possible(problem) -> bool:
+    """Tell whether the predicted route can start from its own states on the grid half as fine.
+
+    True when ``problem`` has cells per axis in multiples of 8, the grid half as fine resolves
+    the Dugdale edge at mu (:func:`dhfield.bem.solver.edge_width_ratio` <= 1: it is a grid the
+    route solves, as level 1 is for level 2), and that grid can itself take the lower-mu start
+    (:func:`lower_mu_start_possible`).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The problem of the predicted route (:func:`predicted_problem`), on a refined grid.
+
+    Returns
+    -------
+    bool
+        True: :func:`_predicted_pull_off` may take ``start='coarse-route'`` on ``problem``.
+    """
+    from .bem.laws import DugdaleLaw
+    from .bem.solver import edge_width_ratio
+
+    g = problem.grid
+    if g.nx % 8 or g.ny % 8 or not isinstance(problem.law, DugdaleLaw):
+        return False
+    half = problem.coarser(g.nx // 2)
+    return bool(edge_width_ratio(half.grid, problem.law) <= 1.0 and lower_mu_start_possible(half))
+
+
 #: Starts of the predicted route's states (:func:`_predicted_pull_off`).
-PREDICTED_STARTS = ("cold", "lower-mu")
+PREDICTED_STARTS = ("cold", "lower-mu", "coarse-route")
 
 
 def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
@@ -1208,10 +1238,13 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     ``start`` (one of :data:`PREDICTED_STARTS`): 'cold', the first state from GVG's zone and each
     other from its nearest solved neighbour; 'lower-mu', every state from the same approach at
     mu/2 on the grid half as fine (:class:`dhfield.bem.pull_off.LowerMuWarmStart`, where
-    :func:`lower_mu_start_possible`).
+    :func:`lower_mu_start_possible`); 'coarse-route', the first state from the same approach at
+    the same mu solved by this route on the grid half as fine
+    (:class:`dhfield.bem.pull_off.CoarseRouteWarmStart`, where :func:`coarse_route_start_possible`:
+    a refined level), each later one from its neighbours.
     """
     from . import elliptic_transition
-    from .bem.pull_off import LowerMuWarmStart, predicted_path, pull_off_result
+    from .bem.pull_off import CoarseRouteWarmStart, LowerMuWarmStart, predicted_path, pull_off_result
 
     if start not in PREDICTED_STARTS:
         raise ValueError(f"start must be one of {PREDICTED_STARTS} (start of the predicted route's states); "
@@ -1219,8 +1252,9 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     options = options.checked()
     if tol is not None:
         options = replace(options, tol=tol)
-    ws = (LowerMuWarmStart(prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
-          if start == "lower-mu" else None)
+    starts = {"lower-mu": LowerMuWarmStart, "coarse-route": CoarseRouteWarmStart}
+    ws = (starts[start](prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
+          if start in starts else None)
     path = predicted_path(prob, options, warm_start=ws)
     res = pull_off_result(prob, prob.grid.nx, path, "located")
     if res.converged:

@@ -337,12 +337,15 @@ def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeyp
     with pytest.raises(ValueError, match="options.nested=True needs a grid whose half holds"):
         adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted",
                                          options=adhesive_start.AdhesiveOptions(nested=True))
-    # where the half grid serves: the lower-mu start by default, the cold start with nested=False
+    # where the half grid serves: the route's own states there (it holds the edge at mu and takes the
+    # lower-mu start itself: a refined level) by default, else the lower-mu start (128 cells: the half
+    # grid, 64, is the nested starts' smallest), the cold start with nested=False
     calls.clear()
+    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=256, search="predicted")
     adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted")
     adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted",
                                      options=adhesive_start.AdhesiveOptions(nested=False))
-    assert [c[2] for c in calls] == ["lower-mu", "cold"]
+    assert [c[2] for c in calls] == ["coarse-route", "lower-mu", "cold"]
     with pytest.raises(ValueError, match="options.nested None on the automatic grid"):
         adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, search="predicted",
                                          options=adhesive_start.AdhesiveOptions(nested=True))
@@ -387,6 +390,45 @@ def test_lower_mu_start_is_possible_where_the_half_grid_holds_the_edge_at_half_m
     assert not adhesive_start.lower_mu_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=130))
     assert not adhesive_start.lower_mu_start_possible(adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96,
                                                                                        ny=64))
+
+
+def test_coarse_route_start_is_possible_on_the_refined_levels_of_the_mu_10_cases():
+    # level 2 (twice the cells per axis of the automatic grid): its half grid is level 1, which holds the
+    # edge at mu and takes the lower-mu start itself; level 1's own half grid does not hold the edge
+    for beta0 in (1.0, 0.5, 0.1):
+        plan = adhesive_start.plan_grid(mu=10.0, beta0=beta0, predicted=True, max_seconds=1e9)
+        level1 = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=plan.n_needed, ny=plan.ny_needed)
+        fine = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=2 * plan.n_needed, ny=2 * plan.ny_needed)
+        assert adhesive_start.coarse_route_start_possible(fine)
+        assert not adhesive_start.coarse_route_start_possible(level1)
+    # cells not multiples of 8, or a half grid too small for its own lower-mu start (64 = NESTED_MIN_N)
+    for n in (260, 128):
+        assert not adhesive_start.coarse_route_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=n))
+    assert adhesive_start.coarse_route_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=256))
+
+
+def test_coarse_route_start_is_within_its_stated_error_of_maugis_dugdale():
+    # the sphere at mu = 2 on 256^2: the first state starts from the same approach at mu = 2 solved on
+    # 128^2 by the route (itself from mu = 1 on 64^2); MD (exact on the sphere) must lie within the
+    # answer's stated error of it
+    from dhfield import maugis_dugdale
+    from dhfield.bem.path import PathOptions
+    from dhfield.bem.pull_off import CoarseRouteWarmStart
+
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=256)
+    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="coarse-route")
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
+    assert res.converged and res.resolved and res.path.coarse_states > 0
+    assert abs(res.W_star - md) <= res.W_star_error
+    ws = CoarseRouteWarmStart(prob, tol=1e-4, max_iter=10 ** 6)
+    d = prob.pull_off_approach
+    coarse = ws.coarse_state(d)
+    assert coarse.converged and coarse.grid.nx == 128 and coarse.law == prob.law   # the same mu, half the cells
+    assert ws.coarse_state(d) is coarse and ws.states_solved >= 2                  # once; and its lower-mu start
+    guess = ws(d)
+    assert guess.grid == prob.grid and guess.law == prob.law
+    with pytest.raises(ValueError, match="multiples of 8"):
+        CoarseRouteWarmStart(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=132), tol=1e-4, max_iter=10)
 
 
 def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):

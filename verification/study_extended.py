@@ -127,6 +127,14 @@ PARTS = {
     "high-mu-level2-anderson-sphere": ((1.0,), (10.0,), (2,)),
     "high-mu-level2-anderson-wide": ((0.5, 0.8), (10.0,), (2,)),
     "high-mu-level2-anderson-slender": ((0.1806, 0.3), (10.0,), (2,)),
+    # level 2 whose first state starts from the route's own state on level 1's grid (the same mu,
+    # dhfield.bem.pull_off.CoarseRouteWarmStart; eighth session): from the lower-mu start the sphere's
+    # and beta0 0.8's first states were still at residual 4e-4 and 1e-3 after 125 and 109 outer
+    # iterations (parts high-mu-level2-anderson-*, stopped); from level 1's state beta0 0.8's converged in 18
+    "high-mu-level2-coarse-route-sphere": ((1.0,), (10.0,), (2,)),
+    "high-mu-level2-coarse-route-wide": ((0.5, 0.8), (10.0,), (2,)),
+    "high-mu-level2-coarse-route-slender": ((0.1806, 0.3), (10.0,), (2,)),
+    "high-mu-level2-coarse-route-slenderest": ((0.1,), (10.0,), (2,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
