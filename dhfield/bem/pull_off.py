@@ -541,8 +541,8 @@ VERTEX_ERROR_FRACTION = 0.1
 #: outer iterations (a stretch step every 30, ungated).
 PREDICTED_STRETCH_EVERY = 30
 #: The predicted route mixes with ``STRETCH_ANDERSON_MEMORY`` (30, no periodic restart) when its
-#: first state starts from an external start (the lower-mu start: the retry of a failed case, and
-#: the refined grid levels), and with the solver's default (6, restarted every 40) from GVG's cold
+#: first state starts from an external start (the lower-mu start: the retry of a failed case; the
+#: route's own state on the grid half as fine: the refined grid levels), and with the solver's default (6, restarted every 40) from GVG's cold
 #: start.  Measured: memory 30 from the lower-mu start converged beta0 = 0.1, mu = 10's hardest state
 #: in 92 outer iterations where memory 6 stalled at 7.5e-4 (python -m verification.bench_anderson);
 #: from GVG's start, ``dhfield solve --beta0 0.4826 --mu 10`` took over 16 min with memory 30 (killed;
@@ -834,9 +834,10 @@ def predicted_path(problem, options, warm_start=None):
         The fine grid's problem, with a cold start (:attr:`NondimensionalProblem.has_cold_start`).
     options : PathOptions
         Checked path settings (tolerances, ``refine_levels``: no vertex state when 0).
-    warm_start : LowerMuWarmStart, optional
-        Start every state from the same approach solved at a lower mu on the grid half as
-        fine; a state it gives nothing for starts as above.
+    warm_start : LowerMuWarmStart or CoarseRouteWarmStart, optional
+        Start the first state from the same approach solved on the grid half as fine (at a
+        lower mu, or at the same mu by this route), and a later one whose start from its
+        neighbours fails; a state it gives nothing for starts as above.
 
     Returns
     -------
