@@ -431,6 +431,29 @@ def test_coarse_route_start_is_within_its_stated_error_of_maugis_dugdale():
         CoarseRouteWarmStart(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=132), tol=1e-4, max_iter=10)
 
 
+@pytest.mark.parametrize("every", [False, True])
+def test_predicted_route_starts_the_first_or_every_state_from_the_external_start(every):
+    # a lower-mu start that counts what it is asked: without starts_every_state only the first state
+    # (the later ones from their neighbours), with it every state of the route
+    from dhfield.bem.path import PathOptions
+    from dhfield.bem.pull_off import LowerMuWarmStart, predicted_path
+
+    class Counting(LowerMuWarmStart):
+        starts_every_state = every
+
+        def coarse_state(self, approach):
+            asked.append(approach)
+            return super().coarse_state(approach)
+
+    asked = []
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    path = predicted_path(prob, PathOptions(progress=False).checked(),
+                          warm_start=Counting(prob, tol=1e-4, max_iter=10 ** 6))
+    solved = sorted(set(path.approach.tolist()))
+    assert path.pull_off_converged and len(solved) >= 3
+    assert sorted(set(asked)) == (solved if every else [path.approach[0]])
+
+
 def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
     # an iteration cap of 5 CG iterations cannot converge the cold state: the record must say so
     # (converged and resolved False, no error bound), name the analytic W* to use instead, and not

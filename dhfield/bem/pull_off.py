@@ -296,6 +296,7 @@ class _HalfGridWarmStart:
     _fine_nd = None       # the fine grid's NondimensionalProblem
     _fine_prob = None     # its working arrays, built on first use
     _threads = None
+    starts_every_state = False   # True: the predicted route starts every state from it (predicted_path)
 
     def coarse_state(self, approach) -> ContactState:    # pragma: no cover - every subclass defines it
         raise NotImplementedError
@@ -618,9 +619,10 @@ def _predicted_solver(branch, cold):
 
     The first state starts from the branch's external warm start (:meth:`Branch.guess`: the
     same approach on a coarser grid or at a lower mu) when it gives one, else cold (sigma0 on
-    the start's zone, ``cold``, working arrays).  Every later state starts from the nearest
-    solved state dilated to the contact expected at its approach (:func:`_dilated_start`); the
-    route's branch (``external_fallback``) solves a failed one once more from the external start.
+    the start's zone, ``cold``, working arrays).  With ``external_fallback`` every later state
+    starts from the nearest solved state dilated to the contact expected at its approach
+    (:func:`_dilated_start`), and the branch solves a failed one once more from the external
+    start; without it every state starts from the external start where it gives one.
     Measured at beta0 = 0.1, mu = 10 (2560 x 480, 1 thread): the state at approach -0.6867 from
     the lower-mu start ended at residual 6.3e-4 after 232 outer iterations (its load 0.06 % off);
     from its converged neighbour dilated it converged in 60 (76 s; load -4.39960, and -4.39964
@@ -633,12 +635,9 @@ def _predicted_solver(branch, cold):
         if done:
             return done[0]                      # solved already (e.g. the first sample)
         near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
-        if near:
-            guess = _dilated_start(b, near, d)
-        else:
-            guess = b.guess(d, None)
-            if guess is None:
-                guess = Prediction(np.zeros_like(cold), cold.copy())
+        guess = _dilated_start(b, near, d) if near and b.external_fallback else b.guess(d, None)
+        if guess is None:                       # (no external start there)
+            guess = _dilated_start(b, near, d) if near else Prediction(np.zeros_like(cold), cold.copy())
         return b.solve(d, guess, "unloading")[0]
 
     return solve
@@ -747,7 +746,10 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
     copy of the solver's loop, beside another 1-core run): from the lower-mu start the fine
     state's residual stayed at ~1e-3 after 109 outer iterations (the route's run, 23 min); from
     the coarse state (converged in 37 outer iterations, 102 s with its own lower-mu start) it
-    converged in 18 (215 s), load -4.71194 against the coarse -4.71260.
+    converged in 18 (215 s), load -4.71194 against the coarse -4.71260.  Its neighbour at
+    approach -0.71427, started in the route from that state dilated, was at residual 2.5e-3
+    after 59 outer iterations; from its own coarse state (converged in 41) it converged in 36
+    (492 s).  So the route starts every state from here (``starts_every_state``).
 
     Parameters
     ----------
@@ -765,7 +767,12 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
     ----------
     states_solved, iterations : int
         Coarse and lower-mu states solved and their CG iterations.
+    starts_every_state : bool
+        True: the predicted route starts every state from it, not only the first
+        (:func:`predicted_path`).
     """
+
+    starts_every_state = True
 
     def __init__(self, problem, *, tol, max_iter, threads=None):
         if not isinstance(problem, NondimensionalProblem) or not problem.has_cold_start:
@@ -854,7 +861,7 @@ def predicted_path(problem, options, warm_start=None):
     b = Branch(prob, options.tol, options.max_iter, label=f"predicted N={problem.grid.nx}",
                progress=options.progress, keep_states=options.keep_states, stretch_every=PREDICTED_STRETCH_EVERY,
                anderson_memory=None if warm_start is None else STRETCH_ANDERSON_MEMORY, warm_start=warm_start,
-               external_fallback=True)
+               external_fallback=not getattr(warm_start, "starts_every_state", False))
     solve = _predicted_solver(b, problem.path_start(prob).stress)
 
     def kept():
