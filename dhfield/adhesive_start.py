@@ -819,7 +819,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                            elapsed=res.elapsed + again.elapsed)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
-        # the route on the caller's grid (a refined grid of the same route and domain): no retry.  The first
+        # the route on the caller's grid (a refined grid of the same route and domain): no retry.  Every
         # state from this route's own state on the grid half as fine where that grid holds the edge at mu
         # (a refined level), else from the lower-mu start where the grid half as fine holds the edge at mu/2
         # (nested True: one of the two required, False: GVG's cold start)
@@ -1238,10 +1238,10 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     ``start`` (one of :data:`PREDICTED_STARTS`): 'cold', the first state from GVG's zone and each
     other from its nearest solved neighbour; 'lower-mu', every state from the same approach at
     mu/2 on the grid half as fine (:class:`dhfield.bem.pull_off.LowerMuWarmStart`, where
-    :func:`lower_mu_start_possible`); 'coarse-route', the first state from the same approach at
+    :func:`lower_mu_start_possible`); 'coarse-route', every state from the same approach at
     the same mu solved by this route on the grid half as fine
     (:class:`dhfield.bem.pull_off.CoarseRouteWarmStart`, where :func:`coarse_route_start_possible`:
-    a refined level), each later one from its neighbours.
+    a refined level).
     """
     from . import elliptic_transition
     from .bem.pull_off import CoarseRouteWarmStart, LowerMuWarmStart, predicted_path, pull_off_result

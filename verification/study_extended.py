@@ -136,6 +136,7 @@ PARTS = {
     "high-mu-level2-coarse-route-slender": ((0.1806, 0.3), (10.0,), (2,)),
     "high-mu-level2-coarse-route-slenderest": ((0.1,), (10.0,), (2,)),
     "high-mu-level2-coarse-route-60deg": ((0.5,), (10.0,), (2,)),
+    "high-mu-level2-coarse-route-30deg": ((0.1806,), (10.0,), (2,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 

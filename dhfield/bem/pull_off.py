@@ -542,12 +542,12 @@ VERTEX_ERROR_FRACTION = 0.1
 #: outer iterations (a stretch step every 30, ungated).
 PREDICTED_STRETCH_EVERY = 30
 #: The predicted route mixes with ``STRETCH_ANDERSON_MEMORY`` (30, no periodic restart) when its
-#: first state starts from an external start (the lower-mu start: the retry of a failed case; the
-#: route's own state on the grid half as fine: the refined grid levels), and with the solver's default (6, restarted every 40) from GVG's cold
-#: start.  Measured: memory 30 from the lower-mu start converged beta0 = 0.1, mu = 10's hardest state
-#: in 92 outer iterations where memory 6 stalled at 7.5e-4 (python -m verification.bench_anderson);
-#: from GVG's start, ``dhfield solve --beta0 0.4826 --mu 10`` took over 16 min with memory 30 (killed;
-#: a 1-core benchmark beside it), where memory 6 takes ~4.
+#: states start from an external start (the lower-mu start: the retry of a failed case; the route's
+#: own state on the grid half as fine: the refined grid levels), and with the solver's default (6,
+#: restarted every 40) from GVG's cold start.  Measured: memory 30 from the lower-mu start converged
+#: beta0 = 0.1, mu = 10's hardest state in 92 outer iterations where memory 6 stalled at 7.5e-4
+#: (python -m verification.bench_anderson); from GVG's start, ``dhfield solve --beta0 0.4826 --mu 10``
+#: took over 16 min with memory 30 (killed; a 1-core benchmark beside it), where memory 6 takes ~4.
 
 
 def _dilated_start(branch, near, approach):
@@ -749,7 +749,11 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
     converged in 18 (215 s), load -4.71194 against the coarse -4.71260.  Its neighbour at
     approach -0.71427, started in the route from that state dilated, was at residual 2.5e-3
     after 59 outer iterations; from its own coarse state (converged in 41) it converged in 36
-    (492 s).  So the route starts every state from here (``starts_every_state``).
+    (492 s).  So the route starts every state from here (``starts_every_state``).  Not a
+    cure: in the route that second state, started from a level-1 state solved from its own
+    neighbour, stalled near 1e-3 for 20 outer iterations before converging further, the
+    sphere's first state stalled at 3e-3 (100 outer iterations) from it, and beta0 = 0.5's
+    first level-1 state stalled at 2-3e-3 from its lower-mu start.
 
     Parameters
     ----------
@@ -844,7 +848,8 @@ def predicted_path(problem, options, warm_start=None):
     warm_start : LowerMuWarmStart or CoarseRouteWarmStart, optional
         Start the first state from the same approach solved on the grid half as fine (at a
         lower mu, or at the same mu by this route), and a later one whose start from its
-        neighbours fails; a state it gives nothing for starts as above.
+        neighbours fails (every state when its ``starts_every_state``); a state it gives
+        nothing for starts as above.
 
     Returns
     -------
