@@ -750,10 +750,11 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
     approach -0.71427, started in the route from that state dilated, was at residual 2.5e-3
     after 59 outer iterations; from its own coarse state (converged in 41) it converged in 36
     (492 s).  So the route starts every state from here (``starts_every_state``).  Not a
-    cure: in the route that second state, started from a level-1 state solved from its own
-    neighbour, stalled near 1e-3 for 20 outer iterations before converging further, the
-    sphere's first state stalled at 3e-3 (100 outer iterations) from it, and beta0 = 0.5's
-    first level-1 state stalled at 2-3e-3 from its lower-mu start.
+    cure: in the route (part ``high-mu-level2-coarse-route-wide``) that second state, from a
+    level-1 state solved from its own neighbour, needed ~55 outer iterations, and the third
+    (approach -0.79896) was at residual 1.2e-4 after 120 when the run was stopped; the
+    sphere's first state stayed at 3-5e-3 for 100 outer iterations from it, and beta0 = 0.5's
+    and 0.1806's first level-1 states stalled at 2-7e-3 from their lower-mu start.
 
     Parameters
     ----------
