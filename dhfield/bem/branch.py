@@ -355,7 +355,7 @@ class Branch:
         return solved(g)
 
     def kept(self) -> list:
-        """Indices of the records not 'discarded' (a discarded state was solved again).
+        """Return the indices of the records not 'discarded' (a discarded state was solved again).
 
         Returns
         -------
