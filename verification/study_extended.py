@@ -127,10 +127,13 @@ PARTS = {
     "high-mu-level2-anderson-sphere": ((1.0,), (10.0,), (2,)),
     "high-mu-level2-anderson-wide": ((0.5, 0.8), (10.0,), (2,)),
     "high-mu-level2-anderson-slender": ((0.1806, 0.3), (10.0,), (2,)),
-    # level 2 whose first state starts from the route's own state on level 1's grid (the same mu,
-    # dhfield.bem.pull_off.CoarseRouteWarmStart; eighth session): from the lower-mu start the sphere's
-    # and beta0 0.8's first states were still at residual 4e-4 and 1e-3 after 125 and 109 outer
-    # iterations (parts high-mu-level2-anderson-*, stopped); from level 1's state beta0 0.8's converged in 18
+    # level 2 whose states start from the route's own state on level 1's grid (the same mu,
+    # dhfield.bem.pull_off.CoarseRouteWarmStart; eighth session; every state since b423276, the first
+    # only at 58a0056): from the lower-mu start the sphere's and beta0 0.8's first states were still at
+    # residual 4e-4 and 1e-3 after 125 and 109 outer iterations (parts high-mu-level2-anderson-*,
+    # stopped); from level 1's state beta0 0.8's converged in 18.  None of these parts finished in that
+    # session: beta0 0.8's third state was at 1.2e-4 after 120 outer iterations when stopped, the
+    # sphere's first stalled at 2-7e-3, and 0.5's and 0.1806's first level-1 states stalled
     "high-mu-level2-coarse-route-sphere": ((1.0,), (10.0,), (2,)),
     "high-mu-level2-coarse-route-wide": ((0.5, 0.8), (10.0,), (2,)),
     "high-mu-level2-coarse-route-slender": ((0.1806, 0.3), (10.0,), (2,)),
