@@ -794,7 +794,6 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
                               stretch_every=PREDICTED_STRETCH_EVERY, anderson_memory=STRETCH_ANDERSON_MEMORY,
                               warm_start=self._lower, external_fallback=True)
         self._solve = _predicted_solver(self._branch, coarse.path_start(prob).stress)
-        self._states = {}
 
     @property
     def states_solved(self) -> int:
@@ -819,10 +818,7 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
         ContactState
             The state on the grid half as fine, converged or not.
         """
-        d = float(approach)
-        if d not in self._states:
-            self._states[d] = self._branch.states[self._solve(d)]
-        return self._states[d]
+        return self._branch.states[self._solve(float(approach))]   # (an approach solved already: its record)
 
 
 def predicted_path(problem, options, warm_start=None):

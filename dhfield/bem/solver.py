@@ -128,8 +128,9 @@ STALL_OUTER = 60
 ANDERSON_RESTART = 40
 #: Anderson memory (number of previous iterates mixed).
 ANDERSON_MEMORY = 6
-#: Anderson memory of the high-mu route's states started from the lower-mu start
-#: (:data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY` says where), mixed without the periodic
+#: Anderson memory of the high-mu route's states started from an external start (the lower-mu
+#: start, or the route's own states on the grid half as fine;
+#: :data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY` says where), mixed without the periodic
 #: restarts (only a stretch step restarts it).  Their residual sits in a ring of ~5000 edge cells
 #: whose undulations are many slow modes, more than 6 differences span.  Measured on one warm start
 #: (beta0 = 0.1, mu = 10, 2560 x 480, approach -0.6867, 1 thread; python -m
