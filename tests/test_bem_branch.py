@@ -46,6 +46,35 @@ def test_extension_stops_when_the_load_minimum_is_interior(sphere):
     np.testing.assert_allclose(-np.diff([b.approach(i) for i in order]), step, rtol=1e-9)
 
 
+def test_race_tries_the_starts_in_turn_until_one_converges(sphere):
+    # a start of None is skipped; a failed try (a CG cap of 1 iteration from a cold start) is kept,
+    # marked 'discarded'; the first converged state is returned and the later starts are never called
+    from dhfield.bem.solver import Prediction
+
+    nd, prob = sphere
+    d = nd.pull_off_approach
+    cold = Prediction(np.zeros_like(prob.z), np.zeros_like(prob.z))       # no contact, no zone
+    b = _branch(prob)
+    called = []
+
+    def start(name, cap, guess):
+        def make():
+            called.append(name)
+            b.max_iter = cap
+            return guess
+        return make
+
+    k, st = b.race(d, [start("none", DEFAULT_MAX_ITER, None), start("capped", 1, cold),
+                       start("full", DEFAULT_MAX_ITER, cold), start("never", DEFAULT_MAX_ITER, cold)], "unloading")
+    assert called == ["none", "capped", "full"]
+    assert st.converged and k == 1 and b.kept() == [1]
+    assert b.records[0]["phase"] == "discarded" and not b.records[0]["converged"]
+    assert b.race(d, [start("none", DEFAULT_MAX_ITER, None)], "unloading") is None and len(b.records) == 2
+    # every start fails: the last try is returned, kept, unconverged
+    k, st = b.race(d, [start("capped", 1, cold), start("capped", 1, cold)], "unloading")
+    assert not st.converged and b.records[k]["phase"] == "unloading" and b.records[k - 1]["phase"] == "discarded"
+
+
 def test_minimum_is_the_sampled_minimum_of_the_usable_records(sphere):
     nd, prob = sphere
     b = _branch(prob, keep_states=True)

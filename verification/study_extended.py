@@ -140,6 +140,12 @@ PARTS = {
     "high-mu-level2-coarse-route-slenderest": ((0.1,), (10.0,), (2,)),
     "high-mu-level2-coarse-route-60deg": ((0.5,), (10.0,), (2,)),
     "high-mu-level2-coarse-route-30deg": ((0.1806,), (10.0,), (2,)),
+    # level 2 with every state raced (ninth session, dhfield.bem.branch.Branch.race): from level 1's
+    # state, then from the nearest converged level-2 state dilated, then from the lower-mu start of
+    # the level-2 grid; the sphere (MD exact) and beta0 0.8 (whose first two states converged above)
+    "high-mu-level2-race-sphere": ((1.0,), (10.0,), (2,)),
+    "high-mu-level2-race-wide": ((0.8,), (10.0,), (2,)),
+    "high-mu-level2-race-60deg": ((0.5,), (10.0,), (2,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 

@@ -354,6 +354,44 @@ class Branch:
         self.records[k]["phase"] = "discarded"          # solved again from the external start
         return solved(g)
 
+    def race(self, approach, starts, phase):
+        """Solve the state at ``approach`` from each start in turn until one converges.
+
+        A race of starts: the same state converges from one start and stalls from another
+        (measured at mu = 10 on level-2 grids: the sphere's first state stalled at a residual
+        of 3-5e-3 from the level-1 state and converged in 64 outer iterations from the
+        lower-mu start; beta0 = 0.8's first state the other way round), and every stall seen
+        was past the solver's stall window (``STALL_OUTER``) long before its iteration cap.
+
+        Parameters
+        ----------
+        approach : float
+            Approach [length].
+        starts : iterable of callable
+            ``start()``: a warm start (as for :meth:`solve`), or None to skip it.  Called
+            only when the starts before it failed (a start may cost a coarser solve).
+        phase : str
+            Phase of the records.
+
+        Returns
+        -------
+        (int, ContactState) or None
+            The record index and the state of the first start that converged, else of the
+            last one tried; None when every start gave None.  Each failed state followed by
+            another try is kept, marked 'discarded'.
+        """
+        last = None
+        for start in starts:
+            guess = start()
+            if guess is None:
+                continue
+            if last is not None:
+                self.records[last[0]]["phase"] = "discarded"      # solved again from the next start
+            last = self.solve(approach, guess, phase)
+            if last[1].converged:
+                break
+        return last
+
     def kept(self) -> list:
         """Return the indices of the records not 'discarded' (a discarded state was solved again).
 

@@ -622,7 +622,9 @@ def _predicted_solver(branch, cold):
     the start's zone, ``cold``, working arrays).  With ``external_fallback`` every later state
     starts from the nearest solved state dilated to the contact expected at its approach
     (:func:`_dilated_start`), and the branch solves a failed one once more from the external
-    start; without it every state starts from the external start where it gives one.
+    start; without it every state is raced (:meth:`Branch.race`): from the external start, and
+    when that fails from the nearest converged state dilated, then from the warm start's
+    ``alternative`` (:meth:`CoarseRouteWarmStart.alternative`), cold only when none gives a start.
     Measured at beta0 = 0.1, mu = 10 (2560 x 480, 1 thread): the state at approach -0.6867 from
     the lower-mu start ended at residual 6.3e-4 after 232 outer iterations (its load 0.06 % off);
     from its converged neighbour dilated it converged in 60 (76 s; load -4.39960, and -4.39964
@@ -635,12 +637,26 @@ def _predicted_solver(branch, cold):
         if done:
             return done[0]                      # solved already (e.g. the first sample)
         near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
-        guess = _dilated_start(b, near, d) if near and b.external_fallback else b.guess(d, None)
+        if not b.external_fallback:             # every state from the external start: a race of starts
+            return _raced(b, near, d, cold)[0]
+        guess = _dilated_start(b, near, d) if near else b.guess(d, None)
         if guess is None:                       # (no external start there)
-            guess = _dilated_start(b, near, d) if near else Prediction(np.zeros_like(cold), cold.copy())
+            guess = Prediction(np.zeros_like(cold), cold.copy())
         return b.solve(d, guess, "unloading")[0]
 
     return solve
+
+
+def _raced(b, near, d, cold):
+    """The state at ``d`` on ``b`` from a race of starts (:meth:`Branch.race`): the external start
+    (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the warm start's
+    ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else cold."""
+    alternative = getattr(b.warm_start, "alternative", None)
+    starts = [lambda: b.guess(d, None),
+              lambda: _dilated_start(b, near, d) if near else None,
+              lambda: alternative(d) if alternative is not None else None]
+    return (b.race(d, starts, "unloading")
+            or b.solve(d, Prediction(np.zeros_like(cold), cold.copy()), "unloading"))
 
 
 #: Tabor parameter of the lower-mu start (:class:`LowerMuWarmStart`) per the problem's: mu/2 makes
@@ -788,6 +804,7 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
                              f"the grid half as fine; got {g.nx} x {g.ny}")
         coarse = problem.coarser(g.nx // 2)
         self._fine_nd, self._threads, self._fine_prob = problem, threads, None
+        self._tol, self._max_iter, self._alternative = tol, max_iter, None
         self._lower = LowerMuWarmStart(coarse, tol=tol, max_iter=max_iter, threads=threads)
         prob = coarse.adhesive_problem(threads)
         self._branch = Branch(prob, tol, max_iter, progress=False, keep_states=True,
@@ -797,13 +814,38 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
 
     @property
     def states_solved(self) -> int:
-        """Coarse states solved, and the lower-mu states under them."""
-        return len(self._branch.records) + self._lower.states_solved
+        """Coarse states solved, and the lower-mu states under them and under :meth:`alternative`."""
+        return len(self._branch.records) + sum(w.states_solved for w in self._lower_starts())
 
     @property
     def iterations(self) -> int:
         """CG iterations of the coarse and lower-mu states."""
-        return sum(r["iterations"] for r in self._branch.records) + self._lower.iterations
+        return sum(r["iterations"] for r in self._branch.records) + sum(w.iterations for w in self._lower_starts())
+
+    def _lower_starts(self):
+        return [self._lower] + ([] if self._alternative is None else [self._alternative])
+
+    def alternative(self, approach):
+        """The second start of a fine state: the lower-mu start of the fine grid (:class:`LowerMuWarmStart`).
+
+        The predicted route races a fine state from it when the start from the grid half as
+        fine and the nearest converged fine state both failed (:meth:`Branch.race`).  Built on
+        first use.
+
+        Parameters
+        ----------
+        approach : float
+            Approach [c_r^2/R].
+
+        Returns
+        -------
+        ContactState or None
+            The fine grid's warm start, or None when the lower-mu state did not converge.
+        """
+        if self._alternative is None:
+            self._alternative = LowerMuWarmStart(self._fine_nd, tol=self._tol, max_iter=self._max_iter,
+                                                 threads=self._threads)
+        return self._alternative(float(approach))
 
     def coarse_state(self, approach) -> ContactState:
         """Solve the state at ``approach`` on the grid half as fine (once; later calls reuse it).
@@ -880,8 +922,8 @@ def predicted_path(problem, options, warm_start=None):
 
     top = problem.approach_max
     j0 = int(round((top - problem.pull_off_approach) / spacing))
-    solve(top - j0 * spacing)                   # the sample nearest the prediction first (cold)
-    if not b.usable(0):
+    first = solve(top - j0 * spacing)           # the sample nearest the prediction first (cold)
+    if not b.usable(first):
         first = "cold state" if warm_start is None else "first state (started from the grid half as fine)"
         return failed(f"the predicted route's {first} at GVG's pull-off did not converge")
     for j in (j0 - 1, j0 + 1):                  # its neighbours, then beyond the lowest end until interior
