@@ -70,9 +70,14 @@ def test_race_tries_the_starts_in_turn_until_one_converges(sphere):
     assert st.converged and k == 1 and b.kept() == [1]
     assert b.records[0]["phase"] == "discarded" and not b.records[0]["converged"]
     assert b.race(d, [start("none", DEFAULT_MAX_ITER, None)], "unloading") is None and len(b.records) == 2
-    # every start fails: the last try is returned, kept, unconverged
-    k, st = b.race(d, [start("capped", 1, cold), start("capped", 1, cold)], "unloading")
+    # every start fails: the last try is returned, kept, unconverged; every start but the last
+    # listed may be given up early, the last has the solver's full budget
+    gave = []
+    solve = b.solve
+    b.solve = lambda *args: gave.append(args[3]) or solve(*args)
+    k, st = b.race(d, [start("capped", 1, cold), start("capped", 1, cold)], "unloading", give_up_after=40)
     assert not st.converged and b.records[k]["phase"] == "unloading" and b.records[k - 1]["phase"] == "discarded"
+    assert gave == [40, None]
 
 
 def test_minimum_is_the_sampled_minimum_of_the_usable_records(sphere):

@@ -256,6 +256,30 @@ def test_a_longer_anderson_memory_converges_to_the_same_state():
     assert abs(again.load - st.load) < 1e-6 * abs(st.load)
 
 
+def test_give_up_stops_a_stalled_start_early_and_leaves_a_converging_one_alone():
+    """give_up_after (a race's start): a converging state is solved as without it; one that cannot
+    reach its tolerance (1e-16, below the round-off floor of the residual, ~2e-15 here) stops,
+    flagged, on the first window whose second half brought no halving of the best residual, with its
+    best iterate.  (This start creeps at residual ~0.13 for its first ~10 outer iterations: a window
+    of 10 gives it up, one of 20 does not.)"""
+    prob, st = _sphere_state()
+    p, s = prob.to_work(st.repulsive_pressure), prob.stress_of_state(st)
+    start = bem_solver.Prediction(bem_solver._stretched(prob, p, 1.03, 1.03),
+                                  np.clip(bem_solver._stretched(prob, s, 1.03, 1.03), 0.0, prob.law.max_stress))
+    plain = bem_solver.solve_problem(prob, 0.3, start, 1e-8, 20000)
+    early = bem_solver.solve_problem(prob, 0.3, start, 1e-8, 20000, give_up_after=20)
+    # both within the tolerance 1e-8 of h0 in the gap: the loads agree to far better than 1e-6
+    assert plain.converged and early.converged and abs(early.load - plain.load) < 1e-6 * abs(plain.load)
+    assert not bem_solver.solve_problem(prob, 0.3, start, 1e-8, 20000, give_up_after=10).converged
+    stuck = bem_solver.solve_problem(prob, 0.3, start, 1e-16, 10 ** 6)
+    given_up = bem_solver.solve_problem(prob, 0.3, start, 1e-16, 10 ** 6, give_up_after=20)
+    assert not stuck.converged and not given_up.converged
+    assert 20 <= given_up.outer_iterations < stuck.outer_iterations
+    assert given_up.residual > 1e-16 and abs(given_up.load - st.load) < 1e-6 * abs(st.load)
+    with pytest.raises(ValueError, match="give_up_after must be None or an integer >= 1"):
+        bem_solver.solve_problem(prob, 0.3, st, 1e-6, 100, give_up_after=0)
+
+
 @pytest.mark.parametrize("bad", [0, -3, 2.5, True, "30"])
 def test_anderson_memory_is_a_positive_integer_or_none(bad):
     prob, st = _sphere_state()

@@ -320,7 +320,7 @@ class Branch:
         self._progress.update(k, st, phase)
         return k
 
-    def solve(self, approach, guess, phase):
+    def solve(self, approach, guess, phase, give_up_after=None):
         """Solve and record the state at ``approach`` from ``guess``.
 
         Parameters
@@ -331,6 +331,9 @@ class Branch:
             Warm start (:meth:`guess`); None: from separation.
         phase : str
             Phase of the record.
+        give_up_after : int, optional
+            ``give_up_after`` of :func:`dhfield.bem.solver.solve_problem` (stop a start that
+            stopped converging early).
 
         Returns
         -------
@@ -341,7 +344,8 @@ class Branch:
         """
         def solved(start):
             st = solve_problem(self.prob, float(approach), start, self.tol, self.max_iter,
-                               stretch_every=self.stretch_every, anderson_memory=self.anderson_memory)
+                               stretch_every=self.stretch_every, anderson_memory=self.anderson_memory,
+                               give_up_after=give_up_after)
             return self.record(st, phase), st
 
         k, st = solved(guess)
@@ -354,7 +358,7 @@ class Branch:
         self.records[k]["phase"] = "discarded"          # solved again from the external start
         return solved(g)
 
-    def race(self, approach, starts, phase):
+    def race(self, approach, starts, phase, give_up_after=None):
         """Solve the state at ``approach`` from each start in turn until one converges.
 
         A race of starts: the same state converges from one start and stalls from another
@@ -372,6 +376,10 @@ class Branch:
             only when the starts before it failed (a start may cost a coarser solve).
         phase : str
             Phase of the records.
+        give_up_after : int, optional
+            Every start but the last listed is stopped once it stops converging
+            (``give_up_after`` of :func:`dhfield.bem.solver.solve_problem`); the last one has
+            the solver's full budget.
 
         Returns
         -------
@@ -380,14 +388,15 @@ class Branch:
             last one tried; None when every start gave None.  Each failed state followed by
             another try is kept, marked 'discarded'.
         """
+        starts = list(starts)
         last = None
-        for start in starts:
+        for i, start in enumerate(starts):
             guess = start()
             if guess is None:
                 continue
             if last is not None:
                 self.records[last[0]]["phase"] = "discarded"      # solved again from the next start
-            last = self.solve(approach, guess, phase)
+            last = self.solve(approach, guess, phase, give_up_after if i < len(starts) - 1 else None)
             if last[1].converged:
                 break
         return last

@@ -541,6 +541,14 @@ VERTEX_ERROR_FRACTION = 0.1
 #: step moved their load by 1.1-1.3 %); with it the same cold states converged in 90 and 113
 #: outer iterations (a stretch step every 30, ungated).
 PREDICTED_STRETCH_EVERY = 30
+#: A start of a raced state (:func:`_raced`, all but the last) is given up once the best residual of
+#: the last half of this many outer iterations is above ``STRETCH_STALL_RATIO`` times the best of
+#: the first half (two stretch windows: a stretch step has had its chance).  Measured on the
+#: sphere's first level-2 state at mu = 10 (2560^2) from level 1's state: best residual 2.98e-3 at
+#: outer iteration 8, 2.66e-3 at 32, the plateau creeping on for 100 more; plain (undamped)
+#: fixed-point steps from the same start moved its residual by a factor 0.97-0.99 per iteration
+#: along one mode (successive residuals correlated at +0.99 to +1.00: an eigenvalue near 1).
+RACE_GIVE_UP_AFTER = 2 * PREDICTED_STRETCH_EVERY
 #: The predicted route mixes with ``STRETCH_ANDERSON_MEMORY`` (30, no periodic restart) when its
 #: states start from an external start (the lower-mu start: the retry of a failed case; the route's
 #: own state on the grid half as fine: the refined grid levels), and with the solver's default (6,
@@ -652,10 +660,12 @@ def _raced(b, near, d, cold):
     (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the warm start's
     ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else cold."""
     alternative = getattr(b.warm_start, "alternative", None)
-    starts = [lambda: b.guess(d, None),
-              lambda: _dilated_start(b, near, d) if near else None,
-              lambda: alternative(d) if alternative is not None else None]
-    return (b.race(d, starts, "unloading")
+    starts = [lambda: b.guess(d, None)]
+    if near:
+        starts.append(lambda: _dilated_start(b, near, d))
+    if alternative is not None:
+        starts.append(lambda: alternative(d))
+    return (b.race(d, starts, "unloading", give_up_after=RACE_GIVE_UP_AFTER)
             or b.solve(d, Prediction(np.zeros_like(cold), cold.copy()), "unloading"))
 
 

@@ -929,7 +929,7 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
     return solve_problem(prob, delta, guess, tol, int(max_iter))
 
 
-def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, anderson_memory=None):
+def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, anderson_memory=None, give_up_after=None):
     """Solve a prepared problem at one approach (the body of :func:`solve_adhesive`).
 
     Parameters
@@ -954,6 +954,11 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, ande
         Anderson memory, mixed without periodic restarts (a stretch step still restarts it);
         None (default): ``ANDERSON_MEMORY``, restarted every ``ANDERSON_RESTART`` outer
         iterations.
+    give_up_after : int, optional
+        Stop early, flagged, once the best outer residual of the last half of this many outer
+        iterations is above ``STRETCH_STALL_RATIO`` times the best of the first half (a start
+        that stopped converging; a race of starts, :meth:`dhfield.bem.branch.Branch.race`, then
+        tries the next).  None (default): only the ``STALL_OUTER`` and ``MAX_OUTER`` limits.
 
     Returns
     -------
@@ -997,6 +1002,7 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, ande
         h_rigid = zd.copy()
         s = prob.stress_from_gap(np.maximum(h_rigid, 0.0), h_rigid <= 0)
     anderson_memory = check_optional_count("anderson_memory", anderson_memory)
+    give_up_after = check_optional_count("give_up_after", give_up_after, "outer iterations")
     acc = AndersonMixing() if anderson_memory is None else AndersonMixing(anderson_memory)
     restart = ANDERSON_RESTART if anderson_memory is None else 0
     res = np.inf
@@ -1023,6 +1029,9 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, ande
             if err <= inner_tol or itol <= inner_tol:
                 break
         history.append(res)
+        if give_up_after and outer >= give_up_after and _stalled(history, give_up_after):
+            res, s, p, h, err = best             # this start stopped converging: the best iterate, flagged
+            break
         if (stretch_every and outer % stretch_every == 0 and isinstance(law, DugdaleLaw)
                 and _stalled(history, stretch_every)):
             step = stretch_step(prob, delta, p, s, itol, max(max_iter - total_it, 1))
