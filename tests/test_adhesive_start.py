@@ -427,6 +427,10 @@ def test_coarse_route_start_is_within_its_stated_error_of_maugis_dugdale():
     assert ws.coarse_state(d) is coarse and ws.states_solved >= 2                  # once; and its lower-mu start
     guess = ws(d)
     assert guess.grid == prob.grid and guess.law == prob.law
+    # the race's last start: the fine grid's own lower-mu start (mu = 1 on 128^2), counted with the rest
+    before = ws.states_solved
+    alt = ws.alternative(d)
+    assert alt.grid == prob.grid and alt.law == prob.law and ws.states_solved > before
     with pytest.raises(ValueError, match="multiples of 8"):
         CoarseRouteWarmStart(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=132), tol=1e-4, max_iter=10)
 
