@@ -364,8 +364,9 @@ class Branch:
         A race of starts: the same state converges from one start and stalls from another
         (measured at mu = 10 on level-2 grids: the sphere's first state stalled at a residual
         of 3-5e-3 from the level-1 state and converged in 64 outer iterations from the
-        lower-mu start; beta0 = 0.8's first state the other way round), and every stall seen
-        was past the solver's stall window (``STALL_OUTER``) long before its iteration cap.
+        lower-mu start; beta0 = 0.8's first state the other way round).  A stalled start
+        creeps, setting a new best residual every few outer iterations, so the solver's stall
+        window (``STALL_OUTER``) can leave it running to its cap: ``give_up_after`` stops it.
 
         Parameters
         ----------

@@ -836,11 +836,11 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
         return [self._lower] + ([] if self._alternative is None else [self._alternative])
 
     def alternative(self, approach):
-        """The second start of a fine state: the lower-mu start of the fine grid (:class:`LowerMuWarmStart`).
+        """The last start of a raced fine state: the lower-mu start of the fine grid (:class:`LowerMuWarmStart`).
 
-        The predicted route races a fine state from it when the start from the grid half as
-        fine and the nearest converged fine state both failed (:meth:`Branch.race`).  Built on
-        first use.
+        The predicted route starts a fine state from here when the start from the grid half as
+        fine and the nearest converged fine state (where there is one) both failed
+        (:meth:`Branch.race`).  Built on first use.
 
         Parameters
         ----------
@@ -932,8 +932,8 @@ def predicted_path(problem, options, warm_start=None):
 
     top = problem.approach_max
     j0 = int(round((top - problem.pull_off_approach) / spacing))
-    first = solve(top - j0 * spacing)           # the sample nearest the prediction first (cold)
-    if not b.usable(first):
+    k0 = solve(top - j0 * spacing)              # the sample nearest the prediction first (cold)
+    if not b.usable(k0):
         first = "cold state" if warm_start is None else "first state (started from the grid half as fine)"
         return failed(f"the predicted route's {first} at GVG's pull-off did not converge")
     for j in (j0 - 1, j0 + 1):                  # its neighbours, then beyond the lowest end until interior
