@@ -143,6 +143,8 @@ PARTS = {
     # level 2 with every state raced (ninth session, dhfield.bem.branch.Branch.race): from level 1's
     # state, then from the nearest converged level-2 state dilated, then from the lower-mu start of
     # the level-2 grid; the sphere (MD exact) and beta0 0.8 (whose first two states converged above)
+    # Ninth session: -wide (at 4caa76d, before the give-up window) and -sphere (a9e0372) converged,
+    # 61-63 CPU min each; -60deg's second state was still being raced when stopped for the final checks
     "high-mu-level2-race-sphere": ((1.0,), (10.0,), (2,)),
     "high-mu-level2-race-wide": ((0.8,), (10.0,), (2,)),
     "high-mu-level2-race-60deg": ((0.5,), (10.0,), (2,)),
