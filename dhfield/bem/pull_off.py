@@ -640,25 +640,29 @@ def _predicted_solver(branch, cold):
     """
     b = branch
 
+    def cold_start():                           # sigma0 on the start's zone, no contact yet
+        return Prediction(np.zeros_like(cold), cold.copy())
+
     def solve(d):
         done = [i for i in b.kept() if b.approach(i) == d]
         if done:
             return done[0]                      # solved already (e.g. the first sample)
         near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
         if not b.external_fallback:             # every state from the external start: a race of starts
-            return _raced(b, near, d, cold)[0]
+            return _raced(b, near, d, cold_start)[0]
         guess = _dilated_start(b, near, d) if near else b.guess(d, None)
         if guess is None:                       # (no external start there)
-            guess = Prediction(np.zeros_like(cold), cold.copy())
+            guess = cold_start()
         return b.solve(d, guess, "unloading")[0]
 
     return solve
 
 
-def _raced(b, near, d, cold):
+def _raced(b, near, d, cold_start):
     """The state at ``d`` on ``b`` from a race of starts (:meth:`Branch.race`): the external start
     (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the warm start's
-    ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else cold."""
+    ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else
+    ``cold_start()`` when none gave a start."""
     alternative = getattr(b.warm_start, "alternative", None)
     starts = [lambda: b.guess(d, None)]
     if near:
@@ -666,7 +670,7 @@ def _raced(b, near, d, cold):
     if alternative is not None:
         starts.append(lambda: alternative(d))
     return (b.race(d, starts, "unloading", give_up_after=RACE_GIVE_UP_AFTER)
-            or b.solve(d, Prediction(np.zeros_like(cold), cold.copy()), "unloading"))
+            or b.solve(d, cold_start(), "unloading"))
 
 
 #: Tabor parameter of the lower-mu start (:class:`LowerMuWarmStart`) per the problem's: mu/2 makes
