@@ -148,6 +148,11 @@ PARTS = {
     "high-mu-level2-race-sphere": ((1.0,), (10.0,), (2,)),
     "high-mu-level2-race-wide": ((0.8,), (10.0,), (2,)),
     "high-mu-level2-race-60deg": ((0.5,), (10.0,), (2,)),
+    # tenth session: the slender cases, one part per core (beta0 0.1 holds the recommended model's
+    # worst mu = 10 case)
+    "high-mu-level2-race-slenderest": ((0.1,), (10.0,), (2,)),
+    "high-mu-level2-race-30deg": ((0.1806,), (10.0,), (2,)),
+    "high-mu-level2-race-45deg": ((0.3,), (10.0,), (2,)),
 }
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
