@@ -73,11 +73,16 @@ def test_race_tries_the_starts_in_turn_until_one_converges(sphere):
     # every start fails: the last try is returned, kept, unconverged; every start but the last
     # listed may be given up early, the last has the solver's full budget
     gave = []
-    solve = b.solve
-    b.solve = lambda *args: gave.append(args[3]) or solve(*args)
+    solve = b._solve_from
+    b._solve_from = lambda *args: gave.append(args[3]) or solve(*args)
     k, st = b.race(d, [start("capped", 1, cold), start("capped", 1, cold)], "unloading", give_up_after=40)
     assert not st.converged and b.records[k]["phase"] == "unloading" and b.records[k - 1]["phase"] == "discarded"
     assert gave == [40, None]
+    # give_up_last: the last start is given up early too (Branch.solve's neighbour/external race)
+    gave.clear()
+    b.race(d, [start("capped", 1, cold), start("capped", 1, cold)], "unloading", give_up_after=40,
+           give_up_last=True)
+    assert gave == [40, 40]
 
 
 def test_minimum_is_the_sampled_minimum_of_the_usable_records(sphere):
@@ -148,6 +153,12 @@ def test_external_fallback_starts_from_neighbours_and_falls_back_on_the_external
     assert asked == [d0, d1] and b.records[k1 - 1]["phase"] == "discarded" and b.records[k1]["phase"] == "unloading"
     assert len(b.records) == 3 and not b.records[k1 - 1]["converged"]
     assert b.kept() == [k0, k1]                                     # the discarded record is not kept
+    # both tries of that race get the caller's give_up_after
+    gave = []
+    solve = b._solve_from
+    b._solve_from = lambda *args: gave.append(args[3]) or solve(*args)
+    b.solve(d1, b.guess(d1, k0), "unloading", give_up_after=25)
+    assert gave == [25, 25] and asked == [d0, d1, d1]
     # without the fallback the external start is asked first, and a failure is left as it is
     plain = _branch(prob, warm_start=external)
     assert plain.guess(d1, b.states[k0]) is own[d1]

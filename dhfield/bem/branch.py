@@ -339,26 +339,26 @@ class Branch:
         -------
         (int, ContactState)
             The record index and the state.  With ``external_fallback``, a state started from
-            its neighbours that fails is solved once more from :meth:`external` when that gives
-            a start: the failed record is kept, marked 'discarded', and the second one returned.
+            its neighbours is a race of two starts (:meth:`race`): when it fails it is solved
+            once more from :meth:`external` when that gives a start; the failed record is
+            kept, marked 'discarded', and the second one returned.
         """
-        def solved(start):
-            st = solve_problem(self.prob, float(approach), start, self.tol, self.max_iter,
-                               stretch_every=self.stretch_every, anderson_memory=self.anderson_memory,
-                               give_up_after=give_up_after)
-            return self.record(st, phase), st
+        from_neighbour = (self.external_fallback and guess is not None
+                          and guess is not self._external_guess
+                          and any(self.usable(i) for i in self.states))
+        if not from_neighbour:
+            return self._solve_from(approach, guess, phase, give_up_after)
+        return self.race(approach, (lambda: guess, lambda: self.external(approach)), phase,
+                         give_up_after, give_up_last=True)
 
-        k, st = solved(guess)
-        if (st.converged or not self.external_fallback or guess is None or guess is self._external_guess
-                or not any(self.usable(i) for i in self.states if i != k)):    # (not started from a neighbour)
-            return k, st
-        g = self.external(approach)
-        if g is None:
-            return k, st
-        self.records[k]["phase"] = "discarded"          # solved again from the external start
-        return solved(g)
+    def _solve_from(self, approach, start, phase, give_up_after=None):
+        """Solve the state at ``approach`` from ``start`` once, and record it."""
+        st = solve_problem(self.prob, float(approach), start, self.tol, self.max_iter,
+                           stretch_every=self.stretch_every, anderson_memory=self.anderson_memory,
+                           give_up_after=give_up_after)
+        return self.record(st, phase), st
 
-    def race(self, approach, starts, phase, give_up_after=None):
+    def race(self, approach, starts, phase, give_up_after=None, give_up_last=False):
         """Solve the state at ``approach`` from each start in turn until one converges.
 
         A race of starts: the same state converges from one start and stalls from another
@@ -380,7 +380,10 @@ class Branch:
         give_up_after : int, optional
             Every start but the last listed is stopped once it stops converging
             (``give_up_after`` of :func:`dhfield.bem.solver.solve_problem`); the last one has
-            the solver's full budget.
+            the solver's full budget unless ``give_up_last``.
+        give_up_last : bool
+            Give the last start ``give_up_after`` too (:meth:`solve`'s race of a neighbour's
+            start and the external one, where ``give_up_after`` is the caller's).
 
         Returns
         -------
@@ -397,7 +400,8 @@ class Branch:
                 continue
             if last is not None:
                 self.records[last[0]]["phase"] = "discarded"      # solved again from the next start
-            last = self.solve(approach, guess, phase, give_up_after if i < len(starts) - 1 else None)
+            window = give_up_after if (give_up_last or i < len(starts) - 1) else None
+            last = self._solve_from(approach, guess, phase, window)
             if last[1].converged:
                 break
         return last
