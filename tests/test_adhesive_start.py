@@ -458,6 +458,34 @@ def test_predicted_route_starts_the_first_or_every_state_from_the_external_start
     assert sorted(set(asked)) == (solved if every else [path.approach[0]])
 
 
+def test_predicted_route_solves_a_first_state_lost_from_the_external_start_once_more_cold(monkeypatch):
+    # the route's first state from a lower-mu start that fails (here: its solve reported unconverged)
+    # is solved again from the cold start, and the route converges;
+    # and the failed try had the race's give-up window while the cold one has the full budget
+    import dataclasses
+
+    from dhfield.bem import branch as branch_module
+    from dhfield.bem.path import PathOptions
+    from dhfield.bem.pull_off import RACE_GIVE_UP_AFTER, LowerMuWarmStart, predicted_path
+
+    calls = []
+    real = branch_module.solve_problem
+
+    def first_fails(p, approach, start, *args, **kwargs):
+        st = real(p, approach, start, *args, **kwargs)
+        if p.grid.nx != prob.grid.nx:               # the lower-mu start's own states (grid half as fine)
+            return st
+        calls.append((type(start).__name__, kwargs.get("give_up_after")))
+        return dataclasses.replace(st, converged=False) if len(calls) == 1 else st
+
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    warm = LowerMuWarmStart(prob, tol=1e-4, max_iter=10 ** 6)
+    monkeypatch.setattr(branch_module, "solve_problem", first_fails)
+    path = predicted_path(prob, PathOptions(progress=False).checked(), warm_start=warm)
+    assert path.pull_off_converged
+    assert calls[:2] == [("ContactState", RACE_GIVE_UP_AFTER), ("Prediction", None)]   # external, then cold
+
+
 def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
     # an iteration cap of 5 CG iterations cannot converge the cold state: the record must say so
     # (converged and resolved False, no error bound), name the analytic W* to use instead, and not

@@ -627,7 +627,10 @@ def _predicted_solver(branch, cold):
 
     The first state starts from the branch's external warm start (:meth:`Branch.guess`: the
     same approach on a coarser grid or at a lower mu) when it gives one, else cold (sigma0 on
-    the start's zone, ``cold``, working arrays).  With ``external_fallback`` every later state
+    the start's zone, ``cold``, working arrays); with ``external_fallback``, a first state that
+    fails from the external start is solved once more cold (a race, :meth:`Branch.race`: at
+    beta0 = 0.5, mu = 10 the level-1 route under level 2 lost its first state from the lower-mu
+    start, which ended the level-2 case).  With ``external_fallback`` every later state
     starts from the nearest solved state dilated to the contact expected at its approach
     (:func:`_dilated_start`), and the branch solves a failed one once more from the external
     start; without it every state is raced (:meth:`Branch.race`): from the external start, and
@@ -650,10 +653,10 @@ def _predicted_solver(branch, cold):
         near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
         if not b.external_fallback:             # every state from the external start: a race of starts
             return _raced(b, near, d, cold_start)[0]
-        guess = _dilated_start(b, near, d) if near else b.guess(d, None)
-        if guess is None:                       # (no external start there)
-            guess = cold_start()
-        return b.solve(d, guess, "unloading")[0]
+        if not near:                            # the first state: the external start, then cold
+            return b.race(d, (lambda: b.guess(d, None), cold_start), "unloading",
+                          give_up_after=RACE_GIVE_UP_AFTER)[0]
+        return b.solve(d, _dilated_start(b, near, d), "unloading")[0]
 
     return solve
 
