@@ -83,6 +83,14 @@ def test_race_tries_the_starts_in_turn_until_one_converges(sphere):
     b.race(d, [start("capped", 1, cold), start("capped", 1, cold)], "unloading", give_up_after=40,
            give_up_last=True)
     assert gave == [40, 40]
+    # a try given up early whose later start gives None goes on from its best iterate, full budget
+    gave.clear()
+    resumed = []
+    b._solve_from = lambda *args: gave.append(args[3]) or resumed.append(args[1]) or solve(*args)
+    k, st = b.race(d, [start("capped", 1, cold), start("none", DEFAULT_MAX_ITER, None)], "unloading",
+                   give_up_after=40)
+    assert gave == [40, None] and resumed[0] is cold and resumed[1] is b.states[k - 1]
+    assert st.converged and b.records[k - 1]["phase"] == "discarded" and b.records[k]["phase"] == "unloading"
 
 
 def test_minimum_is_the_sampled_minimum_of_the_usable_records(sphere):

@@ -390,10 +390,14 @@ class Branch:
         (int, ContactState) or None
             The record index and the state of the first start that converged, else of the
             last one tried; None when every start gave None.  Each failed state followed by
-            another try is kept, marked 'discarded'.
+            another try is kept, marked 'discarded'.  A try given up early whose later starts
+            all gave None goes on from its best iterate with the full budget (measured at
+            beta0 = 0.1, mu = 10, level 2: the first state from level 1's state was given up
+            at a residual of 1e-3, still falling, and the last start, the lower-mu one, gave
+            None, which ended the case).
         """
         starts = list(starts)
-        last = None
+        last, window = None, None
         for i, start in enumerate(starts):
             guess = start()
             if guess is None:
@@ -403,7 +407,12 @@ class Branch:
             window = give_up_after if (give_up_last or i < len(starts) - 1) else None
             last = self._solve_from(approach, guess, phase, window)
             if last[1].converged:
-                break
+                return last
+        if last is not None and window and not give_up_last:
+            # the try given up early had no later start after all (each gave None): it goes on
+            # from its best iterate with the full budget
+            self.records[last[0]]["phase"] = "discarded"
+            last = self._solve_from(approach, last[1], phase, None)
         return last
 
     def kept(self) -> list:
