@@ -14,7 +14,7 @@ with the pull-off variables on ``(model, beta0 | skew_angle_deg, mu[, n, law])``
 Each map takes ``si``, the material of two equal crossed cylinders
 (:data:`SI_KEYS`): the axes are then the crossing angle [deg] and the peak
 adhesive stress sigma0 [Pa], and the pull-off is a force [N] (Eqs. 34-35 inverted,
-:func:`dhfield.io._figures.crossed_cylinders_si`).
+:func:`dhfield.io.figures.crossed_cylinders_si`).
 
 The numpy core never imports this module; matplotlib is used through
 :class:`matplotlib.figure.Figure` only (no pyplot state, no display needed).
@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .io._figures import crossed_cylinders_si, model_label, si_prefix
+from .io.figures import crossed_cylinders_si, model_label, si_prefix
 
 __all__ = ["pull_off_map", "error_map", "ellipticity_map", "standard_maps", "default_reference",
            "check_sweep", "cell_edges", "output_paths", "FORMATS", "MAX_CELLS_PER_AXIS", "REFERENCE_ORDER",

@@ -37,7 +37,7 @@ def limits():
 def test_reference_is_the_registered_recommended_model():
     # the map's reference is the library's default model under its registered name, labelled as the
     # figures label it, and listed once even when the caller names it again
-    from dhfield.io._figures import MODEL_LABELS as FIGURE_LABELS
+    from dhfield.io.figures import MODEL_LABELS as FIGURE_LABELS
 
     assert am.REFERENCE_MODEL == "md-elliptic" == compare.DEFAULT_MODEL
     assert am.REFERENCE_MODEL in compare.MODEL_NAMES

@@ -41,7 +41,7 @@ STRICT = (
     "dhfield.fields", "dhfield.field_sampling", "dhfield.field_metrics", "dhfield.polar",
     "dhfield.refinement", "dhfield.fit", "dhfield.geometry", "dhfield.hertz", "dhfield.io",
     "dhfield.io.adhesion_map", "dhfield.io.cf", "dhfield.io.compare", "dhfield.io.curves", "dhfield.io.cycle",
-    "dhfield.io.field", "dhfield.io.fit", "dhfield.io.periphery", "dhfield.io.table", "dhfield.jkr",
+    "dhfield.io.field", "dhfield.io.figures", "dhfield.io.fit", "dhfield.io.periphery", "dhfield.io.table", "dhfield.jkr",
     "dhfield.jkr_elliptic", "dhfield.jkr_elliptic_energy", "dhfield.maugis_dugdale", "dhfield.model",
     "dhfield.periphery", "dhfield.plotting", "dhfield.pull_off_search", "dhfield.records", "dhfield.schema",
     "dhfield.sweep", "dhfield.sweep.config", "dhfield.sweep.engine", "dhfield.sweep.store",

@@ -1,4 +1,4 @@
-"""What the figures share (dhfield/io/_figures.py): SI conversion of crossed cylinders, SI prefixes,
+"""What the figures share (dhfield/io/figures.py): SI conversion of crossed cylinders, SI prefixes,
 model names.  The conversion is checked against :func:`dhfield.dimensional.contact_parameters`, an
 independent route through Eqs. 3-6, 34 and 35."""
 from __future__ import annotations
@@ -8,7 +8,7 @@ import pytest
 
 from dhfield import dimensional
 from dhfield.compare import MODEL_NAMES
-from dhfield.io._figures import MODEL_LABELS, crossed_cylinders_si, model_label, si_prefix
+from dhfield.io.figures import MODEL_LABELS, crossed_cylinders_si, model_label, si_prefix
 
 #: The PDMS crossed cylinders of issue 17.
 PDMS = dict(youngs_modulus_1=1.8e6, poisson_ratio_1=0.49, cylinder_radius=3e-3, work_of_adhesion=0.05)

@@ -9,7 +9,7 @@ from matplotlib.figure import Figure
 
 from dhfield import plotting
 from dhfield.cli import main
-from dhfield.io._figures import crossed_cylinders_si, model_label
+from dhfield.io.figures import crossed_cylinders_si, model_label
 
 #: The PDMS crossed cylinders of issue 17.
 PDMS = dict(youngs_modulus_1=1.8e6, poisson_ratio_1=0.49, cylinder_radius=3e-3, work_of_adhesion=0.05)

@@ -7,7 +7,7 @@ below :data:`MIN_FONT_PT` on paper: a single-panel figure is one journal column
 context the report draws in; :func:`tidy_log_ticks` (called by
 :func:`verification._api.save_figure` on every log axis) gives log axes ticks whose
 labels never overlap; :data:`MODEL_LABELS` holds the readable name of every model
-slug (the library's table of ``dhfield.io._figures``); :func:`rel_diff_label` writes
+slug (the library's table of ``dhfield.io.figures``); :func:`rel_diff_label` writes
 the one sign convention of a relative difference, ``model/ref − 1``.
 
 matplotlib is imported inside the functions: importing this module costs nothing.
@@ -19,7 +19,7 @@ import math
 
 # The readable name of each model slug: the library's one table (``dhfield plot``, ``fit --plot``,
 # ``solve --plot`` and ``cycle --plot`` use it too), so that a model has one name everywhere.
-from dhfield.io._figures import MODEL_LABELS, model_label  # noqa: F401 - re-exported for the sections
+from dhfield.io.figures import MODEL_LABELS, model_label  # noqa: F401 - re-exported for the sections
 
 #: Width of a single-column figure [in] (a two-column journal page's column).
 SINGLE_COLUMN_IN = 3.3

@@ -65,7 +65,7 @@ def run(args) -> int:
 
     if args.plot is not None:
         validate_output_path(args.plot, (".png",), "plot")
-        from ..io._figures import figure_paths
+        from ..io.figures import figure_paths
 
         figure_paths(args.plot)  # the .svg and .pdf beside it checked before computing
     if args.machine_stiffness is not None:

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._figures import figure_paths, model_label, save_figure
+from .figures import figure_paths, model_label, save_figure
 
 __all__ = ["write_cycle_plot"]
 

@@ -17,6 +17,9 @@ import numpy as np
 
 from . import atomic_path, check_writable
 
+__all__ = ["MODEL_LABELS", "model_label", "SI_PREFIXES", "si_prefix", "crossed_cylinders_si", "figure_paths",
+           "save_figure", "write_figure"]
+
 #: Readable name of each model slug (``--model`` names of :mod:`dhfield.compare`, the adhesive
 #: BEM of a sweep, and the closures of the report's periphery section).
 MODEL_LABELS = {
@@ -216,8 +219,8 @@ def write_figure(build, path, dpi):
 
     Returns
     -------
-    paths : (Path, Path, Path)
-        Those of :func:`figure_paths`, written.
+    tuple of Path
+        The PNG, SVG and PDF paths of :func:`figure_paths`, written.
     """
     import matplotlib
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._figures import model_label, si_prefix, write_figure
+from .figures import model_label, si_prefix, write_figure
 
 __all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
            "FORCE_UNITS", "LENGTH_UNITS"]

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._figures import SI_PREFIXES, model_label, si_prefix, write_figure
+from .figures import SI_PREFIXES, model_label, si_prefix, write_figure
 
 __all__ = ["solve_figure", "write_solve_plot", "REFERENCE_MODEL"]
 
