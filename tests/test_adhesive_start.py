@@ -483,7 +483,38 @@ def test_predicted_route_solves_a_first_state_lost_from_the_external_start_once_
     monkeypatch.setattr(branch_module, "solve_problem", first_fails)
     path = predicted_path(prob, PathOptions(progress=False).checked(), warm_start=warm)
     assert path.pull_off_converged
-    assert calls[:2] == [("ContactState", RACE_GIVE_UP_AFTER), ("Prediction", None)]   # external, then cold
+    # external, then cold: with a later start (wide-edge) to come, both have the give-up window
+    assert calls[:2] == [("ContactState", RACE_GIVE_UP_AFTER), ("Prediction", RACE_GIVE_UP_AFTER)]
+
+
+def test_predicted_route_solves_a_first_state_lost_cold_too_from_its_wide_edge_state(monkeypatch):
+    # external and cold both fail (reported unconverged): the third start is the same state solved
+    # with the Dugdale edge at its widest (Branch.widest_edge_guess), which then starts the grid's
+    # own state, with the full budget; the route converges
+    import dataclasses
+
+    from dhfield.bem import branch as branch_module
+    from dhfield.bem.path import PathOptions
+    from dhfield.bem.pull_off import RACE_GIVE_UP_AFTER, LowerMuWarmStart, predicted_path
+
+    calls = []
+    real = branch_module.solve_problem
+
+    def two_fail(p, approach, start, *args, **kwargs):
+        st = real(p, approach, start, *args, **kwargs)
+        if p.grid.nx != prob.grid.nx:               # the lower-mu start's own states
+            return st
+        calls.append(("wide" if p.widest_edge else type(start).__name__, kwargs.get("give_up_after")))
+        own = [c for c in calls if c[0] != "wide"]               # the grid's own states solved so far
+        return dataclasses.replace(st, converged=False) if not p.widest_edge and len(own) <= 2 else st
+
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    warm = LowerMuWarmStart(prob, tol=1e-4, max_iter=10 ** 6)
+    monkeypatch.setattr(branch_module, "solve_problem", two_fail)
+    path = predicted_path(prob, PathOptions(progress=False).checked(), warm_start=warm)
+    assert path.pull_off_converged
+    assert calls[:4] == [("ContactState", RACE_GIVE_UP_AFTER), ("Prediction", RACE_GIVE_UP_AFTER),
+                         ("wide", None), ("ContactState", None)]
 
 
 def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):

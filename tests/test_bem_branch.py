@@ -83,14 +83,32 @@ def test_race_tries_the_starts_in_turn_until_one_converges(sphere):
     b.race(d, [start("capped", 1, cold), start("capped", 1, cold)], "unloading", give_up_after=40,
            give_up_last=True)
     assert gave == [40, 40]
-    # a try given up early whose later start gives None goes on from its best iterate, full budget
+    # a try given up early (here: reported stopped at its window of 40 outer iterations, unconverged)
+    # whose later start gives None goes on from its best iterate with the full budget
+    import dataclasses
+
     gave.clear()
     resumed = []
-    b._solve_from = lambda *args: gave.append(args[3]) or resumed.append(args[1]) or solve(*args)
-    k, st = b.race(d, [start("capped", 1, cold), start("none", DEFAULT_MAX_ITER, None)], "unloading",
-                   give_up_after=40)
+
+    def given_up_once(approach, start, phase, window):
+        gave.append(window)
+        resumed.append(start)
+        if len(gave) > 1:
+            return solve(approach, start, phase, window)
+        st = dataclasses.replace(solve(approach, start, phase, window)[1], converged=False, outer_iterations=40)
+        b.states[len(b.records) - 1] = st
+        return len(b.records) - 1, st
+
+    b._solve_from = given_up_once
+    k, st = b.race(d, [start("full", DEFAULT_MAX_ITER, cold), start("none", DEFAULT_MAX_ITER, None)],
+                   "unloading", give_up_after=40)
     assert gave == [40, None] and resumed[0] is cold and resumed[1] is b.states[k - 1]
     assert st.converged and b.records[k - 1]["phase"] == "discarded" and b.records[k]["phase"] == "unloading"
+    # a try stopped by its CG budget (max_iter 1), not given up, is not resumed
+    gave.clear()
+    b._solve_from = lambda *args: gave.append(args[3]) or solve(*args)
+    b.race(d, [start("capped", 1, cold), start("none", 1, None)], "unloading", give_up_after=40)
+    assert gave == [40]
 
 
 def test_minimum_is_the_sampled_minimum_of_the_usable_records(sphere):
@@ -173,3 +191,22 @@ def test_external_fallback_starts_from_neighbours_and_falls_back_on_the_external
     plain.max_iter = 1
     k, st = plain.solve(d1, b.states[k0], "unloading")
     assert not st.converged and len(plain.records) == 1 and plain.records[k]["phase"] == "unloading"
+
+
+def test_widest_edge_guess_is_a_converged_start_of_this_grid_and_not_recorded():
+    # mu = 2 on 128^2: the grid's own edge (0.58 h0) is narrower than the widest (2 h0)
+    from dhfield import adhesive_start
+    from dhfield.bem.solver import Prediction
+
+    nd = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    prob = nd.adhesive_problem(1)
+    b = _branch(prob)
+    d = nd.pull_off_approach
+    cold = nd.path_start(prob).stress
+    assert b.widest_edge_guess(d, None) is None and b._widest is None      # no start: nothing solved
+    g = b.widest_edge_guess(d, Prediction(np.zeros_like(cold), cold.copy()))
+    assert g.converged and g.grid == prob.grid and b.records == []          # a start, not a record
+    assert b._widest.widest_edge and b._widest.min_spread > prob.min_spread
+    k, st = b.solve(d, g, "unloading")
+    ref = _branch(prob).solve(d, Prediction(np.zeros_like(cold), cold.copy()), "unloading")[1]
+    assert st.converged and st.load == pytest.approx(ref.load, rel=1e-5)    # DEFAULT_TOL 1e-6 on both

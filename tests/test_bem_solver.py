@@ -186,6 +186,30 @@ def test_relaxed_edge_is_as_wide_as_stability_wants_and_never_resolved():
     assert not relaxed.resolved and not capped.resolved
 
 
+def test_widest_edge_spreads_the_dugdale_edge_over_its_cap_and_keeps_the_problem():
+    # a grid fine enough that its own edge (0.58 h0 wanted) is narrower than the cap 2 h0
+    grid = Grid.centered(128, 2.0)
+    x, y = grid.mesh()
+    law = DugdaleLaw(2.0, 0.5)
+    prob = bem_solver.AdhesiveProblem(x * x / 2.0 + y * y / 2.0, grid, law, None, 1, 1.0)
+    wide = prob.with_widest_edge()
+    assert prob.min_spread < 2.0 * law.range and not prob.widest_edge
+    assert wide.widest_edge and wide.min_spread == 2.0 * law.range       # the cap, exactly
+    assert wide.grid is prob.grid and wide.law is prob.law and wide.symmetric == prob.symmetric
+    np.testing.assert_array_equal(wide.z_full, prob.z_full)
+    # its state is a start of the grid's own edge: the state reached from it is the grid's own
+    # (both solved to 1e-8: loads equal to 1e-6, far below the 2 % the wide edge itself moves here)
+    st_wide = bem_solver.solve_problem(wide, 0.3, None, 1e-8, 20000)
+    st_own = bem_solver.solve_problem(prob, 0.3, None, 1e-8, 20000)
+    again = bem_solver.solve_problem(prob, 0.3, st_wide, 1e-8, 20000)
+    assert st_wide.converged and st_own.converged and again.converged
+    assert again.load == pytest.approx(st_own.load, rel=1e-6)
+    assert abs(st_wide.load / st_own.load - 1.0) > 1e-3                # a different law: not a no-op
+    with pytest.raises(ValueError, match="Dugdale"):
+        bem_solver.AdhesiveProblem(x * x / 2.0 + y * y / 2.0, grid, ExponentialLaw(2.0, 0.5), None, 1,
+                                   1.0).with_widest_edge()
+
+
 # --- the stretch step (issue 20: the predicted route's trapped cold states at mu = 10) ---------------------------
 def _sphere_state(n=128, mu=2.0, delta=0.3, symmetric=None):
     grid = Grid.centered(n, 2.0)

@@ -26,7 +26,7 @@ import numpy as np
 
 from .._validation import check_optional_count
 from ..pull_off_search import refine_sampled_minimum
-from .solver import secant_prediction, solve_problem
+from .solver import MAX_OUTER, secant_prediction, solve_problem
 from .state import ContactState
 
 __all__ = ["Branch", "UnloadingPath", "PathProgress", "NOT_ON_BRANCH"]
@@ -285,6 +285,7 @@ class Branch:
         self.anderson_memory = check_optional_count("anderson_memory", anderson_memory)
         self.keep_states = bool(keep_states)
         self.warm_start = warm_start
+        self._widest = None           # the problem with the widest Dugdale edge (widest_edge_guess)
         self.records = []
         self.states = {}
         self._failures = []           # (record index, failure dict), as solved
@@ -408,12 +409,16 @@ class Branch:
             last = self._solve_from(approach, guess, phase, window)
             if last[1].converged:
                 return last
-        if last is not None and window and not give_up_last:
+        if last is not None and window and not give_up_last and self._given_up(last[1], window):
             # the try given up early had no later start after all (each gave None): it goes on
             # from its best iterate with the full budget
             self.records[last[0]]["phase"] = "discarded"
             last = self._solve_from(approach, last[1], phase, None)
         return last
+
+    def _given_up(self, st, window) -> bool:
+        """Whether an unconverged state stopped at its give-up window, not at a budget (CG, outer)."""
+        return window <= st.outer_iterations < MAX_OUTER and st.iterations < self.max_iter
 
     def kept(self) -> list:
         """Return the indices of the records not 'discarded' (a discarded state was solved again).
@@ -471,6 +476,36 @@ class Branch:
             ``indices`` by decreasing approach.
         """
         return sorted(indices, key=lambda i: -self.records[i]["approach"])
+
+    def widest_edge_guess(self, approach, guess):
+        """Solve the state at ``approach`` from ``guess`` with the Dugdale edge at its widest, as a start.
+
+        The same state on :meth:`dhfield.bem.solver.AdhesiveProblem.with_widest_edge` (built once): its fixed point
+        converges where this grid's own edge stalls, and is within ~1e-5 in load of this
+        grid's state, which then converges from it in a few tens of outer iterations (measured
+        at beta0 = 0.5, mu = 10: see :meth:`dhfield.bem.solver.AdhesiveProblem.with_widest_edge`).  Not recorded:
+        it is a start, not a state of this branch.
+
+        Parameters
+        ----------
+        approach : float
+            Approach [length].
+        guess : ContactState or Prediction or None
+            Its own start; None: no start (None is returned).
+
+        Returns
+        -------
+        ContactState or None
+            The converged wide-edge state (a start for :meth:`solve`); None when ``guess`` is
+            None or the wide-edge state did not converge either.
+        """
+        if guess is None:
+            return None
+        if self._widest is None:
+            self._widest = self.prob.with_widest_edge()
+        st = solve_problem(self._widest, float(approach), guess, self.tol, self.max_iter,
+                           stretch_every=self.stretch_every)
+        return st if st.converged else None
 
     def external(self, approach):
         """Return the warm start of ``warm_start`` at ``approach`` when it is a state of this grid.

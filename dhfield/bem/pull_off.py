@@ -628,9 +628,10 @@ def _predicted_solver(branch, cold):
     The first state starts from the branch's external warm start (:meth:`Branch.guess`: the
     same approach on a coarser grid or at a lower mu) when it gives one, else cold (sigma0 on
     the start's zone, ``cold``, working arrays); with ``external_fallback``, a first state that
-    fails from the external start is solved once more cold (a race, :meth:`Branch.race`: at
-    beta0 = 0.5, mu = 10 the level-1 route under level 2 lost its first state from the lower-mu
-    start, which ended the level-2 case).  With ``external_fallback`` every later state
+    fails from the external start is solved once more cold, and then from its wide-edge state
+    solved cold (a race, :meth:`Branch.race`; :meth:`Branch.widest_edge_guess`: at beta0 = 0.5,
+    mu = 10 the level-1 route under level 2 lost its first state from the lower-mu start and
+    cold).  With ``external_fallback`` every later state
     starts from the nearest solved state dilated to the contact expected at its approach
     (:func:`_dilated_start`), and the branch solves a failed one once more from the external
     start; without it every state is raced (:meth:`Branch.race`): from the external start, and
@@ -653,8 +654,9 @@ def _predicted_solver(branch, cold):
         near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
         if not b.external_fallback:             # every state from the external start: a race of starts
             return _raced(b, near, d, cold_start)[0]
-        if not near:                            # the first state: the external start, then cold
-            return b.race(d, (lambda: b.guess(d, None), cold_start), "unloading",
+        if not near:                            # the first state: the external start, cold, then wide-edge
+            return b.race(d, (lambda: b.guess(d, None), cold_start,
+                              lambda: b.widest_edge_guess(d, cold_start())), "unloading",
                           give_up_after=RACE_GIVE_UP_AFTER)[0]
         return b.solve(d, _dilated_start(b, near, d), "unloading")[0]
 
@@ -663,13 +665,15 @@ def _predicted_solver(branch, cold):
 
 def _raced(b, near, d, cold_start):
     """The state at ``d`` on ``b`` from a race of starts (:meth:`Branch.race`): the external start
-    (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the warm start's
-    ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else
-    ``cold_start()`` when none gave a start."""
+    (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the external
+    start's wide-edge state (:meth:`Branch.widest_edge_guess`), the warm start's ``alternative``
+    when it has one (:meth:`CoarseRouteWarmStart.alternative`), else ``cold_start()`` when none
+    gave a start."""
     alternative = getattr(b.warm_start, "alternative", None)
     starts = [lambda: b.guess(d, None)]
     if near:
         starts.append(lambda: _dilated_start(b, near, d))
+    starts.append(lambda: b.widest_edge_guess(d, b.guess(d, None)))
     if alternative is not None:
         starts.append(lambda: alternative(d))
     return (b.race(d, starts, "unloading", give_up_after=RACE_GIVE_UP_AFTER)
