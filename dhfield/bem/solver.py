@@ -291,7 +291,7 @@ class AdhesiveProblem:
 
         Measured at beta0 = 0.5, mu = 10 (the predicted route's first state on 1280^2 cells, from
         its cold start, 1 thread): with the grid's own edge (1.89 h0) the residual wandered at
-        3e-3 to 1e-2 for 150 outer iterations; with 2 h0 it converged in 120-130 (421-474 s, two
+        2e-3 to 4e-2 for 150 outer iterations; with 2 h0 it converged in 120-130 (421-474 s, two
         runs), and the grid's own state started from it converged in 22 more (54 s; Anderson
         memory 30), its load -4.679307 against -4.679256 with the wide edge (1.1e-5).
 
