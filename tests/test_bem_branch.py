@@ -210,3 +210,14 @@ def test_widest_edge_guess_is_a_converged_start_of_this_grid_and_not_recorded():
     k, st = b.solve(d, g, "unloading")
     ref = _branch(prob).solve(d, Prediction(np.zeros_like(cold), cold.copy()), "unloading")[1]
     assert st.converged and st.load == pytest.approx(ref.load, rel=1e-5)    # DEFAULT_TOL 1e-6 on both
+    # a grid whose edge is at its widest already (mu = 7 on cells of 0.05: the cap 2 h0) gets no
+    # wide start, and nothing is solved
+    from dhfield.bem import DugdaleLaw, Grid
+    from dhfield.bem.solver import AdhesiveProblem
+
+    grid = Grid(64, 64, 0.05, 0.05)
+    x, y = grid.mesh()
+    capped = AdhesiveProblem(x * x / 2.0 + y * y / 2.0, grid, DugdaleLaw(7.0, 1.0 / 7.0), None, 1, 1.0)
+    assert capped.with_widest_edge().min_spread == capped.min_spread == pytest.approx(2.0 / 7.0)
+    bc = _branch(capped)
+    assert bc.widest_edge_guess(0.1, Prediction(np.zeros_like(capped.z), np.zeros_like(capped.z))) is None

@@ -497,12 +497,16 @@ class Branch:
         -------
         ContactState or None
             The converged wide-edge state (a start for :meth:`solve`); None when ``guess`` is
-            None or the wide-edge state did not converge either.
+            None, when this grid's edge is at its widest already (a coarse grid: at mu = 10 the
+            level-1 grids' edges are 1.9-2.0 h0, the level-2 grids' 1.03-1.08 h0), or when the
+            wide-edge state did not converge either.
         """
         if guess is None:
             return None
         if self._widest is None:
             self._widest = self.prob.with_widest_edge()
+        if self._widest.min_spread <= self.prob.min_spread:
+            return None                         # this grid's edge is at its widest already
         st = solve_problem(self._widest, float(approach), guess, self.tol, self.max_iter,
                            stretch_every=self.stretch_every)
         return st if st.converged else None
