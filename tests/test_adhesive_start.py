@@ -461,12 +461,12 @@ def test_predicted_route_starts_the_first_or_every_state_from_the_external_start
 def test_predicted_route_solves_a_first_state_lost_from_the_external_start_once_more_cold(monkeypatch):
     # the route's first state from a lower-mu start that fails (here: its solve reported unconverged)
     # is solved again from the cold start, and the route converges;
-    # and the failed try had the race's give-up window while the cold one has the full budget
+    # each with the full budget
     import dataclasses
 
     from dhfield.bem import branch as branch_module
     from dhfield.bem.path import PathOptions
-    from dhfield.bem.pull_off import RACE_GIVE_UP_AFTER, LowerMuWarmStart, predicted_path
+    from dhfield.bem.pull_off import LowerMuWarmStart, predicted_path
 
     calls = []
     real = branch_module.solve_problem
@@ -483,8 +483,8 @@ def test_predicted_route_solves_a_first_state_lost_from_the_external_start_once_
     monkeypatch.setattr(branch_module, "solve_problem", first_fails)
     path = predicted_path(prob, PathOptions(progress=False).checked(), warm_start=warm)
     assert path.pull_off_converged
-    # external, then cold: with a later start (wide-edge) to come, both have the give-up window
-    assert calls[:2] == [("ContactState", RACE_GIVE_UP_AFTER), ("Prediction", RACE_GIVE_UP_AFTER)]
+    # external, then cold, each with the full budget (no give-up window on the first state)
+    assert calls[:2] == [("ContactState", None), ("Prediction", None)]
 
 
 def test_predicted_route_solves_a_first_state_lost_cold_too_from_its_wide_edge_state(monkeypatch):
@@ -495,7 +495,7 @@ def test_predicted_route_solves_a_first_state_lost_cold_too_from_its_wide_edge_s
 
     from dhfield.bem import branch as branch_module
     from dhfield.bem.path import PathOptions
-    from dhfield.bem.pull_off import RACE_GIVE_UP_AFTER, LowerMuWarmStart, predicted_path
+    from dhfield.bem.pull_off import LowerMuWarmStart, predicted_path
 
     calls = []
     real = branch_module.solve_problem
@@ -513,8 +513,7 @@ def test_predicted_route_solves_a_first_state_lost_cold_too_from_its_wide_edge_s
     monkeypatch.setattr(branch_module, "solve_problem", two_fail)
     path = predicted_path(prob, PathOptions(progress=False).checked(), warm_start=warm)
     assert path.pull_off_converged
-    assert calls[:4] == [("ContactState", RACE_GIVE_UP_AFTER), ("Prediction", RACE_GIVE_UP_AFTER),
-                         ("wide", None), ("ContactState", None)]
+    assert calls[:4] == [("ContactState", None), ("Prediction", None), ("wide", None), ("ContactState", None)]
 
 
 def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
