@@ -667,15 +667,14 @@ def _predicted_solver(branch, cold):
 
 def _raced(b, near, d, cold_start):
     """The state at ``d`` on ``b`` from a race of starts (:meth:`Branch.race`): the external start
-    (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the external
-    start's wide-edge state (:meth:`Branch.widest_edge_guess`), the warm start's ``alternative``
-    when it has one (:meth:`CoarseRouteWarmStart.alternative`), else ``cold_start()`` when none
-    gave a start."""
+    (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the warm start's
+    ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else
+    ``cold_start()`` when none gave a start.  (No wide-edge start here: on the mu = 10 level-2
+    grids the own state stalled from it as from level 1's state; :meth:`Branch.widest_edge_guess`.)"""
     alternative = getattr(b.warm_start, "alternative", None)
     starts = [lambda: b.guess(d, None)]
     if near:
         starts.append(lambda: _dilated_start(b, near, d))
-    starts.append(lambda: b.widest_edge_guess(d, b.guess(d, None)))
     if alternative is not None:
         starts.append(lambda: alternative(d))
     return (b.race(d, starts, "unloading", give_up_after=RACE_GIVE_UP_AFTER)
