@@ -1,0 +1,61 @@
+"""Level 2 of a mu = 10 case with the Dugdale edge held at its widest (issue 20, convergence over N).
+
+At mu = 10 the level-1 grids' own edges are 1.9-2.0 h0, at the cap 2 h0; level 2's own edges are
+1.03-1.08 h0, and there the route's states stall (``docs/theory/bem.rst``).  This script solves the
+pull-off of level 2 (``automatic_grid(beta0, 10, 2)``) by the study's route (the predicted route
+with :class:`dhfield.bem.pull_off.CoarseRouteWarmStart`: level 1's route states as starts), with
+the fine grid's edge held at 2 h0 (:meth:`dhfield.bem.solver.AdhesiveProblem.with_widest_edge`),
+so that level 2 against level 1 measures the grid's convergence at (nearly) the same edge.  Not a
+stored ground truth: the study's sweep has no such option yet.  Usage::
+
+    OMP_NUM_THREADS=2 .venv/bin/python -m verification.level2_wide_edge --beta0 0.1 --threads 2
+
+Measured (2026-11-28, 2 threads, same calls from a /tmp copy): beta0 = 0.1, 5120 x 960:
+W* = -0.225547 +- 0.0018, converged, three states (41-60 outer iterations each at level 2),
+1443 s; the stored level 1 (2560 x 480) is -0.225527 +- 0.0037.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from dataclasses import replace
+
+
+def main(argv=None) -> int:
+    from dhfield import adhesive_start
+    from dhfield.bem.path import PathOptions
+    from dhfield.bem.pull_off import CoarseRouteWarmStart, predicted_path, pull_off_result
+    from dhfield.sweep.tasks import automatic_grid
+
+    ap = argparse.ArgumentParser(prog="python -m verification.level2_wide_edge", description=__doc__.split("\n")[0])
+    ap.add_argument("--beta0", type=float, default=0.1, help="initial ellipticity in (0, 1] (default 0.1)")
+    ap.add_argument("--mu", type=float, default=10.0, help="Tabor parameter > 0 (default 10)")
+    ap.add_argument("--threads", type=int, default=1, help="FFTW threads (default 1)")
+    args = ap.parse_args(argv)
+
+    g = automatic_grid(args.beta0, args.mu, 2)
+    prob = adhesive_start.predicted_problem(mu=args.mu, beta0=args.beta0, n=g["nx"], ny=g["ny"])
+    tol = adhesive_start.PREDICTED_TOL
+    ws = CoarseRouteWarmStart(prob, tol=tol, max_iter=10 ** 6, threads=args.threads)
+
+    class Widened(type(prob)):
+        """The level-2 problem whose solver arrays have the widest edge (level 1's stay their own)."""
+
+        def adhesive_problem(self, threads=None):
+            return super().adhesive_problem(threads).with_widest_edge()
+
+    fine = replace(prob)
+    object.__setattr__(fine, "__class__", Widened)     # (a frozen dataclass: the same fields, widened arrays)
+    t0 = time.perf_counter()
+    opts = replace(PathOptions(progress=True, threads=args.threads).checked(), tol=tol)
+    path = predicted_path(fine, opts, warm_start=ws)
+    res = pull_off_result(prob, prob.grid.nx, path, "located")
+    print(f"beta0 {args.beta0:g}, mu {args.mu:g}, level 2 ({g['nx']} x {g['ny']}), edge at 2 h0: "
+          f"W* = {res.W_star:.6f} +- {res.W_star_error:.2g}, converged {res.converged}, "
+          f"{time.perf_counter() - t0:.0f} s{'; ' + res.note if res.note else ''}", flush=True)
+    return 0 if res.converged else 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())
