@@ -227,12 +227,12 @@ class AdhesiveProblem:
         E* [stress].
     relaxed_edge : bool, default False
         Widen the Dugdale edge beyond its cap 2 h0 (see above).
-    widest_edge : bool, default False
-        Spread the Dugdale edge over its cap 2 h0 (see above; only a warm start's law).
     backend : str, optional
         Array backend of the working arrays (:mod:`dhfield.bem.backend`); default
         ``$DHFIELD_BEM_BACKEND`` or ``"fftw"``.  The working arrays (``z``, and those of the
         solve) are the backend's; :meth:`to_full` returns numpy arrays.
+    widest_edge : bool, default False
+        Spread the Dugdale edge over its cap 2 h0 (see above; only a warm start's law).
 
     Raises
     ------
