@@ -221,3 +221,4 @@ def test_widest_edge_guess_is_a_converged_start_of_this_grid_and_not_recorded():
     assert capped.with_widest_edge().min_spread == capped.min_spread == pytest.approx(2.0 / 7.0)
     bc = _branch(capped)
     assert bc.widest_edge_guess(0.1, Prediction(np.zeros_like(capped.z), np.zeros_like(capped.z))) is None
+    assert bc._widest is None                                               # nor built

@@ -512,12 +512,10 @@ class Branch:
             already (at mu = 10 the level-1 grids' edges are 1.9-2.0 h0, the level-2 grids'
             1.03-1.08 h0), or when the wide-edge state did not converge either.
         """
-        if guess is None:
-            return None
+        if guess is None or (0.0 < self.prob.widest_spread < WIDEST_EDGE_MIN_GAIN * self.prob.min_spread):
+            return None                         # (this grid's edge is almost at its widest already)
         if self._widest is None:
             self._widest = self.prob.with_widest_edge()
-        if self._widest.min_spread < WIDEST_EDGE_MIN_GAIN * self.prob.min_spread:
-            return None                         # this grid's edge is (almost) at its widest already
         st = solve_problem(self._widest, float(approach), guess, self.tol, self.max_iter,
                            stretch_every=self.stretch_every)
         return st if st.converged else None

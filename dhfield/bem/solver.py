@@ -270,6 +270,7 @@ class AdhesiveProblem:
         self.weight = (4.0 if self.symmetric else 1.0) * grid.dx * grid.dy
         # smallest edge width of the Dugdale zone (see EDGE_WIDTH_FACTOR)
         self.min_spread = 0.0
+        self.widest_spread = 0.0      # the Dugdale edge's cap 2 h0 (0 for other laws)
         self.resolved = True
         self.edge_width_ratio = 0.0
         if self.law is not None:
@@ -280,11 +281,12 @@ class AdhesiveProblem:
             self.edge_width_ratio = ratio
             # at most 2 h0: the smeared edge stays within h >= 0 and keeps the work of adhesion
             want = _edge_compliance(grid, e) * self.law.max_stress
+            self.widest_spread = 2.0 * self.law.range
             # relaxed_edge: the edge as wide as stability wants, beyond 2 h0 (a different law near the
             # edge, and resolved = False: only a warm start for a finer grid, never an answer)
-            self.min_spread = want if relaxed_edge else min(want, 2.0 * self.law.range)
+            self.min_spread = want if relaxed_edge else min(want, self.widest_spread)
             if self.widest_edge:
-                self.min_spread = max(self.min_spread, 2.0 * self.law.range)
+                self.min_spread = max(self.min_spread, self.widest_spread)
 
     def with_widest_edge(self) -> "AdhesiveProblem":
         """The same problem (gap, grid, law, symmetry) with the Dugdale edge spread over its cap 2 h0.
