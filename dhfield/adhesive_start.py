@@ -60,7 +60,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
            "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
-           "pull_off_cost"]
+           "pull_off_cost", "WIDEST_EDGE_NOTE"]
 
 
 def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
@@ -652,6 +652,14 @@ class AdhesiveOptions:
         Bracket search only: start every state from the same approach solved
         on a grid half as fine (:class:`dhfield.bem.pull_off.NestedWarmStart`).
         Default (None): when ``n >= 2 * NESTED_MIN_N``.
+    widest_edge : bool, default False
+        Predicted route only (:func:`takes_predicted_route`; ``search='predicted'`` on a given
+        grid): spread the Dugdale edge over its cap 2 h0 on every grid of the route
+        (:attr:`dhfield.bem.pull_off.NondimensionalProblem.widest_edge`) instead of the
+        grid's own width.  The edge then stays two cells wide under refinement, so a refined
+        level against level 1 (whose own edge is already 1.9-2.0 h0 at mu = 10) is a
+        refinement at a fixed edge in cells; at level 2 the own edge is 1.03-1.08 h0, where the
+        route's states stall (``docs/theory/bem.rst``).  The record's note says so.
     """
 
     n_steps: int = DEFAULT_STEPS
@@ -662,6 +670,7 @@ class AdhesiveOptions:
     keep_states: bool = False
     max_seconds: float = DEFAULT_MAX_SECONDS
     nested: bool | None = None
+    widest_edge: bool = False
 
 
 def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="load", search="located",
@@ -759,7 +768,10 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         raise ValueError(f"options must be an AdhesiveOptions (numerical settings); got {type(options).__name__}")
     n_steps, refine_levels, tol, max_iter = options.n_steps, options.refine_levels, options.tol, options.max_iter
     margin, keep_states, max_seconds = options.margin, options.keep_states, options.max_seconds
-    nested = options.nested
+    nested, widest_edge = options.nested, options.widest_edge
+    if not isinstance(widest_edge, (bool, np.bool_)):
+        raise ValueError(f"options.widest_edge must be True or False (the Dugdale edge at its cap 2 h0 on the "
+                         f"predicted route); got {widest_edge!r}")
 
     for name, value in (("mu", mu), ("beta0", beta0)):  # one case per call: scalars only
         if np.ndim(value) != 0:
@@ -775,6 +787,11 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None on the "
                          f"automatic grid (the predicted route); got law={law!r}, control={control!r}, "
                          f"nested={nested!r}, n={n!r}")
+    if widest_edge and not takes_predicted_route(beta0=beta0, mu=mu, n=n, law=law, control=control, search=search,
+                                                 nested=nested):
+        raise ValueError("options.widest_edge=True needs the predicted route (law='dugdale', control='load', "
+                         f"options.nested None, and mu >= {PREDICTED_MIN_MU:g} without n, or search='predicted'); "
+                         f"got mu={mu!r}, n={n!r}, law={law!r}, control={control!r}, search={search!r}")
     options = PathOptions(refine_levels=refine_levels, tol=DEFAULT_TOL if tol is None else tol,
                           max_iter=max_iter, threads=threads, keep_states=keep_states, progress=progress)
     if n is None:
@@ -789,7 +806,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
             # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             tol_route = PREDICTED_TOL if tol is None else tol
-            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
+            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny,
+                                     widest_edge=widest_edge)
             # GVG's start first (measured: every mu = 10 case answered so far, beta0 = 0.4826 in 272 s), then
             # each state from the same approach at mu/2 on the grid half as fine (LowerMuWarmStart) on the same
             # lattice: at mu = 10 GVG's cold state wandered at beta0 = 0.1 and stalled in one run on the sphere
@@ -813,7 +831,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                    f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
                    f"N = {n_next}")
             again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
-                                                          margin=margin, ny=_scaled_cells(ny, n, n_next)),
+                                                          margin=margin, ny=_scaled_cells(ny, n, n_next),
+                                                          widest_edge=widest_edge),
                                         options, tol=tol_route)
             return replace(again, note="; ".join(filter(None, (*tried, why, again.note))),
                            elapsed=res.elapsed + again.elapsed)
@@ -823,7 +842,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         # state from this route's own state on the grid half as fine where that grid holds the edge at mu
         # (a refined level), else from the lower-mu start where the grid half as fine holds the edge at mu/2
         # (nested True: one of the two required, False: GVG's cold start)
-        prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
+        prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny,
+                                 widest_edge=widest_edge)
         start = ("coarse-route" if coarse_route_start_possible(prob) else
                  "lower-mu" if lower_mu_start_possible(prob) else "cold")
         if nested and start == "cold":
@@ -1027,6 +1047,9 @@ PREDICTED_TOL = 1e-4
 #: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
 PREDICTED_SEARCH = "predicted"
 
+#: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`).
+WIDEST_EDGE_NOTE = "Dugdale edge held at its cap 2 h0 on every grid (options.widest_edge)"
+
 
 def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None) -> bool:
     """Tell whether :func:`adhesive_pull_off` solves a case by the predicted route.
@@ -1134,7 +1157,8 @@ def _gvg_md_start(mu, beta0):
     return approach, (ratio * float(gvg["a_star"]) + w, ratio * float(gvg["b_star"]) + w)
 
 
-def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN, ny=None) -> NondimensionalProblem:
+def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN, ny=None,
+                      widest_edge=False) -> NondimensionalProblem:
     """The paper's problem (Dugdale law) on the predicted route's domain with its start (:func:`predicted_start`).
 
     Parameters
@@ -1151,6 +1175,8 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
         As in :func:`predicted_start` [-].
     ny : int, optional
         Cells along y (even, 8 to 65536) [-]; default ``n``.
+    widest_edge : bool, default False
+        The Dugdale edge at its cap 2 h0 (:attr:`AdhesiveOptions.widest_edge`).
 
     Returns
     -------
@@ -1160,8 +1186,9 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
     n = check_cells(n)
     ny = n if ny is None else check_cells(ny, "ny")
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    return paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
+    prob = paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
                          start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))
+    return replace(prob, widest_edge=True) if widest_edge else prob
 
 
 def lower_mu_start_possible(problem) -> bool:
@@ -1257,6 +1284,8 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
           if start in starts else None)
     path = predicted_path(prob, options, warm_start=ws)
     res = pull_off_result(prob, prob.grid.nx, path, "located")
+    if prob.widest_edge:      # the record says which edge it solved (options.widest_edge)
+        res = replace(res, note="; ".join(filter(None, (WIDEST_EDGE_NOTE, res.note))))
     if res.converged:
         return res
     w = float(elliptic_transition.pull_off_nondimensional(prob.beta0, prob.mu).W_star)

@@ -156,7 +156,18 @@ PARTS = {
     "high-mu-level2-race-slenderest": ((0.1,), (10.0,), (2,)),
     "high-mu-level2-race-30deg": ((0.1806,), (10.0,), (2,)),
     "high-mu-level2-race-45deg": ((0.3,), (10.0,), (2,)),
+    # eleventh session: level 2 with the Dugdale edge held at its cap 2 h0 on every grid ([bem]
+    # widest_edge, PART_BEM): level 1's own edges are 1.9-2.0 h0 at mu = 10, so this refines at a
+    # fixed edge in cells, where the own level-2 edge (1.03-1.08 h0) stalls the route's states
+    # (verification.level2_wide_edge measured beta0 0.1 that way: converged, 0.009 % from level 1)
+    "high-mu-level2-widest-slenderest": ((0.1,), (10.0,), (2,)),
+    "high-mu-level2-widest-30deg": ((0.1806,), (10.0,), (2,)),
+    "high-mu-level2-widest-45deg": ((0.3,), (10.0,), (2,)),
+    "high-mu-level2-widest-60deg": ((0.5,), (10.0,), (2,)),
 }
+
+#: Extra ``[bem]`` keys of a part (:func:`part_config`), recorded in its sweep output's attributes.
+PART_BEM = {name: {"widest_edge": True} for name in PARTS if name.startswith("high-mu-level2-widest-")}
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
 
@@ -165,10 +176,14 @@ def part_config(name, max_seconds=None) -> str:
 
     ``max_seconds`` [s] goes to ``[bem] max_seconds`` (the estimated time allowed per case; default
     the library's): it is not in the sweep's fingerprint, so a part rerun with more resumes its store.
+    A part of :data:`PART_BEM` adds its keys (``widest_edge = true``).
     """
     beta0, mu, levels = PARTS[name]
     fmt = lambda v: "[" + ", ".join(f"{x:g}" for x in v) + "]"  # noqa: E731
-    bem = "" if max_seconds is None else f"\n[bem]\nmax_seconds = {float(max_seconds)!r}\n"
+    keys = dict(PART_BEM.get(name, {}), **({} if max_seconds is None else {"max_seconds": float(max_seconds)}))
+    value = lambda v: ("true" if v else "false") if isinstance(v, bool) else repr(v)  # noqa: E731
+    bem = "".join(f"{k} = {value(v)}\n" for k, v in keys.items())
+    bem = f"\n[bem]\n{bem}" if bem else ""
     return (f"# issue 20 extended ground truth, part {name!r} (python -m verification.study_extended)\n"
             "[sweep]\nquantities = [\"adhesive\"]\ncontrol = \"load\"\n\n"
             f"[axes]\nbeta0 = {fmt(beta0)}\nmu = {fmt(mu)}\ngrid_level = {fmt(levels)}\nlaw = [\"dugdale\"]\n"

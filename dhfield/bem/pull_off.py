@@ -110,6 +110,10 @@ class NondimensionalProblem:
         Approach of the bracket search's cold start [c_r^2/R] (:attr:`UnloadingStart.approach`).
     pull_off_zone : (float, float)
         Semi-axes (c, d) of its cohesive zone [c_r] (:attr:`UnloadingStart.zone`).
+    widest_edge : bool, default False
+        Dugdale law only: solve with the edge spread over its cap 2 h0 on every grid
+        (:class:`dhfield.bem.solver.AdhesiveProblem` ``widest_edge``), in :meth:`adhesive_problem`
+        and, through :meth:`coarser`, on the coarser grids of its warm starts.
     """
 
     mu: float
@@ -122,6 +126,7 @@ class NondimensionalProblem:
     approach_step: float
     pull_off_approach: float = float("nan")
     pull_off_zone: tuple = (float("nan"), float("nan"))
+    widest_edge: bool = False
 
     @property
     def has_cold_start(self) -> bool:
@@ -152,9 +157,11 @@ class NondimensionalProblem:
         Returns
         -------
         AdhesiveProblem
-            The problem's gap, grid and law in the solver's working arrays.
+            The problem's gap, grid and law in the solver's working arrays (the Dugdale edge
+            at its widest when :attr:`widest_edge`).
         """
-        return AdhesiveProblem(self.initial_gap, self.grid, self.law, None, threads, 1.0)
+        return AdhesiveProblem(self.initial_gap, self.grid, self.law, None, threads, 1.0,
+                               widest_edge=self.widest_edge)
 
     def path_start(self, prob, warm_start=None) -> PathStart:
         """Build the cold start of a path on ``prob`` (this problem's working arrays).
@@ -193,8 +200,8 @@ class NondimensionalProblem:
         Returns
         -------
         NondimensionalProblem
-            The same problem (law, start, domain) with the coarser grid and its
-            initial gap.
+            The same problem (law, start, domain, :attr:`widest_edge`) with the coarser
+            grid and its initial gap.
         """
         g = self.grid
         k = g.nx // n

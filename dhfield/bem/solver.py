@@ -232,7 +232,9 @@ class AdhesiveProblem:
         ``$DHFIELD_BEM_BACKEND`` or ``"fftw"``.  The working arrays (``z``, and those of the
         solve) are the backend's; :meth:`to_full` returns numpy arrays.
     widest_edge : bool, default False
-        Spread the Dugdale edge over its cap 2 h0 (see above; only a warm start's law).
+        Spread the Dugdale edge over its cap 2 h0 (see above): a warm start's law, or, by
+        choice (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), the law of a
+        refinement that keeps the edge two cells wide.
 
     Raises
     ------
@@ -300,7 +302,8 @@ class AdhesiveProblem:
         Returns
         -------
         AdhesiveProblem
-            ``widest_edge=True``; its states are warm starts, not answers of this problem.
+            ``widest_edge=True``; its states are warm starts, not answers of this problem
+            (unless this problem has ``widest_edge=True`` already).
 
         Raises
         ------

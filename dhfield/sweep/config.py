@@ -30,6 +30,7 @@ TOML layout (every table and key optional except ``[axes]``)::
     half_width = 3.0                   # fixed domain half-width [c_r] (default 1.5 c* per case)
     sampling = "average"               # or "centre"
     max_seconds = 3600                 # adhesive: estimated time allowed per case [s] (default 1800 s)
+    widest_edge = false                # adhesive, predicted route: the Dugdale edge at its cap 2 h0
 
     [run]
     workers = 2                        # default: every core
@@ -69,6 +70,12 @@ runs longer than its estimate (no wall-clock limit).  It decides only whether a 
 never its value, so it is not part of the config's fingerprint: a refused case is stored as
 failed, and a rerun with a larger ``max_seconds`` (the flag also overrides a config file's)
 resumes the same store and solves it.
+
+``[bem] widest_edge = true`` solves every adhesive case with the Dugdale edge spread over its
+cap, two cells (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), on the
+predicted route only (mu >= 7.5 at ``grid_level = 1``, every ``grid_level >= 2`` of such a
+case); a case off that route fails with the solver's reason.  It changes the values, so it is
+part of the fingerprint, and the output says it (attribute ``bem_widest_edge``, each case's note).
 
 ``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
@@ -139,7 +146,7 @@ def max_workers() -> int:
 
 _TOP_KEYS = {"sweep", "axes", "bem", "run"}
 _SWEEP_KEYS = {"quantities", "models", "control", "chunk_points", "curve_a_star", "curve_points"}
-_BEM_KEYS = {"half_width", "sampling", "max_seconds"}
+_BEM_KEYS = {"half_width", "sampling", "max_seconds", "widest_edge"}
 _RUN_KEYS = {"workers", "scheduler", "out"}
 _SPACE_KEYS = ("linspace", "geomspace")
 
@@ -178,6 +185,9 @@ class SweepConfig:
         Estimated time allowed per adhesive BEM case [s], > 0 (``[bem] max_seconds``); None:
         the library's :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`.  Not in the
         fingerprint (it decides whether a case is refused, never its value).
+    widest_edge : bool, default False
+        Adhesive cases: the Dugdale edge at its cap 2 h0 (``[bem] widest_edge``); in the
+        fingerprint when True.
     """
 
     axes: dict
@@ -193,6 +203,7 @@ class SweepConfig:
     scheduler: str | None = None
     out: str | None = None
     max_seconds: float | None = None
+    widest_edge: bool = False
 
     def fingerprint(self) -> str:
         """Hash everything that determines the results (not workers, scheduler, out, max_seconds).
@@ -209,6 +220,8 @@ class SweepConfig:
         payload = {"axes": {k: list(v) for k, v in self.axes.items()}, "quantities": list(self.quantities),
                    "models": list(self.models), "control": self.control, "chunk_points": self.chunk_points,
                    "half_width": self.half_width, "sampling": self.sampling}
+        if self.widest_edge:      # (absent when False: the fingerprints of earlier stores stay)
+            payload["widest_edge"] = True
         if "load_curve" in self.quantities:
             payload.update(curve_a_star=list(self.curve_a_star), curve_points=self.curve_points)
         return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
@@ -230,6 +243,8 @@ class SweepConfig:
             out["bem"]["half_width"] = self.half_width
         if self.max_seconds is not None:
             out["bem"]["max_seconds"] = self.max_seconds
+        if self.widest_edge:
+            out["bem"]["widest_edge"] = True
         for k in ("workers", "scheduler", "out"):
             if getattr(self, k) is not None:
                 out["run"][k] = getattr(self, k)
@@ -536,6 +551,13 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     if sampling not in _SAMPLINGS:
         _fail("bem.sampling", f"one of {_SAMPLINGS}", sampling)
     max_seconds = _positive_number("bem.max_seconds", bem.get("max_seconds"), _max_seconds_range)
+    widest_edge = bem.get("widest_edge", False)
+    if not isinstance(widest_edge, bool):
+        _fail("bem.widest_edge", "true or false (the adhesive Dugdale edge at its cap 2 h0)", widest_edge)
+    if widest_edge and ("adhesive" not in quantities or set(axes.get("law", ("dugdale",))) != {"dugdale"}
+                        or control != "load"):
+        _fail("bem.widest_edge", "false unless the quantity 'adhesive' is swept with law ['dugdale'] and control "
+              "'load' (the predicted route)", widest_edge)
     workers = run.get("workers")
     if workers is not None:
         _int_at_least("run.workers", workers, 1)
@@ -551,7 +573,8 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     return SweepConfig(axes=axes, quantities=tuple(dict.fromkeys(quantities)), models=tuple(dict.fromkeys(models)),
                        control=control, chunk_points=chunk,
                        curve_a_star=(float(curve_a[0]), float(curve_a[1])), curve_points=curve_points,
-                       half_width=half_width, sampling=sampling, max_seconds=max_seconds, workers=workers,
+                       half_width=half_width, sampling=sampling, max_seconds=max_seconds, widest_edge=widest_edge,
+                       workers=workers,
                        scheduler=scheduler, out=out)
 
 

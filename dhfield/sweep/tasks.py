@@ -295,7 +295,8 @@ def _git_commit() -> str:
 
 
 def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dugdale", control: str = "load", *,
-                  grid_level: int | None = None, solver: str = "default", max_seconds: float | None = None) -> dict:
+                  grid_level: int | None = None, solver: str = "default", max_seconds: float | None = None,
+                  widest_edge: bool = False) -> dict:
     """Compute the adhesive BEM ground truth at pull-off of one (beta0, mu, n or grid level, law) case.
 
     The whole load path runs in this one call (each step warm-starts from the
@@ -326,6 +327,10 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         grid: its own refusal, :func:`dhfield.adhesive_start.plan_grid`).  Default (None):
         :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`, the solver called without options.
         An estimate checked before solving, not a wall-clock limit.
+    widest_edge : bool, default False
+        The Dugdale edge at its cap 2 h0 on every grid of the predicted route
+        (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`; ``[bem] widest_edge``);
+        the solver refuses it (ValueError) off that route.
 
     Returns
     -------
@@ -338,20 +343,22 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
     Raises
     ------
     ValueError
-        If neither or both of ``n`` and ``grid_level`` are given, or ``max_seconds`` is not a
-        finite number > 0.
+        If neither or both of ``n`` and ``grid_level`` are given, ``max_seconds`` is not a
+        finite number > 0, or ``widest_edge`` is asked for off the predicted route.
     """
     import time
 
     if (n is None) == (grid_level is None):
         raise ValueError("give n (an explicit n x n grid) or grid_level (the automatic grid), not both or neither")
     kwargs = dict(beta0=float(beta0), mu=float(mu), law=law, control=control, threads=1)
-    if max_seconds is not None:
+    if max_seconds is not None or widest_edge:
         from .._validation import check_positive
         from ..adhesive_start import AdhesiveOptions
 
-        max_seconds = float(check_positive("max_seconds", max_seconds, "estimated time allowed per case, s"))
-        kwargs["options"] = AdhesiveOptions(max_seconds=max_seconds)
+        if max_seconds is not None:
+            max_seconds = float(check_positive("max_seconds", max_seconds, "estimated time allowed per case, s"))
+        kwargs["options"] = AdhesiveOptions(**({} if max_seconds is None else {"max_seconds": max_seconds}),
+                                            widest_edge=widest_edge)
     if grid_level is None:
         kwargs["n"] = int(n)
         asked = (int(n), int(n))
