@@ -369,6 +369,42 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     assert abs(res.W_star - md) <= res.W_star_error
 
 
+def test_widest_edge_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugdale():
+    # options.widest_edge: the same route with the Dugdale edge at its cap 2 h0 on every grid (here wider
+    # than the grid's own); it still solves the Dugdale law to within the answer's stated error of MD
+    # (Maugis 1992, exact on the sphere), and the record says which edge it solved
+    from dhfield import maugis_dugdale
+    from dhfield.bem.path import PathOptions
+
+    own = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
+    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128, widest_edge=True)
+    assert prob.widest_edge and not own.widest_edge and prob.coarser(64).widest_edge
+    wide, narrow = prob.adhesive_problem(), own.adhesive_problem()
+    assert wide.min_spread == wide.widest_spread > 1.01 * narrow.min_spread
+    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False))
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
+    assert res.converged and res.resolved and adhesive_start.WIDEST_EDGE_NOTE in res.note
+    assert abs(res.W_star - md) <= res.W_star_error
+
+
+def test_widest_edge_option_reaches_the_predicted_route_and_only_it(monkeypatch):
+    calls = []
+    monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
+                        lambda prob, opts, tol=None, start="cold": calls.append(prob) or SimpleNamespace(converged=True))
+    wide = adhesive_start.AdhesiveOptions(widest_edge=True)
+    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted", options=wide)
+    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, search="predicted", options=wide)   # automatic grid
+    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted")
+    assert [p.widest_edge for p in calls] == [True, True, False]
+    for kw in (dict(mu=1.0, beta0=0.5), dict(mu=10.0, beta0=0.5, n=96), dict(mu=10.0, beta0=0.5, control="displacement"),
+               dict(mu=10.0, beta0=0.5, n=96, search="predicted", law="exponential")):
+        with pytest.raises(ValueError, match="widest_edge=True needs the predicted route|search='predicted' needs"):
+            adhesive_start.adhesive_pull_off(**kw, options=wide)
+    with pytest.raises(ValueError, match="options.widest_edge must be True or False"):
+        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, options=adhesive_start.AdhesiveOptions(widest_edge="yes"))
+    assert len(calls) == 3
+
+
 def test_lower_mu_start_is_possible_where_the_half_grid_holds_the_edge_at_half_mu():
     # the automatic grid of the predicted route holds the edge at mu (ratio <= 1) and its half grid does
     # not (~1.8 measured): at mu/2 the ratio (~ mu^2) is 4x smaller, so the half grid holds it

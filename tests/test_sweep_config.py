@@ -355,3 +355,39 @@ def test_cli_error_names_the_flag_that_was_typed(tmp_path, capsys, flags, named)
     """A bad value given as a flag is named by the flag, then by its config key."""
     axes = ["--beta0", "0.5", "--grid-level", "1", "--quantities", "adhesive"]
     assert named in _cli_fails_before_work(tmp_path, capsys, [*axes, *flags])
+
+
+# --- [bem] widest_edge: the Dugdale edge at its cap 2 h0 on the predicted route (issue 20) ---------------------
+def test_widest_edge_from_toml(tmp_path):
+    """Parsed as a bool, default False; round-trips; in the fingerprint only when True (so the stores
+    written before the key existed keep theirs)."""
+    path = tmp_path / "t.toml"
+    path.write_text(_ADHESIVE_TOML)
+    plain = load_config(path)
+    path.write_text(_ADHESIVE_TOML + "[bem]\nwidest_edge = true\n")
+    wide = load_config(path)
+    assert wide.widest_edge is True and plain.widest_edge is False
+    assert config_from_mapping(wide.as_dict()) == wide and "widest_edge" not in plain.as_dict()["bem"]
+    assert wide.fingerprint() != plain.fingerprint()
+    path.write_text(_ADHESIVE_TOML + "[bem]\nwidest_edge = false\n")
+    assert load_config(path).fingerprint() == plain.fingerprint()
+
+
+@pytest.mark.parametrize("value", [1, 0, "true", "yes", None, [True]])
+def test_bad_widest_edge_names_the_key(value):
+    mapping = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
+               "bem": {"widest_edge": value}}
+    with pytest.raises(ValueError, match=r"bem\.widest_edge must be true or false"):
+        config_from_mapping(mapping)
+
+
+@pytest.mark.parametrize("mapping", [
+    {"axes": {"beta0": [0.5], "mu": [10.0]}, "sweep": {"models": ["md"]}},                     # no adhesive case
+    {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2], "law": ["exponential"]},
+     "sweep": {"quantities": ["adhesive"]}},                                                  # not Dugdale
+    {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]},
+     "sweep": {"quantities": ["adhesive"], "control": "displacement"}},                        # not load control
+])
+def test_widest_edge_off_the_predicted_route_is_refused_before_work(mapping):
+    with pytest.raises(ValueError, match=r"bem\.widest_edge must be false unless the quantity 'adhesive'"):
+        config_from_mapping({**mapping, "bem": {"widest_edge": True}})

@@ -249,3 +249,24 @@ def test_a_rerun_with_more_time_solves_the_refused_level(tmp_path, monkeypatch, 
     assert second.dataset.attrs["param_bem_max_seconds"] == 2.0 * estimate
     default = run_sweep(config_from_mapping(base), out=tmp_path / "d", scheduler="synchronous", progress=False)
     assert default.dataset.attrs["param_bem_max_seconds"] == DEFAULT_MAX_SECONDS
+
+
+def test_widest_edge_reaches_the_solver_and_the_file(tmp_path, monkeypatch, any_memory):
+    """[bem] widest_edge = true: every adhesive case gets AdhesiveOptions(widest_edge=True) (a level 2 of
+    the predicted route, search 'predicted'); the file says so (param_bem_widest_edge 1); the fingerprint
+    differs from the same sweep without it (other values), and a sweep without it passes no such keyword."""
+    calls = []
+    solver = _recording_solver(calls)
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": solver)
+    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": solver)
+    base = {"axes": {"beta0": [0.1], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
+            "bem": {"max_seconds": 1e6}}
+    wide = config_from_mapping({**base, "bem": {**base["bem"], "widest_edge": True}})
+    plain = config_from_mapping(base)
+    assert wide.widest_edge and not plain.widest_edge and wide.fingerprint() != plain.fingerprint()
+    done = run_sweep(wide, out=tmp_path / "w.nc", scheduler="synchronous", progress=False)
+    assert done.failed == [] and len(calls) == 1
+    assert calls[0]["options"].widest_edge is True and calls[0]["search"] == "predicted"
+    assert done.dataset.attrs["param_bem_widest_edge"] == 1
+    again = run_sweep(plain, out=tmp_path / "p.nc", scheduler="synchronous", progress=False)
+    assert calls[1]["options"].widest_edge is False and again.dataset.attrs["param_bem_widest_edge"] == 0
