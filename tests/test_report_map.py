@@ -91,7 +91,7 @@ def test_map_section_states_the_worst_case_of_the_extended_ground_truth(section)
     assert len(row) == 1 and row[0].value == pytest.approx(np.max(np.abs(dev)), rel=1e-12)
 
 
-def _top_mu_dataset(status2, w2):
+def _top_mu_dataset(status2, w2, message2=("", "")):
     import xarray as xr
 
     # beta0 (0.5, 1) x mu (1, 10) x level (1, 2); the study is every point; mu = 10 level 1: W* -0.65
@@ -103,8 +103,11 @@ def _top_mu_dataset(status2, w2):
     err[1, 1, 0] = 0.02
     status = np.full((2, 2, 2), "ok", dtype=object)
     status[:, 1, 1] = status2
+    message = np.full((2, 2, 2), "", dtype=object)
+    message[:, 1, 1] = message2
     dims = ("beta0", "mu", "level")
     return xr.Dataset({"W_star": (dims, w), "W_star_error": (dims, err), "status": (dims, status),
+                       "message": (dims, message.astype(str)),
                        "extended_study": (("beta0", "mu"), np.ones((2, 2), dtype=np.int8))},
                       coords={"beta0": [0.5, 1.0], "mu": [1.0, 10.0], "level": [1, 2]})
 
@@ -124,6 +127,19 @@ def test_top_mu_levels_counts_the_cases_converged_on_both_levels():
     both = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751)))
     assert both["n_level2"] == 2 and both["max_step_over_error"] == pytest.approx(0.5)
     assert both["max_step"] == pytest.approx(0.005 / 0.65) and "the other" not in sec_map.top_mu_sentence(both)
+    assert both["beta0_widest"] == [] and "edge held" not in sec_map.top_mu_sentence(both)
+
+
+def test_top_mu_sentence_names_the_levels_solved_with_the_edge_held_at_two_cells():
+    from dhfield.adhesive_start import WIDEST_EDGE_NOTE
+
+    # beta0 0.5's level 2 with the widest edge (its note), beta0 1's with its own; a failed level 2 with the
+    # note is not counted
+    top = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751), (WIDEST_EDGE_NOTE, "")))
+    assert top["beta0_level2"] == [0.5, 1.0] and top["beta0_widest"] == [0.5]
+    assert "(β0 = 0.5 with the Dugdale edge held at two cells" in sec_map.top_mu_sentence(top)
+    lost = sec_map.top_mu_levels(_top_mu_dataset(("failed", "ok"), (np.nan, -0.751), (WIDEST_EDGE_NOTE, "")))
+    assert lost["beta0_widest"] == [] and "edge held" not in sec_map.top_mu_sentence(lost)
 
 
 def test_map_leads_the_report():

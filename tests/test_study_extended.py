@@ -109,3 +109,19 @@ def test_build_keeps_the_sweep_cases_the_previous_build_holds(tmp_path, monkeypa
         assert float(after["W_star"].sel(replaced)) == -0.65
         assert "part trial" in str(after["source"].sel(replaced).values)
         assert se._HELD not in str(after["source"].sel(replaced).values)
+
+
+def test_a_case_answered_carries_the_solver_note_as_its_message(tmp_path, monkeypatch):
+    """An answer has no sweep message; the build keeps the solver's note instead (here the widest edge's, which
+    the report's level-2 sentence reads), while a case that is not an answer keeps the sweep's reason."""
+    from dhfield.adhesive_start import WIDEST_EDGE_NOTE
+
+    monkeypatch.setitem(se.PARTS, "trial", ((0.5, 1.0), (10.0,), (1, 2)))
+    _timed_out_part(tmp_path)
+    store = CaseStore(output_paths(tmp_path / "trial.nc")[1], "fingerprint")
+    case = engine._case_dataset({"W_star": -0.66}, "ok", "")
+    case.attrs["case_note"] = WIDEST_EDGE_NOTE
+    store.write("adhesive__00000_00000_00001_00000", case)           # beta0 0.5, mu 10, level 2
+    cases = se._sweep_cases(tmp_path)[(0.5, 10.0)]
+    assert cases[2]["message"] == WIDEST_EDGE_NOTE and cases[2]["W_star"] == -0.66
+    assert cases[1]["message"] == ""                                   # level 1: an answer without a note

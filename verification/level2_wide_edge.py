@@ -4,15 +4,17 @@ At mu = 10 the level-1 grids' own edges are 1.9-2.0 h0, at the cap 2 h0; level 2
 1.03-1.08 h0, and there the route's states stall (``docs/theory/bem.rst``).  This script solves the
 pull-off of level 2 (``automatic_grid(beta0, 10, 2)``) by the study's route (the predicted route
 with :class:`dhfield.bem.pull_off.CoarseRouteWarmStart`: level 1's route states as starts), with
-the fine grid's edge held at 2 h0 (:meth:`dhfield.bem.solver.AdhesiveProblem.with_widest_edge`),
-so that level 2 against level 1 measures the grid's convergence at (nearly) the same edge.  Not a
-stored ground truth: the study's sweep has no such option yet.  Usage::
+the edge held at 2 h0 on every grid (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`,
+the option the study's parts ``high-mu-level2-widest-*`` set through ``[bem] widest_edge``), so
+that level 2 against level 1 measures the grid's convergence at (nearly) the same edge in cells.
+It prints one line and stores nothing; the study's parts store.  Usage::
 
     OMP_NUM_THREADS=2 .venv/bin/python -m verification.level2_wide_edge --beta0 0.1 --threads 2
 
-Measured (2026-11-28, 2 threads, same calls from a /tmp copy): beta0 = 0.1, 5120 x 960:
-W* = -0.225547 +- 0.0018, converged, three states (41-60 outer iterations each at level 2),
-1443 s; the stored level 1 (2560 x 480) is -0.225527 +- 0.0037.
+Measured (2026-11-28, 2 threads, tenth session, with level 1's grid at its own edge, 1.97 h0, and
+only level 2's widened): beta0 = 0.1, 5120 x 960: W* = -0.225547 +- 0.0018, converged, three
+states (41-60 outer iterations each at level 2), 1443 s; the stored level 1 (2560 x 480) is
+-0.225527 +- 0.0037.
 """
 from __future__ import annotations
 
@@ -35,21 +37,12 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     g = automatic_grid(args.beta0, args.mu, 2)
-    prob = adhesive_start.predicted_problem(mu=args.mu, beta0=args.beta0, n=g["nx"], ny=g["ny"])
+    prob = adhesive_start.predicted_problem(mu=args.mu, beta0=args.beta0, n=g["nx"], ny=g["ny"], widest_edge=True)
     tol = adhesive_start.PREDICTED_TOL
     ws = CoarseRouteWarmStart(prob, tol=tol, max_iter=10 ** 6, threads=args.threads)
-
-    class Widened(type(prob)):
-        """The level-2 problem whose solver arrays have the widest edge (level 1's stay their own)."""
-
-        def adhesive_problem(self, threads=None):
-            return super().adhesive_problem(threads).with_widest_edge()
-
-    fine = replace(prob)
-    object.__setattr__(fine, "__class__", Widened)     # (a frozen dataclass: the same fields, widened arrays)
     t0 = time.perf_counter()
     opts = replace(PathOptions(progress=True, threads=args.threads).checked(), tol=tol)
-    path = predicted_path(fine, opts, warm_start=ws)
+    path = predicted_path(prob, opts, warm_start=ws)
     res = pull_off_result(prob, prob.grid.nx, path, "located")
     print(f"beta0 {args.beta0:g}, mu {args.mu:g}, level 2 ({g['nx']} x {g['ny']}), edge at 2 h0: "
           f"W* = {res.W_star:.6f} +- {res.W_star_error:.2g}, converged {res.converged}, "

@@ -439,9 +439,13 @@ def top_mu_levels(ds):
     ``ds`` is the extended ground truth (``W_star``, ``W_star_error``, ``status`` on
     ``(beta0, mu, level)``).  Returns ``mu``, ``n`` (cases of the study at that mu with a level-1
     answer), ``n_level2`` (of those, the ones whose level 2 is 'ok' too), ``beta0_level2``,
-    ``max_step`` (largest |W*_2 / W*_1 - 1|) and ``max_step_over_error`` (largest
-    |W*_2 - W*_1| / stated error of level 1); NaN where no case has both levels.
+    ``max_step`` (largest |W*_2 / W*_1 - 1|), ``max_step_over_error`` (largest
+    |W*_2 - W*_1| / stated error of level 1), NaN where no case has both levels, and
+    ``beta0_widest`` (those of ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its
+    message carries :data:`dhfield.adhesive_start.WIDEST_EDGE_NOTE`).
     """
+    from dhfield.adhesive_start import WIDEST_EDGE_NOTE
+
     mu = float(ds["mu"].where(ds["extended_study"].any("beta0"), drop=True).max())
     s = ds.sel(mu=mu)
     ok = s["status"] == "ok"
@@ -449,8 +453,10 @@ def top_mu_levels(ds):
     one = ok.sel(level=1) & s["extended_study"].astype(bool)
     both = one & ok.sel(level=2)
     step = np.abs(l2["W_star"] - l1["W_star"]).where(both)
+    wide = np.array([WIDEST_EDGE_NOTE in str(m) for m in l2["message"].values])
     return {"mu": mu, "n": int(one.sum()), "n_level2": int(both.sum()),
             "beta0_level2": [float(b) for b in s["beta0"].values[both.values]],
+            "beta0_widest": [float(b) for b in s["beta0"].values[both.values & wide]],
             "max_step": float((step / np.abs(l1["W_star"])).max()) if both.any() else float("nan"),
             "max_step_over_error": float((step / l1["W_star_error"]).max()) if both.any() else float("nan")}
 
@@ -462,9 +468,12 @@ def top_mu_sentence(top):
     if n2 == 0:
         return f"Its μ = {mu:g} cases are {single}: their convergence over N is not yet measured."
     rest = f"; the other {n - n2} are {single}." if n2 < n else "."
+    wide = top.get("beta0_widest", [])
+    held = (f" (β0 = {', '.join(f'{b:g}' for b in wide)} with the Dugdale edge held at two cells, level 1's own "
+            "width, where the own level-2 edge of about one cell stalls the solver)") if wide else ""
     return (f"At μ = {mu:g}, {n2} of {n} cases (β0 = {', '.join(f'{b:g}' for b in top['beta0_level2'])}) converged "
-            f"on level 2 too (twice the cells per axis): the levels differ by at most {100 * top['max_step']:.3f} %, "
-            f"{top['max_step_over_error']:.2f} of level 1's stated error{rest}")
+            f"on level 2 too (twice the cells per axis{held}): the levels differ by at most "
+            f"{100 * top['max_step']:.3f} %, {top['max_step_over_error']:.2f} of level 1's stated error{rest}")
 
 
 def stored_attr(name):

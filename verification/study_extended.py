@@ -426,6 +426,8 @@ def _sweep_cases(work_dir):
 
     Parts are read in the order of :data:`PARTS`; a case in a later part replaces the same case of
     an earlier one (a part that runs again the cases others left without an answer comes later).
+    A case's message is the sweep's (why it is not an answer) or, for an answer, the solver's note
+    (e.g. :data:`dhfield.adhesive_start.WIDEST_EDGE_NOTE`, a lattice retry).
     """
     import xarray as xr
 
@@ -451,7 +453,8 @@ def _sweep_cases(work_dir):
                             **{k: float(a[k]) for k in _SWEEP_MODEL_VALUES},
                             **{k: float(c[k]) for k in _SWEEP_VALUES if k not in _SWEEP_MODEL_VALUES},
                             converged=int(c["converged"]), resolved=int(c["resolved"]), status=st,
-                            search=str(c["adhesive_search"].values), message=str(c["adhesive_message"].values),
+                            search=str(c["adhesive_search"].values),
+                            message=str(c["adhesive_message"].values) or str(c["adhesive_note"].values),
                             source=f"dhfield sweep (verification.study_extended part {name}, grid_level {int(lv)})",
                             commit=str(c["adhesive_commit"].values), command=str(c["adhesive_command"].values),
                             finished=str(c["adhesive_finished"].values))
@@ -487,7 +490,8 @@ def _stored_cases(work_dir, name):
                 flags = {k: int(ds[k]) if k in ds and np.isfinite(float(ds[k])) else -1 for k in ("converged", "resolved")}
                 out.append(((round(float(b), _KEY), round(float(m), _KEY)), int(lv), _case(
                     **num, **flags, status=str(a.get("status", "")),
-                    search=str(a.get("case_search", "")), message=str(a.get("message", "")),
+                    search=str(a.get("case_search", "")),
+                    message=str(a.get("message", "")) or str(a.get("case_note", "")),
                     source=(f"dhfield sweep (verification.study_extended part {name}, grid_level {int(lv)}; read "
                             f"from its case store {store_dir.name}/: the part stopped at its timeout)"),
                     commit=str(a.get("case_commit", "")), command=str(a.get("case_command", "")),
