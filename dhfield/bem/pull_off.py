@@ -113,7 +113,8 @@ class NondimensionalProblem:
     widest_edge : bool, default False
         Dugdale law only: solve with the edge spread over its cap 2 h0 on every grid
         (:class:`dhfield.bem.solver.AdhesiveProblem` ``widest_edge``), in :meth:`adhesive_problem`
-        and, through :meth:`coarser`, on the coarser grids of its warm starts.
+        and, through :meth:`coarser`, on the coarser grids of its warm starts at the same mu
+        (:class:`LowerMuWarmStart`'s lower mu keeps its own edge).
     """
 
     mu: float
@@ -744,7 +745,9 @@ class LowerMuWarmStart(_HalfGridWarmStart):
             raise ValueError(f"problem must have nx and ny multiples of 4 for warm starts from the grid half as "
                              f"fine; got {g.nx} x {g.ny}")
         mu_lo = mu_ratio * problem.mu
-        lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0))
+        # the lower mu keeps its own edge (a start of another law; held at 2 h0 it started beta0 = 0.1,
+        # mu = 10's level-1 state under level 2 worse: unconverged, where the own edge's start converged)
+        lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0), widest_edge=False)
         self.mu = mu_lo
         self._fine_nd, self._threads, self._fine_prob = problem, threads, None
         self._nested = NestedWarmStart(lower, tol=tol, max_iter=max_iter, threads=threads)
