@@ -668,9 +668,10 @@ def test_one_route_rule_for_the_plan_and_the_solve():
     assert not adhesive_start.takes_predicted_route(beta0=0.4826, mu=5.0)   # below PREDICTED_MIN_MU
 
 
-def test_widest_edge_holds_on_the_same_mu_grids_and_not_on_the_lower_mu_start():
-    # level 2 with the edge held at 2 h0: level 1's route (the same mu, the grid half as fine) holds it too;
-    # the lower-mu start solves its own law (its own edge), as without the option
+def test_widest_edge_is_the_answer_grid_s_and_not_its_starts_from_other_grids():
+    # level 2 with the edge held at 2 h0: the problem on a coarser grid keeps the option (coarser()), but the
+    # starts from other grids solve their own edges: level 1's route under level 2 (CoarseRouteWarmStart) as it
+    # runs alone, and the lower-mu start (its own law)
     from dhfield.bem.pull_off import CoarseRouteWarmStart, LowerMuWarmStart
 
     fine = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=256, widest_edge=True)
@@ -679,4 +680,4 @@ def test_widest_edge_holds_on_the_same_mu_grids_and_not_on_the_lower_mu_start():
     lower = LowerMuWarmStart(level1, tol=1e-4, max_iter=10)._nested._nd
     assert lower.mu == 1.0 and not lower.widest_edge and not lower.adhesive_problem().widest_edge
     ws = CoarseRouteWarmStart(fine, tol=1e-4, max_iter=10)
-    assert ws._branch.prob.widest_edge
+    assert not ws._branch.prob.widest_edge and ws._branch.prob.grid == level1.grid

@@ -113,8 +113,8 @@ class NondimensionalProblem:
     widest_edge : bool, default False
         Dugdale law only: solve with the edge spread over its cap 2 h0 on every grid
         (:class:`dhfield.bem.solver.AdhesiveProblem` ``widest_edge``), in :meth:`adhesive_problem`
-        and, through :meth:`coarser`, on the coarser grids of its warm starts at the same mu
-        (:class:`LowerMuWarmStart`'s lower mu keeps its own edge).
+        and :meth:`coarser`; the warm starts from other grids keep their own edges
+        (:class:`CoarseRouteWarmStart`'s level-1 route, :class:`LowerMuWarmStart`'s lower mu).
     """
 
     mu: float
@@ -834,7 +834,10 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
         if g.nx % 8 or g.ny % 8:
             raise ValueError(f"problem must have nx and ny multiples of 8 for warm starts from the predicted route on "
                              f"the grid half as fine; got {g.nx} x {g.ny}")
-        coarse = problem.coarser(g.nx // 2)
+        # level 1's route as it runs alone, with its own edge also when this grid's is held at its widest
+        # (NondimensionalProblem.widest_edge): at beta0 = 0.1, mu = 10 level 1's first state under level 2
+        # converged so (2560 x 480, own edge 1.97 h0) and did not from the same starts held at 2 h0
+        coarse = replace(problem.coarser(g.nx // 2), widest_edge=False)
         self._fine_nd, self._threads, self._fine_prob = problem, threads, None
         self._tol, self._max_iter, self._alternative = tol, max_iter, None
         self._lower = LowerMuWarmStart(coarse, tol=tol, max_iter=max_iter, threads=threads)
