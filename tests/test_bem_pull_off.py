@@ -272,3 +272,19 @@ def test_nested_warm_starts_stop_where_a_level_does_not_halve_along_y():
     assert grids == [(1440, 270), (720, 135)]
     with pytest.raises(ValueError, match="an even ny"):
         NestedWarmStart(predicted_problem(mu=5.0, beta0=0.1, n=1440, ny=270).coarser(720), tol=1e-4, max_iter=10)
+
+
+def test_lattice_approach_is_the_nearest_point_of_the_pull_off_lattice():
+    # the lattice approach_max - j approach_step / LOCATE_DIVISIONS: the answer is on it, within half a spacing of
+    # the approach asked, and a lattice point maps to itself; the same on a coarser grid of the problem
+    from dhfield.adhesive_start import predicted_problem
+    from dhfield.bem.pull_off import LOCATE_DIVISIONS
+
+    prob = predicted_problem(beta0=0.5, mu=10.0, n=640)
+    h = prob.approach_step / LOCATE_DIVISIONS
+    for d in (prob.pull_off_approach, prob.approach_max - 3.49 * h, prob.approach_max - 3.51 * h):
+        got = prob.lattice_approach(d)
+        j = (prob.approach_max - got) / h
+        assert abs(j - round(j)) < 1e-9 and abs(got - d) <= 0.5 * h + 1e-12
+        assert prob.lattice_approach(got) == got and prob.coarser(320).lattice_approach(d) == got
+    assert prob.lattice_approach(prob.approach_max - 3.49 * h) == pytest.approx(prob.approach_max - 3 * h)

@@ -41,7 +41,7 @@ def main(argv=None) -> int:
 
     from dhfield import adhesive_start as A
     from dhfield.bem import solver as S
-    from dhfield.bem.pull_off import LOCATE_DIVISIONS, PREDICTED_STRETCH_EVERY
+    from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY
 
     ap = argparse.ArgumentParser(prog="python -m verification.bench_wide_edge", description=__doc__.split("\n")[0])
     ap.add_argument("--beta0", type=float, default=0.5, help="initial ellipticity in (0, 1] (default 0.5)")
@@ -56,8 +56,7 @@ def main(argv=None) -> int:
     prob = nd.adhesive_problem(args.threads)
     wide = prob.with_widest_edge()
     cold = nd.path_start(prob).stress
-    spacing = nd.approach_step / LOCATE_DIVISIONS
-    d = nd.approach_max - int(round((nd.approach_max - nd.pull_off_approach) / spacing)) * spacing
+    d = nd.lattice_approach(nd.pull_off_approach)
     h0 = prob.law.range
     print(f"beta0 {args.beta0:g}, mu {args.mu:g}, {prob.grid.nx} x {prob.grid.ny} cells, approach {d:.6f}; "
           f"edge: own {prob.min_spread / h0:.3f} h0, wide {wide.min_spread / h0:.3f} h0", flush=True)

@@ -187,6 +187,26 @@ class NondimensionalProblem:
         stress = np.clip(prob.to_work(self.start_stress()), 0.0, self.law.max_stress)
         return PathStart(self.pull_off_approach, stress, warm_start)
 
+    def lattice_approach(self, approach) -> float:
+        """The approach of the pull-off lattice nearest ``approach``.
+
+        The lattice is ``approach_max - j approach_step / LOCATE_DIVISIONS`` (j integer), the
+        same on every grid of a problem (:func:`predicted_path` solves its first sample at
+        the one nearest :attr:`pull_off_approach`).
+
+        Parameters
+        ----------
+        approach : float
+            Approach [c_r^2/R].
+
+        Returns
+        -------
+        float
+            The lattice approach nearest it [c_r^2/R].
+        """
+        spacing = self.approach_step / LOCATE_DIVISIONS
+        return self.approach_max - int(round((self.approach_max - float(approach)) / spacing)) * spacing
+
     def coarser(self, n) -> "NondimensionalProblem":
         """Return this problem on the grid with ``n`` cells along x over the same domain.
 
@@ -957,7 +977,7 @@ def predicted_path(problem, options, warm_start=None):
 
     top = problem.approach_max
     j0 = int(round((top - problem.pull_off_approach) / spacing))
-    k0 = solve(top - j0 * spacing)              # the sample nearest the prediction first (cold)
+    k0 = solve(problem.lattice_approach(problem.pull_off_approach))   # the sample nearest the prediction first
     if not b.usable(k0):
         first = "cold state" if warm_start is None else "first state (started from the grid half as fine)"
         return failed(f"the predicted route's {first} at GVG's pull-off did not converge")
