@@ -104,6 +104,28 @@ def test_race_tries_the_starts_in_turn_until_one_converges(sphere):
                    "unloading", give_up_after=40)
     assert gave == [40, None] and resumed[0] is cold and resumed[1] is b.states[k - 1]
     assert st.converged and b.records[k - 1]["phase"] == "discarded" and b.records[k]["phase"] == "unloading"
+    # two tries given up, the first closer (residual 2e-4) than the second (2e-3), and the last start gives
+    # None: the closer one is resumed, from its own best iterate
+    gave.clear()
+    resumed.clear()
+    residuals = iter((2e-4, 2e-3))
+
+    def given_up_twice(approach, start, phase, window):
+        gave.append(window)
+        resumed.append(start)
+        if window is None:
+            return solve(approach, start, phase, window)
+        st = dataclasses.replace(solve(approach, start, phase, window)[1], converged=False, outer_iterations=40,
+                                 residual=next(residuals))
+        b.states[len(b.records) - 1] = st
+        return len(b.records) - 1, st
+
+    b._solve_from = given_up_twice
+    n0 = len(b.records)
+    k, st = b.race(d, [start("full", DEFAULT_MAX_ITER, cold), start("full", DEFAULT_MAX_ITER, cold),
+                       start("none", DEFAULT_MAX_ITER, None)], "unloading", give_up_after=40)
+    assert gave == [40, 40, None] and resumed[2] is b.states[n0] and resumed[2].residual == 2e-4
+    assert st.converged and [r["phase"] for r in b.records[n0:]] == ["discarded", "discarded", "unloading"]
     # a try stopped by its CG budget (max_iter 1), not given up, is not resumed
     gave.clear()
     b._solve_from = lambda *args: gave.append(args[3]) or solve(*args)

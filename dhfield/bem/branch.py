@@ -398,14 +398,15 @@ class Branch:
         (int, ContactState) or None
             The record index and the state of the first start that converged, else of the
             last one tried; None when every start gave None.  Each failed state followed by
-            another try is kept, marked 'discarded'.  A try given up early whose later starts
-            all gave None goes on from its best iterate with the full budget (measured at
+            another try is kept, marked 'discarded'.  When the last try was given up early
+            and every later start gave None, the try given up with the smallest residual
+            goes on from its best iterate with the full budget (measured at
             beta0 = 0.1, mu = 10, level 2: the first state from level 1's state was given up
             at a residual of 1e-3, still falling, and the last start, the lower-mu one, gave
             None, which ended the case).
         """
         starts = list(starts)
-        last, window = None, None
+        last, window, given_up = None, None, []
         for i, start in enumerate(starts):
             guess = start()
             if guess is None:
@@ -416,11 +417,16 @@ class Branch:
             last = self._solve_from(approach, guess, phase, window)
             if last[1].converged:
                 return last
+            if window and self._given_up(last[1], window):
+                given_up.append(last)
         if last is not None and window and not give_up_last and self._given_up(last[1], window):
-            # the try given up early had no later start after all (each gave None): it goes on
-            # from its best iterate with the full budget
+            # the tries given up early had no later start after all (each gave None): the one with
+            # the smallest residual goes on from its best iterate with the full budget (beta0 =
+            # 0.1806, mu = 10, level 2 at 5755b0d: the try from level 1's state was given up at
+            # <= 2.2e-4, the neighbour's at ~1e-3, and the last, the neighbour's, was resumed)
             self.records[last[0]]["phase"] = "discarded"
-            last = self._solve_from(approach, last[1], phase, None)
+            best = min(reversed(given_up), key=lambda t: t[1].residual)
+            last = self._solve_from(approach, best[1], phase, None)
         return last
 
     def _given_up(self, st, window) -> bool:
