@@ -60,7 +60,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
            "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
-           "pull_off_cost", "WIDEST_EDGE_NOTE"]
+           "pull_off_cost", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
 
 def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
@@ -1048,8 +1048,12 @@ PREDICTED_TOL = 1e-4
 #: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
 PREDICTED_SEARCH = "predicted"
 
-#: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`).
-WIDEST_EDGE_NOTE = "Dugdale edge held at its cap 2 h0 on every grid (options.widest_edge)"
+#: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`);
+#: it ends with :data:`WIDEST_EDGE_MARK`, which readers look for (the records of 5755b0d-b484c02 said
+#: "on every grid", where the starts from other grids kept their own edges).
+WIDEST_EDGE_NOTE = "Dugdale edge held at its cap 2 h0 on the grid of the answer (options.widest_edge)"
+#: What a record's note or message carries when it was solved with the widest edge.
+WIDEST_EDGE_MARK = "(options.widest_edge)"
 
 
 def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None) -> bool:

@@ -136,6 +136,9 @@ def test_top_mu_sentence_names_the_levels_solved_with_the_edge_held_at_two_cells
     # beta0 0.5's level 2 with the widest edge (its note), beta0 1's with its own; a failed level 2 with the
     # note is not counted
     top = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751), (WIDEST_EDGE_NOTE, "")))
+    # the stored records of 5755b0d said "on every grid": the mark is what is read
+    old = "Dugdale edge held at its cap 2 h0 on every grid (options.widest_edge)"
+    assert sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751), (old, "")))["beta0_widest"] == [0.5]
     assert top["beta0_level2"] == [0.5, 1.0] and top["beta0_widest"] == [0.5]
     assert "(β0 = 0.5 with the Dugdale edge held at two cells" in sec_map.top_mu_sentence(top)
     lost = sec_map.top_mu_levels(_top_mu_dataset(("failed", "ok"), (np.nan, -0.751), (WIDEST_EDGE_NOTE, "")))

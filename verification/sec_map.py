@@ -442,9 +442,9 @@ def top_mu_levels(ds):
     ``max_step`` (largest |W*_2 / W*_1 - 1|), ``max_step_over_error`` (largest
     |W*_2 - W*_1| / stated error of level 1), NaN where no case has both levels, and
     ``beta0_widest`` (those of ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its
-    message carries :data:`dhfield.adhesive_start.WIDEST_EDGE_NOTE`).
+    message carries :data:`dhfield.adhesive_start.WIDEST_EDGE_MARK`).
     """
-    from dhfield.adhesive_start import WIDEST_EDGE_NOTE
+    from dhfield.adhesive_start import WIDEST_EDGE_MARK
 
     mu = float(ds["mu"].where(ds["extended_study"].any("beta0"), drop=True).max())
     s = ds.sel(mu=mu)
@@ -453,7 +453,7 @@ def top_mu_levels(ds):
     one = ok.sel(level=1) & s["extended_study"].astype(bool)
     both = one & ok.sel(level=2)
     step = np.abs(l2["W_star"] - l1["W_star"]).where(both)
-    wide = np.array([WIDEST_EDGE_NOTE in str(m) for m in l2["message"].values])
+    wide = np.array([WIDEST_EDGE_MARK in str(m) for m in l2["message"].values])
     return {"mu": mu, "n": int(one.sum()), "n_level2": int(both.sum()),
             "beta0_level2": [float(b) for b in s["beta0"].values[both.values]],
             "beta0_widest": [float(b) for b in s["beta0"].values[both.values & wide]],
