@@ -654,13 +654,14 @@ class AdhesiveOptions:
         Default (None): when ``n >= 2 * NESTED_MIN_N``.
     widest_edge : bool, default False
         Predicted route only (:func:`takes_predicted_route`; ``search='predicted'`` on a given
-        grid): spread the Dugdale edge over its cap 2 h0 on every grid of the route
-        (:attr:`dhfield.bem.pull_off.NondimensionalProblem.widest_edge`) instead of the
-        grid's own width (the starts from other grids keep theirs: level 1's route under a
-        refined level, the lower-mu starts).  The edge then stays two cells wide under refinement, so a refined
-        level against level 1 (whose own edge is already 1.9-2.0 h0 at mu = 10) is a
-        refinement at a fixed edge in cells; at level 2 the own edge is 1.03-1.08 h0, where the
-        route's states stall (``docs/theory/bem.rst``).  The record's note says so.
+        grid): spread the Dugdale edge over its cap 2 h0 on the grid of the answer (and of a
+        lattice retry; :attr:`dhfield.bem.pull_off.NondimensionalProblem.widest_edge`)
+        instead of the grid's own width.  The starts from other grids keep theirs (level 1's
+        route under a refined level, the lower-mu starts).  The edge then stays two cells wide
+        under refinement, so a refined level against level 1 (whose own edge is already
+        1.9-2.0 h0 at mu = 10) is a refinement at a fixed edge in cells; at level 2 the own
+        edge is 1.03-1.08 h0, where the route's states stall (``docs/theory/bem.rst``).  The
+        record's note says so (:data:`WIDEST_EDGE_NOTE`).
     """
 
     n_steps: int = DEFAULT_STEPS

@@ -111,10 +111,11 @@ class NondimensionalProblem:
     pull_off_zone : (float, float)
         Semi-axes (c, d) of its cohesive zone [c_r] (:attr:`UnloadingStart.zone`).
     widest_edge : bool, default False
-        Dugdale law only: solve with the edge spread over its cap 2 h0 on every grid
-        (:class:`dhfield.bem.solver.AdhesiveProblem` ``widest_edge``), in :meth:`adhesive_problem`
-        and :meth:`coarser`; the warm starts from other grids keep their own edges
-        (:class:`CoarseRouteWarmStart`'s level-1 route, :class:`LowerMuWarmStart`'s lower mu).
+        Dugdale law only: solve this grid with the edge spread over its cap 2 h0
+        (:class:`dhfield.bem.solver.AdhesiveProblem` ``widest_edge``, built by
+        :meth:`adhesive_problem`; :meth:`coarser` keeps it).  The warm starts from other grids
+        keep their own edges (:class:`CoarseRouteWarmStart`'s level-1 route,
+        :class:`LowerMuWarmStart`'s lower mu).
     """
 
     mu: float
@@ -765,8 +766,8 @@ class LowerMuWarmStart(_HalfGridWarmStart):
             raise ValueError(f"problem must have nx and ny multiples of 4 for warm starts from the grid half as "
                              f"fine; got {g.nx} x {g.ny}")
         mu_lo = mu_ratio * problem.mu
-        # the lower mu keeps its own edge (a start of another law; held at 2 h0 it started beta0 = 0.1,
-        # mu = 10's level-1 state under level 2 worse: unconverged, where the own edge's start converged)
+        # the lower mu keeps its own edge (a start of another law; at 6d01824, held at 2 h0 with level 1's,
+        # beta0 = 0.1, mu = 10's level-1 first state under level 2 did not converge from it)
         lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0), widest_edge=False)
         self.mu = mu_lo
         self._fine_nd, self._threads, self._fine_prob = problem, threads, None

@@ -328,7 +328,7 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`, the solver called without options.
         An estimate checked before solving, not a wall-clock limit.
     widest_edge : bool, default False
-        The Dugdale edge at its cap 2 h0 on every grid of the predicted route
+        The Dugdale edge at its cap 2 h0 on the predicted route's grid of the answer
         (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`; ``[bem] widest_edge``);
         the solver refuses it (ValueError) off that route.
 
