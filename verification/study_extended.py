@@ -159,9 +159,9 @@ PARTS = {
     # eleventh session: level 2 with the Dugdale edge held at its cap 2 h0 on the grid of the answer
     # ([bem] widest_edge, PART_BEM): level 1's own edges are 1.9-2.0 h0 at mu = 10, so this refines at
     # a fixed edge in cells, where the own level-2 edge (1.03-1.08 h0) stalls the route's states.
-    # -slenderest converged (5755b0d, stored); -30deg's second state was lost in two runs (d8585f8,
-    # 245184b: stopped for the final checks), -45deg's level-1 second state stalled (d8585f8,
-    # stopped), -60deg's level-1 first state is trapped on 1200^2 (stopped)
+    # -slenderest converged (5755b0d, stored); -30deg lost its second state at d8585f8 and was still
+    # racing it at 245184b when stopped for the final checks; -45deg's level-1 second state stalled
+    # (d8585f8, stopped); -60deg's level-1 first state is trapped on 1200^2 (stopped)
     "high-mu-level2-widest-slenderest": ((0.1,), (10.0,), (2,)),
     "high-mu-level2-widest-30deg": ((0.1806,), (10.0,), (2,)),
     "high-mu-level2-widest-45deg": ((0.3,), (10.0,), (2,)),
