@@ -75,7 +75,7 @@ resumes the same store and solves it.
 cap, two cells (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), on the
 predicted route only (mu >= 7.5 at ``grid_level = 1``, every ``grid_level >= 2`` of such a
 case); a case off that route fails with the solver's reason.  It changes the values, so it is
-part of the fingerprint, and the output says it (attribute ``bem_widest_edge``, each case's note).
+part of the fingerprint, and the output says it (attribute ``param_bem_widest_edge``, each case's note).
 
 ``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
