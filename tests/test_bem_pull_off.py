@@ -285,6 +285,6 @@ def test_lattice_approach_is_the_nearest_point_of_the_pull_off_lattice():
     for d in (prob.pull_off_approach, prob.approach_max - 3.49 * h, prob.approach_max - 3.51 * h):
         got = prob.lattice_approach(d)
         j = (prob.approach_max - got) / h
-        assert abs(j - round(j)) < 1e-9 and abs(got - d) <= 0.5 * h + 1e-12
+        assert abs(j - round(j)) < 1e-9 and abs(got - d) <= 0.5 * h + 1e-12 and prob.lattice_index(d) == round(j)
         assert prob.lattice_approach(got) == got and prob.coarser(320).lattice_approach(d) == got
     assert prob.lattice_approach(prob.approach_max - 3.49 * h) == pytest.approx(prob.approach_max - 3 * h)

@@ -419,7 +419,7 @@ class Branch:
                 return last
             if window and self._given_up(last[1], window):
                 given_up.append(last)
-        if last is not None and window and not give_up_last and self._given_up(last[1], window):
+        if given_up and given_up[-1] is last and not give_up_last:
             # the tries given up early had no later start after all (each gave None): the one with
             # the smallest residual goes on from its best iterate with the full budget (beta0 =
             # 0.1806, mu = 10, level 2 at 5755b0d: the try from level 1's state was given up at

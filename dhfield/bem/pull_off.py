@@ -188,8 +188,8 @@ class NondimensionalProblem:
         stress = np.clip(prob.to_work(self.start_stress()), 0.0, self.law.max_stress)
         return PathStart(self.pull_off_approach, stress, warm_start)
 
-    def lattice_approach(self, approach) -> float:
-        """The approach of the pull-off lattice nearest ``approach``.
+    def lattice_index(self, approach) -> int:
+        """The index j of the pull-off lattice's approach nearest ``approach``.
 
         The lattice is ``approach_max - j approach_step / LOCATE_DIVISIONS`` (j integer), the
         same on every grid of a problem (:func:`predicted_path` solves its first sample at
@@ -202,11 +202,25 @@ class NondimensionalProblem:
 
         Returns
         -------
+        int
+            j of the lattice approach nearest it [-].
+        """
+        return int(round((self.approach_max - float(approach)) / (self.approach_step / LOCATE_DIVISIONS)))
+
+    def lattice_approach(self, approach) -> float:
+        """The approach of the pull-off lattice nearest ``approach`` (:meth:`lattice_index`).
+
+        Parameters
+        ----------
+        approach : float
+            Approach [c_r^2/R].
+
+        Returns
+        -------
         float
             The lattice approach nearest it [c_r^2/R].
         """
-        spacing = self.approach_step / LOCATE_DIVISIONS
-        return self.approach_max - int(round((self.approach_max - float(approach)) / spacing)) * spacing
+        return self.approach_max - self.lattice_index(approach) * (self.approach_step / LOCATE_DIVISIONS)
 
     def coarser(self, n) -> "NondimensionalProblem":
         """Return this problem on the grid with ``n`` cells along x over the same domain.
@@ -977,8 +991,8 @@ def predicted_path(problem, options, warm_start=None):
         return replace(path, pull_off_converged=False, pull_off_note=why)
 
     top = problem.approach_max
-    j0 = int(round((top - problem.pull_off_approach) / spacing))
-    k0 = solve(problem.lattice_approach(problem.pull_off_approach))   # the sample nearest the prediction first
+    j0 = problem.lattice_index(problem.pull_off_approach)
+    k0 = solve(top - j0 * spacing)              # the sample nearest the prediction first
     if not b.usable(k0):
         first = "cold state" if warm_start is None else "first state (started from the grid half as fine)"
         return failed(f"the predicted route's {first} at GVG's pull-off did not converge")
@@ -986,7 +1000,7 @@ def predicted_path(problem, options, warm_start=None):
         solve(top - j * spacing)
 
     def next_approach(i, up):
-        j = int(round((top - b.approach(i)) / spacing))
+        j = problem.lattice_index(b.approach(i))
         return top - (j - 1 if up else j + 1) * spacing
 
     _, order = b.extend_until_interior(range(len(b.records)), next_approach, LOCATE_MAX_EXTEND)

@@ -351,14 +351,18 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
     if (n is None) == (grid_level is None):
         raise ValueError("give n (an explicit n x n grid) or grid_level (the automatic grid), not both or neither")
     kwargs = dict(beta0=float(beta0), mu=float(mu), law=law, control=control, threads=1)
-    if max_seconds is not None or widest_edge:
+    settings = {}         # the solver's options, only those given (None: the solver called without options)
+    if max_seconds is not None:
         from .._validation import check_positive
+
+        max_seconds = float(check_positive("max_seconds", max_seconds, "estimated time allowed per case, s"))
+        settings["max_seconds"] = max_seconds
+    if widest_edge:
+        settings["widest_edge"] = True
+    if settings:
         from ..adhesive_start import AdhesiveOptions
 
-        if max_seconds is not None:
-            max_seconds = float(check_positive("max_seconds", max_seconds, "estimated time allowed per case, s"))
-        kwargs["options"] = AdhesiveOptions(**({} if max_seconds is None else {"max_seconds": max_seconds}),
-                                            widest_edge=widest_edge)
+        kwargs["options"] = AdhesiveOptions(**settings)
     if grid_level is None:
         kwargs["n"] = int(n)
         asked = (int(n), int(n))
