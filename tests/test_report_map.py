@@ -140,7 +140,7 @@ def test_top_mu_sentence_names_the_levels_solved_with_the_edge_held_at_two_cells
     old = "Dugdale edge held at its cap 2 h0 on every grid (options.widest_edge)"
     assert sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751), (old, "")))["beta0_widest"] == [0.5]
     assert top["beta0_level2"] == [0.5, 1.0] and top["beta0_widest"] == [0.5]
-    assert "per axis; β0 = 0.5 with the Dugdale edge held at two cells" in sec_map.top_mu_sentence(top)
+    assert "per axis; β0 = 0.5 with the Dugdale edge held at its widest, 2 h0" in sec_map.top_mu_sentence(top)
     lost = sec_map.top_mu_levels(_top_mu_dataset(("failed", "ok"), (np.nan, -0.751), (WIDEST_EDGE_NOTE, "")))
     assert lost["beta0_widest"] == [] and "edge held" not in sec_map.top_mu_sentence(lost)
 

@@ -469,8 +469,8 @@ def top_mu_sentence(top):
         return f"Its μ = {mu:g} cases are {single}: their convergence over N is not yet measured."
     rest = f"; the other {n - n2} are {single}." if n2 < n else "."
     wide = top.get("beta0_widest", [])
-    held = (f"; β0 = {', '.join(f'{b:g}' for b in wide)} with the Dugdale edge held at two cells, level 1's own "
-            "width, since the own level-2 edge of about one cell stalls the solver") if wide else ""
+    held = (f"; β0 = {', '.join(f'{b:g}' for b in wide)} with the Dugdale edge held at its widest, 2 h0, "
+            "level 1's own, since the narrower own level-2 edge stalls the solver") if wide else ""
     return (f"At μ = {mu:g}, {n2} of {n} cases (β0 = {', '.join(f'{b:g}' for b in top['beta0_level2'])}) converged "
             f"on level 2 too (twice the cells per axis{held}): the levels differ by at most "
             f"{100 * top['max_step']:.3f} %, {top['max_step_over_error']:.2f} of level 1's stated error{rest}")

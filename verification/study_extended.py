@@ -158,7 +158,7 @@ PARTS = {
     "high-mu-level2-race-45deg": ((0.3,), (10.0,), (2,)),
     # eleventh session: level 2 with the Dugdale edge held at its cap 2 h0 on the grid of the answer
     # ([bem] widest_edge, PART_BEM): level 1's own edges are 1.9-2.0 h0 at mu = 10, so this refines at
-    # a fixed edge in cells, where the own level-2 edge (1.03-1.08 h0) stalls the route's states.
+    # level 1's law (a stress ramp over gaps 0 to 2 h0), where the own level-2 edge (1.03-1.08 h0) stalls.
     # -slenderest converged (5755b0d, stored); -30deg lost its second state at d8585f8 and was still
     # racing it at 245184b when stopped for the final checks; -45deg's level-1 second state stalled
     # (d8585f8, stopped); -60deg's level-1 first state is trapped on 1200^2 (stopped)

@@ -203,7 +203,7 @@ class NondimensionalProblem:
         Returns
         -------
         int
-            j of the lattice approach nearest it [-].
+            The index j of the lattice approach nearest it [-].
         """
         return int(round((self.approach_max - float(approach)) / (self.approach_step / LOCATE_DIVISIONS)))
 

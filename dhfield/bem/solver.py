@@ -234,7 +234,7 @@ class AdhesiveProblem:
     widest_edge : bool, default False
         Spread the Dugdale edge over its cap 2 h0 (see above): a warm start's law, or, by
         choice (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), the law of a
-        refinement that keeps the edge two cells wide.
+        high-mu refinement that keeps level 1's law (a stress ramp over gaps 0 to 2 h0).
 
     Raises
     ------

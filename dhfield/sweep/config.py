@@ -72,7 +72,7 @@ failed, and a rerun with a larger ``max_seconds`` (the flag also overrides a con
 resumes the same store and solves it.
 
 ``[bem] widest_edge = true`` solves every adhesive case with the Dugdale edge spread over its
-cap, two cells (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), on the
+cap 2 h0, a stress ramp over gaps 0 to 2 h0 (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), on the
 predicted route only (mu >= 7.5 at ``grid_level = 1``, every ``grid_level >= 2`` of such a
 case); a case off that route fails with the solver's reason.  It changes the values, so it is
 part of the fingerprint, and the output says it (attribute ``param_bem_widest_edge``, each case's note).
