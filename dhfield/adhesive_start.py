@@ -59,6 +59,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
+           "next_lattice_grid",
            "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
            "pull_off_cost", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
@@ -829,16 +830,17 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                 again = _predicted_pull_off(prob, options, tol=tol_route, start="lower-mu")
                 res = replace(again, note="; ".join(filter(None, (*tried, again.note))),
                               elapsed=res.elapsed + again.elapsed)
-            n_next = None if res.converged else next_lattice(n, max_seconds, ny=ny)
-            if n_next is None:
+            retry = None if res.converged else next_lattice_grid(n, ny, max_seconds)
+            if retry is None:
                 return res
+            n_next, ny_next = retry
             # a state the lattice still traps (before the stretch step: beta0 = 0.5, mu = 10 stalled at
             # N = 1200, converged at N = 1280): once more on the next lattice, finer, so still resolved
             why = (f"the N = {n} lattice's states did not converge (worst residual {res.worst_residual:.2g}, "
                    f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
                    f"N = {n_next}")
             again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
-                                                          margin=margin, ny=_scaled_cells(ny, n, n_next),
+                                                          margin=margin, ny=ny_next,
                                                           widest_edge=widest_edge),
                                         options, tol=tol_route)
             return replace(again, note="; ".join(filter(None, (*tried, why, again.note))),
@@ -1307,6 +1309,28 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
 def _scaled_cells(ny, n, n_next) -> int:
     """Cells along y of the lattice of ``n_next`` cells along x with the cells' shape of ``n`` x ``ny`` (even)."""
     return int(2 * math.ceil(ny * n_next / n / 2))
+
+
+def next_lattice_grid(n, ny, max_seconds=DEFAULT_MAX_SECONDS):
+    """The retry lattice of an ``n`` x ``ny`` grid (:func:`next_lattice`) with its cells along y.
+
+    Parameters
+    ----------
+    n : int
+        Cells along x of the first lattice [-].
+    ny : int
+        Cells along y of the first lattice [-].
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Time allowed [s] (:func:`next_lattice`).
+
+    Returns
+    -------
+    tuple of int or None
+        ``(nx, ny)`` of the next lattice, the cells' shape kept (``ny`` scaled as ``n``,
+        even); None when no lattice fits (:func:`next_lattice`).
+    """
+    n_next = next_lattice(n, max_seconds, ny=ny)
+    return None if n_next is None else (n_next, _scaled_cells(check_cells(ny, "ny"), n, n_next))
 
 
 def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):

@@ -567,6 +567,17 @@ def test_next_lattice_is_the_next_automatic_size_that_fits():
     assert adhesive_start.next_lattice(2560, max_seconds=est * 0.99, ny=480) is None
 
 
+def test_next_lattice_grid_keeps_the_cells_shape():
+    # the retry of a shaped lattice: nx the next size, ny scaled as nx and even (2560 x 480 -> 2880 x 540;
+    # 1920 x 800 -> 2048 x 854, beta0 = 0.3's level-1 lattices at mu = 10: 800 * 2048/1920 = 853.3, up to even)
+    assert adhesive_start.next_lattice_grid(2560, 480, 1e9) == (2880, 540)
+    assert adhesive_start.next_lattice_grid(1920, 800, 1e9) == (2048, 854)
+    assert adhesive_start.next_lattice_grid(1200, 1200, 1e9) == (1280, 1280)
+    assert adhesive_start.next_lattice_grid(1200, 1200, 1e-3) is None          # nothing fits in a millisecond
+    with pytest.raises(ValueError, match="ny"):
+        adhesive_start.next_lattice_grid(1200, 0, 1e9)
+
+
 def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(monkeypatch):
     # the records are real BEM answers of a small sphere (mu = 2, N = 128): unconverged (5 CG
     # iterations) and converged; the route's first tries are made to return the first

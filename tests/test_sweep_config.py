@@ -391,3 +391,32 @@ def test_bad_widest_edge_names_the_key(value):
 def test_widest_edge_off_the_predicted_route_is_refused_before_work(mapping):
     with pytest.raises(ValueError, match=r"bem\.widest_edge must be false unless the quantity 'adhesive'"):
         config_from_mapping({**mapping, "bem": {"widest_edge": True}})
+
+
+# --- [bem] base_lattice: the refined grid levels multiply the plan's retry lattice (issue 20) -------------------
+def test_base_lattice_from_toml(tmp_path):
+    """Parsed as an int, default 0; round-trips; in the fingerprint only when not 0."""
+    path = tmp_path / "t.toml"
+    path.write_text(_ADHESIVE_TOML)
+    plain = load_config(path)
+    path.write_text(_ADHESIVE_TOML + "[bem]\nbase_lattice = 1\n")
+    retry = load_config(path)
+    assert retry.base_lattice == 1 and plain.base_lattice == 0
+    assert config_from_mapping(retry.as_dict()) == retry and "base_lattice" not in plain.as_dict()["bem"]
+    assert retry.fingerprint() != plain.fingerprint()
+    path.write_text(_ADHESIVE_TOML + "[bem]\nbase_lattice = 0\n")
+    assert load_config(path).fingerprint() == plain.fingerprint()
+
+
+@pytest.mark.parametrize("value", [-1, 3, 1.0, True, "1", None])
+def test_bad_base_lattice_names_the_key(value):
+    mapping = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
+               "bem": {"base_lattice": value}}
+    with pytest.raises(ValueError, match=r"bem\.base_lattice must be an integer in \[0, 2\]"):
+        config_from_mapping(mapping)
+
+
+def test_base_lattice_without_grid_levels_is_refused_before_work():
+    explicit = {"axes": {"beta0": [0.5], "mu": [10.0], "n": [256]}, "sweep": {"quantities": ["adhesive"]}}
+    with pytest.raises(ValueError, match=r"bem\.base_lattice must be 0 unless the quantity 'adhesive' is swept over"):
+        config_from_mapping({**explicit, "bem": {"base_lattice": 1}})

@@ -71,6 +71,53 @@ def test_levels_are_the_librarys_plan():
         tasks.automatic_grid(0.5, 1.0, 0)
 
 
+def test_base_lattice_makes_the_refined_levels_multiples_of_the_retry_lattice():
+    """[bem] base_lattice = j: level k >= 2 is k x the plan's lattice after j retries (next_lattice_grid);
+    level 1 stays the automatic grid; 0 is the plan's first lattice."""
+    from dhfield.adhesive_start import next_lattice_grid
+
+    plan = plan_grid(beta0=0.3, mu=10.0)
+    first = (plan.n_needed, plan.ny_needed)
+    retry = next_lattice_grid(*first, 1e6)
+    again = next_lattice_grid(*retry, 1e6)
+    for j, base in ((0, first), (1, retry), (2, again)):
+        two = tasks.automatic_grid(0.3, 10.0, 2, max_seconds=1e6, base_lattice=j)
+        assert (two["nx"], two["ny"]) == (2 * base[0], 2 * base[1]) and two["predicted"]
+        one = tasks.automatic_grid(0.3, 10.0, 1, max_seconds=1e6, base_lattice=j)
+        assert (one["nx"], one["ny"]) == first and one["automatic"]
+    assert retry[0] > first[0] and retry[1] > first[1]
+    for bad in (-1, 3, 1.0, True, None):
+        with pytest.raises(ValueError, match=r"base_lattice must be an integer in \[0, 2\]"):
+            tasks.automatic_grid(0.3, 10.0, 2, base_lattice=bad)
+    with pytest.raises(ValueError, match="no retry lattice 1 above"):       # the retry does not fit the time
+        tasks.automatic_grid(0.3, 10.0, 2, max_seconds=1.0, base_lattice=1)
+    with pytest.raises(ValueError, match="base_lattice=1 needs grid_level"):
+        tasks.adhesive_case(0.3, 10.0, n=256, base_lattice=1)
+
+
+def test_base_lattice_reaches_the_solver_and_the_file(tmp_path, monkeypatch, any_memory):
+    """[bem] base_lattice = 1 solves level 2 on twice the retry lattice; the file says so
+    (param_bem_base_lattice); the fingerprint differs from the same sweep without it."""
+    calls = []
+    solver = _recording_solver(calls)
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": solver)
+    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": solver)
+    base = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
+            "bem": {"max_seconds": 1e6}}
+    retry = config_from_mapping({**base, "bem": {**base["bem"], "base_lattice": 1}})
+    plain = config_from_mapping(base)
+    assert retry.base_lattice == 1 and plain.base_lattice == 0 and retry.fingerprint() != plain.fingerprint()
+    done = run_sweep(retry, out=tmp_path / "r.nc", scheduler="synchronous", progress=False)
+    again = run_sweep(plain, out=tmp_path / "p.nc", scheduler="synchronous", progress=False)
+    assert done.failed == [] == again.failed and len(calls) == 2
+    from dhfield.adhesive_start import next_lattice_grid
+
+    first = (calls[1]["n"] // 2, calls[1]["ny"] // 2)               # level 2 of the plan's first lattice
+    assert (calls[0]["n"], calls[0]["ny"]) == tuple(2 * v for v in next_lattice_grid(*first, 1e6))
+    assert calls[0]["search"] == calls[1]["search"] == "predicted"
+    assert done.dataset.attrs["param_bem_base_lattice"] == 1 and again.dataset.attrs["param_bem_base_lattice"] == 0
+
+
 def test_unaffordable_level_is_refused_before_solving(monkeypatch):
     def never(**kw):
         raise AssertionError("the solver must not be called")

@@ -166,10 +166,17 @@ PARTS = {
     "high-mu-level2-widest-30deg": ((0.1806,), (10.0,), (2,)),
     "high-mu-level2-widest-45deg": ((0.3,), (10.0,), (2,)),
     "high-mu-level2-widest-60deg": ((0.5,), (10.0,), (2,)),
+    # twelfth session: level 2 as twice the lattice level 1 answered on ([bem] base_lattice = 1, PART_BEM):
+    # beta0 = 0.3 and 0.5 answered level 1 on their retry lattices (2048 x 854, 1280^2), so a level 2 on
+    # twice the first lattice (3840 x 1600, 2400^2) solved the lattice that trapped level 1 as its start
+    "high-mu-level2-retry-lattice-45deg": ((0.3,), (10.0,), (2,)),
+    "high-mu-level2-retry-lattice-60deg": ((0.5,), (10.0,), (2,)),
 }
 
 #: Extra ``[bem]`` keys of a part (:func:`part_config`), recorded in its sweep output's attributes.
-PART_BEM = {name: {"widest_edge": True} for name in PARTS if name.startswith("high-mu-level2-widest-")}
+PART_BEM = {**{name: {"widest_edge": True} for name in PARTS if name.startswith("high-mu-level2-widest-")},
+            **{name: {"widest_edge": True, "base_lattice": 1} for name in PARTS
+               if name.startswith("high-mu-level2-retry-lattice-")}}
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
 
@@ -178,7 +185,7 @@ def part_config(name, max_seconds=None) -> str:
 
     ``max_seconds`` [s] goes to ``[bem] max_seconds`` (the estimated time allowed per case; default
     the library's): it is not in the sweep's fingerprint, so a part rerun with more resumes its store.
-    A part of :data:`PART_BEM` adds its keys (``widest_edge = true``).
+    A part of :data:`PART_BEM` adds its keys (``widest_edge = true``, ``base_lattice = 1``).
     """
     beta0, mu, levels = PARTS[name]
     fmt = lambda v: "[" + ", ".join(f"{x:g}" for x in v) + "]"  # noqa: E731

@@ -31,6 +31,7 @@ TOML layout (every table and key optional except ``[axes]``)::
     sampling = "average"               # or "centre"
     max_seconds = 3600                 # adhesive: estimated time allowed per case [s] (default 1800 s)
     widest_edge = false                # adhesive, predicted route: the Dugdale edge at its cap 2 h0
+    base_lattice = 0                   # adhesive, grid_level >= 2: k x the plan's lattice after this many retries
 
     [run]
     workers = 2                        # default: every core
@@ -77,6 +78,14 @@ predicted route only (mu >= 7.5 at ``grid_level = 1``, every ``grid_level >= 2``
 case); a case off that route fails with the solver's reason.  It changes the values, so it is
 part of the fingerprint, and the output says it (attribute ``param_bem_widest_edge``, each case's note).
 
+``[bem] base_lattice = j`` (an integer in [0, 2], default 0) makes every ``grid_level = k >= 2``
+k times the cells per axis of the plan's lattice after j retries
+(:func:`dhfield.adhesive_start.next_lattice_grid`) instead of its first lattice: the lattice
+level 1 answers on when its first one traps a state (the level-1 record's ``nx``, ``ny`` and
+note say so), so that level 2 refines the grid of level 1's answer and not the lattice that
+trapped it.  Level 1 is the automatic grid whatever it is.  It changes the grids, so it is in
+the fingerprint when not 0 (attribute ``param_bem_base_lattice``).
+
 ``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
 cannot share a sweep with an ``a_star`` axis.  ``load_curve`` (every model of
@@ -118,6 +127,9 @@ _MIN_BEM_CELLS = 16
 #: Finest grid level of the adhesive quantity: k^2 times the cells of the automatic grid
 #: (level 4 is 16x its cells and memory; beyond, a case would not fit a worker).
 MAX_GRID_LEVEL = 4
+#: Largest ``[bem] base_lattice``: the refined grid levels multiply the plan's lattice after at
+#: most this many retries (level 1 retries once, :func:`dhfield.adhesive_start.adhesive_pull_off`).
+MAX_BASE_LATTICE = 2
 _SAMPLINGS = ("average", "centre")
 _CONTROLS = ("load", "displacement")
 
@@ -146,7 +158,7 @@ def max_workers() -> int:
 
 _TOP_KEYS = {"sweep", "axes", "bem", "run"}
 _SWEEP_KEYS = {"quantities", "models", "control", "chunk_points", "curve_a_star", "curve_points"}
-_BEM_KEYS = {"half_width", "sampling", "max_seconds", "widest_edge"}
+_BEM_KEYS = {"half_width", "sampling", "max_seconds", "widest_edge", "base_lattice"}
 _RUN_KEYS = {"workers", "scheduler", "out"}
 _SPACE_KEYS = ("linspace", "geomspace")
 
@@ -188,6 +200,10 @@ class SweepConfig:
     widest_edge : bool, default False
         Adhesive cases: the Dugdale edge at its cap 2 h0 (``[bem] widest_edge``); in the
         fingerprint when True.
+    base_lattice : int, default 0
+        Adhesive grid levels k >= 2: k times the plan's lattice after this many retries
+        (``[bem] base_lattice``, :func:`dhfield.sweep.tasks.automatic_grid`); in the fingerprint
+        when not 0.
     """
 
     axes: dict
@@ -204,6 +220,7 @@ class SweepConfig:
     out: str | None = None
     max_seconds: float | None = None
     widest_edge: bool = False
+    base_lattice: int = 0
 
     def fingerprint(self) -> str:
         """Hash everything that determines the results (not workers, scheduler, out, max_seconds).
@@ -222,6 +239,8 @@ class SweepConfig:
                    "half_width": self.half_width, "sampling": self.sampling}
         if self.widest_edge:      # (absent when False: the fingerprints of earlier stores stay)
             payload["widest_edge"] = True
+        if self.base_lattice:     # (likewise absent when 0)
+            payload["base_lattice"] = self.base_lattice
         if "load_curve" in self.quantities:
             payload.update(curve_a_star=list(self.curve_a_star), curve_points=self.curve_points)
         return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
@@ -245,6 +264,8 @@ class SweepConfig:
             out["bem"]["max_seconds"] = self.max_seconds
         if self.widest_edge:
             out["bem"]["widest_edge"] = True
+        if self.base_lattice:
+            out["bem"]["base_lattice"] = self.base_lattice
         for k in ("workers", "scheduler", "out"):
             if getattr(self, k) is not None:
                 out["run"][k] = getattr(self, k)
@@ -558,6 +579,13 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
                         or control != "load"):
         _fail("bem.widest_edge", "false unless the quantity 'adhesive' is swept with law ['dugdale'] and control "
               "'load' (the predicted route)", widest_edge)
+    base_lattice = bem.get("base_lattice", 0)
+    if isinstance(base_lattice, bool) or not isinstance(base_lattice, int) \
+            or not 0 <= base_lattice <= MAX_BASE_LATTICE:
+        _fail("bem.base_lattice", f"an integer in [0, {MAX_BASE_LATTICE}] (the refined grid levels multiply the "
+              "plan's lattice after this many retries)", base_lattice)
+    if base_lattice and ("adhesive" not in quantities or "grid_level" not in axes):
+        _fail("bem.base_lattice", "0 unless the quantity 'adhesive' is swept over axes.grid_level", base_lattice)
     workers = run.get("workers")
     if workers is not None:
         _int_at_least("run.workers", workers, 1)
@@ -574,7 +602,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
                        control=control, chunk_points=chunk,
                        curve_a_star=(float(curve_a[0]), float(curve_a[1])), curve_points=curve_points,
                        half_width=half_width, sampling=sampling, max_seconds=max_seconds, widest_edge=widest_edge,
-                       workers=workers,
+                       base_lattice=base_lattice, workers=workers,
                        scheduler=scheduler, out=out)
 
 
