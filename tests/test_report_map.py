@@ -91,7 +91,7 @@ def test_map_section_states_the_worst_case_of_the_extended_ground_truth(section)
     assert len(row) == 1 and row[0].value == pytest.approx(np.max(np.abs(dev)), rel=1e-12)
 
 
-def _top_mu_dataset(status2, w2, message2=("", "")):
+def _top_mu_dataset(status2, w2, message2=("", ""), nx1=(1280, 1280)):
     import xarray as xr
 
     # beta0 (0.5, 1) x mu (1, 10) x level (1, 2); the study is every point; mu = 10 level 1: W* -0.65
@@ -105,8 +105,12 @@ def _top_mu_dataset(status2, w2, message2=("", "")):
     status[:, 1, 1] = status2
     message = np.full((2, 2, 2), "", dtype=object)
     message[:, 1, 1] = message2
+    # cells: level 1 nx1 (square), level 2 2560^2 (twice 1280: the planned lattice)
+    nx = np.full((2, 2, 2), 2560.0)
+    nx[:, :, 0] = np.asarray(nx1, float)[:, None]
     dims = ("beta0", "mu", "level")
     return xr.Dataset({"W_star": (dims, w), "W_star_error": (dims, err), "status": (dims, status),
+                       "nx": (dims, nx), "ny": (dims, nx),
                        "message": (dims, message.astype(str)),
                        "extended_study": (("beta0", "mu"), np.ones((2, 2), dtype=np.int8))},
                       coords={"beta0": [0.5, 1.0], "mu": [1.0, 10.0], "level": [1, 2]})
@@ -121,13 +125,18 @@ def test_top_mu_levels_counts_the_cases_converged_on_both_levels():
     assert (one["n"], one["n_level2"], one["beta0_level2"]) == (2, 1, [1.0])
     assert one["max_step"] == pytest.approx(0.001 / 0.75) and one["max_step_over_error"] == pytest.approx(0.05)
     line = sec_map.top_mu_sentence(one)
-    assert "1 of 2 cases (β0 = 1) converged on level 2" in line and "at most 0.133 %" in line
+    assert "1 of 2 cases (β0 = 1) converged on level 2 too (2× level 1's cells per axis)" in line
+    assert "at most 0.133 %" in line and one["refinement"] == (2.0, 2.0)
     assert "the other 1 are single-grid" in line
     # both: beta0 0.5 steps 0.005 (0.5 of its error 0.01, 0.77 % of W*): the largest of each kind
     both = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751)))
     assert both["n_level2"] == 2 and both["max_step_over_error"] == pytest.approx(0.5)
     assert both["max_step"] == pytest.approx(0.005 / 0.65) and "the other" not in sec_map.top_mu_sentence(both)
     assert both["beta0_widest"] == [] and "edge held" not in sec_map.top_mu_sentence(both)
+    # beta0 0.5's level 1 answered on its retry lattice 1440^2 (beta0 = 0.8 at mu = 10 stored so): 2560/1440
+    retry = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751), nx1=(1440, 1280)))
+    assert retry["refinement"] == pytest.approx((2560 / 1440, 2.0))
+    assert "(1.78–2× level 1's cells per axis)" in sec_map.top_mu_sentence(retry)
 
 
 def test_top_mu_sentence_names_the_levels_solved_with_the_edge_held_at_two_cells():

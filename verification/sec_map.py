@@ -336,7 +336,8 @@ def run(outdir: Path, quick: bool, progress) -> Section:
                            answered, int(study.sum()), f"{vam.GROUND_TRUTH_EXTENDED.relative_to(ROOT)} "
                            "(extended_study, W_star_truth)"))
     if top["n_level2"]:
-        checks.append(check_le(f"μ = {top['mu']:g}: level 2 (twice the cells per axis) within level 1's stated error, "
+        checks.append(check_le(f"μ = {top['mu']:g}: level 2 ({top['refinement'][0]:.2f}–{top['refinement'][1]:.2f}× level 1's "
+                               "cells per axis) within level 1's stated error, "
                                f"{top['n_level2']} of {top['n']} cases converged on both: max |W*₂ − W*₁| / error₁",
                                top["max_step_over_error"], 1.0,
                                f"{vam.GROUND_TRUTH_EXTENDED.relative_to(ROOT)} (W_star, W_star_error on level)"))
@@ -440,9 +441,11 @@ def top_mu_levels(ds):
     ``(beta0, mu, level)``).  Returns ``mu``, ``n`` (cases of the study at that mu with a level-1
     answer), ``n_level2`` (of those, the ones whose level 2 is 'ok' too), ``beta0_level2``,
     ``max_step`` (largest |W*_2 / W*_1 - 1|), ``max_step_over_error`` (largest
-    |W*_2 - W*_1| / stated error of level 1), NaN where no case has both levels, and
+    |W*_2 - W*_1| / stated error of level 1), NaN where no case has both levels,
     ``beta0_widest`` (those of ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its
-    message carries :data:`dhfield.adhesive_start.WIDEST_EDGE_MARK`).
+    message carries :data:`dhfield.adhesive_start.WIDEST_EDGE_MARK`) and ``refinement`` (the
+    smallest and largest ratio of level 2's cells per axis to level 1's, ``nx`` and ``ny``, over
+    those cases: level 2 refines the planned lattice, level 1 may answer on its retry lattice).
     """
     from dhfield.adhesive_start import WIDEST_EDGE_MARK
 
@@ -454,11 +457,13 @@ def top_mu_levels(ds):
     both = one & ok.sel(level=2)
     step = np.abs(l2["W_star"] - l1["W_star"]).where(both)
     wide = np.array([WIDEST_EDGE_MARK in str(m) for m in l2["message"].values])
+    ratios = np.concatenate([(l2[k] / l1[k]).values[both.values] for k in ("nx", "ny")])
     return {"mu": mu, "n": int(one.sum()), "n_level2": int(both.sum()),
             "beta0_level2": [float(b) for b in s["beta0"].values[both.values]],
             "beta0_widest": [float(b) for b in s["beta0"].values[both.values & wide]],
             "max_step": float((step / np.abs(l1["W_star"])).max()) if both.any() else float("nan"),
-            "max_step_over_error": float((step / l1["W_star_error"]).max()) if both.any() else float("nan")}
+            "max_step_over_error": float((step / l1["W_star_error"]).max()) if both.any() else float("nan"),
+            "refinement": (float(ratios.min()), float(ratios.max())) if both.any() else (float("nan"),) * 2}
 
 
 def top_mu_sentence(top):
@@ -468,11 +473,13 @@ def top_mu_sentence(top):
     if n2 == 0:
         return f"Its μ = {mu:g} cases are {single}: their convergence over N is not yet measured."
     rest = f"; the other {n - n2} are {single}." if n2 < n else "."
+    lo, hi = (round(r, 2) for r in top["refinement"])
+    cells = f"{hi:g}×" if lo == hi else f"{lo:g}–{hi:g}×"
     wide = top.get("beta0_widest", [])
     held = (f"; β0 = {', '.join(f'{b:g}' for b in wide)} with the Dugdale edge held at its widest, 2 h0, "
             "level 1's own, since the narrower own level-2 edge stalls the solver") if wide else ""
     return (f"At μ = {mu:g}, {n2} of {n} cases (β0 = {', '.join(f'{b:g}' for b in top['beta0_level2'])}) converged "
-            f"on level 2 too (twice the cells per axis{held}): the levels differ by at most "
+            f"on level 2 too ({cells} level 1's cells per axis{held}): the levels differ by at most "
             f"{100 * top['max_step']:.3f} %, {top['max_step_over_error']:.2f} of level 1's stated error{rest}")
 
 
