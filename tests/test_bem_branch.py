@@ -126,6 +126,32 @@ def test_race_tries_the_starts_in_turn_until_one_converges(sphere):
                        start("none", DEFAULT_MAX_ITER, None)], "unloading", give_up_after=40)
     assert gave == [40, 40, None] and resumed[2] is b.states[n0] and resumed[2].residual == 2e-4
     assert st.converged and [r["phase"] for r in b.records[n0:]] == ["discarded", "discarded", "unloading"]
+    # a try given up at 2e-4 and the last start, with the full budget, ending unconverged farther off (2e-3):
+    # the given-up try is resumed from its best iterate; ending closer (5e-5, still unconverged) it is not
+    for last_residual, resumes in ((2e-3, True), (5e-5, False)):
+        gave.clear()
+        resumed.clear()
+
+        def closer_given_up(approach, start, phase, window, last_residual=last_residual):
+            gave.append(window)
+            resumed.append(start)
+            if len(gave) == 3:
+                return solve(approach, start, phase, window)
+            st = dataclasses.replace(solve(approach, start, phase, window)[1], converged=False,
+                                     outer_iterations=40 if window else 300,
+                                     residual=2e-4 if window else last_residual)
+            b.states[len(b.records) - 1] = st
+            return len(b.records) - 1, st
+
+        b._solve_from = closer_given_up
+        n0 = len(b.records)
+        k, st = b.race(d, [start("full", DEFAULT_MAX_ITER, cold), start("full", DEFAULT_MAX_ITER, cold)],
+                       "unloading", give_up_after=40)
+        if resumes:
+            assert gave == [40, None, None] and resumed[2] is b.states[n0] and st.converged
+            assert [r["phase"] for r in b.records[n0:]] == ["discarded", "discarded", "unloading"]
+        else:
+            assert gave == [40, None] and not st.converged and st.residual == 5e-5 and k == n0 + 1
     # a try stopped by its CG budget (max_iter 1), not given up, is not resumed
     gave.clear()
     b._solve_from = lambda *args: gave.append(args[3]) or solve(*args)

@@ -399,7 +399,8 @@ class Branch:
             The record index and the state of the first start that converged, else of the
             last one tried; None when every start gave None.  Each failed state followed by
             another try is kept, marked 'discarded'.  When the last try was given up early
-            and every later start gave None, the try given up with the smallest residual
+            and every later start gave None, or the last start ended unconverged at a larger
+            residual than a try given up early, the try given up with the smallest residual
             goes on from its best iterate with the full budget (measured at
             beta0 = 0.1, mu = 10, level 2: the first state from level 1's state was given up
             at a residual of 1e-3, still falling, and the last start, the lower-mu one, gave
@@ -419,14 +420,16 @@ class Branch:
                 return last
             if window and self._given_up(last[1], window):
                 given_up.append(last)
-        if given_up and given_up[-1] is last and not give_up_last:
-            # the tries given up early had no later start after all (each gave None): the one with
-            # the smallest residual goes on from its best iterate with the full budget (beta0 =
-            # 0.1806, mu = 10, level 2 at 5755b0d: the try from level 1's state was given up at
-            # <= 2.2e-4, the neighbour's at ~1e-3, and the last, the neighbour's, was resumed)
-            self.records[last[0]]["phase"] = "discarded"
+        if given_up and not give_up_last:
             best = min(reversed(given_up), key=lambda t: t[1].residual)
-            last = self._solve_from(approach, best[1], phase, None)
+            if given_up[-1] is last or best[1].residual < last[1].residual:
+                # the tries given up early had no later start after all (each gave None), or the
+                # last start, with the full budget, ended farther off than one of them: the one with
+                # the smallest residual goes on from its best iterate with the full budget (beta0 =
+                # 0.1806, mu = 10, level 2 at 5755b0d: the try from level 1's state was given up at
+                # <= 2.2e-4, the neighbour's at ~1e-3, and the last, the neighbour's, was resumed)
+                self.records[last[0]]["phase"] = "discarded"
+                last = self._solve_from(approach, best[1], phase, None)
         return last
 
     def _given_up(self, st, window) -> bool:
