@@ -1296,7 +1296,7 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     ws = (starts[start](prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
           if start in starts else None)
     path = predicted_path(prob, options, warm_start=ws)
-    res = pull_off_result(prob, prob.grid.nx, path, "located")
+    res = pull_off_result(prob, prob.grid.nx, path, PREDICTED_SEARCH)     # the route, named as asked for
     if prob.widest_edge:      # the record says which edge it solved (options.widest_edge)
         res = replace(res, note="; ".join(filter(None, (WIDEST_EDGE_NOTE, res.note))))
     if res.converged:

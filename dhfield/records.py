@@ -151,8 +151,8 @@ class PullOff(_Record):
     note : str, optional
         Solver group: caveats on the pull-off (empty for a resolved load-control pull-off).
     search : str, optional
-        Solver group: the route that gave the pull-off ('located', 'bracket', 'march',
-        'continuation', 'refine'; 'branch' under a spring,
+        Solver group: the route that gave the pull-off ('located', 'predicted', 'bracket',
+        'march', 'continuation', 'refine'; 'branch' under a spring,
         :func:`dhfield.bem_compliance.bem_pull_off_under_spring`).
     n : int, optional
         Solver group: cells along x.

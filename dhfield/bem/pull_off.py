@@ -1211,7 +1211,7 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
     path : UnloadingPath
         The path, with its pull-off state.
     search : str
-        The route that found it (one of :data:`SEARCHES`, or 'refine').
+        The route that found it (one of :data:`SEARCHES`, 'predicted' or 'refine').
 
     Returns
     -------
