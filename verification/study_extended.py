@@ -168,7 +168,10 @@ PARTS = {
     "high-mu-level2-widest-60deg": ((0.5,), (10.0,), (2,)),
     # twelfth session: level 2 as twice the lattice level 1 answered on ([bem] base_lattice = 1, PART_BEM):
     # beta0 = 0.3 and 0.5 answered level 1 on their retry lattices (2048 x 854, 1280^2), so a level 2 on
-    # twice the first lattice (3840 x 1600, 2400^2) solved the lattice that trapped level 1 as its start
+    # twice the first lattice (3840 x 1600, 2400^2) solved the lattice that trapped level 1 as its start.
+    # -widest-30deg converged this session (d9e8af5, stored); -retry-lattice-60deg (3af02d2): level 1's first
+    # state converged on 1280^2, the first level-2 state crept at 2-6e-4 (tol 1e-4) from level 1's state and
+    # from the lower-mu start, stopped after 2 h; -retry-lattice-45deg not run yet
     "high-mu-level2-retry-lattice-45deg": ((0.3,), (10.0,), (2,)),
     "high-mu-level2-retry-lattice-60deg": ((0.5,), (10.0,), (2,)),
 }
