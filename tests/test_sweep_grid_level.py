@@ -95,13 +95,10 @@ def test_base_lattice_makes_the_refined_levels_multiples_of_the_retry_lattice():
         tasks.adhesive_case(0.3, 10.0, n=256, base_lattice=1)
 
 
-def test_base_lattice_reaches_the_solver_and_the_file(tmp_path, monkeypatch, any_memory):
+def test_base_lattice_reaches_the_solver_and_the_file(tmp_path, solver_calls, any_memory):
     """[bem] base_lattice = 1 solves level 2 on twice the retry lattice; the file says so
     (param_bem_base_lattice); the fingerprint differs from the same sweep without it."""
-    calls = []
-    solver = _recording_solver(calls)
-    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": solver)
-    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": solver)
+    calls = solver_calls
     base = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
             "bem": {"max_seconds": 1e6}}
     retry = config_from_mapping({**base, "bem": {**base["bem"], "base_lattice": 1}})
@@ -223,6 +220,16 @@ def _recording_solver(calls):
 
 
 @pytest.fixture
+def solver_calls(monkeypatch):
+    """The keyword arguments of every adhesive solve of a sweep (tasks and engine), answered by the stub."""
+    calls = []
+    solver = _recording_solver(calls)
+    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": solver)
+    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": solver)
+    return calls
+
+
+@pytest.fixture
 def any_memory(monkeypatch):
     """No memory limit: the refusal is decided by the time allowed alone, on any machine."""
     from dhfield import adhesive_start
@@ -270,15 +277,12 @@ def test_max_seconds_decides_the_refusal_of_a_level_before_solving(monkeypatch, 
     assert len(calls) == 4
 
 
-def test_a_rerun_with_more_time_solves_the_refused_level(tmp_path, monkeypatch, any_memory):
+def test_a_rerun_with_more_time_solves_the_refused_level(tmp_path, solver_calls, any_memory):
     """A level refused at the default time is stored failed; the same sweep with a larger [bem] max_seconds
     (not in the fingerprint) resumes the store and solves it alone, and the file records the time allowed."""
     from dhfield.adhesive_start import DEFAULT_MAX_SECONDS
 
-    calls = []
-    solver = _recording_solver(calls)
-    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": solver)
-    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": solver)
+    calls = solver_calls
     estimate = tasks.automatic_grid(0.5, 10.0, 2)["seconds"]
     base = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]}}
     short = config_from_mapping({**base, "bem": {"max_seconds": 0.5 * estimate}})
@@ -298,14 +302,11 @@ def test_a_rerun_with_more_time_solves_the_refused_level(tmp_path, monkeypatch, 
     assert default.dataset.attrs["param_bem_max_seconds"] == DEFAULT_MAX_SECONDS
 
 
-def test_widest_edge_reaches_the_solver_and_the_file(tmp_path, monkeypatch, any_memory):
+def test_widest_edge_reaches_the_solver_and_the_file(tmp_path, solver_calls, any_memory):
     """[bem] widest_edge = true: every adhesive case gets AdhesiveOptions(widest_edge=True) (a level 2 of
     the predicted route, search 'predicted'); the file says so (param_bem_widest_edge 1); the fingerprint
     differs from the same sweep without it (other values), and a sweep without it passes no such keyword."""
-    calls = []
-    solver = _recording_solver(calls)
-    monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": solver)
-    monkeypatch.setattr(engine, "adhesive_solver", lambda name="default": solver)
+    calls = solver_calls
     base = {"axes": {"beta0": [0.1], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
             "bem": {"max_seconds": 1e6}}
     wide = config_from_mapping({**base, "bem": {**base["bem"], "widest_edge": True}})
