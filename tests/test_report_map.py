@@ -127,11 +127,16 @@ def test_top_mu_levels_counts_the_cases_converged_on_both_levels():
     line = sec_map.top_mu_sentence(one)
     assert "1 of 2 cases (β0 = 1) converged on level 2 too (2× level 1's cells per axis)" in line
     assert "at most 0.133 %" in line and one["refinement"] == (2.0, 2.0)
-    assert "the other 1 are single-grid" in line
+    assert one["beta0_level1_only"] == [0.5]
+    assert "; the other (β0 = 0.5) is a single-grid (level 1) value with a calibrated error" in line
+    # two cases on level 1 only: the plural names both
+    two = dict(one, n=3, beta0_level1_only=[0.3, 0.5])
+    assert "; the other 2 (β0 = 0.3, 0.5) are single-grid (level 1) values" in sec_map.top_mu_sentence(two)
     # both: beta0 0.5 steps 0.005 (0.5 of its error 0.01, 0.77 % of W*): the largest of each kind
     both = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751)))
     assert both["n_level2"] == 2 and both["max_step_over_error"] == pytest.approx(0.5)
     assert both["max_step"] == pytest.approx(0.005 / 0.65) and "the other" not in sec_map.top_mu_sentence(both)
+    assert both["beta0_level1_only"] == []
     assert both["beta0_widest"] == [] and "edge held" not in sec_map.top_mu_sentence(both)
     # beta0 0.5's level 1 answered on its retry lattice 1440^2 (beta0 = 0.8 at mu = 10 stored so): 2560/1440
     retry = sec_map.top_mu_levels(_top_mu_dataset(("ok", "ok"), (-0.655, -0.751), nx1=(1440, 1280)))

@@ -442,7 +442,7 @@ def top_mu_levels(ds):
     answer), ``n_level2`` (of those, the ones whose level 2 is 'ok' too), ``beta0_level2``,
     ``max_step`` (largest |W*_2 / W*_1 - 1|), ``max_step_over_error`` (largest
     |W*_2 - W*_1| / stated error of level 1), NaN where no case has both levels,
-    ``beta0_widest`` (those of ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its
+    ``beta0_level1_only`` (the cases with a level-1 answer only), ``beta0_widest`` (those of ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its
     message carries :data:`dhfield.adhesive_start.WIDEST_EDGE_MARK`) and ``refinement`` (the
     smallest and largest ratio of level 2's cells per axis to level 1's, ``nx`` and ``ny``, over
     those cases: level 2 refines the planned lattice, level 1 may answer on its retry lattice).
@@ -460,6 +460,7 @@ def top_mu_levels(ds):
     ratios = np.concatenate([(l2[k] / l1[k]).values[both.values] for k in ("nx", "ny")])
     return {"mu": mu, "n": int(one.sum()), "n_level2": int(both.sum()),
             "beta0_level2": [float(b) for b in s["beta0"].values[both.values]],
+            "beta0_level1_only": [float(b) for b in s["beta0"].values[one.values & ~both.values]],
             "beta0_widest": [float(b) for b in s["beta0"].values[both.values & wide]],
             "max_step": float((step / np.abs(l1["W_star"])).max()) if both.any() else float("nan"),
             "max_step_over_error": float((step / l1["W_star_error"]).max()) if both.any() else float("nan"),
@@ -469,10 +470,14 @@ def top_mu_levels(ds):
 def top_mu_sentence(top):
     """What the verdict says of the convergence over N at the extended study's largest mu."""
     mu, n, n2 = top["mu"], top["n"], top["n_level2"]
-    single = "single-grid (level 1) values with a calibrated error (from the cases at μ ≤ 5)"
+    calibrated = "with a calibrated error (from the cases at μ ≤ 5)"
     if n2 == 0:
-        return f"Its μ = {mu:g} cases are {single}: their convergence over N is not yet measured."
-    rest = f"; the other {n - n2} are {single}." if n2 < n else "."
+        return (f"Its μ = {mu:g} cases are single-grid (level 1) values {calibrated}: their convergence over N "
+                "is not yet measured.")
+    only = ", ".join(f"{b:g}" for b in top.get("beta0_level1_only", []))
+    only = f" (β0 = {only})" if only else ""
+    rest = ("." if n2 == n else f"; the other{only} is a single-grid (level 1) value {calibrated}." if n - n2 == 1
+            else f"; the other {n - n2}{only} are single-grid (level 1) values {calibrated}.")
     lo, hi = (round(r, 2) for r in top["refinement"])
     cells = f"{hi:g}×" if lo == hi else f"{lo:g}–{hi:g}×"
     wide = top.get("beta0_widest", [])
