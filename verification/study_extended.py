@@ -172,6 +172,8 @@ PARTS = {
     # -widest-30deg converged this session (d9e8af5, stored); -retry-lattice-60deg (3af02d2): level 1's first
     # state converged on 1280^2, the first level-2 state crept at 2-6e-4 (tol 1e-4) from level 1's state and
     # from the lower-mu start, stopped after 2 h; -retry-lattice-45deg not run yet
+    # thirteenth session (01ef63c): -retry-lattice-45deg converged (4096 x 1708, 3 states, 4669 CPU s, stored);
+    # -retry-lattice-60deg again given up from level 1's state (3.7e-4 at outer 52), stopped after 49 min
     "high-mu-level2-retry-lattice-45deg": ((0.3,), (10.0,), (2,)),
     "high-mu-level2-retry-lattice-60deg": ((0.5,), (10.0,), (2,)),
 }
