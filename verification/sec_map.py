@@ -442,10 +442,11 @@ def top_mu_levels(ds):
     answer), ``n_level2`` (of those, the ones whose level 2 is 'ok' too), ``beta0_level2``,
     ``max_step`` (largest |W*_2 / W*_1 - 1|), ``max_step_over_error`` (largest
     |W*_2 - W*_1| / stated error of level 1), NaN where no case has both levels,
-    ``beta0_level1_only`` (the cases with a level-1 answer only), ``beta0_widest`` (those of ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its
-    message carries :data:`dhfield.adhesive_start.WIDEST_EDGE_MARK`) and ``refinement`` (the
-    smallest and largest ratio of level 2's cells per axis to level 1's, ``nx`` and ``ny``, over
-    those cases: level 2 refines the planned lattice, level 1 may answer on its retry lattice).
+    ``beta0_level1_only`` (the cases with a level-1 answer only), ``beta0_widest`` (those of
+    ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its message carries
+    :data:`dhfield.adhesive_start.WIDEST_EDGE_MARK`) and ``refinement`` (the smallest and largest
+    ratio of level 2's cells per axis to level 1's, ``nx`` and ``ny``, over those cases: level 2
+    refines the planned lattice, level 1 may answer on its retry lattice).
     """
     from dhfield.adhesive_start import WIDEST_EDGE_MARK
 
