@@ -176,12 +176,18 @@ PARTS = {
     # -retry-lattice-60deg again given up from level 1's state (3.7e-4 at outer 52), stopped after 49 min
     "high-mu-level2-retry-lattice-45deg": ((0.3,), (10.0,), (2,)),
     "high-mu-level2-retry-lattice-60deg": ((0.5,), (10.0,), (2,)),
+    # fourteenth session: beta0 = 0.5's level 2 on twice the plan's second retry lattice ([bem]
+    # base_lattice = 2: 2880^2, 2.25x level 1's 1280^2 per axis; its start, level 1's state on the grid
+    # half as fine, is then solved on 1440^2): on 2560^2 the first state crept from both starts
+    # (2.9-3.7e-4, tol 1e-4) in every session that ran it
+    "high-mu-level2-lattice2-60deg": ((0.5,), (10.0,), (2,)),
 }
 
 #: Extra ``[bem]`` keys of a part (:func:`part_config`), recorded in its sweep output's attributes.
 PART_BEM = {**{name: {"widest_edge": True} for name in PARTS if name.startswith("high-mu-level2-widest-")},
             **{name: {"widest_edge": True, "base_lattice": 1} for name in PARTS
-               if name.startswith("high-mu-level2-retry-lattice-")}}
+               if name.startswith("high-mu-level2-retry-lattice-")},
+            "high-mu-level2-lattice2-60deg": {"widest_edge": True, "base_lattice": 2}}
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
 
