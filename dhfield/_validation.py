@@ -201,7 +201,11 @@ def check_grid_point(beta0, mu, control="load"):
 
     ``beta0`` against :data:`ELLIPTICITY_RANGE`, ``mu`` against :data:`TABOR_RANGE` (mu is
     checked first, so its message wins where both are bad), ``control`` by :func:`check_control`.
+    An empty ``beta0`` or ``mu`` is refused by name: a pull-off needs at least one point.
     """
+    for name, value in (("mu", mu), ("beta0", beta0)):
+        if not isinstance(value, np.ma.MaskedArray) and np.size(value) == 0:
+            raise ValueError(f"{name} must contain at least one value; got an empty array")
     mu = check_tabor("mu", mu)
     beta0 = check_model_ellipticity("beta0", beta0)
     check_control(control)

@@ -24,6 +24,18 @@ class OneLineParser(argparse.ArgumentParser):
         where = self.prog.partition(" ")[2]
         raise UsageError(f"{where}: {message}" if where else message)
 
+    def _get_values(self, action, arg_strings):
+        # argparse drops a '--' value, so "--beta0=--" (or "--beta0 --" for nargs="+") would give the
+        # option an empty list where a number or a list of at least one value is expected
+        given = " ".join(arg_strings)
+        dashes = "--" in arg_strings
+        value = super()._get_values(action, arg_strings)
+        if (dashes and isinstance(value, list) and not value and action.option_strings
+                and action.nargs not in (0, "*", "?", argparse.REMAINDER)):
+            raise argparse.ArgumentError(action, f"expected a value; got {given!r}, which argparse reads as no "
+                                                 "value at all")
+        return value
+
 
 def _json_default(obj):
     import numpy as np
