@@ -260,6 +260,10 @@ class CurveFit:
         model ``md-elliptic`` (the estimates are then biased).
     params : dhfield.dimensional.ContactParameters
         The contact at the estimates (for :meth:`model_curve`).
+    not_identifiable : tuple of str
+        Names of the estimates the data do not determine (``"work_of_adhesion"``,
+        ``"max_adhesive_stress"``): their value is where the search stopped, not
+        an estimate (``success`` is then False and ``message`` says why).
     """
     work_of_adhesion: float
     max_adhesive_stress: float
@@ -284,6 +288,7 @@ class CurveFit:
     covariance_log: np.ndarray = field(repr=False, default=None)
     warning: str = ""
     params: dimensional.ContactParameters = field(repr=False, default=None)
+    not_identifiable: tuple = ()
 
     def as_record(self) -> dict:
         """Return a plain dict of the scalar results (for ``--json``).
@@ -300,7 +305,8 @@ class CurveFit:
                 "correlation": self.correlation, "mu": self.mu, "beta0": self.beta0,
                 "n_points": int(self.load.size), "load_noise": self.load_noise,
                 "approach_noise": self.approach_noise, "success": self.success, "message": self.message,
-                "evaluations": self.evaluations, "warning": self.warning}
+                "evaluations": self.evaluations, "warning": self.warning,
+                "not_identifiable": list(self.not_identifiable)}
 
     def model_curve(self, n=200):
         """Evaluate the fitted model as a smooth curve over the data's range of contact sizes.
@@ -859,6 +865,7 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         problems.insert(0, f"{' and '.join(names)} not identifiable from these data (standard error above the "
                         "estimate, or the search bound 4 decades from the start reached): data near pull-off, in "
                         "the JKR-DMT transition, are needed")
+    not_identifiable = tuple(n for n, m in zip(_CURVE_PARAMETERS, unknown | vague) if m)
     if problems:
         success = False
         message = "; ".join(problems)
@@ -878,4 +885,4 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         approach_noise=float("nan") if d_data is None else
         float(np.sqrt(np.sum((d_data - d_fit) ** 2) / max(d_data.size - 1, 1))),
         model=model, success=success, message=message, evaluations=count[0],
-        covariance_log=cov, warning=warning, params=p)
+        covariance_log=cov, warning=warning, params=p, not_identifiable=not_identifiable)

@@ -49,3 +49,50 @@ def test_compare_refuses_empty_arrays_by_name(kw, name):
         compare.pull_off("md-elliptic", **kw)
     with pytest.raises(ValueError, match=f"^{name} must contain at least one value"):
         compare.compare(**kw)
+
+
+# ------------------------------------------------------------------ finding 5: a flagged fit exits non-zero
+PDMS = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder-radius", "3e-3", "--skew-angle-deg", "60"]
+
+
+@pytest.fixture(scope="module")
+def jkr_side_curve(tmp_path_factory):
+    """A load curve deep on the JKR side (sigma0 = 1e8 Pa: mu ~ 3700), 12 points [N], [m].
+
+    There the load curve is the JKR one, which does not depend on sigma0 (JKR has no adhesive stress):
+    the data determine dgamma but not sigma0.
+    """
+    import math
+
+    import numpy as np
+
+    from dhfield import dimensional as dim
+
+    p = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.05, 1e8)
+    a = p.length_unit * np.linspace(0.5, 3.0, 12)
+    w = dim.load_curve_si(p, semi_major=a, model="md-elliptic")["force"]
+    path = tmp_path_factory.mktemp("jkr") / "jkr.csv"
+    path.write_text("force,semi_major\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in zip(w, a)))
+    return str(path)
+
+
+def test_a_fit_that_cannot_identify_sigma0_is_flagged(capsys, jkr_side_curve):
+    import json
+
+    from dhfield.cli.solve import EXIT_UNCONVERGED
+
+    code, out, err = _run(capsys, ["fit", "--data", jkr_side_curve, *PDMS])
+    assert code == EXIT_UNCONVERGED, (code, err)
+    rows = dict(line.split(None, 1) for line in out.splitlines())
+    assert rows["max_adhesive_stress"] == "not identifiable" and rows["mu"] == "not identifiable", out
+    assert rows["max_adhesive_stress_stderr"] == "not identifiable"
+    assert rows["work_of_adhesion"].split()[0] == "0.05"  # dgamma is determined by a JKR curve
+    flagged = [ln for ln in err.splitlines() if not ln.startswith("dhfield: warning:")]
+    assert flagged == [flagged[0]] and flagged[0].startswith("dhfield: fit is not an answer: max_adhesive_stress "
+                                                             "not identifiable"), err
+
+    code, out, err = _run(capsys, ["fit", "--data", jkr_side_curve, *PDMS, "--json"])
+    rec = json.loads(out)
+    assert code == EXIT_UNCONVERGED and rec["success"] is False
+    assert rec["max_adhesive_stress"] is None and rec["mu"] is None and rec["not_identifiable"] == ["max_adhesive_stress"]
+    assert rec["work_of_adhesion"] == pytest.approx(0.05, rel=1e-6)

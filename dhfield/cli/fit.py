@@ -33,9 +33,11 @@ combined with the replicates' scatter (Welch-Satterthwaite degrees of freedom).
 With --data FILE.csv (columns force [N] and semi_major [m], optionally
 approach [m]; aliases load, contact_size; a unit in the header such as
 'load [mN]' or 'contact_size [um]' is converted): dgamma and sigma0 by least
-squares, with standard errors, NaN with a warning where the data cannot
-identify them.  With --data, --work-of-adhesion and --adhesive-stress are
-starting values (default 0.05 J/m^2 and mu = 1).
+squares, with standard errors.  Where the data cannot identify one (or the
+least squares did not converge) the fit is flagged: that estimate, and mu,
+print as 'not identifiable' (null in --json, listed in 'not_identifiable'),
+one line on stderr says why, and the exit status is 3.  With --data,
+--work-of-adhesion and --adhesive-stress are starting values (default 0.05 J/m^2 and mu = 1).
 
 Geometry and material as for 'dhfield pulloff'.  Outside a model's validated
 range, and for dh-elliptic where it departs from the recommended model
@@ -162,7 +164,7 @@ def run(args) -> int:
             params.max_adhesive_stress / params.mu  # mu = 1 at the starting dgamma (Eq. 35)
         res = fit.fit_curve(data["force"], data["semi_major"], params, approach=data.get("approach"),
                             model=args.model, initial=(params.work_of_adhesion, stress))
-        rec = res.as_record()
+        rec = _hide_not_identifiable(res.as_record())
         print_warning(rec)
         if args.plot is not None:
             from ..io.fit import write_residual_plot
@@ -170,17 +172,40 @@ def run(args) -> int:
             write_residual_plot(res, args.plot)
     unit = {k: _unit(k) for k in rec}
     if args.json:
-        print_json({**rec, "units": {k: u for k, u in unit.items() if not isinstance(rec[k], (str, bool))}})
+        print_json({**rec, "units": {k: u for k, u in unit.items()
+                                     if not isinstance(rec[k], (str, bool)) and k != "not_identifiable"}})
     else:
         for k, v in rec.items():
-            print(f"{k:28s} {_text(v):24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
+            if k == "not_identifiable":
+                continue
+            shown = NOT_IDENTIFIABLE_TEXT if v is None else _text(v)
+            print(f"{k:28s} {shown:24s} {'' if unit[k] == '1' or v is None else unit[k]}".rstrip())
         if args.plot is not None:
             print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
     if args.data is not None and not res.success:
         import sys
 
-        print(f"dhfield: warning: {res.message}", file=sys.stderr)
+        print(f"dhfield: fit is not an answer: {res.message}", file=sys.stderr)
+        return EXIT_NOT_AN_ANSWER
     return 0
+
+
+#: Exit status of a ``--data`` fit that is flagged (``success`` false: a parameter not identifiable,
+#: or the least squares did not converge); the result is still printed, as ``dhfield solve`` does
+#: with its exit status 3 (:data:`dhfield.cli.solve.EXIT_UNCONVERGED`).
+EXIT_NOT_AN_ANSWER = 3
+#: How the text output shows an estimate the data do not determine (null in --json).
+NOT_IDENTIFIABLE_TEXT = "not identifiable"
+
+
+def _hide_not_identifiable(rec) -> dict:
+    """``rec`` with the estimates the data do not determine, their standard errors, and the quantities
+    computed from them (mu from sigma0 and dgamma, their correlation), set to None."""
+    names = rec.get("not_identifiable") or []
+    if not names:
+        return rec
+    hidden = {k for n in names for k in (n, f"{n}_stderr")} | {"mu", "correlation"}
+    return {k: (None if k in hidden else v) for k, v in rec.items()}
 
 
 def _text(v):
