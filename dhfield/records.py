@@ -12,6 +12,10 @@ Every model answers with the same types, whose fields are named by :mod:`dhfield
     :func:`pull_off_record_si`; the conversion, Eqs. 32-34 inverted, is
     :func:`dhfield._adhesion.pull_off_si`): every model's SI ``pull_off`` and
     :func:`dhfield.dimensional.pull_off_force` return it;
+  - *trust*: the estimated relative error of W* against the stored BEM ground truth and
+    whether the point lies in the box of the stored cases (:mod:`dhfield.model_error`;
+    :data:`dhfield.schema.PULL_OFF_TRUST_KEYS`): every pull-off of :mod:`dhfield.compare`,
+    nondimensional or SI;
   - *spring*: the jump out under a machine spring of stiffness K*
     (:func:`dhfield.compliance.pull_off_under_spring`, vectorised over K*, and the BEM's
     :func:`dhfield.bem_compliance.bem_pull_off_under_spring`;
@@ -40,7 +44,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from .schema import (LOAD_CURVE_ALL_KEYS, LOAD_CURVE_KEYS, LOAD_CURVE_SI_KEYS,
-                     PULL_OFF_ALL_KEYS, PULL_OFF_SI_KEYS)
+                     PULL_OFF_ALL_KEYS, PULL_OFF_SI_KEYS, PULL_OFF_TRUST_KEYS)
 
 __all__ = ["PullOff", "LoadCurve", "broadcast_field", "pull_off_record", "pull_off_record_si", "load_curve_record"]
 
@@ -130,6 +134,12 @@ class PullOff(_Record):
         True where the pull-off is reached as the contact vanishes.
     warning : ndarray or str
         Empty inside the model's validated range (:mod:`dhfield.validity`).
+    model_error : ndarray or float, optional
+        Trust group: estimated relative error of ``W_star`` against the BEM ground truth,
+        a fraction (:func:`dhfield.model_error.model_error`); NaN where no stored BEM case
+        checks the answer [-].
+    bem_verified : ndarray or bool, optional
+        Trust group: True inside the box of the stored BEM cases (load control).
     machine_stiffness_star : ndarray or float, optional
         Spring group: K* in the paper's units (:func:`dhfield.compliance.stiffness_star`);
         inf: a rigid machine [-].
@@ -201,6 +211,8 @@ class PullOff(_Record):
     adhesive_ellipticity: np.ndarray
     at_zero_contact: np.ndarray
     warning: np.ndarray
+    model_error: np.ndarray = None
+    bem_verified: np.ndarray = None
     machine_stiffness_star: np.ndarray = None
     separation_delta_star: np.ndarray = None
     max_tension_W_star: np.ndarray = None
@@ -227,8 +239,9 @@ class PullOff(_Record):
 
     @property
     def groups(self) -> tuple:
-        """The optional groups this record holds: any of 'si', 'spring', 'solver'."""
-        return tuple(g for g, k in (("si", "force"), ("spring", "machine_stiffness_star"), ("solver", "converged"))
+        """The optional groups this record holds: any of 'si', 'trust', 'spring', 'solver'."""
+        return tuple(g for g, k in (("si", "force"), ("trust", "model_error"), ("spring", "machine_stiffness_star"),
+                                    ("solver", "converged"))
                      if getattr(self, k) is not None)
 
     @property
@@ -420,12 +433,13 @@ def pull_off_record_si(rec, si):
     Returns
     -------
     PullOff
-        With the SI group (keys :data:`dhfield.schema.PULL_OFF_SI_KEYS`); scalars where the
-        record is scalar.
+        With the SI group (keys :data:`dhfield.schema.PULL_OFF_SI_KEYS`), and the trust group
+        where ``rec`` has it; scalars where the record is scalar.
     """
     shape = np.shape(rec["W_star"])
     si = {k: _scalar(np.broadcast_to(np.asarray(v, dtype=float), shape)) for k, v in si.items()}
-    return PullOff(**{k: (si[k] if k in si else rec[k]) for k in PULL_OFF_SI_KEYS})
+    trust = {k: rec[k] for k in PULL_OFF_TRUST_KEYS if k in rec}
+    return PullOff(**{k: (si[k] if k in si else rec[k]) for k in PULL_OFF_SI_KEYS}, **trust)
 
 
 def _scalar(x):

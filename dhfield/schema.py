@@ -24,7 +24,8 @@ Records
 inputs) are the keys, in order, of a pull-off record of every model: a value
 that does not apply to a model is NaN (JSON ``null``), never missing.  The one
 record type, :class:`dhfield.records.PullOff`, adds the groups
-:data:`PULL_OFF_SPRING_KEYS` (under a machine spring) and
+:data:`PULL_OFF_TRUST_KEYS` (the estimated error against the BEM ground truth: every
+pull-off of :mod:`dhfield.compare`), :data:`PULL_OFF_SPRING_KEYS` (under a machine spring) and
 :data:`PULL_OFF_SOLVER_KEYS` (a numerical solution, the adhesive BEM) where they
 apply; :data:`PULL_OFF_ALL_KEYS` lists every key in order.
 :data:`LOAD_CURVE_KEYS` and :data:`LOAD_CURVE_SI_KEYS` are the array keys of a
@@ -45,6 +46,7 @@ __all__ = [
     "DIM_ORDER",
     "PULL_OFF_KEYS",
     "PULL_OFF_SI_KEYS",
+    "PULL_OFF_TRUST_KEYS",
     "PULL_OFF_SPRING_KEYS",
     "PULL_OFF_SOLVER_KEYS",
     "PULL_OFF_ALL_KEYS",
@@ -105,6 +107,13 @@ VARIABLES: dict[str, Variable] = {
                                     "closure departs from the two-axis closure by more than 2 %)"),
     "at_zero_contact": Variable("1", "pull-off at vanishing contact",
                                 description="True where the pull-off minimum is reached as a* -> 0"),
+    "model_error": Variable("1", "estimated relative error of the pull-off W* against the BEM ground truth",
+                            description="largest (|W*_model - W*_truth| + W*_truth error)/|W*_truth| over the "
+                                        "stored BEM cases bracketing the point (dhfield.model_error); NaN "
+                                        "where no stored case checks the answer"),
+    "bem_verified": Variable("1", "inside the box of the stored BEM ground truth",
+                             description="beta0 and mu within the stored BEM cases, load control "
+                                         "(dhfield.model_error)"),
     "converged": Variable("1", "solver converged"),
     "n_steps": Variable("1", "number of load or displacement steps"),
     "iterations": Variable("1", "solver iterations"),
@@ -247,6 +256,9 @@ _TAIL = ("at_zero_contact", "warning")
 PULL_OFF_KEYS = _HEAD + _NONDIM + _TAIL
 #: Keys, in order, of a pull-off record from physical inputs (every model).
 PULL_OFF_SI_KEYS = _HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL
+#: Keys of a pull-off's trust (:mod:`dhfield.model_error`): its estimated relative error against the BEM ground
+#: truth and whether the point lies in the box of the stored BEM cases; every pull-off of :mod:`dhfield.compare`.
+PULL_OFF_TRUST_KEYS = ("model_error", "bem_verified")
 #: Keys of a pull-off under a machine spring (:func:`dhfield.compliance.pull_off_under_spring`), after the SI and
 #: nondimensional ones.
 PULL_OFF_SPRING_KEYS = ("machine_stiffness_star", "separation_delta_star", "max_tension_W_star", "on_separated_branch")
@@ -255,8 +267,9 @@ PULL_OFF_SPRING_KEYS = ("machine_stiffness_star", "separation_delta_star", "max_
 PULL_OFF_SOLVER_KEYS = ("W_star_error", "converged", "resolved", "note", "search", "n", "law", "n_steps",
                         "iterations", "residual", "failures", "half_width_x", "half_width_y", "elapsed")
 #: Every key a :class:`dhfield.records.PullOff` may carry, in order; a record holds the groups it has
-#: (:data:`PULL_OFF_KEYS` always; the SI, spring and solver groups where they apply).
-PULL_OFF_ALL_KEYS = _HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL + PULL_OFF_SPRING_KEYS + PULL_OFF_SOLVER_KEYS
+#: (:data:`PULL_OFF_KEYS` always; the SI, trust, spring and solver groups where they apply).
+PULL_OFF_ALL_KEYS = (_HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL + PULL_OFF_TRUST_KEYS + PULL_OFF_SPRING_KEYS
+                     + PULL_OFF_SOLVER_KEYS)
 #: Scalar keys that head a load-curve record.
 LOAD_CURVE_HEADER_KEYS = ("model", "geometry", "beta0", "mu", "sin_skew")
 #: Array keys of a nondimensional load curve, in order.
