@@ -100,3 +100,117 @@ def test_store_of_another_config_is_refused(tmp_path):
     other = config_from_mapping({"axes": {"beta0": [0.9], "mu": [1.0]}, "sweep": {"models": ["jkr"]}})
     with pytest.raises(ValueError, match="different sweep config"):
         run_sweep(other, out=tmp_path / "x.nc", scheduler="synchronous", progress=False)
+
+
+# --------------------------------------------------------------------------- issue 42: stores that cannot mix configs
+def _md_sweep(tmp_path, mu, out="x.nc", **run):
+    cfg = config_from_mapping({"axes": {"beta0": [0.9, 1.0], "mu": list(mu)}, "sweep": {"models": ["md"]}})
+    return run_sweep(cfg, out=tmp_path / out, scheduler="synchronous", progress=False, **run)
+
+
+def _md_values(beta0, mu):
+    """Maugis-Dugdale W* computed directly (not through a sweep) at every (beta0, mu)."""
+    import warnings
+
+    from dhfield.compare import pull_off
+
+    with warnings.catch_warnings():   # beta0 = 0.9 is outside md's validated range: the same value all the same
+        warnings.simplefilter("ignore")
+        return np.array([[float(pull_off("md", beta0=b, mu=m).W_star) for m in mu] for b in beta0])
+
+
+def test_store_without_manifest_does_not_lend_its_cases_to_another_config(tmp_path):
+    """Issue 42 finding 1: with manifest.json deleted, the mu = 5, 10 sweep reused the mu = 0.5, 1 case."""
+    import pytest
+
+    _md_sweep(tmp_path, [0.5, 1.0])
+    (tmp_path / "x.nc.cases" / "manifest.json").unlink()
+    with pytest.raises(ValueError, match="has no manifest.json and holds case files .1 of another sweep config"):
+        _md_sweep(tmp_path, [5.0, 10.0])
+    # the same config finds its own cases again (their fingerprint and coordinates match)
+    again = _md_sweep(tmp_path, [0.5, 1.0])
+    assert again.computed == [] and len(again.reused) == 1
+    np.testing.assert_allclose(again.dataset["W_star"].sel(model="md").values, _md_values([0.9, 1.0], [0.5, 1.0]),
+                               rtol=1e-12)
+
+
+def test_a_case_file_of_another_config_is_computed_again(tmp_path):
+    """Issue 42 finding 1: a case is reused only if its fingerprint and coordinates match, not by its key."""
+    import shutil
+
+    _md_sweep(tmp_path, [0.5, 1.0], out="a.nc")
+    _md_sweep(tmp_path, [5.0, 10.0], out="b.nc")
+    (key,) = [p.name for p in (tmp_path / "b.nc.cases").glob("pull_off__*.nc")]
+    shutil.copyfile(tmp_path / "a.nc.cases" / key, tmp_path / "b.nc.cases" / key)   # the same key, the wrong case
+    res = _md_sweep(tmp_path, [5.0, 10.0], out="b.nc")
+    assert res.computed == [key[:-3]] and res.reused == []
+    np.testing.assert_allclose(res.dataset["W_star"].sel(model="md").values, _md_values([0.9, 1.0], [5.0, 10.0]),
+                               rtol=1e-12)
+
+
+def test_a_case_store_that_is_a_symbolic_link_is_refused(tmp_path):
+    """Issue 42 finding 10: the case store was written through a symbolic link."""
+    import pytest
+
+    real = tmp_path / "real"
+    real.mkdir()
+    (tmp_path / "x.nc.cases").symlink_to(real)
+    with pytest.raises(ValueError, match="case store must not be a symbolic link"):
+        _md_sweep(tmp_path, [1.0])
+    (tmp_path / "d").symlink_to(real)
+    with pytest.raises(ValueError, match="must not be a symbolic link"):
+        _md_sweep(tmp_path, [1.0], out="d")
+    assert list(real.iterdir()) == [] and not (tmp_path / "x.nc").exists()
+
+
+def test_out_with_another_suffix_is_refused_not_made_a_directory(tmp_path):
+    """Issue 42 finding 10: ``sweep --out x.txt`` silently created a directory."""
+    from dhfield.cli import main
+
+    assert main(["sweep", "--beta0", "1", "--mu", "1", "--models", "md", "--workers", "1", "--quiet",
+                 "--out", str(tmp_path / "x.txt")]) == 2
+    assert not (tmp_path / "x.txt").exists()
+    (tmp_path / "runs.d").mkdir()   # an existing directory is an output directory whatever its name
+    assert main(["sweep", "--beta0", "1", "--mu", "1", "--models", "md", "--workers", "1", "--quiet",
+                 "--out", str(tmp_path / "runs.d")]) == 0
+    assert (tmp_path / "runs.d" / "sweep.nc").is_file()
+
+
+def test_interrupted_sweep_says_how_many_cases_are_stored(tmp_path, monkeypatch, capsys):
+    """Issue 42 finding 9: an interrupted sweep said "no output was written" after storing resumable cases."""
+    from dhfield.cli import main
+    from dhfield.sweep import engine
+
+    def interrupted(*args, **kwargs):   # Ctrl-C once every case is stored, before the consolidated file
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(engine, "_consolidate", interrupted)
+    argv = ["sweep", "--beta0", "0.9", "1", "--mu", "0.5", "1", "--models", "md", "jkr", "--chunk-points", "1",
+            "--workers", "1", "--quiet", "--out", str(tmp_path / "s.nc")]
+    assert main(argv) == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no output was written" not in err[0], err
+    assert "8 finished case(s) are stored in" in err[0] and "8 of them by this run" in err[0], err
+    assert "was not written" in err[0] and "to resume" in err[0], err
+    monkeypatch.undo()
+    res = run_sweep(config_from_mapping({"axes": {"beta0": [0.9, 1.0], "mu": [0.5, 1.0]},
+                                         "sweep": {"models": ["md", "jkr"], "chunk_points": 1}}),
+                    out=tmp_path / "s.nc", scheduler="synchronous", progress=False)
+    assert res.computed == [] and len(res.reused) == 8
+
+
+def test_adhesive_sweep_refuses_an_unaffordable_n_before_anything(tmp_path, monkeypatch):
+    """Issue 42 finding 6: a sweep with n = [8192] started allocating; solve refused it at once."""
+    import pytest
+
+    from dhfield import _memory
+
+    monkeypatch.setattr(_memory, "available_memory", lambda: 50 * 2**20)   # 40 MiB may be claimed
+    cfg = config_from_mapping({"axes": {"beta0": [1.0], "mu": [1.0, 2.0], "n": [256]},
+                               "sweep": {"quantities": ["adhesive"]}})   # 256^2 x 550 B = 34 MiB a case
+    with pytest.raises(ValueError, match=r"axes.n = 256 .*2 cases at once.* fewer workers"):
+        run_sweep(cfg, out=tmp_path / "a.nc", scheduler="processes", workers=2, progress=False)
+    monkeypatch.setattr(_memory, "available_memory", lambda: 20 * 2**20)
+    with pytest.raises(ValueError, match=r"axes.n = 256 \(the adhesive BEM on a 256 x 256 grid\) needs"):
+        run_sweep(cfg, out=tmp_path / "a.nc", scheduler="synchronous", progress=False)
+    assert list(tmp_path.iterdir()) == []   # refused before the store, the workers or any case

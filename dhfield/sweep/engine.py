@@ -60,7 +60,7 @@ import numpy as np
 
 from .. import schema
 from .config import SweepConfig, check_scheduler_address, scheduler_host_port
-from .store import CaseStore, output_paths
+from .store import CaseStore, case_coordinates, output_paths
 from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_GRID_FIELDS, ADHESIVE_MODEL, ADHESIVE_TEXT_FIELDS,
                     BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS, adhesive_case, adhesive_solver, bem_field_case,
                     block_values, expected_seconds, load_curve_case, pull_off_block)
@@ -72,7 +72,8 @@ _TEXT_FIELDS = {"adhesive": ADHESIVE_TEXT_FIELDS + ("command",)}
 
 __all__ = ["SweepResult", "Executor", "connect", "run_sweep", "map_cases", "Progress", "STATUS_MEANINGS",
            "CONNECT_TIMEOUT", "SCHEDULER_ENV", "WORKERS_ENV", "SINGLE_THREAD_ENV", "WORKER_START_TIMEOUT",
-           "QUANTITY_MODULES", "probe_scheduler", "MAX_HANDSHAKE_BYTES", "UNRESOLVED_MESSAGE", "case_key"]
+           "QUANTITY_MODULES", "probe_scheduler", "MAX_HANDSHAKE_BYTES", "UNRESOLVED_MESSAGE", "case_key",
+           "check_output", "check_sweep_memory"]
 
 #: Seconds to wait for a dask.distributed scheduler (connection and handshake) before reporting it.
 CONNECT_TIMEOUT = 5.0
@@ -536,7 +537,8 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
     """apply_ufunc kernel: one block of the analytic map, read from the store if done."""
     store = CaseStore(store_dir, fingerprint)
     key = f"pull_off__{model}__{int(i_ell.flat[0]):05d}_{int(i_mu.flat[0]):05d}"
-    if store.is_done(key):
+    coordinates = case_coordinates(model=model, control=control, beta0=beta0, mu=mu)
+    if store.is_done(key, coordinates):
         ds = store.read(key)
         return np.stack([ds[k].values for k in PULL_OFF_FIELDS], axis=-1)
     try:
@@ -551,7 +553,7 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
     # the records' validity warnings travel through the store (read back by _consolidate):
     # the dask kernel returns numbers only
     ds["warning"] = (("i", "j"), warnings, _WARNING_ATTRS)
-    store.write(key, ds)
+    store.write(key, ds, coordinates)
     return out
 
 
@@ -611,7 +613,9 @@ def _run_cases(quantity, cases, store_dir, fingerprint, command=""):
     dims = ("point",) if quantity == "load_curve" else ()
     out = {}
     for key, params in cases:
-        if store.is_done(key):
+        # the time allowed decides only whether a case is refused (not in the fingerprint either)
+        coordinates = case_coordinates(quantity=quantity, **{k: v for k, v in params.items() if k != "max_seconds"})
+        if store.is_done(key, coordinates):
             ds = store.read(key)
             # A field added after the case was stored reads as NaN (the case is not recomputed).
             rec = {k: ds[k].values if k in ds else np.nan for k in fields}
@@ -650,7 +654,7 @@ def _run_cases(quantity, cases, store_dir, fingerprint, command=""):
             text["command"] = command
         case = _case_dataset({k: rec[k] for k in fields}, status, message, dims, seconds)
         case.attrs.update({f"case_{k}": v for k, v in text.items()})
-        store.write(key, case)
+        store.write(key, case, coordinates)
         out[key] = ({**{k: np.asarray(rec[k], dtype=float) for k in fields}, **text}, status, message, True)
     return out
 
@@ -799,24 +803,135 @@ def run_sweep(config: SweepConfig, *, out=None, scheduler=None, workers=None, pr
     if out is None:
         raise ValueError("out must be given (an output .nc file or directory)")
     final, store_dir = output_paths(out)
-    from ..io import check_writable
+    from ..io import SignalExit, check_writable
 
+    check_output(out)
+    check_sweep_memory(config, _concurrent_cases(scheduler if scheduler is not None else config.scheduler,
+                                                 workers if workers is not None else config.workers))
     if Path(out).suffix.lower() != ".nc" and Path(out).parent.is_dir() and not Path(out).exists():
         Path(out).mkdir()
     check_writable(final)
     executor = connect(scheduler if scheduler is not None else config.scheduler,
                        workers if workers is not None else config.workers)
     owned = executor is not scheduler
+    store = None
     try:
         executor.start(preload=_preload(config), wait=False)  # workers start while this process prepares
         if "adhesive" in config.quantities:
             adhesive_solver()
         fp = config.fingerprint()
         store = CaseStore(store_dir, fp, manifest={"config": config.as_dict()})
+        before = len(store.keys())
         return _run(config, executor, store, final, progress)
+    except (KeyboardInterrupt, SignalExit) as exc:   # what the interrupted run left behind, in its message
+        exc.add_note(_interrupted_note(store, final, None if store is None else before))
+        raise
     finally:
         if owned:
             executor.close()
+
+
+def check_output(out) -> None:
+    """Refuse an output path a sweep cannot use, before anything is created (ValueError, one line).
+
+    ``out`` is either ``FILE.nc`` (cases in ``FILE.nc.cases/``) or a directory: an
+    existing one, or a new name without a file suffix (``x.txt`` is refused rather than
+    made a directory).  Symbolic links are refused for the directory and the case
+    store as for every output (:func:`dhfield.io.validate_output_path`).
+
+    Parameters
+    ----------
+    out : path-like
+        The sweep's output path (:func:`dhfield.sweep.store.output_paths`).
+
+    Raises
+    ------
+    ValueError
+        Naming ``out`` and what it must be.
+    """
+    import os
+
+    text = os.fspath(out)
+    p = Path(text)
+    if p.suffix.lower() != ".nc":
+        if p.is_symlink():
+            raise ValueError(f"out (output directory) must not be a symbolic link (dhfield does not write through "
+                             f"links; name its target {os.path.realpath(p)!r} instead); got {text!r}")
+        if p.exists() and not p.is_dir():
+            raise ValueError(f"out (output path) must be FILE.nc or a directory; {text!r} exists and is not a "
+                             "directory")
+        if not p.exists() and p.suffix:
+            raise ValueError(f"out (output path) must end in .nc (one netCDF file, cases in FILE.nc.cases/) or "
+                             f"name a directory (an existing one, or a new name without a suffix); got {text!r}")
+    store = output_paths(p)[1]
+    if store.is_symlink():
+        raise ValueError(f"out: the case store must not be a symbolic link (dhfield does not write through links; "
+                         f"name its target {os.path.realpath(store)!r} instead); got {str(store)!r}")
+
+
+def _concurrent_cases(scheduler, workers) -> int:
+    """How many cases run at once in this machine's memory: local workers (1 serially or on a cluster)."""
+    if isinstance(scheduler, Executor):
+        return scheduler.workers if scheduler.kind == "processes" else 1
+    if scheduler is None or scheduler == "processes":
+        w = workers or os.cpu_count() or 1
+        return int(w) if isinstance(w, int) and not isinstance(w, bool) and w >= 1 else 1
+    return 1   # "synchronous", or a cluster's workers: each case checks its own worker's memory
+
+
+def check_sweep_memory(config: SweepConfig, concurrent: int = 1) -> None:
+    """Refuse a sweep whose adhesive BEM cases would not fit the memory available, before anything starts.
+
+    The adhesive cases on an explicit ``n`` axis are planned with the solver's estimate
+    (:func:`dhfield.adhesive_start.pull_off_cost` of the largest n), times the cases that
+    run at once; the limit is :func:`dhfield._memory.memory_limit` (80 % of the memory
+    available now).  Each case is checked again by the solver before it allocates
+    (:func:`dhfield.adhesive_start.check_grid_memory`), and the automatic grids of the
+    ``grid_level`` axis by their plan.
+
+    Parameters
+    ----------
+    config : SweepConfig
+        The sweep.
+    concurrent : int, default 1
+        Cases that run at once on this machine (local worker processes) [-].
+
+    Raises
+    ------
+    ValueError
+        One line naming ``axes.n``, the estimate and the limit.
+    """
+    if "adhesive" not in config.quantities or "n" not in config.axes:
+        return
+    from .._memory import check_memory
+    from ..adhesive_start import pull_off_cost
+
+    n = max(config.axes["n"])
+    cases = config.beta0.size * len(config.axes["mu"]) * len(config.axes.get("law", ("",)))
+    k = max(1, min(int(concurrent), cases))
+    what = f"axes.n = {n} (the adhesive BEM on a {n} x {n} grid" + (f", {k} cases at once" if k > 1 else "") + ")"
+    try:
+        check_memory(k * pull_off_cost(n, n)[0], what)
+    except ValueError as exc:
+        hint = "run fewer workers (--workers, run.workers) or choose a smaller n" if k > 1 else "choose a smaller n"
+        raise ValueError(f"{exc}; {hint}") from None
+
+
+def _interrupted_note(store, final, before) -> str:
+    """What an interrupted sweep left: the cases stored (resumable) and whether the consolidated file was written."""
+    if store is None:
+        return "no case was stored and the consolidated file was not written"
+    try:
+        stored = len(store.keys())
+    except Exception:  # noqa: BLE001 - a note must not hide the interrupt
+        return f"the finished cases are kept in {str(store.directory)!r}; run the same sweep again to resume"
+    from ..io import written_files
+
+    wrote = Path(final) in written_files()
+    new = stored - (before or 0)
+    return (f"{stored} finished case(s) are stored in {str(store.directory)!r} ({new} of them by this run); "
+            + (f"{str(final)!r} was written" if wrote else f"{str(final)!r} was not written")
+            + ": run the same sweep again (same config and output path) to resume")
 
 
 def _preload(config) -> tuple:
@@ -868,7 +983,8 @@ def _run(config, executor, store, final, progress):
         bar.close()
     ds = _consolidate(config, kinds, results, store)
     after = set(store.keys())
-    failed = sorted(p.name[:-len(".failed.nc")] for p in store.directory.glob("*.failed.nc"))
+    failed = sorted(k for k in (p.name[:-len(".failed.nc")] for p in store.directory.glob("*.failed.nc"))
+                    if store.matches(k, failed=True))
     flagged = sorted(key for (kind, _), res in zip(kinds, results) if kind != "pull_off"
                      for key, (_, st, _, _) in res.items() if st in ("not_converged", "unresolved"))
     write_netcdf(ds, final)
@@ -970,8 +1086,10 @@ def _consolidate(config: SweepConfig, kinds, results, store):
             cases[kind].update(res)
     if "pull_off" in config.quantities:
         for p in sorted(store.directory.glob("pull_off__*.failed.nc")):
-            ds = store.read(p.name[:-len(".failed.nc")])
             key = p.name[:-len(".failed.nc")]
+            if not store.matches(key, failed=True):   # a record of another config: not this sweep's
+                continue
+            ds = store.read(key)
             _, model, idx = key.split("__")
             i0, j0 = (int(t) for t in idx.split("_"))
             shp = ds["W_star"].shape[::-1]  # a block is (mu, ell): _pull_off_collections' broadcast order
