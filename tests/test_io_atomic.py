@@ -176,7 +176,7 @@ def test_longest_file_name_can_be_written(tmp_path):
     name_max = os.pathconf(tmp_path, "PC_NAME_MAX")
     target = tmp_path / ("a" * (name_max - 3) + ".nc")
     with dio.atomic_path(target) as tmp:
-        assert len(tmp.name) <= 47
+        assert len(tmp.name) <= 58   # .<32 characters>.<pid>-<8 characters>.part
         tmp.write_bytes(b"ok")
     assert target.read_bytes() == b"ok"
     with pytest.raises(ValueError, match=f"at most {name_max} bytes"):
@@ -265,3 +265,82 @@ def test_git_commit_names_the_checkout():
     assert re.fullmatch(r"[0-9a-f]{40}( \(uncommitted changes\))?", full)
     assert re.fullmatch(r"[0-9a-f]{12}( \(uncommitted changes in dhfield/bem\))?", short)
     assert full.startswith(short[:12])
+
+
+# --------------------------------------------------------------------------- issue 42: files written as a set, stale parts
+def test_csv_and_its_sidecar_are_committed_together_under_sigint(tmp_path, monkeypatch):
+    """Issue 42 finding 9: Ctrl-C right after X.csv.json was renamed left the new sidecar beside the old CSV."""
+    from dhfield.io.table import write_table
+
+    target = tmp_path / "x.csv"
+    write_table({"a_star": [1.0]}, target, title="old")
+    old = (target.read_bytes(), (tmp_path / "x.csv.json").read_bytes())
+    real_replace = os.replace
+    calls = []
+
+    def replace_then_sigint(src, dst):   # the signal lands between the two renames
+        real_replace(src, dst)
+        calls.append(dst)
+        if len(calls) == 1:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    monkeypatch.setattr(dio.os, "replace", replace_then_sigint)
+    with pytest.raises(KeyboardInterrupt):
+        write_table({"a_star": [2.0]}, target, title="new")
+    monkeypatch.undo()
+    new = (target.read_bytes(), (tmp_path / "x.csv.json").read_bytes())
+    assert new[0] != old[0] and new[1] != old[1], "both files new (the interrupt waited for the set)"
+    assert b'"new"' in new[1] and _parts(tmp_path) == []
+
+
+def test_a_set_interrupted_before_its_commit_keeps_every_old_file(tmp_path):
+    """Issue 42 finding 9: files written together are moved into place together, or not at all."""
+    (tmp_path / "a.nc").write_bytes(b"old a")
+    (tmp_path / "b.png").write_bytes(b"old b")
+    before = len(dio.written_files())
+    with pytest.raises(KeyboardInterrupt):
+        with dio.atomic_files():
+            with dio.atomic_path(tmp_path / "a.nc") as tmp:
+                tmp.write_bytes(b"new a")
+            raise KeyboardInterrupt   # e.g. Ctrl-C while the figure is drawn
+    assert (tmp_path / "a.nc").read_bytes() == b"old a" and (tmp_path / "b.png").read_bytes() == b"old b"
+    assert _parts(tmp_path) == [] and len(dio.written_files()) == before
+
+
+def test_stale_part_of_a_killed_writer_is_removed_by_the_next_write(tmp_path):
+    """Issue 42 finding 10: hidden .part files of a SIGKILLed writer were never cleaned up."""
+    proc = subprocess.Popen([sys.executable, "-c", textwrap.dedent("""
+        import os, sys, time
+        from dhfield.io import atomic_path
+        with atomic_path(sys.argv[1]) as tmp:
+            tmp.write_bytes(b"partial")
+            print("writing", flush=True)
+            time.sleep(600)
+    """), str(tmp_path / "t.nc")], stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "writing"
+        assert len(_parts(tmp_path)) == 1
+        live = tmp_path / _parts(tmp_path)[0]
+        with dio.atomic_path(tmp_path / "t.nc") as tmp:   # the writer still runs: its file is kept
+            tmp.write_bytes(b"first")
+        assert live.exists()
+    finally:
+        proc.kill()
+        proc.wait()
+    with dio.atomic_path(tmp_path / "t.nc") as tmp:      # it was killed: its file goes
+        tmp.write_bytes(b"second")
+    assert _parts(tmp_path) == [] and (tmp_path / "t.nc").read_bytes() == b"second"
+
+
+def test_new_csv_does_not_overwrite_an_existing_sidecar(tmp_path):
+    """Issue 42 finding 10: ``--out X.csv`` silently replaced an X.csv.json of another table."""
+    from dhfield.io.table import write_table
+
+    side = tmp_path / "x.csv.json"
+    side.write_text('{"columns": {}}\n')
+    with pytest.raises(ValueError, match="does not exist but its JSON sidecar"):
+        write_table({"a_star": [1.0]}, tmp_path / "x.csv", title="t")
+    assert side.read_text() == '{"columns": {}}\n' and not (tmp_path / "x.csv").exists()
+    (tmp_path / "x.csv").write_text("a_star\n0\n")   # with its CSV it is replaced, as the CSV is
+    write_table({"a_star": [1.0]}, tmp_path / "x.csv", title="t")
+    assert '"a_star"' in side.read_text()

@@ -5,10 +5,21 @@ Everything here is thin: the numpy core never imports this package.
 Atomic writes
 -------------
 Every file is written to a temporary file in the target directory
-(``.<name>.<random>.part``; at most 47 bytes, so any legal target name works)
-and moved into place with ``os.replace`` only when the write succeeded.  A
-failed or interrupted write never leaves a partial file and never clobbers an
-existing one.
+(``.<name>.<pid>-<random>.part``, with the first 32 characters of the name and the
+writer's process id; at most 58 bytes, so any legal target name works) and moved
+into place with ``os.replace`` only when the write succeeded.  A failed or
+interrupted write never leaves a partial file and never clobbers an existing
+one.  A temporary file left by a writer that was killed outright (SIGKILL, a
+power cut) is removed by the next write to the same target, once its process id
+names no running process on this machine.
+
+Files written together -- a CSV and its ``.json`` sidecar, a figure's PNG, SVG
+and PDF, ``dhfield solve --out`` with ``--plot`` -- are committed as a set
+(:func:`atomic_files`): each goes to its temporary file, and only when all of
+them are complete are they moved into place, one after another with the signals
+below deferred, so an interrupt leaves either all the new files or none of them
+(the old ones kept).  :func:`written_files` lists what this process has moved
+into place.
 
 Which targets are accepted (:func:`validate_output_path`, called before any
 computation):
@@ -41,6 +52,7 @@ import contextlib
 import datetime as _dt
 import errno
 import os
+import re
 import shutil
 import signal
 import stat
@@ -50,7 +62,7 @@ from pathlib import Path
 
 from .. import PAPER_DOI, __version__
 
-__all__ = ["atomic_path", "provenance_attrs", "git_commit", "write_netcdf", "read_netcdf", "check_writable",
+__all__ = ["atomic_path", "atomic_files", "written_files", "provenance_attrs", "git_commit", "write_netcdf", "read_netcdf", "check_writable",
            "validate_output_path", "require_utf8_path", "format_size", "SignalExit", "CAUGHT_SIGNALS"]
 
 REFERENCES = (
@@ -66,8 +78,15 @@ CAUGHT_SIGNALS = tuple(s for s in (getattr(signal, n, None) for n in ("SIGINT", 
 #: Largest slab written to netCDF between two signal checks [bytes].
 _SLAB_BYTES = 16 * 2**20
 
-#: Characters of the target name kept in the temporary name (bounds its length to 47 bytes).
+#: Characters of the target name kept in the temporary name (bounds its length to 58 bytes).
 _TEMP_NAME_CHARS = 32
+#: The writer's process id and mkstemp's random part of a temporary name: ``<pid>-<8 characters>``.
+_PART_TAIL = re.compile(r"(\d{1,10})-[A-Za-z0-9_]{8}")
+
+#: Files moved into place by this process, in order (:func:`written_files`).
+_WRITTEN: list = []
+#: The set of files being written together in this thread (:func:`atomic_files`), or None.
+_GROUP = threading.local()
 
 _FALLBACK_NAME_MAX = 255
 _FALLBACK_PATH_MAX = 4096
@@ -213,7 +232,9 @@ def validate_output_path(path, suffixes=None, name: str = "out") -> Path:
         path longer than ``PATH_MAX``; if its directory does not exist or is not
         writable; or if it names a symbolic link, a non-regular file (directory,
         device, FIFO, socket) or a read-only file.  A ``.csv`` path's JSON
-        sidecar (``.csv.json``) is checked in the same way.
+        sidecar (``.csv.json``) is checked in the same way, and an existing
+        sidecar is replaced only with its CSV: a new CSV name whose sidecar
+        already exists is refused.
     """
     label = f"{name} (output path)"
     text = os.fsdecode(path) if path is not None else ""
@@ -250,6 +271,11 @@ def validate_output_path(path, suffixes=None, name: str = "out") -> Path:
             raise ValueError(f"{label} must be shorter than {path_max} bytes (PATH_MAX); got "
                              f"{len(os.fsencode(os.path.abspath(t)))} bytes")
         _check_target(t, label)
+    if len(targets) > 1 and not os.path.lexists(p) and os.path.lexists(targets[1]):
+        # a sidecar is replaced only together with its CSV: alone, it may describe another table
+        raise ValueError(f"{label} {text!r} does not exist but its JSON sidecar {str(targets[1])!r} does; "
+                         "dhfield replaces a sidecar only together with its CSV: remove the sidecar or choose "
+                         "another name")
     return p
 
 
@@ -304,6 +330,131 @@ def _umask() -> int:
     return mask
 
 
+def written_files() -> list:
+    """The files this process has moved into place, in order (most recent last).
+
+    Used by the command line to say exactly what was written before an interrupt.
+
+    Returns
+    -------
+    list of pathlib.Path
+        Every target of :func:`atomic_path` (and so of :func:`write_netcdf`) committed so far.
+    """
+    return list(_WRITTEN)
+
+
+def _part_prefix(p: Path) -> str:
+    """Temporary-name prefix of target ``p`` without the process id: ``.<first 32 characters>.``."""
+    return f".{p.name[:_TEMP_NAME_CHARS]}."
+
+
+def _remove_stale_parts(p: Path, parent: Path) -> None:
+    """Remove the temporary files of target ``p`` left by writers that no longer run on this machine.
+
+    A temporary name carries its writer's process id; one whose process is gone (a SIGKILL
+    or a power cut ended the write) is stale.  Names without a process id, and those of
+    running processes (including this one), are left alone.
+    """
+    prefix = _part_prefix(p)
+    try:
+        names = os.listdir(parent)
+    except OSError:
+        return
+    for name in names:
+        if not (name.startswith(prefix) and name.endswith(".part")):
+            continue
+        m = _PART_TAIL.fullmatch(name[len(prefix):-len(".part")])
+        if m is None:
+            continue
+        pid = int(m.group(1))
+        if pid == os.getpid():
+            continue
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:   # no such process: the write died with it
+            with contextlib.suppress(OSError):
+                os.unlink(parent / name)
+        except (PermissionError, OverflowError, OSError):   # another user's running process, or unknowable
+            continue
+
+
+@contextlib.contextmanager
+def atomic_files():
+    """Commit every file written in the block as one set: all of them, or none.
+
+    Inside the block, :func:`atomic_path` (and so :func:`write_netcdf` and every
+    writer of :mod:`dhfield.io`) writes each file to its temporary name and leaves
+    it there.  When the block ends normally, every target is checked again, then
+    all are moved into place, one after another with SIGINT, SIGTERM and SIGHUP
+    deferred (a signal that arrives meanwhile acts once the last one is in place).
+    If the block raises or is interrupted, every temporary file is removed and
+    no target is touched.  Blocks nest: the outermost commits.
+
+    Yields
+    ------
+    None
+
+    Raises
+    ------
+    OSError
+        One line naming the files moved into place and those not, if a rename
+        fails after others succeeded (the filesystem refused it: rare).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from dhfield.io import atomic_files, atomic_path
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> with atomic_files():
+    ...     with atomic_path(d / "a.txt") as tmp:
+    ...         _ = tmp.write_text("a")
+    ...     with atomic_path(d / "b.txt") as tmp:
+    ...         _ = tmp.write_text("b")
+    ...     print(sorted(q.name for q in d.iterdir() if not q.name.startswith(".")))
+    []
+    >>> sorted(q.name for q in d.iterdir())
+    ['a.txt', 'b.txt']
+    """
+    if getattr(_GROUP, "staged", None) is not None:
+        yield                     # an enclosing set commits these files with its own
+        return
+    staged = {}                   # target -> (temporary file, parameter name)
+    _GROUP.staged = staged
+    try:
+        with _SignalGuard() as guard:
+            try:
+                yield
+                guard.check()
+                _commit(staged)
+            finally:
+                _GROUP.staged = None
+                for tmp, _ in staged.values():
+                    with contextlib.suppress(OSError):
+                        os.unlink(tmp)
+    finally:
+        _GROUP.staged = None
+
+
+def _commit(staged: dict) -> None:
+    """Move every staged file into place, the signals deferred until the last one is in."""
+    with _SignalGuard(defer=True):
+        checked = [(final, tmp, _check_target(final, f"{name} (output path)"))
+                   for final, (tmp, name) in staged.items()]   # every target first: none moved if one fails
+        done = []
+        for final, tmp, st in checked:
+            try:
+                os.chmod(tmp, stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~_umask())
+                os.replace(tmp, final)
+            except OSError as exc:
+                rest = [str(f) for f, _, _ in checked if f not in done]
+                written = f"written: {', '.join(map(str, done))}; " if done else "nothing was written; "
+                raise OSError(f"could not move {str(final)!r} into place ({exc.strerror or exc}); {written}"
+                              f"not written: {', '.join(rest)}") from None
+            del staged[final]
+            done.append(final)
+            _WRITTEN.append(final)
+
+
 @contextlib.contextmanager
 def atomic_path(path, name: str = "out"):
     """Yield a temporary path next to ``path``; move it into place only on success.
@@ -313,7 +464,10 @@ def atomic_path(path, name: str = "out"):
     the rename.  The new file gets the permission bits of the file it replaces,
     or ``0666 & ~umask`` for a new name.  If the block raises, or SIGINT,
     SIGTERM or SIGHUP arrives, the temporary file is removed; the signal is
-    then re-delivered to the previous handler.
+    then re-delivered to the previous handler.  Inside :func:`atomic_files` (or
+    another ``atomic_path``) the file is moved into place with the others of
+    that set, when the outermost block ends.  Temporary files of this target
+    left by writers that no longer run are removed first.
 
     Parameters
     ----------
@@ -329,16 +483,19 @@ def atomic_path(path, name: str = "out"):
     """
     p = validate_output_path(path, None, name)
     parent = p.parent if str(p.parent) else Path(".")
-    with _SignalGuard() as guard:
+    _remove_stale_parts(p, parent)
+    with atomic_files():
+        staged = _GROUP.staged
         tmp = None
         try:
-            fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:_TEMP_NAME_CHARS]}.", suffix=".part", dir=parent)
+            fd, tmp = tempfile.mkstemp(prefix=f"{_part_prefix(p)}{os.getpid()}-", suffix=".part", dir=parent)
             os.close(fd)
             yield Path(tmp)
-            guard.check()
-            st = _check_target(p, f"{name} (output path)")  # the target may have changed meanwhile
-            os.chmod(tmp, stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~_umask())
-            os.replace(tmp, p)
+            _check_target(p, f"{name} (output path)")  # the target may have changed meanwhile
+            if p in staged:          # written twice in one set: the later file wins
+                with contextlib.suppress(OSError):
+                    os.unlink(staged.pop(p)[0])
+            staged[p] = (Path(tmp), name)
             tmp = None
         finally:
             if tmp is not None:
