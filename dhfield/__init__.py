@@ -3,11 +3,14 @@
 Zini, de Rooij, Bazr Afshan Fadafan, Ismail & Schipper, Tribology Letters 66 (2018) 30,
 doi:10.1007/s11249-017-0976-8, verified against a DC-FFT boundary-element solver.
 
-Quick start (nondimensional units of Eqs. 32-35)::
+Quick start (nondimensional units of Eqs. 32-35), with the recommended model
+(``dhfield.compare.RECOMMENDED_MODEL``; the paper's model is ``model="dh-elliptic"``)::
 
     >>> import dhfield
     >>> p = dhfield.pull_off(mu=1.0, beta0=0.9)
-    >>> round(float(p.W_star), 4)
+    >>> p.model, round(float(p.W_star), 4)
+    ('md-elliptic', -0.7901)
+    >>> round(float(dhfield.pull_off("dh-elliptic", mu=1.0, beta0=0.9).W_star), 4)
     -0.7714
 
 Package map, bottom up.  A layer imports only the layers named in its last column (and
@@ -54,15 +57,18 @@ import importlib as _importlib  # noqa: E402
 #: Public names and the module each comes from.  They are imported on first use, so that
 #: ``import dhfield.cli`` stays light: a Ctrl-C while the CLI starts then reaches its
 #: one-line handler instead of printing a traceback from inside scipy's import.
-_LAZY = {"LoadCurve": "records", "PullOff": "model", "load_curve": "model", "pull_off": "model",
-         "solve_adhesive_axis": "model", "MODEL_NAMES": "compare", "contact_parameters": "dimensional",
+_LAZY = {"LoadCurve": "records", "PullOff": "model", "load_curve": "compare", "pull_off": "compare",
+         "solve_adhesive_axis": "model", "MODEL_NAMES": "compare", "RECOMMENDED_MODEL": "compare",
+         "DhfieldWarning": "validity", "OutsideVerifiedDomainWarning": "validity",
+         "ImplausibleInputWarning": "validity", "contact_parameters": "dimensional",
          "contact_parameters_from_principal_radii": "dimensional", "crossed_cylinder_radii": "dimensional",
          "load_curve_si": "dimensional", "pull_off_force": "dimensional",
          # the inverse problem pulls in every model
          "fit_work_of_adhesion": "fit", "fit_curve": "fit"}
 
 __all__ = ["__version__", "PAPER_DOI", "load_curve", "pull_off", "solve_adhesive_axis", "LoadCurve",
-           "PullOff", "MODEL_NAMES", "contact_parameters", "contact_parameters_from_principal_radii",
+           "PullOff", "MODEL_NAMES", "RECOMMENDED_MODEL", "DhfieldWarning", "OutsideVerifiedDomainWarning",
+           "ImplausibleInputWarning", "contact_parameters", "contact_parameters_from_principal_radii",
            "crossed_cylinder_radii", "pull_off_force", "load_curve_si", "fit_work_of_adhesion", "fit_curve"]
 
 

@@ -63,9 +63,9 @@ __all__ = ["AdhesionMap", "adhesion_map", "map_grid", "recommended_pull_off", "R
            "MODEL_LABELS", "STATUS_MEANINGS", "VALIDATED_BETA0", "VALIDATED_MU",
            "DEFAULT_CROSSING_ANGLE_DEG", "DEFAULT_MU", "MAX_AXIS_POINTS", "REFERENCE_NOTE"]
 
-#: Name of the reference model, the recommended one (:mod:`dhfield.elliptic_transition`; the
-#: registered name of :data:`dhfield.compare.DEFAULT_MODEL`).
-REFERENCE_MODEL = "md-elliptic"
+#: Name of the reference model, the recommended one (:mod:`dhfield.elliptic_transition`), read from
+#: the registry, :data:`dhfield.compare.RECOMMENDED_MODEL`.
+REFERENCE_MODEL = compare.RECOMMENDED_MODEL
 #: The models of the map, reference first.
 MAP_MODEL_NAMES = (REFERENCE_MODEL, "dh-elliptic", "jkr-elliptic", "jkr-elliptic-energy", "md", "dmt")
 #: Readable names of the models (figures, tables).
@@ -312,7 +312,7 @@ def _evaluate(model, mu, beta0):
             warned = np.zeros(np.shape(force), bool)
         else:
             kw = {"check_closure": False} if model == "dh-elliptic" else {}
-            rec = compare.pull_off(model, beta0=beta0, mu=mu, control="load", **kw)
+            rec = compare.pull_off(model, beta0=beta0, mu=mu, control="load", warn=False, **kw)
             force = _force(rec)
             warned = np.asarray(rec["warning"], dtype=object) != ""
     force = np.broadcast_to(force, np.shape(mu)).astype(float)

@@ -178,7 +178,7 @@ def _two_axis_start(mu, beta0):
     from . import compare
 
     try:
-        rec = compare.pull_off("dh-elliptic-two-axis", mu=mu, beta0=beta0, control="load")
+        rec = compare.pull_off("dh-elliptic-two-axis", mu=mu, beta0=beta0, control="load", warn=False)
         out = (float(rec["delta_star"]), (float(rec["c_star"]), float(rec["d_star"])))
     except (ValueError, ArithmeticError):
         return None

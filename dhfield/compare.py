@@ -18,9 +18,10 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 * ``ellipticity`` b/a and ``adhesive_ellipticity`` d/c at pull-off.
 * ``at_zero_contact``: the pull-off is reached as the contact vanishes.
 * ``warning``: empty, except outside the model's validated range
-  (:data:`VALIDITY_RANGES`) and, for ``dh-elliptic``, where its pull-off departs
-  from the two-axis closure by more than :data:`WARNING_THRESHOLD` (2 %) (from
-  elliptical JKR, the closure's limit, where mu exceeds the closures' cap).
+  (:data:`VALIDITY_RANGES`; for the recommended model the box of the stored BEM ground
+  truth) and, for ``dh-elliptic``, where its pull-off departs from the recommended model
+  by more than :data:`WARNING_THRESHOLD` (2 %).  :func:`pull_off` also raises a
+  non-empty one as a Python warning, :class:`dhfield.validity.OutsideVerifiedDomainWarning`.
 * mu is the paper's Eq. (35); MD is evaluated at lambda = 1.1272 mu
   (:mod:`dhfield.transition`, same sigma0).  JKR, DMT and elliptical JKR do not
   depend on mu.
@@ -28,7 +29,9 @@ in that order, for every model, in the paper's normalisation (Eqs. 32-35):
 Models
 ------
 ``md-elliptic``
-    the recommended model and the default: the sphere's Maugis-Dugdale transition
+    the recommended model and the default (:data:`RECOMMENDED_MODEL`, the one place that
+    names it; every default of the API, the command line, the report and the docs is read
+    from there): the sphere's Maugis-Dugdale transition
     carried over to the ellipse between the elliptical DMT (mu -> 0) and the
     energy-minimising elliptical JKR of GVG (mu -> infinity), MD exactly at beta0 = 1;
     within 0.44 % of every stored BEM case — :mod:`dhfield.elliptic_transition`.
@@ -64,9 +67,12 @@ Which model to use when
 -----------------------
 * **md-elliptic** (the default) for any elliptical or circular contact, crossing
   angles 10-90 deg (beta0 down to 0.047 and below) and any mu: within 0.44 % of every
-  stored BEM case (42: beta0 0.1-1, mu 0.1-5, load control;
+  stored BEM case (beta0 0.1-1, mu 0.1-10, load control;
   ``python -m verification.elliptic_transition``), exactly DMT as mu -> 0, GVG as
-  mu -> infinity and MD at beta0 = 1; under 1 ms per point vectorised; never warns.
+  mu -> infinity and MD at beta0 = 1; under 1 ms per point vectorised.  Outside the
+  box of the stored BEM cases (:data:`dhfield.validity.BEM_VERIFIED_BETA0`,
+  :data:`dhfield.validity.BEM_VERIFIED_MU`) it answers and warns that no BEM case checked
+  the point.
 * **dh-elliptic** (the paper's) to reproduce the paper.  It under-predicts the
   adhesion increasingly as the contact gets more elliptical and mu larger (table
   below); its records carry a ``warning`` where its pull-off departs from
@@ -75,7 +81,8 @@ Which model to use when
   model (dgamma imposed on both axes, or on the periphery average), for comparison;
   about 200 ms per point, beta0 >= 0.3 and mu <= 30 (:mod:`dhfield.closure`).  The
   two-axis closure tends to elliptical JKR (JG) at high mu.
-* **jkr-elliptic-energy** (GVG) for mu >= 10, the exact-energy JKR limit;
+* **jkr-elliptic-energy** (GVG) for mu >= 10, the exact-energy JKR limit, the one the
+  recommended model and the BEM reach as mu -> infinity;
   **jkr-elliptic** (Johnson & Greenwood 2005) to compare with it: JG fixes the contact
   shape by one condition and under-predicts the adhesion of slender contacts (the
   BEM at beta0 = 0.5, mu = 5 is 2.9 % stronger than JG, within 0.4 % of GVG).
@@ -134,19 +141,26 @@ from .records import broadcast_field, load_curve_record, pull_off_record
 from .schema import LOAD_CURVE_KEYS
 
 from .validity import (JKR_PROXY_MU, VALIDITY_RANGES, WARNING_THRESHOLD, closure_departure, departure_warning,
-                       join_warnings, validity_message, validity_table)
+                       join_warnings, validity_message, validity_table, warn_record)
 
 __all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "RECOMMENDED_MODEL",
-           "compare",
+           "PAPER_MODEL", "compare",
            "load_curve", "load_curve_at_load", "pull_off",
            # the validity policy, from dhfield.validity
            "WARNING_THRESHOLD", "JKR_PROXY_MU", "VALIDITY_RANGES", "closure_departure", "validity_message",
            "validity_table"]
 
 _NAN = float("nan")
-#: The recommended model (:mod:`dhfield.elliptic_transition`), the default everywhere a model is chosen.
-DEFAULT_MODEL = elliptic_transition.MODEL_NAME
-RECOMMENDED_MODEL = DEFAULT_MODEL
+#: The recommended model (:mod:`dhfield.elliptic_transition`), the default everywhere a model is chosen:
+#: the Python API (:func:`pull_off`, :func:`load_curve`, ``dhfield.pull_off``,
+#: :func:`dhfield.dimensional.pull_off_force`), the command line, the report and the docs read it from
+#: here (``tests/test_one_default.py`` checks them).  The paper's model stays available by name,
+#: ``model="dh-elliptic"``.
+RECOMMENDED_MODEL = elliptic_transition.MODEL_NAME
+#: The default model of every function and command that takes one: :data:`RECOMMENDED_MODEL`.
+DEFAULT_MODEL = RECOMMENDED_MODEL
+#: The paper's model (Zini et al. 2018), available by this name everywhere a model is chosen.
+PAPER_MODEL = "dh-elliptic"
 
 
 def _check(mu, beta0, control):
@@ -203,13 +217,14 @@ def _check_model(model):
     return model
 
 
-def pull_off(model, *, beta0, mu, control="load", check_closure=True):
+def pull_off(model=DEFAULT_MODEL, *, beta0, mu, control="load", check_closure=True, warn=True):
     """Compute the pull-off of one model, in the paper's normalisation (Eq. 34).
 
     Parameters
     ----------
     model : str
-        One of :data:`MODEL_NAMES`.
+        One of :data:`MODEL_NAMES`; default the recommended model (:data:`DEFAULT_MODEL`).
+        ``"dh-elliptic"`` is the paper's model.
     beta0 : array_like
         Hertz ellipticity b/a of the geometry, in (0, 1] [-] (keyword-only, as ``mu``).
     mu : array_like
@@ -234,10 +249,22 @@ def pull_off(model, *, beta0, mu, control="load", check_closure=True):
         reference was the two-axis closure (about 200 ms per point) until issue 20;
         :func:`closure_departure` still measures that departure.  False leaves
         ``warning`` empty of this check.
+    warn : bool
+        Also raise a non-empty ``warning`` as a Python warning,
+        :class:`dhfield.validity.OutsideVerifiedDomainWarning` (one per call).  False leaves it
+        in the record only (for callers that report it themselves).
+
+    Warns
+    -----
+    dhfield.validity.OutsideVerifiedDomainWarning
+        Where the record's ``warning`` is not empty (with ``warn``).
     """
     _check_model(model)
     mu, beta0 = _check(mu, beta0, control)
-    return _pull_off(model, beta0, mu, control, check_closure=check_closure)
+    rec = _pull_off(model, beta0, mu, control, check_closure=check_closure)
+    if warn:
+        warn_record(rec, stacklevel=2)
+    return rec
 
 
 def compare(*, beta0, mu, control="load", models=None, check_closure=True):
@@ -382,13 +409,13 @@ def _curve_record(model, mu, beta0, arrays):
     return load_curve_record(model, beta0, mu, arrays, sin_skew=sin_skew, geometry="circle" if circle else "ellipse")
 
 
-def load_curve(model, *, beta0, mu, a_star=None, n=200):
+def load_curve(model=DEFAULT_MODEL, *, beta0, mu, a_star=None, n=200):
     """Load curve of one model at given contact semi-major axes (nondimensional).
 
     Parameters
     ----------
     model : str
-        One of :data:`CURVE_MODEL_NAMES`.
+        One of :data:`CURVE_MODEL_NAMES`; default the recommended model (:data:`DEFAULT_MODEL`).
     beta0 : float
         Hertz ellipticity of the geometry, in (0, 1] [-].
     mu : float

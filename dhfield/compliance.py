@@ -243,8 +243,8 @@ class _Curve:
     def __init__(self, model, mu, beta0):
         compare.load_curve(model, mu=mu, beta0=beta0, a_star=[1.0])  # validates model, mu, beta0 (scalars)
         self.model, self.mu, self.beta0 = model, float(mu), float(beta0)
-        self.load = compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False)
-        self.disp = compare.pull_off(model, mu=mu, beta0=beta0, control="displacement", check_closure=False)
+        self.load = compare.pull_off(model, mu=mu, beta0=beta0, control="load", check_closure=False, warn=False)
+        self.disp = compare.pull_off(model, mu=mu, beta0=beta0, control="displacement", check_closure=False, warn=False)
         self.separated = model == "md"
         self.c_end = float(zone_radius_at_contact(mu)) if self.separated else 0.0
         if bool(self.disp["at_zero_contact"]):

@@ -28,6 +28,15 @@ written W = 2 pi R_c dgamma W*/sin^2(theta_skew).  dhfield follows Eq. (34) as
 printed, consistently with Eq. (36).
 
 Every function broadcasts over arrays; a scalar in gives a scalar out.
+
+Plausibility
+------------
+Inputs are SI.  A modulus, radius, work of adhesion or adhesive stress far outside the
+range of real contacts (:data:`PLAUSIBLE_SI_RANGES`: E in [1 kPa, 1 TPa], a radius in
+[1 nm, 1 m], Delta gamma <= 10 J m^-2, sigma0 <= 100 GPa) is computed as given and warned
+with :class:`dhfield.validity.ImplausibleInputWarning` ("did you mean MPa, mm or mJ?"):
+1.8 for a PDMS modulus of 1.8 MPa, or 3 for a 3 mm radius, would otherwise give a force
+off by orders of magnitude without a word.
 """
 from __future__ import annotations
 
@@ -39,11 +48,60 @@ from . import _adhesion as units
 from . import compare, geometry
 from ._validation import ELLIPTICITY_RANGE, TABOR_RANGE, check_interval, check_positive
 from .records import load_curve_record
+from .validity import ImplausibleInputWarning, warn_record
 
 __all__ = ["ContactParameters", "contact_parameters", "contact_parameters_from_principal_radii",
-           "crossed_cylinder_radii", "load_curve_si", "pull_off_force", "pull_off_record_si"]
+           "crossed_cylinder_radii", "load_curve_si", "pull_off_force", "pull_off_record_si",
+           "PLAUSIBLE_SI_RANGES", "check_plausible_si"]
 
 _s = units.scalar_or_array
+
+#: quantity -> (smallest, largest plausible value [SI unit], SI unit, the unit a value outside was most
+#: likely meant in).  Far outside every real contact: soft gels have E ~ 1 kPa, diamond ~ 1 TPa; a
+#: contact radius from a molecule (1 nm) to a boulder (1 m); Delta gamma of solids below ~ 10 J m^-2 and
+#: sigma0 below the ideal strength of solids, ~ 100 GPa.
+PLAUSIBLE_SI_RANGES = {
+    "youngs_modulus": (1e3, 1e12, "Pa", "MPa"),
+    "radius": (1e-9, 1.0, "m", "mm"),
+    "work_of_adhesion": (0.0, 10.0, "J m^-2", "mJ m^-2"),
+    "max_adhesive_stress": (0.0, 1e11, "Pa", "MPa"),
+}
+
+
+def check_plausible_si(stacklevel=2, **inputs):
+    """Warn where SI inputs lie far outside the range of real contacts (a unit slip, most likely).
+
+    Parameters
+    ----------
+    stacklevel : int
+        As for :func:`warnings.warn`, counted from the caller of this function.
+    **inputs : array_like
+        ``name=value`` pairs, each name starting with a key of :data:`PLAUSIBLE_SI_RANGES`
+        (``youngs_modulus_1``, ``cylinder_radius`` is a ``radius`` ...); values in SI units.
+
+    Warns
+    -----
+    dhfield.validity.ImplausibleInputWarning
+        One warning naming every implausible input, its value and the unit it was
+        probably meant in ("did you mean MPa, mm or mJ?").  The inputs are used as given.
+    """
+    import warnings
+
+    said = []
+    for name, value in inputs.items():
+        key = next(k for k in PLAUSIBLE_SI_RANGES if k in name)
+        lo, hi, unit, meant = PLAUSIBLE_SI_RANGES[key]
+        v = np.asarray(value, dtype=float)
+        low, high = v < lo, v > hi
+        if np.any(low):
+            said.append(f"{name} = {float(v[low].flat[0]):.4g} {unit} is below {lo:g} {unit}")
+        if np.any(high):
+            said.append(f"{name} = {float(v[high].flat[0]):.4g} {unit} is above {hi:g} {unit}")
+        if np.any(low | high):
+            said[-1] += f" (did you mean {meant}?)"
+    if said:
+        warnings.warn("implausible SI input: " + "; ".join(said) + "; inputs are in SI units (Pa, m, J m^-2); "
+                      "the result is computed as given", ImplausibleInputWarning, stacklevel=stacklevel + 1)
 
 
 @dataclass(frozen=True)
@@ -175,13 +233,27 @@ def contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, y
     -------
     ContactParameters
         Floats for scalar inputs, arrays broadcast over all inputs otherwise.
+
+    Warns
+    -----
+    dhfield.validity.ImplausibleInputWarning
+        Where an input lies outside :data:`PLAUSIBLE_SI_RANGES` (:func:`check_plausible_si`).
     """
+    return _contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2, r_major, r_minor,
+                               work_of_adhesion, max_adhesive_stress, None)
+
+
+def _contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2, r_major, r_minor,
+                        work_of_adhesion, max_adhesive_stress, input_radius):
+    """:func:`contact_parameters_from_principal_radii`; ``input_radius``: the (name, value) of the radius the
+    user gave (checked for plausibility instead of the smaller principal radius), or None."""
     e_star = _reduced_modulus(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2)
     r1 = check_positive("r_major", r_major, "m")
     r2 = check_positive("r_minor", r_minor, "m")
     w = check_positive("work_of_adhesion", work_of_adhesion, "J m^-2")
     s0 = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
     r1, r2 = np.maximum(r1, r2), np.minimum(r1, r2)
+
     with np.errstate(over="ignore"):
         ratio = r1 / r2
     if not np.all(np.isfinite(ratio)):
@@ -194,6 +266,13 @@ def contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, y
     e_star, r1, r2, r, beta0, sin_skew, w, s0 = np.broadcast_arrays(e_star, r1, r2, r, beta0, sin_skew, w, s0)
     mu = units.tabor_parameter(s0, r, e_star, w, checked=False)  # Eq. (35)
     _check_model_domain(ratio, beta0, mu, s0)
+    # valid, but perhaps in the wrong units.  The smaller principal radius R'' is within a factor 2 of
+    # the cylinders' (Johnson 4.2-4.3); R' grows without bound as the crossing angle closes.
+    name, radius = input_radius if input_radius is not None else ("radius R'' (r_minor)", r2)
+    moduli = {"youngs_modulus_1": youngs_modulus_1}
+    if not np.array_equal(youngs_modulus_2, youngs_modulus_1):  # one material: one message
+        moduli["youngs_modulus_2"] = youngs_modulus_2
+    check_plausible_si(stacklevel=3, **moduli, **{name: radius}, work_of_adhesion=w, max_adhesive_stress=s0)
     return ContactParameters(
         _s(e_star), _s(r1), _s(r2), _s(r), _s(beta0), _s(sin_skew), _s(mu),
         _s(units.length_unit(r, e_star, w, checked=False)),  # Eq. (33)
@@ -251,6 +330,11 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
     -------
     ContactParameters
         Floats for scalar inputs, arrays broadcast over all inputs otherwise.
+
+    Warns
+    -----
+    dhfield.validity.ImplausibleInputWarning
+        Where an input lies outside :data:`PLAUSIBLE_SI_RANGES` (:func:`check_plausible_si`).
     """
     th_min = _SKEW_ANGLE_MIN
     th = check_interval("skew_angle", skew_angle, th_min, np.pi / 2, low_open=False,
@@ -262,9 +346,8 @@ def contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, pois
     if not np.all(np.isfinite(r1)):
         raise ValueError(f"cylinder_radius must be finite after Eq. (3), R' = R_c/(1 - cos theta_skew) < "
                          f"{np.finfo(float).max:.4g} m; got {float(np.max(cylinder_radius))!r}")
-    return contact_parameters_from_principal_radii(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2,
-                                                   poisson_ratio_2, r1, r2, work_of_adhesion,
-                                                   max_adhesive_stress)
+    return _contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poisson_ratio_2, r1, r2,
+                               work_of_adhesion, max_adhesive_stress, ("cylinder_radius", rc))
 
 
 def _si_inputs(params):
@@ -274,7 +357,7 @@ def _si_inputs(params):
 
 
 def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, control="load", *,
-                   check_closure=True):
+                   check_closure=True, warn=True):
     """Pull-off of a contact in SI units, for any model.
 
     Parameters
@@ -302,9 +385,20 @@ def pull_off_force(params: ContactParameters, model=compare.DEFAULT_MODEL, contr
     check_closure : bool
         For ``dh-elliptic``: compare with the recommended model and fill ``warning``
         (:func:`dhfield.compare.pull_off`).
+    warn : bool
+        Also raise a non-empty ``warning`` as a Python warning (as :func:`dhfield.compare.pull_off`);
+        False leaves it in the record only.
+
+    Warns
+    -----
+    dhfield.validity.OutsideVerifiedDomainWarning
+        Where the record's ``warning`` is not empty (with ``warn``).
     """
-    return pull_off_record_si(compare.pull_off(model, mu=params.mu, beta0=params.beta0, control=control,
-                                               check_closure=check_closure), params)
+    rec = compare.pull_off(model, mu=params.mu, beta0=params.beta0, control=control, check_closure=check_closure,
+                           warn=False)
+    if warn:
+        warn_record(rec, stacklevel=2)  # pointing at the caller of this function
+    return pull_off_record_si(rec, params)
 
 
 def pull_off_record_si(rec, params: ContactParameters):

@@ -495,7 +495,7 @@ def _solve_work(f_meas, params, s0, model, control, count):
 
     def force(work):
         count[0] += 1
-        rec = dimensional.pull_off_force(_with(params, work, s0), model, control, check_closure=False)
+        rec = dimensional.pull_off_force(_with(params, work, s0), model, control, check_closure=False, warn=False)
         return float(rec["force"])
 
     def f(x):

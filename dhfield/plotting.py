@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .io.figures import crossed_cylinders_si, model_label, si_prefix
+from .io.figures import RECOMMENDED_MODEL, crossed_cylinders_si, model_label, si_prefix
 
 __all__ = ["pull_off_map", "error_map", "ellipticity_map", "standard_maps", "default_reference",
            "check_sweep", "cell_edges", "output_paths", "FORMATS", "MAX_CELLS_PER_AXIS", "REFERENCE_ORDER",
@@ -41,9 +41,11 @@ MAX_CELLS_PER_AXIS = 400
 #: Valid range of each ellipticity axis: cell edges are clipped to it (beta0 cells must not run to 1.05).
 _AXIS_RANGE = {"beta0": (0.0, 1.0), "skew_angle_deg": (0.0, 90.0)}
 #: Reference of the error maps, the most trusted swept model first: the adhesive BEM (ground
-#: truth), the two-axis closure (within 0.5 % of elliptical JKR and of the BEM, README), elliptical
-#: JKR, then the paper's model.
-REFERENCE_ORDER = ("bem-adhesive", "dh-elliptic-two-axis", "jkr-elliptic", "dh-elliptic")
+#: truth), the recommended model (:data:`dhfield.compare.RECOMMENDED_MODEL`, within 0.44 % of every
+#: stored BEM case), the two-axis closure, the elliptical JKR limits (GVG, then JG), then the
+#: paper's model.
+REFERENCE_ORDER = ("bem-adhesive", RECOMMENDED_MODEL, "dh-elliptic-two-axis", "jkr-elliptic-energy", "jkr-elliptic",
+                   "dh-elliptic")
 #: Keys of ``si`` (the material of two equal crossed cylinders, SI units); the ``*_2`` are optional.
 SI_KEYS = ("youngs_modulus_1", "poisson_ratio_1", "youngs_modulus_2", "poisson_ratio_2", "cylinder_radius",
            "work_of_adhesion")
@@ -408,8 +410,8 @@ def default_reference(ds) -> str:
     Returns
     -------
     str
-        ``"bem-adhesive"`` (the ground truth) if swept, else ``"dh-elliptic-two-axis"``,
-        ``"jkr-elliptic"``, ``"dh-elliptic"``, else the first model.
+        ``"bem-adhesive"`` (the ground truth) if swept, else the recommended model, then
+        the others of :data:`REFERENCE_ORDER` in turn, else the first model.
     """
     models = [str(m) for m in ds["model"].values]
     for name in REFERENCE_ORDER:

@@ -11,9 +11,19 @@ The policy behind the ``warning`` field of every pull-off record of :mod:`dhfiel
   point, refusing beta0 < 0.3 and mu > 30); :func:`closure_departure` still measures that
   departure on request.
 
-The recommended model is validated over the whole accepted domain (its entry in
-:data:`VALIDITY_RANGES`), so it answers every crossing angle and every mu without a warning.
-The table of departures these thresholds come from is in :mod:`dhfield.compare`.
+The recommended model answers over the whole accepted domain; its entry in
+:data:`VALIDITY_RANGES` is the box the stored boundary-element ground truth covers
+(:data:`BEM_VERIFIED_BETA0`, :data:`BEM_VERIFIED_MU`), and outside it its records say that
+the point is an unverified extrapolation.  The table of departures these thresholds come
+from is in :mod:`dhfield.compare`.
+
+Warnings
+--------
+A non-empty ``warning`` is also raised as a Python warning by :func:`dhfield.compare.pull_off`
+(category :class:`OutsideVerifiedDomainWarning`), and implausible SI inputs are warned by
+:mod:`dhfield.dimensional` (:class:`ImplausibleInputWarning`); both derive from
+:class:`DhfieldWarning`, so that ``warnings.simplefilter("error", dhfield.DhfieldWarning)``
+turns every one of them into an exception, and ``"ignore"`` silences them.
 """
 from __future__ import annotations
 
@@ -24,7 +34,23 @@ from . import model as paper_model
 from ._validation import check_grid_point
 
 __all__ = ["VALIDITY_RANGES", "WARNING_THRESHOLD", "JKR_PROXY_MU", "validity_message", "validity_table",
-           "join_warnings", "departure_warning", "closure_departure"]
+           "join_warnings", "departure_warning", "closure_departure", "BEM_VERIFIED_BETA0", "BEM_VERIFIED_MU",
+           "DhfieldWarning", "OutsideVerifiedDomainWarning", "ImplausibleInputWarning", "warn_record"]
+
+
+class DhfieldWarning(UserWarning):
+    """Base category of every warning dhfield raises about its results or inputs."""
+
+
+class OutsideVerifiedDomainWarning(DhfieldWarning):
+    """A pull-off outside the domain where its model is validated (:data:`VALIDITY_RANGES`) or, for the
+    paper's model, departing from the recommended model by more than :data:`WARNING_THRESHOLD`: the
+    ``warning`` of its record."""
+
+
+class ImplausibleInputWarning(DhfieldWarning):
+    """An SI input far outside the physical range of its quantity, most likely given in the wrong unit."""
+
 
 _NAN = float("nan")
 #: Relative departure of the paper's pull-off force from the recommended model above which the
@@ -34,16 +60,23 @@ WARNING_THRESHOLD = 0.02
 
 
 _INF = float("inf")
+#: Hertz ellipticity beta0 [-] and Tabor parameter mu [-] (Eq. 35) spanned by the stored boundary-element
+#: ground truth, ``data/adhesive_ground_truth_extended.nc`` (the smallest and largest beta0 and mu with a
+#: finite ``W_star_truth``; ``tests/test_one_default.py`` reads them back from the file): the box where the
+#: recommended model is verified against the BEM (within 0.44 % of every stored case).
+BEM_VERIFIED_BETA0 = (0.1, 1.0)
+BEM_VERIFIED_MU = (0.1, 10.0)
 #: Largest mu of the closures: the grid of the table above, capped by the closures' own accepted domain.
 _CLOSURE_MU_MAX = min(30.0, closure.CLOSURE_MU_RANGE[1])
 #: name -> ((beta0_min, beta0_max), (mu_min, mu_max)) where each model is validated; outside, its
 #: results are still computed and carry a ``warning``.  Provenance:
 #:
-#: * md-elliptic (the recommended model): the whole accepted domain.  Within 0.44 % of every stored
-#:   BEM case (42: beta0 0.1-1, mu 0.1-5, ``python -m verification.elliptic_transition``); exact at its
-#:   three limits, DMT (mu -> 0), the energy-minimising elliptical JKR of GVG (mu -> infinity, itself
-#:   within 0.4 % of the BEM at mu = 5) and MD on the sphere (beta0 = 1); smooth in between
-#:   (:mod:`dhfield.elliptic_transition`);
+#: * md-elliptic (the recommended model): the box of the stored BEM ground truth, :data:`BEM_VERIFIED_BETA0`
+#:   x :data:`BEM_VERIFIED_MU`, within 0.44 % of every stored case (``python -m
+#:   verification.elliptic_transition``).  It answers the whole accepted domain, exact at its three
+#:   limits, DMT (mu -> 0), the energy-minimising elliptical JKR of GVG (mu -> infinity) and MD on the
+#:   sphere (beta0 = 1), smooth in between (:mod:`dhfield.elliptic_transition`); outside the box that is
+#:   an extrapolation no BEM case checked, and its records say so;
 #: * dh-elliptic, dh-elliptic-jkr-beta: the paper's own range, "beta0 ranging from 0.8 to 0.99" and
 #:   "0.5 <= mu <= 5" (Zini et al. 2018, Sec. 1); beta0 = 1 is the circular DH model;
 #: * the closures: the grid of the table above (beta0 = 0.3-1, mu = 0.1-30), where they were solved
@@ -54,7 +87,7 @@ _CLOSURE_MU_MAX = min(30.0, closure.CLOSURE_MU_RANGE[1])
 #:   Greenwood 1997, doi:10.1006/jcis.1997.4984); dmt: lambda <= 0.1 (same map);
 #: * the circular models at beta0 = 1 only (elsewhere they are the circle of R = sqrt(R'R'')).
 VALIDITY_RANGES = {
-    "md-elliptic": ((0.0, 1.0), (0.0, _INF)),
+    "md-elliptic": (BEM_VERIFIED_BETA0, BEM_VERIFIED_MU),
     "dh-elliptic": ((0.8, 1.0), (0.5, 5.0)),
     "dh-elliptic-two-axis": ((0.3, 1.0), (0.1, _CLOSURE_MU_MAX)),
     "dh-elliptic-ray-average": ((0.3, 1.0), (0.1, _CLOSURE_MU_MAX)),
@@ -114,6 +147,10 @@ def validity_message(model, mu, beta0):
     def one(m, b):
         if b_lo <= b <= b_hi and m_lo <= m <= m_hi:
             return ""
+        if model == _REFERENCE:
+            return (f"{model}: beta0 = {b:.4g}, mu = {m:.4g} is outside the BEM-verified box (beta0 "
+                    f"{_interval(b_lo, b_hi)}, mu {_interval(m_lo, m_hi)}, the stored ground truth): an "
+                    "extrapolation no boundary-element case checked")
         return (f"{model} is validated for beta0 {_interval(b_lo, b_hi)} and mu {_interval(m_lo, m_hi)}; "
                 f"got beta0 = {b:.4g}, mu = {m:.4g}")
 
@@ -220,6 +257,34 @@ def departure_warning(w_paper, mu, beta0, control, reference_w_star=None):
         except (ValueError, RuntimeError) as exc:  # never take the paper's result down with the check
             reference_w_star, reason = np.nan, f" ({exc})"
     return _departure_warning(w_paper, np.broadcast_to(reference_w_star, np.shape(w_paper)), reason)
+
+
+def warn_record(rec, stacklevel=2):
+    """Raise a record's non-empty ``warning`` as a Python warning (:class:`OutsideVerifiedDomainWarning`).
+
+    One warning per call: the message itself for a scalar record; for an array, how many
+    points warn and the first distinct messages.
+
+    Parameters
+    ----------
+    rec : dhfield.records.PullOff or mapping
+        A pull-off record with a ``warning`` field (str or object array of str).
+    stacklevel : int
+        As for :func:`warnings.warn`, counted from the caller of this function.
+    """
+    import warnings
+
+    msgs = np.asarray(rec["warning"], dtype=object).ravel()
+    said = [str(m) for m in msgs if m]
+    if not said:
+        return
+    if msgs.size == 1:
+        text = said[0]
+    else:
+        distinct = list(dict.fromkeys(said))
+        text = (f"{len(said)} of {msgs.size} points warn: " + "; ".join(distinct[:2])
+                + (f"; and {len(distinct) - 2} other messages" if len(distinct) > 2 else ""))
+    warnings.warn(text, OutsideVerifiedDomainWarning, stacklevel=stacklevel + 1)
 
 
 def _known(model):

@@ -1,9 +1,10 @@
 """The recommended model md-elliptic (dhfield.elliptic_transition): its three exact limits (DMT,
 GVG, MD on the sphere) for the pull-off and the load curve, the load curve's minimum as the
-pull-off, the weight, SI consistency, bad input, the accepted domain without a warning, the
+pull-off, the weight, SI consistency, bad input, the accepted domain (warned outside the BEM box), the
 stored BEM ground truth, and the issue-20 must-shows (the JKR limit, SI pull-off at 15-90 deg)."""
 import json
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -168,11 +169,19 @@ def test_bad_input():
 @given(beta0=st.floats(ELLIPTICITY_RANGE[0], 1.0),
        log_mu=st.floats(math.log10(TABOR_RANGE[0]), math.log10(TABOR_RANGE[1])),
        control=st.sampled_from(["load", "displacement"]))
-def test_accepted_domain_answers_without_warning(beta0, log_mu, control):
-    """Every (beta0, mu) compare accepts: finite, between the DMT and GVG limits, no warning."""
+def test_accepted_domain_answers(beta0, log_mu, control):
+    """Every (beta0, mu) compare accepts: finite, between the DMT and GVG limits; a warning exactly
+    outside the box of the stored BEM ground truth (issue 40)."""
+    from dhfield.validity import BEM_VERIFIED_BETA0, BEM_VERIFIED_MU, OutsideVerifiedDomainWarning
+
     mu = 10.0**log_mu
-    r = compare.pull_off(NAME, mu=mu, beta0=beta0, control=control)
-    assert r.warning == ""
+    inside = BEM_VERIFIED_BETA0[0] <= beta0 <= BEM_VERIFIED_BETA0[1] and BEM_VERIFIED_MU[0] <= mu <= BEM_VERIFIED_MU[1]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = compare.pull_off(NAME, mu=mu, beta0=beta0, control=control)
+    assert (r.warning == "") == inside
+    raised = [str(w.message) for w in caught if w.category is OutsideVerifiedDomainWarning]
+    assert raised == ([] if inside else [r.warning])
     assert np.isfinite(r.W_star) and np.isfinite(r.a_star) and np.isfinite(r.delta_star)
     w_dmt = -sin_skew_angle(beta0)
     w_gvg = float(ee.pull_off_nondimensional(beta0, 1.0, control=control).W_star)
@@ -249,14 +258,18 @@ PDMS = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder-radi
 
 
 @pytest.mark.parametrize("deg", [15, 20, 30, 45, 60, 75, 90])
-def test_si_pulloff_answers_at_every_angle_without_warning(capsys, deg):
+def test_si_pulloff_answers_at_every_angle(capsys, deg):
     """issue 20 ("must show"): `dhfield pulloff` with SI input at 15-90 deg answers with the default
-    model and no warning, between the DMT force and GVG's."""
+    model, between the DMT force and GVG's; issue 40: where mu leaves the BEM-verified box (this PDMS
+    has mu > 10 at every angle) it says so, once on stderr and in the record."""
+    from dhfield.validity import validity_message
+
     rc = main(["pulloff", *PDMS, "--skew-angle-deg", str(deg), "--json"])
     out = capsys.readouterr()
-    assert rc == 0 and out.err == ""
     rec = json.loads(out.out)
-    assert rec["model"] == NAME and rec["warning"] == ""
+    expected = validity_message(NAME, rec["mu"], rec["beta0"])
+    assert rc == 0 and out.err == (f"dhfield: warning: {expected}\n" if expected else "")
+    assert rec["model"] == NAME and rec["warning"] == expected
     r = float(effective_radius(*principal_radii(3e-3, math.radians(deg))))  # sqrt(R'R'')
     assert math.isfinite(rec["force"]) and rec["force"] < 0
     assert rec["force"] >= -2 * math.pi * 0.045 * r * (1 + 1e-12)  # no more adhesion than DMT, -2 pi R dgamma

@@ -39,9 +39,13 @@ def test_departure_warning_computes_its_reference():
     assert f"{100 * (w_paper / ref - 1):+.1f} %" in w
 
 
-def test_recommended_model_is_validated_everywhere():
-    """md-elliptic answers the whole accepted domain without a warning (issue 20)."""
-    from dhfield._validation import ELLIPTICITY_RANGE, TABOR_RANGE
-
-    assert validity.validity_message("md-elliptic", TABOR_RANGE, ELLIPTICITY_RANGE).tolist() == ["", ""]
-    assert validity.validity_message("md-elliptic", [1e-6, 1e12], [1.0, 1e-4]).tolist() == ["", ""]
+def test_recommended_model_warns_outside_the_bem_verified_box():
+    """md-elliptic is silent inside the box of the stored BEM ground truth and says so outside it (issue 40):
+    at 10 deg (beta0 = 0.047) and mu = 19.5 no BEM case checked it."""
+    lo_b, hi_b = validity.BEM_VERIFIED_BETA0
+    lo_m, hi_m = validity.BEM_VERIFIED_MU
+    inside = validity.validity_message("md-elliptic", [lo_m, hi_m, 1.0], [lo_b, hi_b, 0.5])
+    assert inside.tolist() == ["", "", ""]
+    outside = validity.validity_message("md-elliptic", [19.5, 1.0, 1e-3, 1.0], [0.047, 0.047, 0.5, 0.05])
+    assert all("outside the BEM-verified box" in m for m in outside)
+    assert "beta0 = 0.047, mu = 19.5" in outside[0]

@@ -646,13 +646,18 @@ def verdict_lines(res, recs):
     if 5.0 in cm:
         j = cm.index(5.0)
         s0 = cl["two_axis"].sigma0_minor / np.asarray(cm)[None, :]
+        from dhfield.compare import PAPER_MODEL, RECOMMENDED_MODEL
+
         guide.append(
-            f"**Elliptical contacts, β0 < 0.99 (θ_skew below about {np.rad2deg(skew_angle(0.99)):.1f}°):** "
-            f"`dh-elliptic-two-axis` — within {pct(gap['two_axis'][:, j].max(), 2)} of elliptical JKR at "
-            f"μ = 5 for β0 = {', '.join(f'{b:g}' for b in cb)}; it keeps the contact condition exactly, at the "
-            f"price of a σ0 up to {pct(s0.max() - 1)} above μ on the minor axis. The default `dh-elliptic` "
-            f"is {rng(100 * np.abs(shift_t[np.asarray(cb) < 0.99]), '.1f')} % weaker at β0 = "
-            f"{', '.join(f'{b:g}' for b in cb if b < 0.99)} (the CLI warns above 2 %).")
+            f"**The paper's pressure form on elliptical contacts, β0 < 0.99 (θ_skew below about "
+            f"{np.rad2deg(skew_angle(0.99)):.1f}°):** for a pull-off force use the recommended `{RECOMMENDED_MODEL}` "
+            "(the default); of the double-Hertz closures, `dh-elliptic-two-axis` (by name) is within "
+            f"{pct(gap['two_axis'][:, j].max(), 2)} of elliptical JKR at μ = 5 for β0 = "
+            f"{', '.join(f'{b:g}' for b in cb)}; it keeps the contact condition exactly, at the price of a σ0 up "
+            f"to {pct(s0.max() - 1)} above μ on the minor axis. The paper's `{PAPER_MODEL}`, available by name, is "
+            f"{rng(100 * np.abs(shift_t[np.asarray(cb) < 0.99]), '.1f')} % weaker than the two-axis closure at "
+            f"β0 = {', '.join(f'{b:g}' for b in cb if b < 0.99)} (it warns where it departs from "
+            f"`{RECOMMENDED_MODEL}` by more than 2 %).")
         guide.append(
             "**The paper's pressure form with a fair work of adhesion:** `dh-elliptic-ray-average` keeps one "
             f"β and one σ0 on every ray and is within {pct(gap['ray_average'][:, j].max(), 2)} of elliptical "

@@ -11,6 +11,7 @@ One module per subcommand (``dhfield/cli/<name>.py``), each with
 """
 from __future__ import annotations
 
+import contextlib
 import importlib
 import sys
 
@@ -64,6 +65,30 @@ def _stdout_closed() -> int:
     return EXIT_BROKEN_PIPE
 
 
+@contextlib.contextmanager
+def _warnings_as_lines():
+    """Print each :class:`dhfield.validity.DhfieldWarning` as one ``dhfield: warning:`` line on stderr
+    (once per text, shared with the records' warnings); other warnings as Python prints them."""
+    import warnings
+
+    from ._common import _PRINTED_WARNINGS, print_warning_line
+
+    _PRINTED_WARNINGS.clear()  # once per run of main()
+    with warnings.catch_warnings():
+        shown = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None):
+            from ..validity import DhfieldWarning
+
+            if issubclass(category, DhfieldWarning):
+                print_warning_line(str(message))
+            else:
+                shown(message, category, filename, lineno, file, line)
+
+        warnings.showwarning = show
+        yield
+
+
 def main(argv=None) -> int:
     """Run the CLI.
 
@@ -94,7 +119,7 @@ def main(argv=None) -> int:
         print(f"dhfield: {message}", file=sys.stderr)
         return status
 
-    with termination_signals_as_exceptions():
+    with termination_signals_as_exceptions(), _warnings_as_lines():
         try:
             args = build_parser().parse_args(argv)
             check_output_argument(args)

@@ -189,11 +189,25 @@ def validity_epilog() -> str:
 
 
 def print_warning(rec) -> None:
-    """One line on stderr if the record carries a warning."""
+    """One line on stderr if the record carries a non-empty warning (:func:`print_warning_line`)."""
+    text = rec.get("warning")
+    if isinstance(text, str) and text:
+        print_warning_line(text)
+
+
+#: Warnings already printed by this process, so that a record's warning that was also raised as a
+#: Python warning (:class:`dhfield.validity.DhfieldWarning`) is printed once.
+_PRINTED_WARNINGS: set = set()
+
+
+def print_warning_line(text: str) -> None:
+    """``dhfield: warning: TEXT`` on stderr, once per distinct non-empty text."""
     import sys
 
-    if rec.get("warning"):
-        print(f"dhfield: warning: {rec['warning']}", file=sys.stderr)
+    text = " ".join(str(text).split())
+    if text and text not in _PRINTED_WARNINGS:
+        _PRINTED_WARNINGS.add(text)
+        print(f"dhfield: warning: {text}", file=sys.stderr)
 
 
 # --------------------------------------------------------------------------- hardening (paths, threads, signals)

@@ -22,9 +22,12 @@ def add_parser(sub) -> None:
     p.add_argument("sweep", help="netCDF file written by 'dhfield sweep'")
     p.add_argument("--out", default=None, help="output directory, created if needed (default: the sweep "
                    "file's directory)")
+    from ..compare import RECOMMENDED_MODEL
+
     p.add_argument("--reference", default=None,
                    help="reference model of the error maps (default: the most trusted swept model: "
-                   "bem-adhesive, dh-elliptic-two-axis, jkr-elliptic, then dh-elliptic)")
+                   f"bem-adhesive, {RECOMMENDED_MODEL} (the recommended model), dh-elliptic-two-axis, "
+                   "jkr-elliptic-energy, jkr-elliptic, then dh-elliptic)")
     g = p.add_argument_group("SI axes (all of --youngs-modulus, --poisson-ratio, --cylinder-radius, "
                              "--work-of-adhesion)")
     add_material_arguments(g)

@@ -15,9 +15,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..compare import RECOMMENDED_MODEL
 from . import atomic_path, check_writable
 
-__all__ = ["MODEL_LABELS", "model_label", "SI_PREFIXES", "si_prefix", "crossed_cylinders_si", "figure_paths",
+__all__ = ["RECOMMENDED_MODEL", "MODEL_LABELS", "model_label", "SI_PREFIXES", "si_prefix", "crossed_cylinders_si", "figure_paths",
            "save_figure", "write_figure"]
 
 #: Readable name of each model slug (``--model`` names of :mod:`dhfield.compare`, the adhesive

@@ -96,7 +96,7 @@ def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> PullOff:
     shape = mu.shape
     # The two-axis closure behind dh-elliptic's departure warning is a model of its own
     # ("dh-elliptic-two-axis"): sweep it, and map the departure, rather than solve it twice.
-    rec = pull_off(model, beta0=beta0.ravel(), mu=mu.ravel(), control=control, check_closure=False)
+    rec = pull_off(model, beta0=beta0.ravel(), mu=mu.ravel(), control=control, check_closure=False, warn=False)
     return rec.replace(**{k: np.broadcast_to(np.asarray(rec[k]), (mu.size,)).reshape(shape)
                           for k in rec if k not in ("model", "control", "geometry")})
 
