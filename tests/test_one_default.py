@@ -191,6 +191,11 @@ def test_cli_prints_the_warning_once_and_never_an_empty_one(capsys):
     assert err.count("dhfield: warning:") == 1 and "outside the BEM-verified box" in err
     assert main(["pulloff", "--beta0", "0.5", "--mu", "1", "--json"]) == 0
     assert "warning" not in capsys.readouterr().err
+    assert main(["pulloff", "--beta0", "0.5", "--mu", "1"]) == 0  # the text table: no empty warning row
+    out = capsys.readouterr()
+    assert "warning" not in out.err and not any(line.split()[:1] == ["warning"] for line in out.out.splitlines())
+    assert main(["pulloff", "--beta0", "0.047", "--mu", "19.5"]) == 0
+    assert any(line.startswith("warning ") and "BEM-verified box" in line for line in capsys.readouterr().out.splitlines())
 
 
 PDMS_WRONG_UNITS = ["--youngs-modulus", "1.8", "--poisson-ratio", "0.49", "--cylinder-radius", "3",

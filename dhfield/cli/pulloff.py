@@ -7,7 +7,8 @@ from ._common import validity_epilog as _epilog
 from ._common import (add_model_arguments, add_physical_arguments, contact_parameters_from_args, model_names,
                       plain_record, print_json, print_warning)
 
-_MODEL_HELP = ("model (default: md-elliptic, the recommended model, validated at every crossing angle and mu; "
+_MODEL_HELP = ("model (default: md-elliptic, the recommended model, at every crossing angle and mu, warned outside "
+               "the box of the stored BEM cases; "
                "dh-elliptic is the paper's, which under-predicts the adhesion of elliptical contacts and warns)")
 
 
@@ -61,6 +62,8 @@ def run(args) -> int:
         print_json({**rec, "units": unit})
     else:
         for k, v in rec.items():  # 10 significant digits, as curve, cycle and fit (no 0.49999999999999994)
+            if k == "warning" and not v:  # an empty warning is not printed
+                continue
             text = f"{v:.10g}" if isinstance(v, float) else str(v)
             print(f"{k:22s} {text:24s} {'' if unit[k] == '1' else unit[k]}".rstrip())
     return 0
