@@ -25,6 +25,7 @@ Usage::
     python verification/hostile_inputs.py            # the whole campaign (a few minutes)
     python verification/hostile_inputs.py --quick     # a subset (about a minute)
     python verification/hostile_inputs.py --issue18   # only the classes added for issue 18
+    python verification/hostile_inputs.py --issue42-writes   # issue 42: sweep stores, memory, sets of files, paths
 
 It prints the counts per outcome and lists every case that is not clean.
 Exit status 0 when there is no traceback, hang, silent wrong output or
@@ -1038,6 +1039,363 @@ def hardening_cases(quick):
     return cases[:40] if quick else cases
 
 
+# --------------------------------------------------------------------------- issue 42: sweep stores and writes
+def _md_sweep_in(w, mu, out="s.nc", beta0=(0.9, 1.0)):
+    """Run the small Maugis-Dugdale sweep (beta0 0.9, 1) over ``mu`` into ``w/out`` (a test's setup)."""
+    from dhfield.sweep import config_from_mapping, run_sweep
+
+    cfg = config_from_mapping({"axes": {"beta0": list(beta0), "mu": list(mu)}, "sweep": {"models": ["md"]}})
+    run_sweep(cfg, out=w / out, scheduler="synchronous", progress=False)
+
+
+def _md_argv(mu, out="s.nc"):
+    return ["sweep", "--beta0", "0.9", "1", "--mu", *map(str, mu), "--models", "md", "--workers", "1", "--quiet",
+            "--out", out]
+
+
+def _sweep_values_check(mu, out="s.nc"):
+    """A CLI check: an exit-0 sweep must hold Maugis-Dugdale's own W* at its (beta0, mu), not another config's."""
+    def check(workdir, status, stdout, stderr):
+        if status != 0:
+            return None
+        import warnings
+
+        import xarray as xr
+
+        from dhfield.compare import pull_off
+
+        with xr.open_dataset(workdir / out) as ds:
+            got = ds["W_star"].sel(model="md").values
+            b, m = ds["beta0"].values, ds["mu"].values
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            want = np.array([[float(pull_off("md", beta0=bb, mu=mm).W_star) for mm in m] for bb in b])
+        if list(m) != list(map(float, mu)) or not np.allclose(got, want, rtol=1e-12, atol=0):
+            return ("silent wrong", f"stored W* {got.ravel()[:4]} at mu {list(m)}, Maugis-Dugdale gives "
+                                    f"{want.ravel()[:4]}")
+        return None
+    return check
+
+
+def _empty_dir_check(name):
+    def check(workdir, status, stdout, stderr):
+        left = sorted(p.name for p in (workdir / name).iterdir())
+        return ("clobbered", f"written through the link into {name}/: {left}") if left else None
+    return check
+
+
+def _absent_check(*names):
+    def check(workdir, status, stdout, stderr):
+        there = [n for n in names if os.path.lexists(workdir / n)]
+        return ("clobbered", f"created {there}") if there else None
+    return check
+
+
+def _dead_pid() -> int:
+    import subprocess
+
+    proc = subprocess.Popen([sys.executable, "-c", "pass"])
+    proc.wait()
+    return proc.pid
+
+
+def _api_main(argv, want_status, want_in=None, unwanted=None):
+    """Run the CLI in the child; a silent_wrong record unless it exits ``want_status`` with the expected line."""
+    from dhfield.cli import main
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        status = main(argv)
+    text = " ".join(err.getvalue().split())
+    if status != want_status:
+        return {"silent_wrong": f"exit {status}, expected {want_status}: {text[:140]}"}
+    if want_in and want_in not in text:
+        return {"silent_wrong": f"the message lacks {want_in!r}: {text[:140]}"}
+    if unwanted and unwanted in text:
+        return {"silent_wrong": f"the message says {unwanted!r}: {text[:140]}"}
+    return {"ok": 1}
+
+
+def _limit_memory(nbytes):
+    from dhfield import _memory
+
+    _memory.available_memory = lambda: nbytes
+
+
+def _no_allocation():
+    """Setting up a BEM problem (its arrays) before the memory check is a defect: raise where it would happen."""
+    from dhfield import adhesive_start
+
+    def allocated(*args, **kwargs):
+        raise AssertionError("the BEM problem was set up (its arrays allocated) before the memory check")
+
+    adhesive_start.paper_problem = allocated
+
+
+def _adhesive_run_sweep(n, mu=(1.0,), workers=1, scheduler="synchronous"):
+    from dhfield.sweep import config_from_mapping, run_sweep
+
+    cfg = config_from_mapping({"axes": {"beta0": [1.0], "mu": list(mu), "n": [n]},
+                               "sweep": {"quantities": ["adhesive"]}})
+    return run_sweep(cfg, out="a.nc", scheduler=scheduler, workers=workers, progress=False)
+
+
+def _interrupt_between_renames(write):
+    """Call ``write()`` with SIGINT delivered right after the first file of its set is moved into place."""
+    real = os.replace
+    calls = []
+
+    def replace(src, dst):
+        real(src, dst)
+        calls.append(dst)
+        if len(calls) == 1:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    os.replace = replace
+    try:
+        write()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        os.replace = real
+
+
+def _table_pair_api():
+    from dhfield.io.table import write_table
+
+    write_table({"a_star": [1.0]}, "x.csv", title="old")
+    old = (Path("x.csv").read_bytes(), Path("x.csv.json").read_bytes())
+    _interrupt_between_renames(lambda: write_table({"a_star": [2.0]}, "x.csv", title="new"))
+    new = (Path("x.csv").read_bytes(), Path("x.csv.json").read_bytes())
+    if (new[0] == old[0]) != (new[1] == old[1]):
+        return {"silent_wrong": "the CSV and its sidecar are of different writes: "
+                                f"CSV {'old' if new[0] == old[0] else 'new'}, sidecar "
+                                f"{'old' if new[1] == old[1] else 'new'}"}
+    return {"ok": 1}
+
+
+def _figure_set_api():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from dhfield.io.figures import figure_paths, save_figure
+
+    paths = figure_paths("f.png")
+    for p in paths:
+        p.write_bytes(b"old")
+    fig = plt.figure()
+    _interrupt_between_renames(lambda: save_figure(fig, paths, 50))
+    states = ["old" if p.read_bytes() == b"old" else "new" for p in paths]
+    if len(set(states)) > 1:
+        return {"silent_wrong": f"PNG/SVG/PDF of different writes: {states}"}
+    return {"ok": 1}
+
+
+def _solve_plot_interrupted_api():
+    from dhfield.io import solve_plot
+
+    for name in ("t.nc", "t.png", "t.svg", "t.pdf"):
+        Path(name).write_bytes(b"old")
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    solve_plot.solve_figure = interrupted
+    rec = _api_main(["solve", "--beta0", "1", "--mu", "1", "--n", "16", "--out", "t.nc", "--plot", "t.png"], 130)
+    changed = [n for n in ("t.nc", "t.png", "t.svg", "t.pdf") if Path(n).read_bytes() != b"old"]
+    if changed:
+        return {"silent_wrong": f"interrupted while plotting, yet {changed} were replaced"}
+    return rec
+
+
+def _sweep_interrupted_api():
+    from dhfield.sweep import engine
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    engine._consolidate = interrupted
+    return _api_main(["sweep", "--beta0", "0.9", "1", "--mu", "0.5", "1", "--models", "md", "--chunk-points", "1",
+                      "--workers", "1", "--quiet", "--out", "s.nc"], 130,
+                     want_in="4 finished case(s) are stored", unwanted="no output was written")
+
+
+def store_and_write_cases(quick):
+    """Issue 42's classes: sweep stores that cannot mix configs (finding 1), memory planned on every BEM route
+    (finding 6), multi-file outputs committed as a set (finding 9), output paths (finding 10)."""
+    cases = []
+
+    # --- finding 1: a case is reused only if its fingerprint and coordinates match
+    def no_manifest(w):
+        _md_sweep_in(w, (0.5, 1.0))
+        (w / "s.nc.cases" / "manifest.json").unlink()
+        return {}
+
+    def garbage_manifest(text):
+        def setup(w):
+            _md_sweep_in(w, (0.5, 1.0))
+            (w / "s.nc.cases" / "manifest.json").write_text(text)
+            return {}
+        return setup
+
+    def swapped_manifest(w):   # the mu = 0.5, 1 cases under the manifest of the mu = 5, 10 sweep
+        _md_sweep_in(w, (5.0, 10.0), out="b.nc")
+        _md_sweep_in(w, (0.5, 1.0))
+        (w / "s.nc.cases" / "manifest.json").write_bytes((w / "b.nc.cases" / "manifest.json").read_bytes())
+        return {}
+
+    def copied_case(w):        # another config's case file under this store's key
+        _md_sweep_in(w, (0.5, 1.0), out="a.nc")
+        _md_sweep_in(w, (5.0, 10.0))
+        for p in (w / "a.nc.cases").glob("pull_off__*.nc"):
+            (w / "s.nc.cases" / p.name).write_bytes(p.read_bytes())
+        return {}
+
+    def legacy_case(w):        # a case file without the identifying attributes, and no manifest
+        import netCDF4
+
+        _md_sweep_in(w, (0.5, 1.0))
+        (w / "s.nc.cases" / "manifest.json").unlink()
+        for p in (w / "s.nc.cases").glob("pull_off__*.nc"):
+            with netCDF4.Dataset(p, "a") as nc:
+                for k in ("sweep_fingerprint", "case_key", "case_coordinates"):
+                    if k in nc.ncattrs():
+                        nc.delncattr(k)
+        return {}
+
+    def garbage_case(w):
+        _md_sweep_in(w, (5.0, 10.0))
+        for p in (w / "s.nc.cases").glob("pull_off__*.nc"):
+            p.write_bytes(b"\x89HDF garbage" * 10)
+        return {}
+
+    rows = [("manifest.json deleted, another mu", no_manifest, (5.0, 10.0), "reject"),
+            ("manifest.json deleted, the same config", no_manifest, (0.5, 1.0), "ok"),
+            ("manifest.json is '[]'", garbage_manifest("[]"), (5.0, 10.0), "reject"),
+            ("manifest.json is '{'", garbage_manifest("{"), (5.0, 10.0), "reject"),
+            ("manifest.json of another config over these cases", swapped_manifest, (5.0, 10.0), "ok"),
+            ("another config's case file under this key", copied_case, (5.0, 10.0), "ok"),
+            ("a case file without fingerprint, no manifest", legacy_case, (5.0, 10.0), "reject"),
+            ("a garbage case file", garbage_case, (5.0, 10.0), "ok")]
+    for label, setup, mu, expect in rows:
+        cases.append(Case("cli", f"sweep store <{label}>", _md_argv(mu), setup=setup, expect=expect,
+                          check=_sweep_values_check(mu)))
+
+    # --- finding 6: every BEM route plans its grid against the memory available, before allocating
+    def api(label, fn, param, expect="reject"):
+        cases.append(Case("api", label, api=fn, param=param, expect=expect))
+
+    def limited(nbytes, fn):
+        def run():
+            _limit_memory(nbytes)
+            _no_allocation()
+            return fn()
+        return run
+
+    from dhfield import adhesive_start
+    from dhfield.bem_compliance import bem_unloading_branch
+
+    api("run_sweep(adhesive, n=[256]) with 20 MiB available", limited(20 * 2**20, lambda: _adhesive_run_sweep(256)),
+        "axes.n")
+    api("run_sweep(adhesive, n=[256], 2 mu on 2 workers) with 50 MiB available",
+        limited(50 * 2**20, lambda: _adhesive_run_sweep(256, mu=(1.0, 2.0), workers=2, scheduler="processes")),
+        "workers")
+    api("adhesive_pull_off(n=64) with 1 MiB available",
+        limited(2**20, lambda: adhesive_start.adhesive_pull_off(beta0=1.0, mu=1.0, n=64)), "n=64")
+    api("adhesive_pull_off(n=64, control='displacement') with 1 MiB available",
+        limited(2**20, lambda: adhesive_start.adhesive_pull_off(beta0=1.0, mu=1.0, n=64, control="displacement")),
+        "n=64")
+    api("adhesive_pull_off(n=64, search='predicted') with 1 MiB available",
+        limited(2**20, lambda: adhesive_start.adhesive_pull_off(beta0=1.0, mu=10.0, n=64, search="predicted")),
+        "n=64")
+    api("bem_unloading_branch(n=64) with 1 MiB available",
+        limited(2**20, lambda: bem_unloading_branch(beta0=1.0, mu=1.0, n=64)), "n=64")
+    api("adhesive_case(n=64) (a sweep's task) with 1 MiB available",
+        limited(2**20, lambda: __import__("dhfield.sweep.tasks", fromlist=["x"]).adhesive_case(1.0, 1.0, n=64)),
+        "n=64")
+    for argv in (["sweep", "--quantities", "adhesive", "--beta0", "1", "--mu", "1", "--n", "8192", "--workers", "1",
+                  "--quiet", "--out", "a.nc"],
+                 ["solve", "--beta0", "1", "--mu", "1", "--n", "8192"],
+                 ["solve", "--beta0", "1", "--mu", "1", "--n", "8192", "--machine-stiffness", "0"],
+                 ["cycle", "--model", "bem", "--beta0", "1", "--mu", "1", "--n", "8192", "--machine-stiffness", "1"]):
+        api(f"{' '.join(argv[:1] + argv[-4:])} with 8 GiB available: exit 2",
+            limited(8 * 2**30, lambda argv=argv: _api_main(argv, 2, want_in="n")), "n", expect="either")
+
+    # --- finding 9: files written together are committed as a set; an interrupt says what was written
+    api("CSV + sidecar, SIGINT between the renames", _table_pair_api, "", expect="either")
+    api("figure PNG/SVG/PDF, SIGINT between the renames", _figure_set_api, "", expect="either")
+    api("solve --out t.nc --plot t.png, Ctrl-C while plotting", _solve_plot_interrupted_api, "", expect="either")
+    api("sweep, Ctrl-C after its cases are stored: says so and how to resume", _sweep_interrupted_api, "",
+        expect="either")
+
+    # --- finding 10: output paths of a sweep and of a CSV
+    def store_link(w):
+        (w / "real").mkdir()
+        (w / "s.nc.cases").symlink_to(w / "real")
+        return {}
+
+    def dir_link(w):
+        (w / "real").mkdir()
+        (w / "d").symlink_to(w / "real")
+        return {}
+
+    def dangling_store(w):
+        (w / "s.nc.cases").symlink_to(w / "nowhere")
+        return {}
+
+    def existing_dir(w):
+        (w / "runs.d").mkdir()
+        return {}
+
+    base = ["sweep", "--beta0", "0.9", "--mu", "1", "--models", "jkr", "--workers", "1", "--quiet", "--out"]
+    cases += [
+        Case("path", "sweep --out s.nc <s.nc.cases a symlink to a directory>", [*base, "s.nc"], setup=store_link,
+             expect="reject", check=_empty_dir_check("real")),
+        Case("path", "sweep --out <a symlink to a directory>", [*base, "d"], setup=dir_link, expect="reject",
+             check=_empty_dir_check("real")),
+        Case("path", "sweep --out s.nc <s.nc.cases a dangling symlink>", [*base, "s.nc"], setup=dangling_store,
+             expect="reject", check=_absent_check("nowhere", "s.nc")),
+        Case("path", "sweep --out x.txt", [*base, "x.txt"], expect="reject", check=_absent_check("x.txt")),
+        Case("path", "sweep --out x.csv", [*base, "x.csv"], expect="reject", check=_absent_check("x.csv")),
+        Case("path", "sweep --out <an existing directory runs.d>", [*base, "runs.d"], setup=existing_dir,
+             expect="ok"),
+        Case("path", "sweep --out <a new directory name>", [*base, "newdir"], expect="ok"),
+    ]
+
+    def sidecar_only(w):
+        (w / "c.csv.json").write_text('{"columns": {}}\n')
+        return {"targets": {"c.csv.json": _state(w / "c.csv.json")}}
+
+    def csv_and_sidecar(w):
+        (w / "c.csv").write_text("a\n1\n")
+        (w / "c.csv.json").write_text('{"columns": {}}\n')
+        return {}
+
+    def stale_part(name, where="."):
+        def setup(w):
+            (w / where).mkdir(exist_ok=True)
+            (w / where / f".{name[:32]}.{_dead_pid()}-abcdefgh.part").write_bytes(b"partial")
+            return {}
+        return setup
+
+    curve = ["curve", "--beta0", "0.9", "--mu", "1", "--n", "5", "--out"]
+    cases += [
+        Case("path", "curve --out c.csv <c.csv.json exists, c.csv does not>", [*curve, "c.csv"],
+             setup=sidecar_only, expect="reject", check=_absent_check("c.csv")),
+        Case("path", "curve --out c.csv <c.csv and c.csv.json exist>", [*curve, "c.csv"], setup=csv_and_sidecar,
+             expect="ok"),
+        Case("path", "curve --out c.nc <a killed writer's .part beside it>", [*curve, "c.nc"],
+             setup=stale_part("c.nc"), expect="ok"),
+        Case("path", "curve --out c.csv <a killed writer's .part of the sidecar>", [*curve, "c.csv"],
+             setup=stale_part("c.csv.json"), expect="ok"),
+        Case("path", "sweep --out s.nc <a killed writer's .part of a case>", [*base, "s.nc"],
+             setup=stale_part("pull_off__jkr__00000_00000.nc", "s.nc.cases"), expect="ok"),
+    ]
+    return cases[:12] if quick else cases
+
+
 # --------------------------------------------------------------------------- main
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -1047,12 +1405,16 @@ def main(argv=None) -> int:
     ap.add_argument("--issue18", action="store_true",
                     help="only the classes added for issue 18 (API dtypes, file contents, TOML values, "
                          "environment, network peers on 127.0.0.1, BEM answers)")
+    ap.add_argument("--issue42-writes", action="store_true",
+                    help="only the classes added for issue 42's findings 1, 6, 9, 10 (sweep stores, memory "
+                         "planned on every BEM route, files written as a set, output paths)")
     args = ap.parse_args(argv)
 
     parsers = subcommand_parsers()
-    cases = hardening_cases(args.quick) if args.issue18 else (numeric_cases(parsers, args.quick) + path_cases(parsers, args.quick)
+    cases = store_and_write_cases(args.quick) if args.issue42_writes else hardening_cases(args.quick) if args.issue18 else (numeric_cases(parsers, args.quick) + path_cases(parsers, args.quick)
              + input_cases(parsers, args.quick) + env_cases(args.quick)
-             + signal_cases(args.quick) + api_cases(args.quick) + hardening_cases(args.quick))
+             + signal_cases(args.quick) + api_cases(args.quick) + hardening_cases(args.quick)
+             + store_and_write_cases(args.quick))
     if args.only:
         cases = [c for c in cases if args.only in c.label]
     tty = sys.stderr.isatty()
