@@ -89,6 +89,19 @@ def _warnings_as_lines():
         yield
 
 
+def _left_behind(exc: BaseException, written: int) -> str:
+    """What an interrupted run left: the notes of the interrupt (a sweep's stored cases), else the files it wrote."""
+    from ..io import written_files
+
+    notes = [" ".join(str(n).split()) for n in getattr(exc, "__notes__", ())]
+    if notes:
+        return "; ".join(notes)
+    files = written_files()[written:]
+    if not files:
+        return "no output was written"
+    return f"wrote only {', '.join(repr(str(f)) for f in files)} before that (nothing else was written)"
+
+
 def main(argv=None) -> int:
     """Run the CLI.
 
@@ -97,7 +110,9 @@ def main(argv=None) -> int:
     such as a full disk, ``MemoryError``); 1 an unexpected internal error (one
     line; set ``DHFIELD_DEBUG=1`` for the traceback); 128 + n when signal n
     stopped the run (130 for Ctrl-C, 143 for SIGTERM, 129 for SIGHUP), after any
-    temporary file was removed.  ``--out`` is validated before anything is
+    temporary file was removed, with one line saying what was written (nothing, the
+    files moved into place before the signal, or a sweep's stored cases and how to
+    resume).  ``--out`` is validated before anything is
     computed (:func:`dhfield.cli._common.check_output_argument`).
 
     Parameters
@@ -112,13 +127,14 @@ def main(argv=None) -> int:
     """
     import os
 
-    from ..io import SignalExit
+    from ..io import SignalExit, written_files
     from ._common import check_output_argument, termination_signals_as_exceptions
 
     def fail(message: str, status: int) -> int:
         print(f"dhfield: {message}", file=sys.stderr)
         return status
 
+    written = len(written_files())   # the files this run moves into place come after these
     with termination_signals_as_exceptions(), _warnings_as_lines():
         try:
             args = build_parser().parse_args(argv)
@@ -130,10 +146,10 @@ def main(argv=None) -> int:
             return fail(f"error: {_one_line(exc)}", 2)
         except MemoryError as exc:
             return fail(f"error: out of memory ({_one_line(exc)}); choose a smaller problem", 2)
-        except KeyboardInterrupt:
-            return fail("interrupted (SIGINT); no output was written", 130)
+        except KeyboardInterrupt as exc:
+            return fail(f"interrupted (SIGINT); {_left_behind(exc, written)}", 130)
         except SignalExit as exc:
-            return fail(f"{exc}; no output was written", exc.exit_status)
+            return fail(f"{exc}; {_left_behind(exc, written)}", exc.exit_status)
         except Exception as exc:  # noqa: BLE001 - one line instead of a traceback
             if os.environ.get("DHFIELD_DEBUG"):
                 raise
