@@ -61,7 +61,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
            "next_lattice_grid",
            "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
-           "pull_off_cost", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
+           "pull_off_cost", "check_grid_memory", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
 
 def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
@@ -223,6 +223,7 @@ def nondimensional_problem(*, beta0, mu, n, law="dugdale", n_steps=DEFAULT_STEPS
     beta0 = float(check_ellipticity("beta0", beta0))
     n = check_cells(n)
     ny = None if ny is None else check_cells(ny, "ny")
+    check_grid_memory(n, ny)
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
     start = _start(mu, beta0, n_steps, _check_margin(margin))
     return paper_problem(mu=mu, beta0=beta0, n=n, start=start, law=law, ny=ny)
@@ -276,6 +277,38 @@ def pull_off_cost(nx, ny) -> tuple:
     """
     cells = float(nx) * float(ny)
     return PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS
+
+
+def check_grid_memory(nx, ny=None) -> None:
+    """Refuse a BEM grid whose pull-off would not fit the memory available, before anything is allocated.
+
+    Every route that sets up an adhesive BEM problem on a given grid (:func:`nondimensional_problem`,
+    :func:`predicted_problem`; so :func:`adhesive_pull_off` with ``n``, the unloading branch of
+    :mod:`dhfield.bem_compliance`, the adhesive cases of :mod:`dhfield.sweep`, ``dhfield solve``
+    and ``dhfield cycle``) calls it first.  The estimate is :func:`pull_off_cost`'s; the limit is
+    :func:`dhfield._memory.memory_limit` (80 % of the memory available now; none when unknown).
+
+    Parameters
+    ----------
+    nx : int
+        Cells along x [-].
+    ny : int, optional
+        Cells along y [-]; default ``nx``.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``n``, the estimated memory and the limit.
+    """
+    from ._memory import check_memory
+
+    nx = int(nx)
+    ny = nx if ny is None else int(ny)
+    cells = f"{nx}" if ny == nx else f"{nx} x {ny}"
+    check_memory(pull_off_cost(nx, ny)[0], f"n={cells} (a {nx} x {ny} grid of the adhesive BEM, about "
+                 f"{PATH_BYTES_PER_CELL:.0f} bytes per cell)")
+
+
 #: An explicit grid whose ``edge_width_ratio`` exceeds this has no stable discrete state: its
 #: states do not converge (measured: they converge at 1.10-1.18 and not at 2.1-3.8; at 3.07,
 #: beta0 = 0.4826, mu = 11.4, N = 512, the cold start stalls at residual 4e-2 after 189 outer
@@ -1198,6 +1231,7 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
     """
     n = check_cells(n)
     ny = n if ny is None else check_cells(ny, "ny")
+    check_grid_memory(n, ny)
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
     prob = paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
                          start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))

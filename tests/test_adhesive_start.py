@@ -700,3 +700,25 @@ def test_widest_edge_is_refused_below_the_predicted_route_s_mu():
     with pytest.raises(ValueError, match=r"options.widest_edge=True needs the predicted route and mu >= 7.5"):
         adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted",
                                          options=adhesive_start.AdhesiveOptions(widest_edge=True))
+
+
+def test_every_bem_route_refuses_an_unaffordable_grid_before_allocating(monkeypatch):
+    """Issue 42 finding 6: the memory check lived in ``dhfield solve`` only; the library, the spring's
+    unloading branch and the sweep's cases allocated an unaffordable n (the sweep: 6.4 GB, headed for OOM)."""
+    from dhfield import _memory
+    from dhfield.bem_compliance import bem_unloading_branch
+
+    def allocated(*args, **kwargs):
+        raise AssertionError("the problem was set up (its arrays allocated) before the memory check")
+
+    monkeypatch.setattr(_memory, "available_memory", lambda: 2**20)   # 0.8 MiB may be claimed
+    monkeypatch.setattr(adhesive_start, "paper_problem", allocated)
+    msg = r"n=64 \(a 64 x 64 grid of the adhesive BEM.* needs an estimated .* more than the limit"
+    with pytest.raises(ValueError, match=msg):   # 64^2 cells x 550 B = 2.1 MiB
+        adhesive_start.adhesive_pull_off(beta0=1.0, mu=1.0, n=64)
+    with pytest.raises(ValueError, match=msg):
+        adhesive_start.adhesive_pull_off(beta0=1.0, mu=1.0, n=64, control="displacement")
+    with pytest.raises(ValueError, match=msg):
+        bem_unloading_branch(beta0=1.0, mu=1.0, n=64)
+    with pytest.raises(ValueError, match=r"n=64 x 32 \(a 64 x 32 grid"):
+        adhesive_start.predicted_problem(beta0=1.0, mu=10.0, n=64, ny=32)

@@ -357,3 +357,26 @@ def test_solve_under_a_spring_in_si(tmp_path, capsys):
     main(["solve", *SPHERE_SI, "--n", SPRING_N, "--machine-stiffness", "50"])
     text = capsys.readouterr().out
     assert "machine spring K* = " in text and f"force = {rec['force']:.6g} N" in text and "(K = 50 N/m)" in text
+
+
+def test_out_and_plot_are_one_set_an_interrupt_while_plotting_keeps_the_old_files(tmp_path, monkeypatch, capsys):
+    """Issue 42 finding 9: Ctrl-C while plotting left a new --out file beside the old images, and the CLI
+    said "no output was written"."""
+    from dhfield.cli import main
+    from dhfield.io import solve_plot
+
+    old = {}
+    for name in ("t.nc", "t.png", "t.svg", "t.pdf"):
+        (tmp_path / name).write_bytes(f"old {name}".encode())
+        old[name] = f"old {name}".encode()
+
+    def interrupted(*args, **kwargs):   # Ctrl-C while the figure is drawn
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(solve_plot, "solve_figure", interrupted)
+    status = main(["solve", "--beta0", "1", "--mu", "1", "--n", "16", "--out", str(tmp_path / "t.nc"),
+                   "--plot", str(tmp_path / "t.png")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 130 and err[-1] == "dhfield: interrupted (SIGINT); no output was written", err
+    assert {name: (tmp_path / name).read_bytes() for name in old} == old
+    assert not list(tmp_path.glob(".*.part"))

@@ -16,24 +16,17 @@ EXIT_UNRESOLVED = 4
 #: --n is far too coarse for it): one line, before solving, with the N it needs and the analytic value.
 EXIT_UNRESOLVABLE = 5
 
-#: Peak memory of ``dhfield solve`` per grid cell (N x N cells), path and netCDF output included
-#: [bytes].  Measured peak RSS above the imports (``/usr/bin/time -f %M``, beta0 = 0.8, mu = 1,
-#: --out): 664 B/cell at N = 256 and 416 B/cell at N = 1024; 500 leaves a 20 % margin at large N,
-#: where the estimate matters.
-SOLVE_BYTES_PER_CELL = 500
-
-
 def check_solve_memory(n) -> None:
-    """Refuse an N x N adhesive BEM solve that would not fit in memory, before allocating anything.
+    """Refuse an N x N adhesive BEM solve that would not fit in memory, before anything is computed.
 
-    The estimate is ``SOLVE_BYTES_PER_CELL * n**2``; the limit is 80 % of the memory available now
-    (:func:`dhfield._memory.memory_limit`).  Raises ValueError naming ``n``, the estimate and the limit.
+    The library's own check (:func:`dhfield.adhesive_start.check_grid_memory`, which every BEM
+    route also makes before it allocates), made first so that a bad ``--n`` fails at once.
+    Raises ValueError naming ``n``, the estimate and the limit.
     """
-    from .._memory import check_memory
+    from ..adhesive_start import check_grid_memory
 
-    if isinstance(n, int) and n > 0:
-        check_memory(SOLVE_BYTES_PER_CELL * float(n) ** 2,
-                     f"n={n} (a {n} x {n} grid, about {SOLVE_BYTES_PER_CELL} bytes per cell)")
+    if isinstance(n, int) and not isinstance(n, bool) and n > 0:
+        check_grid_memory(n)
 
 
 _EPILOG = (f"exit status: 0 success, converged and resolved (a note on stderr if states beyond the pull-off "
@@ -369,20 +362,23 @@ def run(args) -> int:
     except RuntimeError as exc:  # the solver found no converged state to report
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
-    if args.out is not None:
-        from ..io.solution import write_solution
-
-        write_solution(res, args.out, params=params)
     rec = _record(res)
     si = {}
     if params is not None:
         from ..io.solution import pull_off_si
 
         si = pull_off_si(res, params)
-    if args.plot is not None:
-        from ..io.solve_plot import write_solve_plot
+    from ..io import atomic_files
 
-        write_solve_plot(res, args.plot, params=params)
+    with atomic_files():   # --out and --plot's three files as one set: all moved into place, or none
+        if args.out is not None:
+            from ..io.solution import write_solution
+
+            write_solution(res, args.out, params=params)
+        if args.plot is not None:
+            from ..io.solve_plot import write_solve_plot
+
+            write_solve_plot(res, args.plot, params=params)
     if args.json:
         rec = {**rec, **si}
         print_json({**rec, "units": _units(rec, si_keys=tuple(si))})
