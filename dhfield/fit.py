@@ -46,7 +46,7 @@ from ._validation import TABOR_RANGE, check_finite, check_positive
 
 __all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve", "FIT_MU_RANGE", "fit_mu_range",
            "CURVE_FIT_MODEL_NAMES", "propagate_input_uncertainty", "replicate_statistics", "COVERAGE_FACTOR",
-           "INPUT_REL_STEP", "JACOBIAN_COND_MAX", "CORRELATION_MAX"]
+           "INPUT_REL_STEP", "JACOBIAN_COND_MAX", "CORRELATION_MAX", "CURVE_NODES", "CURVE_INTERPOLATION_RTOL"]
 
 #: Tabor parameters mu (Eq. 35) the pull-off fit searches: the range every model
 #: accepts (:data:`dhfield._validation.TABOR_RANGE`, DMT limit to 1e-3 at the low
@@ -714,8 +714,78 @@ def _curve(params, semi_major, model):
     return np.asarray(c["force"], float), np.asarray(c["approach"], float)
 
 
+#: Number of contact sizes (log-spaced over the data's range) at which :func:`fit_curve` evaluates the
+#: model when the data have more than twice as many distinct sizes; the model at the data is then the
+#: cubic spline in ln a through them.  Measured on md-elliptic (mu 0.37-3700, a* from 1e-3 to 30): the
+#: spline departs from the model by at most 8e-9 of the range of the loads (and of the approaches)
+#: with 4096 nodes, 2.4e-7 with 1024.
+CURVE_NODES = 4096
+#: Largest departure of the spline through :data:`CURVE_NODES` nodes from the model, relative to the
+#: range of the loads (of the approaches), accepted at the estimates; checked there on up to
+#: :data:`CURVE_NODES` data sizes spread over the data, and the fit is redone at every data point if
+#: it is exceeded.  1e-6 of the range is far below any measurement's noise and below the models'
+#: own error (0.44 % for md-elliptic against the boundary-element solution).
+CURVE_INTERPOLATION_RTOL = 1e-6
+#: Seconds between two progress lines of :func:`fit_curve` (none for a fit faster than this).
+PROGRESS_INTERVAL = 2.0
+
+
+def _curve_evaluator(a_data, model, nodes):
+    """``f(params) -> (loads [N], approaches [m])`` of the model at ``a_data`` [m].
+
+    Each distinct contact size is evaluated once; with ``nodes`` (sizes [m], increasing, spanning
+    ``a_data``), the model is evaluated there only and a cubic spline in ln a gives it at the data.
+    """
+    from scipy.interpolate import CubicSpline
+
+    sizes, inverse = np.unique(a_data, return_inverse=True)
+    if nodes is None:
+        def curve(p):
+            w, d = _curve(p, sizes, model)
+            return w[inverse], d[inverse]
+        return curve
+    x_nodes, x_sizes = np.log(nodes), np.log(sizes)
+
+    def curve(p):
+        w, d = _curve(p, nodes, model)
+        return CubicSpline(x_nodes, w)(x_sizes)[inverse], CubicSpline(x_nodes, d)(x_sizes)[inverse]
+    return curve
+
+
+def _interpolation_error(params, a_data, model, nodes):
+    """Largest departure of the spline through ``nodes`` from the model, relative to the range of
+    each, on up to :data:`CURVE_NODES` distinct data sizes spread over the data: (loads, approaches)."""
+    sizes = np.unique(a_data)
+    probe = sizes[np.unique(np.linspace(0, sizes.size - 1, min(CURVE_NODES, sizes.size)).round().astype(int))]
+    w_exact, d_exact = _curve(params, probe, model)
+    w_spline, d_spline = _curve_evaluator(probe, model, nodes)(params)
+    return (float(np.max(np.abs(w_spline - w_exact)) / max(float(np.ptp(w_exact)), 1e-300)),
+            float(np.max(np.abs(d_spline - d_exact)) / max(float(np.ptp(d_exact)), 1e-300)))
+
+
+class _Progress:
+    """One line on stderr every :data:`PROGRESS_INTERVAL` seconds of a long fit (nothing for a short one)."""
+
+    def __init__(self, enabled, n_points):
+        import time
+
+        self.enabled, self.n_points, self.clock = bool(enabled), n_points, time.monotonic
+        self.start = self.last = self.clock()
+
+    def __call__(self, evaluations, stage):
+        if not self.enabled:
+            return
+        now = self.clock()
+        if now - self.last >= PROGRESS_INTERVAL:
+            import sys
+
+            self.last = now
+            print(f"dhfield: fitting {self.n_points} points: {stage}, {evaluations} model evaluations, "
+                  f"{now - self.start:.0f} s", file=sys.stderr, flush=True)
+
+
 def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAULT_MODEL, initial=None,
-              check_closure=True):
+              check_closure=True, progress=False):
     """Work of adhesion and adhesive stress from a measured load curve, by least squares.
 
     Parameters
@@ -748,6 +818,9 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         at the fitted state (about a millisecond) and add the departure to
         ``warning``, as :func:`dhfield.compare.pull_off` does.  The validity range of every
         model is checked regardless.
+    progress : bool
+        Print a line on stderr every :data:`PROGRESS_INTERVAL` seconds while fitting (nothing
+        for a faster fit).
 
     Notes
     -----
@@ -781,6 +854,14 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     * correlation at +-1 (:data:`CORRELATION_MAX`): both NaN;
     * a standard error above the estimate, or a run to the search bound
       (infinite standard error).
+
+    Each distinct contact size is evaluated once.  With more than 2 :data:`CURVE_NODES`
+    distinct sizes, the model is evaluated at :data:`CURVE_NODES` log-spaced sizes over the
+    data's range and interpolated (cubic spline in ln a) to the data; at the estimates the
+    spline is checked against the model on up to :data:`CURVE_NODES` data sizes, and the fit is
+    redone at every data point if it departs by more than :data:`CURVE_INTERPOLATION_RTOL` of
+    the range of the loads or approaches.  A fit then costs about as much for a million rows
+    as for ten thousand.
 
     On 40 seeded noisy PDMS curves the truth was within 2 standard errors 38/40 (dgamma) and 39/40 (sigma0)
     times (``python -m verification.fit_round_trip``).  A fit takes 20-35
@@ -819,10 +900,18 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     w0 = float(check_positive("initial work_of_adhesion", initial[0], "J m^-2"))
     s0 = float(check_positive("initial max_adhesive_stress", initial[1], "Pa"))
     count = [0]
+    report = _Progress(progress, a_data.size)
+    nodes = None
+    if n_sizes > 2 * CURVE_NODES:
+        nodes = np.geomspace(float(np.min(a_data)), float(np.max(a_data)), CURVE_NODES)
+        nodes[0], nodes[-1] = np.min(a_data), np.max(a_data)
+    curve = [_curve_evaluator(a_data, model, nodes)]
+    stage = ["least squares"]
 
     def model_at(theta):
         count[0] += 1
-        return _curve(_with(params, math.exp(theta[0]), math.exp(theta[1])), a_data, model)
+        report(count[0], stage[0])
+        return curve[0](_with(params, math.exp(theta[0]), math.exp(theta[1])))
 
     def span(x):
         s = float(np.ptp(x)) if x.size > 1 else 0.0
@@ -845,14 +934,27 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
     # keep mu inside FIT_MU_RANGE's neighbourhood: search within 4 decades of the start
     bounds = (theta - math.log(1e4), theta + math.log(1e4))
     opts = dict(method="trf", x_scale=1.0, xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=200, bounds=bounds)
-    sol = optimize.least_squares(residuals, theta, **opts)
-    if d_data is not None:  # reweight each block by its own residual scatter, refit
-        w, d = model_at(sol.x)
-        dof = max(n_res - 2, 1)
-        for k, (res, x) in enumerate(((w - w_data, w_data), (d - d_data, d_data))):
-            sd = math.sqrt(float(np.sum(res ** 2)) / dof * n_res / x.size)
-            scales[k] = sd if sd > 1e-12 * span(x) else scales[k]
-        sol = optimize.least_squares(residuals, sol.x, **opts)
+
+    def solve(start):
+        sol = optimize.least_squares(residuals, start, **opts)
+        if d_data is not None:  # reweight each block by its own residual scatter, refit
+            w, d = model_at(sol.x)
+            dof = max(n_res - 2, 1)
+            for k, (res, x) in enumerate(((w - w_data, w_data), (d - d_data, d_data))):
+                sd = math.sqrt(float(np.sum(res ** 2)) / dof * n_res / x.size)
+                scales[k] = sd if sd > 1e-12 * span(x) else scales[k]
+            sol = optimize.least_squares(residuals, sol.x, **opts)
+        return sol
+
+    sol = solve(theta)
+    if nodes is not None:
+        stage[0] = "checking the interpolated model"
+        report(count[0], stage[0])
+        errors = _interpolation_error(_with(params, *np.exp(sol.x)), a_data, model, nodes)
+        if max(errors[0], errors[1] if d_data is not None else 0.0) > CURVE_INTERPOLATION_RTOL:
+            curve[0], stage[0] = _curve_evaluator(a_data, model, None), "least squares at every data point"
+            scales[:] = [span(w_data), span(d_data) if d_data is not None else 1.0]
+            sol = solve(sol.x)
     work, stress = (float(v) for v in np.exp(sol.x))
     se, cov, corr, problems, unknown = _log_standard_errors(sol.jac, sol.fun, n_res)
     success, message = bool(sol.success), str(sol.message)

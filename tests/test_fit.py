@@ -488,3 +488,37 @@ def test_complex_curve_data_is_rejected_by_name(params):
         fit_curve(w, a * (1 + 1j), params)
     with pytest.raises(ValueError, match="approach must be real"):
         fit_curve(w, a, params, approach=d + 0j)
+
+
+# --- issue 42 finding 8: many rows cost about as much as a few thousand; progress on stderr -----------------
+def _many_rows(n):
+    """A noise-free md-elliptic curve of n distinct contact sizes (dgamma 0.05 J/m^2, sigma0 1e5 Pa, mu 3.7)."""
+    truth = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.05, 1e5)
+    a = truth.length_unit * np.linspace(0.3, 3.0, n)
+    c = dim.load_curve_si(truth, semi_major=a, model="md-elliptic")
+    start = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.03, 3e5)
+    return np.asarray(c["force"]), a, start
+
+
+@pytest.mark.parametrize("rtol", [None, 1e-30])
+def test_a_curve_of_many_rows_is_fitted_on_the_nodes(monkeypatch, capsys, rtol):
+    import dhfield.fit as fit_module
+
+    w, a, start = _many_rows(500)
+    monkeypatch.setattr(fit_module, "CURVE_NODES", 200)  # 500 distinct sizes > 2 x 200: the spline path
+    monkeypatch.setattr(fit_module, "PROGRESS_INTERVAL", 0.0)
+    if rtol is not None:  # no spline is this accurate: the fit is redone at every data point
+        monkeypatch.setattr(fit_module, "CURVE_INTERPOLATION_RTOL", rtol)
+    sizes = []
+    real = fit_module._curve
+    monkeypatch.setattr(fit_module, "_curve", lambda p, s, m: (sizes.append(np.size(s)), real(p, s, m))[1])
+    res = fit_curve(w, a, start, progress=True)
+    assert res.success and res.not_identifiable == ()
+    # the truth of noise-free data; 200 nodes: the spline departs from the model by 1.2e-7 of the load range
+    assert res.work_of_adhesion == pytest.approx(0.05, rel=1e-6)
+    assert res.max_adhesive_stress == pytest.approx(1e5, rel=1e-6)
+    # every evaluation at the 200 nodes (the check too: 200 data sizes); redone: at the 500 data sizes
+    assert set(sizes) == ({200} if rtol is None else {200, 500}) and sizes[0] == 200
+    err = capsys.readouterr().err.splitlines()
+    assert err and all(line.startswith("dhfield: fitting 500 points: ") for line in err), err
+    assert any("checking the interpolated model" in line for line in err)

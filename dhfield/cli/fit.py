@@ -162,8 +162,11 @@ def run(args) -> int:
         data = read_curve_data(args.data, params)
         stress = args.adhesive_stress if args.adhesive_stress is not None else \
             params.max_adhesive_stress / params.mu  # mu = 1 at the starting dgamma (Eq. 35)
+        import sys
+
+        progress = sys.stderr.isatty() or data["force"].size >= PROGRESS_POINTS
         res = fit.fit_curve(data["force"], data["semi_major"], params, approach=data.get("approach"),
-                            model=args.model, initial=(params.work_of_adhesion, stress))
+                            model=args.model, initial=(params.work_of_adhesion, stress), progress=progress)
         rec = _hide_not_identifiable(res.as_record())
         print_warning(rec)
         if args.plot is not None:
@@ -190,6 +193,9 @@ def run(args) -> int:
     return 0
 
 
+#: Rows of a ``--data`` file from which a fit reports its progress on stderr even when stderr is not a
+#: terminal (a line every :data:`dhfield.fit.PROGRESS_INTERVAL` seconds; nothing for a faster fit).
+PROGRESS_POINTS = 10_000
 #: Exit status of a ``--data`` fit that is flagged (``success`` false: a parameter not identifiable,
 #: or the least squares did not converge); the result is still printed, as ``dhfield solve`` does
 #: with its exit status 3 (:data:`dhfield.cli.solve.EXIT_UNCONVERGED`).
