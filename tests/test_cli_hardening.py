@@ -233,6 +233,7 @@ def test_bem_commands_use_the_machine_unless_told(monkeypatch):
     from dhfield.cli._common import CLI_DEFAULT_MAX_THREADS, command_threads
 
     monkeypatch.delenv("DHFIELD_THREADS", raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.0, 0.0, 0.0))  # an idle machine (issue 42: load counts)
     assert default_threads() == 1
     assert command_threads(3) == 3
     cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)

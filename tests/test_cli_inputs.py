@@ -96,3 +96,40 @@ def test_a_fit_that_cannot_identify_sigma0_is_flagged(capsys, jkr_side_curve):
     assert code == EXIT_UNCONVERGED and rec["success"] is False
     assert rec["max_adhesive_stress"] is None and rec["mu"] is None and rec["not_identifiable"] == ["max_adhesive_stress"]
     assert rec["work_of_adhesion"] == pytest.approx(0.05, rel=1e-6)
+
+
+# ------------------------------------------------------------------ finding 7: threads from the free cores
+@pytest.mark.parametrize("cpus, load, threads", [
+    (2, 0.0, 2),     # idle: every core
+    (2, 2.4, 1),     # 2 cores already busy: one thread, not two that compete with them
+    (2, 6.5, 1),     # overloaded: still at least one
+    (8, 2.6, 4),     # 8 - 3 = 5 free, capped at CLI_DEFAULT_MAX_THREADS = 4
+    (8, 5.2, 3),
+    (1, float("nan"), 1),
+])
+def test_bem_commands_take_threads_from_the_free_cores(monkeypatch, cpus, load, threads):
+    import os
+
+    from dhfield.bem.operator import free_cpu_count
+    from dhfield.cli._common import command_threads
+
+    monkeypatch.delenv("DHFIELD_THREADS", raising=False)
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cpus)), raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    assert command_threads() == threads
+    assert free_cpu_count() == max(1, cpus - (round(load) if load == load else 0))
+    monkeypatch.setenv("DHFIELD_THREADS", "2")  # the override stays
+    assert command_threads() == 2 and command_threads(3) == 3
+
+
+def test_free_cores_without_a_load_average(monkeypatch):
+    import os
+
+    from dhfield.bem.operator import free_cpu_count
+
+    def unavailable():
+        raise OSError("no load average")
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1, 2}, raising=False)
+    monkeypatch.setattr(os, "getloadavg", unavailable)
+    assert free_cpu_count() == 3

@@ -103,6 +103,7 @@ __all__ = [
     "max_threads",
     "check_threads",
     "default_threads",
+    "free_cpu_count",
 ]
 
 #: Smallest number of cells per axis accepted by :class:`Grid`.
@@ -339,6 +340,30 @@ def max_threads() -> int:
         when unknown) [-].
     """
     return THREADS_PER_CPU * (os.cpu_count() or 1)
+
+
+def free_cpu_count() -> int:
+    """Return the number of CPUs this process may use that other work is not already using.
+
+    Returns
+    -------
+    int
+        ``cpus - round(load)``, at least 1, where ``cpus`` is the number of CPUs this process
+        may run on (``os.sched_getaffinity``, else ``os.cpu_count()``) and ``load`` the
+        one-minute load average (``os.getloadavg``; 0 where unknown) [-].  A busy machine
+        thus gets fewer FFTW threads: on 2 cores already running 2 processes, threads of
+        a new one only compete with them.
+    """
+    try:
+        cpus = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # not on Linux
+        cpus = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # not on Unix, or unavailable
+        load = 0.0
+    busy = round(load) if math.isfinite(load) and load > 0.0 else 0
+    return max(1, cpus - busy)
 
 
 def check_threads(value, name: str = "threads") -> int:

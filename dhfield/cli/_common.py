@@ -262,25 +262,23 @@ CLI_DEFAULT_MAX_THREADS = 4
 
 def command_threads(requested=None) -> int:
     """FFTW threads of a BEM command: ``--threads``, else ``$DHFIELD_THREADS``, else the CPUs this process
-    may use (at most :data:`CLI_DEFAULT_MAX_THREADS`).
+    may use that other work is not using (:func:`dhfield.bem.operator.free_cpu_count`: the CPUs less the
+    one-minute load average, at least 1), at most :data:`CLI_DEFAULT_MAX_THREADS`.
 
     The library's own default stays 1 thread (:func:`dhfield.bem.operator.default_threads`: results
     reproducible bit for bit from one machine to another); a command run by a person uses the machine.
     Measured: ``dhfield solve --beta0 0.4826 --mu 10`` on 2 cores took 0.84x the wall time with 2 threads.
+    Threads beyond the free cores only compete with the work already running.
     """
     import os
 
-    from ..bem import default_threads
+    from ..bem.operator import default_threads, free_cpu_count
 
     if requested is not None:
         return int(requested)
     if os.environ.get("DHFIELD_THREADS", "").strip():
         return default_threads()
-    try:
-        cpus = len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # not on Linux
-        cpus = os.cpu_count() or 1
-    return max(1, min(cpus, CLI_DEFAULT_MAX_THREADS))
+    return max(1, min(free_cpu_count(), CLI_DEFAULT_MAX_THREADS))
 
 
 def thread_count(text: str) -> int:
