@@ -582,7 +582,7 @@ def standard_maps(ds, out_dir, *, reference=None, stem="sweep", si=None) -> list
     Panels of one figure show the same quantity on one colour scale (one colour bar);
     the error maps are ``model/ref − 1`` [%] against :func:`default_reference`.
     """
-    from .io import atomic_path, validate_output_path
+    from .io import atomic_files, atomic_path, validate_output_path
 
     if not hasattr(ds, "data_vars"):
         from .io import read_netcdf
@@ -610,7 +610,8 @@ def standard_maps(ds, out_dir, *, reference=None, stem="sweep", si=None) -> list
         validate_output_path(p, None, "out")
     rendered = [_render(fig) for fig in _figures(ds, models, ref, si)]
     data = [r[fmt] for r in rendered for fmt in FORMATS]
-    for p, blob in zip(paths, data):
-        with atomic_path(p) as tmp:
-            tmp.write_bytes(blob)
+    with atomic_files():   # every map as one set: all moved into place, or none (an interrupt keeps the old)
+        for p, blob in zip(paths, data):
+            with atomic_path(p) as tmp:
+                tmp.write_bytes(blob)
     return paths

@@ -159,3 +159,32 @@ def test_string_w_star_and_duplicate_models_are_clean_errors(tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "distinct" in err and "jkr" in err
     assert not list(tmp_path.glob("*.png"))
+
+
+def test_plot_writes_its_maps_as_one_set_under_sigint(sweep, tmp_path, monkeypatch):
+    """Issue 42 finding 9: files written together are moved into place together; a signal between two
+    renames waits for the set (before, the maps of one run were left beside those of the previous one)."""
+    import os
+    import signal
+
+    from dhfield import io as dio
+
+    assert main(["plot", str(sweep.path), "--out", str(tmp_path), "--reference", "jkr"]) == 0
+    old = {p: p.read_bytes() for p in tmp_path.iterdir()}
+    for p in old:   # mark every file, so that old and new tell apart
+        p.write_bytes(b"old")
+    real, calls = os.replace, []
+
+    def replace_then_sigint(src, dst):
+        real(src, dst)
+        calls.append(dst)
+        if len(calls) == 1:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    monkeypatch.setattr(dio.os, "replace", replace_then_sigint)
+    with pytest.raises(KeyboardInterrupt):
+        plotting.standard_maps(sweep.path, tmp_path, reference="jkr", stem=sweep.path.stem)
+    monkeypatch.undo()
+    states = {p.name: p.read_bytes() == b"old" for p in old}
+    assert len(set(states.values())) == 1, states
+    assert not list(tmp_path.glob(".*.part"))
