@@ -27,8 +27,9 @@ itself); ``tests/test_layout.py`` checks this against the import statements::
     comparison   jkr dmt dh_circular maugis_dugdale        JKR, DMT, GJ98, MD, elliptical foundations
                  jkr_elliptic jkr_elliptic_energy          JKR, the MD-to-JKR transition
                  elliptic_transition
-    front        compare validity dimensional compliance   model registry, validity, SI   the three above
-                 fit adhesion_map                          front end, fitting
+    front        compare validity model_error              model registry, validity,      the three above
+                 _truth_table dimensional compliance fit   error against the BEM truth,
+                 adhesion_map                              SI front end, fitting
     bem          bem/                                      DC-FFT boundary elements:      foundations (+ one
                                                            operator, laws, solver, paths, lazy forward of
                                                            pull-off                       adhesive_start)

@@ -137,14 +137,15 @@ from . import model as paper_model
 from ._validation import check_contact_size_star, check_count, check_grid_point
 from .geometry import sin_skew_angle
 from .model import DEFAULT_A_STAR, MAX_CURVE_POINTS
-from .records import broadcast_field, load_curve_record, pull_off_record
-from .schema import LOAD_CURVE_KEYS
+from .model_error import departure_warning as _disagreement, with_model_error
+from .records import PullOff, broadcast_field, load_curve_record, pull_off_record
+from .schema import LOAD_CURVE_KEYS, PULL_OFF_KEYS, PULL_OFF_TRUST_KEYS
 
 from .validity import (JKR_PROXY_MU, VALIDITY_RANGES, WARNING_THRESHOLD, closure_departure, departure_warning,
                        join_warnings, validity_message, validity_table, warn_record)
 
 __all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL", "RECOMMENDED_MODEL",
-           "PAPER_MODEL", "compare",
+           "PAPER_MODEL", "ABSENT_KEYS", "compare", "departure_from_recommended",
            "load_curve", "load_curve_at_load", "pull_off",
            # the validity policy, from dhfield.validity
            "WARNING_THRESHOLD", "JKR_PROXY_MU", "VALIDITY_RANGES", "closure_departure", "validity_message",
@@ -195,6 +196,25 @@ MODEL_NAMES = tuple(MODELS)
 CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
 
 
+#: name -> the keys of :data:`dhfield.schema.PULL_OFF_KEYS` that are NaN in every pull-off of the model (it
+#: has no such quantity: no adhesive zone, no double-Hertz factor ``v``); ``dhfield pulloff`` leaves them
+#: out of its text output (with their SI keys).  ``tests/test_compare_trust.py`` checks the table against
+#: the models' records.
+ABSENT_KEYS = {
+    "md-elliptic": ("c_star", "d_star", "v", "adhesive_ellipticity"),
+    "dh-elliptic": (),
+    "dh-elliptic-two-axis": ("v",),
+    "dh-elliptic-ray-average": ("v",),
+    "dh-elliptic-jkr-beta": (),
+    "dh-circular": (),
+    "jkr": ("c_star", "d_star", "v", "adhesive_ellipticity"),
+    "dmt": ("c_star", "d_star", "v", "adhesive_ellipticity"),
+    "md": ("v",),
+    "jkr-elliptic": ("c_star", "d_star", "v", "adhesive_ellipticity"),
+    "jkr-elliptic-energy": ("c_star", "d_star", "v", "adhesive_ellipticity"),
+}
+
+
 def _warned(rec, warning=""):
     """``rec`` with its validity warning (:mod:`dhfield.validity`) joined to ``warning``."""
     return rec.replace(warning=broadcast_field(join_warnings(warning, validity_message(rec.model, rec.mu, rec.beta0)),
@@ -208,7 +228,47 @@ def _pull_off(name, beta0, mu, control, *, check_closure=True, reference=None):
     if name == "dh-elliptic" and check_closure:
         # its departure from the recommended model (reference: its W* where the caller has it)
         warning = departure_warning(rec.W_star, mu, beta0, control, reference)
-    return _warned(rec, warning)
+    return with_model_error(_warned(rec, warning))
+
+
+def _failed(name, beta0, mu, control, exc):
+    """The NaN record of a model that refused (beta0, mu) or failed to converge there, saying why."""
+    shape = np.broadcast_shapes(np.shape(beta0), np.shape(mu))
+    nan = np.full(shape, _NAN)
+    st = {"W_star": nan, "a_star": nan, "b_star": nan, "c_star": nan, "delta_star": nan, "ellipticity": nan,
+          "at_zero_contact": np.zeros(shape, bool)}
+    circle = name in CIRCULAR_MODEL_NAMES
+    return with_model_error(_warned(pull_off_record(name, beta0, mu, st, control=control,
+                                                    sin_skew=1.0 if circle else sin_skew_angle(beta0),
+                                                    geometry="circle" if circle else "ellipse"),
+                                    f"{name} failed: {exc}"))
+
+
+def _pull_off_pointwise(name, beta0, mu, control, **kwargs):
+    """Pull-off of a model over arrays, point by point: NaN and the reason where it refuses a point."""
+    b, m = np.broadcast_arrays(beta0, mu)
+    recs = []
+    for bi, mi in zip(b.ravel(), m.ravel()):
+        try:
+            recs.append(_pull_off(name, bi, mi, control, **kwargs))
+        except (ValueError, RuntimeError) as exc:
+            recs.append(_failed(name, bi, mi, control, exc))
+    text = {"model", "control", "geometry"}
+    dtypes = {"warning": object, "at_zero_contact": bool, "bem_verified": bool}
+    return PullOff(**{k: recs[0][k] if k in text else
+                      np.array([r[k] for r in recs], dtype=dtypes.get(k, float)).reshape(b.shape)
+                      for k in PULL_OFF_KEYS + PULL_OFF_TRUST_KEYS})
+
+
+def _pull_off_guarded(name, beta0, mu, control, **kwargs):
+    """:func:`_pull_off`; where the model refuses (part of) the inputs, NaN and the reason at those points."""
+    try:
+        return _pull_off(name, beta0, mu, control, **kwargs)
+    except (ValueError, RuntimeError) as exc:
+        if np.broadcast(beta0, mu).ndim == 0:
+            return _failed(name, beta0, mu, control, exc)
+        return _pull_off_pointwise(name, beta0, mu, control, **{k: v for k, v in kwargs.items()
+                                                                  if k != "reference"})
 
 
 def _check_model(model):
@@ -236,9 +296,20 @@ def pull_off(model=DEFAULT_MODEL, *, beta0, mu, control="load", check_closure=Tr
     -------
     dhfield.records.PullOff
         The record of every model: the keys of :data:`dhfield.schema.PULL_OFF_KEYS`,
-        in that order, as attributes or a mapping; NaN where a quantity does not apply
-        (module docstring).  Arrays broadcast over ``mu`` and ``beta0``; scalars in
-        give scalars out.
+        in that order, then the trust group :data:`dhfield.schema.PULL_OFF_TRUST_KEYS`
+        (``model_error``, the estimated relative error of W* against the BEM ground
+        truth, and ``bem_verified``; :mod:`dhfield.model_error`), as attributes or a
+        mapping; NaN where a quantity does not apply (module docstring).  Arrays
+        broadcast over ``mu`` and ``beta0``; scalars in give scalars out.  Over arrays,
+        a point the model refuses (a narrower domain of its own, such as the closures'
+        beta0 >= 0.3) or fails to converge at gets NaN values and the reason in
+        ``warning``, and the other points their answers.
+
+    Raises
+    ------
+    ValueError
+        For invalid ``mu``, ``beta0`` or ``control`` (every model's domain), and for a
+        scalar point the model refuses.
 
     Other Parameters
     ----------------
@@ -261,7 +332,10 @@ def pull_off(model=DEFAULT_MODEL, *, beta0, mu, control="load", check_closure=Tr
     """
     _check_model(model)
     mu, beta0 = _check(mu, beta0, control)
-    rec = _pull_off(model, beta0, mu, control, check_closure=check_closure)
+    if np.broadcast(beta0, mu).ndim == 0:
+        rec = _pull_off(model, beta0, mu, control, check_closure=check_closure)
+    else:
+        rec = _pull_off_guarded(model, beta0, mu, control, check_closure=check_closure)
     if warn:
         warn_record(rec, stacklevel=2)
     return rec
@@ -291,32 +365,25 @@ def compare(*, beta0, mu, control="load", models=None, check_closure=True):
     Returns
     -------
     dict
-        Model name -> record (see :func:`pull_off`).  The recommended model is
-        evaluated once and also serves the warning of ``dh-elliptic``.  A model that
-        refuses the inputs (a narrower domain of its own) or fails to converge
-        gets NaN values and says why in ``warning``; invalid ``mu``, ``beta0`` or
-        ``control`` raise ValueError as in :func:`pull_off`.
+        Model name -> record (see :func:`pull_off`), with the trust group.  The
+        recommended model is evaluated once and also serves the warning of
+        ``dh-elliptic``.  A model that refuses the inputs (a narrower domain of its
+        own) or fails to converge gets NaN values and says why in ``warning`` (point
+        by point over arrays); invalid ``mu``, ``beta0`` or ``control`` raise
+        ValueError as in :func:`pull_off`.  Where the recommended model is among
+        ``models`` and answers, every other model whose W* departs from it by more than
+        :data:`WARNING_THRESHOLD` says so in ``warning``
+        (:func:`dhfield.model_error.departure_warning`).
     """
     names = MODEL_NAMES if models is None else tuple(_check_model(m) for m in models)
     mu, beta0 = _check(mu, beta0, control)  # bad input is an error for every model
 
-    def guarded(name, func):
-        # a model that refuses these inputs (a narrower domain of its own) or fails to converge gets a
-        # NaN record that says why, instead of taking the other models down with it
-        try:
-            return func()
-        except (ValueError, RuntimeError) as exc:
-            nan = np.full(mu.shape, _NAN)
-            st = {"W_star": nan, "a_star": nan, "c_star": nan, "delta_star": nan}
-            circle = name in CIRCULAR_MODEL_NAMES
-            return _warned(pull_off_record(name, beta0, mu, st, control=control,
-                                           sin_skew=1.0 if circle else sin_skew_angle(beta0),
-                                           geometry="circle" if circle else "ellipse"), f"{name} failed: {exc}")
-
+    # a model that refuses these inputs (a narrower domain of its own) or fails to converge gets a NaN record
+    # that says why (point by point over arrays), instead of taking the other models down with it
     out = {}
     reference = shown = None
     if RECOMMENDED_MODEL in names:
-        shown = guarded(RECOMMENDED_MODEL, lambda: _pull_off(RECOMMENDED_MODEL, beta0, mu, control))
+        shown = _pull_off_guarded(RECOMMENDED_MODEL, beta0, mu, control)
         reference = None if np.all(np.isnan(shown.W_star)) else shown.W_star
     for name in names:
         if name == "dh-elliptic":
@@ -324,8 +391,37 @@ def compare(*, beta0, mu, control="load", models=None, check_closure=True):
         elif name == RECOMMENDED_MODEL:
             out[name] = shown
         else:
-            out[name] = guarded(name, lambda name=name: _pull_off(name, beta0, mu, control))
+            rec = _pull_off_guarded(name, beta0, mu, control)
+            if reference is not None:  # its departure from the recommended model, where above the threshold
+                rec = rec.replace(warning=broadcast_field(
+                    join_warnings(rec.warning, _disagreement(name, rec.W_star, reference, rec.model_error)),
+                    np.shape(rec.W_star), object))
+            out[name] = rec
     return out
+
+
+def departure_from_recommended(records):
+    """Relative departure of each model's pull-off from the recommended model's.
+
+    Parameters
+    ----------
+    records : dict
+        Model name -> pull-off record, as from :func:`compare`; must hold
+        :data:`RECOMMENDED_MODEL`.
+
+    Returns
+    -------
+    dict
+        Model name -> W*_model / W*_recommended - 1 [-] (0 for the recommended model;
+        NaN where either gave no answer).  Positive: more adhesion than the recommended
+        model.
+    """
+    if RECOMMENDED_MODEL not in records:
+        raise ValueError(f"records must hold the recommended model {RECOMMENDED_MODEL}; got {', '.join(records)}")
+    ref = np.asarray(records[RECOMMENDED_MODEL]["W_star"], float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = {name: np.asarray(r["W_star"], float) / ref - 1.0 for name, r in records.items()}
+    return {name: v[()] if v.ndim == 0 else v for name, v in out.items()}
 
 
 # --------------------------------------------------------------------------- load curves

@@ -8,7 +8,7 @@ import pytest
 from dhfield import compare
 from dhfield import dimensional as dim
 from dhfield.cli import main
-from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_KEYS, PULL_OFF_SI_KEYS
+from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_KEYS, PULL_OFF_SI_KEYS, PULL_OFF_TRUST_KEYS
 
 #: issue 10's worked example: PDMS cylinders (E = 2 MPa, nu = 0.5, R = 5 mm) crossed at 60 deg,
 #: dgamma = 40 mJ/m^2, sigma0 = 0.5 MPa
@@ -39,7 +39,7 @@ def test_pdms_one_command_equals_api(capsys):
     for k in ("semi_major", "semi_minor", "adhesive_semi_major", "adhesive_semi_minor", "approach",
               "beta0", "mu", "sin_skew"):
         assert rec[k] == pytest.approx(float(api[k]), rel=TOL_CLI_API), k
-    assert list(rec)[:-1] == list(PULL_OFF_SI_KEYS) and list(rec)[-1] == "units"
+    assert list(rec)[:-1] == list(PULL_OFF_SI_KEYS + PULL_OFF_TRUST_KEYS) and list(rec)[-1] == "units"
     assert rec["units"]["force"] == "N" and rec["units"]["semi_major"] == "m"
     assert rec["sin_skew"] == pytest.approx(math.sin(math.radians(60)), rel=1e-12)
     # the paper's model warns in one line on stderr (against the recommended model since issue 20)
@@ -66,12 +66,12 @@ def test_every_model_same_keys(capsys):
     keys = set()
     for name in compare.MODEL_NAMES:
         rec, _ = _json(capsys, ["pulloff", "--beta0", "0.9", "--mu", "1", "--model", name, "--json"])
-        assert list(rec) == list(PULL_OFF_KEYS) + ["units"], name
+        assert list(rec) == list(PULL_OFF_KEYS + PULL_OFF_TRUST_KEYS) + ["units"], name
         keys.add(tuple(rec))
     assert len(keys) == 1
     for name in ("jkr", "md", "jkr-elliptic"):  # SI: the same, with the SI keys
         rec, _ = _json(capsys, ["pulloff", *PDMS_ARGS, "--model", name, "--json"])
-        assert list(rec) == list(PULL_OFF_SI_KEYS) + ["units"], name
+        assert list(rec) == list(PULL_OFF_SI_KEYS + PULL_OFF_TRUST_KEYS) + ["units"], name
 
 
 def test_geometry_flags_agree(capsys):
@@ -152,7 +152,7 @@ def test_compare_si_equals_pulloff_si(capsys):
     """`compare` with physical inputs: every model in SI, the same record as `pulloff --model`."""
     payload, err = _json(capsys, ["compare", *PDMS_ARGS, "--json"])
     assert [r["model"] for r in payload["models"]] == list(compare.MODEL_NAMES)
-    assert all(list(r) == list(PULL_OFF_SI_KEYS) for r in payload["models"])
+    assert all(list(r) == list(PULL_OFF_SI_KEYS + PULL_OFF_TRUST_KEYS) for r in payload["models"])
     assert payload["units"]["force"] == "N"
     assert len([ln for ln in err.splitlines() if ln]) == 2  # dh-elliptic's line, then one for the others
     by_name = {r["model"]: r for r in payload["models"]}
@@ -173,7 +173,8 @@ def test_compare_table_says_its_units(capsys, inputs, header):
     lines = out.splitlines()
     assert rc == 0
     row = next(line for line in lines if line.startswith("units"))
-    assert row.split()[1:] == " ".join(header).split()     # one label per column, in column order
+    # one label per column, in column order; then the departure from the recommended model and the error, in %
+    assert row.split()[1:] == " ".join(header).split() + ["[%]", "[%]"]
     assert lines.index(row) == next(i for i, line in enumerate(lines) if line.startswith("model")) + 1
     assert ("c_r = (R^2 dgamma/E*)^(1/3)" in out) == (inputs[0] == "--beta0")
 

@@ -7,7 +7,7 @@ from numpy.testing import assert_allclose
 
 from dhfield import compare, jkr_elliptic
 from dhfield.geometry import sin_skew_angle
-from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
+from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS, PULL_OFF_TRUST_KEYS
 
 KEYS = {"model", "beta0", "mu", "W_star", "a_star", "c_star", "v", "delta_star"}
 #: issue 3: circular DH vs the elliptical DH core at beta0 = 1
@@ -41,7 +41,7 @@ def _record(name, control="load"):
 @pytest.mark.parametrize("control", ["load", "displacement"])
 def test_every_model_returns_a_record(name, control):
     rec = _record(name, control)
-    assert tuple(rec) == PULL_OFF_KEYS  # same keys, same order, every model
+    assert tuple(rec) == PULL_OFF_KEYS + PULL_OFF_TRUST_KEYS  # same keys, same order, every model
     assert KEYS <= set(rec)
     assert rec["model"] == name and rec["control"] == control
     assert np.isfinite(rec["W_star"]) and rec["W_star"] < 0
@@ -126,7 +126,7 @@ def test_one_record_type_for_every_model():
 
     for name in compare.MODELS:
         rec = compare.pull_off(name, mu=1.0, beta0=0.9, check_closure=False)
-        assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS and rec.model == name
+        assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS + PULL_OFF_TRUST_KEYS and rec.model == name
         assert all(rec[k] is getattr(rec, k) for k in PULL_OFF_KEYS)
 
 
@@ -290,7 +290,7 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
     monkeypatch.setitem(compare.MODELS, "md-elliptic", refuse)
     res = compare.compare(mu=1.0, beta0=0.9, models=["dh-elliptic", "md-elliptic", "jkr"])
     assert np.isnan(res["md-elliptic"]["W_star"]) and "failed" in res["md-elliptic"]["warning"]
-    assert tuple(res["md-elliptic"]) == PULL_OFF_KEYS
+    assert tuple(res["md-elliptic"]) == PULL_OFF_KEYS + PULL_OFF_TRUST_KEYS
     assert "could not be checked" in res["dh-elliptic"]["warning"] and np.isfinite(res["dh-elliptic"]["W_star"])
     assert res["jkr"]["W_star"] == -0.75
     with pytest.raises(ValueError, match="beta0"):

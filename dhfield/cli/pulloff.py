@@ -16,7 +16,9 @@ def add_parser(sub) -> None:
     p = sub.add_parser("pulloff", help="pull-off force of any model (nondimensional W* or SI newtons)",
                        description="Pull-off of one model.  Inputs: --beta0 and --mu (nondimensional, "
                        "Eqs. 32-35), or physical inputs in SI units (output then in N and m).  Every model "
-                       "gives the same keys; n/a values are null (JSON) or nan.",
+                       "gives the same keys in --json, null where a value is n/a; the text output leaves out "
+                       "the quantities the model does not have (e.g. the adhesive zone of JKR) and prints nan "
+                       "where the model has the quantity but gave no value.",
                        epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
@@ -51,6 +53,30 @@ def pull_off_record(args) -> dict:
     return plain_record(pull_off_force(params, model=args.model, control=args.control))
 
 
+#: SI key of each nondimensional quantity that a model may not have (:data:`dhfield.compare.ABSENT_KEYS`).
+_SI_OF = {"c_star": "adhesive_semi_major", "d_star": "adhesive_semi_minor"}
+
+
+def absent_keys(model) -> frozenset:
+    """The keys the text output of a model's pull-off leaves out: NaN in every pull-off of that model.
+
+    Parameters
+    ----------
+    model : str
+        A name of :data:`dhfield.compare.MODEL_NAMES`.
+
+    Returns
+    -------
+    frozenset of str
+        :data:`dhfield.compare.ABSENT_KEYS` of the model and their SI keys (the adhesive zone's
+        semi-axes in m); empty for an unknown name.  ``--json`` keeps every key (null).
+    """
+    from ..compare import ABSENT_KEYS
+
+    keys = ABSENT_KEYS.get(model, ())
+    return frozenset(keys) | {_SI_OF[k] for k in keys if k in _SI_OF}
+
+
 def run(args) -> int:
     from ..schema import units
 
@@ -61,8 +87,11 @@ def run(args) -> int:
     if args.json:
         print_json({**rec, "units": unit})
     else:
+        absent = absent_keys(rec["model"])
         for k, v in rec.items():  # 10 significant digits, as curve, cycle and fit (no 0.49999999999999994)
             if k == "warning" and not v:  # an empty warning is not printed
+                continue
+            if k in absent:
                 continue
             text = f"{v:.10g}" if isinstance(v, float) else str(v)
             print(f"{k:22s} {text:24s} {'' if unit[k] == '1' else unit[k]}".rstrip())

@@ -2,7 +2,9 @@
 
 One record per model (the keys of :data:`dhfield.schema.PULL_OFF_KEYS`) on the
 dimension ``model`` (string labels).  Numeric quantities carry the schema's
-units and names; ``geometry`` and ``at_zero_contact`` are CF flag variables;
+units and names; ``geometry``, ``at_zero_contact`` and ``bem_verified`` are CF flag variables;
+``model_error`` is each model's estimated relative error against the BEM ground truth
+(:mod:`dhfield.model_error`, where the records carry it);
 ``warning`` is a string; the scalar inputs (``beta0``, ``mu``, ``control``) are
 global ``param_*`` attributes.
 """
@@ -54,6 +56,10 @@ def comparison_dataset(records: dict, **extra_attrs) -> xr.Dataset:
         data["at_zero_contact"] = flag_variable("at_zero_contact", "model",
                                                 [int(bool(records[n]["at_zero_contact"])) for n in names],
                                                 ("false", "true"))
+    if "model_error" in first:  # the trust group (dhfield.model_error)
+        data["model_error"] = variable("model_error", "model", [float(records[n]["model_error"]) for n in names])
+        data["bem_verified"] = flag_variable("bem_verified", "model",
+                                             [int(bool(records[n]["bem_verified"])) for n in names], ("false", "true"))
     if "warning" in first:
         attrs = schema.attrs("warning")
         attrs.pop("units", None)
