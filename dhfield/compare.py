@@ -305,12 +305,6 @@ def pull_off(model=DEFAULT_MODEL, *, beta0, mu, control="load", check_closure=Tr
         beta0 >= 0.3) or fails to converge at gets NaN values and the reason in
         ``warning``, and the other points their answers.
 
-    Raises
-    ------
-    ValueError
-        For invalid ``mu``, ``beta0`` or ``control`` (every model's domain), and for a
-        scalar point the model refuses.
-
     Other Parameters
     ----------------
     check_closure : bool
@@ -324,6 +318,12 @@ def pull_off(model=DEFAULT_MODEL, *, beta0, mu, control="load", check_closure=Tr
         Also raise a non-empty ``warning`` as a Python warning,
         :class:`dhfield.validity.OutsideVerifiedDomainWarning` (one per call).  False leaves it
         in the record only (for callers that report it themselves).
+
+    Raises
+    ------
+    ValueError
+        For invalid ``mu``, ``beta0`` or ``control`` (every model's domain), and for a
+        scalar point the model refuses.
 
     Warns
     -----

@@ -68,8 +68,12 @@ def stored_case_error(model):
 
     Returns
     -------
-    beta0, mu, error : ndarray
-        The stored cases and e there [-] (NaN where the model refused the case).
+    beta0 : ndarray
+        Hertz ellipticity of each stored case [-].
+    mu : ndarray
+        Tabor parameter (Eq. 35) of each stored case [-].
+    error : ndarray
+        The error e at each stored case [-] (NaN where the model refused the case).
     """
     w = _model_values(model)
     with np.errstate(invalid="ignore"):

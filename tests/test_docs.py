@@ -45,7 +45,7 @@ STRICT = (
     "dhfield.jkr_elliptic", "dhfield.jkr_elliptic_energy", "dhfield.maugis_dugdale", "dhfield.model",
     "dhfield.periphery", "dhfield.plotting", "dhfield.pull_off_search", "dhfield.records", "dhfield.schema",
     "dhfield.sweep", "dhfield.sweep.config", "dhfield.sweep.engine", "dhfield.sweep.store",
-    "dhfield.sweep.tasks", "dhfield.transition", "dhfield.validity",
+    "dhfield.sweep.tasks", "dhfield.transition", "dhfield.validity", "dhfield.model_error",
 )
 
 #: Modules not yet held to zero (empty since the BEM solver, its operator and state and the
