@@ -538,8 +538,8 @@ def _pull_off_ufunc(mu, beta0, i_ell, i_mu, *, model, control, store_dir, finger
     store = CaseStore(store_dir, fingerprint)
     key = f"pull_off__{model}__{int(i_ell.flat[0]):05d}_{int(i_mu.flat[0]):05d}"
     coordinates = case_coordinates(model=model, control=control, beta0=beta0, mu=mu)
-    if store.is_done(key, coordinates):
-        ds = store.read(key)
+    ds = store.load(key, coordinates)
+    if ds is not None:
         return np.stack([ds[k].values for k in PULL_OFF_FIELDS], axis=-1)
     try:
         rec = pull_off_block(model, beta0=beta0, mu=mu, control=control)
@@ -615,8 +615,8 @@ def _run_cases(quantity, cases, store_dir, fingerprint, command=""):
     for key, params in cases:
         # the time allowed decides only whether a case is refused (not in the fingerprint either)
         coordinates = case_coordinates(quantity=quantity, **{k: v for k, v in params.items() if k != "max_seconds"})
-        if store.is_done(key, coordinates):
-            ds = store.read(key)
+        ds = store.load(key, coordinates)
+        if ds is not None:
             # A field added after the case was stored reads as NaN (the case is not recomputed).
             rec = {k: ds[k].values if k in ds else np.nan for k in fields}
             rec.update({k: str(ds.attrs.get(f"case_{k}", "")) for k in text_fields})

@@ -319,6 +319,41 @@ class CaseStore:
                     return read_netcdf(p)
         return None
 
+    def load(self, key: str, coordinates: str | None = None):
+        """The Dataset of finished case ``key`` if it belongs to this sweep (:meth:`matches`), else None.
+
+        One read of the file: :meth:`is_done` and :meth:`read` together, for a case about to be reused.
+
+        Parameters
+        ----------
+        key : str
+            Case key (a file-name-safe string made by the sweep engine).
+        coordinates : str, optional
+            :func:`case_coordinates` of the case (compared with the stored ones when given).
+
+        Returns
+        -------
+        xarray.Dataset or None
+            The stored case, or None if there is none of this sweep (it is then computed).
+        """
+        from ..io import read_netcdf
+
+        p = self.path(key)
+        try:
+            st = os.lstat(p)
+        except OSError:
+            return None
+        if not stat.S_ISREG(st.st_mode):
+            return None
+        try:
+            with _HDF5_LOCK:
+                ds = read_netcdf(p)
+        except ValueError:          # unreadable: not a case of this sweep, computed again
+            return None
+        attrs = {k: str(ds.attrs[k]) for k in (FINGERPRINT_ATTR, KEY_ATTR, COORDINATES_ATTR) if k in ds.attrs}
+        self._matched[p] = ((st.st_mtime_ns, st.st_size), attrs)
+        return ds if self.matches(key, coordinates) else None
+
     def keys(self) -> list[str]:
         """The keys of the finished cases of this sweep (:meth:`matches`).
 
