@@ -19,7 +19,12 @@ grid-converged BEM pull-off, in proportion, at that case.  At a point (beta0, mu
 box, :func:`model_error` is the largest e over the bracketing stored cases: on each of the
 two stored beta0 lines that bracket beta0 (one where beta0 is stored), the stored cases
 nearest in mu at or below and at or above mu (up to four cases).  It is exact at the stored
-cases and an estimate, not a bound, in between.
+cases and an estimate, not a bound, in between: held out one at a time, a stored case's error
+is at most its neighbours' estimate at 37 of the 57 cases for ``md-elliptic`` (the estimate
+short by at most 0.93 percentage points) and at 30 of 45 to 48 of 57 for the other models,
+the median estimate 1.0-1.4 times the held-out error
+(``python -m verification.model_error_table --leave-one-out``; a held-out case on the edge
+of the box is then extrapolated from one side, which the estimate inside the box never is).
 
 :func:`dhfield.compare.compare` also flags every model whose W* departs from the
 recommended model's by more than :data:`dhfield.validity.WARNING_THRESHOLD` (2 %)
@@ -47,8 +52,6 @@ _BETA0 = np.asarray(_table.BETA0, float)
 _MU = np.asarray(_table.MU, float)
 _TRUTH = np.asarray(_table.W_STAR_TRUTH, float)
 _TRUTH_ERROR = np.asarray(_table.W_STAR_TRUTH_ERROR, float)
-#: The stored beta0 lines, ascending.
-_LINES = np.unique(_BETA0)
 
 #: (smallest, largest) beta0 of the stored BEM cases [-].
 VERIFIED_BETA0 = (float(_BETA0.min()), float(_BETA0.max()))
@@ -149,18 +152,23 @@ def model_error(model, beta0, mu, control="load"):
     return out[()] if out.ndim == 0 else out
 
 
-def _bracket_max(e, b, m):
-    """The largest e over the stored cases bracketing (b, m); NaN if the model refused any of them."""
-    lines = {_LINES[_LINES <= b].max(), _LINES[_LINES >= b].min()}
+def _bracket_max(e, b, m, cases_beta0=_BETA0, cases_mu=_MU):
+    """The largest e over the cases bracketing (b, m); NaN if the model refused any of them.
+
+    ``cases_beta0``, ``cases_mu``: the cases e belongs to (default the stored ones; the leave-one-out
+    check of ``python -m verification.model_error_table --leave-one-out`` passes fewer).
+    """
+    lines = np.unique(cases_beta0)
+    lines = {lines[lines <= b].max(), lines[lines >= b].min()}
     picked = []
     for line in lines:
-        on = np.flatnonzero(_BETA0 == line)
-        mus = _MU[on]
+        on = np.flatnonzero(cases_beta0 == line)
+        mus = cases_mu[on]
         below, above = on[mus <= m], on[mus >= m]
         if below.size:
-            picked.append(below[np.argmax(_MU[below])])
+            picked.append(below[np.argmax(cases_mu[below])])
         if above.size:
-            picked.append(above[np.argmin(_MU[above])])
+            picked.append(above[np.argmin(cases_mu[above])])
     values = e[picked]
     return float(values.max()) if values.size and np.all(np.isfinite(values)) else np.nan
 
