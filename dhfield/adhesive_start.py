@@ -55,7 +55,7 @@ from .records import PullOff
 from .bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
-           "plan_grid", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
+           "plan_grid", "analytic_pull_off", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
@@ -431,9 +431,12 @@ class GridPlan:
     max_seconds : float
         The time allowed [s].
     analytic_W_star : float
-        The best analytic value, :func:`dhfield.elliptic_transition.pull_off_nondimensional`
-        (GVG x the sphere's MD/JKR transition; within 0.44 % of the 42 stored BEM cases,
-        beta0 0.1-1, mu 0.1-5) [-].
+        The best analytic value of the route asked (``control``, ``machine_stiffness_star``):
+        :func:`dhfield.elliptic_transition.pull_off_nondimensional` (GVG x the sphere's MD/JKR
+        transition; load control within 0.44 % of the 42 stored BEM cases, beta0 0.1-1,
+        mu 0.1-5) under load or displacement control, and its jump out under the machine
+        spring (:func:`dhfield.compliance.pull_off_under_spring`, model
+        :data:`dhfield.compare.DEFAULT_MODEL`) [-].
     ny : int, optional
         Cells along y of the grid of ``n`` [-]; default ``n``.
     ny_needed : int, optional
@@ -444,6 +447,11 @@ class GridPlan:
         True when ``n_needed`` is planned on the domain of the predicted route
         (:func:`predicted_start`: only states near the pull-off are solved, so the domain
         holds GVG's pull-off zone instead of the zone at the start of unloading).
+    control : {'load', 'displacement', 'spring'}, default 'load'
+        The route ``analytic_W_star`` is the pull-off of.
+    machine_stiffness_star : float, optional
+        K* of the machine spring [-] (paper's units, :func:`dhfield.compliance.stiffness_star`),
+        with ``control='spring'``; None otherwise.
     """
 
     mu: float
@@ -459,6 +467,8 @@ class GridPlan:
     ny: int | None = None
     ny_needed: int | None = None
     predicted: bool = False
+    control: str = "load"
+    machine_stiffness_star: float | None = None
 
     def __post_init__(self):
         if self.ny is None:
@@ -514,12 +524,38 @@ class GridPlan:
         -------
         str
             The case, why it cannot be solved (:meth:`reason`), the N it needs with its
-            memory and time, and the analytic W* to use instead.
+            memory and time, and the analytic W* of the route asked to use instead (or that
+            there is none).
         """
         return (f"beta0={self.beta0:g}, mu={self.mu:g}: {self.reason() or 'can be solved'}; a resolved BEM "
                 f"needs n >= {self._needed()} (~{self.memory_bytes / 2**30:.2g} GiB, ~{self.seconds / 60:.0f} min "
-                f"estimated); use the analytic W* = {self.analytic_W_star:.4f} (elliptic_transition: GVG x the "
-                "sphere's MD/JKR transition) instead")
+                f"estimated); {self.advice()}")
+
+    def route(self) -> str:
+        """Name the route the plan is for.
+
+        Returns
+        -------
+        str
+            'load control', 'displacement control' or 'a machine spring K* = ...'.
+        """
+        if self.control == "spring":
+            return f"a machine spring K* = {self.machine_stiffness_star:.6g}"
+        return f"{self.control} control"
+
+    def advice(self) -> str:
+        """Say which analytic value to use instead of the BEM, for the route asked.
+
+        Returns
+        -------
+        str
+            The analytic W* of :attr:`analytic_W_star` and its model, named with the route; where
+            it is not finite, that no analytic value exists for that route.
+        """
+        if not math.isfinite(self.analytic_W_star):
+            return f"no analytic W* exists for {self.route()} at this case"
+        return (f"use the analytic W* = {self.analytic_W_star:.4f} under {self.route()} (elliptic_transition: "
+                "GVG x the sphere's MD/JKR transition) instead")
 
 
 class UnresolvableCaseError(RuntimeError):
@@ -555,7 +591,8 @@ class UnresolvableCaseError(RuntimeError):
 
 
 def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
-              max_seconds=DEFAULT_MAX_SECONDS, ny=None, predicted=None) -> GridPlan:
+              max_seconds=DEFAULT_MAX_SECONDS, ny=None, predicted=None, control="load",
+              machine_stiffness=None) -> GridPlan:
     """Plan the grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
 
     Parameters
@@ -579,12 +616,18 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
         Plan the automatic grid on the predicted route's domain (:func:`predicted_start`);
         default: for the Dugdale law at mu >= :data:`PREDICTED_MIN_MU` when ``n`` is not given
         (the load-control route :func:`adhesive_pull_off` then takes, :func:`takes_predicted_route`).
+    control : {'load', 'displacement', 'spring'}, default 'load'
+        The route whose analytic pull-off the plan names (:attr:`GridPlan.analytic_W_star`).
+    machine_stiffness : float, optional
+        K* >= 0 of the machine spring [-] (paper's units), required with ``control='spring'``
+        and refused otherwise.
 
     Returns
     -------
     GridPlan
         The case, ``n`` and ``n_needed``, the edge ratio of the grid of ``n``, the estimated
-        memory and time of the grid of ``n_needed``, the limits, and the analytic W*.
+        memory and time of the grid of ``n_needed``, the limits, and the analytic W* of the
+        route asked.
 
     Raises
     ------
@@ -609,11 +652,10 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
     ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS`` (measured constants; the solver
     works on the quadrant, which these include).
     """
-    from . import elliptic_transition
-
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
     max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
+    w_star = analytic_pull_off(beta0=beta0, mu=mu, control=control, machine_stiffness=machine_stiffness)
     if predicted is None:
         predicted = takes_predicted_route(beta0=beta0, mu=mu, n=n, law=law)
     predicted = bool(predicted)
@@ -655,9 +697,57 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
         n = check_cells(n)
         ny = n if ny is None else check_cells(ny, "ny")
     memory_bytes, seconds = pull_off_cost(n_needed, ny_needed)
-    w_star = float(elliptic_transition.pull_off_nondimensional(beta0, mu).W_star)
     return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n, ny), law_obj)),
-                    memory_bytes, seconds, memory_limit(), max_seconds, w_star, int(ny), int(ny_needed), predicted)
+                    memory_bytes, seconds, memory_limit(), max_seconds, w_star, int(ny), int(ny_needed), predicted,
+                    control, None if machine_stiffness is None else float(machine_stiffness))
+
+
+def analytic_pull_off(*, beta0, mu, control="load", machine_stiffness=None) -> float:
+    """The analytic W* to use where the BEM cannot answer, for the route asked [-].
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    control : {'load', 'displacement', 'spring'}, default 'load'
+        The route: the minimum of the load, the minimum of the approach, or the jump out
+        under a machine spring.
+    machine_stiffness : float, optional
+        K* >= 0 of the spring [-] (paper's units, :func:`dhfield.compliance.stiffness_star`);
+        required with ``control='spring'``, refused otherwise.
+
+    Returns
+    -------
+    float
+        :func:`dhfield.elliptic_transition.pull_off_nondimensional` under ``control`` (load or
+        displacement), or the jump out of that model's curve under the spring
+        (:func:`dhfield.compliance.pull_off_under_spring`); NaN where the model gives no finite
+        value (the plan then says no analytic value exists for the route).
+
+    Raises
+    ------
+    ValueError
+        If ``control`` is unknown, or ``machine_stiffness`` is missing or out of range for it.
+    """
+    from . import elliptic_transition
+
+    if control not in ("load", "displacement", "spring"):
+        raise ValueError(f"control must be one of ('load', 'displacement', 'spring') (loading mode); got {control!r}")
+    if (control == "spring") != (machine_stiffness is not None):
+        raise ValueError("machine_stiffness goes with control='spring' and only with it (K* of the machine "
+                         f"spring, paper's units); got control={control!r}, machine_stiffness={machine_stiffness!r}")
+    if control == "spring":
+        from .compare import DEFAULT_MODEL
+        from .compliance import check_machine_stiffness, pull_off_under_spring
+
+        k = float(check_machine_stiffness("machine_stiffness", machine_stiffness))
+        w = pull_off_under_spring(DEFAULT_MODEL, beta0=beta0, mu=mu, machine_stiffness=k)["W_star"]
+    else:
+        w = elliptic_transition.pull_off_nondimensional(beta0, mu, control=control).W_star
+    w = float(np.asarray(w, float))
+    return w if math.isfinite(w) else float("nan")
 
 
 @dataclass(frozen=True)
@@ -838,7 +928,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
     if n is None:
         coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
         predicted = takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control, search=search, nested=nested)
-        plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=predicted)
+        plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=predicted,
+                         control=control)
         if not plan.affordable:
             raise UnresolvableCaseError(plan)
         n = plan.n_needed
@@ -900,7 +991,39 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
         # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
         return _relaxed_pull_off(prob, options)
-    return solve_pull_off(prob, control=control, search=search, nested=nested, options=options)
+    res = solve_pull_off(prob, control=control, search=search, nested=nested, options=options)
+    if control == "displacement":
+        res = _ladder_checked(prob, res, n_steps=n_steps, margin=margin, options=options)
+    return res
+
+
+def _ladder_checked(prob, res, *, n_steps, margin, options) -> PullOff:
+    """The displacement-control pull-off ``res`` on ``prob`` with the grid's error from a coarser grid.
+
+    The same route on the first of :func:`dhfield.bem.pull_off.ladder_cells` (half, then three
+    quarters of the cells per axis) over the same domain whose edge ratio is at most
+    :data:`dhfield.bem.pull_off.LOCATE_MAX_EDGE_RATIO` (its states converge); its W* gives the
+    stated error (:func:`dhfield.bem.pull_off.route_error`).  Where there is no such grid, or its
+    pull-off is not converged, there is no estimate: the record is then unresolved (infinite ``W_star_error``).  An unresolved
+    ``res`` is returned as it is.
+    """
+    from .bem.pull_off import LOCATE_MAX_EDGE_RATIO, ladder_cells, pull_off_result
+
+    if not res.resolved:          # not an answer whatever its error: no grid half as fine to solve
+        return res
+    n, ny = prob.grid.nx, prob.grid.ny
+    w_c, n_c, elapsed = float("nan"), 0, 0.0
+    for n_c, ny_c in zip(ladder_cells(n), ladder_cells(ny)):
+        coarse = nondimensional_problem(mu=prob.mu, beta0=prob.beta0, n=n_c, law=prob.law.name, n_steps=n_steps,
+                                        margin=margin, ny=ny_c)
+        if edge_width_ratio(coarse.grid, coarse.law) <= LOCATE_MAX_EDGE_RATIO:
+            got = solve_pull_off(coarse, control="displacement", options=replace(options, progress=False))
+            elapsed = got.elapsed
+            if got.converged and np.isfinite(got.W_star):
+                w_c = float(got.W_star)
+            break
+    out = pull_off_result(prob, n, res.path, res.search, coarse=(w_c, n_c))
+    return replace(out, elapsed=res.elapsed + elapsed)
 
 
 #: Tolerance of the relaxed coarse states of :class:`RelaxedWarmStart` (warm starts only: their

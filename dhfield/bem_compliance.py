@@ -45,7 +45,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -59,6 +59,7 @@ from .pull_off_search import fitted_slopes, stable_minimum_index
 from .records import PullOff, broadcast_field
 
 __all__ = ["BemBranch", "BranchOptions", "bem_unloading_branch", "bem_pull_off_under_spring", "bem_loading_cycle",
+           "coarse_branch", "spring_pull_off",
            "BRANCH_STEPS", "BRANCH_WINDOW", "SPRING_NOTE"]
 
 #: Adhesive-force steps from the cold start (near the load-control pull-off) to zero force:
@@ -121,6 +122,10 @@ class BemBranch:
         The unconverged states (approach, residual, iterations, phase).
     half_width_x, half_width_y : float
         Domain half-widths [c_r].
+    edge_resolved : bool
+        The grid resolves the traction law's edge (``AdhesiveProblem.resolved``).
+    failed_forces : tuple of float
+        F_a of each state that did not converge (the holes in the samples).
     """
 
     mu: float
@@ -146,6 +151,8 @@ class BemBranch:
     failed_states: tuple = ()
     half_width_x: float = float("nan")
     half_width_y: float = float("nan")
+    edge_resolved: bool = True
+    failed_forces: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -255,6 +262,7 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
     df = f0 / steps
     samples = {f0: first}             # adhesive force -> converged state
     failures = 0
+    failed_forces = []
     scale = problem.sin_skew / (2.0 * math.pi)  # Eq. (34)
 
     def solve(force):
@@ -277,6 +285,7 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
             samples[force] = st
         else:
             failures += 1
+            failed_forces.append(float(force))
         return st
 
     def series(key):
@@ -340,7 +349,8 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
                      b_star=axes[:, 1], c_star=axes[:, 2], d_star=axes[:, 3],
                      iterations=int(sum(r["iterations"] for r in branch.records)),
                      residual=float(max(r["residual"] for r in branch.records)), failed_states=failed,
-                     half_width_x=0.5 * g.nx * g.dx, half_width_y=0.5 * g.ny * g.dy)
+                     half_width_x=0.5 * g.nx * g.dx, half_width_y=0.5 * g.ny * g.dy,
+                     edge_resolved=bool(prob.resolved), failed_forces=tuple(failed_forces))
 
 
 def bem_pull_off_under_spring(branch, machine_stiffness) -> PullOff:
@@ -389,6 +399,122 @@ def bem_pull_off_under_spring(branch, machine_stiffness) -> PullOff:
     return _spring_record(branch, jump, float(soft["W_star"]))
 
 
+def coarse_branch(branch, *, threads=None, options=None):
+    """The same unloading branch on a coarser grid, for the grid's error of a spring pull-off.
+
+    Parameters
+    ----------
+    branch : BemBranch
+        From :func:`bem_unloading_branch` (its default domain margin).
+    threads : int, optional
+        FFT threads.
+    options : BranchOptions, optional
+        As for ``branch`` (default ``BranchOptions()``).
+
+    Returns
+    -------
+    BemBranch or None
+        :func:`bem_unloading_branch` over the same domain on the first of
+        :func:`dhfield.bem.pull_off.ladder_cells` (half, then three quarters of the cells per axis)
+        whose edge ratio is at most :data:`dhfield.bem.pull_off.LOCATE_MAX_EDGE_RATIO` (its states
+        converge); None where there is none, or it has no converged state
+        to start from (the spring pull-off then has no error estimate: :func:`spring_pull_off`).
+        None also when ``branch``'s own grid does not resolve the law's edge (its pull-off is not an
+        answer whatever the error).
+    """
+    from .adhesive_start import nondimensional_problem
+    from .bem.laws import law_from_name
+    from .bem.pull_off import LOCATE_MAX_EDGE_RATIO, ladder_cells
+    from .bem.solver import edge_width_ratio
+
+    if not isinstance(branch, BemBranch):
+        raise ValueError(f"branch must be a BemBranch (from bem_unloading_branch); got {type(branch).__name__}")
+    if not branch.edge_resolved:
+        return None
+    n_c = next((k for k in ladder_cells(branch.n) if edge_width_ratio(
+        nondimensional_problem(mu=branch.mu, beta0=branch.beta0, n=k, law=branch.law).grid,
+        law_from_name(branch.law, branch.mu, 1.0)) <= LOCATE_MAX_EDGE_RATIO), None)
+    if n_c is None:
+        return None
+    try:
+        return bem_unloading_branch(beta0=branch.beta0, mu=branch.mu, n=n_c, law=branch.law, threads=threads,
+                                    options=options)
+    except RuntimeError:
+        return None
+
+
+def spring_pull_off(branch, machine_stiffness, coarse=None) -> PullOff:
+    """The BEM pull-off under a machine spring with its stated error and resolution check (one K*).
+
+    Parameters
+    ----------
+    branch : BemBranch
+        From :func:`bem_unloading_branch` on the grid of the answer.
+    machine_stiffness : float
+        K* >= 0, finite, or None (a rigid machine) [-] (paper's units); 0 is load control.
+    coarse : BemBranch, optional
+        The same branch on a coarser grid (:func:`coarse_branch`); None: no grid error estimate,
+        the answer is then not resolved.
+
+    Returns
+    -------
+    dhfield.records.PullOff
+        :func:`bem_pull_off_under_spring`'s record (scalar fields) with the route's checks:
+
+        - ``W_star_error``: the fit's error plus the grid's,
+          :func:`dhfield.bem.pull_off.route_error` (the larger of the zone-width floor of
+          :func:`dhfield.bem.pull_off.discretisation_error` and the difference from the jump on
+          ``coarse``, :func:`dhfield.bem.pull_off.ladder_error`); infinite when not resolved;
+        - ``resolved``: the jump is bracketed and fitted on both grids, and the checks of
+          every BEM pull-off hold (:func:`dhfield.bem.pull_off.unresolved_reasons`: the grid
+          resolves the law's edge, W* within the DMT and zero-adhesion limits, a Dugdale zone at
+          least one cell wide; at K* = 0, load control, a contact of at least
+          :data:`dhfield.bem.pull_off.CONTACT_MIN_CELLS` cells); the reasons in ``note`` and
+          ``warning`` where not;
+        - ``converged``: no state of the branch failed at an adhesive force within ``window``
+          steps of the jump (the samples its fit rests on: a hole there is a failed state the
+          answer depends on); failed states elsewhere (each state is solved at its own force,
+          warm-started from converged ones) are listed in ``failures`` only.
+    """
+    from .bem.laws import law_from_name
+    from .bem.operator import Grid
+    from .bem.pull_off import route_error, unresolved_reasons
+
+    if machine_stiffness is not None and np.ndim(machine_stiffness) != 0:
+        raise ValueError(f"machine_stiffness must be a scalar (one spring per call); got an array of shape "
+                         f"{np.shape(machine_stiffness)}")
+    po = bem_pull_off_under_spring(branch, machine_stiffness)
+    w, fit_err = float(po.W_star), float(po.W_star_error)
+    axes = tuple(float(v) for v in (po.a_star, po.b_star, po.c_star, po.d_star))
+    grid = Grid.centered(branch.n, branch.half_width_x, ny=branch.n, half_width_y=branch.half_width_y)
+    w_c, n_c = float("nan"), 0
+    if coarse is not None:
+        if not isinstance(coarse, BemBranch):
+            raise ValueError(f"coarse must be a BemBranch (from coarse_branch) or None; got {type(coarse).__name__}")
+        got = bem_pull_off_under_spring(coarse, machine_stiffness)
+        n_c = int(coarse.n)
+        if bool(got.resolved):
+            w_c = float(got.W_star)
+    error = route_error(fit_err, w, axes, grid, w_coarse=w_c, n_coarse=n_c) if po.resolved else float("inf")
+    k = float(po.machine_stiffness_star)
+    reasons = unresolved_reasons(law=law_from_name(branch.law, branch.mu, 1.0), grid=grid,
+                                 sin_skew=float(po.sin_skew), edge_resolved=bool(branch.edge_resolved),
+                                 control="spring", w_star=w, search_error=fit_err, axes=axes, stated_error=error,
+                                 contact_cells=k == 0.0)
+    if not po.resolved:
+        reasons.insert(0, UNRESOLVED_SPRING_WARNING)
+    # the samples the jump is fitted on: `window` steps either side of it (F_a descending along the branch)
+    i = int(np.asarray(_jump_out(branch, machine_stiffness)["index"]))
+    f = branch.adhesive_force
+    high, low = f[max(i - branch.window, 0)], f[min(i + branch.window, f.size - 1)]
+    converged = not any(low <= x <= high for x in branch.failed_forces)
+    note = "; ".join(filter(None, (SPRING_ROUTE_NOTE, f"grid error from a coarser grid: W* = {w_c:.6g} on n = {n_c}"
+                                   if coarse is not None else "no coarser grid to estimate the grid's error",
+                                   "unresolved: " + "; ".join(reasons) if reasons else "")))
+    return replace(po, W_star_error=float("inf") if reasons else error, resolved=not reasons, converged=converged,
+                   warning="; ".join(reasons), note=note)
+
+
 #: Caveat carried by every BEM pull-off under a spring (the ``note`` of its record), measured on the
 #: sphere at N = 256 against Maugis-Dugdale under the same spring (``python -m verification.bem_spring``,
 #: 2026-11-26).
@@ -396,6 +522,10 @@ SPRING_NOTE = ("pull-off under a machine spring: the first minimum of the machin
                "branch sampled at prescribed adhesive force; W_star_error is the fit's, without the grid's "
                "discretisation error; on the sphere within 0.4 % of Maugis-Dugdale for lambda = 0.5-3, "
                "K* = 0.1-10 at N = 256")
+#: Caveat of the route-checked spring pull-off (:func:`spring_pull_off`), in place of :data:`SPRING_NOTE`.
+SPRING_ROUTE_NOTE = ("pull-off under a machine spring: the first minimum of the machine position on the BEM's "
+                     "unloading branch sampled at prescribed adhesive force; W_star_error is the fit's plus the "
+                     "grid's (from the same jump on a coarser grid)")
 #: ``warning`` of a BEM pull-off under a spring whose jump is not bracketed and fitted.
 UNRESOLVED_SPRING_WARNING = "the jump out is not bracketed on the sampled branch: not an answer (increase n)"
 

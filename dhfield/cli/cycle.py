@@ -187,7 +187,10 @@ def _run_bem(args, params) -> int:
     from .solve import check_solve_memory
 
     check_solve_memory(args.n)
-    plan = plan_grid(mu=mu, beta0=beta0, n=args.n, predicted=False)   # the cycle samples the unloading branch
+    # the cycle samples the unloading branch; its jump out is the displacement-control pull-off for a rigid
+    # machine, else the spring's: the analytic value a refusal advises
+    plan = plan_grid(mu=mu, beta0=beta0, n=args.n, predicted=False, control="displacement" if k is None else "spring",
+                     machine_stiffness=k)
     where = f"beta0={beta0:g}, mu={mu:g}, n={plan.n}"
     if plan.too_coarse or (args.n is None and not plan.affordable):
         print(f"dhfield: cycle refused: {plan.message()}", file=sys.stderr)

@@ -145,29 +145,33 @@ def _stiffness_star(args, params) -> float:
                                 params.work_of_adhesion, params.sin_skew))
 
 
-def spring_record(branch, k_star, params=None) -> dict:
+def spring_record(branch, k_star, params=None, coarse=None) -> dict:
     """The solve record of the BEM pull-off under a spring of stiffness K* (paper's units; SI with params).
 
-    Keys: beta0, mu, n, law, control ('spring'), machine_stiffness_star, W_star, W_star_error (the fit's
-    error estimate, without the grid's discretisation error; inf when not resolved), delta_star,
+    ``coarse``: the same branch on a coarser grid (:func:`dhfield.bem_compliance.coarse_branch`),
+    for the grid's error; None: no estimate (not resolved).  Keys: beta0, mu, n, law, control
+    ('spring'), machine_stiffness_star, W_star, W_star_error (the fit's error plus the grid's,
+    :func:`dhfield.bem_compliance.spring_pull_off`; inf when not resolved), delta_star,
     separation_delta_star (the force-free approach the contact jumps to, delta* + W*/K*), in_contact
-    (the jump starts from a contact state), resolved, branch_states, branch_complete, failures, elapsed;
-    with ``params``, the SI values (machine_stiffness [N/m], force [N], approach and separation_approach
+    (the jump starts from a contact state), converged (no state failed among the samples the jump is
+    fitted on), resolved, note, branch_states, branch_complete, failures, elapsed (both branches); with
+    ``params``, the SI values (machine_stiffness [N/m], force [N], approach and separation_approach
     [m]) and the SI inputs.
     """
     import numpy as np
 
-    from ..bem_compliance import bem_pull_off_under_spring
+    from ..bem_compliance import spring_pull_off
 
-    po = bem_pull_off_under_spring(branch, k_star)     # the BEM's PullOff, spring group filled
+    po = spring_pull_off(branch, k_star, coarse)     # the BEM's PullOff, spring group filled, route-checked
     w, d = float(po.W_star), float(po.delta_star)
     sep = float(po.separation_delta_star)  # Delta* = delta* + W*/K*
     rec = {"beta0": branch.beta0, "mu": branch.mu, "n": branch.n, "law": po.law, "control": "spring",
            "machine_stiffness_star": float(k_star), "W_star": w, "W_star_error": float(po.W_star_error),
            "delta_star": d, "separation_delta_star": sep, "in_contact": not bool(po.on_separated_branch),
-           "resolved": bool(po.resolved), "branch_states": int(np.size(branch.adhesive_force)),
+           "converged": bool(po.converged), "resolved": bool(po.resolved), "note": str(po.note),
+           "branch_states": int(np.size(branch.adhesive_force)),
            "branch_complete": bool(branch.complete), "failures": int(branch.failures),
-           "elapsed": float(branch.elapsed)}
+           "elapsed": float(branch.elapsed) + (0.0 if coarse is None else float(coarse.elapsed))}
     if params is not None:
         from ..io.solution import SI_INPUT_KEYS
 
@@ -201,13 +205,14 @@ def _spring_dataset(branch, rec, params):
     at = "BEM at the jump out under the machine spring"
     data["W_star_pull_off"] = cf.variable("W_star", (), rec["W_star"], nondimensional=True, qualifier=at)
     data["W_star_error_pull_off"] = ((), float(rec["W_star_error"]),
-                                     {"long_name": "error estimate of W* at the jump out (the fit's; the grid's "
-                                                   "discretisation error not included)", "units": "1"})
+                                     {"long_name": "error estimate of W* at the jump out (the fit's plus the grid's, "
+                                                   "from a coarser grid)", "units": "1"})
     data["delta_star_pull_off"] = cf.variable("delta_star", (), rec["delta_star"], nondimensional=True,
                                               qualifier=at)
     data["machine_stiffness"] = cf.variable("machine_stiffness", (), k, nondimensional=True)
     data["resolved"] = ((), np.int8(rec["resolved"]),
-                        {"long_name": "the jump out is bracketed on the branch and fitted (false: not an answer)",
+                        {"long_name": "the jump out is bracketed, fitted and resolved by the grid (false: not an "
+                                      "answer)",
                          "flag_values": np.arange(2, dtype=np.int8), "flag_meanings": "false true"})
     if params is not None:
         data["force_pull_off"] = cf.variable("force", (), rec["force"], qualifier=at)
@@ -225,7 +230,8 @@ def _spring_dataset(branch, rec, params):
         "dhfield: BEM pull-off of the adhesive elliptical contact under a machine spring (DC-FFT, free boundary)",
         beta0=rec["beta0"], mu=rec["mu"], n=rec["n"], law=rec["law"], control="spring",
         machine_stiffness_star=k, machine_stiffness=rec.get("machine_stiffness")))
-    ds.attrs.update({"resolved": int(rec["resolved"]), "branch_complete": int(rec["branch_complete"]),
+    ds.attrs.update({"resolved": int(rec["resolved"]), "converged": int(rec["converged"]),
+                     "branch_complete": int(rec["branch_complete"]),
                      "n_failures": rec["failures"], "elapsed_seconds": rec["elapsed"]})
     if params is not None:
         ds.attrs.update({"length_unit_m": float(params.length_unit), "approach_unit_m": float(params.approach_unit),
@@ -235,12 +241,12 @@ def _spring_dataset(branch, rec, params):
 
 def _run_spring(args, params, plan, where, progress) -> int:
     """``solve --machine-stiffness``: the BEM's unloading branch and the jump under the spring."""
-    from ..bem_compliance import bem_unloading_branch
+    from ..bem_compliance import bem_pull_off_under_spring, bem_unloading_branch, coarse_branch
 
     if args.n is None and not plan.affordable:
         print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
-    k_star = _stiffness_star(args, params)
+    k_star = plan.machine_stiffness_star
     if progress:
         print(f"dhfield: solving {where} (the unloading branch at prescribed adhesive force, K* = {k_star:.4g})",
               file=sys.stderr, flush=True)
@@ -249,7 +255,11 @@ def _run_spring(args, params, plan, where, progress) -> int:
     except RuntimeError as exc:  # no converged state to start from
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
-    rec = spring_record(branch, k_star, params)
+    if progress:
+        print(f"dhfield: solving {where} on a coarser grid (the grid's error)", file=sys.stderr, flush=True)
+    fit = bem_pull_off_under_spring(branch, k_star)   # the jump on this grid alone: not bracketed, no answer
+    coarse = coarse_branch(branch, threads=args.threads) if bool(fit.resolved) else None
+    rec = spring_record(branch, k_star, params, coarse)
     rec["law"] = args.law
     if args.out is not None:
         from ..io import write_netcdf
@@ -260,26 +270,32 @@ def _run_spring(args, params, plan, where, progress) -> int:
                                     *_si_input_keys()) if k in rec)
         print_json({**rec, "units": _units(rec, si_keys=si_keys)})
     else:
-        err = (f" (fit error {rec['W_star_error']:.2g}; the grid's not included)"
+        err = (f" (stated error {rec['W_star_error']:.2g})"
                if math.isfinite(rec["W_star_error"]) else " (no error bound: not resolved)")
         print(f"beta0 = {rec['beta0']:g}, mu = {rec['mu']:g}, N = {rec['n']}, {args.law}, machine spring "
               f"K* = {k_star:.6g}")
         print(f"W* = {rec['W_star']:.6f}{err}  delta* = {rec['delta_star']:.5f}  after the jump: delta* = "
               f"{rec['separation_delta_star']:.5f}, W* = 0  (jump {'from contact' if rec['in_contact'] else 'from the separated branch'})")
-        print(f"resolved = {rec['resolved']}  branch states = {rec['branch_states']}  complete = "
+        print(f"converged = {rec['converged']}  resolved = {rec['resolved']}  branch states = "
+              f"{rec['branch_states']}  complete = "
               f"{rec['branch_complete']}  unconverged = {rec['failures']}  ({rec['elapsed']:.1f} s)")
         if params is not None:
             print(f"force = {rec['force']:.6g} N  approach = {rec['approach']:.5g} m  after the jump: approach = "
                   f"{rec['separation_approach']:.5g} m  (K = {rec['machine_stiffness']:.6g} N/m)")
         if args.out is not None:
             print(f"wrote {args.out}")
+    if not rec["converged"]:
+        print(f"dhfield: solve did not converge for {where}: {rec['failures']} state(s) of the branch did not "
+              "converge, some among the samples the jump out is fitted on (converged = false)", file=sys.stderr)
+        return EXIT_UNCONVERGED
     if not rec["resolved"]:
-        print(f"dhfield: solve is unresolved for {where}: the jump out is not bracketed on the sampled branch "
-              f"(complete = {rec['branch_complete']}), so W* is not an answer; increase --n", file=sys.stderr)
+        why = rec["note"].split("unresolved: ", 1)[-1]
+        print(f"dhfield: solve is unresolved for {where}: {why} (resolved = false), so W* is not an answer; "
+              "increase --n", file=sys.stderr)
         return EXIT_UNRESOLVED
     if rec["failures"]:
-        print(f"dhfield: note: {rec['failures']} state(s) of the branch did not converge for {where} (left out "
-              "of the samples)", file=sys.stderr)
+        print(f"dhfield: note: {rec['failures']} state(s) of the branch away from the jump out did not converge "
+              f"for {where} (left out of the samples; the jump's fit does not use them)", file=sys.stderr)
     return 0
 
 
@@ -335,12 +351,15 @@ def run(args) -> int:
     from ..adhesive_start import UnresolvableCaseError, plan_grid, takes_predicted_route
 
     check_solve_memory(args.n)
+    k_star = None
     if args.machine_stiffness is not None:
         _check_spring_arguments(args, params)
+        k_star = _stiffness_star(args, params)
     # the plan of the domain the solve uses: the spring samples the unloading branch, never the predicted route
     predicted = args.machine_stiffness is None and takes_predicted_route(
         beta0=args.beta0, mu=args.mu, n=args.n, law=args.law, control=args.control, search=args.search or "located")
-    plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, predicted=predicted)
+    plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, predicted=predicted,
+                     control=args.control if k_star is None else "spring", machine_stiffness=k_star)
     if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
         print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
@@ -384,8 +403,8 @@ def run(args) -> int:
         print_json({**rec, "units": _units(rec, si_keys=tuple(si))})
     else:
         print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {cells}, {res.law}, {res.control} control")
-        # the stated error: under load control the search's plus the grid's (W_star_error), the fold
-        # fit's under displacement control; infinite when the answer is not resolved
+        # the stated error: the search's (load control) or the fold fit's (displacement control) plus the
+        # grid's (W_star_error); infinite when the answer is not resolved
         err = (f" (stated error {res.W_star_error:.2g})" if math.isfinite(res.W_star_error)
                else " (no error bound: not resolved)")
         print(f"W* = {res.W_star:.6f}{err}  a* = {res.a_star:.5f}  b* = {res.b_star:.5f}  c* = {res.c_star:.5f}  "
