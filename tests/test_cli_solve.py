@@ -140,9 +140,11 @@ def test_solve_predicted_search_on_an_explicit_grid_is_within_its_error_of_maugi
 
 def test_solve_too_large_for_memory_is_refused_before_allocating(monkeypatch, capsys):
     """Issue 18 item 11: `solve --n 8192` ran past 90 s at >= 5.5 GB with no output.  It is now
-    refused at once, in one line with the estimate (500 B/cell x 8192^2 = 31 GiB) and the limit."""
+    refused at once, in one line with the estimate and the limit: the library's own check (issue 42 finding 6),
+    PATH_BYTES_PER_CELL (550 B/cell) x 8192^2 = 34.4 GiB against 80 % of 16 GiB."""
     import dhfield._memory
     import dhfield.bem
+    from dhfield.adhesive_start import PATH_BYTES_PER_CELL
 
     def forbidden(*a, **k):
         raise AssertionError("solved before checking the memory")
@@ -151,7 +153,8 @@ def test_solve_too_large_for_memory_is_refused_before_allocating(monkeypatch, ca
     monkeypatch.setattr(dhfield._memory, "available_memory", lambda: 16 * 2**30)
     assert main(["solve", "--beta0", "1", "--mu", "1", "--n", "8192"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "n=8192" in err[0] and "31.2 GiB" in err[0] and "12.8 GiB" in err[0]
+    estimate = f"{PATH_BYTES_PER_CELL * 8192**2 / 2**30:.3g} GiB"
+    assert len(err) == 1 and "n=8192" in err[0] and estimate in err[0] and "12.8 GiB" in err[0], (estimate, err)
 
 
 def test_solve_json_has_units(capsys):
