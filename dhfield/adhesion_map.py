@@ -304,7 +304,12 @@ def _force(rec):
 
 
 def _evaluate(model, mu, beta0):
-    """(force, warned) of one model on broadcast arrays; raises what the model raises."""
+    """(force, warned) of one model on broadcast arrays; raises what the model raises.
+
+    Over arrays :func:`dhfield.compare.pull_off` answers a point the model refuses with NaN and
+    ``"<model> failed: <reason>"`` in its warning: the first such point's reason is raised here as
+    the model raised it, so that :func:`_model_on_grid` finds the refused points as before.
+    """
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         if model == REFERENCE_MODEL:
@@ -313,6 +318,10 @@ def _evaluate(model, mu, beta0):
         else:
             kw = {"check_closure": False} if model == "dh-elliptic" else {}
             rec = compare.pull_off(model, beta0=beta0, mu=mu, control="load", warn=False, **kw)
+            failed = [str(w) for w in np.ravel(np.asarray(rec["warning"], dtype=object))
+                      if str(w).startswith(f"{model} failed: ")]
+            if failed:
+                raise ValueError(failed[0][len(f"{model} failed: "):])
             force = _force(rec)
             warned = np.asarray(rec["warning"], dtype=object) != ""
     force = np.broadcast_to(force, np.shape(mu)).astype(float)
