@@ -465,6 +465,13 @@ def load_curve_si(params: ContactParameters, semi_major=None, n=200, *, model=co
         f = np.asarray(force, dtype=float)
         sin_skew = 1.0 if model in compare.CIRCULAR_MODEL_NAMES else params.sin_skew
         unit = units.load_unit(params.effective_radius, params.work_of_adhesion, sin_skew)  # Eq. (34)
+        if model in compare.CURVE_MODEL_NAMES and f.size and np.all(np.isfinite(f)):
+            # the stable branch starts at the pull-off: say so in newtons (the caller's unit), not in W*
+            w_po = float(compare.MODELS[model](np.asarray(params.beta0), np.asarray(params.mu),
+                                               control="load")["W_star"]) * float(unit)
+            if float(np.min(f)) < w_po:
+                raise ValueError(f"force must be at least the pull-off force {w_po:.6g} N of {model} (the stable "
+                                 f"branch starts there); got min {float(np.min(f)):.6g} N")
         c = compare.load_curve_at_load(model, mu=params.mu, beta0=params.beta0, w_star=f / unit)
     else:
         a_star = None if semi_major is None else check_positive("semi_major", semi_major, "m") / lu

@@ -1,6 +1,8 @@
 """Option values the parser reads as nothing, flagged fits, and messages in the user's units (issue 42)."""
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from dhfield.cli import main
@@ -133,3 +135,78 @@ def test_free_cores_without_a_load_average(monkeypatch):
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1, 2}, raising=False)
     monkeypatch.setattr(os, "getloadavg", unavailable)
     assert free_cpu_count() == 3
+
+
+# ------------------------------------------------------------------ finding 12: messages in the user's units
+SI = ["--youngs-modulus", "1e6", "--poisson-ratio", "0.5", "--cylinder-radius", "0.01", "--work-of-adhesion", "0.05",
+      "--adhesive-stress", "1e6"]
+
+
+def _error(capsys, argv):
+    code, out, err = _run(capsys, argv)
+    assert code == 2 and out == "" and err.count("\n") == 1 and err.startswith("dhfield: error: "), (code, out, err)
+    return err
+
+
+def test_curve_load_range_below_the_pull_off_speaks_newtons(capsys):
+    from dhfield import compare, dimensional
+
+    err = _error(capsys, ["curve", *SI, "--skew-angle-deg", "60", "--load-min=-1", "--load-max", "1"])
+    assert "W*" not in err and "got min -1 N" in err and " N of md-elliptic" in err, err
+    # the bound quoted is the pull-off force in newtons: W* of Eq. (34) times 2 pi R dgamma / sin(theta)
+    p = dimensional.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, math.radians(60), 0.05, 1e6)
+    w_star = float(compare.pull_off("md-elliptic", beta0=p.beta0, mu=p.mu)["W_star"])
+    force = w_star * 2.0 * math.pi * float(p.effective_radius) * 0.05 / float(p.sin_skew)
+    assert f"pull-off force {force:.6g} N" in err, (force, err)
+
+
+def test_skew_angle_bound_is_in_degrees(capsys):
+    from dhfield import geometry
+
+    err = _error(capsys, ["pulloff", *SI, "--skew-angle-deg", "0.0354"])
+    low = math.degrees(float(geometry.skew_angle(1e-4)))  # beta0 = 1e-4, the line-contact limit
+    assert f"skew-angle-deg must be in [{low:.6g}, 90] degrees" in err and "rad" not in err, err
+    assert 0.0354 < low < 0.0355
+
+
+@pytest.mark.parametrize("cell, shown", [("nan", "nan"), ("inf", "inf"), ("abc", "'abc'")])
+def test_csv_errors_print_plain_values(capsys, tmp_path, cell, shown):
+    (tmp_path / "d.csv").write_text(f"force,semi_major\n1e-3,1e-4\n{cell},2e-4\n2e-3,3e-4\n")
+    err = _error(capsys, ["fit", "--data", str(tmp_path / "d.csv"), *PDMS])
+    assert f"column 'force': value {shown} in data row 2 is not a finite number" in err and "np." not in err, err
+
+
+def test_csv_over_the_row_limit_names_the_file_and_rows(capsys, tmp_path, monkeypatch):
+    import dhfield.io.fit as io_fit
+
+    monkeypatch.setattr(io_fit, "MAX_DATA_ROWS", 10)
+    rows = "".join(f"{1e-3 * (k - 5)!r},{1e-4 * (k + 1)!r}\n" for k in range(11))
+    (tmp_path / "many.csv").write_text("force,semi_major\n" + rows)
+    err = _error(capsys, ["fit", "--data", str(tmp_path / "many.csv"), *PDMS])
+    assert "many.csv' has 11 data rows; a load curve may have at most 10" in err and "a_star" not in err, err
+
+
+def test_a_toml_integer_too_long_for_python_names_its_key(capsys, tmp_path):
+    import sys
+
+    digits = sys.get_int_max_str_digits() + 700
+    (tmp_path / "c.toml").write_text('[axes]\nbeta0 = [0.9]\nmu = [1.0]\n[sweep]\nmodels = ["jkr"]\n'
+                                     f"chunk_points = {'9' * digits}\n")
+    err = _error(capsys, ["sweep", str(tmp_path / "c.toml"), "--out", "s.nc", "--quiet"])
+    assert f"key 'sweep.chunk_points' (line 6): an integer of {digits} digits" in err, err
+    assert "set_int_max_str_digits" not in err
+
+
+def test_the_wisdom_cache_warning_is_one_line_without_source(capsys, tmp_path, monkeypatch):
+    from dhfield.bem import _wisdom
+
+    monkeypatch.setitem(_wisdom._WISDOM_STATE, "loaded", False)
+    cache = tmp_path / "cache"
+    cache.mkdir(exist_ok=True)
+    (cache / "fftw_wisdom.bin").write_bytes(b"garbage\n")
+    (cache / "fftw_wisdom.bin").chmod(0o644)
+    code, out, err = _run(capsys, ["solve", "--beta0", "1", "--mu", "1", "--n", "16", "--json"])
+    lines = [ln for ln in err.splitlines() if "wisdom" in ln]
+    assert lines == [f"dhfield: warning: ignoring the FFTW wisdom cache {str(cache / 'fftw_wisdom.bin')!r}: not a "
+                     "dhfield wisdom file (bad magic); it will be rewritten"], err
+    assert ".py:" not in err and "WisdomCacheWarning" not in err, err

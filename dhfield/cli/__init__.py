@@ -67,8 +67,8 @@ def _stdout_closed() -> int:
 
 @contextlib.contextmanager
 def _warnings_as_lines():
-    """Print each :class:`dhfield.validity.DhfieldWarning` as one ``dhfield: warning:`` line on stderr
-    (once per text, shared with the records' warnings); other warnings as Python prints them."""
+    """Print each warning as one ``dhfield: warning:`` line on stderr, once per text (shared with the
+    records' warnings): its message only, without Python's source path and line of code."""
     import warnings
 
     from ._common import _PRINTED_WARNINGS, print_warning_line
@@ -78,12 +78,10 @@ def _warnings_as_lines():
         shown = warnings.showwarning
 
         def show(message, category, filename, lineno, file=None, line=None):
-            from ..validity import DhfieldWarning
-
-            if issubclass(category, DhfieldWarning):
-                print_warning_line(str(message))
-            else:
+            if file is not None and file is not sys.stderr:  # an explicit destination: as Python prints it
                 shown(message, category, filename, lineno, file, line)
+            else:
+                print_warning_line(str(message))
 
         warnings.showwarning = show
         yield

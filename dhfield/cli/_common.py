@@ -170,6 +170,15 @@ def contact_parameters_from_args(args):
             raise UsageError(f"{shapes[0]} needs --skew-angle-deg")
         if not 0.0 < args.skew_angle_deg <= 90.0:
             raise ValueError(f"skew-angle-deg must be in (0, 90] degrees; got {args.skew_angle_deg!r}")
+        if args.radii is None:  # equal cylinders: the angle alone sets beta0; its bound in the user's degrees
+            from .._validation import ELLIPTICITY_RANGE
+            from ..geometry import skew_angle
+
+            low = math.degrees(float(skew_angle(ELLIPTICITY_RANGE[0], checked=False)))
+            if args.skew_angle_deg < low:
+                raise ValueError(f"skew-angle-deg must be in [{low:.6g}, 90] degrees (below {low:.6g} degrees the "
+                                 f"contact is a line contact, beta0 < {ELLIPTICITY_RANGE[0]:g}); got "
+                                 f"{args.skew_angle_deg!r}")
         theta = math.radians(args.skew_angle_deg)
         if args.radii is not None:
             r1, r2 = dimensional.crossed_cylinder_radii(args.radii[0], args.radii[1], theta)

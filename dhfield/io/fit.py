@@ -14,7 +14,11 @@ import numpy as np
 from .figures import model_label, si_prefix, write_figure
 
 __all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
-           "FORCE_UNITS", "LENGTH_UNITS"]
+           "FORCE_UNITS", "LENGTH_UNITS", "MAX_DATA_ROWS"]
+
+#: Most data rows of a measured load curve (:func:`read_curve_data`); a larger file is refused, naming
+#: it and its row count, before anything is fitted.
+MAX_DATA_ROWS = 1_000_000
 
 #: Columns of a measured load curve: schema name -> accepted column names.
 DATA_COLUMNS = {"force": ("force", "load"), "semi_major": ("semi_major", "contact_size"),
@@ -74,7 +78,8 @@ def read_curve_data(path, params=None) -> dict:
     Raises
     ------
     ValueError
-        One line naming the file and the column: a column missing, not numeric,
+        One line naming the file (and the column): more than :data:`MAX_DATA_ROWS`
+        rows, a column missing, not numeric,
         an unknown unit, forces zero in every row, or (with ``params``)
         magnitudes that look like another unit -- the message names it.
 
@@ -102,6 +107,9 @@ def read_curve_data(path, params=None) -> dict:
 
     frame, _ = read_table(path)
     where = f"data file {str(path)!r}"
+    if len(frame) > MAX_DATA_ROWS:
+        raise ValueError(f"{where} has {len(frame)} data rows; a load curve may have at most {MAX_DATA_ROWS} "
+                         "(MAX_DATA_ROWS): thin the data or fit it in parts")
     cols, col_units = {}, {}
     headers = [_split_header(c) for c in frame.columns]
     for name, aliases in DATA_COLUMNS.items():

@@ -170,7 +170,9 @@ def read_table(path, required=()):
         bad = ~np.isfinite(values)
         if bad.any():
             row = int(np.argmax(bad))
-            raise ValueError(f"data file {str(p)!r}, column {name!r}: value {frame[name].iloc[row]!r} in data row "
+            value = frame[name].iloc[row]
+            value = value.item() if isinstance(value, np.generic) else value  # nan, not np.float64(nan)
+            raise ValueError(f"data file {str(p)!r}, column {name!r}: value {value!r} in data row "
                              f"{row + 1} is not a finite number")
         frame[name] = values
     if required and len(frame) == 0:

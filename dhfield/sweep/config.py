@@ -99,6 +99,7 @@ import hashlib
 import json
 import math
 import re
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -654,4 +655,32 @@ def load_config(path) -> SweepConfig:
     except RecursionError:
         raise ValueError(f"config {str(p)!r} nests tables or arrays too deeply (a sweep file needs 3 levels)") \
             from None
+    except ValueError:  # Python's limit on the digits of an integer (sys.get_int_max_str_digits)
+        where = _long_integer(text)
+        if where is None:
+            raise
+        raise ValueError(f"config {str(p)!r}, {where}: integers must have at most "
+                         f"{sys.get_int_max_str_digits()} digits (no value of a sweep needs more than 20)") from None
     return config_from_mapping(mapping)
+
+
+def _long_integer(text):
+    """Where the first integer longer than Python converts (``sys.get_int_max_str_digits``) is in a TOML
+    text: ``"key 'table.key' (line n): an integer of d digits"``, or None if there is none."""
+    limit = sys.get_int_max_str_digits()
+    if not limit:
+        return None
+    m = re.search(r"\d(?:_?\d){%d,}" % limit, text)
+    if m is None:
+        return None
+    before = text[:m.start()]
+    line_no = before.count("\n") + 1
+    digits = sum(c.isdigit() for c in m.group())
+    table = ""
+    for line in before.splitlines():
+        h = re.match(r"\s*\[\[?\s*([^\]]+?)\s*\]\]?\s*(?:#.*)?$", line)
+        if h:
+            table = h.group(1)
+    key = re.match(r"\s*([A-Za-z0-9_.\-\"' ]+?)\s*=", before[before.rfind("\n") + 1:])
+    name = ".".join(x for x in (table, key.group(1).strip() if key else "") if x)
+    return f"{'key ' + repr(name) + ' ' if key else ''}(line {line_no}): an integer of {digits} digits"
