@@ -89,7 +89,10 @@ def _expected_after(page, index):
 def test_readme_has_the_worked_example_and_code():
     assert PYTHON and SHELL
     text = README.read_text(encoding="utf-8")
-    assert "PDMS" in text and "--skew-angle-deg 60" in text and "--model dh-elliptic-two-axis" in text
+    assert "PDMS" in text and "--skew-angle-deg 60" in text and "--model dh-elliptic" in text
+    # issue 40: the worked example's first command is the recommended model, the default (no --model)
+    first = next(line for line in text.splitlines() if line.startswith("dhfield pulloff "))
+    assert "--model" not in first
 
 
 def test_every_doc_page_has_code_blocks():
