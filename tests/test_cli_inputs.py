@@ -210,3 +210,17 @@ def test_the_wisdom_cache_warning_is_one_line_without_source(capsys, tmp_path, m
     assert lines == [f"dhfield: warning: ignoring the FFTW wisdom cache {str(cache / 'fftw_wisdom.bin')!r}: not a "
                      "dhfield wisdom file (bad magic); it will be rewritten"], err
     assert ".py:" not in err and "WisdomCacheWarning" not in err, err
+
+
+def test_a_sweep_worker_prints_a_warning_as_one_line(monkeypatch):
+    import threading
+    import warnings
+
+    from dhfield.sweep import engine
+
+    monkeypatch.setattr(warnings, "formatwarning", warnings.formatwarning)  # restored after the test
+    engine._start_worker(threading.Barrier(1), ())  # what a local worker process runs first
+    # what Python's warnings.showwarning writes to the worker's stderr (the parent's stderr)
+    text = warnings.formatwarning("invalid value encountered in divide", RuntimeWarning, "/x/scipy/_y.py", 7,
+                                  "    return a / b")
+    assert text == "dhfield: warning: invalid value encountered in divide\n"

@@ -281,11 +281,20 @@ class Executor:
         self.close()
 
 
+def _one_line_warning(message, category, filename, lineno, line=None) -> str:
+    """A worker's warning as the command line prints its own: one ``dhfield: warning:`` line, without
+    Python's source path and line of code (``warnings.formatwarning`` of a local worker)."""
+    return f"dhfield: warning: {' '.join(str(message).split())}\n"
+
+
 def _start_worker(ready, preload) -> None:
-    """Initializer of a local worker process: import ``preload``, then wait for the other workers."""
+    """Initializer of a local worker process: warnings as one line (:func:`_one_line_warning`), import
+    ``preload``, then wait for the other workers."""
     import importlib
     import threading
+    import warnings
 
+    warnings.formatwarning = _one_line_warning
     try:
         for name in preload:
             try:
