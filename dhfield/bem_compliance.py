@@ -23,7 +23,10 @@ for every K*, the first minimum of F_s met from high force by the least-squares
 fit of :func:`dhfield.bem.continuation.fit_fold` (a cubic in sqrt(F_a), ~ the zone
 radius, over +-``window`` samples around the discrete minimum, with its error
 estimate), the same fit that gives the BEM's displacement-control pull-off.  One
-branch serves every stiffness.  :func:`bem_loading_cycle` extends the branch up to
+branch serves every stiffness.  :func:`spring_pull_off` is the route's answer
+(``dhfield solve --machine-stiffness``): that jump with the resolution checks of every BEM
+pull-off and a stated error of the fit's plus the grid's, from the same jump on a coarser
+grid (:func:`coarse_branch`, :func:`dhfield.bem.pull_off.route_error`).  :func:`bem_loading_cycle` extends the branch up to
 where the jump in lands and gives the cycle of :mod:`dhfield.compliance` (both
 jumps, the energy lost) on it.
 

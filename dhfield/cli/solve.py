@@ -69,7 +69,8 @@ def add_parser(sub) -> None:
                         "N/m with physical inputs, K* (paper's units, dhfield.compliance.stiffness_star) with "
                         "--beta0/--mu; 0 is load control.  The BEM's unloading branch is sampled at prescribed "
                         "adhesive force and the jump is the first minimum of the machine position on it "
-                        "(dhfield.bem_compliance); --out then holds the branch, --search does not apply")
+                        "(dhfield.bem_compliance); the same branch on a coarser grid gives the grid's error; "
+                        "--out then holds the branch, --search does not apply")
     p.add_argument("--search", default=None, choices=("located", "bracket", "march", "predicted"),
                    help="load control: how the force minimum is found -- located on coarser grids first, "
                         "then 3-4 states on this one (default); bracket: from the analytic pull-off on this "
