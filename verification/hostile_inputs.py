@@ -26,6 +26,7 @@ Usage::
     python verification/hostile_inputs.py --quick     # a subset (about a minute)
     python verification/hostile_inputs.py --issue18   # only the classes added for issue 18
     python verification/hostile_inputs.py --issue42-writes   # issue 42: sweep stores, memory, sets of files, paths
+    python verification/hostile_inputs.py --issue42-inputs   # issue 42: '--opt=--', flagged fits, messages' units
 
 It prints the counts per outcome and lists every case that is not clean.
 Exit status 0 when there is no traceback, hang, silent wrong output or
@@ -83,7 +84,7 @@ GENERIC_VALUES = {"beta0": "0.9", "mu": "1", "a_star": "1.2", "n": "16", "n_thet
 FILE_SUFFIX = {"curve": ".nc", "compare": ".nc", "periphery": ".nc", "field": ".nc", "solve": ".nc", "sweep": ".nc"}
 SIGNALS = ("SIGINT", "SIGTERM", "SIGHUP")
 #: Non-zero exits that flag a computed result as not an answer (one line on stderr): counted clean.
-FLAGGED_STATUS = {"solve": (3, 4, 5), "sweep": (3,)}
+FLAGGED_STATUS = {"solve": (3, 4, 5), "sweep": (3,), "fit": (3,)}
 
 
 @dataclass
@@ -325,11 +326,13 @@ def classify(case: Case, status, stdout: str, stderr: str, workdir: Path, facts:
         return
     if status in FLAGGED_STATUS.get(case.argv[0] if case.argv else "", ()):
         # solve: 3 unconverged, 4 unresolved, 5 refused before solving (cannot be resolved within memory/time,
-        # or --n far too coarse); sweep: 3 flagged cases -- the answer is refused, in one line
-        if len(lines) == 1:
-            case.outcome, case.detail = "clean error", f"flagged, exit {status}: {lines[0][:140]}"
+        # or --n far too coarse); sweep: 3 flagged cases; fit: 3 a parameter not identifiable -- the answer is
+        # refused, in one line (beside any 'dhfield: warning:' lines of the result's own warning)
+        said = [ln for ln in lines if not ln.startswith("dhfield: warning:")]
+        if len(said) == 1:
+            case.outcome, case.detail = "clean error", f"flagged, exit {status}: {said[0][:140]}"
         else:
-            case.outcome, case.detail = "noisy error", f"flagged, exit {status}, {len(lines)} lines"
+            case.outcome, case.detail = "noisy error", f"flagged, exit {status}, {len(said)} lines"
         return
     if status == 1 and lines and lines[-1].startswith("dhfield: internal error"):
         case.outcome, case.detail = "internal error", lines[-1][:200]
@@ -1396,6 +1399,157 @@ def store_and_write_cases(quick):
     return cases[:12] if quick else cases
 
 
+def _stderr_check(must=(), must_not=(), status=None, stdout_must=()):
+    """A ``Case.check``: stderr contains every text of ``must`` and none of ``must_not`` (the exit status is
+    ``status`` if given; stdout contains every text of ``stdout_must``)."""
+    def check(workdir, st, stdout, stderr):
+        if status is not None and st != status:
+            return "silent wrong", f"exit {st}, expected {status}: {' | '.join(stderr.splitlines())[:140]}"
+        missing = [m for m in must if m not in stderr] + [m for m in stdout_must if m not in stdout]
+        present = [m for m in must_not if m in stderr]
+        if missing or present:
+            return "unnamed error", (f"missing {missing} " if missing else "") + (f"has {present} " if present else "") \
+                + f"in: {' | '.join(stderr.splitlines())[:120]}"
+        return None
+    return check
+
+
+#: A load curve deep on the JKR side (PDMS, dgamma 0.05 J/m^2, sigma0 1e8 Pa: mu ~ 3700), where the load does not
+#: depend on sigma0 (JKR has no adhesive stress): a fit cannot identify it.
+_JKR_SIDE = ("--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder-radius", "3e-3", "--skew-angle-deg",
+             "60")
+
+
+def _jkr_side_csv(workdir, name="jkr.csv"):
+    import math
+
+    from dhfield import dimensional as dim
+
+    p = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.05, 1e8)
+    a = p.length_unit * np.linspace(0.5, 3.0, 12)
+    w = dim.load_curve_si(p, semi_major=a, model="md-elliptic")["force"]
+    (workdir / name).write_text("force,semi_major\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in zip(w, a)))
+
+
+def _without_option(argv, opt):
+    """``argv`` without ``opt`` and its values."""
+    if opt not in argv:
+        return list(argv)
+    i = argv.index(opt)
+    j = i + 1
+    while j < len(argv) and not argv[j].startswith("--"):
+        j += 1
+    return argv[:i] + argv[j:]
+
+
+def input_message_cases(parsers, quick):
+    """Issue 42's classes: options given as ``--opt=--`` (finding 11), flagged fits (finding 5), messages in the
+    user's units and warnings as one line (finding 12)."""
+    from dhfield import compare
+
+    cases = []
+
+    # --- finding 11: "--opt=--" (argparse: an empty list) refused in one line naming the option, for every option
+    #     that takes a value, of every subcommand with a baseline
+    for name, sp in parsers.items():
+        bases = _baselines(name, sp)
+        if not bases:
+            continue
+        for a in sp._actions:
+            if not a.option_strings or a.nargs == 0 or a.dest == "help":
+                continue
+            opt = a.option_strings[-1] if a.option_strings[-1].startswith("--") else a.option_strings[0]
+            argv = _without_option(bases[0], opt) + [f"{opt}=--"]
+            cases.append(Case("cli", f"{name} {opt}=--", argv, expect="reject",
+                              check=_stderr_check(must=(f"argument {opt}: expected",))))
+    cases.append(Case("cli", "cycle --machine-stiffness=-- --json",
+                      ["cycle", "--beta0", "1", "--mu", "1", "--machine-stiffness=--", "--json"], expect="reject",
+                      check=_stderr_check(must=("argument --machine-stiffness",))))
+    for model in (compare.MODEL_NAMES[:3] if quick else compare.MODEL_NAMES):
+        cases.append(Case("api", f"compare.pull_off({model!r}, beta0=[], mu=1)",
+                          api=lambda m=model: compare.pull_off(m, beta0=[], mu=1.0), param="beta0", expect="reject"))
+        cases.append(Case("api", f"compare.pull_off({model!r}, beta0=0.9, mu=np.array([]))",
+                          api=lambda m=model: compare.pull_off(m, beta0=0.9, mu=np.array([])), param="mu",
+                          expect="reject"))
+    cases.append(Case("api", "compare.compare(beta0=(), mu=1)", api=lambda: compare.compare(beta0=(), mu=1.0),
+                      param="beta0", expect="reject"))
+
+    # --- finding 5: a fit that cannot identify sigma0 is flagged (exit 3), sigma0 printed as not identifiable
+    def jkr_side(w):
+        _jkr_side_csv(w)
+        return {}
+    cases.append(Case("cli", "fit --data <JKR-side curve: sigma0 not identifiable>",
+                      ["fit", "--data", "jkr.csv", *_JKR_SIDE], setup=jkr_side, expect="either",
+                      check=_stderr_check(must=("dhfield: fit is not an answer: max_adhesive_stress not identifiable",),
+                                          status=3, stdout_must=("max_adhesive_stress          not identifiable",))))
+    cases.append(Case("cli", "fit --data <JKR-side curve> --json",
+                      ["fit", "--data", "jkr.csv", *_JKR_SIDE, "--json"], setup=jkr_side, expect="either",
+                      check=_stderr_check(status=3, stdout_must=('"max_adhesive_stress": null',
+                                                                 '"not_identifiable": ["max_adhesive_stress"]'))))
+
+    # --- finding 12: messages in the user's units
+    si = ["--youngs-modulus", "1e6", "--poisson-ratio", "0.5", "--cylinder-radius", "0.01", "--work-of-adhesion",
+          "0.05", "--adhesive-stress", "1e6"]
+    for lo in ("-1", "-0.003", "-1e300"):
+        cases.append(Case("cli", f"curve <SI> --load-min={lo} (below the pull-off)",
+                          ["curve", *si, "--skew-angle-deg", "60", f"--load-min={lo}", "--load-max", "1"],
+                          expect="reject", check=_stderr_check(must=(" N of md-elliptic", " N\n"), must_not=("W*",))))
+    for deg in ("0.0354", "0.01", "1e-300"):
+        cases.append(Case("cli", f"pulloff <SI> --skew-angle-deg {deg}", ["pulloff", *si, "--skew-angle-deg", deg],
+                          expect="reject", check=_stderr_check(must=("degrees",), must_not=("rad",))))
+    for cell in ("nan", "inf", "-inf", "NaN"):
+        def bad_cell(w, cell=cell):
+            (w / "d.csv").write_text(f"force,semi_major\n1e-3,1e-4\n{cell},2e-4\n2e-3,3e-4\n")
+            return {}
+        cases.append(Case("cli", f"fit --data <a {cell} cell>", ["fit", "--data", "d.csv", *_JKR_SIDE],
+                          setup=bad_cell, expect="reject", check=_stderr_check(must=("data row 2",),
+                                                                               must_not=("np.", "float64"))))
+
+    def many_rows(w):   # MAX_DATA_ROWS lowered to 10 in this process (the child inherits it), restored after
+        import dhfield.io.fit as io_fit
+
+        saved = getattr(io_fit, "MAX_DATA_ROWS", None)  # None: a version without the limit
+        io_fit.MAX_DATA_ROWS = 10
+        (w / "many.csv").write_text("force,semi_major\n" + "".join(f"{1e-3 * (k - 5)!r},{1e-4 * (k + 1)!r}\n"
+                                                                   for k in range(11)))
+        return {"teardown": lambda: setattr(io_fit, "MAX_DATA_ROWS", saved)}
+    cases.append(Case("cli", "fit --data <more rows than MAX_DATA_ROWS>", ["fit", "--data", "many.csv", *_JKR_SIDE],
+                      setup=many_rows, expect="reject",
+                      check=_stderr_check(must=("many.csv' has 11 data rows",), must_not=("a_star",))))
+    axes = '[axes]\nbeta0 = [0.9]\nmu = [1.0]\n[sweep]\nmodels = ["jkr"]\n'
+    for key, digits, text in (("sweep.chunk_points", 5000, axes + "chunk_points = " + "9" * 5000 + "\n"),
+                              ("axes.mu", 5000, '[axes]\nbeta0 = [0.9]\nmu = [' + "1" * 5000 + ']\n'),
+                              ("run.workers", 4301, axes + "[run]\nworkers = " + "1" * 4301 + "\n")):
+        def toml(w, text=text):
+            (w / "c.toml").write_text(text)
+            return {}
+        cases.append(Case("cli", f"sweep TOML <{key} = an integer of {digits} digits>",
+                          ["sweep", "c.toml", "--out", "s.nc", "--quiet"], setup=toml,
+                          expect="reject", check=_stderr_check(must=(f"key {key!r}",),
+                                                               must_not=("set_int_max_str_digits",))))
+
+    # --- finding 12: warnings are one 'dhfield: warning:' line, without a source path or a line of code
+    def bad_wisdom(w):
+        from dhfield.bem import _wisdom
+
+        _wisdom._WISDOM_STATE["loaded"] = False
+        (w / "cache" / "fftw_wisdom.bin").write_bytes(b"garbage\n")
+        os.chmod(w / "cache" / "fftw_wisdom.bin", 0o644)
+        return {}
+    cases.append(Case("cli", "solve with a corrupt FFTW wisdom cache", ["solve", "--beta0", "1", "--mu", "1", "--n",
+                                                                        "16", "--json"],
+                      setup=bad_wisdom, expect="either",
+                      check=_stderr_check(must=("dhfield: warning: ignoring the FFTW wisdom cache",),
+                                          must_not=(".py:", "Warning:", "  return "))))
+    for extra in ([], ["--control", "displacement"]):
+        cases.append(Case("cli", f"sweep over the domain's corners {' '.join(extra)}: no Python warning",
+                          ["sweep", "--beta0", "2e-4", "0.5", "1", "--mu", "1e-6", "1", "1e12", "--models",
+                           *(["md-elliptic", "jkr"] if quick else list(compare.MODEL_NAMES[:6])), *extra,
+                           "--workers", "1", "--out", "s.nc", "--quiet"], expect="either",
+                          check=_stderr_check(must_not=(".py:", "Warning:"))))
+    return cases
+
+
 # --------------------------------------------------------------------------- main
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -1408,13 +1562,17 @@ def main(argv=None) -> int:
     ap.add_argument("--issue42-writes", action="store_true",
                     help="only the classes added for issue 42's findings 1, 6, 9, 10 (sweep stores, memory "
                          "planned on every BEM route, files written as a set, output paths)")
+    ap.add_argument("--issue42-inputs", action="store_true",
+                    help="only the classes added for issue 42's findings 5, 11, 12 (options given as '--opt=--', "
+                         "flagged fits, messages in the user's units, warnings as one line)")
     args = ap.parse_args(argv)
 
     parsers = subcommand_parsers()
-    cases = store_and_write_cases(args.quick) if args.issue42_writes else hardening_cases(args.quick) if args.issue18 else (numeric_cases(parsers, args.quick) + path_cases(parsers, args.quick)
+    cases = input_message_cases(parsers, args.quick) if args.issue42_inputs else \
+        store_and_write_cases(args.quick) if args.issue42_writes else hardening_cases(args.quick) if args.issue18 else (numeric_cases(parsers, args.quick) + path_cases(parsers, args.quick)
              + input_cases(parsers, args.quick) + env_cases(args.quick)
              + signal_cases(args.quick) + api_cases(args.quick) + hardening_cases(args.quick)
-             + store_and_write_cases(args.quick))
+             + store_and_write_cases(args.quick) + input_message_cases(parsers, args.quick))
     if args.only:
         cases = [c for c in cases if args.only in c.label]
     tty = sys.stderr.isatty()
