@@ -1,0 +1,671 @@
+"""One adhesive state by a semismooth Newton (primal-dual active-set) method on the DC-FFT operator.
+
+Problem
+-------
+Unknown: the total surface traction ``q`` per cell (positive in compression), on the
+working grid of :class:`dhfield.bem.solver.AdhesiveProblem` (the even-even quadrant in
+symmetric mode).  With the DC-FFT operator K and the approach delta,
+
+.. math::
+
+    h = z - \\delta + K q, \\qquad p = q + \\sigma(h), \\qquad
+    h \\ge 0,\\; p \\ge 0,\\; p\\,h = 0,
+
+where ``p`` is the repulsive (contact) pressure and sigma the traction law.  These are the
+stationarity conditions of the potential energy
+
+.. math::
+
+    \\Pi(u) = \\tfrac12 u^T K^{-1} u + \\sum_i \\phi(z_i - \\delta + u_i), \\quad u = K q,
+    \\quad h \\ge 0, \\qquad \\phi(h) = -\\int_h^\\infty \\sigma,
+
+so a state is a constrained critical point of Pi, stable when Pi's Hessian
+``K^{-1} + diag(sigma'(h))`` is positive on the non-contact cells.
+
+The law on a grid
+-----------------
+The Dugdale law (sigma0 for h < h0) is taken with its edge as a linear ramp of width
+``w`` in the cell's own gap, centred on h0 (the work of adhesion sigma0 h0 is kept):
+
+.. math:: \\sigma_w(h) = \\sigma_0\\,\\min\\!\\left(1, \\max\\!\\left(0,
+          \\frac{h_0 + w/2 - h}{w}\\right)\\right).
+
+``w`` is the edge width of :class:`~dhfield.bem.solver.AdhesiveProblem` (``min_spread``):
+the smallest width for which a discrete edge state is energy-stable, capped at 2 h0; it
+vanishes like dx ln(1/dx) under refinement.  Smooth laws (exponential) are used as they are.
+
+Algorithm
+---------
+Semismooth Newton on the complementarity function ``F = min(c h, p)`` with
+``c = sigma0/h0`` (gap scaled to a stress), i.e. a primal-dual active-set method:
+
+* contact cells A = {c h < p}: the Newton row enforces ``h + K dq = 0``;
+* edge cells E (out of contact, on the law's ramp): ``p + dq - |sigma'| K dq = 0``;
+* the other cells: ``dq = -p`` (the traction is the law's plateau, or zero).
+
+The generalised Jacobian restricted to A u E is solved matrix-free by GMRES, right-
+preconditioned on A by the inverse of the operator's own symbol (the hypersingular
+operator: a Calderon preconditioner, which keeps the iteration count nearly independent
+of the grid), with a relative tolerance that tightens with the residual (inexact Newton,
+superlinear).  A backtracking line search on the merit ``||F||^2`` makes every accepted
+step decrease it.  The pull-off sensitivity ``dq/d delta`` costs one more linear solve
+with the same Jacobian (:func:`load_slope`).
+
+References
+----------
+.. [1] M. Hintermueller, K. Ito, K. Kunisch (2002) The primal-dual active set strategy as
+   a semismooth Newton method. SIAM J. Optim. 13:865-888. doi:10.1137/S1052623401383558
+.. [2] O. Steinbach, W. L. Wendland (1998) The construction of some efficient
+   preconditioners in the boundary element method. Adv. Comput. Math. 9:191-216.
+   doi:10.1023/A:1018937506719
+.. [3] D. Maugis (1992) J. Colloid Interface Sci. 150:243-269. doi:10.1016/0021-9797(92)90288-C
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, asdict
+
+import numpy as np
+import scipy.fft
+from scipy.sparse.linalg import LinearOperator, gmres
+
+from .laws import DugdaleLaw
+from .operator import influence_coefficients
+
+__all__ = ["SolverOptions", "NewtonResult", "solve_state", "load_slope", "symbol_preconditioner",
+           "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE"]
+
+#: Stop reasons (PETSc-style: positive converged, negative diverged).
+CONVERGED = "converged_residual"
+DIVERGED_LINE_SEARCH = "diverged_line_search"
+DIVERGED_MAX_IT = "diverged_max_it"
+DIVERGED_LINEAR_SOLVE = "diverged_linear_solve"
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Tolerances and caps of the adhesive solve (one object for every route).
+
+    Parameters
+    ----------
+    tol : float, default 1e-8
+        Converged when ``max |min(h/h0, p/sigma0)| <= tol`` over the cells [-].
+    max_newton : int, default 60
+        Cap on Newton iterations of one state.
+    max_krylov : int, default 2000
+        Cap on GMRES iterations of one linear solve.
+    forcing : float, default 0.1
+        Largest relative GMRES tolerance (inexact Newton); the tolerance used is
+        ``min(forcing, sqrt(||F|| / ||F_0||))`` relative [-].
+    nonmonotone : int, default 1
+        A step is accepted when it decreases the merit below the largest of the last this
+        many merits (1: monotone).
+    min_damping, max_damping : float, default 0.25, 1e4
+        Range of the trust-region (Levenberg-Marquardt) damping of the non-contact rows: a
+        rejected step is retried with the damping multiplied by 4 from ``4 min_damping``; beyond
+        ``max_damping`` the last step is backtracked instead [-].
+    """
+
+    tol: float = 1e-8
+    max_newton: int = 60
+    max_krylov: int = 2000
+    forcing: float = 0.1
+    nonmonotone: int = 1
+    min_damping: float = 0.25
+    max_damping: float = 1e4
+
+    def as_dict(self) -> dict:
+        """Return the options as a mapping (recorded with every result).
+
+        Returns
+        -------
+        dict
+            Field name to value.
+        """
+        return asdict(self)
+
+
+@dataclass
+class NewtonResult:
+    """A solved (or flagged) adhesive state on the working grid.
+
+    Parameters
+    ----------
+    traction : ndarray
+        Total traction q per working cell, positive compressive [stress].
+    gap : ndarray
+        Gap h [length].
+    contact : ndarray of bool
+        Contact cells (the final active set).
+    load : float
+        Total load, sum(q) times the cell area (four quadrants in symmetric mode) [force].
+    residual : float
+        ``max |min(h/h0, p/sigma0)|`` [-].
+    reason : str
+        Why it stopped (:data:`CONVERGED` or a ``diverged_*`` reason).
+    newton_iterations, krylov_iterations, operator_calls : int
+        Work spent.
+    merit_history : list of float
+        ``||F||`` after each accepted step (decreasing by construction).
+    elapsed : float
+        Wall time [s].
+    """
+
+    traction: np.ndarray
+    gap: np.ndarray
+    contact: np.ndarray
+    load: float
+    residual: float
+    reason: str
+    newton_iterations: int
+    krylov_iterations: int
+    operator_calls: int
+    merit_history: list
+    elapsed: float
+
+    @property
+    def converged(self) -> bool:
+        """True when the residual met the tolerance."""
+        return self.reason == CONVERGED
+
+
+class _Law:
+    """sigma(h) and its slope for the solve (the Dugdale edge as a ramp of width w)."""
+
+    def __init__(self, law, width):
+        self.law = law
+        self.sigma0 = law.max_stress
+        self.h0 = law.range
+        self.dugdale = isinstance(law, DugdaleLaw)
+        self.width = float(width) if self.dugdale else 0.0
+        if self.dugdale and not self.width > 0.0:
+            raise ValueError("the Dugdale law needs an edge width > 0 (AdhesiveProblem.min_spread)")
+
+    def stress(self, h):
+        if self.dugdale:
+            w = self.width
+            return self.sigma0 * np.clip((self.h0 + 0.5 * w - h) / w, 0.0, 1.0)
+        return self.law.stress(np.maximum(h, 0.0))
+
+    def slope(self, h):
+        """|d sigma/dh| >= 0 per cell."""
+        if self.dugdale:
+            w = self.width
+            on = np.abs(h - self.h0) < 0.5 * w
+            return np.where(on, self.sigma0 / w, 0.0)
+        return -self.law.stress_slope(np.maximum(h, 0.0))
+
+
+def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
+    """The inverse of the DC-FFT operator's own symbol, applied to a working-grid field.
+
+    The operator is ``crop o T^-1 o diag(S) o T o pad`` with T the DFT (full grid) or the
+    DCT-II (quadrant) of the zero-padded field; this returns
+    ``v -> crop o T^-1 o diag(1/S) o T o pad v``: the inverse of the un-cropped (circulant)
+    operator, a discrete hypersingular operator.  Restricted to the contact cells it is a
+    Calderon preconditioner of the operator restricted to them.
+
+    Parameters
+    ----------
+    grid : Grid
+        The full grid.
+    symmetric : bool
+        Working on the even-even quadrant.
+    reduced_modulus : float
+        E* [stress].
+    workers : int
+        Workers of scipy.fft.
+
+    Returns
+    -------
+    callable
+        ``apply(v) -> ndarray`` on working-grid arrays.
+    """
+    nx, ny = grid.shape
+    d = scipy.fft.dctn(influence_coefficients(grid, reduced_modulus), type=1, workers=workers)
+    if symmetric:
+        spec = d[:nx, :ny]
+        inv = 1.0 / (np.maximum(spec, 1e-300 + 1e-12 * spec.max()) * (4.0 * nx * ny))
+        qx, qy = nx // 2, ny // 2
+        buf = np.zeros((nx, ny))
+
+        def apply(v):
+            buf[...] = 0.0
+            buf[:qx, :qy] = v
+            t = scipy.fft.dctn(buf, type=2, workers=workers)
+            t *= inv
+            return scipy.fft.dctn(t, type=3, workers=workers)[:qx, :qy]
+
+        return apply
+    full = np.empty((2 * nx, ny + 1))
+    full[: nx + 1] = d
+    full[nx + 1:] = d[nx - 1:0:-1]
+    inv = 1.0 / np.maximum(full, 1e-12 * full.max())
+    buf = np.zeros((2 * nx, 2 * ny))
+
+    def apply(v):
+        buf[...] = 0.0
+        buf[:nx, :ny] = v
+        t = scipy.fft.rfft2(buf, workers=workers)
+        t *= inv
+        return scipy.fft.irfft2(t, s=buf.shape, workers=workers)[:nx, :ny]
+
+    return apply
+
+
+class _Jacobian:
+    """The generalised Jacobian on the cells S = A u E, right-preconditioned on A."""
+
+    def __init__(self, op, contact, edge, slope, precond, damping=0.0, gap_scale=1.0):
+        self.op = op
+        self.c = float(gap_scale)
+        self.damping = float(damping)
+        self.contact = contact
+        self.edge = edge
+        self.slope_e = slope[edge]
+        self.S = contact | edge
+        self.idx = np.nonzero(self.S.ravel())[0]
+        self.is_a = contact.ravel()[self.idx]
+        self.is_e = ~self.is_a
+        self.precond = precond
+        self.shape = contact.shape
+        self.calls = 0
+        self._full = np.zeros(self.shape)
+
+    def scatter(self, x):
+        f = self._full
+        f[...] = 0.0
+        f.ravel()[self.idx] = x
+        return f
+
+    def right(self, v):
+        """x = P v: the inverse symbol on A, identity on E."""
+        out = v.copy()
+        if self.is_a.any():
+            va = np.where(self.is_a, v, 0.0)
+            pa = self.precond(self.scatter(va).copy()).ravel()[self.idx]
+            out[self.is_a] = pa[self.is_a] / self.c
+        return out
+
+    def matvec(self, x):
+        """J x on S."""
+        kx = self.op(self.scatter(x).copy()).ravel()[self.idx]
+        self.calls += 1
+        out = self.c * kx
+        out[self.is_e] = (1.0 + self.damping) * x[self.is_e] - self.slope_e * kx[self.is_e]
+        return out
+
+
+def _gmres(jac, rhs, rtol, maxiter):
+    """Solve J x = rhs with right preconditioning; return (x, iterations, info)."""
+    n = rhs.size
+    count = [0]
+
+    def mv(v):
+        count[0] += 1
+        return jac.matvec(jac.right(v))
+
+    A = LinearOperator((n, n), matvec=mv, dtype=float)
+    restart = min(200, maxiter)
+    v, info = gmres(A, rhs, rtol=rtol, atol=0.0, restart=restart, maxiter=max(1, maxiter // restart))
+    return jac.right(v), count[0], info
+
+
+def _state(problem, law, delta, q):
+    h = problem.z - delta + problem.op(q)
+    p = q + law.stress(h)
+    return h, p
+
+
+def _residual(h, p, c):
+    return np.minimum(c * h, p)
+
+
+def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=None, log=None, width=None):
+    """Solve one adhesive state at the approach ``delta`` (displacement control).
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        Grid, initial gap, law and operator (:class:`dhfield.bem.solver.AdhesiveProblem`).
+    delta : float
+        Approach of distant points [length].
+    guess : ndarray, optional
+        Total traction on the working grid to start from [stress]; default zero.
+    options : SolverOptions
+        Tolerances and caps.
+    precond : callable, optional
+        :func:`symbol_preconditioner` of the problem (built when omitted).
+    log : callable, optional
+        Called with one line per Newton iteration.
+    width : float, optional
+        Width of the Dugdale edge's ramp [length]; default the problem's ``min_spread``.
+
+    Returns
+    -------
+    NewtonResult
+        The state, its residual and the reason it stopped.
+    """
+    t0 = time.perf_counter()
+    law = _Law(problem.law, problem.min_spread if width is None else width)
+    op = problem.op
+    if precond is None:
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+    sigma0, h0 = law.sigma0, law.h0
+    c = sigma0 / h0
+    q = np.zeros_like(problem.z) if guess is None else np.array(guess, dtype=float, copy=True)
+    h, p = _state(problem, law, delta, q)
+    calls = 1
+    F = _residual(h, p, c)
+    merit = float(np.linalg.norm(F))
+    res = float(np.max(np.abs(F))) / sigma0
+    history = [merit]
+    krylov = 0
+    reason = DIVERGED_MAX_IT
+    it = 0
+    lam = 0.0
+    while True:
+        if res <= options.tol:
+            reason = CONVERGED
+            break
+        if it >= options.max_newton:
+            break
+        it += 1
+        contact = c * h < p
+        slope = law.slope(h)
+        edge = (~contact) & (slope > 0.0)
+        free = ~(contact | edge)
+        rtol = min(options.forcing, math.sqrt(merit / max(history[0], 1e-300)))
+        ref = max(history[-options.nonmonotone:])
+        # Levenberg-Marquardt damping of the edge rows (a trust region on the zone's edge): lam -> inf
+        # freezes the edge and leaves the convex contact step, lam = 0 is Newton's step
+        alpha = 1.0
+        while True:
+            # the cells off the law's ramp move to its plateau (damped by the trust region)
+            dq = np.zeros_like(q)
+            dq[free] = -p[free] / (1.0 + lam)
+            y0 = op(dq)
+            calls += 1
+            rhs_full = np.where(contact, -c * (h + y0), -p + slope * y0)
+            jac = _Jacobian(op, contact, edge, slope, precond, damping=lam, gap_scale=c)
+            x, kit, info = _gmres(jac, rhs_full.ravel()[jac.idx], rtol, options.max_krylov)
+            krylov += kit
+            calls += jac.calls
+            step = dq.copy()
+            step.ravel()[jac.idx] = x
+            qt = q + step
+            ht, pt = _state(problem, law, delta, qt)
+            calls += 1
+            Ft = _residual(ht, pt, c)
+            mt = float(np.linalg.norm(Ft))
+            if mt <= (1.0 - 1e-4) * ref:
+                lam = lam / 4.0 if lam > options.min_damping else 0.0
+                break
+            if lam >= options.max_damping:
+                # the trust region cannot shrink further: backtrack along this step
+                while mt > (1.0 - 1e-4 * alpha) * ref and alpha > 1e-3:
+                    alpha *= 0.5
+                    qt = q + alpha * step
+                    ht, pt = _state(problem, law, delta, qt)
+                    calls += 1
+                    Ft = _residual(ht, pt, c)
+                    mt = float(np.linalg.norm(Ft))
+                break
+            lam = max(4.0 * lam, options.min_damping * 4.0)
+        if not mt < ref:
+            reason = DIVERGED_LINE_SEARCH
+            break
+        q, h, p, F, merit = qt, ht, pt, Ft, mt
+        res = float(np.max(np.abs(F))) / sigma0
+        history.append(merit)
+        if log is not None:
+            log(f"newton {it:3d}: residual {res:.3e}  |F| {merit:.3e}  step {alpha:.3g} damping {lam:.3g} gmres {kit:4d} "
+                f"(info {info})  contact {int(contact.sum())}  edge {int(edge.sum())}")
+    load = float(np.sum(q)) * problem.weight
+    return NewtonResult(q, h, c * h < p if reason == CONVERGED else p > 0, load, res, reason, it, krylov, calls,
+                        history, time.perf_counter() - t0)
+
+
+def _modulus(problem):
+    return problem._built_with[1]
+
+
+def load_slope(problem, state, precond=None, options=SolverOptions()):
+    """Compute dW/d delta of a converged state: one linear solve with the state's Jacobian.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The problem.
+    state : NewtonResult
+        A converged state of it.
+    precond : callable, optional
+        :func:`symbol_preconditioner` of the problem.
+    options : SolverOptions
+        Caps (the linear solve is taken to 1e-10 relative).
+
+    Returns
+    -------
+    slope : float
+        The load's slope dW/d delta [force/length].
+    dq : ndarray
+        The traction's slope dq/d delta on the working grid [stress/length] (a tangent predictor).
+    """
+    law = _Law(problem.law, problem.min_spread)
+    if precond is None:
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+    h = state.gap
+    p = state.traction + law.stress(h)
+    c = law.sigma0 / law.h0
+    contact = c * h < p
+    slope = law.slope(h)
+    edge = (~contact) & (slope > 0.0)
+    jac = _Jacobian(problem.op, contact, edge, slope, precond, gap_scale=c)
+    # d/d delta of the rows: A: h' = -1 + K dq = 0; E: dq - |s'| (K dq - 1) = 0; others: dq = 0
+    rhs_full = np.where(contact, c, -slope)
+    rhs = rhs_full.ravel()[jac.idx]
+    x, kit, info = _gmres(jac, rhs, 1e-10, options.max_krylov)
+    dq = np.zeros_like(state.traction)
+    dq.ravel()[jac.idx] = x
+    return float(np.sum(dq)) * problem.weight, dq
+
+
+@dataclass
+class LoadMinimum:
+    """The load-control pull-off: the minimum of the load along the displacement-controlled branch.
+
+    Parameters
+    ----------
+    approach : float
+        Approach at the fitted minimum [length].
+    load : float
+        The minimum load (the pull-off force, negative when tensile) [force].
+    load_error : float
+        Standard error of the fitted minimum (lattice noise of the samples) [force].
+    state : NewtonResult
+        The solved state nearest the minimum.
+    approaches, loads : ndarray
+        Every state solved (approach [length], load [force]).
+    newton_iterations, krylov_iterations : int
+        Work over all states.
+    converged : bool
+        Every state converged and the minimum lies inside the sampled window.
+    reason : str
+        Why the search stopped.
+    elapsed : float
+        Wall time [s].
+    """
+
+    approach: float
+    load: float
+    load_error: float
+    state: "NewtonResult"
+    approaches: np.ndarray
+    loads: np.ndarray
+    newton_iterations: int
+    krylov_iterations: int
+    converged: bool
+    reason: str
+    elapsed: float
+
+    @property
+    def states(self) -> int:
+        """States solved."""
+        return int(self.loads.size)
+
+
+def _quadratic_vertex(x, y):
+    """(vertex x, vertex y, standard error of vertex y, curvature) of a least-squares parabola."""
+    x0 = float(np.mean(x))
+    scale = float(np.ptp(x)) or 1.0
+    t = (np.asarray(x) - x0) / scale
+    A = np.vander(t, 3)
+    coef, *_ = np.linalg.lstsq(A, y, rcond=None)
+    a, b, c0 = coef
+    if not a > 0:
+        return float("nan"), float("nan"), float("inf"), float(a)
+    tv = -b / (2 * a)
+    yv = c0 - b * b / (4 * a)
+    dof = max(len(t) - 3, 1)
+    resid = y - A @ coef
+    s2 = float(resid @ resid) / dof
+    cov = s2 * np.linalg.pinv(A.T @ A)
+    # gradient of the vertex value c - b^2/(4a) w.r.t. (a, b, c)
+    g = np.array([b * b / (4 * a * a), -b / (2 * a), 1.0])
+    err = math.sqrt(max(float(g @ cov @ g), 0.0))
+    return x0 + tv * scale, float(yv), err, float(a) / scale ** 2
+
+
+def load_minimum(problem, approach, guess=None, half_window=None, samples=7, options=SolverOptions(),
+                 max_rounds=6, log=None):
+    """Locate the load-control pull-off: the minimum of the load W(delta) along the displacement-controlled branch.
+
+    States are solved by :func:`solve_state` at ``samples`` approaches spread over
+    ``approach +- half_window``, each warm-started from its solved neighbours (linear
+    extrapolation in delta); a least-squares parabola through the loads gives the minimum.
+    The window moves to the fitted vertex until the vertex lies in its middle third.  The
+    standard error of the fitted minimum measures the loads' lattice noise (the edge moving
+    through whole cells).
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The problem.
+    approach : float
+        First approach (an analytic prediction of the pull-off) [length].
+    guess : ndarray, optional
+        Traction to start the first state from (e.g. :func:`cold_start`).
+    half_window : float, optional
+        Half-width of the sampled window [length]; default 2 % of |approach|.
+    samples : int
+        States per window (odd, >= 3).
+    options : SolverOptions
+        Per-state options.
+    max_rounds : int
+        Cap on window moves.
+    log : callable, optional
+        One line per state.
+
+    Returns
+    -------
+    LoadMinimum
+        The minimum and its work.
+    """
+    t0 = time.perf_counter()
+    precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+    hw = 0.02 * abs(approach) if half_window is None else float(half_window)
+    solved = {}
+    work = [0, 0]
+
+    def nearest(d):
+        keys = sorted(solved, key=lambda k: abs(k - d))
+        return keys[:2]
+
+    def solve_at(d):
+        if d in solved:
+            return solved[d]
+        near = nearest(d)
+        if not near:
+            q0 = guess
+        elif len(near) == 1:
+            q0 = solved[near[0]].traction
+        else:
+            a, b = near
+            qa, qb = solved[a].traction, solved[b].traction
+            q0 = qa + (d - a) / (b - a) * (qb - qa)
+        st = solve_state(problem, d, q0, options, precond)
+        if not st.converged and q0 is not guess and near:
+            # a poor extrapolation: start from the nearest state itself
+            st = solve_state(problem, d, solved[near[0]].traction, options, precond)
+        work[0] += st.newton_iterations
+        work[1] += st.krylov_iterations
+        solved[d] = st
+        if log is not None:
+            log(f"state {len(solved):2d}: approach {d:.8f} load {st.load:.8f} newton {st.newton_iterations} "
+                f"gmres {st.krylov_iterations} {st.reason} ({st.elapsed:.1f} s)")
+        return st
+
+    def result(d, load, err, ok, reason):
+        ds = np.array(sorted(solved))
+        best = solved[min(solved, key=lambda k: abs(k - d))] if np.isfinite(d) else solved[ds[0]]
+        return LoadMinimum(float(d), float(load), float(err), best, ds, np.array([solved[k].load for k in ds]),
+                           work[0], work[1], ok, reason, time.perf_counter() - t0)
+
+    center = float(approach)
+    st = solve_at(center)
+    if not st.converged:
+        return result(center, st.load, float("inf"), False, st.reason)
+    for _ in range(max_rounds):
+        ds = center + np.linspace(-hw, hw, samples)
+        # solve outward from the centre, so every warm start has a near neighbour
+        for d in sorted(ds, key=lambda v: abs(v - center)):
+            st = solve_at(float(d))
+            if not st.converged:
+                return result(d, st.load, float("inf"), False, st.reason)
+        window = [k for k in solved if abs(k - center) <= hw * (1 + 1e-9)]
+        xv, yv, err, curv = _quadratic_vertex(np.array(window), np.array([solved[k].load for k in window]))
+        if not np.isfinite(xv):
+            center -= hw                 # no minimum in the window: the load still falls towards lower delta
+            continue
+        if abs(xv - center) <= hw / 3.0:
+            return result(xv, yv, err, True, CONVERGED)
+        center = float(np.clip(xv, center - 2 * hw, center + 2 * hw))
+    return result(center, float("nan"), float("inf"), False, "diverged_window")
+
+
+def cold_start(problem, delta, zone_semi_axes, tol=1e-3, max_iter=5000):
+    """An analytic start: sigma0 on a predicted cohesive ellipse, and the contact pressure it implies.
+
+    The adhesive stress s = sigma0 on the ellipse with semi-axes (c, d) is held fixed and the
+    (convex) non-adhesive contact problem with the gap ``z - delta - K s`` is solved for the
+    repulsive pressure p by the Polonsky-Keer CG
+    (:func:`dhfield.bem.solver.solve_contact_pressure`); the start is ``q = p - s``.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The problem.
+    delta : float
+        Approach [length].
+    zone_semi_axes : (float, float)
+        Semi-axes (c, d) of the predicted cohesive zone [length].
+    tol : float
+        Tolerance of the contact solve (relative to the law's range) [-].
+    max_iter : int
+        Cap on its CG iterations.
+
+    Returns
+    -------
+    ndarray
+        The traction q on the working grid [stress].
+    """
+    from .solver import solve_contact_pressure
+
+    c, d = zone_semi_axes
+    x, y = problem.grid.mesh()
+    s = problem.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
+    s = problem.to_work(s)
+    sol = solve_contact_pressure(problem.op, problem.z - delta, np.zeros_like(s), problem.law.range, tol, max_iter,
+                                 problem.k0, stress=s)
+    return sol.pressure - s

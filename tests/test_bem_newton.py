@@ -1,0 +1,75 @@
+"""The semismooth Newton adhesive solve (dhfield.bem.newton): its Jacobian, its merit, and the sphere against MD."""
+import math
+
+import numpy as np
+import pytest
+
+from dhfield import maugis_dugdale
+from dhfield.adhesive_start import predicted_problem
+from dhfield.bem import newton
+
+
+@pytest.fixture(scope="module")
+def sphere():
+    """The paper's sphere (beta0 = 1) at mu = 1 on 128^2 cells, with its analytic start."""
+    P = predicted_problem(beta0=1.0, mu=1.0, n=128)
+    prob = P.adhesive_problem(threads=1)
+    q0 = newton.cold_start(prob, P.pull_off_approach, P.pull_off_zone)
+    return P, prob, q0
+
+
+def test_jacobian_matches_finite_differences(sphere):
+    # the Newton rows are the exact derivative of F = min(c h, p) away from its kinks: a central
+    # difference with step 1e-6 agrees to ~1e-6 relative (F is piecewise linear in q there)
+    P, prob, q0 = sphere
+    law = newton._Law(prob.law, prob.min_spread)
+    c = law.sigma0 / law.h0
+    h, p = newton._state(prob, law, P.pull_off_approach, q0)
+    contact = c * h < p
+    slope = law.slope(h)
+    v = np.random.default_rng(0).standard_normal(q0.shape)
+    eps = 1e-6
+    hp, pp = newton._state(prob, law, P.pull_off_approach, q0 + eps * v)
+    hm, pm = newton._state(prob, law, P.pull_off_approach, q0 - eps * v)
+    fd = (newton._residual(hp, pp, c) - newton._residual(hm, pm, c)) / (2 * eps)
+    kv = prob.op(v)
+    exact = np.where(contact, c * kv, v - slope * kv)
+    # cells within eps of a kink (c h = p, or the ramp's ends) take the other branch: few
+    off = np.abs(fd - exact) > 1e-4 * (1.0 + np.abs(exact))
+    assert off.sum() <= 0.001 * off.size
+
+
+def test_state_converges_with_decreasing_merit(sphere):
+    P, prob, q0 = sphere
+    st = newton.solve_state(prob, P.pull_off_approach, q0)
+    assert st.converged and st.reason == newton.CONVERGED
+    assert st.residual <= newton.SolverOptions().tol
+    # every accepted step decreased the merit ||F|| (the line search's guarantee)
+    assert all(b < a for a, b in zip(st.merit_history, st.merit_history[1:]))
+    # the state satisfies the complementarity system: no overlap, no tensile contact pressure
+    assert st.gap.min() >= -1e-8 * prob.law.range
+
+
+def test_sphere_pull_off_within_grid_error_of_maugis_dugdale(sphere):
+    # MD's load-control pull-off is exact for the Dugdale sphere; at 128^2 cells the ramped edge and
+    # the lattice leave ~0.1 %, so 0.5 % bounds it with margin while still failing a wrong law or scale
+    P, prob, q0 = sphere
+    res = newton.load_minimum(prob, P.pull_off_approach, q0, half_window=0.5 * P.approach_step)
+    assert res.converged
+    w_star = res.load * P.sin_skew / (2 * math.pi)          # Eq. (34)
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 1.0, control="load").W_star)
+    assert abs(w_star / md - 1) < 5e-3
+
+
+def test_load_slope_matches_neighbouring_states(sphere):
+    # dW/d delta from the Jacobian against a central difference of two solved states; W(delta) is
+    # piecewise smooth (its kinks are cells entering or leaving the law's ramp or the contact), so the
+    # step is kept far below the kinks' spacing (~1e-3 here): agreement to the difference's O(eps^2)
+    P, prob, q0 = sphere
+    d = P.pull_off_approach + 0.3
+    st = newton.solve_state(prob, d, q0)
+    slope, _ = newton.load_slope(prob, st)
+    eps = 1e-6
+    up = newton.solve_state(prob, d + eps, st.traction)
+    dn = newton.solve_state(prob, d - eps, st.traction)
+    assert slope == pytest.approx((up.load - dn.load) / (2 * eps), rel=1e-3)
