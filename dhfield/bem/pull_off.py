@@ -1340,8 +1340,8 @@ def unresolved_reasons(*, law, grid, sin_skew, edge_resolved, control, w_star, s
             reasons.append(f"the contact spans fewer than {CONTACT_MIN_CELLS:g} cells (a* = {a:.3g}, dx = {g.dx:.3g}; "
                            f"b* = {b:.3g}, dy = {g.dy:.3g}): increase n")
     if stated_error is not None and not np.isfinite(stated_error):
-        reasons.append("no error estimate (the minimum is at an end of its samples, or the grid half as fine "
-                       "gave no pull-off to compare with)")
+        reasons.append("no error estimate (the minimum is at an end of its samples, or no coarser grid gave the "
+                       "same pull-off to compare with)")
     return reasons
 
 
