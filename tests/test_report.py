@@ -135,6 +135,16 @@ def test_markdown_subset_renders():
     assert "<script>" not in html_text
 
 
+def test_bold_around_a_code_span_renders_as_bold():
+    """Issue 40: ``**Recommended model `md-elliptic`: ...**`` showed its asterisks literally."""
+    from verification.report import markdown_to_html
+
+    html_text = markdown_to_html("- **Use `md-elliptic` (W*): within 1 %** of the BEM; `**x**` stays code")
+    assert "<strong>Use <code>md-elliptic</code> (W*): within 1 %</strong>" in html_text
+    assert "<code>**x**</code>" in html_text
+    assert "**" not in html_text.replace("<code>**x**</code>", "")
+
+
 def test_crashing_section_is_a_failed_check_and_exit_1(tmp_path, monkeypatch):
     from verification import report
 
@@ -350,27 +360,33 @@ def test_verdict_is_the_first_content_of_report_html(quick_report):
     parser.feed((out / "report.html").read_text(encoding="utf-8"))
     kids = parser.children
     assert kids[0][0] == "h1"
-    assert kids[1][0] == "section" and kids[1][1] == "verdict", kids[:3]
-    lead = kids[1][3]
+    # issue 40: the first screen (one sentence, one table) comes first, the verdict right after it
+    assert kids[1][0] == "section" and kids[1][1] == "first-screen", kids[:3]
+    assert kids[2][0] == "section" and kids[2][1] == "verdict", kids[:4]
+    lead = kids[2][3]
     assert "Verdict" in lead and "Which model to use when" in lead
     assert re.search(r"\d+(\.\d+)? %", lead), "the verdict states no number"
     # the PASS/FAIL count comes after the verdict, the checks table further down
     i_count = next(k for k, c in enumerate(kids) if "verdict" in c[2].split() and "CHECKS" in c[3])
     i_table = next(k for k, c in enumerate(kids) if c[1] == "summary")
-    assert 1 < i_count < i_table
+    assert 2 < i_count < i_table
 
 
 def test_verdict_is_the_first_content_of_summary_md(quick_report):
     out, _, _, _ = quick_report
     lines = (out / "summary.md").read_text(encoding="utf-8").splitlines()
     heads = [k for k, ln in enumerate(lines) if ln.startswith("## ")]
-    assert lines[heads[0]].startswith("## Verdict") and heads[0] <= 2
-    assert lines[heads[1]] == "## Which model to use when"
-    first_item = next(ln for ln in lines[heads[0]:] if ln.startswith("- "))
-    assert first_item in lines[heads[0] + 1:heads[0] + 3]
+    # issue 40: the first screen (one sentence, one table) first, then the verdict and the guide
+    assert lines[heads[0]] == "## Which model to use" and heads[0] <= 2
+    assert lines[heads[0] + 2].startswith("**Use `")
+    assert lines[heads[0] + 4].startswith("| model | worst error | median error |")
+    assert lines[heads[1]].startswith("## Verdict")
+    assert lines[heads[2]] == "## Which model to use when"
+    first_item = next(ln for ln in lines[heads[1]:] if ln.startswith("- "))
+    assert first_item in lines[heads[1] + 1:heads[1] + 3]
     i_count = next(k for k, ln in enumerate(lines) if ln.startswith("**Checks:"))
     i_table = next(k for k, ln in enumerate(lines) if ln.startswith("| section | check |"))
-    assert heads[1] < i_count < i_table
+    assert heads[2] < i_count < i_table
 
 
 def test_verdict_numbers_equal_what_the_sections_saved(quick_report):

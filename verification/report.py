@@ -18,7 +18,10 @@ The builder
   external resource), ``summary.md`` (the PASS/FAIL table with links to the
   figure and netCDF files) and ``checks.json`` (the same table, machine-readable),
   each atomically (temporary file, then ``os.replace``);
-* opens both ``report.html`` and ``summary.md`` with the **verdict**: what the
+* opens both ``report.html`` and ``summary.md`` with the **first screen**
+  (:func:`first_screen`, from :mod:`verification.headline`): one sentence (which model to use,
+  how close it is to the stored BEM ground truth, over what domain) and one table (each model's
+  worst and median error there, and where it is within 1 %); then the **verdict**: what the
   checks conclude about the paper, in words and numbers, gathered from every
   section's ``Section.verdict`` in :data:`VERDICT_ORDER` (the adhesion map and the
   recommended model first, then the adhesive ground truth), then "which model to use
@@ -57,7 +60,7 @@ from verification._api import VECTOR_FORMATS, Check, Section
 from verification._style import figure_style
 
 __all__ = ["SECTION_ORDER", "VERDICT_ORDER", "SectionResult", "main", "run_sections", "render_html",
-           "render_summary", "markdown_to_html", "link_references", "collect_verdict"]
+           "render_summary", "markdown_to_html", "link_references", "collect_verdict", "first_screen"]
 
 #: Section modules in report order: ``verification/sec_<name>.py``.  The report opens with the
 #: adhesion map (its first figure) and the recommended model.
@@ -338,20 +341,26 @@ _ITALIC = re.compile(r"(?<![\*\w])\*(?!\s)(.+?)(?<!\s)\*(?![\*\w])")
 _LINK = re.compile(r"\[([^\]]+)\]\(([^)\s]+)\)")
 
 
+_CODE_SLOT = re.compile("\x00(\\d+)\x00")
+
+
 def _inline(text: str) -> str:
-    """Inline Markdown (code, bold, italic, links) to HTML; everything else escaped."""
-    parts = _INLINE_CODE.split(text)
-    out = []
-    for k, part in enumerate(parts):
-        if k % 2:
-            out.append(f"<code>{html.escape(part)}</code>")
-            continue
-        s = html.escape(part, quote=False)
-        s = _LINK.sub(lambda m: f'<a href="{html.escape(m.group(2))}">{m.group(1)}</a>', s)
-        s = _BOLD.sub(r"<strong>\1</strong>", s)
-        s = _ITALIC.sub(r"<em>\1</em>", s)
-        out.append(s)
-    return "".join(out)
+    """Inline Markdown (code, bold, italic, links) to HTML; everything else escaped.
+
+    Code spans are set aside first (as numbered slots), so that bold, italic and links may
+    enclose them (``**Use `md-elliptic`**``) and nothing inside a code span is read as markup.
+    """
+    codes = []
+
+    def slot(m):
+        codes.append(f"<code>{html.escape(m.group(1))}</code>")
+        return f"\x00{len(codes) - 1}\x00"
+
+    s = html.escape(_INLINE_CODE.sub(slot, text.replace("\x00", "")), quote=False)
+    s = _LINK.sub(lambda m: f'<a href="{html.escape(m.group(2))}">{m.group(1)}</a>', s)
+    s = _BOLD.sub(r"<strong>\1</strong>", s)
+    s = _ITALIC.sub(r"<em>\1</em>", s)
+    return _CODE_SLOT.sub(lambda m: codes[int(m.group(1))], s)
 
 
 def _table_row(line: str):
@@ -557,6 +566,8 @@ nav ul{padding-left:1.2em}
 section.lead{border-left:5px solid #3b5b9a;background:#f5f7fc;padding:.4em 1.2em .8em;margin:.6em 0 1.2em}
 section.lead h2{margin-top:.4em;border:none}
 section.lead li{margin:.35em 0}
+section.first{border-left-color:#1b7837;background:#f3faf3}
+p.headline{font-size:1.15em}
 """
 
 
@@ -586,6 +597,32 @@ def _anchor(name):
     return "sec-" + re.sub(r"[^a-z0-9]+", "-", name.lower())
 
 
+def first_screen():
+    """The report's first screen: ``(sentence, table)`` in Markdown (:func:`verification.headline.headline`).
+
+    Which model to use, how close it is to the stored BEM ground truth and over what domain, then
+    every model's worst and median error there.  A failure to build it is said in the sentence
+    (the report still runs), with an empty table.
+    """
+    try:
+        from verification.headline import headline
+
+        return headline()
+    except Exception as exc:  # noqa: BLE001 - the first screen must not stop the report
+        return (f"**The first screen could not be built** ({exc!r}): see the verdict below.", "")
+
+
+def _first_screen_html(screen):
+    sentence, table = screen
+    return ("<section id='first-screen' class='lead first'><h2>Which model to use</h2>"
+            f"<p class=headline>{_inline(sentence)}</p>" + markdown_to_html(table)
+            + "<p class=small>Error: a model's deviation from the stored BEM pull-off plus the BEM's own "
+              "stated error, relative to the BEM pull-off, at each stored case (<code>dhfield.model_error</code>); "
+              "the box is the largest one, spanned by stored β0 and μ, in which every case is within 1 %. "
+              "The detail is below: <a href='#verdict'>verdict</a>, <a href='#guide'>which model when</a>, "
+              "<a href='#summary'>checks</a>.</p></section>")
+
+
 def _lead_html(results):
     """The verdict and "which model to use when", as the first content of the report."""
     verdict, guide = collect_verdict(results)
@@ -605,8 +642,11 @@ def _lead_html(results):
     return "".join(parts)
 
 
-def render_html(results, meta, out: Path, total_seconds: float) -> str:
-    """The complete, self-contained HTML report as a string: the verdict first, then the checks."""
+def render_html(results, meta, out: Path, total_seconds: float, screen=None) -> str:
+    """The complete, self-contained HTML report as a string.
+
+    The first screen (:func:`first_screen`, or ``screen``) first, then the verdict, then the checks.
+    """
     all_rows = [(r.name, c) for r in results for c in r.checks]
     ok, n_fail, n_all = _checks_status(results)
     verdict = (f"<div class='verdict pass'>ALL {n_all} CHECKS PASS</div>" if ok else
@@ -616,6 +656,7 @@ def render_html(results, meta, out: Path, total_seconds: float) -> str:
              "<meta name='viewport' content='width=device-width, initial-scale=1'>",
              "<title>dhfield verification report</title>", f"<style>{_CSS}</style></head><body><main>",
              "<h1>dhfield verification report</h1>",
+             _first_screen_html(screen if screen is not None else first_screen()),
              _lead_html(results),
              verdict,
              "<p>Verification of the extended double-Hertz model of an adhesive elliptical contact "
@@ -624,7 +665,8 @@ def render_html(results, meta, out: Path, total_seconds: float) -> str:
     for k, v in meta.items():
         parts.append(f"<dt>{html.escape(k)}</dt><dd>{html.escape(str(v))}</dd>")
     parts.append(f"<dt>wall time</dt><dd>{total_seconds:.1f} s</dd></dl>")
-    parts.append("<nav><h2>Contents</h2><ul><li><a href='#verdict'>Verdict</a></li>")
+    parts.append("<nav><h2>Contents</h2><ul><li><a href='#first-screen'>Which model to use</a></li>"
+                 "<li><a href='#verdict'>Verdict</a></li>")
     for r in results:
         nf = sum(not c.passed for c in r.checks)
         badge = "<span class=pass>PASS</span>" if nf == 0 and not r.crashed else f"<span class=fail>{nf} FAIL</span>"
@@ -670,13 +712,17 @@ def _md_cell(s) -> str:
     return str(s).replace("|", "\\|").replace("\n", " ")
 
 
-def render_summary(results, meta, out: Path, total_seconds: float) -> str:
-    """The Markdown summary: the verdict and model guide first, then header, PASS/FAIL table, links."""
+def render_summary(results, meta, out: Path, total_seconds: float, screen=None) -> str:
+    """The Markdown summary: the first screen (:func:`first_screen`, or ``screen``), the verdict and
+    model guide, then header, PASS/FAIL table, links."""
     all_rows = [(r.name, c) for r in results for c in r.checks]
     ok, n_fail, n_all = _checks_status(results)
     verdict, guide = collect_verdict(results)
-    lines = ["# dhfield verification report: summary", "", "## Verdict: what the checks conclude about the paper",
-             ""]
+    sentence, table = screen if screen is not None else first_screen()
+    lines = ["# dhfield verification report: summary", "", "## Which model to use", "", sentence, ""]
+    if table:
+        lines += [table, ""]
+    lines += ["## Verdict: what the checks conclude about the paper", ""]
     lines += [f"- {link_references(line, False)} ([{name}](report.html#{_anchor(name)}))" for name, line in verdict]
     if not verdict:
         lines.append("- No section stated a verdict.")
@@ -718,10 +764,12 @@ def _json_value(x):
     return x if x == x and abs(x) != float("inf") else str(x)
 
 
-def render_checks_json(results, meta, total_seconds) -> str:
+def render_checks_json(results, meta, total_seconds, screen=None) -> str:
     verdict, guide = collect_verdict(results)
+    sentence, table = screen if screen is not None else first_screen()
     return json.dumps({
         "meta": meta, "wall_time_s": total_seconds,
+        "first_screen": {"sentence": sentence, "table": table},
         "verdict": [{"section": name, "text": line} for name, line in verdict],
         "guide": [{"section": name, "text": line} for name, line in guide],
         "sections": [{"name": r.name, "title": r.section.title, "seconds": r.seconds, "crashed": r.crashed,
@@ -805,9 +853,10 @@ def main(argv=None) -> int:
     meta = collect_metadata(argv, args.quick)
     results = run_sections(out, names, args.quick, progress, jobs=args.jobs, show_progress=not args.no_progress)
     total = time.perf_counter() - t0
-    _write_text_atomic(out / "report.html", render_html(results, meta, out, total))
-    _write_text_atomic(out / "summary.md", render_summary(results, meta, out, total))
-    _write_text_atomic(out / "checks.json", render_checks_json(results, meta, total))
+    screen = first_screen()
+    _write_text_atomic(out / "report.html", render_html(results, meta, out, total, screen))
+    _write_text_atomic(out / "summary.md", render_summary(results, meta, out, total, screen))
+    _write_text_atomic(out / "checks.json", render_checks_json(results, meta, total, screen))
     n_checks = sum(len(r.checks) for r in results)
     n_fail = sum(not c.passed for r in results for c in r.checks)
     crashed = [r.name for r in results if r.crashed]
