@@ -101,3 +101,30 @@ def test_first_screen_comes_first_without_running_sections(fmt):
         lines = text.splitlines()
         assert lines[2] == "## Which model to use" and lines[4] == screen[0]
         assert text.index(screen[1]) < text.index("## Verdict")
+
+
+def test_bem_comparison_figure_includes_the_recommended_model(tmp_path, monkeypatch):
+    """Issue 40: the adhesive section's figure of every model against the BEM lacked the recommended one."""
+    import matplotlib
+    import xarray as xr
+
+    matplotlib.use("Agg")
+    from verification import sec_adhesive
+    from verification._style import model_label
+
+    labels = []
+    real = sec_adhesive.legend_below
+    monkeypatch.setattr(sec_adhesive, "legend_below",
+                        lambda fig, handles, names, **kw: (labels.extend(names), real(fig, handles, names, **kw))[1])
+    with xr.open_dataset(sec_adhesive.DATASET) as ds:
+        tab = sec_adhesive.truth_table(ds)
+        w_bem = ds["W_star_extrapolated"].transpose("beta0", "mu").values
+    fig = sec_adhesive._figure(tab, tmp_path, 40)
+    assert labels[0] == model_label(compare.RECOMMENDED_MODEL)
+    assert f"`{compare.RECOMMENDED_MODEL}`" in fig.caption
+    # its points are the recommended model against the stored BEM: recomputed here point by point
+    dev = sec_adhesive.recommended_deviation(tab)
+    i, j = 2, 3
+    ref = compare.pull_off(compare.RECOMMENDED_MODEL, beta0=float(tab["beta0"][i]), mu=float(tab["mu"][j]),
+                           warn=False).W_star / w_bem[i, j] - 1.0
+    assert dev[i, j] == pytest.approx(ref, rel=1e-12)

@@ -5,8 +5,9 @@ Provenance: the recommended model's worst deviation from the stored BEM is re-de
 both ground truths (data/adhesive_ground_truth.nc, W_star_extrapolated, and
 data/adhesive_ground_truth_slender.nc, W_star at its finest level; W* of Eq. 34), read here with
 xarray directly, and dhfield.adhesion_map's adapter, independently of the section's own code path.
-The validated box is the datasets' own coordinates: beta0 0.1-1 and the mu stored at every beta0,
-0.3-5.
+The validated box is the box of every stored case, read here from the extended ground truth's own
+coordinates (beta0 0.1-1, mu 0.1-10: the six mu = 10 cases included, issue 40), and both figures
+draw every one of its cases.
 """
 from __future__ import annotations
 
@@ -48,8 +49,13 @@ def test_map_section_states_the_validated_box_and_the_worst_case(section):
 
     sec, _, _ = section
     text = " ".join(sec.verdict)
-    assert "validated against the BEM only inside β0 ≥ 0.1 (θ ≥ 19°), 0.3 ≤ μ ≤ 5" in text
-    assert "slender cases at μ = 0.1, below the box" in text
+    # issue 40: the box of the whole stored truth, mu = 10 included (it said 0.3 <= mu <= 5 before)
+    with xr.open_dataset(sec_map.ROOT / "data" / "adhesive_ground_truth_extended.nc") as ds:
+        finite = np.isfinite(ds["W_star_truth"].transpose("beta0", "mu").values)
+        bb, mm = np.meshgrid(ds["beta0"].values, ds["mu"].values, indexing="ij")
+    assert (bb[finite].min(), mm[finite].min(), mm[finite].max()) == (0.1, 0.1, 10.0)
+    assert "validated against the BEM only inside β0 ≥ 0.1 (θ ≥ 19°), 0.1 ≤ μ ≤ 10** (the box of every stored case)" in text
+    assert "0.3 ≤ μ ≤ 5" not in text + " ".join(sec.guide) + " ".join(f.caption for f in sec.figures)
     assert "BEM-validated" not in text  # that label is on the figure; the verdict says it in words
     b, m, w_bem = [], [], []
     for name, read in (("adhesive_ground_truth.nc", lambda ds: ds["W_star_extrapolated"]),
@@ -68,6 +74,45 @@ def test_map_section_states_the_validated_box_and_the_worst_case(section):
     assert validated_extent(read_truth()) == ((0.1, 1.0), (0.3, 5.0))
     np.testing.assert_allclose(2.0 * w_bem / sin_skew_angle(b), read_truth()["force"], rtol=1e-15)
     assert re.search(r"Numerical JKR limit.*GVG is within \d+\.\d+ %", text)
+
+
+def test_figures_draw_every_stored_case_and_the_stored_box(section, tmp_path):
+    """Issue 40: the map and the practitioner's figure said "validated μ ≤ 5" with six μ = 10 cases stored."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure as MplFigure
+
+    from verification import adhesion_map as vam
+
+    sec, _, _ = section
+    n = int(np.isfinite(__import__("xarray").open_dataset(vam.GROUND_TRUTH_EXTENDED)["W_star_truth"].values).sum())
+    assert f"every one of the {n} stored BEM cases" in sec.figures[0].caption
+    assert "0.1 ≤ μ ≤ 10" in sec.figures[0].caption
+    # the figures' own titles: capture the text matplotlib draws
+    titles = []
+    orig = MplFigure.suptitle
+
+    def keep(self, t, **kw):
+        titles.append(t)
+        return orig(self, t, **kw)
+
+    MplFigure.suptitle = keep
+    try:
+        whole = vam.read_truth(vam.GROUND_TRUTH_EXTENDED)
+        from dhfield.io.adhesion_map import read_adhesion_map
+
+        stored = read_adhesion_map(sec_map.MAP_DATASET)
+        import dataclasses
+
+        box_b, box_m = vam.stored_box(whole)
+        stored = dataclasses.replace(stored, validated_beta0=box_b, validated_mu=box_m)
+        vam.map_figure(stored, whole, vam.truth_deviation(whole), tmp_path / "m", dpi=40)
+        vam.practitioner_figure(sec_map._columns(stored, vam.PRACTITIONER_MU), None, whole, tmp_path / "p", dpi=40)
+    finally:
+        MplFigure.suptitle = orig
+    assert all("0.1 ≤ μ ≤ 10" in t for t in titles) and not any("μ ≤ 5" in t for t in titles), titles
+    assert f"({n} BEM cases)" in titles[0]
 
 
 def test_map_section_states_the_worst_case_of_the_extended_ground_truth(section):

@@ -5,20 +5,21 @@ Builds :func:`dhfield.adhesion_map.adhesion_map` over crossing angle 10-90 deg x
 ``data/adhesion_map.nc``) and draws, as PNG, SVG and PDF (default ``out/adhesion_map/``):
 
 1. ``adhesion_map``: one panel per model, crossing angle (x) vs mu (y, log): where its
-   load-control pull-off force is within 1 % and within 5 % of the reference; the stored BEM
-   ground truth overlaid (both datasets, 42 cases: ``data/adhesive_ground_truth.nc``, beta0
-   0.5-1 x mu 0.3-5, and ``data/adhesive_ground_truth_slender.nc``, beta0 0.1-0.3 x mu 0.1-5),
-   each point filled where that model is within 1 % of the BEM; the validated region (the
-   ground truth's common extent) outlined.
+   load-control pull-off force is within 1 % and within 5 % of the reference; the whole stored
+   BEM ground truth overlaid (``data/adhesive_ground_truth_extended.nc``, 57 cases, beta0 0.1-1 x
+   mu 0.1-10: every case of ``data/adhesive_ground_truth.nc`` and
+   ``data/adhesive_ground_truth_slender.nc``, plus mu = 10 and the extended study), each point
+   filled where that model is within 1 % of the BEM; the validated region (the box of the
+   stored cases, :func:`dhfield.model_error.bem_verified`) outlined.
 2. ``practitioner_pull_off``: pull-off force -W/(pi R dgamma), R = sqrt(R'R''), against the
    crossing angle at mu = 0.1, 1, 10, 100, every model on the same axes, the BEM where it
-   exists (mu = 0.1 below 61 deg, mu = 1) and the two-axis double-Hertz closure on a coarse subset (45-90 deg:
+   exists (mu = 0.1, 1, 10) and the two-axis double-Hertz closure on a coarse subset (45-90 deg:
    it refuses beta0 < 0.3, and costs 0.2-0.4 s per point, so it is not on the full map).
 
-The reference is the recommended model ``md-elliptic`` (:mod:`dhfield.elliptic_transition`),
+The reference is the recommended model (:data:`dhfield.compare.RECOMMENDED_MODEL`),
 validated against the BEM only inside the outlined region (beta0 >= 0.1, i.e. crossing angles
->= 19 deg, and mu 0.3-5; the slender set's cases at mu = 0.1 lie below it): a deviation
-outside it is from the recommended model, not from the truth.  Prints the figure paths and, per
+>= 19 deg, and mu 0.1-10, read from the stored cases): a deviation outside it is from the
+recommended model, not from the truth.  Prints the figure paths and, per
 model, the fraction of the map within 1 % and 5 % of the reference and its worst
 deviation from the BEM.
 
@@ -120,6 +121,21 @@ def validated_extent(truth):
     lo = max(float(truth["mu"][truth["beta0"] == x].min()) for x in b)
     hi = min(float(truth["mu"][truth["beta0"] == x].max()) for x in b)
     return (float(b[0]), float(b[-1])), (lo, hi)
+
+
+def stored_box(truth):
+    """The box the stored cases span: the smallest to the largest stored beta0 and mu.
+
+    This is the box of :func:`dhfield.model_error.bem_verified` when ``truth`` is the whole stored
+    ground truth (:data:`GROUND_TRUTH_EXTENDED`).
+
+    Returns
+    -------
+    tuple
+        ``(beta0_min, beta0_max), (mu_min, mu_max)`` [-].
+    """
+    return ((float(np.min(truth["beta0"])), float(np.max(truth["beta0"]))),
+            (float(np.min(truth["mu"])), float(np.max(truth["mu"]))))
 
 
 def truth_deviation(truth):
@@ -253,9 +269,9 @@ def map_figure(r, truth, dev_truth, stem, dpi=200):
     fig.suptitle("Adhesion map for elliptical contacts (equal cylinders, load control): deviation of the pull-off "
                  "force from the reference\nThe reference is the recommended model, validated against the BEM only "
                  f"inside the dashed box (θ ≥ {a_lo:.0f}°: β0 ≥ {r.validated_beta0[0]:g}; "
-                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g})\n({truth['force'].size} BEM cases, "
-                 f"{_below_box(r, truth)} of them at μ = {_fmt_mus(truth['mu'][truth['mu'] < r.validated_mu[0]])} "
-                 "below it); outside it, deviations are from the recommended model, "
+                 f"{r.validated_mu[0]:g} ≤ μ ≤ {r.validated_mu[1]:g})\n({truth['force'].size} BEM cases"
+                 + (f", {_below_box(r, truth)} of them at μ = {_fmt_mus(truth['mu'][truth['mu'] < r.validated_mu[0]])} "
+                    "below it" if _below_box(r, truth) else "") + "); outside it, deviations are from the recommended model, "
                  "not from the truth.\nThe two-axis double-Hertz closure (0.2-0.4 s per point) is not mapped: see the "
                  "practitioner's figure.", fontsize=9)
     return _save(fig, stem, dpi)
@@ -351,15 +367,15 @@ def main(argv=None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     t0 = time.perf_counter()
-    truth = read_truth()
-    vb, vm = validated_extent(truth)
+    truth = read_truth(GROUND_TRUTH_EXTENDED)   # the whole stored truth
+    vb, vm = stored_box(truth)
     r = am.adhesion_map(angles, mus, validated_beta0=vb, validated_mu=vm)
     t_map = time.perf_counter() - t0
     from dhfield.io.adhesion_map import write_adhesion_map
 
     cmd = "python -m verification.adhesion_map " + " ".join(argv if argv is not None else sys.argv[1:])
     nc = write_adhesion_map(r, args.out, command=cmd.strip(),
-                            ground_truth=", ".join(str(q.relative_to(ROOT)) for q in GROUND_TRUTHS),
+                            ground_truth=str(GROUND_TRUTH_EXTENDED.relative_to(ROOT)),
                             git_commit=_git_commit())
     dev_truth = truth_deviation(truth)
     curves = am.adhesion_map(np.linspace(10.0, 90.0, 81), PRACTITIONER_MU, validated_beta0=vb, validated_mu=vm)
