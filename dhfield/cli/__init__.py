@@ -4,7 +4,7 @@ A thin layer: each subcommand parses its options and calls library functions;
 no physics lives here.  Invalid input exits with status 2 and one line on
 stderr (``dhfield: error: ...``), never a traceback.
 
-One module per subcommand (``dhfield/cli/<name>.py``), each with
+One module per subcommand (``dhfield/cli/<name>.py``, a hyphen of the name an underscore), each with
 ``add_parser(subparsers)`` that creates its parser and sets ``func`` to its
 ``run(args) -> int``.  To add a subcommand, write the module and list it in
 :data:`SUBCOMMANDS`.
@@ -20,7 +20,8 @@ from ._common import OneLineParser, UsageError
 __all__ = ["main", "build_parser", "SUBCOMMANDS", "EXIT_BROKEN_PIPE"]
 
 #: Subcommand modules, in the order ``dhfield --help`` lists them.
-SUBCOMMANDS = ["curve", "pulloff", "cycle", "field", "compare", "periphery", "sweep", "plot", "fit", "solve"]
+SUBCOMMANDS = ["curve", "pulloff", "cycle", "field", "compare", "periphery", "sweep", "plot", "force-vs-angle", "fit",
+               "solve"]
 
 
 def build_parser() -> OneLineParser:
@@ -38,7 +39,7 @@ def build_parser() -> OneLineParser:
     parser.add_argument("--version", action="version", version=f"dhfield {__version__}")
     sub = parser.add_subparsers(dest="command", parser_class=OneLineParser, required=True)
     for name in SUBCOMMANDS:
-        importlib.import_module(f".{name}", __name__).add_parser(sub)
+        importlib.import_module(f".{name.replace('-', '_')}", __name__).add_parser(sub)
     return parser
 
 
