@@ -44,7 +44,8 @@ from . import _adhesion as units
 from . import closure, compare, dimensional
 from ._validation import TABOR_RANGE, check_finite, check_positive
 
-__all__ = ["WorkOfAdhesionFit", "CurveFit", "fit_work_of_adhesion", "fit_curve", "FIT_MU_RANGE", "fit_mu_range",
+__all__ = ["WorkOfAdhesionFit", "CurveFit", "JointFit", "fit_work_of_adhesion", "fit_curve", "fit_joint",
+           "JOINT_CONFIDENCE", "FIT_MU_RANGE", "fit_mu_range",
            "CURVE_FIT_MODEL_NAMES", "propagate_input_uncertainty", "replicate_statistics", "COVERAGE_FACTOR",
            "INPUT_REL_STEP", "JACOBIAN_COND_MAX", "CORRELATION_MAX", "CURVE_NODES", "CURVE_INTERPOLATION_RTOL"]
 
@@ -660,37 +661,41 @@ JACOBIAN_COND_MAX = 1e6
 CORRELATION_MAX = 1.0 - 1e-6
 
 
-def _log_standard_errors(jac, fun, n_res):
-    """Standard errors, covariance and correlation of (ln dgamma, ln sigma0), and what is not identifiable.
+def _log_standard_errors(jac, fun, n_res, names=None):
+    """Standard errors, covariance and correlation of the log parameters, and what is not identifiable.
 
-    Returns ``(se, cov, corr, problems, unknown)``: ``se`` NaN for a parameter the data
-    cannot determine (``unknown`` True), with the reason in ``problems`` (list of str).
+    ``names`` are the parameters of the columns of ``jac`` (default ``(work_of_adhesion,
+    max_adhesive_stress)``, i.e. ln dgamma and ln sigma0).  Returns ``(se, cov, corr, problems,
+    unknown)``: ``se`` NaN for a parameter the data cannot determine (``unknown`` True), with the
+    reason in ``problems`` (list of str); ``corr`` is that of the first two (NaN for one parameter).
     """
+    names = _CURVE_PARAMETERS if names is None else tuple(names)
+    n_par = len(names)
     nan = float("nan")
-    dof = n_res - 2
+    dof = n_res - n_par
     s2 = float(np.sum(fun ** 2)) / dof if dof > 0 else nan
     problems = []
-    unknown = np.zeros(2, bool)
+    unknown = np.zeros(n_par, bool)
     u, sv, vt = np.linalg.svd(np.asarray(jac, float), full_matrices=False)
     cond = sv[0] / sv[-1] if sv[-1] > 0 else math.inf
     if not (np.all(np.isfinite(sv)) and sv[0] > 0):
         unknown[:] = True
         problems.append("the Jacobian of the residuals is zero or not finite: the data do not constrain "
-                        "work_of_adhesion and max_adhesive_stress; no standard errors")
-        return np.full(2, nan), np.full((2, 2), nan), nan, problems, unknown
+                        f"{' and '.join(names)}; no standard errors")
+        return np.full(n_par, nan), np.full((n_par, n_par), nan), nan, problems, unknown
     if cond > JACOBIAN_COND_MAX:
         # the null direction names the parameters it involves (NaN); a parameter nearly outside it
         # keeps the standard error of the full inverse, in which the null direction still weighs
         # v_i^2/s_min^2 (no pretence: large where it is not quite outside)
         unknown = np.abs(vt[-1]) > 0.1
-        names = " and ".join(n for n, m in zip(_CURVE_PARAMETERS, unknown) if m)
+        named = " and ".join(n for n, m in zip(names, unknown) if m)
         # numerical rank as numpy.linalg.matrix_rank counts it: s_min <= eps max(m, n) s_max
         deficient = sv[-1] <= np.finfo(float).eps * max(np.shape(jac)) * sv[0]
-        problems.append(f"{names} not identifiable: the Jacobian is "
+        problems.append(f"{named} not identifiable: the Jacobian is "
                         f"{'rank-deficient' if deficient else 'ill-conditioned'} (condition number {cond:.3g} > "
                         f"{JACOBIAN_COND_MAX:g})"
-                        + ("; only a combination of the two is determined; no standard errors" if unknown.all()
-                           else "; no standard error for it"))
+                        + ("; only a combination of the two is determined; no standard errors"
+                           if unknown.all() and n_par > 1 else "; no standard error for it"))
     keep = sv > 0  # an exactly zero singular value: its direction is dropped (its parameters are NaN)
     inv = (vt[keep].T / sv[keep] ** 2) @ vt[keep]
     cov = s2 * inv
@@ -698,7 +703,7 @@ def _log_standard_errors(jac, fun, n_res):
     se[unknown] = nan
     cov[unknown, :] = nan
     cov[:, unknown] = nan
-    corr = float(cov[0, 1] / (se[0] * se[1])) if np.all(np.isfinite(se)) and np.all(se > 0) else nan
+    corr = float(cov[0, 1] / (se[0] * se[1])) if n_par > 1 and np.all(np.isfinite(se)) and np.all(se > 0) else nan
     if math.isfinite(corr) and abs(corr) >= CORRELATION_MAX:
         unknown[:] = True
         problems.append(f"work_of_adhesion and max_adhesive_stress are correlated at {corr:+.7f}: only a "
@@ -988,3 +993,407 @@ def fit_curve(load, contact_size, params, *, approach=None, model=compare.DEFAUL
         float(np.sqrt(np.sum((d_data - d_fit) ** 2) / max(d_data.size - 1, 1))),
         model=model, success=success, message=message, evaluations=count[0],
         covariance_log=cov, warning=warning, params=p, not_identifiable=not_identifiable)
+
+
+#: Confidence level of the intervals of :class:`JointFit` [-] (Student t with the residual degrees of freedom).
+JOINT_CONFIDENCE = 0.95
+#: Search range of :func:`fit_joint` about its start, in decades of each parameter (as :func:`fit_curve`).
+_JOINT_SEARCH_DECADES = 4.0
+
+
+@dataclass(frozen=True)
+class JointFit:
+    """Work of adhesion (and adhesive stress) fitted to data at several crossing angles at once.
+
+    Parameters
+    ----------
+    work_of_adhesion : float
+        Estimate of dgamma [J m^-2], common to every angle.
+    max_adhesive_stress : float
+        The adhesive stress sigma0 [Pa]: the estimate, or the given value when it was held fixed (``fitted``).
+    work_of_adhesion_stderr, max_adhesive_stress_stderr : float
+        Standard errors [J m^-2], [Pa]: the square roots of the diagonal of the least-squares
+        covariance (delta method from the log parameters; :func:`fit_joint`), which for
+        replicates of one quantity is the familiar s/sqrt(n).  NaN for sigma0 when it was held
+        fixed, and for a parameter the data do not determine.
+    work_of_adhesion_interval, max_adhesive_stress_interval : (float, float)
+        The :data:`JOINT_CONFIDENCE` (95 %) intervals [J m^-2], [Pa]:
+        estimate +- t(0.975, ``dof``) standard error.
+    dof : int
+        Residual degrees of freedom, data rows less fitted parameters [-].
+    correlation : float
+        Correlation of the two log estimates [-] (NaN when one parameter is fitted).
+    fitted : tuple of str
+        The parameters fitted: ``("work_of_adhesion",)`` or both.
+    kind : {'pull_off', 'load_curve'}
+        What each data row is: a pull-off force at its angle, or a load at a contact size and angle.
+    skew_angle_deg : ndarray
+        Crossing angle of each row [deg].
+    force : ndarray
+        The measured pull-off forces or loads [N].
+    contact_size : ndarray or None
+        Contact semi-major axes of a load curve [m] (None for pull-off forces).
+    force_fitted : ndarray
+        The model at the estimates, at each row [N].
+    residual_sd : float
+        Residual standard deviation: relative (of ln|F|) for pull-off forces [-], in newtons for
+        load curves [N].
+    angles : tuple of float
+        The distinct crossing angles [deg], increasing.
+    mu, beta0 : tuple of float
+        Tabor parameter (Eq. 35) at the estimates and Hertz ellipticity, per distinct angle [-].
+    model, control : str
+        The model and (pull-off forces) the loading mode.
+    success : bool
+        False when the fit is flagged (a parameter not identifiable, or no convergence); ``message`` says why.
+    message : str
+        The solver's message, or why the fit is flagged.
+    evaluations : int
+        Forward model evaluations (one per angle per trial).
+    warning : str
+        Empty, or the warning :func:`dhfield.compare.pull_off` gives at the fitted state, per angle.
+    not_identifiable : tuple of str
+        The parameters the data do not determine.
+    contact_at : callable
+        ``contact_at(skew_angle_deg)`` -> :class:`dhfield.dimensional.ContactParameters` of the
+        geometry (its dgamma and sigma0 are replaced by the estimates).
+    """
+    work_of_adhesion: float
+    max_adhesive_stress: float
+    work_of_adhesion_stderr: float
+    max_adhesive_stress_stderr: float
+    work_of_adhesion_interval: tuple
+    max_adhesive_stress_interval: tuple
+    dof: int
+    correlation: float
+    fitted: tuple
+    kind: str
+    skew_angle_deg: np.ndarray
+    force: np.ndarray
+    contact_size: np.ndarray | None
+    force_fitted: np.ndarray
+    residual_sd: float
+    angles: tuple
+    mu: tuple
+    beta0: tuple
+    model: str
+    control: str
+    success: bool
+    message: str
+    evaluations: int
+    warning: str = ""
+    not_identifiable: tuple = ()
+    contact_at: object = field(repr=False, default=None)
+
+    def params_at(self, skew_angle_deg):
+        """The contact at the estimates at one crossing angle.
+
+        Parameters
+        ----------
+        skew_angle_deg : float
+            Crossing angle [deg].
+
+        Returns
+        -------
+        dhfield.dimensional.ContactParameters
+            Geometry and material with the fitted dgamma and sigma0.
+        """
+        return _with(self.contact_at(float(skew_angle_deg)), self.work_of_adhesion, self.max_adhesive_stress)
+
+    def model_pull_off(self, skew_angle_deg):
+        """Pull-off force of the fitted model at crossing angles.
+
+        Parameters
+        ----------
+        skew_angle_deg : array_like
+            Crossing angles [deg].
+
+        Returns
+        -------
+        ndarray
+            Pull-off forces [N] (negative).
+        """
+        angles = np.atleast_1d(np.asarray(skew_angle_deg, float))
+        return np.array([_pull_off_at(self.params_at(a), self.model, self.control) for a in angles])
+
+    def model_curve(self, skew_angle_deg, n=200):
+        """The fitted load curve at one crossing angle over that angle's measured contact sizes.
+
+        Parameters
+        ----------
+        skew_angle_deg : float
+            One of :attr:`angles` [deg].
+        n : int
+            Number of contact sizes, evenly spaced over the measured ones (2 to 100000).
+
+        Returns
+        -------
+        (ndarray, ndarray)
+            Contact semi-major axes [m] and loads [N].
+        """
+        from ._validation import check_count
+
+        n = check_count("n", n, 2, 100_000)
+        if self.contact_size is None:
+            raise ValueError("model_curve needs a load-curve fit (kind 'load_curve'); this one fitted pull-off forces")
+        sizes = self.contact_size[self.skew_angle_deg == float(skew_angle_deg)]
+        if sizes.size == 0:
+            raise ValueError(f"skew_angle_deg must be one of the data's angles {list(self.angles)}; "
+                             f"got {skew_angle_deg!r}")
+        a = np.linspace(float(np.min(sizes)), float(np.max(sizes)), n)
+        return a, _curve(self.params_at(skew_angle_deg), a, self.model)[0]
+
+    def as_record(self) -> dict:
+        """Return a plain dict of the results (for ``--json``), in SI units.
+
+        Returns
+        -------
+        dict
+            ``*_stderr`` are standard errors; ``*_ci95`` the 95 % intervals.  The sigma0
+            entries' standard error and interval are absent when sigma0 was held fixed.
+        """
+        rec = {"model": self.model, "kind": self.kind, "work_of_adhesion": self.work_of_adhesion,
+               "work_of_adhesion_stderr": self.work_of_adhesion_stderr,
+               "work_of_adhesion_ci95": list(self.work_of_adhesion_interval),
+               "max_adhesive_stress": self.max_adhesive_stress}
+        if "max_adhesive_stress" in self.fitted:
+            rec.update({"max_adhesive_stress_stderr": self.max_adhesive_stress_stderr,
+                        "max_adhesive_stress_ci95": list(self.max_adhesive_stress_interval),
+                        "correlation": self.correlation})
+        rec.update({"fitted": list(self.fitted), "dof": self.dof, "n_points": int(self.force.size),
+                    "skew_angles_deg": list(self.angles), "mu": list(self.mu), "beta0": list(self.beta0),
+                    ("relative_noise" if self.kind == "pull_off" else "load_noise"): self.residual_sd,
+                    "success": self.success, "message": self.message, "evaluations": self.evaluations,
+                    "warning": self.warning, "not_identifiable": list(self.not_identifiable)})
+        if self.kind == "pull_off":
+            rec["control"] = self.control
+        return rec
+
+
+def _pull_off_at(params, model, control):
+    return float(dimensional.pull_off_force(params, model, control, check_closure=False, warn=False)["force"])
+
+
+def fit_joint(force, skew_angle_deg, contact_at, *, contact_size=None, max_adhesive_stress=None,
+              model=compare.DEFAULT_MODEL, control="load", initial=None, check_closure=True):
+    """Work of adhesion, and adhesive stress where identifiable, from data at several crossing angles.
+
+    One dgamma (and one sigma0) is fitted to every row together; each row's model is evaluated
+    on its own crossing angle's geometry, so that R = sqrt(R'R''), beta0 and mu (Eq. 35) change
+    from angle to angle while the material parameters do not.
+
+    Parameters
+    ----------
+    force : array_like
+        Measured pull-off forces, negative [N] (without ``contact_size``); or measured loads,
+        positive compressive [N] (with it).
+    skew_angle_deg : array_like
+        Crossing angle of each row, in (0, 90] [deg].
+    contact_at : callable
+        ``contact_at(skew_angle_deg)`` -> :class:`dhfield.dimensional.ContactParameters` of the
+        geometry and material at that angle [deg] (e.g. :func:`dhfield.dimensional.contact_parameters`
+        with the angle in radians); its dgamma and sigma0 are replaced by the trial values.
+    contact_size : array_like, optional
+        Contact semi-major axis of each row [m]: the rows are then points of load curves.
+    max_adhesive_stress : float, optional
+        The adhesive stress sigma0 [Pa], held fixed; default: fitted with dgamma.
+    model : str
+        Default the recommended model (:data:`dhfield.compare.DEFAULT_MODEL`).  With
+        ``contact_size``, one of :data:`CURVE_FIT_MODEL_NAMES`.
+    control : {'load', 'displacement'}
+        Loading mode of pull-off forces (ignored for load curves).
+    initial : (float, float), optional
+        Starting (dgamma [J m^-2], sigma0 [Pa]); default for pull-off forces dgamma =
+        -F sin(theta)/(1.75 pi R) (between JKR and DMT) with mu = 1, for load curves those of
+        ``contact_at`` at the first angle.
+
+    Returns
+    -------
+    JointFit
+        Estimates, standard errors, 95 % intervals and the model at the estimates.
+
+    Other Parameters
+    ----------------
+    check_closure : bool
+        For ``dh-elliptic``: compare with the recommended model at each fitted state and add the
+        departure to ``warning`` (:func:`dhfield.compare.pull_off`).
+
+    Raises
+    ------
+    ValueError
+        Inputs of different lengths, fewer rows than fitted parameters plus one, a pull-off force
+        not negative, an angle outside (0, 90], or an unknown model.
+
+    Warns
+    -----
+    dhfield.validity.OutsideVerifiedDomainWarning
+        One warning with the text of ``warning``, when it is not empty.
+
+    Notes
+    -----
+    The unknowns are :math:`\\theta = \\ln\\Delta\\gamma` (and :math:`\\ln\\sigma_0`).  The residual
+    of a pull-off row is :math:`r_i = \\ln(F_{model}(\\theta_i)/F_i)` (relative, so that rows of
+    different force weigh by their relative scatter); that of a load-curve row is
+    :math:`(W_{model}(a_i, \\theta_i) - W_i)/\\mathrm{range}(W)`.  ``scipy.optimize.least_squares``
+    (trust-region reflective, within 4 decades of the start) minimises them, and
+
+    .. math::
+
+        C = s^2 (J^T J)^{-1}, \\qquad s^2 = \\frac{\\sum r_i^2}{m - p}, \\qquad
+        \\mathrm{se}(\\Delta\\gamma) = \\Delta\\gamma \\sqrt{C_{11}},
+
+    with J the Jacobian at the solution, m rows and p parameters.  For n replicate pull-off
+    forces at one angle and one parameter this is s/sqrt(n) divided by the slope
+    d ln|F|/d ln dgamma (1 to 1.21, see :func:`fit_work_of_adhesion`): the standard error, with
+    no coverage factor.  The interval is estimate +- t(0.975, m - p) se.  A parameter is flagged
+    not identifiable (``success`` False) as in :func:`fit_curve`: an ill-conditioned Jacobian
+    (:data:`JACOBIAN_COND_MAX`), correlation at +-1, a standard error above the estimate, or the
+    search bound.  From pull-off forces on the JKR side (mu above about 5) sigma0 barely moves the
+    force: hold it fixed (``max_adhesive_stress``) there.
+    """
+    for name, value in (("force", force), ("skew_angle_deg", skew_angle_deg), ("contact_size", contact_size)):
+        _reject_complex(name, value)
+    if not callable(contact_at):
+        raise ValueError(f"contact_at must be a callable returning ContactParameters; got {type(contact_at).__name__}")
+    f_data = np.atleast_1d(check_finite("force", force, "N")).astype(float).ravel()
+    angle = np.atleast_1d(check_finite("skew_angle_deg", skew_angle_deg, "deg")).astype(float).ravel()
+    if angle.size != f_data.size:
+        raise ValueError(f"skew_angle_deg must have the length of force ({f_data.size}); got {angle.size}")
+    bad = ~((angle > 0.0) & (angle <= 90.0))
+    if np.any(bad):
+        raise ValueError(f"skew_angle_deg must be in (0, 90] degrees; got {float(angle[bad][0])!r}")
+    kind = "pull_off" if contact_size is None else "load_curve"
+    a_data = None
+    if kind == "load_curve":
+        a_data = np.atleast_1d(check_positive("contact_size", contact_size, "m")).astype(float).ravel()
+        if a_data.size != f_data.size:
+            raise ValueError(f"contact_size must have the length of force ({f_data.size}); got {a_data.size}")
+        if model not in CURVE_FIT_MODEL_NAMES:
+            raise ValueError(f"model must be one of {', '.join(CURVE_FIT_MODEL_NAMES)} for load curves (models whose "
+                             f"load curve depends on the adhesive stress); got {model!r}")
+        if not np.any(f_data != 0.0):
+            raise ValueError(f"force must not be 0 at every point (a load curve needs the measured loads, N); "
+                             f"got {f_data.size} zeros")
+    else:
+        if model not in compare.MODEL_NAMES:
+            raise ValueError(f"model must be one of {', '.join(compare.MODEL_NAMES)}; got {model!r}")
+        if not np.all(f_data < 0.0):
+            raise ValueError(f"force must be negative (tensile pull-off forces, N); got {float(f_data[~(f_data < 0)][0])!r}")
+    if control not in ("load", "displacement"):
+        raise ValueError(f"control must be 'load' or 'displacement'; got {control!r}")
+    fixed_stress = None
+    if max_adhesive_stress is not None:
+        fixed_stress = float(check_positive("max_adhesive_stress", max_adhesive_stress, "Pa"))
+    names = ("work_of_adhesion",) if fixed_stress is not None else _CURVE_PARAMETERS
+    n_par = len(names)
+    if f_data.size < n_par + 1:
+        raise ValueError(f"force must have at least {n_par + 1} rows to fit {n_par} parameter(s) with an error "
+                         f"estimate; got {f_data.size}")
+    angles = tuple(float(a) for a in np.unique(angle))
+    base = {}
+    for a in angles:
+        p = contact_at(a)
+        _check_params(p)
+        base[a] = p
+    rows = {a: np.flatnonzero(angle == a) for a in angles}
+
+    if initial is None:
+        if kind == "pull_off":
+            # between JKR (1.5 pi R dgamma) and DMT (2 pi R dgamma), Eq. (34): W = 2 pi R dgamma W*/sin
+            w0 = float(np.median([-f_data[i] * base[angle[i]].sin_skew / (1.75 * math.pi * base[angle[i]].effective_radius)
+                                  for i in range(f_data.size)]))
+            p0 = base[angles[0]]
+            s0 = float((p0.reduced_modulus ** 2 * w0 / p0.effective_radius) ** (1.0 / 3.0))  # mu = 1, Eq. (35)
+        else:
+            w0, s0 = float(base[angles[0]].work_of_adhesion), float(base[angles[0]].max_adhesive_stress)
+    else:
+        w0 = float(check_positive("initial work_of_adhesion", initial[0], "J m^-2"))
+        s0 = float(check_positive("initial max_adhesive_stress", initial[1], "Pa"))
+    if fixed_stress is not None:
+        s0 = fixed_stress
+
+    count = [0]
+    evaluators = {}
+    if kind == "load_curve":
+        evaluators = {a: _curve_evaluator(a_data[rows[a]], model, None) for a in angles}
+    scale = float(np.ptp(f_data)) if f_data.size > 1 and np.ptp(f_data) > 0 else float(np.max(np.abs(f_data)))
+
+    def unpack(theta):
+        return math.exp(theta[0]), (math.exp(theta[1]) if fixed_stress is None else fixed_stress)
+
+    def model_at(theta):
+        w, s = unpack(theta)
+        out = np.empty_like(f_data)
+        for a in angles:
+            count[0] += 1
+            p = _with(base[a], w, s)
+            if kind == "pull_off":
+                out[rows[a]] = _pull_off_at(p, model, control)
+            else:
+                out[rows[a]] = evaluators[a](p)[0]
+        return out
+
+    def residuals(theta):
+        try:
+            fm = model_at(theta)
+        except ValueError:  # a trial outside the model's accepted range
+            return np.full(f_data.size, 1e3)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            r = np.log(fm / f_data) if kind == "pull_off" else (fm - f_data) / scale
+        return np.where(np.isfinite(r), r, 1e6)
+
+    theta0 = np.log([w0, s0][:n_par])
+    span = math.log(10.0 ** _JOINT_SEARCH_DECADES)
+    bounds = (theta0 - span, theta0 + span)
+    sol = optimize.least_squares(residuals, theta0, method="trf", x_scale=1.0, xtol=1e-14, ftol=1e-14,
+                                 gtol=1e-14, max_nfev=200, bounds=bounds)
+    se_log, _, corr, problems, unknown = _log_standard_errors(sol.jac, sol.fun, f_data.size, names)
+    at_bound = (np.abs(sol.x - bounds[0]) < 0.01) | (np.abs(sol.x - bounds[1]) < 0.01)
+    vague = at_bound | (~(se_log < 1.0) & ~unknown)
+    if np.any(vague):
+        se_log = np.where(at_bound, np.inf, se_log)
+        problems.insert(0, f"{' and '.join(n for n, m in zip(names, vague) if m)} not identifiable from these data "
+                        "(standard error above the estimate, or the search bound 4 decades from the start reached)")
+    not_identifiable = tuple(n for n, m in zip(names, unknown | vague) if m)
+    if "max_adhesive_stress" in not_identifiable:
+        problems.append("hold max_adhesive_stress fixed (--adhesive-stress on the command line), or add data "
+                        "near pull-off in the JKR-DMT transition")
+    success, message = bool(sol.success), str(sol.message)
+    if problems:
+        success, message = False, "; ".join(problems)
+    work, stress = unpack(sol.x)
+    dof = f_data.size - n_par
+    from scipy import stats
+
+    t = float(stats.t.ppf(0.5 + JOINT_CONFIDENCE / 2.0, dof))
+    estimates = (work, stress)
+    se = [estimates[k] * float(se_log[k]) if k < n_par else float("nan") for k in range(2)]
+    intervals = [(v - t * e, v + t * e) if math.isfinite(e) else (float("nan"), float("nan"))
+                 for v, e in zip(estimates, se)]
+    f_fit = model_at(sol.x)
+    res = np.log(f_fit / f_data) if kind == "pull_off" else f_fit - f_data
+    residual_sd = float(np.sqrt(np.sum(res ** 2) / max(dof, 1)))
+    fitted_params = {a: _with(base[a], work, stress) for a in angles}
+    warnings_ = []
+    for a in angles:
+        p = fitted_params[a]
+        w_a = str(compare.pull_off(model, mu=p.mu, beta0=p.beta0, control=control, check_closure=check_closure,
+                                   warn=False)["warning"])
+        if w_a:
+            warnings_.append(f"at {a:g} deg: {w_a}")
+    if warnings_:  # one Python warning, with the record's text
+        import warnings
+
+        from .validity import OutsideVerifiedDomainWarning
+
+        warnings.warn("; ".join(warnings_), OutsideVerifiedDomainWarning, stacklevel=2)
+    return JointFit(
+        work_of_adhesion=work, max_adhesive_stress=stress, work_of_adhesion_stderr=se[0],
+        max_adhesive_stress_stderr=se[1], work_of_adhesion_interval=intervals[0],
+        max_adhesive_stress_interval=intervals[1], dof=dof,
+        correlation=corr if n_par > 1 and np.all(np.isfinite(se_log)) else float("nan"), fitted=names, kind=kind,
+        skew_angle_deg=angle, force=f_data, contact_size=a_data, force_fitted=f_fit, residual_sd=residual_sd,
+        angles=angles, mu=tuple(float(fitted_params[a].mu) for a in angles),
+        beta0=tuple(float(fitted_params[a].beta0) for a in angles), model=model, control=control,
+        success=success, message=message, evaluations=count[0], warning="; ".join(warnings_),
+        not_identifiable=not_identifiable, contact_at=contact_at)

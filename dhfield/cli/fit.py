@@ -39,6 +39,16 @@ print as 'not identifiable' (null in --json, listed in 'not_identifiable'),
 one line on stderr says why, and the exit status is 3.  With --data,
 --work-of-adhesion and --adhesive-stress are starting values (default 0.05 J/m^2 and mu = 1).
 
+With --data FILE.csv that has an angle column (skew_angle_deg, degrees): one fit
+over every crossing angle (geometry from --cylinder-radius or --radii, without
+--skew-angle-deg; mu changes with the angle, the material does not).  Rows
+without a semi_major column are pull-off forces (negative): dgamma is fitted
+at --adhesive-stress, or with sigma0 when it is left out (flagged, exit 3,
+where the forces do not determine it); rows with one are load-curve points:
+dgamma and sigma0.  work_of_adhesion_stderr is the standard error (s/sqrt(n)
+for replicates), work_of_adhesion_ci95 the Student-t 95 % interval; --plot
+draws the data against the fitted model, one curve per angle.
+
 Geometry and material as for 'dhfield pulloff'.  Outside a model's validated
 range, and for dh-elliptic where it departs from the recommended model
 md-elliptic, the result carries the warning 'dhfield pulloff' gives."""
@@ -156,6 +166,10 @@ def run(args) -> int:
         if stds_given:
             raise UsageError(f"{stds_given[0]} goes with --pull-off-force (a --data fit estimates its own "
                              "standard errors)")
+        from ..io.fit import has_angle_column
+
+        if has_angle_column(args.data):
+            return _run_joint(args)
         params = _params(args)
         from ..io.fit import read_curve_data
 
@@ -191,6 +205,66 @@ def run(args) -> int:
         print(f"dhfield: fit is not an answer: {res.message}", file=sys.stderr)
         return EXIT_NOT_AN_ANSWER
     return 0
+
+
+def _run_joint(args) -> int:
+    """``--data`` with a crossing-angle column: :func:`dhfield.fit.fit_joint` over the file's angles."""
+    import copy
+    import sys
+
+    from .. import fit
+    from ..io.fit import read_joint_data
+
+    if args.skew_angle_deg is not None:
+        raise UsageError(f"--skew-angle-deg goes with a data file without an angle column; {args.data} gives "
+                         "each row's angle in its skew_angle_deg column")
+    if args.principal_radii is not None:
+        raise UsageError("a data file with an angle column needs --cylinder-radius or --radii (the angle sets "
+                         "the principal radii), not --principal-radii")
+    data = read_joint_data(args.data)
+
+    def contact_at(angle_deg):
+        ns = copy.copy(args)
+        ns.skew_angle_deg = float(angle_deg)
+        return _params(ns)
+
+    initial = None
+    if args.work_of_adhesion is not None or "semi_major" in data:
+        p0 = contact_at(float(data["skew_angle_deg"][0]))
+        stress = args.adhesive_stress if args.adhesive_stress is not None else \
+            p0.max_adhesive_stress / p0.mu  # mu = 1 at the starting dgamma (Eq. 35)
+        initial = (p0.work_of_adhesion, stress)
+    # with pull-off forces, --adhesive-stress holds sigma0 fixed; with load curves it is a starting value
+    fixed = args.adhesive_stress if "semi_major" not in data else None
+    res = fit.fit_joint(data["force"], data["skew_angle_deg"], contact_at, contact_size=data.get("semi_major"),
+                        max_adhesive_stress=fixed, model=args.model, control=args.control, initial=initial)
+    rec = _hide_not_identifiable(res.as_record())
+    print_warning(rec)
+    if args.plot is not None:
+        from ..io.fit import write_joint_plot
+
+        write_joint_plot(res, args.plot)
+    _print_record(args, rec)
+    if not res.success:
+        print(f"dhfield: fit is not an answer: {res.message}", file=sys.stderr)
+        return EXIT_NOT_AN_ANSWER
+    return 0
+
+
+def _print_record(args, rec) -> None:
+    """Print a fit's record as JSON (``--json``) or as aligned text lines with units."""
+    unit = {k: _unit(k) for k in rec}
+    if args.json:
+        print_json({**rec, "units": {k: u for k, u in unit.items()
+                                     if not isinstance(rec[k], (str, bool)) and k not in ("not_identifiable", "fitted")}})
+        return
+    for k, v in rec.items():
+        if k == "not_identifiable":
+            continue
+        shown = NOT_IDENTIFIABLE_TEXT if v is None else _text(v)
+        print(f"{k:28s} {shown:24s} {'' if unit[k] == '1' or v is None else unit[k]}".rstrip())
+    if args.plot is not None:
+        print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
 
 
 #: Rows of a ``--data`` file from which a fit reports its progress on stderr even when stderr is not a
@@ -235,6 +309,6 @@ def _unit(key):
 
 _SCHEMA_KEYS = ("work_of_adhesion", "max_adhesive_stress", "mu", "beta0", "force")
 #: Units of record keys that are not schema variables.
-_EXTRA_UNITS = {"load_noise": "N", "approach_noise": "m", "work_of_adhesion_ci95": "J m-2", "forces": "N",
+_EXTRA_UNITS = {"skew_angles_deg": "deg", "max_adhesive_stress_ci95": "Pa", "relative_noise": "1", "load_noise": "N", "approach_noise": "m", "work_of_adhesion_ci95": "J m-2", "forces": "N",
                 "replicate_works": "J m-2", "replicate_stderr": "J m-2", "input_stderr": "J m-2",
                 "input_contributions": "J m-2"}

@@ -2,6 +2,8 @@
 
 :func:`read_curve_data` reads a measured load curve from CSV; :func:`write_residual_plot`
 draws a :class:`dhfield.fit.CurveFit` (matplotlib at the edge, imported on use).
+:func:`read_joint_data` reads data at several crossing angles (a ``skew_angle_deg`` column),
+and :func:`write_joint_plot` draws a :class:`dhfield.fit.JointFit`.
 """
 from __future__ import annotations
 
@@ -14,7 +16,8 @@ import numpy as np
 from .figures import model_label, si_prefix, write_figure
 
 __all__ = ["read_curve_data", "write_residual_plot", "residual_figure", "format_with_uncertainty", "DATA_COLUMNS",
-           "FORCE_UNITS", "LENGTH_UNITS", "MAX_DATA_ROWS"]
+           "FORCE_UNITS", "LENGTH_UNITS", "MAX_DATA_ROWS", "ANGLE_COLUMNS", "ANGLE_UNITS", "has_angle_column",
+           "read_joint_data", "joint_figure", "write_joint_plot"]
 
 #: Most data rows of a measured load curve (:func:`read_curve_data`); a larger file is refused, naming
 #: it and its row count, before anything is fitted.
@@ -248,6 +251,20 @@ def format_with_uncertainty(value, stderr, unit) -> str:
     return f"{v_r:.{decimals}f} \u00b1 {s_r:.{decimals}f} {prefix}{unit}"
 
 
+def _format_interval(interval, value, stderr, unit) -> str:
+    """``[lo, hi] unit`` with the SI prefix and decimal places of :func:`format_with_uncertainty`."""
+    lo, hi = (float(x) for x in interval)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return "(none)"
+    text = format_with_uncertainty(value, stderr, unit)  # "v ± s prefix-unit": reuse its decimals and prefix
+    number, rest = text.split(" \u00b1 ")
+    decimals = len(number.split(".")[1]) if "." in number else 0
+    prefixed = rest.split(" ", 1)[1]
+    exp3 = 0 if value == 0 else 3 * math.floor(math.log10(abs(value)) / 3)  # as format_with_uncertainty
+    factor = 10.0 ** -min(max(exp3, min(_SI_PREFIXES)), max(_SI_PREFIXES))
+    return f"[{lo * factor:.{decimals}f}, {hi * factor:.{decimals}f}] {prefixed}"
+
+
 def _three_digits(x) -> str:
     """Three significant digits without an exponent between 1e-3 and 1e6 (9610, not 9.61e+03)."""
     x = float(x)
@@ -338,3 +355,208 @@ def write_residual_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
         The PNG, SVG and PDF paths.
     """
     return write_figure(lambda: residual_figure(fit), path, dpi)
+
+
+#: Accepted names of the crossing-angle column of :func:`read_joint_data` (degrees unless the header says ``[rad]``).
+ANGLE_COLUMNS = ("skew_angle_deg", "skew_angle", "crossing_angle_deg", "crossing_angle")
+#: Units accepted in the crossing-angle header: unit -> factor to degrees.
+ANGLE_UNITS = {"deg": 1.0, "\u00b0": 1.0, "rad": 180.0 / math.pi}
+
+
+def _angle_column(frame):
+    """(column, factor to degrees) of the crossing-angle column of ``frame``, or None."""
+    for col in frame.columns:
+        base, unit = _split_header(col)
+        if base in ANGLE_COLUMNS:
+            return col, unit
+    return None
+
+
+def has_angle_column(path) -> bool:
+    """Whether a CSV file has a crossing-angle column (:data:`ANGLE_COLUMNS`).
+
+    Parameters
+    ----------
+    path : path-like
+        CSV file with a header row.
+
+    Returns
+    -------
+    bool
+        True when one of its columns is named in :data:`ANGLE_COLUMNS`.
+    """
+    from .table import read_table
+
+    frame, _ = read_table(path)
+    return _angle_column(frame) is not None
+
+
+def read_joint_data(path) -> dict:
+    """Data at several crossing angles from a CSV file, in SI units and degrees.
+
+    Parameters
+    ----------
+    path : path-like
+        CSV with a header row: ``skew_angle_deg`` (or another name of :data:`ANGLE_COLUMNS`;
+        degrees, or radians with ``[rad]`` in the header), ``force`` (or ``load``) and optionally
+        ``semi_major`` (or ``contact_size``).  Without a contact size each row is a pull-off force
+        (negative); with it, a point of a load curve.  Units in the headers as for
+        :func:`read_curve_data` (:data:`FORCE_UNITS`, :data:`LENGTH_UNITS`).
+
+    Returns
+    -------
+    dict
+        ``skew_angle_deg`` [deg], ``force`` [N] and (if present) ``semi_major`` [m]: float arrays.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and the column: more than :data:`MAX_DATA_ROWS` rows, a
+        column missing or not numeric, an unknown unit, an ``approach`` column (not fitted
+        jointly), or an angle outside (0, 90] degrees.
+    """
+    from .table import read_table
+
+    frame, _ = read_table(path)
+    where = f"data file {str(path)!r}"
+    if len(frame) > MAX_DATA_ROWS:
+        raise ValueError(f"{where} has {len(frame)} data rows; a joint fit may have at most {MAX_DATA_ROWS} "
+                         "(MAX_DATA_ROWS): thin the data")
+    found = _angle_column(frame)
+    if found is None:
+        raise ValueError(f"{where} has no crossing-angle column ({', '.join(ANGLE_COLUMNS)}); "
+                         f"columns: {', '.join(map(str, frame.columns))}")
+    angle_col, angle_unit = found
+    if angle_unit is not None and angle_unit not in ANGLE_UNITS:
+        raise ValueError(f"{where}, column {angle_col!r}: unknown angle unit {angle_unit!r}; use one of "
+                         f"{', '.join(ANGLE_UNITS)}")
+    cols, factors = {"skew_angle_deg": angle_col}, {"skew_angle_deg": ANGLE_UNITS.get(angle_unit, 1.0)}
+    headers = [_split_header(c) for c in frame.columns]
+    for name in ("force", "semi_major", "approach"):
+        hit = [(col, unit) for col, (base, unit) in zip(frame.columns, headers) if base in DATA_COLUMNS[name]]
+        if not hit:
+            if name == "force":
+                raise ValueError(f"{where} has no column 'force' (or load); columns: "
+                                 f"{', '.join(map(str, frame.columns))}")
+            continue
+        col, unit = hit[0]
+        if name == "approach":
+            raise ValueError(f"{where}, column {col!r}: approaches are not fitted jointly over angles; "
+                             "remove the column (or fit each angle with its own --data file)")
+        cols[name] = col
+        kind, table = _QUANTITY_UNITS[name]
+        if unit is not None and unit not in table:
+            raise ValueError(f"{where}, column {col!r}: unknown {kind} unit {unit!r}; use one of {', '.join(table)}")
+        factors[name] = table.get(unit, 1.0) if unit is not None else 1.0
+    frame, _ = read_table(path, required=tuple(cols.values()))
+    out = {name: frame[col].to_numpy(dtype=float) * factors[name] for name, col in cols.items()}
+    angles = out["skew_angle_deg"]
+    bad = ~((angles > 0.0) & (angles <= 90.0))
+    if np.any(bad):
+        raise ValueError(f"{where}, column {angle_col!r}: a crossing angle must be in (0, 90] degrees; got "
+                         f"{float(angles[bad][0]):g} in row {int(np.flatnonzero(bad)[0]) + 1}")
+    if "semi_major" not in out and not np.all(out["force"] < 0.0):
+        k = int(np.flatnonzero(~(out["force"] < 0.0))[0])
+        raise ValueError(f"{where}, column {cols['force']!r}: without a contact-size column each row is a pull-off "
+                         f"force, which must be negative (tensile); got {float(out['force'][k]):g} in row {k + 1}")
+    return out
+
+
+def joint_figure(fit, *, n=120):
+    """Draw the figure of :func:`write_joint_plot`.
+
+    Parameters
+    ----------
+    fit : dhfield.fit.JointFit
+        The fit.
+    n : int, default 120
+        Points of each smooth model curve.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    angles = np.asarray(fit.skew_angle_deg)
+    fig, axes = plt.subplots(2, 1, figsize=(6.0, 6.2), sharex=True, gridspec_kw={"height_ratios": (2.2, 1.0)})
+    f_scale, f_unit = si_prefix(np.nanmax(np.abs(fit.force)), "N")
+    label = f"{model_label(fit.model)}, fitted"
+    if fit.kind == "pull_off":
+        lo, hi = float(np.min(angles)), float(np.max(angles))
+        pad = 0.05 * (hi - lo) if hi > lo else 2.0
+        grid = np.linspace(max(lo - pad, 1e-3), min(hi + pad, 90.0), n)
+        axes[0].plot(angles, fit.force / f_scale, "o", ms=4.5, color="C0", label="data", zorder=3)
+        axes[0].plot(grid, fit.model_pull_off(grid) / f_scale, "-", lw=1.6, color="C1", label=label)
+        axes[0].set_ylabel(f"pull-off force [{f_unit}]")
+        residuals = 100.0 * (fit.force - fit.force_fitted) / np.abs(fit.force_fitted)
+        axes[1].plot(angles, residuals, "o", ms=4.5, color="C0")
+        axes[1].set_ylabel("residual [% of model]")
+        axes[1].set_xlabel("crossing angle θ [deg]")
+    else:
+        a_scale, a_unit = si_prefix(np.nanmax(fit.contact_size), "m")
+        residuals = fit.force - fit.force_fitted
+        r_scale, r_unit = si_prefix(np.nanmax(np.abs(residuals)), "N")
+        for k, a in enumerate(fit.angles):
+            rows = angles == a
+            colour = f"C{k % 10}"
+            axes[0].plot(fit.contact_size[rows] / a_scale, fit.force[rows] / f_scale, "o", ms=4.5, color=colour,
+                         label=f"data, {a:g}°", zorder=3)
+            a_curve, w_curve = fit.model_curve(a, n)
+            axes[0].plot(a_curve / a_scale, w_curve / f_scale, "-", lw=1.4, color=colour)
+            axes[1].plot(fit.contact_size[rows] / a_scale, residuals[rows] / r_scale, "o", ms=4.5, color=colour)
+        axes[0].plot([], [], "-", color="0.3", label=label)
+        axes[0].set_ylabel(f"load W [{f_unit}]")
+        axes[1].set_ylabel(f"load residual [{r_unit}]")
+        axes[1].set_xlabel(f"contact semi-major axis a [{a_unit}]")
+    axes[1].axhline(0.0, color="0.5", lw=0.8)
+    for ax in axes:
+        ax.grid(alpha=0.25)
+    axes[0].legend(fontsize=8, loc="best", frameon=False)
+    parts = [f"Δγ = {format_with_uncertainty(fit.work_of_adhesion, fit.work_of_adhesion_stderr, 'J/m²')}"]
+    if "max_adhesive_stress" in fit.fitted:
+        parts.append(f"σ₀ = {format_with_uncertainty(fit.max_adhesive_stress, fit.max_adhesive_stress_stderr, 'Pa')}")
+    else:
+        parts.append(f"σ₀ = {format_with_uncertainty(fit.max_adhesive_stress, math.nan, 'Pa')}"
+                     .replace("(no s.e.)", "(fixed)"))
+    interval = _format_interval(fit.work_of_adhesion_interval, fit.work_of_adhesion, fit.work_of_adhesion_stderr,
+                                "J/m²")
+    fig.suptitle(",  ".join(parts) + f"\n(± 1 standard error; 95 % interval of Δγ {interval}; "
+                 f"{len(fit.angles)} angles, {fit.force.size} rows)", fontsize=9.5)
+    notes = [m for m in (("not identifiable: see the fit's message" if not fit.success else ""),
+                         ("outside the model's validated or verified range: see the fit's warning"
+                          if fit.warning else "")) if m]
+    if notes:
+        fig.text(0.5, 0.005, "; ".join(notes), ha="center", va="bottom", fontsize=8, color="C3")
+    fig.tight_layout(rect=(0, 0.03 if notes else 0, 1, 1))
+    return fig
+
+
+def write_joint_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
+    """Write the data of a joint fit against the fitted model as PNG, SVG and PDF.
+
+    Pull-off forces: the data and the fitted pull-off force against the crossing angle, one
+    smooth curve over the angles; load curves: load against contact size, one colour and one
+    fitted curve per angle.  Residuals below; the estimates in the title with the precision
+    their standard errors allow (:func:`format_with_uncertainty`).
+
+    Parameters
+    ----------
+    fit : dhfield.fit.JointFit
+        The fit.
+    path : path-like
+        PNG file to write; the SVG and PDF take the same path with suffixes ``.svg`` and
+        ``.pdf``.  All three are checked before any is written, and written atomically.
+    dpi : int
+        Resolution of the PNG.
+
+    Returns
+    -------
+    (Path, Path, Path)
+        The PNG, SVG and PDF paths.
+    """
+    return write_figure(lambda: joint_figure(fit), path, dpi)
