@@ -1,7 +1,7 @@
 """The before/after figure gallery (verification/figure_gallery.py): its "after" part runs on this tree.
 
 Tiny inputs (a 2 x 2 sweep, the BEM at N = 32, no report) in a temporary directory; the
-full gallery (docs/howto/figure_gallery.rst) is drawn by ``python -m verification.figure_gallery``.
+full gallery (docs/developer/figure_gallery.rst) is drawn by ``python -m verification.figure_gallery``.
 """
 from __future__ import annotations
 

@@ -32,7 +32,7 @@ TEXT_FILES = sorted([ROOT / "README.md", *(ROOT / "docs").rglob("*.rst"), *(ROOT
                      ROOT / "verification" / "report.py", *(ROOT / "verification").glob("sec_*.py"),
                      *(ROOT / "dhfield").rglob("*.py")])
 #: Developer pages about past states of the tool (before/after figures), not advice to a user.
-HISTORY_FILES = {ROOT / "docs" / "howto" / "figure_gallery.rst", ROOT / "docs" / "changelog.rst"}
+HISTORY_FILES = {ROOT / "docs" / "developer" / "figure_gallery.rst", ROOT / "docs" / "changelog.rst"}
 _NAME = "(" + "|".join(re.escape(n) for n in sorted(compare.MODEL_NAMES, key=len, reverse=True)) + r")(?![\w-])"
 #: The ways a text names a default model: "`X` (the default)", "X (default)", "default: X", "The default `X`",
 #: "default model X", "X is the default", ``default="X"``.

@@ -5,7 +5,7 @@ Usage::
     python -m verification.figure_gallery --tree . --label after  [--out docs/_static/gallery]
     python -m verification.figure_gallery --tree /tmp/old --label before
 
-The figures of issue 17's before/after gallery (``docs/howto/figure_gallery.rst``).
+The figures of issue 17's before/after gallery (``docs/developer/figure_gallery.rst``).
 Every command runs in a subprocess with ``PYTHONPATH=<tree>`` (so the tree's own
 ``dhfield`` and ``verification`` draw them, an old commit's as well as this one's) on
 small, fast inputs:

@@ -6,10 +6,13 @@ At ``config-inited`` (before Sphinx lists the source files) it writes, under ``d
     The API reference: one page per public module (every module of :mod:`dhfield` whose
     dotted name has no component starting with ``_``, except the command-line subcommand
     modules, which the CLI reference covers), listing the module's ``__all__`` through
-    a table (one generated page per name, ``api/generated/``), grouped by :data:`GROUPS`.  A name that a
+    a table (one generated page per name, ``api/generated/``).  A name that a
     module re-exports from another public module links to the page of the module that
-    defines it.  A module not matched by :data:`GROUPS` lands in "Other modules", so a new
-    module is documented without editing this file.
+    defines it.  ``api/index.rst`` (the user's API reference) lists the entry points a user
+    calls, :data:`ENTRY_POINTS`, grouped by task; ``api/internals.rst`` (the developer
+    reference) lists every other public module, the building blocks, grouped by :data:`GROUPS`.
+    A module not matched by :data:`GROUPS` lands in "Other modules", so a new module is
+    documented without editing this file.
 ``_generated/verdict.rst``, ``_generated/truth_table.rst``, ``_generated/sphere.rst``
     The verdict of the self-consistent adhesive BEM against the closures, computed from
     ``data/adhesive_ground_truth.nc`` and ``data/adhesive_sphere_convergence.json`` by the
@@ -63,6 +66,30 @@ GROUPS = (
     ("Command line", "The ``dhfield`` command's entry point (its options: :doc:`/cli`).", ("dhfield.cli",)),
 )
 OTHER_GROUP = ("Other modules", "Public modules not yet placed in a group.")
+
+#: The user's API reference (``api/index.rst``): (task, introduction, modules), in the order a user
+#: meets them.  Every other public module is a building block, listed on ``api/internals.rst``.
+ENTRY_POINTS = (
+    ("Compute a pull-off force", "The recommended model by default, any model by name; nondimensional "
+     "(the paper's units) or SI; every answer with its estimated error against the BEM ground truth.",
+     ("dhfield", "dhfield.compare", "dhfield.dimensional", "dhfield.model_error", "dhfield.validity")),
+    ("Fit measurements", "The work of adhesion (and the adhesive stress) from measured pull-off forces or "
+     "load curves.", ("dhfield.fit",)),
+    ("Maps, sweeps and figures", "Every model over crossing angle and μ, parameter sweeps that resume, and "
+     "the figures drawn from them.",
+     ("dhfield.adhesion_map", "dhfield.force_vs_angle", "dhfield.sweep", "dhfield.plotting")),
+    ("The boundary-element ground truth", "The self-consistent adhesive BEM solution that judges the models.",
+     ("dhfield.bem",)),
+    ("Files", "netCDF/CSV files with provenance, and the one table of their variables.",
+     ("dhfield.io", "dhfield.schema")),
+    ("Command line", "The ``dhfield`` command's entry point (its options: :doc:`/cli`).", ("dhfield.cli",)),
+)
+
+
+def entry_point_modules() -> list[str]:
+    """The modules of the user's API reference (:data:`ENTRY_POINTS`) that exist, in order."""
+    mods = set(public_modules())
+    return [m for _, _, group in ENTRY_POINTS for m in group if m in mods]
 
 
 # --------------------------------------------------------------------------- the public API
@@ -263,16 +290,37 @@ def write_api(outdir: Path) -> None:
         fname = f"{m}.rst"
         keep.add(fname)
         write_if_changed(outdir / fname, "\n".join(lines) + "\n")
+    entry = entry_point_modules()
     index = [".. _api:\n", _title("API reference"),
-             "Every public name of :mod:`dhfield`, generated from the docstrings: each module lists its "
-             "``__all__``.  Units are SI unless a name says ``_star``/``nondimensional`` (the paper's units "
-             "of Eqs. 32-35, :doc:`/theory/model`).  Equations cite the paper as \"Eq. (n)\".\n"]
-    for k in sorted(groups):
-        title, intro = (GROUPS[k][:2] if k < len(GROUPS) else OTHER_GROUP)
+             "The functions and classes a user calls, grouped by task, generated from the docstrings: each "
+             "module lists its ``__all__``.  Units are SI unless a name says ``_star``/``nondimensional`` (the "
+             "paper's units of Eqs. 32-35, :doc:`/theory/model`).  Equations cite the paper as \"Eq. (n)\".  "
+             "The building blocks behind them (geometry, elliptic integrals, the double-Hertz fields, the "
+             "closures, the BEM's operator and solver) are in the :doc:`developer reference </api/internals>`.\n"]
+    for title, intro, group in ENTRY_POINTS:
+        present = [m for m in group if m in entry]
+        if not present:
+            continue
         index += [_title(title, "-"), intro + "\n", ".. list-table::\n   :widths: 30 70\n"]
-        for m in groups[k]:
+        for m in present:
             index.append(f"   * - :doc:`{m}`\n     - {escape_bars(_first_line(m))}")
-        index += ["", ".. toctree::\n   :hidden:\n"] + [f"   {m}" for m in groups[k]] + [""]
+        index += ["", ".. toctree::\n   :hidden:\n"] + [f"   {m}" for m in present] + [""]
+    internals = [".. _api-internals:\n", _title("Developer reference: the building blocks"),
+                 "Every other public module of :mod:`dhfield`: the equations of the paper one module per "
+                 "concept, the closures, the comparison models, the BEM's parts and the plumbing behind the "
+                 "entry points of the :doc:`API reference </api/index>`.  Public and documented, but a user "
+                 "rarely calls them directly.\n"]
+    for k in sorted(groups):
+        mods = [m for m in groups[k] if m not in entry]
+        if not mods:
+            continue
+        title, intro = (GROUPS[k][:2] if k < len(GROUPS) else OTHER_GROUP)
+        internals += [_title(title, "-"), intro + "\n", ".. list-table::\n   :widths: 30 70\n"]
+        for m in mods:
+            internals.append(f"   * - :doc:`{m}`\n     - {escape_bars(_first_line(m))}")
+        internals += ["", ".. toctree::\n   :hidden:\n"] + [f"   {m}" for m in mods] + [""]
+    write_if_changed(outdir / "internals.rst", "\n".join(internals) + "\n")
+    keep.add("internals.rst")
     write_if_changed(outdir / "index.rst", "\n".join(index) + "\n")
     for stale in outdir.glob("*.rst"):
         if stale.name not in keep:
