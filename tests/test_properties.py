@@ -156,8 +156,12 @@ def test_si_front_end_finite_or_rejected_by_name(sigma0, angle):
     # Bounded by the DMT force of the same contact: W* >= W*_DMT, W = W* 2 pi R dgamma/sin.
     assert float(rec["W_star"]) >= float(dmt_limit(p.beta0)) * (1 + BOUND_RTOL)
     # the default (md-elliptic since issue 20): bounded by the paraboloid's DMT force -2 pi dgamma sqrt(R'R'')
-    rec = dimensional.pull_off_force(p)
-    assert np.isfinite(float(rec["force"])) and float(rec["force"]) < 0.0 and rec["warning"] == ""
+    rec = dimensional.pull_off_force(p, warn=False)
+    assert np.isfinite(float(rec["force"])) and float(rec["force"]) < 0.0
+    # issue 40: md-elliptic answers everywhere but says so outside the box of the stored BEM ground truth,
+    # beta0 0.1-1 and mu 0.1-10 (the file's extent, read back by tests/test_one_default.py)
+    inside = 0.1 <= float(p.beta0) <= 1.0 and 0.1 <= float(p.mu) <= 10.0
+    assert (rec["warning"] == "") if inside else ("outside the BEM-verified box" in rec["warning"]), rec["warning"]
     assert float(rec["W_star"]) >= -float(sin_skew_angle(p.beta0)) * (1 + BOUND_RTOL)
 
 
