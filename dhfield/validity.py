@@ -43,9 +43,12 @@ class DhfieldWarning(UserWarning):
 
 
 class OutsideVerifiedDomainWarning(DhfieldWarning):
-    """A pull-off outside the domain where its model is validated (:data:`VALIDITY_RANGES`) or, for the
-    paper's model, departing from the recommended model by more than :data:`WARNING_THRESHOLD`: the
-    ``warning`` of its record."""
+    """A pull-off outside its model's validated domain, or off the recommended model.
+
+    Raised as a Python warning with the ``warning`` of a record: outside the domain where its model is
+    validated (:data:`VALIDITY_RANGES`) or, for the paper's model, departing from the recommended model
+    by more than :data:`WARNING_THRESHOLD`.
+    """
 
 
 class ImplausibleInputWarning(DhfieldWarning):
