@@ -89,6 +89,12 @@ def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> PullOff:
         Every array field of the shape ``broadcast(beta0, mu).shape`` (the sweep stores
         :data:`PULL_OFF_FIELDS` and ``warning``, each record's validity warning,
         :mod:`dhfield.validity`; empty inside the validated range).
+
+    Raises
+    ------
+    ValueError
+        As :func:`dhfield.compare.pull_off`: naming ``beta0`` or ``mu`` if out of range, or if the
+        block has no points.
     """
     from ..compare import pull_off
 
