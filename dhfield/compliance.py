@@ -64,9 +64,16 @@ ends depends on the model (:data:`JUMP_IN_RULES`):
   the contact lands on that separated branch (a stiff machine, small lambda) or on
   the contact curve, which the separated branch joins at a = 0 (Maugis 1992).
   The jump-out is searched along both.
-* the DH models and ``dmt`` define no force out of contact: the approach is
-  taken as force-free until the contact curve's end, delta_s = delta(a = 0), and
-  the record carries a warning that says so.
+* the DH models, ``md-elliptic`` and ``dmt`` define no force out of contact: the
+  approach is taken as force-free until the contact curve's end,
+  delta_s = delta(a = 0), and the record carries a warning that says so.  That
+  end is a convention, not physics: the Dugdale law that MD and the BEM use
+  would end it where the central gap reaches the range h0, delta_s = -1/mu.
+  The energy lost is computed with both ends, and their difference is stated
+  as ``energy_lost_convention`` (0 for the three models above, whose jump-in
+  is physical); ``energy_lost_uncertainty`` = ``energy_lost_error`` (the
+  quadrature's) + ``energy_lost_convention`` is the uncertainty to which
+  ``dhfield cycle`` prints the energy.
 
 The energy lost per cycle is the work the machine does, ``U = oint W dDelta``.
 The force-free branch and the jumps (Delta fixed) do no work, so with the curve
@@ -130,7 +137,9 @@ _QUAD_NODES = (48, 96)  # Chebyshev orders of the energy integral; their differe
 #: Units of the cycle record (nondimensional keys '1'; SI keys of :func:`loading_cycle_si`).
 CYCLE_UNITS = {
     "machine_stiffness_star": "1", "energy_lost_star": "1", "energy_lost_error_star": "1",
-    "machine_stiffness": "N m-1", "energy_lost": "J", "energy_lost_error": "J",
+    "energy_lost_convention_star": "1", "energy_lost_uncertainty_star": "1",
+    "machine_stiffness": "N m-1", "energy_lost": "J", "energy_lost_error": "J", "energy_lost_convention": "J",
+    "energy_lost_uncertainty": "J",
     "jump_in_start_approach": "m", "jump_in_force": "N", "jump_in_approach": "m", "jump_in_semi_major": "m",
     "jump_out_force": "N", "jump_out_approach": "m", "jump_out_semi_major": "m",
     "separation_approach": "m", "max_tension_force": "N",
@@ -373,6 +382,27 @@ def _landing(curve, s, t_out, f_start):
                                     tolerances=dict(xatol=1e-14, xrtol=1e-14))
         land[need] = res.x
     return land
+
+
+def _jump_in_convention_spread(curve, s, k, t_out, w_out, energy):
+    """|U*(delta_s = -1/mu) - U*| for a model without a force out of contact (module docstring), else 0.
+
+    The energy of the cycle whose force-free approach ends where the central gap reaches the
+    Dugdale range (delta_s = -h0 = -1/mu, the rule of MD and the BEM) instead of at the contact
+    curve's end; NaN where no state of the loading branch reaches that machine position.
+    """
+    if curve.model in JUMP_IN_RULES:
+        return np.zeros(s.shape)
+    try:
+        t_alt = _landing(curve, s, t_out, s * float(-dugdale_range(curve.mu)))
+    except RuntimeError:
+        return np.full(s.shape, np.nan)
+    w_alt, _ = curve.states(t_alt)
+    alt = -_contact_integral(curve, np.maximum(t_out, 0.0), np.maximum(t_alt, 0.0), _QUAD_NODES[-1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        alt = alt + np.where(np.isinf(k), 0.0, (w_out**2 - w_alt**2) / (2.0 * k))
+        spread = np.abs(alt - energy)
+    return np.where(alt == energy, 0.0, spread)  # equal (also both infinite, load control): no spread
 
 
 def _contact_integral(curve, a1, a2, n):
@@ -671,6 +701,7 @@ def loading_cycle(model, *, beta0, mu, machine_stiffness=None, with_path=False):
     spring = np.where((k1 == 0) & (w_out**2 == w_in**2), 0.0, spring)
     energy = integ[_QUAD_NODES[-1]] + spring
     err = np.abs(integ[_QUAD_NODES[-1]] - integ[_QUAD_NODES[0]])
+    convention = _jump_in_convention_spread(curve, s1, k1, t_out, w_out, energy)
     warning = str(compare.validity_message(model, mu, beta0))
     rule = JUMP_IN_RULES.get(model, _CONTACT_END)
     if model not in JUMP_IN_RULES:
@@ -686,7 +717,8 @@ def loading_cycle(model, *, beta0, mu, machine_stiffness=None, with_path=False):
         "jump_out_W_star": w_out, "jump_out_delta_star": d_out, "jump_out_a_star": out["a_star"],
         "jump_out_c_star": out["c_star"], "separation_delta_star": out["separation_delta_star"],
         "max_tension_W_star": out["max_tension_W_star"], "energy_lost_star": energy,
-        "energy_lost_error_star": err, "warning": warning,
+        "energy_lost_error_star": err, "energy_lost_convention_star": convention,
+        "energy_lost_uncertainty_star": err + convention, "warning": warning,
     }
     for key, v in rec.items():
         if isinstance(v, np.ndarray):
@@ -713,6 +745,8 @@ _CYCLE_SI_ENTRIES = (
     ("max_tension_force", "max_tension_W_star", "force"),
     ("energy_lost", "energy_lost_star", "energy"),
     ("energy_lost_error", "energy_lost_error_star", "energy"),
+    ("energy_lost_convention", "energy_lost_convention_star", "energy"),
+    ("energy_lost_uncertainty", "energy_lost_uncertainty_star", "energy"),
 )
 
 

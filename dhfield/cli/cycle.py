@@ -16,7 +16,12 @@ def add_parser(sub) -> None:
                        description="Approach from separation, jump into contact, unload to the jump out, under a "
                        "machine spring of stiffness K (default: a rigid machine, i.e. displacement control).  "
                        "Inputs: --beta0 and --mu (nondimensional; K* in the paper's units, dW*/d(delta*) = -K* "
-                       "at the jump) or physical inputs in SI units (K in N/m).  See dhfield.compliance.",
+                       "at the jump) or physical inputs in SI units (K in N/m).  The energy lost is printed to the digits "
+                       "its uncertainty supports: energy_lost_uncertainty = energy_lost_error (quadrature) + "
+                       "energy_lost_convention, which for a model without a force out of contact (the DH models, "
+                       "md-elliptic, dmt) is the spread between ending the force-free approach at the contact "
+                       "curve's end (the convention used) and where the central gap reaches the Dugdale range "
+                       "(delta* = -1/mu, the rule of md and the BEM); --json keeps every digit.  See dhfield.compliance.",
                        epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
     p.add_argument("--model", choices=(*CURVE_MODEL_NAMES, "bem"), default=DEFAULT_MODEL,
@@ -45,6 +50,7 @@ def _print_record(rec, as_json) -> None:
     import math
 
     from .. import compliance
+    from ..io.cycle import round_to_uncertainty
 
     units = {k: _BEM_UNITS.get(k, compliance.CYCLE_UNITS.get(k, "1")) for k in rec
              if k not in ("model", "geometry", "jump_in_rule", "warning")}
@@ -54,9 +60,23 @@ def _print_record(rec, as_json) -> None:
     for k, v in rec.items():
         if k == "warning":
             continue
-        text = f"{v:.10g}" if isinstance(v, float) and math.isfinite(v) else str(v)
+        if k in _ROUNDED and isinstance(v, float):
+            text = round_to_uncertainty(v, rec.get(_ROUNDED[k], float("nan")))
+        elif k in _ROUNDED.values() or k in _UNCERTAINTY_PARTS:
+            text = f"{v:.2g}" if isinstance(v, float) and math.isfinite(v) else str(v)
+        else:
+            text = f"{v:.10g}" if isinstance(v, float) and math.isfinite(v) else str(v)
         u = units.get(k, "1")
-        print(f"{k:26s} {text:24s} {'' if u == '1' else u}".rstrip())
+        print(f"{k:28s} {text:24s} {'' if u == '1' else u}".rstrip())
+
+
+#: Entries the text output rounds to the digits their uncertainty supports: key -> key of that uncertainty
+#: (the quadrature error plus, for a model without a force out of contact, the spread between the two
+#: jump-in conventions; dhfield.compliance).
+_ROUNDED = {"energy_lost_star": "energy_lost_uncertainty_star", "energy_lost": "energy_lost_uncertainty"}
+#: The parts of those uncertainties, printed to two significant digits.
+_UNCERTAINTY_PARTS = ("energy_lost_error_star", "energy_lost_convention_star", "energy_lost_error",
+                      "energy_lost_convention")
 
 
 def run(args) -> int:
@@ -128,7 +148,10 @@ def bem_cycle_record(cyc, k_star, params=None) -> dict:
            "jump_in_delta_star": f["jump_in_delta_star"], "jump_out_W_star": f["jump_out_W_star"],
            "jump_out_W_star_error": f["jump_out_W_star_error"], "jump_out_delta_star": f["jump_out_delta_star"],
            "separation_delta_star": f["separation_delta_star"], "energy_lost_star": f["energy_lost_star"],
-           "energy_lost_error_star": f["energy_lost_error_star"], "resolved": bool(np.asarray(cyc["resolved"])),
+           "energy_lost_error_star": f["energy_lost_error_star"],
+           # the Dugdale law's jump-in is physical: no convention to spread over
+           "energy_lost_convention_star": 0.0, "energy_lost_uncertainty_star": f["energy_lost_error_star"],
+           "resolved": bool(np.asarray(cyc["resolved"])),
            "branch_states": int(np.size(br.adhesive_force)), "branch_complete": bool(br.complete),
            "failures": int(br.failures), "elapsed": float(br.elapsed)}
     if params is not None:  # inverts Eqs. 33-34 with the contact's scales (its sin(theta_skew): the BEM's)

@@ -1,4 +1,8 @@
-"""Figure of a loading-unloading cycle (:func:`dhfield.compliance.cycle_path`): matplotlib at the edge."""
+"""Figure of a loading-unloading cycle (:func:`dhfield.compliance.cycle_path`): matplotlib at the edge.
+
+:func:`round_to_uncertainty` prints the energy lost to the digits its stated uncertainty (the
+quadrature's and the jump-in convention's, :mod:`dhfield.compliance`) supports.
+"""
 from __future__ import annotations
 
 from pathlib import Path
@@ -7,7 +11,7 @@ import numpy as np
 
 from .figures import figure_paths, model_label, save_figure
 
-__all__ = ["write_cycle_plot"]
+__all__ = ["write_cycle_plot", "round_to_uncertainty"]
 
 
 def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dpi=130) -> Path:
@@ -79,9 +83,11 @@ def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dp
     if not np.isfinite(rec["energy_lost_star"]):
         energy = "energy lost: infinite (K = 0)"
     elif si:
-        energy = f"energy lost {rec['energy_lost'] * 1e9:.4g} nJ"
+        u = rec.get("energy_lost_uncertainty", float("nan"))
+        energy = f"energy lost {round_to_uncertainty(rec['energy_lost'] * 1e9, u * 1e9)} ± {u * 1e9:.2g} nJ"
     else:
-        energy = f"energy lost U* = {rec['energy_lost_star']:.4g}"
+        u = rec.get("energy_lost_uncertainty_star", float("nan"))
+        energy = f"energy lost U* = {round_to_uncertainty(rec['energy_lost_star'], u)} ± {u:.2g}"
     out = rec["jump_out_W_star"] * fs
     inn = rec["jump_in_W_star"] * fs
     inn = 0.0 if abs(inn) < 1e-12 * max(1.0, abs(out)) else inn  # rounding of a zero-load landing
@@ -97,3 +103,39 @@ def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dp
     finally:
         plt.close(fig)
     return png
+
+
+def round_to_uncertainty(value, uncertainty) -> str:
+    """Print ``value`` to the digits ``uncertainty`` supports: the decimal place of its second significant digit.
+
+    Parameters
+    ----------
+    value : float
+        The value.
+    uncertainty : float
+        Its stated uncertainty, >= 0, same unit.  0: ``value`` to 10 significant digits; NaN:
+        4 significant digits and ``(uncertainty unknown)``.
+
+    Returns
+    -------
+    str
+        E.g. ``round_to_uncertainty(1.566931205e-09, 1.84e-10)`` gives ``"1.57e-09"`` and
+        ``round_to_uncertainty(0.8101828563, 0.095)`` gives ``"0.810"``; a value below the
+        uncertainty's first digit keeps one significant digit.
+    """
+    import math
+
+    value, uncertainty = float(value), float(uncertainty)
+    if not math.isfinite(value):
+        return str(value)
+    if not math.isfinite(uncertainty):
+        return f"{value:.4g} (uncertainty unknown)"
+    if uncertainty <= 0.0 or value == 0.0:
+        return f"{value:.10g}"
+    place = math.floor(math.log10(uncertainty)) - 1          # power of ten of the 2nd significant digit
+    digits = math.floor(math.log10(abs(value))) - place + 1  # significant digits of value to that place
+    digits = min(max(digits, 1), 10)
+    if abs(math.log10(abs(value))) >= 4:
+        return f"{value:.{digits - 1}e}"
+    last = math.floor(math.log10(abs(value))) - digits + 1  # power of ten of the last digit kept
+    return f"{round(value, -last):.{max(-last, 0)}f}"
