@@ -1,15 +1,18 @@
 """``dhfield solve``: JSON keys, netCDF output, input validation, reported non-convergence."""
 import functools
 import json
+import math
+import re
 
 import numpy as np
 import pytest
 
 from dhfield import compare
 from dhfield.cli import main
-from dhfield.cli.solve import EXIT_UNCONVERGED
+from dhfield.cli.solve import EXIT_UNCONVERGED, EXIT_UNRESOLVABLE
 from dhfield.io.solution import read_solution
 from dhfield.schema import PULL_OFF_KEYS, PULL_OFF_SOLVER_KEYS
+from dhfield.solve_progress import PROGRESS_PREFIX
 
 #: N = 32 is a smoke-test grid (about 6 cells across the Dugdale zone at mu = 1); the
 #: accuracy targets (1 % of MD at N = 256) belong to tests/test_bem_adhesive.py.  At
@@ -49,7 +52,7 @@ def test_solve_reports_non_convergence(monkeypatch, capsys):
     monkeypatch.setattr(dhfield.bem, "adhesive_pull_off",
                         functools.partial(dhfield.bem.adhesive_pull_off, options=AdhesiveOptions(max_iter=2)))
     rc = main(["solve", "--beta0", "0.8", "--mu", "1", "--n", "16", "--json"])
-    err = capsys.readouterr().err.strip().splitlines()
+    err = [ln for ln in capsys.readouterr().err.strip().splitlines() if not ln.startswith(PROGRESS_PREFIX)]
     assert rc == EXIT_UNCONVERGED
     assert len(err) == 1 and "did not converge" in err[0] and "beta0=0.8, mu=1, n=16" in err[0]
 
@@ -176,8 +179,10 @@ def test_help_opens_with_what_solve_does(capsys):
     assert not desc.strip().startswith("Displacement")
 
 
-def test_progress_on_a_terminal_only(monkeypatch, capsys):
-    """Issue 17: a long solve shows progress on a terminal (stderr), and nothing when piped."""
+def test_progress_lines_off_a_terminal(monkeypatch, capsys):
+    """Issue 40: progress goes to stderr also when it is not a terminal, one line per state with the
+    elapsed time and an ETA, in W* for nondimensional input (the terminal's redrawn line of issue 17
+    is off: the lines replace it); --quiet writes none."""
     import dhfield.bem
 
     seen = {}
@@ -188,11 +193,93 @@ def test_progress_on_a_terminal_only(monkeypatch, capsys):
         return real(*a, **k)
 
     monkeypatch.setattr(dhfield.bem, "adhesive_pull_off", spy)
-    main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json"])
-    assert seen["progress"] is False and "solving" not in capsys.readouterr().err
-    monkeypatch.setattr("sys.stderr.isatty", lambda: True, raising=False)
-    main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json"])
-    assert seen["progress"] is True and "dhfield: solving beta0=1" in capsys.readouterr().err
+    monkeypatch.setattr("sys.stderr.isatty", lambda: False, raising=False)
+    assert main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json"]) == 0
+    out = capsys.readouterr()
+    lines = [ln for ln in out.err.splitlines() if ln.startswith(PROGRESS_PREFIX)]
+    assert seen["progress"] is False          # no redrawn terminal line: the lines say it
+    assert lines[0].startswith(PROGRESS_PREFIX + "solving beta0=1, mu=1, n=32")
+    states = [ln for ln in lines if " state " in ln]
+    rec = json.loads(out.out)
+    assert len(states) == rec["n_steps"] >= 3    # one line per state (no coarser grid at N = 32)
+    assert all(re.search(r"W\* = [-+]\d\.\d{5}; elapsed \d+\.\d s, ETA ~\d+\.\d s$", ln) for ln in states), states
+    assert main(["solve", "--beta0", "1", "--mu", "1", "--n", "32", "--json", "--quiet"]) == 0
+    assert PROGRESS_PREFIX not in capsys.readouterr().err
+
+
+def test_progress_in_newtons_for_si_input(capsys):
+    """SI input: each state's load in N, W* times the load unit 2 pi R dgamma/sin theta_skew (Eq. 34)."""
+    from dhfield.dimensional import contact_parameters
+
+    args = ["--youngs-modulus", "2e6", "--poisson-ratio", "0.5", "--cylinder-radius", "5e-3", "--skew-angle-deg",
+            "60", "--work-of-adhesion", "0.04", "--adhesive-stress", "2.31e4"]
+    assert main(["solve", *args, "--n", "32", "--json"]) == 0
+    out = capsys.readouterr()
+    rec = json.loads(out.out)
+    states = [ln for ln in out.err.splitlines() if ln.startswith(PROGRESS_PREFIX) and " state " in ln]
+    forces = [float(re.search(r"W = ([-+][0-9.e+-]+) N;", ln).group(1)) for ln in states]
+    assert len(forces) == rec["n_steps"]
+    # the pull-off is the lowest load of the states solved, in N
+    assert min(forces) == pytest.approx(rec["force"], rel=1e-4)
+    p = contact_parameters(2e6, 0.5, 2e6, 0.5, 5e-3, math.radians(60), 0.04, 2.31e4)
+    assert rec["force"] == pytest.approx(rec["W_star"] * 2 * math.pi * float(p.effective_radius) * 0.04
+                                         / float(p.sin_skew), rel=1e-12)
+
+
+def test_max_seconds_stops_and_says_what_was_reached(capsys):
+    """--max-seconds stops the solve after the state that crosses it: exit 6, one line with the states
+    reached and the analytic value, nothing on stdout and no file written."""
+    from dhfield.cli.solve import EXIT_TIME_LIMIT
+
+    rc = main(["solve", "--beta0", "1", "--mu", "1", "--n", "64", "--max-seconds", "1e-6", "--json"])
+    out = capsys.readouterr()
+    err = [ln for ln in out.err.strip().splitlines() if not ln.startswith(PROGRESS_PREFIX)]
+    assert rc == EXIT_TIME_LIMIT == 6 and out.out == ""
+    # the timer stops it within the first state: nothing reached
+    assert len(err) == 1 and "stopped at --max-seconds 1e-06 s" in err[0] and "0 states in" in err[0]
+    assert "no state solved yet" in err[0] and "not a pull-off" in err[0] and "analytic W* = -0.79" in err[0]
+    assert main(["solve", "--beta0", "1", "--mu", "1", "--max-seconds", "0"]) == 2
+    assert "max-seconds" in capsys.readouterr().err
+
+
+def test_time_limit_after_a_state_names_the_lowest_load():
+    """Without the timer (or between states) the reporter stops after the state past the limit and says
+    the lowest load reached on the answer's grid, in the result's unit."""
+    import io
+    from types import SimpleNamespace
+
+    from dhfield.solve_progress import SolveProgress, SolveTimeLimit
+
+    def state(load, n):
+        return SimpleNamespace(load=load, converged=True, grid=SimpleNamespace(nx=n, ny=n))
+
+    stream = io.StringIO()
+    rep = SolveProgress(0.5, "N", (64, 64), "located", max_seconds=1e9, stream=stream, header="solving x")
+    rep("path", 0, state(-3.0, 32), "unloading")
+    rep("located N=64", 0, state(-2.0, 64), "unloading")
+    rep.max_seconds = 0.0
+    with pytest.raises(SolveTimeLimit, match=r"3 states in .*the lowest W = -1 N on the 64 x 64 grid"):
+        rep("located N=64", 1, state(-1.5, 64), "unloading")
+    lines = stream.getvalue().splitlines()
+    assert lines[0] == PROGRESS_PREFIX + "solving x" and len(lines) == 4
+    assert "state 1 on 32 x 32 (path, unloading): W = -1.5 N;" in lines[1]
+
+
+def test_refusal_quotes_the_analytic_force_in_newtons(capsys):
+    """A refused SI case names the analytic pull-off in N (W* times 2 pi R dgamma/sin theta_skew, Eq. 34)."""
+    from dhfield.compare import pull_off
+    from dhfield.dimensional import contact_parameters
+
+    args = ["--youngs-modulus", "2e6", "--poisson-ratio", "0.5", "--cylinder-radius", "5e-3", "--skew-angle-deg",
+            "60", "--work-of-adhesion", "0.04", "--adhesive-stress", "2e5"]
+    assert main(["solve", *args, "--n", "8"]) == EXIT_UNRESOLVABLE
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "too coarse" in err[0]
+    p = contact_parameters(2e6, 0.5, 2e6, 0.5, 5e-3, math.radians(60), 0.04, 2e5)
+    w = float(pull_off(beta0=float(p.beta0), mu=float(p.mu), warn=False).W_star)
+    force = w * 2 * math.pi * float(p.effective_radius) * 0.04 / float(p.sin_skew)
+    got = float(re.search(r"a force of ([-0-9.e+]+) N", err[0]).group(1))
+    assert got == pytest.approx(force, rel=1e-5)
 
 
 # --------------------------------------------------------------------------- SI inputs and outputs (issue 17)

@@ -17,6 +17,8 @@ on a coarser grid).
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import math
 import sys
 import time
@@ -29,7 +31,7 @@ from ..pull_off_search import refine_sampled_minimum
 from .solver import MAX_OUTER, secant_prediction, solve_problem
 from .state import ContactState
 
-__all__ = ["Branch", "UnloadingPath", "PathProgress", "NOT_ON_BRANCH", "WIDEST_EDGE_MIN_GAIN"]
+__all__ = ["Branch", "UnloadingPath", "PathProgress", "state_reporter", "NOT_ON_BRANCH", "WIDEST_EDGE_MIN_GAIN"]
 
 #: Phases of states that are not on the branch: re-solved from separation after the branch
 #: ended ('jump'), or a cold start that gave no converged contact state ('discarded').
@@ -187,21 +189,47 @@ class UnloadingPath:
                    float(pull_off_approach), pull_off_state, **rest)
 
 
+#: The callable every solved state of every branch is handed to, within :func:`state_reporter`.
+_STATE_REPORTER = contextvars.ContextVar("dhfield_state_reporter", default=None)
+
+
+@contextlib.contextmanager
+def state_reporter(report):
+    """Hand every state solved within the block, on any branch, to ``report``.
+
+    Parameters
+    ----------
+    report : callable
+        ``report(label, k, state, phase)`` with the branch's label, the state's record index,
+        the :class:`~dhfield.bem.state.ContactState` and its phase; called after the state is
+        recorded, also on the branches that draw no progress line (the coarser grids).  It may
+        raise to stop the solve (a time limit).  The terminal's progress line is not drawn
+        while a reporter is set.
+    """
+    token = _STATE_REPORTER.set(report)
+    try:
+        yield report
+    finally:
+        _STATE_REPORTER.reset(token)
+
+
 class PathProgress:
-    """One progress line on stderr (default: when stderr is a terminal).
+    """One progress line on stderr (default: when stderr is a terminal), or the states to a reporter.
 
     Parameters
     ----------
     enabled : bool or None
-        Write the line; None: when stderr is a terminal.
+        Write the line; None: when stderr is a terminal.  False while a
+        :func:`state_reporter` is set: the reporter says what runs instead.
     label : str
         Label at the start of the line.
     """
 
     def __init__(self, enabled, label):
+        self.reporter = _STATE_REPORTER.get()
         if enabled is None:
             enabled = bool(getattr(sys.stderr, "isatty", lambda: False)())
-        self.enabled = enabled
+        self.enabled = enabled and self.reporter is None
         self.label = label
         self.t0 = time.perf_counter()
 
@@ -217,6 +245,8 @@ class PathProgress:
         phase : str
             Its phase.
         """
+        if self.reporter is not None:
+            self.reporter(self.label, k, st, phase)
         if self.enabled:
             el = time.perf_counter() - self.t0
             sys.stderr.write(f"\r{self.label} {phase:9s} state {k:3d}  delta={st.approach:+.5f}  "

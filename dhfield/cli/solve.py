@@ -1,9 +1,11 @@
 """``dhfield solve``: the self-consistent adhesive BEM pull-off of one (beta0, mu) case."""
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
 
+from ..solve_progress import SolveProgress, SolveTimeLimit
 from ._common import (add_model_arguments, add_physical_arguments, command_threads, contact_parameters_from_args,
                       print_json)
 
@@ -15,6 +17,9 @@ EXIT_UNRESOLVED = 4
 #: Exit status when the case cannot be resolved within the memory or time available (or the given
 #: --n is far too coarse for it): one line, before solving, with the N it needs and the analytic value.
 EXIT_UNRESOLVABLE = 5
+#: Exit status when the solve ran past --max-seconds and was stopped: one line with what was reached
+#: (states, time, the lowest load on the answer's grid, not a pull-off) and the analytic value.
+EXIT_TIME_LIMIT = 6
 
 def check_solve_memory(n) -> None:
     """Refuse an N x N adhesive BEM solve that would not fit in memory, before anything is computed.
@@ -37,7 +42,10 @@ _EPILOG = (f"exit status: 0 success, converged and resolved (a note on stderr if
            "parameters, and the result is still printed and written with converged / resolved = false.  "
            f"{EXIT_UNRESOLVABLE} the case cannot be resolved within the memory or time available, or --n is "
            "far too coarse for it (one line, before solving: the n it needs, its estimated memory and time, "
-           "and the analytic W* to use instead).")
+           "and the analytic W* to use instead, and in N for SI input); "
+           f"{EXIT_TIME_LIMIT} stopped at --max-seconds (one line: what was reached, not an answer, and the "
+           "analytic value).  Progress: one line per state on stderr, starting 'dhfield: progress:', on a "
+           "terminal or not (--quiet: none).")
 
 
 def add_parser(sub) -> None:
@@ -49,8 +57,9 @@ def add_parser(sub) -> None:
                                    "(dhfield.bem.adhesive_pull_off); W* in the normalisation of Eq. (34), "
                                    "semi-axes in c_r (Eq. 32) from the second moments of the contact and "
                                    "adhesive masks.  The result says whether the path converged and whether the "
-                                   "grid resolves the cohesive zone; a progress line goes to stderr on a "
-                                   "terminal.  Inputs: --beta0 and --mu, or the physical inputs in SI units of "
+                                   "grid resolves the cohesive zone; one progress line per state goes to "
+                                   "stderr (with its load in the result's units, W* or N, the elapsed time and "
+                                   "an ETA), on a terminal or not.  Inputs: --beta0 and --mu, or the physical inputs in SI units of "
                                    "'dhfield pulloff' (converted with dhfield.dimensional.contact_parameters); "
                                    "these add the force [N], the semi-axes and the approach [m] beside W*, a*, "
                                    "b*, c*, d*, delta*.  With --machine-stiffness: the pull-off under a "
@@ -77,6 +86,12 @@ def add_parser(sub) -> None:
                         "grid; march: unload in uniform steps (slowest); predicted: lattice samples around "
                         "GVG's pull-off on its own domain (the default's route at mu >= 7.5 on an automatic "
                         "grid; with --n, that route refined)")
+    p.add_argument("--max-seconds", type=float, default=None, metavar="S",
+                   help="stop after the first state that ends past S seconds, say what was reached and exit "
+                        f"{EXIT_TIME_LIMIT} (default: no limit).  Above the planner's own allowance "
+                        "(dhfield.adhesive_start.DEFAULT_MAX_SECONDS) it also lets the automatic grid take a case "
+                        "estimated to need that long")
+    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     p.add_argument("--threads", type=int, default=None,
                    help="FFTW threads (default $DHFIELD_THREADS, else the CPUs available, at most 4)")
     p.add_argument("--out", default=None, help="netCDF file for the pull-off fields and the path")
@@ -245,7 +260,8 @@ def _run_spring(args, params, plan, where, progress) -> int:
     from ..bem_compliance import bem_pull_off_under_spring, bem_unloading_branch, coarse_branch
 
     if args.n is None and not plan.affordable:
-        print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
+        print(f"dhfield: solve refused: {plan.message()}{_in_newtons(plan.analytic_W_star, params)}",
+              file=sys.stderr)
         return EXIT_UNRESOLVABLE
     k_star = plan.machine_stiffness_star
     if progress:
@@ -338,6 +354,77 @@ def _print_si(si) -> None:
           f"sigma0 = {si['max_adhesive_stress']:.6g} Pa)")
 
 
+class _NoLines:
+    """A stream that drops what is written (--quiet: the time limit without the lines)."""
+
+    def write(self, text):
+        return len(text)
+
+    def flush(self):
+        pass
+
+
+def _progress(args, params, plan, route, header):
+    """The reporter of every state (:class:`dhfield.solve_progress.SolveProgress`), in W* or N."""
+    from ..geometry import sin_skew_angle
+
+    # a state's load is in R = E* = dgamma = 1: W* = load sin(theta_skew)/(2 pi) (Eq. 34), times the load unit in N
+    scale = float(sin_skew_angle(args.beta0)) / (2.0 * math.pi)
+    if params is not None:
+        scale *= float(params.load_unit)
+    return SolveProgress(scale, "W*" if params is None else "N", (plan.n, plan.ny), route,
+                         max_seconds=args.max_seconds, stream=_NoLines() if args.quiet else None, header=header)
+
+
+def _planner_allowance(max_seconds):
+    """The time the grid planner may allow: --max-seconds where above its default, else None (the default).
+
+    The planner's estimate is an upper one (the sphere at mu = 1: ~24 s estimated, 0.5 s taken), so a
+    shorter limit stops the solve when reached instead of refusing it on the estimate.
+    """
+    from ..adhesive_start import DEFAULT_MAX_SECONDS
+
+    if max_seconds is None:
+        return None
+    if not (math.isfinite(max_seconds) and max_seconds > 0):
+        raise ValueError(f"max-seconds must be a positive number of seconds; got {max_seconds!r}")
+    return float(max_seconds) if max_seconds > DEFAULT_MAX_SECONDS else None
+
+
+def _in_newtons(w_star, params) -> str:
+    """The analytic W* of a refusal in newtons, for SI input (Eq. 34); '' otherwise."""
+    if params is None or not math.isfinite(w_star):
+        return ""
+    return (f"; for these SI inputs that is a force of {w_star * float(params.load_unit):.6g} N "
+            "(W = W* 2 pi R dgamma/sin theta_skew, Eq. 34)")
+
+
+@contextlib.contextmanager
+def _time_limit(seconds, reporter):
+    """Raise :class:`dhfield.solve_progress.SolveTimeLimit` ``seconds`` from now, also within a state.
+
+    The reporter stops the solve after a state that ends past the limit; where the platform has
+    SIGALRM (and this is the main thread) an interval timer stops it within a state too.
+    """
+    import signal
+    import threading
+
+    if seconds is None or not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, frame):  # noqa: ARG001 - signal handler signature
+        raise SolveTimeLimit(reporter.reached())
+
+    old = signal.signal(signal.SIGALRM, stop)
+    signal.setitimer(signal.ITIMER_REAL, float(seconds))
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        signal.signal(signal.SIGALRM, old)
+
+
 def run(args) -> int:
     from ..bem import adhesive_pull_off
     from ..io import check_writable
@@ -349,7 +436,8 @@ def run(args) -> int:
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
     args.threads = command_threads(args.threads)
-    from ..adhesive_start import UnresolvableCaseError, plan_grid, takes_predicted_route
+    from ..adhesive_start import AdhesiveOptions, UnresolvableCaseError, plan_grid, takes_predicted_route
+    from ..bem.branch import state_reporter
 
     check_solve_memory(args.n)
     k_star = None
@@ -359,25 +447,39 @@ def run(args) -> int:
     # the plan of the domain the solve uses: the spring samples the unloading branch, never the predicted route
     predicted = args.machine_stiffness is None and takes_predicted_route(
         beta0=args.beta0, mu=args.mu, n=args.n, law=args.law, control=args.control, search=args.search or "located")
+    allowance = _planner_allowance(args.max_seconds)
     plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, predicted=predicted,
-                     control=args.control if k_star is None else "spring", machine_stiffness=k_star)
+                     control=args.control if k_star is None else "spring", machine_stiffness=k_star,
+                     **({} if allowance is None else {"max_seconds": allowance}))
     if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
-        print(f"dhfield: solve refused: {plan.message()}", file=sys.stderr)
+        print(f"dhfield: solve refused: {plan.message()}{_in_newtons(plan.analytic_W_star, params)}",
+              file=sys.stderr)
         return EXIT_UNRESOLVABLE
     cells = f"{plan.n}" + (f" x {plan.ny}" if plan.ny != plan.n else "")    # nx x ny: slender automatic grids
     control = args.control if args.machine_stiffness is None else "spring"
     where = f"beta0={args.beta0:g}, mu={args.mu:g}, n={cells}, law={args.law}, control={control}"
-    progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
-    if args.machine_stiffness is not None:
-        return _run_spring(args, params, plan, where, progress)
-    if progress:  # on a terminal: say what runs now; the solver then draws its progress line (stderr)
-        print(f"dhfield: solving {where} (coarser grids first, then the progress of the N = {cells} path)",
-              file=sys.stderr, flush=True)
+    route = ("spring" if args.machine_stiffness is not None else "displacement" if args.control == "displacement"
+             else "predicted" if predicted else args.search or "located")
+    if args.n is None and not plan.affordable:   # the automatic grid exceeds the memory or the time allowed
+        print(f"dhfield: solve refused: {plan.message()}{_in_newtons(plan.analytic_W_star, params)}",
+              file=sys.stderr)
+        return EXIT_UNRESOLVABLE
+    reporter = _progress(args, params, plan, route, f"solving {where} (states of coarser grids first where the "
+                         f"route has them, then the answer's {cells} grid)")
     try:
-        res = adhesive_pull_off(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, control=args.control,
-                                threads=args.threads, progress=progress, search=args.search or "located")
+        with state_reporter(reporter), _time_limit(args.max_seconds, reporter):
+            if args.machine_stiffness is not None:
+                return _run_spring(args, params, plan, where, False)
+            extra = {} if allowance is None else {"options": AdhesiveOptions(max_seconds=allowance)}
+            res = adhesive_pull_off(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, control=args.control,
+                                    threads=args.threads, progress=False, search=args.search or "located", **extra)
+    except SolveTimeLimit as exc:
+        print(f"dhfield: solve stopped at --max-seconds {args.max_seconds:g} s for {where}: {exc.reached} (not a "
+              f"pull-off: the solve had not finished; nothing written); {plan.advice()}"
+              f"{_in_newtons(plan.analytic_W_star, params)}", file=sys.stderr)
+        return EXIT_TIME_LIMIT
     except UnresolvableCaseError as exc:
-        print(f"dhfield: solve refused: {exc}", file=sys.stderr)
+        print(f"dhfield: solve refused: {exc}{_in_newtons(exc.analytic_W_star, params)}", file=sys.stderr)
         return EXIT_UNRESOLVABLE
     except RuntimeError as exc:  # the solver found no converged state to report
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)

@@ -1,0 +1,143 @@
+"""Progress of a BEM pull-off solve, one line per state, and its time limit (``dhfield solve``).
+
+:class:`SolveProgress` is handed every state the solve computes, on every grid
+(:func:`dhfield.bem.branch.state_reporter`), and writes one line per state: the grid, the
+branch and phase, the state's load in the result's units (W* of Eq. 34 for nondimensional
+input, newtons for SI input), the elapsed time and an ETA.  Where a time limit is set it
+stops the solve after the state that crosses it, raising :class:`SolveTimeLimit` with what
+was reached.
+
+The ETA
+-------
+A state costs about the same per cell on every grid, so the seconds per cell of the states
+solved so far, times the cells of the answer's grid, times the states still expected on it,
+is the time left.  A route solves a typical number of states on the answer's grid
+(:data:`EXPECTED_STATES`: 3-4 on the located route, a handful on the bracket search); past
+that number the ETA is that of one more state.  It is an estimate, written ``~``.
+"""
+from __future__ import annotations
+
+import math
+import sys
+import time
+
+__all__ = ["EXPECTED_STATES", "PROGRESS_PREFIX", "SolveTimeLimit", "SolveProgress"]
+
+#: Typical number of states a route solves on the answer's grid [-]: 'located', 3 lattice samples and
+#: at most one parabola vertex; 'bracket', the start, the bracket and its refinements; 'predicted',
+#: lattice samples around GVG's pull-off; 'march', uniform unloading steps to the jump; the continuation
+#: of displacement control and the spring's branch sample the whole branch.
+EXPECTED_STATES = {"located": 4, "bracket": 6, "predicted": 6, "march": 30, "displacement": 30, "spring": 30}
+#: Start of every progress line, so that a reader can tell them from the result's messages.
+PROGRESS_PREFIX = "dhfield: progress: "
+
+
+class SolveTimeLimit(BaseException):
+    """The solve ran past its time limit and was stopped (a BaseException: no solver catches it).
+
+    Parameters
+    ----------
+    reached : str
+        What was reached: states, elapsed time and the lowest load on the answer's grid.
+    """
+
+    def __init__(self, reached):
+        super().__init__(reached)
+        self.reached = reached
+
+
+class SolveProgress:
+    """The reporter of :func:`dhfield.bem.branch.state_reporter`: one line per state on a stream.
+
+    Parameters
+    ----------
+    load_scale : float
+        Multiplies a state's load (the problem's units, R = E* = Delta gamma = 1) into the
+        result's unit: sin(theta_skew)/(2 pi) for W* (Eq. 34), times the load unit
+        2 pi R Delta gamma/sin(theta_skew) for newtons.
+    unit : {'W*', 'N'}
+        The result's unit.
+    answer_grid : (int, int)
+        Cells (nx, ny) of the grid the answer is computed on [-].
+    route : str
+        A key of :data:`EXPECTED_STATES` [-].
+    max_seconds : float, optional
+        Stop after the first state that ends past this elapsed time [s]; None: no limit.
+    stream : file, optional
+        Where the lines go; default ``sys.stderr``.
+    header : str, optional
+        A line written before the first state's (what is being solved); none before a solve that
+        fails before its first state (bad input).
+    """
+
+    def __init__(self, load_scale, unit, answer_grid, route, max_seconds=None, stream=None, header=""):
+        self.load_scale = float(load_scale)
+        self.unit = unit
+        self.answer_cells = int(answer_grid[0]) * int(answer_grid[1])
+        self.answer_grid = (int(answer_grid[0]), int(answer_grid[1]))
+        self.expected = EXPECTED_STATES.get(route, EXPECTED_STATES["bracket"])
+        self.max_seconds = None if max_seconds is None else float(max_seconds)
+        self.stream = sys.stderr if stream is None else stream
+        self.header = header
+        self.t0 = self._last = time.perf_counter()
+        self.states = 0
+        self.answer_states = 0
+        self.cells_done = 0
+        self.lowest = math.inf        # the lowest load on the answer's grid, in the result's unit
+        self.lowest_any = math.inf    # on any grid
+
+    def elapsed(self) -> float:
+        """Seconds since the reporter was made [s]."""
+        return time.perf_counter() - self.t0
+
+    def _value(self, load) -> str:
+        v = float(load) * self.load_scale
+        return f"W* = {v:+.5f}" if self.unit == "W*" else f"W = {v:+.5g} N"
+
+    def eta(self) -> float:
+        """Estimated seconds left (module docstring) [s]; NaN before the first state."""
+        if self.cells_done == 0:
+            return math.nan
+        per_cell = self.elapsed() / self.cells_done
+        left = max(self.expected - self.answer_states, 1 if self.answer_states >= self.expected else 0)
+        return left * self.answer_cells * per_cell
+
+    def __call__(self, label, k, st, phase):
+        now = time.perf_counter()
+        self._last = now
+        nx, ny = int(st.grid.nx), int(st.grid.ny)
+        self.states += 1
+        self.cells_done += nx * ny
+        value = float(st.load) * self.load_scale
+        self.lowest_any = min(self.lowest_any, value)
+        if (nx, ny) == self.answer_grid:
+            self.answer_states += 1
+            self.lowest = min(self.lowest, value)
+        eta = self.eta()
+        flag = "" if st.converged else " (not converged)"
+        if self.states == 1 and self.header:
+            self.stream.write(f"{PROGRESS_PREFIX}{self.header}\n")
+        self.stream.write(f"{PROGRESS_PREFIX}state {self.states} on {nx} x {ny} ({label}, {phase}): "
+                          f"{self._value(st.load)}{flag}; elapsed {self.elapsed():.1f} s, "
+                          f"ETA ~{eta:.1f} s\n")
+        self.stream.flush()
+        if self.max_seconds is not None and self.elapsed() > self.max_seconds:
+            raise SolveTimeLimit(self.reached())
+
+    def reached(self) -> str:
+        """Say what was reached: the states solved, the time, the lowest load on the answer's grid.
+
+        Returns
+        -------
+        str
+            One clause, e.g. ``"12 states in 3.1 s; the lowest W* on the 256 x 256 grid -0.79261"``.
+        """
+        grid = f"{self.answer_grid[0]} x {self.answer_grid[1]}"
+        if math.isfinite(self.lowest):
+            low = f"the lowest {self._value(self.lowest / self.load_scale)} on the {grid} grid"
+        elif math.isfinite(self.lowest_any):
+            low = f"no state on the {grid} grid yet (the lowest on a coarser grid: " \
+                  f"{self._value(self.lowest_any / self.load_scale)})"
+        else:
+            low = "no state solved yet"
+        return f"{self.states} state{'' if self.states == 1 else 's'} in {self.elapsed():.1f} s; {low}"
