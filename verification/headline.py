@@ -139,10 +139,13 @@ def headline_sentence(rows=None):
     from dhfield.compare import RECOMMENDED_MODEL
     from dhfield.model_error import VERIFIED_BETA0, VERIFIED_MU
 
+    from dhfield.compare import DEFAULT_MODEL
+
     rows = model_rows() if rows is None else rows
     r = next(x for x in rows if x.model == RECOMMENDED_MODEL)
+    default = " (the default of the CLI and the Python API)" if DEFAULT_MODEL == RECOMMENDED_MODEL else ""
     answered = ("every one" if r.n_answered == r.n_cases else f"{r.n_answered}") + f" of the {r.n_cases}"
-    return (f"**Use `{r.model}`** (the default of the CLI and the Python API): its pull-off is within "
+    return (f"**Use `{r.model}`**{default}: its pull-off is within "
             f"**{_pct(r.worst)}** of the self-consistent adhesive BEM (median {_pct(r.median)}; deviation plus the "
             f"BEM's own stated error) at {answered} stored cases, which span β0 = {_span(*VERIFIED_BETA0)} "
             f"(crossing angles {_angle(VERIFIED_BETA0[0]):.0f}–{_angle(VERIFIED_BETA0[1]):.0f}°) and "
