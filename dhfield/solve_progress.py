@@ -87,7 +87,13 @@ class SolveProgress:
         self.lowest_any = math.inf    # on any grid
 
     def elapsed(self) -> float:
-        """Seconds since the reporter was made [s]."""
+        """Return the seconds since the reporter was made.
+
+        Returns
+        -------
+        float
+            The elapsed wall time [s].
+        """
         return time.perf_counter() - self.t0
 
     def _value(self, load) -> str:
@@ -95,7 +101,13 @@ class SolveProgress:
         return f"W* = {v:+.5f}" if self.unit == "W*" else f"W = {v:+.5g} N"
 
     def eta(self) -> float:
-        """Estimated seconds left (module docstring) [s]; NaN before the first state."""
+        """Estimate the seconds left (module docstring).
+
+        Returns
+        -------
+        float
+            The estimated time to the end of the solve [s]; NaN before the first state.
+        """
         if self.cells_done == 0:
             return math.nan
         per_cell = self.elapsed() / self.cells_done

@@ -46,7 +46,7 @@ STRICT = (
     "dhfield.periphery", "dhfield.plotting", "dhfield.pull_off_search", "dhfield.records", "dhfield.schema",
     "dhfield.sweep", "dhfield.sweep.config", "dhfield.sweep.engine", "dhfield.sweep.store",
     "dhfield.sweep.tasks", "dhfield.transition", "dhfield.validity", "dhfield.model_error",
-    "dhfield.force_vs_angle", "dhfield.io.force_vs_angle_plot",
+    "dhfield.force_vs_angle", "dhfield.io.force_vs_angle_plot", "dhfield.solve_progress",
 )
 
 #: Modules not yet held to zero (empty since the BEM solver, its operator and state and the

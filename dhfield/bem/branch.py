@@ -205,6 +205,11 @@ def state_reporter(report):
         recorded, also on the branches that draw no progress line (the coarser grids).  It may
         raise to stop the solve (a time limit).  The terminal's progress line is not drawn
         while a reporter is set.
+
+    Yields
+    ------
+    callable
+        ``report``, set for the block.
     """
     token = _STATE_REPORTER.set(report)
     try:

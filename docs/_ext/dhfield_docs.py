@@ -56,7 +56,7 @@ GROUPS = (
     ("The boundary-element method", "The DC-FFT half-space operator, the traction-separation laws, the "
      "self-consistent adhesive solver, unloading paths and the pull-off; and pressure fields on grids.",
      ("dhfield.bem", "dhfield.fields", "dhfield.field_sampling", "dhfield.field_metrics", "dhfield.polar",
-      "dhfield.refinement")),
+      "dhfield.refinement", "dhfield.solve_progress")),
     ("Fitting", "The inverse problem: the work of adhesion (and the adhesive stress) from measurements.",
      ("dhfield.fit",)),
     ("Sweeps and maps", "Parameter sweeps on dask that resume, and the maps drawn from them.",
