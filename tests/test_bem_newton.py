@@ -54,7 +54,7 @@ def test_sphere_pull_off_within_grid_error_of_maugis_dugdale(sphere):
     # MD's load-control pull-off is exact for the Dugdale sphere; at 128^2 cells the ramped edge and
     # the lattice leave ~0.1 %, so 0.5 % bounds it with margin while still failing a wrong law or scale
     P, prob, q0 = sphere
-    res = newton.load_minimum(prob, P.pull_off_approach, q0, half_window=0.5 * P.approach_step)
+    res = newton.load_minimum(prob, P.pull_off_approach, q0, half_window=0.5 * P.approach_step, method="smoothed")
     assert res.converged
     w_star = res.load * P.sin_skew / (2 * math.pi)          # Eq. (34)
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 1.0, control="load").W_star)
@@ -73,3 +73,16 @@ def test_load_slope_matches_neighbouring_states(sphere):
     up = newton.solve_state(prob, d + eps, st.traction)
     dn = newton.solve_state(prob, d - eps, st.traction)
     assert slope == pytest.approx((up.load - dn.load) / (2 * eps), rel=1e-3)
+
+
+def test_smoothed_solve_converges_on_a_slender_contact_from_the_analytic_start():
+    # 20 degrees (beta0 = 0.108) at mu = 1: the plain active-set iteration stalls from the analytic
+    # start (its line search fails); the smoothing Newton follows the smoothed systems to the exact one
+    from dhfield.adhesive_start import nondimensional_problem
+
+    P = nondimensional_problem(beta0=0.108, mu=1.0, n=256, ny=64)
+    prob = P.adhesive_problem(threads=1)
+    q0 = newton.cold_start(prob, P.pull_off_approach, P.pull_off_zone)
+    st = newton.solve_state_smoothed(prob, P.pull_off_approach, q0)
+    assert st.converged and st.residual <= newton.SolverOptions().tol
+    assert st.gap.min() >= -1e-8 * prob.law.range

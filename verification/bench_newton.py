@@ -46,8 +46,12 @@ CASES = [
 ]
 
 
-def run_case(beta0, mu, n=None, ny=None, samples=7):
-    """Solve one case with the Newton solver; return a JSON-ready dict (in this process)."""
+def run_case(beta0, mu, n=None, ny=None, samples=7, method="smoothed", first_state=0):
+    """Solve one case with the Newton solver; return a JSON-ready dict (in this process).
+
+    ``first_state`` > 0: solve only the first state (at the analytic approach, from the analytic
+    start), with at most that many Newton iterations, and return its residual history.
+    """
     import numpy as np
 
     from dhfield.adhesive_start import nondimensional_problem, plan_grid, predicted_problem
@@ -65,11 +69,19 @@ def run_case(beta0, mu, n=None, ny=None, samples=7):
     c0 = time.process_time()
     q0 = newton.cold_start(prob, P.pull_off_approach, P.pull_off_zone)
     lines = []
+    if first_state:
+        solve = newton.solve_state if method == "plain" else newton.solve_state_smoothed
+        st = solve(prob, P.pull_off_approach, q0, newton.SolverOptions(max_newton=first_state), log=lines.append)
+        return {"method": method, "beta0": beta0, "mu": mu, "nx": P.grid.nx, "ny": P.grid.ny,
+                "edge_ratio": prob.edge_width_ratio, "first_state": True, "converged": st.converged,
+                "reason": st.reason, "residual": st.residual, "newton": st.newton_iterations,
+                "gmres": st.krylov_iterations, "wall": time.perf_counter() - t0, "cpu": time.process_time() - c0,
+                "maxrss_gib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2 ** 20, "log": lines}
     res = newton.load_minimum(prob, P.pull_off_approach, q0, half_window=0.5 * P.approach_step, samples=samples,
-                              log=lines.append)
+                              log=lines.append, method=method)
     scale = P.sin_skew / (2.0 * math.pi)        # Eq. (34)
     return {
-        "beta0": beta0, "mu": mu, "nx": P.grid.nx, "ny": P.grid.ny, "edge_ratio": prob.edge_width_ratio,
+        "method": method, "beta0": beta0, "mu": mu, "nx": P.grid.nx, "ny": P.grid.ny, "edge_ratio": prob.edge_width_ratio,
         "W_star": res.load * scale, "W_star_fit_error": res.load_error * scale, "converged": res.converged,
         "reason": res.reason, "states": res.states, "newton": res.newton_iterations,
         "gmres": res.krylov_iterations, "wall": time.perf_counter() - t0, "cpu": time.process_time() - c0,
@@ -110,7 +122,8 @@ def stored(beta0, mu):
 def _child(args):
     kind, beta0, mu = args.child
     beta0, mu = float(beta0), float(mu)
-    out = run_today(beta0, mu) if kind == "today" else run_case(beta0, mu)
+    out = run_today(beta0, mu) if kind == "today" else run_case(beta0, mu, method=kind,
+                                                                first_state=int(os.environ.get("BENCH_FIRST_STATE", "0")))
     print(json.dumps(out))
 
 
@@ -129,13 +142,19 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="*", default=[c[0] for c in CASES], help="case names (default: all)")
     ap.add_argument("--today", action="store_true", help="also run today's route side by side")
+    ap.add_argument("--method", choices=("plain", "smoothed"), default="smoothed",
+                    help="the Newton variant (dhfield.bem.newton.solve_state or solve_state_smoothed)")
     ap.add_argument("--timeout", type=float, default=3600.0, help="per case and route [s]")
     ap.add_argument("--json", type=Path, help="write every row here")
+    ap.add_argument("--first-state", type=int, default=0, metavar="N",
+                    help="solve only the first state, with at most N Newton iterations, and print its history")
     ap.add_argument("--child", nargs=3, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
         _child(args)
         return 0
+    if args.first_state:
+        os.environ["BENCH_FIRST_STATE"] = str(args.first_state)
     from dhfield import maugis_dugdale
 
     rows = []
@@ -143,7 +162,7 @@ def main(argv=None) -> int:
     for name in args.cases:
         _, beta0, mu = known[name]
         row = {"case": name, **stored(beta0, mu)}
-        row["new"] = _spawn("new", beta0, mu, args.timeout)
+        row["new"] = _spawn(args.method, beta0, mu, args.timeout)
         if args.today:
             row["today"] = _spawn("today", beta0, mu, args.timeout)
         if beta0 == 1.0:
@@ -163,6 +182,13 @@ def _print_row(r):
     new = r["new"]
     if "error" in new:
         print(f"{r['case']:<12} new solver: {new['error']}")
+        return
+    if new.get("first_state"):
+        print(f"{r['case']:<12} {new['nx']:>5}x{new['ny']:<5} first state ({new['method']}, edge ratio "
+              f"{new['edge_ratio']:.2f}): {new['reason']} after {new['newton']} Newton / {new['gmres']} GMRES iterations,"
+              f" residual {new['residual']:.2e}, {new['wall']:.0f} s wall {new['cpu']:.0f} s cpu {new['maxrss_gib']:.2f} GiB")
+        for line in new["log"]:
+            print(f"{'':<14}{line}")
         return
     ref = r.get("md", r["truth"])
     dev = new["W_star"] / ref - 1.0 if math.isfinite(ref) else float("nan")

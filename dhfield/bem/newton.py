@@ -73,7 +73,8 @@ from scipy.sparse.linalg import LinearOperator, gmres
 from .laws import DugdaleLaw
 from .operator import influence_coefficients
 
-__all__ = ["SolverOptions", "NewtonResult", "solve_state", "load_slope", "symbol_preconditioner",
+__all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
+           "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start",
            "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE"]
 
 #: Stop reasons (PETSc-style: positive converged, negative diverged).
@@ -412,6 +413,8 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
                     Ft = _residual(ht, pt, c)
                     mt = float(np.linalg.norm(Ft))
                 break
+            if log is not None:
+                log(f"newton {it:3d}: step rejected (|F| {mt:.3e} >= {ref:.3e}) with damping {lam:.3g}, gmres {kit}")
             lam = max(4.0 * lam, options.min_damping * 4.0)
         if not mt < ref:
             reason = DIVERGED_LINE_SEARCH
@@ -538,7 +541,7 @@ def _quadratic_vertex(x, y):
 
 
 def load_minimum(problem, approach, guess=None, half_window=None, samples=7, options=SolverOptions(),
-                 max_rounds=6, log=None):
+                 max_rounds=6, log=None, method="plain"):
     """Locate the load-control pull-off: the minimum of the load W(delta) along the displacement-controlled branch.
 
     States are solved by :func:`solve_state` at ``samples`` approaches spread over
@@ -566,6 +569,8 @@ def load_minimum(problem, approach, guess=None, half_window=None, samples=7, opt
         Cap on window moves.
     log : callable, optional
         One line per state.
+    method : {"plain", "smoothed"}
+        The state solve: :func:`solve_state` or :func:`solve_state_smoothed`.
 
     Returns
     -------
@@ -594,10 +599,8 @@ def load_minimum(problem, approach, guess=None, half_window=None, samples=7, opt
             a, b = near
             qa, qb = solved[a].traction, solved[b].traction
             q0 = qa + (d - a) / (b - a) * (qb - qa)
-        st = solve_state(problem, d, q0, options, precond)
-        if not st.converged and q0 is not guess and near:
-            # a poor extrapolation: start from the nearest state itself
-            st = solve_state(problem, d, solved[near[0]].traction, options, precond)
+        solve = solve_state if method == "plain" else solve_state_smoothed
+        st = solve(problem, d, q0, options, precond)
         work[0] += st.newton_iterations
         work[1] += st.krylov_iterations
         solved[d] = st
@@ -669,3 +672,181 @@ def cold_start(problem, delta, zone_semi_axes, tol=1e-3, max_iter=5000):
     sol = solve_contact_pressure(problem.op, problem.z - delta, np.zeros_like(s), problem.law.range, tol, max_iter,
                                  problem.k0, stress=s)
     return sol.pressure - s
+
+
+# ---------------------------------------------------------------------------------------------
+# Smoothing Newton: both kinks (the complementarity min, the law's ramp ends) smoothed by one
+# parameter s that is driven to zero with the residual (Chen-Harker-Kanzow-Smale smoothing).
+
+def _softclip(x, s):
+    """A smooth clip(x, 0, 1): softplus(x) - softplus(x - 1) with softness s (exact as s -> 0)."""
+    if s <= 0.0:
+        return np.clip(x, 0.0, 1.0), ((x > 0.0) & (x < 1.0)).astype(float)
+    a = np.logaddexp(0.0, x / s) * s
+    b = np.logaddexp(0.0, (x - 1.0) / s) * s
+    da = 0.5 * (1.0 + np.tanh(0.5 * x / s))
+    db = 0.5 * (1.0 + np.tanh(0.5 * (x - 1.0) / s))
+    return a - b, da - db
+
+
+class _SmoothLaw(_Law):
+    def stress_and_slope(self, h, s):
+        """(sigma, |d sigma/dh|) of the ramped law with its ends smoothed by s (ramp fractions)."""
+        if not self.dugdale:
+            return self.stress(h), self.slope(h)
+        w = self.width
+        x = (self.h0 + 0.5 * w - h) / w
+        f, df = _softclip(x, s)
+        return self.sigma0 * f, self.sigma0 * df / w
+
+
+def _chks(a, b, eps):
+    """Smoothed min(a, b) and its partial derivatives (CHKS): (a + b - sqrt((a - b)^2 + 4 eps^2))/2."""
+    d = a - b
+    r = np.sqrt(d * d + 4.0 * eps * eps)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.where(r > 0, d / np.where(r > 0, r, 1.0), 0.0)
+    return 0.5 * (a + b - r), 0.5 * (1.0 - t), 0.5 * (1.0 + t)
+
+
+class _SmoothJacobian:
+    """Rows (fa c - fb |sigma'|) (K x)_i + fb x_i on the whole working grid, right-preconditioned."""
+
+    def __init__(self, op, fa, fb, slope, c, precond):
+        self.op = op
+        self.kcoef = fa * c - fb * slope
+        self.diag = fb
+        self.mask = fa > fb                      # contact-like rows: the inverse symbol
+        self.c = c
+        self.precond = precond
+        self.shape = fa.shape
+        self.calls = 0
+
+    def right(self, v):
+        v = v.reshape(self.shape)
+        out = np.where(self.mask, 0.0, v)
+        if self.mask.any():
+            out = out + np.where(self.mask, self.precond(np.where(self.mask, v, 0.0)) / self.c, 0.0)
+        return out.ravel()
+
+    def matvec(self, x):
+        x = x.reshape(self.shape)
+        self.calls += 1
+        return (self.kcoef * self.op(np.ascontiguousarray(x)) + self.diag * x).ravel()
+
+
+def solve_state_smoothed(problem, delta, guess=None, options=SolverOptions(), precond=None, log=None,
+                         smoothing=0.1):
+    """One adhesive state by a smoothing Newton method (see :func:`solve_state` for the system).
+
+    ``min(c h, p)`` and the ramp's ends are smoothed by one parameter s (``eps = s sigma0`` for
+    the min, softness s of the ramp in ramp fractions), which falls with the residual
+    (``s <- min(s, res/2)``) so that the iterates follow the smoothed systems to the exact one.
+    Every step is Newton's on the current smoothed system, with a backtracking line search on
+    its merit.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        Grid, initial gap, law and operator.
+    delta : float
+        Approach of distant points [length].
+    guess : ndarray, optional
+        Total traction on the working grid to start from [stress]; default zero.
+    options : SolverOptions
+        Tolerances and caps.
+    precond : callable, optional
+        :func:`symbol_preconditioner` of the problem (built when omitted).
+    log : callable, optional
+        Called with one line per Newton iteration.
+    smoothing : float, default 0.1
+        Largest smoothing s [-]; the start's own residual caps it further (``s <= res/2``).
+
+    Returns
+    -------
+    NewtonResult
+        The state, its (unsmoothed) residual and the reason it stopped.
+    """
+    t0 = time.perf_counter()
+    law = _SmoothLaw(problem.law, problem.min_spread)
+    op = problem.op
+    if precond is None:
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+    sigma0, h0 = law.sigma0, law.h0
+    c = sigma0 / h0
+    s = float(smoothing)
+    q = np.zeros_like(problem.z) if guess is None else np.array(guess, dtype=float, copy=True)
+    calls = 0
+
+    def evaluate(q, s):
+        nonlocal calls
+        h = problem.z - delta + op(q)
+        calls += 1
+        sig, sl = law.stress_and_slope(h, s)
+        p = q + sig
+        F, fa, fb = _chks(c * h, p, s * sigma0)
+        return h, p, sl, F, fa, fb
+
+    def true_res(h, q):
+        p = q + law.stress(h)
+        return float(np.max(np.abs(np.minimum(c * h, p)))) / sigma0
+
+    h, p, sl, F, fa, fb = evaluate(q, s)
+    res = true_res(h, q)
+    if 0.5 * res < s:                            # a warm start: smooth no more than its residual asks
+        s = 0.5 * res
+        h, p, sl, F, fa, fb = evaluate(q, s)
+    merit = float(np.linalg.norm(F))
+    history = [merit]
+    krylov = 0
+    it = 0
+    reason = DIVERGED_MAX_IT
+    while True:
+        if res <= options.tol:
+            reason = CONVERGED
+            break
+        if it >= options.max_newton:
+            break
+        it += 1
+        jac = _SmoothJacobian(op, fa, fb, sl, c, precond)
+        rtol = min(options.forcing, math.sqrt(merit / max(history[0], 1e-300)))
+        n = q.size
+        count = [0]
+
+        def mv(v):
+            count[0] += 1
+            return jac.matvec(jac.right(v))
+
+        A = LinearOperator((n, n), matvec=mv, dtype=float)
+        v, info = gmres(A, -F.ravel(), rtol=rtol, atol=0.0, restart=min(200, options.max_krylov),
+                        maxiter=max(1, options.max_krylov // 200))
+        krylov += count[0]
+        calls += jac.calls
+        step = jac.right(v).reshape(q.shape)
+        alpha = 1.0
+        while True:
+            qt = q + alpha * step
+            ht, pt, slt, Ft, fat, fbt = evaluate(qt, s)
+            mt = float(np.linalg.norm(Ft))
+            if mt <= (1.0 - 1e-4 * alpha) * merit or alpha < 1e-4:
+                break
+            alpha *= 0.5
+        if not mt < merit:
+            reason = DIVERGED_LINE_SEARCH
+            break
+        q, h = qt, ht
+        res = true_res(h, q)
+        s_new = min(s, 0.5 * res)
+        if s_new < s:
+            s = s_new
+            h, p, sl, F, fa, fb = evaluate(q, s)
+            merit = float(np.linalg.norm(F))
+        else:
+            p, sl, F, fa, fb, merit = pt, slt, Ft, fat, fbt, mt
+        history.append(merit)
+        if log is not None:
+            log(f"newton {it:3d}: residual {res:.3e}  smoothing {s:.2e}  |F_s| {merit:.3e}  step {alpha:.3g}  "
+                f"gmres {count[0]:4d} (info {info})")
+    p = q + law.stress(h)
+    load = float(np.sum(q)) * problem.weight
+    return NewtonResult(q, h, c * h < p, load, res, reason, it, krylov, calls, history, time.perf_counter() - t0)
