@@ -29,16 +29,19 @@ itself); ``tests/test_layout.py`` checks this against the import statements::
                  elliptic_transition
     front        compare validity model_error              model registry, validity,      the three above
                  _truth_table dimensional compliance fit   error against the BEM truth,
-                 adhesion_map                              SI front end, fitting
+                 adhesion_map force_vs_angle               SI front end, fitting, the
+                                                           pull-off force against the
+                                                           crossing angle
     bem          bem/                                      DC-FFT boundary elements:      foundations (+ one
                                                            operator, laws, solver, paths, lazy forward of
                                                            pull-off                       adhesive_start)
     bridge       adhesive_start fields field_sampling      BEM start from the analytic    all of the above
                  field_metrics polar refinement            models; analytic-vs-BEM
-                 bem_compliance                            fields (grid sampling, error
+                 bem_compliance solve_progress             fields (grid sampling, error
                                                            metrics, polar resampling,
                                                            refinement studies); the BEM
-                                                           under a spring
+                                                           under a spring; a BEM solve's
+                                                           progress and time limit
     edges        io/ plotting sweep/ cli/                  files (xarray, netCDF,         io: the core;
                                                            pandas), figures (matplotlib), plotting: io; sweep:
                                                            dask sweeps, the command       core + io; cli: all
