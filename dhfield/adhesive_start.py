@@ -433,8 +433,8 @@ class GridPlan:
     analytic_W_star : float
         The best analytic value of the route asked (``control``, ``machine_stiffness_star``):
         :func:`dhfield.elliptic_transition.pull_off_nondimensional` (GVG x the sphere's MD/JKR
-        transition; load control within 0.44 % of the 42 stored BEM cases, beta0 0.1-1,
-        mu 0.1-5) under load or displacement control, and its jump out under the machine
+        transition; load control within 0.46 % of the 57 stored BEM cases, beta0 0.1-1,
+        mu 0.1-10) under load or displacement control, and its jump out under the machine
         spring (:func:`dhfield.compliance.pull_off_under_spring`, model
         :data:`dhfield.compare.DEFAULT_MODEL`) [-].
     ny : int, optional

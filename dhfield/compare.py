@@ -34,7 +34,7 @@ Models
     from there): the sphere's Maugis-Dugdale transition
     carried over to the ellipse between the elliptical DMT (mu -> 0) and the
     energy-minimising elliptical JKR of GVG (mu -> infinity), MD exactly at beta0 = 1;
-    within 0.44 % of every stored BEM case — :mod:`dhfield.elliptic_transition`.
+    within 0.46 % of every stored BEM case — :mod:`dhfield.elliptic_transition`.
     Named for what it approximates, the elliptical contact with a Dugdale
     (Maugis-Dugdale) law, and apart from the paper's double-Hertz ``dh-elliptic``
     and the two elliptical JKR limits ``jkr-elliptic`` (JG) and ``jkr-elliptic-energy`` (GVG)
@@ -66,7 +66,7 @@ pull-off only) has a load curve (:data:`CURVE_MODEL_NAMES`).
 Which model to use when
 -----------------------
 * **md-elliptic** (the default) for any elliptical or circular contact, crossing
-  angles 10-90 deg (beta0 down to 0.047 and below) and any mu: within 0.44 % of every
+  angles 10-90 deg (beta0 down to 0.047 and below) and any mu: within 0.46 % of every
   stored BEM case (beta0 0.1-1, mu 0.1-10, load control;
   ``python -m verification.elliptic_transition``), exactly DMT as mu -> 0, GVG as
   mu -> infinity and MD at beta0 = 1; under 1 ms per point vectorised.  Outside the

@@ -18,10 +18,9 @@ problem but an interpolation between three exact results:
   load curve, exactly.
 
 Error against the ground truth: the largest deviation of the load-control pull-off from
-the 42 stored BEM cases is 0.44 % (beta0 = 0.1, mu = 5): 0.12 % over the 30 cases of
-``data/adhesive_ground_truth.nc`` (beta0 0.5-1, mu 0.3-5) and 0.44 % over the 12 of
-``data/adhesive_ground_truth_slender.nc`` (beta0 0.1, 0.18, 0.3 -- crossing angles 18-45 deg
--- x mu 0.1-5) (``python -m verification.elliptic_transition``).  Elsewhere in the accepted
+the 57 stored BEM cases of ``data/adhesive_ground_truth_extended.nc`` (beta0 0.1-1, crossing
+angles 19-90 deg, mu 0.1-10) is 0.46 % (beta0 = 0.1, mu = 10) (``python -m
+verification.bench_recommended``).  Elsewhere in the accepted
 domain (crossing angles down to 10 deg, mu from 1e-6 to 1e12) it rests on the three exact
 limits above and the smooth interpolation between them.
 

@@ -729,7 +729,7 @@ CURVE_NODES = 4096
 #: range of the loads (of the approaches), accepted at the estimates; checked there on up to
 #: :data:`CURVE_NODES` data sizes spread over the data, and the fit is redone at every data point if
 #: it is exceeded.  1e-6 of the range is far below any measurement's noise and below the models'
-#: own error (0.44 % for md-elliptic against the boundary-element solution).
+#: own error (0.46 % for md-elliptic against the boundary-element solution).
 CURVE_INTERPOLATION_RTOL = 1e-6
 #: Seconds between two progress lines of :func:`fit_curve` (none for a fit faster than this).
 PROGRESS_INTERVAL = 2.0

@@ -39,7 +39,7 @@ __all__ = ["MU_MATCH_TOLERANCE", "DEFAULT_ANGLES_DEG", "DEFAULT_POINTS", "CLOSUR
 #: A stored BEM case lies on the material's path where the material's mu at the case's angle is within
 #: this relative tolerance of the case's mu [-].  |d ln W*/d ln mu| is at most 0.13 between neighbouring
 #: stored cases (0.14 for the recommended model's local slope at beta0 = 0.1), so a 1 % mismatch moves W* by
-#: at most ~0.14 %, less than the recommended model's own departure from the stored truth (up to 0.44 %).
+#: at most ~0.14 %, less than the recommended model's own departure from the stored truth (up to 0.46 %).
 MU_MATCH_TOLERANCE = 0.01
 #: Default range of crossing angles, (smallest, largest) [deg].
 DEFAULT_ANGLES_DEG = (10.0, 90.0)

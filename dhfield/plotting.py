@@ -41,7 +41,7 @@ MAX_CELLS_PER_AXIS = 400
 #: Valid range of each ellipticity axis: cell edges are clipped to it (beta0 cells must not run to 1.05).
 _AXIS_RANGE = {"beta0": (0.0, 1.0), "skew_angle_deg": (0.0, 90.0)}
 #: Reference of the error maps, the most trusted swept model first: the adhesive BEM (ground
-#: truth), the recommended model (:data:`dhfield.compare.RECOMMENDED_MODEL`, within 0.44 % of every
+#: truth), the recommended model (:data:`dhfield.compare.RECOMMENDED_MODEL`, within 0.46 % of every
 #: stored BEM case), the two-axis closure, the elliptical JKR limits (GVG, then JG), then the
 #: paper's model.
 REFERENCE_ORDER = ("bem-adhesive", RECOMMENDED_MODEL, "dh-elliptic-two-axis", "jkr-elliptic-energy", "jkr-elliptic",
