@@ -1,6 +1,7 @@
 # dhfield: two commands for a fresh machine (only python3 needed).
 #   make report   build .venv if missing, then run the verification report into out/
-#   make test     build .venv if missing, then run the whole test suite
+#   make test     build .venv if missing, then run the whole test suite (pytest-xdist: one worker
+#                 per core, each test file on one worker so its module fixtures are built once)
 #   make docs     install the docs extra, then build the documentation site into docs/_build/html
 #                 (warnings are errors; the gallery's examples run)
 PYTHON ?= python3
@@ -25,7 +26,7 @@ quick-report: $(STAMP)
 	$(VENV)/bin/python -m verification.report --out out --quick
 
 test: $(STAMP)
-	$(VENV)/bin/python -m pytest -q
+	$(VENV)/bin/python -m pytest -q -n auto --dist loadfile
 
 $(DOCS_STAMP): $(STAMP) pyproject.toml
 	$(VENV)/bin/python -m pip install --quiet -e '.[docs]'
