@@ -39,3 +39,17 @@ def pytest_sessionfinish(session, exitstatus):
 def rng():
     """Seeded generator: tests are reproducible."""
     return np.random.default_rng(20181)
+
+
+@pytest.fixture
+def default_sigint():
+    """Python's own SIGINT handler (KeyboardInterrupt) for the test, whatever the process inherited.
+
+    A process started in the background of a non-interactive shell inherits SIGINT ignored, and
+    Python then installs no handler: a test that sends itself SIGINT would see nothing.
+    """
+    import signal
+
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)

@@ -268,7 +268,7 @@ def test_git_commit_names_the_checkout():
 
 
 # --------------------------------------------------------------------------- issue 42: files written as a set, stale parts
-def test_csv_and_its_sidecar_are_committed_together_under_sigint(tmp_path, monkeypatch):
+def test_csv_and_its_sidecar_are_committed_together_under_sigint(tmp_path, monkeypatch, default_sigint):
     """Issue 42 finding 9: Ctrl-C right after X.csv.json was renamed left the new sidecar beside the old CSV."""
     from dhfield.io.table import write_table
 

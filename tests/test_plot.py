@@ -161,7 +161,7 @@ def test_string_w_star_and_duplicate_models_are_clean_errors(tmp_path, capsys):
     assert not list(tmp_path.glob("*.png"))
 
 
-def test_plot_writes_its_maps_as_one_set_under_sigint(sweep, tmp_path, monkeypatch):
+def test_plot_writes_its_maps_as_one_set_under_sigint(sweep, tmp_path, monkeypatch, default_sigint):
     """Issue 42 finding 9: files written together are moved into place together; a signal between two
     renames waits for the set (before, the maps of one run were left beside those of the previous one)."""
     import os
