@@ -431,7 +431,8 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
 
 
 def _modulus(problem):
-    return problem._built_with[1]
+    """E* of the problem's operator [stress]."""
+    return problem.op.reduced_modulus
 
 
 def load_slope(problem, state, precond=None, options=SolverOptions()):
