@@ -136,10 +136,8 @@ def headline_sentence(rows=None):
     str
         One Markdown sentence.
     """
-    from dhfield.compare import RECOMMENDED_MODEL
+    from dhfield.compare import DEFAULT_MODEL, RECOMMENDED_MODEL
     from dhfield.model_error import VERIFIED_BETA0, VERIFIED_MU
-
-    from dhfield.compare import DEFAULT_MODEL
 
     rows = model_rows() if rows is None else rows
     r = next(x for x in rows if x.model == RECOMMENDED_MODEL)

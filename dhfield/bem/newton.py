@@ -323,7 +323,7 @@ def _residual(h, p, c):
     return np.minimum(c * h, p)
 
 
-def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=None, log=None, width=None):
+def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=None, log=None):
     """Solve one adhesive state at the approach ``delta`` (displacement control).
 
     Parameters
@@ -340,8 +340,6 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
         :func:`symbol_preconditioner` of the problem (built when omitted).
     log : callable, optional
         Called with one line per Newton iteration.
-    width : float, optional
-        Width of the Dugdale edge's ramp [length]; default the problem's ``min_spread``.
 
     Returns
     -------
@@ -349,7 +347,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
         The state, its residual and the reason it stopped.
     """
     t0 = time.perf_counter()
-    law = _Law(problem.law, problem.min_spread if width is None else width)
+    law = _Law(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
         precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
@@ -811,19 +809,10 @@ def solve_state_smoothed(problem, delta, guess=None, options=SolverOptions(), pr
         it += 1
         jac = _SmoothJacobian(op, fa, fb, sl, c, precond)
         rtol = min(options.forcing, math.sqrt(merit / max(history[0], 1e-300)))
-        n = q.size
-        count = [0]
-
-        def mv(v):
-            count[0] += 1
-            return jac.matvec(jac.right(v))
-
-        A = LinearOperator((n, n), matvec=mv, dtype=float)
-        v, info = gmres(A, -F.ravel(), rtol=rtol, atol=0.0, restart=min(200, options.max_krylov),
-                        maxiter=max(1, options.max_krylov // 200))
-        krylov += count[0]
+        x, kit, info = _gmres(jac, -F.ravel(), rtol, options.max_krylov)
+        krylov += kit
         calls += jac.calls
-        step = jac.right(v).reshape(q.shape)
+        step = x.reshape(q.shape)
         alpha = 1.0
         while True:
             qt = q + alpha * step
@@ -847,7 +836,7 @@ def solve_state_smoothed(problem, delta, guess=None, options=SolverOptions(), pr
         history.append(merit)
         if log is not None:
             log(f"newton {it:3d}: residual {res:.3e}  smoothing {s:.2e}  |F_s| {merit:.3e}  step {alpha:.3g}  "
-                f"gmres {count[0]:4d} (info {info})")
+                f"gmres {kit:4d} (info {info})")
     p = q + law.stress(h)
     load = float(np.sum(q)) * problem.weight
     return NewtonResult(q, h, c * h < p, load, res, reason, it, krylov, calls, history, time.perf_counter() - t0)

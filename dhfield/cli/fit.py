@@ -187,18 +187,7 @@ def run(args) -> int:
             from ..io.fit import write_residual_plot
 
             write_residual_plot(res, args.plot)
-    unit = {k: _unit(k) for k in rec}
-    if args.json:
-        print_json({**rec, "units": {k: u for k, u in unit.items()
-                                     if not isinstance(rec[k], (str, bool)) and k != "not_identifiable"}})
-    else:
-        for k, v in rec.items():
-            if k == "not_identifiable":
-                continue
-            shown = NOT_IDENTIFIABLE_TEXT if v is None else _text(v)
-            print(f"{k:28s} {shown:24s} {'' if unit[k] == '1' or v is None else unit[k]}".rstrip())
-        if args.plot is not None:
-            print(f"wrote {args.plot}, {args.plot[:-4]}.svg and {args.plot[:-4]}.pdf")
+    _print_record(args, rec)
     if args.data is not None and not res.success:
         import sys
 
