@@ -2,7 +2,7 @@
 
 Everything that can drift from the code is generated at build time by
 ``_ext/dhfield_docs.py``: the API reference (from every public module's
-``__all__``), the netCDF variables table (from :mod:`dhfield.schema`), the
+``__all__``), the netCDF variables table (from :mod:`dhfield.core.schema`), the
 verdict's numbers (from ``data/``) and the changelog page (from CHANGELOG.md).
 The CLI reference comes from :func:`dhfield.cli.build_parser` via sphinx-argparse.
 """

@@ -1,9 +1,9 @@
-"""dhfield.adhesion_map: the elliptical adhesion map against its reference (limits, shapes, refusals).
+"""dhfield.analysis.adhesion_map: the elliptical adhesion map against its reference (limits, shapes, refusals).
 
 Provenance of the limits:
 
 * beta0 = 1 (90 deg): the reference is Maugis-Dugdale on the sphere by construction
-  (dhfield.elliptic_transition: W* = -1 + (W*_JKR + 1) g, g from MD, GVG(1) = -3/4 exactly).
+  (dhfield.models.md_elliptic: W* = -1 + (W*_JKR + 1) g, g from MD, GVG(1) = -3/4 exactly).
 * mu -> 0: DMT, W = -2 pi R dgamma (Derjaguin), is the limit of MD (Maugis 1992), of the
   reference and of the circular double-Hertz model (Greenwood & Johnson 1998); the elliptical
   JKR models do not depend on mu, and the paper's elliptical double-Hertz model imposes
@@ -17,9 +17,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhfield import adhesion_map as am
-from dhfield import compare
-from dhfield._validation import TABOR_RANGE
+from dhfield.analysis import adhesion_map as am
+from dhfield.analysis import compare
+from dhfield.core.validation import TABOR_RANGE
 
 #: TABOR_RANGE's documented promise: at mu = 1e-6 every model is at its DMT limit to < 1e-3 relative.
 DMT_TOL = 1e-3
@@ -195,8 +195,8 @@ def test_recommended_pull_off_is_the_reference_of_the_map():
     # the one adapter that names the recommended model: W* = -s + (W*_GVG + s) g(mu_e) (Eq. T1),
     # g = (W*_MD + 1)/(1/4) from MD on the sphere at mu_e = mu s^(1/4) (Eq. T0) and GVG's elliptical JKR
     # (built here from those two models), and the map's reference column is its force 2 W*/s (Eq. 34)
-    from dhfield import jkr_elliptic_energy, maugis_dugdale
-    from dhfield.geometry import sin_skew_angle
+    from dhfield.models import jkr_elliptic_energy, maugis_dugdale
+    from dhfield.core.geometry import sin_skew_angle
 
     r = am.adhesion_map([30.0, 60.0, 90.0], [0.1, 1.0, 10.0], models=("dmt",))
     b, m = np.meshgrid(r.beta0, r.mu, indexing="ij")

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from dhfield import bem, hertz
+from dhfield import bem
+from dhfield.models import hertz
 
 # --- tolerances -------------------------------------------------------------------
 #: Closed forms evaluated in double precision (a handful of asinh/log calls).
@@ -185,7 +186,7 @@ def test_hertz_displacement_matches_analytic_on_moderate_grid():
     grid = bem.Grid.centered(128, 2.0)
     x, y = grid.mesh()
     po = hertz.max_pressure(a, beta)
-    from dhfield.field_sampling import ellipsoid_cell_average
+    from dhfield.analysis.field_sampling import ellipsoid_cell_average
 
     p = ellipsoid_cell_average(grid, a, beta * a, po)
     u = bem.surface_displacement(p, grid.dx, grid.dy, symmetric=True)

@@ -1,13 +1,13 @@
-"""End-to-end tests of the adhesive BEM (dhfield.bem and dhfield.adhesive_start, the public names): limits and identities.
+"""End-to-end tests of the adhesive BEM (dhfield.bem and dhfield.analysis.bem_start, the public names): limits and identities.
 
 The parts are tested in tests/test_bem_solver.py (one state), tests/test_bem_path.py
 (paths, the displacement-control fold) and tests/test_bem_pull_off.py (the paper's
 problem, the located search).
 
-Reference values are closed forms (Hertz, :mod:`dhfield.hertz`), the Maugis-Dugdale
-sphere (:mod:`dhfield.maugis_dugdale`, Maugis 1992, with lambda = 1.1272 mu of
-:mod:`dhfield.transition`), the DMT force 2 pi dgamma sqrt(R'R'') and elliptical JKR
-(:mod:`dhfield.jkr_elliptic`, Johnson & Greenwood 2005).  Grids are small (N <= 96)
+Reference values are closed forms (Hertz, :mod:`dhfield.models.hertz`), the Maugis-Dugdale
+sphere (:mod:`dhfield.models.maugis_dugdale`, Maugis 1992, with lambda = 1.1272 mu of
+:mod:`dhfield.core.transition`), the DMT force 2 pi dgamma sqrt(R'R'') and elliptical JKR
+(:mod:`dhfield.models.jkr_elliptic`, Johnson & Greenwood 2005).  Grids are small (N <= 96)
 to keep the module fast; the accuracy at N = 256-1024 is printed by
 verification/convergence_adhesive.py.
 """
@@ -16,11 +16,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import hertz, jkr_elliptic, maugis_dugdale, transition
-from dhfield.adhesive_start import AdhesiveOptions
+from dhfield.models import hertz, jkr_elliptic, maugis_dugdale
+from dhfield.core import transition
+from dhfield.analysis.bem_start import AdhesiveOptions
 from dhfield.bem import Grid, adhesive_pull_off, solve_adhesive
 from dhfield.bem import nondimensional_problem, richardson_extrapolation
-from dhfield.geometry import radius_ratio, sin_skew_angle
+from dhfield.core.geometry import radius_ratio, sin_skew_angle
 
 #: Hertz on 64^2 cells over 1.25 a: semi-axes from the second moments of the pixel
 #: contact are O(h) (h = a/25.6: 4 % of a would be 1 cell); measured 0.3-0.8 %.

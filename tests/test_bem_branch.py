@@ -1,7 +1,7 @@
 """The engine under every pull-off route (dhfield.bem.branch): the states of one problem along the approach.
 
 Identities only: the Branch's minimum is the sampled minimum of its own records
-(:func:`dhfield.pull_off_search.refine_sampled_minimum`, tested there), the search
+(:func:`dhfield.core.pull_off_search.refine_sampled_minimum`, tested there), the search
 extends the samples until that minimum is interior, and the path it writes holds
 the records it solved.  The accuracy of the routes built on it is tested in
 tests/test_bem_adhesive.py, test_bem_path.py and test_bem_pull_off.py.
@@ -11,11 +11,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import transition
+from dhfield.core import transition
 from dhfield.bem import nondimensional_problem
 from dhfield.bem.branch import Branch
 from dhfield.bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL
-from dhfield.pull_off_search import refine_sampled_minimum
+from dhfield.core.pull_off_search import refine_sampled_minimum
 
 
 @pytest.fixture(scope="module")
@@ -243,7 +243,7 @@ def test_external_fallback_starts_from_neighbours_and_falls_back_on_the_external
 
 def test_widest_edge_guess_is_a_converged_start_of_this_grid_and_not_recorded():
     # mu = 2 on 128^2: the grid's own edge (0.58 h0) is narrower than the widest (2 h0)
-    from dhfield import adhesive_start
+    from dhfield.analysis import bem_start as adhesive_start
     from dhfield.bem.solver import Prediction
 
     nd = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)

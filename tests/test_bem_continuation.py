@@ -1,7 +1,7 @@
 """States at a prescribed adhesive force and the fold of the approach (dhfield.bem.continuation).
 
 References are Maugis-Dugdale (Maugis 1992, doi:10.1016/0021-9797(92)90288-C,
-:mod:`dhfield.maugis_dugdale`): the displacement-control pull-off is the minimum of
+:mod:`dhfield.models.maugis_dugdale`): the displacement-control pull-off is the minimum of
 delta(a) along the MD curve, or its end a = 0 when delta still falls there.  The
 pull-off routes built on the continuation are tested in tests/test_bem_path.py.
 """
@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import maugis_dugdale, transition
+from dhfield.models import maugis_dugdale
+from dhfield.core import transition
 from dhfield.bem import (adhesive_force, fit_fold, fold_by_adhesive_force, nondimensional_problem,
                          solve_at_adhesive_force)
 from dhfield.bem.solver import Prediction, solve_problem

@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from dhfield import maugis_dugdale
-from dhfield.adhesive_start import predicted_problem
+from dhfield.models import maugis_dugdale
+from dhfield.analysis.bem_start import predicted_problem
 from dhfield.bem import newton
 
 
@@ -78,7 +78,7 @@ def test_load_slope_matches_neighbouring_states(sphere):
 def test_smoothed_solve_converges_on_a_slender_contact_from_the_analytic_start():
     # 20 degrees (beta0 = 0.108) at mu = 1: the plain active-set iteration stalls from the analytic
     # start (its line search fails); the smoothing Newton follows the smoothed systems to the exact one
-    from dhfield.adhesive_start import nondimensional_problem
+    from dhfield.analysis.bem_start import nondimensional_problem
 
     P = nondimensional_problem(beta0=0.108, mu=1.0, n=256, ny=64)
     prob = P.adhesive_problem(threads=1)

@@ -2,7 +2,7 @@
 
 Issue 20: the automatic grid of a slender contact (beta0 < 0.45) has about square cells,
 nx along the major axis and ny < nx along the minor one.  Here the operator and the
-solver on such grids are checked against the Hertz closed form (:mod:`dhfield.hertz`,
+solver on such grids are checked against the Hertz closed form (:mod:`dhfield.models.hertz`,
 an independent reference) and against a direct double sum of Love's influence
 coefficients (:func:`dhfield.bem.love_influence`).
 """
@@ -11,9 +11,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import hertz
+from dhfield.models import hertz
 from dhfield.bem import Grid, HalfSpaceOperator, love_influence, quadrant, solve_adhesive, unfold_quadrant
-from dhfield.geometry import radius_ratio
+from dhfield.core.geometry import radius_ratio
 
 #: DC-FFT against the direct sum of the same coefficients: round-off of the transforms only.
 RTOL_DIRECT = 1e-12

@@ -4,7 +4,7 @@ The states at a prescribed adhesive force and the fit of the fold (dhfield.bem.c
 are tested in tests/test_bem_continuation.py.
 
 References are Maugis-Dugdale (Maugis 1992, doi:10.1016/0021-9797(92)90288-C,
-:mod:`dhfield.maugis_dugdale`): the displacement-control pull-off is the minimum of
+:mod:`dhfield.models.maugis_dugdale`): the displacement-control pull-off is the minimum of
 delta(a) along the MD curve, or its end a = 0 when delta still falls there.
 """
 from __future__ import annotations
@@ -12,7 +12,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import maugis_dugdale, transition
+from dhfield.models import maugis_dugdale
+from dhfield.core import transition
 from dhfield.bem import adhesive_pull_off
 from dhfield.bem import (DISPLACEMENT_CONTROL_NOTE, fold_of_branch, nondimensional_problem, pull_off_summary,
                          unloading_path)

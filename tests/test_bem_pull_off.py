@@ -4,8 +4,8 @@ Here the set-up of the paper's problem (nondimensional_problem), the input check
 the pull-off entry points, and the located search (search='located') with its nested
 warm starts.  Reference values: the bracket search of the same problem (itself tested
 against the marching path in tests/test_bem_adhesive.py) and the Maugis-Dugdale sphere
-(:mod:`dhfield.maugis_dugdale`, Maugis 1992, lambda = 1.1272 mu of
-:mod:`dhfield.transition`).  Timings are printed by ``verification/bench_adhesive.py``,
+(:mod:`dhfield.models.maugis_dugdale`, Maugis 1992, lambda = 1.1272 mu of
+:mod:`dhfield.core.transition`).  Timings are printed by ``verification/bench_adhesive.py``,
 never asserted here.  The end-to-end limits (Hertz, MD, DMT, JKR) are in
 tests/test_bem_adhesive.py.
 """
@@ -14,8 +14,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import compare, transition
-from dhfield.adhesive_start import AdhesiveOptions
+from dhfield.analysis import compare
+from dhfield.core import transition
+from dhfield.analysis.bem_start import AdhesiveOptions
 from dhfield.bem import adhesive_pull_off, refine_pull_off
 from dhfield.bem import pull_off as pull_off_module
 from dhfield.bem import nondimensional_problem
@@ -261,7 +262,7 @@ def test_dilated_state_stretches_the_contact_and_is_the_state_itself_without_str
 def test_nested_warm_starts_stop_where_a_level_does_not_halve_along_y():
     # 2880 x 540 halves to 1440 x 270 and 720 x 135, whose half (360 x 67) would cover another domain:
     # the nest stops at 720 x 135 (issue 20: the beta0 = 0.1, mu = 10 retry lattice raised there)
-    from dhfield.adhesive_start import predicted_problem
+    from dhfield.analysis.bem_start import predicted_problem
     from dhfield.bem.pull_off import NestedWarmStart
 
     ws = NestedWarmStart(predicted_problem(mu=5.0, beta0=0.1, n=2880, ny=540), tol=1e-4, max_iter=10)
@@ -277,7 +278,7 @@ def test_nested_warm_starts_stop_where_a_level_does_not_halve_along_y():
 def test_lattice_approach_is_the_nearest_point_of_the_pull_off_lattice():
     # the lattice approach_max - j approach_step / LOCATE_DIVISIONS: the answer is on it, within half a spacing of
     # the approach asked, and a lattice point maps to itself; the same on a coarser grid of the problem
-    from dhfield.adhesive_start import predicted_problem
+    from dhfield.analysis.bem_start import predicted_problem
     from dhfield.bem.pull_off import LOCATE_DIVISIONS
 
     prob = predicted_problem(beta0=0.5, mu=10.0, n=640)

@@ -1,8 +1,8 @@
 """Every BEM route states an error that holds, checks resolution, and advises its own analytic value (issue 42).
 
 References are Maugis-Dugdale on the sphere (beta0 = 1): the load and displacement-control pull-offs of
-:func:`dhfield.maugis_dugdale.pull_off_nondimensional` and the jump under a spring along the MD curve
-(:func:`dhfield.compliance.pull_off_under_spring`, model 'md').  The whole study (60+ cases, every route)
+:func:`dhfield.models.maugis_dugdale.pull_off_nondimensional` and the jump under a spring along the MD curve
+(:func:`dhfield.analysis.spring.pull_off_under_spring`, model 'md').  The whole study (60+ cases, every route)
 is ``verification/bem_stated_error.py``; here the cases the issue names.
 """
 import json
@@ -10,12 +10,13 @@ import math
 
 import pytest
 
-from dhfield import compliance, maugis_dugdale
-from dhfield.adhesive_start import GridPlan, adhesive_pull_off, plan_grid
+from dhfield.analysis import spring as compliance
+from dhfield.models import maugis_dugdale
+from dhfield.analysis.bem_start import GridPlan, adhesive_pull_off, plan_grid
 from dhfield.bem.operator import Grid
 from dhfield.cli import main
 from dhfield.cli.solve import EXIT_UNRESOLVABLE, EXIT_UNRESOLVED
-from dhfield.solve_progress import PROGRESS_PREFIX
+from dhfield.core.progress import PROGRESS_PREFIX
 
 
 def _solve_json(argv, capsys):
@@ -108,7 +109,7 @@ def test_cycle_refusal_advises_the_jump_out_of_its_machine(k, control, capsys):
 
 
 def test_plan_names_the_route_and_says_when_no_analytic_value_exists():
-    from dhfield.adhesive_start import analytic_pull_off
+    from dhfield.analysis.bem_start import analytic_pull_off
 
     plan = plan_grid(beta0=1.0, mu=5.0, n=32, control="spring", machine_stiffness=1.0)
     assert plan.control == "spring" and plan.machine_stiffness_star == 1.0

@@ -6,17 +6,17 @@ Without an adhesive stress the Polonsky-Keer CG runs on the box of cells whose r
 gap is negative (every influence coefficient is positive, so no other cell can touch).
 The references are the uncropped solve of the same discrete problem (an independent
 route: other grids, other transforms, another iteration sequence) and the Hertz closed
-form (:mod:`dhfield.hertz`).
+form (:mod:`dhfield.models.hertz`).
 """
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from dhfield import hertz
+from dhfield.models import hertz
 from dhfield.bem import DugdaleLaw, ExponentialLaw, Grid, solve_adhesive
 from dhfield.bem import solver as bem_solver
-from dhfield.geometry import radius_ratio
+from dhfield.core.geometry import radius_ratio
 
 #: Cropped and uncropped solves are the same discrete problem solved to the solver
 #: tolerance (1e-6 of delta in complementarity): loads agree far below 1e-5.
@@ -83,7 +83,7 @@ RTOL_ACTIVE_BOX = 1e-6
 
 @pytest.mark.parametrize("lam", [1.0, 3.0])
 def test_adhesive_box_solve_is_the_whole_grid_solve(lam, monkeypatch):
-    from dhfield import transition
+    from dhfield.core import transition
     from dhfield.bem import adhesive_pull_off
 
     mu = float(transition.tabor_from_maugis(lam))

@@ -16,8 +16,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from dhfield import compare, fields, model, periphery, schema
-from dhfield import dimensional as dim
+from dhfield.analysis import compare, fields
+from dhfield.models import dh_elliptic as model, dh_elliptic_periphery as periphery
+from dhfield.core import schema
+from dhfield.analysis import dimensional as dim
 from dhfield.io import write_netcdf
 from dhfield.io import curves as io_curves
 from dhfield.io import periphery as io_periphery

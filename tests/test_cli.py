@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-from dhfield import model
+from dhfield.models import dh_elliptic as model
 from dhfield.cli import main
 from dhfield.io import read_netcdf
 
@@ -25,7 +25,7 @@ def test_pulloff_json(capsys):
 
 def test_curve_netcdf_and_csv(tmp_path):
     nc, csv = tmp_path / "c.nc", tmp_path / "c.csv"
-    paper = ["--model", "dh-elliptic"]  # compared with dhfield.model below
+    paper = ["--model", "dh-elliptic"]  # compared with dhfield.models.dh_elliptic below
     assert main(["curve", "--beta0", "0.9", "--mu", "1", *paper, "--out", str(nc)]) == 0
     assert main(["curve", "--beta0", "0.9", "--mu", "1", "--n", "7", *paper, "--out", str(csv)]) == 0
     ds = read_netcdf(nc)
@@ -109,7 +109,7 @@ def test_unreadable_file_is_a_clear_error(tmp_path):
 
 
 def test_periphery_subcommand(tmp_path, capsys):
-    from dhfield.adhesion import work_of_adhesion
+    from dhfield.models.dh_elliptic_adhesion import work_of_adhesion
 
     nc = tmp_path / "p.nc"
     assert main(["periphery", "--beta0", "0.85", "--mu", "3", "--n-theta", "3", "--json"]) == 0

@@ -4,7 +4,7 @@ import json
 import numpy as np
 import pytest
 
-from dhfield import compliance
+from dhfield.analysis import spring as compliance
 from dhfield.cli import main
 
 PDMS = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder-radius", "3e-3",
@@ -115,7 +115,7 @@ def test_bem_cycle_matches_md_and_plots(capsys, tmp_path):
 def test_bem_cycle_si_rigid_machine(capsys):
     """SI flags: K [N/m] -> K* as compliance.stiffness_star; the forces are W* x the load unit; against
     MD's SI cycle within BEM_RTOL (a rigid machine: the displacement-control jump out)."""
-    from dhfield import dimensional
+    from dhfield.analysis import dimensional
 
     sphere = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--principal-radii", "3e-3", "3e-3",
               "--work-of-adhesion", "0.05", "--adhesive-stress", "2.5e4"]   # mu = 0.874

@@ -90,7 +90,7 @@ def test_curve_fit_with_the_paper_model_warns(capsys, tmp_path, model):
     # issue 17: 'fit --data' with the then-default paper's model printed nothing on stderr (beta0 = 0.48 at
     # 60 degrees); it warns now.  The default is the recommended md-elliptic since issue 20, validated
     # everywhere: silent (None below).
-    from dhfield import dimensional as dim
+    from dhfield.analysis import dimensional as dim
 
     p = dim.contact_parameters(2e6, 0.5, 2e6, 0.5, 5e-3, math.pi / 3, 0.04, 2.5e4)
     a = p.length_unit * np.linspace(0.3, 3.0, 12)
@@ -116,7 +116,7 @@ PDMS = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder-radi
 @pytest.fixture(scope="module")
 def curve():
     """The MD load curve [N], [m] of the issue's PDMS contact (dgamma = 50 mJ/m^2, sigma0 = 0.1 MPa), 15 points."""
-    from dhfield import dimensional as dim
+    from dhfield.analysis import dimensional as dim
 
     p = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.05, 1e5)
     a = p.length_unit * np.linspace(0.3, 3.0, 15)

@@ -6,7 +6,7 @@ import stat
 
 import pytest
 
-from dhfield import fields
+from dhfield.analysis import fields
 from dhfield.cli import main
 from dhfield import io as dio
 
@@ -137,7 +137,7 @@ def test_bad_dhfield_threads_is_named(tmp_path, capsys, monkeypatch, no_compute)
 # --- item 6: memory ---------------------------------------------------------------------------------
 def test_field_too_large_for_memory_is_refused_before_allocating(tmp_path, capsys, monkeypatch, no_compute):
     """`field --n 100000` tried to allocate 74.5 GiB; the limit is tied to the memory available."""
-    from dhfield import _memory
+    from dhfield.core import memory as _memory
 
     monkeypatch.setattr(_memory, "available_memory", lambda: 2**30)  # pretend 1 GiB is available
     # 160 B/cell x 4096^2 = 2.5 GiB > 0.8 GiB, while 1024^2 cells (0.16 GiB) fit
@@ -208,7 +208,7 @@ def test_cli_starts_without_the_heavy_imports():
     import subprocess
     import sys
 
-    code = "import sys, dhfield.cli; print(sorted(m for m in ('scipy', 'dhfield.model', 'xarray') if m in sys.modules))"
+    code = "import sys, dhfield.cli; print(sorted(m for m in ('scipy', 'dhfield.models.dh_elliptic', 'xarray') if m in sys.modules))"
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr
     assert res.stdout.strip() == "[]"

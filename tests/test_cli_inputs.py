@@ -45,7 +45,7 @@ def test_an_option_given_as_double_dash_is_refused_by_name(capsys, argv, option)
 @pytest.mark.parametrize("kw, name", [({"beta0": [], "mu": 1.0}, "beta0"), ({"beta0": 0.9, "mu": []}, "mu"),
                                       ({"beta0": (), "mu": ()}, "mu")])
 def test_compare_refuses_empty_arrays_by_name(kw, name):
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     with pytest.raises(ValueError, match=f"^{name} must contain at least one value"):
         compare.pull_off("md-elliptic", **kw)
@@ -68,7 +68,7 @@ def jkr_side_curve(tmp_path_factory):
 
     import numpy as np
 
-    from dhfield import dimensional as dim
+    from dhfield.analysis import dimensional as dim
 
     p = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.05, 1e8)
     a = p.length_unit * np.linspace(0.5, 3.0, 12)
@@ -149,7 +149,7 @@ def _error(capsys, argv):
 
 
 def test_curve_load_range_below_the_pull_off_speaks_newtons(capsys):
-    from dhfield import compare, dimensional
+    from dhfield.analysis import compare, dimensional
 
     err = _error(capsys, ["curve", *SI, "--skew-angle-deg", "60", "--load-min=-1", "--load-max", "1"])
     assert "W*" not in err and "got min -1 N" in err and " N of md-elliptic" in err, err
@@ -161,7 +161,7 @@ def test_curve_load_range_below_the_pull_off_speaks_newtons(capsys):
 
 
 def test_skew_angle_bound_is_in_degrees(capsys):
-    from dhfield import geometry
+    from dhfield.core import geometry
 
     err = _error(capsys, ["pulloff", *SI, "--skew-angle-deg", "0.0354"])
     low = math.degrees(float(geometry.skew_angle(1e-4)))  # beta0 = 1e-4, the line-contact limit

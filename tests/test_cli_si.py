@@ -5,10 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from dhfield import compare
-from dhfield import dimensional as dim
+from dhfield.analysis import compare
+from dhfield.analysis import dimensional as dim
 from dhfield.cli import main
-from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_KEYS, PULL_OFF_SI_KEYS, PULL_OFF_TRUST_KEYS
+from dhfield.core.schema import (LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_KEYS, PULL_OFF_SI_KEYS,
+                                 PULL_OFF_TRUST_KEYS)
 
 #: issue 10's worked example: PDMS cylinders (E = 2 MPa, nu = 0.5, R = 5 mm) crossed at 60 deg,
 #: dgamma = 40 mJ/m^2, sigma0 = 0.5 MPa
@@ -49,7 +50,7 @@ def test_pdms_one_command_equals_api(capsys):
 
 
 def test_pdms_two_axis_no_warning(capsys):
-    # sigma0 = 0.45 MPa (mu = 19.5): inside the closures' accepted mu <= 30 (dhfield.closure.CLOSURE_MU_RANGE)
+    # sigma0 = 0.45 MPa (mu = 19.5): inside the closures' accepted mu <= 30 (dhfield.models.dh_elliptic_closure.CLOSURE_MU_RANGE)
     args = PDMS_ARGS[:-1] + ["0.45e6"]
     rec, err = _json(capsys, ["pulloff", *args, "--model", "dh-elliptic-two-axis", "--json"])
     assert err == "" and rec["warning"] == ""

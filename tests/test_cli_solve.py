@@ -7,12 +7,12 @@ import re
 import numpy as np
 import pytest
 
-from dhfield import compare
+from dhfield.analysis import compare
 from dhfield.cli import main
 from dhfield.cli.solve import EXIT_UNCONVERGED, EXIT_UNRESOLVABLE
 from dhfield.io.solution import read_solution
-from dhfield.schema import PULL_OFF_KEYS, PULL_OFF_SOLVER_KEYS
-from dhfield.solve_progress import PROGRESS_PREFIX
+from dhfield.core.schema import PULL_OFF_KEYS, PULL_OFF_SOLVER_KEYS
+from dhfield.core.progress import PROGRESS_PREFIX
 
 #: N = 32 is a smoke-test grid (about 6 cells across the Dugdale zone at mu = 1); the
 #: accuracy targets (1 % of MD at N = 256) belong to tests/test_bem_adhesive.py.  At
@@ -47,7 +47,7 @@ def test_solve_reports_non_convergence(monkeypatch, capsys):
     """A path whose states cannot converge (2 CG iterations each) exits 3 with one line."""
     import dhfield.bem
 
-    from dhfield.adhesive_start import AdhesiveOptions
+    from dhfield.analysis.bem_start import AdhesiveOptions
 
     monkeypatch.setattr(dhfield.bem, "adhesive_pull_off",
                         functools.partial(dhfield.bem.adhesive_pull_off, options=AdhesiveOptions(max_iter=2)))
@@ -132,7 +132,7 @@ def test_solve_resolved_case_exits_zero_and_says_so(tmp_path, capsys):
 def test_solve_predicted_search_on_an_explicit_grid_is_within_its_error_of_maugis_dugdale(capsys):
     # --search predicted with --n: the high-mu route refined on the caller's grid (here mu = 2, N = 128,
     # resolved, where the route is cheap); MD (Maugis 1992) is exact on the sphere
-    from dhfield import maugis_dugdale
+    from dhfield.models import maugis_dugdale
 
     rc = main(["solve", "--beta0", "1", "--mu", "2", "--n", "128", "--search", "predicted", "--json"])
     rec = json.loads(capsys.readouterr().out)
@@ -145,15 +145,15 @@ def test_solve_too_large_for_memory_is_refused_before_allocating(monkeypatch, ca
     """Issue 18 item 11: `solve --n 8192` ran past 90 s at >= 5.5 GB with no output.  It is now
     refused at once, in one line with the estimate and the limit: the library's own check (issue 42 finding 6),
     PATH_BYTES_PER_CELL (550 B/cell) x 8192^2 = 34.4 GiB against 80 % of 16 GiB."""
-    import dhfield._memory
+    import dhfield.core.memory
     import dhfield.bem
-    from dhfield.adhesive_start import PATH_BYTES_PER_CELL
+    from dhfield.analysis.bem_start import PATH_BYTES_PER_CELL
 
     def forbidden(*a, **k):
         raise AssertionError("solved before checking the memory")
 
     monkeypatch.setattr(dhfield.bem, "adhesive_pull_off", forbidden)
-    monkeypatch.setattr(dhfield._memory, "available_memory", lambda: 16 * 2**30)
+    monkeypatch.setattr(dhfield.core.memory, "available_memory", lambda: 16 * 2**30)
     assert main(["solve", "--beta0", "1", "--mu", "1", "--n", "8192"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     estimate = f"{PATH_BYTES_PER_CELL * 8192**2 / 2**30:.3g} GiB"
@@ -209,7 +209,7 @@ def test_progress_lines_off_a_terminal(monkeypatch, capsys):
 
 def test_progress_in_newtons_for_si_input(capsys):
     """SI input: each state's load in N, W* times the load unit 2 pi R dgamma/sin theta_skew (Eq. 34)."""
-    from dhfield.dimensional import contact_parameters
+    from dhfield.analysis.dimensional import contact_parameters
 
     args = ["--youngs-modulus", "2e6", "--poisson-ratio", "0.5", "--cylinder-radius", "5e-3", "--skew-angle-deg",
             "60", "--work-of-adhesion", "0.04", "--adhesive-stress", "2.31e4"]
@@ -248,7 +248,7 @@ def test_time_limit_after_a_state_names_the_lowest_load():
     import io
     from types import SimpleNamespace
 
-    from dhfield.solve_progress import SolveProgress, SolveTimeLimit
+    from dhfield.core.progress import SolveProgress, SolveTimeLimit
 
     def state(load, n):
         return SimpleNamespace(load=load, converged=True, grid=SimpleNamespace(nx=n, ny=n))
@@ -267,8 +267,8 @@ def test_time_limit_after_a_state_names_the_lowest_load():
 
 def test_refusal_quotes_the_analytic_force_in_newtons(capsys):
     """A refused SI case names the analytic pull-off in N (W* times 2 pi R dgamma/sin theta_skew, Eq. 34)."""
-    from dhfield.compare import pull_off
-    from dhfield.dimensional import contact_parameters
+    from dhfield.analysis.compare import pull_off
+    from dhfield.analysis.dimensional import contact_parameters
 
     args = ["--youngs-modulus", "2e6", "--poisson-ratio", "0.5", "--cylinder-radius", "5e-3", "--skew-angle-deg",
             "60", "--work-of-adhesion", "0.04", "--adhesive-stress", "2e5"]
@@ -291,7 +291,7 @@ PDMS_SI = ["--youngs-modulus", "2e6", "--poisson-ratio", "0.5", "--cylinder-radi
 
 def test_solve_si_round_trip(tmp_path, capsys):
     """SI in -> the same W* as the nondimensional call at the (beta0, mu) of the contact, and SI out
-    by closed forms written here without dhfield.dimensional: equal cylinders crossed at theta have
+    by closed forms written here without dhfield.analysis.dimensional: equal cylinders crossed at theta have
     R'R'' = R_c^2/sin^2(theta) (Eqs. 3-5), so R = R_c/sin(theta); E* = E/(2(1 - nu^2)) (Eq. 6);
     W = W* 2 pi R dgamma/sin(theta) (Eq. 34), a = a* c_r with c_r = (R^2 dgamma/E*)^(1/3) (Eqs. 32-33),
     delta = delta* c_r^2/R.  rel 1e-12: the same floats through a different order of operations."""
@@ -378,7 +378,7 @@ def test_solve_refuses_a_grid_far_too_coarse_in_one_line_before_solving(capsys):
 
 
 def test_solve_without_n_refuses_a_case_beyond_memory(monkeypatch, capsys):
-    from dhfield import adhesive_start
+    from dhfield.analysis import bem_start as adhesive_start
     from dhfield.cli.solve import EXIT_UNRESOLVABLE
 
     monkeypatch.setattr(adhesive_start, "memory_limit", lambda: 1024)
@@ -400,10 +400,10 @@ SPHERE_SI = ["--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--principa
 
 
 def test_solve_under_a_spring_matches_md_under_the_same_spring(tmp_path, capsys):
-    """BEM vs Maugis-Dugdale (dhfield.compliance, Maugis 1992 + Maugis & Barquins 1978's jump
+    """BEM vs Maugis-Dugdale (dhfield.analysis.spring, Maugis 1992 + Maugis & Barquins 1978's jump
     dW/d(delta) = -K) on the sphere at K* = 1: within the stated fit error plus the lattice
-    jaggedness of N = 64 (2e-3, tests/test_bem_compliance.py), and within SPRING_RTOL."""
-    from dhfield import compliance
+    jaggedness of N = 64 (2e-3, tests/test_bem_spring.py), and within SPRING_RTOL."""
+    from dhfield.analysis import spring as compliance
 
     out = tmp_path / "spring.nc"
     rc = main(["solve", "--beta0", "1", "--mu", str(SPRING_MU), "--n", SPRING_N, "--machine-stiffness", "1",
@@ -426,7 +426,7 @@ def test_solve_under_a_spring_matches_md_under_the_same_spring(tmp_path, capsys)
 def test_solve_under_a_spring_in_si(tmp_path, capsys):
     """K in N/m -> K* by Eqs. (33)-(34) (compliance.stiffness_star), force = W* x the load unit, and
     the force against MD's under the same spring (dhfield pulloff --model md) within SPRING_RTOL."""
-    from dhfield import compliance, dimensional
+    from dhfield.analysis import spring as compliance, dimensional
 
     out = tmp_path / "spring_si.nc"
     rc = main(["solve", *SPHERE_SI, "--n", SPRING_N, "--machine-stiffness", "50", "--json", "--out", str(out)])

@@ -5,9 +5,10 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from dhfield import compare, jkr_elliptic
-from dhfield.geometry import sin_skew_angle
-from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS, PULL_OFF_TRUST_KEYS
+from dhfield.analysis import compare
+from dhfield.models import jkr_elliptic
+from dhfield.core.geometry import sin_skew_angle
+from dhfield.core.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS, PULL_OFF_TRUST_KEYS
 
 KEYS = {"model", "beta0", "mu", "W_star", "a_star", "c_star", "v", "delta_star"}
 #: issue 3: circular DH vs the elliptical DH core at beta0 = 1
@@ -68,7 +69,7 @@ def test_vectorised_over_mu():
 
 @pytest.mark.parametrize("mu", [0.5, 2.0, 5.0])
 def test_circle_all_dh_variants_agree(mu):
-    pytest.importorskip("dhfield.model")
+    pytest.importorskip("dhfield.models.dh_elliptic")
     res = compare.compare(mu=mu, beta0=1.0)
     w = res["dh-circular"]["W_star"]
     for name in ("dh-elliptic", "dh-elliptic-jkr-beta"):
@@ -91,7 +92,7 @@ def test_normalisation_eq34():
 
 def test_jkr_beta_variant_definition():
     """beta_JKR(pull-off) replaces beta for both ellipses; Eq. (34) keeps sin(theta_skew(beta0))."""
-    model = pytest.importorskip("dhfield.model")
+    model = pytest.importorskip("dhfield.models.dh_elliptic")
     mu, beta0 = 5.0, 0.9
     rec = compare.pull_off("dh-elliptic-jkr-beta", mu=mu, beta0=beta0)
     bj = jkr_elliptic.pull_off_ellipticity(beta0=beta0)
@@ -121,8 +122,8 @@ def test_bad_input():
 
 
 def test_one_record_type_for_every_model():
-    """Every model answers with dhfield.records.PullOff, read as attributes or as a mapping (issue 16)."""
-    from dhfield.records import PullOff
+    """Every model answers with dhfield.core.records.PullOff, read as attributes or as a mapping (issue 16)."""
+    from dhfield.core.records import PullOff
 
     for name in compare.MODELS:
         rec = compare.pull_off(name, mu=1.0, beta0=0.9, check_closure=False)
@@ -221,7 +222,7 @@ def test_curve_through_the_pull_off_state(name):
     mu, beta0 = 2.0, 0.8
     po = compare.pull_off(name, mu=mu, beta0=beta0, check_closure=False)
     if po["a_star"] == 0:  # DMT: pull-off at vanishing contact; the curve starts there
-        a = 1e-6  # the smallest accepted contact size (dhfield._validation.CONTACT_SIZE_RANGE)
+        a = 1e-6  # the smallest accepted contact size (dhfield.core.validation.CONTACT_SIZE_RANGE)
     else:
         a = float(po["a_star"])
     c = compare.load_curve(name, mu=mu, beta0=beta0, a_star=[a, 2 * a + 0.1])
@@ -268,7 +269,7 @@ def test_validity_ranges_warn_without_refusing():
 
 def test_warning_when_the_reference_check_fails(monkeypatch):
     """A failing reference (the recommended model) does not take the paper's result down with it."""
-    from dhfield import validity
+    from dhfield.analysis import validity
 
     def fail(*args, **kwargs):
         raise RuntimeError("reference failed")
@@ -284,7 +285,7 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
     def refuse(*args, **kwargs):
         raise ValueError("mu must be in [1e-06, 20] (closure domain); got 22.0")
 
-    from dhfield import validity
+    from dhfield.analysis import validity
 
     monkeypatch.setattr(validity.elliptic_transition, "pull_off_nondimensional", refuse)
     monkeypatch.setitem(compare.MODELS, "md-elliptic", refuse)
@@ -327,7 +328,7 @@ def test_issue18_item2_near_circle_is_the_circle_for_every_model(control):
 def test_issue18_item2_ninety_degrees_from_si_input_warns_like_the_sphere():
     """Crossed equal cylinders at 90 deg give beta0 = 1 - 2^-53 through the SI path; md, jkr and
     dh-circular are validated at beta0 = 1 and must not warn (before: 'validated for beta0 = 1')."""
-    from dhfield.dimensional import contact_parameters, pull_off_force
+    from dhfield.analysis.dimensional import contact_parameters, pull_off_force
 
     params = contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, np.pi / 2, 0.05, 2e5)  # mu = 15.3
     for name in ("md", "jkr", "dh-circular", "jkr-elliptic"):
@@ -352,10 +353,10 @@ def test_load_curves_take_beta0_and_mu_by_keyword(call):
 
 
 def _outermost_validation_calls(func):
-    """The dhfield._validation functions ``func()`` enters from outside that module (nested checks not counted)."""
+    """The dhfield.core.validation functions ``func()`` enters from outside that module (nested checks not counted)."""
     import sys
 
-    import dhfield._validation as v
+    import dhfield.core.validation as v
 
     calls = []
 

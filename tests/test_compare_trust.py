@@ -2,7 +2,7 @@
 the flags of ``compare``, NaN per point over arrays, and the rows ``pulloff`` leaves out.
 
 The references are the stored BEM ground truth read here from ``data/adhesive_ground_truth_extended.nc``
-with xarray (not through :mod:`dhfield.model_error`'s table) and the models evaluated afresh.
+with xarray (not through :mod:`dhfield.analysis.model_error`'s table) and the models evaluated afresh.
 """
 import json
 import math
@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dhfield import compare, model_error
+from dhfield.analysis import compare, model_error
 from dhfield.cli import main
-from dhfield.validity import WARNING_THRESHOLD
+from dhfield.analysis.validity import WARNING_THRESHOLD
 
 TRUTH = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth_extended.nc"
 #: the closures cost about 200 ms a point: they are evaluated at a few stored cases only
@@ -50,7 +50,7 @@ def _quiet(func, *args, **kwargs):
 def test_the_table_holds_every_stored_case(truth):
     """57 cases, the file's W*_truth; the truth's error as stored, or (three N-ladder cases at mu = 5 that
     store none) the file's own rule, the difference of the ladder's two finest N."""
-    from dhfield import _truth_table as table
+    from dhfield.analysis import _truth_table as table
 
     b, m, t, e = truth
     assert b.size == len(table.BETA0) == 57
@@ -66,7 +66,7 @@ def test_the_table_holds_every_stored_case(truth):
 def test_the_table_is_current(truth):
     """The tabulated W* of every model are what the models give now (regenerate with
     ``python -m verification.model_error_table`` when a model changes)."""
-    from dhfield import _truth_table as table
+    from dhfield.analysis import _truth_table as table
 
     b, m, _, _ = truth
     for name in compare.MODEL_NAMES:
@@ -119,7 +119,7 @@ def test_between_stored_cases_the_error_is_the_worst_of_the_bracketing_cases():
 def test_jg_is_flagged_at_a_stored_slender_case(truth):
     """beta0 0.1, mu 10 (a stored case, 18 deg): JG is 23 % weaker than the BEM truth (from the file), more than
     WARNING_THRESHOLD; compare flags it in ``warning`` and quotes an error that covers that deviation."""
-    from dhfield import jkr_elliptic
+    from dhfield.models import jkr_elliptic
 
     b, m, t, _ = truth
     i = np.flatnonzero((b == 0.1) & (m == 10.0))[0]

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from dhfield import compare, compliance
+from dhfield.analysis import compare, spring as compliance
 from dhfield.cli import main
 
 # the PDMS contact of issue 40 at 60 degrees: beta0 = 0.4826, mu = 11.40

@@ -4,7 +4,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy import integrate
 
-from dhfield import dh_circular, jkr
+from dhfield.models import dh_circular, jkr
 
 #: the closed-form parametrisation is exact; residuals of Eqs. (24), (31) are rounding
 #: (amplified ~1e4 by the cancellation in (c - a) at large mu)
@@ -62,7 +62,7 @@ def test_jkr_and_dmt_limits():
 
 @pytest.mark.parametrize("mu", [0.3, 1.0, 5.0])
 def test_agrees_with_elliptical_core_at_circle(mu):
-    model = pytest.importorskip("dhfield.model")
+    model = pytest.importorskip("dhfield.models.dh_elliptic")
     a = np.linspace(*model.DEFAULT_A_STAR, 200)
     ref = model.load_curve(mu=mu, beta0=1.0, a_star=a)
     st = dh_circular.load_curve_nondimensional(a, mu)
@@ -111,7 +111,7 @@ def test_bad_input():
 def test_issue9_large_mu_is_jkr_without_cancellation(mu):
     # Before: dh-circular at mu = 1e8 gave -1.50 and at 1e12 ~0 (c^3 - a^3 lost to rounding).
     # JKR: load control -3/4, fixed grips -5/12 (Maugis 2000); the departure is O(mu^-2).
-    from dhfield import dh_circular as dc
+    from dhfield.models import dh_circular as dc
 
     assert float(dc.pull_off_nondimensional(1.0, np.array(mu))["W_star"]) == pytest.approx(-0.75, rel=1e-11)
     assert float(dc.pull_off_nondimensional(1.0, np.array(mu), control="displacement")["W_star"]) == pytest.approx(-5 / 12, rel=1e-11)

@@ -3,10 +3,12 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from dhfield import dimensional as dim
-from dhfield import double_hertz as dh
-from dhfield import geometry, jkr_elliptic
-from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_SI_KEYS, PULL_OFF_TRUST_KEYS
+from dhfield.analysis import dimensional as dim
+from dhfield.models import dh_elliptic_fields as dh
+from dhfield.core import geometry
+from dhfield.models import jkr_elliptic
+from dhfield.core.schema import (LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_SI_KEYS, PULL_OFF_SI_KEYS,
+                                 PULL_OFF_TRUST_KEYS)
 
 # PDMS-like crossed fibres: E = 2 MPa, nu = 0.5, Rc = 1 mm, 60 deg, dgamma = 0.05 J/m^2, sigma0 = 0.5 MPa.
 SI = dict(youngs_modulus_1=2e6, poisson_ratio_1=0.5, youngs_modulus_2=2e6, poisson_ratio_2=0.5,
@@ -18,7 +20,7 @@ TOL_UNITS = 1e-10
 #: two independent SI paths (dimensional.pull_off_force vs jkr_elliptic.pull_off_force) of one closed form
 TOL_SAME_FORM = 1e-12
 #: the two-axis closure against elliptical JKR at mu = 19.5: the closure tends to the JKR limit as mu grows
-#: (within 0.3 % at mu = 10 and 0.03 % at mu = 30 over beta0 = 0.3-0.99, dhfield.compare docstring)
+#: (within 0.3 % at mu = 10 and 0.03 % at mu = 30 over beta0 = 0.3-0.99, dhfield.analysis.compare docstring)
 TOL_JKR_LIMIT = 1e-3
 #: cheap models for the loops (the closures cost ~1 s a point and are tested in test_compare)
 CHEAP = ("dh-elliptic", "dh-circular", "jkr", "dmt", "md", "jkr-elliptic")
@@ -92,7 +94,7 @@ def test_pdms_example():
     paper = dim.pull_off_force(p, model="dh-elliptic")
     assert paper["force"] > 0.8 * jkr["force"]  # the paper's model: ~30 % less adhesion here
     assert "md-elliptic" in paper["warning"]  # its reference since issue 20 (the two-axis closure before)
-    # the closures accept mu <= 20 (dhfield.closure.CLOSURE_MU_RANGE): the same contact at sigma0 = 0.45 MPa
+    # the closures accept mu <= 20 (dhfield.models.dh_elliptic_closure.CLOSURE_MU_RANGE): the same contact at sigma0 = 0.45 MPa
     q = dim.contact_parameters(**{**PDMS, "max_adhesive_stress": 4.5e5})
     two = dim.pull_off_force(q, model="dh-elliptic-two-axis")
     assert two["force"] == pytest.approx(jkr["force"], rel=TOL_JKR_LIMIT)  # JKR: independent of sigma0

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from dhfield import dmt
+from dhfield.models import dmt
 from tests._reference import circular_pull_off
 
 #: closed forms evaluated in double precision

@@ -4,7 +4,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import ellipk
 
-from dhfield.elliptic import complete_k, ellipsoid_integrals, ellipsoid_integrals_legendre
+from dhfield.core.elliptic import complete_k, ellipsoid_integrals, ellipsoid_integrals_legendre
 
 #: Legendre forms lose ~k^-2 digits to cancellation; 1e-12 is ample for k^2 >= 0.02.
 LEGENDRE_RTOL = 1e-12

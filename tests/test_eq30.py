@@ -1,9 +1,11 @@
-"""Tests of dhfield.eq30: Eq. (30) as printed, its Green's form, and the erratum."""
+"""Tests of dhfield.analysis.eq30: Eq. (30) as printed, its Green's form, and the erratum."""
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from dhfield import adhesion, double_hertz, eq30, model
+from dhfield.models import (dh_elliptic_adhesion as adhesion, dh_elliptic_fields as double_hertz, dh_elliptic
+                            as model)
+from dhfield.analysis import eq30
 
 #: Issue 5 acceptance: area and boundary evaluations of Eq. (30) agree to 1e-6.
 AREA_BOUNDARY_REQUIRED = 1e-6

@@ -1,4 +1,4 @@
-"""Error metrics of BEM fields (dhfield.field_metrics): statistics, region masks, the annulus identity h = (1 + v) h_Hertz."""
+"""Error metrics of BEM fields (dhfield.analysis.field_metrics): statistics, region masks, the annulus identity h = (1 + v) h_Hertz."""
 from __future__ import annotations
 
 import math
@@ -6,7 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from dhfield import bem, field_metrics, fields, hertz
+from dhfield import bem
+from dhfield.analysis import field_metrics, fields
+from dhfield.models import hertz
 
 #: Annulus identity on 256^2 cells (beta0 = 0.9, mu = 1, a* = 1.2): measured 7.9e-4 relative
 #: to max (1+v) h_H; O(h^1.5) discretisation of the square-root edges plus spline interpolation.

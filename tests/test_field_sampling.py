@@ -1,4 +1,4 @@
-"""Pressures sampled on a BEM grid (dhfield.field_sampling): closed-form cell averages against quadrature, loads, Eq. (7)."""
+"""Pressures sampled on a BEM grid (dhfield.analysis.field_sampling): closed-form cell averages against quadrature, loads, Eq. (7)."""
 from __future__ import annotations
 
 import math
@@ -7,7 +7,9 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from dhfield import bem, double_hertz, field_sampling, hertz
+from dhfield import bem
+from dhfield.models import dh_elliptic_fields as double_hertz, hertz
+from dhfield.analysis import field_sampling
 
 #: hemisphere_volume vs scipy dblquad asked for 1e-13 absolute.
 ATOL_VOLUME = 1e-12

@@ -1,11 +1,13 @@
-"""The analytic-versus-BEM field cases (dhfield.fields); the sampling, metrics, polar resampling and
+"""The analytic-versus-BEM field cases (dhfield.analysis.fields); the sampling, metrics, polar resampling and
 refinement helpers have their own test modules."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from dhfield import bem, field_sampling, fields, model
+from dhfield import bem
+from dhfield.analysis import field_sampling, fields
+from dhfield.models import dh_elliptic as model
 
 # --- tolerances -------------------------------------------------------------------
 #: Gap inside the contact (beta0 = 0.9, mu = 1, a* = 1.2, 256^2 cells): measured 7.4e-4 (absolute, nondimensional units).

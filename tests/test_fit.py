@@ -1,4 +1,4 @@
-"""The inverse problem (dhfield.fit, ``dhfield fit``): round trips, closed forms, noisy recovery, rejections."""
+"""The inverse problem (dhfield.analysis.fit, ``dhfield fit``): round trips, closed forms, noisy recovery, rejections."""
 from __future__ import annotations
 
 import json
@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from dhfield import compare
-from dhfield import dimensional as dim
+from dhfield.analysis import compare
+from dhfield.analysis import dimensional as dim
 from dhfield.cli import main
-from dhfield.fit import CURVE_FIT_MODEL_NAMES, fit_curve, fit_work_of_adhesion
+from dhfield.analysis.fit import CURVE_FIT_MODEL_NAMES, fit_curve, fit_work_of_adhesion
 from dhfield.io.table import write_table
 
 #: Issue 10: the force computed for dgamma, fitted back, returns dgamma to 1e-8 relative.
@@ -243,8 +243,8 @@ def test_cli_fits_the_csv_that_curve_writes(capsys, tmp_path):
 
 
 def test_closure_models_search_their_own_mu_range(params):
-    from dhfield.closure import CLOSURE_MU_RANGE
-    from dhfield.fit import FIT_MU_RANGE, fit_mu_range
+    from dhfield.models.dh_elliptic_closure import CLOSURE_MU_RANGE
+    from dhfield.analysis.fit import FIT_MU_RANGE, fit_mu_range
 
     assert fit_mu_range("dh-elliptic-two-axis") == (FIT_MU_RANGE[0], CLOSURE_MU_RANGE[1])
     assert fit_mu_range("md") == FIT_MU_RANGE
@@ -256,7 +256,7 @@ def test_closure_models_search_their_own_mu_range(params):
 #: Student t quantile t_0.975 with 2 degrees of freedom, closed form: the t(2) CDF is
 #: 1/2 + t/(2 sqrt(2 + t^2)), so t = 0.95 sqrt(2/(1 - 0.95^2)) = 4.30265 (tables: 4.303).
 T975_DOF2 = 0.95 * math.sqrt(2.0 / (1.0 - 0.95 ** 2))
-#: Central differences with relative step 1e-3 (dhfield.fit.INPUT_REL_STEP): truncation error
+#: Central differences with relative step 1e-3 (dhfield.analysis.fit.INPUT_REL_STEP): truncation error
 #: O(1e-6) relative in a derivative; 1e-5 leaves a margin.
 RTOL_PROPAGATION = 1e-5
 
@@ -303,7 +303,7 @@ def test_bad_replicates_are_rejected(params, forces, match):
 
 @pytest.mark.parametrize("model", ["jkr", "dmt"])
 def test_input_uncertainty_propagates_as_the_closed_form(model):
-    from dhfield.fit import propagate_input_uncertainty
+    from dhfield.analysis.fit import propagate_input_uncertainty
 
     # JKR and DMT: dgamma = -F/(k pi R) with R = R_c/sin(theta) (Eqs. 3-5) for equal crossed cylinders, so
     # d dgamma/d R_c = -dgamma/R_c, d dgamma/d theta = dgamma cot(theta); E* and sigma0 do not enter
@@ -327,7 +327,7 @@ def test_input_uncertainty_propagates_as_the_closed_form(model):
 
 
 def test_input_uncertainty_at_the_edge_of_the_range_is_one_sided():
-    from dhfield.fit import propagate_input_uncertainty
+    from dhfield.analysis.fit import propagate_input_uncertainty
 
     # 90 degrees is the largest skew angle: the difference is one-sided.  JKR's dgamma is proportional to
     # sin(theta), whose derivative vanishes at 90 degrees; the backward difference over h = 1e-3 pi/2 is
@@ -340,7 +340,7 @@ def test_input_uncertainty_at_the_edge_of_the_range_is_one_sided():
 
 
 def test_input_uncertainty_rejects_inconsistent_inputs(params):
-    from dhfield.fit import propagate_input_uncertainty
+    from dhfield.analysis.fit import propagate_input_uncertainty
 
     inputs = dict(PDMS, work_of_adhesion=WORK, max_adhesive_stress=STRESS)
     fit = fit_work_of_adhesion([-1e-3, -1.1e-3], params, model="jkr")
@@ -417,7 +417,7 @@ def test_ill_conditioned_data_give_no_standard_error_for_what_they_cannot_determ
     ([[1.0, 1.0], [1.0, 1.0015], [1.0, 1.0]], "correlated at"),        # cond ~ 2e3, |corr| = 1 - 4e-7
 ])
 def test_degenerate_jacobians_give_nan_standard_errors(jac, match):
-    from dhfield.fit import _log_standard_errors
+    from dhfield.analysis.fit import _log_standard_errors
 
     se, cov, corr, problems, unknown = _log_standard_errors(np.array(jac), np.array([1e-3, -2e-3, 1e-3]), 3)
     assert np.all(np.isnan(se)) and math.isnan(corr) and unknown.all()
@@ -502,7 +502,7 @@ def _many_rows(n):
 
 @pytest.mark.parametrize("rtol", [None, 1e-30])
 def test_a_curve_of_many_rows_is_fitted_on_the_nodes(monkeypatch, capsys, rtol):
-    import dhfield.fit as fit_module
+    import dhfield.analysis.fit as fit_module
 
     w, a, start = _many_rows(500)
     monkeypatch.setattr(fit_module, "CURVE_NODES", 200)  # 500 distinct sizes > 2 x 200: the spline path

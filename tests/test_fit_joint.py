@@ -1,4 +1,4 @@
-"""Joint fit over crossing angles: dhfield.fit.fit_joint and ``dhfield fit --data`` with an angle column."""
+"""Joint fit over crossing angles: dhfield.analysis.fit.fit_joint and ``dhfield fit --data`` with an angle column."""
 from __future__ import annotations
 
 import json
@@ -8,8 +8,8 @@ import warnings
 import numpy as np
 import pytest
 
-from dhfield import compare
-from dhfield import dimensional as dim
+from dhfield.analysis import compare
+from dhfield.analysis import dimensional as dim
 from dhfield.cli import main
 
 # the PDMS contact of issue 40: two 3 mm cylinders, E = 1.8 MPa, nu = 0.49
@@ -68,7 +68,7 @@ def test_joint_estimate_is_the_replicate_mean_and_stderr_is_s_over_sqrt_n():
     # independent: each force inverted on its own (fit_work_of_adhesion, one root per row); on the JKR
     # side d ln|F|/d ln dgamma is 1 to within 1e-3, so the least-squares estimate in ln dgamma is the
     # mean of the 20 ln dgamma_i and its standard error s/sqrt(n) of them
-    from dhfield.fit import fit_joint, fit_work_of_adhesion
+    from dhfield.analysis.fit import fit_joint, fit_work_of_adhesion
 
     angles, forces = _synthetic()
     with warnings.catch_warnings():
@@ -85,7 +85,7 @@ def test_joint_estimate_is_the_replicate_mean_and_stderr_is_s_over_sqrt_n():
 
 def test_joint_load_curves_recover_both_parameters():
     # noiseless load curves at three angles: dgamma and sigma0 back to rounding from a start 1.5 x off
-    from dhfield.fit import fit_joint
+    from dhfield.analysis.fit import fit_joint
 
     angles, sizes, loads = [], [], []
     with warnings.catch_warnings():

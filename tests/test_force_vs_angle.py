@@ -1,4 +1,4 @@
-"""The pull-off force against the crossing angle of one material (dhfield.force_vs_angle, its figure and CLI).
+"""The pull-off force against the crossing angle of one material (dhfield.analysis.force_vs_angle, its figure and CLI).
 
 Reference values are closed forms: JKR's pull-off 3/2 pi R dgamma and DMT's 2 pi R dgamma of the circle
 of R = sqrt(R'R'') = R_c/sin(theta) (Eqs. 3-5), mu of Eq. (35), and the stored BEM W* read from the
@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dhfield.compare import RECOMMENDED_MODEL
-from dhfield.force_vs_angle import MU_MATCH_TOLERANCE, pull_off_force_vs_angle, stored_bem_cases
+from dhfield.analysis.compare import RECOMMENDED_MODEL
+from dhfield.analysis.force_vs_angle import MU_MATCH_TOLERANCE, pull_off_force_vs_angle, stored_bem_cases
 from dhfield.io.force_vs_angle_plot import model_styles
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -52,7 +52,7 @@ def test_recommended_model_always_first():
 
 def test_stored_bem_cases_on_the_path_are_converted_to_newtons():
     xr = pytest.importorskip("xarray")
-    from dhfield.geometry import skew_angle
+    from dhfield.core.geometry import skew_angle
 
     # mu = 1 at 90 deg; mu ~ sin(theta)^(-1/3) (Eq. 35, R = R_c/sin theta) stays within 1 % of 1 down to 80 deg,
     # so the stored mu = 1 cases at beta0 = 0.8 (80.45 deg), 0.9, 0.99 and 1 lie on the path, no other
@@ -73,7 +73,7 @@ def test_stored_bem_cases_on_the_path_are_converted_to_newtons():
 
 
 def test_error_band_where_the_stored_cases_check_the_recommended_model():
-    from dhfield.model_error import model_error
+    from dhfield.analysis.model_error import model_error
 
     t = pull_off_force_vs_angle(E, NU, RC, DGAMMA, _sigma0_for_mu_at_90(1.0), angles_deg=(40, 90), points=4,
                                 models=["jkr"])

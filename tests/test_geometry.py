@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from scipy.special import ellipe, ellipk
 
-from dhfield import geometry as g
+from dhfield.core import geometry as g
 
 
 def test_principal_radii_eqs_3_4():
@@ -73,7 +73,7 @@ def test_bad_input_names_parameter(call, name):
 def test_issue9_principal_radii_at_tiny_angles_are_finite():
     # Before: skew_angle = 1e-12 gave R' = inf (1 - cos lost to rounding), reported as r_major.
     # 1 - cos(t) = 2 sin^2(t/2) ~ t^2/2: R' = 2 R_c/t^2.
-    from dhfield import geometry as g
+    from dhfield.core import geometry as g
 
     r1, r2 = g.principal_radii(1.0, 1e-12)
     assert float(r1) == pytest.approx(2e24, rel=1e-12) and float(r2) == pytest.approx(0.5, rel=1e-12)
@@ -92,7 +92,7 @@ def test_unchecked_path_is_the_same_computation():
 
 
 def test_unchecked_cores_are_the_checked_values():
-    """checked=False (dhfield.dimensional validates the SI inputs once) skips the checks, not a digit."""
+    """checked=False (dhfield.analysis.dimensional validates the SI inputs once) skips the checks, not a digit."""
     rc, th = np.array([1e-3, 0.02, 5.0]), np.array([0.1, 1.0, np.pi / 2])
     unchecked, checked = g.principal_radii(rc, th, checked=False), g.principal_radii(rc, th)
     assert all(np.array_equal(u, c) for u, c in zip(unchecked, checked))

@@ -4,7 +4,7 @@ import pytest
 from scipy.integrate import dblquad, quad
 from scipy.special import ellipe, ellipk
 
-from dhfield import hertz
+from dhfield.models import hertz
 
 #: Eqs. (13)-(15) vs adaptive quadrature of Eq. (12b): both near machine precision;
 #: 1e-10 is the issue's bound, with three orders of margin observed.

@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import adhesion_map as am
-from dhfield import schema
+from dhfield.analysis import adhesion_map as am
+from dhfield.core import schema
 from dhfield.io.adhesion_map import adhesion_map_dataset, read_adhesion_map, write_adhesion_map
 
 

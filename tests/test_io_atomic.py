@@ -199,7 +199,7 @@ def test_netcdf_round_trip_of_the_writer(tmp_path, rng):
     ds["p"][0, 0] = np.nan
     path = dio.write_netcdf(ds, tmp_path / "r.nc")
     back = dio.read_netcdf(path)
-    # dimensions in the canonical order of dhfield.schema.DIM_ORDER (y before x: rows y, columns x)
+    # dimensions in the canonical order of dhfield.core.schema.DIM_ORDER (y before x: rows y, columns x)
     assert back["p"].dims == ("y", "x")
     np.testing.assert_array_equal(back["p"].transpose("x", "y").values, ds["p"].values)  # NaN in the same place
     np.testing.assert_array_equal(back["flag"].values, ds["flag"].values)

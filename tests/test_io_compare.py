@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from dhfield import compare, schema
+from dhfield.analysis import compare
+from dhfield.core import schema
 from dhfield.io import read_netcdf, write_netcdf
 from dhfield.io.compare import COMPARISON_VARIABLES, GEOMETRIES, comparison_dataset
 

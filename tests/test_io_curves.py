@@ -6,7 +6,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from dhfield import model, schema
+from dhfield.models import dh_elliptic as model
+from dhfield.core import schema
 from dhfield.io import read_netcdf
 from dhfield.io.curves import CURVE_VARIABLES, load_curve_dataset, pull_off_dataset, write_load_curve
 from dhfield.io.table import read_table, sidecar_path, write_table
@@ -35,7 +36,7 @@ def test_si_curve_has_si_units():
 def test_si_and_ellipticity_records_write_their_own_groups(tmp_path):
     """The one load-curve type (issue 16): an SI record writes the SI columns, the paper's model's
     record its header and free ellipticity as attributes."""
-    from dhfield import dimensional
+    from dhfield.analysis import dimensional
 
     p = dimensional.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
     ds = load_curve_dataset(dimensional.load_curve_si(p, n=4, model="jkr"))

@@ -10,7 +10,8 @@ import textwrap
 import numpy as np
 import pytest
 
-from dhfield import PAPER_DOI, field_metrics, fields
+from dhfield import PAPER_DOI
+from dhfield.analysis import field_metrics, fields
 from dhfield.io import read_netcdf
 from dhfield.io.field import FIELD_VARIABLES, field_dataset, write_field
 
@@ -163,7 +164,7 @@ def test_si_hertz_case_in_metres_and_pascals(tmp_path):
 
 
 def test_metadata_from_the_schema_and_cf_rules(case, tmp_path):
-    from dhfield import schema
+    from dhfield.core import schema
     from dhfield.io.field import REGIONS
 
     ds = field_dataset(case, n_r=9, n_theta=5)

@@ -1,13 +1,13 @@
 """What the figures share (dhfield/io/figures.py): SI conversion of crossed cylinders, SI prefixes,
-model names.  The conversion is checked against :func:`dhfield.dimensional.contact_parameters`, an
+model names.  The conversion is checked against :func:`dhfield.analysis.dimensional.contact_parameters`, an
 independent route through Eqs. 3-6, 34 and 35."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from dhfield import dimensional
-from dhfield.compare import MODEL_NAMES
+from dhfield.analysis import dimensional
+from dhfield.analysis.compare import MODEL_NAMES
 from dhfield.io.figures import MODEL_LABELS, crossed_cylinders_si, model_label, si_prefix
 
 #: The PDMS crossed cylinders of issue 17.

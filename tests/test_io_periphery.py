@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from dhfield import model, periphery, schema
+from dhfield.models import dh_elliptic as model, dh_elliptic_periphery as periphery
+from dhfield.core import schema
 from dhfield.io import read_netcdf
 from dhfield.io import periphery as iop
 

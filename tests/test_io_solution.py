@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_array_equal
 
-from dhfield.adhesive_start import AdhesiveOptions
+from dhfield.analysis.bem_start import AdhesiveOptions
 from dhfield.bem import adhesive_pull_off
 from dhfield.io.solution import (PHASES, REGIONS, pull_off_dataset, read_solution, state_dataset,
                                  write_solution)
@@ -108,9 +108,9 @@ def test_fields_are_stored_y_by_x_and_old_files_still_read(tmp_path):
 def test_si_variables_of_a_pull_off(tmp_path, small_result):
     """With the contact's parameters the file carries the SI pull-off, the SI force path and the inputs,
     with their schema units.  Contact chosen so that beta0 = 0.8 is hit: principal radii with
-    R'/R'' of beta0 = 0.8 (dhfield.geometry, Eq. 9), and sigma0 for mu = 1 (Eq. 35)."""
-    from dhfield import geometry
-    from dhfield.dimensional import contact_parameters_from_principal_radii
+    R'/R'' of beta0 = 0.8 (dhfield.core.geometry, Eq. 9), and sigma0 for mu = 1 (Eq. 35)."""
+    from dhfield.core import geometry
+    from dhfield.analysis.dimensional import contact_parameters_from_principal_radii
     from dhfield.io.solution import SI_INPUT_KEYS, SI_PULL_OFF_KEYS, pull_off_si
 
     res = small_result

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from dhfield.bem import adhesive_pull_off
-from dhfield.dimensional import contact_parameters
+from dhfield.analysis.dimensional import contact_parameters
 from dhfield.io.solve_plot import _prefix, solve_figure, write_solve_plot
 
 

@@ -5,8 +5,8 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy import integrate
 
-from dhfield import hertz, jkr, jkr_elliptic as je
-from dhfield.geometry import radius_ratio, sin_skew_angle
+from dhfield.models import hertz, jkr, jkr_elliptic as je
+from dhfield.core.geometry import radius_ratio, sin_skew_angle
 from verification._oracles import boussinesq_displacement
 
 #: adaptive quadrature of the ellipsoidal-potential integrals (quad epsrel 1e-12)

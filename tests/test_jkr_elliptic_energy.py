@@ -8,9 +8,9 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 from scipy import integrate
 
-from dhfield import hertz, jkr, jkr_elliptic as je, jkr_elliptic_energy as ee
-from dhfield._validation import as_circle
-from dhfield.geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
+from dhfield.models import hertz, jkr, jkr_elliptic as je, jkr_elliptic_energy as ee
+from dhfield.core.validation import as_circle
+from dhfield.core.geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
 
 #: JKR closed forms at the circle: the same double-precision arithmetic
 TOL_CIRCLE = 1e-12
@@ -248,7 +248,7 @@ def test_domain_properties(beta0, log_a):
     a = 10.0**log_a
     c = ee.load_curve_nondimensional(a, beta0)
     assert_allclose(c["a_star"], a)
-    if as_circle(beta0) < 1.0:  # closer to 1 than sqrt(eps) is the circle (dhfield._validation.as_circle)
+    if as_circle(beta0) < 1.0:  # closer to 1 than sqrt(eps) is the circle (dhfield.core.validation.as_circle)
         beta = float(c["beta"])
         s = ee.state_at_ellipticity(beta, beta0)
         # the round trip passes beta, rounded to ~eps, through a* = a*(beta): a relative error of up to

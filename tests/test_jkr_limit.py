@@ -2,7 +2,7 @@
 
 Provenance:
 
-* Maugis-Dugdale on the sphere (Maugis 1992, dhfield.maugis_dugdale) tends to JKR (1971),
+* Maugis-Dugdale on the sphere (Maugis 1992, dhfield.models.maugis_dugdale) tends to JKR (1971),
   W* = -3/4 in load control; sampled at the stored study's mu it is the test signal of the
   extrapolation (every fit of the family must return -3/4).
 * Synthetic data built exactly of one form (transition weight, or a series in 1/mu^2) must be
@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dhfield import maugis_dugdale as md
+from dhfield.models import maugis_dugdale as md
 from verification import jkr_limit as jl
 
 DATASET = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth.nc"

@@ -1,9 +1,9 @@
-"""The package map of ``dhfield/__init__.py`` (and the README) holds: who may import whom.
+"""The layers of ``dhfield`` are its folders: who may import whom.
 
-Each module of ``dhfield`` belongs to one layer of :data:`LAYERS`; the import statements of its
-source, read with :mod:`ast` (module level and inside functions alike, so a lazy import counts),
-must follow the rules stated in the map.  A new module must be placed in a layer here and in
-the map, or :func:`test_every_module_is_in_exactly_one_layer` fails.
+Each module of ``dhfield`` sits in one folder of :data:`LAYERS` (the package's ``__init__`` is
+the facade); the import statements of its source, read with :mod:`ast` (module level and inside
+functions alike, so a lazy import counts), may reach only the folders before it, as the package
+map in ``dhfield/__init__.py`` states.  No module sits flat in ``dhfield/``.
 """
 from __future__ import annotations
 
@@ -16,43 +16,24 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 PKG = ROOT / "dhfield"
 
-#: The layers of the map, bottom up.  Modules by name relative to ``dhfield``; a trailing
-#: ``/`` names a whole subpackage.
-LAYERS = {
-    "foundations": ("_validation", "_memory", "schema", "records", "elliptic", "geometry",
-                    "pull_off_search", "_adhesion", "transition", "dugdale_separation"),
-    "analytic": ("hertz", "double_hertz", "adhesion", "model", "_rays", "periphery", "eq30", "closure"),
-    "comparison": ("jkr", "dmt", "dh_circular", "maugis_dugdale", "jkr_elliptic", "jkr_elliptic_energy",
-                   "elliptic_transition"),
-    "front": ("compare", "validity", "model_error", "_truth_table", "dimensional", "compliance", "fit",
-              "adhesion_map", "force_vs_angle"),
-    "bem": ("bem/",),
-    "bridge": ("adhesive_start", "fields", "field_sampling", "field_metrics", "polar", "refinement",
-               "bem_compliance", "solve_progress"),
-    "io": ("io/",),
-    "plotting": ("plotting",),
-    "sweep": ("sweep/",),
-    "cli": ("cli/",),
-}
+#: The layers, bottom up: each is a folder of dhfield.
+LAYERS = ("core", "models", "bem", "analysis", "io", "sweep", "cli")
 #: What each layer may import from dhfield (besides itself).
 MAY_IMPORT = {
-    "foundations": set(),
-    "analytic": {"foundations"},
-    "comparison": {"foundations"},
-    "front": {"foundations", "analytic", "comparison"},
-    "bem": {"foundations"},
-    "bridge": {"foundations", "analytic", "comparison", "front", "bem"},
-    "io": {"foundations", "analytic", "comparison", "front", "bem", "bridge"},
-    "plotting": {"io"},
-    "sweep": {"foundations", "analytic", "comparison", "front", "bem", "bridge", "io"},
-    "cli": {"foundations", "analytic", "comparison", "front", "bem", "bridge", "io", "plotting", "sweep"},
+    "core": set(),
+    "models": {"core"},
+    "bem": {"core"},
+    "analysis": {"core", "models", "bem"},
+    "io": {"core", "models", "bem", "analysis"},
+    "sweep": {"core", "models", "bem", "analysis", "io"},
+    "cli": {"core", "models", "bem", "analysis", "io", "sweep"},
 }
-CORE = ("foundations", "analytic", "comparison", "front", "bem", "bridge")
-#: Third-party packages only the edges (io, plotting, sweep, cli) may import.
+CORE = ("core", "models", "bem", "analysis")
+#: Third-party packages only the edges (io, sweep, cli) may import.
 EDGE_ONLY_PACKAGES = {"xarray", "matplotlib", "pandas", "netCDF4", "dask", "distributed"}
 #: The one lazy import the bem facade makes (inside a function): the start chosen from the
 #: analytic models, forwarded as ``dhfield.bem.adhesive_pull_off``.
-BEM_FACADE_LAZY = {"adhesive_start"}
+BEM_FACADE_LAZY = {"analysis.bem_start"}
 
 
 def _modules():
@@ -70,9 +51,9 @@ MODULES = _modules()
 
 
 def _layer(name):
-    hits = [layer for layer, members in LAYERS.items() for m in members
-            if (m.endswith("/") and (name == m[:-1] or name.startswith(m[:-1] + "."))) or name == m]
-    return hits
+    """The folders a module (dotted, relative to dhfield) sits in: one, or none if it is flat."""
+    top = name.split(".")[0]
+    return [top] if top in LAYERS and "." in name or name in LAYERS else []
 
 
 def _imports(name, path):
@@ -120,15 +101,16 @@ def _edges():
 
 
 def test_every_module_is_in_exactly_one_layer():
-    wrong = {name: _layer(name) for name in MODULES if name and len(_layer(name)) != 1}
-    assert not wrong, f"modules in no layer or in several (update LAYERS and the map in dhfield/__init__.py): {wrong}"
+    """No flat module: every module of dhfield but the facade sits in a layer's folder."""
+    wrong = [name for name in MODULES if name and len(_layer(name)) != 1]
+    assert not wrong, f"modules outside the layers' folders (move them into one of {LAYERS}): {wrong}"
+    assert {name.split(".")[0] for name in MODULES if name} == set(LAYERS)
 
 
-def test_the_map_names_every_layer_member():
-    """The map in dhfield/__init__.py's docstring names every module and subpackage of LAYERS."""
+def test_the_map_names_every_layer():
+    """The map in dhfield/__init__.py's docstring names every layer's folder."""
     doc = ast.get_docstring(ast.parse((PKG / "__init__.py").read_text(encoding="utf-8")))
-    missing = [m for members in LAYERS.values() for m in members
-               if not re.search(rf"(?<![\w.]){re.escape(m)}(?![\w/])" if not m.endswith("/") else re.escape(m), doc)]
+    missing = [f"{m}/" for m in LAYERS if f"{m}/" not in doc]
     assert not missing, f"the package map in dhfield/__init__.py does not name {missing}"
 
 
@@ -139,7 +121,7 @@ def test_layer_imports_only_what_the_map_allows(layer):
     for importer, target, top in _edges():
         if not importer or _layer(importer) != [layer] or not target:
             continue
-        if layer == "bem" and importer == "bem" and not top and target in BEM_FACADE_LAZY:
+        if importer == "bem" and not top and target in BEM_FACADE_LAZY:
             continue  # the facade's one lazy forward (documented in the map)
         (target_layer,) = _layer(target)
         if target_layer not in allowed:
@@ -148,14 +130,11 @@ def test_layer_imports_only_what_the_map_allows(layer):
 
 
 def test_bem_imports_no_analytic_model():
-    """dhfield/bem/ imports no analytic or comparison model, nor the registry (only the facade's
-    lazy forward of adhesive_start, inside a function)."""
-    def in_bem(name):  # the package dhfield.bem and its modules (not dhfield.bem_compliance, a bridge)
-        return name == "bem" or name.startswith("bem.")
-
+    """dhfield/bem/ imports no model, nor the registry (only the facade's lazy forward of
+    analysis.bem_start, inside a function)."""
     bad = [f"dhfield.{i} imports dhfield.{t}" for i, t, top in _edges()
-           if in_bem(i) and _layer(t)[0] in ("analytic", "comparison", "front")
-           or (in_bem(i) and _layer(t)[0] == "bridge" and (top or i != "bem" or t not in BEM_FACADE_LAZY))]
+           if _layer(i) == ["bem"] and _layer(t) and _layer(t)[0] in ("models", "analysis")
+           and (top or i != "bem" or t not in BEM_FACADE_LAZY)]
     assert not bad, "\n".join(bad)
 
 
@@ -175,7 +154,7 @@ def test_no_core_module_imports_an_edge():
 def test_the_checker_sees_imports():
     """The rules are not vacuous: known imports are found (module level, relative, lazy)."""
     edges = {(i, t) for i, t, _top in _edges()}
-    assert ("model", "adhesion") in edges and ("cli.solve", "bem") in edges
-    assert ("bem", "adhesive_start") in edges  # the facade's lazy forward, inside a function
+    assert ("models.dh_elliptic", "models.dh_elliptic_adhesion") in edges and ("cli.solve", "bem") in edges
+    assert ("bem", "analysis.bem_start") in edges  # the facade's lazy forward, inside a function
     ext = {t for t, _ in _imports("io", MODULES["io"])}
     assert "ext:xarray" in ext

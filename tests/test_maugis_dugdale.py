@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from dhfield import maugis_dugdale as md
-from dhfield.transition import maugis_parameter
+from dhfield.models import maugis_dugdale as md
+from dhfield.core.transition import maugis_parameter
 
 #: issue 3: pull-off within 0.1 % of the limits (measured 0.086 % at 0.01, 0.0011 % at 100)
 TOL_PULL_OFF = 1e-3

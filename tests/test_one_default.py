@@ -1,9 +1,9 @@
 """One recommended model, stored once (issue 40).
 
-The registry, :data:`dhfield.compare.RECOMMENDED_MODEL`, is the one place that names the
+The registry, :data:`dhfield.analysis.compare.RECOMMENDED_MODEL`, is the one place that names the
 recommended model.  Every default a user meets must be that model: the command line's ``--model``
 (argparse defaults and help), the Python API (``dhfield.pull_off``, ``dhfield.load_curve``,
-:mod:`dhfield.compare`, :mod:`dhfield.dimensional`, :mod:`dhfield.fit`, :mod:`dhfield.compliance`,
+:mod:`dhfield.analysis.compare`, :mod:`dhfield.analysis.dimensional`, :mod:`dhfield.analysis.fit`, :mod:`dhfield.analysis.spring`,
 the sweep), the plots' reference order, and the words "default" next to a model name in the
 report's source, the README and the docs.  Also here: the JKR limit named in the report, the
 BEM-verified box read back from the stored ground truth, and the warnings raised as Python
@@ -21,7 +21,8 @@ import numpy as np
 import pytest
 
 import dhfield
-from dhfield import compare, compliance, dimensional, fit, plotting, validity
+from dhfield.analysis import compare, spring as compliance, dimensional, fit, validity
+from dhfield.io import sweep_maps as plotting
 from dhfield.cli import build_parser, main
 
 ROOT = Path(__file__).resolve().parent.parent

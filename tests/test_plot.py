@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from dhfield import plotting
+from dhfield.io import sweep_maps as plotting
 from dhfield.cli import main
 from dhfield.sweep import config_from_mapping, run_sweep
 

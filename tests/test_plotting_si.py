@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from dhfield import plotting
+from dhfield.io import sweep_maps as plotting
 from dhfield.cli import main
 from dhfield.io.figures import crossed_cylinders_si, model_label
 

@@ -1,10 +1,11 @@
-"""Polar resampling of grid fields (dhfield.polar)."""
+"""Polar resampling of grid fields (dhfield.analysis.polar)."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from dhfield import bem, polar
+from dhfield import bem
+from dhfield.analysis import polar
 
 #: Cubic splines reproduce a quadratic exactly except for the boundary condition, whose
 #: effect decays like 0.27^k at k cells from the domain edge: >= 16 cells here (~1e-10).

@@ -1,7 +1,7 @@
 """Property-based tests (hypothesis) over the whole accepted input domain (issue 9).
 
 Domain: mu in TABOR_RANGE = [1e-6, 1e12], beta0 in ELLIPTICITY_RANGE = [1e-4, 1],
-a* in CONTACT_SIZE_RANGE = [1e-6, 1e6] (dhfield._validation); the closures have
+a* in CONTACT_SIZE_RANGE = [1e-6, 1e6] (dhfield.core.validation); the closures have
 the narrower CLOSURE_MU_RANGE / CLOSURE_BETA0_RANGE.
 
 Properties
@@ -26,9 +26,10 @@ import pytest
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
-from dhfield import compare, dimensional, model
-from dhfield._validation import CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE
-from dhfield.geometry import radius_ratio, sin_skew_angle
+from dhfield.analysis import compare, dimensional
+from dhfield.models import dh_elliptic as model
+from dhfield.core.validation import CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE
+from dhfield.core.geometry import radius_ratio, sin_skew_angle
 
 settings.register_profile("ci", max_examples=12, derandomize=True, deadline=None,
                           suppress_health_check=[HealthCheck.too_slow])
@@ -217,7 +218,7 @@ def test_scheduler_address_is_tcp_host_port_or_rejected_by_name(address):
 @given(centres=st.lists(st.floats(1e-6, 1e12), min_size=1, max_size=30, unique=True), log=st.booleans())
 @example(centres=[0.3, 1.0, 3.0, 10.0], log=True)   # issue 17: mu = 0.3 was hidden
 def test_plot_cells_cover_every_point_with_positive_width(centres, log):
-    from dhfield.plotting import cell_edges
+    from dhfield.io.sweep_maps import cell_edges
 
     x = np.sort(np.asarray(centres))
     e = cell_edges(x, log=log)

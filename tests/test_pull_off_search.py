@@ -1,8 +1,8 @@
-"""The shared pull-off search (dhfield.pull_off_search) on functions with known minima."""
+"""The shared pull-off search (dhfield.core.pull_off_search) on functions with known minima."""
 import numpy as np
 import pytest
 
-from dhfield.pull_off_search import refine_sampled_minimum, stable_branch_end
+from dhfield.core.pull_off_search import refine_sampled_minimum, stable_branch_end
 
 #: A parabola is reproduced exactly by the three-point vertex: rounding only.
 EXACT_RTOL = 1e-12
@@ -130,7 +130,7 @@ def test_walk_down_the_scan_gives_the_whole_scan_bracket_with_fewer_evaluations(
 def test_last_local_minimum_is_the_one_nearest_the_top_whatever_the_block():
     # f = cos(2 pi x / p) - 0.05 x: minima near x = p/2 + k p; the one nearest the top of the scan
     # [0.05, 3] is refined to find_minimum's tolerance.  A rising f has none (zero-contact side).
-    from dhfield.pull_off_search import last_local_minimum
+    from dhfield.core.pull_off_search import last_local_minimum
     from scipy.optimize import minimize_scalar
 
     period = np.array([0.9, 1.3, 2.2])
@@ -163,7 +163,7 @@ def test_last_local_minimum_is_the_one_nearest_the_top_whatever_the_block():
 ])
 def test_stable_minimum_index_one_rule(values, index):
     """The one local-minimum and tie rule (issue 16), checked by hand on sequences."""
-    from dhfield.pull_off_search import stable_minimum_index
+    from dhfield.core.pull_off_search import stable_minimum_index
 
     assert int(stable_minimum_index(np.array(values))) == index
 
@@ -171,7 +171,7 @@ def test_stable_minimum_index_one_rule(values, index):
 def test_every_sampled_search_takes_the_same_sample_on_a_plateau():
     """refine_sampled_minimum and last_local_minimum follow stable_minimum_index on a path whose
     minimum is an exact plateau: the tie rule, not the refinement, decides (issue 16)."""
-    from dhfield.pull_off_search import last_local_minimum, stable_minimum_index
+    from dhfield.core.pull_off_search import last_local_minimum, stable_minimum_index
 
     x = np.arange(9.0)  # high-load end first
     y = np.array([8.0, 6.0, 4.0, 2.0, 2.0, 2.0, 3.0, 5.0, 7.0])
@@ -187,7 +187,7 @@ def test_global_minimum_and_slopes_follow_the_same_tie_rule():
     """first=False (the global minimum) and the slope form (analytic or fitted slopes) apply the
     same rule: equal minima go to the lower-load sample, a zero slope (or one within the floor)
     is not a rise (issue 16: one local-minimum rule, one tie rule)."""
-    from dhfield.pull_off_search import stable_minimum_index
+    from dhfield.core.pull_off_search import stable_minimum_index
 
     assert int(stable_minimum_index(np.array([3.0, 1.0, 2.0, 1.0, 4.0]), first=False)) == 3
     assert int(stable_minimum_index(slopes=np.array([-2.0, -1.0, 0.0, 0.5, 1.0]))) == 3
@@ -197,7 +197,7 @@ def test_global_minimum_and_slopes_follow_the_same_tie_rule():
 
 def test_fitted_slopes_are_exact_on_a_quadratic():
     """A least-squares quadratic reproduces a quadratic path: its slope is the derivative (closed form)."""
-    from dhfield.pull_off_search import fitted_slopes
+    from dhfield.core.pull_off_search import fitted_slopes
 
     x = np.linspace(2.0, 0.0, 9)  # decreasing along the path, like sqrt(F_a) on unloading
     f = (x - 0.8) ** 2  # along unloading u = x[i] - x: d f/du = -d f/dx = -2 (x - 0.8)

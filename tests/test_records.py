@@ -1,9 +1,9 @@
-"""dhfield.records: the one pull-off record and the one load-curve record (issue 16)."""
+"""dhfield.core.records: the one pull-off record and the one load-curve record (issue 16)."""
 import numpy as np
 import pytest
 
-from dhfield.records import LoadCurve, PullOff, load_curve_record, pull_off_record
-from dhfield.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
+from dhfield.core.records import LoadCurve, PullOff, load_curve_record, pull_off_record
+from dhfield.core.schema import LOAD_CURVE_HEADER_KEYS, LOAD_CURVE_KEYS, PULL_OFF_KEYS
 
 
 def test_pull_off_record_fields_defaults_and_mapping():
@@ -46,9 +46,9 @@ def test_pull_off_si_record_is_the_nondimensional_one_in_si_units():
     """The one SI record (issue 16): the schema's SI keys in order; every nondimensional field carried
     unchanged; W = W* 2 pi R dgamma / sin(theta_skew), a = a* c_r, delta = delta* c_r^2/R (Eqs. 32-34,
     here with R = 8, E* = 1, dgamma = 1: c_r = 4, c_r^2/R = 2, exact in binary)."""
-    from dhfield._adhesion import pull_off_si, si_inputs
-    from dhfield.records import PullOff
-    from dhfield.schema import PULL_OFF_SI_KEYS
+    from dhfield.core.units import pull_off_si, si_inputs
+    from dhfield.core.records import PullOff
+    from dhfield.core.schema import PULL_OFF_SI_KEYS
 
     st = {"W_star": -0.75, "a_star": 1.5, "c_star": 2.0, "delta_star": -0.5}
     rec = pull_off_record("md", 1.0, [1.0, 2.0], st, control="load", sin_skew=0.5, geometry="circle")
@@ -69,11 +69,11 @@ def test_bem_pull_off_is_the_one_record_with_its_solver_group():
     PULL_OFF_KEYS then PULL_OFF_SOLVER_KEYS, in order) and its path as a non-key attribute."""
     import json
 
-    from dhfield.adhesive_start import adhesive_pull_off, refine_pull_off
+    from dhfield.analysis.bem_start import adhesive_pull_off, refine_pull_off
     from dhfield.bem.branch import UnloadingPath
     from dhfield.bem.pull_off import pull_off_summary
-    from dhfield.geometry import sin_skew_angle
-    from dhfield.schema import PULL_OFF_SOLVER_KEYS
+    from dhfield.core.geometry import sin_skew_angle
+    from dhfield.core.schema import PULL_OFF_SOLVER_KEYS
 
     rec = adhesive_pull_off(beta0=0.9, mu=1.0, n=32, progress=False)
     assert type(rec) is PullOff and tuple(rec) == PULL_OFF_KEYS + PULL_OFF_SOLVER_KEYS and rec.groups == ("solver",)
@@ -95,7 +95,7 @@ def test_bem_pull_off_is_the_one_record_with_its_solver_group():
 def test_load_curve_si_record_and_groups():
     """An SI curve holds the SI array group (the schema's SI keys, in order) and no nondimensional
     one; a mixture of the two groups is refused; ``ellipticity`` is a key only where set."""
-    from dhfield.schema import LOAD_CURVE_ALL_KEYS, LOAD_CURVE_SI_KEYS
+    from dhfield.core.schema import LOAD_CURVE_ALL_KEYS, LOAD_CURVE_SI_KEYS
 
     c = load_curve_record("jkr", 1.0, float("nan"), {"semi_major": [1.0, 2.0], "force": [0.1, 0.2],
                                                       "approach": [0, 1]}, sin_skew=1.0, geometry="circle")
@@ -113,7 +113,8 @@ def test_load_curve_si_record_and_groups():
 
 def _si_curves():
     """Every model's SI load_curve at two contact sizes (R = 1 um, E* = 1 GPa, dgamma = 0.05 J/m^2)."""
-    from dhfield import dh_circular, dimensional, dmt, jkr, jkr_elliptic, jkr_elliptic_energy, maugis_dugdale
+    from dhfield.models import dh_circular, dmt, jkr, jkr_elliptic, jkr_elliptic_energy, maugis_dugdale
+    from dhfield.analysis import dimensional
 
     r, e, w, s0 = 1e-6, 1e9, 0.05, 3e8
     a = np.array([5e-9, 2e-8])
@@ -129,8 +130,9 @@ def test_every_model_load_curve_is_the_one_type():
     """The one load-curve type (issue 16): the registry's and the paper's model's curves in the paper's
     units (header + LOAD_CURVE_KEYS; the paper's model adds its ellipticity), every SI load_curve with
     the SI keys, in the schema's order."""
-    from dhfield import compare, model
-    from dhfield.schema import LOAD_CURVE_SI_KEYS
+    from dhfield.analysis import compare
+    from dhfield.models import dh_elliptic as model
+    from dhfield.core.schema import LOAD_CURVE_SI_KEYS
 
     for name in compare.CURVE_MODEL_NAMES:
         c = compare.load_curve(name, mu=1.0, beta0=0.9, n=3)
@@ -149,7 +151,7 @@ def test_si_curves_match_their_nondimensional_cores():
     """Each SI curve is its core's nondimensional state in SI units: a = a* c_r, W = W* 2 pi R dgamma /
     sin(theta_skew), the zone c = c* c_r where the model has one (Eqs. 32-34); the header's mu is the
     Tabor parameter of Eq. (35) for MD and DH circular and NaN for the models without one."""
-    from dhfield import dh_circular, maugis_dugdale
+    from dhfield.models import dh_circular, maugis_dugdale
 
     r, e, w, s0 = 1e-6, 1e9, 0.05, 3e8
     cr, mu = np.cbrt(r * r * w / e), s0 * np.cbrt(r / (e * e * w))

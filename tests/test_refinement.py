@@ -1,9 +1,10 @@
-"""Grid-refinement studies (dhfield.refinement) on the Hertz field case: observed orders."""
+"""Grid-refinement studies (dhfield.core.refinement) on the Hertz field case: observed orders."""
 from __future__ import annotations
 
 import numpy as np
 
-from dhfield import fields, refinement
+from dhfield.analysis import fields
+from dhfield.core import refinement
 
 #: Refinement 64 -> 128 -> 256 (Hertz ellipse, cell averages), the issue's order target; the
 #: RMS and off-edge orders measured here are 1.85-1.95 (second order in the smooth interior).
@@ -14,7 +15,7 @@ MIN_ORDER_LINF = 1.25
 
 
 def _refinement_study(error_of_n, ns):
-    """Run a grid-refinement study (test harness, moved here from dhfield.refinement: only these tests used it).
+    """Run a grid-refinement study (test harness, moved here from dhfield.core.refinement: only these tests used it).
 
     Parameters
     ----------

@@ -575,7 +575,7 @@ def test_log_ticks_carry_no_overlapping_labels():
 def test_style_helpers():
     from verification._style import MODEL_LABELS, model_label, rel_diff_label, si_format
 
-    from dhfield.compare import MODEL_NAMES
+    from dhfield.analysis.compare import MODEL_NAMES
 
     assert all(name in MODEL_LABELS for name in MODEL_NAMES), "a model has no readable name"
     assert model_label("jkr-elliptic") != "jkr-elliptic"

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dhfield import _truth_table, compare
+from dhfield.analysis import _truth_table, compare
 from verification import headline as hl
 
 ROOT = Path(__file__).resolve().parent.parent

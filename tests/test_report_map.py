@@ -4,7 +4,7 @@ its reference is validated.
 Provenance: the recommended model's worst deviation from the stored BEM is re-derived here from
 both ground truths (data/adhesive_ground_truth.nc, W_star_extrapolated, and
 data/adhesive_ground_truth_slender.nc, W_star at its finest level; W* of Eq. 34), read here with
-xarray directly, and dhfield.adhesion_map's adapter, independently of the section's own code path.
+xarray directly, and dhfield.analysis.adhesion_map's adapter, independently of the section's own code path.
 The validated box is the box of every stored case, read here from the extended ground truth's own
 coordinates (beta0 0.1-1, mu 0.1-10: the six mu = 10 cases included, issue 40), and both figures
 draw every one of its cases.
@@ -44,8 +44,8 @@ def test_map_section_runs_and_passes(section):
 def test_map_section_states_the_validated_box_and_the_worst_case(section):
     import xarray as xr
 
-    from dhfield.adhesion_map import recommended_pull_off
-    from dhfield.geometry import sin_skew_angle
+    from dhfield.analysis.adhesion_map import recommended_pull_off
+    from dhfield.core.geometry import sin_skew_angle
 
     sec, _, _ = section
     text = " ".join(sec.verdict)
@@ -117,10 +117,10 @@ def test_figures_draw_every_stored_case_and_the_stored_box(section, tmp_path):
 
 def test_map_section_states_the_worst_case_of_the_extended_ground_truth(section):
     # re-derived from data/adhesive_ground_truth_extended.nc (W_star_truth, each case's best BEM value,
-    # read here with xarray directly) and dhfield.adhesion_map's adapter
+    # read here with xarray directly) and dhfield.analysis.adhesion_map's adapter
     import xarray as xr
 
-    from dhfield.adhesion_map import recommended_pull_off
+    from dhfield.analysis.adhesion_map import recommended_pull_off
 
     sec, _, _ = section
     with xr.open_dataset(sec_map.ROOT / "data" / "adhesive_ground_truth_extended.nc") as ds:
@@ -190,7 +190,7 @@ def test_top_mu_levels_counts_the_cases_converged_on_both_levels():
 
 
 def test_top_mu_sentence_names_the_levels_solved_with_the_edge_held_at_two_cells():
-    from dhfield.adhesive_start import WIDEST_EDGE_NOTE
+    from dhfield.analysis.bem_start import WIDEST_EDGE_NOTE
 
     # beta0 0.5's level 2 with the widest edge (its note), beta0 1's with its own; a failed level 2 with the
     # note is not counted
@@ -216,7 +216,7 @@ def test_map_leads_the_report():
 
 
 def test_domain_of_reads_bands_of_the_map():
-    from dhfield import adhesion_map as am
+    from dhfield.analysis import adhesion_map as am
 
     r = am.adhesion_map([30.0, 60.0, 90.0], [0.01, 1.0, 100.0], models=("md", "jkr-elliptic-energy", "dmt"))
     md = sec_map.domain_of(r, "md")

@@ -1,7 +1,7 @@
-"""dhfield.schema: one metadata table, record key lists and the canonical dimension order."""
+"""dhfield.core.schema: one metadata table, record key lists and the canonical dimension order."""
 import pytest
 
-from dhfield import schema
+from dhfield.core import schema
 
 #: Units a CF/UDUNITS parser accepts that dhfield uses; a new unit string must be added here knowingly.
 KNOWN_UNITS = {"1", "m", "N", "Pa", "J m-2", "rad", "degree",

@@ -165,7 +165,7 @@ def test_coarse_to_fine_from_a_stored_coarse_level(tmp_path):
     """The route that made beta0 = 0.5, mu = 5 converge at N = 512 (`--n 256 512 --coarse-to-fine 256`
     with the N = 256 record already stored): the coarse level is read for the record but re-solved in
     memory as the start, and the fine record says it was refined from it."""
-    from dhfield.adhesive_start import AdhesiveOptions
+    from dhfield.analysis.bem_start import AdhesiveOptions
     from dhfield.bem import adhesive_pull_off, refine_pull_off
 
     opts = dict(n_steps=4, refine_levels=0, max_iter=sa.STUDY_MAX_ITER)

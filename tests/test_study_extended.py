@@ -114,7 +114,7 @@ def test_build_keeps_the_sweep_cases_the_previous_build_holds(tmp_path, monkeypa
 def test_a_case_answered_carries_the_solver_note_as_its_message(tmp_path, monkeypatch):
     """An answer has no sweep message; the build keeps the solver's note instead (here the widest edge's, which
     the report's level-2 sentence reads), while a case that is not an answer keeps the sweep's reason."""
-    from dhfield.adhesive_start import WIDEST_EDGE_NOTE
+    from dhfield.analysis.bem_start import WIDEST_EDGE_NOTE
 
     monkeypatch.setitem(se.PARTS, "trial", ((0.5, 1.0), (10.0,), (1, 2)))
     _timed_out_part(tmp_path)

@@ -4,8 +4,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield import compare, schema
-from dhfield.geometry import ellipticity_from_skew_angle
+from dhfield.analysis import compare
+from dhfield.core import schema
+from dhfield.core.geometry import ellipticity_from_skew_angle
 from dhfield.sweep import config_from_mapping, engine, run_sweep, tasks
 
 #: The analytic pull-off of a block equals the one-call evaluation to rounding: the
@@ -72,7 +73,7 @@ def test_dataset_layout_and_metadata(serial):
 
 
 def test_bem_field_cases_match_single_case(serial):
-    from dhfield.fields import model_case
+    from dhfield.analysis.fields import model_case
 
     ds = serial[1].dataset
     assert ds["bem_displacement_error"].dims == ("beta0", "mu", "a_star", "n")

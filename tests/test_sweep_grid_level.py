@@ -1,6 +1,6 @@
 """The adhesive quantity of a sweep on the library's automatic grid (the ``grid_level`` axis).
 
-Level 1 is the grid and route :func:`dhfield.adhesive_start.adhesive_pull_off` plans when no
+Level 1 is the grid and route :func:`dhfield.analysis.bem_start.adhesive_pull_off` plans when no
 ``n`` is given; level k the explicit grid of k times its cells per axis.  Checked: the config
 (parsing, one-line errors), the grid of each level against the library's plan (identities),
 the refusal of an unaffordable level before any solve, and one cheap case end to end through
@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhfield.adhesive_start import plan_grid
+from dhfield.analysis.bem_start import plan_grid
 from dhfield.sweep import config_from_mapping, engine, load_config, run_sweep, tasks
 from dhfield.sweep.config import MAX_GRID_LEVEL
 
@@ -74,7 +74,7 @@ def test_levels_are_the_librarys_plan():
 def test_base_lattice_makes_the_refined_levels_multiples_of_the_retry_lattice():
     """[bem] base_lattice = j: level k >= 2 is k x the plan's lattice after j retries (next_lattice_grid);
     level 1 stays the automatic grid; 0 is the plan's first lattice."""
-    from dhfield.adhesive_start import next_lattice_grid
+    from dhfield.analysis.bem_start import next_lattice_grid
 
     plan = plan_grid(beta0=0.3, mu=10.0)
     first = (plan.n_needed, plan.ny_needed)
@@ -107,7 +107,7 @@ def test_base_lattice_reaches_the_solver_and_the_file(tmp_path, solver_calls, an
     done = run_sweep(retry, out=tmp_path / "r.nc", scheduler="synchronous", progress=False)
     again = run_sweep(plain, out=tmp_path / "p.nc", scheduler="synchronous", progress=False)
     assert done.failed == [] == again.failed and len(calls) == 2
-    from dhfield.adhesive_start import next_lattice_grid
+    from dhfield.analysis.bem_start import next_lattice_grid
 
     first = (calls[1]["n"] // 2, calls[1]["ny"] // 2)               # level 2 of the plan's first lattice
     assert (calls[0]["n"], calls[0]["ny"]) == tuple(2 * v for v in next_lattice_grid(*first, 1e6))
@@ -232,7 +232,7 @@ def solver_calls(monkeypatch):
 @pytest.fixture
 def any_memory(monkeypatch):
     """No memory limit: the refusal is decided by the time allowed alone, on any machine."""
-    from dhfield import adhesive_start
+    from dhfield.analysis import bem_start as adhesive_start
 
     monkeypatch.setattr(adhesive_start, "memory_limit", lambda: None)
 
@@ -241,7 +241,7 @@ def test_max_seconds_decides_the_refusal_of_a_level_before_solving(monkeypatch, 
     """Issue 20: beta0 = 0.5, mu = 10 at level 2 is estimated beyond the library's default time
     (~50 min > 30 min when written).  A max_seconds above a level's estimate solves it, with the
     solver given that allowance; below, it is refused before the solver is called."""
-    from dhfield.adhesive_start import DEFAULT_MAX_SECONDS, AdhesiveOptions
+    from dhfield.analysis.bem_start import DEFAULT_MAX_SECONDS, AdhesiveOptions
 
     calls = []
     monkeypatch.setattr(tasks, "adhesive_solver", lambda name="default": _recording_solver(calls))
@@ -280,7 +280,7 @@ def test_max_seconds_decides_the_refusal_of_a_level_before_solving(monkeypatch, 
 def test_a_rerun_with_more_time_solves_the_refused_level(tmp_path, solver_calls, any_memory):
     """A level refused at the default time is stored failed; the same sweep with a larger [bem] max_seconds
     (not in the fingerprint) resumes the store and solves it alone, and the file records the time allowed."""
-    from dhfield.adhesive_start import DEFAULT_MAX_SECONDS
+    from dhfield.analysis.bem_start import DEFAULT_MAX_SECONDS
 
     calls = solver_calls
     estimate = tasks.automatic_grid(0.5, 10.0, 2)["seconds"]

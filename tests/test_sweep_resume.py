@@ -112,7 +112,7 @@ def _md_values(beta0, mu):
     """Maugis-Dugdale W* computed directly (not through a sweep) at every (beta0, mu)."""
     import warnings
 
-    from dhfield.compare import pull_off
+    from dhfield.analysis.compare import pull_off
 
     with warnings.catch_warnings():   # beta0 = 0.9 is outside md's validated range: the same value all the same
         warnings.simplefilter("ignore")
@@ -203,7 +203,7 @@ def test_adhesive_sweep_refuses_an_unaffordable_n_before_anything(tmp_path, monk
     """Issue 42 finding 6: a sweep with n = [8192] started allocating; solve refused it at once."""
     import pytest
 
-    from dhfield import _memory
+    from dhfield.core import memory as _memory
 
     monkeypatch.setattr(_memory, "available_memory", lambda: 50 * 2**20)   # 40 MiB may be claimed
     cfg = config_from_mapping({"axes": {"beta0": [1.0], "mu": [1.0, 2.0], "n": [256]},

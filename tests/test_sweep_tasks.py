@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhfield.records import LoadCurve
+from dhfield.core.records import LoadCurve
 from dhfield.sweep import tasks
 
 
@@ -18,8 +18,8 @@ def test_beta0_and_mu_are_keyword_only(call):
 
 def test_pull_off_block_is_the_vectorised_record_with_its_warnings():
     """One records.PullOff per block (issue 16); values and warnings are those of compare.pull_off's records, point by point (issue 17: md at
-    beta0 = 0.5 and jkr-elliptic at mu = 0.3 are outside their validated ranges, dhfield.validity)."""
-    from dhfield import compare
+    beta0 = 0.5 and jkr-elliptic at mu = 0.3 are outside their validated ranges, dhfield.analysis.validity)."""
+    from dhfield.analysis import compare
 
     beta0 = np.array([[0.5], [1.0]])
     mu = np.array([[0.3, 20.0]])
@@ -64,7 +64,7 @@ def test_cost_model_orders_what_is_dearer():
 
 
 def test_load_curve_case_is_compare_load_curve():
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     a = np.linspace(0.1, 2.0, 7)
     got = tasks.load_curve_case("md", beta0=0.8, mu=0.5, a_star=a)
@@ -97,7 +97,7 @@ def test_adhesive_case_reads_any_result_and_explains_a_failed_path(monkeypatch):
 
 
 def test_solver_and_law_names():
-    from dhfield.adhesive_start import adhesive_pull_off
+    from dhfield.analysis.bem_start import adhesive_pull_off
     from dhfield.bem.laws import LAWS
 
     assert tasks.adhesive_solver() is adhesive_pull_off

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from dhfield.transition import MAUGIS_PER_TABOR, maugis_parameter, tabor_from_maugis
+from dhfield.core.transition import MAUGIS_PER_TABOR, maugis_parameter, tabor_from_maugis
 
 #: both sides are closed forms in double precision
 TOL_EXACT = 1e-14

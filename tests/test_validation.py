@@ -1,8 +1,8 @@
-"""Input validation helpers (dhfield._validation): names, ranges, masked/empty arrays, counts."""
+"""Input validation helpers (dhfield.core.validation): names, ranges, masked/empty arrays, counts."""
 import numpy as np
 import pytest
 
-from dhfield import _validation as v
+from dhfield.core import validation as v
 
 
 def test_interval_message_names_parameter_range_and_value():
@@ -63,7 +63,7 @@ def test_issue18_item4_complex_arrays_are_rejected_by_name():
     import warnings
 
     import dhfield
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     params = dhfield.contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.0, 0.05, 2e5)
     calls = [
@@ -88,7 +88,7 @@ def test_issue18_item4_complex_arrays_are_rejected_by_name():
                                    np.array(["2020-01-01"], dtype="datetime64[D]")])
 def test_dates_and_durations_are_refused_by_name(value):
     """Issue 18 (hostile run): model.pull_off(mu=datetime64) was accepted as a count of time units."""
-    from dhfield import model
+    from dhfield.models import dh_elliptic as model
 
     with pytest.raises(ValueError, match="mu must be a real number.*date/time"):
         model.pull_off(mu=value, beta0=0.9)

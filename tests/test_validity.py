@@ -1,12 +1,12 @@
-"""dhfield.validity: the validated ranges and the warnings of the pull-off records (issue 16 split)."""
+"""dhfield.analysis.validity: the validated ranges and the warnings of the pull-off records (issue 16 split)."""
 import numpy as np
 import pytest
 
-from dhfield import compare, validity
+from dhfield.analysis import compare, validity
 
 
 def test_validity_message_inside_and_outside():
-    """Ranges from VALIDITY_RANGES (provenance in dhfield.validity): inside empty, outside says where."""
+    """Ranges from VALIDITY_RANGES (provenance in dhfield.analysis.validity): inside empty, outside says where."""
     assert validity.validity_message("dh-elliptic", 1.0, 0.9) == ""
     out = validity.validity_message("dh-elliptic", [1.0, 10.0], [0.9, 0.9])
     assert out[0] == "" and "mu in [0.5, 5]" in out[1]
@@ -31,7 +31,7 @@ def test_departure_warning_threshold():
 
 def test_departure_warning_computes_its_reference():
     """Without a reference, the recommended model is evaluated: the same departure as computed by hand."""
-    from dhfield import elliptic_transition, model
+    from dhfield.models import md_elliptic as elliptic_transition, dh_elliptic as model
 
     w_paper = float(model.pull_off_nondimensional(0.5, 2.0).W_star)
     ref = float(elliptic_transition.pull_off_nondimensional(0.5, 2.0).W_star)

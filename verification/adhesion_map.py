@@ -1,6 +1,6 @@
 """The adhesion map for elliptical contacts and the practitioner's pull-off figure (issue 20).
 
-Builds :func:`dhfield.adhesion_map.adhesion_map` over crossing angle 10-90 deg x mu
+Builds :func:`dhfield.analysis.adhesion_map.adhesion_map` over crossing angle 10-90 deg x mu
 0.01-100 (log), writes it to netCDF (:mod:`dhfield.io.adhesion_map`, atomic; default
 ``data/adhesion_map.nc``) and draws, as PNG, SVG and PDF (default ``out/adhesion_map/``):
 
@@ -10,13 +10,13 @@ Builds :func:`dhfield.adhesion_map.adhesion_map` over crossing angle 10-90 deg x
    mu 0.1-10: every case of ``data/adhesive_ground_truth.nc`` and
    ``data/adhesive_ground_truth_slender.nc``, plus mu = 10 and the extended study), each point
    filled where that model is within 1 % of the BEM; the validated region (the box of the
-   stored cases, :func:`dhfield.model_error.bem_verified`) outlined.
+   stored cases, :func:`dhfield.analysis.model_error.bem_verified`) outlined.
 2. ``practitioner_pull_off``: pull-off force -W/(pi R dgamma), R = sqrt(R'R''), against the
    crossing angle at mu = 0.1, 1, 10, 100, every model on the same axes, the BEM where it
    exists (mu = 0.1, 1, 10) and the two-axis double-Hertz closure on a coarse subset (45-90 deg:
    it refuses beta0 < 0.3, and costs 0.2-0.4 s per point, so it is not on the full map).
 
-The reference is the recommended model (:data:`dhfield.compare.RECOMMENDED_MODEL`),
+The reference is the recommended model (:data:`dhfield.analysis.compare.RECOMMENDED_MODEL`),
 validated against the BEM only inside the outlined region (beta0 >= 0.1, i.e. crossing angles
 >= 19 deg, and mu 0.1-10, read from the stored cases): a deviation outside it is from the
 recommended model, not from the truth.  Prints the figure paths and, per
@@ -34,8 +34,8 @@ from pathlib import Path
 
 import numpy as np
 
-from dhfield import adhesion_map as am
-from dhfield.geometry import sin_skew_angle, skew_angle
+from dhfield.analysis import adhesion_map as am
+from dhfield.core.geometry import sin_skew_angle, skew_angle
 
 ROOT = Path(__file__).resolve().parent.parent
 GROUND_TRUTH = ROOT / "data" / "adhesive_ground_truth.nc"
@@ -126,7 +126,7 @@ def validated_extent(truth):
 def stored_box(truth):
     """The box the stored cases span: the smallest to the largest stored beta0 and mu.
 
-    This is the box of :func:`dhfield.model_error.bem_verified` when ``truth`` is the whole stored
+    This is the box of :func:`dhfield.analysis.model_error.bem_verified` when ``truth`` is the whole stored
     ground truth (:data:`GROUND_TRUTH_EXTENDED`).
 
     Returns

@@ -1,16 +1,16 @@
 """The adhesive BEM at high mu with an automatic grid: W* against its reference, time and iterations (issue 20).
 
-Runs :func:`dhfield.adhesive_start.adhesive_pull_off` without ``n`` (the grid of
-:func:`dhfield.adhesive_start.plan_grid`) and prints, per case: N, the route, W*, its stated
+Runs :func:`dhfield.analysis.bem_start.adhesive_pull_off` without ``n`` (the grid of
+:func:`dhfield.analysis.bem_start.plan_grid`) and prints, per case: N, the route, W*, its stated
 error, ``converged``/``resolved``, the reference and the deviation from it, the fine states,
 CG iterations (fine and coarse), wall and CPU seconds, and the load average.  The reference is
-exact on the sphere (Maugis-Dugdale, :mod:`dhfield.maugis_dugdale`) and, for beta0 < 1, GVG
-corrected by the sphere's MD/JKR ratio (:mod:`dhfield.elliptic_transition`), the must-show
+exact on the sphere (Maugis-Dugdale, :mod:`dhfield.models.maugis_dugdale`) and, for beta0 < 1, GVG
+corrected by the sphere's MD/JKR ratio (:mod:`dhfield.models.md_elliptic`), the must-show
 reference of issue 20.
 
 ``--route`` forces a route of the automatic grid: ``auto`` (what ``dhfield solve`` does),
 ``predicted`` (fine lattice samples around GVG's pull-off, :func:`dhfield.bem.pull_off.predicted_path`)
-or ``relaxed`` (warm starts from the relaxed half grid, :class:`dhfield.adhesive_start.RelaxedWarmStart`);
+or ``relaxed`` (warm starts from the relaxed half grid, :class:`dhfield.analysis.bem_start.RelaxedWarmStart`);
 ``--n`` another grid than the automatic one (same routes).  Usage::
 
     DHFIELD_THREADS=1 .venv/bin/python -m verification.bem_high_mu --beta0 1 --mu 10
@@ -42,7 +42,7 @@ import time
 
 def reference(mu, beta0):
     """(name, W*) of the reference: MD on the sphere, GVG x MD/JKR otherwise."""
-    from dhfield import jkr_elliptic_energy, maugis_dugdale
+    from dhfield.models import jkr_elliptic_energy, maugis_dugdale
 
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, mu, control="load").W_star)
     if beta0 == 1.0:
@@ -53,8 +53,8 @@ def reference(mu, beta0):
 
 
 def run(mu, beta0, route, n=None, progress=False):
-    """Solve one case by ``route``; returns (the BEM's dhfield.records.PullOff, wall s, CPU s)."""
-    from dhfield import adhesive_start as ast
+    """Solve one case by ``route``; returns (the BEM's dhfield.core.records.PullOff, wall s, CPU s)."""
+    from dhfield.analysis import bem_start as ast
     from dhfield.bem.path import PathOptions
 
     t0, c0 = time.perf_counter(), time.process_time()

@@ -1,7 +1,7 @@
 """A BEM sweep over resolution (issue 18, Must show): every answer right within its stated error, or flagged.
 
 For beta0 in {0.3, 0.5, 1} x mu in {1, 5, 10, 30} x N in {8, 16, 32, 48, 64, 128} (Dugdale law,
-load control) it calls the public ``dhfield.adhesive_start.adhesive_pull_off(mu, beta0, N)`` and
+load control) it calls the public ``dhfield.analysis.bem_start.adhesive_pull_off(mu, beta0, N)`` and
 sorts each case:
 
 * ``ok``: ``resolved and converged``, and |W* - reference| <= W_star_error + the reference's own
@@ -14,11 +14,11 @@ sorts each case:
 
 The reference of each row (column ``ref``):
 
-* ``MD``: beta0 = 1, Maugis-Dugdale on the sphere (:mod:`dhfield.maugis_dugdale`), exact;
+* ``MD``: beta0 = 1, Maugis-Dugdale on the sphere (:mod:`dhfield.models.maugis_dugdale`), exact;
 * ``GT``: the stored ground truth ``data/adhesive_ground_truth.nc`` (BEM, Richardson-extrapolated
   over N <= 1024) where it has the case, its uncertainty the change of the extrapolation from the
   finest level;
-* ``ET``: elsewhere the candidate model :mod:`dhfield.elliptic_transition`, widened by its stated
+* ``ET``: elsewhere the candidate model :mod:`dhfield.models.md_elliptic`, widened by its stated
   0.34 % (its largest deviation from the stored BEM cases at beta0 >= 0.5, mu <= 5);
 * ``ST``: outside that validated range (beta0 < 0.5 or mu > 5), where 0.34 % is not established
   (at beta0 = 0.3, mu = 1 the BEM converges to ~0.7 % from it), a study computed here when a row
@@ -60,8 +60,8 @@ os.environ.setdefault("DHFIELD_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from dhfield import elliptic_transition, maugis_dugdale  # noqa: E402
-from dhfield.adhesive_start import adhesive_pull_off  # noqa: E402
+from dhfield.models import md_elliptic as elliptic_transition, maugis_dugdale  # noqa: E402
+from dhfield.analysis.bem_start import adhesive_pull_off  # noqa: E402
 from dhfield.bem import richardson_extrapolation  # noqa: E402
 
 BETA0 = (0.3, 0.5, 1.0)
@@ -74,7 +74,7 @@ BUDGET = 10.0
 #: Grids of the study reference (ST) and the wall-time cap of each level [s].
 STUDY_GRIDS = (128, 256, 512)
 STUDY_BUDGET = 120.0
-#: Stated uncertainty of dhfield.elliptic_transition, relative (its module docstring).
+#: Stated uncertainty of dhfield.models.md_elliptic, relative (its module docstring).
 ET_UNCERTAINTY = 0.0034
 GROUND_TRUTH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data",
                             "adhesive_ground_truth.nc")

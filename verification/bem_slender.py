@@ -1,15 +1,15 @@
 """The adhesive BEM on slender contacts (crossing angles 10-45 deg): cell shapes measured, ground truth stored.
 
 Two jobs (issue 20), both printing every case beside GVG
-(:mod:`dhfield.jkr_elliptic_energy`) and the recommended DMT-to-JKR model ``md-elliptic``
-(:mod:`dhfield.elliptic_transition`), with the wall time, the CPU time and the CG and
+(:mod:`dhfield.models.jkr_elliptic_energy`) and the recommended DMT-to-JKR model ``md-elliptic``
+(:mod:`dhfield.models.md_elliptic`), with the wall time, the CPU time and the CG and
 outer iteration counts:
 
 ``measure`` (default)
     One case solved on two grids that resolve the same Dugdale edge: n x n cells
     (stretched along x, the automatic grid before issue 20: 480 x 480 at beta0 = 0.1806,
     mu = 5) and the automatic grid with about square cells
-    (:func:`dhfield.adhesive_start.plan_grid`, 576 x 160 there).  Prints converged,
+    (:func:`dhfield.analysis.bem_start.plan_grid`, 576 x 160 there).  Prints converged,
     resolved, unconverged states, W* and its stated error, and the cells across the zone
     along x and y.
 
@@ -67,12 +67,12 @@ LEVELS = (1, 2)
 
 
 def references(beta0, mu) -> dict:
-    """W* of GVG (JKR limit, :mod:`dhfield.jkr_elliptic_energy`) and of the recommended model at (beta0, mu).
+    """W* of GVG (JKR limit, :mod:`dhfield.models.jkr_elliptic_energy`) and of the recommended model at (beta0, mu).
 
     The stored dataset's ``W_star_candidate`` is the model of the time of the run (md-elliptic before
     its effective Tabor parameter, Eq. T0); a new run stores ``W_star_md_elliptic``.
     """
-    from dhfield import elliptic_transition, jkr_elliptic_energy
+    from dhfield.models import md_elliptic as elliptic_transition, jkr_elliptic_energy
 
     gvg = float(jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")["W_star"])
     rec = float(elliptic_transition.pull_off_nondimensional(beta0, mu)["W_star"])
@@ -86,7 +86,7 @@ def solve_case(beta0, mu, nx, ny, *, max_iter=None, automatic=False) -> dict:
     the relaxed coarse-to-fine start where the grid half as fine cannot hold the Dugdale edge), as
     ``dhfield solve`` without ``--n`` does; else the explicit nx x ny grid.
     """
-    from dhfield.adhesive_start import AdhesiveOptions, adhesive_pull_off
+    from dhfield.analysis.bem_start import AdhesiveOptions, adhesive_pull_off
 
     kw = {} if max_iter is None else {"options": AdhesiveOptions(max_iter=int(max_iter))}
     t0, c0 = time.perf_counter(), time.process_time()
@@ -123,8 +123,8 @@ def print_case(rec, label=""):
 
 
 def auto_grid(beta0, mu, level=1):
-    """(nx, ny) of the automatic grid (:func:`dhfield.adhesive_start.plan_grid`) times ``level`` per axis."""
-    from dhfield.adhesive_start import plan_grid
+    """(nx, ny) of the automatic grid (:func:`dhfield.analysis.bem_start.plan_grid`) times ``level`` per axis."""
+    from dhfield.analysis.bem_start import plan_grid
 
     plan = plan_grid(mu=mu, beta0=beta0)
     return plan.n_needed * int(level), plan.ny_needed * int(level)
@@ -226,7 +226,7 @@ def consolidate(work_dir, out) -> int:
     ds.attrs.update(
         title="Adhesive BEM ground truth for slender elliptical contacts (Dugdale law, load control)",
         description=("BEM pull-off W* (Eq. 34 normalisation) at beta0 < 0.45 on the automatic grid with about "
-                     "square cells (level 1: dhfield.adhesive_start.plan_grid's n_needed x ny_needed) and twice "
+                     "square cells (level 1: dhfield.analysis.bem_start.plan_grid's n_needed x ny_needed) and twice "
                      "its cells per axis (level 2); converged/resolved flags and the stated W_star_error of each "
                      "case; GVG (jkr_elliptic_energy) and the recommended model md-elliptic "
                      "(elliptic_transition) at the same points. dhfield output: never a test reference."),

@@ -1,23 +1,23 @@
 """The BEM pull-off under a machine spring against Maugis-Dugdale under the same spring (issue 17).
 
 Prints one table, the sphere (beta0 = 1, Dugdale law) at lambda = 1.1272 mu in
-{0.5, 1, 3} (:func:`dhfield.transition.tabor_from_maugis`), for machine stiffnesses
-K* in {0.1, 1, 10} (the paper's units, :func:`dhfield.compliance.stiffness_star`)
+{0.5, 1, 3} (:func:`dhfield.core.transition.tabor_from_maugis`), for machine stiffnesses
+K* in {0.1, 1, 10} (the paper's units, :func:`dhfield.analysis.spring.stiffness_star`)
 and the two limits K* = 0 (load control) and a rigid machine (displacement control):
 
-* ours: :func:`dhfield.bem_compliance.bem_pull_off_under_spring` on one branch of
-  :func:`dhfield.bem_compliance.bem_unloading_branch` per lambda at N cells per axis
+* ours: :func:`dhfield.analysis.bem_spring.bem_pull_off_under_spring` on one branch of
+  :func:`dhfield.analysis.bem_spring.bem_unloading_branch` per lambda at N cells per axis
   -- W* (Eq. 34) at the jump out, the first minimum of s delta* + (1 - s) W*
   (s = K*/(1 + K*)) met on unloading, and its fit error estimate;
-* the reference: :func:`dhfield.compliance.pull_off_under_spring` ('md', Maugis 1992,
+* the reference: :func:`dhfield.analysis.spring.pull_off_under_spring` ('md', Maugis 1992,
   doi:10.1016/0021-9797(92)90288-C) under the same spring;
 * the relative error, whether the estimate bounds it, where the jump starts
   (contact, or 'sep.': the separated branch, no contact cell), and PASS/FAIL against
   the issue's target: within 1 % of MD at N = 256 for K* in {0.1, 1, 10}
   (the limit rows are shown without a target).
 
-With ``--cycle``: :func:`dhfield.bem_compliance.bem_loading_cycle` against
-:func:`dhfield.compliance.loading_cycle` ('md'): the load where the jump in lands, the
+With ``--cycle``: :func:`dhfield.analysis.bem_spring.bem_loading_cycle` against
+:func:`dhfield.analysis.spring.loading_cycle` ('md'): the load where the jump in lands, the
 load of the jump out and the energy lost per cycle (issue 17: "the BEM sphere cycle
 against MD within 1 % at N = 256").
 
@@ -38,8 +38,9 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # before numpy: threaded BL
 
 import numpy as np  # noqa: E402
 
-from dhfield import compliance, transition  # noqa: E402
-from dhfield.bem_compliance import bem_loading_cycle, bem_pull_off_under_spring, bem_unloading_branch  # noqa: E402
+from dhfield.analysis import spring as compliance
+from dhfield.core import transition  # noqa: E402
+from dhfield.analysis.bem_spring import bem_loading_cycle, bem_pull_off_under_spring, bem_unloading_branch  # noqa: E402
 
 LAMBDAS = (0.5, 1.0, 3.0)
 STIFFNESSES = (0.1, 1.0, 10.0)
@@ -98,7 +99,7 @@ def main(argv=None) -> int:
 def cycle(args) -> int:
     """The cycle table: jump in, jump out and energy lost per cycle, BEM vs MD under the same spring."""
     print("BEM loading-unloading cycle under a machine spring, sphere (beta0 = 1, Dugdale), vs Maugis-Dugdale "
-          "(dhfield.compliance.loading_cycle('md'))")
+          "(dhfield.analysis.spring.loading_cycle('md'))")
     print(f"target: |error| <= {TARGET:.0%} at N = {TARGET_N} for the jump-in load, the jump-out load and the "
           "energy lost")
     head = (f"{'lambda':>6} {'K*':>6} {'quantity':>10} {'BEM':>9} {'+-est':>7} {'MD':>9} {'error':>8} "

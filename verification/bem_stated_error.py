@@ -4,15 +4,15 @@ Prints one table, the sphere (beta0 = 1, Dugdale law) at Tabor parameters mu and
 n x n cells, for the three routes of ``dhfield solve``:
 
 * load control (``adhesive_pull_off(..., control="load")``) against the minimum of the MD load
-  (:func:`dhfield.maugis_dugdale.pull_off_nondimensional`, Maugis 1992,
+  (:func:`dhfield.models.maugis_dugdale.pull_off_nondimensional`, Maugis 1992,
   doi:10.1016/0021-9797(92)90288-C);
 * displacement control (``control="displacement"``) against the minimum of the MD approach, or
   its end a = 0 (the same function, ``control="displacement"``);
 * a machine spring of stiffness K* (``dhfield solve --machine-stiffness K*``: the branch of
-  :func:`dhfield.bem_compliance.bem_unloading_branch`, the grid half as fine of
-  :func:`dhfield.bem_compliance.coarse_branch` where the jump is bracketed, and the record of
+  :func:`dhfield.analysis.bem_spring.bem_unloading_branch`, the grid half as fine of
+  :func:`dhfield.analysis.bem_spring.coarse_branch` where the jump is bracketed, and the record of
   :func:`dhfield.cli.solve.spring_record`) against MD's jump under the same spring
-  (:func:`dhfield.compliance.pull_off_under_spring`, model 'md': the first minimum of the
+  (:func:`dhfield.analysis.spring.pull_off_under_spring`, model 'md': the first minimum of the
   machine position along MD's load-approach curve, continued on its separated branch).
 
 Each case gets the exit status ``dhfield solve`` gives it (0 converged and resolved; 3 not
@@ -41,9 +41,10 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # before numpy: threaded BL
 
 import numpy as np  # noqa: E402
 
-from dhfield import compliance, maugis_dugdale  # noqa: E402
-from dhfield.adhesive_start import adhesive_pull_off, plan_grid  # noqa: E402
-from dhfield.bem_compliance import bem_pull_off_under_spring, bem_unloading_branch, coarse_branch  # noqa: E402
+from dhfield.analysis import spring as compliance
+from dhfield.models import maugis_dugdale  # noqa: E402
+from dhfield.analysis.bem_start import adhesive_pull_off, plan_grid  # noqa: E402
+from dhfield.analysis.bem_spring import bem_pull_off_under_spring, bem_unloading_branch, coarse_branch  # noqa: E402
 from dhfield.cli.solve import EXIT_UNCONVERGED, EXIT_UNRESOLVABLE, EXIT_UNRESOLVED, spring_record  # noqa: E402
 
 MUS = (0.3, 0.5, 1.0, 2.0, 3.0, 5.0)

@@ -43,7 +43,7 @@
     timed 2 min later gave 0.248 wall with a cpu ratio of 0.124).
 
     The pull-off of every run comes from the same estimator
-    (:func:`dhfield.pull_off_search.refine_sampled_minimum` over its samples),
+    (:func:`dhfield.core.pull_off_search.refine_sampled_minimum` over its samples),
     in the paper's units (R = E* = dgamma = 1, sigma0 = mu, h0 = 1/mu), and its
     error is against Maugis-Dugdale.  CG iterations per state: ours from the
     path; tamaas' from its iteration log, recorded in an untimed replica run
@@ -107,7 +107,7 @@ TARGET_HERTZ = 0.25
 LAMBDAS = (1.0, 3.0)
 #: Our load-control search in (a) (dhfield.bem.adhesive_pull_off); 'bracket' is timed beside it.
 SEARCH = "located"
-#: lambda = 1.1272 mu (dhfield.transition; same sigma0 in both models).
+#: lambda = 1.1272 mu (dhfield.core.transition; same sigma0 in both models).
 LAMBDA_PER_MU = 1.1272
 #: Periodic side per MD zone radius for tamaas (issue 8: "a periodic domain 8x the zone").
 TAMAAS_SIDE_PER_ZONE = 8.0
@@ -238,7 +238,7 @@ def tamaas_bracket(tm, mu, n, zone_radius, approach_max, approach_guess, approac
     Returns (approaches, loads, seconds, valid); not valid when the guess' state is off contact.
     The state at approach_max is solved and timed but not returned among the samples.
     """
-    from dhfield.pull_off_search import refine_sampled_minimum
+    from dhfield.core.pull_off_search import refine_sampled_minimum
 
     run = _TamaasAdhesive(tm, mu, n, zone_radius, log=log)
     t0 = _now()
@@ -283,7 +283,7 @@ def tamaas_march(tm, mu, n, zone_radius, approach_max, approach_step, log=False,
 
 def _w_star(approaches, loads):
     """Load-control pull-off W* (Eq. 34, sin(theta_skew) = 1) from samples, ours' estimator."""
-    from dhfield.pull_off_search import refine_sampled_minimum
+    from dhfield.core.pull_off_search import refine_sampled_minimum
 
     order = np.argsort(-np.asarray(approaches), kind="stable")
     sm = refine_sampled_minimum(np.asarray(approaches)[order], np.asarray(loads)[order], first=False)
@@ -291,9 +291,9 @@ def _w_star(approaches, loads):
 
 
 def bench_path(n, lambdas, tm, march=False):
-    from dhfield import compare
+    from dhfield.analysis import compare
     from dhfield.bem import adhesive_pull_off
-    from dhfield.adhesive_start import nondimensional_problem
+    from dhfield.analysis.bem_start import nondimensional_problem
 
     print(f"(a) path to the load-control pull-off, sphere, Dugdale, N = {n}")
     head = (f"    {'lambda':>6s} {'solver / setup':36s} {'wall s':>8s} {'cpu s':>7s} {'states':>6s} {'CG it/state':>11s} "
@@ -393,9 +393,9 @@ def bench_path(n, lambdas, tm, march=False):
 
 # --------------------------------------------------------------------------- (b) Hertz
 def hertz_problem(n, half_width=HERTZ_HALF_WIDTH):
-    from dhfield import hertz
+    from dhfield.models import hertz
     from dhfield.bem import Grid
-    from dhfield.geometry import radius_ratio
+    from dhfield.core.geometry import radius_ratio
 
     rho = float(radius_ratio(HERTZ_BETA))
     r1, r2 = math.sqrt(rho), 1.0 / math.sqrt(rho)  # R = sqrt(R'R'') = 1

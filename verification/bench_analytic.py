@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 
-from dhfield import model
+from dhfield.models import dh_elliptic as model
 from verification._bench import run_cases
 
 

@@ -34,7 +34,7 @@ import time
 
 
 def main(argv=None) -> int:
-    from dhfield import adhesive_start as A
+    from dhfield.analysis import bem_start as A
     from dhfield.bem import solver as S
     from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY, LowerMuWarmStart
 

@@ -74,7 +74,7 @@ def stage_operator(backend, threads) -> None:
 
 
 def stage_state(backend, beta0, mu, n, threads, skip_reference) -> None:
-    from dhfield.adhesive_start import PREDICTED_TOL
+    from dhfield.analysis.bem_start import PREDICTED_TOL
     from dhfield.bem import solver
     from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY
     from verification.bench_stretch import predicted_cold_state
@@ -101,8 +101,8 @@ def stage_state(backend, beta0, mu, n, threads, skip_reference) -> None:
 
 
 def stage_pull_off(backend, cases, n, threads) -> None:
-    from dhfield.adhesive_start import adhesive_pull_off
-    from dhfield.elliptic_transition import pull_off_nondimensional
+    from dhfield.analysis.bem_start import adhesive_pull_off
+    from dhfield.models.md_elliptic import pull_off_nondimensional
 
     os.environ["DHFIELD_BEM_BACKEND"] = backend
     for case in cases:

@@ -35,7 +35,8 @@ import time
 import numpy as np
 import pyfftw
 
-from dhfield import bem, field_sampling
+from dhfield import bem
+from dhfield.analysis import field_sampling
 
 TARGET_RAW = 1.15
 TARGET_SYMMETRIC = 0.5

@@ -32,7 +32,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import argparse
 import time
 
-from dhfield import transition
+from dhfield.core import transition
 from dhfield.bem import adhesive_pull_off, solve_adhesive
 from dhfield.bem import solver as bem_solver
 

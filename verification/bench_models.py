@@ -7,7 +7,7 @@ Prints the median wall time (over repeats, after a warm-up) of
   * one elliptical-JKR pull-off (load control, beta0 = 0.9)     (target <= 50 ms)
 and, for information, the displacement-controlled variants, a vectorised MD
 pull-off over 100 lambda in [0.01, 100], the circular DH pull-off and a full
-``dhfield.compare.compare`` row.  Exits 1 if a target is missed.
+``dhfield.analysis.compare.compare`` row.  Exits 1 if a target is missed.
 """
 from __future__ import annotations
 
@@ -15,8 +15,9 @@ import sys
 
 import numpy as np
 
-from dhfield import compare, dh_circular, jkr_elliptic, maugis_dugdale
-from dhfield.transition import tabor_from_maugis
+from dhfield.analysis import compare
+from dhfield.models import dh_circular, jkr_elliptic, maugis_dugdale
+from dhfield.core.transition import tabor_from_maugis
 from verification._bench import run_cases
 
 # SI inputs of the public wrappers: R = 1 mm, E* = 1 GPa, dgamma = 0.1 J/m^2 (any values do).

@@ -54,7 +54,7 @@ def run_case(beta0, mu, n=None, ny=None, samples=7, method="smoothed", first_sta
     """
     import numpy as np
 
-    from dhfield.adhesive_start import nondimensional_problem, plan_grid, predicted_problem
+    from dhfield.analysis.bem_start import nondimensional_problem, plan_grid, predicted_problem
     from dhfield.bem import newton
 
     plan = plan_grid(beta0=beta0, mu=mu, n=n)
@@ -92,7 +92,7 @@ def run_case(beta0, mu, n=None, ny=None, samples=7, method="smoothed", first_sta
 
 def run_today(beta0, mu):
     """Today's route on the same case: ``adhesive_pull_off`` with its defaults (in this process)."""
-    from dhfield.adhesive_start import adhesive_pull_off
+    from dhfield.analysis.bem_start import adhesive_pull_off
 
     t0 = time.perf_counter()
     c0 = time.process_time()
@@ -155,7 +155,7 @@ def main(argv=None) -> int:
         return 0
     if args.first_state:
         os.environ["BENCH_FIRST_STATE"] = str(args.first_state)
-    from dhfield import maugis_dugdale
+    from dhfield.models import maugis_dugdale
 
     rows = []
     known = {c[0]: c for c in CASES}

@@ -1,11 +1,11 @@
-"""Per-point speed and agreement of ``dhfield.model.pull_off``: today's code vs a reference commit.
+"""Per-point speed and agreement of ``dhfield.models.dh_elliptic.pull_off``: today's code vs a reference commit.
 
 Run::
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python -m verification.bench_pull_off_speed [--ref 5fe883a]
         [--map-n 40] [--sample 600] [--seed 11]
 
-The reference implementation (``dhfield/model.py`` and ``dhfield/pull_off_search.py``
+The reference implementation (``dhfield/models/dh_elliptic.py`` and ``dhfield/core/pull_off_search.py``
 at ``--ref``; default: the commit before issue 11's speed-up) is read with
 ``git show`` and loaded as a private module next to today's package, so both run
 in this one process, side by side, on the same inputs:
@@ -58,7 +58,7 @@ _ROOT = Path(__file__).resolve().parents[1]
 
 
 def load_reference(ref: str):
-    """``dhfield.model`` as it was at commit ``ref`` (with that commit's pull-off search)."""
+    """``dhfield.models.dh_elliptic`` as it was at commit ``ref`` (with that commit's pull-off search)."""
     import dhfield
 
     def source(path):
@@ -73,8 +73,8 @@ def load_reference(ref: str):
         return mod
 
     assert dhfield.__file__
-    load("_ref_pull_off_search", source("dhfield/pull_off_search.py"))
-    text = source("dhfield/model.py").replace("from .pull_off_search import", "from ._ref_pull_off_search import")
+    load("_ref_pull_off_search", source("dhfield/core/pull_off_search.py"))
+    text = source("dhfield/models/dh_elliptic.py").replace("from .pull_off_search import", "from ._ref_pull_off_search import")
     return load("_ref_model", text)
 
 
@@ -99,7 +99,7 @@ def condition(p, control):
 
     f'' by a central difference of the analytic derivative at a* (1 +- 1e-3), with today's model.
     """
-    from dhfield import model
+    from dhfield.models import dh_elliptic as model
 
     a = np.asarray(p.a_star, float)
     beta0 = np.asarray(p.beta0, float)
@@ -140,7 +140,7 @@ def main(argv=None) -> int:
     args = p.parse_args(argv)
     import os
 
-    from dhfield import model
+    from dhfield.models import dh_elliptic as model
 
     ref = load_reference(args.ref)
     print(f"bench_pull_off_speed on {os.cpu_count()} cores, reference {args.ref}, load average "

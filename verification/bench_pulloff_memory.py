@@ -2,7 +2,7 @@
 
 Run:  .venv/bin/python -m verification.bench_pulloff_memory [--n 200] [--chunk-mib 64]
 
-Computes ``dhfield.model.pull_off`` on an n x n (mu, beta0) grid, mu log-spaced over
+Computes ``dhfield.models.dh_elliptic.pull_off`` on an n x n (mu, beta0) grid, mu log-spaced over
 [0.01, 100] and beta0 over [0.3, 1], in a fresh subprocess (so the import and
 the interpreter are counted and nothing else is), and prints the child's peak
 resident set size (VmHWM) and wall time, side by side with a 1 x 1 call in the
@@ -21,7 +21,7 @@ TARGET_BYTES = 2**30
 _CHILD = r"""
 import json, sys, time
 import numpy as np
-import dhfield.pull_off_search as search
+import dhfield.core.pull_off_search as search
 from dhfield import model
 n, chunk = int(sys.argv[1]), int(sys.argv[2])
 search.DEFAULT_CHUNK_BYTES = chunk

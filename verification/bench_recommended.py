@@ -1,4 +1,4 @@
-"""The recommended model ``md-elliptic`` (:mod:`dhfield.elliptic_transition`): its figures for issue 20.
+"""The recommended model ``md-elliptic`` (:mod:`dhfield.models.md_elliptic`): its figures for issue 20.
 
 Prints, in one run (a benchmark and a check, not a test: the machine is shared, so the load
 average is printed beside the timings):
@@ -35,10 +35,11 @@ from pathlib import Path
 
 import numpy as np
 
-from dhfield import compare, jkr_elliptic_energy, maugis_dugdale
-from dhfield import elliptic_transition as et
-from dhfield.geometry import ellipticity_from_skew_angle
-from dhfield.pull_off_search import stable_minimum_index
+from dhfield.analysis import compare
+from dhfield.models import jkr_elliptic_energy, maugis_dugdale
+from dhfield.models import md_elliptic as et
+from dhfield.core.geometry import ellipticity_from_skew_angle
+from dhfield.core.pull_off_search import stable_minimum_index
 
 DATASET = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth_extended.nc"
 TARGET_TRUTH = 0.01
@@ -74,7 +75,7 @@ def jkr_limit():
 
 def _curve_min(beta0, mu, key):
     """The pull-off of the load curve by dhfield's one rule (the local minimum of W* or delta* nearest
-    the high-load end, :func:`dhfield.pull_off_search.stable_minimum_index`) on a dense grid, refined
+    the high-load end, :func:`dhfield.core.pull_off_search.stable_minimum_index`) on a dense grid, refined
     by a parabola through the three samples around it."""
     a_p = float(et.pull_off_nondimensional(beta0, mu).a_star)
     a = np.concatenate([np.linspace(1e-4, 1.0, 1500), np.geomspace(1.0, 4.0, 500)[1:]])[::-1] * a_p

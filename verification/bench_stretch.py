@@ -35,7 +35,7 @@ def predicted_cold_state(beta0, mu, n=None):
     The approach is the lattice sample nearest the predicted pull-off, as
     :func:`dhfield.bem.pull_off.predicted_path` solves first; ``n`` None: the automatic grid.
     """
-    from dhfield.adhesive_start import plan_grid, predicted_problem
+    from dhfield.analysis.bem_start import plan_grid, predicted_problem
     from dhfield.bem.pull_off import LOCATE_DIVISIONS
 
     plan = plan_grid(mu=mu, beta0=beta0)
@@ -47,7 +47,7 @@ def predicted_cold_state(beta0, mu, n=None):
 
 
 def main(argv=None) -> int:
-    from dhfield.adhesive_start import PREDICTED_TOL
+    from dhfield.analysis.bem_start import PREDICTED_TOL
     from dhfield.bem import solver
     from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY
 

@@ -39,7 +39,7 @@ import time
 def main(argv=None) -> int:
     import numpy as np
 
-    from dhfield import adhesive_start as A
+    from dhfield.analysis import bem_start as A
     from dhfield.bem import solver as S
     from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY
 

@@ -1,10 +1,10 @@
-"""Accuracy of the adhesive BEM solver (dhfield.bem, dhfield.adhesive_start): the "must show" figures of issue 8.
+"""Accuracy of the adhesive BEM solver (dhfield.bem, dhfield.analysis.bem_start): the "must show" figures of issue 8.
 
 Prints, side by side in one run:
 
 1. **Sphere against Maugis-Dugdale** (beta0 = 1, Dugdale law, lambda = 1.1272 mu in
    {0.3, 1, 3}): the load-control pull-off W* (Eq. 34) at each N, its error against
-   MD (Maugis 1992, :mod:`dhfield.maugis_dugdale`), the Richardson extrapolation over
+   MD (Maugis 1992, :mod:`dhfield.models.maugis_dugdale`), the Richardson extrapolation over
    the three N (with the observed order), the largest error of the contact radius
    along the unloading curve (BEM second-moment radius against the MD radius at the
    same approach, on the stable branch, for a >= half the largest a of the path:
@@ -43,9 +43,10 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # before numpy: threaded BL
 import numpy as np
 from scipy.optimize import brentq
 
-from dhfield import hertz, maugis_dugdale, transition
+from dhfield.models import hertz, maugis_dugdale
+from dhfield.core import transition
 from dhfield.bem import Grid, adhesive_pull_off, refine_pull_off, richardson_extrapolation, solve_adhesive
-from dhfield.geometry import radius_ratio
+from dhfield.core.geometry import radius_ratio
 
 LAMBDAS = (0.3, 1.0, 3.0)
 #: Targets of issue 8.

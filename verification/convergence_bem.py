@@ -10,7 +10,7 @@ Domain and sampling (stated in the output):
 * Hertz ellipse a = 1, beta = 0.7 (R = E* = 1), square domain [-2a, 2a]^2 of
   N x N cells, pressure by exact cell averages (the default) and, for the record,
   by centre samples;
-* DH case beta0 = 0.9, mu = 1, a* = 1.2 (c*, v from dhfield.model), domain
+* DH case beta0 = 0.9, mu = 1, a* = 1.2 (c*, v from dhfield.models.dh_elliptic), domain
   [-1.5c, 1.5c]^2, cell averages.
 
 Errors are max |omega_BEM - omega| / max |omega| over the whole grid ("L-inf"),
@@ -30,7 +30,8 @@ import time
 
 import numpy as np
 
-from dhfield import fields, refinement
+from dhfield.analysis import fields
+from dhfield.core import refinement
 
 #: Targets of issue 4.
 TARGETS = {512: 1e-3, 1024: 3e-4}

@@ -1,10 +1,10 @@
-"""Compliant loading and cycles (dhfield.compliance): figures against closed forms, and a table.
+"""Compliant loading and cycles (dhfield.analysis.spring): figures against closed forms, and a table.
 
 Run: ``PYTHONPATH=. python verification/cycle_check.py``.  Prints
 
 * the JKR pull-off under a spring against the root of the quintic
   4 t^5 + 4 pi K t^3 - 3 c t^2 - pi K c = 0 (t = sqrt(a*), c = sqrt(2 pi); derived in
-  dhfield.compliance), and the rigid-machine cycle against its closed forms;
+  dhfield.analysis.spring), and the rigid-machine cycle against its closed forms;
 * the jump-out load W* against the machine stiffness K* for every circular model and
   elliptical JKR at mu = 1 (beta0 = 0.8 for the ellipse), with the energy lost.
 """
@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from dhfield import compliance
+from dhfield.analysis import spring as compliance
 
 C = math.sqrt(2 * math.pi)
 

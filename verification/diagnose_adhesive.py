@@ -22,7 +22,7 @@ Issue 8's unconverged study case (beta0 = 0.5, mu = 5, N = 512) and issue 20's
   and nested searches included), as it is solved.
 
 ``--ny`` sets the cells along y (default ``--n``: n x n cells); without ``--n`` the
-automatic grid of :func:`dhfield.adhesive_start.plan_grid` is used.
+automatic grid of :func:`dhfield.analysis.bem_start.plan_grid` is used.
 
 Usage::
 
@@ -114,7 +114,7 @@ class OuterHistory:
 
 
 def _problem(mu, beta0, n, ny):
-    from dhfield.adhesive_start import nondimensional_problem, plan_grid
+    from dhfield.analysis.bem_start import nondimensional_problem, plan_grid
 
     if n is None:
         plan = plan_grid(mu=mu, beta0=beta0)
@@ -124,13 +124,13 @@ def _problem(mu, beta0, n, ny):
 
 def cold_start(mu, beta0, n, start, *, tol=1e-6, max_iter=8000, ny=None, history=False):
     """(approach, zone, state, seconds, problem, working problem, history) of the first bracket state from ``start``."""
-    from dhfield import compare
-    from dhfield.adhesive_start import expected_zone_width
+    from dhfield.analysis import compare
+    from dhfield.analysis.bem_start import expected_zone_width
     from dhfield.bem.solver import Prediction, solve_problem
 
     nd = _problem(mu, beta0, n, ny)
     if start == "gvg":
-        from dhfield import jkr_elliptic_energy
+        from dhfield.models import jkr_elliptic_energy
 
         g = jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")
         w = expected_zone_width(mu)
@@ -226,7 +226,7 @@ def main(argv=None) -> int:
             hist.print(prob)
     if args.path:
         from dhfield.bem import adhesive_pull_off
-        from dhfield.adhesive_start import AdhesiveOptions
+        from dhfield.analysis.bem_start import AdhesiveOptions
 
         t0, c0 = time.perf_counter(), time.process_time()
         if args.trace:

@@ -1,7 +1,7 @@
 """Displacement-control pull-off of the adhesive BEM against Maugis-Dugdale (issue 8, "Path").
 
 Prints one table, the sphere (beta0 = 1, Dugdale law) at lambda = 1.1272 mu in
-{0.3, 0.6, 1, 1.5, 2, 3} (:func:`dhfield.transition.tabor_from_maugis`) and each N:
+{0.3, 0.6, 1, 1.5, 2, 3} (:func:`dhfield.core.transition.tabor_from_maugis`) and each N:
 
 * ours: ``adhesive_pull_off(mu, 1, N, control="displacement")`` -- W* (Eq. 34) at
   the minimum of the approach along the branch followed by adhesive force
@@ -9,7 +9,7 @@ Prints one table, the sphere (beta0 = 1, Dugdale law) at lambda = 1.1272 mu in
   the branch ends ('fold', or 'contact loss' when the approach still falls as the
   last contact cell opens);
 * the reference: Maugis (1992), the minimum of delta(a) along the MD curve, or
-  its end a = 0 (``dhfield.maugis_dugdale.pull_off(..., control="displacement")``);
+  its end a = 0 (``dhfield.models.maugis_dugdale.pull_off(..., control="displacement")``);
 * the error, whether the estimate bounds it (|error| <= W_star_error), seconds,
   states, and PASS/FAIL against the self-set target: within 2 % of MD at
   N = 256 for lambda in {0.6, 1, 1.5, 2, 3} (lambda = 0.3 and other N are shown
@@ -31,7 +31,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # before numpy: threaded BL
 
 import numpy as np  # noqa: E402
 
-from dhfield import maugis_dugdale, transition  # noqa: E402
+from dhfield.models import maugis_dugdale
+from dhfield.core import transition  # noqa: E402
 from dhfield.bem import adhesive_pull_off  # noqa: E402
 
 LAMBDAS = (0.3, 0.6, 1.0, 1.5, 2.0, 3.0)

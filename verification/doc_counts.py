@@ -45,7 +45,7 @@ CHROMIUM = Path("/usr/bin/chromium")
 SKIPPED_CHECKS = frozenset({"SA01", "EX01", "ES01"})
 
 #: Pages of the screenshots: landing page, an API page, a gallery example, a theory page.
-SCREENSHOT_PAGES = ("index.html", "api/generated/dhfield.model.pull_off.html",
+SCREENSHOT_PAGES = ("index.html", "api/generated/dhfield.models.dh_elliptic.pull_off.html",
                     "auto_examples/plot_pull_off_vs_angle.html", "theory/model.html")
 
 

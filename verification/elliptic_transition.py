@@ -1,4 +1,4 @@
-"""The recommended model ``md-elliptic`` (:mod:`dhfield.elliptic_transition`) against every case
+"""The recommended model ``md-elliptic`` (:mod:`dhfield.models.md_elliptic`) against every case
 of the stored BEM ground truth, beside the other models, with its cost.
 
 For each stored (beta0, mu) (``data/adhesive_ground_truth.nc``, Dugdale law, load control,
@@ -32,11 +32,11 @@ from pathlib import Path
 
 import numpy as np
 
-from dhfield import elliptic_transition as et
-from dhfield import jkr_elliptic as jg
-from dhfield import jkr_elliptic_energy as gvg
-from dhfield import maugis_dugdale as md
-from dhfield.geometry import sin_skew_angle
+from dhfield.models import md_elliptic as et
+from dhfield.models import jkr_elliptic as jg
+from dhfield.models import jkr_elliptic_energy as gvg
+from dhfield.models import maugis_dugdale as md
+from dhfield.core.geometry import sin_skew_angle
 
 DATASET = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth.nc"
 SLENDER = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth_slender.nc"

@@ -87,13 +87,13 @@ for _name in REPORT_FIGURES:
 def synthetic_curve_csv(path: Path, *, seed: int = 17) -> Path:
     """Write a synthetic measured load curve of the PDMS cylinders (force [N], semi_major [m]).
 
-    The paper's model (:func:`dhfield.dimensional.load_curve_si`) at Δγ = 50 mJ/m² and
+    The paper's model (:func:`dhfield.analysis.dimensional.load_curve_si`) at Δγ = 50 mJ/m² and
     σ0 = 50 kPa, 14 points of the tensile branch and past it, with seeded noise of 1 % of the
     force range.  Drawn with this tree's library, so both trees fit the same numbers.
     """
     import numpy as np
 
-    from dhfield import dimensional as dim
+    from dhfield.analysis import dimensional as dim
 
     params = dim.contact_parameters(youngs_modulus_1=1.8e6, poisson_ratio_1=0.49, youngs_modulus_2=1.8e6,
                                     poisson_ratio_2=0.49, cylinder_radius=3e-3, skew_angle=np.deg2rad(60.0),

@@ -5,11 +5,11 @@ at 60 degrees, sigma0 = 0.3 MPa) with a known work of adhesion (the truth).  For
 of ``--sets`` seeded replicate sets:
 
 A. replicates only: ``--replicates`` pull-off forces, each the model's force of the
-   truth times (1 + e), e ~ N(0, ``--noise``); ``dhfield.fit.fit_work_of_adhesion``;
+   truth times (1 + e), e ~ N(0, ``--noise``); ``dhfield.analysis.fit.fit_work_of_adhesion``;
 B. replicates and uncertain inputs: as A, but the fit is given a sigma0 and a
    cylinder radius each drawn from N(truth, std) -- what a user's measured inputs
    are -- with those standard deviations, propagated by
-   ``dhfield.fit.propagate_input_uncertainty``.
+   ``dhfield.analysis.fit.propagate_input_uncertainty``.
 
 Prints, per scenario, how many sets put the truth within 2 reported standard
 errors (about 95 % if the standard errors are right; 40 sets: 38 +- 1.4), and
@@ -33,8 +33,8 @@ import time
 
 import numpy as np
 
-from dhfield import dimensional as dim
-from dhfield.fit import fit_work_of_adhesion, propagate_input_uncertainty
+from dhfield.analysis import dimensional as dim
+from dhfield.analysis.fit import fit_work_of_adhesion, propagate_input_uncertainty
 
 PDMS = dict(youngs_modulus_1=1.8e6, poisson_ratio_1=0.49, youngs_modulus_2=1.8e6, poisson_ratio_2=0.49,
             skew_angle=math.pi / 3)

@@ -1,8 +1,8 @@
-"""Joint fit over crossing angles (dhfield.fit.fit_joint, ``dhfield fit --data`` with an angle column).
+"""Joint fit over crossing angles (dhfield.analysis.fit.fit_joint, ``dhfield fit --data`` with an angle column).
 
 Synthetic pull-off forces of the PDMS contact of issue 40 (E = 1.8 MPa, nu = 0.49, two
 cylinders of R = 3 mm, dgamma = 45 mJ/m^2, sigma0 = 0.3 MPa), computed with the recommended
-model (:data:`dhfield.compare.RECOMMENDED_MODEL`) at 4 crossing angles (20, 40, 60 and 90 deg)
+model (:data:`dhfield.analysis.compare.RECOMMENDED_MODEL`) at 4 crossing angles (20, 40, 60 and 90 deg)
 x 5 replicates, each multiplied by 1 + 0.03 z with z standard normal (numpy seed 40): 3 %
 noise.  The CSV (``skew_angle_deg``, ``force [mN]``) goes through ``dhfield fit --data ...
 --adhesive-stress 3e5 --plot``, which fits dgamma at the known sigma0; printed: the recovered
@@ -26,9 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
-from dhfield import compare
-from dhfield import dimensional as dim
-from dhfield.fit import fit_joint
+from dhfield.analysis import compare
+from dhfield.analysis import dimensional as dim
+from dhfield.analysis.fit import fit_joint
 
 MATERIAL = dict(youngs_modulus_1=1.8e6, poisson_ratio_1=0.49, youngs_modulus_2=1.8e6, poisson_ratio_2=0.49,
                 cylinder_radius=3e-3)

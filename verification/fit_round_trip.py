@@ -1,12 +1,12 @@
-"""Inverse problem (dhfield.fit): round trip of every model, and coverage of the curve fit's 2-sigma intervals.
+"""Inverse problem (dhfield.analysis.fit): round trip of every model, and coverage of the curve fit's 2-sigma intervals.
 
 Prints, for the PDMS contact of issue 10 (E = 2 MPa, nu = 0.5, R = 5 mm, 60 degrees,
 dgamma = 40 mJ/m^2) with sigma0 = 25 kPa (mu ~ 1.08):
 
-1. for every model of :data:`dhfield.compare.MODEL_NAMES`: the pull-off force, the work of
+1. for every model of :data:`dhfield.analysis.compare.MODEL_NAMES`: the pull-off force, the work of
    adhesion fitted back from it (started from 7 x the truth), its relative error (target
    1e-8), the forward evaluations and the time;
-2. for every model of :data:`dhfield.fit.CURVE_FIT_MODEL_NAMES`: dgamma and sigma0 fitted
+2. for every model of :data:`dhfield.analysis.fit.CURVE_FIT_MODEL_NAMES`: dgamma and sigma0 fitted
    back from a noiseless load curve (25 points, started at dgamma/2, 2 sigma0);
 3. for ``--seeds`` seeded noisy load curves (25 points, Gaussian noise of 1 % of the load
    range): how often dgamma and sigma0 fall within 2 reported standard errors of the truth
@@ -24,9 +24,9 @@ import time
 
 import numpy as np
 
-from dhfield import compare
-from dhfield import dimensional as dim
-from dhfield.fit import CURVE_FIT_MODEL_NAMES, fit_curve, fit_work_of_adhesion
+from dhfield.analysis import compare
+from dhfield.analysis import dimensional as dim
+from dhfield.analysis.fit import CURVE_FIT_MODEL_NAMES, fit_curve, fit_work_of_adhesion
 
 PDMS = dict(youngs_modulus_1=2e6, poisson_ratio_1=0.5, youngs_modulus_2=2e6, poisson_ratio_2=0.5,
             cylinder_radius=5e-3, skew_angle=math.pi / 3)

@@ -80,7 +80,7 @@ def cli(argv) -> str:
 
 def main(argv=None) -> int:
     import dhfield
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     quick = "--quick" in (argv if argv is not None else sys.argv[1:])
     b, m = np.meshgrid(BETA0, MU, indexing="ij")

@@ -71,7 +71,7 @@ def digest(value) -> str:
     return h.hexdigest()
 
 
-#: The hashed fields of a BEM pull-off record (:class:`dhfield.records.PullOff`), in the order of
+#: The hashed fields of a BEM pull-off record (:class:`dhfield.core.records.PullOff`), in the order of
 #: the BEM's former record type (AdhesivePullOff), so that the lines of a run before and after
 #: the one-record change match; ``ellipticity`` and ``adhesive_ellipticity`` were ``beta_ab`` and
 #: ``beta_cd``.  The record's other keys (model, geometry, sin_skew, v, at_zero_contact, warning)
@@ -99,7 +99,7 @@ def main(argv=None):
     """``argv``: case labels to run (default all); ``--skip FIELD`` leaves a field out everywhere
     (e.g. a field added since the reference run, to compare the rest)."""
     from dhfield.bem import adhesive_pull_off, refine_pull_off
-    from dhfield.adhesive_start import AdhesiveOptions
+    from dhfield.analysis.bem_start import AdhesiveOptions
 
     argv = list(argv or ())
     while "--skip" in argv:

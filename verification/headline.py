@@ -1,13 +1,13 @@
 """The report's first screen: one sentence and one table on which model to use.
 
 Both come from the stored BEM ground truth as the library tabulates it
-(:mod:`dhfield.model_error`: every model's W* at the stored cases of
+(:mod:`dhfield.analysis.model_error`: every model's W* at the stored cases of
 ``data/adhesive_ground_truth_extended.nc``) and from the model registry
-(:data:`dhfield.compare.RECOMMENDED_MODEL`); no number is typed in.
+(:data:`dhfield.analysis.compare.RECOMMENDED_MODEL`); no number is typed in.
 
-The error of a model at a stored case is :func:`dhfield.model_error.stored_case_error`: its
+The error of a model at a stored case is :func:`dhfield.analysis.model_error.stored_case_error`: its
 deviation from the stored BEM W* plus the BEM's own stated error, relative to the BEM W*,
-the same estimate every pull-off of :mod:`dhfield.compare` carries as ``model_error``.
+the same estimate every pull-off of :mod:`dhfield.analysis.compare` carries as ``model_error``.
 
 ``python -m verification.headline`` prints the sentence and the table (Markdown).
 """
@@ -100,9 +100,9 @@ def model_rows(models=None):
     -------
     list of ModelRow
     """
-    from dhfield import _truth_table
-    from dhfield.compare import RECOMMENDED_MODEL
-    from dhfield.model_error import stored_case_error
+    from dhfield.analysis import _truth_table
+    from dhfield.analysis.compare import RECOMMENDED_MODEL
+    from dhfield.analysis.model_error import stored_case_error
 
     names = list(models) if models is not None else list(_truth_table.W_STAR_MODEL)
     names.sort(key=lambda n: n != RECOMMENDED_MODEL)
@@ -118,7 +118,7 @@ def _span(lo, hi):
 
 
 def _angle(beta0):
-    from dhfield.geometry import skew_angle
+    from dhfield.core.geometry import skew_angle
 
     return float(np.degrees(skew_angle(beta0)))
 
@@ -136,8 +136,8 @@ def headline_sentence(rows=None):
     str
         One Markdown sentence.
     """
-    from dhfield.compare import DEFAULT_MODEL, RECOMMENDED_MODEL
-    from dhfield.model_error import VERIFIED_BETA0, VERIFIED_MU
+    from dhfield.analysis.compare import DEFAULT_MODEL, RECOMMENDED_MODEL
+    from dhfield.analysis.model_error import VERIFIED_BETA0, VERIFIED_MU
 
     rows = model_rows() if rows is None else rows
     r = next(x for x in rows if x.model == RECOMMENDED_MODEL)
@@ -164,7 +164,7 @@ def headline_table(rows=None):
     str
         A Markdown pipe table, the recommended model first.
     """
-    from dhfield.compare import RECOMMENDED_MODEL
+    from dhfield.analysis.compare import RECOMMENDED_MODEL
 
     rows = model_rows() if rows is None else rows
     lines = [f"| model | worst error | median error | cases within {100 * WITHIN:g} % | "

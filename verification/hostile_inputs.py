@@ -672,7 +672,9 @@ def run_process(case: Case, timeout: float) -> None:
 
 def api_cases(quick):
     """Bad arguments to the public Python functions."""
-    from dhfield import bem, compare, dimensional, fields, model
+    from dhfield import bem
+    from dhfield.analysis import compare, dimensional, fields
+    from dhfield.models import dh_elliptic as model
     from dhfield import io as dio
 
     bad_scalars = [("nan", float("nan")), ("inf", float("inf")), ("-1", -1.0), ("0", 0.0), ("'abc'", "abc"),
@@ -742,8 +744,9 @@ def _bem_verdict(mu, beta0, n, reference, rtol=BEM_SILENT_RTOL, **kw):
     def run():
         from dataclasses import fields
 
-        from dhfield import bem, compare
-        from dhfield.adhesive_start import AdhesiveOptions
+        from dhfield import bem
+        from dhfield.analysis import compare
+        from dhfield.analysis.bem_start import AdhesiveOptions
 
         ref = compare.pull_off("md", mu=mu, beta0=1.0)["W_star"] if reference == "md" else reference
         numerics = {f.name for f in fields(AdhesiveOptions)}
@@ -768,7 +771,7 @@ def _json_w_check(reference, rtol=BEM_SILENT_RTOL):
             rec = json.loads(stdout.strip().splitlines()[0])
         except (ValueError, IndexError):
             return ("silent wrong", "unparsable JSON from solve")
-        from dhfield import compare
+        from dhfield.analysis import compare
 
         ref = compare.pull_off("md", mu=rec["mu"], beta0=1.0)["W_star"] if reference == "md" else reference
         w = rec.get("W_star")
@@ -875,8 +878,10 @@ def _peer_setup(case, behaviour):
 
 def hardening_cases(quick):
     """Issue 18's classes: API dtypes, file contents, TOML values, environment, network peers, BEM answers."""
-    from dhfield import bem, compare, dimensional, model
-    from dhfield.adhesive_start import AdhesiveOptions
+    from dhfield import bem
+    from dhfield.analysis import compare, dimensional
+    from dhfield.models import dh_elliptic as model
+    from dhfield.analysis.bem_start import AdhesiveOptions
 
     cases = []
 
@@ -1065,7 +1070,7 @@ def _sweep_values_check(mu, out="s.nc"):
 
         import xarray as xr
 
-        from dhfield.compare import pull_off
+        from dhfield.analysis.compare import pull_off
 
         with xr.open_dataset(workdir / out) as ds:
             got = ds["W_star"].sel(model="md").values
@@ -1120,14 +1125,14 @@ def _api_main(argv, want_status, want_in=None, unwanted=None):
 
 
 def _limit_memory(nbytes):
-    from dhfield import _memory
+    from dhfield.core import memory as _memory
 
     _memory.available_memory = lambda: nbytes
 
 
 def _no_allocation():
     """Setting up a BEM problem (its arrays) before the memory check is a defect: raise where it would happen."""
-    from dhfield import adhesive_start
+    from dhfield.analysis import bem_start as adhesive_start
 
     def allocated(*args, **kwargs):
         raise AssertionError("the BEM problem was set up (its arrays allocated) before the memory check")
@@ -1297,8 +1302,8 @@ def store_and_write_cases(quick):
             return fn()
         return run
 
-    from dhfield import adhesive_start
-    from dhfield.bem_compliance import bem_unloading_branch
+    from dhfield.analysis import bem_start as adhesive_start
+    from dhfield.analysis.bem_spring import bem_unloading_branch
 
     api("run_sweep(adhesive, n=[256]) with 20 MiB available", limited(20 * 2**20, lambda: _adhesive_run_sweep(256)),
         "axes.n")
@@ -1423,7 +1428,7 @@ _JKR_SIDE = ("--youngs-modulus", "1.8e6", "--poisson-ratio", "0.49", "--cylinder
 def _jkr_side_csv(workdir, name="jkr.csv"):
     import math
 
-    from dhfield import dimensional as dim
+    from dhfield.analysis import dimensional as dim
 
     p = dim.contact_parameters(1.8e6, 0.49, 1.8e6, 0.49, 3e-3, math.pi / 3, 0.05, 1e8)
     a = p.length_unit * np.linspace(0.5, 3.0, 12)
@@ -1445,7 +1450,7 @@ def _without_option(argv, opt):
 def input_message_cases(parsers, quick):
     """Issue 42's classes: options given as ``--opt=--`` (finding 11), flagged fits (finding 5), messages in the
     user's units and warnings as one line (finding 12)."""
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     cases = []
 

@@ -1,11 +1,11 @@
 """The JKR limit of the elliptical contact: GVG (2025) against JG (2005), Li & Popov (2020) and the BEM.
 
-Prints, for equal cylinders crossed at 10-90 deg (beta0 from :mod:`dhfield.geometry`), the
+Prints, for equal cylinders crossed at 10-90 deg (beta0 from :mod:`dhfield.core.geometry`), the
 load-control pull-off F/(pi sqrt(R'R'') dgamma) of
 
 * ``GVG``: the energy-minimising elliptical JKR of Giudici, Vella & Griffiths
-  (:mod:`dhfield.jkr_elliptic_energy`, model ``jkr-elliptic-energy``);
-* ``JG``: Johnson & Greenwood (2005) (:mod:`dhfield.jkr_elliptic`, ``jkr-elliptic``);
+  (:mod:`dhfield.models.jkr_elliptic_energy`, model ``jkr-elliptic-energy``);
+* ``JG``: Johnson & Greenwood (2005) (:mod:`dhfield.models.jkr_elliptic`, ``jkr-elliptic``);
 * ``LP``: the Li & Popov (J. Phys. D 2020) BEM fit for JKR ellipsoids, THIRD-PARTY values:
   as transcribed in kmnam/biofilm-ABMs (``jkr.hpp``, unverified against the paper) and quoted
   in the project notes (adhesive-solver.md) at R'/R'' = 1, 3, 5, 10, 20, 50 only; between
@@ -58,10 +58,10 @@ from pathlib import Path
 
 import numpy as np
 
-from dhfield import jkr_elliptic as jg
-from dhfield import jkr_elliptic_energy as gvg
-from dhfield import maugis_dugdale
-from dhfield.geometry import ellipticity_from_skew_angle, radius_ratio, sin_skew_angle, skew_angle
+from dhfield.models import jkr_elliptic as jg
+from dhfield.models import jkr_elliptic_energy as gvg
+from dhfield.models import maugis_dugdale
+from dhfield.core.geometry import ellipticity_from_skew_angle, radius_ratio, sin_skew_angle, skew_angle
 
 DATASET = Path(__file__).resolve().parent.parent / "data" / "adhesive_ground_truth.nc"
 #: Li & Popov (2020) fit, F/(pi sqrt(R'R'') dgamma) at R'/R'': third-party transcription (notes).
@@ -127,7 +127,7 @@ def sphere_transition_weight(mu):
     Returns
     -------
     ndarray
-        0 at DMT (mu -> 0), 1 at JKR (mu -> infinity); MD of :mod:`dhfield.maugis_dugdale`.
+        0 at DMT (mu -> 0), 1 at JKR (mu -> infinity); MD of :mod:`dhfield.models.maugis_dugdale`.
     """
     w = maugis_dugdale.pull_off_nondimensional(beta0=1.0, mu=np.asarray(mu, float)).W_star
     return (np.asarray(w, float) + 1.0) / (W_STAR_JKR_SPHERE + 1.0)

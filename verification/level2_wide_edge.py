@@ -4,7 +4,7 @@ At mu = 10 the level-1 grids' own edges are 1.9-2.0 h0, at the cap 2 h0; level 2
 1.03-1.08 h0, and there the route's states stall (``docs/theory/bem.rst``).  This script solves the
 pull-off of level 2 (``automatic_grid(beta0, 10, 2)``) by the study's route (the predicted route
 with :class:`dhfield.bem.pull_off.CoarseRouteWarmStart`: level 1's route states as starts), with
-the edge held at 2 h0 on every grid (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`,
+the edge held at 2 h0 on every grid (:attr:`dhfield.analysis.bem_start.AdhesiveOptions.widest_edge`,
 the option the study's parts ``high-mu-level2-widest-*`` set through ``[bem] widest_edge``), so
 that level 2 against level 1 measures the grid's convergence at (nearly) the same edge in cells.
 It prints one line and stores nothing; the study's parts store.  Usage::
@@ -25,7 +25,7 @@ import time
 
 
 def main(argv=None) -> int:
-    from dhfield.adhesive_start import PREDICTED_SEARCH, AdhesiveOptions, adhesive_pull_off
+    from dhfield.analysis.bem_start import PREDICTED_SEARCH, AdhesiveOptions, adhesive_pull_off
     from dhfield.sweep.tasks import automatic_grid
 
     ap = argparse.ArgumentParser(prog="python -m verification.level2_wide_edge", description=__doc__.split("\n")[0])

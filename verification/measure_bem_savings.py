@@ -49,7 +49,7 @@ def _timed(fn):
 
 
 def main(argv=None) -> int:
-    from dhfield.adhesive_start import nondimensional_problem
+    from dhfield.analysis.bem_start import nondimensional_problem
     from dhfield.bem import solver
     from dhfield.bem.pull_off import interpolate_state
     from dhfield.bem.solver import AdhesiveProblem, Prediction, solve_problem

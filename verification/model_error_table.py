@@ -2,17 +2,17 @@
 
 Reads ``data/adhesive_ground_truth_extended.nc`` (the 57 stored cases: Dugdale law, load
 control, beta0 0.1-1, mu 0.1-10, ``W_star_truth`` and ``W_star_truth_error``), evaluates
-every model of :data:`dhfield.compare.MODEL_NAMES` at each case (load control;
-:func:`dhfield.compare.compare`, NaN where a model refuses the case) and writes the
-Python module ``dhfield/_truth_table.py`` atomically: the cases, the truth with its error,
+every model of :data:`dhfield.analysis.compare.MODEL_NAMES` at each case (load control;
+:func:`dhfield.analysis.compare.compare`, NaN where a model refuses the case) and writes the
+Python module ``dhfield/analysis/_truth_table.py`` atomically: the cases, the truth with its error,
 each model's W* and the provenance (source file, its build attributes, this command, the
-git commit).  :mod:`dhfield.model_error` derives each model's error band from it.  About
+git commit).  :mod:`dhfield.analysis.model_error` derives each model's error band from it.  About
 50 s on one core (the two closures take about 200 ms per case).
 
 ``python -m verification.model_error_table``
 
 ``--leave-one-out`` writes nothing: it prints, per model, at how many stored cases the error
-estimated from the other cases (:func:`dhfield.model_error.model_error`'s rule) covers the
+estimated from the other cases (:func:`dhfield.analysis.model_error.model_error`'s rule) covers the
 held-out case's own error, by how much it falls short at worst, and the median ratio.
 """
 from __future__ import annotations
@@ -77,7 +77,7 @@ def model_values(beta0, mu):
     dict
         Model name -> ndarray of W* (Eq. 34) [-].
     """
-    from dhfield.compare import MODEL_NAMES, compare
+    from dhfield.analysis.compare import MODEL_NAMES, compare
 
     out = {name: np.full(beta0.shape, np.nan) for name in MODEL_NAMES}
     for i, (b, m) in enumerate(zip(beta0, mu)):
@@ -91,11 +91,11 @@ def _tuple(values) -> str:
 
 
 def render(beta0, mu, truth, truth_error, models, attrs, commit) -> str:
-    """The text of ``dhfield/_truth_table.py``."""
+    """The text of ``dhfield/analysis/_truth_table.py``."""
     lines = ['"""Every model\'s pull-off at the stored BEM ground-truth cases (generated; do not edit).',
              "",
              f"Written by ``{COMMAND}`` from ``data/adhesive_ground_truth_extended.nc``;",
-             "read by :mod:`dhfield.model_error`.  Load control, the paper's units (Eq. 34).",
+             "read by :mod:`dhfield.analysis.model_error`.  Load control, the paper's units (Eq. 34).",
              '"""',
              "",
              "NAN = float('nan')",
@@ -116,8 +116,8 @@ def render(beta0, mu, truth, truth_error, models, attrs, commit) -> str:
 
 def leave_one_out():
     """Print, per model, how often the error estimate from the other stored cases covers a held-out case."""
-    from dhfield import model_error as me
-    from dhfield.compare import MODEL_NAMES
+    from dhfield.analysis import model_error as me
+    from dhfield.analysis.compare import MODEL_NAMES
 
     for name in MODEL_NAMES:
         b, m, e = me.stored_case_error(name)

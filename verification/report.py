@@ -617,7 +617,7 @@ def _first_screen_html(screen):
     return ("<section id='first-screen' class='lead first'><h2>Which model to use</h2>"
             f"<p class=headline>{_inline(sentence)}</p>" + markdown_to_html(table)
             + "<p class=small>Error: a model's deviation from the stored BEM pull-off plus the BEM's own "
-              "stated error, relative to the BEM pull-off, at each stored case (<code>dhfield.model_error</code>); "
+              "stated error, relative to the BEM pull-off, at each stored case (<code>dhfield.analysis.model_error</code>); "
               "the box is the largest one, spanned by stored β0 and μ, in which every case is within 1 %. "
               "The detail is below: <a href='#verdict'>verdict</a>, <a href='#guide'>which model when</a>, "
               "<a href='#summary'>checks</a>.</p></section>")

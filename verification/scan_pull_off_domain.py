@@ -3,7 +3,7 @@
 Run:  .venv/bin/python -m verification.scan_pull_off_domain [--n 100]
 
 On an n x n grid, beta0 log-spaced over [1e-3, 1] and mu over [1e-2, 1e4], computes
-the load- and displacement-controlled pull-off of ``dhfield.model.pull_off`` row by
+the load- and displacement-controlled pull-off of ``dhfield.models.dh_elliptic.pull_off`` row by
 row (bounded memory) and prints the counts of
 
 * non-finite or failing points (an exception in a row counts the whole row);
@@ -31,7 +31,7 @@ def main(argv=None) -> int:
     ap.add_argument("--n", type=int, default=100, help="grid points per axis (default 100)")
     args = ap.parse_args(argv)
     import dhfield
-    from dhfield import model
+    from dhfield.models import dh_elliptic as model
 
     beta0 = np.geomspace(1e-3, 1.0, args.n)
     mu = np.geomspace(1e-2, 1e4, args.n)

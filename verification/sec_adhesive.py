@@ -7,10 +7,10 @@ section READS the stored study (``data/adhesive_ground_truth.nc``, written by
 ``python -m verification.study_adhesive``: Richardson-extrapolated over the N
 ladder where three converged levels exist), RE-RUNS one (quick) or two cheap
 cases to show that the stored numbers reproduce, and compares every analytic
-model of :mod:`dhfield.compare` with it:
+model of :mod:`dhfield.analysis.compare` with it:
 
 * the paper's closure (``dh-elliptic``, Eqs. 17-19, 31), its JKR-beta variant,
-  the ray-average and the two-axis closures (:mod:`dhfield.closure`);
+  the ray-average and the two-axis closures (:mod:`dhfield.models.dh_elliptic_closure`);
 * elliptical JKR (Johnson & Greenwood 2005) and Maugis-Dugdale (sphere with
   R = sqrt(R'R''), lambda = 1.1272 mu).
 
@@ -56,7 +56,7 @@ TOL_REPRODUCE = 1e-4
 TOL_MD_SPHERE = 0.01
 #: issue 8: sphere vs MD at lambda <= 3 (mu <= 2.66): 2 %.
 TOL_MD_SPHERE_HIGH = 0.02
-#: lambda = 1.1272 mu (dhfield.transition): mu of lambda = 1 and 3.
+#: lambda = 1.1272 mu (dhfield.core.transition): mu of lambda = 1 and 3.
 MU_LAMBDA1, MU_LAMBDA3 = 1.0 / 1.1272, 3.0 / 1.1272
 #: A closure "is within" the ground truth where its W* lies within this relative distance.
 WITHIN = (0.01, 0.02, 0.05)
@@ -266,7 +266,7 @@ def _checks_md(tab):
         checks.append(check_le(
             f"sphere (β0 = 1), μ = {mu:g} (λ = {1.1272 * mu:.2f}): |W*_BEM/W*_MD − 1| ({how})",
             abs(tab["dev"]["md"][i, j]) if "md" in tab["dev"] else np.nan, tol,
-            "Maugis (1992) via dhfield.maugis_dugdale; targets 1 % at λ ≤ 1, 2 % at λ ≤ 3 (and beyond)"))
+            "Maugis (1992) via dhfield.models.maugis_dugdale; targets 1 % at λ ≤ 1, 2 % at λ ≤ 3 (and beyond)"))
     return checks
 
 
@@ -283,7 +283,7 @@ def _sphere_convergence():
         checks.append(check_le(
             f"sphere (β0 = 1), λ = {case['lam']:g}: Richardson over N = {'/'.join(map(str, doc['n']))} "
             f"|W*/W*_MD − 1|", abs(err) if np.isfinite(err) else np.inf, TOL_MD_RICHARDSON,
-            f"Maugis (1992) via dhfield.maugis_dugdale; {SPHERE_CONVERGENCE.relative_to(ROOT)}"))
+            f"Maugis (1992) via dhfield.models.maugis_dugdale; {SPHERE_CONVERGENCE.relative_to(ROOT)}"))
         per_n = ", ".join(f"N = {r['n']}: {100 * r['err']:+.3f} %" for r in case["rows"])
         parts.append(f"λ = {case['lam']:g}: {per_n}; Richardson {100 * err:+.3f} % (order {case['order']:.2f})")
     line = (f"Sphere against Maugis–Dugdale (`{SPHERE_CONVERGENCE.relative_to(ROOT)}`, command "
@@ -294,7 +294,7 @@ def _sphere_convergence():
 def _rerun(ds, quick, progress):
     """Re-solve the cheap cases at the coarsest stored N; return checks and a text line."""
     from dhfield.bem import adhesive_pull_off
-    from dhfield.adhesive_start import AdhesiveOptions
+    from dhfield.analysis.bem_start import AdhesiveOptions
     from dhfield.bem.pull_off import SEARCHES
     from verification.study_adhesive import STATUSES, STUDY_MAX_ITER, USABLE
 
@@ -329,9 +329,9 @@ def _rerun(ds, quick, progress):
 
 # --------------------------------------------------------------------------- figure
 def recommended_deviation(tab):
-    """W*/W*_BEM - 1 of the recommended model (:data:`dhfield.compare.RECOMMENDED_MODEL`) on the
+    """W*/W*_BEM - 1 of the recommended model (:data:`dhfield.analysis.compare.RECOMMENDED_MODEL`) on the
     table's (beta0, mu) grid, evaluated now (the stored file tabulates the other models only)."""
-    from dhfield.compare import RECOMMENDED_MODEL, pull_off
+    from dhfield.analysis.compare import RECOMMENDED_MODEL, pull_off
 
     b, m = np.meshgrid(tab["beta0"], tab["mu"], indexing="ij")
     w = pull_off(RECOMMENDED_MODEL, beta0=b, mu=m, warn=False).W_star
@@ -339,7 +339,7 @@ def recommended_deviation(tab):
 
 
 def _figure(tab, outdir, dpi):
-    from dhfield.compare import RECOMMENDED_MODEL
+    from dhfield.analysis.compare import RECOMMENDED_MODEL
 
     plt = _plt()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=figsize(2, 0.4))

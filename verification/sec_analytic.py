@@ -1,7 +1,7 @@
 """Report section: the analytic elliptical double-Hertz model along theta_p = 0 (issue 2).
 
 Reproduces the paper's Figs. 4-7 and 10 (Zini et al. 2018, doi:10.1007/s11249-017-0976-8)
-with :mod:`dhfield.model`, adds the load-approach curves and the pull-off as a
+with :mod:`dhfield.models.dh_elliptic`, adds the load-approach curves and the pull-off as a
 function of beta0, and checks the analytic core against references that do not
 share its code path:
 
@@ -13,7 +13,7 @@ share its code path:
   by ``scipy.optimize.brentq``;
 * the pull-off limits: JKR (W* = -3/4) at mu = 20 and DMT (W* = -1) at mu = 0.05;
 * along every computed load curve: dgamma = 1 by the direct quadrature of Eq. (31)
-  in :mod:`dhfield.adhesion` (the solve uses an exchanged-order integral),
+  in :mod:`dhfield.models.dh_elliptic_adhesion` (the solve uses an exchanged-order integral),
   sigma0 = mu (Eq. 24 with Eq. 35), Eq. (36) against the dimensional load Eq. (25)
   and the approach against Eq. (26a);
 * the pull-off as a stationary point, against the minimum of a dense scan of W*(a*);
@@ -109,7 +109,7 @@ def _curve_dataset(curve):
 
 def _check_circular_closed_form(rng, curves):
     """Eq. (31) at beta = 1 against v(1+v)(2/(3 pi))(c-a)^2(c+2a)."""
-    from dhfield.adhesion import work_of_adhesion
+    from dhfield.models.dh_elliptic_adhesion import work_of_adhesion
 
     n = 1000
     a = 10 ** rng.uniform(-2.5, 0.7, n)
@@ -154,8 +154,8 @@ def _eq12b_by_quadrature(x, y, a, b, po):
 
 def _check_displacement_quadrature(rng, n, quick):
     """Eqs. (13b)/(15) vs adaptive quadrature of Eq. (12b), per beta."""
-    from dhfield import hertz
-    from dhfield.elliptic import ellipsoid_integrals_legendre
+    from dhfield.models import hertz
+    from dhfield.core.elliptic import ellipsoid_integrals_legendre
 
     checks, scatter = [], {}
     label = f"{n} seeded random outside points" + (" (quick mode; the default mode uses 4000)" if quick else "")
@@ -188,7 +188,7 @@ def _check_displacement_quadrature(rng, n, quick):
 
 
 def _eq31_by_quadrature(a, c, beta, v):
-    """Eq. (31) by nested adaptive quadrature, independent of :mod:`dhfield.adhesion`.
+    """Eq. (31) by nested adaptive quadrature, independent of :mod:`dhfield.models.dh_elliptic_adhesion`.
 
     Along theta_p = 0 (y = 0) the root of Eq. (12) is l = x^2 - a^2 exactly, and the
     slope of the Hertz gap is dh_H/dx = x/R' + d(omega)/dx with, from Eq. (12b),
@@ -200,7 +200,7 @@ def _eq31_by_quadrature(a, c, beta, v):
     """
     from scipy import integrate
 
-    from dhfield import hertz
+    from dhfield.models import hertz
 
     b = beta * a
     r_major, _ = hertz.principal_radii_from_ellipticity(beta)  # R' with R = 1 (Eqs. 3-5)
@@ -230,7 +230,7 @@ def _eq31_by_quadrature(a, c, beta, v):
 
 def _check_eq31_quadrature(n_per_curve, quick):
     """dgamma = 1 by the independent nested quadrature at states of the solved load curves."""
-    from dhfield.model import load_curve
+    from dhfield.models.dh_elliptic import load_curve
 
     worst, n = 0.0, 0
     cases = [(mu, b) for mu in (0.05, 0.5, 1.0, 5.0, 20.0) for b in (0.3, 0.8, 0.9, 0.99, 1.0)]
@@ -250,7 +250,7 @@ def _check_eq31_quadrature(n_per_curve, quick):
 
 
 def _check_limits():
-    from dhfield.model import pull_off
+    from dhfield.models.dh_elliptic import pull_off
 
     po = pull_off(mu=np.array([20.0, 0.05]), beta0=1.0)
     jkr = abs(po.W_star[0] / -0.75 - 1)
@@ -265,9 +265,9 @@ def _check_limits():
 
 def _check_curves(curves):
     """dgamma = 1, sigma0 = mu, Eq. (36) = Eq. (25), delta = Eq. (26a) along every load curve."""
-    from dhfield import double_hertz
-    from dhfield.adhesion import work_of_adhesion
-    from dhfield.geometry import sin_skew_angle
+    from dhfield.models import dh_elliptic_fields as double_hertz
+    from dhfield.models.dh_elliptic_adhesion import work_of_adhesion
+    from dhfield.core.geometry import sin_skew_angle
 
     e_dg = e_s0 = e_w = e_d = 0.0
     n = 0
@@ -285,20 +285,20 @@ def _check_curves(curves):
     what = f"{len(curves)} load curves, {n} states"
     return [
         check_le(f"Δγ = 1 along the load curves: max |Δγ − 1| by direct quadrature of Eq. (31) ({what})", e_dg,
-                 TOL_CURVE, "Eq. (31) with Δγ = 1 (Eq. 33 units); dhfield.adhesion.work_of_adhesion, "
+                 TOL_CURVE, "Eq. (31) with Δγ = 1 (Eq. 33 units); dhfield.models.dh_elliptic_adhesion.work_of_adhesion, "
                  "independent of the solve's exchanged-order integral"),
         check_le(f"σ0 = μ along the load curves: max |σ0/μ − 1| from Eq. (24) ({what})", e_s0, TOL_CURVE,
                  "Eqs. (24), (35): σ0 = v Po_cd (1 − a²/c²)^½ = μ in Eq. (33) units"),
         check_le(f"Eq. (36) W* vs dimensional Eq. (25) × sinθ_skew/(2πRΔγ): max abs. error / max |W*| ({what})",
-                 e_w, TOL_CURVE, "Eqs. (25), (34), (36); dhfield.double_hertz.load"),
+                 e_w, TOL_CURVE, "Eqs. (25), (34), (36); dhfield.models.dh_elliptic_fields.load"),
         check_le(f"δ* vs Eq. (26a) (1+v)δ_ab − vδ_cd: max abs. error / max |δ*| ({what})", e_d, TOL_CURVE,
-                 "Eqs. (14a), (26a); dhfield.double_hertz.approach"),
+                 "Eqs. (14a), (26a); dhfield.models.dh_elliptic_fields.approach"),
     ]
 
 
 def _check_stationary(mu_beta):
     """Load-controlled pull-off vs the minimum of a dense scan of W*(a*) around it."""
-    from dhfield.model import load_curve, pull_off
+    from dhfield.models.dh_elliptic import load_curve, pull_off
 
     worst, rows = 0.0, []
     for mu, beta0 in mu_beta:
@@ -321,7 +321,7 @@ def _check_stationary(mu_beta):
 
 def _continuity(n_beta):
     """Pull-off vs beta0 in [0.8, 1], both controls, and its monotonicity/smoothness checks."""
-    from dhfield.model import pull_off
+    from dhfield.models.dh_elliptic import pull_off
 
     betas = np.linspace(0.8, 1.0, n_beta)
     mus = np.asarray(MU_CONTINUITY)
@@ -401,7 +401,7 @@ def _fig_beta_family(curves_by, pulloffs, mu, outdir, dpi, fname, caption):
 def _fig_load_approach(curves_by, outdir, dpi, fname, caption):
     import matplotlib.pyplot as plt
 
-    from dhfield.model import pull_off
+    from dhfield.models.dh_elliptic import pull_off
 
     fig, axes = plt.subplots(1, 2, figsize=figsize(2, 0.4))
     ax = axes[0]
@@ -483,7 +483,7 @@ def _fig_quadrature(scatter, outdir, dpi, fname, caption):
 
 def _fig3_state(mu, beta0):
     """(a, c, beta, v) of the load-controlled pull-off state used for Fig. 3."""
-    from dhfield.model import pull_off
+    from dhfield.models.dh_elliptic import pull_off
 
     po = pull_off(mu=mu, beta0=beta0)
     return float(po.a_star), float(po.c_star), float(po.ellipticity), float(po.v)
@@ -493,7 +493,7 @@ def _fig_pressure_displacement(outdir, dpi, fname, mu=1.0, beta0=0.99):
     """Fig. 3: pressures (Eqs. 7, 16, 22) and displacements/gap (Eqs. 13, 21, 26, 27) along theta_p = 0."""
     import matplotlib.pyplot as plt
 
-    from dhfield import double_hertz, hertz
+    from dhfield.models import dh_elliptic_fields as double_hertz, hertz
 
     fig, axes = plt.subplots(1, 2, figsize=figsize(2, 0.4))
     for b0, ls in ((beta0, "-"), (1.0, "--")):
@@ -537,7 +537,7 @@ def _fig_pressure_displacement(outdir, dpi, fname, mu=1.0, beta0=0.99):
 
 def _check_gap(rng, n):
     """Eq. (27): h = 0 inside the contact ellipse and h >= 0 outside, at the Fig. 3 states."""
-    from dhfield import double_hertz
+    from dhfield.models import dh_elliptic_fields as double_hertz
 
     worst_in, worst_out = 0.0, np.inf
     for b0 in (0.8, 0.99, 1.0):
@@ -566,14 +566,14 @@ def _jkr_elliptic_contacts(w_star, beta0):
 
     Loads below the elliptical-JKR pull-off are replaced by that pull-off, and the
     last state is always the JKR pull-off.  Raises ImportError when
-    :mod:`dhfield.jkr_elliptic` does not exist.
+    :mod:`dhfield.models.jkr_elliptic` does not exist.
 
     Returns
     -------
     a_star, b_star, w_used : ndarray
     """
-    from dhfield import jkr_elliptic
-    from dhfield.geometry import sin_skew_angle
+    from dhfield.models import jkr_elliptic
+    from dhfield.core.geometry import sin_skew_angle
 
     sn = sin_skew_angle(beta0)
     po = jkr_elliptic.pull_off(1.0, 1.0, 1.0, beta0=beta0)  # R = E* = dgamma = 1: lengths are a*
@@ -591,7 +591,7 @@ def _fig_evolution(outdir, dpi, fname, n_states=5):
     """Fig. 10: contact and adhesive ellipses from loading (W* = 1) to load-controlled pull-off."""
     import matplotlib.pyplot as plt
 
-    from dhfield.model import load_curve, pull_off
+    from dhfield.models.dh_elliptic import load_curve, pull_off
 
     cases = [(5.0, 0.8), (5.0, 0.9), (0.5, 0.8)]
     fig, axes = plt.subplots(1, len(cases), figsize=figsize(2, 0.34), layout="constrained")
@@ -661,7 +661,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     Section
     """
     from dhfield.io import write_netcdf
-    from dhfield.model import load_curve, pull_off
+    from dhfield.models.dh_elliptic import load_curve, pull_off
 
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -734,7 +734,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     # ---- figures
     jkr_curve = None
     try:
-        from dhfield import jkr
+        from dhfield.models import jkr
         a_j = np.linspace(1e-3, 3.0, 300)
         lc = jkr.load_curve(a_j, 1.0, 1.0, 1.0)  # R = E* = dgamma = 1: W* = W/(2 pi)
         jkr_curve = (np.asarray(lc.force) / (2 * np.pi), a_j)
@@ -745,7 +745,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         "Reproduces paper Fig. 4: contact semi-major axis a* against W* (Eq. 34) for μ ∈ {0.5, 1, 5} at "
         "β0 = 0.99 (solid) and the circular DH model β0 = 1 (dashed), from the solve of Eqs. (24), (31), (35) "
         "and the load Eq. (36). Markers: load-controlled pull-off." +
-        (" Dotted: JKR circular (dhfield.jkr), close to μ = 5 as in the paper." if jkr_curve is not None
+        (" Dotted: JKR circular (dhfield.models.jkr), close to μ = 5 as in the paper." if jkr_curve is not None
                                                         else ""), jkr=jkr_curve))
     figures.append(_fig_axes_vs_load(
         curves_by, pulloffs, outdir, cfg["dpi"], "c", "fig05_adhesive_axis_vs_load.png",
@@ -783,11 +783,11 @@ def run(outdir: Path, quick: bool, progress) -> Section:
              "load-controlled pull-off, five states evenly spaced in W*; the colour gives W* (Eq. 34) of each "
              "state on one scale for the three panels, from W* = 1 (yellow) to the pull-off (dark).")
     if jkr_note:
-        cap10 += (" The elliptical-JKR contact is omitted: dhfield.jkr_elliptic is not available "
+        cap10 += (" The elliptical-JKR contact is omitted: dhfield.models.jkr_elliptic is not available "
                   f"({jkr_note}).")
     else:
         cap10 += (" Red dotted (μ = 5 panels, the JKR domain): the elliptical-JKR contact of Johnson & Greenwood "
-                  "(2005) (dhfield.jkr_elliptic) at the same loads, the innermost at its own pull-off: it grows "
+                  "(2005) (dhfield.models.jkr_elliptic) at the same loads, the innermost at its own pull-off: it grows "
                   "rounder towards pull-off (b/a rises from β0), whereas the DH ellipses keep β0 (Eqs. 17–19).")
     figures.append(Figure(fig10, cap10))
     figures.append(_fig_quadrature(
@@ -806,14 +806,14 @@ def run(outdir: Path, quick: bool, progress) -> Section:
         rows.append(f"| {mu:g} | {beta0:g} | {float(p.W_star):.6f} | {float(p.a_star):.5f} | {float(p.c_star):.5f} "
                     f"| {float(p.v):.5g} | {float(d.W_star):.6f} | {float(d.a_star):.5f} | "
                     f"{'yes' if bool(d.at_zero_contact) else 'no'} |")
-    tables.append("**Pull-off points of the load curves** (nondimensional, Eqs. 32–36; `dhfield.model.pull_off`)."
+    tables.append("**Pull-off points of the load curves** (nondimensional, Eqs. 32–36; `dhfield.models.dh_elliptic.pull_off`)."
                   "\n\n" + "\n".join(rows))
 
     n_quad = cfg["n_quad"]
     text = f"""
 The analytic model of the paper along the major axis θp = 0: for each contact size a* the adhesive
 semi-axis c* and the factor v solve Eq. (24) with σ0 = μ (Eq. 35) and Eq. (31) with Δγ = 1
-(`dhfield.model.load_curve`); the load follows from Eq. (36) and the approach from Eq. (26a). Both
+(`dhfield.models.dh_elliptic.load_curve`); the load follows from Eq. (36) and the approach from Eq. (26a). Both
 ellipses share the ellipticity β0 (Eqs. 9, 17, 19). Units: R = E* = Δγ = 1 (Eqs. 32–35).
 
 What this section shows:
@@ -830,7 +830,7 @@ What this section shows:
 - **Independent references** for the core: the circular closed form of Eq. (31), adaptive quadrature of
   Eq. (12b) at {n_quad} random points per β{' (quick mode: fewer points than the default 4000)' if quick else ''},
   the JKR and DMT limits, and self-consistency of every solved state with the field formulas
-  of `dhfield.double_hertz` (Eqs. 24–26).
+  of `dhfield.models.dh_elliptic_fields` (Eqs. 24–26).
 
 Paper notes: the printed Eq. (14a) `L_in = δ = πPo b K(k)` is `πE*δ`; the approach is δ = Po b K(k)/E*.
 The printed Legendre forms of Eqs. (15)/(B1)–(B3) are 0/0 at β = 1; the library uses Carlson's symmetric

@@ -126,7 +126,7 @@ def _fig_profiles(cases, path, dpi):
     """Fig. 3a/3b style: pressure and displacement (and gap) along theta_p = 0."""
     import matplotlib.pyplot as plt
 
-    from dhfield import fields
+    from dhfield.analysis import fields
 
     fig, axes = plt.subplots(1, 3, figsize=figsize(2, 0.4), constrained_layout=True)
     for case, color in zip(cases, ("tab:blue", "tab:red")):
@@ -206,7 +206,7 @@ def _fig_convergence(arr, path, dpi):
 def _hertz_refinement_row(n):
     """(N, h, rel. L-inf, rel. L-inf off the edge, rel. RMS) of the Hertz case on N x N cells
     (a row of :func:`verification.convergence_bem.study`, as one task of the sweep engine)."""
-    from dhfield import fields
+    from dhfield.analysis import fields
     from verification.convergence_bem import errors
 
     case = fields.hertz_case(n, HERTZ["semi_major"], HERTZ["beta"])
@@ -234,7 +234,9 @@ def run(outdir: Path, quick: bool, progress) -> Section:
 
     matplotlib.use("Agg")
 
-    from dhfield import bem, field_metrics, field_sampling, fields, refinement
+    from dhfield import bem
+    from dhfield.analysis import field_metrics, field_sampling, fields
+    from dhfield.core import refinement
     from dhfield.io.field import write_field
     from dhfield.sweep import map_cases
     from verification.convergence_bem import format_table

@@ -24,7 +24,7 @@ The report opens with this section.  It
 
 The recommended model is validated against the BEM only inside the box of the whole stored
 ground truth (``data/adhesive_ground_truth_extended.nc``, 57 cases: beta0 >= 0.1, i.e. crossing
-angles >= 19 deg, and 0.1 <= mu <= 10; the box of :func:`dhfield.model_error.bem_verified`, read
+angles >= 19 deg, and 0.1 <= mu <= 10; the box of :func:`dhfield.analysis.model_error.bem_verified`, read
 from the stored cases, and drawn on both figures with every stored case); the one constant of its
 Eq. (T0) was chosen on the 12 slender cases.  Every output of the section says so.
 
@@ -38,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dhfield.geometry import ellipticity_from_skew_angle
+from dhfield.core.geometry import ellipticity_from_skew_angle
 from verification._api import Figure, Section, check_ge, check_le
 from verification._style import QUICK_DPI, REPORT_DPI
 
@@ -142,7 +142,7 @@ def _slender_split(truth, dev):
 
 def verdict_lines(stored, truth, dev_truth, jkr_rows):
     """The verdict, most important first; every number computed here."""
-    from dhfield import adhesion_map as am
+    from dhfield.analysis import adhesion_map as am
 
     ref = stored.reference
     worst, signed, b, m, a = _truth_worst(truth, dev_truth[ref])
@@ -234,7 +234,7 @@ def guide_lines(stored, truth, dev_truth):
     f1 = stored.fraction_within(TOLERANCES[0])
     vb, vm = stored.validated_beta0, stored.validated_mu
     return [f"**Any crossing angle 10–90°, any μ 0.01–100: `{ref}`** (the recommended model, "
-            f"`dhfield.elliptic_transition`) — within "
+            f"`dhfield.models.md_elliptic`) — within "
             f"{100 * worst:.2f} % of all {truth['force'].size} stored BEM cases, proven inside β0 ≥ {vb[0]:g}, "
             f"{vm[0]:g} ≤ μ ≤ {vm[1]:g} only. The paper's `dh-elliptic` is within 1 % of it on "
             f"{100 * f1['dh-elliptic']:.0f} % of the map: use it to reproduce the paper."]
@@ -255,7 +255,7 @@ def jkr_table(rows):
 
 
 def fraction_table(stored, truth, dev_truth):
-    from dhfield import adhesion_map as am
+    from dhfield.analysis import adhesion_map as am
 
     f1, f5 = stored.fraction_within(TOLERANCES[0]), stored.fraction_within(TOLERANCES[1])
     out = ["| model | within 1 % of the recommended (share of map) | within 5 % | within 1 % where | "
@@ -281,7 +281,7 @@ def _failed(message):
 
 def run(outdir: Path, quick: bool, progress) -> Section:
     """Build the adhesion-map section (see the module docstring)."""
-    from dhfield import adhesion_map as am
+    from dhfield.analysis import adhesion_map as am
     from dhfield.io.adhesion_map import read_adhesion_map
     from verification import adhesion_map as vam
     from verification import jkr_limit
@@ -352,20 +352,20 @@ def run(outdir: Path, quick: bool, progress) -> Section:
                                f"{top['n_level2']} of {top['n']} cases converged on both: max |W*₂ − W*₁| / error₁",
                                top["max_step_over_error"], 1.0,
                                f"{vam.GROUND_TRUTH_EXTENDED.relative_to(ROOT)} (W_star, W_star_error on level)"))
-    from dhfield.model_error import VERIFIED_BETA0, VERIFIED_MU
+    from dhfield.analysis.model_error import VERIFIED_BETA0, VERIFIED_MU
 
     box_gap = float(np.max(np.abs(np.subtract((box_b, box_m), (VERIFIED_BETA0, VERIFIED_MU)))))
     checks.append(check_le("the map's validated box is the box of every stored BEM case "
                            f"(β0 {box_b[0]:g}–{box_b[1]:g}, μ {box_m[0]:g}–{box_m[1]:g}, {whole['force'].size} cases) "
                            "and the library's BEM-verified box: max |difference|", box_gap, 0.0,
-                           f"{vam.GROUND_TRUTH_EXTENDED.relative_to(ROOT)}; dhfield.model_error.bem_verified"))
+                           f"{vam.GROUND_TRUTH_EXTENDED.relative_to(ROOT)}; dhfield.analysis.model_error.bem_verified"))
     checks.append(check_ge("recommended model answers at every point of the map (fraction answered)",
                            again.fraction_answered()[ref], 1.0, "no refusal inside 10–90°, μ 0.01–100"))
     at90 = np.flatnonzero(again.crossing_angle_deg == 90.0)
     if at90.size:
         sph = float(np.max(np.abs(again.force[0, at90[0]] / again.force[again.index("md"), at90[0]] - 1.0)))
         checks.append(check_le("at 90° the recommended model is Maugis–Dugdale on the sphere: max |F/F_MD − 1| "
-                               "over μ", sph, TOL_SPHERE, "Maugis (1992) via dhfield.maugis_dugdale; round-off"))
+                               "over μ", sph, TOL_SPHERE, "Maugis (1992) via dhfield.models.maugis_dugdale; round-off"))
 
     # the numerical JKR limit
     rows = jkr_limit.bem_jkr_limits(GROUND_TRUTH)
@@ -415,7 +415,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     mu_below = np.unique(truth["mu"][truth["beta0"] < b_jkr])
     text = [
         "The map is read from `data/adhesion_map.nc` (command `{}`, {}) and re-run here with the current code "
-        "({} × {} points{}). The reference is the recommended model `{}` (`dhfield.elliptic_transition`: "
+        "({} × {} points{}). The reference is the recommended model `{}` (`dhfield.models.md_elliptic`: "
         "W* = −sin θ + (W*_GVG + sin θ) g(μ_e), g the sphere's Maugis–Dugdale weight between DMT and JKR at the "
         "effective μ_e = μ sin^(1/4)θ of Eq. (T0)). "
         "{}".format(stored_attr("param_command"), stored_attr("history"), ia.size, im.size,
@@ -457,11 +457,11 @@ def top_mu_levels(ds):
     |W*_2 - W*_1| / stated error of level 1), NaN where no case has both levels,
     ``beta0_level1_only`` (the cases with a level-1 answer only), ``beta0_widest`` (those of
     ``beta0_level2`` whose level 2 held the Dugdale edge at 2 h0: its message carries
-    :data:`dhfield.adhesive_start.WIDEST_EDGE_MARK`) and ``refinement`` (the smallest and largest
+    :data:`dhfield.analysis.bem_start.WIDEST_EDGE_MARK`) and ``refinement`` (the smallest and largest
     ratio of level 2's cells per axis to level 1's, ``nx`` and ``ny``, over those cases: level 2
     refines the planned lattice, level 1 may answer on its retry lattice).
     """
-    from dhfield.adhesive_start import WIDEST_EDGE_MARK
+    from dhfield.analysis.bem_start import WIDEST_EDGE_MARK
 
     mu = float(ds["mu"].where(ds["extended_study"].any("beta0"), drop=True).max())
     s = ds.sel(mu=mu)

@@ -82,8 +82,8 @@ def _plt():
 
 
 def _checks_md():
-    from dhfield import maugis_dugdale as md
-    from dhfield.transition import tabor_from_maugis
+    from dhfield.models import maugis_dugdale as md
+    from dhfield.core.transition import tabor_from_maugis
 
     out = []
     for control, jkr_value in (("load", -1.5), ("displacement", -5.0 / 6.0)):
@@ -123,8 +123,8 @@ def _checks_md():
 
 
 def _checks_jkr_elliptic():
-    from dhfield import jkr, jkr_elliptic as je
-    from dhfield.geometry import radius_ratio
+    from dhfield.models import jkr, jkr_elliptic as je
+    from dhfield.core.geometry import radius_ratio
 
     out = []
     a = np.linspace(0.02, 4.0, 300)
@@ -167,7 +167,7 @@ def _checks_jkr_elliptic():
 def _checks_dh_circular():
     from scipy import integrate
 
-    from dhfield import dh_circular, model
+    from dhfield.models import dh_circular, dh_elliptic as model
 
     out = []
     worst = 0.0
@@ -205,7 +205,7 @@ def _checks_dh_circular():
 
 
 def _check_transition():
-    from dhfield.transition import maugis_parameter
+    from dhfield.core.transition import maugis_parameter
 
     r, e, dg, s0 = 2e-6, 3e9, 0.07, 4e8
     mu = s0 * np.cbrt(r / (e * e * dg))
@@ -218,8 +218,8 @@ def _check_transition():
 
 
 def _fig8(outdir, dpi, n):
-    from dhfield import jkr, jkr_elliptic as je
-    from dhfield.model import load_curve, pull_off
+    from dhfield.models import jkr, jkr_elliptic as je
+    from dhfield.models.dh_elliptic import load_curve, pull_off
 
     plt = _plt()
     fig, ax = plt.subplots(figsize=figsize(1, 0.8))
@@ -359,7 +359,7 @@ def jkr_limits(beta0=JKR_LIMIT_BETA0):
         energy-minimising elliptical JKR of Giudici, Vella & Griffiths (2025), ``jkr-elliptic-energy``
         (load control, Eq. 34).
     """
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     out = {}
     for b in beta0:
@@ -375,7 +375,7 @@ def verdict_lines(tab, jkr=None):
     ----------
     tab : dict
         ``tab[(mu, beta0)][model]`` = load-controlled W*max (Eq. 34), for :data:`MU_TABLE` × :data:`BETA0`,
-        with the recommended model (:data:`dhfield.compare.RECOMMENDED_MODEL`) among the models.
+        with the recommended model (:data:`dhfield.analysis.compare.RECOMMENDED_MODEL`) among the models.
     jkr : dict, optional
         :func:`jkr_limits`: the two elliptical JKR limits compared in the guide.
 
@@ -383,7 +383,7 @@ def verdict_lines(tab, jkr=None):
     -------
     verdict, guide : list of str
     """
-    from dhfield.compare import PAPER_MODEL, RECOMMENDED_MODEL
+    from dhfield.analysis.compare import PAPER_MODEL, RECOMMENDED_MODEL
 
     def rel(mu, b0, name, ref="jkr-elliptic"):
         return tab[(mu, b0)][name] / tab[(mu, b0)][ref] - 1
@@ -470,7 +470,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     -------
     Section
     """
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -504,20 +504,20 @@ def run(outdir: Path, quick: bool, progress) -> Section:
     datasets = [_dataset(mu, res, outdir)]
     progress("figures 8, 9 and the dataset")
 
-    from dhfield.jkr_elliptic import pull_off_ellipticity
+    from dhfield.models.jkr_elliptic import pull_off_ellipticity
 
     bj = pull_off_ellipticity(beta0=np.array(BETA0))
     text = (
         "All models are on the paper's axes: W* = W sinθ_skew/(2πRΔγ) (Eq. 34) with sinθ_skew of β0 for the "
         "elliptical models and 1 for the circular ones, R = √(R′R″), lengths in c_r (Eq. 33). Maugis–Dugdale "
-        "is evaluated at λ = 2(9/(16π))^(1/3) μ = 1.1272 μ (same σ0; `dhfield.transition`).\n\n"
+        "is evaluated at λ = 2(9/(16π))^(1/3) μ = 1.1272 μ (same σ0; `dhfield.core.transition`).\n\n"
         "**Elliptical JKR normalisation.** Its W* carries sinθ_skew(β0) like the DH models, so that Figs. 8–9 "
         "compare like with like; at mild ellipticity W* = −0.75·f·sinθ_skew, where f = W/(−1.5πRΔγ) is the "
         "pull-off in circular-JKR units (f = 0.9853, 0.9439, 0.8609 at R′/R″ = 2, 4, 10) and 1 − f, "
         "1 − sinθ_skew are both O((ln R′/R″)²).\n\n"
         "**β_JKR(pull-off)** (load control): " + ", ".join(f"{b:g} → {x:.4f}" for b, x in zip(BETA0, bj)) +
         ". The JKR-β variant uses it for the shapes and Hertz relations (Eqs. 8, 11, 20) of both ellipses and "
-        "keeps sinθ_skew(β0) in Eq. (34) (see `dhfield.compare`).\n\n"
+        "keeps sinθ_skew(β0) in Eq. (34) (see `dhfield.analysis.compare`).\n\n"
         "**Not reached (physics, not numerics).** (i) β → β0 at W* = 100 to 1e-3 holds for β0 = 0.99 only: "
         "β − β0 = C/√W* with " + ", ".join(f"β0 = {b:g}: β − β0 = {d:.2e} at W* = 100 (C = {c:.3f})"
                                             for b, (d, c) in beta_hi.items()) +

@@ -6,8 +6,8 @@ beta0 in {0.8, 0.9, 0.99} and mu in {0.5, 1, 2, 5}: the maximum adhesive stress
 sigma0(theta_p), the zone width, the edge separation, the ray work of adhesion
 Delta gamma(theta_p) (Eq. 31 on every ray) and the sigma-h curves; Eq. (30) as
 printed, by area and by Green's theorem; the spread of the cohesive law across
-theta_p and two alternative closures (:mod:`dhfield.closure`); and the ray work
-from the BEM gap field (:mod:`dhfield.fields`) against the analytic one.
+theta_p and two alternative closures (:mod:`dhfield.models.dh_elliptic_closure`); and the ray work
+from the BEM gap field (:mod:`dhfield.analysis.fields`) against the analytic one.
 
 ``python -m verification.sec_periphery`` prints the tables (full resolution);
 ``--quick`` the quick ones.
@@ -32,7 +32,7 @@ MU = (0.5, 1.0, 2.0, 5.0)
 TOL_EQ30 = 1e-6
 #: Green's form: the curved edges (h = 0, σ = 0) vanish; rounding of closed forms
 TOL_EDGES = 1e-12
-#: ray quadrature (graded Gauss) vs dhfield.adhesion (a separate implementation), exponential rule
+#: ray quadrature (graded Gauss) vs dhfield.models.dh_elliptic_adhesion (a separate implementation), exponential rule
 TOL_RAY = 1e-11
 #: β0 = 1 against Greenwood & Johnson (1998) closed form and θp independence: rounding
 TOL_CIRCLE = 1e-12
@@ -79,7 +79,9 @@ def _plt():
 # --------------------------------------------------------------------------- computations
 def compute(quick=False, progress=print):
     """All numbers of the section (no files).  Returns a dict of results."""
-    from dhfield import closure, compare, eq30, model, periphery
+    from dhfield.models import (dh_elliptic_closure as closure, dh_elliptic as model, dh_elliptic_periphery as
+                                periphery)
+    from dhfield.analysis import compare, eq30
 
     cfg = _settings(quick)
     mu, beta0 = np.array(MU), np.array(BETA0)
@@ -112,7 +114,7 @@ def compute(quick=False, progress=print):
 
 
 def bem_comparison(cases, ns, progress=print, theta=None):
-    """Δγ(θp) from the BEM gap (dhfield.fields.dh_case) vs analytic, per case and N.
+    """Δγ(θp) from the BEM gap (dhfield.analysis.fields.dh_case) vs analytic, per case and N.
 
     Returns a list of dicts (beta0, mu, n, error, profile, analytic, order) and the
     Eq. (30) area sum on the finest BEM field of the first case.  The cases run as
@@ -137,7 +139,9 @@ def bem_comparison(cases, ns, progress=print, theta=None):
 
 def _bem_case(b0, m, ns, theta, with_eq30):
     """One case of :func:`bem_comparison` at every N (a task of the sweep engine)."""
-    from dhfield import double_hertz, eq30, fields, model, periphery
+    from dhfield.models import (dh_elliptic_fields as double_hertz, dh_elliptic as model,
+                                dh_elliptic_periphery as periphery)
+    from dhfield.analysis import eq30, fields
 
     out = []
     eq30_grid = None
@@ -257,8 +261,10 @@ def bem_table(recs):
 
 # --------------------------------------------------------------------------- checks
 def _checks(res):
-    from dhfield import adhesion, closure, eq30, hertz, model, periphery
-    from dhfield.geometry import radius_ratio
+    from dhfield.models import (dh_elliptic_adhesion as adhesion, dh_elliptic_closure as closure, hertz,
+                                dh_elliptic as model, dh_elliptic_periphery as periphery)
+    from dhfield.analysis import eq30
+    from dhfield.core.geometry import radius_ratio
 
     out = []
     po, prof = res["pull_off"], res["profile"]
@@ -275,11 +281,11 @@ def _checks(res):
     th = res["theta"]
     ref = adhesion.work_of_adhesion(po.a_star[..., None], po.c_star[..., None], po.ellipticity[..., None],
                                     po.v[..., None], theta=th)
-    out.append(check_le("Δγ(θp) of dhfield.periphery vs dhfield.adhesion.work_of_adhesion (separate code), "
+    out.append(check_le("Δγ(θp) of dhfield.models.dh_elliptic_periphery vs dhfield.models.dh_elliptic_adhesion.work_of_adhesion (separate code), "
                         "all rays and pull-off states, max rel. difference", np.max(np.abs(w / ref - 1)), TOL_RAY,
                         "two implementations of Eq. (31) on every ray"))
     out.append(check_le("Δγ(θp = 0) = 1 at pull-off (Eq. 31 imposed by the model), max abs. error",
-                        np.max(np.abs(w[..., 0] - 1)), TOL_RAY, "dhfield.model solve"))
+                        np.max(np.abs(w[..., 0] - 1)), TOL_RAY, "dhfield.models.dh_elliptic solve"))
     s0 = prof.max_adhesive_stress
     out.append(check_le("equal β: σ0(θp) = μ on every ray (Eqs. 24, 35), max rel. deviation",
                         np.max(np.abs(s0 / res["mu"][None, :, None] - 1)), TOL_SIGMA0,
@@ -382,7 +388,7 @@ def _fig_laws(res, outdir, dpi):
 
 
 def _fig_curves(res, outdir, dpi, n):
-    from dhfield import model, periphery
+    from dhfield.models import dh_elliptic as model, dh_elliptic_periphery as periphery
 
     plt = _plt()
     fig, ax = plt.subplots(figsize=figsize(1))
@@ -508,7 +514,7 @@ def _text(res, recs, eq30_grid, quick):
         "adhesion is the "
         "line integral across the zone, Δγ(θp) = ∫_{r_ab}^{r_cd} σ ∂h/∂r dr, on every ray; for the DH fields, "
         "which are not consistent, a single number must be chosen — θp = 0 (the paper), or the periphery "
-        "average Δγ̄ = ∫Δγ(θp) r_ab² dθp / ∫r_ab² dθp (`dhfield.eq30.periphery_work_of_adhesion`).")
+        "average Δγ̄ = ∫Δγ(θp) r_ab² dθp / ∫r_ab² dθp (`dhfield.analysis.eq30.periphery_work_of_adhesion`).")
     if imu5 is not None and 0.8 in res["closure_beta"]:
         i8 = list(res["closure_beta"]).index(0.8)
         t = cl["two_axis"]
@@ -572,8 +578,9 @@ def verdict_lines(res, recs):
     -------
     verdict, guide : list of str
     """
-    from dhfield import eq30, model
-    from dhfield.geometry import skew_angle
+    from dhfield.analysis import eq30
+    from dhfield.models import dh_elliptic as model
+    from dhfield.core.geometry import skew_angle
 
     def rng(x, fmt):
         lo, hi = float(np.min(x)), float(np.max(x))
@@ -646,7 +653,7 @@ def verdict_lines(res, recs):
     if 5.0 in cm:
         j = cm.index(5.0)
         s0 = cl["two_axis"].sigma0_minor / np.asarray(cm)[None, :]
-        from dhfield.compare import PAPER_MODEL, RECOMMENDED_MODEL
+        from dhfield.analysis.compare import PAPER_MODEL, RECOMMENDED_MODEL
 
         guide.append(
             f"**The paper's pressure form on elliptical contacts, β0 < 0.99 (θ_skew below about "
@@ -693,7 +700,7 @@ def _datasets(res, recs, outdir):
 
 def _sub_spread(res):
     """The spread restricted to the closure grid (same β0, μ subset)."""
-    from dhfield.closure import EqualBetaSpread
+    from dhfield.models.dh_elliptic_closure import EqualBetaSpread
 
     ib = [list(res["beta0"]).index(b) for b in res["closure_beta"]]
     im = [list(res["mu"]).index(m) for m in res["closure_mu"]]
@@ -732,7 +739,7 @@ def run(outdir: Path, quick: bool, progress) -> Section:
                                f"differences{', QUICK' if quick else ''}) vs the analytic area integral, rel.",
                                abs(eq30_grid["value"] / eq30_grid["exact"] - 1),
                                TOL_EQ30_GRID_QUICK if quick else TOL_EQ30_GRID,
-                               "dhfield.eq30.eq30_area (analytic fields)"))
+                               "dhfield.analysis.eq30.eq30_area (analytic fields)"))
     figures = [_fig_rays(res, outdir, cfg["dpi"]), _fig_laws(res, outdir, cfg["dpi"])]
     fig, curves = _fig_curves(res, outdir, cfg["dpi"], cfg["curve_n"])
     figures += [fig, _fig_closures(res, outdir, cfg["dpi"]), _fig_bem(recs, outdir, cfg["dpi"])]

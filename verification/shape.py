@@ -20,7 +20,7 @@ Prints, for the dhfield package under ``--root`` (default: this checkout):
   with scipy's ``find_minimum``/``minimize_scalar``/``fminbound``/``golden``/``brent`` or
   ``find_root`` on a derivative (a callable whose name starts with ``d`` or ``slope``).  Before
   issue 16's one rule (commit cb04ac6) a refinement was counted as a search;
-* the number of ``dhfield._validation`` calls on one ``dhfield pulloff --beta0 0.9 --mu 1 --json``
+* the number of ``dhfield.core.validation`` calls on one ``dhfield pulloff --beta0 0.9 --mu 1 --json``
   (outermost calls only, counted per parameter name; target: each input once), and the same count,
   each in a fresh process, on ``dhfield curve --beta0 0.9 --mu 1 --json`` and ``dhfield compare
   --beta0 0.9 --mu 1`` and ``dhfield pulloff`` with SI inputs (``check_grid_point`` checks beta0, mu and
@@ -204,7 +204,7 @@ def probe(prefix, values):
 
 _PROBE = r'''
 import functools, importlib, inspect, io, contextlib, json, pkgutil, sys
-import dhfield._validation as V
+import dhfield.core.validation as V
 
 counts, depth = {}, [0]
 def wrap(name, f):
@@ -231,19 +231,19 @@ with contextlib.redirect_stdout(io.StringIO()):
     rc = main(["pulloff", "--beta0", "0.9", "--mu", "1", "--json"])
 validation = dict(counts)
 
-from dhfield.dimensional import contact_parameters
+from dhfield.analysis.dimensional import contact_parameters
 params = contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
 values = {"mu": 1.0, "beta0": 0.9, "lam": 1.1272, "control": "load", "model": "dh-elliptic",
           "effective_radius": 1e-2, "reduced_modulus": 1.33e6, "work_of_adhesion": 0.05,
           "max_adhesive_stress": 2e5, "params": params, "parameters": params, "machine_stiffness": 1.0}
 types, skipped = probe("pull_off", values)
 # the BEM's pull-offs (the smallest grid that runs in seconds): load control, and under a spring K* = 1
-from dhfield.adhesive_start import adhesive_pull_off
-from dhfield.bem_compliance import bem_pull_off_under_spring, bem_unloading_branch
+from dhfield.analysis.bem_start import adhesive_pull_off
+from dhfield.analysis.bem_spring import bem_pull_off_under_spring, bem_unloading_branch
 bem_types = {}
-for fname, call in (("dhfield.adhesive_start.adhesive_pull_off",
+for fname, call in (("dhfield.analysis.bem_start.adhesive_pull_off",
                      lambda: adhesive_pull_off(beta0=0.9, mu=1.0, n=32, progress=False)),
-                    ("dhfield.bem_compliance.bem_pull_off_under_spring",
+                    ("dhfield.analysis.bem_spring.bem_pull_off_under_spring",
                      lambda: bem_pull_off_under_spring(bem_unloading_branch(beta0=0.9, mu=1.0, n=32), 1.0))):
     try:
         with contextlib.redirect_stderr(io.StringIO()):
@@ -259,7 +259,7 @@ print(json.dumps({"rc": rc, "validation": validation, "types": types, "bem_types
 
 #: Further CLI calls whose _validation calls are counted, each in a fresh process (no cached state).
 COUNTED_CALLS = (["curve", "--beta0", "0.9", "--mu", "1", "--json"], ["compare", "--beta0", "0.9", "--mu", "1"],
-                 # SI inputs (dhfield.dimensional): each SI input once, then the grid point they give
+                 # SI inputs (dhfield.analysis.dimensional): each SI input once, then the grid point they give
                  ["pulloff", "--youngs-modulus", "1e6", "--poisson-ratio", "0.5", "--cylinder-radius", "0.01",
                   "--skew-angle-deg", "60", "--work-of-adhesion", "0.05", "--adhesive-stress", "2e5", "--json"])
 
@@ -294,7 +294,7 @@ _CURVE_PROBE = r'''
 import contextlib, importlib, inspect, io, json, pkgutil
 import numpy as np
 ''' + _CALLER + r'''
-from dhfield.dimensional import contact_parameters
+from dhfield.analysis.dimensional import contact_parameters
 
 params = contact_parameters(1e6, 0.5, 1e6, 0.5, 0.01, 1.2, 0.05, 2e5)
 size = np.array([1e-4, 3e-4])  # [m], c_r ~ 1.6e-4 m

@@ -10,7 +10,7 @@ h0 = 1/mu in the paper's units) gives W*max (Eq. 34 normalisation), the
 second-moment semi-axes a*, b*, c*, d* and beta_ab = b/a, beta_cd = d/c at the
 pull-off.  The three finest N are Richardson-extrapolated
 (:func:`dhfield.bem.richardson_extrapolation`); the result is stored next to
-every analytic model of :mod:`dhfield.compare` at the same (beta0, mu): the
+every analytic model of :mod:`dhfield.analysis.compare` at the same (beta0, mu): the
 paper's closure (``dh-elliptic``), its JKR-beta variant, the ray-average and
 two-axis closures, elliptical JKR (Johnson & Greenwood 2005) and Maugis-Dugdale
 (a sphere with R = sqrt(R'R''), lambda = 1.1272 mu).
@@ -72,7 +72,7 @@ N_LADDER = (64, 128, 256)
 STUDY_MAX_ITER = 3000
 DEFAULT_WORK_DIR = ROOT / "out" / "adhesive_study"
 DEFAULT_OUT = ROOT / "data" / "adhesive_ground_truth.nc"
-#: Analytic models stored next to the BEM (names of dhfield.compare.MODEL_NAMES).
+#: Analytic models stored next to the BEM (names of dhfield.analysis.compare.MODEL_NAMES).
 REFERENCE_MODELS = ("dh-elliptic", "dh-elliptic-jkr-beta", "dh-elliptic-ray-average",
                     "dh-elliptic-two-axis", "jkr-elliptic", "md", "dmt")
 #: Status codes of a case (CF flag values in the dataset).  "unconverged_after_pull_off":
@@ -118,9 +118,9 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=
     n : int
         Cells per axis [-].
     solver : callable, optional
-        ``solver(mu, beta0, n, law=..., control=..., **options) -> dhfield.records.PullOff``;
+        ``solver(mu, beta0, n, law=..., control=..., **options) -> dhfield.core.records.PullOff``;
         default :func:`dhfield.bem.adhesive_pull_off` (tests pass a stand-in).
-    start : dhfield.records.PullOff, optional
+    start : dhfield.core.records.PullOff, optional
         The same case at a coarser N: then only the states around its pull-off are
         solved at ``n`` (:func:`dhfield.bem.refine_pull_off`, coarse to fine).
 
@@ -136,10 +136,10 @@ def run_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, start=
 
 def _gathered(options) -> dict:
     """The study's flat options as keyword arguments of the library's pull-offs: the numerical
-    settings (the fields of :class:`dhfield.adhesive_start.AdhesiveOptions`) gathered as ``options``."""
+    settings (the fields of :class:`dhfield.analysis.bem_start.AdhesiveOptions`) gathered as ``options``."""
     from dataclasses import fields
 
-    from dhfield.adhesive_start import AdhesiveOptions
+    from dhfield.analysis.bem_start import AdhesiveOptions
 
     numerics = {f.name for f in fields(AdhesiveOptions)}
     return {**{k: v for k, v in options.items() if k not in numerics},
@@ -176,7 +176,7 @@ def _solve_case(beta0, mu, n, *, law="dugdale", control="load", solver=None, sta
         rec.update(status="failed", message=f"{where}: {type(exc).__name__}: {exc}",
                    elapsed=time.perf_counter() - t0, converged=False, failures=[])
         return rec, None
-    d = dict(res)   # the BEM's pull-off record (dhfield.records.PullOff, a mapping)
+    d = dict(res)   # the BEM's pull-off record (dhfield.core.records.PullOff, a mapping)
     for stored, key in (("beta_ab", "ellipticity"), ("beta_cd", "adhesive_ellipticity")):
         if key in d:
             d[stored] = d[key]      # the study's case files and dataset keep their names
@@ -356,7 +356,7 @@ def extrapolate(ns, values):
 
 def reference_table(beta0s, mus, models=REFERENCE_MODELS, control="load") -> dict:
     """model -> {'W_star', 'ellipticity', 'adhesive_ellipticity'} arrays of shape (beta0, mu)."""
-    from dhfield import compare
+    from dhfield.analysis import compare
 
     b = np.asarray(beta0s, float)[:, None]
     m = np.asarray(mus, float)[None, :]

@@ -448,7 +448,7 @@ def _sweep_cases(work_dir):
     Parts are read in the order of :data:`PARTS`; a case in a later part replaces the same case of
     an earlier one (a part that runs again the cases others left without an answer comes later).
     A case's message is the sweep's (why it is not an answer) or, for an answer, the solver's note
-    (e.g. :data:`dhfield.adhesive_start.WIDEST_EDGE_NOTE`, a lattice retry).
+    (e.g. :data:`dhfield.analysis.bem_start.WIDEST_EDGE_NOTE`, a lattice retry).
     """
     import xarray as xr
 

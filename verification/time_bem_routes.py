@@ -7,7 +7,7 @@ argv[1]: the checkout whose dhfield is timed (put first on sys.path).  About 30 
 """
 import sys, time
 sys.path.insert(0, sys.argv[1])
-from dhfield import transition
+from dhfield.core import transition
 from dhfield.bem import adhesive_pull_off
 cases = [("located N=256 lam=3", 3.0, 256, dict(search="located")),
          ("bracket N=128 lam=3", 3.0, 128, dict(search="bracket")),

@@ -14,10 +14,10 @@
   marching path, the continuation (:func:`unloading_path` dispatches).
 * :mod:`dhfield.bem.pull_off` -- the pull-off in the paper's units from a given
   start (:class:`UnloadingStart`): located, bracket, march, continuation, coarse to fine,
-  each answering with the one pull-off record :class:`dhfield.records.PullOff`.
+  each answering with the one pull-off record :class:`dhfield.core.records.PullOff`.
 
 This package imports no analytic model: the start of the paper's problem is chosen
-from the models by :mod:`dhfield.adhesive_start`, whose :func:`adhesive_pull_off`,
+from the models by :mod:`dhfield.analysis.bem_start`, whose :func:`adhesive_pull_off`,
 :func:`refine_pull_off` and :func:`nondimensional_problem` are forwarded here on
 first use (``from dhfield.bem import adhesive_pull_off`` keeps working).  The public
 names of :mod:`dhfield.bem.operator` are re-exported here, so
@@ -38,7 +38,7 @@ from .pull_off import (DEFAULT_STEPS, DISPLACEMENT_CONTROL_NOTE, DOMAIN_MARGIN, 
                        NestedWarmStart, NondimensionalProblem, UnloadingStart, interpolate_state, pull_off_summary,
                        paper_problem, richardson_extrapolation, solve_pull_off)
 
-#: Names of :mod:`dhfield.adhesive_start` forwarded on first use (it imports the analytic models).
+#: Names of :mod:`dhfield.analysis.bem_start` forwarded on first use (it imports the analytic models).
 _FROM_START = ("adhesive_pull_off", "refine_pull_off", "nondimensional_problem", "unloading_start")
 
 __all__ = list(_operator_all) + [
@@ -53,7 +53,7 @@ __all__ = list(_operator_all) + [
 
 def __getattr__(name):
     if name in _FROM_START:
-        from .. import adhesive_start
+        from ..analysis import bem_start
 
-        return getattr(adhesive_start, name)
+        return getattr(bem_start, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

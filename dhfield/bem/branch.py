@@ -26,8 +26,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validation import check_optional_count
-from ..pull_off_search import refine_sampled_minimum
+from ..core.validation import check_optional_count
+from ..core.pull_off_search import refine_sampled_minimum
 from .solver import MAX_OUTER, secant_prediction, solve_problem
 from .state import ContactState
 
@@ -654,7 +654,7 @@ class Branch:
         order : list of int
             Those indices by decreasing approach, states off the branch left out.
         minimum : SampledMinimum or None
-            The load minimum (:func:`dhfield.pull_off_search.refine_sampled_minimum`,
+            The load minimum (:func:`dhfield.core.pull_off_search.refine_sampled_minimum`,
             global) over the usable states only; None when there is none.
         """
         order = self.by_approach(i for i in indices if self.records[i]["phase"] not in NOT_ON_BRANCH)

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from .._validation import check_count, check_finite, check_positive, check_sequence
+from ..core.validation import check_count, check_finite, check_positive, check_sequence
 from .laws import DugdaleLaw, cell_fraction_below
 from .solver import (ANDERSON_RESTART, MAX_OUTER, STALL_OUTER, AdhesiveProblem, AndersonMixing, Prediction,
                      assemble_state, extrapolated_start, solve_contact_pressure)

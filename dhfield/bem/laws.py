@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import check_positive
+from ..core.validation import check_positive
 from .backend import namespace_of
 
 __all__ = ["DugdaleLaw", "ExponentialLaw", "TractionLaw", "cell_fraction_below"]

@@ -14,7 +14,7 @@ Conventions
   axis of the ellipse; axis 1 is y).
 * **Signs.**  Pressure is positive in compression; the displacement is the
   combined normal displacement of both bodies, positive into the bodies, as in
-  Eq. (12) and :mod:`dhfield.hertz`, so that the gap is
+  Eq. (12) and :mod:`dhfield.models.hertz`, so that the gap is
   ``h = z - delta + omega``.  Tensile (adhesive) stress is negative pressure.
 * **Green's function.**  Boussinesq's point-load solution for the combined
   compliance, ``omega = p dA / (pi E* rho)``, integrated exactly over each
@@ -83,7 +83,7 @@ import numpy as np
 import pyfftw
 import scipy.fft
 
-from .._validation import check_finite, check_positive
+from ..core.validation import check_finite, check_positive
 from ._wisdom import load_wisdom, save_wisdom
 from .backend import array_module, check_backend, default_backend
 

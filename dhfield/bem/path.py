@@ -9,7 +9,7 @@ states are multistable: never a cold start part-way).
   contact is lost, the bracket of the minimum re-solved ``refine_levels`` times
   with finer steps) or, given ``approach_guess``, a *bracket search* around it
   (a handful of states, parabolic vertex refinement).  The minimum is refined
-  by :func:`dhfield.pull_off_search.refine_sampled_minimum`.
+  by :func:`dhfield.core.pull_off_search.refine_sampled_minimum`.
 * **Displacement control** (the jump: the minimum of the approach, i.e. the
   fold of the contact branch, or the loss of contact when the approach still
   falls there): the branch is followed by prescribed adhesive force with the
@@ -27,7 +27,7 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from .._validation import check_count, check_finite, check_positive, check_sequence
+from ..core.validation import check_count, check_finite, check_positive, check_sequence
 from .branch import Branch, PathProgress, UnloadingPath
 from .continuation import FOLD_STEPS, fold_by_adhesive_force
 from .solver import DEFAULT_MAX_ITER, DEFAULT_TOL, AdhesiveProblem, Prediction, secant_prediction
@@ -525,7 +525,7 @@ def unloading_path(initial_gap, grid, law, approach_max, approach_step, *, contr
     ``approach_step`` until the first state without contact, every state
     warm-started from the previous ones; the bracket of the discrete load
     minimum is re-solved from its upper end with finer steps.  The load
-    minimum is refined by :func:`dhfield.pull_off_search.refine_sampled_minimum`
+    minimum is refined by :func:`dhfield.core.pull_off_search.refine_sampled_minimum`
     on the finest samples.
 
     **Displacement control** (:func:`continuation_path`): the first state is

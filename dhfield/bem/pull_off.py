@@ -2,7 +2,7 @@
 
 The engine takes its start as an argument: :class:`UnloadingStart` (the domain, the
 range of the unloading path and the cold start of the bracket search) is chosen by
-the caller -- :mod:`dhfield.adhesive_start` chooses it from the analytic models, so
+the caller -- :mod:`dhfield.analysis.bem_start` chooses it from the analytic models, so
 that this package imports none of the models it is the ground truth for.
 
 :func:`paper_problem` sets up the crossed-cylinder problem of the paper on a grid
@@ -15,7 +15,7 @@ time at lambda = 3, N = 256).  :func:`refine` carries a pull-off to a finer grid
 (coarse to fine, :func:`interpolate_state`); :func:`richardson_extrapolation`
 extrapolates pull-offs over N.  Every route is a short function on one
 :class:`dhfield.bem.branch.Branch`, and every route answers with the one pull-off
-record of dhfield, :class:`dhfield.records.PullOff` with its solver group
+record of dhfield, :class:`dhfield.core.records.PullOff` with its solver group
 (:func:`pull_off_result`; :func:`pull_off_summary` is its JSON-ready form).
 """
 from __future__ import annotations
@@ -25,9 +25,9 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._validation import check_count, check_ellipticity, check_positive
-from ..geometry import radius_ratio, sin_skew_angle
-from ..records import PullOff
+from ..core.validation import check_count, check_ellipticity, check_positive
+from ..core.geometry import radius_ratio, sin_skew_angle
+from ..core.records import PullOff
 from .branch import Branch, UnloadingPath
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
@@ -61,7 +61,7 @@ class UnloadingStart:
     """Where the BEM's unloading path starts (an input, not a result), chosen by the caller.
 
     The domain, the range of the unloading path and the cold start of the bracket search,
-    e.g. from :func:`dhfield.adhesive_start.unloading_start`.
+    e.g. from :func:`dhfield.analysis.bem_start.unloading_start`.
 
     Parameters
     ----------
@@ -1033,7 +1033,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
     search : {'located', 'bracket', 'march'}
-        The load-control route (:func:`dhfield.adhesive_start.adhesive_pull_off`
+        The load-control route (:func:`dhfield.analysis.bem_start.adhesive_pull_off`
         describes each); without a cold start in ``problem``: 'march'.
     nested : bool, optional
         Bracket search only: warm starts from the grid half as fine
@@ -1043,7 +1043,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
 
     Returns
     -------
-    dhfield.records.PullOff
+    dhfield.core.records.PullOff
         The BEM's record (:func:`pull_off_result`): W* in the normalisation of Eq. (34);
         ``search`` names the route taken.
     """
@@ -1080,7 +1080,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
     return pull_off_result(problem, n, path, route)
 
 
-#: Caveat carried by every displacement-control pull-off (the ``note`` of its :class:`dhfield.records.PullOff`).
+#: Caveat carried by every displacement-control pull-off (the ``note`` of its :class:`dhfield.core.records.PullOff`).
 #: Measured on the sphere against Maugis-Dugdale's displacement-control pull-off (the
 #: minimum of delta(a), or its end a = 0) with ``verification/displacement_pull_off.py``
 #: (2026-11-23), N = 128 / 256: within 0.8 % for lambda = 0.3-3.  Near lambda = 1 the fold lies
@@ -1367,10 +1367,10 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
 
     Returns
     -------
-    dhfield.records.PullOff
+    dhfield.core.records.PullOff
         The one pull-off record of dhfield, with ``model='bem'``, ``geometry='ellipse'``,
         ``sin_skew`` of beta0 (Eq. 34), ``v`` NaN, and its solver group
-        (:data:`dhfield.schema.PULL_OFF_SOLVER_KEYS`); ``path`` holds the whole
+        (:data:`dhfield.core.schema.PULL_OFF_SOLVER_KEYS`); ``path`` holds the whole
         :class:`~dhfield.bem.branch.UnloadingPath`.  The BEM's fields:
 
         - ``a_star`` ... ``d_star``: second-moment semi-axes of the contact and of
@@ -1443,7 +1443,7 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
 
 
 def check_bem_pull_off(name, value) -> PullOff:
-    """``value`` if it is a BEM pull-off record (a :class:`dhfield.records.PullOff` with its path), else ValueError.
+    """``value`` if it is a BEM pull-off record (a :class:`dhfield.core.records.PullOff` with its path), else ValueError.
 
     Parameters
     ----------
@@ -1454,11 +1454,11 @@ def check_bem_pull_off(name, value) -> PullOff:
 
     Returns
     -------
-    dhfield.records.PullOff
+    dhfield.core.records.PullOff
         ``value``.
     """
     if not (isinstance(value, PullOff) and value.model == "bem" and value.path is not None):
-        raise ValueError(f"{name} must be a BEM pull-off (the dhfield.records.PullOff of adhesive_pull_off, "
+        raise ValueError(f"{name} must be a BEM pull-off (the dhfield.core.records.PullOff of adhesive_pull_off, "
                          f"with its path); got {type(value).__name__}")
     return value
 
@@ -1468,14 +1468,14 @@ def pull_off_summary(result) -> dict:
 
     Parameters
     ----------
-    result : dhfield.records.PullOff
+    result : dhfield.core.records.PullOff
         A BEM pull-off (:func:`pull_off_result`).
 
     Returns
     -------
     dict
-        Every key of the record in its order (:data:`dhfield.schema.PULL_OFF_KEYS` then
-        :data:`dhfield.schema.PULL_OFF_SOLVER_KEYS`), ``failures`` as a list of dicts
+        Every key of the record in its order (:data:`dhfield.core.schema.PULL_OFF_KEYS` then
+        :data:`dhfield.core.schema.PULL_OFF_SOLVER_KEYS`), ``failures`` as a list of dicts
         (not the path).
     """
     out = dict(check_bem_pull_off("result", result))
@@ -1582,7 +1582,7 @@ def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> P
     ----------
     problem : NondimensionalProblem
         The fine grid's problem, over the same domain and path range as ``coarse``'s.
-    coarse : dhfield.records.PullOff
+    coarse : dhfield.core.records.PullOff
         A BEM load-control pull-off of the same (mu, beta0, law) on a coarser grid.
     window : int
         Half-width of the window of fine states around the coarse pull-off, in
@@ -1594,7 +1594,7 @@ def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> P
 
     Returns
     -------
-    dhfield.records.PullOff
+    dhfield.core.records.PullOff
         The BEM's record (:func:`pull_off_result`, ``search='refine'``), with
         ``path.phase == 'refine'`` for every state; ``converged`` when every
         state of the window converged and the minimum is interior.

@@ -89,7 +89,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.fft import next_fast_len
 
-from .._validation import check_finite, check_optional_count, check_positive
+from ..core.validation import check_finite, check_optional_count, check_positive
 from .backend import array_module, namespace_of, to_host
 from .laws import DugdaleLaw, cell_fraction_below, check_law
 from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, quadrant, unfold_quadrant
@@ -187,7 +187,7 @@ def edge_width_ratio(grid, law, reduced_modulus=1.0) -> float:
     -----
     The ratio falls like ln(n)/n as the cells shrink; in the paper's units (sigma0 = mu,
     h0 = 1/mu) it is ``kappa mu^2 sqrt(dx dy)/2`` for the Dugdale law, so a case at mu needs
-    cells ``sqrt(dx dy) <= 2/(kappa mu^2)`` (:func:`dhfield.adhesive_start.required_cells`).
+    cells ``sqrt(dx dy) <= 2/(kappa mu^2)`` (:func:`dhfield.analysis.bem_start.required_cells`).
     """
     want = _edge_compliance(grid, float(reduced_modulus)) * law.max_stress
     return want / (2.0 * law.range) if isinstance(law, DugdaleLaw) else want / law.range
@@ -233,7 +233,7 @@ class AdhesiveProblem:
         solve) are the backend's; :meth:`to_full` returns numpy arrays.
     widest_edge : bool, default False
         Spread the Dugdale edge over its cap 2 h0 (see above): a warm start's law, or, by
-        choice (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), the law of a
+        choice (:attr:`dhfield.analysis.bem_start.AdhesiveOptions.widest_edge`), the law of a
         high-mu refinement that keeps level 1's law (a stress ramp over gaps 0 to 2 h0).
 
     Raises

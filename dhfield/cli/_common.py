@@ -72,7 +72,7 @@ def add_model_arguments(p, required=True) -> None:
 
 
 def model_names():
-    from ..compare import MODEL_NAMES
+    from ..analysis.compare import MODEL_NAMES
 
     return MODEL_NAMES
 
@@ -156,7 +156,7 @@ def contact_parameters_from_args(args):
     if len(shapes) != 1:
         raise UsageError("give exactly one of --cylinder-radius, --radii R1 R2, --principal-radii R' R''; "
                          f"got {', '.join(shapes) or 'none'}")
-    from .. import dimensional
+    from ..analysis import dimensional
 
     e1, nu1 = args.youngs_modulus, args.poisson_ratio
     e2 = e1 if args.youngs_modulus_2 is None else args.youngs_modulus_2
@@ -171,8 +171,8 @@ def contact_parameters_from_args(args):
         if not 0.0 < args.skew_angle_deg <= 90.0:
             raise ValueError(f"skew-angle-deg must be in (0, 90] degrees; got {args.skew_angle_deg!r}")
         if args.radii is None:  # equal cylinders: the angle alone sets beta0; its bound in the user's degrees
-            from .._validation import ELLIPTICITY_RANGE
-            from ..geometry import skew_angle
+            from ..core.validation import ELLIPTICITY_RANGE
+            from ..core.geometry import skew_angle
 
             low = math.degrees(float(skew_angle(ELLIPTICITY_RANGE[0], checked=False)))
             if args.skew_angle_deg < low:
@@ -191,7 +191,7 @@ def contact_parameters_from_args(args):
 
 def validity_epilog() -> str:
     """The ``--help`` epilog: each model's validated range (outside it, results carry a warning)."""
-    from ..validity import validity_table
+    from ..analysis.validity import validity_table
 
     return ("validated ranges (outside them the result is computed and a warning printed):\n"
             + validity_table())
@@ -205,7 +205,7 @@ def print_warning(rec) -> None:
 
 
 #: Warnings already printed by this process, so that a record's warning that was also raised as a
-#: Python warning (:class:`dhfield.validity.DhfieldWarning`) is printed once.
+#: Python warning (:class:`dhfield.analysis.validity.DhfieldWarning`) is printed once.
 _PRINTED_WARNINGS: set = set()
 
 

@@ -7,13 +7,13 @@ from ._common import print_json, print_warning
 
 def add_parser(sub) -> None:
     p = sub.add_parser("compare", help="pull-off of every comparison model side by side (Fig. 9 axes)",
-                       description="The pull-off of every model of dhfield.compare side by side, one row per "
+                       description="The pull-off of every model of dhfield.analysis.compare side by side, one row per "
                        "model.  Inputs: --beta0 and --mu (table in the paper's units, Eqs. 32-35) or the "
                        "physical inputs in SI units of 'dhfield pulloff' (table in N and m, with W*).  The "
                        "table's second row gives each column's unit; --json gives every record with a 'units' "
                        "entry, --out a netCDF file on the dimension 'model'.  The recommended model's row is "
                        "marked '*'; 'vs <recommended>' is each model's W*/W*_recommended - 1, 'error' its estimated "
-                       "error against the stored BEM ground truth (dhfield.model_error; n/a outside the box of the "
+                       "error against the stored BEM ground truth (dhfield.analysis.model_error; n/a outside the box of the "
                        "stored cases, beta0 0.1-1, mu 0.1-10, load control), 'status' says whether a model is off "
                        "the recommended one by more than 2 %, outside its validated range or gave no answer, and "
                        "the notes under the table say why.  The flagged models are also named on stderr.")
@@ -29,14 +29,14 @@ def add_parser(sub) -> None:
 #: What the columns of the nondimensional table are in (the paper's units, Eqs. 32-35).
 _NONDIM_UNITS_LINE = ("# paper's units (Eqs. 32-35): W* = W sin(theta_skew)/(2 pi R dgamma) (Eq. 34); a*, b*, c*, d* "
                       "in c_r = (R^2 dgamma/E*)^(1/3); delta* in c_r^2/R; v dimensionless")
-#: Short unit labels of the nondimensional columns (their scale, :mod:`dhfield.schema`).
+#: Short unit labels of the nondimensional columns (their scale, :mod:`dhfield.core.schema`).
 _NONDIM_LABELS = {"W_star": "[Eq. 34]", "a_star": "[c_r]", "b_star": "[c_r]", "c_star": "[c_r]", "d_star": "[c_r]",
                   "v": "[1]", "delta_star": "[c_r^2/R]"}
 
 
 def _unit_label(key, nondim) -> str:
     """The units row's entry of a column: its scale in the paper's units, or its SI unit (schema)."""
-    from ..schema import units
+    from ..core.schema import units
 
     if nondim or key == "W_star":
         return _NONDIM_LABELS[key]
@@ -58,16 +58,16 @@ def row_status(name, rec, departure) -> str:
     Returns
     -------
     str
-        Comma-separated: 'recommended' for :data:`dhfield.compare.RECOMMENDED_MODEL`; 'no answer'
+        Comma-separated: 'recommended' for :data:`dhfield.analysis.compare.RECOMMENDED_MODEL`; 'no answer'
         where W* is not finite; 'off' where the departure exceeds
-        :data:`dhfield.validity.WARNING_THRESHOLD`; 'outside range' outside the model's
-        validated range (:data:`dhfield.validity.VALIDITY_RANGES`); 'unverified' where no
+        :data:`dhfield.analysis.validity.WARNING_THRESHOLD`; 'outside range' outside the model's
+        validated range (:data:`dhfield.analysis.validity.VALIDITY_RANGES`); 'unverified' where no
         stored BEM case checks the point; 'ok' where none applies.
     """
     import math
 
-    from ..compare import RECOMMENDED_MODEL
-    from ..validity import WARNING_THRESHOLD, validity_message
+    from ..analysis.compare import RECOMMENDED_MODEL
+    from ..analysis.validity import WARNING_THRESHOLD, validity_message
 
     words = ["recommended"] if name == RECOMMENDED_MODEL else []
     if not math.isfinite(rec["W_star"]):
@@ -94,9 +94,9 @@ def _error_text(x, width) -> str:
 
 
 def run(args) -> int:
-    from ..compare import RECOMMENDED_MODEL, compare, departure_from_recommended
-    from ..dimensional import pull_off_record_si
-    from ..schema import PULL_OFF_KEYS, PULL_OFF_SI_KEYS, PULL_OFF_TRUST_KEYS, units
+    from ..analysis.compare import RECOMMENDED_MODEL, compare, departure_from_recommended
+    from ..analysis.dimensional import pull_off_record_si
+    from ..core.schema import PULL_OFF_KEYS, PULL_OFF_SI_KEYS, PULL_OFF_TRUST_KEYS, units
 
     if args.out and not str(args.out).lower().endswith(".nc"):
         raise ValueError(f"output file must end in .nc; got {args.out!r}")
@@ -145,7 +145,7 @@ def run(args) -> int:
             print(f"{label:26s}" + "".join(f"{r[c]:{w}.6g}" for c in cols)
                   + f"{_percent(departure[name], 16)}{_error_text(r['model_error'], 8)}  {status[name]}")
         print(f"* the recommended model ({RECOMMENDED_MODEL}).  error: estimated error of W* against the stored BEM "
-              "ground truth (dhfield.model_error); n/a where no stored case checks the point.")
+              "ground truth (dhfield.analysis.model_error); n/a where no stored case checks the point.")
         notes = [(name, " ".join(str(r["warning"]).split())) for name, r in recs.items() if r["warning"]]
         if notes:
             print("notes:")

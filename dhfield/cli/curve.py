@@ -9,7 +9,7 @@ from ._common import validity_epilog as _epilog
 
 
 def add_parser(sub) -> None:
-    from ..compare import CURVE_MODEL_NAMES, DEFAULT_MODEL
+    from ..analysis.compare import CURVE_MODEL_NAMES, DEFAULT_MODEL
 
     p = sub.add_parser("curve", help="load curve of a model (nondimensional, Eqs. 32-36, or SI)",
                        description="Load curve of one model.  Inputs: --beta0 and --mu (nondimensional; range "
@@ -35,7 +35,7 @@ def add_parser(sub) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object (arrays as lists, with 'units')")
     p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
                    help="add the column machine_displacement = approach + load/K of a machine spring: K > 0 in N/m "
-                   "with physical inputs, K* (paper's units) with --beta0/--mu (dhfield.compliance)")
+                   "with physical inputs, K* (paper's units) with --beta0/--mu (dhfield.analysis.spring)")
     add_physical_arguments(p)
     p.set_defaults(func=run)
 
@@ -43,7 +43,7 @@ def add_parser(sub) -> None:
 def _range(lo, hi, n, name_lo, name_hi):
     import numpy as np
 
-    from .._validation import check_finite
+    from ..core.validation import check_finite
 
     if lo is None or hi is None:
         raise UsageError(f"give both --{name_lo} and --{name_hi}")
@@ -57,9 +57,9 @@ def _range(lo, hi, n, name_lo, name_hi):
 
 
 def curve_record(args):
-    """The load curve (a :class:`dhfield.records.LoadCurve`) the arguments ask for."""
-    from .. import compare, dimensional
-    from ..model import DEFAULT_A_STAR, load_curve
+    """The load curve (a :class:`dhfield.core.records.LoadCurve`) the arguments ask for."""
+    from ..analysis import compare, dimensional
+    from ..models.dh_elliptic import DEFAULT_A_STAR, load_curve
 
     params = contact_parameters_from_args(args)
     si_range = [f for f in ("semi_major_min", "semi_major_max", "load_min", "load_max")
@@ -72,7 +72,7 @@ def curve_record(args):
         if args.a_min is not None or args.a_max is not None:
             lo = DEFAULT_A_STAR[0] if args.a_min is None else args.a_min
             hi = DEFAULT_A_STAR[1] if args.a_max is None else args.a_max
-            from .._validation import check_contact_size_star
+            from ..core.validation import check_contact_size_star
             check_contact_size_star("--a-min (smallest a_star)", lo)
             check_contact_size_star("--a-max (largest a_star)", hi)
             a_star = _range(lo, hi, args.n, "a-min", "a-max")
@@ -103,13 +103,13 @@ def curve_record(args):
 def run(args) -> int:
     import numpy as np
 
-    from ..schema import LOAD_CURVE_HEADER_KEYS, units
+    from ..core.schema import LOAD_CURVE_HEADER_KEYS, units
 
-    from ..validity import validity_message
+    from ..analysis.validity import validity_message
 
     rec = curve_record(args)
     if getattr(args, "machine_stiffness", None) is not None:
-        from ..compliance import add_machine_displacement
+        from ..analysis.spring import add_machine_displacement
 
         rec = add_machine_displacement(rec, args.machine_stiffness)
     print_warning({"warning": validity_message(rec["model"], rec["mu"], rec["beta0"])})

@@ -10,7 +10,7 @@ from .solve import EXIT_UNCONVERGED, EXIT_UNRESOLVABLE, EXIT_UNRESOLVED  # --mod
 
 
 def add_parser(sub) -> None:
-    from ..compare import CURVE_MODEL_NAMES, DEFAULT_MODEL
+    from ..analysis.compare import CURVE_MODEL_NAMES, DEFAULT_MODEL
 
     p = sub.add_parser("cycle", help="loading-unloading cycle: jump in, jump out, energy lost per cycle",
                        description="Approach from separation, jump into contact, unload to the jump out, under a "
@@ -21,14 +21,14 @@ def add_parser(sub) -> None:
                        "energy_lost_convention, which for a model without a force out of contact (the DH models, "
                        "md-elliptic, dmt) is the spread between ending the force-free approach at the contact "
                        "curve's end (the convention used) and where the central gap reaches the Dugdale range "
-                       "(delta* = -1/mu, the rule of md and the BEM); --json keeps every digit.  See dhfield.compliance.",
+                       "(delta* = -1/mu, the rule of md and the BEM); --json keeps every digit.  See dhfield.analysis.spring.",
                        epilog=_epilog(), formatter_class=argparse.RawDescriptionHelpFormatter)
     add_model_arguments(p, required=False)
     p.add_argument("--model", choices=(*CURVE_MODEL_NAMES, "bem"), default=DEFAULT_MODEL,
                    help="model (default: md-elliptic, the recommended one; dh-elliptic is the paper's); "
                    "dh-elliptic-jkr-beta has no curve; bem: the "
                    "self-consistent adhesive BEM (Dugdale law) on an N x N grid, its unloading branch sampled at "
-                   "prescribed adhesive force (dhfield.bem_compliance.bem_loading_cycle; exit 3 if no state "
+                   "prescribed adhesive force (dhfield.analysis.bem_spring.bem_loading_cycle; exit 3 if no state "
                    "converges, 4 if a jump is not resolved on the branch)")
     p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
                    help="machine stiffness, >= 0: N/m with physical inputs, K* (paper's units) with --beta0/--mu; "
@@ -49,7 +49,7 @@ def _print_record(rec, as_json) -> None:
     """The cycle record as one JSON object with its units, or one ``key value unit`` line per entry."""
     import math
 
-    from .. import compliance
+    from ..analysis import spring as compliance
     from ..io.cycle import round_to_uncertainty
 
     units = {k: _BEM_UNITS.get(k, compliance.CYCLE_UNITS.get(k, "1")) for k in rec
@@ -72,7 +72,7 @@ def _print_record(rec, as_json) -> None:
 
 #: Entries the text output rounds to the digits their uncertainty supports: key -> key of that uncertainty
 #: (the quadrature error plus, for a model without a force out of contact, the spread between the two
-#: jump-in conventions; dhfield.compliance).
+#: jump-in conventions; dhfield.analysis.spring).
 _ROUNDED = {"energy_lost_star": "energy_lost_uncertainty_star", "energy_lost": "energy_lost_uncertainty"}
 #: The parts of those uncertainties, printed to two significant digits.
 _UNCERTAINTY_PARTS = ("energy_lost_error_star", "energy_lost_convention_star", "energy_lost_error",
@@ -80,7 +80,7 @@ _UNCERTAINTY_PARTS = ("energy_lost_error_star", "energy_lost_convention_star", "
 
 
 def run(args) -> int:
-    from .. import compliance
+    from ..analysis import spring as compliance
     from ..io import validate_output_path
 
     if args.plot is not None:
@@ -112,7 +112,7 @@ def run(args) -> int:
         if params is None:
             write_cycle_plot(data, args.plot)
         else:
-            from .._adhesion import load_unit
+            from ..core.units import load_unit
 
             force = float(load_unit(params.effective_radius, params.work_of_adhesion, rec["sin_skew"]))
             write_cycle_plot(data, args.plot, force_unit=force, approach_unit=float(params.approach_unit))
@@ -122,21 +122,21 @@ def run(args) -> int:
 
 
 # --------------------------------------------------------------------------- --model bem
-#: Units of the BEM cycle's keys that :data:`dhfield.compliance.CYCLE_UNITS` does not list.
+#: Units of the BEM cycle's keys that :data:`dhfield.analysis.spring.CYCLE_UNITS` does not list.
 _BEM_UNITS = {"elapsed": "s", "jump_in_force_error": "N", "jump_out_force_error": "N"}
-#: The BEM's jump-in rule (:func:`dhfield.bem_compliance.bem_loading_cycle`).
+#: The BEM's jump-in rule (:func:`dhfield.analysis.bem_spring.bem_loading_cycle`).
 _BEM_JUMP_IN_RULE = ("Dugdale law: force-free approach until the central gap reaches the range h0 = "
                      "dgamma/sigma0 (delta_s = -h0), then the jump at fixed machine position")
 
 
 def bem_cycle_record(cyc, k_star, params=None) -> dict:
-    """The cycle record of :func:`dhfield.bem_compliance.bem_loading_cycle` (scalar K*), keys in the
-    order of :func:`dhfield.compliance.loading_cycle`'s, with the BEM's error estimates, its branch's
-    diagnostics and, with ``params``, the SI values of :func:`dhfield.compliance.loading_cycle_si`."""
+    """The cycle record of :func:`dhfield.analysis.bem_spring.bem_loading_cycle` (scalar K*), keys in the
+    order of :func:`dhfield.analysis.spring.loading_cycle`'s, with the BEM's error estimates, its branch's
+    diagnostics and, with ``params``, the SI values of :func:`dhfield.analysis.spring.loading_cycle_si`."""
     import numpy as np
 
-    from ..compliance import cycle_si_values
-    from ..geometry import sin_skew_angle
+    from ..analysis.spring import cycle_si_values
+    from ..core.geometry import sin_skew_angle
 
     br = cyc["branch"]
     f = {k: float(np.asarray(v)) for k, v in cyc.items() if k not in ("branch", "resolved")}
@@ -164,7 +164,7 @@ def bem_cycle_record(cyc, k_star, params=None) -> dict:
 
 
 def bem_cycle_path(cyc, rec) -> dict:
-    """The BEM cycle as the polylines of :func:`dhfield.compliance.cycle_path`, from the branch's samples."""
+    """The BEM cycle as the polylines of :func:`dhfield.analysis.spring.cycle_path`, from the branch's samples."""
     import numpy as np
 
     br = cyc["branch"]
@@ -191,8 +191,8 @@ def _run_bem(args, params) -> int:
     """``cycle --model bem``: the BEM's loading-unloading cycle under the machine spring."""
     import sys
 
-    from ..adhesive_start import plan_grid
-    from ..bem_compliance import bem_loading_cycle
+    from ..analysis.bem_start import plan_grid
+    from ..analysis.bem_spring import bem_loading_cycle
 
     mu, beta0 = (args.mu, args.beta0) if params is None else (float(params.mu), float(params.beta0))
     if args.threads is not None and args.threads < 1:
@@ -203,7 +203,7 @@ def _run_bem(args, params) -> int:
         raise ValueError("machine-stiffness of a BEM cycle must be > 0 (0 is load control, which loses an "
                          "infinite energy per cycle); leave it out for a rigid machine")
     if k is not None and params is not None:
-        from ..compliance import stiffness_star
+        from ..analysis.spring import stiffness_star
 
         k = float(stiffness_star(k, params.effective_radius, params.reduced_modulus, params.work_of_adhesion,
                                  params.sin_skew))

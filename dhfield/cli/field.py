@@ -11,7 +11,7 @@ def add_parser(sub) -> None:
                        description="Full-field cross-check of the analytic double-Hertz model at one state "
                        "(beta0, mu, contact size a*): the DH pressure (Eqs. 7, 16, 22; cell averages) is put "
                        "on an N x N grid, the surface displacement computed from it by the DC-FFT boundary "
-                       "elements (dhfield.fields) and compared with the analytic displacement (Eqs. 13-15, "
+                       "elements (dhfield.analysis.fields) and compared with the analytic displacement (Eqs. 13-15, "
                        "21, 26) and gap (Eq. 27) in the contact, the adhesive annulus and outside.  Writes "
                        "one netCDF file (dhfield.io.field): pressure, analytic and numerical displacement "
                        "and gap and their differences on (y, x), a region flag, the same resampled on a "
@@ -30,7 +30,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from ..fields import check_case_memory, model_case
+    from ..analysis.fields import check_case_memory, model_case
     from ..io import validate_output_path
     from ..io.field import write_field
 

@@ -11,7 +11,7 @@ from ._common import UsageError, add_physical_arguments, model_names, print_json
 #: (a typical solid-solid value; the fit moves 4 decades either way).
 DEFAULT_START_WORK = 0.05
 #: Uncertainty flags: dest of the input -> (flag, number of values).  One standard deviation
-#: each, in the unit of the input; propagated linearly by dhfield.fit.propagate_input_uncertainty.
+#: each, in the unit of the input; propagated linearly by dhfield.analysis.fit.propagate_input_uncertainty.
 STD_FLAGS = {"adhesive_stress": ("--adhesive-stress-std", 1), "youngs_modulus": ("--youngs-modulus-std", 1),
              "poisson_ratio": ("--poisson-ratio-std", 1), "youngs_modulus_2": ("--youngs-modulus-2-std", 1),
              "poisson_ratio_2": ("--poisson-ratio-2-std", 1), "cylinder_radius": ("--cylinder-radius-std", 1),
@@ -62,7 +62,7 @@ def add_parser(sub) -> None:
     what.add_argument("--pull-off-force", type=float, nargs="+", metavar="F",
                       help="measured pull-off force(s) [N] (negative); several values are replicates")
     what.add_argument("--data", metavar="FILE.csv", help="measured load curve (CSV with a header row)")
-    from ..compare import DEFAULT_MODEL
+    from ..analysis.compare import DEFAULT_MODEL
 
     p.add_argument("--model", choices=model_names(), default=DEFAULT_MODEL,
                    help="model (default: md-elliptic, the recommended one; dh-elliptic is the paper's)")
@@ -103,7 +103,7 @@ def _params(args):
 
 
 def _uncertain_inputs(args):
-    """(inputs, input_std, build) of the --*-std flags, for dhfield.fit.propagate_input_uncertainty."""
+    """(inputs, input_std, build) of the --*-std flags, for dhfield.analysis.fit.propagate_input_uncertainty."""
     import copy
 
     from ._common import contact_parameters_from_args
@@ -142,7 +142,7 @@ def _uncertain_inputs(args):
 
 
 def run(args) -> int:
-    from .. import fit
+    from ..analysis import fit
 
     if args.plot is not None and args.data is None:
         raise UsageError("--plot goes with --data")
@@ -197,11 +197,11 @@ def run(args) -> int:
 
 
 def _run_joint(args) -> int:
-    """``--data`` with a crossing-angle column: :func:`dhfield.fit.fit_joint` over the file's angles."""
+    """``--data`` with a crossing-angle column: :func:`dhfield.analysis.fit.fit_joint` over the file's angles."""
     import copy
     import sys
 
-    from .. import fit
+    from ..analysis import fit
     from ..io.fit import read_joint_data
 
     if args.skew_angle_deg is not None:
@@ -257,7 +257,7 @@ def _print_record(args, rec) -> None:
 
 
 #: Rows of a ``--data`` file from which a fit reports its progress on stderr even when stderr is not a
-#: terminal (a line every :data:`dhfield.fit.PROGRESS_INTERVAL` seconds; nothing for a faster fit).
+#: terminal (a line every :data:`dhfield.analysis.fit.PROGRESS_INTERVAL` seconds; nothing for a faster fit).
 PROGRESS_POINTS = 10_000
 #: Exit status of a ``--data`` fit that is flagged (``success`` false: a parameter not identifiable,
 #: or the least squares did not converge); the result is still printed, as ``dhfield solve`` does
@@ -288,7 +288,7 @@ def _text(v):
 
 
 def _unit(key):
-    from ..schema import units
+    from ..core.schema import units
 
     if key in _EXTRA_UNITS:
         return _EXTRA_UNITS[key]

@@ -12,8 +12,8 @@ _REQUIRED = {"youngs_modulus": "--youngs-modulus", "poisson_ratio": "--poisson-r
 
 
 def add_parser(sub) -> None:
-    from ..compare import MODEL_NAMES, RECOMMENDED_MODEL
-    from ..force_vs_angle import CLOSURE_MODELS, CLOSURE_POINTS, DEFAULT_ANGLES_DEG, DEFAULT_POINTS
+    from ..analysis.compare import MODEL_NAMES, RECOMMENDED_MODEL
+    from ..analysis.force_vs_angle import CLOSURE_MODELS, CLOSURE_POINTS, DEFAULT_ANGLES_DEG, DEFAULT_POINTS
 
     p = sub.add_parser("force-vs-angle", help="pull-off force [N] of every model against the crossing angle of "
                        "two equal cylinders, for one material (figure)",
@@ -51,7 +51,7 @@ def _check_arguments(args) -> None:
 
 
 def run(args) -> int:
-    from ..force_vs_angle import pull_off_force_vs_angle
+    from ..analysis.force_vs_angle import pull_off_force_vs_angle
     from ..io.figures import figure_paths, model_label, si_prefix
 
     _check_arguments(args)

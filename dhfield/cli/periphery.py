@@ -24,8 +24,8 @@ def run(args) -> int:
     import numpy as np
 
     from ..io.periphery import pull_off_periphery_dataset, write_dataset
-    from ..model import pull_off
-    from ..periphery import periphery_at_pull_off
+    from ..models.dh_elliptic import pull_off
+    from ..models.dh_elliptic_periphery import periphery_at_pull_off
 
     from ..io import validate_output_path
 
@@ -44,7 +44,7 @@ def run(args) -> int:
             "edge_separation", "work_of_adhesion")
     rows = {c: np.asarray(getattr(prof, c))[0, 0] for c in cols}
     if args.json:
-        from ..schema import units_of
+        from ..core.schema import units_of
 
         scalars = ("beta0", "mu", "W_star", "a_star", "c_star", "v")
         print_json({"beta0": args.beta0, "mu": args.mu, "control": args.control,

@@ -22,7 +22,7 @@ def add_parser(sub) -> None:
     p.add_argument("sweep", help="netCDF file written by 'dhfield sweep'")
     p.add_argument("--out", default=None, help="output directory, created if needed (default: the sweep "
                    "file's directory)")
-    from ..compare import RECOMMENDED_MODEL
+    from ..analysis.compare import RECOMMENDED_MODEL
 
     p.add_argument("--reference", default=None,
                    help="reference model of the error maps (default: the most trusted swept model: "
@@ -50,7 +50,7 @@ def _si(args):
 
 def run(args) -> int:
     from ..io import read_netcdf
-    from ..plotting import standard_maps
+    from ..io.sweep_maps import standard_maps
 
     si = _si(args)
     ds = read_netcdf(args.sweep)

@@ -23,25 +23,25 @@ def add_parser(sub) -> None:
     add_model_arguments(p, required=False)
     p.add_argument("--control", choices=("load", "displacement"), default="load",
                    help="load control (default) or displacement control")
-    from ..compare import DEFAULT_MODEL
+    from ..analysis.compare import DEFAULT_MODEL
 
     p.add_argument("--model", choices=model_names(), default=DEFAULT_MODEL, help=_MODEL_HELP)
     p.add_argument("--json", action="store_true", help="print one JSON object (with a 'units' entry)")
     p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
                    help="pull-off under a machine spring (control 'spring'): K >= 0 in N/m with physical inputs, "
-                   "K* (paper's units) with --beta0/--mu; 0 is load control (dhfield.compliance)")
+                   "K* (paper's units) with --beta0/--mu; 0 is load control (dhfield.analysis.spring)")
     add_physical_arguments(p)
     p.set_defaults(func=run)
 
 
 def pull_off_record(args) -> dict:
     """The pull-off record (schema PULL_OFF_KEYS or PULL_OFF_SI_KEYS) the arguments ask for."""
-    from ..compare import pull_off
-    from ..dimensional import pull_off_force
+    from ..analysis.compare import pull_off
+    from ..analysis.dimensional import pull_off_force
 
     params = contact_parameters_from_args(args)
     if getattr(args, "machine_stiffness", None) is not None:
-        from ..compliance import pull_off_force_under_spring, spring_pull_off_record
+        from ..analysis.spring import pull_off_force_under_spring, spring_pull_off_record
 
         if args.control != "load":
             raise ValueError("control goes with no machine spring; --machine-stiffness sets the machine itself")
@@ -53,7 +53,7 @@ def pull_off_record(args) -> dict:
     return plain_record(pull_off_force(params, model=args.model, control=args.control))
 
 
-#: SI key of each nondimensional quantity that a model may not have (:data:`dhfield.compare.ABSENT_KEYS`).
+#: SI key of each nondimensional quantity that a model may not have (:data:`dhfield.analysis.compare.ABSENT_KEYS`).
 _SI_OF = {"c_star": "adhesive_semi_major", "d_star": "adhesive_semi_minor"}
 
 
@@ -63,22 +63,22 @@ def absent_keys(model) -> frozenset:
     Parameters
     ----------
     model : str
-        A name of :data:`dhfield.compare.MODEL_NAMES`.
+        A name of :data:`dhfield.analysis.compare.MODEL_NAMES`.
 
     Returns
     -------
     frozenset of str
-        :data:`dhfield.compare.ABSENT_KEYS` of the model and their SI keys (the adhesive zone's
+        :data:`dhfield.analysis.compare.ABSENT_KEYS` of the model and their SI keys (the adhesive zone's
         semi-axes in m); empty for an unknown name.  ``--json`` keeps every key (null).
     """
-    from ..compare import ABSENT_KEYS
+    from ..analysis.compare import ABSENT_KEYS
 
     keys = ABSENT_KEYS.get(model, ())
     return frozenset(keys) | {_SI_OF[k] for k in keys if k in _SI_OF}
 
 
 def run(args) -> int:
-    from ..schema import units
+    from ..core.schema import units
 
     rec = pull_off_record(args)
     nondim = args.beta0 is not None

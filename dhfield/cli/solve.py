@@ -5,7 +5,7 @@ import contextlib
 import math
 import sys
 
-from ..solve_progress import SolveProgress, SolveTimeLimit
+from ..core.progress import SolveProgress, SolveTimeLimit
 from ._common import (add_model_arguments, add_physical_arguments, command_threads, contact_parameters_from_args,
                       print_json)
 
@@ -24,11 +24,11 @@ EXIT_TIME_LIMIT = 6
 def check_solve_memory(n) -> None:
     """Refuse an N x N adhesive BEM solve that would not fit in memory, before anything is computed.
 
-    The library's own check (:func:`dhfield.adhesive_start.check_grid_memory`, which every BEM
+    The library's own check (:func:`dhfield.analysis.bem_start.check_grid_memory`, which every BEM
     route also makes before it allocates), made first so that a bad ``--n`` fails at once.
     Raises ValueError naming ``n``, the estimate and the limit.
     """
-    from ..adhesive_start import check_grid_memory
+    from ..analysis.bem_start import check_grid_memory
 
     if isinstance(n, int) and not isinstance(n, bool) and n > 0:
         check_grid_memory(n)
@@ -60,11 +60,11 @@ def add_parser(sub) -> None:
                                    "grid resolves the cohesive zone; one progress line per state goes to "
                                    "stderr (with its load in the result's units, W* or N, the elapsed time and "
                                    "an ETA), on a terminal or not.  Inputs: --beta0 and --mu, or the physical inputs in SI units of "
-                                   "'dhfield pulloff' (converted with dhfield.dimensional.contact_parameters); "
+                                   "'dhfield pulloff' (converted with dhfield.analysis.dimensional.contact_parameters); "
                                    "these add the force [N], the semi-axes and the approach [m] beside W*, a*, "
                                    "b*, c*, d*, delta*.  With --machine-stiffness: the pull-off under a "
                                    "machine spring, from the unloading branch sampled at prescribed adhesive "
-                                   "force (dhfield.bem_compliance).",
+                                   "force (dhfield.analysis.bem_spring).",
                        epilog=_EPILOG)
     add_model_arguments(p, required=False)   # or the SI inputs of add_physical_arguments (below)
     p.add_argument("--n", type=int, default=None,
@@ -75,10 +75,10 @@ def add_parser(sub) -> None:
                    help="load: minimum of the unloading force; displacement: the jump (default load)")
     p.add_argument("--machine-stiffness", type=float, default=None, metavar="K",
                    help="pull-off under a machine spring (control 'spring'), as in 'dhfield pulloff': K >= 0 in "
-                        "N/m with physical inputs, K* (paper's units, dhfield.compliance.stiffness_star) with "
+                        "N/m with physical inputs, K* (paper's units, dhfield.analysis.spring.stiffness_star) with "
                         "--beta0/--mu; 0 is load control.  The BEM's unloading branch is sampled at prescribed "
                         "adhesive force and the jump is the first minimum of the machine position on it "
-                        "(dhfield.bem_compliance); the same branch on a coarser grid gives the grid's error; "
+                        "(dhfield.analysis.bem_spring); the same branch on a coarser grid gives the grid's error; "
                         "--out then holds the branch, --search does not apply")
     p.add_argument("--search", default=None, choices=("located", "bracket", "march", "predicted"),
                    help="load control: how the force minimum is found -- located on coarser grids first, "
@@ -89,7 +89,7 @@ def add_parser(sub) -> None:
     p.add_argument("--max-seconds", type=float, default=None, metavar="S",
                    help="stop after the first state that ends past S seconds, say what was reached and exit "
                         f"{EXIT_TIME_LIMIT} (default: no limit).  Above the planner's own allowance "
-                        "(dhfield.adhesive_start.DEFAULT_MAX_SECONDS) it also lets the automatic grid take a case "
+                        "(dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS) it also lets the automatic grid take a case "
                         "estimated to need that long")
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     p.add_argument("--threads", type=int, default=None,
@@ -111,15 +111,15 @@ def _record(res) -> dict:
     return pull_off_summary(res)
 
 
-#: Units of the solve record's keys that :mod:`dhfield.schema` does not list.
+#: Units of the solve record's keys that :mod:`dhfield.core.schema` does not list.
 _LOCAL_UNITS = {"n": "1", "W_star_error": "1", "residual": "1", "elapsed": "s", "resolved": "1", "n_steps": "1",
                 "iterations": "1", "converged": "1", "half_width_x": "1", "half_width_y": "1"}
 
 
 def _units(rec, si_keys=()) -> dict:
     """key -> unit string of every numeric entry of the record ("1": dimensionless, paper's units;
-    the keys ``si_keys`` in their SI unit of :mod:`dhfield.schema`)."""
-    from ..schema import units
+    the keys ``si_keys`` in their SI unit of :mod:`dhfield.core.schema`)."""
+    from ..core.schema import units
 
     out = {}
     for k, v in rec.items():
@@ -137,7 +137,7 @@ _SPRING_UNITS = {"machine_stiffness_star": "1", "separation_delta_star": "1", "i
 
 def _check_spring_arguments(args, params) -> None:
     """Refuse what does not go with --machine-stiffness (one line, exit 2), before solving."""
-    from ..compliance import check_machine_stiffness
+    from ..analysis.spring import check_machine_stiffness
 
     check_machine_stiffness("machine-stiffness", args.machine_stiffness)
     if args.control != "load":
@@ -154,7 +154,7 @@ def _stiffness_star(args, params) -> float:
     """K* in the paper's units: --machine-stiffness itself, or from N/m with the contact's scales."""
     if params is None:
         return float(args.machine_stiffness)
-    from ..compliance import stiffness_star
+    from ..analysis.spring import stiffness_star
 
     # the BEM's load normalisation is that of beta0 (Eq. 34): the contact's own sin(theta_skew)
     return float(stiffness_star(args.machine_stiffness, params.effective_radius, params.reduced_modulus,
@@ -164,10 +164,10 @@ def _stiffness_star(args, params) -> float:
 def spring_record(branch, k_star, params=None, coarse=None) -> dict:
     """The solve record of the BEM pull-off under a spring of stiffness K* (paper's units; SI with params).
 
-    ``coarse``: the same branch on a coarser grid (:func:`dhfield.bem_compliance.coarse_branch`),
+    ``coarse``: the same branch on a coarser grid (:func:`dhfield.analysis.bem_spring.coarse_branch`),
     for the grid's error; None: no estimate (not resolved).  Keys: beta0, mu, n, law, control
     ('spring'), machine_stiffness_star, W_star, W_star_error (the fit's error plus the grid's,
-    :func:`dhfield.bem_compliance.spring_pull_off`; inf when not resolved), delta_star,
+    :func:`dhfield.analysis.bem_spring.spring_pull_off`; inf when not resolved), delta_star,
     separation_delta_star (the force-free approach the contact jumps to, delta* + W*/K*), in_contact
     (the jump starts from a contact state), converged (no state failed among the samples the jump is
     fitted on), resolved, note, branch_states, branch_complete, failures, elapsed (both branches); with
@@ -176,7 +176,7 @@ def spring_record(branch, k_star, params=None, coarse=None) -> dict:
     """
     import numpy as np
 
-    from ..bem_compliance import spring_pull_off
+    from ..analysis.bem_spring import spring_pull_off
 
     po = spring_pull_off(branch, k_star, coarse)     # the BEM's PullOff, spring group filled, route-checked
     w, d = float(po.W_star), float(po.delta_star)
@@ -257,7 +257,7 @@ def _spring_dataset(branch, rec, params):
 
 def _run_spring(args, params, plan, where, progress) -> int:
     """``solve --machine-stiffness``: the BEM's unloading branch and the jump under the spring."""
-    from ..bem_compliance import bem_pull_off_under_spring, bem_unloading_branch, coarse_branch
+    from ..analysis.bem_spring import bem_pull_off_under_spring, bem_unloading_branch, coarse_branch
 
     if args.n is None and not plan.affordable:
         print(f"dhfield: solve refused: {plan.message()}{_in_newtons(plan.analytic_W_star, params)}",
@@ -365,8 +365,8 @@ class _NoLines:
 
 
 def _progress(args, params, plan, route, header):
-    """The reporter of every state (:class:`dhfield.solve_progress.SolveProgress`), in W* or N."""
-    from ..geometry import sin_skew_angle
+    """The reporter of every state (:class:`dhfield.core.progress.SolveProgress`), in W* or N."""
+    from ..core.geometry import sin_skew_angle
 
     # a state's load is in R = E* = dgamma = 1: W* = load sin(theta_skew)/(2 pi) (Eq. 34), times the load unit in N
     scale = float(sin_skew_angle(args.beta0)) / (2.0 * math.pi)
@@ -382,7 +382,7 @@ def _planner_allowance(max_seconds):
     The planner's estimate is an upper one (the sphere at mu = 1: ~24 s estimated, 0.5 s taken), so a
     shorter limit stops the solve when reached instead of refusing it on the estimate.
     """
-    from ..adhesive_start import DEFAULT_MAX_SECONDS
+    from ..analysis.bem_start import DEFAULT_MAX_SECONDS
 
     if max_seconds is None:
         return None
@@ -401,7 +401,7 @@ def _in_newtons(w_star, params) -> str:
 
 @contextlib.contextmanager
 def _time_limit(seconds, reporter):
-    """Raise :class:`dhfield.solve_progress.SolveTimeLimit` ``seconds`` from now, also within a state.
+    """Raise :class:`dhfield.core.progress.SolveTimeLimit` ``seconds`` from now, also within a state.
 
     The reporter stops the solve after a state that ends past the limit; where the platform has
     SIGALRM (and this is the main thread) an interval timer stops it within a state too.
@@ -436,7 +436,7 @@ def run(args) -> int:
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
     args.threads = command_threads(args.threads)
-    from ..adhesive_start import AdhesiveOptions, UnresolvableCaseError, plan_grid, takes_predicted_route
+    from ..analysis.bem_start import AdhesiveOptions, UnresolvableCaseError, plan_grid, takes_predicted_route
     from ..bem.branch import state_reporter
 
     check_solve_memory(args.n)

@@ -1,13 +1,13 @@
-"""xarray Dataset and netCDF file of the adhesion map (thin wrapper of :mod:`dhfield.adhesion_map`).
+"""xarray Dataset and netCDF file of the adhesion map (thin wrapper of :mod:`dhfield.analysis.adhesion_map`).
 
 Dimensions ``model`` (string labels, the reference first), ``skew_angle_deg`` (crossing
 angle [deg]) and ``mu``; ``beta0`` is an auxiliary coordinate on ``skew_angle_deg``.
-Variables, with the units and names of :mod:`dhfield.schema`:
+Variables, with the units and names of :mod:`dhfield.core.schema`:
 
 * ``force_pi_r_dgamma`` (model, skew_angle_deg, mu): load-control pull-off W/(pi R dgamma);
 * ``relative_deviation`` (model, skew_angle_deg, mu): from the reference model;
 * ``model_status`` (model, skew_angle_deg, mu): CF flags of
-  :data:`dhfield.adhesion_map.STATUS_MEANINGS` (refused points: NaN, code 2);
+  :data:`dhfield.analysis.adhesion_map.STATUS_MEANINGS` (refused points: NaN, code 2);
 * ``validated_region`` (skew_angle_deg, mu): CF flag, 1 inside the BEM ground truth's extent;
 * ``warning`` (model): the model's warnings and refusals over the grid, one line.
 
@@ -20,8 +20,8 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .. import schema
-from ..adhesion_map import MODEL_LABELS, STATUS_MEANINGS, AdhesionMap
+from ..core import schema
+from ..analysis.adhesion_map import MODEL_LABELS, STATUS_MEANINGS, AdhesionMap
 from . import provenance_attrs, read_netcdf, write_netcdf
 from .cf import coordinate, finalize, flag_variable, label_coordinate, variable
 
@@ -31,7 +31,7 @@ _DIMS = ("model", "skew_angle_deg", "mu")
 
 
 def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
-    """Build the CF Dataset of an :class:`dhfield.adhesion_map.AdhesionMap`.
+    """Build the CF Dataset of an :class:`dhfield.analysis.adhesion_map.AdhesionMap`.
 
     Parameters
     ----------
@@ -46,7 +46,7 @@ def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
         The map on (model, crossing angle, mu), CF-annotated.
     """
     if not isinstance(result, AdhesionMap):
-        raise ValueError(f"result must be a dhfield.adhesion_map.AdhesionMap; got {type(result).__name__}")
+        raise ValueError(f"result must be a dhfield.analysis.adhesion_map.AdhesionMap; got {type(result).__name__}")
     note_attrs = schema.attrs("warning")
     note_attrs.pop("units", None)
     data = {
@@ -75,7 +75,7 @@ def adhesion_map_dataset(result: AdhesionMap, **extra_attrs) -> xr.Dataset:
     ds.attrs["reference_model"] = result.reference
     ds.attrs["reference_note"] = result.reference_note
     ds.attrs["model_labels"] = "; ".join(f"{m}: {MODEL_LABELS.get(m, m)}" for m in result.models)
-    ds.attrs["crossing_angle_to_beta0"] = ("beta0 = dhfield.geometry.ellipticity_from_skew_angle(theta_skew): "
+    ds.attrs["crossing_angle_to_beta0"] = ("beta0 = dhfield.core.geometry.ellipticity_from_skew_angle(theta_skew): "
                                            "equal cylinders, Eqs. (3)-(4) and (8)")
     return finalize(ds)
 
@@ -101,7 +101,7 @@ def write_adhesion_map(result: AdhesionMap, path, **extra_attrs):
 
 
 def read_adhesion_map(path) -> AdhesionMap:
-    """Read a file of :func:`write_adhesion_map` back into an :class:`~dhfield.adhesion_map.AdhesionMap`.
+    """Read a file of :func:`write_adhesion_map` back into an :class:`~dhfield.analysis.adhesion_map.AdhesionMap`.
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""CF metadata for every dhfield Dataset, from the one table :mod:`dhfield.schema`.
+"""CF metadata for every dhfield Dataset, from the one table :mod:`dhfield.core.schema`.
 
 Every writer of :mod:`dhfield.io` (and the BEM-solution and sweep writers)
 builds its variables with these helpers, so that a quantity carries the same
@@ -6,7 +6,7 @@ builds its variables with these helpers, so that a quantity carries the same
 is finished by :func:`finalize` (which :func:`dhfield.io.write_netcdf` applies
 again before writing):
 
-* dimensions in the one canonical order :data:`dhfield.schema.DIM_ORDER`
+* dimensions in the one canonical order :data:`dhfield.core.schema.DIM_ORDER`
   (grids of the model parameters are always ``(beta0, mu)``);
 * no ``_FillValue`` on coordinate variables (CF 1.10 section 2.5.1: coordinate
   variables have no missing values);
@@ -21,18 +21,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import schema
+from ..core import schema
 
 __all__ = ["variable_attrs", "variable", "coordinate", "flag_variable", "label_coordinate", "finalize"]
 
 
 def variable_attrs(name: str, *, nondimensional: bool = False, qualifier: str | None = None) -> dict:
-    """CF attributes of the quantity ``name`` of :data:`dhfield.schema.VARIABLES`.
+    """CF attributes of the quantity ``name`` of :data:`dhfield.core.schema.VARIABLES`.
 
     Parameters
     ----------
     name : str
-        Key of :data:`dhfield.schema.VARIABLES`.
+        Key of :data:`dhfield.core.schema.VARIABLES`.
     nondimensional : bool
         True if the values are in the paper's units (Eqs. 32-35): ``units``
         becomes "1" and ``long_name`` names the scale.
@@ -62,7 +62,7 @@ def variable(name: str, dims, values, *, nondimensional: bool = False, qualifier
     Parameters
     ----------
     name : str
-        Variable name, a key of :data:`dhfield.schema.VARIABLES` unless ``quantity`` is given.
+        Variable name, a key of :data:`dhfield.core.schema.VARIABLES` unless ``quantity`` is given.
     dims : str or tuple of str
         Dimension names.
     values : array_like
@@ -173,7 +173,7 @@ def flag_variable(name: str, dims, labels, meanings, *, quantity: str | None = N
 def finalize(ds):
     """``ds`` with canonical dimension order and CF-clean encodings.
 
-    Transposes every variable into :data:`dhfield.schema.DIM_ORDER` and sets
+    Transposes every variable into :data:`dhfield.core.schema.DIM_ORDER` and sets
     no ``_FillValue`` on coordinate variables.  Idempotent; returns a new
     Dataset (``ds`` is not modified).
 

@@ -1,10 +1,10 @@
-"""xarray Dataset of a side-by-side model comparison (thin wrapper of :mod:`dhfield.compare`).
+"""xarray Dataset of a side-by-side model comparison (thin wrapper of :mod:`dhfield.analysis.compare`).
 
-One record per model (the keys of :data:`dhfield.schema.PULL_OFF_KEYS`) on the
+One record per model (the keys of :data:`dhfield.core.schema.PULL_OFF_KEYS`) on the
 dimension ``model`` (string labels).  Numeric quantities carry the schema's
 units and names; ``geometry``, ``at_zero_contact`` and ``bem_verified`` are CF flag variables;
 ``model_error`` is each model's estimated relative error against the BEM ground truth
-(:mod:`dhfield.model_error`, where the records carry it);
+(:mod:`dhfield.analysis.model_error`, where the records carry it);
 ``warning`` is a string; the scalar inputs (``beta0``, ``mu``, ``control``) are
 global ``param_*`` attributes.
 """
@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .. import schema
+from ..core import schema
 from . import provenance_attrs
 from .cf import finalize, flag_variable, label_coordinate, variable
 
@@ -28,12 +28,12 @@ GEOMETRIES = ("ellipse", "circle")
 
 
 def comparison_dataset(records: dict, **extra_attrs) -> xr.Dataset:
-    """Build a Dataset on the dimension ``model`` from :func:`dhfield.compare.compare` (scalar mu, beta0).
+    """Build a Dataset on the dimension ``model`` from :func:`dhfield.analysis.compare.compare` (scalar mu, beta0).
 
     Parameters
     ----------
     records : dict
-        Model name -> pull-off record (:func:`dhfield.compare.pull_off`).
+        Model name -> pull-off record (:func:`dhfield.analysis.compare.pull_off`).
     **extra_attrs
         Recorded as ``param_*`` global attributes.
 
@@ -56,7 +56,7 @@ def comparison_dataset(records: dict, **extra_attrs) -> xr.Dataset:
         data["at_zero_contact"] = flag_variable("at_zero_contact", "model",
                                                 [int(bool(records[n]["at_zero_contact"])) for n in names],
                                                 ("false", "true"))
-    if "model_error" in first:  # the trust group (dhfield.model_error)
+    if "model_error" in first:  # the trust group (dhfield.analysis.model_error)
         data["model_error"] = variable("model_error", "model", [float(records[n]["model_error"]) for n in names])
         data["bem_verified"] = flag_variable("bem_verified", "model",
                                              [int(bool(records[n]["bem_verified"])) for n in names], ("false", "true"))

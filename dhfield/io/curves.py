@@ -1,6 +1,6 @@
 """xarray Datasets and files for load curves and pull-off tables (thin wrappers).
 
-Names, units and descriptions come from :mod:`dhfield.schema` (through
+Names, units and descriptions come from :mod:`dhfield.core.schema` (through
 :mod:`dhfield.io.cf`); grids of the model parameters are on ``(beta0, mu)``.
 CSV output is a plain table with a JSON sidecar (:mod:`dhfield.io.table`).
 """
@@ -12,17 +12,17 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .. import schema
+from ..core import schema
 from . import provenance_attrs, write_netcdf
 from .cf import coordinate, finalize, variable
 from .table import write_table
 
 __all__ = ["load_curve_dataset", "pull_off_dataset", "write_load_curve", "load_curve_columns", "CURVE_VARIABLES"]
 
-#: Array variables of a nondimensional load curve, in order (:data:`dhfield.schema.LOAD_CURVE_KEYS`).
+#: Array variables of a nondimensional load curve, in order (:data:`dhfield.core.schema.LOAD_CURVE_KEYS`).
 CURVE_VARIABLES = schema.LOAD_CURVE_KEYS
 #: Columns a curve may carry besides, written after them when present: the machine position of
-#: :func:`dhfield.compliance.add_machine_displacement` (``curve --machine-stiffness``).
+#: :func:`dhfield.analysis.spring.add_machine_displacement` (``curve --machine-stiffness``).
 OPTIONAL_CURVE_VARIABLES = ("machine_displacement",)
 
 _TITLE = "Load curve of an adhesive contact (Zini et al. 2018, Eqs. 31-36)"
@@ -33,10 +33,10 @@ def load_curve_columns(curve):
 
     Parameters
     ----------
-    curve : dhfield.records.LoadCurve or mapping
+    curve : dhfield.core.records.LoadCurve or mapping
         A nondimensional curve (attributes or keys
-        :data:`dhfield.schema.LOAD_CURVE_KEYS`), or an SI curve (keys
-        :data:`dhfield.schema.LOAD_CURVE_SI_KEYS`, recognised by ``force``).
+        :data:`dhfield.core.schema.LOAD_CURVE_KEYS`), or an SI curve (keys
+        :data:`dhfield.core.schema.LOAD_CURVE_SI_KEYS`, recognised by ``force``).
 
     Returns
     -------
@@ -75,7 +75,7 @@ def load_curve_dataset(curve, **extra_attrs) -> xr.Dataset:
 
     Parameters
     ----------
-    curve : dhfield.records.LoadCurve or mapping
+    curve : dhfield.core.records.LoadCurve or mapping
         See :func:`load_curve_columns`.
     **extra_attrs
         Recorded as ``param_*`` global attributes.
@@ -101,7 +101,7 @@ def pull_off_dataset(results: dict, *, beta0, mu, input_dims=("mu", "beta0"), **
     ----------
     results : dict
         Name -> array on the two grids, laid out as ``input_dims`` says.  A
-        name is a key of :data:`dhfield.schema.VARIABLES`, optionally followed
+        name is a key of :data:`dhfield.core.schema.VARIABLES`, optionally followed
         by ``_<qualifier>`` (e.g. ``W_star_displacement_control``), which is
         added to the ``long_name``.
     beta0, mu : array_like
@@ -109,7 +109,7 @@ def pull_off_dataset(results: dict, *, beta0, mu, input_dims=("mu", "beta0"), **
     input_dims : tuple
         Layout of the arrays of ``results``: ``("mu", "beta0")`` (shape
         (len(mu), len(beta0)), the default) or ``("beta0", "mu")``.  The
-        Dataset is always on ``(beta0, mu)`` (:data:`dhfield.schema.GRID_DIMS`).
+        Dataset is always on ``(beta0, mu)`` (:data:`dhfield.core.schema.GRID_DIMS`).
     **extra_attrs
         Recorded as ``param_*`` global attributes.
 
@@ -137,7 +137,7 @@ def _split(name):
     for key in sorted(schema.VARIABLES, key=len, reverse=True):
         if name.startswith(key + "_"):
             return key, name[len(key) + 1:]
-    raise ValueError(f"result name must be a dhfield.schema variable, optionally with a _suffix; got {name!r}")
+    raise ValueError(f"result name must be a dhfield.core.schema variable, optionally with a _suffix; got {name!r}")
 
 
 def write_load_curve(curve, path, **extra_attrs) -> Path:
@@ -145,7 +145,7 @@ def write_load_curve(curve, path, **extra_attrs) -> Path:
 
     Parameters
     ----------
-    curve : dhfield.records.LoadCurve or mapping
+    curve : dhfield.core.records.LoadCurve or mapping
         See :func:`load_curve_columns`.
     path : str or path-like
         The output file, ending in ``.nc`` or ``.csv``.

@@ -1,7 +1,7 @@
-"""Figure of a loading-unloading cycle (:func:`dhfield.compliance.cycle_path`): matplotlib at the edge.
+"""Figure of a loading-unloading cycle (:func:`dhfield.analysis.spring.cycle_path`): matplotlib at the edge.
 
 :func:`round_to_uncertainty` prints the energy lost to the digits its stated uncertainty (the
-quadrature's and the jump-in convention's, :mod:`dhfield.compliance`) supports.
+quadrature's and the jump-in convention's, :mod:`dhfield.analysis.spring`) supports.
 """
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ def write_cycle_plot(path_data, path, *, force_unit=None, approach_unit=None, dp
     Parameters
     ----------
     path_data : dict
-        From :func:`dhfield.compliance.cycle_path`.
+        From :func:`dhfield.analysis.spring.cycle_path`.
     path : path-like
         PNG file to write; an SVG and a PDF are written beside it (same path, suffixes
         ``.svg`` and ``.pdf``), all three checked first and written atomically.

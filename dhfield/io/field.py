@@ -1,6 +1,6 @@
 """netCDF output of one field case: Cartesian and polar maps of the BEM cross-check.
 
-One :class:`xarray.Dataset` per case (:class:`dhfield.fields.FieldCase`):
+One :class:`xarray.Dataset` per case (:class:`dhfield.analysis.fields.FieldCase`):
 
 * coordinates ``x``, ``y`` (cell centres) and, for the polar resampling, ``r``
   and ``theta_p``;
@@ -10,9 +10,9 @@ One :class:`xarray.Dataset` per case (:class:`dhfield.fields.FieldCase`):
 * on (r, theta_p): the same displacement and gap variables, numerical ones
   interpolated from the grid (cubic splines), analytic ones evaluated directly,
   and, for DH cases, the annulus-identity error along each ray theta_p;
-* ``units``, ``long_name`` (and ``description``) from :mod:`dhfield.schema` on
+* ``units``, ``long_name`` (and ``description``) from :mod:`dhfield.core.schema` on
   every variable (``region`` is a CF flag variable), no ``_FillValue`` on the
-  coordinates, dimensions in the order of :data:`dhfield.schema.DIM_ORDER`
+  coordinates, dimensions in the order of :data:`dhfield.core.schema.DIM_ORDER`
   (:mod:`dhfield.io.cf`), and the global
   attributes of :func:`dhfield.io.provenance_attrs` (``Conventions``,
   ``source``, ``references``, ``history``) with every input parameter as a
@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .. import field_metrics, fields, polar
+from ..analysis import field_metrics, fields, polar
 from . import check_writable, provenance_attrs, write_netcdf
 from .cf import coordinate, finalize, flag_variable, variable
 
@@ -78,7 +78,7 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
 
     Parameters
     ----------
-    case : dhfield.fields.FieldCase
+    case : dhfield.analysis.fields.FieldCase
         An analytic-versus-BEM case.
     r_max : float, optional
         Largest radius [m]; default 95 % of the smaller half-width of the grid.
@@ -90,7 +90,7 @@ def polar_dataset(case, r_max=None, n_r=201, n_theta=91) -> xr.Dataset:
     -------
     xarray.Dataset
         Analytic and numerical displacement and gap on ``(r, theta_p)``, CF metadata from
-        :mod:`dhfield.schema`.
+        :mod:`dhfield.core.schema`.
     """
     g = case.grid
     if r_max is None:
@@ -129,7 +129,7 @@ def field_dataset(case, *, polar=True, **polar_options) -> xr.Dataset:
 
     Parameters
     ----------
-    case : dhfield.fields.FieldCase
+    case : dhfield.analysis.fields.FieldCase
         An analytic-versus-BEM case.
     polar : bool, default True
         Include :func:`polar_dataset` of the case.
@@ -181,7 +181,7 @@ def write_field(case, path, **options) -> Path:
 
     Parameters
     ----------
-    case : dhfield.fields.FieldCase
+    case : dhfield.analysis.fields.FieldCase
         An analytic-versus-BEM case.
     path : path-like
         The netCDF file.

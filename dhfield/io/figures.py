@@ -15,13 +15,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..compare import RECOMMENDED_MODEL
+from ..analysis.compare import RECOMMENDED_MODEL
 from . import atomic_path, check_writable
 
 __all__ = ["RECOMMENDED_MODEL", "MODEL_LABELS", "model_label", "SI_PREFIXES", "si_prefix", "crossed_cylinders_si", "figure_paths",
            "save_figure", "write_figure"]
 
-#: Readable name of each model slug (``--model`` names of :mod:`dhfield.compare`, the adhesive
+#: Readable name of each model slug (``--model`` names of :mod:`dhfield.analysis.compare`, the adhesive
 #: BEM of a sweep, and the closures of the report's periphery section).
 MODEL_LABELS = {
     "hertz": "Hertz",
@@ -128,12 +128,12 @@ def crossed_cylinders_si(beta0, mu, *, youngs_modulus_1, poisson_ratio_1, cylind
 
     Notes
     -----
-    theta from beta0 by Eqs. (3)-(4) and (9) (:func:`dhfield.geometry.skew_angle`);
+    theta from beta0 by Eqs. (3)-(4) and (9) (:func:`dhfield.core.geometry.skew_angle`);
     R' = R_c/(1 - cos theta), R'' = R_c/(1 + cos theta) (Eqs. 3-4), R = sqrt(R' R'') (Eq. 5),
     E* by Eq. (6); Eq. (35) inverted, sigma0 = mu (E*^2 dgamma/R)^(1/3); Eq. (34) inverted,
     W = W* 2 pi R dgamma / sin theta.
     """
-    from .. import geometry
+    from ..core import geometry
 
     e2 = youngs_modulus_1 if youngs_modulus_2 is None else youngs_modulus_2
     nu2 = poisson_ratio_1 if poisson_ratio_2 is None else poisson_ratio_2

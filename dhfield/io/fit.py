@@ -1,9 +1,9 @@
-"""Input and output of the fits (:mod:`dhfield.fit`): the measured load curve, the residual plot.
+"""Input and output of the fits (:mod:`dhfield.analysis.fit`): the measured load curve, the residual plot.
 
 :func:`read_curve_data` reads a measured load curve from CSV; :func:`write_residual_plot`
-draws a :class:`dhfield.fit.CurveFit` (matplotlib at the edge, imported on use).
+draws a :class:`dhfield.analysis.fit.CurveFit` (matplotlib at the edge, imported on use).
 :func:`read_joint_data` reads data at several crossing angles (a ``skew_angle_deg`` column),
-and :func:`write_joint_plot` draws a :class:`dhfield.fit.JointFit`.
+and :func:`write_joint_plot` draws a :class:`dhfield.analysis.fit.JointFit`.
 """
 from __future__ import annotations
 
@@ -70,7 +70,7 @@ def read_curve_data(path, params=None) -> dict:
         in brackets or parentheses, ``load [mN]``, ``contact_size (um)``: forces
         in :data:`FORCE_UNITS`, lengths in :data:`LENGTH_UNITS`; without one,
         forces are in N and lengths in m.
-    params : dhfield.dimensional.ContactParameters, optional
+    params : dhfield.analysis.dimensional.ContactParameters, optional
         The contact: columns without a unit are checked against it (Notes).
 
     Returns
@@ -276,7 +276,7 @@ def residual_figure(fit, *, n=200):
 
     Parameters
     ----------
-    fit : dhfield.fit.CurveFit
+    fit : dhfield.analysis.fit.CurveFit
         The fit.
     n : int, default 200
         Points of the smooth fitted curve.
@@ -334,13 +334,13 @@ def write_residual_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
     """Write the data, the fitted curve and the residuals of ``fit`` as PNG, SVG and PDF.
 
     The model is drawn as a smooth curve over the measured range of contact sizes
-    (:meth:`dhfield.fit.CurveFit.model_curve`), the estimates in the title with SI
+    (:meth:`dhfield.analysis.fit.CurveFit.model_curve`), the estimates in the title with SI
     prefixes and the precision their standard errors allow
     (:func:`format_with_uncertainty`); with approaches, a second column.
 
     Parameters
     ----------
-    fit : dhfield.fit.CurveFit
+    fit : dhfield.analysis.fit.CurveFit
         The fit.
     path : path-like
         PNG file to write; the SVG and PDF are the same path with suffixes
@@ -467,7 +467,7 @@ def joint_figure(fit, *, n=120):
 
     Parameters
     ----------
-    fit : dhfield.fit.JointFit
+    fit : dhfield.analysis.fit.JointFit
         The fit.
     n : int, default 120
         Points of each smooth model curve.
@@ -546,7 +546,7 @@ def write_joint_plot(fit, path, *, dpi=150) -> tuple[Path, Path, Path]:
 
     Parameters
     ----------
-    fit : dhfield.fit.JointFit
+    fit : dhfield.analysis.fit.JointFit
         The fit.
     path : path-like
         PNG file to write; the SVG and PDF take the same path with suffixes ``.svg`` and

@@ -1,10 +1,10 @@
 """Figure of the pull-off force against the crossing angle for one material (``dhfield force-vs-angle``).
 
-Two panels sharing the crossing angle (:class:`dhfield.force_vs_angle.ForceVsAngle`):
+Two panels sharing the crossing angle (:class:`dhfield.analysis.force_vs_angle.ForceVsAngle`):
 
 * the pull-off force of every model [N, with an SI prefix], the tensile magnitude -W, the
   recommended model drawn first in the legend and on top, in black and thickest, with its
-  estimated error band (:mod:`dhfield.model_error`) shaded where a stored BEM case checks it,
+  estimated error band (:mod:`dhfield.analysis.model_error`) shaded where a stored BEM case checks it,
   and the stored BEM pull-offs that lie on the material's path, in newtons, with their stated
   errors;
 * the material's Tabor parameter mu against the angle, over the stored BEM cases (each at the
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compare import RECOMMENDED_MODEL
+from ..analysis.compare import RECOMMENDED_MODEL
 from .figures import model_label, si_prefix, write_figure
 
 __all__ = ["COLOURS", "LINE_STYLES", "MARKERS", "model_styles", "force_vs_angle_figure", "write_force_vs_angle_plot"]
@@ -84,8 +84,8 @@ def force_vs_angle_figure(table):
 
     Parameters
     ----------
-    table : dhfield.force_vs_angle.ForceVsAngle
-        From :func:`dhfield.force_vs_angle.pull_off_force_vs_angle`.
+    table : dhfield.analysis.force_vs_angle.ForceVsAngle
+        From :func:`dhfield.analysis.force_vs_angle.pull_off_force_vs_angle`.
 
     Returns
     -------
@@ -167,7 +167,7 @@ def write_force_vs_angle_plot(table, path, dpi=150):
 
     Parameters
     ----------
-    table : dhfield.force_vs_angle.ForceVsAngle
+    table : dhfield.analysis.force_vs_angle.ForceVsAngle
         The table to draw.
     path : path-like
         The PNG file; the SVG and PDF go beside it (:func:`dhfield.io.figures.figure_paths`).

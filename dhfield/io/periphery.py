@@ -1,8 +1,8 @@
 """xarray Datasets for the theta_p dependence, Eq. (30) and the equal-beta test.
 
-Thin wrappers around the numpy results of :mod:`dhfield.periphery`,
-:mod:`dhfield.eq30` and :mod:`dhfield.closure`.  Every variable and coordinate
-carries ``long_name`` and ``units`` from :mod:`dhfield.schema` (CF; ``"1"`` for
+Thin wrappers around the numpy results of :mod:`dhfield.models.dh_elliptic_periphery`,
+:mod:`dhfield.analysis.eq30` and :mod:`dhfield.models.dh_elliptic_closure`.  Every variable and coordinate
+carries ``long_name`` and ``units`` from :mod:`dhfield.core.schema` (CF; ``"1"`` for
 dimensionless, the paper's scale named in ``long_name``), the global attributes
 carry the provenance (:func:`dhfield.io.provenance_attrs`) and every input
 parameter.  All quantities are nondimensional in the paper's units
@@ -30,7 +30,7 @@ __all__ = [
     "write_dataset",
 ]
 
-#: Ray quantities of dhfield.periphery.PeripheryProfile (schema names; nondimensional).
+#: Ray quantities of dhfield.models.dh_elliptic_periphery.PeripheryProfile (schema names; nondimensional).
 PROFILE_VARIABLES = ("contact_radius", "adhesive_radius", "zone_width", "max_adhesive_stress", "edge_separation",
                      "work_of_adhesion", "contact_edge_gap")
 _LENGTH_UNIT = "c_r = (R^2 dgamma/E*)^(1/3) (Eq. 33)"
@@ -53,11 +53,11 @@ def pull_off_periphery_dataset(pull_off, profile, law=None, *, beta0, mu, contro
 
     Parameters
     ----------
-    pull_off : dhfield.records.PullOff
+    pull_off : dhfield.core.records.PullOff
         The pull-off points.
-    profile : dhfield.periphery.PeripheryProfile
+    profile : dhfield.models.dh_elliptic_periphery.PeripheryProfile
         Shape (len(beta0), len(mu), len(theta)).
-    law : dhfield.periphery.CohesiveLaw, optional
+    law : dhfield.models.dh_elliptic_periphery.CohesiveLaw, optional
         The sigma-h curves, shape (len(beta0), len(mu), n_law_theta, n_sample).
     beta0, mu : array_like
         1-D grids [-]; ``pull_off`` and ``profile`` have shape (len(beta0), len(mu)).
@@ -67,7 +67,7 @@ def pull_off_periphery_dataset(pull_off, profile, law=None, *, beta0, mu, contro
     Returns
     -------
     xarray.Dataset
-        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
+        CF metadata from :mod:`dhfield.core.schema`, on the grid dims ``(beta0, mu)``.
     """
     theta = np.asarray(profile.theta)[0, 0]
     data = {name: _var(("beta0", "mu", "theta"), getattr(profile, name), name, "on the ray theta_p")
@@ -97,10 +97,10 @@ def equal_beta_dataset(spread, closures: dict, *, beta0, mu, control="load") -> 
 
     Parameters
     ----------
-    spread : dhfield.closure.EqualBetaSpread
+    spread : dhfield.models.dh_elliptic_closure.EqualBetaSpread
         The equal-beta test at pull-off.
     closures : dict
-        Name -> dhfield.closure.ClosureState at pull-off (e.g. "paper",
+        Name -> dhfield.models.dh_elliptic_closure.ClosureState at pull-off (e.g. "paper",
         "ray_average", "two_axis").
     beta0, mu : array_like
         1-D grids [-]; arrays have shape (len(beta0), len(mu)).
@@ -110,7 +110,7 @@ def equal_beta_dataset(spread, closures: dict, *, beta0, mu, control="load") -> 
     Returns
     -------
     xarray.Dataset
-        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
+        CF metadata from :mod:`dhfield.core.schema`, on the grid dims ``(beta0, mu)``.
     """
     names = list(closures)
     grid = ("beta0", "mu")
@@ -148,20 +148,20 @@ def eq30_dataset(area, boundary, work_major, work_minor, mean_work, *, beta0, mu
     Parameters
     ----------
     area : array_like
-        Eq. (30) as an area integral (:func:`dhfield.eq30.eq30_area`).
+        Eq. (30) as an area integral (:func:`dhfield.analysis.eq30.eq30_area`).
     boundary : array_like
-        Its Green's form (:func:`dhfield.eq30.eq30_boundary`, ``total``).
+        Its Green's form (:func:`dhfield.analysis.eq30.eq30_boundary`, ``total``).
     work_major, work_minor : array_like
         Delta gamma(0) and Delta gamma(pi/2).
     mean_work : array_like
-        The periphery average of Delta gamma (:func:`dhfield.eq30.periphery_work_of_adhesion`).
+        The periphery average of Delta gamma (:func:`dhfield.analysis.eq30.periphery_work_of_adhesion`).
     beta0, mu : array_like
         1-D grids [-]; the other arrays have shape (len(beta0), len(mu)).
 
     Returns
     -------
     xarray.Dataset
-        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
+        CF metadata from :mod:`dhfield.core.schema`, on the grid dims ``(beta0, mu)``.
     """
     grid = ("beta0", "mu")
     data = {
@@ -185,17 +185,17 @@ def grid_periphery_dataset(theta, analytic, numerical: dict, **parameters) -> xr
     ----------
     theta : array_like
         Ray angles [rad].
-    analytic : dhfield.periphery.PeripheryProfile
+    analytic : dhfield.models.dh_elliptic_periphery.PeripheryProfile
         The analytic ray quantities.
     numerical : dict
-        Label -> PeripheryProfile from :func:`dhfield.periphery.periphery_from_gap_grid`.
+        Label -> PeripheryProfile from :func:`dhfield.models.dh_elliptic_periphery.periphery_from_gap_grid`.
     **parameters
         Recorded as attributes (state, grid size, ...).
 
     Returns
     -------
     xarray.Dataset
-        Analytic and numerical quantities on ``theta``, CF metadata from :mod:`dhfield.schema`.
+        Analytic and numerical quantities on ``theta``, CF metadata from :mod:`dhfield.core.schema`.
     """
     data = {"work_analytic": _var("theta", analytic.work_of_adhesion, "work_of_adhesion", "analytic (Eq. 31)"),
             "edge_separation_analytic": _var("theta", analytic.edge_separation, "edge_separation", "analytic")}
@@ -217,16 +217,16 @@ def load_curve_periphery_dataset(curves: dict, profiles: dict, *, beta0, mu) -> 
     Parameters
     ----------
     curves : dict
-        (beta0, mu) -> dhfield.records.LoadCurve, all on the same a* points.
+        (beta0, mu) -> dhfield.core.records.LoadCurve, all on the same a* points.
     profiles : dict
-        (beta0, mu) -> dhfield.periphery.PeripheryProfile of shape (len(a_star), len(theta)).
+        (beta0, mu) -> dhfield.models.dh_elliptic_periphery.PeripheryProfile of shape (len(a_star), len(theta)).
     beta0, mu : array_like
         1-D grids [-].
 
     Returns
     -------
     xarray.Dataset
-        CF metadata from :mod:`dhfield.schema`, on the grid dims ``(beta0, mu)``.
+        CF metadata from :mod:`dhfield.core.schema`, on the grid dims ``(beta0, mu)``.
     """
     mu, beta0 = np.asarray(mu, float), np.asarray(beta0, float)
     first = next(iter(profiles.values()))

@@ -16,14 +16,14 @@ In the style of :mod:`dhfield.io.field`, one :class:`xarray.Dataset` per solutio
 * for a path (:class:`dhfield.bem.UnloadingPath`), on the dimension ``step``
   (solve order): approach, load, semi-axes, contact area, phase (CF flags),
   converged (CF flags), iterations, residual per step, and the pull-off;
-* for a nondimensional BEM pull-off (the :class:`dhfield.records.PullOff` of
-  :func:`dhfield.adhesive_start.adhesive_pull_off`), the paper's quantities W*, a*,
+* for a nondimensional BEM pull-off (the :class:`dhfield.core.records.PullOff` of
+  :func:`dhfield.analysis.bem_start.adhesive_pull_off`), the paper's quantities W*, a*,
   b*, c*, d*, delta* (Eqs. 32-34) per step and at pull-off, with ``units = "1"``
   and the scale in ``long_name``, and its ellipticities at pull-off as
   ``beta_ab_pull_off``, ``beta_cd_pull_off`` (the record's ``ellipticity`` and
   ``adhesive_ellipticity``, named as the state's ``beta_ab``, ``beta_cd``);
 * with the physical inputs of the contact (``params``, a
-  :class:`dhfield.dimensional.ContactParameters`): the same pull-off in SI
+  :class:`dhfield.analysis.dimensional.ContactParameters`): the same pull-off in SI
   (``force_pull_off`` [N], ``semi_major_pull_off`` ... [m], ``approach_pull_off``
   [m]), the ``force_path`` [N] per step, the SI inputs (``work_of_adhesion``,
   ``max_adhesive_stress``, ``reduced_modulus``, ``r_major``, ``r_minor``,
@@ -32,7 +32,7 @@ In the style of :mod:`dhfield.io.field`, one :class:`xarray.Dataset` per solutio
 * the global attributes of :func:`dhfield.io.provenance_attrs` with every input
   parameter (``param_*``, including the traction law).
 
-Metadata of the quantities come from the one table :mod:`dhfield.schema`
+Metadata of the quantities come from the one table :mod:`dhfield.core.schema`
 (via :mod:`dhfield.io.cf`); the few that it does not list (the raw solver
 ``load``, ``cohesive_fraction``, ``residual``, ``phase``, ``step``) are defined
 here in :data:`LOCAL_VARIABLES`.  Writes go through :func:`dhfield.io.write_netcdf`
@@ -46,7 +46,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..schema import order_dims as schema_order
+from ..core.schema import order_dims as schema_order
 from . import cf, check_writable, provenance_attrs, read_netcdf, write_netcdf
 
 __all__ = ["state_dataset", "path_dataset", "pull_off_dataset", "write_solution", "read_solution",
@@ -58,7 +58,7 @@ REGIONS = ("contact", "cohesive_zone", "outside")
 #: Categories of the per-step ``phase`` flag variable (a phase the path names that is not
 #: listed here is appended to the flag meanings of that file, never dropped).
 PHASES = ("loading", "unloading", "refine", "jump")
-#: name -> (long_name, kind) of the variables not in :mod:`dhfield.schema`; kind
+#: name -> (long_name, kind) of the variables not in :mod:`dhfield.core.schema`; kind
 #: is "length", "length2", "stress", "force" or "1".
 LOCAL_VARIABLES = {
     "load": ("total normal load, sum of pressure x cell area, positive compressive", "force"),
@@ -230,7 +230,7 @@ def path_dataset(path, *, nondimensional: bool = False, sin_skew: float | None =
 
 
 def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
-    """Build the Dataset of a nondimensional BEM pull-off record (:class:`dhfield.records.PullOff`).
+    """Build the Dataset of a nondimensional BEM pull-off record (:class:`dhfield.core.records.PullOff`).
 
     The pull-off scalars (W*, a*, b*, c*, d*, delta*, Eqs. 32-34, and the
     ellipticities b/a, d/c as ``beta_ab_pull_off``, ``beta_cd_pull_off``), the
@@ -239,8 +239,8 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
 
     Parameters
     ----------
-    result : dhfield.records.PullOff
-        The BEM pull-off (:func:`dhfield.adhesive_start.adhesive_pull_off`), in the
+    result : dhfield.core.records.PullOff
+        The BEM pull-off (:func:`dhfield.analysis.bem_start.adhesive_pull_off`), in the
         paper's units (R = E* = dgamma = 1), with its path.
     fields : bool, default True
         Include the fields of the pull-off state on ``(y, x)``; False keeps
@@ -291,7 +291,7 @@ def stress_unit(params) -> float:
 
     Parameters
     ----------
-    params : dhfield.dimensional.ContactParameters
+    params : dhfield.analysis.dimensional.ContactParameters
         The contact (scalar parameters).
 
     Returns
@@ -307,9 +307,9 @@ def pull_off_si(result, params) -> dict:
 
     Parameters
     ----------
-    result : dhfield.records.PullOff
+    result : dhfield.core.records.PullOff
         A BEM pull-off solved at ``params.beta0`` and ``params.mu``.
-    params : dhfield.dimensional.ContactParameters
+    params : dhfield.analysis.dimensional.ContactParameters
         The contact (scalar parameters).
 
     Returns
@@ -321,7 +321,7 @@ def pull_off_si(result, params) -> dict:
     Notes
     -----
     Inverts Eqs. (32)-(34) with the scales of
-    :func:`dhfield.dimensional.contact_parameters`:
+    :func:`dhfield.analysis.dimensional.contact_parameters`:
 
     .. math:: W = W^* \\frac{2\\pi R \\Delta\\gamma}{\\sin\\theta_{skew}}, \\quad
               a = a^* c_r, \\quad \\delta = \\delta^* c_r^2/R
@@ -361,17 +361,17 @@ def _add_si(ds, result, params):
 
 
 def write_solution(result, path, *, fields: bool = True, params=None) -> Path:
-    """Write a BEM pull-off (:class:`dhfield.records.PullOff`) or a ContactState to netCDF atomically.
+    """Write a BEM pull-off (:class:`dhfield.core.records.PullOff`) or a ContactState to netCDF atomically.
 
     Parameters
     ----------
-    result : dhfield.records.PullOff or dhfield.bem.ContactState
+    result : dhfield.core.records.PullOff or dhfield.bem.ContactState
         What to write (:func:`pull_off_dataset` or :func:`state_dataset`).
     path : path-like
         The netCDF file; checked before the Dataset is built, written atomically.
     fields : bool
         A pull-off: also the fields of the pull-off state.
-    params : dhfield.dimensional.ContactParameters, optional
+    params : dhfield.analysis.dimensional.ContactParameters, optional
         The contact of the solved case: a pull-off then also carries its SI values
         (:func:`pull_off_si`).
 

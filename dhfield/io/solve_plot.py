@@ -1,6 +1,6 @@
 """Figure of an adhesive BEM pull-off (``dhfield solve --plot``): matplotlib at the edge.
 
-Three panels of a BEM pull-off (:class:`dhfield.records.PullOff` with its path):
+Three panels of a BEM pull-off (:class:`dhfield.core.records.PullOff` with its path):
 
 * the contact and the cohesive (adhesive) zone of the pull-off state, with the
   ellipses of semi-axes (a, b) and (c, d) fitted from the second moments of the
@@ -11,7 +11,7 @@ Three panels of a BEM pull-off (:class:`dhfield.records.PullOff` with its path):
   states solved on this grid, the pull-off marked), over the load curve of the
   analytic ``dh-elliptic-two-axis`` model for reference.
 
-With the contact's :class:`dhfield.dimensional.ContactParameters` the axes are in
+With the contact's :class:`dhfield.analysis.dimensional.ContactParameters` the axes are in
 SI units with prefixes (Eqs. 32-35 inverted), else in the paper's units.
 """
 from __future__ import annotations
@@ -40,7 +40,7 @@ def _prefix(magnitude: float, unit: str) -> tuple[float, str]:
 
 def _scales(result, params):
     """Scales and labels of length, approach, stress and load, SI (with params) or paper's units."""
-    from ..geometry import sin_skew_angle
+    from ..core.geometry import sin_skew_angle
 
     sin_skew = float(sin_skew_angle(result.beta0))
     if params is None:
@@ -99,9 +99,9 @@ def solve_figure(result, params=None):
 
     Parameters
     ----------
-    result : dhfield.records.PullOff
+    result : dhfield.core.records.PullOff
         The pull-off, with its path and the state at pull-off.
-    params : dhfield.dimensional.ContactParameters, optional
+    params : dhfield.analysis.dimensional.ContactParameters, optional
         The contact solved (same beta0 and mu): SI axes.  Without it the paper's units.
 
     Returns
@@ -218,8 +218,8 @@ def _reference_curve(ax, result, ak, fk):
     """The analytic load curve of :data:`REFERENCE_MODEL` (Dugdale law only), in the path's units."""
     if result.law != "dugdale":
         return
-    from .. import compare
-    from ..geometry import sin_skew_angle
+    from ..analysis import compare
+    from ..core.geometry import sin_skew_angle
 
     try:
         c = compare.load_curve(REFERENCE_MODEL, mu=result.mu, beta0=result.beta0)
@@ -241,12 +241,12 @@ def write_solve_plot(result, path, *, params=None, dpi=150) -> tuple[Path, Path,
 
     Parameters
     ----------
-    result : dhfield.records.PullOff
+    result : dhfield.core.records.PullOff
         The pull-off, with its path and the state at pull-off.
     path : path-like
         PNG file; the SVG and PDF are the same path with suffixes ``.svg`` and
         ``.pdf``.  All three are checked before any is written.
-    params : dhfield.dimensional.ContactParameters, optional
+    params : dhfield.analysis.dimensional.ContactParameters, optional
         The contact solved: SI axes (else the paper's units).
     dpi : int
         Resolution of the PNG.

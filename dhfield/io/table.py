@@ -7,7 +7,7 @@ A table is written as two files, both atomically (:func:`dhfield.io.atomic_path`
   ``pandas.read_csv(path)`` and no arguments: no comment lines, no units in the
   header.
 * ``path + ".json"`` -- the metadata: ``columns`` (name -> ``units``,
-  ``long_name``, ... from :mod:`dhfield.schema`) and ``attributes`` (the
+  ``long_name``, ... from :mod:`dhfield.core.schema`) and ``attributes`` (the
   provenance of :func:`dhfield.io.provenance_attrs`: source, references, input
   parameters).
 
@@ -81,7 +81,7 @@ def write_table(columns, path, *, title: str, nondimensional: bool = False, quan
     ----------
     columns : mapping
         Column name -> 1-D array_like; all of one length.  Every name (or its entry in
-        ``quantities``) must be a key of :data:`dhfield.schema.VARIABLES`.
+        ``quantities``) must be a key of :data:`dhfield.core.schema.VARIABLES`.
     path : path-like
         CSV file to write (any suffix; ``.csv`` recommended).
     title : str

@@ -12,7 +12,7 @@ TOML layout (every table and key optional except ``[axes]``)::
 
     [sweep]
     quantities = ["pull_off"]          # pull_off, load_curve, bem_field, adhesive
-    models = ["dh-elliptic", "md"]     # pull_off, load_curve: any of dhfield.compare.MODEL_NAMES
+    models = ["dh-elliptic", "md"]     # pull_off, load_curve: any of dhfield.analysis.compare.MODEL_NAMES
     curve_a_star = [0.02, 3.0]         # load_curve: contact sizes a/c_r from, to (evenly spaced)
     curve_points = 200                 # load_curve: points per curve
     control = "load"                   # or "displacement"
@@ -56,40 +56,40 @@ law             cohesive law of the adhesive BEM solver      adhesive
 
 The ``adhesive`` quantity takes ``n`` (explicit n x n grids) or ``grid_level``, not
 both.  ``grid_level = 1`` solves each case as ``dhfield solve`` without ``--n``: on the
-grid and route :func:`dhfield.adhesive_start.adhesive_pull_off` plans from the expected
+grid and route :func:`dhfield.analysis.bem_start.adhesive_pull_off` plans from the expected
 cohesive-zone width (nx x ny with about square cells below beta0 = 0.45; the predicted
 route at mu >= 7.5).  ``grid_level = k >= 2`` solves the explicit grid of k times the
 cells per axis of that plan (:func:`dhfield.sweep.tasks.automatic_grid`), so
 ``grid_level = [1, 2]`` is the convergence over N of every case in one sweep.
 
 ``[bem] max_seconds`` (``--max-seconds``) is the estimated time an adhesive case may take
-[s], > 0 (default :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`): a level k >= 2
+[s], > 0 (default :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`): a level k >= 2
 whose grid is estimated to take longer is refused before solving
 (:func:`dhfield.sweep.tasks.adhesive_case`), and level 1 is planned with it
-(:class:`dhfield.adhesive_start.AdhesiveOptions`); a case that is solved is not stopped when it
+(:class:`dhfield.analysis.bem_start.AdhesiveOptions`); a case that is solved is not stopped when it
 runs longer than its estimate (no wall-clock limit).  It decides only whether a case is refused,
 never its value, so it is not part of the config's fingerprint: a refused case is stored as
 failed, and a rerun with a larger ``max_seconds`` (the flag also overrides a config file's)
 resumes the same store and solves it.
 
 ``[bem] widest_edge = true`` solves every adhesive case with the Dugdale edge spread over its
-cap 2 h0, a stress ramp over gaps 0 to 2 h0 (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`), on the
+cap 2 h0, a stress ramp over gaps 0 to 2 h0 (:attr:`dhfield.analysis.bem_start.AdhesiveOptions.widest_edge`), on the
 predicted route only (mu >= 7.5 at ``grid_level = 1``, every ``grid_level >= 2`` of such a
 case); a case off that route fails with the solver's reason.  It changes the values, so it is
 part of the fingerprint, and the output says it (attribute ``param_bem_widest_edge``, each case's note).
 
 ``[bem] base_lattice = j`` (an integer in [0, 2], default 0) makes every ``grid_level = k >= 2``
 k times the cells per axis of the plan's lattice after j retries
-(:func:`dhfield.adhesive_start.next_lattice_grid`) instead of its first lattice: the lattice
+(:func:`dhfield.analysis.bem_start.next_lattice_grid`) instead of its first lattice: the lattice
 level 1 answers on when its first one traps a state (the level-1 record's ``nx``, ``ny`` and
 note say so), so that level 2 refines the grid of level 1's answer and not the lattice that
 trapped it.  Level 1 is the automatic grid whatever it is.  It changes the grids, so it is in
 the fingerprint when not 0 (attribute ``param_bem_base_lattice``).
 
-``pull_off`` (analytic, every model of :data:`dhfield.compare.MODEL_NAMES`)
+``pull_off`` (analytic, every model of :data:`dhfield.analysis.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
 cannot share a sweep with an ``a_star`` axis.  ``load_curve`` (every model of
-:data:`dhfield.compare.CURVE_MODEL_NAMES`) gives ``curve_W_star``,
+:data:`dhfield.analysis.compare.CURVE_MODEL_NAMES`) gives ``curve_W_star``,
 ``curve_delta_star``, ``curve_c_star``, ``curve_v`` on the dimension ``point``
 of the shared contact sizes ``curve_a_star``.
 """
@@ -111,7 +111,7 @@ __all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapp
 
 #: Quantities a sweep can compute.
 QUANTITIES = ("pull_off", "load_curve", "bem_field", "adhesive")
-#: Axes a sweep can span, in the canonical order of the output (:data:`dhfield.schema.DIM_ORDER`).
+#: Axes a sweep can span, in the canonical order of the output (:data:`dhfield.core.schema.DIM_ORDER`).
 AXES = ("skew_angle_deg", "beta0", "mu", "a_star", "n", "grid_level", "law")
 #: Axes each quantity depends on (other axes broadcast).
 QUANTITY_AXES = {
@@ -129,7 +129,7 @@ _MIN_BEM_CELLS = 16
 #: (level 4 is 16x its cells and memory; beyond, a case would not fit a worker).
 MAX_GRID_LEVEL = 4
 #: Largest ``[bem] base_lattice``: the refined grid levels multiply the plan's lattice after at
-#: most this many retries (level 1 retries once, :func:`dhfield.adhesive_start.adhesive_pull_off`).
+#: most this many retries (level 1 retries once, :func:`dhfield.analysis.bem_start.adhesive_pull_off`).
 MAX_BASE_LATTICE = 2
 _SAMPLINGS = ("average", "centre")
 _CONTROLS = ("load", "displacement")
@@ -196,7 +196,7 @@ class SweepConfig:
         Output path (see :func:`dhfield.sweep.store.output_paths`).
     max_seconds : float or None
         Estimated time allowed per adhesive BEM case [s], > 0 (``[bem] max_seconds``); None:
-        the library's :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`.  Not in the
+        the library's :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`.  Not in the
         fingerprint (it decides whether a case is refused, never its value).
     widest_edge : bool, default False
         Adhesive cases: the Dugdale edge at its cap 2 h0 (``[bem] widest_edge``); in the
@@ -277,7 +277,7 @@ class SweepConfig:
         """Ellipticity beta0 of every point of the ellipticity axis [-] (from the skew angle if given)."""
         if "beta0" in self.axes:
             return np.asarray(self.axes["beta0"], dtype=float)
-        from ..geometry import ellipticity_from_skew_angle
+        from ..core.geometry import ellipticity_from_skew_angle
 
         return np.asarray(ellipticity_from_skew_angle(np.radians(self.axes["skew_angle_deg"])), dtype=float)
 
@@ -396,7 +396,7 @@ def _check_axis(name, values):
             out.append(int(v))
         out = tuple(out)
     else:
-        from .._validation import CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE
+        from ..core.validation import CONTACT_SIZE_RANGE, ELLIPTICITY_RANGE, TABOR_RANGE
 
         ranges = {"beta0": (ELLIPTICITY_RANGE, "in (1e-4, 1] (ellipticity b/a)", False),
                   "mu": (TABOR_RANGE, "in [1e-6, 1e12] (Tabor parameter, Eq. 35)", True),
@@ -436,7 +436,7 @@ def _positive_number(key, value, valid):
 
 def _max_seconds_range() -> str:
     """Valid range of ``[bem] max_seconds`` (imports the solver's default only when an error is raised)."""
-    from ..adhesive_start import DEFAULT_MAX_SECONDS
+    from ..analysis.bem_start import DEFAULT_MAX_SECONDS
 
     return f"a finite number > 0 (estimated time allowed per adhesive BEM case, s; default {DEFAULT_MAX_SECONDS:g})"
 
@@ -502,7 +502,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     SweepConfig
         The validated sweep.
     """
-    from ..compare import DEFAULT_MODEL, MODEL_NAMES
+    from ..analysis.compare import DEFAULT_MODEL, MODEL_NAMES
 
     _check_keys(mapping, _TOP_KEYS, "")
     sweep = mapping.get("sweep", {})
@@ -531,7 +531,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
                        1e-6 <= v <= 1e6 for v in curve_a) or curve_a[0] >= curve_a[1]):
         _fail("sweep.curve_a_star", "[from, to] with 1e-6 <= from < to <= 1e6 (contact sizes a/c_r)", curve_a)
     if "load_curve" in quantities:
-        from ..compare import CURVE_MODEL_NAMES
+        from ..analysis.compare import CURVE_MODEL_NAMES
 
         for m in models:
             if m not in CURVE_MODEL_NAMES:

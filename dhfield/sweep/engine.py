@@ -58,7 +58,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import schema
+from ..core import schema
 from .config import SweepConfig, check_scheduler_address, scheduler_host_port
 from .store import CaseStore, case_coordinates, output_paths
 from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_GRID_FIELDS, ADHESIVE_MODEL, ADHESIVE_TEXT_FIELDS,
@@ -82,8 +82,8 @@ CONNECT_TIMEOUT = 5.0
 MAX_HANDSHAKE_BYTES = 1 << 16
 #: Modules the tasks of each quantity import: preloaded by the local workers of a sweep
 #: (:meth:`Executor.start`), so that only what the sweep uses is imported, once, at start-up.
-QUANTITY_MODULES = {"pull_off": ("dhfield.compare",), "load_curve": ("dhfield.compare",),
-                    "bem_field": ("dhfield.fields",), "adhesive": ("dhfield.adhesive_start",)}
+QUANTITY_MODULES = {"pull_off": ("dhfield.analysis.compare",), "load_curve": ("dhfield.analysis.compare",),
+                    "bem_field": ("dhfield.analysis.fields",), "adhesive": ("dhfield.analysis.bem_start",)}
 #: Seconds a starting local worker waits for its siblings (:meth:`Executor.start`).
 WORKER_START_TIMEOUT = 300.0
 #: Thread counts of the numerical libraries, set to 1 in every local worker process
@@ -774,7 +774,7 @@ class SweepResult:
         "not_converged" or "unresolved" (with their message).
     warned : int
         Number of analytic pull-off points (model, beta0, mu) whose record carries a
-        validity warning (the ``warning`` variable; :mod:`dhfield.validity`).
+        validity warning (the ``warning`` variable; :mod:`dhfield.analysis.validity`).
     """
 
     dataset: object
@@ -892,10 +892,10 @@ def check_sweep_memory(config: SweepConfig, concurrent: int = 1) -> None:
     """Refuse a sweep whose adhesive BEM cases would not fit the memory available, before anything starts.
 
     The adhesive cases on an explicit ``n`` axis are planned with the solver's estimate
-    (:func:`dhfield.adhesive_start.pull_off_cost` of the largest n), times the cases that
-    run at once; the limit is :func:`dhfield._memory.memory_limit` (80 % of the memory
+    (:func:`dhfield.analysis.bem_start.pull_off_cost` of the largest n), times the cases that
+    run at once; the limit is :func:`dhfield.core.memory.memory_limit` (80 % of the memory
     available now).  Each case is checked again by the solver before it allocates
-    (:func:`dhfield.adhesive_start.check_grid_memory`), and the automatic grids of the
+    (:func:`dhfield.analysis.bem_start.check_grid_memory`), and the automatic grids of the
     ``grid_level`` axis by their plan.
 
     Parameters
@@ -912,8 +912,8 @@ def check_sweep_memory(config: SweepConfig, concurrent: int = 1) -> None:
     """
     if "adhesive" not in config.quantities or "n" not in config.axes:
         return
-    from .._memory import check_memory
-    from ..adhesive_start import pull_off_cost
+    from ..core.memory import check_memory
+    from ..analysis.bem_start import pull_off_cost
 
     n = max(config.axes["n"])
     cases = config.beta0.size * len(config.axes["mu"]) * len(config.axes.get("law", ("",)))
@@ -1113,7 +1113,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         for k in ADHESIVE_FIELDS:
             if k in mvars:
                 mvars[k][m] = avars[k]
-        from ..geometry import sin_skew_angle
+        from ..core.geometry import sin_skew_angle
 
         mvars["sin_skew"][m] = np.asarray(sin_skew_angle(beta0), dtype=float).reshape((n_ell,) + (1,) * (
             1 + len(extra)))
@@ -1167,7 +1167,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         ds[c].encoding["_FillValue"] = None
     allowed = {}
     if "adhesive" in config.quantities:   # the time allowed per adhesive case by this run [s]
-        from ..adhesive_start import DEFAULT_MAX_SECONDS
+        from ..analysis.bem_start import DEFAULT_MAX_SECONDS
 
         allowed["bem_max_seconds"] = float(DEFAULT_MAX_SECONDS if config.max_seconds is None else config.max_seconds)
         allowed["bem_widest_edge"] = int(config.widest_edge)

@@ -4,11 +4,11 @@ Each quantity is a public function of plain numbers or arrays:
 
 * :func:`pull_off_block` -- the analytic pull-off of one comparison model over a
   block of (beta0, mu) points, with each point's validity warning (one vectorised
-  call of :func:`dhfield.compare.pull_off`).
+  call of :func:`dhfield.analysis.compare.pull_off`).
 * :func:`bem_field_case` -- the forward BEM check of one DH state
-  (:func:`dhfield.fields.model_case`, :func:`dhfield.field_metrics.annulus_identity`).
+  (:func:`dhfield.analysis.fields.model_case`, :func:`dhfield.analysis.field_metrics.annulus_identity`).
 * :func:`adhesive_case` -- the adhesive BEM ground truth at pull-off
-  (:func:`dhfield.adhesive_start.adhesive_pull_off`), on an explicit n x n grid or on
+  (:func:`dhfield.analysis.bem_start.adhesive_pull_off`), on an explicit n x n grid or on
   the automatic grid and its refinements (:func:`automatic_grid`).
 * :func:`expected_seconds` -- a cost model of one case, used by the engine only
   to hand out the costliest tasks first.
@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..records import LoadCurve, PullOff
+from ..core.records import LoadCurve, PullOff
 
 __all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS",
            "ADHESIVE_BEM_FIELDS", "ADHESIVE_GRID_FIELDS", "ADHESIVE_TEXT_FIELDS", "ADHESIVE_MODEL",
@@ -29,7 +29,7 @@ __all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIEL
            "adhesive_solver", "expected_seconds"]
 
 #: Output fields of the analytic pull-off, in the order of the stacked block (names of
-#: :data:`dhfield.io.compare.COMPARISON_VARIABLES`, metadata from :mod:`dhfield.schema`).
+#: :data:`dhfield.io.compare.COMPARISON_VARIABLES`, metadata from :mod:`dhfield.core.schema`).
 PULL_OFF_FIELDS = ("W_star", "a_star", "c_star", "v", "delta_star", "ellipticity", "sin_skew")
 #: Output fields of a load curve (arrays over the contact sizes), named ``curve_<field>`` in a sweep.
 CURVE_FIELDS = ("W_star", "delta_star", "c_star", "v")
@@ -69,14 +69,14 @@ def cohesive_laws() -> tuple:
 
 
 def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> PullOff:
-    """Analytic pull-off of one model on a block of points: the record of :func:`dhfield.compare.pull_off`.
+    """Analytic pull-off of one model on a block of points: the record of :func:`dhfield.analysis.compare.pull_off`.
 
-    One vectorised call of :func:`dhfield.compare.pull_off` on the whole block.
+    One vectorised call of :func:`dhfield.analysis.compare.pull_off` on the whole block.
 
     Parameters
     ----------
     model : str
-        One of :data:`dhfield.compare.MODEL_NAMES`.
+        One of :data:`dhfield.analysis.compare.MODEL_NAMES`.
     beta0, mu : array_like
         Hertz ellipticity [-] and Tabor parameter (Eq. 35) [-], broadcast together
         (keyword-only, as ``control``).
@@ -85,18 +85,18 @@ def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> PullOff:
 
     Returns
     -------
-    dhfield.records.PullOff
+    dhfield.core.records.PullOff
         Every array field of the shape ``broadcast(beta0, mu).shape`` (the sweep stores
         :data:`PULL_OFF_FIELDS` and ``warning``, each record's validity warning,
-        :mod:`dhfield.validity`; empty inside the validated range).
+        :mod:`dhfield.analysis.validity`; empty inside the validated range).
 
     Raises
     ------
     ValueError
-        As :func:`dhfield.compare.pull_off`: naming ``beta0`` or ``mu`` if out of range, or if the
+        As :func:`dhfield.analysis.compare.pull_off`: naming ``beta0`` or ``mu`` if out of range, or if the
         block has no points.
     """
-    from ..compare import pull_off
+    from ..analysis.compare import pull_off
 
     beta0, mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))
     shape = mu.shape
@@ -112,7 +112,7 @@ def block_values(rec: PullOff) -> np.ndarray:
 
     Parameters
     ----------
-    rec : dhfield.records.PullOff
+    rec : dhfield.core.records.PullOff
         A block's record (:func:`pull_off_block`).
 
     Returns
@@ -129,7 +129,7 @@ def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> LoadCurve
     Parameters
     ----------
     model : str
-        One of :data:`dhfield.compare.MODEL_NAMES` (:func:`dhfield.compare.load_curve`).
+        One of :data:`dhfield.analysis.compare.MODEL_NAMES` (:func:`dhfield.analysis.compare.load_curve`).
     beta0 : float
         Hertz ellipticity [-].
     mu : float
@@ -139,11 +139,11 @@ def load_curve_case(model: str, *, beta0: float, mu: float, a_star) -> LoadCurve
 
     Returns
     -------
-    dhfield.records.LoadCurve
-        The model's curve (:func:`dhfield.compare.load_curve`); the sweep stores its
+    dhfield.core.records.LoadCurve
+        The model's curve (:func:`dhfield.analysis.compare.load_curve`); the sweep stores its
         :data:`CURVE_FIELDS`, arrays over ``a_star`` (NaN where the model has none).
     """
-    from ..compare import load_curve
+    from ..analysis.compare import load_curve
 
     return load_curve(model, mu=float(mu), beta0=float(beta0), a_star=np.asarray(a_star, dtype=float))
 
@@ -152,7 +152,7 @@ def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width
                    sampling="average") -> dict:
     """Check the DH state at contact size ``a_star`` with the forward BEM (one case).
 
-    The DH pressure of :func:`dhfield.model.solve_adhesive_axis` is put on an
+    The DH pressure of :func:`dhfield.models.dh_elliptic.solve_adhesive_axis` is put on an
     ``n`` x ``n`` grid, its displacement computed with the DC-FFT operator and
     compared with Eq. (26); the gap with Eq. (27); the annulus identity
     h = (1 + v) h_Hertz is checked along every ray.
@@ -179,8 +179,8 @@ def bem_field_case(beta0: float, mu: float, a_star: float, n: int, *, half_width
         grid relative to max |omega| [-], worst relative annulus-identity error
         [-], and the solved c* and v of the state.
     """
-    from ..field_metrics import annulus_identity
-    from ..fields import model_case
+    from ..analysis.field_metrics import annulus_identity
+    from ..analysis.fields import model_case
 
     case = model_case(int(n), float(beta0), float(mu), float(a_star), half_width=half_width,
                       sampling=sampling, threads=1)
@@ -202,7 +202,7 @@ def adhesive_solver(name: str = "default"):
     Returns
     -------
     callable
-        :func:`dhfield.adhesive_start.adhesive_pull_off`.
+        :func:`dhfield.analysis.bem_start.adhesive_pull_off`.
 
     Raises
     ------
@@ -211,7 +211,7 @@ def adhesive_solver(name: str = "default"):
     """
     if name != "default":
         raise ValueError(f"adhesive solver must be one of ('default',); got {name!r}")
-    from ..adhesive_start import adhesive_pull_off
+    from ..analysis.bem_start import adhesive_pull_off
 
     return adhesive_pull_off
 
@@ -220,16 +220,16 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
                    control: str = "load", max_seconds: float | None = None, base_lattice: int = 0) -> dict:
     """The grid of an adhesive case at a grid level of the automatic plan.
 
-    Level 1 is the grid :func:`dhfield.adhesive_start.adhesive_pull_off` plans when no ``n``
-    is given (:func:`dhfield.adhesive_start.plan_grid`, on the domain of the route it takes);
+    Level 1 is the grid :func:`dhfield.analysis.bem_start.adhesive_pull_off` plans when no ``n``
+    is given (:func:`dhfield.analysis.bem_start.plan_grid`, on the domain of the route it takes);
     level k >= 2 is k times its cells per axis, on the same domain and by the same route: where
-    level 1 takes the predicted route (mu >= 7.5, :func:`dhfield.adhesive_start.takes_predicted_route`)
+    level 1 takes the predicted route (mu >= 7.5, :func:`dhfield.analysis.bem_start.takes_predicted_route`)
     the refined levels ask for it (``search='predicted'``), so that the levels differ by their
     cells alone (before, they were solved by the located route on the larger domain of an
     explicit grid: another route, and more cells, e.g. 2880^2 instead of 2400^2 at beta0 = 0.5).
 
     ``base_lattice`` chooses the grid the refined levels multiply: 0 the plan's first lattice,
-    j the lattice after j retries (:func:`dhfield.adhesive_start.next_lattice_grid`), where
+    j the lattice after j retries (:func:`dhfield.analysis.bem_start.next_lattice_grid`), where
     level 1 answers when its first lattice traps a state.  At mu = 10, beta0 = 0.3 and 0.5
     level 1 answered on its retry lattice (2048 x 854 and 1280^2, not 1920 x 800 and 1200^2),
     and a level 2 on twice the first lattice solved the trapping lattice again as its start.
@@ -248,7 +248,7 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
         Loading mode (the route of level 1 depends on it).
     max_seconds : float, optional
         Estimated time allowed [s], > 0; default
-        :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`.
+        :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`.
     base_lattice : int, default 0
         Levels k >= 2: k times the cells per axis of the plan's lattice after this many
         retries, 0 to :data:`dhfield.sweep.config.MAX_BASE_LATTICE` [-]; level 1 is the
@@ -271,8 +271,8 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
         integer in [0, MAX_BASE_LATTICE] or a retry lattice does not fit in the memory and
         time allowed, or ``max_seconds`` is not a finite number > 0.
     """
-    from ..adhesive_start import (DEFAULT_MAX_SECONDS, next_lattice_grid, plan_grid, pull_off_cost,
-                                  takes_predicted_route)
+    from ..analysis.bem_start import (DEFAULT_MAX_SECONDS, next_lattice_grid, plan_grid, pull_off_cost,
+                                      takes_predicted_route)
     from .config import MAX_BASE_LATTICE, MAX_GRID_LEVEL
 
     if isinstance(grid_level, bool) or not isinstance(grid_level, (int, np.integer)) \
@@ -353,12 +353,12 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
     max_seconds : float, optional
         Estimated time allowed [s], > 0: the refusal of a level k >= 2 above, and, given,
         the solver's ``options=AdhesiveOptions(max_seconds=...)`` (level 1 and the automatic
-        grid: its own refusal, :func:`dhfield.adhesive_start.plan_grid`).  Default (None):
-        :data:`dhfield.adhesive_start.DEFAULT_MAX_SECONDS`, the solver called without options.
+        grid: its own refusal, :func:`dhfield.analysis.bem_start.plan_grid`).  Default (None):
+        :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`, the solver called without options.
         An estimate checked before solving, not a wall-clock limit.
     widest_edge : bool, default False
         The Dugdale edge at its cap 2 h0 on the predicted route's grid of the answer
-        (:attr:`dhfield.adhesive_start.AdhesiveOptions.widest_edge`; ``[bem] widest_edge``);
+        (:attr:`dhfield.analysis.bem_start.AdhesiveOptions.widest_edge`; ``[bem] widest_edge``);
         the solver refuses it (ValueError) off that route.
     base_lattice : int, default 0
         A level k >= 2: k times the cells per axis of the plan's lattice after this many
@@ -389,14 +389,14 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
     kwargs = dict(beta0=float(beta0), mu=float(mu), law=law, control=control, threads=1)
     settings = {}         # the solver's options, only those given (None: the solver called without options)
     if max_seconds is not None:
-        from .._validation import check_positive
+        from ..core.validation import check_positive
 
         max_seconds = float(check_positive("max_seconds", max_seconds, "estimated time allowed per case, s"))
         settings["max_seconds"] = max_seconds
     if widest_edge:
         settings["widest_edge"] = True
     if settings:
-        from ..adhesive_start import AdhesiveOptions
+        from ..analysis.bem_start import AdhesiveOptions
 
         kwargs["options"] = AdhesiveOptions(**settings)
     if grid_level is None:
@@ -410,7 +410,7 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
             _refuse_unaffordable(beta0, mu, grid_level, grid)
             kwargs.update(n=grid["nx"], ny=grid["ny"])
             if grid["predicted"]:        # the route and domain of level 1, refined
-                from ..adhesive_start import PREDICTED_SEARCH
+                from ..analysis.bem_start import PREDICTED_SEARCH
 
                 kwargs["search"] = PREDICTED_SEARCH
     t0, c0 = time.perf_counter(), time.process_time()

@@ -18,7 +18,7 @@ At ``config-inited`` (before Sphinx lists the source files) it writes, under ``d
     ``data/adhesive_ground_truth.nc`` and ``data/adhesive_sphere_convergence.json`` by the
     verification report's own functions (:mod:`verification.sec_adhesive`).
 ``_generated/netcdf_variables.rst``
-    The netCDF/CSV variables, from :data:`dhfield.schema.VARIABLES`.
+    The netCDF/CSV variables, from :data:`dhfield.core.schema.VARIABLES`.
 ``_generated/changelog.rst``
     CHANGELOG.md, converted (headings, bullets, paragraphs).
 
@@ -45,24 +45,24 @@ ROOT = Path(os.environ.get("DHFIELD_DOCS_ROOT", DOCS.parent)).resolve()
 GROUPS = (
     ("Models", "The analytic models: the paper's extended double-Hertz model and its closures, "
      "the SI front end, and the comparison models, all behind one registry.",
-     ("dhfield", "dhfield.model", "dhfield.dimensional", "dhfield.compare", "dhfield.closure",
-      "dhfield.jkr", "dhfield.dmt", "dhfield.maugis_dugdale", "dhfield.dh_circular", "dhfield.jkr_elliptic",
-      "dhfield.transition")),
+     ("dhfield", "dhfield.models.dh_elliptic", "dhfield.analysis.dimensional", "dhfield.analysis.compare", "dhfield.models.dh_elliptic_closure",
+      "dhfield.models.jkr", "dhfield.models.dmt", "dhfield.models.maugis_dugdale", "dhfield.models.dh_circular", "dhfield.models.jkr_elliptic",
+      "dhfield.core.transition")),
     ("Equations of the paper", "The building blocks, one module per physical concept: geometry "
      "(Eqs. 2-6), elliptic integrals, the Hertz fields (Eqs. 7-15), the double-Hertz fields "
      "(Eqs. 16-27), the work of adhesion along a ray (Eq. 31), the periphery and Eq. (30).",
-     ("dhfield.geometry", "dhfield.elliptic", "dhfield.hertz", "dhfield.double_hertz", "dhfield.adhesion",
-      "dhfield.periphery", "dhfield.eq30", "dhfield.pull_off_search")),
+     ("dhfield.core.geometry", "dhfield.core.elliptic", "dhfield.models.hertz", "dhfield.models.dh_elliptic_fields", "dhfield.models.dh_elliptic_adhesion",
+      "dhfield.models.dh_elliptic_periphery", "dhfield.analysis.eq30", "dhfield.core.pull_off_search")),
     ("The boundary-element method", "The DC-FFT half-space operator, the traction-separation laws, the "
      "self-consistent adhesive solver, unloading paths and the pull-off; and pressure fields on grids.",
-     ("dhfield.bem", "dhfield.fields", "dhfield.field_sampling", "dhfield.field_metrics", "dhfield.polar",
-      "dhfield.refinement", "dhfield.solve_progress")),
+     ("dhfield.bem", "dhfield.analysis.fields", "dhfield.analysis.field_sampling", "dhfield.analysis.field_metrics", "dhfield.analysis.polar",
+      "dhfield.core.refinement", "dhfield.core.progress")),
     ("Fitting", "The inverse problem: the work of adhesion (and the adhesive stress) from measurements.",
-     ("dhfield.fit",)),
+     ("dhfield.analysis.fit",)),
     ("Sweeps and maps", "Parameter sweeps on dask that resume, and the maps drawn from them.",
-     ("dhfield.sweep", "dhfield.plotting")),
+     ("dhfield.sweep", "dhfield.io.sweep_maps")),
     ("Input and output", "netCDF/CSV writers with provenance, atomic writes, and the one metadata table.",
-     ("dhfield.io", "dhfield.schema")),
+     ("dhfield.io", "dhfield.core.schema")),
     ("Command line", "The ``dhfield`` command's entry point (its options: :doc:`/cli`).", ("dhfield.cli",)),
 )
 OTHER_GROUP = ("Other modules", "Public modules not yet placed in a group.")
@@ -72,16 +72,16 @@ OTHER_GROUP = ("Other modules", "Public modules not yet placed in a group.")
 ENTRY_POINTS = (
     ("Compute a pull-off force", "The recommended model by default, any model by name; nondimensional "
      "(the paper's units) or SI; every answer with its estimated error against the BEM ground truth.",
-     ("dhfield", "dhfield.compare", "dhfield.dimensional", "dhfield.model_error", "dhfield.validity")),
+     ("dhfield", "dhfield.analysis.compare", "dhfield.analysis.dimensional", "dhfield.analysis.model_error", "dhfield.analysis.validity")),
     ("Fit measurements", "The work of adhesion (and the adhesive stress) from measured pull-off forces or "
-     "load curves.", ("dhfield.fit",)),
+     "load curves.", ("dhfield.analysis.fit",)),
     ("Maps, sweeps and figures", "Every model over crossing angle and μ, parameter sweeps that resume, and "
      "the figures drawn from them.",
-     ("dhfield.adhesion_map", "dhfield.force_vs_angle", "dhfield.sweep", "dhfield.plotting")),
+     ("dhfield.analysis.adhesion_map", "dhfield.analysis.force_vs_angle", "dhfield.sweep", "dhfield.io.sweep_maps")),
     ("The boundary-element ground truth", "The self-consistent adhesive BEM solution that judges the models.",
      ("dhfield.bem",)),
     ("Files", "netCDF/CSV files with provenance, and the one table of their variables.",
-     ("dhfield.io", "dhfield.schema")),
+     ("dhfield.io", "dhfield.core.schema")),
     ("Command line", "The ``dhfield`` command's entry point (its options: :doc:`/cli`).", ("dhfield.cli",)),
 )
 
@@ -403,10 +403,10 @@ def write_verdict(outdir: Path) -> None:
 
 
 def write_netcdf_variables(outdir: Path) -> None:
-    """The variables table, from :data:`dhfield.schema.VARIABLES`."""
-    from dhfield import schema
+    """The variables table, from :data:`dhfield.core.schema.VARIABLES`."""
+    from dhfield.core import schema
 
-    out = [".. Generated from dhfield.schema.VARIABLES by docs/_ext/dhfield_docs.py; do not edit.\n",
+    out = [".. Generated from dhfield.core.schema.VARIABLES by docs/_ext/dhfield_docs.py; do not edit.\n",
            ".. list-table::", "   :header-rows: 1", "   :widths: 16 10 22 40 12", "   :class: dhfield-vars", "",
            "   * - name", "     - units", "     - long_name", "     - description", "     - paper's unit"]
 

@@ -5,7 +5,7 @@ The equal-β test
 The paper's model gives both ellipses one ellipticity β (Eqs. 17–19) and imposes the work of
 adhesion on the major axis only (Eq. 31).  Then the maximum adhesive stress σ0 is the same
 on every ray θp, but the work of adhesion along a ray, Δγ(θp), is not.
-:func:`dhfield.closure.equal_beta_spread` measures how far the paper's fields are from one
+:func:`dhfield.models.dh_elliptic_closure.equal_beta_spread` measures how far the paper's fields are from one
 cohesive law at the pull-off: with Δγ(0) = 1, ``work_ratio`` is Δγ(π/2) itself.
 
 A contact whose adhesion is a property of the two materials would have ``work_ratio`` = 1
@@ -15,7 +15,7 @@ circle) the two axes coincide and the ratio is exactly 1.
 import matplotlib.pyplot as plt
 import numpy as np
 
-from dhfield import closure
+from dhfield.models import dh_elliptic_closure as closure
 
 mu = np.geomspace(0.3, 10, 14)
 beta0 = np.linspace(0.5, 1.0, 11)

@@ -2,7 +2,7 @@
 Fitting a load curve
 ====================
 
-:func:`dhfield.fit.fit_curve` estimates the work of adhesion Δγ and the maximum adhesive
+:func:`dhfield.analysis.fit.fit_curve` estimates the work of adhesion Δγ and the maximum adhesive
 stress σ0, with standard errors, from a measured curve of load against contact size.  Here
 the "measurement" is synthetic: the load curve of the paper's model for a soft contact
 (E = 1 MPa, two cylinders of radius 2 mm crossed at 70°, Δγ = 50 mJ/m², σ0 = 0.1 MPa),
@@ -11,13 +11,13 @@ with 1 % seeded noise on the loads, so the fit can be checked against the truth.
 Δγ, which sets the whole adhesive part of the curve, comes back within its standard error.
 σ0 is constrained only by the shape of the curve near pull-off and is less well determined:
 in this draw it is about two standard errors from the truth.  The standard errors assume
-independent, equal-variance noise (:func:`dhfield.fit.fit_curve`, Notes).
+independent, equal-variance noise (:func:`dhfield.analysis.fit.fit_curve`, Notes).
 """
 import matplotlib.pyplot as plt
 import numpy as np
 
-from dhfield import dimensional as dim
-from dhfield import fit
+from dhfield.analysis import dimensional as dim
+from dhfield.analysis import fit
 
 truth = dim.contact_parameters(youngs_modulus_1=1e6, poisson_ratio_1=0.5,
                                youngs_modulus_2=1e6, poisson_ratio_2=0.5,

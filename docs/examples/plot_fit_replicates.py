@@ -4,11 +4,11 @@ Work of adhesion from replicate pull-off measurements
 
 Five replicate pull-off forces of the PDMS contact of
 :doc:`plot_pull_off_vs_angle` (crossed at 60°) are inverted one by one for the work of
-adhesion Δγ with :func:`dhfield.fit.fit_work_of_adhesion`, and the replicates give Δγ with
+adhesion Δγ with :func:`dhfield.analysis.fit.fit_work_of_adhesion`, and the replicates give Δγ with
 its standard error, SE = s/√n.
 
 Each force is inverted with the recommended model (``md-elliptic``,
-:data:`dhfield.compare.RECOMMENDED_MODEL`, the default of every fit).  At μ ≈ 22 the contact is
+:data:`dhfield.analysis.compare.RECOMMENDED_MODEL`, the default of every fit).  At μ ≈ 22 the contact is
 on the JKR side, beyond the stored boundary-element cases (μ ≤ 10), so each fit carries that
 warning.  The paper's model (``dh-elliptic``), inverted from the same forces, reports a Δγ that is
 far too large, because its pull-off is too weak at this ellipticity; Johnson & Greenwood's
@@ -20,9 +20,9 @@ so the answer can be checked.
 import matplotlib.pyplot as plt
 import numpy as np
 
-from dhfield import dimensional as dim
-from dhfield import fit
-from dhfield.compare import RECOMMENDED_MODEL
+from dhfield.analysis import dimensional as dim
+from dhfield.analysis import fit
+from dhfield.analysis.compare import RECOMMENDED_MODEL
 
 model = RECOMMENDED_MODEL
 params = dim.contact_parameters(youngs_modulus_1=2e6, poisson_ratio_1=0.5,

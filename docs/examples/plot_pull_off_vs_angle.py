@@ -16,8 +16,8 @@ follow elliptical JKR (:doc:`/theory/closures`).  The circular models (``jkr``, 
 import matplotlib.pyplot as plt
 import numpy as np
 
-from dhfield import compare
-from dhfield import dimensional as dim
+from dhfield.analysis import compare
+from dhfield.analysis import dimensional as dim
 
 angles = np.linspace(45.0, 90.0, 19)        # crossing angle [deg]
 coarse = angles[::3]                        # the closures cost ~0.3-0.6 s a point: fewer points

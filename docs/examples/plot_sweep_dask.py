@@ -6,7 +6,7 @@ A sweep on a dask cluster, and its map
 stores every case as it finishes (an interrupted run resumes), and writes one consolidated
 netCDF file.  Here a small pull-off map of two models runs on a local dask cluster (threads
 in this process, to keep the example light; ``tcp://host:port`` or a ``distributed.Client``
-of a real cluster works the same), and :mod:`dhfield.plotting` draws it.
+of a real cluster works the same), and :mod:`dhfield.io.sweep_maps` draws it.
 """
 import tempfile
 from pathlib import Path
@@ -14,7 +14,8 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 from distributed import Client, LocalCluster
 
-from dhfield import plotting, sweep
+from dhfield.io import sweep_maps as plotting
+from dhfield import sweep
 
 config = sweep.config_from_mapping({
     "sweep": {"quantities": ["pull_off"], "models": ["dh-elliptic", "md"]},

@@ -1,0 +1,1604 @@
+"""Where the adhesive BEM starts, chosen from the analytic models; the BEM pull-off in the paper's units.
+
+The BEM engine (:mod:`dhfield.bem`) is the ground truth the analytic models are
+judged against, so it imports none of them: it takes its start as an argument
+(:class:`dhfield.bem.pull_off.UnloadingStart`).  This module chooses that start
+from the models:
+
+* the domain, from the DH model's cohesive zone at the start of unloading
+  (:func:`dhfield.models.dh_elliptic.load_curve`);
+* the range of the unloading path, from the DH model's pull-offs in both controls
+  (:func:`dhfield.models.dh_elliptic.pull_off`);
+* the cold start of the bracket search, from the two-axis closure's load-control
+  pull-off for beta0 < 1 (``dh-elliptic-two-axis``, :func:`dhfield.analysis.compare.pull_off`),
+  the DH model's at beta0 = 1.
+
+The grid: :func:`plan_grid` chooses the cells a case needs from the law's edge
+(:func:`dhfield.bem.solver.edge_width_ratio` <= 1, i.e. ``sqrt(dx dy) <= 2/(kappa mu^2)``)
+and the expected zone width (:func:`expected_zone_width`, 0.785/mu^2) -- n x n cells for
+beta0 >= SHAPED_CELLS_MAX_BETA0, about square cells below (nx x ny, :func:`shaped_cells_y`,
+also on the predicted route below:
+n x n cells stretched along x put the Dugdale edge at a slender contact's tips near
+instability, and waste cells along y) -- estimates its memory
+and time, and names the analytic value to use instead
+(:func:`dhfield.models.md_elliptic.pull_off_nondimensional`); :func:`adhesive_pull_off`
+without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
+allowed (:class:`UnresolvableCaseError`).  Where the grid half as fine cannot hold the
+Dugdale edge, the states are warm-started from it with the edge relaxed
+(:class:`RelaxedWarmStart`); at mu >= :data:`PREDICTED_MIN_MU`, where the relaxed states do
+not converge either, only fine lattice samples around GVG's pull-off are solved, on a
+domain holding its zone (:func:`predicted_start`, :func:`dhfield.bem.pull_off.predicted_path`).
+
+:func:`adhesive_pull_off` and :func:`refine_pull_off`, the user-facing BEM
+pull-offs, set the problem up here and run :func:`dhfield.bem.pull_off.solve_pull_off`
+and :func:`dhfield.bem.pull_off.refine` on it; :mod:`dhfield.bem` forwards their
+names, so ``from dhfield.bem import adhesive_pull_off`` keeps working.
+"""
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..models import dh_elliptic as model
+from ..core.memory import memory_limit
+from ..core.validation import check_count, check_ellipticity, check_positive
+from ..bem.laws import law_from_name
+from ..bem.operator import Grid
+from ..bem.path import PathOptions
+from ..bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, LOWER_MU_RATIO, MAX_CELLS, MAX_STEPS, NESTED_MIN_N,
+                            NondimensionalProblem, UnloadingStart, check_bem_pull_off, check_cells,
+                            paper_problem, refine, solve_pull_off)
+from ..core.records import PullOff
+from ..bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
+
+__all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
+           "plan_grid", "analytic_pull_off", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
+           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
+           "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
+           "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
+           "next_lattice_grid",
+           "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
+           "pull_off_cost", "check_grid_memory", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
+
+
+def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
+    """Choose where the BEM's unloading path starts at (mu, beta0), from the analytic models (an input, not a result).
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps from the start of unloading to the expected jump (4 to 1e6) [-].
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per expected zone semi-axis, > 1 (the zone must lie inside the grid) [-].
+
+    Returns
+    -------
+    UnloadingStart
+        Domain half-widths [c_r], ``approach_max`` and the unloading step [c_r^2/R], and the
+        bracket search's cold start (approach [c_r^2/R] and zone semi-axes (c, d) [c_r]).
+
+    Raises
+    ------
+    ValueError
+        If ``mu``, ``beta0``, ``n_steps`` or ``margin`` is out of range (naming it).
+
+    Notes
+    -----
+    The analytic DH model gives the expected pull-off (a_po, delta_po).  Unloading
+    starts at a* = 1.1 a_po + 0.15 (a state on the stable branch, above pull-off), whose DH
+    approach is ``approach_max`` and whose adhesive semi-axis c* sets the domain:
+    half-widths ``margin c*`` along x and ``margin c* beta0^(3/4)`` along y (the
+    adhesive ellipse is rounder than the contact ellipse).  The step takes the
+    path in ``n_steps`` from ``approach_max`` to 20 % beyond the analytic
+    displacement-control pull-off.  The bracket search's cold start is the
+    two-axis closure's pull-off for beta0 < 1 (:func:`_two_axis_start`): the DH
+    zone (d = beta0 c) is tens of cells off the BEM's at mu = 5, beta0 = 0.5,
+    N = 512, where its cold start does not converge.
+    """
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
+    return _start(mu, beta0, n_steps, _check_margin(margin))
+
+
+def _check_margin(margin) -> float:
+    """``margin`` as a domain half-width per zone semi-axis: a number > 1 (ValueError naming it otherwise).
+
+    The largest cohesive zone of the path (at the start of unloading) must lie inside the
+    grid: with margin <= 1 the domain cuts it and the pull-off is that of another problem
+    (issue 18: margin = 0.3 gave W* = -0.261, margin = 0.1 -0.029, for about -0.79).
+    """
+    margin = float(check_positive("margin", margin, "domain half-width per zone semi-axis"))
+    if not margin > 1.0:
+        raise ValueError("margin must be > 1 (domain half-width per semi-axis of the largest cohesive zone "
+                         f"of the path, which must lie inside the grid); got {margin!r}")
+    return margin
+
+
+def _start(mu, beta0, n_steps, margin) -> UnloadingStart:
+    """:func:`unloading_start` of checked inputs."""
+    po = model.pull_off(mu=mu, beta0=beta0)
+    pod = model.pull_off(mu=mu, beta0=beta0, control="displacement")
+    a_start = 1.1 * float(po.a_star) + 0.15
+    cur = model.load_curve(mu=mu, beta0=beta0, a_star=[a_start])
+    c_start = float(cur.c_star[0])
+    d_max = float(cur.delta_star[0])
+    d_end = float(pod.delta_star) - 0.2 * (d_max - float(pod.delta_star))
+    # the cold start of the bracket search: the analytic load-control pull-off state
+    start = _two_axis_start(mu, beta0) if beta0 < 1.0 else None
+    half_x, half_y = margin * c_start, margin * c_start * beta0 ** 0.75
+    if start is None and beta0 < 1.0 and mu >= SLENDER_START_MIN_MU:
+        # slender (the two-axis closure refuses beta0 < 0.3): GVG's pull-off ellipse plus the zone
+        start = _gvg_start(mu, beta0)
+        half_x = max(half_x, SLENDER_DOMAIN_MARGIN * start[1][0])
+        half_y = max(half_y, SLENDER_DOMAIN_MARGIN * start[1][1])
+    if start is None:
+        at_po = model.load_curve(mu=mu, beta0=beta0, a_star=[max(float(po.a_star), 1e-3 * a_start)])
+        start = (float(po.delta_star), (float(at_po.c_star[0]), float(at_po.d_star[0])))
+    return UnloadingStart(half_x, half_y, d_max, (d_max - d_end) / int(n_steps), start[0], start[1])
+
+
+#: Smallest mu at which slender contacts (no two-axis start) start from GVG's JKR pull-off ellipse.
+SLENDER_START_MIN_MU = 2.0
+#: Domain half-width per semi-axis of that start's zone (GVG's contact plus the expected zone):
+#: at beta0 = 0.1806, mu = 5, N = 400 the paper's start gave a domain of 3.13 x 0.87 and the
+#: BEM's contact reached a* = 3.14 (cut by the domain; 9 unconverged states, W* 2 % weak),
+#: against GVG's a = 2.79, b = 0.74 and the paper's zone c = 2.34, d = 0.42.
+SLENDER_DOMAIN_MARGIN = 1.3
+
+
+def _gvg_start(mu, beta0):
+    """(approach, (c, d)) of GVG's JKR load-control pull-off (:mod:`dhfield.models.jkr_elliptic_energy`), the
+    contact semi-axes widened by :func:`expected_zone_width`: the cold start of slender contacts."""
+    from ..models import jkr_elliptic_energy
+
+    rec = jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")
+    w = expected_zone_width(mu)
+    return float(rec["delta_star"]), (float(rec["a_star"]) + w, float(rec["b_star"]) + w)
+
+
+@functools.lru_cache(maxsize=64)
+def _two_axis_start(mu, beta0):
+    """(approach, (c, d)) at the load-control pull-off of the two-axis closure, or None if it fails.
+
+    The paper's closure keeps d = beta0 c; the BEM's adhesive ellipse is rounder (beta_cd =
+    0.593 at beta0 = 0.5, mu = 5), and a cold start from the paper's zone (48 cells short
+    along y at N = 512) creeps for 300 outer iterations without converging.  The two-axis
+    closure (beta_cd free) is within 0.8 % of the BEM's pull-off approach and 0.4 % of its
+    c, d there, and the cold start converges (measured: 73 outer iterations;
+    ``python -m verification.diagnose_adhesive --beta0 0.5 --mu 5 --n 512``).
+    """
+    from . import compare
+
+    try:
+        rec = compare.pull_off("dh-elliptic-two-axis", mu=mu, beta0=beta0, control="load", warn=False)
+        out = (float(rec["delta_star"]), (float(rec["c_star"]), float(rec["d_star"])))
+    except (ValueError, ArithmeticError):
+        return None
+    return out if np.all(np.isfinite([out[0], *out[1]])) and min(out[1]) > 0 else None
+
+
+def nondimensional_problem(*, beta0, mu, n, law="dugdale", n_steps=DEFAULT_STEPS,
+                           margin=DOMAIN_MARGIN, ny=None) -> NondimensionalProblem:
+    """Set up the grid, initial gap, law and path range of the paper's problem at (mu, beta0).
+
+    The start comes from the analytic models (:func:`unloading_start`).
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n : int
+        Cells along x (and along y unless ``ny`` is given), even, 8 to 65536 [-].
+    law : {'dugdale', 'exponential'}, default 'dugdale'
+        Traction law, as in :func:`dhfield.bem.pull_off.paper_problem`.
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps (4 to 1e6) [-], as in :func:`unloading_start`.
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per expected zone semi-axis, > 1 [-], as in :func:`unloading_start`.
+    ny : int, optional
+        Cells along y, even, 8 to 65536 [-]; default ``n`` (e.g. :attr:`GridPlan.ny_needed`
+        for cells shaped to a slender contact).
+
+    Returns
+    -------
+    NondimensionalProblem
+        :func:`dhfield.bem.pull_off.paper_problem` with the start of :func:`unloading_start`.
+
+    Raises
+    ------
+    ValueError
+        If an argument is out of range (naming it).
+    """
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    n = check_cells(n)
+    ny = None if ny is None else check_cells(ny, "ny")
+    check_grid_memory(n, ny)
+    n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
+    start = _start(mu, beta0, n_steps, _check_margin(margin))
+    return paper_problem(mu=mu, beta0=beta0, n=n, start=start, law=law, ny=ny)
+
+
+# ============================================================================ the grid a case needs
+#: Fewest cells per axis of an automatic grid: N = 256 is within 1 % of Maugis-Dugdale on the
+#: sphere at mu <= 3 (tests/test_cli_solve.py, data/adhesive_ground_truth.nc).
+AUTO_MIN_CELLS = 256
+#: Fewest cells across the expected Dugdale zone c - a (:func:`expected_zone_width`) along x
+#: of an automatic grid (the resolved flag wants >= ZONE_MIN_CELLS = 1 at pull-off; the edge
+#: criterion below gives ~2 at mu >= 5, so this rarely binds).
+AUTO_ZONE_CELLS = 2.0
+#: Memory of one load-control pull-off per cell of the full grid [bytes].  Measured: 185 and 179
+#: B/cell of peak RSS for one state solve at N = 512 and 1024 (mu = 1, beta0 = 0.5; operator,
+#: CG and Anderson arrays, quadrant mode), plus ~33 B/cell per full-grid state held by a path
+#: (pressure, gap, repulsive pressure, masks; ~8 held) -> 450; plus 96 B/cell for the high-mu
+#: route's Anderson memory of 30 (dhfield.bem.solver.STRETCH_ANDERSON_MEMORY: 2 x 24 more
+#: quadrant arrays) -> 550.
+PATH_BYTES_PER_CELL = 550.0
+#: Wall time per cell of the full grid and per CG iteration [s]: the stored ground truth at
+#: mu = 5, N = 512 and 1024 (data/adhesive_ground_truth.nc, 'elapsed'/'iterations'/N^2) gives
+#: 0.023-0.12 us on this shared 2-core machine, median ~0.06 us.
+SECONDS_PER_CELL_ITERATION = 6e-8
+#: CG iterations of one pull-off at a resolved grid: 3000-9300 at mu = 5, N = 512-1024 (stored
+#: ground truth, bracket/located/refine routes).  With the two constants above the time
+#: estimate is a rough one (a factor 2-3 either way on a loaded machine).
+PULL_OFF_ITERATIONS = 6000
+#: Default time a pull-off with an automatic grid may be estimated to take before it is refused [s].
+DEFAULT_MAX_SECONDS = 1800.0
+
+
+def pull_off_cost(nx, ny) -> tuple:
+    """Estimated memory [bytes] and time [s] of one load-control pull-off on ``nx`` x ``ny`` cells.
+
+    ``PATH_BYTES_PER_CELL nx ny`` and ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS``
+    (measured constants, above): the estimates of :func:`plan_grid`, :func:`next_lattice` and
+    :func:`dhfield.sweep.tasks.automatic_grid`.
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells along x and y of the full grid [-].
+
+    Returns
+    -------
+    memory_bytes : float
+        Estimated peak memory [bytes].
+    seconds : float
+        Estimated wall time [s] (a factor 2-3 either way on a loaded machine).
+    """
+    cells = float(nx) * float(ny)
+    return PATH_BYTES_PER_CELL * cells, SECONDS_PER_CELL_ITERATION * cells * PULL_OFF_ITERATIONS
+
+
+def check_grid_memory(nx, ny=None) -> None:
+    """Refuse a BEM grid whose pull-off would not fit the memory available, before anything is allocated.
+
+    Every route that sets up an adhesive BEM problem on a given grid (:func:`nondimensional_problem`,
+    :func:`predicted_problem`; so :func:`adhesive_pull_off` with ``n``, the unloading branch of
+    :mod:`dhfield.analysis.bem_spring`, the adhesive cases of :mod:`dhfield.sweep`, ``dhfield solve``
+    and ``dhfield cycle``) calls it first.  The estimate is :func:`pull_off_cost`'s; the limit is
+    :func:`dhfield.core.memory.memory_limit` (80 % of the memory available now; none when unknown).
+
+    Parameters
+    ----------
+    nx : int
+        Cells along x [-].
+    ny : int, optional
+        Cells along y [-]; default ``nx``.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``n``, the estimated memory and the limit.
+    """
+    from ..core.memory import check_memory
+
+    nx = int(nx)
+    ny = nx if ny is None else int(ny)
+    cells = f"{nx}" if ny == nx else f"{nx} x {ny}"
+    check_memory(pull_off_cost(nx, ny)[0], f"n={cells} (a {nx} x {ny} grid of the adhesive BEM, about "
+                 f"{PATH_BYTES_PER_CELL:.0f} bytes per cell)")
+
+
+#: An explicit grid whose ``edge_width_ratio`` exceeds this has no stable discrete state: its
+#: states do not converge (measured: they converge at 1.10-1.18 and not at 2.1-3.8; at 3.07,
+#: beta0 = 0.4826, mu = 11.4, N = 512, the cold start stalls at residual 4e-2 after 189 outer
+#: iterations, 83 s, and the pull-off is NaN).  :func:`plan_grid` says so.
+UNSTABLE_EDGE_RATIO = 2.0
+
+
+def expected_zone_width(mu) -> float:
+    """Estimate the width c - a of the Dugdale zone on the JKR side [c_r].
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+
+    Returns
+    -------
+    float
+        ``(pi/8) 2 E* dgamma/sigma0^2 = 0.785/mu^2`` with R = E* = dgamma = 1 (sigma0 = mu)
+        [c_r].
+
+    Notes
+    -----
+    Checked against the stored BEM (data/adhesive_ground_truth.nc, beta0 = 0.5-1): at mu = 5
+    c* - a* = 0.029-0.031 and d* - b* = 0.029-0.030 (estimate 0.0314); at mu = 2 0.163-0.174
+    (0.196); at mu = 1 0.48-0.54 (0.785): an upper bound, close on the JKR side (mu >= 5).
+    """
+    return math.pi / 8.0 * 2.0 / float(mu) ** 2
+
+
+def _fft_sizes(low=AUTO_MIN_CELLS, a_min=4):
+    """Even cell counts with small prime factors (2^a 3^b 5^c, a >= a_min: multiples of 16), low to MAX_CELLS."""
+    out = set()
+    for a in range(a_min, 17):
+        for b in range(0, 4):
+            for c in range(0, 3):
+                n = 2 ** a * 3 ** b * 5 ** c
+                if low <= n <= MAX_CELLS:
+                    out.add(n)
+    return sorted(out)
+
+
+#: Below this beta0 an automatic grid has as many cells along y as make them about square
+#: (``dy <= dx``; :func:`shaped_cells_y`) instead of n x n cells stretched along x.  Measured
+#: at beta0 = 0.1806, mu = 5 (``python -m verification.bem_slender``): the n x n grid puts
+#: 2.35 cells across the Dugdale zone c - a along x and 7.2 along y (dx = 3.6 dy); the
+#: zone is as wide on both axes (0.036, 0.030), so 2.5x fewer cells resolve it as well
+#: (:func:`plan_grid`: 576 x 160 instead of 480 x 480), and the coarser grids of the
+#: located search keep >= 1 cell across it along x.  At beta0 >= 0.45 the automatic grids
+#: are left n x n (bit-identical to before; the saving there is ~1.6x at mu <= 5, ~1x at
+#: mu = 10 where the edge criterion binds, and untested against the stored ground truth).
+SHAPED_CELLS_MAX_BETA0 = 0.45
+#: Fewest cells along y of a shaped automatic grid (the nested grids 2x, 4x coarser keep a few).
+AUTO_MIN_CELLS_Y = 64
+#: Fewest cells across each expected contact semi-axis at pull-off (the DH model's a*, b*,
+#: :func:`dhfield.models.dh_elliptic.pull_off`) of a shaped automatic grid, along x and along y.  On the DMT
+#: side the contact at pull-off is small inside a wide zone: at beta0 = 0.1806, mu = 0.1 the
+#: square cells of 256 x 72 put one cell across the BEM's b* = 0.093 (flagged unresolved);
+#: the DH model's b* (0.073 there) is 20-45 % below the BEM's at beta0 = 0.18-0.3, mu = 0.1-5
+#: (measured), so 5 cells on it are ~7 on the BEM's, a discretisation error estimate
+#: (DISCRETISATION_ERROR_PER_CELL / cells) below 1 %.  It binds only at mu <~ 0.5.
+AUTO_CONTACT_CELLS = 5.0
+
+
+def shaped_cells_y(n, half_width_x, half_width_y, max_dy=None) -> int:
+    """Choose the cells along y that make the cells about square on the domain ``2 half_width_x x 2 half_width_y``.
+
+    Parameters
+    ----------
+    n : int
+        Cells along x (an automatic size, a multiple of 16) [-].
+    half_width_x, half_width_y : float
+        Domain half-widths [c_r].
+    max_dy : float, optional
+        Largest cell size along y wanted besides ``dx`` (e.g. to resolve the contact's
+        minor semi-axis) [c_r].
+
+    Returns
+    -------
+    int
+        The smallest 2^a 3^b 5^c >= AUTO_MIN_CELLS_Y with ``dy <= min(dx, max_dy)`` and divisible by the
+        largest power of 2, k, that divides ``n`` with ``n/k >= NESTED_MIN_N``: every coarser
+        grid of the nested and located searches (``n/2, n/4, ... >= NESTED_MIN_N`` along x)
+        then halves y exactly too, and keeps >= AUTO_MIN_CELLS_Y/k cells along it [-].
+    """
+    n = int(n)
+    q = 1
+    while n % (2 * q) == 0 and n // (2 * q) >= NESTED_MIN_N:
+        q *= 2
+    a_min = q.bit_length() - 1
+    dy = 2.0 * float(half_width_x) / n if max_dy is None else min(2.0 * float(half_width_x) / n, float(max_dy))
+    want = 2.0 * float(half_width_y) / dy
+    return next(k for k in _fft_sizes(max(AUTO_MIN_CELLS_Y, q), a_min) if k >= want * (1.0 - 1e-12))
+
+
+@dataclass(frozen=True)
+class GridPlan:
+    """The grid a BEM pull-off needs at (mu, beta0), its cost, and the analytic value to use instead.
+
+    Parameters
+    ----------
+    mu : float
+        Tabor parameter of the case, Eq. (35) [-].
+    beta0 : float
+        Initial ellipticity of the case [-].
+    n : int
+        Cells along x asked for (the automatic choice when none was given) [-].
+    n_needed : int
+        Fewest cells along x (from the FFT-friendly sizes) that resolve the law's edge
+        (``edge_width_ratio <= 1``) with >= AUTO_ZONE_CELLS cells across the expected zone
+        along x and y [-].
+    edge_width_ratio : float
+        :func:`dhfield.bem.solver.edge_width_ratio` of the grid of ``n`` (x ``ny``) (resolved iff <= 1) [-].
+    memory_bytes : float
+        Estimated memory of the pull-off on the grid of ``n_needed`` x ``ny_needed`` [bytes].
+    seconds : float
+        Estimated wall time of the pull-off on that grid [s].
+    memory_limit : float or None
+        The memory one computation may claim now [bytes] (None: unknown, no limit).
+    max_seconds : float
+        The time allowed [s].
+    analytic_W_star : float
+        The best analytic value of the route asked (``control``, ``machine_stiffness_star``):
+        :func:`dhfield.models.md_elliptic.pull_off_nondimensional` (GVG x the sphere's MD/JKR
+        transition; load control within 0.46 % of the 57 stored BEM cases, beta0 0.1-1,
+        mu 0.1-10) under load or displacement control, and its jump out under the machine
+        spring (:func:`dhfield.analysis.spring.pull_off_under_spring`, model
+        :data:`dhfield.analysis.compare.DEFAULT_MODEL`) [-].
+    ny : int, optional
+        Cells along y of the grid of ``n`` [-]; default ``n``.
+    ny_needed : int, optional
+        Cells along y of the automatic grid [-]: ``n_needed`` for beta0 >=
+        :data:`SHAPED_CELLS_MAX_BETA0`, else about square cells (:func:`shaped_cells_y`);
+        default ``n_needed``.
+    predicted : bool, default False
+        True when ``n_needed`` is planned on the domain of the predicted route
+        (:func:`predicted_start`: only states near the pull-off are solved, so the domain
+        holds GVG's pull-off zone instead of the zone at the start of unloading).
+    control : {'load', 'displacement', 'spring'}, default 'load'
+        The route ``analytic_W_star`` is the pull-off of.
+    machine_stiffness_star : float, optional
+        K* of the machine spring [-] (paper's units, :func:`dhfield.analysis.spring.stiffness_star`),
+        with ``control='spring'``; None otherwise.
+    """
+
+    mu: float
+    beta0: float
+    n: int
+    n_needed: int
+    edge_width_ratio: float
+    memory_bytes: float
+    seconds: float
+    memory_limit: float | None
+    max_seconds: float
+    analytic_W_star: float
+    ny: int | None = None
+    ny_needed: int | None = None
+    predicted: bool = False
+    control: str = "load"
+    machine_stiffness_star: float | None = None
+
+    def __post_init__(self):
+        if self.ny is None:
+            object.__setattr__(self, "ny", self.n)
+        if self.ny_needed is None:
+            object.__setattr__(self, "ny_needed", self.n_needed)
+
+    @property
+    def affordable(self) -> bool:
+        """True when the grid of ``n_needed`` fits the memory and the time allowed."""
+        fits = self.memory_limit is None or self.memory_bytes <= self.memory_limit
+        return fits and self.seconds <= self.max_seconds
+
+    @property
+    def too_coarse(self) -> bool:
+        """True when the grid of ``n`` is far too coarse for the law's edge (> UNSTABLE_EDGE_RATIO)."""
+        return self.edge_width_ratio > UNSTABLE_EDGE_RATIO
+
+    @property
+    def resolved(self) -> bool:
+        """True when the grid of ``n`` resolves the law's edge."""
+        return self.edge_width_ratio <= 1.0
+
+    def reason(self) -> str:
+        """Say why the case cannot be solved as asked.
+
+        Returns
+        -------
+        str
+            The reasons (too coarse an ``n``, memory, time), joined by "; "; empty when the
+            case can be solved.
+        """
+        why = []
+        if self.too_coarse:
+            why.append(f"n={self.n} is too coarse for the Dugdale edge at mu={self.mu:g} (it wants "
+                       f"{self.edge_width_ratio:.2f}x its cap 2 h0: no stable discrete state, no convergence)")
+        if self.memory_limit is not None and self.memory_bytes > self.memory_limit:
+            why.append(f"n={self._needed()} needs ~{self.memory_bytes / 2**30:.3g} GiB, more than the "
+                       f"{self.memory_limit / 2**30:.3g} GiB available")
+        if self.seconds > self.max_seconds:
+            why.append(f"n={self._needed()} would take ~{self.seconds:.0f} s, more than the "
+                       f"{self.max_seconds:.0f} s allowed")
+        return "; ".join(why)
+
+    def _needed(self) -> str:
+        """The automatic grid: ``n_needed``, and ``x ny_needed`` when not square."""
+        return f"{self.n_needed}" + (f" x {self.ny_needed}" if self.ny_needed != self.n_needed else "")
+
+    def message(self) -> str:
+        """Describe the plan in one line.
+
+        Returns
+        -------
+        str
+            The case, why it cannot be solved (:meth:`reason`), the N it needs with its
+            memory and time, and the analytic W* of the route asked to use instead (or that
+            there is none).
+        """
+        return (f"beta0={self.beta0:g}, mu={self.mu:g}: {self.reason() or 'can be solved'}; a resolved BEM "
+                f"needs n >= {self._needed()} (~{self.memory_bytes / 2**30:.2g} GiB, ~{self.seconds / 60:.0f} min "
+                f"estimated); {self.advice()}")
+
+    def route(self) -> str:
+        """Name the route the plan is for.
+
+        Returns
+        -------
+        str
+            'load control', 'displacement control' or 'a machine spring K* = ...'.
+        """
+        if self.control == "spring":
+            return f"a machine spring K* = {self.machine_stiffness_star:.6g}"
+        return f"{self.control} control"
+
+    def advice(self) -> str:
+        """Say which analytic value to use instead of the BEM, for the route asked.
+
+        Returns
+        -------
+        str
+            The analytic W* of :attr:`analytic_W_star` and its model, named with the route; where
+            it is not finite, that no analytic value exists for that route.
+        """
+        if not math.isfinite(self.analytic_W_star):
+            return f"no analytic W* exists for {self.route()} at this case"
+        return (f"use the analytic W* = {self.analytic_W_star:.4f} under {self.route()} (elliptic_transition: "
+                "GVG x the sphere's MD/JKR transition) instead")
+
+
+class UnresolvableCaseError(RuntimeError):
+    """A BEM pull-off that cannot be resolved within the memory or time available, refused before solving.
+
+    Parameters
+    ----------
+    plan : GridPlan
+        The case, the N it needs, its estimated memory [bytes] and time [s], and the best
+        analytic value (``plan.analytic_W_star``).
+
+    Attributes
+    ----------
+    plan : GridPlan
+        The plan given.
+    n_needed : int
+        Shortcut to ``plan.n_needed`` [-].
+    memory_bytes : float
+        Shortcut to ``plan.memory_bytes`` [bytes].
+    seconds : float
+        Shortcut to ``plan.seconds`` [s].
+    analytic_W_star : float
+        Shortcut to ``plan.analytic_W_star`` [-].
+    """
+
+    def __init__(self, plan: GridPlan):
+        self.plan = plan
+        self.n_needed = plan.n_needed
+        self.memory_bytes = plan.memory_bytes
+        self.seconds = plan.seconds
+        self.analytic_W_star = plan.analytic_W_star
+        super().__init__(plan.message())
+
+
+def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
+              max_seconds=DEFAULT_MAX_SECONDS, ny=None, predicted=None, control="load",
+              machine_stiffness=None) -> GridPlan:
+    """Plan the grid a BEM pull-off at (mu, beta0) needs, its estimated cost, and the analytic fall-back.
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n : int, optional
+        Cells along x asked for [-]; default: the automatic choice ``n_needed``.
+    law : {'dugdale', 'exponential'}, default 'dugdale'
+        Traction law (sigma0 = mu, Delta gamma = 1).
+    margin : float, default DOMAIN_MARGIN
+        As in :func:`unloading_start` (the domain) [-].
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Time allowed [s] (:attr:`GridPlan.affordable`).
+    ny : int, optional
+        Cells along y of the grid of ``n`` [-]; default ``n`` (``ny_needed`` when ``n`` is
+        not given either).
+    predicted : bool, optional
+        Plan the automatic grid on the predicted route's domain (:func:`predicted_start`);
+        default: for the Dugdale law at mu >= :data:`PREDICTED_MIN_MU` when ``n`` is not given
+        (the load-control route :func:`adhesive_pull_off` then takes, :func:`takes_predicted_route`).
+    control : {'load', 'displacement', 'spring'}, default 'load'
+        The route whose analytic pull-off the plan names (:attr:`GridPlan.analytic_W_star`).
+    machine_stiffness : float, optional
+        K* >= 0 of the machine spring [-] (paper's units), required with ``control='spring'``
+        and refused otherwise.
+
+    Returns
+    -------
+    GridPlan
+        The case, ``n`` and ``n_needed``, the edge ratio of the grid of ``n``, the estimated
+        memory and time of the grid of ``n_needed``, the limits, and the analytic W* of the
+        route asked.
+
+    Raises
+    ------
+    ValueError
+        If an argument is out of range (naming it).
+
+    Notes
+    -----
+    The domain is :func:`unloading_start`'s.  For beta0 >= :data:`SHAPED_CELLS_MAX_BETA0` the
+    grid has n x n cells over it (rectangular cells for beta0 < 1); below, n along x and
+    ``ny = shaped_cells_y(n, ...)`` along y, about square cells (the Dugdale zone is about
+    as wide along both axes, so it is resolved along both with fewer cells: 2.5x fewer at
+    beta0 = 0.18, mu = 5; 4.6x at beta0 = 0.1).  ``n_needed`` is the smallest size of
+    2^a 3^b 5^c (a multiple of 16, at least :data:`AUTO_MIN_CELLS`) whose
+    :func:`dhfield.bem.solver.edge_width_ratio` is <= 1 (resolved: in the paper's units
+    ``sqrt(dx dy) <= 2/(kappa mu^2)``) and whose cells number >= :data:`AUTO_ZONE_CELLS`
+    across :func:`expected_zone_width` along x and along y (for shaped grids also >=
+    :data:`AUTO_CONTACT_CELLS` across the DH model's contact semi-axes at pull-off, along x
+    and y: the binding criterion on the DMT side, mu <~ 0.5).  Both fall like 1/mu^2, so N
+    grows like mu^2 (ln-corrected): ~512 at mu = 5, ~1440 at mu = 10 for beta0 = 0.5.
+    Memory ``PATH_BYTES_PER_CELL nx ny`` and time
+    ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS`` (measured constants; the solver
+    works on the quadrant, which these include).
+    """
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
+    w_star = analytic_pull_off(beta0=beta0, mu=mu, control=control, machine_stiffness=machine_stiffness)
+    if predicted is None:
+        predicted = takes_predicted_route(beta0=beta0, mu=mu, n=n, law=law)
+    predicted = bool(predicted)
+    margin = _check_margin(margin)
+    start = (predicted_start(mu=mu, beta0=beta0, n_steps=DEFAULT_STEPS, margin=margin) if predicted
+             else _start(mu, beta0, DEFAULT_STEPS, margin))
+    law_obj = law_from_name(law, mu, 1.0)
+    zone = expected_zone_width(mu)
+
+    shaped = beta0 < SHAPED_CELLS_MAX_BETA0
+    if shaped:                  # the contact at pull-off must be resolved along both axes
+        po = model.pull_off(mu=mu, beta0=beta0)
+        contact_dx, contact_dy = (float(po.a_star) / AUTO_CONTACT_CELLS, float(po.b_star) / AUTO_CONTACT_CELLS)
+
+    def cells_y(k):
+        return shaped_cells_y(k, start.half_width_x, start.half_width_y, contact_dy) if shaped else k
+
+    def grid(k, k_y=None):
+        return Grid.centered(k, start.half_width_x, ny=cells_y(k) if k_y is None else k_y,
+                             half_width_y=start.half_width_y)
+
+    def good(k):
+        g = grid(k)
+        fine = edge_width_ratio(g, law_obj) <= 1.0 and zone / max(g.dx, g.dy) >= AUTO_ZONE_CELLS
+        return fine and (not shaped or g.dx <= contact_dx)
+
+    sizes = _fft_sizes()
+    n_needed = next((k for k in sizes if good(k)), None)
+    if n_needed is None:        # beyond MAX_CELLS: extrapolate (N grows like mu^2)
+        g = grid(MAX_CELLS)
+        n_needed = int(2 * math.ceil(MAX_CELLS * max(edge_width_ratio(g, law_obj),
+                                                     AUTO_ZONE_CELLS * max(g.dx, g.dy) / zone) / 2))
+        ny_needed = int(2 * math.ceil(n_needed * g.ny / MAX_CELLS / 2))
+    else:
+        ny_needed = cells_y(n_needed)
+    if n is None:
+        n, ny = n_needed, (ny_needed if ny is None else check_cells(ny, "ny"))
+    else:
+        n = check_cells(n)
+        ny = n if ny is None else check_cells(ny, "ny")
+    memory_bytes, seconds = pull_off_cost(n_needed, ny_needed)
+    return GridPlan(mu, beta0, int(n), int(n_needed), float(edge_width_ratio(grid(n, ny), law_obj)),
+                    memory_bytes, seconds, memory_limit(), max_seconds, w_star, int(ny), int(ny_needed), predicted,
+                    control, None if machine_stiffness is None else float(machine_stiffness))
+
+
+def analytic_pull_off(*, beta0, mu, control="load", machine_stiffness=None) -> float:
+    """The analytic W* to use where the BEM cannot answer, for the route asked [-].
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    control : {'load', 'displacement', 'spring'}, default 'load'
+        The route: the minimum of the load, the minimum of the approach, or the jump out
+        under a machine spring.
+    machine_stiffness : float, optional
+        K* >= 0 of the spring [-] (paper's units, :func:`dhfield.analysis.spring.stiffness_star`);
+        required with ``control='spring'``, refused otherwise.
+
+    Returns
+    -------
+    float
+        :func:`dhfield.models.md_elliptic.pull_off_nondimensional` under ``control`` (load or
+        displacement), or the jump out of that model's curve under the spring
+        (:func:`dhfield.analysis.spring.pull_off_under_spring`); NaN where the model gives no finite
+        value (the plan then says no analytic value exists for the route).
+
+    Raises
+    ------
+    ValueError
+        If ``control`` is unknown, or ``machine_stiffness`` is missing or out of range for it.
+    """
+    from ..models import md_elliptic as elliptic_transition
+
+    if control not in ("load", "displacement", "spring"):
+        raise ValueError(f"control must be one of ('load', 'displacement', 'spring') (loading mode); got {control!r}")
+    if (control == "spring") != (machine_stiffness is not None):
+        raise ValueError("machine_stiffness goes with control='spring' and only with it (K* of the machine "
+                         f"spring, paper's units); got control={control!r}, machine_stiffness={machine_stiffness!r}")
+    if control == "spring":
+        from .compare import DEFAULT_MODEL
+        from .spring import check_machine_stiffness, pull_off_under_spring
+
+        k = float(check_machine_stiffness("machine_stiffness", machine_stiffness))
+        w = pull_off_under_spring(DEFAULT_MODEL, beta0=beta0, mu=mu, machine_stiffness=k)["W_star"]
+    else:
+        w = elliptic_transition.pull_off_nondimensional(beta0, mu, control=control).W_star
+    w = float(np.asarray(w, float))
+    return w if math.isfinite(w) else float("nan")
+
+
+@dataclass(frozen=True)
+class AdhesiveOptions:
+    """Numerical settings of :func:`adhesive_pull_off` (the defaults are the tested ones).
+
+    Parameters
+    ----------
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps (4 to 1e6) [-]; see :func:`unloading_start`.
+    refine_levels : int, default 2
+        Refinements of the pull-off bracket (0-20) [-]; see :class:`dhfield.bem.path.PathOptions`.
+    tol : float, optional
+        Solver tolerance [-]; see :class:`dhfield.bem.path.PathOptions`.  Default (None):
+        ``DEFAULT_TOL``, and :data:`PREDICTED_TOL` on the predicted route
+        (:func:`takes_predicted_route`).
+    max_iter : int, default DEFAULT_MAX_ITER
+        Iteration cap per state [-]; see :class:`dhfield.bem.path.PathOptions`.
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per expected zone semi-axis, > 1 [-]; see :func:`unloading_start`.
+    keep_states : bool, default False
+        Keep every state of the path; see :class:`dhfield.bem.path.PathOptions`.
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Automatic n only: the estimated time allowed [s] (:func:`plan_grid`).
+    nested : bool, optional
+        Bracket search only: start every state from the same approach solved
+        on a grid half as fine (:class:`dhfield.bem.pull_off.NestedWarmStart`).
+        Default (None): when ``n >= 2 * NESTED_MIN_N``.
+    widest_edge : bool, default False
+        Predicted route only (:func:`takes_predicted_route`; ``search='predicted'`` on a given
+        grid): spread the Dugdale edge over its cap 2 h0 on the grid of the answer (and of a
+        lattice retry; :attr:`dhfield.bem.pull_off.NondimensionalProblem.widest_edge`)
+        instead of the grid's own width.  The starts from other grids keep theirs (level 1's
+        route under a refined level, the lower-mu starts).  h0 is the Dugdale range, a gap, not
+        a cell: the widest edge is a ramp of the stress over gaps 0 to 2 h0, another law with
+        the same work of adhesion, which does not tend to the Dugdale step under refinement.
+        At mu = 10 level 1's own edge is already 1.9-2.0 h0, so a refined level against level 1
+        refines the same law; its departure from Dugdale, measured on the sphere, is about
+        1e-4-2e-4 of W* at mu = 10 and 4e-3 at mu = 2 (hence refused below
+        :data:`PREDICTED_MIN_MU`).  The record's note says so (:data:`WIDEST_EDGE_NOTE`).
+    """
+
+    n_steps: int = DEFAULT_STEPS
+    refine_levels: int = 2
+    tol: float | None = None
+    max_iter: int = DEFAULT_MAX_ITER
+    margin: float = DOMAIN_MARGIN
+    keep_states: bool = False
+    max_seconds: float = DEFAULT_MAX_SECONDS
+    nested: bool | None = None
+    widest_edge: bool = False
+
+
+def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="load", search="located",
+                      threads=None, progress=None, options=None) -> PullOff:
+    """Compute the BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial ellipticity (Hertz b/a of the geometry) in (0, 1] [-].
+    mu : float
+        Tabor parameter, Eq. (35), > 0 [-] (sigma0 = mu, Delta gamma = 1).
+    n : int, optional
+        Cells along x (even; and along y unless ``ny`` is given) [-].  Default: chosen from
+        the expected zone width and the law's edge (:func:`plan_grid`, ``n_needed`` x
+        ``ny_needed``: about square cells below beta0 = SHAPED_CELLS_MAX_BETA0), refused with
+        :class:`UnresolvableCaseError` before anything is solved when that grid does not fit
+        the memory available or ``options.max_seconds``.
+    ny : int, optional
+        Cells along y (even) [-]; default ``n``, or the automatic ``ny_needed`` when ``n``
+        is not given.
+    law : {'dugdale', 'exponential'}
+        Traction law (:mod:`dhfield.bem.laws`).
+    control : {'load', 'displacement'}
+        Load control: the minimum of the unloading load.  Displacement control:
+        the jump, the minimum of the approach along the branch (its fold, or
+        the loss of contact; :mod:`dhfield.bem.continuation`).
+    search : {'located', 'bracket', 'march', 'predicted'}, default 'located'
+        Load control only (the route taken is the record's ``search``).
+        'predicted': the high-mu route (:func:`dhfield.bem.pull_off.predicted_path`: lattice samples around
+        GVG's pull-off, states to :data:`PREDICTED_TOL`, the stretch step) on its own domain,
+        also on an explicit ``n`` x ``ny`` grid (no lattice retry there); Dugdale law only.
+        The default takes it by itself on automatic grids at mu >= :data:`PREDICTED_MIN_MU`
+        (:func:`takes_predicted_route`); asking for it on an explicit grid makes a refined
+        grid of the same route and domain (``dhfield sweep``'s grid levels at those mu).
+        'located' (default) is 'bracket' with the minimum located on coarser
+        grids first (below).  'bracket': cold-start at the analytic
+        pull-off approach from its cohesive zone (:func:`unloading_start`) and
+        bracket the load minimum there (a handful of states;
+        :func:`dhfield.bem.path.bracket_search`).  'march': unload from
+        ``approach_max`` in uniform steps to the jump and refine the minimum's
+        bracket (~5x more states, same pull-off).  'located': the minimum is
+        located on the grids 2x, 4x, ... coarser (the bracket search on the
+        coarsest resolved one; three samples of the approach lattice
+        ``approach_max - j approach_step/2`` around the coarser level's minimum
+        on every finer one), and on this grid only those lattice samples and at
+        most one parabola vertex (none with ``options.refine_levels=0``) are solved,
+        each from the same approach on the grid half as fine: 3-4 fine states
+        instead of 4-6 (measured at N = 256), the same pull-off to the
+        jaggedness of the discrete load curve (~5e-4).  Falls back to 'bracket'
+        (keeping the coarse states) when ``n < 2 NESTED_MIN_N``, when the grid
+        half as fine is too coarse for the Dugdale edge
+        (:data:`dhfield.bem.pull_off.LOCATE_MAX_EDGE_RATIO`), when the located
+        minimum is not interior, or when a fine state does not converge.
+    threads : int, optional
+        FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
+    progress : bool, optional
+        Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
+    options : AdhesiveOptions, optional
+        Numerical settings (steps, refinements, tolerance, iteration cap, domain margin,
+        kept states, time allowed, nested warm starts); default ``AdhesiveOptions()``.
+
+    Returns
+    -------
+    dhfield.core.records.PullOff
+        The one pull-off record of every model, with ``model='bem'`` and its solver group
+        (:func:`dhfield.bem.pull_off.pull_off_result` lists the BEM's fields): W* in the
+        normalisation of Eq. (34) with sin(theta_skew) of beta0, like every other model of
+        :mod:`dhfield.analysis.compare`; semi-axes in c_r; the whole path in ``path``.
+
+    Raises
+    ------
+    UnresolvableCaseError
+        Automatic n only: the grid the case needs exceeds the memory or the time allowed;
+        the exception carries that N, its estimated memory and time, and the analytic
+        W* to use instead (one-line message).
+    ValueError
+        If an argument is out of its range (naming it), e.g. an unknown ``search`` or
+        ``control``.
+
+    Notes
+    -----
+    With R = E* = Delta gamma = 1 (Eqs. 32-35): the initial gap is Eq. (2) with
+    R' R'' = 1, the law has sigma0 = mu and range 1/mu, and
+
+    .. math:: W^* = \\frac{W \\sin\\theta_{skew}}{2\\pi R\\Delta\\gamma}
+
+    (Eq. 34).  The domain and the path come from :func:`nondimensional_problem`.
+    """
+    from ..bem.pull_off import SEARCHES
+
+    if options is None:
+        options = AdhesiveOptions()
+    elif not isinstance(options, AdhesiveOptions):
+        raise ValueError(f"options must be an AdhesiveOptions (numerical settings); got {type(options).__name__}")
+    n_steps, refine_levels, tol, max_iter = options.n_steps, options.refine_levels, options.tol, options.max_iter
+    margin, keep_states, max_seconds = options.margin, options.keep_states, options.max_seconds
+    nested, widest_edge = options.nested, options.widest_edge
+    if not isinstance(widest_edge, (bool, np.bool_)):
+        raise ValueError(f"options.widest_edge must be True or False (the Dugdale edge at its cap 2 h0 on the "
+                         f"predicted route); got {widest_edge!r}")
+
+    for name, value in (("mu", mu), ("beta0", beta0)):  # one case per call: scalars only
+        if np.ndim(value) != 0:
+            raise ValueError(f"{name} must be a scalar (one BEM case per call); got an array of shape "
+                             f"{np.shape(value)}")
+    if search not in SEARCHES + (PREDICTED_SEARCH,):
+        raise ValueError(f"search must be one of {SEARCHES + (PREDICTED_SEARCH,)} (load-control path); "
+                         f"got {search!r}")
+    if control not in ("load", "displacement"):
+        raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
+    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load"
+                                           and (nested is None or n is not None)):
+        raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None on the "
+                         f"automatic grid (the predicted route); got law={law!r}, control={control!r}, "
+                         f"nested={nested!r}, n={n!r}")
+    if widest_edge and (mu < PREDICTED_MIN_MU or not takes_predicted_route(
+            beta0=beta0, mu=mu, n=n, law=law, control=control, search=search, nested=nested)):
+        # below PREDICTED_MIN_MU the widened law's own answer departs from Dugdale's beyond the stated error
+        # (the sphere at mu = 2: +0.41 % from MD at N = 128, 256 and 512 alike, stated errors 0.8-0.2 %)
+        raise ValueError("options.widest_edge=True needs the predicted route and mu >= "
+                         f"{PREDICTED_MIN_MU:g} (law='dugdale', control='load', options.nested None, "
+                         "search='predicted' or no n); "
+                         f"got mu={mu!r}, n={n!r}, law={law!r}, control={control!r}, search={search!r}")
+    options = PathOptions(refine_levels=refine_levels, tol=DEFAULT_TOL if tol is None else tol,
+                          max_iter=max_iter, threads=threads, keep_states=keep_states, progress=progress)
+    if n is None:
+        coarse_route = control == "load" and search == "located" and nested is None and law == "dugdale"
+        predicted = takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control, search=search, nested=nested)
+        plan = plan_grid(mu=mu, beta0=beta0, law=law, margin=margin, max_seconds=max_seconds, predicted=predicted,
+                         control=control)
+        if not plan.affordable:
+            raise UnresolvableCaseError(plan)
+        n = plan.n_needed
+        ny = plan.ny_needed if ny is None else ny
+        if plan.predicted:
+            # high mu: neither the grid half as fine nor its relaxed states converge; only fine
+            # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
+            tol_route = PREDICTED_TOL if tol is None else tol
+            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny,
+                                     widest_edge=widest_edge)
+            # GVG's start first (measured: every mu = 10 case answered so far, beta0 = 0.4826 in 272 s), then
+            # each state from the same approach at mu/2 on the grid half as fine (LowerMuWarmStart) on the same
+            # lattice: at mu = 10 GVG's cold state wandered at beta0 = 0.1 and stalled in one run on the sphere
+            # (N = 1280), where the lower-mu start's converged in 148 and 45 outer iterations.  Lower-mu first
+            # made dhfield solve --beta0 0.4826 --mu 10 take > 8 min (1 thread): not the default
+            res = _predicted_pull_off(prob, options, tol=tol_route)
+            tried = ()                            # why the retry on this lattice was made, for the record's note
+            if not res.converged and lower_mu_start_possible(prob):
+                tried = (f"the N = {n} lattice's states from GVG's start did not converge (worst residual "
+                         f"{res.worst_residual:.2g}, {res.iterations} CG iterations, {res.elapsed:.0f} s): solved "
+                         f"again from the lower-mu start (mu = {LOWER_MU_RATIO * mu:g} on the grid half as fine)",)
+                again = _predicted_pull_off(prob, options, tol=tol_route, start="lower-mu")
+                res = replace(again, note="; ".join(filter(None, (*tried, again.note))),
+                              elapsed=res.elapsed + again.elapsed)
+            retry = None if res.converged else next_lattice_grid(n, ny, max_seconds)
+            if retry is None:
+                return res
+            n_next, ny_next = retry
+            # a state the lattice still traps (before the stretch step: beta0 = 0.5, mu = 10 stalled at
+            # N = 1200, converged at N = 1280): once more on the next lattice, finer, so still resolved
+            why = (f"the N = {n} lattice's states did not converge (worst residual {res.worst_residual:.2g}, "
+                   f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
+                   f"N = {n_next}")
+            again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
+                                                          margin=margin, ny=ny_next,
+                                                          widest_edge=widest_edge),
+                                        options, tol=tol_route)
+            return replace(again, note="; ".join(filter(None, (*tried, why, again.note))),
+                           elapsed=res.elapsed + again.elapsed)
+        relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
+    elif search == PREDICTED_SEARCH:
+        # the route on the caller's grid (a refined grid of the same route and domain): no retry.  Every
+        # state from this route's own state on the grid half as fine where that grid holds the edge at mu
+        # (a refined level), else from the lower-mu start where the grid half as fine holds the edge at mu/2
+        # (nested True: one of the two required, False: GVG's cold start)
+        prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny,
+                                 widest_edge=widest_edge)
+        start = ("coarse-route" if coarse_route_start_possible(prob) else
+                 "lower-mu" if lower_mu_start_possible(prob) else "cold")
+        if nested and start == "cold":
+            raise ValueError(f"options.nested=True needs a grid whose half holds the Dugdale edge at mu/2, with nx and "
+                             f"ny multiples of 4 (lower_mu_start_possible); got {n} x {ny} cells at mu = {mu:g}")
+        return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol,
+                                   start="cold" if nested is False else start)
+    else:
+        relaxed = False
+    prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
+    if relaxed and prob.has_cold_start:
+        # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
+        # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
+        return _relaxed_pull_off(prob, options)
+    res = solve_pull_off(prob, control=control, search=search, nested=nested, options=options)
+    if control == "displacement":
+        res = _ladder_checked(prob, res, n_steps=n_steps, margin=margin, options=options)
+    return res
+
+
+def _ladder_checked(prob, res, *, n_steps, margin, options) -> PullOff:
+    """The displacement-control pull-off ``res`` on ``prob`` with the grid's error from a coarser grid.
+
+    The same route on the first of :func:`dhfield.bem.pull_off.ladder_cells` (half, then three
+    quarters of the cells per axis) over the same domain whose edge ratio is at most
+    :data:`dhfield.bem.pull_off.LOCATE_MAX_EDGE_RATIO` (its states converge); its W* gives the
+    stated error (:func:`dhfield.bem.pull_off.route_error`).  Where there is no such grid, or its
+    pull-off is not converged, there is no estimate: the record is then unresolved (infinite ``W_star_error``).  An unresolved
+    ``res`` is returned as it is.
+    """
+    from ..bem.pull_off import LOCATE_MAX_EDGE_RATIO, ladder_cells, pull_off_result
+
+    if not res.resolved:          # not an answer whatever its error: no grid half as fine to solve
+        return res
+    n, ny = prob.grid.nx, prob.grid.ny
+    w_c, n_c, elapsed = float("nan"), 0, 0.0
+    for n_c, ny_c in zip(ladder_cells(n), ladder_cells(ny)):
+        coarse = nondimensional_problem(mu=prob.mu, beta0=prob.beta0, n=n_c, law=prob.law.name, n_steps=n_steps,
+                                        margin=margin, ny=ny_c)
+        if edge_width_ratio(coarse.grid, coarse.law) <= LOCATE_MAX_EDGE_RATIO:
+            got = solve_pull_off(coarse, control="displacement", options=replace(options, progress=False))
+            elapsed = got.elapsed
+            if got.converged and np.isfinite(got.W_star):
+                w_c = float(got.W_star)
+            break
+    out = pull_off_result(prob, n, res.path, res.search, coarse=(w_c, n_c))
+    return replace(out, elapsed=res.elapsed + elapsed)
+
+
+#: Tolerance of the relaxed coarse states of :class:`RelaxedWarmStart` (warm starts only: their
+#: law is smeared anyway; the fine grid keeps ``tol``).
+RELAXED_COARSE_TOL = 1e-4
+
+
+class RelaxedWarmStart:
+    """Warm starts from the grid half as fine with the Dugdale edge relaxed (coarse to fine at high mu).
+
+    Where the grid half as fine cannot hold the Dugdale edge (its ``edge_width_ratio`` is
+    above the located search's gate), its states do not converge, and
+    :class:`dhfield.bem.pull_off.NestedWarmStart` gives nothing.  Here the coarse states
+    solve the law with the edge as wide as stability wants
+    (``AdhesiveProblem(..., relaxed_edge=True)``): they converge, and their zone is within a
+    fraction of a coarse cell of the fine grid's.  ``start(approach)`` solves the coarse
+    state at that approach (from the nearest one solved, the first from the problem's cold
+    start), carries it onto the fine grid (:func:`dhfield.bem.pull_off.interpolate_state`)
+    with the fine grid's own sub-cell zone fraction of the carried gap, and returns it as a
+    guess (never as an answer: the fine state is solved from it with the unrelaxed law).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The fine grid's problem (n divisible by 4).
+    tol : float, default RELAXED_COARSE_TOL
+        Tolerance of the coarse states [-], as in :func:`dhfield.bem.solve_adhesive`.
+    max_iter : int, default DEFAULT_MAX_ITER
+        Iteration cap per coarse state, as in :func:`dhfield.bem.solve_adhesive`.
+    threads : int, optional
+        FFTW threads, as in :func:`dhfield.bem.solve_adhesive`.
+    """
+
+    def __init__(self, problem, *, tol=RELAXED_COARSE_TOL, max_iter=DEFAULT_MAX_ITER, threads=None):
+        from ..bem.solver import AdhesiveProblem
+
+        coarse = problem.coarser(problem.grid.nx // 2)
+        self._fine_nd, self._fine_prob, self._threads = problem, None, threads
+        self._prob = AdhesiveProblem(coarse.initial_gap, coarse.grid, coarse.law, None, threads, 1.0,
+                                     relaxed_edge=True)
+        self._cold = np.clip(self._prob.to_work(coarse.start_stress()), 0.0, coarse.law.max_stress)
+        self._tol, self._max_iter = float(tol), int(max_iter)
+        self._states = {}
+        self.iterations = 0
+        self.seconds = 0.0
+
+    @property
+    def states_solved(self) -> int:
+        """Number of relaxed coarse states solved (or kept from the bracket search) so far [-]."""
+        return len(self._states)
+
+    def coarse_state(self, approach):
+        """Return the relaxed state at ``approach`` on the coarse grid (solved once).
+
+        Parameters
+        ----------
+        approach : float
+            Approach of distant points [c_r^2/R].
+
+        Returns
+        -------
+        ContactState
+            The coarse state, warm-started from the nearest converged contact state solved
+            (the problem's cold start for the first); flagged when not converged.
+        """
+        import time
+
+        from ..bem.solver import Prediction, solve_problem
+
+        d = float(approach)
+        if d not in self._states:
+            near = [s for s in self._states.values() if s.converged and s.in_contact]
+            guess = (min(near, key=lambda s: abs(s.approach - d)) if near
+                     else Prediction(np.zeros_like(self._cold), self._cold.copy()))
+            t0 = time.perf_counter()
+            st = solve_problem(self._prob, d, guess, self._tol, self._max_iter)
+            self.seconds += time.perf_counter() - t0
+            self.iterations += st.iterations
+            self._states[d] = st
+        return self._states[d]
+
+    def __call__(self, approach):
+        """Warm start on the fine grid (a guess), or None when the coarse state is not a converged contact state."""
+        from ..bem.pull_off import interpolate_state
+
+        st = self.coarse_state(approach)
+        if not (st.converged and st.in_contact):
+            return None
+        guess = interpolate_state(st, self._fine_nd.grid)
+        if self._fine_prob is None:
+            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
+        fp, law = self._fine_prob, guess.law
+        zone = fp.to_full(fp.stress_from_gap(fp.to_work(guess.gap), fp.to_work(guess.contact)) / law.max_stress)
+        return replace(guess, pressure=guess.repulsive_pressure - law.max_stress * zone,
+                       cohesive=np.where(guess.contact, 0.0, zone))
+
+
+    def locate_pull_off(self, spacing):
+        """Locate the load-control pull-off approach on the relaxed coarse grid.
+
+        The bracket search on the coarse grid (the problem's cold start, no vertex
+        refinement); its states are kept as the warm starts of the fine grid, whose lattice
+        samples ``approach_max - j spacing`` next to it :func:`dhfield.bem.pull_off.located_path`
+        then solves.  The smeared law moves the minimum by a fraction of a path step (the
+        fine samples re-locate it).
+
+        Parameters
+        ----------
+        spacing : float
+            Spacing of the fine grid's approach lattice [c_r^2/R].
+
+        Returns
+        -------
+        float
+            The coarse pull-off approach [c_r^2/R]; NaN when the bracket search finds no
+            interior minimum.
+        """
+        import time
+
+        from ..bem.branch import Branch
+        from ..bem.path import PathStart, bracket_search
+
+        nd = self._fine_nd
+        b = Branch(self._prob, self._tol, self._max_iter, progress=False, keep_states=True)
+        opts = PathOptions(refine_levels=0, tol=self._tol, max_iter=self._max_iter, threads=self._threads,
+                           keep_states=True, progress=False).checked()
+        t0 = time.perf_counter()
+        # the bracket search only: no marching fall-back (measured at mu = 10, N = 720: a failed
+        # cold start went on to load the whole path from first touch)
+        outcome, current = bracket_search(b, PathStart(nd.pull_off_approach, self._cold.copy()), nd.approach_step,
+                                          opts)
+        self.seconds += time.perf_counter() - t0
+        for i, st in b.states.items():
+            self.iterations += st.iterations
+            if st.converged and st.in_contact:
+                self._states.setdefault(float(st.approach), st)
+        if outcome != "interior":
+            return float("nan")
+        return float(b.load_pull_off(current).pull_off_approach)
+
+
+def _relaxed_pull_off(prob, options) -> PullOff:
+    """Load-control pull-off on ``prob`` with every state warm-started by :class:`RelaxedWarmStart`.
+
+    The minimum located on the relaxed coarse grid first, then 3-4 fine lattice samples
+    around it (:func:`dhfield.bem.pull_off.located_path`, as ``search='located'``); the
+    bracket search on this grid when that fails.
+    """
+    from ..bem.path import path_on
+    from ..bem.pull_off import pull_off_result, located_path
+
+    options = options.checked()
+    ws = RelaxedWarmStart(prob, max_iter=options.max_iter, threads=options.threads)
+    path = located_path(prob, ws, options)
+    if path is not None:
+        return pull_off_result(prob, prob.grid.nx, path, "located")
+    work = prob.adhesive_problem(options.threads)
+    path = path_on(work, prob.path_start(work, ws), prob.approach_max, prob.approach_step, control="load",
+                   options=options)
+    return pull_off_result(prob, prob.grid.nx, path, "bracket")
+
+
+#: Smallest mu at which an automatic grid whose half grid cannot hold the Dugdale edge solves
+#: only fine lattice samples around GVG's pull-off (:func:`_predicted_pull_off`) instead of
+#: warm starts from the relaxed half grid (:class:`RelaxedWarmStart`).  Measured at beta0 =
+#: 0.4826, mu = 10: the relaxed cold start stalls at residual 0.04-0.5 on N = 180, 360 and 720
+#: (from the two-axis zone and from GVG's alike; 32 CPU s at N = 720), after which the old route
+#: cold-started the bracket search on N = 1440 (8443 CG iterations for its first state); at
+#: mu = 5 (sphere N = 160, beta0 = 0.5 N = 192) the relaxed states converge.  The predicted
+#: route is faster at mu = 5 too (``verification/bem_high_mu.py --route predicted``: sphere N =
+#: 256, 1.9 CPU s, MD +0.13 %; beta0 = 0.5 N = 288, 4.5 CPU s, +0.06 % of the stored N = 1024)
+#: than the relaxed one (sphere N = 320, 9.0 CPU s, +0.04 %; beta0 = 0.5 N = 384, ~36 CPU s),
+#: but mu = 5 (and its slender cases) keeps the relaxed route until measured more widely.
+PREDICTED_MIN_MU = 7.5
+#: Solver tolerance of the predicted route's states when none is given (the other routes keep
+#: ``DEFAULT_TOL`` = 1e-6; the located search's coarse states already use 1e-4,
+#: ``LOCATE_COARSE_TOL``).  Its states are the answer, each a fixed point of the zone reached in
+#: 60-80 outer iterations at 1e-6, most of them spent below a zone-fraction change of 1e-4, which
+#: moves W* far less than the discretisation error the answer states.  Measured at
+#: beta0 = 0.4826, mu = 7.5 (N = 720, three states; ``adhesive_pull_off(options=AdhesiveOptions(tol=...))``):
+#: W* -0.644981 (1e-6), -0.6449798 (1e-5), -0.6449845 (1e-4: 6e-6 relative, against the stated
+#: error 0.0149 = 2.3 %); CG iterations 4983, 3858, 3145.  At mu = 10 (N = 1200): W* -0.644437 at
+#: 1e-6 (7103 CG) and 1e-5 (6283 CG), the same to six digits.
+PREDICTED_TOL = 1e-4
+#: The ``search`` of :func:`adhesive_pull_off` that asks for the predicted route, also on an explicit
+#: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
+PREDICTED_SEARCH = "predicted"
+
+#: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`);
+#: it ends with :data:`WIDEST_EDGE_MARK`, which readers look for (the records of 5755b0d-b484c02 said
+#: "on every grid", where the starts from other grids kept their own edges).
+WIDEST_EDGE_NOTE = "Dugdale edge held at its cap 2 h0 on the grid of the answer (options.widest_edge)"
+#: What a record's note or message carries when it was solved with the widest edge.
+WIDEST_EDGE_MARK = "(options.widest_edge)"
+
+
+def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None) -> bool:
+    """Tell whether :func:`adhesive_pull_off` solves a case by the predicted route.
+
+    The route solves fine lattice samples around GVG's pull-off only
+    (:func:`dhfield.bem.pull_off.predicted_path`).
+
+    :func:`adhesive_pull_off`, :func:`plan_grid` (its default) and the command line share this
+    rule, so that a plan is made on the domain the solve will use.
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n : int, optional
+        Cells along x asked for; by default the route is taken by automatic grids only (``n`` None).
+    law : {'dugdale', 'exponential'}, default 'dugdale'
+        Traction law.
+    control : {'load', 'displacement'}, default 'load'
+        Loading mode.
+    search : str, default 'located'
+        Load-control search of :func:`adhesive_pull_off`; ``'predicted'`` (:data:`PREDICTED_SEARCH`)
+        asks for the route on any grid and at any mu.
+    nested : bool, optional
+        :attr:`AdhesiveOptions.nested`; the route needs the default (None).
+
+    Returns
+    -------
+    bool
+        True for an automatic grid under the default load-control search with the Dugdale law
+        at mu >= :data:`PREDICTED_MIN_MU`, at every beta0 (slender contacts on shaped nx x ny
+        grids too: their coarse-to-fine route's relaxed states do not converge at mu = 10
+        either; measured: beta0 = 0.1 and 0.3 unfinished after 1840 CPU s).
+    """
+    if search == PREDICTED_SEARCH:      # asked for (adhesive_pull_off refuses it with another law or control)
+        return bool(law == "dugdale" and control == "load" and nested is None)
+    return bool(n is None and law == "dugdale" and control == "load" and search == "located" and nested is None
+                and float(mu) >= PREDICTED_MIN_MU)
+
+
+def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -> UnloadingStart:
+    """The start of the predicted route: GVG's pull-off, on a domain holding its zone.
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps, as in :func:`unloading_start` (the approach lattice) [-].
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per semi-axis of the cold start's zone, > 1 [-].
+
+    Returns
+    -------
+    UnloadingStart
+        :func:`unloading_start`'s path range (``approach_max``, ``approach_step``: the same
+        approach lattice), with GVG's load-control pull-off corrected by the sphere's MD as
+        the cold start (:func:`_gvg_md_start`: its approach, its contact ellipse widened by
+        the MD zone) and half-widths ``margin`` times that zone's semi-axes (never wider than
+        :func:`unloading_start`'s).
+
+    Notes
+    -----
+    Only states near the pull-off are solved (:func:`dhfield.bem.pull_off.predicted_path`),
+    so the domain need not hold the zone at the start of unloading: at beta0 = 0.4826,
+    mu = 10 it is 2.29 x 1.33 instead of 2.56 x 1.48, and the edge is resolved with
+    N = 1280 instead of 1440 (sphere: 1280 instead of 1536).  The zone grows by ~1.5 % per
+    lattice sample above the pull-off (measured, sphere mu = 5: c = 1.516, 1.539, 1.562),
+    so ``margin`` = 1.15 holds about ten samples above it (the search adds at most
+    ``LOCATE_MAX_EXTEND`` = 6).
+    """
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    margin = _check_margin(margin)
+    base = _start(mu, beta0, n_steps, margin)
+    approach, zone = _gvg_md_start(mu, beta0)
+    return replace(base, half_width_x=min(base.half_width_x, margin * zone[0]),
+                   half_width_y=min(base.half_width_y, margin * zone[1]), approach=approach, zone=zone)
+
+
+def _gvg_md_start(mu, beta0):
+    """(approach, (c, d)) of GVG's JKR load-control pull-off corrected to finite mu by the sphere's MD.
+
+    The contact semi-axes of :mod:`dhfield.models.jkr_elliptic_energy` times the sphere's
+    a_MD/a_JKR at pull-off, widened by the sphere's MD zone width c_MD - a_MD
+    (:mod:`dhfield.models.maugis_dugdale`), at GVG's approach plus the sphere's
+    delta_MD - delta_JKR.  Only a start (any converging start gives the same state): on the
+    sphere at mu = 5 the BEM's pull-off contact (N = 256: a* = 1.510, c* = 1.539) is within
+    0.4 cell of it (a = 1.504, c = 1.534) and 1.1 cells from GVG's widened by
+    :func:`expected_zone_width` (c = 1.555); the edge's creep from a start a cell off costs
+    most of the outer iterations of a cold state.
+    """
+    from ..models import jkr_elliptic_energy, maugis_dugdale
+
+    gvg = jkr_elliptic_energy.pull_off_nondimensional(beta0, mu, control="load")
+    jkr = jkr_elliptic_energy.pull_off_nondimensional(1.0, mu, control="load")
+    md = maugis_dugdale.pull_off_nondimensional(1.0, mu, control="load")
+    ratio = float(md.a_star) / float(jkr["a_star"])
+    w = float(md.c_star) - float(md.a_star)
+    approach = float(gvg["delta_star"]) + float(md.delta_star) - float(jkr["delta_star"])
+    return approach, (ratio * float(gvg["a_star"]) + w, ratio * float(gvg["b_star"]) + w)
+
+
+def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN, ny=None,
+                      widest_edge=False) -> NondimensionalProblem:
+    """The paper's problem (Dugdale law) on the predicted route's domain with its start (:func:`predicted_start`).
+
+    Parameters
+    ----------
+    beta0 : float
+        Initial (Hertz) ellipticity in (0, 1] [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n : int
+        Cells per axis, even, 8 to 65536 [-].
+    n_steps : int, default DEFAULT_STEPS
+        Unloading steps (4 to 1e6) [-].
+    margin : float, default DOMAIN_MARGIN
+        As in :func:`predicted_start` [-].
+    ny : int, optional
+        Cells along y (even, 8 to 65536) [-]; default ``n``.
+    widest_edge : bool, default False
+        The Dugdale edge at its cap 2 h0 (:attr:`AdhesiveOptions.widest_edge`).
+
+    Returns
+    -------
+    NondimensionalProblem
+        :func:`dhfield.bem.pull_off.paper_problem` with :func:`predicted_start`.
+    """
+    n = check_cells(n)
+    ny = n if ny is None else check_cells(ny, "ny")
+    check_grid_memory(n, ny)
+    n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
+    prob = paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
+                         start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))
+    return replace(prob, widest_edge=True) if widest_edge else prob
+
+
+def lower_mu_start_possible(problem) -> bool:
+    """Tell whether the predicted route can start from a lower mu on the grid half as fine.
+
+    True when ``problem`` has the Dugdale law, cells per axis in multiples of 4 and at least
+    ``2 NESTED_MIN_N`` along x, and the grid half as fine resolves the Dugdale edge at ``LOWER_MU_RATIO`` mu
+    (:func:`dhfield.bem.solver.edge_width_ratio` <= 1; the ratio scales as mu^2).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The problem of the predicted route (:func:`predicted_problem`).
+
+    Returns
+    -------
+    bool
+        True: :func:`_predicted_pull_off` may take ``start='lower-mu'`` on ``problem``.
+    """
+    from ..bem.laws import DugdaleLaw
+
+    g = problem.grid
+    if g.nx % 4 or g.ny % 4 or g.nx < 2 * NESTED_MIN_N or not isinstance(problem.law, DugdaleLaw):
+        return False       # (the grid half as fine is solved by nested starts from its own half)
+    mu_lo = LOWER_MU_RATIO * problem.mu
+    return bool(edge_width_ratio(problem.coarser(g.nx // 2).grid, law_from_name("dugdale", mu_lo, 1.0)) <= 1.0)
+
+
+def coarse_route_start_possible(problem) -> bool:
+    """Tell whether the predicted route can start from its own states on the grid half as fine.
+
+    True when ``problem`` has cells per axis in multiples of 8, the grid half as fine resolves
+    the Dugdale edge at mu (:func:`dhfield.bem.solver.edge_width_ratio` <= 1: it is a grid the
+    route solves, as level 1 is for level 2), and that grid can itself take the lower-mu start
+    (:func:`lower_mu_start_possible`).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The problem of the predicted route (:func:`predicted_problem`), on a refined grid.
+
+    Returns
+    -------
+    bool
+        True: :func:`_predicted_pull_off` may take ``start='coarse-route'`` on ``problem``.
+    """
+    from ..bem.laws import DugdaleLaw
+    from ..bem.solver import edge_width_ratio
+
+    g = problem.grid
+    if g.nx % 8 or g.ny % 8 or not isinstance(problem.law, DugdaleLaw):
+        return False
+    half = problem.coarser(g.nx // 2)
+    return bool(edge_width_ratio(half.grid, problem.law) <= 1.0 and lower_mu_start_possible(half))
+
+
+#: Starts of the predicted route's states (:func:`_predicted_pull_off`).
+PREDICTED_STARTS = ("cold", "lower-mu", "coarse-route")
+
+
+def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
+    """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
+
+    ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
+    (corrected by the sphere's MD), which at high mu lies within a lattice step of the BEM's (the two-axis closure's zone at
+    beta0 = 0.4826, mu = 10, c = 1.960, is inside GVG's contact a = 1.984);
+    :func:`dhfield.bem.pull_off.predicted_path` solves the samples around it, to ``tol`` (default
+    ``options.tol``; :func:`adhesive_pull_off` passes :data:`PREDICTED_TOL` unless told).  When that
+    fails the record says so (``converged`` False) and its ``note`` names why and the analytic W*
+    to use instead (:func:`dhfield.models.md_elliptic.pull_off_nondimensional`).  No other route
+    is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`); the
+    fall-back to it had answered nothing after 9 min at beta0 = 0.5, mu = 10 (2 threads).
+
+    ``start`` (one of :data:`PREDICTED_STARTS`): 'cold', the first state from GVG's zone and each
+    other from its nearest solved neighbour; 'lower-mu', every state from the same approach at
+    mu/2 on the grid half as fine (:class:`dhfield.bem.pull_off.LowerMuWarmStart`, where
+    :func:`lower_mu_start_possible`); 'coarse-route', every state from the same approach at
+    the same mu solved by this route on the grid half as fine
+    (:class:`dhfield.bem.pull_off.CoarseRouteWarmStart`, where :func:`coarse_route_start_possible`:
+    a refined level).
+    """
+    from ..models import md_elliptic as elliptic_transition
+    from ..bem.pull_off import CoarseRouteWarmStart, LowerMuWarmStart, predicted_path, pull_off_result
+
+    if start not in PREDICTED_STARTS:
+        raise ValueError(f"start must be one of {PREDICTED_STARTS} (start of the predicted route's states); "
+                         f"got {start!r}")
+    options = options.checked()
+    if tol is not None:
+        options = replace(options, tol=tol)
+    starts = {"lower-mu": LowerMuWarmStart, "coarse-route": CoarseRouteWarmStart}
+    ws = (starts[start](prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
+          if start in starts else None)
+    path = predicted_path(prob, options, warm_start=ws)
+    res = pull_off_result(prob, prob.grid.nx, path, PREDICTED_SEARCH)     # the route, named as asked for
+    if prob.widest_edge:      # the record says which edge it solved (options.widest_edge)
+        res = replace(res, note="; ".join(filter(None, (WIDEST_EDGE_NOTE, res.note))))
+    if res.converged:
+        return res
+    w = float(elliptic_transition.pull_off_nondimensional(prob.beta0, prob.mu).W_star)
+    return replace(res, note="; ".join(filter(None, (res.note, f"use the analytic W* = {w:.4f} "
+                                                                "(elliptic_transition) instead"))))
+
+
+def _scaled_cells(ny, n, n_next) -> int:
+    """Cells along y of the lattice of ``n_next`` cells along x with the cells' shape of ``n`` x ``ny`` (even)."""
+    return int(2 * math.ceil(ny * n_next / n / 2))
+
+
+def next_lattice_grid(n, ny, max_seconds=DEFAULT_MAX_SECONDS):
+    """The retry lattice of an ``n`` x ``ny`` grid (:func:`next_lattice`) with its cells along y.
+
+    Parameters
+    ----------
+    n : int
+        Cells along x of the first lattice [-].
+    ny : int
+        Cells along y of the first lattice [-].
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Time allowed [s] (:func:`next_lattice`).
+
+    Returns
+    -------
+    tuple of int or None
+        ``(nx, ny)`` of the next lattice, the cells' shape kept (``ny`` scaled as ``n``,
+        even); None when no lattice fits (:func:`next_lattice`).
+    """
+    n_next = next_lattice(n, max_seconds, ny=ny)
+    return None if n_next is None else (n_next, _scaled_cells(check_cells(ny, "ny"), n, n_next))
+
+
+def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):
+    """The next automatic grid size above ``n`` for a retry, or None when it does not fit.
+
+    A cold state of the predicted route can be trapped by its lattice: at beta0 = 0.5, mu = 10
+    the cold state on N = 1200 stalled at a zone-fraction residual of 2e-3 for 300 outer
+    iterations, while on N = 1280 (the next size) it converged in 149 (measured with the route's
+    own states, 2 threads; ``dhfield solve --beta0 0.5 --mu 10`` says both lattices in its note).
+    Over the mu = 10 cases of the extended study (``verification.study_extended``) 4 of 6 first
+    lattices trapped the cold state and 2 of 4 second ones did too (beta0 = 0.8 and 1): a retry,
+    not a cure.  The cure is the predicted route's stretch step
+    (:data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY`), which moves the whole zone edge at
+    once; this retry stays as the fall-back when a state still fails.
+    :func:`adhesive_pull_off` then solves the case once more on this lattice: finer, so as
+    resolved as ``n``.
+
+    Parameters
+    ----------
+    n : int
+        Cells per axis of the first lattice [-].
+    max_seconds : float, default DEFAULT_MAX_SECONDS
+        Time allowed [s]; the retry's estimate (as :func:`plan_grid`'s) must fit in it.
+    ny : int, optional
+        Cells along y of the first lattice [-] (default ``n``); the retry keeps the cells'
+        shape (``ny`` scaled as ``n``, even).
+
+    Returns
+    -------
+    int or None
+        The smallest size of :func:`plan_grid`'s list (2^a 3^b 5^c, a multiple of 16) above
+        ``n`` whose estimated memory and time fit; None when there is none.
+    """
+    n = check_cells(n)
+    ny = n if ny is None else check_cells(ny, "ny")
+    max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
+    nxt = next((k for k in _fft_sizes() if k > n), None)
+    if nxt is None:
+        return None
+    memory_bytes, seconds = pull_off_cost(nxt, _scaled_cells(ny, n, nxt))
+    limit = memory_limit()
+    fits = limit is None or memory_bytes <= limit
+    return nxt if fits and seconds <= max_seconds else None
+
+
+def _half_grid_locates(plan, law, margin) -> bool:
+    """True when the grid half as fine as ``plan.n_needed`` passes the located search's edge gate."""
+    from ..bem.pull_off import LOCATE_MAX_EDGE_RATIO
+
+    start = _start(plan.mu, plan.beta0, DEFAULT_STEPS, _check_margin(margin))
+    half = Grid.centered(plan.n_needed // 2, start.half_width_x, ny=plan.ny_needed // 2,
+                         half_width_y=start.half_width_y)
+    return edge_width_ratio(half, law_from_name(law, plan.mu, 1.0)) <= LOCATE_MAX_EDGE_RATIO
+
+
+def refine_pull_off(coarse, n, *, refine_factor=4, window=3, threads=None, progress=None,
+                    options=None) -> PullOff:
+    """Compute the load-control pull-off on a finer grid, started from a coarser solution.
+
+    The fine states sit on the finest approach lattice of the full path set by
+    ``options.n_steps``, ``options.refine_levels`` and ``refine_factor``
+    (:func:`adhesive_pull_off`), so that the fine pull-off equals the full fine path's
+    wherever both bracket the same samples.
+
+    Parameters
+    ----------
+    coarse : dhfield.core.records.PullOff
+        A BEM pull-off of the same (mu, beta0, law) on a coarser grid (load
+        control), e.g. from :func:`adhesive_pull_off` at N = 256 or from a
+        previous call of this function.
+    n : int
+        Cells per axis of the fine grid (even, > ``coarse.n``) [-].
+    refine_factor : int, default 4
+        Step division per refinement (2-100) [-].
+    window : int, default 3
+        Half-width of the window of fine states around the coarse pull-off, in
+        finest path steps (extended while the fine minimum sits on its edge) [-].
+    threads : int, optional
+        FFTW threads; see :class:`dhfield.bem.path.PathOptions`.
+    progress : bool, optional
+        Progress line on stderr; see :class:`dhfield.bem.path.PathOptions`.
+    options : AdhesiveOptions, optional
+        Numerical settings, as for :func:`adhesive_pull_off`; used here: ``n_steps`` (unloading
+        steps of the full path), ``refine_levels`` (refinements of its pull-off bracket),
+        ``tol``, ``max_iter`` and ``keep_states``; default ``AdhesiveOptions()``.
+
+    Returns
+    -------
+    dhfield.core.records.PullOff
+        As :func:`adhesive_pull_off` (``search='refine'``), with ``path.phase == 'refine'`` for every
+        state (:func:`dhfield.bem.pull_off.refine`).
+
+    Raises
+    ------
+    ValueError
+        If ``coarse`` is not a BEM :class:`~dhfield.core.records.PullOff`, ``n`` is not
+        above ``coarse.n``, or another argument is out of range (naming it).
+    """
+    check_bem_pull_off("coarse", coarse)
+    n = check_count("n", n, 8, 2 ** 16, "cells per axis")
+    if n <= coarse.n:
+        raise ValueError(f"n must be an integer > coarse.n = {coarse.n} (cells per axis); got {n!r}")
+    window = check_count("window", window, 1, MAX_STEPS, "finest path steps")
+    if options is None:
+        options = AdhesiveOptions()
+    elif not isinstance(options, AdhesiveOptions):
+        raise ValueError(f"options must be an AdhesiveOptions (numerical settings); got {type(options).__name__}")
+    path_options = PathOptions(refine_levels=options.refine_levels, refine_factor=refine_factor,
+                               tol=DEFAULT_TOL if options.tol is None else options.tol,
+                               max_iter=options.max_iter, threads=threads, keep_states=options.keep_states,
+                               progress=progress).checked()
+    prob = nondimensional_problem(mu=coarse.mu, beta0=coarse.beta0, n=n, law=coarse.law, n_steps=options.n_steps)
+    return refine(prob, coarse, window=window, options=path_options)
+
