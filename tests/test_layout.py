@@ -158,3 +158,32 @@ def test_the_checker_sees_imports():
     assert ("bem", "analysis.bem_start") in edges  # the facade's lazy forward, inside a function
     ext = {t for t, _ in _imports("io", MODULES["io"])}
     assert "ext:xarray" in ext
+
+
+def test_no_module_sits_flat_in_the_package():
+    flat = sorted(p.name for p in PKG.glob("*.py") if p.name != "__init__.py")
+    assert not flat, f"flat modules in dhfield/: {flat}"
+
+
+@pytest.mark.parametrize("old", ["model", "compare", "elliptic_transition", "_validation", "plotting"])
+def test_old_flat_import_paths_reach_the_moved_module(old):
+    """``import dhfield.<old>`` (before the layers had folders) is the module at its new place,
+    with a DeprecationWarning naming that place."""
+    import importlib
+    import sys
+
+    import dhfield
+
+    new = f"dhfield.{dhfield.MOVED_MODULES[old]}"
+    sys.modules.pop(f"dhfield.{old}", None)
+    with pytest.warns(DeprecationWarning, match=re.escape(new)):
+        module = importlib.import_module(f"dhfield.{old}")
+    assert module is importlib.import_module(new)
+
+
+def test_every_moved_module_exists():
+    import dhfield
+
+    missing = [new for new in dhfield.MOVED_MODULES.values()
+               if not (PKG / (new.replace(".", "/") + ".py")).is_file()]
+    assert not missing and not set(dhfield.MOVED_MODULES) & {p.stem for p in PKG.glob("*.py")}

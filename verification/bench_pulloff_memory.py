@@ -22,7 +22,7 @@ _CHILD = r"""
 import json, sys, time
 import numpy as np
 import dhfield.core.pull_off_search as search
-from dhfield import model
+from dhfield.models import dh_elliptic as model
 n, chunk = int(sys.argv[1]), int(sys.argv[2])
 search.DEFAULT_CHUNK_BYTES = chunk
 mu = np.geomspace(0.01, 100.0, n)[:, None]
