@@ -47,6 +47,9 @@ STRICT = (
     "dhfield.sweep", "dhfield.sweep.config", "dhfield.sweep.engine", "dhfield.sweep.store",
     "dhfield.sweep.tasks", "dhfield.core.transition", "dhfield.analysis.validity", "dhfield.analysis.model_error",
     "dhfield.analysis.force_vs_angle", "dhfield.io.force_vs_angle_plot", "dhfield.core.progress",
+    "dhfield.core", "dhfield.models", "dhfield.analysis", "dhfield.core.memory", "dhfield.core.validation",
+    "dhfield.models.dh_elliptic_rays", "dhfield.models.registry",
+    # "dhfield.core.units" joins here once its docstrings are brought to the standard (its owner adds it).
 )
 
 #: Modules not yet held to zero (empty since the BEM solver, its operator and state and the

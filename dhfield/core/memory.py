@@ -1,4 +1,4 @@
-"""Memory estimates checked before large allocations (private helpers).
+"""Memory estimates checked before large allocations.
 
 The limit is the memory available now: ``MemAvailable`` of ``/proc/meminfo``,
 lowered to the room left under a cgroup (v2) limit if the process runs in one;
@@ -49,13 +49,28 @@ def _cgroup_room():
 
 
 def available_memory():
-    """Memory available to this process now [bytes], or None if unknown."""
+    """Return the memory available to this process now.
+
+    Returns
+    -------
+    int or None
+        ``MemAvailable`` of ``/proc/meminfo`` (elsewhere the free physical pages), lowered to the
+        room left under a cgroup (v2) memory limit if there is one [bytes]; None if neither can be
+        read.
+    """
     values = [v for v in (_meminfo_available(), _cgroup_room()) if v is not None]
     return min(values) if values else None
 
 
 def memory_limit():
-    """The most one computation may allocate [bytes]: ``USABLE_FRACTION`` of :func:`available_memory`."""
+    """Return the most one computation may allocate.
+
+    Returns
+    -------
+    int or None
+        :data:`USABLE_FRACTION` of :func:`available_memory` [bytes]; None (no limit) if the
+        available memory is unknown.
+    """
     avail = available_memory()
     return None if avail is None else int(USABLE_FRACTION * avail)
 
@@ -65,9 +80,21 @@ def _gib(nbytes: float) -> str:
 
 
 def check_memory(needed: float, what: str) -> None:
-    """Raise ValueError if ``needed`` bytes exceed :func:`memory_limit`.
+    """Refuse an allocation larger than :func:`memory_limit`.
 
-    ``what`` names the input that sets the size, e.g. ``"n=100000 (a 100000 x 100000 grid)"``.
+    Parameters
+    ----------
+    needed : float
+        Estimated memory the computation will allocate [bytes].
+    what : str
+        The input that sets the size, named in the message, e.g.
+        ``"n=100000 (a 100000 x 100000 grid)"``.
+
+    Raises
+    ------
+    ValueError
+        If ``needed`` exceeds :func:`memory_limit`; the message names ``what``, the estimate and
+        the limit [GiB].  Nothing is raised where the limit is unknown.
     """
     limit = memory_limit()
     if limit is not None and needed > limit:
