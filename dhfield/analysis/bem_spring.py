@@ -30,10 +30,10 @@ grid (:func:`coarse_branch`, :func:`dhfield.bem.pull_off.route_error`).  :func:`
 where the jump in lands and gives the cycle of :mod:`dhfield.analysis.spring` (both
 jumps, the energy lost) on it.
 
-Measured on the sphere at N = 256 against Maugis-Dugdale under the same spring
-(``python -m verification.bem_spring``, 2026-11-26): lambda = 0.5, 1, 3 and
-K* = 0.1, 1, 10, every pull-off within 0.4 %; ``--cycle``: the load where the jump
-in lands, the jump-out load and the energy lost per cycle, all 27 within 0.9 %.
+Accuracy: on the sphere at N = 256 every pull-off is within 0.4 % of Maugis-Dugdale
+under the same spring (lambda = 0.5-3, K* = 0.1-10), and the cycle's jump-in load,
+jump-out load and energy lost within 0.9 % (``python -m verification.bem_spring``;
+docs/theory/bem.rst, 'Measurements behind the solver's constants').
 
 Units: the paper's (R = E* = Delta gamma = 1, Eqs. 32-35): W* = W sin(theta_skew)/(2 pi)
 (Eq. 34), delta* = delta (c_r = 1, Eq. 33), K* as :func:`dhfield.analysis.spring.stiffness_star`.
@@ -638,9 +638,8 @@ def _cycle_margin(mu, beta0, k_positive):
     pull-off's domain is sized for (:func:`dhfield.analysis.bem_start.unloading_start`).
     Maugis-Dugdale's landing contact radius a* (the sphere's), the DH model's zone
     semi-axis c* there (:func:`dhfield.models.dh_elliptic.load_curve`, as the pull-off's domain
-    is sized), 10 % beyond, sets the margin (measured at lambda = 3, N = 128, K* = 0.1:
-    the pull-off's domain, half-width 2.18 for a zone of 2.3, gave the jump in 6 %
-    off MD).
+    is sized), 10 % beyond, sets the margin (the pull-off's own domain can cut the landing
+    zone of a soft spring).
     """
     from . import spring as compliance
     from ..models import dh_elliptic as model

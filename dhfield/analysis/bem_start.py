@@ -98,9 +98,9 @@ def unloading_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -
     adhesive ellipse is rounder than the contact ellipse).  The step takes the
     path in ``n_steps`` from ``approach_max`` to 20 % beyond the analytic
     displacement-control pull-off.  The bracket search's cold start is the
-    two-axis closure's pull-off for beta0 < 1 (:func:`_two_axis_start`): the DH
-    zone (d = beta0 c) is tens of cells off the BEM's at mu = 5, beta0 = 0.5,
-    N = 512, where its cold start does not converge.
+    two-axis closure's pull-off for beta0 < 1 (:func:`_two_axis_start`), whose zone
+    is close to the BEM's; the DH zone (d = beta0 c) is not, and a cold start from it
+    need not converge.
     """
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
@@ -112,8 +112,7 @@ def _check_margin(margin) -> float:
     """``margin`` as a domain half-width per zone semi-axis: a number > 1 (ValueError naming it otherwise).
 
     The largest cohesive zone of the path (at the start of unloading) must lie inside the
-    grid: with margin <= 1 the domain cuts it and the pull-off is that of another problem
-    (issue 18: margin = 0.3 gave W* = -0.261, margin = 0.1 -0.029, for about -0.79).
+    grid: with margin <= 1 the domain cuts it and the pull-off is that of another problem.
     """
     margin = float(check_positive("margin", margin, "domain half-width per zone semi-axis"))
     if not margin > 1.0:
@@ -148,9 +147,7 @@ def _start(mu, beta0, n_steps, margin) -> UnloadingStart:
 #: Smallest mu at which slender contacts (no two-axis start) start from GVG's JKR pull-off ellipse.
 SLENDER_START_MIN_MU = 2.0
 #: Domain half-width per semi-axis of that start's zone (GVG's contact plus the expected zone):
-#: at beta0 = 0.1806, mu = 5, N = 400 the paper's start gave a domain of 3.13 x 0.87 and the
-#: BEM's contact reached a* = 3.14 (cut by the domain; 9 unconverged states, W* 2 % weak),
-#: against GVG's a = 2.79, b = 0.74 and the paper's zone c = 2.34, d = 0.42.
+#: the paper's zone is too small a domain for a slender contact, whose BEM contact outgrows it.
 SLENDER_DOMAIN_MARGIN = 1.3
 
 
@@ -168,12 +165,10 @@ def _gvg_start(mu, beta0):
 def _two_axis_start(mu, beta0):
     """(approach, (c, d)) at the load-control pull-off of the two-axis closure, or None if it fails.
 
-    The paper's closure keeps d = beta0 c; the BEM's adhesive ellipse is rounder (beta_cd =
-    0.593 at beta0 = 0.5, mu = 5), and a cold start from the paper's zone (48 cells short
-    along y at N = 512) creeps for 300 outer iterations without converging.  The two-axis
-    closure (beta_cd free) is within 0.8 % of the BEM's pull-off approach and 0.4 % of its
-    c, d there, and the cold start converges (measured: 73 outer iterations;
-    ``python -m verification.diagnose_adhesive --beta0 0.5 --mu 5 --n 512``).
+    The paper's closure keeps d = beta0 c; the BEM's adhesive ellipse is rounder.  The
+    two-axis closure (beta_cd free) is within 0.8 % of the BEM's pull-off approach and 0.4 %
+    of its c, d at beta0 = 0.5, mu = 5, close enough for a cold start that converges
+    (docs/theory/bem.rst, 'Measurements behind the solver's constants').
     """
     from . import compare
 
@@ -237,20 +232,15 @@ AUTO_MIN_CELLS = 256
 #: of an automatic grid (the resolved flag wants >= ZONE_MIN_CELLS = 1 at pull-off; the edge
 #: criterion below gives ~2 at mu >= 5, so this rarely binds).
 AUTO_ZONE_CELLS = 2.0
-#: Memory of one load-control pull-off per cell of the full grid [bytes].  Measured: 185 and 179
-#: B/cell of peak RSS for one state solve at N = 512 and 1024 (mu = 1, beta0 = 0.5; operator,
-#: CG and Anderson arrays, quadrant mode), plus ~33 B/cell per full-grid state held by a path
-#: (pressure, gap, repulsive pressure, masks; ~8 held) -> 450; plus 96 B/cell for the high-mu
-#: route's Anderson memory of 30 (dhfield.bem.solver.STRETCH_ANDERSON_MEMORY: 2 x 24 more
-#: quadrant arrays) -> 550.
+#: Memory of one load-control pull-off per cell of the full grid [bytes]: one state solve's
+#: operator, CG and Anderson arrays, the states a path holds, and the high-mu route's Anderson
+#: memory (docs/theory/bem.rst, 'Measurements behind the solver's constants').
 PATH_BYTES_PER_CELL = 550.0
-#: Wall time per cell of the full grid and per CG iteration [s]: the stored ground truth at
-#: mu = 5, N = 512 and 1024 (data/adhesive_ground_truth.nc, 'elapsed'/'iterations'/N^2) gives
-#: 0.023-0.12 us on this shared 2-core machine, median ~0.06 us.
+#: Wall time per cell of the full grid and per CG iteration [s] (median of the stored ground
+#: truth on a shared 2-core machine; docs/theory/bem.rst).
 SECONDS_PER_CELL_ITERATION = 6e-8
-#: CG iterations of one pull-off at a resolved grid: 3000-9300 at mu = 5, N = 512-1024 (stored
-#: ground truth, bracket/located/refine routes).  With the two constants above the time
-#: estimate is a rough one (a factor 2-3 either way on a loaded machine).
+#: CG iterations of one pull-off at a resolved grid (3000-9300 at mu = 5).  With the two
+#: constants above the time estimate is a rough one (a factor 2-3 either way on a loaded machine).
 PULL_OFF_ITERATIONS = 6000
 #: Default time a pull-off with an automatic grid may be estimated to take before it is refused [s].
 DEFAULT_MAX_SECONDS = 1800.0
@@ -260,7 +250,7 @@ def pull_off_cost(nx, ny) -> tuple:
     """Estimated memory [bytes] and time [s] of one load-control pull-off on ``nx`` x ``ny`` cells.
 
     ``PATH_BYTES_PER_CELL nx ny`` and ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS``
-    (measured constants, above): the estimates of :func:`plan_grid`, :func:`next_lattice` and
+    (constants fitted to stored solves, docs/theory/bem.rst): the estimates of :func:`plan_grid`, :func:`next_lattice` and
     :func:`dhfield.sweep.tasks.automatic_grid`.
 
     Parameters
@@ -310,9 +300,8 @@ def check_grid_memory(nx, ny=None) -> None:
 
 
 #: An explicit grid whose ``edge_width_ratio`` exceeds this has no stable discrete state: its
-#: states do not converge (measured: they converge at 1.10-1.18 and not at 2.1-3.8; at 3.07,
-#: beta0 = 0.4826, mu = 11.4, N = 512, the cold start stalls at residual 4e-2 after 189 outer
-#: iterations, 83 s, and the pull-off is NaN).  :func:`plan_grid` says so.
+#: states do not converge (they do at 1.10-1.18, not at 2.1-3.8; docs/theory/bem.rst).
+#: :func:`plan_grid` says so.
 UNSTABLE_EDGE_RATIO = 2.0
 
 
@@ -332,9 +321,8 @@ def expected_zone_width(mu) -> float:
 
     Notes
     -----
-    Checked against the stored BEM (data/adhesive_ground_truth.nc, beta0 = 0.5-1): at mu = 5
-    c* - a* = 0.029-0.031 and d* - b* = 0.029-0.030 (estimate 0.0314); at mu = 2 0.163-0.174
-    (0.196); at mu = 1 0.48-0.54 (0.785): an upper bound, close on the JKR side (mu >= 5).
+    An upper bound on the BEM's zone width, close on the JKR side (mu >= 5; within 10 % of
+    the stored BEM at mu = 5, docs/theory/bem.rst).
     """
     return math.pi / 8.0 * 2.0 / float(mu) ** 2
 
@@ -352,24 +340,19 @@ def _fft_sizes(low=AUTO_MIN_CELLS, a_min=4):
 
 
 #: Below this beta0 an automatic grid has as many cells along y as make them about square
-#: (``dy <= dx``; :func:`shaped_cells_y`) instead of n x n cells stretched along x.  Measured
-#: at beta0 = 0.1806, mu = 5 (``python -m verification.bem_slender``): the n x n grid puts
-#: 2.35 cells across the Dugdale zone c - a along x and 7.2 along y (dx = 3.6 dy); the
-#: zone is as wide on both axes (0.036, 0.030), so 2.5x fewer cells resolve it as well
-#: (:func:`plan_grid`: 576 x 160 instead of 480 x 480), and the coarser grids of the
-#: located search keep >= 1 cell across it along x.  At beta0 >= 0.45 the automatic grids
-#: are left n x n (bit-identical to before; the saving there is ~1.6x at mu <= 5, ~1x at
-#: mu = 10 where the edge criterion binds, and untested against the stored ground truth).
+#: (``dy <= dx``; :func:`shaped_cells_y`) instead of n x n cells stretched along x: the
+#: Dugdale zone is about as wide on both axes, so square cells resolve it with fewer cells
+#: (2.5x fewer at beta0 = 0.1806, mu = 5; docs/theory/bem.rst).  At beta0 >= 0.45 the
+#: automatic grids are n x n (the saving there is small).
 SHAPED_CELLS_MAX_BETA0 = 0.45
 #: Fewest cells along y of a shaped automatic grid (the nested grids 2x, 4x coarser keep a few).
 AUTO_MIN_CELLS_Y = 64
 #: Fewest cells across each expected contact semi-axis at pull-off (the DH model's a*, b*,
 #: :func:`dhfield.models.dh_elliptic.pull_off`) of a shaped automatic grid, along x and along y.  On the DMT
-#: side the contact at pull-off is small inside a wide zone: at beta0 = 0.1806, mu = 0.1 the
-#: square cells of 256 x 72 put one cell across the BEM's b* = 0.093 (flagged unresolved);
-#: the DH model's b* (0.073 there) is 20-45 % below the BEM's at beta0 = 0.18-0.3, mu = 0.1-5
-#: (measured), so 5 cells on it are ~7 on the BEM's, a discretisation error estimate
-#: (DISCRETISATION_ERROR_PER_CELL / cells) below 1 %.  It binds only at mu <~ 0.5.
+#: side the contact at pull-off is small inside a wide zone.  The DH model's b* is 20-45 %
+#: below the BEM's at beta0 = 0.18-0.3, mu = 0.1-5, so 5 cells on it are ~7 on the BEM's, a
+#: discretisation error estimate (DISCRETISATION_ERROR_PER_CELL / cells) below 1 %.  It binds
+#: only at mu <~ 0.5.
 AUTO_CONTACT_CELLS = 5.0
 
 
@@ -649,8 +632,8 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
     and y: the binding criterion on the DMT side, mu <~ 0.5).  Both fall like 1/mu^2, so N
     grows like mu^2 (ln-corrected): ~512 at mu = 5, ~1440 at mu = 10 for beta0 = 0.5.
     Memory ``PATH_BYTES_PER_CELL nx ny`` and time
-    ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS`` (measured constants; the solver
-    works on the quadrant, which these include).
+    ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS`` (constants fitted to stored
+    solves; the solver works on the quadrant, which these include).
     """
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
@@ -785,9 +768,10 @@ class AdhesiveOptions:
         a cell: the widest edge is a ramp of the stress over gaps 0 to 2 h0, another law with
         the same work of adhesion, which does not tend to the Dugdale step under refinement.
         At mu = 10 level 1's own edge is already 1.9-2.0 h0, so a refined level against level 1
-        refines the same law; its departure from Dugdale, measured on the sphere, is about
+        refines the same law; its departure from Dugdale on the sphere is about
         1e-4-2e-4 of W* at mu = 10 and 4e-3 at mu = 2 (hence refused below
-        :data:`PREDICTED_MIN_MU`).  The record's note says so (:data:`WIDEST_EDGE_NOTE`).
+        :data:`PREDICTED_MIN_MU`; docs/theory/bem.rst, 'Level 2 with the edge held at its
+        widest').  The record's note says so (:data:`WIDEST_EDGE_NOTE`).
     """
 
     n_steps: int = DEFAULT_STEPS
@@ -847,7 +831,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         on every finer one), and on this grid only those lattice samples and at
         most one parabola vertex (none with ``options.refine_levels=0``) are solved,
         each from the same approach on the grid half as fine: 3-4 fine states
-        instead of 4-6 (measured at N = 256), the same pull-off to the
+        instead of 4-6 at N = 256, the same pull-off to the
         jaggedness of the discrete load curve (~5e-4).  Falls back to 'bracket'
         (keeping the coarse states) when ``n < 2 NESTED_MIN_N``, when the grid
         half as fine is too coarse for the Dugdale edge
@@ -940,11 +924,9 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             tol_route = PREDICTED_TOL if tol is None else tol
             prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny,
                                      widest_edge=widest_edge)
-            # GVG's start first (measured: every mu = 10 case answered so far, beta0 = 0.4826 in 272 s), then
-            # each state from the same approach at mu/2 on the grid half as fine (LowerMuWarmStart) on the same
-            # lattice: at mu = 10 GVG's cold state wandered at beta0 = 0.1 and stalled in one run on the sphere
-            # (N = 1280), where the lower-mu start's converged in 148 and 45 outer iterations.  Lower-mu first
-            # made dhfield solve --beta0 0.4826 --mu 10 take > 8 min (1 thread): not the default
+            # GVG's start first, then each state from the same approach at mu/2 on the grid half as fine
+            # (LowerMuWarmStart) on the same lattice, where GVG's cold state wanders or stalls; lower-mu
+            # first is slower where GVG's start converges (docs/theory/bem.rst)
             res = _predicted_pull_off(prob, options, tol=tol_route)
             tried = ()                            # why the retry on this lattice was made, for the record's note
             if not res.converged and lower_mu_start_possible(prob):
@@ -1151,8 +1133,8 @@ class RelaxedWarmStart:
         opts = PathOptions(refine_levels=0, tol=self._tol, max_iter=self._max_iter, threads=self._threads,
                            keep_states=True, progress=False).checked()
         t0 = time.perf_counter()
-        # the bracket search only: no marching fall-back (measured at mu = 10, N = 720: a failed
-        # cold start went on to load the whole path from first touch)
+        # the bracket search only: no marching fall-back (after a failed cold start it would load
+        # the whole path from first touch)
         outcome, current = bracket_search(b, PathStart(nd.pull_off_approach, self._cold.copy()), nd.approach_step,
                                           opts)
         self.seconds += time.perf_counter() - t0
@@ -1188,33 +1170,23 @@ def _relaxed_pull_off(prob, options) -> PullOff:
 
 #: Smallest mu at which an automatic grid whose half grid cannot hold the Dugdale edge solves
 #: only fine lattice samples around GVG's pull-off (:func:`_predicted_pull_off`) instead of
-#: warm starts from the relaxed half grid (:class:`RelaxedWarmStart`).  Measured at beta0 =
-#: 0.4826, mu = 10: the relaxed cold start stalls at residual 0.04-0.5 on N = 180, 360 and 720
-#: (from the two-axis zone and from GVG's alike; 32 CPU s at N = 720), after which the old route
-#: cold-started the bracket search on N = 1440 (8443 CG iterations for its first state); at
-#: mu = 5 (sphere N = 160, beta0 = 0.5 N = 192) the relaxed states converge.  The predicted
-#: route is faster at mu = 5 too (``verification/bem_high_mu.py --route predicted``: sphere N =
-#: 256, 1.9 CPU s, MD +0.13 %; beta0 = 0.5 N = 288, 4.5 CPU s, +0.06 % of the stored N = 1024)
-#: than the relaxed one (sphere N = 320, 9.0 CPU s, +0.04 %; beta0 = 0.5 N = 384, ~36 CPU s),
-#: but mu = 5 (and its slender cases) keeps the relaxed route until measured more widely.
+#: warm starts from the relaxed half grid (:class:`RelaxedWarmStart`): at mu = 10 the relaxed
+#: states do not converge, at mu = 5 they do (docs/theory/bem.rst, 'Measurements behind the
+#: solver's constants').
 PREDICTED_MIN_MU = 7.5
 #: Solver tolerance of the predicted route's states when none is given (the other routes keep
 #: ``DEFAULT_TOL`` = 1e-6; the located search's coarse states already use 1e-4,
 #: ``LOCATE_COARSE_TOL``).  Its states are the answer, each a fixed point of the zone reached in
 #: 60-80 outer iterations at 1e-6, most of them spent below a zone-fraction change of 1e-4, which
-#: moves W* far less than the discretisation error the answer states.  Measured at
-#: beta0 = 0.4826, mu = 7.5 (N = 720, three states; ``adhesive_pull_off(options=AdhesiveOptions(tol=...))``):
-#: W* -0.644981 (1e-6), -0.6449798 (1e-5), -0.6449845 (1e-4: 6e-6 relative, against the stated
-#: error 0.0149 = 2.3 %); CG iterations 4983, 3858, 3145.  At mu = 10 (N = 1200): W* -0.644437 at
-#: 1e-6 (7103 CG) and 1e-5 (6283 CG), the same to six digits.
+#: moves W* by about 1e-5 relative, far less than the discretisation error the answer states
+#: (docs/theory/bem.rst).
 PREDICTED_TOL = 1e-4
 #: The ``search`` of :func:`adhesive_pull_off` that asks for the predicted route, also on an explicit
 #: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
 PREDICTED_SEARCH = "predicted"
 
 #: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`);
-#: it ends with :data:`WIDEST_EDGE_MARK`, which readers look for (the records of 5755b0d-b484c02 said
-#: "on every grid", where the starts from other grids kept their own edges).
+#: it ends with :data:`WIDEST_EDGE_MARK`, which readers look for.
 WIDEST_EDGE_NOTE = "Dugdale edge held at its cap 2 h0 on the grid of the answer (options.widest_edge)"
 #: What a record's note or message carries when it was solved with the widest edge.
 WIDEST_EDGE_MARK = "(options.widest_edge)"
@@ -1253,7 +1225,7 @@ def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", s
         True for an automatic grid under the default load-control search with the Dugdale law
         at mu >= :data:`PREDICTED_MIN_MU`, at every beta0 (slender contacts on shaped nx x ny
         grids too: their coarse-to-fine route's relaxed states do not converge at mu = 10
-        either; measured: beta0 = 0.1 and 0.3 unfinished after 1840 CPU s).
+        either).
     """
     if search == PREDICTED_SEARCH:      # asked for (adhesive_pull_off refuses it with another law or control)
         return bool(law == "dugdale" and control == "load" and nested is None)
@@ -1287,12 +1259,10 @@ def predicted_start(*, beta0, mu, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN) -
     Notes
     -----
     Only states near the pull-off are solved (:func:`dhfield.bem.pull_off.predicted_path`),
-    so the domain need not hold the zone at the start of unloading: at beta0 = 0.4826,
-    mu = 10 it is 2.29 x 1.33 instead of 2.56 x 1.48, and the edge is resolved with
-    N = 1280 instead of 1440 (sphere: 1280 instead of 1536).  The zone grows by ~1.5 % per
-    lattice sample above the pull-off (measured, sphere mu = 5: c = 1.516, 1.539, 1.562),
-    so ``margin`` = 1.15 holds about ten samples above it (the search adds at most
-    ``LOCATE_MAX_EXTEND`` = 6).
+    so the domain need not hold the zone at the start of unloading, and the edge is resolved
+    with fewer cells (at beta0 = 0.4826, mu = 10: N = 1280 instead of 1440).  The zone grows
+    by ~1.5 % per lattice sample above the pull-off, so ``margin`` = 1.15 holds about ten
+    samples above it (the search adds at most ``LOCATE_MAX_EXTEND`` = 6).
     """
     mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
     beta0 = float(check_ellipticity("beta0", beta0))
@@ -1493,15 +1463,11 @@ def next_lattice_grid(n, ny, max_seconds=DEFAULT_MAX_SECONDS):
 def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):
     """The next automatic grid size above ``n`` for a retry, or None when it does not fit.
 
-    A cold state of the predicted route can be trapped by its lattice: at beta0 = 0.5, mu = 10
-    the cold state on N = 1200 stalled at a zone-fraction residual of 2e-3 for 300 outer
-    iterations, while on N = 1280 (the next size) it converged in 149 (measured with the route's
-    own states, 2 threads; ``dhfield solve --beta0 0.5 --mu 10`` says both lattices in its note).
-    Over the mu = 10 cases of the extended study (``verification.study_extended``) 4 of 6 first
-    lattices trapped the cold state and 2 of 4 second ones did too (beta0 = 0.8 and 1): a retry,
+    A cold state of the predicted route can be trapped by its lattice, where the next size
+    converges (docs/theory/bem.rst, 'Measurements behind the solver's constants'): a retry,
     not a cure.  The cure is the predicted route's stretch step
     (:data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY`), which moves the whole zone edge at
-    once; this retry stays as the fall-back when a state still fails.
+    once; this retry is the fall-back when a state still fails.
     :func:`adhesive_pull_off` then solves the case once more on this lattice: finer, so as
     resolved as ``n``.
 

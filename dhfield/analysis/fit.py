@@ -438,7 +438,7 @@ def fit_work_of_adhesion(pull_off_force, params, *, max_adhesive_stress=None, mo
 
     because mu is proportional to dgamma^(-1/3).  The root is unique as long as
     the log-slope of |W*max| in mu stays below 3.  |W*max| goes from the DMT
-    value at small mu to the JKR value at large mu: measured on mu in
+    value at small mu to the JKR value at large mu: over mu in
     [1e-4, 1e6], the log-slope lies in [-0.62, +0.001] (dh-elliptic at
     beta0 = 0.05; -0.10 for the circle, -0.11 for MD), so the function
     increases with slope between 1 and 1.21 (tests/test_fit.py checks it).

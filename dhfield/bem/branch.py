@@ -404,10 +404,8 @@ class Branch:
     def race(self, approach, starts, phase, give_up_after=None, give_up_last=False):
         """Solve the state at ``approach`` from each start in turn until one converges.
 
-        A race of starts: the same state converges from one start and stalls from another
-        (measured at mu = 10 on level-2 grids: the sphere's first state stalled at a residual
-        of 3-5e-3 from the level-1 state and converged in 64 outer iterations from the
-        lower-mu start; beta0 = 0.8's first state the other way round).  A stalled start
+        A race of starts: the same state can converge from one start and stall from another
+        (docs/theory/bem.rst, 'Measurements behind the solver's constants').  A stalled start
         creeps, setting a new best residual every few outer iterations, so the solver's stall
         window (``STALL_OUTER``) can leave it running to its cap: ``give_up_after`` stops it.
 
@@ -436,10 +434,8 @@ class Branch:
             another try is kept, marked 'discarded'.  When the last try was given up early
             and every later start gave None, or the last start ended unconverged at a larger
             residual than a try given up early, the try given up with the smallest residual
-            goes on from its best iterate with the full budget (measured at
-            beta0 = 0.1, mu = 10, level 2: the first state from level 1's state was given up
-            at a residual of 1e-3, still falling, and the last start, the lower-mu one, gave
-            None, which ended the case).
+            goes on from its best iterate with the full budget (a try given up while its
+            residual was still falling is not lost).
         """
         starts = list(starts)
         last, window, given_up = None, None, []

@@ -4,9 +4,8 @@ Under displacement control the contact branch of an adhesive contact ends at
 its *fold*, where the approach delta is smallest (d delta/da = 0, a the contact
 radius; Maugis 1992 [1]_).  Near the fold the fixed point at a prescribed
 approach slows down critically (two states, the stable and the unstable one,
-merge there) and, on the cell lattice, stops converging: at lambda = 3,
-N = 128 the last converged state was 0.12 in contact radius (3.5 cells) short
-of the fold and the fold had to be extrapolated (-13.6 % vs Maugis-Dugdale).
+merge there) and, on the cell lattice, stops converging a few cells short of
+the fold, which must then be extrapolated (docs/theory/bem.rst).
 
 Here the *adhesive force* is prescribed instead,
 
@@ -15,8 +14,8 @@ Here the *adhesive force* is prescribed instead,
 (for the Dugdale law sigma0 times the area of contact U cohesive zone), and the
 approach is an extra unknown.  F_a decreases monotonically along the whole
 unloading branch, through the fold and past the loss of contact, so every
-state on it is reached with a bounded number of outer iterations (measured on
-the sphere at lambda = 3, N = 128: 20-27 per state, through the fold), and the
+state on it is reached with a bounded number of outer iterations (20-27 per
+state through the fold on the sphere at lambda = 3, N = 128), and the
 displacement-control pull-off is *interpolated* between states on both sides
 of the minimum of delta(F_a) instead of extrapolated.
 
@@ -56,7 +55,7 @@ __all__ = ["solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force"
 FOLD_STEPS = 16
 #: Half-width of the window fitted around the fold, in coarse force steps: +-2 steps
 #: spans ~+-25 % of the fold's adhesive force at lambda = 3 (a cubic over it averages
-#: the lattice jaggedness of the approach; measured at N = 128: within 0.2 % of MD).
+#: the lattice jaggedness of the approach; within 0.2 % of MD at N = 128).
 FOLD_WINDOW = 2
 #: Standard deviations of the fold's load from the scatter of delta counted in its error estimate.
 FOLD_SCATTER_SIGMAS = 2.0

@@ -321,8 +321,8 @@ def _carried_to_fine(state, fine_prob):
     The state interpolated (:func:`interpolate_state`) and given the fine problem's law.  For the
     Dugdale law its zone fraction is then the fine grid's own sub-cell fraction of the
     interpolated gap under that law: the fine edge is sharper (its width scales with the cell),
-    and a state of another mu gets the fine mu's zone.  Measured (lambda = 3, N = 256): the fine
-    state then needs ~10 % fewer outer and ~20 % fewer CG iterations.
+    and a state of another mu gets the fine mu's zone, which saves ~10 % of the fine state's
+    outer and ~20 % of its CG iterations (lambda = 3, N = 256).
     """
     fp = fine_prob
     guess = replace(interpolate_state(state, fp.grid), law=fp.law)   # the fine problem's law (its mu, if another)
@@ -350,9 +350,8 @@ class _HalfGridWarmStart:
 
         The coarse state interpolated onto the fine grid (:func:`interpolate_state`); for the
         Dugdale law its zone fraction is then the fine grid's own sub-cell fraction of the
-        interpolated gap (the fine edge is sharper: its width scales with the cell), which
-        starts the fine state ~10 % fewer outer and ~20 % fewer CG iterations from its
-        solution (measured, lambda = 3, N = 256).
+        interpolated gap (the fine edge is sharper: its width scales with the cell); see
+        :func:`_carried_to_fine`.
         """
         st = self.coarse_state(approach)
         if not (st.converged and st.in_contact):
@@ -369,10 +368,9 @@ class NestedWarmStart(_HalfGridWarmStart):
     ``n/2`` cells per axis (itself warm-started the same way from ``n/4``, down to
     :data:`NESTED_MIN_N`; the coarsest level from its nearest solved state, the first
     one cold from the problem's cold-start zone) and carries the state onto the
-    ``n`` grid (:func:`interpolate_state`).  A fine state started there needs a
-    fraction of the outer (zone) iterations of one warm-started from a neighbouring
-    fine state (measured at lambda = 3, N = 256: 22 vs 74-87), and a coarse state
-    costs ~1/5 of a fine one.
+    ``n`` grid (:func:`interpolate_state`).  A fine state started there needs about a
+    quarter of the outer (zone) iterations of one warm-started from a neighbouring
+    fine state (lambda = 3, N = 256), and a coarse state costs ~1/5 of a fine one.
 
     Parameters
     ----------
@@ -475,7 +473,7 @@ class NestedWarmStart(_HalfGridWarmStart):
         if self._inner is None or self._inner._prob.edge_width_ratio > LOCATE_MAX_EDGE_RATIO:
             # the coarsest resolved grid: the bracket search (warm starts from the grid below, if any)
             # no vertex refinement: the next grid's lattice samples re-locate the minimum anyway
-            # (measured over 4 cases at N = 256: the same pull-offs, 10 % less CPU than 2)
+            # (the same pull-offs, 10 % less CPU than 2; docs/theory/bem.rst)
             opts = PathOptions(refine_levels=0, tol=self._tol, max_iter=self._max_iter,
                                threads=self._threads, keep_states=True, progress=False).checked()
             first = len(b.records)
@@ -504,13 +502,12 @@ LOCATE_DIVISIONS = 2
 #: Cap on lattice samples added when the load minimum sits at an end of the samples.
 LOCATE_MAX_EXTEND = 6
 #: Coarse grids of the located search must have an ``AdhesiveProblem.edge_width_ratio`` (edge
-#: width wanted / its cap 2 h0; > 1 is flagged unresolved) of at most this.  Measured: the
-#: states converge at 1.10 (lambda = 3, N = 64) and 1.18 (mu = 5, N = 256), and not at 2.1-3.8
-#: (mu = 5, N = 64-128: 35 s of unconverged coarse states before the fall-back to 'bracket').
+#: width wanted / its cap 2 h0; > 1 is flagged unresolved) of at most this: states converge at
+#: 1.10-1.18 and not at 2.1-3.8 (docs/theory/bem.rst).
 LOCATE_MAX_EDGE_RATIO = 1.25
 #: Solver tolerance of the coarse grids of the located search (the fine grid keeps ``tol``).
 #: Their states only locate the minimum and start the fine states: a zone-fraction error of
-#: 1e-4 moves a coarse load by ~3e-5 relative (measured), far below the lattice jaggedness of
+#: 1e-4 moves a coarse load by ~3e-5 relative, far below the lattice jaggedness of
 #: the load (~5e-4), and far below the coarse-to-fine interpolation error of a warm start.
 LOCATE_COARSE_TOL = 1e-4
 
@@ -580,26 +577,20 @@ VERTEX_ERROR_FRACTION = 0.1
 #: The predicted route's states take a stretch step (:func:`dhfield.bem.solver.stretch_step`)
 #: every this many outer iterations while they stall (``STRETCH_STALL_RATIO``).  Without it
 #: the cold state's zone, a few cells off GVG's prediction, creeps by a fraction of a cell per
-#: outer iteration and stalls, trapped by the lattice (measured at mu = 10: beta0 = 0.8 and 1
-#: at N = 1280, residual 4e-4 and 7e-3 at the solver's 300-iteration cap; the first stretch
-#: step moved their load by 1.1-1.3 %); with it the same cold states converged in 90 and 113
-#: outer iterations (a stretch step every 30, ungated).
+#: outer iteration and stalls, trapped by the lattice (docs/theory/bem.rst, 'Measurements behind
+#: the solver's constants').
 PREDICTED_STRETCH_EVERY = 30
 #: A start of a raced state (:func:`_raced`, all but the last) is given up once the best residual of
 #: the last half of this many outer iterations is above ``STRETCH_STALL_RATIO`` times the best of
-#: the first half (two stretch windows: a stretch step has had its chance).  Measured on the
-#: sphere's first level-2 state at mu = 10 (2560^2) from level 1's state: best residual 2.98e-3 at
-#: outer iteration 8, 2.66e-3 at 32, the plateau creeping on for 100 more; plain (undamped)
-#: fixed-point steps from the same start moved its residual by a factor 0.97-0.99 per iteration
-#: along one mode (successive residuals correlated at +0.99 to +1.00: an eigenvalue near 1).
+#: the first half (two stretch windows: a stretch step has had its chance).  A stalled state
+#: creeps along one mode whose fixed-point contraction is 0.97-0.99 per iteration (an
+#: eigenvalue near 1; docs/theory/bem.rst).
 RACE_GIVE_UP_AFTER = 2 * PREDICTED_STRETCH_EVERY
 #: The predicted route mixes with ``STRETCH_ANDERSON_MEMORY`` (30, no periodic restart) when its
 #: states start from an external start (the lower-mu start: the retry of a failed case; the route's
 #: own state on the grid half as fine: the refined grid levels), and with the solver's default (6,
-#: restarted every 40) from GVG's cold start.  Measured: memory 30 from the lower-mu start converged
-#: beta0 = 0.1, mu = 10's hardest state in 92 outer iterations where memory 6 stalled at 7.5e-4
-#: (python -m verification.bench_anderson); from GVG's start, ``dhfield solve --beta0 0.4826 --mu 10``
-#: took over 16 min with memory 30 (killed; a 1-core benchmark beside it), where memory 6 takes ~4.
+#: restarted every 40) from GVG's cold start: the long memory converges the stalled states of the
+#: external starts and slows GVG's (docs/theory/bem.rst).
 
 
 def _dilated_start(branch, near, approach):
@@ -608,12 +599,11 @@ def _dilated_start(branch, near, approach):
     Between neighbouring samples the contact and its zone grow or shrink by a cell or two;
     a state started from its neighbour as it is (or from the secant blend of two, which
     leaves two edges instead of moving one) spends most of its outer iterations creeping
-    the edge by a fraction of a cell each (measured, sphere mu = 5, N = 256: the contact
-    loses a ring of 227 cells over ~40 outer iterations).  Here the nearest state's fields
+    the edge by a fraction of a cell each.  Here the nearest state's fields
     are stretched about the centre by the semi-axis change expected at ``approach``: from
     the two nearest states when there are two (their a*, b* per approach), else from JKR's
     sphere of the same mean radius, d delta/d a = 2 a - sqrt(2 pi / a)/2 in the paper's
-    units (0.49 measured against 0.50 for the sphere at mu = 5, pull-off).
+    units (within 2 % of the BEM's slope on the sphere at mu = 5, pull-off).
     """
     i = near[0]
     r = branch.records[i]
@@ -673,18 +663,13 @@ def _predicted_solver(branch, cold):
     same approach on a coarser grid or at a lower mu) when it gives one, else cold (sigma0 on
     the start's zone, ``cold``, working arrays); with ``external_fallback``, a first state that
     fails from the external start is solved once more cold, and then from its wide-edge state
-    solved cold (a race, :meth:`Branch.race`; :meth:`Branch.widest_edge_guess`: at beta0 = 0.5,
-    mu = 10 the level-1 route under level 2 lost its first state from the lower-mu start and
-    cold).  With ``external_fallback`` every later state
+    solved cold (a race, :meth:`Branch.race`; :meth:`Branch.widest_edge_guess`).  With
+    ``external_fallback`` every later state
     starts from the nearest solved state dilated to the contact expected at its approach
     (:func:`_dilated_start`), and the branch solves a failed one once more from the external
     start; without it every state is raced (:meth:`Branch.race`): from the external start, and
     when that fails from the nearest converged state dilated, then from the warm start's
     ``alternative`` (:meth:`CoarseRouteWarmStart.alternative`), cold only when none gives a start.
-    Measured at beta0 = 0.1, mu = 10 (2560 x 480, 1 thread): the state at approach -0.6867 from
-    the lower-mu start ended at residual 6.3e-4 after 232 outer iterations (its load 0.06 % off);
-    from its converged neighbour dilated it converged in 60 (76 s; load -4.39960, and -4.39964
-    from a lower-mu start solved afresh), and the neighbour, from the lower-mu start, took 388 s.
     """
     b = branch
 
@@ -736,18 +721,12 @@ class LowerMuWarmStart(_HalfGridWarmStart):
 
     The predicted route's cold start is GVG's elliptical contact (corrected by the sphere's MD).
     On a slender contact the contact's tips are not where an ellipse puts them, and at high
-    mu the fixed point moves them by a fraction of a cell per iteration: at beta0 = 0.1, mu = 10
-    on 2560 x 480 the cold state wandered (the contact tip between x = 3.35 and 3.54, residual
-    0.02-0.3 after 150 outer iterations, the stretch step stretching the wrong way), and so did the
-    mu = 5 state solved on that grid from the same start (residual 3.3e-3 after 300).  At
-    ``LOWER_MU_RATIO`` mu the grid half as fine holds the edge, and the state there, solved by
-    nested warm starts from coarser grids (:class:`NestedWarmStart`, the located route's starts),
-    has its contact where the grid's own solution has it (measured: converged in 11 s).  Carried
-    to the fine grid with the fine law's zone (:func:`_carried_to_fine`), it started the mu = 10
-    state that converged in 148 outer iterations (330 s, 1 thread).  On the sphere at mu = 10
-    (N = 1280) the state started so converged in 45 outer iterations (89 s, the start's 4 states
-    7 s included), where GVG's cold start took 116 (322 s) in one run and stalled at a residual of
-    1.6e-3 in another (instrumented copies of the solver's loop, 1 thread).
+    mu the fixed point moves them by a fraction of a cell per iteration, so a cold state can
+    wander.  At ``LOWER_MU_RATIO`` mu the grid half as fine holds the edge, and the state there,
+    solved by nested warm starts from coarser grids (:class:`NestedWarmStart`, the located
+    route's starts), has its contact where the grid's own solution has it.  Carried to the fine
+    grid with the fine law's zone (:func:`_carried_to_fine`), it starts the fine state
+    (docs/theory/bem.rst, 'Measurements behind the solver's constants').
 
     Parameters
     ----------
@@ -824,21 +803,9 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
     (:func:`_predicted_solver`, with the lower-mu start as fall-back), mixed with Anderson
     memory ``STRETCH_ANDERSON_MEMORY``; then it is carried onto the fine grid.  The fine state
     starts with its contact and zone where the coarse grid's solution has them, at the same
-    mu, where the lower-mu start's zone is half as wide as the fine one's.
-
-    Measured at beta0 = 0.8, mu = 10, approach -0.75661 (2560^2, 1 thread, an instrumented
-    copy of the solver's loop, beside another 1-core run): from the lower-mu start the fine
-    state's residual stayed at ~1e-3 after 109 outer iterations (the route's run, 23 min); from
-    the coarse state (converged in 37 outer iterations, 102 s with its own lower-mu start) it
-    converged in 18 (215 s), load -4.71194 against the coarse -4.71260.  Its neighbour at
-    approach -0.71427, started in the route from that state dilated, was at residual 2.5e-3
-    after 59 outer iterations; from its own coarse state (converged in 41) it converged in 36
-    (492 s).  So the route starts every state from here (``starts_every_state``).  Not a
-    cure: in the route (part ``high-mu-level2-coarse-route-wide``) that second state, from a
-    level-1 state solved from its own neighbour, needed ~55 outer iterations, and the third
-    (approach -0.79896) was at residual 1.2e-4 after 120 when the run was stopped; the
-    sphere's first state stayed at 3-5e-3 for 100 outer iterations from it, and beta0 = 0.5's
-    and 0.1806's first level-1 states stalled at 2-7e-3 from their lower-mu start.
+    mu, where the lower-mu start's zone is half as wide as the fine one's.  The route starts
+    every state from here (``starts_every_state``).  It shortens the fine states but does not
+    make every one converge (docs/theory/bem.rst, 'Measurements behind the solver's constants').
 
     Parameters
     ----------
@@ -1081,14 +1048,11 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
 
 
 #: Caveat carried by every displacement-control pull-off (the ``note`` of its :class:`dhfield.core.records.PullOff`).
-#: Measured on the sphere against Maugis-Dugdale's displacement-control pull-off (the
-#: minimum of delta(a), or its end a = 0) with ``verification/displacement_pull_off.py``
-#: (2026-11-23), N = 128 / 256: within 0.8 % for lambda = 0.3-3.  Near lambda = 1 the fold lies
+#: On the sphere within 0.8 % of Maugis-Dugdale's displacement-control pull-off (the minimum of
+#: delta(a), or its end a = 0) for lambda = 0.3-3 at N = 128 / 256.  Near lambda = 1 the fold lies
 #: within ~1e-3 in approach of the end a = 0 of the contact branch (2.7 % apart in W): on coarse
-#: grids the lattice jaggedness of the approach hides it (N = 96: -3.1 %).  The fold fit's own
-#: error left 5 of 24 cases outside it (issue 42: 2.15x at mu = 0.3, N = 48): the stated error
-#: adds the grid's, from the same pull-off on a coarser grid (:func:`route_error`), measured with
-#: ``verification/bem_stated_error.py``.
+#: grids the lattice jaggedness of the approach hides it.  The stated error is the fold fit's plus
+#: the grid's, from the same pull-off on a coarser grid (:func:`route_error`; docs/theory/bem.rst).
 DISPLACEMENT_CONTROL_NOTE = (
     "displacement-control pull-off: the minimum of the approach along the branch followed by adhesive "
     "force (the fold, or the loss of contact); W_star_error is the fold fit's plus the grid's, from the same "
@@ -1101,22 +1065,17 @@ DISPLACEMENT_CONTROL_NOTE = (
 #: than DMT by more than this (or than its W_star_error) is not a physical answer.
 DMT_BOUND_SLACK = 0.01
 #: Fewest cells across the Dugdale zone (c* - a*, d* - b*) of a resolved pull-off state: a
-#: zone narrower than a cell is not represented (issue 18: c* = a* at mu = 30, N = 64, W* = -7.24).
+#: zone narrower than a cell is not represented (at mu = 30, N = 64: c* = a*, W* = -7.24).
 ZONE_MIN_CELLS = 1.0
 
 
 #: Discretisation error of a pull-off relative to |W*|, times the cells across the narrowest
-#: length the state must resolve (:func:`discretisation_error`).  Measured against exact
-#: references: on the sphere against Maugis-Dugdale (mu = 0.3, 0.5, 1, 2; N = 16-128,
-#: ``verification/bem_resolution_sweep.py`` and the table in the commit of this constant),
-#: |W* - W*_MD| / |W*| x cells reaches 0.033 (mu = 1, N = 16: 1.3 cells across c* - a*,
-#: -2.5 %) and stays below 0.018 elsewhere (0.011 at mu = 0.3, N = 16, one cell across a*);
-#: on the ellipses of ``data/adhesive_ground_truth.nc`` (beta0 0.5-0.99, mu 0.3-5, N 64-512,
-#: against their Richardson extrapolation) below 0.014 wherever a zone cell is resolved.
-#: The error falls like 1/cells to 1/cells^2 (the sub-cell Dugdale edge does ~10x better than
-#: the 30 %/cells of a cell-wise edge); 0.05 bounds every measured case by a factor 1.5.
-#: Measured for the Dugdale law only (there is no exact reference for the exponential law on
-#: the sphere): applied to it unmeasured, with (c*, d*) its adhesive zone's semi-axes.
+#: length the state must resolve (:func:`discretisation_error`): an upper bound, by a factor 1.5,
+#: of |W* - W*_ref| / |W*| x cells against exact references (Maugis-Dugdale on the sphere, mu =
+#: 0.3-2, N = 16-128; the Richardson extrapolation of the stored ellipses, beta0 0.5-0.99, mu
+#: 0.3-5; docs/theory/bem.rst).  The error falls like 1/cells to 1/cells^2.  Established for the
+#: Dugdale law only (there is no exact reference for the exponential law on the sphere): applied
+#: to it unchecked, with (c*, d*) its adhesive zone's semi-axes.
 DISCRETISATION_ERROR_PER_CELL = 0.05
 
 
@@ -1159,7 +1118,7 @@ def discretisation_error(w_star, axes, grid, contact=True) -> float:
     .. math:: \\epsilon_h = K \\frac{|W^*|}{\\min(a^*/h_x,\\ b^*/h_y,\\ (c^*-a^*)/h_x,\\ (d^*-b^*)/h_y)},
         \\qquad K = 0.05
 
-    (an upper bound fitted to measured errors, :data:`DISCRETISATION_ERROR_PER_CELL`).
+    (an upper bound on the errors against exact references, :data:`DISCRETISATION_ERROR_PER_CELL`).
     """
     cells = resolving_cells(axes, grid, contact)
     if not (np.isfinite(w_star) and cells > 0.0):
@@ -1216,10 +1175,10 @@ def ladder_error(w_fine, w_coarse, n_fine, n_coarse) -> float:
     -----
     Richardson's estimate of the error of the finer value for an error ~ h^p,
     :math:`|W_h - W_{rh}|/(r^p - 1)`, at p = 1 and times :data:`LADDER_SAFETY`.  Under
-    load control the route's error is :func:`discretisation_error` alone (its bound is measured
-    on every case of the sphere and the stored ellipses); under displacement control and under a
+    load control the route's error is :func:`discretisation_error` alone (its bound holds on
+    every case of the sphere and the stored ellipses); under displacement control and under a
     spring the pull-off is a fold or the loss of contact of a fitted branch, whose grid error has
-    no measured bound per cell: :func:`route_error` takes the larger of the two.
+    no established bound per cell: :func:`route_error` takes the larger of the two.
     """
     if not (np.isfinite(w_fine) and np.isfinite(w_coarse)) or not n_fine > n_coarse > 0:
         return float("inf")
@@ -1256,7 +1215,7 @@ def route_error(fit_error, w_star, axes, grid, *, w_coarse, n_coarse) -> float:
     The floor :func:`discretisation_error` counts only the zone's widths: at the loss of
     contact (a* -> 0, the displacement-control pull-off for lambda <~ 1 and the jump of a stiff
     spring) the contact's size does not set W*.  The ladder term (:func:`ladder_error`) is what
-    bounds these routes: measured on the sphere against Maugis-Dugdale by
+    bounds these routes, checked on the sphere against Maugis-Dugdale by
     ``verification/bem_stated_error.py``.
     """
     floor = discretisation_error(w_star, axes, grid, contact=False)
@@ -1265,10 +1224,8 @@ def route_error(fit_error, w_star, axes, grid, *, w_coarse, n_coarse) -> float:
 
 
 #: Fewest cells across the contact semi-axes (a*/dx, b*/dy) of a resolved load-control pull-off:
-#: more than the 2 x 2 centre cells (a* = dx from their second moments).  Measured on the sphere
-#: against Maugis-Dugdale with the contact on those cells (a* = dx): -7.1 % (mu = 0.2, N = 8),
-#: -3.8 % (mu = 0.3, N = 8), -1.7 % (mu = 0.1, N = 16), some with no error estimate (the load
-#: minimum at an end of the samples): one cell is not a contact shape.  Under displacement control
+#: more than the 2 x 2 centre cells (a* = dx from their second moments): one cell is not a
+#: contact shape (up to 7 % from Maugis-Dugdale on the sphere; docs/theory/bem.rst).  Under displacement control
 #: the pull-off can be the loss of contact (a* -> 0): not applied there.
 CONTACT_MIN_CELLS = 1.5
 

@@ -132,10 +132,8 @@ ANDERSON_MEMORY = 6
 #: start, or the route's own states on the grid half as fine;
 #: :data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY` says where), mixed without the periodic
 #: restarts (only a stretch step restarts it).  Their residual sits in a ring of ~5000 edge cells
-#: whose undulations are many slow modes, more than 6 differences span.  Measured on one warm start
-#: (beta0 = 0.1, mu = 10, 2560 x 480, approach -0.6867, 1 thread; python -m
-#: verification.bench_anderson): memory 6 with restarts every 40 stalled at residual 7.5e-4 after
-#: 109 outer iterations, memory 30 converged in 92 (184 s).
+#: whose undulations are many slow modes, more than 6 differences span (docs/theory/bem.rst,
+#: 'Measurements behind the solver's constants').
 STRETCH_ANDERSON_MEMORY = 30
 #: Stretch step (:func:`stretch_step`): finite-difference increment of the stretch factors [-].
 STRETCH_INCREMENT = 2e-3
@@ -145,9 +143,8 @@ STRETCH_MAX_STEP = 1e-2
 STRETCH_BROYDEN_STEPS = 5
 #: Stretch step: taken only when the state stalls, i.e. when the best outer residual of the last
 #: half of the ``stretch_every`` window is above this fraction of the best of its first half.
-#: Measured at mu = 10 (N = 1200-1440), the states trapped by their lattice had ratios 0.43-1.15 at
-#: outer iteration 30; a state converging to 1e-4 in 57 outer iterations (beta0 = 0.4826) gains
-#: nothing from a stretch step and paid 17 % more CG iterations for three of them.
+#: A converging state gains nothing from a stretch step, which costs CG iterations
+#: (docs/theory/bem.rst).
 STRETCH_STALL_RATIO = 0.5
 #: Evenness tolerance for the automatic symmetry mode (relative to max |z|).
 _EVEN_RTOL = 1e-12
@@ -293,11 +290,8 @@ class AdhesiveProblem:
     def with_widest_edge(self) -> "AdhesiveProblem":
         """The same problem (gap, grid, law, symmetry) with the Dugdale edge spread over its cap 2 h0.
 
-        Measured at beta0 = 0.5, mu = 10 (the predicted route's first state on 1280^2 cells, from
-        its cold start, 1 thread): with the grid's own edge (1.89 h0) the residual wandered at
-        2e-3 to 4e-2 for 150 outer iterations; with 2 h0 it converged in 120-130 (421-474 s, two
-        runs), and the grid's own state started from it converged in 22 more (54 s; Anderson
-        memory 30), its load -4.679307 against -4.679256 with the wide edge (1.1e-5).
+        A state that stalls with the grid's own edge can converge with the wide edge and then
+        start the grid's own state (docs/theory/bem.rst, 'The adhesive solver').
 
         Returns
         -------
@@ -495,7 +489,7 @@ def _dot(a, b):
 #: beyond the CG update, i.e. released or newly loaded, times their 4 mirror images in
 #: symmetric mode) for which the gap is corrected by adding influence coefficients instead
 #: of a new convolution.  One term is two passes over the working grid; a convolution
-#: costs ~7x (N = 256) to ~25x (N = 512) one term (measured, symmetric quadrant).
+#: costs ~7x (N = 256) to ~25x (N = 512) one term (symmetric quadrant).
 DIRECT_CORRECTION_TERMS = 16
 
 
@@ -539,8 +533,8 @@ def _nested_cold_start(op, g0, scale, tol, max_iter, k0):
     """Pressure of the same contact problem on the grid half as fine (recursively), or None.
 
     The gap is restricted by 2 x 2 cell averages and the coarse pressure prolonged as
-    piecewise constant: a cold start whose smooth error is gone (measured: Hertz N = 512,
-    74 -> ~50 fine CG iterations, the coarse ones costing ~1/5 each).
+    piecewise constant: a cold start whose smooth error is gone (Hertz N = 512: ~50 fine CG
+    iterations instead of 74, the coarse ones costing ~1/5 each).
     """
     grid = op.grid
     if min(grid.nx, grid.ny) < 2 * NESTED_COLD_MIN_N or grid.nx % 4 or grid.ny % 4:
@@ -556,19 +550,18 @@ def _nested_cold_start(op, g0, scale, tol, max_iter, k0):
 #: The CG runs on the box of cells that can touch when that box (rounded up to an
 #: FFT-friendly size) holds at most this fraction of the working cells: below it the
 #: smaller transforms and vectors outweigh the two working-grid convolutions that
-#: frame the cropped solve (measured, Hertz N = 512: box 0.13 of the cells, ~6x faster).
+#: frame the cropped solve (Hertz N = 512: box 0.13 of the cells, ~6x faster).
 CROP_MAX_FRACTION = 0.5
 #: Cells added around the box of negative free gap (rounding of the free gap's convolution).
 CROP_MARGIN = 2
 #: With an adhesive stress the bound above covers the cohesive zone; the CG then runs on a
 #: box around the warm start's contact (p > 0 or h < 0) plus this many cells (the edge
 #: moves by about a cell between outer iterations), checked afterwards on the whole grid
-#: (measured, sphere N = 256, lambda = 1 and 3: 1 whole-grid completion in 477 box solves).
+#: (sphere N = 256, lambda = 1 and 3: 1 whole-grid completion in 477 box solves).
 ACTIVE_BOX_MARGIN = 2
 #: ... when that box holds at most this fraction of the working cells: a box solve costs
 #: two whole-grid convolutions (gap, completion) plus ~9 on the box, against ~9 on the
-#: whole grid (measured side by side, sphere N = 256, CPU s of the path: lambda = 1
-#: 1.45 -> 0.99, lambda = 3 2.66 -> 1.90 with boxes of 0.5-0.6 of the quadrant).
+#: whole grid (sphere N = 256: ~30 % less CPU on the path with boxes of 0.5-0.6 of the quadrant).
 ACTIVE_BOX_MAX_FRACTION = 0.8
 
 
@@ -660,7 +653,7 @@ def solve_contact_pressure(op, free_gap, pressure, scale, tol, max_iter, self_in
     every influence coefficient is positive, so no other cell can touch; the same
     discrete problem), and the gap is completed on the working grid by one convolution.
     With an adhesive stress the bound ``g0 - K s`` is negative over about the whole
-    cohesive zone (measured at lambda = 3, N = 256: the whole quadrant), so the CG runs
+    cohesive zone (at lambda = 3, N = 256: the whole quadrant), so the CG runs
     instead on a box around the warm start's contact and is checked on the whole grid
     (:func:`_active_box_cg`).  A cold start without stress begins from the same problem
     on the grid half as fine (:func:`_nested_cold_start`).
@@ -1056,7 +1049,7 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, ande
         outer += 1
         # inexact inner solves: tighten with the outer residual (Anderson tolerates it), in units
         # of the zone fraction (gain): a looser inner solve feeds the fixed point noise larger
-        # than its residual (measured at N = 1024: the contact set flipped by 3 % every iteration)
+        # than its residual (at N = 1024 the contact set flipped by 3 % every iteration)
         itol = gain * (1e-3 if not np.isfinite(res) else min(max(INNER_FACTOR * res, 0.1 * tol), 1e-2))
         p, h, it, err = solve_contact_pressure(op, zd, p, scale, itol, max_iter - total_it, prob.k0, stress=s)
         total_it += it
@@ -1147,9 +1140,8 @@ def stretch_step(prob, delta, pressure, stress, itol, max_iter) -> StretchStep:
 
     The outer fixed point moves the zone edge by a fraction of a cell per iteration: a cold
     state whose zone is a few cells too large or too small creeps towards the solution and
-    stalls, trapped by the lattice, with a zone-fraction residual of 4e-4 to 1e-2 after 300
-    outer iterations (measured at mu = 10, N = 1200-1440; at beta0 = 0.8 and 1, N = 1280, the
-    first stretch step, at outer iteration 30, moved the load by 1.1-1.3 %).  This step
+    stalls, trapped by the lattice (at mu = 10 with a zone-fraction residual of 4e-4 to 1e-2
+    after 300 outer iterations; docs/theory/bem.rst).  This step
     stretches the stress and pressure about the centre by factors (sx, sy) chosen so that the
     residual of the stretched state has no net second moments along x and y,
 

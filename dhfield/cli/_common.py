@@ -276,8 +276,8 @@ def command_threads(requested=None) -> int:
 
     The library's own default stays 1 thread (:func:`dhfield.bem.operator.default_threads`: results
     reproducible bit for bit from one machine to another); a command run by a person uses the machine.
-    Measured: ``dhfield solve --beta0 0.4826 --mu 10`` on 2 cores took 0.84x the wall time with 2 threads.
-    Threads beyond the free cores only compete with the work already running.
+    Two threads on two free cores take ~0.84x the wall time of one (``dhfield solve --beta0 0.4826
+    --mu 10``); threads beyond the free cores only compete with the work already running.
     """
     import os
 

@@ -1,7 +1,7 @@
 """Grid-refinement studies: observed orders of convergence between successive grids.
 
 Used by the BEM convergence checks (``verification/convergence_bem.py``, the report's
-field section): an error measured on grids of decreasing cell size h, and the order
+field section): an error computed on grids of decreasing cell size h, and the order
 log(e_i/e_(i+1))/log(h_i/h_(i+1)) it converges at.
 """
 from __future__ import annotations
