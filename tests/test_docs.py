@@ -99,6 +99,26 @@ def test_numpydoc_validation(api):
     assert not strict, f"{len(strict)} numpydoc errors:\n" + "\n".join(strict)
 
 
+# --------------------------------------------------------------------------- the API reference's groups
+def test_developer_reference_groups_modules_by_their_folder():
+    """Each building block is listed under the group of its folder (none under "Other modules"),
+    and the models come first, the recommended model at their head."""
+    ext = dc._ext()
+    entry = set(ext.entry_point_modules())
+    folder_group = {}
+    for k, (_, _, names) in enumerate(ext.GROUPS):
+        folders = {".".join(n.split(".")[:2]) for n in names}
+        assert len(folders) == 1, f"group {ext.GROUPS[k][0]!r} spans folders {sorted(folders)}"
+        folder_group[folders.pop()] = k
+    internal = [m for m in ext.public_modules() if m not in entry]
+    for m in internal:
+        folder = ".".join(m.split(".")[:2])
+        assert ext.group_of(m) == folder_group.get(folder), (m, ext.group_of(m))
+    ordered = sorted(internal, key=ext.group_order)
+    assert ordered[:3] == ["dhfield.models", "dhfield.models.md_elliptic", "dhfield.models.registry"]
+    assert ext.GROUPS[0][0] == "Models"
+
+
 def test_gallery_examples_compile():
     examples = sorted((ROOT / "docs" / "examples").glob("plot_*.py"))
     assert len(examples) >= 6

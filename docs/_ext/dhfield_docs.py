@@ -10,7 +10,8 @@ At ``config-inited`` (before Sphinx lists the source files) it writes, under ``d
     module re-exports from another public module links to the page of the module that
     defines it.  ``api/index.rst`` (the user's API reference) lists the entry points a user
     calls, :data:`ENTRY_POINTS`, grouped by task; ``api/internals.rst`` (the developer
-    reference) lists every other public module, the building blocks, grouped by :data:`GROUPS`.
+    reference) lists every other public module, the building blocks, grouped by :data:`GROUPS`,
+    one group per folder of the package (``models/``, ``core/``, ``bem/``, ``analysis/``, ...).
     A module not matched by :data:`GROUPS` lands in "Other modules", so a new module is
     documented without editing this file.
 ``_generated/verdict.rst``, ``_generated/truth_table.rst``, ``_generated/sphere.rst``
@@ -40,30 +41,48 @@ DOCS = Path(__file__).resolve().parents[1]
 #: when the docs tree is a copy (tests/test_docs.py builds one in a temporary directory).
 ROOT = Path(os.environ.get("DHFIELD_DOCS_ROOT", DOCS.parent)).resolve()
 
-#: (title, introduction, module-name prefixes), in the order a user meets them.  A module
-#: belongs to the first group with a matching prefix (exact name, or prefix + ".").
+#: The developer reference, one group per folder of the package, in the order a newcomer reads
+#: them: the models first, then the layers they build on and what is built on them (the layer
+#: map: the docstring of :mod:`dhfield`).  Each entry is (title, introduction, module names).
+#: A module belongs to the first group that names it or a package above it (``dhfield.models``
+#: holds every ``dhfield.models.*``).  Within its group a module named there is listed in that
+#: order (the folder's overview page first, then the modules a reader should meet first), and
+#: the others after them, by name.
 GROUPS = (
-    ("Models", "The analytic models: the paper's extended double-Hertz model and its closures, "
-     "the SI front end, and the comparison models, all behind one registry.",
-     ("dhfield", "dhfield.models.dh_elliptic", "dhfield.analysis.dimensional", "dhfield.analysis.compare", "dhfield.models.dh_elliptic_closure",
-      "dhfield.models.jkr", "dhfield.models.dmt", "dhfield.models.maugis_dugdale", "dhfield.models.dh_circular", "dhfield.models.jkr_elliptic",
-      "dhfield.core.transition")),
-    ("Equations of the paper", "The building blocks, one module per physical concept: geometry "
-     "(Eqs. 2-6), elliptic integrals, the Hertz fields (Eqs. 7-15), the double-Hertz fields "
-     "(Eqs. 16-27), the work of adhesion along a ray (Eq. 31), the periphery and Eq. (30).",
-     ("dhfield.core.geometry", "dhfield.core.elliptic", "dhfield.models.hertz", "dhfield.models.dh_elliptic_fields", "dhfield.models.dh_elliptic_adhesion",
-      "dhfield.models.dh_elliptic_periphery", "dhfield.analysis.eq30", "dhfield.core.pull_off_search")),
-    ("The boundary-element method", "The DC-FFT half-space operator, the traction-separation laws, the "
-     "self-consistent adhesive solver, unloading paths and the pull-off; and pressure fields on grids.",
-     ("dhfield.bem", "dhfield.analysis.fields", "dhfield.analysis.field_sampling", "dhfield.analysis.field_metrics", "dhfield.analysis.polar",
-      "dhfield.core.refinement", "dhfield.core.progress")),
-    ("Fitting", "The inverse problem: the work of adhesion (and the adhesive stress) from measurements.",
-     ("dhfield.analysis.fit",)),
-    ("Sweeps and maps", "Parameter sweeps on dask that resume, and the maps drawn from them.",
-     ("dhfield.sweep", "dhfield.io.sweep_maps")),
-    ("Input and output", "netCDF/CSV writers with provenance, atomic writes, and the one metadata table.",
-     ("dhfield.io", "dhfield.core.schema")),
-    ("Command line", "The ``dhfield`` command's entry point (its options: :doc:`/cli`).", ("dhfield.cli",)),
+    ("Models", "``dhfield/models/``: one module per analytic model, named as on the command line "
+     "(``--model``). The recommended model ``md-elliptic`` first, the registry of every model by "
+     "its name, then the paper's extended double-Hertz model ``dh-elliptic`` with its fields, "
+     "adhesion integral (Eq. 31), periphery and closures, and the comparison models.",
+     ("dhfield.models", "dhfield.models.md_elliptic", "dhfield.models.registry", "dhfield.models.dh_elliptic",
+      "dhfield.models.dh_elliptic_fields", "dhfield.models.dh_elliptic_adhesion",
+      "dhfield.models.dh_elliptic_periphery", "dhfield.models.dh_elliptic_rays",
+      "dhfield.models.dh_elliptic_closure", "dhfield.models.jkr_elliptic", "dhfield.models.jkr_elliptic_energy",
+      "dhfield.models.maugis_dugdale", "dhfield.models.maugis_dugdale_separated", "dhfield.models.jkr",
+      "dhfield.models.dmt", "dhfield.models.dh_circular", "dhfield.models.hertz")),
+    ("Foundations", "``dhfield/core/``: what every layer builds on: input validation, the paper's "
+     "units, the crossed-cylinder geometry (Eqs. 2-6), elliptic integrals, the one pull-off search, "
+     "the result records and the variable table.  It imports nothing else of dhfield.",
+     ("dhfield.core", "dhfield.core.validation", "dhfield.core.units", "dhfield.core.geometry",
+      "dhfield.core.elliptic", "dhfield.core.transition", "dhfield.core.pull_off_search", "dhfield.core.records",
+      "dhfield.core.schema")),
+    ("The boundary-element method", "``dhfield/bem/``: the ground truth: the DC-FFT half-space "
+     "operator, the traction-separation laws, the self-consistent adhesive solver, unloading paths "
+     "and the pull-off.  It builds on the foundations and imports no model.",
+     ("dhfield.bem", "dhfield.bem.pull_off", "dhfield.bem.state", "dhfield.bem.operator", "dhfield.bem.laws",
+      "dhfield.bem.solver")),
+    ("Analysis", "``dhfield/analysis/``: what is built on the models and the BEM together: the "
+     "comparison of every model, its error against the ground truth, the SI front end, fits, the "
+     "BEM started from the models, the machine spring, fields and Eq. (30), the adhesion map.",
+     ("dhfield.analysis", "dhfield.analysis.compare", "dhfield.analysis.validity", "dhfield.analysis.model_error",
+      "dhfield.analysis.dimensional", "dhfield.analysis.fit", "dhfield.analysis.bem_start",
+      "dhfield.analysis.spring", "dhfield.analysis.bem_spring", "dhfield.analysis.fields",
+      "dhfield.analysis.field_sampling", "dhfield.analysis.field_metrics", "dhfield.analysis.polar",
+      "dhfield.analysis.eq30")),
+    ("Input and output", "``dhfield/io/``: netCDF/CSV writers with provenance, atomic writes, and the "
+     "figures.", ("dhfield.io",)),
+    ("Sweeps", "``dhfield/sweep/``: parameter sweeps on dask that resume.", ("dhfield.sweep",)),
+    ("Command line", "``dhfield/cli/``: the ``dhfield`` command's entry point (its options: :doc:`/cli`).",
+     ("dhfield.cli",)),
 )
 OTHER_GROUP = ("Other modules", "Public modules not yet placed in a group.")
 
@@ -161,12 +180,30 @@ def public_api() -> dict[str, dict[str, str]]:
     return api
 
 
+def _match(modname: str, prefixes) -> int | None:
+    """Position of ``modname`` in ``prefixes``, else of the first package above it there, else None."""
+    if modname in prefixes:
+        return prefixes.index(modname)
+    for i, p in enumerate(prefixes):
+        if p != "dhfield" and modname.startswith(p + "."):
+            return i
+    return None
+
+
 def group_of(modname: str) -> int:
     """Index into :data:`GROUPS` (``len(GROUPS)``: the "Other modules" group)."""
     for k, (_, _, prefixes) in enumerate(GROUPS):
-        if modname in prefixes or any(modname.startswith(p + ".") for p in prefixes if p != "dhfield"):
+        if _match(modname, prefixes) is not None:
             return k
     return len(GROUPS)
+
+
+def group_order(modname: str) -> tuple:
+    """Sort key of a module on the developer reference: its group, then its place in the group."""
+    k = group_of(modname)
+    named = GROUPS[k][2] if k < len(GROUPS) else ()
+    place = named.index(modname) if modname in named else len(named)
+    return k, place, modname.split(".")
 
 
 def _first_line(modname: str) -> str:
@@ -257,7 +294,7 @@ def write_api(outdir: Path) -> None:
     outdir.mkdir(parents=True, exist_ok=True)
     gen.mkdir(parents=True, exist_ok=True)
     groups: dict[int, list[str]] = {}
-    for m in api:
+    for m in sorted(api, key=group_order):
         groups.setdefault(group_of(m), []).append(m)
     keep, keep_gen = {"index.rst"}, set()
     for m, names in api.items():
@@ -295,8 +332,10 @@ def write_api(outdir: Path) -> None:
              "The functions and classes a user calls, grouped by task, generated from the docstrings: each "
              "module lists its ``__all__``.  Units are SI unless a name says ``_star``/``nondimensional`` (the "
              "paper's units of Eqs. 32-35, :doc:`/theory/model`).  Equations cite the paper as \"Eq. (n)\".  "
-             "The building blocks behind them (geometry, elliptic integrals, the double-Hertz fields, the "
-             "closures, the BEM's operator and solver) are in the :doc:`developer reference </api/internals>`.\n"]
+             "The building blocks behind them are in the :doc:`developer reference </api/internals>`, one "
+             "group per folder of the package: the models (``dhfield.models``, the recommended "
+             "``md_elliptic`` first), the foundations (``dhfield.core``), the BEM's parts (``dhfield.bem``) "
+             "and the analyses built on both (``dhfield.analysis``).\n"]
     for title, intro, group in ENTRY_POINTS:
         present = [m for m in group if m in entry]
         if not present:
@@ -306,10 +345,12 @@ def write_api(outdir: Path) -> None:
             index.append(f"   * - :doc:`{m}`\n     - {escape_bars(_first_line(m))}")
         index += ["", ".. toctree::\n   :hidden:\n"] + [f"   {m}" for m in present] + [""]
     internals = [".. _api-internals:\n", _title("Developer reference: the building blocks"),
-                 "Every other public module of :mod:`dhfield`: the equations of the paper one module per "
-                 "concept, the closures, the comparison models, the BEM's parts and the plumbing behind the "
-                 "entry points of the :doc:`API reference </api/index>`.  Public and documented, but a user "
-                 "rarely calls them directly.\n"]
+                 "Every other public module of :mod:`dhfield`, grouped by the folder it lives in, one folder "
+                 "per layer: ``core`` at the bottom, ``models`` and ``bem`` on it, ``analysis`` on both, "
+                 "``io``, ``sweep`` and ``cli`` at the edge (the map, and who may import whom: "
+                 ":mod:`dhfield`).  The models come first, the recommended one at their head.  The entry "
+                 "points of the :doc:`API reference </api/index>` are listed there, not here.  Public and "
+                 "documented, but a user rarely calls them directly.\n"]
     for k in sorted(groups):
         mods = [m for m in groups[k] if m not in entry]
         if not mods:
