@@ -1393,14 +1393,12 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
 
     ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
-    (corrected by the sphere's MD), which at high mu lies within a lattice step of the BEM's (the two-axis closure's zone at
-    beta0 = 0.4826, mu = 10, c = 1.960, is inside GVG's contact a = 1.984);
+    (corrected by the sphere's MD), which at high mu lies within a lattice step of the BEM's;
     :func:`dhfield.bem.pull_off.predicted_path` solves the samples around it, to ``tol`` (default
     ``options.tol``; :func:`adhesive_pull_off` passes :data:`PREDICTED_TOL` unless told).  When that
     fails the record says so (``converged`` False) and its ``note`` names why and the analytic W*
     to use instead (:func:`dhfield.models.md_elliptic.pull_off_nondimensional`).  No other route
-    is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`); the
-    fall-back to it had answered nothing after 9 min at beta0 = 0.5, mu = 10 (2 threads).
+    is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`).
 
     ``start`` (one of :data:`PREDICTED_STARTS`): 'cold', the first state from GVG's zone and each
     other from its nearest solved neighbour; 'lower-mu', every state from the same approach at

@@ -93,7 +93,7 @@ Which model to use when
 Pull-off W* of the paper's closure and of the alternatives relative to the two-axis
 closure, W*_model/W*_two-axis - 1 (load control; ranges over mu = 0.1, 0.3, 1, 3, 10,
 30, computed with :func:`pull_off` on that grid; negative: less adhesion than the
-two-axis closure; the table of issue 10, kept for the paper's model):
+two-axis closure):
 
 ===========  ==========================  ==========================  ==========================
 beta0        dh-elliptic                 dh-elliptic-ray-average     jkr-elliptic
@@ -252,10 +252,9 @@ def pull_off(model=DEFAULT_MODEL, *, beta0, mu, control="load", check_closure=Tr
     check_closure : bool
         For ``dh-elliptic`` only: also evaluate the recommended model ``md-elliptic``
         (about 1 ms per point) and fill ``warning`` where the paper's pull-off departs
-        from it by more than :data:`WARNING_THRESHOLD`.  The name is historical: the
-        reference was the two-axis closure (about 200 ms per point) until issue 20;
-        :func:`closure_departure` still measures that departure.  False leaves
-        ``warning`` empty of this check.
+        from it by more than :data:`WARNING_THRESHOLD`.  The departure from the two-axis
+        closure (about 200 ms per point) is :func:`dhfield.analysis.validity.closure_departure`.
+        False leaves ``warning`` empty of this check.
     warn : bool
         Also raise a non-empty ``warning`` as a Python warning,
         :class:`dhfield.analysis.validity.OutsideVerifiedDomainWarning` (one per call).  False leaves it

@@ -283,7 +283,7 @@ def _contact_parameters(youngs_modulus_1, poisson_ratio_1, youngs_modulus_2, poi
 
 
 def _check_model_domain(ratio, beta0, mu, s0):
-    """Name the SI input behind a beta0 or mu outside the models' domain (H3, issue 9)."""
+    """Name the SI input behind a beta0 or mu outside the models' domain."""
     if np.any(beta0 < ELLIPTICITY_RANGE[0]):
         raise ValueError(f"r_major/r_minor must be at most {float(geometry.radius_ratio(ELLIPTICITY_RANGE[0])):.6g} "
                          f"(beta0 >= {ELLIPTICITY_RANGE[0]:g}; longer contacts are line contacts); "

@@ -7,9 +7,8 @@ The policy behind the ``warning`` field of every pull-off record of :mod:`dhfiel
 * for the paper's model, the departure of its pull-off from the recommended model
   ``md-elliptic`` (:mod:`dhfield.models.md_elliptic`, within 0.46 % of the stored BEM
   ground truth), warned above :data:`WARNING_THRESHOLD` (:func:`departure_warning`; about
-  1 ms per point).  Until issue 20 the reference was the two-axis closure (about 200 ms per
-  point, refusing beta0 < 0.3 and mu > 30); :func:`closure_departure` still measures that
-  departure on request.
+  1 ms per point); :func:`closure_departure` gives the departure from the two-axis closure
+  on request (about 200 ms per point, refusing beta0 < 0.3 and mu > 30).
 
 The recommended model answers over the whole accepted domain; its entry in
 :data:`VALIDITY_RANGES` is the box the stored boundary-element ground truth covers
@@ -205,9 +204,8 @@ def _departure_warning(w_paper, w_ref, reason=""):
 def closure_departure(mu, beta0, control="load"):
     """Relative departure of the paper's pull-off from the two-axis closure (about 200 ms per point).
 
-    The measure of the paper's warning before issue 20 and of the table in
-    :mod:`dhfield.analysis.compare`; the warning now uses the recommended model
-    (:func:`departure_warning`).
+    The measure of the table in :mod:`dhfield.analysis.compare`; the warning uses the
+    recommended model instead (:func:`departure_warning`).
 
     Parameters
     ----------

@@ -528,14 +528,11 @@ class Branch:
         """Solve the state at ``approach`` from ``guess`` with the Dugdale edge at its widest, as a start.
 
         The same state on :meth:`dhfield.bem.solver.AdhesiveProblem.with_widest_edge` (built
-        once).  On a grid whose own edge is a little narrower than the widest (beta0 = 0.5,
-        mu = 10, 1280^2: 1.89 h0) its fixed point converged where the own edge's wandered, and
-        the own state then converged from it in 22-28 outer iterations, 1.1e-5 away in load.
-        Where the own edge is half as wide (the mu = 10 level-2 grids, 1.03-1.08 h0) the wide
-        state converged too (44-49 outer iterations from level 1's state), but the own state
-        started from it stalled as it does from level 1's state (beta0 = 0.1: 1.8e-3 after 41),
-        so the refined levels' race does not use it.  Not recorded: it is a start, not a state
-        of this branch.
+        once).  On a grid whose own edge is a little narrower than the widest its fixed point
+        can converge where the own edge's wanders, and the own state then converges from it;
+        where the own edge is half as wide (the mu = 10 level-2 grids) it does not help, so the
+        refined levels' race does not use it (docs/theory/bem.rst, 'The adhesive solver').  Not
+        recorded: it is a start, not a state of this branch.
 
         Parameters
         ----------

@@ -698,8 +698,8 @@ def _raced(b, near, d, cold_start):
     """The state at ``d`` on ``b`` from a race of starts (:meth:`Branch.race`): the external start
     (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the warm start's
     ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else
-    ``cold_start()`` when none gave a start.  (No wide-edge start here: on the mu = 10 level-2
-    grids the own state stalled from it as from level 1's state; :meth:`Branch.widest_edge_guess`.)"""
+    ``cold_start()`` when none gave a start.  (No wide-edge start here: it does not help on the
+    refined levels; :meth:`Branch.widest_edge_guess`.)"""
     alternative = getattr(b.warm_start, "alternative", None)
     starts = [lambda: b.guess(d, None)]
     if near:
