@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .validation import check_interval, check_positive
+from .validation import check_control, check_interval, check_positive, check_tabor
 from .records import load_curve_record, pull_off_record_si
 
 
@@ -129,24 +129,54 @@ def si_curve(model, arrays, *, mu=float("nan"), beta0=1.0, sin_skew=1.0, geometr
                              ellipticity=ellipticity)
 
 
-def circular_si_curve(model, state, a, r, e, w, *, mu=float("nan"), zone=False, dh_factor=False):
-    """The SI load curve of a circular model from its nondimensional state (inputs already checked).
+def si_circular_load_curve(model, core, contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
+                           max_adhesive_stress=None, *, zone=False, dh_factor=False):
+    """The SI load curve of a circular model from its nondimensional core (inputs validated here).
 
-    ``state`` is the model's nondimensional curve over a/c_r (``W_star``, ``delta_star``, and
-    ``c_star``, ``v`` where the model has them); ``a``, ``r``, ``e``, ``w`` the contact radius
-    [m], R [m], E* [Pa] and dgamma [J/m^2].  W = W* 2 pi R dgamma (Eq. 34, sin_skew = 1),
-    delta = delta* c_r^2/R and, with ``zone``, the adhesive radius c = c* c_r (Eqs. 32-33);
-    ``dh_factor`` carries the DH factor v.  Returns :func:`si_curve`'s record.
+    ``core(a_star)`` (or ``core(a_star, mu)`` where the model has a Tabor parameter, i.e. where
+    ``max_adhesive_stress`` is given) returns the model's nondimensional curve over a/c_r
+    (``W_star``, ``delta_star``, and ``c_star``, ``v`` where the model has them).
+    W = W* 2 pi R dgamma (Eq. 34, sin_skew = 1), delta = delta* c_r^2/R and, with ``zone``, the
+    adhesive radius c = c* c_r (Eqs. 32-33); ``dh_factor`` carries the DH factor v.
+    Returns :func:`si_curve`'s record.
     """
+    a = check_contact_size("contact_radius", contact_radius)
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    a_star = a / _length(r, e, w)  # Eq. (32)
+    if max_adhesive_stress is None:
+        mu, state = float("nan"), core(a_star)
+    else:
+        mu = tabor_parameter(max_adhesive_stress, r, e, w)
+        state = core(a_star, mu)
     arrays = {"semi_major": a}
     if zone:
-        c = state["c_star"] * length_unit(r, e, w, checked=False)  # Eq. (32)
+        c = state["c_star"] * _length(r, e, w)  # Eq. (32)
         arrays.update(adhesive_semi_major=c, adhesive_semi_minor=c)
     if dh_factor:
         arrays["v"] = state["v"]
-    arrays.update(force=state["W_star"] * load_unit(r, w, checked=False),  # Eq. (34)
-                  approach=state["delta_star"] * approach_unit(r, e, w, checked=False))
+    arrays.update(force=state["W_star"] * _load(r, w, 1.0),  # Eq. (34)
+                  approach=state["delta_star"] * _approach(r, e, w))
     return si_curve(model, arrays, mu=mu)
+
+
+def si_pull_off(core, effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress=None, *,
+                control="load", radius_ratio=1.0, beta0=1.0, check_mu=False):
+    """The SI pull-off record of a model from its nondimensional core (inputs validated here).
+
+    Checks ``control``, R, E*, dgamma (and sigma0 where given: then mu of Eq. (35) is passed to
+    the core, and checked against the Tabor range with ``check_mu``), evaluates
+    ``core(beta0, mu, control=...)`` over the broadcast shape of the inputs and converts it with
+    :func:`pull_off_si`; ``radius_ratio`` R'/R'' and ``beta0`` 1 for the circle.
+    """
+    check_control(control)
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    if max_adhesive_stress is None:
+        return pull_off_si_of(core, si_inputs(r, e, w, radius_ratio=radius_ratio), control=control, beta0=beta0)
+    mu = tabor_parameter(max_adhesive_stress, r, e, w)
+    if check_mu:
+        check_tabor("mu", mu)
+    s0 = np.asarray(max_adhesive_stress, dtype=float)
+    return pull_off_si_of(core, si_inputs(r, e, w, s0, radius_ratio), control=control, beta0=beta0, mu=mu)
 
 
 def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):

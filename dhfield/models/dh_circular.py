@@ -44,9 +44,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from ..core.units import (approach_unit, check_contact_size, check_material, circular_si_curve,
-                          pull_off_si_of, si_inputs, length_unit, load_unit, scalar_or_array, tabor_parameter)
-from ..core.validation import check_control, check_positive, check_tabor
+from ..core.units import check_contact_size, check_material, scalar_or_array, si_circular_load_curve, si_pull_off
+from ..core.validation import check_positive
 from ..core.pull_off_search import scan_minimum
 from ..core.records import pull_off_record
 
@@ -232,11 +231,6 @@ def work_of_adhesion(contact_radius, adhesive_radius, scaling, effective_radius,
     return scalar_or_array(v * (1 + v) * 2 * e / (3 * np.pi * r * r) * (c - a) ** 2 * (c + 2 * a))  # Eq. (31)
 
 
-def _dimensional(st, r, e, w):
-    return (st["W_star"] * load_unit(r, w, checked=False), st["a_star"] * length_unit(r, e, w, checked=False),
-            st["delta_star"] * approach_unit(r, e, w, checked=False))
-
-
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
                max_adhesive_stress):
     """Circular DH (Greenwood & Johnson 1998) load and approach at a contact radius.
@@ -277,11 +271,8 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     .. [1] J. A. Greenwood, K. L. Johnson, J. Phys. D 31 (1998) 3279,
        doi:10.1088/0022-3727/31/22/017
     """
-    a = check_contact_size("contact_radius", contact_radius)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    st = load_curve_nondimensional(a / length_unit(r, e, w, checked=False), mu)
-    return circular_si_curve("dh-circular", st, a, r, e, w, mu=mu, zone=True, dh_factor=True)
+    return si_circular_load_curve("dh-circular", load_curve_nondimensional, contact_radius, effective_radius,
+                                  reduced_modulus, work_of_adhesion, max_adhesive_stress, zone=True, dh_factor=True)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
@@ -304,12 +295,8 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
         ``force`` [N], ``semi_major`` = ``semi_minor`` (the contact radius) and the
         adhesive radius [m], ``approach`` [m], the SI inputs and the nondimensional record.
     """
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    check_tabor("mu", mu)
-    check_control(control)
-    s0 = np.asarray(max_adhesive_stress, dtype=float)
-    return pull_off_si_of(pull_off_nondimensional, si_inputs(r, e, w, s0), control=control, mu=mu)
+    return si_pull_off(pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
+                       control=control, check_mu=True)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.units import (check_contact_size, check_material, circular_si_curve, pull_off_si_of, si_inputs,
-                          length_unit, load_unit, scalar_or_array)
-from ..core.validation import check_control, check_finite
+from ..core.units import (check_material, length_unit, load_unit, scalar_or_array, si_circular_load_curve,
+                          si_pull_off)
+from ..core.validation import check_finite
 from ..core.records import pull_off_record
 
 __all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
@@ -107,9 +107,8 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     -----
     .. math:: W = \\frac{4E^*a^3}{3R} - 2\\pi R\\Delta\\gamma, \\qquad \\delta = a^2/R
     """
-    a = check_contact_size("contact_radius", contact_radius)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    return circular_si_curve("dmt", load_curve_nondimensional(a / length_unit(r, e, w, checked=False)), a, r, e, w)
+    return si_circular_load_curve("dmt", load_curve_nondimensional, contact_radius, effective_radius, reduced_modulus,
+                                  work_of_adhesion)
 
 
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
@@ -152,9 +151,7 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
         ``force`` [N], ``semi_major`` = ``semi_minor`` = 0, ``approach`` = 0 [m], the SI
         inputs (``max_adhesive_stress`` NaN) and the nondimensional record (``mu`` NaN).
     """
-    check_control(control)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    return pull_off_si_of(pull_off_nondimensional, si_inputs(r, e, w), control=control)
+    return si_pull_off(pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion, control=control)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):

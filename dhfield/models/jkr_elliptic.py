@@ -76,8 +76,8 @@ import numpy as np
 from scipy import special
 from scipy.optimize import elementwise
 
-from ..core.units import (approach_unit, check_material, length_unit, load_unit, pull_off_si_of,
-                          scalar_or_array, si_curve, si_inputs)
+from ..core.units import (approach_unit, check_material, length_unit, load_unit, scalar_or_array, si_curve,
+                          si_pull_off)
 from ..core.validation import as_circle, check_control, check_ellipticity, check_finite, check_interval
 from ..core.geometry import ellipticity_from_radius_ratio, sin_skew_angle
 from ..core.pull_off_search import scan_minimum
@@ -440,11 +440,8 @@ class EllipticJKR:
             With R' = R sqrt(rho), R'' = R/sqrt(rho) and ``max_adhesive_stress`` NaN.
         """
         b0 = check_geometry(radius_ratio, beta0)
-        r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-        check_control(control)
-        rho = 1.0 + geometry_terms(b0)[1]  # R'/R''
-        return pull_off_si_of(self.pull_off_nondimensional, si_inputs(r, e, w, radius_ratio=rho), control=control,
-                              beta0=b0)
+        return si_pull_off(self.pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion,
+                           control=control, radius_ratio=1.0 + geometry_terms(b0)[1], beta0=b0)  # R'/R''
 
     def pull_off_force_ratio(self, *, radius_ratio=None, beta0=None, control="load"):
         """Compute the pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].

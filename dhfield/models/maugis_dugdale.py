@@ -45,9 +45,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import elementwise
 
-from ..core.units import (check_contact_size, check_material, circular_si_curve, pull_off_si_of, si_inputs,
-                          length_unit, tabor_parameter)
-from ..core.validation import check_control, check_positive
+from ..core.units import check_contact_size, si_circular_load_curve, si_pull_off
+from ..core.validation import check_positive
 from ..core.pull_off_search import scan_minimum
 from ..core.records import pull_off_record
 from ..core.transition import maugis_parameter
@@ -349,11 +348,8 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
     .. [1] D. Maugis, J. Colloid Interface Sci. 150 (1992) 243,
        doi:10.1016/0021-9797(92)90288-C
     """
-    a = check_contact_size("contact_radius", contact_radius)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    s = load_curve_nondimensional(a / length_unit(r, e, w, checked=False), mu)
-    return circular_si_curve("md", s, a, r, e, w, mu=mu, zone=True)
+    return si_circular_load_curve("md", load_curve_nondimensional, contact_radius, effective_radius,
+                                  reduced_modulus, work_of_adhesion, max_adhesive_stress, zone=True)
 
 
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
@@ -377,11 +373,8 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
         Dugdale-zone radius [m], ``approach`` [m], the SI inputs and the nondimensional
         record.
     """
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    check_control(control)
-    s0 = np.asarray(max_adhesive_stress, dtype=float)
-    return pull_off_si_of(pull_off_nondimensional, si_inputs(r, e, w, s0), control=control, mu=mu)
+    return si_pull_off(pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
+                       control=control)
 
 
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,

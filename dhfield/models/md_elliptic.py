@@ -150,11 +150,11 @@ import numpy as np
 from scipy import special
 
 from . import jkr, jkr_elliptic_energy, maugis_dugdale
-from ..core.units import check_material, load_unit, scalar_or_array, tabor_parameter
+from ..core.units import si_pull_off
 from ..core.validation import check_control, check_interval, check_tabor
 from ..core.elliptic import complete_k
 from ..core.geometry import sin_skew_angle
-from .jkr_elliptic import check_geometry
+from .jkr_elliptic import check_geometry, geometry_terms
 from ..core.records import pull_off_record
 
 __all__ = ["MODEL_NAME", "transition_weight", "effective_tabor", "pull_off_nondimensional",
@@ -516,9 +516,7 @@ def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhe
     ndarray
         W [N]: between -2 pi dgamma R (DMT) and the GVG pull-off (JKR).
     """
-    check_control(control)
     b0 = check_geometry(radius_ratio, beta0)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    mu = check_tabor("mu", tabor_parameter(max_adhesive_stress, r, e, w))
-    st = pull_off_nondimensional(b0, mu, control=control)
-    return scalar_or_array(st.W_star / sin_skew_angle(b0) * load_unit(r, w, checked=False))
+    return si_pull_off(pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion,
+                       max_adhesive_stress, control=control, radius_ratio=1.0 + geometry_terms(b0)[1], beta0=b0,
+                       check_mu=True).force  # R'/R''
