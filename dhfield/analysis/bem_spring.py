@@ -518,9 +518,8 @@ def spring_pull_off(branch, machine_stiffness, coarse=None) -> PullOff:
                    warning="; ".join(reasons), note=note)
 
 
-#: Caveat carried by every BEM pull-off under a spring (the ``note`` of its record), measured on the
-#: sphere at N = 256 against Maugis-Dugdale under the same spring (``python -m verification.bem_spring``,
-#: 2026-11-26).
+#: Caveat carried by every BEM pull-off under a spring (the ``note`` of its record), from the
+#: sphere at N = 256 against Maugis-Dugdale under the same spring (``python -m verification.bem_spring``).
 SPRING_NOTE = ("pull-off under a machine spring: the first minimum of the machine position on the BEM's unloading "
                "branch sampled at prescribed adhesive force; W_star_error is the fit's, without the grid's "
                "discretisation error; on the sphere within 0.4 % of Maugis-Dugdale for lambda = 0.5-3, "

@@ -148,7 +148,7 @@ class ContactParameters:
     max_adhesive_stress: float = float("nan")
 
 
-#: The smallest crossing angle of the models' domain, beta0 >= 1e-4 (H3, issue 9) [rad].
+#: The smallest crossing angle of the models' domain, beta0 >= 1e-4 [rad].
 _SKEW_ANGLE_MIN = float(geometry.skew_angle(ELLIPTICITY_RANGE[0], checked=False))
 
 

@@ -96,7 +96,7 @@ def _shape_z(x, y, beta, effective_radius):
 
 
 #: Peak memory of one field case per grid cell, from its computation to its netCDF file [bytes].
-#: Measured peak RSS above the imports: 139 B/cell at n = 1024 and 130 B/cell at n = 2048
+#: The peak RSS above the imports is 139 B/cell at n = 1024 and 130 B/cell at n = 2048
 #: (``dhfield field``, ru_maxrss); 160 leaves a 20 % margin.
 CASE_BYTES_PER_CELL = 160
 

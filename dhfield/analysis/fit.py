@@ -654,8 +654,8 @@ _CURVE_PARAMETERS = ("work_of_adhesion", "max_adhesive_stress")
 #: Largest condition number of the (weighted, log-parameter) Jacobian for which dgamma and sigma0
 #: are reported as separately identifiable.  Its columns are computed by finite differences
 #: (relative error ~ sqrt(eps) = 1.5e-8), so a singular value below 1e-6 of the largest is within
-#: 100 x of that error, i.e. not resolved.  Measured: well-posed PDMS curves 3-18; five copies of
-#: one row 2e16; sigma0 on the JKR side (mu ~ 22) 6e7.
+#: 100 x of that error, i.e. not resolved.  Typical values: well-posed PDMS curves 3-18; five
+#: copies of one row 2e16; sigma0 on the JKR side (mu ~ 22) 6e7.
 JACOBIAN_COND_MAX = 1e6
 #: |correlation| of the two log-estimates at or above which they count as correlated at +-1
 #: (only a combination determined): the covariance is then rounding.
@@ -722,7 +722,7 @@ def _curve(params, semi_major, model):
 
 #: Number of contact sizes (log-spaced over the data's range) at which :func:`fit_curve` evaluates the
 #: model when the data have more than twice as many distinct sizes; the model at the data is then the
-#: cubic spline in ln a through them.  Measured on md-elliptic (mu 0.37-3700, a* from 1e-3 to 30): the
+#: cubic spline in ln a through them.  On md-elliptic (mu 0.37-3700, a* from 1e-3 to 30) the
 #: spline departs from the model by at most 8e-9 of the range of the loads (and of the approaches)
 #: with 4096 nodes, 2.4e-7 with 1024.
 CURVE_NODES = 4096

@@ -56,8 +56,7 @@ class ImplausibleInputWarning(DhfieldWarning):
 
 _NAN = float("nan")
 #: Relative departure of the paper's pull-off force from the recommended model above which the
-#: paper's model carries a warning (issue 10: "more than 2 %"; the reference was the two-axis
-#: closure until issue 20).
+#: paper's model carries a warning ("more than 2 %").
 WARNING_THRESHOLD = 0.02
 
 
@@ -179,8 +178,8 @@ def join_warnings(*messages):
     return out[()] if out.ndim == 0 else out
 
 
-#: Kept for compatibility: the smallest mu at which elliptical JKR stood in for the two-axis closure
-#: in the paper's warning before issue 20 (the reference is now the recommended model, everywhere).
+#: Kept for compatibility (unused by the warnings, whose reference is the recommended model): the
+#: smallest mu at which elliptical JKR stands in for the two-axis closure.
 JKR_PROXY_MU = 10.0
 _REFERENCE = elliptic_transition.MODEL_NAME
 

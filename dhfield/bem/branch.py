@@ -266,8 +266,8 @@ class PathProgress:
 
 
 #: :meth:`Branch.widest_edge_guess` solves a wide-edge state only when the widest edge (2 h0) is at
-#: least this factor wider than the grid's own: the smallest widening measured to help was 6 %
-#: (1.89 h0 -> 2 h0, beta0 = 0.5, mu = 10 on 1280^2), and a state of a law 1 % away is a state of
+#: least this factor wider than the grid's own: a widening of 6 % helps (1.89 h0 -> 2 h0,
+#: beta0 = 0.5, mu = 10 on 1280^2), and a state of a law 1 % away is a state of
 #: practically the same law (the level-1 grid under level 2 of that case has 1.996 h0).
 WIDEST_EDGE_MIN_GAIN = 1.01
 
@@ -456,9 +456,7 @@ class Branch:
             if given_up[-1] is last or best[1].residual < last[1].residual:
                 # the tries given up early had no later start after all (each gave None), or the
                 # last start, with the full budget, ended farther off than one of them: the one with
-                # the smallest residual goes on from its best iterate with the full budget (beta0 =
-                # 0.1806, mu = 10, level 2 at 5755b0d: the try from level 1's state was given up at
-                # <= 2.2e-4, the neighbour's at ~1e-3, and the last, the neighbour's, was resumed)
+                # the smallest residual goes on from its best iterate with the full budget
                 self.records[last[0]]["phase"] = "discarded"
                 last = self._solve_from(approach, best[1], phase, None)
         return last

@@ -760,8 +760,8 @@ class LowerMuWarmStart(_HalfGridWarmStart):
             raise ValueError(f"problem must have nx and ny multiples of 4 for warm starts from the grid half as "
                              f"fine; got {g.nx} x {g.ny}")
         mu_lo = mu_ratio * problem.mu
-        # the lower mu keeps its own edge (a start of another law; at 6d01824, held at 2 h0 with level 1's,
-        # beta0 = 0.1, mu = 10's level-1 first state under level 2 did not converge from it)
+        # the lower mu keeps its own edge (a start of another law; held at 2 h0 with level 1's, the
+        # level-1 first state of beta0 = 0.1, mu = 10 under level 2 did not converge from it)
         lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0), widest_edge=False)
         self.mu = mu_lo
         self._fine_nd, self._threads, self._fine_prob = problem, threads, None

@@ -47,7 +47,7 @@ def _range(lo, hi, n, name_lo, name_hi):
 
     if lo is None or hi is None:
         raise UsageError(f"give both --{name_lo} and --{name_hi}")
-    check_finite(name_lo, lo)  # name the option the user gave, not the grid (issue 9, item 8)
+    check_finite(name_lo, lo)  # name the option the user gave, not the grid
     check_finite(name_hi, hi)
     if not hi > lo:
         raise ValueError(f"{name_hi} must be greater than {name_lo}; got {name_lo}={lo!r}, {name_hi}={hi!r}")

@@ -240,7 +240,7 @@ VARIABLES: dict[str, Variable] = {
 GRID_DIMS = ("beta0", "mu")
 
 #: Canonical order of every dimension a dhfield Dataset may carry.  Surface fields are (y, x):
-#: rows are y, columns x, so ``ds.gap.plot()`` puts x on the horizontal axis (issue 17).
+#: rows are y, columns x, so ``ds.gap.plot()`` puts x on the horizontal axis.
 DIM_ORDER = ("model", "closure", "skew_angle_deg", "skew_angle", "beta0", "mu", "a_star", "point",
              "theta", "law_theta", "sample", "r", "theta_p", "y", "x")
 
