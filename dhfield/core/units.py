@@ -15,7 +15,9 @@ work of adhesion dgamma,
 
 With R = E* = dgamma = 1 the nondimensional lengths are the dimensional ones.
 The dimensional public wrappers convert with :func:`length_unit`,
-:func:`approach_unit` and :func:`load_unit`.
+:func:`approach_unit` and :func:`load_unit`; every model's SI ``load_curve`` and
+``pull_off`` go through :func:`si_circular_load_curve` (or :func:`si_curve`) and
+:func:`si_pull_off`.
 """
 from __future__ import annotations
 
@@ -24,9 +26,33 @@ import numpy as np
 from .validation import check_control, check_interval, check_positive, check_tabor
 from .records import load_curve_record, pull_off_record_si
 
+__all__ = ["check_material", "check_contact_size", "length_unit", "approach_unit", "load_unit", "tabor_parameter",
+           "SI_INPUT_KEYS", "pull_off_si", "si_inputs", "si_pull_off", "si_curve", "si_circular_load_curve",
+           "scalar_or_array"]
+
 
 def check_material(effective_radius, reduced_modulus, work_of_adhesion):
-    """Validate R [m], E* [Pa], dgamma [J/m^2]; return them as float arrays."""
+    """Validate the material and geometry inputs R, E*, dgamma (each finite and > 0).
+
+    Parameters
+    ----------
+    effective_radius : array_like
+        Equivalent radius R = sqrt(R'R''), Eq. (5) [m].
+    reduced_modulus : array_like
+        Reduced modulus E*, Eq. (6) [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        R [m], E* [Pa], dgamma [J/m^2] as float arrays.
+
+    Raises
+    ------
+    ValueError
+        If any input is not finite and > 0; the message names it.
+    """
     r = check_positive("effective_radius", effective_radius, "m")
     e = check_positive("reduced_modulus", reduced_modulus, "Pa")
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
@@ -34,26 +60,94 @@ def check_material(effective_radius, reduced_modulus, work_of_adhesion):
 
 
 def check_contact_size(name, value):
-    """Validate a (nondimensional or SI) contact radius: finite and >= 0."""
+    """Validate a contact radius (nondimensional or SI): finite and >= 0.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, as the caller spells it; it starts the error message.
+    value : array_like
+        The contact radius [m] or [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        ``value`` as a float array.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is negative or not finite.
+    """
     return check_interval(name, value, 0.0, np.inf, low_open=False, high_open=True,
                           what="contact radius, >= 0")
 
 
 def length_unit(effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
-    """c_r = (R^2 dgamma/E*)^(1/3), Eq. (33) [m]; ``checked=False`` on R, E*, dgamma validated already."""
+    """Compute the length unit c_r = (R^2 dgamma/E*)^(1/3) of Eq. (33) [m].
+
+    Parameters
+    ----------
+    effective_radius : array_like
+        Equivalent radius R [m].
+    reduced_modulus : array_like
+        Reduced modulus E* [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+    checked : bool, optional
+        Validate the inputs (:func:`check_material`); False on inputs validated already.
+
+    Returns
+    -------
+    numpy.ndarray
+        The length unit c_r [m].
+    """
     args = (effective_radius, reduced_modulus, work_of_adhesion)
     return _length(*(check_material(*args) if checked else args))
 
 
 def approach_unit(effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
-    """c_r^2/R = (R dgamma^2/E*^2)^(1/3) [m], the unit of delta*; ``checked=False`` on validated inputs."""
+    """Compute the approach unit c_r^2/R = (R dgamma^2/E*^2)^(1/3), the unit of delta* [m].
+
+    Parameters
+    ----------
+    effective_radius : array_like
+        Equivalent radius R [m].
+    reduced_modulus : array_like
+        Reduced modulus E* [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+    checked : bool, optional
+        Validate the inputs (:func:`check_material`); False on inputs validated already.
+
+    Returns
+    -------
+    numpy.ndarray
+        The approach unit c_r^2/R [m].
+    """
     args = (effective_radius, reduced_modulus, work_of_adhesion)
     return _approach(*(check_material(*args) if checked else args))
 
 
 def load_unit(effective_radius, work_of_adhesion, sin_skew=1.0, *, checked=True):
-    """2 pi R dgamma / sin(theta_skew), Eq. (34) [N]; sin_skew = 1 for the circle; ``checked=False`` on
-    validated R, dgamma."""
+    """Compute the load unit 2 pi R dgamma / sin(theta_skew) of Eq. (34) [N].
+
+    Parameters
+    ----------
+    effective_radius : array_like
+        Equivalent radius R [m].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+    sin_skew : array_like, optional
+        The sine of the skew angle theta_skew of the geometry (Eq. 34), 1 for the circle [-].
+    checked : bool, optional
+        Validate R and dgamma (finite, > 0); False on inputs validated already.
+
+    Returns
+    -------
+    numpy.ndarray
+        The load unit [N].
+    """
     if not checked:
         return _load(effective_radius, work_of_adhesion, sin_skew)
     r = check_positive("effective_radius", effective_radius, "m")
@@ -81,10 +175,19 @@ SI_INPUT_KEYS = ("work_of_adhesion", "max_adhesive_stress", "reduced_modulus", "
 def pull_off_si(rec, inputs):
     """Convert a nondimensional pull-off record to the one SI record (Eqs. 32-34 inverted).
 
-    ``rec`` is a :class:`dhfield.core.records.PullOff`; ``inputs`` maps :data:`SI_INPUT_KEYS` to
-    validated values (R, E*, dgamma, sigma0 or NaN, R', R'').  W = W* 2 pi R dgamma/sin(theta_skew)
-    with the record's own sin(theta_skew) (Eq. 34), a = a* c_r and c = c* c_r (Eqs. 32-33),
-    delta = delta* c_r^2/R.  Returns a :class:`dhfield.core.records.PullOff` (its SI group).
+    Parameters
+    ----------
+    rec : dhfield.core.records.PullOff
+        The nondimensional pull-off record of a model (with its own ``sin_skew``).
+    inputs : dict
+        :data:`SI_INPUT_KEYS` mapped to validated values (:func:`si_inputs`): dgamma [J/m^2],
+        sigma0 [Pa] or NaN, E* [Pa], R', R'', R [m].
+
+    Returns
+    -------
+    dhfield.core.records.PullOff
+        The record with its SI group: W = W* 2 pi R dgamma/sin(theta_skew) [N] (Eq. 34),
+        a = a* c_r, b = b* c_r, c = c* c_r, d = d* c_r [m] (Eqs. 32-33), delta = delta* c_r^2/R [m].
     """
     r, e, w = inputs["effective_radius"], inputs["reduced_modulus"], inputs["work_of_adhesion"]
     lu, au = _length(r, e, w), _approach(r, e, w)
@@ -98,17 +201,83 @@ def pull_off_si(rec, inputs):
 
 
 def si_inputs(r, e, w, max_adhesive_stress=float("nan"), radius_ratio=1.0):
-    """The SI inputs of :func:`pull_off_si` from validated R, E*, dgamma (and sigma0, R'/R''):
-    R' = R sqrt(rho), R'' = R/sqrt(rho) (Eq. 5), both R for the circle."""
+    """Collect the SI inputs of :func:`pull_off_si` from validated R, E*, dgamma.
+
+    Parameters
+    ----------
+    r : array_like
+        Equivalent radius R = sqrt(R'R''), validated [m].
+    e : array_like
+        Reduced modulus E*, validated [Pa].
+    w : array_like
+        Work of adhesion dgamma, validated [J/m^2].
+    max_adhesive_stress : array_like, optional
+        Peak adhesive stress sigma0; NaN for the models that have none [Pa].
+    radius_ratio : array_like, optional
+        R'/R'' >= 1, 1 for the circle [-].
+
+    Returns
+    -------
+    dict
+        :data:`SI_INPUT_KEYS` mapped to their values, with R' = R sqrt(rho) and
+        R'' = R/sqrt(rho) (Eq. 5) [m].
+    """
     sq = np.sqrt(np.asarray(radius_ratio, dtype=float))
     return {"work_of_adhesion": w, "max_adhesive_stress": np.asarray(max_adhesive_stress, dtype=float),
             "reduced_modulus": e, "r_major": r * sq, "r_minor": r / sq, "effective_radius": r}
 
 
-def pull_off_si_of(core, inputs, *, control, beta0=1.0, mu=float("nan")):
-    """The SI pull-off record of a model: its nondimensional core ``core(beta0, mu, control=...)``
-    (a :class:`dhfield.core.records.PullOff`) over the broadcast shape of the inputs, then
-    :func:`pull_off_si`.  ``mu`` NaN for the models that have none (JKR, DMT, elliptical JKR)."""
+def si_pull_off(core, effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress=None, *,
+                control="load", radius_ratio=1.0, beta0=1.0, check_mu=False):
+    """Compute the SI pull-off record of a model from its nondimensional core (inputs validated here).
+
+    The one SI ``pull_off`` of every analytic model: checks ``control``, R, E*, dgamma (and
+    sigma0 where given), evaluates ``core(beta0, mu, control=control)`` over the broadcast shape
+    of the inputs and converts the record with :func:`pull_off_si`.
+
+    Parameters
+    ----------
+    core : callable
+        The model's ``pull_off_nondimensional(beta0, mu, *, control)``, returning a
+        :class:`dhfield.core.records.PullOff` in the paper's units.
+    effective_radius : array_like
+        Equivalent radius R = sqrt(R'R'') [m].
+    reduced_modulus : array_like
+        Reduced modulus E* [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+    max_adhesive_stress : array_like, optional
+        Peak adhesive stress sigma0 [Pa]; the core then gets mu of Eq. (35).  None for the
+        models without one (JKR, DMT, elliptical JKR): mu is NaN.
+    control : {'load', 'displacement'}
+        Loading mode of the pull-off.
+    radius_ratio : array_like, optional
+        R'/R'' >= 1 of the geometry, validated; 1 for the circle [-].
+    beta0 : array_like, optional
+        Hertz ellipticity of the geometry, validated; 1 for the circle [-].
+    check_mu : bool, optional
+        Check mu against :data:`dhfield.core.validation.TABOR_RANGE`.
+
+    Returns
+    -------
+    dhfield.core.records.PullOff
+        The pull-off record with its SI group (:func:`pull_off_si`).
+
+    Raises
+    ------
+    ValueError
+        On a bad ``control``, R, E*, dgamma or sigma0 (or mu, with ``check_mu``), named.
+    """
+    check_control(control)
+    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
+    if max_adhesive_stress is None:
+        mu, s0 = float("nan"), float("nan")
+    else:
+        mu = tabor_parameter(max_adhesive_stress, r, e, w)
+        if check_mu:
+            check_tabor("mu", mu)
+        s0 = np.asarray(max_adhesive_stress, dtype=float)
+    inputs = si_inputs(r, e, w, s0, radius_ratio)
     shape = np.broadcast_shapes(*(np.shape(v) for v in inputs.values()), np.shape(beta0), np.shape(mu))
     rec = core(np.broadcast_to(np.asarray(beta0, dtype=float), shape), np.asarray(mu, dtype=float),
                control=control)
@@ -116,13 +285,32 @@ def pull_off_si_of(core, inputs, *, control, beta0=1.0, mu=float("nan")):
 
 
 def si_curve(model, arrays, *, mu=float("nan"), beta0=1.0, sin_skew=1.0, geometry="circle", ellipticity=None):
-    """The SI :class:`dhfield.core.records.LoadCurve` of a model's SI ``load_curve``.
+    """Build the SI :class:`dhfield.core.records.LoadCurve` of a model's SI ``load_curve``.
 
-    ``arrays`` holds ``semi_major``, ``force``, ``approach`` [SI] and, where the model has them,
-    ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor`` [m] and ``v`` [-]; they are
-    broadcast to one shape (that of the contact sizes and the material inputs together).
-    ``mu`` NaN for the models that have none (JKR, DMT, elliptical JKR); ``beta0`` and
-    ``sin_skew`` 1 for the circle.
+    Parameters
+    ----------
+    model : str
+        The model's name (as on the CLI).
+    arrays : dict
+        ``semi_major``, ``force``, ``approach`` [m, N, m] and, where the model has them,
+        ``semi_minor``, ``adhesive_semi_major``, ``adhesive_semi_minor`` [m] and ``v`` [-];
+        broadcast to one shape (that of the contact sizes and the material inputs together).
+    mu : array_like, optional
+        Tabor parameter of Eq. (35); NaN for the models that have none (JKR, DMT,
+        elliptical JKR) [-].
+    beta0 : array_like, optional
+        Hertz ellipticity, 1 for the circle [-].
+    sin_skew : array_like, optional
+        The sine of the skew angle theta_skew of Eq. (34), 1 for the circle [-].
+    geometry : {'circle', 'ellipse'}
+        The contact's shape.
+    ellipticity : array_like, optional
+        The contact ellipticity b/a along the curve, for the elliptical models [-].
+
+    Returns
+    -------
+    dhfield.core.records.LoadCurve
+        The SI curve.
     """
     values = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in arrays.values()))
     return load_curve_record(model, beta0, mu, dict(zip(arrays, values)), sin_skew=sin_skew, geometry=geometry,
@@ -131,14 +319,39 @@ def si_curve(model, arrays, *, mu=float("nan"), beta0=1.0, sin_skew=1.0, geometr
 
 def si_circular_load_curve(model, core, contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
                            max_adhesive_stress=None, *, zone=False, dh_factor=False):
-    """The SI load curve of a circular model from its nondimensional core (inputs validated here).
+    """Compute the SI load curve of a circular model from its nondimensional core (inputs validated here).
 
-    ``core(a_star)`` (or ``core(a_star, mu)`` where the model has a Tabor parameter, i.e. where
-    ``max_adhesive_stress`` is given) returns the model's nondimensional curve over a/c_r
-    (``W_star``, ``delta_star``, and ``c_star``, ``v`` where the model has them).
-    W = W* 2 pi R dgamma (Eq. 34, sin_skew = 1), delta = delta* c_r^2/R and, with ``zone``, the
-    adhesive radius c = c* c_r (Eqs. 32-33); ``dh_factor`` carries the DH factor v.
-    Returns :func:`si_curve`'s record.
+    The one SI ``load_curve`` of the circular models: a* = a/c_r (Eq. 32) into the core,
+    W = W* 2 pi R dgamma (Eq. 34, sin_skew = 1), delta = delta* c_r^2/R and the adhesive
+    radius c = c* c_r (Eqs. 32-33).
+
+    Parameters
+    ----------
+    model : str
+        The model's name (as on the CLI).
+    core : callable
+        The model's ``load_curve_nondimensional``: ``core(a_star)``, or ``core(a_star, mu)``
+        where ``max_adhesive_stress`` is given, returning ``W_star``, ``delta_star`` and, where
+        the model has them, ``c_star`` and ``v`` [-].
+    contact_radius : array_like
+        Contact radius a >= 0 [m].
+    effective_radius : array_like
+        Equivalent radius R [m].
+    reduced_modulus : array_like
+        Reduced modulus E* [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+    max_adhesive_stress : array_like, optional
+        Peak adhesive stress sigma0 [Pa]; None for the models without one (JKR, DMT).
+    zone : bool, optional
+        Carry the adhesive radius c (``adhesive_semi_major`` = ``adhesive_semi_minor``).
+    dh_factor : bool, optional
+        Carry the DH factor ``v``.
+
+    Returns
+    -------
+    dhfield.core.records.LoadCurve
+        The SI curve (:func:`si_curve`); its ``mu`` is that of the inputs, Eq. (35).
     """
     a = check_contact_size("contact_radius", contact_radius)
     r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
@@ -159,39 +372,48 @@ def si_circular_load_curve(model, core, contact_radius, effective_radius, reduce
     return si_curve(model, arrays, mu=mu)
 
 
-def si_pull_off(core, effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress=None, *,
-                control="load", radius_ratio=1.0, beta0=1.0, check_mu=False):
-    """The SI pull-off record of a model from its nondimensional core (inputs validated here).
-
-    Checks ``control``, R, E*, dgamma (and sigma0 where given: then mu of Eq. (35) is passed to
-    the core, and checked against the Tabor range with ``check_mu``), evaluates
-    ``core(beta0, mu, control=...)`` over the broadcast shape of the inputs and converts it with
-    :func:`pull_off_si`; ``radius_ratio`` R'/R'' and ``beta0`` 1 for the circle.
-    """
-    check_control(control)
-    r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
-    if max_adhesive_stress is None:
-        return pull_off_si_of(core, si_inputs(r, e, w, radius_ratio=radius_ratio), control=control, beta0=beta0)
-    mu = tabor_parameter(max_adhesive_stress, r, e, w)
-    if check_mu:
-        check_tabor("mu", mu)
-    s0 = np.asarray(max_adhesive_stress, dtype=float)
-    return pull_off_si_of(core, si_inputs(r, e, w, s0, radius_ratio), control=control, beta0=beta0, mu=mu)
-
-
 def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
-    """mu = sigma0 (R/(E*^2 dgamma))^(1/3), Eq. (35) [-]; ``checked=False`` on inputs validated already."""
+    """Compute the Tabor (transition) parameter mu = sigma0 (R/(E*^2 dgamma))^(1/3) of Eq. (35) [-].
+
+    Parameters
+    ----------
+    max_adhesive_stress : array_like
+        Peak adhesive stress sigma0 [Pa].
+    effective_radius : array_like
+        Equivalent radius R [m].
+    reduced_modulus : array_like
+        Reduced modulus E* [Pa].
+    work_of_adhesion : array_like
+        Work of adhesion dgamma [J/m^2].
+    checked : bool, optional
+        Validate the inputs (each finite and > 0); False on inputs validated already.
+
+    Returns
+    -------
+    numpy.ndarray
+        The Tabor parameter mu [-]; extreme but finite inputs give 0 or inf (the caller's range check names the input).
+    """
     if checked:
         s = check_positive("max_adhesive_stress", max_adhesive_stress, "Pa")
         r, e, w = check_material(effective_radius, reduced_modulus, work_of_adhesion)
     else:
         s, r, e, w = max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
-        # extreme but finite inputs give 0 or inf here; the caller's range check names the input
         return s * np.cbrt(r / (e * e * w))  # Eq. (35)
 
 
 def scalar_or_array(x):
-    """Return a 0-d array as a Python-float-like numpy scalar, otherwise the array."""
+    """Return a 0-d result as a numpy scalar, any other as an array.
+
+    Parameters
+    ----------
+    x : array_like
+        A result [any unit].
+
+    Returns
+    -------
+    numpy.float64 or numpy.ndarray
+        ``x`` as float: a scalar for 0-d input, else an array of its shape.
+    """
     x = np.asarray(x, dtype=float)
     return x[()] if x.ndim == 0 else x
