@@ -420,3 +420,16 @@ def test_base_lattice_without_grid_levels_is_refused_before_work():
     explicit = {"axes": {"beta0": [0.5], "mu": [10.0], "n": [256]}, "sweep": {"quantities": ["adhesive"]}}
     with pytest.raises(ValueError, match=r"bem\.base_lattice must be 0 unless the quantity 'adhesive' is swept over"):
         config_from_mapping({**explicit, "bem": {"base_lattice": 1}})
+
+
+def test_config_imports_nothing_from_tasks():
+    """The imports between the sweep's config and tasks go one way (tasks -> config): no cycle."""
+    import ast
+    import inspect
+
+    from dhfield.sweep import config as config_module
+
+    tree = ast.parse(inspect.getsource(config_module))
+    imported = {node.module for node in ast.walk(tree) if isinstance(node, ast.ImportFrom) and node.level == 1}
+    assert "tasks" not in imported, "dhfield.sweep.config imports from .tasks: the config <-> tasks cycle is back"
+    assert config_module.cohesive_laws()[0] == config_module.cohesive_default()

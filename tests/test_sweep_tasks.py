@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from dhfield.core.records import LoadCurve
-from dhfield.sweep import tasks
+from dhfield.sweep import config, tasks
 
 
 @pytest.mark.parametrize("call", [lambda: tasks.pull_off_block("md", "load", 1.0, 0.9),
@@ -103,4 +103,4 @@ def test_solver_and_law_names():
     assert tasks.adhesive_solver() is adhesive_pull_off
     with pytest.raises(ValueError, match="adhesive solver"):
         tasks.adhesive_solver("other")
-    assert tasks.cohesive_laws() == tuple(LAWS)
+    assert config.cohesive_laws() == tuple(LAWS)

@@ -106,8 +106,8 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapping", "axis_values",
-           "check_scheduler_address", "MAX_POINTS", "MAX_GRID_LEVEL", "max_workers", "MAX_CONFIG_BYTES",
-           "DEFAULT_SCHEDULER_PORT"]
+           "check_scheduler_address", "MAX_POINTS", "MAX_GRID_LEVEL", "MAX_BASE_LATTICE", "max_workers",
+           "MAX_CONFIG_BYTES", "DEFAULT_SCHEDULER_PORT", "cohesive_laws"]
 
 #: Quantities a sweep can compute.
 QUANTITIES = ("pull_off", "load_curve", "bem_field", "adhesive")
@@ -370,8 +370,6 @@ def axis_values(name: str, spec) -> tuple:
 def _check_axis(name, values):
     key = f"axes.{name}"
     if name == "law":
-        from .tasks import cohesive_laws
-
         laws = cohesive_laws()
         for v in values:
             if v not in laws:
@@ -607,9 +605,22 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
                        scheduler=scheduler, out=out)
 
 
-def cohesive_default() -> str:
-    from .tasks import cohesive_laws
+def cohesive_laws() -> tuple:
+    """List the names of the cohesive laws of the adhesive BEM solver (the values of the ``law`` axis).
 
+    Returns
+    -------
+    tuple of str
+        The names.
+    """
+    try:
+        from ..bem.laws import LAWS
+    except ImportError:  # pragma: no cover - laws module always ships
+        return ("dugdale",)
+    return tuple(LAWS)
+
+
+def cohesive_default() -> str:
     laws = cohesive_laws()
     return laws[0] if laws else "dugdale"
 

@@ -22,10 +22,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.records import LoadCurve, PullOff
+from .config import MAX_BASE_LATTICE, MAX_GRID_LEVEL
 
 __all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS",
            "ADHESIVE_BEM_FIELDS", "ADHESIVE_GRID_FIELDS", "ADHESIVE_TEXT_FIELDS", "ADHESIVE_MODEL",
-           "pull_off_block", "block_values", "bem_field_case", "adhesive_case", "automatic_grid", "cohesive_laws",
+           "pull_off_block", "block_values", "bem_field_case", "adhesive_case", "automatic_grid",
            "adhesive_solver", "expected_seconds"]
 
 #: Output fields of the analytic pull-off, in the order of the stacked block (names of
@@ -51,21 +52,6 @@ ADHESIVE_GRID_FIELDS = ("nx", "ny", "half_width_x", "half_width_y", "W_star_erro
 ADHESIVE_TEXT_FIELDS = ("search", "note", "commit", "finished")
 #: Name of the adhesive ground truth on the ``model`` dimension of a sweep.
 ADHESIVE_MODEL = "bem-adhesive"
-
-
-def cohesive_laws() -> tuple:
-    """List the names of the cohesive laws of the adhesive BEM solver.
-
-    Returns
-    -------
-    tuple of str
-        The names.
-    """
-    try:
-        from ..bem.laws import LAWS
-    except ImportError:  # pragma: no cover - laws module always ships
-        return ("dugdale",)
-    return tuple(LAWS)
 
 
 def pull_off_block(model: str, *, beta0, mu, control: str = "load") -> PullOff:
@@ -273,7 +259,6 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
     """
     from ..analysis.bem_start import (DEFAULT_MAX_SECONDS, next_lattice_grid, plan_grid, pull_off_cost,
                                       takes_predicted_route)
-    from .config import MAX_BASE_LATTICE, MAX_GRID_LEVEL
 
     if isinstance(grid_level, bool) or not isinstance(grid_level, (int, np.integer)) \
             or not 1 <= grid_level <= MAX_GRID_LEVEL:
