@@ -87,8 +87,8 @@ def graded_rule(t1, n_panels=None, nodes=NODES_PER_PANEL, t_end=np.pi / 2):
     The rule integrates cos exactly enough: the integral over [0, pi/2] is 1.
 
     >>> import numpy as np
-    >>> from dhfield import adhesion
-    >>> t, w = adhesion.graded_rule(1e-3)
+    >>> from dhfield.models import dh_elliptic_adhesion
+    >>> t, w = dh_elliptic_adhesion.graded_rule(1e-3)
     >>> round(float(np.sum(w * np.cos(t))), 14)
     1.0
     """

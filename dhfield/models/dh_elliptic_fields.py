@@ -153,8 +153,8 @@ def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_rad
     for the circle.
 
     >>> import numpy as np
-    >>> from dhfield import double_hertz
-    >>> bool(np.isclose(double_hertz.pressure(0.0, 0.0, 1.0, 1.5, 1.0, 0.0), 2 / np.pi, rtol=1e-14))
+    >>> from dhfield.models import dh_elliptic_fields
+    >>> bool(np.isclose(dh_elliptic_fields.pressure(0.0, 0.0, 1.0, 1.5, 1.0, 0.0), 2 / np.pi, rtol=1e-14))
     True
     """
     a, c, beta, v, r, e = check_parameters(semi_major, adhesive_semi_major, beta, scaling,

@@ -227,8 +227,8 @@ def adhesive_edge_radius(adhesive_semi_major, beta, theta):
     On the axes the radius is c and d = beta c.
 
     >>> import numpy as np
-    >>> from dhfield import periphery
-    >>> [round(float(periphery.adhesive_edge_radius(2.0, 0.5, t)), 12) for t in (0.0, np.pi / 2)]
+    >>> from dhfield.models import dh_elliptic_periphery
+    >>> [round(float(dh_elliptic_periphery.adhesive_edge_radius(2.0, 0.5, t)), 12) for t in (0.0, np.pi / 2)]
     [2.0, 1.0]
     """
     c = check_positive("adhesive_semi_major", adhesive_semi_major, "m")

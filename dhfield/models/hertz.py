@@ -51,6 +51,13 @@ def _pressure_factor(beta):
     return 1.5 / (np.sqrt(b2) * np.sqrt(special.elliprd(0.0, b2, 1.0) * special.elliprd(0.0, 1.0, b2)))
 
 
+def _check_contact(semi_major, beta, effective_radius, reduced_modulus):
+    """Validated a [m], beta [-], R [m], E* [Pa] of a Hertz contact, as float arrays."""
+    return (check_positive("semi_major", semi_major, "m"), check_ellipticity("beta", beta),
+            check_positive("effective_radius", effective_radius, "m"),
+            check_positive("reduced_modulus", reduced_modulus, "Pa"))
+
+
 def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0, *, checked=True):
     """Maximum Hertz pressure Po_ab of the elliptical contact, Eq. (8).
 
@@ -85,10 +92,7 @@ def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0, *,
     (E/beta^2 - K)/k^2 = R_D(0, 1, beta^2)/3; it equals 2 E* a/(pi R) at beta = 1.
     """
     if checked:
-        a = check_positive("semi_major", semi_major, "m")
-        beta = check_ellipticity("beta", beta)
-        r = check_positive("effective_radius", effective_radius, "m")
-        e = check_positive("reduced_modulus", reduced_modulus, "Pa")
+        a, beta, r, e = _check_contact(semi_major, beta, effective_radius, reduced_modulus)
     else:
         a, beta, r, e = (np.asarray(x, dtype=float) for x in (semi_major, beta, effective_radius, reduced_modulus))
     return e / r * _pressure_factor(beta) * a  # Eq. (8)
@@ -144,10 +148,7 @@ def load(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     -----
     .. math:: W = \\frac{4E^*}{3RF_1^3}(ab)^{3/2} = \\tfrac{2}{3}\\pi a b Po_{ab}
     """
-    a = check_positive("semi_major", semi_major, "m")
-    beta = check_ellipticity("beta", beta)
-    r = check_positive("effective_radius", effective_radius, "m")
-    e = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    a, beta, r, e = _check_contact(semi_major, beta, effective_radius, reduced_modulus)
     return 4.0 * e / (3.0 * r * load_factor(beta) ** 3) * (a * a * beta) ** 1.5  # Eq. (10)
 
 
@@ -174,7 +175,7 @@ def approach(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     --------
     At the circle, delta = a^2/R (Hertz).
 
-    >>> from dhfield import hertz
+    >>> from dhfield.models import hertz
     >>> round(float(hertz.approach(0.5, 1.0, effective_radius=2.0)), 15)
     0.125
     """
@@ -202,7 +203,7 @@ def pressure(x, y, semi_major, semi_minor, peak_pressure):
 
     Examples
     --------
-    >>> from dhfield import hertz
+    >>> from dhfield.models import hertz
     >>> [float(hertz.pressure(x, 0.0, 2.0, 1.0, 3.0)) for x in (0.0, 2.0, 5.0)]
     [3.0, 0.0, 0.0]
     """
@@ -236,7 +237,7 @@ def ellipse_root(x, y, semi_major, semi_minor):
     --------
     On the major axis of a circle of radius 1, at x = 2: 4/(1 + l) = 1, so l = 3.
 
-    >>> from dhfield import hertz
+    >>> from dhfield.models import hertz
     >>> float(hertz.ellipse_root(2.0, 0.0, 1.0, 1.0))
     3.0
     """
@@ -310,7 +311,7 @@ def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_mo
     At the centre of a circular Hertz pressure, omega = pi a Po/(2 E*).
 
     >>> import numpy as np
-    >>> from dhfield import hertz
+    >>> from dhfield.models import hertz
     >>> bool(np.isclose(hertz.surface_displacement(0.0, 0.0, 1.0, 1.0, 1.0), np.pi / 2, rtol=1e-14))
     True
     """
