@@ -23,13 +23,8 @@ TOL_CURVE_AT_PULL_OFF = 1e-9
 TOL_LOAD_INVERSION = 1e-9
 
 
-def test_registry_names():
-    assert set(compare.MODELS) == {"md-elliptic", "dh-elliptic", "dh-elliptic-two-axis", "dh-elliptic-ray-average",
-                                   "dh-elliptic-jkr-beta", "dh-circular", "jkr", "dmt", "md", "jkr-elliptic",
-                                   "jkr-elliptic-energy"}
-    # issue 20: the recommended model is the default and the first column of compare
-    assert compare.MODEL_NAMES[0] == compare.DEFAULT_MODEL == compare.RECOMMENDED_MODEL == "md-elliptic"
-    assert set(compare.CURVE_MODEL_NAMES) == set(compare.MODEL_NAMES) - {"dh-elliptic-jkr-beta"}
+# The registry's names and tables (MODEL_NAMES, CURVE_MODEL_NAMES, ABSENT_KEYS, the recommended
+# model): tests/test_registry.py.
 
 
 @functools.lru_cache(maxsize=None)
