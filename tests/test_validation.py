@@ -1,4 +1,6 @@
-"""Input validation helpers (dhfield.core.validation): names, ranges, masked/empty arrays, counts."""
+"""Input validation helpers (dhfield.core.validation): names, ranges, masked/empty arrays, counts, the interval's ends, NaN, the loading mode and (beta0, mu)."""
+import re
+
 import numpy as np
 import pytest
 
@@ -92,3 +94,98 @@ def test_dates_and_durations_are_refused_by_name(value):
 
     with pytest.raises(ValueError, match="mu must be a real number.*date/time"):
         model.pull_off(mu=value, beta0=0.9)
+
+
+# --------------------------------------------------------------------------- the interval's ends
+@pytest.mark.parametrize("low_open, high_open, brackets", [(True, False, "(1, 2]"), (False, True, "[1, 2)"),
+                                                          (True, True, "(1, 2)"), (False, False, "[1, 2]")])
+def test_interval_ends_open_or_closed(low_open, high_open, brackets):
+    """An end is in the interval exactly when it is closed; the message writes the brackets."""
+    kw = dict(low_open=low_open, high_open=high_open, what="a length [m]")
+    for end, is_open in ((1.0, low_open), (2.0, high_open)):
+        if is_open:
+            with pytest.raises(ValueError, match=rf"^x must be in {re.escape(brackets)} \(a length \[m\]\); "
+                                                 rf"got {end!r}$"):
+                v.check_interval("x", end, 1.0, 2.0, **kw)
+        else:
+            assert v.check_interval("x", end, 1.0, 2.0, **kw) == end
+    assert v.check_interval("x", 1.5, 1.0, 2.0, **kw) == 1.5
+    for outside in (np.nextafter(1.0, 0.0), np.nextafter(2.0, 3.0)):
+        with pytest.raises(ValueError, match=r"^x must be in"):
+            v.check_interval("x", outside, 1.0, 2.0, **kw)
+
+
+def test_interval_names_the_first_offending_element_of_an_array():
+    with pytest.raises(ValueError, match=r"^x must be in \(0, inf\); got -2\.0$"):
+        v.check_interval("x", [1.0, -2.0, -3.0], 0.0, np.inf, high_open=True)
+    np.testing.assert_array_equal(v.check_interval("x", [[0.5], [1.0]], 0.0, 1.0), [[0.5], [1.0]])
+
+
+def test_positive_with_and_without_zero():
+    assert v.check_positive("x", 0.0, allow_zero=True) == 0.0
+    with pytest.raises(ValueError, match=r"^x must be in \(0, inf\)"):
+        v.check_positive("x", 0.0)
+    with pytest.raises(ValueError, match=r"^x must be in \[0, inf\)"):
+        v.check_positive("x", -1e-300, allow_zero=True)
+    with pytest.raises(ValueError, match=r"^x must be finite"):
+        v.check_positive("x", np.inf)
+
+
+def test_ellipticity_is_the_half_open_unit_interval():
+    assert v.check_ellipticity("beta", 1.0) == 1.0
+    for bad in (0.0, 1.0 + 1e-15):
+        with pytest.raises(ValueError, match=r"^beta must be in \(0, 1\] \(ellipticity ratio b/a"):
+            v.check_ellipticity("beta", bad)
+
+
+# --------------------------------------------------------------------------- NaN and empty input
+@pytest.mark.parametrize("check", [
+    lambda x: v.check_finite("x", x),
+    lambda x: v.check_interval("x", x, 0.0, 1.0),
+    lambda x: v.check_positive("x", x),
+    lambda x: v.check_ellipticity("x", x),
+    lambda x: v.check_tabor("x", x),
+    lambda x: v.check_model_ellipticity("x", x),
+    lambda x: v.check_contact_size_star("x", x),
+])
+@pytest.mark.parametrize("value", [float("nan"), [0.5, float("nan")], np.array([[np.nan]])])
+def test_nan_is_refused_with_the_parameter_name(check, value):
+    with pytest.raises(ValueError, match=r"^x must be finite.*; got nan$"):
+        check(value)
+
+
+def test_empty_arrays_are_refused_by_name():
+    with pytest.raises(ValueError, match="^x must contain at least one value; got an empty array$"):
+        v.check_array_input("x", np.array([]))
+    v.check_array_input("x", np.array([1.0]))   # one value: accepted
+
+
+# --------------------------------------------------------------------------- control and (beta0, mu)
+def test_control_is_one_of_the_two_loading_modes():
+    for control in v.CONTROLS:
+        assert v.check_control(control) == control
+    for bad in ("Load", "spring", None, 1):
+        with pytest.raises(ValueError, match=r"^control must be one of \('load', 'displacement'\)"):
+            v.check_control(bad)
+
+
+def test_grid_point_broadcasts_and_names_the_bad_input():
+    beta0, mu = v.check_grid_point([0.5, 1.0], [[1.0], [2.0], [3.0]])
+    assert beta0.shape == mu.shape == (3, 2)
+    assert beta0[0, 1] == 1.0 and mu[2, 0] == 3.0
+    # the near circle is the circle (as_circle)
+    assert v.check_grid_point(1.0 - 2.0**-53, 1.0)[0] == 1.0
+    with pytest.raises(ValueError, match="^mu must be"):   # mu is checked first
+        v.check_grid_point(2.0, float("nan"))
+    with pytest.raises(ValueError, match="^beta0 must be in"):
+        v.check_grid_point(0.0, 1.0)
+    with pytest.raises(ValueError, match="^beta0 must contain at least one value"):
+        v.check_grid_point([], 1.0)
+    with pytest.raises(ValueError, match="^control must be one of"):
+        v.check_grid_point(0.5, 1.0, control="force")
+
+
+def test_sequence_allows_nan_but_not_two_dimensions():
+    np.testing.assert_array_equal(v.check_sequence("x", [1.0, np.nan]), [1.0, np.nan])
+    with pytest.raises(ValueError, match=r"^x must be a 1-d sequence of numbers; got shape \(1, 2\)$"):
+        v.check_sequence("x", [[1.0, 2.0]])
