@@ -10,6 +10,7 @@ import doctest
 import importlib
 import os
 import py_compile
+import re
 import shutil
 import subprocess
 import sys
@@ -117,6 +118,40 @@ def test_developer_reference_groups_modules_by_their_folder():
     ordered = sorted(internal, key=ext.group_order)
     assert ordered[:3] == ["dhfield.models", "dhfield.models.md_elliptic", "dhfield.models.registry"]
     assert ext.GROUPS[0][0] == "Models"
+
+
+def _layout_table_paths() -> list[Path]:
+    """The paths of the file table of docs/developer/layout.rst; a bare file name in a cell is in
+    the folder of the path before it (``dhfield/models/jkr.py``, ``dmt.py``)."""
+    text = (ROOT / "docs" / "developer" / "layout.rst").read_text()
+    table = text[text.index("Files\n-----"):]
+    paths = []
+    for cell in re.findall(r"^   \* - (.+)$", table, re.M):
+        folder = ""
+        for name in re.findall(r"``([^`]+)``", cell):
+            if name.startswith(("dhfield/", "verification/", "tests/", "data/")):
+                path = name
+            elif "/" in name:                          # bem/state.py: under dhfield/
+                path = f"dhfield/{name}"
+            else:
+                path = folder + name
+            folder = path if path.endswith("/") else path.rsplit("/", 1)[0] + "/"
+            paths.append(ROOT / path)
+    return paths
+
+
+def test_layout_page_names_every_module_at_a_path_that_exists():
+    """docs/developer/layout.rst's file table: every path exists, and every module of dhfield is in a
+    row (its own, or its folder's)."""
+    paths = _layout_table_paths()
+    assert [p for p in paths if not p.exists()] == []
+    files = {p for p in paths if p.is_file()}
+    folders = [p for p in paths if p.is_dir()]
+    modules = [p for p in (ROOT / "dhfield").rglob("*.py") if not p.name.startswith("_") or p.name == "__init__.py"]
+    modules = [p for p in modules if p.parent.name != "cli" and not (p.name == "__init__.py" and p.parent.name != "dhfield")]
+    missing = [str(p.relative_to(ROOT)) for p in modules
+               if p not in files and not any(d in p.parents for d in folders)]
+    assert missing == [], f"modules not in the file table of docs/developer/layout.rst: {sorted(missing)}"
 
 
 def test_gallery_examples_compile():
