@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import (dh_circular, dh_elliptic as paper_model, dh_elliptic_closure as closure, dmt, jkr, jkr_elliptic,
-               jkr_elliptic_energy, maugis_dugdale, md_elliptic as elliptic_transition)
+from . import (dh_circular, dh_elliptic, dh_elliptic_closure as closure, dmt, jkr, jkr_elliptic,
+               jkr_elliptic_energy, maugis_dugdale, md_elliptic)
 from ..core.geometry import sin_skew_angle
 from ..core.schema import LOAD_CURVE_KEYS  # noqa: F401  (the keys every curve below returns)
 
@@ -23,7 +23,7 @@ _NAN = float("nan")
 #: :func:`dhfield.analysis.dimensional.pull_off_force`), the command line, the report and the docs read it from
 #: here (``tests/test_one_default.py`` checks them).  The paper's model stays available by name,
 #: ``model="dh-elliptic"``.
-RECOMMENDED_MODEL = elliptic_transition.MODEL_NAME
+RECOMMENDED_MODEL = md_elliptic.MODEL_NAME
 #: The default model of every function and command that takes one: :data:`RECOMMENDED_MODEL`.
 DEFAULT_MODEL = RECOMMENDED_MODEL
 #: The paper's model (Zini et al. 2018), available by this name everywhere a model is chosen.
@@ -33,15 +33,15 @@ PAPER_MODEL = "dh-elliptic"
 def _dh_elliptic_jkr_beta(beta0, mu, *, control="load"):
     """The paper's second assumption (Fig. 9b): the paper's model at beta = beta_JKR(pull-off)."""
     beta_jkr = jkr_elliptic.pull_off_nondimensional(beta0, mu, control=control).ellipticity
-    return paper_model.pull_off_nondimensional(beta0, mu, control=control, ellipticity=beta_jkr).replace(
+    return dh_elliptic.pull_off_nondimensional(beta0, mu, control=control, ellipticity=beta_jkr).replace(
         model="dh-elliptic-jkr-beta")
 
 
 #: name -> the model's pull-off, ``f(beta0, mu, *, control) -> dhfield.core.records.PullOff`` on validated
 #: inputs (see the module docstring); :func:`pull_off` adds the validity warnings.
 MODELS = {
-    "md-elliptic": elliptic_transition.pull_off_nondimensional,
-    "dh-elliptic": paper_model.pull_off_nondimensional,
+    "md-elliptic": md_elliptic.pull_off_nondimensional,
+    "dh-elliptic": dh_elliptic.pull_off_nondimensional,
     "dh-elliptic-two-axis": closure.pull_off_two_axis,
     "dh-elliptic-ray-average": closure.pull_off_ray_average,
     "dh-elliptic-jkr-beta": _dh_elliptic_jkr_beta,
@@ -59,7 +59,7 @@ CIRCULAR_MODEL_NAMES = ("dh-circular", "jkr", "dmt", "md")
 
 #: name -> the keys of :data:`dhfield.core.schema.PULL_OFF_KEYS` that are NaN in every pull-off of the model (it
 #: has no such quantity: no adhesive zone, no double-Hertz factor ``v``); ``dhfield pulloff`` leaves them
-#: out of its text output (with their SI keys).  ``tests/test_compare_trust.py`` checks the table against
+#: out of its text output (with their SI keys).  ``tests/test_registry.py`` checks the table against
 #: the models' records.
 ABSENT_KEYS = {
     "md-elliptic": ("c_star", "d_star", "v", "adhesive_ellipticity"),
@@ -78,9 +78,7 @@ ABSENT_KEYS = {
 
 # --------------------------------------------------------------------------- load curves
 def _curve_paper(a, mu, beta0):
-    from ..models.dh_elliptic import load_curve as dh_load_curve
-
-    c = dh_load_curve(mu=mu, beta0=beta0, a_star=a, checked=False)  # validated by compare.load_curve
+    c = dh_elliptic.load_curve(mu=mu, beta0=beta0, a_star=a, checked=False)  # validated by compare.load_curve
     return {k: c[k] for k in LOAD_CURVE_KEYS}
 
 
@@ -114,7 +112,7 @@ def _curve_jkr_elliptic(a, mu, beta0, module=jkr_elliptic):
 
 
 def _curve_recommended(a, mu, beta0):
-    c = elliptic_transition.load_curve_nondimensional(a, beta0, mu, checked=False)  # validated by load_curve
+    c = md_elliptic.load_curve_nondimensional(a, beta0, mu, checked=False)  # validated by load_curve
     nan = np.full(np.shape(c["a_star"]), _NAN)
     return {"a_star": c["a_star"], "b_star": c["b_star"], "c_star": nan, "d_star": nan, "v": nan,
             "W_star": c["W_star"], "delta_star": c["delta_star"]}
