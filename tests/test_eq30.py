@@ -149,7 +149,7 @@ def test_eq30_from_state_vanishes_for_radial_fields():
     """Radially symmetric sigma and h are functionally dependent: the Jacobian of Eq. (30)
     vanishes, and on a square grid the quadrant sum cancels exactly under x <-> y
     (the integrand is antisymmetric under the transpose); both forms give 0."""
-    from test_periphery import _radial_dugdale_state
+    from test_dh_elliptic_periphery import _radial_dugdale_state
 
     state, work, rel_bound = _radial_dugdale_state(64)
     assert abs(eq30.eq30_cartesian_from_state(state)) <= ROUND_OFF * work

@@ -60,7 +60,7 @@ def test_pull_off_round_trip(tmp_path, small_result):
 
 
 def test_state_dataset_si_units():
-    from test_periphery import _radial_dugdale_state
+    from test_dh_elliptic_periphery import _radial_dugdale_state
 
     state, _, _ = _radial_dugdale_state(16)
     ds = state_dataset(state)
@@ -89,7 +89,7 @@ def test_fields_are_stored_y_by_x_and_old_files_still_read(tmp_path):
     layout is turned on reading."""
     import xarray as xr
 
-    from test_periphery import _radial_dugdale_state
+    from test_dh_elliptic_periphery import _radial_dugdale_state
 
     state, _, _ = _radial_dugdale_state(16)
     ds = state_dataset(state)
