@@ -52,7 +52,7 @@ def complete_k(beta):
     Examples
     --------
     >>> import numpy as np
-    >>> from dhfield import elliptic
+    >>> from dhfield.core import elliptic
     >>> bool(np.isclose(elliptic.complete_k(1.0), np.pi / 2, rtol=1e-15))
     True
     """
@@ -86,7 +86,7 @@ def ellipsoid_integrals(l, a, b):
     R_F(0, a^2, a^2) = pi/(2a) and R_D(0, a^2, a^2) = 3 pi/(4 a^3) (DLMF 19.20.1, 19.20.4).
 
     >>> import numpy as np
-    >>> from dhfield import elliptic
+    >>> from dhfield.core import elliptic
     >>> i1, i2, i3 = elliptic.ellipsoid_integrals(0.0, 1.0, 1.0)
     >>> bool(np.allclose([i1, i2, i3], [np.pi, np.pi / 2, np.pi / 2], rtol=1e-14))
     True
@@ -129,7 +129,7 @@ def ellipsoid_integrals_legendre(l, a, b):
     Examples
     --------
     >>> import numpy as np
-    >>> from dhfield import elliptic
+    >>> from dhfield.core import elliptic
     >>> carlson = elliptic.ellipsoid_integrals(0.3, 1.0, 0.6)
     >>> bool(np.allclose(elliptic.ellipsoid_integrals_legendre(0.3, 1.0, 0.6), carlson, rtol=1e-12))
     True

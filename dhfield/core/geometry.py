@@ -61,7 +61,7 @@ def principal_radii(cylinder_radius, skew_angle, *, checked=True):
     Perpendicular cylinders (theta_skew = pi/2) are a sphere of radius R_c: R' = R'' = R_c.
 
     >>> import numpy as np
-    >>> from dhfield import geometry
+    >>> from dhfield.core import geometry
     >>> [round(float(r), 12) for r in geometry.principal_radii(5e-3, np.pi / 2)]
     [0.005, 0.005]
     """
@@ -93,7 +93,7 @@ def effective_radius(r_major, r_minor, *, checked=True):
 
     Examples
     --------
-    >>> from dhfield import geometry
+    >>> from dhfield.core import geometry
     >>> float(geometry.effective_radius(4.0, 1.0))
     2.0
     """
@@ -131,7 +131,7 @@ def reduced_modulus(e1, nu1, e2, nu2, *, checked=True):
     --------
     Two PDMS bodies, E = 2 MPa, nu = 0.5: E* = E/(2(1 - nu^2)).
 
-    >>> from dhfield import geometry
+    >>> from dhfield.core import geometry
     >>> float(geometry.reduced_modulus(2e6, 0.5, 2e6, 0.5)) / 1e6
     1.3333333333333333
     """
@@ -169,7 +169,7 @@ def radius_ratio(beta, *, checked=True):
 
     Examples
     --------
-    >>> from dhfield import geometry
+    >>> from dhfield.core import geometry
     >>> float(geometry.radius_ratio(1.0))
     1.0
     """
@@ -197,7 +197,7 @@ def ellipticity_from_radius_ratio(ratio, *, checked=True):
 
     Examples
     --------
-    >>> from dhfield import geometry
+    >>> from dhfield.core import geometry
     >>> round(float(geometry.ellipticity_from_radius_ratio(geometry.radius_ratio(0.8))), 12)
     0.8
     """
@@ -241,7 +241,7 @@ def skew_angle(beta, *, checked=True):
     Examples
     --------
     >>> import numpy as np
-    >>> from dhfield import geometry
+    >>> from dhfield.core import geometry
     >>> round(float(np.rad2deg(geometry.skew_angle(0.8))), 2)
     80.45
     """
@@ -287,7 +287,7 @@ def ellipticity_from_skew_angle(skew_angle):
     Examples
     --------
     >>> import numpy as np
-    >>> from dhfield import geometry
+    >>> from dhfield.core import geometry
     >>> round(float(geometry.ellipticity_from_skew_angle(np.deg2rad(60))), 3)
     0.483
     """
