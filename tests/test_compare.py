@@ -1,4 +1,4 @@
-"""The model registry: keys, normalisation, the circle, the JKR-beta variant, bad input."""
+"""Every model behind one interface (dhfield.analysis.compare): keys, normalisation, the circle, the JKR-beta variant, bad input."""
 import functools
 
 import numpy as np
