@@ -91,6 +91,7 @@ from scipy.special import roots_legendre
 from ..models import dh_elliptic_rays as _rays, hertz, dh_elliptic_periphery as periphery
 from ..core.validation import check_finite, check_positive
 from ..core.elliptic import ellipsoid_integrals
+from ..core._docstrings import fill_doc
 
 __all__ = [
     "Eq30Boundary",
@@ -187,22 +188,14 @@ def _area_general(a, b, c, d, gap_amplitude, stress_amplitude, reduced_modulus=1
     return 4.0 * np.sum(w_theta * ray, axis=-1)  # Eq. (30)
 
 
+@fill_doc
 def eq30_area(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0,
               *, n_theta=DEFAULT_THETA_NODES):
     """Eq. (30) as printed: the area integral over the quarter annulus (polar grid) [J m^-2].
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v [-].
-    effective_radius, reduced_modulus : array_like
-        R [m] and E* [Pa].
+    %(dh_parameters)s
 
     Returns
     -------
@@ -270,23 +263,13 @@ def _boundary_general(a, b, c, d, gap_amplitude, stress_amplitude, reduced_modul
     return Eq30Boundary(major, minor, inner, outer, major + minor + inner + outer)
 
 
+@fill_doc
 def eq30_boundary(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):
     """Eq. (30) through Green's theorem: the four edges of the quarter annulus.
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v [-].
-    effective_radius : array_like, default 1
-        R [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(dh_parameters)s
 
     Returns
     -------
@@ -307,6 +290,7 @@ def eq30_boundary(semi_major, adhesive_semi_major, beta, scaling, effective_radi
                                                                 out.outer_edge, out.total)))
 
 
+@fill_doc
 def adhesive_stress_extended(x, y, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                              reduced_modulus=1.0):
     """Eq. (23) continued over the whole adhesive ellipse, including the contact.
@@ -318,8 +302,7 @@ def adhesive_stress_extended(x, y, adhesive_semi_major, beta, scaling, effective
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
+    %(surface_xy)s
     adhesive_semi_major : array_like
         Adhesive semi-major axis c [m].
     beta : array_like
@@ -328,8 +311,7 @@ def adhesive_stress_extended(x, y, adhesive_semi_major, beta, scaling, effective
         DH scaling factor v [-].
     effective_radius : array_like, default 1
         R [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(reduced_modulus_default)s
 
     Returns
     -------
@@ -399,6 +381,7 @@ def eq30_cartesian(x, y, stress, gap):
     return float(4.0 * np.sum(jac[q]) * dx * dy)  # Eq. (30)
 
 
+@fill_doc
 def eq30_boundary_from_grid(x, y, gap, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                             reduced_modulus=1.0, **kwargs):
     """The Green's form of Eq. (30) from a gridded gap: 4 [Delta gamma(0) - Delta gamma(pi/2)].
@@ -412,18 +395,7 @@ def eq30_boundary_from_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
         Strictly increasing 1-D grid coordinates (cell centres) [m].
     gap : array_like
         Gap h on the grid, shape ``(len(x), len(y))`` [m].
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v [-].
-    effective_radius : array_like, default 1
-        R [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(dh_parameters)s
     **kwargs
         Passed to :func:`dhfield.models.dh_elliptic_periphery.periphery_from_gap_grid` (``method``, ``trend``).
 
@@ -437,24 +409,14 @@ def eq30_boundary_from_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
     return float(4.0 * (prof.work_of_adhesion[0] - prof.work_of_adhesion[1]))
 
 
+@fill_doc
 def periphery_work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                                reduced_modulus=1.0, *, weight="area", n_theta=91):
     """The work of adhesion averaged around the periphery (the erratum form of Eq. 30) [J m^-2].
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v [-].
-    effective_radius : array_like, default 1
-        R [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(dh_parameters)s
     weight : {"area", "angle"}
         See :func:`dhfield.models.dh_elliptic_periphery.ray_average`.
     n_theta : int

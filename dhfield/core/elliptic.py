@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import special
+from ._docstrings import fill_doc
 
 __all__ = [
     "complete_k",
@@ -36,13 +37,13 @@ __all__ = [
 ]
 
 
+@fill_doc
 def complete_k(beta):
     """Complete elliptic integral of the first kind K(k), k**2 = 1 - beta**2.
 
     Parameters
     ----------
-    beta : array_like
-        Ellipticity ratio b/a in (0, 1] [-].
+    %(ellipticity)s
 
     Returns
     -------
@@ -60,25 +61,19 @@ def complete_k(beta):
     return special.elliprf(0.0, beta**2, 1.0)  # K(k) = R_F(0, 1 - k^2, 1)
 
 
+@fill_doc
 def ellipsoid_integrals(l, a, b):
     """Ellipsoidal potential integrals I1, I2, I3 of Eqs. (B1)-(B3), Carlson form.
 
     Parameters
     ----------
-    l : array_like
-        Lower limit of integration, the root of Eq. (12) outside the ellipse and
-        0 inside it [m^2].
+    %(ellipsoid_lower_limit)s
     a, b : array_like
         Semi-axes of the ellipse, ``a`` along x [m].
 
     Returns
     -------
-    I1 : ndarray
-        Integral of Eq. (B1) [m^-1].
-    I2 : ndarray
-        Integral of Eq. (B2) [m^-3].
-    I3 : ndarray
-        Integral of Eq. (B3) [m^-3].
+    %(ellipsoid_integrals_returns)s
 
     Examples
     --------
@@ -100,6 +95,7 @@ def ellipsoid_integrals(l, a, b):
     return i1, i2, i3
 
 
+@fill_doc
 def ellipsoid_integrals_legendre(l, a, b):
     """Eqs. (B1)-(B3) exactly as printed, with Legendre incomplete integrals.
 
@@ -109,9 +105,7 @@ def ellipsoid_integrals_legendre(l, a, b):
 
     Parameters
     ----------
-    l : array_like
-        Lower limit of integration, the root of Eq. (12) outside the ellipse and
-        0 inside it [m^2].
+    %(ellipsoid_lower_limit)s
     a : array_like
         Semi-major axis, along x [m].
     b : array_like
@@ -119,12 +113,7 @@ def ellipsoid_integrals_legendre(l, a, b):
 
     Returns
     -------
-    I1 : ndarray
-        Integral of Eq. (B1) [m^-1].
-    I2 : ndarray
-        Integral of Eq. (B2) [m^-3].
-    I3 : ndarray
-        Integral of Eq. (B3) [m^-3].
+    %(ellipsoid_integrals_returns)s
 
     Examples
     --------

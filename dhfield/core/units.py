@@ -25,6 +25,7 @@ import numpy as np
 
 from .validation import check_control, check_interval, check_positive, check_tabor
 from .records import load_curve_record, pull_off_record_si
+from ._docstrings import fill_doc
 
 __all__ = ["check_material", "check_contact_size", "length_unit", "approach_unit", "load_unit", "tabor_parameter",
            "SI_INPUT_KEYS", "pull_off_si", "si_inputs", "si_pull_off", "si_curve", "si_circular_load_curve",
@@ -83,19 +84,16 @@ def check_contact_size(name, value):
                           what="contact radius, >= 0")
 
 
+@fill_doc
 def length_unit(effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
     """Compute the length unit c_r = (R^2 dgamma/E*)^(1/3) of Eq. (33) [m].
 
     Parameters
     ----------
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
-    checked : bool, optional
-        Validate the inputs (:func:`check_material`); False on inputs validated already.
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
+    %(material_units_checked)s
 
     Returns
     -------
@@ -106,19 +104,16 @@ def length_unit(effective_radius, reduced_modulus, work_of_adhesion, *, checked=
     return _length(*(check_material(*args) if checked else args))
 
 
+@fill_doc
 def approach_unit(effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
     """Compute the approach unit c_r^2/R = (R dgamma^2/E*^2)^(1/3), the unit of delta* [m].
 
     Parameters
     ----------
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
-    checked : bool, optional
-        Validate the inputs (:func:`check_material`); False on inputs validated already.
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
+    %(material_units_checked)s
 
     Returns
     -------
@@ -227,6 +222,7 @@ def si_inputs(r, e, w, max_adhesive_stress=float("nan"), radius_ratio=1.0):
             "reduced_modulus": e, "r_major": r * sq, "r_minor": r / sq, "effective_radius": r}
 
 
+@fill_doc
 def si_pull_off(core, effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress=None, *,
                 control="load", radius_ratio=1.0, beta0=1.0, check_mu=False):
     """Compute the SI pull-off record of a model from its nondimensional core (inputs validated here).
@@ -249,8 +245,7 @@ def si_pull_off(core, effective_radius, reduced_modulus, work_of_adhesion, max_a
     max_adhesive_stress : array_like, optional
         Peak adhesive stress sigma0 [Pa]; the core then gets mu of Eq. (35).  None for the
         models without one (JKR, DMT, elliptical JKR): mu is NaN.
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(control)s
     radius_ratio : array_like, optional
         R'/R'' >= 1 of the geometry, validated; 1 for the circle [-].
     beta0 : array_like, optional
@@ -317,6 +312,7 @@ def si_curve(model, arrays, *, mu=float("nan"), beta0=1.0, sin_skew=1.0, geometr
                              ellipticity=ellipticity)
 
 
+@fill_doc
 def si_circular_load_curve(model, core, contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
                            max_adhesive_stress=None, *, zone=False, dh_factor=False):
     """Compute the SI load curve of a circular model from its nondimensional core (inputs validated here).
@@ -333,14 +329,10 @@ def si_circular_load_curve(model, core, contact_radius, effective_radius, reduce
         The model's ``load_curve_nondimensional``: ``core(a_star)``, or ``core(a_star, mu)``
         where ``max_adhesive_stress`` is given, returning ``W_star``, ``delta_star`` and, where
         the model has them, ``c_star`` and ``v`` [-].
-    contact_radius : array_like
-        Contact radius a >= 0 [m].
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(contact_radius)s
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
     max_adhesive_stress : array_like, optional
         Peak adhesive stress sigma0 [Pa]; None for the models without one (JKR, DMT).
     zone : bool, optional
@@ -372,6 +364,7 @@ def si_circular_load_curve(model, core, contact_radius, effective_radius, reduce
     return si_curve(model, arrays, mu=mu)
 
 
+@fill_doc
 def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work_of_adhesion, *, checked=True):
     """Compute the Tabor (transition) parameter mu = sigma0 (R/(E*^2 dgamma))^(1/3) of Eq. (35) [-].
 
@@ -379,12 +372,9 @@ def tabor_parameter(max_adhesive_stress, effective_radius, reduced_modulus, work
     ----------
     max_adhesive_stress : array_like
         Peak adhesive stress sigma0 [Pa].
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
     checked : bool, optional
         Validate the inputs (each finite and > 0); False on inputs validated already.
 

@@ -48,6 +48,7 @@ from ..core.units import check_contact_size, check_material, scalar_or_array, si
 from ..core.validation import check_positive
 from ..core.pull_off_search import scan_minimum
 from ..core.records import pull_off_record
+from ..core._docstrings import fill_doc
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "work_of_adhesion", "load_curve_nondimensional",
            "pull_off_nondimensional"]
@@ -174,6 +175,7 @@ def _pull_off_state(mu, control="load"):
     return st
 
 
+@fill_doc
 def pull_off_nondimensional(beta0, mu, *, control="load"):
     """Compute the circular DH pull-off record (Greenwood & Johnson 1998) in the paper's units.
 
@@ -182,15 +184,12 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 
     Parameters
     ----------
-    beta0, mu : array_like
-        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; the circle of R = sqrt(R'R'') depends on mu only; the record has their broadcast shape.
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(circle_beta0_mu)s
+    %(control)s
 
     Returns
     -------
-    dhfield.core.records.PullOff
-        The pull-off point, nondimensional (Eqs. 32-35).
+    %(pull_off_nondimensional_returns)s
     """
     mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[1]
     return pull_off_record("dh-circular", beta0, mu, _pull_off_state(mu, control), control=control, sin_skew=1.0,
@@ -231,20 +230,17 @@ def work_of_adhesion(contact_radius, adhesive_radius, scaling, effective_radius,
     return scalar_or_array(v * (1 + v) * 2 * e / (3 * np.pi * r * r) * (c - a) ** 2 * (c + 2 * a))  # Eq. (31)
 
 
+@fill_doc
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
                max_adhesive_stress):
     """Circular DH (Greenwood & Johnson 1998) load and approach at a contact radius.
 
     Parameters
     ----------
-    contact_radius : array_like
-        Contact radius a >= 0 [m].
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* of Eq. (6) [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(contact_radius)s
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
     max_adhesive_stress : array_like
         Peak adhesive stress sigma0 at the contact edge [Pa].
 
@@ -275,14 +271,14 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
                                   reduced_modulus, work_of_adhesion, max_adhesive_stress, zone=True, dh_factor=True)
 
 
+@fill_doc
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
              control="load"):
     """Circular DH state at pull-off.
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     max_adhesive_stress : array_like
         Peak adhesive stress sigma0 [Pa].
     control : {'load', 'displacement'}
@@ -299,23 +295,21 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
                        control=control, check_mu=True)
 
 
+@fill_doc
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
                    control="load"):
     """Compute the circular DH pull-off force [N].
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     max_adhesive_stress : array_like
         Peak adhesive stress sigma0 [Pa].
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(control)s
 
     Returns
     -------
-    ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``force``).
+    %(pull_off_force_returns)s
     """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
                     control=control).force

@@ -37,6 +37,7 @@ from scipy.special import roots_legendre
 from . import dh_elliptic_fields as double_hertz, hertz
 from ..core.validation import check_finite
 from ..core.elliptic import ellipsoid_integrals
+from ..core._docstrings import fill_doc
 
 __all__ = ["work_of_adhesion", "graded_rule", "graded_panel_counts", "ragged_graded_rule"]
 
@@ -175,24 +176,17 @@ def ragged_graded_rule(t1, nodes=NODES_PER_PANEL, t_end=np.pi / 2):
     return t, half[:, None] * w, first, owner
 
 
+@fill_doc
 def work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, theta=0.0, effective_radius=1.0,
                      reduced_modulus=1.0):
     """Work of adhesion along the ray ``theta`` of the DH annulus, Eq. (31) [J m^-2].
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity b/a = d/c (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
+    %(dh_state)s
     theta : array_like, default 0
         Polar angle theta_p of the ray; 0 is the major axis (Eq. 31) [rad].
-    effective_radius, reduced_modulus : array_like
-        R [m] and E* [Pa].
+    %(dh_material)s
 
     Returns
     -------

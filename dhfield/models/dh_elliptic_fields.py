@@ -42,6 +42,7 @@ import numpy as np
 
 from . import hertz
 from ..core.validation import check_ellipticity, check_finite, check_positive
+from ..core._docstrings import fill_doc
 
 __all__ = [
     "pressure",
@@ -56,23 +57,13 @@ __all__ = [
 ]
 
 
+@fill_doc
 class DoubleHertzParameters(NamedTuple):
     """Checked parameters of a DH state (float arrays), as returned by :func:`check_parameters`.
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(dh_parameters)s
     """
 
     semi_major: np.ndarray
@@ -83,24 +74,14 @@ class DoubleHertzParameters(NamedTuple):
     reduced_modulus: np.ndarray
 
 
+@fill_doc
 def check_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                      reduced_modulus=1.0) -> DoubleHertzParameters:
     """Validate the parameters of a DH state; a ValueError names the first bad one.
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Ellipticity b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(dh_parameters)s
 
     Returns
     -------
@@ -118,6 +99,7 @@ def check_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_r
     return DoubleHertzParameters(a, c, beta, v, r, e)
 
 
+@fill_doc
 def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
              reduced_modulus=1.0):
     """Total surface pressure of the DH contact, Eqs. (7), (16), (22).
@@ -127,20 +109,8 @@ def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_rad
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(surface_xy)s
+    %(dh_parameters)s
 
     Returns
     -------
@@ -166,6 +136,7 @@ def pressure(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_rad
     return (1.0 + v) * h_ab - v * h_cd  # Eq. (22): H_ab - v (H_cd - H_ab)
 
 
+@fill_doc
 def adhesive_stress(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                     reduced_modulus=1.0):
     """Tensile adhesive stress sigma_ac in the annulus, Eq. (23); 0 elsewhere.
@@ -175,20 +146,8 @@ def adhesive_stress(x, y, semi_major, adhesive_semi_major, beta, scaling, effect
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(surface_xy)s
+    %(dh_parameters)s
 
     Returns
     -------
@@ -204,6 +163,7 @@ def adhesive_stress(x, y, semi_major, adhesive_semi_major, beta, scaling, effect
     return np.where(outside_ab, v * hertz.pressure(x, y, c, beta * c, po_cd), 0.0)  # Eq. (23)
 
 
+@fill_doc
 def max_adhesive_stress(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                         reduced_modulus=1.0):
     """Maximum adhesive stress sigma0 = v Po_cd sqrt(1 - a^2/c^2), Eq. (24).
@@ -213,18 +173,7 @@ def max_adhesive_stress(semi_major, adhesive_semi_major, beta, scaling, effectiv
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(dh_parameters)s
 
     Returns
     -------
@@ -237,23 +186,13 @@ def max_adhesive_stress(semi_major, adhesive_semi_major, beta, scaling, effectiv
     return v * po_cd * np.sqrt(1.0 - (a / c) ** 2)  # Eq. (24)
 
 
+@fill_doc
 def load(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):
     """Total load of the DH contact, Eq. (25).
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(dh_parameters)s
 
     Returns
     -------
@@ -271,6 +210,7 @@ def load(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, r
     return 4.0 * e / (3.0 * r * f13) * (ab**1.5 - v * (cd**1.5 - ab**1.5))  # Eq. (25)
 
 
+@fill_doc
 def approach(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):
     """Approach of distant points of the DH contact.
 
@@ -279,18 +219,7 @@ def approach(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(dh_parameters)s
 
     Returns
     -------
@@ -304,6 +233,7 @@ def approach(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.
     return (1.0 + v) * d_ab - v * d_cd  # Eq. (26a): delta_ab + v (delta_ab - delta_cd)
 
 
+@fill_doc
 def surface_displacement(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0,
                          reduced_modulus=1.0):
     """Total surface displacement of the DH pressure, Eqs. (13), (21), (26).
@@ -313,20 +243,8 @@ def surface_displacement(x, y, semi_major, adhesive_semi_major, beta, scaling, e
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(surface_xy)s
+    %(dh_parameters)s
 
     Returns
     -------
@@ -342,6 +260,7 @@ def surface_displacement(x, y, semi_major, adhesive_semi_major, beta, scaling, e
     return w_ab + v * (w_ab - w_cd)  # Eq. (21) scaled by v: Eq. (26)
 
 
+@fill_doc
 def gap(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1.0, reduced_modulus=1.0):
     """Gap h of the DH contact, Eq. (27), over the whole surface.
 
@@ -350,20 +269,8 @@ def gap(x, y, semi_major, adhesive_semi_major, beta, scaling, effective_radius=1
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major : array_like
-        Contact semi-major axis a > 0 [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity beta = b/a = d/c in (0, 1] (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') > 0 [m].
-    reduced_modulus : array_like, default 1
-        E* > 0 [Pa].
+    %(surface_xy)s
+    %(dh_parameters)s
 
     Returns
     -------

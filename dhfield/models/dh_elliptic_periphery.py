@@ -73,6 +73,7 @@ from . import dh_elliptic_fields as double_hertz, hertz
 from ..core.validation import check_ellipticity, check_finite, check_positive
 from .dh_elliptic_rays import edge_radius as _edge_radius, ray_geometry as _rays, ray_nodes as _ray_nodes
 from ..core.elliptic import ellipsoid_integrals
+from ..core._docstrings import fill_doc
 
 __all__ = [
     "DEFAULT_THETA",
@@ -246,6 +247,7 @@ def _gap_shape(x, y, a, b):
     return 0.5 * a * b * (i1 - j1 + (j2 - i2) * x * x + (j3 - i3) * y * y)  # Eqs. (13)-(15), (27)
 
 
+@fill_doc
 def periphery_two_ellipses(a, b, c, d, gap_amplitude, stress_amplitude, theta, reduced_modulus=1.0):
     """Periphery of the general two-ellipse field p = A S_ab - B S_cd, any two ellipticities.
 
@@ -265,8 +267,7 @@ def periphery_two_ellipses(a, b, c, d, gap_amplitude, stress_amplitude, theta, r
         B, the amplitude of the subtracted pressure on the adhesive ellipse [Pa].
     theta : array_like, 1-D
         Ray angles theta_p, 0 on the major axis [rad].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(reduced_modulus_default)s
 
     Returns
     -------
@@ -332,19 +333,13 @@ def _law_general(a, b, c, d, gap_amplitude, stress_amplitude, theta, n_points, r
 
 
 # --------------------------------------------------------------------------- public, equal beta
+@fill_doc
 class FieldParameters(NamedTuple):
     """Checked DH parameters and the amplitudes of the two-ellipse field (Eq. 22).
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity b/a = d/c (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
+    %(dh_state)s
     effective_radius : ndarray
         R = sqrt(R'R'') [m].
     reduced_modulus : ndarray
@@ -365,19 +360,13 @@ class FieldParameters(NamedTuple):
     stress_amplitude: np.ndarray
 
 
+@fill_doc
 def field_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus):
     """Validate a DH state (equal ellipticities) and give its two-ellipse amplitudes, Eq. (22).
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity b/a = d/c (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
+    %(dh_state)s
     effective_radius : array_like
         R = sqrt(R'R'') [m].
     reduced_modulus : array_like
@@ -413,6 +402,7 @@ def _check_theta(theta):
     return np.atleast_1d(np.clip(th, 0.0, 0.5 * np.pi))
 
 
+@fill_doc
 def periphery(semi_major, adhesive_semi_major, beta, scaling, theta=None, effective_radius=1.0,
               reduced_modulus=1.0):
     """The maximum adhesive stress, zone width, edge separation and work of adhesion per ray.
@@ -421,20 +411,10 @@ def periphery(semi_major, adhesive_semi_major, beta, scaling, theta=None, effect
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity b/a = d/c (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
+    %(dh_state)s
     theta : array_like, optional
         Ray angles in [0, pi/2], 1-D [rad]; default :data:`DEFAULT_THETA`.
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(dh_material)s
 
     Returns
     -------
@@ -456,28 +436,19 @@ def periphery(semi_major, adhesive_semi_major, beta, scaling, theta=None, effect
     return periphery_two_ellipses(a, beta * a, c, beta * c, amp_a, amp_b, th, e)
 
 
+@fill_doc
 def cohesive_law(semi_major, adhesive_semi_major, beta, scaling, theta=None, n_points=65,
                  effective_radius=1.0, reduced_modulus=1.0):
     """The sigma-h curve along each ray theta_p (Eqs. 23, 27).
 
     Parameters
     ----------
-    semi_major : array_like
-        Contact semi-major axis a [m].
-    adhesive_semi_major : array_like
-        Adhesive semi-major axis c >= a [m].
-    beta : array_like
-        Common ellipticity b/a = d/c (Eq. 17) [-].
-    scaling : array_like
-        DH scaling factor v >= 0 [-].
+    %(dh_state)s
     theta : array_like, optional
         Ray angles in [0, pi/2], 1-D [rad].
     n_points : int
         Samples per ray (>= 2), uniform in t with l = l_cd sin^2 t [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R'R'') [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(dh_material)s
 
     Returns
     -------

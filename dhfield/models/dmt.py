@@ -23,6 +23,7 @@ from ..core.units import (check_material, length_unit, load_unit, scalar_or_arra
                           si_pull_off)
 from ..core.validation import check_finite
 from ..core.records import pull_off_record
+from ..core._docstrings import fill_doc
 
 __all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
            "pull_off_nondimensional"]
@@ -60,6 +61,7 @@ def _pull_off_state(control):  # noqa: ARG001 - the same state for both controls
     return load_curve_nondimensional(0.0)
 
 
+@fill_doc
 def pull_off_nondimensional(beta0, mu, *, control="load"):
     """DMT pull-off record in the paper's units: W* = -1 at a* = 0 for either control.
 
@@ -68,34 +70,28 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 
     Parameters
     ----------
-    beta0, mu : array_like
-        Hertz ellipticity and Tabor parameter (Eq. 35) [-]: DMT depends on neither; the
-        record has their broadcast shape (the circle of R = sqrt(R'R'')).
+    %(circle_beta0_mu_unused)s
     control : {'load', 'displacement'}
         Both give the same state (the approach is monotone in a).
 
     Returns
     -------
-    dhfield.core.records.PullOff
-        The pull-off point, nondimensional (Eqs. 32-35).
+    %(pull_off_nondimensional_returns)s
     """
     return pull_off_record("dmt", beta0, mu, _pull_off_state(control), control=control, sin_skew=1.0,
                            geometry="circle")
 
 
+@fill_doc
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
     """DMT load and approach at the given contact radius.
 
     Parameters
     ----------
-    contact_radius : array_like
-        Contact radius a >= 0 [m].
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(contact_radius)s
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
 
     Returns
     -------
@@ -111,6 +107,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
                                   work_of_adhesion)
 
 
+@fill_doc
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     """Compute the DMT contact radius: a^3 = 3R(W + 2 pi R dgamma)/(4E*) [m].
 
@@ -118,8 +115,7 @@ def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     ----------
     load : array_like
         Load W >= -2 pi R dgamma [N].
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
 
     Returns
     -------
@@ -135,13 +131,13 @@ def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     return scalar_or_array(np.cbrt(1.5 * np.pi * (ws + 1.0)) * length_unit(r, e, w, checked=False))
 
 
+@fill_doc
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
     """DMT state at pull-off: W = -2 pi R dgamma at a = 0, delta = 0, for both controls.
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     control : {'load', 'displacement'}
         Loading mode (the same result for DMT).
 
@@ -154,19 +150,17 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
     return si_pull_off(pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion, control=control)
 
 
+@fill_doc
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
     """Compute the DMT pull-off force -2 pi R dgamma [N].
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(material)s
+    %(control)s
 
     Returns
     -------
-    ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``force``).
+    %(pull_off_force_returns)s
     """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).force

@@ -29,6 +29,7 @@ from scipy import special
 from ..core.validation import check_ellipticity, check_finite, check_positive
 from ..core.elliptic import complete_k, ellipsoid_integrals
 from ..core.geometry import radius_ratio
+from ..core._docstrings import fill_doc
 
 __all__ = [
     "max_pressure",
@@ -58,19 +59,13 @@ def _check_contact(semi_major, beta, effective_radius, reduced_modulus):
             check_positive("reduced_modulus", reduced_modulus, "Pa"))
 
 
+@fill_doc
 def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0, *, checked=True):
     """Maximum Hertz pressure Po_ab of the elliptical contact, Eq. (8).
 
     Parameters
     ----------
-    semi_major : array_like
-        Semi-major axis a of the contact ellipse [m].
-    beta : array_like
-        Ellipticity ratio b/a in (0, 1] [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R' R'') [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(hertz_contact)s
     checked : bool, default True
         Validate the inputs; False for internal callers that validated them once at their
         public entry and evaluate intermediate sizes (the closure solves).
@@ -98,13 +93,13 @@ def max_pressure(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0, *,
     return e / r * _pressure_factor(beta) * a  # Eq. (8)
 
 
+@fill_doc
 def load_factor(beta):
     """The factor F1 of Eq. (11); F1 = 1 at the circle.
 
     Parameters
     ----------
-    beta : array_like
-        Ellipticity ratio b/a in (0, 1] [-].
+    %(ellipticity)s
 
     Returns
     -------
@@ -125,19 +120,13 @@ def load_factor(beta):
     return np.cbrt(f13)
 
 
+@fill_doc
 def load(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     """Hertz load W for contact semi-major axis a, Eq. (10).
 
     Parameters
     ----------
-    semi_major : array_like
-        Semi-major axis a of the contact ellipse [m].
-    beta : array_like
-        Ellipticity ratio b/a in (0, 1] [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R' R'') [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(hertz_contact)s
 
     Returns
     -------
@@ -152,19 +141,13 @@ def load(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     return 4.0 * e / (3.0 * r * load_factor(beta) ** 3) * (a * a * beta) ** 1.5  # Eq. (10)
 
 
+@fill_doc
 def approach(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     """Hertz approach of distant points, delta = Po_ab b K(k)/E* (Eqs. 13a, 14a).
 
     Parameters
     ----------
-    semi_major : array_like
-        Semi-major axis a of the contact ellipse [m].
-    beta : array_like
-        Ellipticity ratio b/a in (0, 1] [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R' R'') [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(hertz_contact)s
 
     Returns
     -------
@@ -184,17 +167,14 @@ def approach(semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     return p0 * beta * np.asarray(semi_major, dtype=float) * complete_k(beta) / reduced_modulus  # Eq. (14a)
 
 
+@fill_doc
 def pressure(x, y, semi_major, semi_minor, peak_pressure):
     """Semi-ellipsoidal Hertz pressure, Eq. (7); zero outside the ellipse.
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major, semi_minor : array_like
-        Semi-axes a >= b of the loaded ellipse [m].
-    peak_pressure : array_like
-        Po [Pa].
+    %(surface_xy)s
+    %(loaded_ellipse)s
 
     Returns
     -------
@@ -213,6 +193,7 @@ def pressure(x, y, semi_major, semi_minor, peak_pressure):
     return peak_pressure * np.sqrt(np.maximum(q, 0.0))  # Eq. (7)
 
 
+@fill_doc
 def ellipse_root(x, y, semi_major, semi_minor):
     """The root l of x^2/(a^2+l) + y^2/(b^2+l) = 1 (below Eq. 12) [m^2].
 
@@ -223,8 +204,7 @@ def ellipse_root(x, y, semi_major, semi_minor):
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
+    %(surface_xy)s
     semi_major, semi_minor : array_like
         Semi-axes a >= b of the ellipse [m].
 
@@ -254,6 +234,7 @@ def ellipse_root(x, y, semi_major, semi_minor):
     return np.where(cq < 0, np.maximum(l_pos, 0.0), 0.0)
 
 
+@fill_doc
 def displacement_coefficients(x, y, semi_major, semi_minor, peak_pressure):
     """The coefficients L, M, N of Eqs. (13)-(15) / (B4)-(B6) at each point.
 
@@ -262,12 +243,8 @@ def displacement_coefficients(x, y, semi_major, semi_minor, peak_pressure):
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major, semi_minor : array_like
-        Semi-axes a >= b of the loaded ellipse [m].
-    peak_pressure : array_like
-        Po [Pa].
+    %(surface_xy)s
+    %(loaded_ellipse)s
 
     Returns
     -------
@@ -284,6 +261,7 @@ def displacement_coefficients(x, y, semi_major, semi_minor, peak_pressure):
     return pref * i1, pref * i2, pref * i3  # Eq. (14), Eq. (15) via Eqs. (B4)-(B6)
 
 
+@fill_doc
 def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_modulus=1.0):
     """Surface displacement of a semi-ellipsoidal pressure, Eqs. (12)-(15) [m].
 
@@ -292,14 +270,9 @@ def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_mo
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major, semi_minor : array_like
-        Semi-axes a >= b of the loaded ellipse [m].
-    peak_pressure : array_like
-        Po [Pa].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(surface_xy)s
+    %(loaded_ellipse)s
+    %(reduced_modulus_default)s
 
     Returns
     -------
@@ -321,6 +294,7 @@ def surface_displacement(x, y, semi_major, semi_minor, peak_pressure, reduced_mo
     return (big_l - m * x**2 - n * y**2) / (np.pi * reduced_modulus)  # Eq. (12) as Eq. (13)
 
 
+@fill_doc
 def surface_displacement_gradient(x, y, semi_major, semi_minor, peak_pressure, reduced_modulus=1.0):
     """Gradient (d omega/dx, d omega/dy) of Eq. (13).
 
@@ -329,14 +303,9 @@ def surface_displacement_gradient(x, y, semi_major, semi_minor, peak_pressure, r
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major, semi_minor : array_like
-        Semi-axes a >= b of the loaded ellipse [m].
-    peak_pressure : array_like
-        Po [Pa].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(surface_xy)s
+    %(loaded_ellipse)s
+    %(reduced_modulus_default)s
 
     Returns
     -------
@@ -351,15 +320,14 @@ def surface_displacement_gradient(x, y, semi_major, semi_minor, peak_pressure, r
     return -2.0 * x * m / (np.pi * reduced_modulus), -2.0 * y * n / (np.pi * reduced_modulus)
 
 
+@fill_doc
 def principal_radii_from_ellipticity(beta, effective_radius=1.0):
     """Principal radii R', R'' that give Hertz ellipticity ``beta`` at equivalent radius R.
 
     Parameters
     ----------
-    beta : array_like
-        Ellipticity ratio b/a in (0, 1] [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R' R'') [m].
+    %(ellipticity)s
+    %(effective_radius_default)s
 
     Returns
     -------
@@ -373,21 +341,14 @@ def principal_radii_from_ellipticity(beta, effective_radius=1.0):
     return effective_radius * s, effective_radius / s
 
 
+@fill_doc
 def gap(x, y, semi_major, beta, effective_radius=1.0, reduced_modulus=1.0):
     """Hertz gap h = z - delta + omega (Eqs. 2, 13, 14a); zero inside the contact.
 
     Parameters
     ----------
-    x, y : array_like
-        Surface coordinates, x along the major axis [m].
-    semi_major : array_like
-        Semi-major axis a of the contact ellipse [m].
-    beta : array_like
-        Ellipticity ratio b/a in (0, 1] [-].
-    effective_radius : array_like, default 1
-        R = sqrt(R' R'') [m].
-    reduced_modulus : array_like, default 1
-        E* [Pa].
+    %(surface_xy)s
+    %(hertz_contact)s
 
     Returns
     -------

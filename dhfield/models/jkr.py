@@ -24,6 +24,7 @@ from ..core.units import (check_material, length_unit, load_unit, scalar_or_arra
                           si_pull_off)
 from ..core.validation import check_finite
 from ..core.records import pull_off_record
+from ..core._docstrings import fill_doc
 
 __all__ = ["load_curve", "contact_radius", "pull_off", "pull_off_force", "load_curve_nondimensional",
            "pull_off_nondimensional"]
@@ -76,6 +77,7 @@ def _pull_off_state(control):
     return load_curve_nondimensional(np.cbrt(_PULL_OFF_A3[control]))
 
 
+@fill_doc
 def pull_off_nondimensional(beta0, mu, *, control="load"):
     """JKR pull-off record in the paper's units (Eqs. 32-35); the core of :func:`pull_off`.
 
@@ -83,35 +85,29 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 
     Parameters
     ----------
-    beta0, mu : array_like
-        Hertz ellipticity and Tabor parameter (Eq. 35) [-]: JKR depends on neither; the
-        record has their broadcast shape (the circle of R = sqrt(R'R'')).
+    %(circle_beta0_mu_unused)s
     control : {'load', 'displacement'}
         Load control: the minimum of W* (a*^3 = 9 pi/8, W* = -3/4); displacement
         control: the minimum of delta* (a*^3 = pi/8, W* = -5/12).
 
     Returns
     -------
-    dhfield.core.records.PullOff
-        The pull-off point, nondimensional (Eqs. 32-35).
+    %(pull_off_nondimensional_returns)s
     """
     return pull_off_record("jkr", beta0, mu, _pull_off_state(control), control=control, sin_skew=1.0,
                            geometry="circle")
 
 
+@fill_doc
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion):
     """JKR load and approach at the given contact radius.
 
     Parameters
     ----------
-    contact_radius : array_like
-        Contact radius a >= 0 [m].
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* of Eq. (6) [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(contact_radius)s
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
 
     Returns
     -------
@@ -135,6 +131,7 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
                                   work_of_adhesion)
 
 
+@fill_doc
 def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     """Compute the JKR contact radius on the stable branch [m].
 
@@ -142,8 +139,7 @@ def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     ----------
     load : array_like
         Load W >= -(3/2) pi R dgamma [N].
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
 
     Returns
     -------
@@ -164,13 +160,13 @@ def contact_radius(load, effective_radius, reduced_modulus, work_of_adhesion):
     return scalar_or_array(_contact_radius(ws) * length_unit(r, e, w, checked=False))
 
 
+@fill_doc
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
     """JKR state at pull-off.
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     control : {'load', 'displacement'}
         Loading mode: pull-off is the minimum load (load control) or the load
         where the approach is minimum, d(delta)/da = 0 (displacement control).
@@ -190,19 +186,17 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, control="lo
     return si_pull_off(pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion, control=control)
 
 
+@fill_doc
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, control="load"):
     """Compute the JKR pull-off force [N] (negative, tensile).
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(material)s
+    %(control)s
 
     Returns
     -------
-    ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``force``).
+    %(pull_off_force_returns)s
     """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, control=control).force

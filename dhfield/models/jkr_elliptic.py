@@ -82,6 +82,7 @@ from ..core.validation import as_circle, check_control, check_ellipticity, check
 from ..core.geometry import ellipticity_from_radius_ratio, sin_skew_angle
 from ..core.pull_off_search import scan_minimum
 from ..core.records import pull_off_record
+from ..core._docstrings import fill_doc
 
 __all__ = [
     "EllipticJKR",
@@ -396,6 +397,7 @@ class EllipticJKR:
         return pull_off_record(self.model, beta0, mu, {**st, "ellipticity": st["beta"]}, control=control,
                                sin_skew=sin_skew_angle(beta0, checked=False), geometry="ellipse")
 
+    @fill_doc
     def load_curve(self, semi_major, effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
                    beta0=None):
         """Compute the states at contact semi-axis a, in SI units (inputs validated here).
@@ -404,10 +406,8 @@ class EllipticJKR:
         ----------
         semi_major : array_like
             Contact semi-axis a > 0 along the larger principal radius R' [m].
-        effective_radius, reduced_modulus, work_of_adhesion : array_like
-            R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
-        radius_ratio, beta0 : array_like, optional
-            R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+        %(material)s
+        %(elliptic_geometry)s
 
         Returns
         -------
@@ -421,18 +421,16 @@ class EllipticJKR:
         return _state_si(self.model, self.load_curve_nondimensional(a / length_unit(r, e, w, checked=False), b0),
                          b0, r, e, w)
 
+    @fill_doc
     def pull_off(self, effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
                  control="load"):
         """Compute the pull-off in SI units (inputs validated here).
 
         Parameters
         ----------
-        effective_radius, reduced_modulus, work_of_adhesion : array_like
-            R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
-        radius_ratio, beta0 : array_like, optional
-            R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
-        control : {'load', 'displacement'}
-            Loading mode of the pull-off.
+        %(material)s
+        %(elliptic_geometry)s
+        %(control)s
 
         Returns
         -------
@@ -443,15 +441,14 @@ class EllipticJKR:
         return si_pull_off(self.pull_off_nondimensional, effective_radius, reduced_modulus, work_of_adhesion,
                            control=control, radius_ratio=1.0 + geometry_terms(b0)[1], beta0=b0)  # R'/R''
 
+    @fill_doc
     def pull_off_force_ratio(self, *, radius_ratio=None, beta0=None, control="load"):
         """Compute the pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
 
         Parameters
         ----------
-        radius_ratio, beta0 : array_like, optional
-            R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
-        control : {'load', 'displacement'}
-            Loading mode of the pull-off.
+        %(elliptic_geometry)s
+        %(control)s
 
         Returns
         -------
@@ -596,6 +593,7 @@ def load_curve_nondimensional(a_star, beta0):
     return JG.load_curve_nondimensional(a_star, beta0)
 
 
+@fill_doc
 def pull_off_nondimensional(beta0, mu, *, control="load"):
     """Elliptical JKR pull-off record (Johnson & Greenwood 2005) in the paper's units, Eqs. (32)-(35).
 
@@ -607,8 +605,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     beta0, mu : array_like
         Hertz ellipticity and Tabor parameter (Eq. 35) [-]; JKR does not depend on mu, the
         record has their broadcast shape.
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(control)s
 
     Returns
     -------
@@ -660,14 +657,14 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
                          radius_ratio=radius_ratio, beta0=beta0)
 
 
+@fill_doc
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None, beta0=None,
              control="load"):
     """Elliptical JKR state at pull-off, in SI units.
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     radius_ratio, beta0 : array_like
         R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
     control : {'load', 'displacement'}
@@ -684,28 +681,26 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, *, radius_rati
                        beta0=beta0, control=control)
 
 
+@fill_doc
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, *, radius_ratio=None,
                    beta0=None, control="load"):
     """Compute the elliptical JKR pull-off force [N] (negative).
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
-    radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(material)s
+    %(elliptic_geometry)s
+    %(control)s
 
     Returns
     -------
-    ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``force``).
+    %(pull_off_force_returns)s
     """
     return JG.pull_off(effective_radius, reduced_modulus, work_of_adhesion, radius_ratio=radius_ratio,
                        beta0=beta0, control=control).force
 
 
+@fill_doc
 def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
     """Compute the pull-off force over the circular JKR value, W_pull-off/(-1.5 pi R dgamma) [-].
 
@@ -713,10 +708,8 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
 
     Parameters
     ----------
-    radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(elliptic_geometry)s
+    %(control)s
 
     Returns
     -------
@@ -727,15 +720,14 @@ def pull_off_force_ratio(*, radius_ratio=None, beta0=None, control="load"):
     return JG.pull_off_force_ratio(radius_ratio=radius_ratio, beta0=beta0, control=control)
 
 
+@fill_doc
 def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
     """Compute beta_JKR(pull-off), the contact ellipticity b/a at pull-off [-].
 
     Parameters
     ----------
-    radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(elliptic_geometry)s
+    %(control)s
 
     Returns
     -------
@@ -745,6 +737,7 @@ def pull_off_ellipticity(*, radius_ratio=None, beta0=None, control="load"):
     return JG.pull_off_ellipticity(radius_ratio=radius_ratio, beta0=beta0, control=control)
 
 
+@fill_doc
 def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
     """Compute the contact ellipticity b/a on the stable branch at load W* of Eq. (34) [-].
 
@@ -752,8 +745,7 @@ def ellipticity_at_load(load_star, *, radius_ratio=None, beta0=None):
     ----------
     load_star : array_like
         Load W* of Eq. (34), >= the load-controlled pull-off W* [-].
-    radius_ratio, beta0 : array_like
-        R'/R'' >= 1, or its Hertz ellipticity beta0 in (0, 1] (give one) [-].
+    %(elliptic_geometry)s
 
     Returns
     -------

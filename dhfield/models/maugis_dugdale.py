@@ -50,6 +50,7 @@ from ..core.validation import check_positive
 from ..core.pull_off_search import scan_minimum
 from ..core.records import pull_off_record
 from ..core.transition import maugis_parameter
+from ..core._docstrings import fill_doc
 
 __all__ = ["load_curve", "pull_off", "pull_off_force", "LAMBDA_RANGE", "load_curve_nondimensional",
            "pull_off_nondimensional", "load_curve_maugis_units", "MaugisCurve"]
@@ -288,6 +289,7 @@ def _pull_off_state(mu, control):
     return {"W_star": 0.5 * p, "a_star": a * _A_UNIT, "c_star": c_star, "delta_star": d * _D_UNIT}
 
 
+@fill_doc
 def pull_off_nondimensional(beta0, mu, *, control="load"):
     """MD pull-off record in the paper's units (Eqs. 32-35), vectorised, at lambda = 1.1272 mu.
 
@@ -297,36 +299,29 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
 
     Parameters
     ----------
-    beta0, mu : array_like
-        Hertz ellipticity and Tabor parameter (Eq. 35) [-]; the circle of R = sqrt(R'R'')
-        depends on mu only; the record has their broadcast shape.
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(circle_beta0_mu)s
+    %(control)s
 
     Returns
     -------
-    dhfield.core.records.PullOff
-        The pull-off point, nondimensional (Eqs. 32-35).
+    %(pull_off_nondimensional_returns)s
     """
     mu = np.broadcast_arrays(np.asarray(beta0, float), np.asarray(mu, float))[1]
     return pull_off_record("md", beta0, mu, _pull_off_state(mu, control), control=control, sin_skew=1.0,
                            geometry="circle")
 
 
+@fill_doc
 def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesion,
                max_adhesive_stress):
     """Maugis-Dugdale load and approach at the given contact radius.
 
     Parameters
     ----------
-    contact_radius : array_like
-        Contact radius a >= 0 [m].
-    effective_radius : array_like
-        Equivalent radius R [m].
-    reduced_modulus : array_like
-        Reduced modulus E* of Eq. (6) [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(contact_radius)s
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
     max_adhesive_stress : array_like
         Dugdale stress sigma0 [Pa].
 
@@ -352,14 +347,14 @@ def load_curve(contact_radius, effective_radius, reduced_modulus, work_of_adhesi
                                   reduced_modulus, work_of_adhesion, max_adhesive_stress, zone=True)
 
 
+@fill_doc
 def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
              control="load"):
     """Maugis-Dugdale state at pull-off, vectorised.
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     max_adhesive_stress : array_like
         Dugdale stress sigma0 [Pa].
     control : {'load', 'displacement'}
@@ -377,23 +372,21 @@ def pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_s
                        control=control)
 
 
+@fill_doc
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
                    control="load"):
     """Compute the Maugis-Dugdale pull-off force [N].
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     max_adhesive_stress : array_like
         Dugdale stress sigma0 [Pa].
-    control : {'load', 'displacement'}
-        Loading mode of the pull-off.
+    %(control)s
 
     Returns
     -------
-    ndarray
-        The pull-off force W [N] (:func:`pull_off`'s ``force``).
+    %(pull_off_force_returns)s
     """
     return pull_off(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress,
                     control=control).force

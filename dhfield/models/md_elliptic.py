@@ -156,6 +156,7 @@ from ..core.elliptic import complete_k
 from ..core.geometry import sin_skew_angle
 from .jkr_elliptic import check_geometry, geometry_terms
 from ..core.records import pull_off_record
+from ..core._docstrings import fill_doc
 
 __all__ = ["MODEL_NAME", "transition_weight", "effective_tabor", "pull_off_nondimensional",
            "load_curve_nondimensional", "pull_off_force"]
@@ -496,18 +497,17 @@ def load_curve_nondimensional(a_star, beta0, mu, *, checked=True):
     return {k: np.reshape(v, a_in.shape) for k, v in out.items()}
 
 
+@fill_doc
 def pull_off_force(effective_radius, reduced_modulus, work_of_adhesion, max_adhesive_stress, *,
                    radius_ratio=None, beta0=None, control="load"):
     """Compute the pull-off force of the recommended model [N] (negative).
 
     Parameters
     ----------
-    effective_radius, reduced_modulus, work_of_adhesion : array_like
-        R = sqrt(R'R'') [m], E* [Pa], dgamma [J/m^2].
+    %(material)s
     max_adhesive_stress : array_like
         Dugdale stress sigma0 [Pa]; mu of Eq. (35) follows.
-    radius_ratio, beta0 : array_like, optional
-        R'/R'' >= 1, or its Hertz ellipticity in (0, 1] (give one) [-].
+    %(elliptic_geometry)s
     control : {'load', 'displacement'}
         Loading mode.
 
