@@ -32,17 +32,15 @@ __all__ = ["check_material", "check_contact_size", "length_unit", "approach_unit
            "scalar_or_array"]
 
 
+@fill_doc
 def check_material(effective_radius, reduced_modulus, work_of_adhesion):
     """Validate the material and geometry inputs R, E*, dgamma (each finite and > 0).
 
     Parameters
     ----------
-    effective_radius : array_like
-        Equivalent radius R = sqrt(R'R''), Eq. (5) [m].
-    reduced_modulus : array_like
-        Reduced modulus E*, Eq. (6) [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
 
     Returns
     -------

@@ -615,6 +615,7 @@ def pull_off_nondimensional(beta0, mu, *, control="load"):
     return JG.pull_off_nondimensional(beta0, mu, control=control)
 
 
+@fill_doc
 def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, *,
                radius_ratio=None, beta0=None):
     """Elliptical JKR (Johnson & Greenwood 2005) states at contact semi-major axis a.
@@ -623,12 +624,9 @@ def load_curve(semi_major, effective_radius, reduced_modulus, work_of_adhesion, 
     ----------
     semi_major : array_like
         Contact semi-axis a > 0 along the larger principal radius R' [m].
-    effective_radius : array_like
-        Equivalent radius R = sqrt(R' R''), Eq. (5) [m].
-    reduced_modulus : array_like
-        Reduced modulus E*, Eq. (6) [Pa].
-    work_of_adhesion : array_like
-        Work of adhesion dgamma [J/m^2].
+    %(effective_radius)s
+    %(reduced_modulus)s
+    %(work_of_adhesion)s
     radius_ratio : array_like, optional
         R'/R'' >= 1 [-].
     beta0 : array_like, optional
