@@ -5,6 +5,14 @@ import sys
 # One BLAS thread: the adhesive solver's small dense products stall when OpenBLAS threads
 # compete with the test process on the 2-core CI machine (the study and benchmarks pin it too).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+# Reproducible FFTW plans: FFTW_MEASURE keeps whichever algorithm was fastest while it planned, so
+# on a loaded machine (the parallel test workers load each other) the plans, and so the last bits
+# of every transform, change from run to run; the cold 32^2 sphere state of test_bem_branch.py
+# stalled on some runs.  FFTW_ESTIMATE plans without timing (dhfield.bem.operator.default_planner_effort).
+os.environ.setdefault("DHFIELD_FFTW_PLANNER", "FFTW_ESTIMATE")
+# One FFTW thread unless a test names its count: the CLI's default takes the free cores, which on
+# the loaded test machine changes from run to run (and with it the transforms' rounding).
+os.environ.setdefault("DHFIELD_THREADS", "1")
 # A fresh FFTW wisdom cache per test session (unless one is named): FFTW_MEASURE plans taken from
 # the user's ~/.cache/dhfield, grown by long studies, round differently, and the cold 32^2 sphere state
 # of test_bem_branch.py then stalled (20001 CG iterations, residual 0.23) where it converges with

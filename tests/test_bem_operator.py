@@ -53,3 +53,19 @@ def test_slender_hertz_contact_on_square_cells_matches_the_closed_form():
     assert st.load == pytest.approx(float(hertz.load(1.0, beta)), rel=RTOL_HERTZ_LOAD)
     a, b = st.contact_semi_axes()                                    # second moments: within a cell
     assert abs(a - 1.0) <= grid.dx and abs(b - beta) <= grid.dy
+
+
+def test_planner_effort_comes_from_the_environment(monkeypatch):
+    """$DHFIELD_FFTW_PLANNER sets the default planner flag; a bad value is an error naming it."""
+    from dhfield.bem import operator as op
+
+    monkeypatch.delenv("DHFIELD_FFTW_PLANNER", raising=False)
+    assert op.default_planner_effort() == "FFTW_MEASURE"
+    monkeypatch.setenv("DHFIELD_FFTW_PLANNER", "FFTW_ESTIMATE")
+    assert op.default_planner_effort() == "FFTW_ESTIMATE"
+    assert op.HalfSpaceOperator(op.Grid.centered(16, 2.0)).planner_effort == "FFTW_ESTIMATE"
+    monkeypatch.setenv("DHFIELD_FFTW_PLANNER", "fast")
+    with pytest.raises(ValueError, match="DHFIELD_FFTW_PLANNER"):
+        op.default_planner_effort()
+    with pytest.raises(ValueError, match="planner_effort must be one of"):
+        op.check_planner_effort("FFTW_FAST")

@@ -104,6 +104,8 @@ __all__ = [
     "check_threads",
     "default_threads",
     "free_cpu_count",
+    "default_planner_effort",
+    "check_planner_effort",
 ]
 
 #: Smallest number of cells per axis accepted by :class:`Grid`.
@@ -366,6 +368,59 @@ def free_cpu_count() -> int:
     return max(1, cpus - busy)
 
 
+def default_planner_effort() -> str:
+    """Return the FFTW planner flag used when none is given.
+
+    Returns
+    -------
+    str
+        ``$DHFIELD_FFTW_PLANNER`` if set and not blank, else ``"FFTW_MEASURE"``.
+        ``FFTW_MEASURE`` times candidate algorithms and keeps the fastest, so which
+        algorithm (and so the last bits of each transform) a run gets depends on the
+        machine's load while it plans; ``FFTW_ESTIMATE`` chooses without timing and is
+        reproducible from run to run on one machine.  The test suite plans with it.
+
+    Raises
+    ------
+    ValueError
+        Naming ``DHFIELD_FFTW_PLANNER`` if it is set to anything but one of the
+        planner flags ``FFTW_ESTIMATE``, ``FFTW_MEASURE``, ``FFTW_PATIENT``,
+        ``FFTW_EXHAUSTIVE``.
+    """
+    env = os.environ.get("DHFIELD_FFTW_PLANNER", "").strip()
+    if not env:
+        return "FFTW_MEASURE"
+    return check_planner_effort(env, "DHFIELD_FFTW_PLANNER (environment)")
+
+
+def check_planner_effort(value, name: str = "planner_effort") -> str:
+    """Check an FFTW planner flag.
+
+    Parameters
+    ----------
+    value : str or None
+        One of ``FFTW_ESTIMATE``, ``FFTW_MEASURE``, ``FFTW_PATIENT``, ``FFTW_EXHAUSTIVE``;
+        None for :func:`default_planner_effort`.
+    name : str, default "planner_effort"
+        The name the error message gives the value.
+
+    Returns
+    -------
+    str
+        The flag.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is not one of the flags.
+    """
+    if value is None:
+        return default_planner_effort()
+    if value not in _PLANNER_EFFORTS:
+        raise ValueError(f"{name} must be one of {', '.join(_PLANNER_EFFORTS)}; got {value!r}")
+    return value
+
+
 def check_threads(value, name: str = "threads") -> int:
     """Check an FFTW thread count.
 
@@ -473,8 +528,8 @@ class HalfSpaceOperator:
         (shape ``(nx/2, ny/2)``) of a field even in x and y; needs even nx, ny.
     threads : int, optional
         FFTW threads; default ``$DHFIELD_THREADS`` or 1.
-    planner_effort : str, default "FFTW_MEASURE"
-        FFTW planner flag.
+    planner_effort : str, optional
+        FFTW planner flag; default :func:`default_planner_effort`.
 
     Notes
     -----
@@ -492,12 +547,10 @@ class HalfSpaceOperator:
     xp = np
 
     def __init__(self, grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
-                 planner_effort="FFTW_MEASURE"):
+                 planner_effort=None):
         self.grid, self.reduced_modulus, self.symmetric, self.threads = _operator_arguments(
             grid, reduced_modulus, symmetric, threads)
-        if planner_effort not in _PLANNER_EFFORTS:
-            raise ValueError(f"planner_effort must be one of {_PLANNER_EFFORTS}; got {planner_effort!r}")
-        self.planner_effort = planner_effort
+        self.planner_effort = check_planner_effort(planner_effort)
         self._lock = threading.Lock()
         load_wisdom()
         self.input_shape, spectrum = _kernel_spectrum(self.grid, self.reduced_modulus, self.symmetric, self.threads)
@@ -684,7 +737,7 @@ def _cached_operator(grid, reduced_modulus, symmetric, threads, planner_effort, 
 
 
 def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=None,
-                 planner_effort="FFTW_MEASURE", backend=None):
+                 planner_effort=None, backend=None):
     """Return the cached operator for this grid (built on first use).
 
     Parameters
@@ -718,8 +771,7 @@ def get_operator(grid: Grid, reduced_modulus=1.0, *, symmetric=False, threads=No
     """
     threads = default_threads() if threads is None else check_threads(threads)
     e = _check_spacing("reduced_modulus", reduced_modulus)
-    if planner_effort not in _PLANNER_EFFORTS:
-        raise ValueError(f"planner_effort must be one of {_PLANNER_EFFORTS}; got {planner_effort!r}")
+    planner_effort = check_planner_effort(planner_effort)
     backend = default_backend() if backend is None else check_backend(backend)
     return _cached_operator(grid, e, bool(symmetric), threads, planner_effort, backend)
 
