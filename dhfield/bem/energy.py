@@ -64,7 +64,8 @@ from .laws import DugdaleLaw
 from .newton import (CONVERGED, DIVERGED_LINE_SEARCH, DIVERGED_MAX_IT, NewtonResult, SolverOptions,
                      _modulus, symbol_preconditioner)
 
-__all__ = ["RampPotential", "solve_state_energy", "energy", "PullOff", "pull_off_search"]
+__all__ = ["RampPotential", "solve_state_energy", "energy", "PullOff", "pull_off_search", "NestedPullOff",
+           "pull_off_nested"]
 
 
 class RampPotential:
@@ -443,7 +444,7 @@ class PullOff:
 
 
 def pull_off_search(problem, approach, guess=None, step=None, options=SolverOptions(), rtol=2e-5,
-                    max_states=25, log=None, solve=None):
+                    max_states=25, log=None, solve=None, max_substeps=0):
     """Locate the load-control pull-off: the zero of dW/d delta, by a safeguarded secant.
 
     Each state is solved by :func:`solve_state_energy`, warm-started from the nearest solved
@@ -475,6 +476,10 @@ def pull_off_search(problem, approach, guess=None, step=None, options=SolverOpti
     solve : callable, optional
         The state solve, ``solve(problem, delta, guess, options, precond)``; default
         :func:`solve_state_hybrid`.
+    max_substeps : int, default 0
+        A state that does not converge from its neighbour's tangent is retried after a state
+        half-way to that neighbour (recursively, up to this many halvings); the states
+        half-way join the search's states.
 
     Returns
     -------
@@ -488,15 +493,21 @@ def pull_off_search(problem, approach, guess=None, step=None, options=SolverOpti
     solved = []                       # (delta, state, slope, tangent)
     work = [0, 0]
 
-    def solve_at(d):
-        if solved:
-            d0, st0, _, t0_ = min(solved, key=lambda r: abs(r[0] - d))
+    def solve_at(d, depth=0):
+        conv = [r for r in solved if r[1].converged]
+        if conv:
+            d0, st0, _, t0_ = min(conv, key=lambda r: abs(r[0] - d))
             q0 = st0.traction + (d - d0) * t0_
         else:
-            q0 = guess
+            d0, q0 = None, guess
         st = (solve or solve_state_hybrid)(problem, d, q0, options, precond)
         work[0] += st.newton_iterations
         work[1] += st.krylov_iterations
+        if not st.converged and d0 is not None and depth < max_substeps:
+            # the tangent's start was too far: a state half-way first, then this one from its tangent
+            mid, _ = solve_at(0.5 * (d0 + d), depth + 1)
+            if mid.converged:
+                return solve_at(d, depth + 1)
         s, tang, kit = load_tangent(problem, st, options, precond) if st.converged else (float("nan"), None, 0)
         work[1] += kit
         solved.append((d, st, s, tang))
@@ -587,3 +598,113 @@ def solve_state_hybrid(problem, delta, guess=None, options=SolverOptions(), prec
                         a.newton_iterations + b.newton_iterations, a.krylov_iterations + b.krylov_iterations,
                         a.operator_calls + b.operator_calls, a.merit_history + b.merit_history,
                         time.perf_counter() - t0)
+
+
+@dataclass
+class NestedPullOff:
+    """The load-control pull-off located by nested iteration: one :class:`PullOff` per grid, coarsest first.
+
+    Parameters
+    ----------
+    levels : list of PullOff
+        The search on each searched grid, coarsest first; the last is the answer's.
+    first_state : NestedResult or None
+        The first state solved up the grids too coarse to search (None when there are none).
+    elapsed : float
+        Wall time over all levels [s].
+    """
+
+    levels: list
+    first_state: object
+    elapsed: float
+
+    @property
+    def result(self) -> PullOff:
+        """The finest level's search."""
+        return self.levels[-1]
+
+    @property
+    def converged(self) -> bool:
+        """True when the finest level's search converged."""
+        return self.result.converged
+
+    @property
+    def load(self) -> float:
+        """The minimum load on the finest grid [force]."""
+        return self.result.load
+
+
+def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOptions(), rtol=2e-5, coarse_rtol=1e-3,
+                    step_ratio=0.25, max_substeps=3, log=None, solve=None):
+    """Locate the load-control pull-off by nested iteration: the slope-zero search on each grid of a ladder.
+
+    A grid too coarse for the Dugdale edge (``edge_width_ratio > 1``: no stable discrete
+    edge, so no converged states and no slopes) serves only the first state: the state at
+    ``approach`` is solved up the ladder by :func:`dhfield.bem.newton.solve_state_nested`
+    from ``guess`` to the coarsest resolved grid.  There the slope-zero search
+    (:func:`pull_off_search`) starts; each finer grid's search starts at the coarser grid's
+    minimum, from its state prolonged (:func:`dhfield.bem.newton.prolong_state`), with the
+    first step shrunk by ``step_ratio``.
+
+    Parameters
+    ----------
+    problems : list of AdhesiveProblem
+        The ladder, coarsest first (:func:`dhfield.bem.newton.grid_ladder`).
+    approach : float
+        First approach [length].
+    guess : ndarray, optional
+        Traction on the coarsest working grid to start from.
+    step : float, optional
+        First step of the coarsest search [length] (as in :func:`pull_off_search`).
+    options : SolverOptions
+        Per-state options.
+    rtol : float, default 2e-5
+        Stopping tolerance of the finest search (as in :func:`pull_off_search`).
+    coarse_rtol : float, default 1e-3
+        Stopping tolerance of the coarser searches [-].
+    step_ratio : float, default 0.25
+        First step of a grid per first step of the grid below it [-].
+    max_substeps : int, default 3
+        As in :func:`pull_off_search`.
+    log : callable, optional
+        One line per state and per level.
+    solve : callable, optional
+        The state solve, ``solve(problem, delta, guess, options, precond, log)``; default
+        :func:`dhfield.bem.newton.solve_state`.
+
+    Returns
+    -------
+    NestedPullOff
+        Every searched level's result and the first state's levels; a search that does not
+        converge ends the ladder there.
+    """
+    from .newton import prolong_state, solve_state, solve_state_nested
+
+    t0 = time.perf_counter()
+    solve = solve or solve_state
+    first = next((j for j, p in enumerate(problems) if p.edge_width_ratio <= 1.0), len(problems) - 1)
+    d, q = float(approach), guess
+    start = None
+    if first > 0:
+        start = solve_state_nested(problems[:first + 1], d, guess, options, log=log, solve=solve)
+        q = start.state.traction
+    if step is None:
+        step = max(0.01 * abs(approach), problems[0].law.range)
+    levels = []
+    for j in range(first, len(problems)):
+        prob = problems[j]
+        if j > first:
+            q = prolong_state(levels[-1].state, problems[j - 1], prob, "traction")
+            d = levels[-1].approach
+            step *= step_ratio
+        last = j == len(problems) - 1
+        res = pull_off_search(prob, d, q, step, options, rtol if last else max(rtol, coarse_rtol), log=log,
+                              solve=solve, max_substeps=max_substeps)
+        levels.append(res)
+        if log is not None:
+            nx, ny = prob.grid.shape
+            log(f"level {nx}x{ny}: {res.reason} approach {res.approach:.8f} load {res.load:.8f} states {res.states} "
+                f"newton {res.newton_iterations} krylov {res.krylov_iterations} ({res.elapsed:.1f} s)")
+        if not res.converged:
+            break
+    return NestedPullOff(levels, start, time.perf_counter() - t0)
