@@ -132,3 +132,34 @@ def test_slope_zero_search_on_the_sphere_against_maugis_dugdale(sphere):
     w_star = res.load * P.sin_skew / (2 * math.pi)
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 1.0, control="load").W_star)
     assert abs(w_star / md - 1) < 5e-3
+
+
+def test_nested_solve_reaches_the_single_grid_state():
+    # the sphere at mu = 1 on 64^2 cells solved on 16^2 and 32^2 first (same domain, the traction prolonged):
+    # the finest level starts near its state and needs only a few Newton steps, and it lands on the same
+    # discrete state as the single-grid solve from the analytic start (loads within the tolerance's reach)
+    P = predicted_problem(beta0=1.0, mu=1.0, n=64)
+    ladder = newton.grid_ladder(P, 3, threads=1)
+    assert [p.grid.shape for p in ladder] == [(16, 16), (32, 32), (64, 64)]
+    nested = newton.solve_state_nested(ladder, P.pull_off_approach,
+                                       newton.cold_start(ladder[0], P.pull_off_approach, P.pull_off_zone))
+    single = newton.solve_state(ladder[-1], P.pull_off_approach,
+                                newton.cold_start(ladder[-1], P.pull_off_approach, P.pull_off_zone))
+    assert nested.converged and single.converged
+    assert [r.shape for r in nested.levels] == [(16, 16), (32, 32), (64, 64)]
+    assert nested.levels[-1].newton_iterations <= 8
+    assert nested.state.load == pytest.approx(single.load, rel=1e-7)
+    assert np.array_equal(nested.state.contact, single.contact)
+
+
+def test_prolongation_keeps_linear_fields_and_the_mean():
+    # cell-centred bilinear prolongation (weights 3/4, 1/4): a linear field stays linear inside the domain,
+    # and every coarse cell's four children average to the coarse value away from the outer edge
+    x = np.arange(6.0)[:, None] + 0.5
+    y = 2.0 * np.arange(4.0)[None, :] + 1.0
+    f = newton.prolong(x + y)
+    xf = (np.arange(12.0)[:, None] + 0.5) / 2.0
+    yf = 2.0 * (np.arange(8.0)[None, :] + 0.5) / 2.0
+    assert np.allclose(f[1:-1, 1:-1], (xf + yf)[1:-1, 1:-1])
+    c = f.reshape(6, 2, 4, 2).mean(axis=(1, 3))
+    assert np.allclose(c[1:-1, 1:-1], (x + y)[1:-1, 1:-1])
