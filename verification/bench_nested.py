@@ -51,7 +51,7 @@ def _problem(beta0, mu, n=None):
         return nondimensional_problem(beta0=beta0, mu=mu, n=n, ny=ny)
 
 
-def run(beta0, mu, n, levels, kind, log_path=None, coarsest="plain"):
+def run(beta0, mu, n, levels, kind, log_path=None, coarsest="plain", nonmonotone=1):
     """One run in this process; return a JSON-ready dict."""
     from dhfield.bem import energy, newton
 
@@ -69,25 +69,32 @@ def run(beta0, mu, n, levels, kind, log_path=None, coarsest="plain"):
            "edge_ratio": ladder[-1].edge_width_ratio}
     if kind == "state":
         first = newton.solve_state_smoothed if coarsest == "smoothed" else None
-        r = newton.solve_state_nested(ladder, P.pull_off_approach, q0, log=echo, coarsest_solve=first)
+        r = newton.solve_state_nested(ladder, P.pull_off_approach, q0, newton.SolverOptions(nonmonotone=nonmonotone),
+                                      log=echo, coarsest_solve=first)
         row["levels"] = [{"newton": v.newton_iterations, "gmres": v.krylov_iterations, "wall": v.elapsed,
                           "residual": v.residual, "contact": v.contact_cells, "reason": v.reason} for v in r.levels]
         row.update(converged=r.converged, load=r.state.load)
     else:
-        r = energy.pull_off_nested(ladder, P.pull_off_approach, q0, step=0.5 * P.approach_step, log=echo)
+        r = energy.pull_off_nested(ladder, P.pull_off_approach, q0, step=0.5 * P.approach_step,
+                                   options=newton.SolverOptions(nonmonotone=nonmonotone), log=echo,
+                                   first_solve=newton.solve_state_smoothed if coarsest == "smoothed" else None)
         scale = P.sin_skew / (2.0 * math.pi)        # Eq. (34)
-        pre = r.first_state.levels[:-1] if r.first_state is not None else []
+        pre = r.first_state.levels[:-1]
         row["levels"] = [{"newton": v.newton_iterations, "gmres": v.krylov_iterations, "wall": v.elapsed,
                           "states": 0, "reason": v.reason} for v in pre]
         row["levels"] += [{"newton": v.newton_iterations, "gmres": v.krylov_iterations, "wall": v.elapsed,
                            "states": v.states, "W_star": v.load * scale, "approach": v.approach,
                            "reason": v.reason} for v in r.levels]
-        if r.first_state is not None:      # the first searched grid's first state came up the ladder
+        if r.levels:                       # the first searched grid's first state came up the ladder
             v = r.first_state.levels[-1]
             row["levels"][len(pre)]["newton"] += v.newton_iterations
             row["levels"][len(pre)]["gmres"] += v.krylov_iterations
             row["levels"][len(pre)]["wall"] += v.elapsed
-        row.update(converged=r.converged, W_star=r.load * scale)
+        if not r.levels:
+            row["levels"].append({"newton": r.first_state.levels[-1].newton_iterations, "states": 0,
+                                  "gmres": r.first_state.levels[-1].krylov_iterations, "wall": r.first_state.elapsed,
+                                  "reason": r.first_state.state.reason})
+        row.update(converged=bool(r.levels) and r.converged, W_star=r.load * scale if r.levels else float("nan"))
     row["wall"] = time.perf_counter() - t0
     row["maxrss_gib"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2 ** 20
     return row
@@ -132,19 +139,20 @@ def main(argv=None) -> int:
     ap.add_argument("--coarsest", choices=("plain", "smoothed"), default="plain",
                     help="the coarsest level's solve: solve_state or solve_state_smoothed (its global phase)")
     ap.add_argument("--json", type=Path, help="write every row here")
+    ap.add_argument("--nonmonotone", type=int, default=1, help="SolverOptions.nonmonotone of every state")
     ap.add_argument("--child", nargs=4, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
         b, m, n, lv = args.child
         print(json.dumps(run(float(b), float(m), None if n == "None" else int(n), int(lv), args.kind, args.log,
-                             args.coarsest)))
+                             args.coarsest, args.nonmonotone)))
         return 0
     known = {c[0]: c for c in CASES}
     rows = []
     for name in args.cases:
         _, beta0, mu = known[name]
         for lv in args.levels:
-            cmd = [sys.executable, "-m", "verification.bench_nested", "--kind", args.kind, "--coarsest", args.coarsest,
+            cmd = [sys.executable, "-m", "verification.bench_nested", "--kind", args.kind, "--coarsest", args.coarsest, "--nonmonotone", str(args.nonmonotone),
                    "--child", repr(beta0), repr(mu), str(args.n), str(lv)] + (["--log", args.log] if args.log else [])
             try:
                 p = subprocess.run(cmd, stdout=subprocess.PIPE, text=True, timeout=args.timeout, cwd=ROOT)

@@ -608,15 +608,18 @@ class NestedPullOff:
     ----------
     levels : list of PullOff
         The search on each searched grid, coarsest first; the last is the answer's.
-    first_state : NestedResult or None
-        The first state solved up the grids too coarse to search (None when there are none).
+    first_state : NestedResult
+        The first state, solved up the grids too coarse to search to the first searched grid.
     elapsed : float
         Wall time over all levels [s].
+    complete : bool
+        The ladder reached its finest grid.
     """
 
     levels: list
     first_state: object
     elapsed: float
+    complete: bool = True
 
     @property
     def result(self) -> PullOff:
@@ -625,8 +628,8 @@ class NestedPullOff:
 
     @property
     def converged(self) -> bool:
-        """True when the finest level's search converged."""
-        return self.result.converged
+        """True when the ladder reached its finest grid and that grid's search converged."""
+        return self.complete and bool(self.levels) and self.result.converged
 
     @property
     def load(self) -> float:
@@ -635,13 +638,13 @@ class NestedPullOff:
 
 
 def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOptions(), rtol=2e-5, coarse_rtol=1e-3,
-                    step_ratio=0.25, max_substeps=3, log=None, solve=None):
+                    step_ratio=0.25, max_substeps=3, log=None, solve=None, first_solve=None):
     """Locate the load-control pull-off by nested iteration: the slope-zero search on each grid of a ladder.
 
     A grid too coarse for the Dugdale edge (``edge_width_ratio > 1``: no stable discrete
     edge, so no converged states and no slopes) serves only the first state: the state at
     ``approach`` is solved up the ladder by :func:`dhfield.bem.newton.solve_state_nested`
-    from ``guess`` to the coarsest resolved grid.  There the slope-zero search
+    from ``guess`` to the coarsest resolved grid (on that grid alone when it is the coarsest).  There the slope-zero search
     (:func:`pull_off_search`) starts; each finer grid's search starts at the coarser grid's
     minimum, from its state prolonged (:func:`dhfield.bem.newton.prolong_state`), with the
     first step shrunk by ``step_ratio``.
@@ -671,12 +674,15 @@ def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOpt
     solve : callable, optional
         The state solve, ``solve(problem, delta, guess, options, precond, log)``; default
         :func:`dhfield.bem.newton.solve_state`.
+    first_solve : callable, optional
+        The solve of the first state on the coarsest grid (the global phase, from ``guess``),
+        e.g. :func:`dhfield.bem.newton.solve_state_smoothed`; default ``solve``.
 
     Returns
     -------
     NestedPullOff
         Every searched level's result and the first state's levels; a search that does not
-        converge ends the ladder there.
+        converge ends the ladder there (as does a first state that does not converge).
     """
     from .newton import prolong_state, solve_state, solve_state_nested
 
@@ -684,13 +690,13 @@ def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOpt
     solve = solve or solve_state
     first = next((j for j, p in enumerate(problems) if p.edge_width_ratio <= 1.0), len(problems) - 1)
     d, q = float(approach), guess
-    start = None
-    if first > 0:
-        start = solve_state_nested(problems[:first + 1], d, guess, options, log=log, solve=solve)
-        q = start.state.traction
+    start = solve_state_nested(problems[:first + 1], d, guess, options, log=log, solve=solve, coarsest_solve=first_solve)
+    q = start.state.traction
+    levels = []
+    if not start.converged:
+        return NestedPullOff(levels, start, time.perf_counter() - t0, False)
     if step is None:
         step = max(0.01 * abs(approach), problems[0].law.range)
-    levels = []
     for j in range(first, len(problems)):
         prob = problems[j]
         if j > first:
@@ -707,4 +713,4 @@ def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOpt
                 f"newton {res.newton_iterations} krylov {res.krylov_iterations} ({res.elapsed:.1f} s)")
         if not res.converged:
             break
-    return NestedPullOff(levels, start, time.perf_counter() - t0)
+    return NestedPullOff(levels, start, time.perf_counter() - t0, len(levels) == len(problems) - first)
