@@ -51,7 +51,7 @@ def _problem(beta0, mu, n=None):
         return nondimensional_problem(beta0=beta0, mu=mu, n=n, ny=ny)
 
 
-def run(beta0, mu, n, levels, kind, log_path=None, coarsest="plain", nonmonotone=1):
+def run(beta0, mu, n, levels, kind, log_path=None, coarsest="plain", nonmonotone=4):
     """One run in this process; return a JSON-ready dict."""
     from dhfield.bem import energy, newton
 
@@ -139,7 +139,7 @@ def main(argv=None) -> int:
     ap.add_argument("--coarsest", choices=("plain", "smoothed"), default="plain",
                     help="the coarsest level's solve: solve_state or solve_state_smoothed (its global phase)")
     ap.add_argument("--json", type=Path, help="write every row here")
-    ap.add_argument("--nonmonotone", type=int, default=1, help="SolverOptions.nonmonotone of every state")
+    ap.add_argument("--nonmonotone", type=int, default=4, help="SolverOptions.nonmonotone of every state")
     ap.add_argument("--child", nargs=4, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
@@ -152,7 +152,8 @@ def main(argv=None) -> int:
     for name in args.cases:
         _, beta0, mu = known[name]
         for lv in args.levels:
-            cmd = [sys.executable, "-m", "verification.bench_nested", "--kind", args.kind, "--coarsest", args.coarsest, "--nonmonotone", str(args.nonmonotone),
+            cmd = [sys.executable, "-m", "verification.bench_nested", "--kind", args.kind, "--coarsest", args.coarsest,
+                   "--nonmonotone", str(args.nonmonotone),
                    "--child", repr(beta0), repr(mu), str(args.n), str(lv)] + (["--log", args.log] if args.log else [])
             try:
                 p = subprocess.run(cmd, stdout=subprocess.PIPE, text=True, timeout=args.timeout, cwd=ROOT)

@@ -637,7 +637,7 @@ class NestedPullOff:
         return self.result.load
 
 
-def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOptions(), rtol=2e-5, coarse_rtol=1e-3,
+def pull_off_nested(problems, approach, guess=None, step=None, options=None, rtol=2e-5, coarse_rtol=1e-3,
                     step_ratio=0.25, max_substeps=3, log=None, solve=None, first_solve=None):
     """Locate the load-control pull-off by nested iteration: the slope-zero search on each grid of a ladder.
 
@@ -659,8 +659,8 @@ def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOpt
         Traction on the coarsest working grid to start from.
     step : float, optional
         First step of the coarsest search [length] (as in :func:`pull_off_search`).
-    options : SolverOptions
-        Per-state options.
+    options : SolverOptions, optional
+        Per-state options; default :data:`dhfield.bem.newton.NESTED_OPTIONS`.
     rtol : float, default 2e-5
         Stopping tolerance of the finest search (as in :func:`pull_off_search`).
     coarse_rtol : float, default 1e-3
@@ -684,9 +684,10 @@ def pull_off_nested(problems, approach, guess=None, step=None, options=SolverOpt
         Every searched level's result and the first state's levels; a search that does not
         converge ends the ladder there (as does a first state that does not converge).
     """
-    from .newton import prolong_state, solve_state, solve_state_nested
+    from .newton import NESTED_OPTIONS, prolong_state, solve_state, solve_state_nested
 
     t0 = time.perf_counter()
+    options = NESTED_OPTIONS if options is None else options
     solve = solve or solve_state
     first = next((j for j, p in enumerate(problems) if p.edge_width_ratio <= 1.0), len(problems) - 1)
     d, q = float(approach), guess

@@ -76,7 +76,7 @@ from .operator import influence_coefficients
 __all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
            "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start",
            "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE", "DIVERGED_STALL",
-           "prolong", "prolong_state", "grid_ladder", "LevelReport", "NestedResult", "solve_state_nested"]
+           "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport", "NestedResult", "solve_state_nested"]
 
 #: Stop reasons (PETSc-style: positive converged, negative diverged).
 CONVERGED = "converged_residual"
@@ -1030,7 +1030,13 @@ class NestedResult:
         return sum(r.krylov_iterations for r in self.levels)
 
 
-def solve_state_nested(problems, delta, guess=None, options=SolverOptions(), coarse_tol=1e-6, mode="traction",
+#: Options of :func:`solve_state_nested` and :func:`dhfield.bem.energy.pull_off_nested`: the merit may rise
+#: over up to 4 steps (a prolonged start sits near the state, where full semismooth steps that cross
+#: the ramp's kinks raise ``||F||`` before it falls).
+NESTED_OPTIONS = SolverOptions(nonmonotone=4)
+
+
+def solve_state_nested(problems, delta, guess=None, options=NESTED_OPTIONS, coarse_tol=1e-6, mode="traction",
                        log=None, solve=None, coarsest_solve=None, coarse_stall=3, coarse_max_newton=10, require_coarse=False):
     """Solve one adhesive state by nested iteration: coarsest grid first, each state prolonged to start the next.
 
@@ -1043,7 +1049,7 @@ def solve_state_nested(problems, delta, guess=None, options=SolverOptions(), coa
         Approach [length].
     guess : ndarray, optional
         Traction on the coarsest working grid to start from (e.g. :func:`cold_start`).
-    options : SolverOptions
+    options : SolverOptions, default NESTED_OPTIONS
         Options of the finest level.
     coarse_tol : float, default 1e-6
         Tolerance of the coarser levels (their states are starts) [-].
