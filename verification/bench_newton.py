@@ -69,16 +69,32 @@ def run_case(beta0, mu, n=None, ny=None, samples=7, method="smoothed", first_sta
     c0 = time.process_time()
     q0 = newton.cold_start(prob, P.pull_off_approach, P.pull_off_zone)
     lines = []
+
+    def echo(line):
+        lines.append(line)
+        print(line, file=sys.stderr, flush=True)
+
     if first_state:
-        solve = newton.solve_state if method == "plain" else newton.solve_state_smoothed
-        st = solve(prob, P.pull_off_approach, q0, newton.SolverOptions(max_newton=first_state), log=lines.append)
+        if method == "hybrid":
+            from dhfield.bem import energy
+
+            solve = energy.solve_state_hybrid
+        else:
+            solve = newton.solve_state if method == "plain" else newton.solve_state_smoothed
+        st = solve(prob, P.pull_off_approach, q0, newton.SolverOptions(max_newton=first_state), log=echo)
         return {"method": method, "beta0": beta0, "mu": mu, "nx": P.grid.nx, "ny": P.grid.ny,
                 "edge_ratio": prob.edge_width_ratio, "first_state": True, "converged": st.converged,
                 "reason": st.reason, "residual": st.residual, "newton": st.newton_iterations,
                 "gmres": st.krylov_iterations, "wall": time.perf_counter() - t0, "cpu": time.process_time() - c0,
                 "maxrss_gib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2 ** 20, "log": lines}
-    res = newton.load_minimum(prob, P.pull_off_approach, q0, half_window=0.5 * P.approach_step, samples=samples,
-                              log=lines.append, method=method)
+    if method == "hybrid":
+        from dhfield.bem import energy
+
+        res = energy.pull_off_search(prob, P.pull_off_approach, q0, step=0.5 * P.approach_step, log=echo)
+        res.load_error = 0.0
+    else:
+        res = newton.load_minimum(prob, P.pull_off_approach, q0, half_window=0.5 * P.approach_step,
+                                  samples=samples, log=lines.append, method=method)
     scale = P.sin_skew / (2.0 * math.pi)        # Eq. (34)
     return {
         "method": method, "beta0": beta0, "mu": mu, "nx": P.grid.nx, "ny": P.grid.ny, "edge_ratio": prob.edge_width_ratio,
@@ -130,11 +146,13 @@ def _child(args):
 def _spawn(kind, beta0, mu, timeout):
     cmd = [sys.executable, "-m", "verification.bench_newton", "--child", kind, repr(beta0), repr(mu)]
     try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=ROOT)
+        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=None if os.environ.get("BENCH_STREAM") else subprocess.PIPE,
+                           text=True, timeout=timeout, cwd=ROOT)
     except subprocess.TimeoutExpired:
         return {"error": f"over {timeout} s"}
     if p.returncode:
-        return {"error": p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"exit {p.returncode}"}
+        err = (p.stderr or "").strip()
+        return {"error": err.splitlines()[-1] if err else f"exit {p.returncode}"}
     return json.loads(p.stdout.strip().splitlines()[-1])
 
 
@@ -142,8 +160,9 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="*", default=[c[0] for c in CASES], help="case names (default: all)")
     ap.add_argument("--today", action="store_true", help="also run today's route side by side")
-    ap.add_argument("--method", choices=("plain", "smoothed"), default="smoothed",
-                    help="the Newton variant (dhfield.bem.newton.solve_state or solve_state_smoothed)")
+    ap.add_argument("--method", choices=("plain", "smoothed", "hybrid"), default="smoothed",
+                    help="the state solve: dhfield.bem.newton.solve_state (plain), solve_state_smoothed, or "
+                         "dhfield.bem.energy.solve_state_hybrid with the slope-zero search (hybrid)")
     ap.add_argument("--timeout", type=float, default=3600.0, help="per case and route [s]")
     ap.add_argument("--json", type=Path, help="write every row here")
     ap.add_argument("--first-state", type=int, default=0, metavar="N",

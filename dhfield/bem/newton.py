@@ -64,7 +64,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, asdict
+from dataclasses import dataclass, asdict, replace
 
 import numpy as np
 import scipy.fft
@@ -75,13 +75,15 @@ from .operator import influence_coefficients
 
 __all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
            "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start",
-           "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE"]
+           "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE", "DIVERGED_STALL",
+           "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport", "NestedResult", "solve_state_nested"]
 
 #: Stop reasons (PETSc-style: positive converged, negative diverged).
 CONVERGED = "converged_residual"
 DIVERGED_LINE_SEARCH = "diverged_line_search"
 DIVERGED_MAX_IT = "diverged_max_it"
 DIVERGED_LINEAR_SOLVE = "diverged_linear_solve"
+DIVERGED_STALL = "diverged_stall"
 
 
 @dataclass(frozen=True)
@@ -106,6 +108,9 @@ class SolverOptions:
         Range of the trust-region (Levenberg-Marquardt) damping of the non-contact rows: a
         rejected step is retried with the damping multiplied by 4 from ``4 min_damping``; beyond
         ``max_damping`` the last step is backtracked instead [-].
+    stall : int, default 0
+        Stop (:data:`DIVERGED_STALL`) when the merit fell by less than 1e-3 relative over the
+        last this many accepted steps (0: never).
     """
 
     tol: float = 1e-8
@@ -115,6 +120,7 @@ class SolverOptions:
     nonmonotone: int = 1
     min_damping: float = 0.25
     max_damping: float = 1e4
+    stall: int = 0
 
     def as_dict(self) -> dict:
         """Return the options as a mapping (recorded with every result).
@@ -369,6 +375,9 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
             reason = CONVERGED
             break
         if it >= options.max_newton:
+            break
+        if options.stall and len(history) > options.stall and history[-1] > (1.0 - 1e-3) * history[-1 - options.stall]:
+            reason = DIVERGED_STALL
             break
         it += 1
         contact = c * h < p
@@ -840,3 +849,254 @@ def solve_state_smoothed(problem, delta, guess=None, options=SolverOptions(), pr
     p = q + law.stress(h)
     load = float(np.sum(q)) * problem.weight
     return NewtonResult(q, h, c * h < p, load, res, reason, it, krylov, calls, history, time.perf_counter() - t0)
+
+
+# ---------------------------------------------------------------------------------------------
+# Nested iteration (grid sequencing): a state solved on grids 2x, 4x, ... coarser over the same
+# domain, each level's state prolonged to start the next.
+
+def _prolong_axis(a, axis):
+    """Cell-centred linear interpolation onto twice the cells along ``axis`` (weights 3/4, 1/4).
+
+    The neighbour beyond either end is the end cell itself: the even mirror at the symmetry
+    plane of a quadrant, and a constant extension at the domain's outer edge.
+    """
+    a = np.moveaxis(np.asarray(a, dtype=float), axis, 0)
+    pad = np.concatenate([a[:1], a, a[-1:]], axis=0)
+    out = np.empty((2 * a.shape[0],) + a.shape[1:])
+    out[0::2] = 0.75 * pad[1:-1] + 0.25 * pad[:-2]
+    out[1::2] = 0.75 * pad[1:-1] + 0.25 * pad[2:]
+    return np.moveaxis(out, 0, axis)
+
+
+def prolong(field):
+    """Bilinear prolongation of a working-grid field onto the grid with twice the cells per axis.
+
+    Parameters
+    ----------
+    field : ndarray, shape (mx, my)
+        Cell-centred field on a working grid (full grid, or its even-even quadrant, whose
+        first row and column border the symmetry planes).
+
+    Returns
+    -------
+    ndarray, shape (2 mx, 2 my)
+        The field on the working grid of the same domain with half the cell size.
+    """
+    return _prolong_axis(_prolong_axis(field, 0), 1)
+
+
+def prolong_state(state, coarse, fine, mode="gap"):
+    """A converged state of ``coarse`` carried onto ``fine`` (same domain, twice the cells per axis) as a start.
+
+    Parameters
+    ----------
+    state : NewtonResult
+        A state of ``coarse``.
+    coarse, fine : AdhesiveProblem
+        The two problems (the fine grid's cells are the coarse cells halved per axis).
+    mode : {"gap", "traction"}, default "gap"
+        ``"gap"``: the repulsive pressure ``p = q + sigma(h)`` and the gap ``h`` are
+        prolonged (each clipped at zero), and the traction is ``p - sigma_f(h)`` with the
+        fine grid's own law (its narrower ramp), so the cohesive zone ends where the
+        prolonged gap reaches h0.  ``"traction"``: the traction q itself is prolonged.
+
+    Returns
+    -------
+    ndarray
+        The traction on the fine working grid [stress].
+
+    Raises
+    ------
+    ValueError
+        If the fine working grid is not twice the coarse one per axis.
+    """
+    shape = tuple(2 * s for s in coarse.z.shape)
+    if tuple(fine.z.shape) != shape:
+        raise ValueError(f"the fine working grid must be {shape} (twice the coarse per axis); got {fine.z.shape}")
+    if mode == "traction":
+        return prolong(state.traction)
+    if mode != "gap":
+        raise ValueError(f"mode must be 'gap' or 'traction'; got {mode!r}")
+    lc = _Law(coarse.law, coarse.min_spread)
+    lf = _Law(fine.law, fine.min_spread)
+    p = np.maximum(state.traction + lc.stress(state.gap), 0.0)
+    h = np.maximum(prolong(state.gap), 0.0)
+    return np.maximum(prolong(p), 0.0) - lf.stress(h)
+
+
+def grid_ladder(problem, levels, threads=1, relaxed_edge=False):
+    """The problems of a nested solve: ``problem`` on its grid and on grids 2, 4, ... times coarser.
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The target (finest) problem (:func:`dhfield.bem.pull_off.paper_problem`).
+    levels : int
+        Grids in the ladder (1: the target only); every coarser grid halves both cell counts.
+    threads : int
+        FFTW threads of the operators.
+    relaxed_edge : bool, default False
+        The coarser grids' Dugdale edge as wide as their discrete stability wants, beyond its cap
+        2 h0 (``AdhesiveProblem(relaxed_edge=True)``): their states are starts, not answers.  The
+        target grid keeps its own edge.
+
+    Returns
+    -------
+    list of AdhesiveProblem
+        Coarsest first; the last is ``problem.adhesive_problem(threads)``.
+
+    Raises
+    ------
+    ValueError
+        If a coarser grid's cell counts are not even integers.
+    """
+    from .solver import AdhesiveProblem
+
+    levels = int(levels)
+    nx, ny = problem.grid.nx, problem.grid.ny
+    k = 2 ** (levels - 1)
+    if levels < 1 or nx % (2 * k) or ny % (2 * k):
+        raise ValueError(f"{levels} levels need nx, ny divisible by {2 * k}; got {nx} x {ny}")
+    out = []
+    for j in range(levels - 1, 0, -1):
+        nd = problem.coarser(nx // 2 ** j)
+        out.append(AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, threads, 1.0, relaxed_edge=relaxed_edge,
+                                   widest_edge=nd.widest_edge))
+    out.append(problem.adhesive_problem(threads))
+    return out
+
+
+@dataclass
+class LevelReport:
+    """The work and outcome of one level of a nested solve.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        Cells of the full grid (nx, ny).
+    newton_iterations, krylov_iterations : int
+        Work on this level.
+    elapsed : float
+        Wall time of this level, its prolongation included [s].
+    residual : float
+        Final ``max |min(h/h0, p/sigma0)|`` [-].
+    contact_cells : int
+        Contact cells of the final state (working grid).
+    reason : str
+        Why this level's solve stopped.
+    """
+
+    shape: tuple
+    newton_iterations: int
+    krylov_iterations: int
+    elapsed: float
+    residual: float
+    contact_cells: int
+    reason: str
+
+
+@dataclass
+class NestedResult:
+    """A state solved by nested iteration: the finest level's state and every level's report.
+
+    Parameters
+    ----------
+    state : NewtonResult
+        The state on the finest grid (its work counts the finest level only).
+    levels : list of LevelReport
+        Coarsest first.
+    elapsed : float
+        Wall time over all levels [s].
+    """
+
+    state: NewtonResult
+    levels: list
+    elapsed: float
+
+    @property
+    def converged(self) -> bool:
+        """True when the finest level converged."""
+        return self.state.converged
+
+    @property
+    def newton_iterations(self) -> int:
+        """Newton iterations over all levels."""
+        return sum(r.newton_iterations for r in self.levels)
+
+    @property
+    def krylov_iterations(self) -> int:
+        """GMRES iterations over all levels."""
+        return sum(r.krylov_iterations for r in self.levels)
+
+
+#: Options of :func:`solve_state_nested` and :func:`dhfield.bem.energy.pull_off_nested`: the merit may rise
+#: over up to 4 steps (a prolonged start sits near the state, where full semismooth steps that cross
+#: the ramp's kinks raise ``||F||`` before it falls).
+NESTED_OPTIONS = SolverOptions(nonmonotone=4)
+
+
+def solve_state_nested(problems, delta, guess=None, options=NESTED_OPTIONS, coarse_tol=1e-6, mode="traction",
+                       log=None, solve=None, coarsest_solve=None, coarse_stall=3, coarse_max_newton=10, require_coarse=False):
+    """Solve one adhesive state by nested iteration: coarsest grid first, each state prolonged to start the next.
+
+    Parameters
+    ----------
+    problems : list of AdhesiveProblem
+        The ladder, coarsest first, on one domain, each grid twice the previous per axis
+        (:func:`grid_ladder`).
+    delta : float
+        Approach [length].
+    guess : ndarray, optional
+        Traction on the coarsest working grid to start from (e.g. :func:`cold_start`).
+    options : SolverOptions, default NESTED_OPTIONS
+        Options of the finest level.
+    coarse_tol : float, default 1e-6
+        Tolerance of the coarser levels (their states are starts) [-].
+    mode : {"traction", "gap"}
+        Prolongation (:func:`prolong_state`).
+    log : callable, optional
+        One line per Newton iteration and per level.
+    solve : callable, optional
+        The state solve of the finer levels, ``solve(problem, delta, guess, options, precond, log)``;
+        default :func:`solve_state`.
+    coarsest_solve : callable, optional
+        The state solve of the coarsest level (the global phase, from ``guess``); default ``solve``.
+    coarse_stall : int, default 3
+        ``SolverOptions.stall`` of the coarser levels: a coarse level stops once its merit stalls.
+    coarse_max_newton : int, default 10
+        Cap on Newton iterations of each coarser level but the coarsest (whose solve is the
+        global phase): a prolonged start has its contact set in place after a few steps.
+    require_coarse : bool, default False
+        End the ladder at a coarser level that did not converge.  Otherwise its last iterate is
+        prolonged all the same: a grid too coarse for its edge (``edge_width_ratio > 1``) has no
+        stable discrete edge, and its Newton iteration stalls on the edge cells once the contact
+        set is placed, which is what the finer level needs.
+
+    Returns
+    -------
+    NestedResult
+        The finest state (flagged by its reason when it did not converge).
+    """
+    t0 = time.perf_counter()
+    solve = solve or solve_state
+    reports = []
+    q = guess
+    st = None
+    for j, prob in enumerate(problems):
+        t1 = time.perf_counter()
+        if j > 0:
+            q = prolong_state(st, problems[j - 1], prob, mode)
+        last = j == len(problems) - 1
+        opts = options if last else replace(options, tol=max(coarse_tol, options.tol), stall=coarse_stall,
+                                            max_newton=options.max_newton if j == 0 else coarse_max_newton)
+        st = ((coarsest_solve or solve) if j == 0 else solve)(prob, delta, q, opts, None, log)
+        nx, ny = prob.grid.shape
+        reports.append(LevelReport((nx, ny), st.newton_iterations, st.krylov_iterations, time.perf_counter() - t1,
+                                   st.residual, int(np.count_nonzero(st.contact)), st.reason))
+        if log is not None:
+            log(f"level {nx}x{ny}: {st.reason} newton {st.newton_iterations} gmres {st.krylov_iterations} "
+                f"residual {st.residual:.2e} contact {reports[-1].contact_cells} ({reports[-1].elapsed:.1f} s)")
+        if not st.converged and (last or require_coarse):
+            break
+    return NestedResult(st, reports, time.perf_counter() - t0)
