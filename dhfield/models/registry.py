@@ -12,6 +12,7 @@ import numpy as np
 from . import (dh_circular, dh_elliptic, dh_elliptic_closure as closure, dmt, jkr, jkr_elliptic,
                jkr_elliptic_energy, maugis_dugdale, md_elliptic)
 from ..core.geometry import sin_skew_angle
+from ..core.schema import LOAD_CURVE_KEYS
 
 __all__ = ["MODELS", "MODEL_NAMES", "CURVE_MODEL_NAMES", "CIRCULAR_MODEL_NAMES", "DEFAULT_MODEL",
            "RECOMMENDED_MODEL", "PAPER_MODEL", "ABSENT_KEYS", "CURVES"]
