@@ -537,7 +537,7 @@ class GridPlan:
         """
         if not math.isfinite(self.analytic_W_star):
             return f"no analytic W* exists for {self.route()} at this case"
-        return (f"use the analytic W* = {self.analytic_W_star:.4f} under {self.route()} (elliptic_transition: "
+        return (f"use the analytic W* = {self.analytic_W_star:.4f} under {self.route()} (md-elliptic: "
                 "GVG x the sphere's MD/JKR transition) instead")
 
 
@@ -1428,7 +1428,7 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
         return res
     w = float(elliptic_transition.pull_off_nondimensional(prob.beta0, prob.mu).W_star)
     return replace(res, note="; ".join(filter(None, (res.note, f"use the analytic W* = {w:.4f} "
-                                                                "(elliptic_transition) instead"))))
+                                                                "(md-elliptic) instead"))))
 
 
 def _scaled_cells(ny, n, n_next) -> int:

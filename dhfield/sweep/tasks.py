@@ -298,7 +298,7 @@ def _refuse_unaffordable(beta0, mu, grid_level, grid) -> None:
     if why:
         raise RuntimeError(f"beta0={beta0:g}, mu={mu:g}, grid_level {grid_level}: {grid['nx']} x {grid['ny']} cells "
                            f"need {' and '.join(why)}; use the analytic W* = {grid['analytic_W_star']:.4f} "
-                           "(elliptic_transition) instead")
+                           "(md-elliptic) instead")
 
 
 def _git_commit() -> str:
