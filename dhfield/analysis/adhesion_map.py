@@ -55,7 +55,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _truth_table, compare, model_error
-from ..models import md_elliptic as elliptic_transition
+from ..models import md_elliptic
 from ..core.validation import TABOR_RANGE, check_count, check_interval, check_tabor
 from ..core.geometry import ellipticity_from_skew_angle, sin_skew_angle
 
@@ -296,7 +296,7 @@ def recommended_pull_off(beta0, mu):
     ``(beta0, mu, *, control)`` signature, and ``["W_star"]`` reads a dict or a
     :class:`dhfield.core.records.PullOff` alike.
     """
-    return np.asarray(elliptic_transition.pull_off_nondimensional(beta0=beta0, mu=mu, control="load")["W_star"],
+    return np.asarray(md_elliptic.pull_off_nondimensional(beta0=beta0, mu=mu, control="load")["W_star"],
                       dtype=float)
 
 

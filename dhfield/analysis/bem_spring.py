@@ -641,13 +641,13 @@ def _cycle_margin(mu, beta0, k_positive):
     zone of a soft spring).
     """
     from . import spring as compliance
-    from ..models import dh_elliptic as model
+    from ..models import dh_elliptic
     from .bem_start import unloading_start
     from ..bem.pull_off import DOMAIN_MARGIN
 
     rec = compliance.loading_cycle("md", mu=mu, beta0=1.0, machine_stiffness=float(np.min(k_positive)))
     a_in = max(float(rec["jump_in_a_star"]), 1e-3)
-    c_land = float(np.asarray(model.load_curve(mu=mu, beta0=beta0, a_star=[a_in]).c_star)[0])
+    c_land = float(np.asarray(dh_elliptic.load_curve(mu=mu, beta0=beta0, a_star=[a_in]).c_star)[0])
     if not np.isfinite(c_land):
         c_land = 1.5 * a_in
     c_start = unloading_start(mu=mu, beta0=beta0).half_width_x / DOMAIN_MARGIN

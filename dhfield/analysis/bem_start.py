@@ -42,7 +42,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..models import dh_elliptic as model
+from ..models import dh_elliptic
 from ..core.memory import memory_limit
 from ..core.validation import check_count, check_ellipticity, check_positive
 from ..bem.laws import law_from_name
@@ -123,10 +123,10 @@ def _check_margin(margin) -> float:
 
 def _start(mu, beta0, n_steps, margin) -> UnloadingStart:
     """:func:`unloading_start` of checked inputs."""
-    po = model.pull_off(mu=mu, beta0=beta0)
-    pod = model.pull_off(mu=mu, beta0=beta0, control="displacement")
+    po = dh_elliptic.pull_off(mu=mu, beta0=beta0)
+    pod = dh_elliptic.pull_off(mu=mu, beta0=beta0, control="displacement")
     a_start = 1.1 * float(po.a_star) + 0.15
-    cur = model.load_curve(mu=mu, beta0=beta0, a_star=[a_start])
+    cur = dh_elliptic.load_curve(mu=mu, beta0=beta0, a_star=[a_start])
     c_start = float(cur.c_star[0])
     d_max = float(cur.delta_star[0])
     d_end = float(pod.delta_star) - 0.2 * (d_max - float(pod.delta_star))
@@ -139,7 +139,7 @@ def _start(mu, beta0, n_steps, margin) -> UnloadingStart:
         half_x = max(half_x, SLENDER_DOMAIN_MARGIN * start[1][0])
         half_y = max(half_y, SLENDER_DOMAIN_MARGIN * start[1][1])
     if start is None:
-        at_po = model.load_curve(mu=mu, beta0=beta0, a_star=[max(float(po.a_star), 1e-3 * a_start)])
+        at_po = dh_elliptic.load_curve(mu=mu, beta0=beta0, a_star=[max(float(po.a_star), 1e-3 * a_start)])
         start = (float(po.delta_star), (float(at_po.c_star[0]), float(at_po.d_star[0])))
     return UnloadingStart(half_x, half_y, d_max, (d_max - d_end) / int(n_steps), start[0], start[1])
 
@@ -650,7 +650,7 @@ def plan_grid(*, beta0, mu, n=None, law="dugdale", margin=DOMAIN_MARGIN,
 
     shaped = beta0 < SHAPED_CELLS_MAX_BETA0
     if shaped:                  # the contact at pull-off must be resolved along both axes
-        po = model.pull_off(mu=mu, beta0=beta0)
+        po = dh_elliptic.pull_off(mu=mu, beta0=beta0)
         contact_dx, contact_dy = (float(po.a_star) / AUTO_CONTACT_CELLS, float(po.b_star) / AUTO_CONTACT_CELLS)
 
     def cells_y(k):
@@ -714,7 +714,7 @@ def analytic_pull_off(*, beta0, mu, control="load", machine_stiffness=None) -> f
     ValueError
         If ``control`` is unknown, or ``machine_stiffness`` is missing or out of range for it.
     """
-    from ..models import md_elliptic as elliptic_transition
+    from ..models import md_elliptic
 
     if control not in ("load", "displacement", "spring"):
         raise ValueError(f"control must be one of ('load', 'displacement', 'spring') (loading mode); got {control!r}")
@@ -728,7 +728,7 @@ def analytic_pull_off(*, beta0, mu, control="load", machine_stiffness=None) -> f
         k = float(check_machine_stiffness("machine_stiffness", machine_stiffness))
         w = pull_off_under_spring(DEFAULT_MODEL, beta0=beta0, mu=mu, machine_stiffness=k)["W_star"]
     else:
-        w = elliptic_transition.pull_off_nondimensional(beta0, mu, control=control).W_star
+        w = md_elliptic.pull_off_nondimensional(beta0, mu, control=control).W_star
     w = float(np.asarray(w, float))
     return w if math.isfinite(w) else float("nan")
 
@@ -1408,7 +1408,7 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     (:class:`dhfield.bem.pull_off.CoarseRouteWarmStart`, where :func:`coarse_route_start_possible`:
     a refined level).
     """
-    from ..models import md_elliptic as elliptic_transition
+    from ..models import md_elliptic
     from ..bem.pull_off import CoarseRouteWarmStart, LowerMuWarmStart, predicted_path, pull_off_result
 
     if start not in PREDICTED_STARTS:
@@ -1426,7 +1426,7 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
         res = replace(res, note="; ".join(filter(None, (WIDEST_EDGE_NOTE, res.note))))
     if res.converged:
         return res
-    w = float(elliptic_transition.pull_off_nondimensional(prob.beta0, prob.mu).W_star)
+    w = float(md_elliptic.pull_off_nondimensional(prob.beta0, prob.mu).W_star)
     return replace(res, note="; ".join(filter(None, (res.note, f"use the analytic W* = {w:.4f} "
                                                                 "(md-elliptic) instead"))))
 

@@ -88,7 +88,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 from scipy.special import roots_legendre
 
-from ..models import dh_elliptic_rays as _rays, hertz, dh_elliptic_periphery as periphery
+from ..models import dh_elliptic_rays as _rays, hertz, dh_elliptic_periphery
 from ..core.validation import check_finite, check_positive
 from ..core.elliptic import ellipsoid_integrals
 from ..core._docstrings import fill_doc
@@ -215,7 +215,7 @@ def eq30_area(semi_major, adhesive_semi_major, beta, scaling, effective_radius=1
     :func:`dhfield.models.dh_elliptic_adhesion.graded_rule`, which makes the integrand analytic
     (sigma_r ~ (r_cd - r)^(-1/2), h_r ~ (r - r_ab)^(1/2)).
     """
-    a, c, beta, v, r, e, amp_a, amp_b = periphery.field_parameters(
+    a, c, beta, v, r, e, amp_a, amp_b = dh_elliptic_periphery.field_parameters(
         semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus)
     n = _check_nodes(n_theta)
     out = _area_general(a, beta * a, c, beta * c, amp_a, amp_b, e, n)
@@ -230,7 +230,7 @@ def _check_nodes(n):
 
 def _boundary_general(a, b, c, d, gap_amplitude, stress_amplitude, reduced_modulus=1.0, n_edge=64):
     th = np.array([0.0, 0.5 * np.pi])
-    prof = periphery.periphery_two_ellipses(a, b, c, d, gap_amplitude, stress_amplitude, th, reduced_modulus)
+    prof = dh_elliptic_periphery.periphery_two_ellipses(a, b, c, d, gap_amplitude, stress_amplitude, th, reduced_modulus)
     major = 4.0 * prof.work_of_adhesion[..., 0]
     minor = -4.0 * prof.work_of_adhesion[..., 1]
     # The two curved edges, evaluated rather than assumed: sigma dh along r_ab(theta)
@@ -283,7 +283,7 @@ def eq30_boundary(semi_major, adhesive_semi_major, beta, scaling, effective_radi
     .. math:: I_{30} = 4\\oint_{\\partial D}\\sigma\\,dh
               = 4\\Delta\\gamma(0) - 4\\Delta\\gamma(\\pi/2) + 0 + 0
     """
-    a, c, beta, v, r, e, amp_a, amp_b = periphery.field_parameters(
+    a, c, beta, v, r, e, amp_a, amp_b = dh_elliptic_periphery.field_parameters(
         semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus)
     out = _boundary_general(a, beta * a, c, beta * c, amp_a, amp_b, e)
     return Eq30Boundary(*(q if np.ndim(q) else q[()] for q in (out.major_axis, out.minor_axis, out.inner_edge,
@@ -405,7 +405,7 @@ def eq30_boundary_from_grid(x, y, gap, semi_major, adhesive_semi_major, beta, sc
         I_30 [J m^-2].
     """
     state = (semi_major, adhesive_semi_major, beta, scaling, effective_radius, reduced_modulus)
-    prof = periphery.periphery_from_gap_grid(x, y, gap, state, [0.0, 0.5 * np.pi], **kwargs)
+    prof = dh_elliptic_periphery.periphery_from_gap_grid(x, y, gap, state, [0.0, 0.5 * np.pi], **kwargs)
     return float(4.0 * (prof.work_of_adhesion[0] - prof.work_of_adhesion[1]))
 
 
@@ -429,9 +429,9 @@ def periphery_work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, e
         :math:`\\overline{\\Delta\\gamma}` (module docstring) [J m^-2].
     """
     th = np.linspace(0.0, 0.5 * np.pi, _check_nodes(n_theta))
-    prof = periphery.periphery(semi_major, adhesive_semi_major, beta, scaling, th, effective_radius,
+    prof = dh_elliptic_periphery.periphery(semi_major, adhesive_semi_major, beta, scaling, th, effective_radius,
                                reduced_modulus)
-    out = periphery.ray_average(prof.work_of_adhesion, prof.theta, prof.contact_radius, weight)
+    out = dh_elliptic_periphery.ray_average(prof.work_of_adhesion, prof.theta, prof.contact_radius, weight)
     return out if np.ndim(out) else out[()]
 
 
@@ -453,7 +453,7 @@ def eq30_cartesian_from_state(state):
         I_30 [J m^-2].
     """
     g = state.grid
-    return eq30_cartesian(g.x, g.y, periphery.adhesive_traction(state), state.gap)
+    return eq30_cartesian(g.x, g.y, dh_elliptic_periphery.adhesive_traction(state), state.gap)
 
 
 def eq30_boundary_from_state(state, **kwargs):
@@ -476,5 +476,5 @@ def eq30_boundary_from_state(state, **kwargs):
     float
         I_30 [J m^-2].
     """
-    prof = periphery.periphery_from_state(state, [0.0, 0.5 * np.pi], **kwargs)
+    prof = dh_elliptic_periphery.periphery_from_state(state, [0.0, 0.5 * np.pi], **kwargs)
     return float(4.0 * (prof.work_of_adhesion[0] - prof.work_of_adhesion[1]))

@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import bem
-from ..models import dh_elliptic_fields as double_hertz, hertz
+from ..models import dh_elliptic_fields, hertz
 from ..core.validation import check_ellipticity, check_positive
 
 __all__ = ["SAMPLINGS", "hemisphere_volume", "ellipsoid_cell_average", "ellipsoid_pressure", "hertz_pressure",
@@ -218,7 +218,7 @@ def dh_pressure(grid: bem.Grid, semi_major, adhesive_semi_major, beta, scaling, 
     --------
     dhfield.models.dh_elliptic_fields.pressure : The same field at arbitrary points.
     """
-    a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = dh_elliptic_fields.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                                         effective_radius, reduced_modulus)
     po_ab = hertz.max_pressure(a, beta, r, e)  # Eq. (8)
     po_cd = hertz.max_pressure(c, beta, r, e)  # Eq. (20)

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import bem
-from ..models import dh_elliptic_fields as double_hertz, hertz, dh_elliptic as model
+from ..models import dh_elliptic_fields, hertz, dh_elliptic
 from ..core.memory import check_memory
 from ..core.validation import check_ellipticity, check_positive
 from .field_metrics import compare, region_masks
@@ -222,7 +222,7 @@ def dh_case(n, semi_major, adhesive_semi_major, beta, scaling, *, half_width=Non
     FieldCase
         All fields of the case.
     """
-    a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = dh_elliptic_fields.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                                         effective_radius, reduced_modulus)
     a, c, beta, v, r, e = (float(t) for t in (a, c, beta, v, r, e))
     L = 1.5 * c if half_width is None else half_width
@@ -231,13 +231,13 @@ def dh_case(n, semi_major, adhesive_semi_major, beta, scaling, *, half_width=Non
     x, y = grid.mesh()
     p = dh_pressure(grid, a, c, beta, v, r, e, sampling)  # Eq. (22)
     w_num = numerical_displacement(p, grid, e, symmetric=True, threads=threads)
-    w_ana = double_hertz.surface_displacement(x, y, a, c, beta, v, r, e)  # Eq. (26)
-    delta = float(double_hertz.approach(a, c, beta, v, r, e))
+    w_ana = dh_elliptic_fields.surface_displacement(x, y, a, c, beta, v, r, e)  # Eq. (26)
+    delta = float(dh_elliptic_fields.approach(a, c, beta, v, r, e))
     z = _shape_z(x, y, beta, r)
     params = dict(model="double_hertz", n=grid.nx, ny=grid.ny, semi_major=a, adhesive_semi_major=c,
                   beta=beta, scaling=v, half_width=float(L), effective_radius=r, reduced_modulus=e,
                   sampling=sampling, symmetric=True)
-    return FieldCase(grid, params, p, double_hertz.pressure(x, y, a, c, beta, v, r, e), w_ana, w_num,
+    return FieldCase(grid, params, p, dh_elliptic_fields.pressure(x, y, a, c, beta, v, r, e), w_ana, w_num,
                      z - delta + w_ana, z - delta + w_num,  # Eq. (27)
                      region_masks(x, y, a, beta, c), delta)
 
@@ -263,7 +263,7 @@ def adhesive_state(a_star, *, beta0, mu):
     v : float
         Scaling factor [-].
     """
-    c, v = model.solve_adhesive_axis(np.atleast_1d(np.asarray(a_star, dtype=float)), mu=mu, beta0=beta0)
+    c, v = dh_elliptic.solve_adhesive_axis(np.atleast_1d(np.asarray(a_star, dtype=float)), mu=mu, beta0=beta0)
     return float(np.ravel(c)[0]), float(np.ravel(v)[0])
 
 
@@ -331,6 +331,6 @@ def analytic_fields(case: FieldCase, x, y) -> dict:
                 "displacement": hertz.surface_displacement(x, y, a, beta * a, po, e),  # Eq. (13)
                 "gap": hertz.gap(x, y, a, beta, r, e)}
     c, v = prm["adhesive_semi_major"], prm["scaling"]
-    return {"pressure": double_hertz.pressure(x, y, a, c, beta, v, r, e),  # Eq. (22)
-            "displacement": double_hertz.surface_displacement(x, y, a, c, beta, v, r, e),  # Eq. (26)
-            "gap": double_hertz.gap(x, y, a, c, beta, v, r, e)}  # Eq. (27)
+    return {"pressure": dh_elliptic_fields.pressure(x, y, a, c, beta, v, r, e),  # Eq. (22)
+            "displacement": dh_elliptic_fields.surface_displacement(x, y, a, c, beta, v, r, e),  # Eq. (26)
+            "gap": dh_elliptic_fields.gap(x, y, a, c, beta, v, r, e)}  # Eq. (27)

@@ -41,7 +41,7 @@ import numpy as np
 from scipy import optimize
 
 from ..core import units as units
-from ..models import dh_elliptic_closure as closure
+from ..models import dh_elliptic_closure
 from . import compare, dimensional
 from ..core.validation import TABOR_RANGE, check_finite, check_positive
 
@@ -369,7 +369,7 @@ def fit_mu_range(model) -> tuple:
         The smallest and largest mu [-].
     """
     if model in _CLOSURE_MODELS:
-        lo, hi = closure.CLOSURE_MU_RANGE
+        lo, hi = dh_elliptic_closure.CLOSURE_MU_RANGE
         return (max(lo, FIT_MU_RANGE[0]), min(hi, FIT_MU_RANGE[1]))
     return FIT_MU_RANGE
 

@@ -28,8 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..models import dh_elliptic_closure as closure, md_elliptic as elliptic_transition
-from ..models import dh_elliptic as paper_model
+from ..models import dh_elliptic_closure, md_elliptic
+from ..models import dh_elliptic
 from ..core.validation import check_grid_point
 
 __all__ = ["VALIDITY_RANGES", "WARNING_THRESHOLD", "JKR_PROXY_MU", "validity_message", "validity_table",
@@ -68,7 +68,7 @@ _INF = float("inf")
 BEM_VERIFIED_BETA0 = (0.1, 1.0)
 BEM_VERIFIED_MU = (0.1, 10.0)
 #: Largest mu of the closures: the grid of the table above, capped by the closures' own accepted domain.
-_CLOSURE_MU_MAX = min(30.0, closure.CLOSURE_MU_RANGE[1])
+_CLOSURE_MU_MAX = min(30.0, dh_elliptic_closure.CLOSURE_MU_RANGE[1])
 #: name -> ((beta0_min, beta0_max), (mu_min, mu_max)) where each model is validated; outside, its
 #: results are still computed and carry a ``warning``.  Provenance:
 #:
@@ -181,7 +181,7 @@ def join_warnings(*messages):
 #: Kept for compatibility (unused by the warnings, whose reference is the recommended model): the
 #: smallest mu at which elliptical JKR stands in for the two-axis closure.
 JKR_PROXY_MU = 10.0
-_REFERENCE = elliptic_transition.MODEL_NAME
+_REFERENCE = md_elliptic.MODEL_NAME
 
 
 def _departure_warning(w_paper, w_ref, reason=""):
@@ -222,8 +222,8 @@ def closure_departure(mu, beta0, control="load"):
     """
 
     beta0, mu = check_grid_point(beta0, mu, control)
-    w = paper_model.pull_off_nondimensional(beta0, mu, control=control).W_star
-    ref = closure.pull_off_two_axis(beta0, mu, control=control).W_star
+    w = dh_elliptic.pull_off_nondimensional(beta0, mu, control=control).W_star
+    ref = dh_elliptic_closure.pull_off_two_axis(beta0, mu, control=control).W_star
     out = np.asarray(w, float) / np.asarray(ref, float) - 1.0
     return out[()] if out.ndim == 0 else out
 
@@ -253,7 +253,7 @@ def departure_warning(w_paper, mu, beta0, control, reference_w_star=None):
     reason = ""
     if reference_w_star is None:
         try:
-            reference_w_star = elliptic_transition.pull_off_nondimensional(beta0, mu, control=control).W_star
+            reference_w_star = md_elliptic.pull_off_nondimensional(beta0, mu, control=control).W_star
         except (ValueError, RuntimeError) as exc:  # never take the paper's result down with the check
             reference_w_star, reason = np.nan, f" ({exc})"
     return _departure_warning(w_paper, np.broadcast_to(reference_w_star, np.shape(w_paper)), reason)

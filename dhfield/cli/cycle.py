@@ -49,10 +49,10 @@ def _print_record(rec, as_json) -> None:
     """The cycle record as one JSON object with its units, or one ``key value unit`` line per entry."""
     import math
 
-    from ..analysis import spring as compliance
+    from ..analysis import spring
     from ..io.cycle import round_to_uncertainty
 
-    units = {k: _BEM_UNITS.get(k, compliance.CYCLE_UNITS.get(k, "1")) for k in rec
+    units = {k: _BEM_UNITS.get(k, spring.CYCLE_UNITS.get(k, "1")) for k in rec
              if k not in ("model", "geometry", "jump_in_rule", "warning")}
     if as_json:
         print_json({**rec, "units": units})
@@ -80,7 +80,7 @@ _UNCERTAINTY_PARTS = ("energy_lost_error_star", "energy_lost_convention_star", "
 
 
 def run(args) -> int:
-    from ..analysis import spring as compliance
+    from ..analysis import spring
     from ..io import validate_output_path
 
     if args.plot is not None:
@@ -89,17 +89,17 @@ def run(args) -> int:
 
         figure_paths(args.plot)  # the .svg and .pdf beside it checked before computing
     if args.machine_stiffness is not None:
-        compliance.check_machine_stiffness("machine-stiffness", args.machine_stiffness)
+        spring.check_machine_stiffness("machine-stiffness", args.machine_stiffness)
     params = contact_parameters_from_args(args)
     if args.model == "bem":
         return _run_bem(args, params)
     if args.n is not None or args.threads is not None:
         raise UsageError("--n and --threads go with --model bem")
     if params is None:
-        rec = compliance.loading_cycle(args.model, mu=args.mu, beta0=args.beta0, machine_stiffness=args.machine_stiffness)
+        rec = spring.loading_cycle(args.model, mu=args.mu, beta0=args.beta0, machine_stiffness=args.machine_stiffness)
         k_star, mu, beta0 = args.machine_stiffness, args.mu, args.beta0
     else:
-        rec = compliance.loading_cycle_si(params, args.machine_stiffness, model=args.model)
+        rec = spring.loading_cycle_si(params, args.machine_stiffness, model=args.model)
         k_star, mu, beta0 = (None if args.machine_stiffness is None else rec["machine_stiffness_star"],
                              params.mu, params.beta0)
     print_warning(rec)
@@ -107,7 +107,7 @@ def run(args) -> int:
     if args.plot is not None:
         from ..io.cycle import write_cycle_plot
 
-        data = compliance.cycle_path(args.model, mu=mu, beta0=beta0, machine_stiffness=k_star)
+        data = spring.cycle_path(args.model, mu=mu, beta0=beta0, machine_stiffness=k_star)
         data["record"].update(rec)
         if params is None:
             write_cycle_plot(data, args.plot)

@@ -34,7 +34,7 @@ import functools
 import numpy as np
 from scipy.special import roots_legendre
 
-from . import dh_elliptic_fields as double_hertz, hertz
+from . import dh_elliptic_fields, hertz
 from ..core.validation import check_finite
 from ..core.elliptic import ellipsoid_integrals
 from ..core._docstrings import fill_doc
@@ -203,7 +203,7 @@ def work_of_adhesion(semi_major, adhesive_semi_major, beta, scaling, theta=0.0, 
     At theta_p = 0 this is Eq. (31).  For beta = 1 it equals the closed form of
     Greenwood & Johnson (1998), v (1+v) 2E*/(3 pi R^2) (c-a)^2 (c+2a).
     """
-    a, c, beta, v, r_eff, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r_eff, e = dh_elliptic_fields.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                                             effective_radius, reduced_modulus)
     theta = check_finite("theta", theta, "rad")
     a, c, beta, v, theta, r_eff, e = np.broadcast_arrays(a, c, beta, v, theta, r_eff, e)

@@ -66,7 +66,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 from scipy.optimize import elementwise
 
-from . import hertz, dh_elliptic as model, dh_elliptic_periphery as periphery
+from . import hertz, dh_elliptic, dh_elliptic_periphery
 from ..core.validation import as_circle, check_contact_size_star, check_control, check_interval
 from ..core.elliptic import ellipsoid_integrals
 from ..core.geometry import ellipticity_from_radius_ratio, radius_ratio, sin_skew_angle
@@ -292,13 +292,13 @@ def rays_for(beta):
 
 def _spread_from_state(a, c, beta, v, n_theta=N_THETA, n_law=129):
     th = np.linspace(0.0, 0.5 * np.pi, int(n_theta))
-    prof = periphery.periphery(a, c, beta, v, th)
+    prof = dh_elliptic_periphery.periphery(a, c, beta, v, th)
     w = prof.work_of_adhesion
-    law = periphery.cohesive_law(a, c, beta, v, th, n_points=n_law)
+    law = dh_elliptic_periphery.cohesive_law(a, c, beta, v, th, n_points=n_law)
     return EqualBetaSpread(
         work_ratio=w[..., -1] / w[..., 0],
         work_spread=(w.max(axis=-1) - w.min(axis=-1)) / np.mean(w, axis=-1),
-        mean_work=periphery.ray_average(w, th, prof.contact_radius, "area"),
+        mean_work=dh_elliptic_periphery.ray_average(w, th, prof.contact_radius, "area"),
         law_spread=law_spread(law),
         law_sup_spread=law_spread(law, "sup"),
         separation_ratio=prof.edge_separation[..., -1] / prof.edge_separation[..., 0],
@@ -326,7 +326,7 @@ def equal_beta_spread(*, beta0, mu, control="load", n_theta=N_THETA):
         With Delta gamma(0) = 1 (Eq. 31) at pull-off, ``work_ratio`` is
         Delta gamma(pi/2) itself.
     """
-    po = model.pull_off(mu=mu, beta0=beta0, control=control)
+    po = dh_elliptic.pull_off(mu=mu, beta0=beta0, control=control)
     a = np.where(np.asarray(po.a_star) > 0, po.a_star, 1e-9 * np.asarray(po.c_star))
     return _spread_from_state(a, po.c_star, po.ellipticity, po.v, n_theta)
 
@@ -345,7 +345,7 @@ def _two_field_state(closure, mu, beta0, a, b, c, d, amp_a, amp_b):
     j1c = ellipsoid_integrals(0.0, c, d)[0]
     w_star = sn / 3.0 * (amp_a * a * b - amp_b * c * d)  # Eq. (25) -> Eq. (36)
     delta = 0.5 * (amp_a * a * b * j1a - amp_b * c * d * j1c)  # Eq. (14a) for both fields
-    prof = periphery.periphery_two_ellipses(a, b, c, d, amp_a, amp_b, np.array([0.0, 0.5 * np.pi]))
+    prof = dh_elliptic_periphery.periphery_two_ellipses(a, b, c, d, amp_a, amp_b, np.array([0.0, 0.5 * np.pi]))
     return ClosureState(closure, *np.broadcast_arrays(mu, beta0, a, b, c, d, amp_a, amp_b, w_star, delta,
                                                       prof.work_of_adhesion[..., 0],
                                                       prof.work_of_adhesion[..., 1],
@@ -376,8 +376,8 @@ def _ray_average_log_residual(log_s, a, mu, beta, weight, n_theta):
     po_cd = hertz.max_pressure(c, beta, checked=False)  # Eq. (20)
     v = mu / (po_cd * s / c)  # Eq. (24) with sigma0 = mu: mu = v Po_cd sqrt(1 - a^2/c^2)
     th = np.linspace(0.0, 0.5 * np.pi, n_theta)
-    prof = periphery.periphery_two_ellipses(a, beta * a, c, beta * c, po_ab, po_cd, th)  # v-free J(theta)
-    mean = periphery.ray_average(prof.work_of_adhesion, th, prof.contact_radius, weight)
+    prof = dh_elliptic_periphery.periphery_two_ellipses(a, beta * a, c, beta * c, po_ab, po_cd, th)  # v-free J(theta)
+    mean = dh_elliptic_periphery.ray_average(prof.work_of_adhesion, th, prof.contact_radius, weight)
     return np.log(v) + np.log1p(v) + np.log(mean)  # log of the mean Delta gamma, target 0
 
 
@@ -422,7 +422,7 @@ def solve_ray_average(a_star, *, beta0, mu, weight="area", n_theta=None):
 def _solve_ray_average(a, mu, beta0, *, weight="area", n_theta=None):
     """:func:`solve_ray_average` on validated, broadcast inputs."""
     n_theta = rays_for(beta0) if n_theta is None else int(n_theta)
-    c0, _ = model.adhesive_axis_state(a, beta0, mu)
+    c0, _ = dh_elliptic.adhesive_axis_state(a, beta0, mu)
     log_s0 = np.log(np.sqrt(np.asarray(c0) ** 2 - a * a))
     args = (a, mu, beta0)
 
@@ -470,7 +470,7 @@ def _two_axis_residual(a, log_c, log_d, mu, r1, r2):
     b, c, d, amp_a, amp_b = _two_axis_fields(a, log_c, log_d, mu, r1, r2)
     safe = np.isfinite(b)
     fill = (lambda q, f: np.where(safe, q, f))
-    prof = periphery.periphery_two_ellipses(fill(a, 1.0), fill(b, 0.5), fill(c, 2.0), fill(d, 1.5),
+    prof = dh_elliptic_periphery.periphery_two_ellipses(fill(a, 1.0), fill(b, 0.5), fill(c, 2.0), fill(d, 1.5),
                                             fill(amp_a, 1.0), fill(amp_b, 1.0), np.array([0.0, 0.5 * np.pi]))
     w = prof.work_of_adhesion
     r = np.log(np.where(safe[..., None], w, np.nan))
@@ -509,7 +509,7 @@ def _solve_two_axis(a, mu, beta0):
     """:func:`solve_two_axis` on validated, broadcast inputs."""
     shape = a.shape
     a, mu, beta0 = (np.atleast_1d(q).ravel() for q in (a, mu, beta0))
-    c0, _ = model.adhesive_axis_state(a, beta0, mu)
+    c0, _ = dh_elliptic.adhesive_axis_state(a, beta0, mu)
     r1, r2, _ = _geometry(beta0)  # once per solve: the residual is evaluated ~10 times per Newton step
     u = np.stack([np.log(c0), np.log(beta0 * c0)], axis=-1).astype(float)
     u = np.array(np.broadcast_to(u, a.shape + (2,)))
@@ -558,7 +558,7 @@ def _solve_two_axis(a, mu, beta0):
 # --------------------------------------------------------------------------- pull-off
 def _paper_state(a_star, mu, beta0):
     a, mu, beta0 = np.broadcast_arrays(a_star, mu, beta0)
-    c, v = model.adhesive_axis_state(a, beta0, mu)
+    c, v = dh_elliptic.adhesive_axis_state(a, beta0, mu)
     c = np.asarray(c, float)
     v = np.asarray(v, float)
     return _two_field_state("paper", mu, beta0, a, beta0 * a, c, beta0 * c,

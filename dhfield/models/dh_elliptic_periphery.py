@@ -69,7 +69,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import dh_elliptic_fields as double_hertz, hertz
+from . import dh_elliptic_fields, hertz
 from ..core.validation import check_ellipticity, check_finite, check_positive
 from .dh_elliptic_rays import edge_radius as _edge_radius, ray_geometry as _rays, ray_nodes as _ray_nodes
 from ..core.elliptic import ellipsoid_integrals
@@ -383,7 +383,7 @@ def field_parameters(semi_major, adhesive_semi_major, beta, scaling, effective_r
 
     with the Hertz peak pressures of Eqs. (8) and (20).
     """
-    a, c, beta, v, r, e = double_hertz.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
+    a, c, beta, v, r, e = dh_elliptic_fields.check_parameters(semi_major, adhesive_semi_major, beta, scaling,
                                                         effective_radius, reduced_modulus)
     po_ab = hertz.max_pressure(a, beta, r, e)  # Eq. (8)
     po_cd = hertz.max_pressure(c, beta, r, e)  # Eq. (20)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import (dh_circular, dh_elliptic, dh_elliptic_closure as closure, dmt, jkr, jkr_elliptic,
+from . import (dh_circular, dh_elliptic, dh_elliptic_closure, dmt, jkr, jkr_elliptic,
                jkr_elliptic_energy, maugis_dugdale, md_elliptic)
 from ..core.geometry import sin_skew_angle
 from ..core.schema import LOAD_CURVE_KEYS
@@ -42,8 +42,8 @@ def _dh_elliptic_jkr_beta(beta0, mu, *, control="load"):
 MODELS = {
     "md-elliptic": md_elliptic.pull_off_nondimensional,
     "dh-elliptic": dh_elliptic.pull_off_nondimensional,
-    "dh-elliptic-two-axis": closure.pull_off_two_axis,
-    "dh-elliptic-ray-average": closure.pull_off_ray_average,
+    "dh-elliptic-two-axis": dh_elliptic_closure.pull_off_two_axis,
+    "dh-elliptic-ray-average": dh_elliptic_closure.pull_off_ray_average,
     "dh-elliptic-jkr-beta": _dh_elliptic_jkr_beta,
     "dh-circular": dh_circular.pull_off_nondimensional,
     "jkr": jkr.pull_off_nondimensional,
@@ -122,8 +122,8 @@ def _curve_recommended(a, mu, beta0):
 CURVES = {
     "md-elliptic": _curve_recommended,
     "dh-elliptic": _curve_paper,
-    "dh-elliptic-two-axis": _curve_closure(closure.solve_two_axis),
-    "dh-elliptic-ray-average": _curve_closure(closure.solve_ray_average),
+    "dh-elliptic-two-axis": _curve_closure(dh_elliptic_closure.solve_two_axis),
+    "dh-elliptic-ray-average": _curve_closure(dh_elliptic_closure.solve_ray_average),
     "dh-circular": _curve_circle(dh_circular, True),
     "jkr": _curve_circle(jkr, False),
     "dmt": _curve_circle(dmt, False),
