@@ -163,3 +163,25 @@ def test_prolongation_keeps_linear_fields_and_the_mean():
     assert np.allclose(f[1:-1, 1:-1], (xf + yf)[1:-1, 1:-1])
     c = f.reshape(6, 2, 4, 2).mean(axis=(1, 3))
     assert np.allclose(c[1:-1, 1:-1], (x + y)[1:-1, 1:-1])
+
+
+def test_fgmres_with_a_fixed_preconditioner_solves_the_system():
+    # flexible GMRES with a fixed preconditioner is right-preconditioned GMRES, restarts included
+    rng = np.random.default_rng(3)
+    A = np.eye(60) * 4.0 + rng.standard_normal((60, 60)) * 0.3
+    b = rng.standard_normal(60)
+    d = 1.0 / np.diag(A)
+    hist = []
+    x, its, info = newton.fgmres(lambda v: A @ v, lambda v: d * v, b, 1e-10, 500, restart=7, history=hist)
+    assert info == 0 and its == len(hist)
+    assert np.linalg.norm(A @ x - b) <= 1e-9 * np.linalg.norm(b)
+
+
+def test_inner_cg_contact_preconditioner_reaches_the_same_state(sphere):
+    # SolverOptions.contact_inner (CG on K_AA inside a flexible GMRES) changes the path, not the state
+    P, prob, q0 = sphere
+    ref = newton.solve_state(prob, P.pull_off_approach, q0)
+    st = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(contact_inner=3))
+    assert ref.converged and st.converged
+    assert np.array_equal(st.contact, ref.contact)
+    assert st.load == pytest.approx(ref.load, rel=1e-7)
