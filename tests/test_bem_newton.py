@@ -185,3 +185,26 @@ def test_inner_cg_contact_preconditioner_reaches_the_same_state(sphere):
     assert ref.converged and st.converged
     assert np.array_equal(st.contact, ref.contact)
     assert st.load == pytest.approx(ref.load, rel=1e-7)
+
+
+def test_floored_symbol_reaches_the_same_state(sphere):
+    # SolverOptions.symbol_floor changes the contact rows' preconditioner, not the state
+    P, prob, q0 = sphere
+    ref = newton.solve_state(prob, P.pull_off_approach, q0)
+    st = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(symbol_floor=True))
+    assert ref.converged and st.converged
+    assert np.array_equal(st.contact, ref.contact)
+    assert st.load == pytest.approx(ref.load, rel=1e-7)
+
+
+def test_floored_symbol_is_positive_on_oblong_cells():
+    # on cells that are not square the truncated kernel's spectrum dips below zero; the floored
+    # inverse symbol is then bounded (a field of the zero-x-frequency line is not amplified ~1e12)
+    P = predicted_problem(beta0=0.4826, mu=10.0, n=320)
+    prob = P.adhesive_problem(threads=1)
+    assert prob.grid.dx != pytest.approx(prob.grid.dy, rel=0.1)
+    v = np.zeros(prob.z.shape)
+    v[0, :] = np.cos(np.pi * (np.arange(v.shape[1]) + 0.5) * 0.95)     # high frequency along y only
+    plain = newton.symbol_preconditioner(prob.grid, prob.symmetric)(v)
+    floored = newton.symbol_preconditioner(prob.grid, prob.symmetric, floor=True)(v)
+    assert np.abs(floored).max() < 1e-3 * np.abs(plain).max()

@@ -5,7 +5,8 @@ For a saved converged state (``verification.save_state``) this builds, at that s
 edge cells (:class:`dhfield.bem.newton._Jacobian`, undamped), and solves each by flexible GMRES
 (restart 200; with a fixed preconditioner it is GMRES) right-preconditioned on the contact rows by
 ``--inner k``: 0 the inverse symbol (today's), k > 0 k iterations of CG on ``K_AA`` preconditioned
-by the inverse symbol (``SolverOptions.contact_inner``).  It prints the iterations to the relative
+by the inverse symbol (``SolverOptions.contact_inner``); ``--floor 1``: the symbol floored at its highest
+frequencies' value (``SolverOptions.symbol_floor``).  It prints the iterations to the relative
 residuals 1e-2, 1e-4, 1e-6, the operator applications (K; the symbol's FFTs cost about the same)
 and the wall time.  Right-hand sides: ``rand`` (standard normal, seed 0) and ``slope`` (the
 load-slope system dq/d delta of :func:`dhfield.bem.newton.load_slope`).
@@ -14,6 +15,7 @@ Usage::
 
     python -m verification.save_state 1.0 5 320 3 /tmp/sph5.npz
     python -m verification.bench_contact_precond /tmp/sph5.npz --inner 0 3 10
+    python -m verification.bench_contact_precond /tmp/mu10.npz --inner 0 --floor 0 1 --rhs rand
 """
 from __future__ import annotations
 
@@ -38,6 +40,7 @@ def main(argv=None) -> int:
     ap.add_argument("--inner", nargs="*", type=int, default=[0, 3, 10])
     ap.add_argument("--rhs", nargs="*", default=["rand", "slope"], choices=("rand", "slope"))
     ap.add_argument("--systems", nargs="*", default=["contact", "jacobian"], choices=("contact", "jacobian"))
+    ap.add_argument("--floor", nargs="*", type=int, default=[0], help="symbol_preconditioner(floor=...) 0/1")
     ap.add_argument("--maxiter", type=int, default=3000)
     args = ap.parse_args(argv)
     from dhfield.bem import newton
@@ -57,13 +60,15 @@ def main(argv=None) -> int:
         contact = c * h < p
         slope = law.slope(h)
         edge = (~contact) & (slope > 0.0)
-        pre = newton.symbol_preconditioner(prob.grid, prob.symmetric, newton._modulus(prob))
+        pres = {f: newton.symbol_preconditioner(prob.grid, prob.symmetric, newton._modulus(prob), floor=bool(f))
+                for f in args.floor}
         name = f"b{beta0:g} mu{mu:g} {prob.grid.nx}^2"
         print(f"# {name}: residual {res:.1e}, contact {int(contact.sum())}, edge {int(edge.sum())}", flush=True)
         for system in args.systems:
             e = edge if system == "jacobian" else np.zeros_like(edge)
             for rhs_kind in args.rhs:
-                for k in args.inner:
+                for k, f in [(k, f) for f in args.floor for k in args.inner]:
+                    pre = pres[f]
                     jac = newton._Jacobian(prob.op, contact, e, slope, pre, gap_scale=c, inner=k)
                     if rhs_kind == "rand":
                         b = np.random.default_rng(0).standard_normal(jac.idx.size)
@@ -77,7 +82,7 @@ def main(argv=None) -> int:
                     true = float(np.linalg.norm(b - jac.matvec(x)) / np.linalg.norm(b))
                     hist = np.array(hist)
                     at = [str(int(np.argmax(hist <= t)) + 1) if np.any(hist <= t) else ">" + str(its) for t in TOLS]
-                    label = "symbol" if k == 0 else f"cg{k}"
+                    label = ("symbol" if k == 0 else f"cg{k}") + ("+floor" if f else "")
                     print(f"{name:<22} {system:<9} {rhs_kind:<6} {label:<10} {at[0]:>8} {at[1]:>6} {at[2]:>6} "
                           f"{calls:>8} {wall:>7.1f} {true:>9.1e}", flush=True)
     return 0

@@ -4,6 +4,7 @@ Usage::
 
     python -m verification.save_state 0.4826 10 1280 3 /tmp/state.npz
     python -m verification.save_state 1.0 5 320 3 /tmp/sph5_cg3.npz 3   # SolverOptions.contact_inner = 3
+    python -m verification.save_state 0.4826 10 1280 3 /tmp/mu10_floor.npz 0 1   # symbol_floor = True
 """
 from __future__ import annotations
 
@@ -24,6 +25,7 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     beta0, mu, n, levels, path = float(argv[0]), float(argv[1]), int(argv[2]), int(argv[3]), argv[4]
     inner = int(argv[5]) if len(argv) > 5 else 0
+    floor = bool(int(argv[6])) if len(argv) > 6 else False
     from dhfield.bem import newton
 
     P = _problem(beta0, mu, n)
@@ -31,7 +33,8 @@ def main(argv=None) -> int:
     print(f"grid {P.grid.nx}x{P.grid.ny} edge ratio {ladder[-1].edge_width_ratio:.3f}", flush=True)
     q0 = newton.cold_start(ladder[0], P.pull_off_approach, P.pull_off_zone)
     t0 = time.perf_counter()
-    r = newton.solve_state_nested(ladder, P.pull_off_approach, q0, newton.SolverOptions(nonmonotone=4, contact_inner=inner),
+    opts = newton.SolverOptions(nonmonotone=4, contact_inner=inner, symbol_floor=floor)
+    r = newton.solve_state_nested(ladder, P.pull_off_approach, q0, opts,
                                   log=lambda s: print(s, flush=True))
     st = r.state
     print(f"{st.reason} newton {st.newton_iterations} gmres {st.krylov_iterations} load {st.load:.8f} "

@@ -76,7 +76,8 @@ from .operator import influence_coefficients
 __all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
            "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start",
            "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE", "DIVERGED_STALL",
-           "fgmres", "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport", "NestedResult", "solve_state_nested"]
+           "fgmres", "contact_cg", "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport",
+           "NestedResult", "solve_state_nested"]
 
 #: Stop reasons (PETSc-style: positive converged, negative diverged).
 CONVERGED = "converged_residual"
@@ -116,6 +117,9 @@ class SolverOptions:
         (:func:`symbol_preconditioner`); k > 0 applies k iterations of conjugate gradients on
         the contact block ``K_AA`` itself, preconditioned by the inverse symbol, and the outer
         Krylov solver is the flexible GMRES (:func:`fgmres`).
+    symbol_floor : bool, default False
+        The inverse symbol with its spectrum floored at the highest frequencies' value
+        (``symbol_preconditioner(floor=True)``), when the solve builds it.
     """
 
     tol: float = 1e-8
@@ -127,6 +131,7 @@ class SolverOptions:
     max_damping: float = 1e4
     stall: int = 0
     contact_inner: int = 0
+    symbol_floor: bool = False
 
     def as_dict(self) -> dict:
         """Return the options as a mapping (recorded with every result).
@@ -210,7 +215,7 @@ class _Law:
         return -self.law.stress_slope(np.maximum(h, 0.0))
 
 
-def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
+def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor=False):
     """The inverse of the DC-FFT operator's own symbol, applied to a working-grid field.
 
     The operator is ``crop o T^-1 o diag(S) o T o pad`` with T the DFT (full grid) or the
@@ -229,6 +234,13 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
         E* [stress].
     workers : int
         Workers of scipy.fft.
+    floor : bool, default False
+        Raise the symbol to its smallest positive value on the highest frequencies (the row
+        ``nx - 1`` and the column ``ny - 1`` of the DCT-I spectrum) everywhere.  On cells that
+        are not square the truncated kernel's spectrum oscillates about zero at high
+        frequencies along the zero frequency of the longer cell side (157 entries <= 0 at
+        beta0 = 0.4826 on 1280^2, dx/dy = 1.73); without the floor their inverses are ~1e12
+        times the others.
 
     Returns
     -------
@@ -237,6 +249,9 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
     """
     nx, ny = grid.shape
     d = scipy.fft.dctn(influence_coefficients(grid, reduced_modulus), type=1, workers=workers)
+    if floor:
+        top = np.concatenate([d[nx - 1, :ny], d[:nx, ny - 1]])
+        d = np.maximum(d, top[top > 0].min())
     if symmetric:
         spec = d[:nx, :ny]
         inv = 1.0 / (np.maximum(spec, 1e-300 + 1e-12 * spec.max()) * (4.0 * nx * ny))
@@ -504,7 +519,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
     law = _Law(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     sigma0, h0 = law.sigma0, law.h0
     c = sigma0 / h0
     q = np.zeros_like(problem.z) if guess is None else np.array(guess, dtype=float, copy=True)
@@ -613,7 +628,7 @@ def load_slope(problem, state, precond=None, options=SolverOptions()):
     """
     law = _Law(problem.law, problem.min_spread)
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     h = state.gap
     p = state.traction + law.stress(h)
     c = law.sigma0 / law.h0
@@ -734,7 +749,7 @@ def load_minimum(problem, approach, guess=None, half_window=None, samples=7, opt
         The minimum and its work.
     """
     t0 = time.perf_counter()
-    precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+    precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     hw = 0.02 * abs(approach) if half_window is None else float(half_window)
     solved = {}
     work = [0, 0]
@@ -927,7 +942,7 @@ def solve_state_smoothed(problem, delta, guess=None, options=SolverOptions(), pr
     law = _SmoothLaw(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     sigma0, h0 = law.sigma0, law.h0
     c = sigma0 / h0
     s = float(smoothing)
