@@ -163,3 +163,48 @@ def test_prolongation_keeps_linear_fields_and_the_mean():
     assert np.allclose(f[1:-1, 1:-1], (xf + yf)[1:-1, 1:-1])
     c = f.reshape(6, 2, 4, 2).mean(axis=(1, 3))
     assert np.allclose(c[1:-1, 1:-1], (x + y)[1:-1, 1:-1])
+
+
+def test_fgmres_with_a_fixed_preconditioner_solves_the_system():
+    # flexible GMRES with a fixed preconditioner is right-preconditioned GMRES, restarts included
+    rng = np.random.default_rng(3)
+    A = np.eye(60) * 4.0 + rng.standard_normal((60, 60)) * 0.3
+    b = rng.standard_normal(60)
+    d = 1.0 / np.diag(A)
+    hist = []
+    x, its, info = newton.fgmres(lambda v: A @ v, lambda v: d * v, b, 1e-10, 500, restart=7, history=hist)
+    assert info == 0 and its == len(hist)
+    assert np.linalg.norm(A @ x - b) <= 1e-9 * np.linalg.norm(b)
+
+
+def test_inner_cg_contact_preconditioner_reaches_the_same_state(sphere):
+    # SolverOptions.contact_inner (CG on K_AA inside a flexible GMRES) changes the path, not the state
+    P, prob, q0 = sphere
+    ref = newton.solve_state(prob, P.pull_off_approach, q0)
+    st = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(contact_inner=3))
+    assert ref.converged and st.converged
+    assert np.array_equal(st.contact, ref.contact)
+    assert st.load == pytest.approx(ref.load, rel=1e-7)
+
+
+def test_floored_symbol_reaches_the_same_state(sphere):
+    # SolverOptions.symbol_floor changes the contact rows' preconditioner, not the state
+    P, prob, q0 = sphere
+    ref = newton.solve_state(prob, P.pull_off_approach, q0)
+    st = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(symbol_floor=True))
+    assert ref.converged and st.converged
+    assert np.array_equal(st.contact, ref.contact)
+    assert st.load == pytest.approx(ref.load, rel=1e-7)
+
+
+def test_floored_symbol_is_positive_on_oblong_cells():
+    # on cells that are not square the truncated kernel's spectrum dips below zero; the floored
+    # inverse symbol is then bounded (a field of the zero-x-frequency line is not amplified ~1e12)
+    P = predicted_problem(beta0=0.4826, mu=10.0, n=320)
+    prob = P.adhesive_problem(threads=1)
+    assert prob.grid.dx != pytest.approx(prob.grid.dy, rel=0.1)
+    v = np.zeros(prob.z.shape)
+    v[0, :] = np.cos(np.pi * (np.arange(v.shape[1]) + 0.5) * 0.95)     # high frequency along y only
+    plain = newton.symbol_preconditioner(prob.grid, prob.symmetric)(v)
+    floored = newton.symbol_preconditioner(prob.grid, prob.symmetric, floor=True)(v)
+    assert np.abs(floored).max() < 1e-3 * np.abs(plain).max()

@@ -76,7 +76,8 @@ from .operator import influence_coefficients
 __all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
            "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start",
            "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE", "DIVERGED_STALL",
-           "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport", "NestedResult", "solve_state_nested"]
+           "fgmres", "contact_cg", "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport",
+           "NestedResult", "solve_state_nested"]
 
 #: Stop reasons (PETSc-style: positive converged, negative diverged).
 CONVERGED = "converged_residual"
@@ -111,6 +112,14 @@ class SolverOptions:
     stall : int, default 0
         Stop (:data:`DIVERGED_STALL`) when the merit fell by less than 1e-3 relative over the
         last this many accepted steps (0: never).
+    contact_inner : int, default 0
+        Inner iterations of the contact rows' preconditioner: 0 applies the inverse symbol
+        (:func:`symbol_preconditioner`); k > 0 applies k iterations of conjugate gradients on
+        the contact block ``K_AA`` itself, preconditioned by the inverse symbol, and the outer
+        Krylov solver is the flexible GMRES (:func:`fgmres`).
+    symbol_floor : bool, default False
+        The inverse symbol with its spectrum floored at the highest frequencies' value
+        (``symbol_preconditioner(floor=True)``), when the solve builds it.
     """
 
     tol: float = 1e-8
@@ -121,6 +130,8 @@ class SolverOptions:
     min_damping: float = 0.25
     max_damping: float = 1e4
     stall: int = 0
+    contact_inner: int = 0
+    symbol_floor: bool = False
 
     def as_dict(self) -> dict:
         """Return the options as a mapping (recorded with every result).
@@ -204,7 +215,7 @@ class _Law:
         return -self.law.stress_slope(np.maximum(h, 0.0))
 
 
-def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
+def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor=False):
     """The inverse of the DC-FFT operator's own symbol, applied to a working-grid field.
 
     The operator is ``crop o T^-1 o diag(S) o T o pad`` with T the DFT (full grid) or the
@@ -223,6 +234,13 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
         E* [stress].
     workers : int
         Workers of scipy.fft.
+    floor : bool, default False
+        Raise the symbol to its smallest positive value on the highest frequencies (the row
+        ``nx - 1`` and the column ``ny - 1`` of the DCT-I spectrum) everywhere.  On cells that
+        are not square the truncated kernel's spectrum oscillates about zero at high
+        frequencies along the zero frequency of the longer cell side (157 entries <= 0 at
+        beta0 = 0.4826 on 1280^2, dx/dy = 1.73); without the floor their inverses are ~1e12
+        times the others.
 
     Returns
     -------
@@ -231,6 +249,9 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
     """
     nx, ny = grid.shape
     d = scipy.fft.dctn(influence_coefficients(grid, reduced_modulus), type=1, workers=workers)
+    if floor:
+        top = np.concatenate([d[nx - 1, :ny], d[:nx, ny - 1]])
+        d = np.maximum(d, top[top > 0].min())
     if symmetric:
         spec = d[:nx, :ny]
         inv = 1.0 / (np.maximum(spec, 1e-300 + 1e-12 * spec.max()) * (4.0 * nx * ny))
@@ -264,8 +285,9 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1):
 class _Jacobian:
     """The generalised Jacobian on the cells S = A u E, right-preconditioned on A."""
 
-    def __init__(self, op, contact, edge, slope, precond, damping=0.0, gap_scale=1.0):
+    def __init__(self, op, contact, edge, slope, precond, damping=0.0, gap_scale=1.0, inner=0):
         self.op = op
+        self.inner = int(inner)
         self.c = float(gap_scale)
         self.damping = float(damping)
         self.contact = contact
@@ -291,9 +313,27 @@ class _Jacobian:
         out = v.copy()
         if self.is_a.any():
             va = np.where(self.is_a, v, 0.0)
-            pa = self.precond(self.scatter(va).copy()).ravel()[self.idx]
-            out[self.is_a] = pa[self.is_a] / self.c
+            if self.inner > 0:
+                out[self.is_a] = self.inner_solve(v[self.is_a]) / self.c
+            else:
+                pa = self.precond(self.scatter(va).copy()).ravel()[self.idx]
+                out[self.is_a] = pa[self.is_a] / self.c
         return out
+
+    def _on_a(self, f, xa):
+        """f restricted to A of the field that is xa on A (zero elsewhere)."""
+        v = np.zeros(self.idx.size)
+        v[self.is_a] = xa
+        return f(self.scatter(v).copy()).ravel()[self.idx][self.is_a]
+
+    def inner_solve(self, ra):
+        """``self.inner`` CG iterations on K_AA y = ra from zero, preconditioned by the inverse symbol."""
+        return contact_cg(lambda x: self._on_a(self._count_op, x), lambda x: self._on_a(self.precond, x),
+                          ra, self.inner)
+
+    def _count_op(self, f):
+        self.calls += 1
+        return self.op(f)
 
     def matvec(self, x):
         """J x on S."""
@@ -304,9 +344,132 @@ class _Jacobian:
         return out
 
 
+def contact_cg(apply_k, apply_m, b, iterations):
+    """A fixed number of preconditioned conjugate-gradient iterations on ``K y = b`` from ``y = 0``.
+
+    Parameters
+    ----------
+    apply_k : callable
+        ``x -> K x`` (symmetric positive definite).
+    apply_m : callable
+        ``r -> M r``, the preconditioner (symmetric positive definite).
+    b : ndarray
+        Right-hand side.
+    iterations : int
+        Iterations (each one ``K`` and one ``M``).
+
+    Returns
+    -------
+    ndarray
+        The iterate ``y``: a nonlinear function of ``b``, so the outer solver must be flexible.
+    """
+    y = np.zeros_like(b)
+    r = b.copy()
+    z = apply_m(r)
+    d = z.copy()
+    rz = float(r @ z)
+    for _ in range(int(iterations)):
+        if not rz > 0.0:
+            break
+        kd = apply_k(d)
+        a = rz / float(d @ kd)
+        y += a * d
+        r -= a * kd
+        z = apply_m(r)
+        rz_new = float(r @ z)
+        d = z + (rz_new / rz) * d
+        rz = rz_new
+    return y
+
+
+def fgmres(matvec, precond, rhs, rtol, maxiter, restart=200, history=None):
+    """Flexible GMRES (Saad 1993): right preconditioning by an operator that may change between iterations.
+
+    Parameters
+    ----------
+    matvec : callable
+        ``x -> A x``.
+    precond : callable
+        ``v -> M v`` (any function of v; stored per iteration).
+    rhs : ndarray
+        Right-hand side b; the start is ``x = 0``.
+    rtol : float
+        Stop when ``||b - A x|| <= rtol ||b||``.
+    maxiter : int
+        Cap on iterations (over all restarts).
+    restart : int, default 200
+        Krylov vectors per cycle.
+    history : list, optional
+        Appended with the relative residual after each iteration (the Arnoldi estimate).
+
+    Returns
+    -------
+    x : ndarray
+        The solution.
+    iterations : int
+        Iterations done.
+    info : int
+        0 when converged, else the iterations done.
+    """
+    n = rhs.size
+    beta0 = float(np.linalg.norm(rhs))
+    x = np.zeros(n)
+    if beta0 == 0.0:
+        return x, 0, 0
+    its = 0
+    r = rhs.copy()
+    while True:
+        beta = float(np.linalg.norm(r))
+        m = min(restart, maxiter - its)
+        V = np.empty((m + 1, n))
+        Z = np.empty((m, n))
+        H = np.zeros((m + 1, m))
+        cs, sn = np.zeros(m), np.zeros(m)
+        g = np.zeros(m + 1)
+        g[0] = beta
+        V[0] = r / beta
+        k = 0
+        done = False
+        while k < m:
+            Z[k] = precond(V[k])
+            w = matvec(Z[k])
+            for i in range(k + 1):           # modified Gram-Schmidt
+                H[i, k] = float(w @ V[i])
+                w -= H[i, k] * V[i]
+            H[k + 1, k] = float(np.linalg.norm(w))
+            breakdown = not H[k + 1, k] > 0.0
+            if not breakdown:
+                V[k + 1] = w / H[k + 1, k]
+            for i in range(k):                # earlier Givens rotations
+                t = cs[i] * H[i, k] + sn[i] * H[i + 1, k]
+                H[i + 1, k] = -sn[i] * H[i, k] + cs[i] * H[i + 1, k]
+                H[i, k] = t
+            d = math.hypot(H[k, k], H[k + 1, k])
+            cs[k], sn[k] = (H[k, k] / d, H[k + 1, k] / d) if d > 0.0 else (1.0, 0.0)
+            H[k, k] = d
+            H[k + 1, k] = 0.0
+            g[k + 1] = -sn[k] * g[k]
+            g[k] = cs[k] * g[k]
+            k += 1
+            its += 1
+            rel = abs(g[k]) / beta0
+            if history is not None:
+                history.append(rel)
+            if rel <= rtol or breakdown:
+                done = True
+                break
+        yk = np.linalg.solve(np.triu(H[:k, :k]), g[:k]) if k else np.zeros(0)
+        x += yk @ Z[:k]
+        if done or its >= maxiter:
+            return x, its, 0 if done else its
+        r = rhs - matvec(x)
+
+
 def _gmres(jac, rhs, rtol, maxiter):
     """Solve J x = rhs with right preconditioning; return (x, iterations, info)."""
     n = rhs.size
+    if getattr(jac, "inner", 0) > 0:
+        return fgmres(jac.matvec, jac.right, rhs, rtol, maxiter)
     count = [0]
 
     def mv(v):
@@ -356,7 +519,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
     law = _Law(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     sigma0, h0 = law.sigma0, law.h0
     c = sigma0 / h0
     q = np.zeros_like(problem.z) if guess is None else np.array(guess, dtype=float, copy=True)
@@ -396,7 +559,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
             y0 = op(dq)
             calls += 1
             rhs_full = np.where(contact, -c * (h + y0), -p + slope * y0)
-            jac = _Jacobian(op, contact, edge, slope, precond, damping=lam, gap_scale=c)
+            jac = _Jacobian(op, contact, edge, slope, precond, damping=lam, gap_scale=c, inner=options.contact_inner)
             x, kit, info = _gmres(jac, rhs_full.ravel()[jac.idx], rtol, options.max_krylov)
             krylov += kit
             calls += jac.calls
@@ -465,14 +628,14 @@ def load_slope(problem, state, precond=None, options=SolverOptions()):
     """
     law = _Law(problem.law, problem.min_spread)
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     h = state.gap
     p = state.traction + law.stress(h)
     c = law.sigma0 / law.h0
     contact = c * h < p
     slope = law.slope(h)
     edge = (~contact) & (slope > 0.0)
-    jac = _Jacobian(problem.op, contact, edge, slope, precond, gap_scale=c)
+    jac = _Jacobian(problem.op, contact, edge, slope, precond, gap_scale=c, inner=options.contact_inner)
     # d/d delta of the rows: A: h' = -1 + K dq = 0; E: dq - |s'| (K dq - 1) = 0; others: dq = 0
     rhs_full = np.where(contact, c, -slope)
     rhs = rhs_full.ravel()[jac.idx]
@@ -586,7 +749,7 @@ def load_minimum(problem, approach, guess=None, half_window=None, samples=7, opt
         The minimum and its work.
     """
     t0 = time.perf_counter()
-    precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+    precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     hw = 0.02 * abs(approach) if half_window is None else float(half_window)
     solved = {}
     work = [0, 0]
@@ -779,7 +942,7 @@ def solve_state_smoothed(problem, delta, guess=None, options=SolverOptions(), pr
     law = _SmoothLaw(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
     sigma0, h0 = law.sigma0, law.h0
     c = sigma0 / h0
     s = float(smoothing)
