@@ -117,9 +117,11 @@ class SolverOptions:
         (:func:`symbol_preconditioner`); k > 0 applies k iterations of conjugate gradients on
         the contact block ``K_AA`` itself, preconditioned by the inverse symbol, and the outer
         Krylov solver is the flexible GMRES (:func:`fgmres`).
-    symbol_floor : bool, default False
+    symbol_floor : bool, default True
         The inverse symbol with its spectrum floored at the highest frequencies' value
-        (``symbol_preconditioner(floor=True)``), when the solve builds it.
+        (``symbol_preconditioner(floor=True)``), when the solve builds it.  Without the
+        floor, cells that are not square leave near-zero or negative entries in the
+        truncated kernel's spectrum, whose inverses swamp the preconditioner.
     """
 
     tol: float = 1e-8
@@ -131,7 +133,7 @@ class SolverOptions:
     max_damping: float = 1e4
     stall: int = 0
     contact_inner: int = 0
-    symbol_floor: bool = False
+    symbol_floor: bool = True
 
     def as_dict(self) -> dict:
         """Return the options as a mapping (recorded with every result).
@@ -215,7 +217,7 @@ class _Law:
         return -self.law.stress_slope(np.maximum(h, 0.0))
 
 
-def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor=False):
+def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor=True):
     """The inverse of the DC-FFT operator's own symbol, applied to a working-grid field.
 
     The operator is ``crop o T^-1 o diag(S) o T o pad`` with T the DFT (full grid) or the
@@ -234,7 +236,7 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor
         E* [stress].
     workers : int
         Workers of scipy.fft.
-    floor : bool, default False
+    floor : bool, default True
         Raise the symbol to its smallest positive value on the highest frequencies (the row
         ``nx - 1`` and the column ``ny - 1`` of the DCT-I spectrum) everywhere.  On cells that
         are not square the truncated kernel's spectrum oscillates about zero at high
