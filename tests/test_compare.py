@@ -269,7 +269,7 @@ def test_warning_when_the_reference_check_fails(monkeypatch):
     def fail(*args, **kwargs):
         raise RuntimeError("reference failed")
 
-    monkeypatch.setattr(validity.elliptic_transition, "pull_off_nondimensional", fail)
+    monkeypatch.setattr(validity.md_elliptic, "pull_off_nondimensional", fail)
     rec = compare.pull_off("dh-elliptic", mu=1.0, beta0=0.9)
     assert np.isfinite(rec["W_star"]) and "could not be checked" in rec["warning"]
     assert "reference failed" in rec["warning"]
@@ -282,7 +282,7 @@ def test_compare_survives_a_model_that_refuses(monkeypatch):
 
     from dhfield.analysis import validity
 
-    monkeypatch.setattr(validity.elliptic_transition, "pull_off_nondimensional", refuse)
+    monkeypatch.setattr(validity.md_elliptic, "pull_off_nondimensional", refuse)
     monkeypatch.setitem(compare.MODELS, "md-elliptic", refuse)
     res = compare.compare(mu=1.0, beta0=0.9, models=["dh-elliptic", "md-elliptic", "jkr"])
     assert np.isnan(res["md-elliptic"]["W_star"]) and "failed" in res["md-elliptic"]["warning"]
