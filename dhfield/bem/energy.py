@@ -58,11 +58,10 @@ import time
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.sparse.linalg import LinearOperator, gmres
 
 from .laws import DugdaleLaw
 from .newton import (CONVERGED, DIVERGED_LINE_SEARCH, DIVERGED_MAX_IT, NewtonResult, SolverOptions,
-                     _modulus, symbol_preconditioner)
+                     _modulus, right_preconditioned_gmres, symbol_preconditioner)
 
 __all__ = ["RampPotential", "solve_state_energy", "energy", "PullOff", "pull_off_search", "NestedPullOff",
            "pull_off_nested"]
@@ -226,17 +225,7 @@ class _Symmetric:
         diagonal makes meaningless here (it stops after one iteration), so the symmetric system
         is solved by restarted GMRES with the same preconditioner.
         """
-        n = rhs.size
-        count = [0]
-
-        def mv(v):
-            count[0] += 1
-            return self.matvec(self.prec(v))
-
-        A = LinearOperator((n, n), matvec=mv, dtype=float)
-        restart = min(200, maxiter)
-        y, info = gmres(A, rhs, rtol=rtol, atol=0.0, restart=restart, maxiter=max(1, maxiter // restart))
-        return self.prec(y), count[0], info
+        return right_preconditioned_gmres(self.matvec, self.prec, rhs, rtol, maxiter)
 
 
 def _system(op, potential, h, damping, precond, contact=None):

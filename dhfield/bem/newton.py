@@ -76,7 +76,7 @@ from .operator import influence_coefficients
 __all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
            "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start",
            "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE", "DIVERGED_STALL",
-           "fgmres", "contact_cg", "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport",
+           "fgmres", "right_preconditioned_gmres", "contact_cg", "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport",
            "NestedResult", "solve_state_nested"]
 
 #: Stop reasons (PETSc-style: positive converged, negative diverged).
@@ -467,21 +467,49 @@ def fgmres(matvec, precond, rhs, rtol, maxiter, restart=200, history=None):
         r = rhs - matvec(x)
 
 
-def _gmres(jac, rhs, rtol, maxiter):
-    """Solve J x = rhs with right preconditioning; return (x, iterations, info)."""
+def right_preconditioned_gmres(matvec, right, rhs, rtol, maxiter):
+    """Solve ``A x = rhs`` by restarted GMRES on ``A P y = rhs``, ``x = P y``.
+
+    Parameters
+    ----------
+    matvec : callable
+        ``v -> A v`` on 1-d arrays.
+    right : callable
+        ``v -> P v``, the right preconditioner.
+    rhs : ndarray
+        Right-hand side (1-d).
+    rtol : float
+        Relative tolerance on ``||A P y - rhs||`` [-].
+    maxiter : int
+        Cap on the matrix-vector products (restart length ``min(200, maxiter)``).
+
+    Returns
+    -------
+    x : ndarray
+        The solution ``P y``.
+    iterations : int
+        Matrix-vector products used.
+    info : int
+        The flag of scipy's ``gmres`` (0: converged).
+    """
     n = rhs.size
-    if getattr(jac, "inner", 0) > 0:
-        return fgmres(jac.matvec, jac.right, rhs, rtol, maxiter)
     count = [0]
 
     def mv(v):
         count[0] += 1
-        return jac.matvec(jac.right(v))
+        return matvec(right(v))
 
     A = LinearOperator((n, n), matvec=mv, dtype=float)
     restart = min(200, maxiter)
-    v, info = gmres(A, rhs, rtol=rtol, atol=0.0, restart=restart, maxiter=max(1, maxiter // restart))
-    return jac.right(v), count[0], info
+    y, info = gmres(A, rhs, rtol=rtol, atol=0.0, restart=restart, maxiter=max(1, maxiter // restart))
+    return right(y), count[0], info
+
+
+def _gmres(jac, rhs, rtol, maxiter):
+    """Solve J x = rhs with right preconditioning; return (x, iterations, info)."""
+    if getattr(jac, "inner", 0) > 0:
+        return fgmres(jac.matvec, jac.right, rhs, rtol, maxiter)
+    return right_preconditioned_gmres(jac.matvec, jac.right, rhs, rtol, maxiter)
 
 
 def _state(problem, law, delta, q):
