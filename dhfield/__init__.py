@@ -98,7 +98,6 @@ class _MovedModules:
         prefix = __name__ + "."
         if not fullname.startswith(prefix) or fullname[len(prefix):] not in MOVED_MODULES:
             return None
-        import importlib.machinery
         import importlib.util
 
         return importlib.util.spec_from_loader(fullname, _MovedModules)
