@@ -223,6 +223,28 @@ class NondimensionalProblem:
         """
         return self.approach_max - self.lattice_index(approach) * (self.approach_step / LOCATE_DIVISIONS)
 
+    def on_cells(self, nx, ny=None) -> "NondimensionalProblem":
+        """Return this problem on ``nx x ny`` cells over the same domain.
+
+        Parameters
+        ----------
+        nx : int
+            Cells along x (even, 8 to 65536) [-].
+        ny : int, optional
+            Cells along y (even) [-]; default the cell counts' ratio kept (rounded to even).
+
+        Returns
+        -------
+        NondimensionalProblem
+            The same problem (law, start, domain, :attr:`widest_edge`) on the new grid, with its
+            initial gap (Eq. 2).
+        """
+        g = self.grid
+        nx = check_cells(nx)
+        ny = max(8, 2 * round(g.ny * nx / g.nx / 2)) if ny is None else check_cells(ny, "ny")
+        grid = Grid.centered(nx, 0.5 * g.nx * g.dx, ny=ny, half_width_y=0.5 * g.ny * g.dy)
+        return replace(self, grid=grid, initial_gap=_initial_gap(grid, self.beta0))
+
     def coarser(self, n) -> "NondimensionalProblem":
         """Return this problem on the grid with ``n`` cells along x over the same domain.
 

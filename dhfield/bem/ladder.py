@@ -1,0 +1,370 @@
+"""The load-control pull-off on two grids by the semismooth Newton state solve, with its ladder error.
+
+Problem
+-------
+The load-control pull-off of the paper's problem is the minimum of the load ``W(delta)``
+along the displacement-controlled branch (:mod:`dhfield.bem.energy` explains why the
+minimum is reached on the displacement-stable states).  On a grid, ``W(delta)`` is smooth
+up to the lattice's jaggedness: as the approach changes, the contact's and the cohesive
+zone's edges move through whole cells, and the exact tangent of the discrete system (one
+linear solve, :func:`dhfield.bem.newton.load_slope`) is the slope of one tooth, not of the
+curve.  The minimum is therefore located from the loads themselves.
+
+Algorithm
+---------
+On each of two grids over the same domain (the answer's grid, and a coarser check grid):
+
+1. the first state, at the analytic prediction of the pull-off's approach (or at the check
+   grid's minimum), is solved by nested iteration from the analytic cold start
+   (:func:`dhfield.bem.newton.solve_state_nested` over grids halving the cells);
+2. two more states at ``delta +- h`` are solved from it, each warm-started along the first
+   state's exact tangent ``dq/d delta``;
+3. while the lowest load lies at an end of the solved approaches, one more state is solved
+   beyond that end, each step twice the last (a bracket);
+4. the state at the vertex of the parabola through the lowest load and its two neighbours
+   is solved; the lowest load solved is the grid's pull-off, and the distance between the
+   vertex state's load and the parabola's vertex value is the search's error.
+
+The check grid's pull-off gives the grid's error by the ladder estimate
+(:func:`dhfield.bem.pull_off.ladder_error`); the stated error is the larger of the two.
+
+The Dugdale edge on a grid is a ramp of width w in the cell's own gap (:mod:`dhfield.bem.newton`),
+with ``w = edge_margin x`` the smallest energy-stable width, capped at 2 h0: at ``edge_margin``
+= 1 the edge is marginally stable, and the Newton iteration creeps through the edge cells.
+A grid resolves the edge when ``edge_margin x edge_width_ratio <= 1``.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .newton import NESTED_OPTIONS, SolverOptions, cold_start, load_slope, solve_state, solve_state_nested, \
+    symbol_preconditioner
+from .pull_off import NondimensionalProblem, ladder_error
+
+__all__ = ["GridMinimum", "LadderPullOff", "EDGE_MARGIN", "CHECK_RATIO", "adhesive_problem", "ladder_grids",
+           "grid_minimum", "ladder_pull_off"]
+
+#: The edge's ramp width per its smallest energy-stable width (a stability margin of the
+#: discrete edge; the width still vanishes like dx ln(1/dx) under refinement) [-].
+EDGE_MARGIN = 1.5
+
+
+def adhesive_problem(problem: NondimensionalProblem, threads=1, edge_margin=EDGE_MARGIN):
+    """The working arrays of ``problem`` with the Dugdale edge ``edge_margin`` times its stable width.
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The problem.
+    threads : int
+        FFTW threads.
+    edge_margin : float
+        Ramp width per the smallest energy-stable width, >= 1 [-] (capped at 2 h0).
+
+    Returns
+    -------
+    AdhesiveProblem
+        With ``min_spread`` widened and ``resolved``/``edge_width_ratio`` scaled by the margin.
+    """
+    prob = problem.adhesive_problem(threads)
+    if prob.widest_spread > 0.0 and prob.min_spread < prob.widest_spread:
+        prob.min_spread = min(prob.min_spread * float(edge_margin), prob.widest_spread)
+        prob.edge_width_ratio *= float(edge_margin)
+        prob.resolved = prob.edge_width_ratio <= 1.0
+    return prob
+
+
+#: Cells of the answer's grid per cells of the check grid along each axis [-].
+CHECK_RATIO = 4.0 / 3.0
+
+
+def ladder_grids(problem: NondimensionalProblem, edge_margin=EDGE_MARGIN, ratio=CHECK_RATIO, divisor=8):
+    """The cells along x of the check grid and of the answer's grid.
+
+    The check grid is the coarsest with at least ``problem.grid.nx / ratio`` cells whose edge
+    is resolved with the margin (``edge_margin x edge_width_ratio <= 1``); the answer's grid
+    has ``ratio`` times its cells.  Both are multiples of ``divisor``.
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The problem; its grid sets the smallest answer's grid.
+    edge_margin : float
+        As in :func:`adhesive_problem`.
+    ratio : float
+        Answer's cells per check cells [-].
+    divisor : int
+        Both counts are multiples of it (the nested levels halve them) [-].
+
+    Returns
+    -------
+    (int, int)
+        Cells along x of the check grid and of the answer's grid.
+    """
+    from .solver import edge_width_ratio
+
+    def up(n):
+        return int(divisor * math.ceil(n / divisor))
+
+    nc = up(problem.grid.nx / ratio)
+    while True:
+        g = problem.on_cells(nc).grid
+        if edge_margin * edge_width_ratio(g, problem.law) <= 1.0 or nc > 65536:
+            break
+        nc = up(1.05 * nc)
+    return nc, up(ratio * nc)
+
+
+@dataclass
+class GridMinimum:
+    """The minimum of the load along the displacement-controlled branch on one grid.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        Cells (nx, ny).
+    approach : float
+        Approach of the minimum [c_r^2/R].
+    load : float
+        Load of the state at ``approach`` (four quadrants) [problem units].
+    search_error : float
+        ``|load - vertex|``: the parabola's vertex value against the state solved there [problem units].
+    approaches, loads : ndarray
+        Every state solved, in order.
+    newton_iterations, krylov_iterations : int
+        Work over every state, tangent and coarse level.
+    converged : bool
+        Every state converged and the vertex lies inside the sampled window.
+    reason : str
+        Why it stopped.
+    elapsed : float
+        Wall time [s].
+    state : object
+        The :class:`dhfield.bem.newton.NewtonResult` at ``approach``.
+    """
+
+    shape: tuple
+    approach: float
+    load: float
+    search_error: float
+    approaches: np.ndarray
+    loads: np.ndarray
+    newton_iterations: int
+    krylov_iterations: int
+    converged: bool
+    reason: str
+    elapsed: float
+    state: object = field(repr=False, default=None)
+
+    @property
+    def states(self) -> int:
+        """States solved on this grid (the nested first state counted once)."""
+        return int(self.loads.size)
+
+
+def _vertex(x, y):
+    """Vertex (x, y) and curvature of the parabola through three points; NaN when not convex."""
+    x = np.asarray(x, float)
+    y = np.asarray(y, float)
+    a = np.polyfit(x - x[0], y, 2)
+    if not a[0] > 0.0:
+        return float("nan"), float("nan"), float(a[0])
+    xv = -a[1] / (2.0 * a[0])
+    return float(x[0] + xv), float(np.polyval(a, xv)), float(a[0])
+
+
+def grid_minimum(problems, approach, half_window, guess=None, options=NESTED_OPTIONS, max_moves=8, log=None):
+    """Locate the load's minimum on the finest grid of a nested ladder.
+
+    Parameters
+    ----------
+    problems : list of AdhesiveProblem
+        The grids of the first state's nested solve, coarsest first; the last is searched.
+    approach : float
+        Centre of the first window [c_r^2/R].
+    half_window : float
+        Half-width h of the sampled window [c_r^2/R].
+    guess : ndarray, optional
+        Traction on the coarsest working grid; default :func:`dhfield.bem.newton.cold_start`
+        is the caller's.
+    options : SolverOptions
+        Options of every state.
+    max_moves : int
+        Cap on the bracket's steps.
+    log : callable, optional
+        One line per state.
+
+    Returns
+    -------
+    GridMinimum
+        The minimum, flagged when a state did not converge or no bracket was found.
+    """
+    t0 = time.perf_counter()
+    prob = problems[-1]
+    shape = tuple(prob.grid.shape)
+    work = [0, 0]
+    solved = []                                   # (delta, state, tangent)
+    pre = symbol_preconditioner(prob.grid, prob.symmetric, prob.op.reduced_modulus, floor=options.symbol_floor)
+
+    def note(d, st, kind):
+        work[0] += st.newton_iterations
+        work[1] += st.krylov_iterations
+        if log is not None:
+            log(f"  {shape[0]}x{shape[1]} state {len(solved) + 1}: approach {d:.8f} load {st.load:.8f} "
+                f"newton {st.newton_iterations} gmres {st.krylov_iterations} {st.reason} ({kind}, "
+                f"{time.perf_counter() - t0:.1f} s)")
+
+    def finish(d, load, err, ok, reason, st):
+        return GridMinimum(shape, float(d), float(load), float(err), np.array([r[0] for r in solved]),
+                           np.array([r[1].load for r in solved]), work[0], work[1], ok, reason,
+                           time.perf_counter() - t0, st)
+
+    def add(d, st):
+        tangent = None
+        if st.converged:
+            _, tangent = load_slope(prob, st, pre, options)
+        solved.append((float(d), st, tangent))
+        return st
+
+    first = solve_state_nested(problems, float(approach), guess, options)
+    st = first.state
+    work[0] += sum(v.newton_iterations for v in first.levels[:-1])
+    work[1] += sum(v.krylov_iterations for v in first.levels[:-1])
+    note(approach, st, "nested")
+    add(approach, st)
+    if not st.converged:
+        return finish(approach, st.load, float("inf"), False, st.reason, st)
+
+    def solve_at(d):
+        d0, s0, t0_ = min((r for r in solved if r[1].converged), key=lambda r: abs(r[0] - d))
+        st = solve_state(prob, d, s0.traction + (d - d0) * t0_, options, pre)
+        note(d, st, "tangent start")
+        return add(d, st)
+
+    # bracket: step beyond the lowest end, doubling the step, until the lowest load is interior
+    h = float(half_window)
+    for d in (float(approach) + h, float(approach) - h):
+        if not solve_at(d).converged:
+            return finish(d, solved[-1][1].load, float("inf"), False, solved[-1][1].reason, solved[-1][1])
+    step = h
+    for move in range(max_moves + 1):
+        pts = sorted((r[0], r[1].load) for r in solved)
+        k = min(range(len(pts)), key=lambda i: pts[i][1])
+        if 0 < k < len(pts) - 1:
+            break
+        if move >= max_moves:
+            best = min(solved, key=lambda r: r[1].load)
+            return finish(best[0], best[1].load, float("inf"), False, "diverged_bracket", best[1])
+        step *= 2.0
+        d = pts[k][0] + (step if k == len(pts) - 1 else -step)
+        if not solve_at(d).converged:
+            return finish(d, solved[-1][1].load, float("inf"), False, solved[-1][1].reason, solved[-1][1])
+    # the parabola through the lowest state and its neighbours; the state at its vertex
+    xv, yv, _ = _vertex(*zip(*pts[k - 1:k + 2]))
+    if np.isfinite(xv):
+        s = solve_at(xv)
+        if not s.converged:
+            return finish(xv, s.load, float("inf"), False, s.reason, s)
+        err = abs(s.load - yv)
+    else:
+        err = float("inf")
+    best = min(solved, key=lambda r: r[1].load)
+    ok = bool(np.isfinite(err))
+    return finish(best[0], best[1].load, err, ok, "converged_minimum" if ok else "diverged_vertex", best[1])
+
+
+@dataclass
+class LadderPullOff:
+    """The load-control pull-off on a check grid and the answer's grid, with its stated error.
+
+    Parameters
+    ----------
+    coarse, fine : GridMinimum
+        The check grid's and the answer's grid's minimum.
+    load : float
+        The answer's load (the fine grid's) [problem units].
+    stated_error : float
+        Relative error of ``load``: the larger of the ladder estimate
+        (:func:`dhfield.bem.pull_off.ladder_error`) and the fine search's error [-].
+    options : dict
+        The :class:`dhfield.bem.newton.SolverOptions` of every state, and ``edge_margin``.
+    converged : bool
+        Both grids' minima converged.
+    reason : str
+        Why it stopped.
+    elapsed : float
+        Wall time [s].
+    """
+
+    coarse: GridMinimum
+    fine: GridMinimum
+    load: float
+    stated_error: float
+    options: dict
+    converged: bool
+    reason: str
+    elapsed: float
+
+
+def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_margin=EDGE_MARGIN,
+                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None) -> LadderPullOff:
+    """Locate the load-control pull-off on ``problem``'s grid and on a coarser check grid.
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The answer's problem (its grid is the answer's grid).
+    n_coarse : int
+        Cells along x of the check grid, below ``problem.grid.nx`` (even) [-].
+    levels : int, default 3
+        Grids of each first state's nested solve (each halving the cells; both grids' cell
+        counts must be divisible by ``2**levels``, every level's counts even).
+    edge_margin : float
+        As in :func:`adhesive_problem`.
+    options : SolverOptions
+        Options of every state.
+    threads : int
+        FFTW threads.
+    half_window : float, optional
+        Half-width of the check grid's window [c_r^2/R]; default a quarter of the problem's
+        ``approach_step``; the answer's grid uses half of it, centred on the check grid's minimum.
+    log : callable, optional
+        One line per state and per grid.
+
+    Returns
+    -------
+    LadderPullOff
+        Both grids' minima and the stated error (infinite when either did not converge).
+    """
+    t0 = time.perf_counter()
+    h = 0.25 * problem.approach_step if half_window is None else float(half_window)
+    out = []
+    centre = problem.pull_off_approach
+    for j, nd in enumerate((problem.on_cells(n_coarse), problem)):
+        k = 2 ** levels
+        if nd.grid.nx % k or nd.grid.ny % k:
+            raise ValueError(f"{levels} levels need cells divisible by {k}; got {nd.grid.nx} x {nd.grid.ny}")
+        ladder = [adhesive_problem(nd.on_cells(nd.grid.nx // 2 ** i, nd.grid.ny // 2 ** i), threads,
+                                   edge_margin) for i in range(levels - 1, -1, -1)]
+        q0 = cold_start(ladder[0], centre, problem.pull_off_zone)
+        res = grid_minimum(ladder, centre, h if j == 0 else 0.5 * h, q0, options, log=log)
+        out.append(res)
+        if log is not None:
+            log(f"grid {res.shape[0]}x{res.shape[1]}: {res.reason} approach {res.approach:.8f} load {res.load:.8f} "
+                f"search error {res.search_error:.2e} states {res.states} newton {res.newton_iterations} "
+                f"gmres {res.krylov_iterations} ({res.elapsed:.1f} s)")
+        if not res.converged:
+            break
+        centre = res.approach
+    opts = dict(options.as_dict(), edge_margin=float(edge_margin))
+    if len(out) < 2 or not out[-1].converged:
+        last = out[-1]
+        return LadderPullOff(out[0], last, last.load, float("inf"), opts, False, last.reason,
+                             time.perf_counter() - t0)
+    c, f = out
+    err = max(ladder_error(f.load, c.load, f.shape[0], c.shape[0]), f.search_error) / abs(f.load)
+    return LadderPullOff(c, f, f.load, float(err), opts, True, "converged_minimum", time.perf_counter() - t0)

@@ -1,0 +1,104 @@
+"""The load-control pull-off on two grids (dhfield.bem.ladder): grids, edge margin, the minimum, the sphere against MD."""
+import math
+
+import numpy as np
+import pytest
+
+from dhfield.analysis.bem_start import predicted_problem
+from dhfield.bem import ladder
+from dhfield.bem.pull_off import paper_problem
+from dhfield.bem.solver import edge_width_ratio
+from dhfield.core.geometry import radius_ratio
+from dhfield.models import maugis_dugdale
+
+
+@pytest.fixture(scope="module")
+def sphere():
+    """The paper's sphere at mu = 1 on 96^2 cells, with its analytic start."""
+    return predicted_problem(beta0=1.0, mu=1.0, n=96)
+
+
+def test_on_cells_is_the_paper_problem_on_that_grid():
+    # the same domain and Eq. (2)'s gap z = x^2/(2R') + y^2/(2R''), R' = sqrt(rho), R'' = 1/sqrt(rho)
+    P = predicted_problem(beta0=0.5, mu=1.0, n=64)
+    Q = P.on_cells(48, 40)
+    assert Q.grid.shape == (48, 40)
+    assert math.isclose(Q.grid.nx * Q.grid.dx, P.grid.nx * P.grid.dx, rel_tol=1e-12)
+    assert math.isclose(Q.grid.ny * Q.grid.dy, P.grid.ny * P.grid.dy, rel_tol=1e-12)
+    rho = float(radius_ratio(0.5))
+    x, y = Q.grid.mesh()
+    z = x * x / (2.0 * math.sqrt(rho)) + y * y * math.sqrt(rho) / 2.0
+    np.testing.assert_allclose(Q.initial_gap, z, rtol=1e-12, atol=1e-15)
+    assert (Q.law, Q.pull_off_approach, Q.approach_step) == (P.law, P.pull_off_approach, P.approach_step)
+    # the cell counts' ratio is kept when ny is not given
+    assert P.on_cells(32).grid.shape == (32, round(P.grid.ny * 32 / P.grid.nx / 2) * 2)
+
+
+def test_on_cells_rejects_odd_cells():
+    P = predicted_problem(beta0=1.0, mu=1.0, n=32)
+    with pytest.raises(ValueError, match="n"):
+        P.on_cells(33)
+
+
+def test_edge_margin_widens_the_ramp_up_to_its_cap():
+    P = predicted_problem(beta0=1.0, mu=5.0, n=256)
+    plain = P.adhesive_problem(1)
+    wide = ladder.adhesive_problem(P, 1, edge_margin=1.5)
+    assert wide.min_spread == pytest.approx(min(1.5 * plain.min_spread, 2.0 * P.law.range), rel=1e-12)
+    assert wide.edge_width_ratio == pytest.approx(1.5 * plain.edge_width_ratio, rel=1e-12)
+    assert wide.resolved == (1.5 * plain.edge_width_ratio <= 1.0)
+    same = ladder.adhesive_problem(P, 1, edge_margin=1.0)
+    assert same.min_spread == plain.min_spread
+
+
+def test_ladder_grids_resolve_the_edge_with_the_margin_and_are_the_coarsest_that_do():
+    P = predicted_problem(beta0=1.0, mu=5.0, n=64)
+    nc, nf = ladder.ladder_grids(P, 1.5)
+    assert nc % 8 == 0 and nf % 8 == 0 and nf > nc
+    assert nf == 8 * math.ceil(ladder.CHECK_RATIO * nc / 8)
+    assert 1.5 * edge_width_ratio(P.on_cells(nc).grid, P.law) <= 1.0
+    # the grid chosen was reached in steps of 5 % from the smallest: the step below it is unresolved
+    below = 8 * math.ceil(nc / 1.05 / 8) - 8
+    assert 1.5 * edge_width_ratio(P.on_cells(below).grid, P.law) > 1.0
+
+
+def test_vertex_of_an_exact_parabola():
+    x = np.array([0.1, 0.4, 0.9])
+    y = 3.0 * (x - 0.37) ** 2 - 2.0
+    xv, yv, a = ladder._vertex(x, y)
+    assert (xv, yv, a) == pytest.approx((0.37, -2.0, 3.0), rel=1e-12)
+    assert math.isnan(ladder._vertex(x, -y)[0])          # concave: no minimum
+
+
+def test_sphere_pull_off_lies_within_its_stated_error_of_maugis_dugdale(sphere):
+    # the Maugis-Dugdale pull-off of the sphere solved from Maugis' equations (an independent
+    # route: no BEM), against the Newton pull-off on 72^2 -> 96^2 cells
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 1.0, control="load").W_star)
+    r = ladder.ladder_pull_off(sphere, 72, levels=2, edge_margin=1.5)
+    assert r.converged and r.reason == "converged_minimum"
+    w = r.load * sphere.sin_skew / (2.0 * math.pi)        # Eq. (34)
+    assert 0.0 < r.stated_error < 0.05
+    assert abs(w / md - 1.0) <= r.stated_error
+    # and closer still: 96 cells across the domain put ~12 across the sphere's zone (c* - a* ~ 0.4),
+    # so the Dugdale edge's cell error, ~dx/(c* - a*) x 1e-2, is below 0.1 %
+    assert abs(w / md - 1.0) < 1e-3
+    assert r.options["edge_margin"] == 1.5 and r.options["tol"] == pytest.approx(1e-8)
+    # the minimum is bracketed: the states on either side of it carry higher loads
+    f = r.fine
+    order = np.argsort(f.approaches)
+    k = int(np.argmin(f.loads[order]))
+    assert 0 < k < f.states - 1
+
+
+def test_an_unconverged_state_is_flagged_not_answered(sphere):
+    from dhfield.bem.newton import SolverOptions
+
+    r = ladder.ladder_pull_off(sphere, 72, levels=2, options=SolverOptions(max_newton=1))
+    assert not r.converged
+    assert math.isinf(r.stated_error)
+    assert r.reason.startswith("diverged")
+
+
+def test_cells_not_divisible_by_the_levels_are_refused(sphere):
+    with pytest.raises(ValueError, match="divisible"):
+        ladder.ladder_pull_off(sphere.on_cells(90), 70, levels=3)
