@@ -102,3 +102,52 @@ def test_an_unconverged_state_is_flagged_not_answered(sphere):
 def test_cells_not_divisible_by_the_levels_are_refused(sphere):
     with pytest.raises(ValueError, match="divisible"):
         ladder.ladder_pull_off(sphere.on_cells(90), 70, levels=3)
+
+
+def test_contact_state_carries_the_newton_state(sphere):
+    # the ContactState's load sum(p - sigma) dA is the Newton state's sum(q) dA (the same traction), and its
+    # cohesive zone lies beyond its contact
+    from dhfield.bem import newton
+
+    prob = ladder.adhesive_problem(sphere, 1)
+    q0 = newton.cold_start(prob, sphere.pull_off_approach, sphere.pull_off_zone)
+    st = newton.solve_state(prob, sphere.pull_off_approach, q0, newton.NESTED_OPTIONS)
+    assert st.converged
+    cs = ladder.contact_state(prob, sphere.pull_off_approach, st)
+    assert cs.load == pytest.approx(st.load, rel=1e-12)
+    assert np.array_equal(cs.contact, prob.to_full(st.contact))
+    (a, _), (c, _) = cs.contact_semi_axes(), cs.cohesive_semi_axes()
+    assert 0.0 < a < c
+    assert cs.converged and cs.residual == st.residual
+
+
+def test_newton_route_answers_with_the_bem_record():
+    from dhfield.bem import adhesive_pull_off
+
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 1.0, control="load").W_star)
+    rec = adhesive_pull_off(beta0=1.0, mu=1.0, n=96, search="newton")
+    assert rec.search == "newton" and rec.model == "bem" and rec.control == "load"
+    assert rec.converged and rec.resolved and rec.n == 96
+    assert 0.0 < rec.W_star_error < 0.05 * abs(rec.W_star)
+    assert abs(rec.W_star - md) <= rec.W_star_error
+    assert "check grid" in rec.note
+    # the path holds the answer grid's states; the reported one is the lowest
+    assert rec.path.n_steps >= 4 and rec.path.pull_off_load == pytest.approx(rec.path.load.min(), rel=1e-12)
+
+
+@pytest.mark.parametrize("kw", [dict(control="displacement"), dict(law="exponential")])
+def test_newton_route_refuses_what_it_does_not_solve(kw):
+    from dhfield.bem import adhesive_pull_off
+
+    with pytest.raises(ValueError, match="search='newton'"):
+        adhesive_pull_off(beta0=1.0, mu=1.0, n=64, search="newton", **kw)
+
+
+def test_cli_solve_takes_the_newton_route(capsys):
+    import json
+
+    from dhfield.cli import main
+
+    rc = main(["solve", "--beta0", "1", "--mu", "1", "--n", "96", "--search", "newton", "--json", "--quiet"])
+    rec = json.loads(capsys.readouterr().out)
+    assert rc == 0 and rec["search"] == "newton" and rec["converged"] and rec["resolved"]

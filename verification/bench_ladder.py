@@ -17,6 +17,7 @@ Usage::
     python -m verification.bench_ladder --cases sphere-1 sphere-5 20deg-1
     python -m verification.bench_ladder --cases b0.4826-10 --threads 2 --json /tmp/rows.json
     python -m verification.bench_ladder --cases sphere-5 --margins 1 1.5
+    python -m verification.bench_ladder --cases sphere-10 --start tangent
 """
 from __future__ import annotations
 
@@ -37,7 +38,7 @@ from verification.bench_nested import _problem, _reference  # noqa: E402
 from verification.bench_newton import CASES, stored  # noqa: E402
 
 
-def run(beta0, mu, margin, threads, log_path=None):
+def run(beta0, mu, margin, threads, log_path=None, start="nested"):
     """One case in this process; return a JSON-ready dict."""
     from dhfield.bem import ladder
 
@@ -50,10 +51,12 @@ def run(beta0, mu, margin, threads, log_path=None):
     c0 = time.process_time()
     P = _problem(beta0, mu)
     nc, nf = ladder.ladder_grids(P, margin)
-    echo(f"== beta0 {beta0} mu {mu} planned {P.grid.nx}x{P.grid.ny} grids {nc} -> {nf} margin {margin}")
-    r = ladder.ladder_pull_off(P.on_cells(nf), nc, edge_margin=margin, threads=threads, log=echo)
+    echo(f"== beta0 {beta0} mu {mu} planned {P.grid.nx}x{P.grid.ny} grids {nc} -> {nf} margin {margin} start {start}")
+    k = 2 ** 3
+    fine = P.on_cells(nf, k * max(1, round(P.grid.ny * nf / P.grid.nx / k)))
+    r = ladder.ladder_pull_off(fine, nc, edge_margin=margin, threads=threads, log=echo, start=start)
     scale = P.sin_skew / (2.0 * math.pi)           # Eq. (34)
-    return {"beta0": beta0, "mu": mu, "margin": margin, "grids": [list(r.coarse.shape), list(r.fine.shape)],
+    return {"beta0": beta0, "mu": mu, "margin": margin, "start": start, "grids": [list(r.coarse.shape), list(r.fine.shape)],
             "states": r.coarse.states + r.fine.states,
             "newton": r.coarse.newton_iterations + r.fine.newton_iterations,
             "gmres": r.coarse.krylov_iterations + r.fine.krylov_iterations,
@@ -82,6 +85,8 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", nargs="*", default=[c[0] for c in CASES], help="case names of bench_newton")
     ap.add_argument("--margins", nargs="*", type=float, default=[1.5], help="edge margins (dhfield.bem.ladder)")
     ap.add_argument("--threads", type=int, default=1, help="FFTW threads per case")
+    ap.add_argument("--start", choices=("nested", "tangent"), default="nested",
+                    help="start of the states after each grid's first (dhfield.bem.ladder.grid_minimum)")
     ap.add_argument("--timeout", type=float, default=1800.0, help="per case [s]")
     ap.add_argument("--log", help="append every state line here")
     ap.add_argument("--json", type=Path, help="write every row here")
@@ -89,7 +94,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.child:
         b, m, g = args.child
-        print(json.dumps(run(float(b), float(m), float(g), args.threads, args.log)))
+        print(json.dumps(run(float(b), float(m), float(g), args.threads, args.log, args.start)))
         return 0
     known = {c[0]: c for c in CASES}
     print(f"{'case':<12} {'marg':>4} {'grids':<22} {'st':>3} {'newton/gmres':<12} {'wall s':>7} {'cpu s':>7} "
@@ -98,7 +103,7 @@ def main(argv=None) -> int:
     for name in args.cases:
         _, beta0, mu = known[name]
         for g in args.margins:
-            cmd = [sys.executable, "-m", "verification.bench_ladder", "--threads", str(args.threads),
+            cmd = [sys.executable, "-m", "verification.bench_ladder", "--threads", str(args.threads), "--start", args.start,
                    "--child", repr(beta0), repr(mu), repr(g)] + (["--log", args.log] if args.log else [])
             env = dict(os.environ, DHFIELD_THREADS=str(args.threads))
             try:

@@ -810,8 +810,12 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         Load control: the minimum of the unloading load.  Displacement control:
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
-    search : {'located', 'bracket', 'march', 'predicted'}, default 'located'
+    search : {'located', 'bracket', 'march', 'predicted', 'newton'}, default 'located'
         Load control only (the route taken is the record's ``search``).
+        'newton': the semismooth Newton state solve on two grids
+        (:func:`dhfield.bem.ladder.ladder_pull_off`; Dugdale law only): the answer's grid holds
+        at least the planned (or given) cells, the check grid three quarters of them with the
+        Dugdale edge resolved, and the stated error is the grid ladder's.
         'predicted': the high-mu route (:func:`dhfield.bem.pull_off.predicted_path`: lattice samples around
         GVG's pull-off, states to :data:`PREDICTED_TOL`, the stretch step) on its own domain,
         also on an explicit ``n`` x ``ny`` grid (no lattice retry there); Dugdale law only.
@@ -889,11 +893,17 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         if np.ndim(value) != 0:
             raise ValueError(f"{name} must be a scalar (one BEM case per call); got an array of shape "
                              f"{np.shape(value)}")
-    if search not in SEARCHES + (PREDICTED_SEARCH,):
-        raise ValueError(f"search must be one of {SEARCHES + (PREDICTED_SEARCH,)} (load-control path); "
-                         f"got {search!r}")
+    if search not in SEARCHES + (PREDICTED_SEARCH, NEWTON_SEARCH):
+        raise ValueError(f"search must be one of {SEARCHES + (PREDICTED_SEARCH, NEWTON_SEARCH)} (load-control "
+                         f"path); got {search!r}")
     if control not in ("load", "displacement"):
         raise ValueError(f"control must be one of ('load', 'displacement') (loading mode); got {control!r}")
+    if search == NEWTON_SEARCH:
+        if not (law == "dugdale" and control == "load"):
+            raise ValueError(f"search='newton' needs law='dugdale' and control='load' (the Newton pull-off); got "
+                             f"law={law!r}, control={control!r}")
+        return _newton_pull_off(beta0=beta0, mu=mu, n=n, ny=ny, threads=threads, margin=margin,
+                                max_seconds=max_seconds)
     if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load"
                                            and (nested is None or n is not None)):
         raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None on the "
@@ -977,6 +987,36 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
     if control == "displacement":
         res = _ladder_checked(prob, res, n_steps=n_steps, margin=margin, options=options)
     return res
+
+
+def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullOff:
+    """The load-control Dugdale pull-off by :func:`dhfield.bem.ladder.ladder_pull_off`, as a record.
+
+    The answer's grid has at least the planned cells (:func:`plan_grid`, or ``n`` x ``ny``) and
+    its check grid resolves the Dugdale edge with the margin (:func:`dhfield.bem.ladder.ladder_grids`);
+    the domain and the first approach are the predicted route's (:func:`predicted_problem`).
+    """
+    from ..bem import ladder
+
+    if n is None:
+        plan = plan_grid(mu=mu, beta0=beta0, law="dugdale", margin=margin, max_seconds=max_seconds,
+                         control="load")
+        if not plan.affordable:
+            raise UnresolvableCaseError(plan)
+        n, ny = plan.n_needed, plan.ny_needed
+    ny = n if ny is None else ny
+    prob = predicted_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
+    nc, nf = ladder.ladder_grids(prob)
+    k = 2 ** LADDER_LEVELS
+    nyf = k * max(1, round(prob.grid.ny * nf / prob.grid.nx / k))
+    check_grid_memory(nf, nyf)
+    fine = prob.on_cells(nf, nyf)
+    res = ladder.ladder_pull_off(fine, nc, levels=LADDER_LEVELS, threads=1 if threads is None else threads)
+    return ladder.pull_off_record(fine, res)
+
+
+#: Grids of each first state's nested solve on the Newton route (:func:`dhfield.bem.ladder.ladder_pull_off`).
+LADDER_LEVELS = 3
 
 
 def _ladder_checked(prob, res, *, n_steps, margin, options) -> PullOff:
@@ -1184,6 +1224,8 @@ PREDICTED_TOL = 1e-4
 #: The ``search`` of :func:`adhesive_pull_off` that asks for the predicted route, also on an explicit
 #: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
 PREDICTED_SEARCH = "predicted"
+#: The Newton route's search (:func:`dhfield.bem.ladder.ladder_pull_off`).
+NEWTON_SEARCH = "newton"
 
 #: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`);
 #: it ends with :data:`WIDEST_EDGE_MARK`, which readers look for.

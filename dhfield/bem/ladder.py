@@ -17,8 +17,9 @@ On each of two grids over the same domain (the answer's grid, and a coarser chec
 1. the first state, at the analytic prediction of the pull-off's approach (or at the check
    grid's minimum), is solved by nested iteration from the analytic cold start
    (:func:`dhfield.bem.newton.solve_state_nested` over grids halving the cells);
-2. two more states at ``delta +- h`` are solved from it, each warm-started along the first
-   state's exact tangent ``dq/d delta``;
+2. two more states at ``delta +- h`` are solved the same way (nested iteration from the
+   analytic start: the coarse grids place the contact's rim, which a warm start from the
+   neighbouring state moves by a fraction of a cell ring per Newton step);
 3. while the lowest load lies at an end of the solved approaches, one more state is solved
    beyond that end, each step twice the last (a bracket);
 4. the state at the vertex of the parabola through the lowest load and its two neighbours
@@ -43,10 +44,13 @@ import numpy as np
 
 from .newton import NESTED_OPTIONS, SolverOptions, cold_start, load_slope, solve_state, solve_state_nested, \
     symbol_preconditioner
-from .pull_off import NondimensionalProblem, ladder_error
+from ..core.records import PullOff
+from .branch import PathProgress, UnloadingPath
+from .pull_off import NondimensionalProblem, discretisation_error, ladder_error, unresolved_reasons
+from .state import ContactState
 
-__all__ = ["GridMinimum", "LadderPullOff", "EDGE_MARGIN", "CHECK_RATIO", "adhesive_problem", "ladder_grids",
-           "grid_minimum", "ladder_pull_off"]
+__all__ = ["GridMinimum", "LadderPullOff", "EDGE_MARGIN", "CHECK_RATIO", "TANGENT_RTOL", "adhesive_problem", "ladder_grids",
+           "grid_minimum", "ladder_pull_off", "contact_state", "pull_off_record", "NEWTON_SEARCH"]
 
 #: The edge's ramp width per its smallest energy-stable width (a stability margin of the
 #: discrete edge; the width still vanishes like dx ln(1/dx) under refinement) [-].
@@ -77,6 +81,12 @@ def adhesive_problem(problem: NondimensionalProblem, threads=1, edge_margin=EDGE
         prob.resolved = prob.edge_width_ratio <= 1.0
     return prob
 
+
+#: The record's ``search`` of this route.
+NEWTON_SEARCH = "newton"
+
+#: Relative tolerance of the tangent solve: the tangent only predicts the next state's start [-].
+TANGENT_RTOL = 1e-3
 
 #: Cells of the answer's grid per cells of the check grid along each axis [-].
 CHECK_RATIO = 4.0 / 3.0
@@ -119,6 +129,36 @@ def ladder_grids(problem: NondimensionalProblem, edge_margin=EDGE_MARGIN, ratio=
     return nc, up(ratio * nc)
 
 
+def contact_state(problem, delta, state) -> ContactState:
+    """The full-grid :class:`~dhfield.bem.state.ContactState` of a Newton state.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The problem it solves.
+    delta : float
+        Its approach [length].
+    state : NewtonResult
+        The state (:func:`dhfield.bem.newton.solve_state`).
+
+    Returns
+    -------
+    ContactState
+        Repulsive pressure ``q + sigma(h)`` on the contact cells (zero elsewhere), the
+        adhesive stress ``sigma(h)`` of the grid's ramped law (sigma0 on the contact: the
+        pressure ``p - sigma`` is the traction q), the gap, and the solve's record
+        (GMRES iterations as ``iterations``, Newton iterations as ``outer_iterations``).
+    """
+    from .newton import _Law
+    from .solver import assemble_state
+
+    law = _Law(problem.law, problem.min_spread)
+    s = law.stress(state.gap)
+    p = np.where(state.contact, state.traction + s, 0.0)
+    return assemble_state(problem, delta, p, s, state.gap, state.krylov_iterations, state.residual,
+                          state.converged, state.newton_iterations)
+
+
 @dataclass
 class GridMinimum:
     """The minimum of the load along the displacement-controlled branch on one grid.
@@ -143,8 +183,10 @@ class GridMinimum:
         Why it stopped.
     elapsed : float
         Wall time [s].
-    state : object
-        The :class:`dhfield.bem.newton.NewtonResult` at ``approach``.
+    state : ContactState
+        The state at ``approach`` (:func:`contact_state`).
+    records : list of dict
+        :meth:`ContactState.summary` of every state, in order.
     """
 
     shape: tuple
@@ -159,6 +201,7 @@ class GridMinimum:
     reason: str
     elapsed: float
     state: object = field(repr=False, default=None)
+    records: list = field(repr=False, default_factory=list)
 
     @property
     def states(self) -> int:
@@ -177,7 +220,8 @@ def _vertex(x, y):
     return float(x[0] + xv), float(np.polyval(a, xv)), float(a[0])
 
 
-def grid_minimum(problems, approach, half_window, guess=None, options=NESTED_OPTIONS, max_moves=8, log=None):
+def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, max_moves=8, log=None,
+                 start="nested"):
     """Locate the load's minimum on the finest grid of a nested ladder.
 
     Parameters
@@ -188,15 +232,20 @@ def grid_minimum(problems, approach, half_window, guess=None, options=NESTED_OPT
         Centre of the first window [c_r^2/R].
     half_window : float
         Half-width h of the sampled window [c_r^2/R].
-    guess : ndarray, optional
-        Traction on the coarsest working grid; default :func:`dhfield.bem.newton.cold_start`
-        is the caller's.
+    zone : (float, float)
+        Semi-axes (c, d) of the predicted cohesive zone of the analytic cold start
+        (:func:`dhfield.bem.newton.cold_start`) on the coarsest grid [length].
     options : SolverOptions
         Options of every state.
     max_moves : int
         Cap on the bracket's steps.
     log : callable, optional
         One line per state.
+    start : {"nested", "tangent"}, default "nested"
+        Start of every state after the first: nested iteration from the analytic cold start
+        on the coarsest grid, as the first state; or the nearest converged state moved along
+        its exact tangent ``dq/d delta`` (at Tabor parameters ~10 the Newton iteration then
+        moves the contact's rim by a fraction of a cell ring per step, and creeps).
 
     Returns
     -------
@@ -221,16 +270,24 @@ def grid_minimum(problems, approach, half_window, guess=None, options=NESTED_OPT
     def finish(d, load, err, ok, reason, st):
         return GridMinimum(shape, float(d), float(load), float(err), np.array([r[0] for r in solved]),
                            np.array([r[1].load for r in solved]), work[0], work[1], ok, reason,
-                           time.perf_counter() - t0, st)
+                           time.perf_counter() - t0, contact_state(prob, d, st), records)
+
+    records = []
+    progress = PathProgress(False, f"{shape[0]}x{shape[1]}")
 
     def add(d, st):
+        cs = contact_state(prob, d, st)
+        records.append(cs.summary())
+        progress.update(len(records) - 1, cs, "refine")
         tangent = None
-        if st.converged:
-            _, tangent = load_slope(prob, st, pre, options)
+        if st.converged and start == "tangent":
+            _, tangent = load_slope(prob, st, pre, options, rtol=TANGENT_RTOL)
         solved.append((float(d), st, tangent))
         return st
 
-    first = solve_state_nested(problems, float(approach), guess, options)
+    if start not in ("nested", "tangent"):
+        raise ValueError(f"start must be 'nested' or 'tangent'; got {start!r}")
+    first = solve_state_nested(problems, float(approach), cold_start(problems[0], float(approach), zone), options)
     st = first.state
     work[0] += sum(v.newton_iterations for v in first.levels[:-1])
     work[1] += sum(v.krylov_iterations for v in first.levels[:-1])
@@ -240,9 +297,15 @@ def grid_minimum(problems, approach, half_window, guess=None, options=NESTED_OPT
         return finish(approach, st.load, float("inf"), False, st.reason, st)
 
     def solve_at(d):
-        d0, s0, t0_ = min((r for r in solved if r[1].converged), key=lambda r: abs(r[0] - d))
-        st = solve_state(prob, d, s0.traction + (d - d0) * t0_, options, pre)
-        note(d, st, "tangent start")
+        if start == "tangent":
+            d0, s0, t0_ = min((r for r in solved if r[1].converged), key=lambda r: abs(r[0] - d))
+            st = solve_state(prob, d, s0.traction + (d - d0) * t0_, options, pre)
+        else:
+            got = solve_state_nested(problems, d, cold_start(problems[0], d, zone), options)
+            work[0] += sum(v.newton_iterations for v in got.levels[:-1])
+            work[1] += sum(v.krylov_iterations for v in got.levels[:-1])
+            st = got.state
+        note(d, st, f"{start} start")
         return add(d, st)
 
     # bracket: step beyond the lowest end, doubling the step, until the lowest load is interior
@@ -311,7 +374,7 @@ class LadderPullOff:
 
 
 def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_margin=EDGE_MARGIN,
-                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None) -> LadderPullOff:
+                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested") -> LadderPullOff:
     """Locate the load-control pull-off on ``problem``'s grid and on a coarser check grid.
 
     Parameters
@@ -334,6 +397,8 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
         ``approach_step``; the answer's grid uses half of it, centred on the check grid's minimum.
     log : callable, optional
         One line per state and per grid.
+    start : {"nested", "tangent"}, default "nested"
+        Start of the states after each grid's first (:func:`grid_minimum`).
 
     Returns
     -------
@@ -344,14 +409,15 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
     h = 0.25 * problem.approach_step if half_window is None else float(half_window)
     out = []
     centre = problem.pull_off_approach
-    for j, nd in enumerate((problem.on_cells(n_coarse), problem)):
-        k = 2 ** levels
+    k = 2 ** levels
+    ny_coarse = k * max(1, round(problem.grid.ny * int(n_coarse) / problem.grid.nx / k))
+    for j, nd in enumerate((problem.on_cells(n_coarse, ny_coarse), problem)):
         if nd.grid.nx % k or nd.grid.ny % k:
             raise ValueError(f"{levels} levels need cells divisible by {k}; got {nd.grid.nx} x {nd.grid.ny}")
         ladder = [adhesive_problem(nd.on_cells(nd.grid.nx // 2 ** i, nd.grid.ny // 2 ** i), threads,
                                    edge_margin) for i in range(levels - 1, -1, -1)]
-        q0 = cold_start(ladder[0], centre, problem.pull_off_zone)
-        res = grid_minimum(ladder, centre, h if j == 0 else 0.5 * h, q0, options, log=log)
+        res = grid_minimum(ladder, centre, h if j == 0 else 0.5 * h, problem.pull_off_zone, options, log=log,
+                           start=start)
         out.append(res)
         if log is not None:
             log(f"grid {res.shape[0]}x{res.shape[1]}: {res.reason} approach {res.approach:.8f} load {res.load:.8f} "
@@ -368,3 +434,65 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
     c, f = out
     err = max(ladder_error(f.load, c.load, f.shape[0], c.shape[0]), f.search_error) / abs(f.load)
     return LadderPullOff(c, f, f.load, float(err), opts, True, "converged_minimum", time.perf_counter() - t0)
+
+
+def pull_off_record(problem: NondimensionalProblem, result: LadderPullOff) -> PullOff:
+    """Build the BEM's pull-off record of a two-grid Newton pull-off, in the paper's units (Eq. 34).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The answer's problem (``result.fine`` solved it).
+    result : LadderPullOff
+        The pull-off (:func:`ladder_pull_off`).
+
+    Returns
+    -------
+    dhfield.core.records.PullOff
+        As :func:`dhfield.bem.pull_off.pull_off_result`, with ``search`` :data:`NEWTON_SEARCH`:
+        W* and the semi-axes of the lowest state on the answer's grid; ``W_star_error`` the
+        stated error of :func:`ladder_pull_off` (relative) times ``|W*|``, infinite when the
+        pull-off is not resolved (the reasons of :func:`dhfield.bem.pull_off.unresolved_reasons`
+        in ``note``); ``iterations`` the GMRES iterations and ``residual`` the largest over the
+        answer grid's states; ``path`` the answer grid's states in solve order (phase 'refine');
+        ``note`` names the check grid and its W*.
+    """
+    f, c = result.fine, result.coarse
+    st = f.state
+    a, b = st.contact_semi_axes()
+    cc, d = st.cohesive_semi_axes()
+    scale = problem.sin_skew / (2.0 * math.pi)         # Eq. (34): W* = W sin(theta_skew) / (2 pi R dgamma)
+    w_star = float(f.load * scale)
+    error = float(result.stated_error * abs(w_star))
+    resolved = bool(st.resolved)
+    reasons = unresolved_reasons(law=problem.law, grid=problem.grid, sin_skew=problem.sin_skew,
+                                 edge_resolved=resolved, control="load", w_star=w_star,
+                                 search_error=float(f.search_error * scale), axes=(a, b, cc, d),
+                                 stated_error=error)
+    note = (f"grid error from a check grid: W* = {c.load * scale:.6g} on {c.shape[0]} x {c.shape[1]} cells"
+            if c is not f else "")
+    if not result.converged:
+        note = "; ".join(filter(None, (note, f"the search stopped: {result.reason}")))
+    if reasons or not np.isfinite(error):
+        error = float("inf")
+    if reasons:
+        note = "; ".join(filter(None, (note, "unresolved: " + "; ".join(reasons))))
+    records = [dict(r, phase="refine") for r in f.records]
+    failures = tuple({"approach": r["approach"], "residual": r["residual"], "iterations": r["iterations"],
+                      "phase": "refine"} for r in records if not r["converged"])
+    path = UnloadingPath.from_records(records, control="load", pull_off_load=f.load, pull_off_approach=f.approach,
+                                      pull_off_state=st, failures=failures, elapsed=result.elapsed,
+                                      pull_off_converged=result.converged, resolved=resolved,
+                                      coarse_states=c.states if c is not f else 0,
+                                      coarse_iterations=c.krylov_iterations if c is not f else 0,
+                                      pull_off_error=float(f.search_error))
+    return PullOff(
+        model="bem", control="load", geometry="ellipse", beta0=problem.beta0, mu=problem.mu,
+        sin_skew=problem.sin_skew, W_star=w_star, a_star=a, b_star=b, c_star=cc, d_star=d, v=float("nan"),
+        delta_star=float(f.approach), ellipticity=b / a if a > 0 else float("nan"),
+        adhesive_ellipticity=d / cc if cc > 0 else float("nan"), at_zero_contact=not a > 0,
+        warning=note if reasons else "", W_star_error=error, converged=bool(result.converged),
+        resolved=not reasons, note=note, search=NEWTON_SEARCH, n=int(problem.grid.nx), law=problem.law.name,
+        n_steps=len(records), iterations=int(f.krylov_iterations), residual=float(max(r["residual"] for r in records)),
+        failures=failures, half_width_x=0.5 * problem.grid.nx * problem.grid.dx,
+        half_width_y=0.5 * problem.grid.ny * problem.grid.dy, elapsed=float(result.elapsed), path=path)

@@ -635,7 +635,7 @@ def _modulus(problem):
     return problem.op.reduced_modulus
 
 
-def load_slope(problem, state, precond=None, options=SolverOptions()):
+def load_slope(problem, state, precond=None, options=SolverOptions(), rtol=1e-10):
     """Compute dW/d delta of a converged state: one linear solve with the state's Jacobian.
 
     Parameters
@@ -647,7 +647,9 @@ def load_slope(problem, state, precond=None, options=SolverOptions()):
     precond : callable, optional
         :func:`symbol_preconditioner` of the problem.
     options : SolverOptions
-        Caps (the linear solve is taken to 1e-10 relative).
+        Caps.
+    rtol : float, default 1e-10
+        Relative tolerance of the linear solve (a predictor needs far less than the slope) [-].
 
     Returns
     -------
@@ -669,7 +671,7 @@ def load_slope(problem, state, precond=None, options=SolverOptions()):
     # d/d delta of the rows: A: h' = -1 + K dq = 0; E: dq - |s'| (K dq - 1) = 0; others: dq = 0
     rhs_full = np.where(contact, c, -slope)
     rhs = rhs_full.ravel()[jac.idx]
-    x, kit, info = _gmres(jac, rhs, 1e-10, options.max_krylov)
+    x, kit, info = _gmres(jac, rhs, rtol, options.max_krylov)
     dq = np.zeros_like(state.traction)
     dq.ravel()[jac.idx] = x
     return float(np.sum(dq)) * problem.weight, dq

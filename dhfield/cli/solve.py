@@ -80,12 +80,13 @@ def add_parser(sub) -> None:
                         "adhesive force and the jump is the first minimum of the machine position on it "
                         "(dhfield.analysis.bem_spring); the same branch on a coarser grid gives the grid's error; "
                         "--out then holds the branch, --search does not apply")
-    p.add_argument("--search", default=None, choices=("located", "bracket", "march", "predicted"),
+    p.add_argument("--search", default=None, choices=("located", "bracket", "march", "predicted", "newton"),
                    help="load control: how the force minimum is found -- located on coarser grids first, "
                         "then 3-4 states on this one (default); bracket: from the analytic pull-off on this "
                         "grid; march: unload in uniform steps (slowest); predicted: lattice samples around "
                         "GVG's pull-off on its own domain (the default's route at mu >= 7.5 on an automatic "
-                        "grid; with --n, that route refined)")
+                        "grid; with --n, that route refined); newton: the semismooth Newton solve on the answer's grid "
+                        "and a check grid, the stated error from the two")
     p.add_argument("--max-seconds", type=float, default=None, metavar="S",
                    help="stop after the first state that ends past S seconds, say what was reached and exit "
                         f"{EXIT_TIME_LIMIT} (default: no limit).  Above the planner's own allowance "

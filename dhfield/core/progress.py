@@ -25,9 +25,9 @@ __all__ = ["EXPECTED_STATES", "PROGRESS_PREFIX", "SolveTimeLimit", "SolveProgres
 
 #: Typical number of states a route solves on the answer's grid [-]: 'located', 3 lattice samples and
 #: at most one parabola vertex; 'bracket', the start, the bracket and its refinements; 'predicted',
-#: lattice samples around GVG's pull-off; 'march', uniform unloading steps to the jump; the continuation
+#: lattice samples around GVG's pull-off; 'newton', the first state, two around it, the bracket and the vertex; 'march', uniform unloading steps to the jump; the continuation
 #: of displacement control and the spring's branch sample the whole branch.
-EXPECTED_STATES = {"located": 4, "bracket": 6, "predicted": 6, "march": 30, "displacement": 30, "spring": 30}
+EXPECTED_STATES = {"newton": 5, "located": 4, "bracket": 6, "predicted": 6, "march": 30, "displacement": 30, "spring": 30}
 #: Start of every progress line, so that a reader can tell them from the result's messages.
 PROGRESS_PREFIX = "dhfield: progress: "
 
