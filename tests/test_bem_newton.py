@@ -208,3 +208,51 @@ def test_floored_symbol_is_positive_on_oblong_cells():
     plain = newton.symbol_preconditioner(prob.grid, prob.symmetric, floor=False)(v)
     floored = newton.symbol_preconditioner(prob.grid, prob.symmetric, floor=True)(v)
     assert np.abs(floored).max() < 1e-3 * np.abs(plain).max()
+
+
+def _slender_start(beta0, mu, n, ny):
+    from dhfield.analysis.bem_start import nondimensional_problem
+
+    P = nondimensional_problem(beta0=beta0, mu=mu, n=n, ny=ny)
+    prob = P.adhesive_problem(threads=1)
+    return P, prob, newton.cold_start(prob, P.pull_off_approach, P.pull_off_zone)
+
+
+def test_watchdog_reaches_the_monotone_iterations_state():
+    # beta0 = 0.3, mu = 5 on 400 x 180 from the analytic start: the merit rises on two steps of the
+    # non-monotone iteration; with the watchdog the same state (load, contact cells)
+    P = predicted_problem(beta0=0.3, mu=5.0, n=400, ny=180)
+    prob = P.adhesive_problem(threads=1)
+    q0 = newton.cold_start(prob, P.pull_off_approach, P.pull_off_zone)
+    plain = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(nonmonotone=4))
+    wd = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(nonmonotone=4, watchdog=4))
+    assert plain.converged and wd.converged
+    assert wd.load == pytest.approx(plain.load, rel=1e-9)
+    assert np.array_equal(wd.contact, plain.contact)
+
+
+@pytest.mark.parametrize("watchdog", [2, 4])
+def test_watchdog_best_merit_falls_in_every_window(watchdog):
+    # 20 deg (beta0 = 0.108), mu = 1, one 256 x 64 grid from the analytic start: the full steps raise the
+    # merit on most iterations, yet the best merit so far falls at least once in every watchdog + 1
+    # accepted steps (else the iteration returns to the best iterate and takes a merit-decreasing step)
+    P, prob, q0 = _slender_start(0.108, 1.0, 256, 64)
+    wd = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(watchdog=watchdog, max_newton=40))
+    h = np.asarray(wd.merit_history)
+    assert np.count_nonzero(np.diff(h) > 0) >= 5           # the watchdog's full steps were taken
+    best = np.minimum.accumulate(h)
+    for k in range(len(best) - watchdog - 1):
+        assert best[k + watchdog + 1] < best[k]
+    # an unconverged state is returned at its best iterate
+    assert wd.converged or float(np.linalg.norm(newton._residual(wd.gap, wd.traction + newton._Law(
+        prob.law, prob.min_spread).stress(wd.gap), prob.law.max_stress / prob.law.range))) == pytest.approx(
+        best[-1], rel=1e-9)
+
+
+def test_watchdog_off_is_the_monotone_iteration():
+    P = predicted_problem(beta0=1.0, mu=1.0, n=64)
+    prob = P.adhesive_problem(threads=1)
+    q0 = newton.cold_start(prob, P.pull_off_approach, P.pull_off_zone)
+    a = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions())
+    b = newton.solve_state(prob, P.pull_off_approach, q0, newton.SolverOptions(watchdog=0))
+    assert a.merit_history == b.merit_history and a.load == b.load

@@ -18,6 +18,7 @@ Usage::
     python -m verification.bench_ladder --cases b0.4826-10 --threads 2 --json /tmp/rows.json
     python -m verification.bench_ladder --cases sphere-5 --margins 1 1.5
     python -m verification.bench_ladder --cases sphere-10 --start tangent
+    python -m verification.bench_ladder --cases sphere-5 --n 256 384 512 768
 """
 from __future__ import annotations
 
@@ -38,7 +39,7 @@ from verification.bench_nested import _problem, _reference  # noqa: E402
 from verification.bench_newton import CASES, stored  # noqa: E402
 
 
-def run(beta0, mu, margin, threads, log_path=None, start="nested"):
+def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None):
     """One case in this process; return a JSON-ready dict."""
     from dhfield.bem import ladder
 
@@ -49,7 +50,7 @@ def run(beta0, mu, margin, threads, log_path=None, start="nested"):
 
     t0 = time.perf_counter()
     c0 = time.process_time()
-    P = _problem(beta0, mu)
+    P = _problem(beta0, mu, n)
     nc, nf = ladder.ladder_grids(P, margin)
     echo(f"== beta0 {beta0} mu {mu} planned {P.grid.nx}x{P.grid.ny} grids {nc} -> {nf} margin {margin} start {start}")
     k = 2 ** 3
@@ -85,6 +86,8 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", nargs="*", default=[c[0] for c in CASES], help="case names of bench_newton")
     ap.add_argument("--margins", nargs="*", type=float, default=[1.5], help="edge margins (dhfield.bem.ladder)")
     ap.add_argument("--threads", type=int, default=1, help="FFTW threads per case")
+    ap.add_argument("--n", type=int, nargs="*", default=[None],
+                    help="smallest answer grids (cells along x; default the planned grid)")
     ap.add_argument("--start", choices=("nested", "tangent"), default="nested",
                     help="start of the states after each grid's first (dhfield.bem.ladder.grid_minimum)")
     ap.add_argument("--timeout", type=float, default=1800.0, help="per case [s]")
@@ -94,7 +97,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.child:
         b, m, g = args.child
-        print(json.dumps(run(float(b), float(m), float(g), args.threads, args.log, args.start)))
+        print(json.dumps(run(float(b), float(m), float(g), args.threads, args.log, args.start, args.n[0])))
         return 0
     known = {c[0]: c for c in CASES}
     print(f"{'case':<12} {'marg':>4} {'grids':<22} {'st':>3} {'newton/gmres':<12} {'wall s':>7} {'cpu s':>7} "
@@ -102,8 +105,9 @@ def main(argv=None) -> int:
     rows = []
     for name in args.cases:
         _, beta0, mu = known[name]
-        for g in args.margins:
+        for g, n in ((g, n) for g in args.margins for n in args.n):
             cmd = [sys.executable, "-m", "verification.bench_ladder", "--threads", str(args.threads), "--start", args.start,
+                   *(["--n", str(n)] if n else []),
                    "--child", repr(beta0), repr(mu), repr(g)] + (["--log", args.log] if args.log else [])
             env = dict(os.environ, DHFIELD_THREADS=str(args.threads))
             try:

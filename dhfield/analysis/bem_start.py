@@ -994,7 +994,8 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
 
     The answer's grid has at least the planned cells (:func:`plan_grid`, or ``n`` x ``ny``) and
     its check grid resolves the Dugdale edge with the margin (:func:`dhfield.bem.ladder.ladder_grids`);
-    the domain and the first approach are the predicted route's (:func:`predicted_problem`).
+    the domain and the first approach are the predicted route's (:func:`predicted_problem`), or
+    the analytic models' (:func:`nondimensional_problem`) where the predicted zone does not fit.
     """
     from ..bem import ladder
 
@@ -1005,7 +1006,10 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
             raise UnresolvableCaseError(plan)
         n, ny = plan.n_needed, plan.ny_needed
     ny = n if ny is None else ny
-    prob = predicted_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
+    try:
+        prob = predicted_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
+    except ValueError:          # the predicted zone does not fit the slender domain: the models' start
+        prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
     nc, nf = ladder.ladder_grids(prob)
     k = 2 ** LADDER_LEVELS
     nyf = k * max(1, round(prob.grid.ny * nf / prob.grid.nx / k))

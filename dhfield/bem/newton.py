@@ -122,6 +122,14 @@ class SolverOptions:
         (``symbol_preconditioner(floor=True)``), when the solve builds it.  Without the
         floor, cells that are not square leave near-zero or negative entries in the
         truncated kernel's spectrum, whose inverses swamp the preconditioner.
+    watchdog : int, default 0
+        Watchdog steps (0: none): up to this many full Newton steps are taken whatever their
+        merit; when none of them has brought the merit below the best one so far (by 1e-4
+        relative), the iteration returns to the best iterate and takes the safeguarded step
+        from it (a step that decreases the merit, with the trust-region damping).  The best
+        merit therefore falls at least once every ``watchdog + 1`` iterations (Chamberlain,
+        Powell, Lemarechal & Pedersen 1982), and the full steps move the contact's rim by
+        many cells at once, where a merit-decreasing step moves it by a fraction of a ring.
     """
 
     tol: float = 1e-8
@@ -134,6 +142,7 @@ class SolverOptions:
     stall: int = 0
     contact_inner: int = 0
     symbol_floor: bool = True
+    watchdog: int = 0
 
     def as_dict(self) -> dict:
         """Return the options as a mapping (recorded with every result).
@@ -563,6 +572,8 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
     reason = DIVERGED_MAX_IT
     it = 0
     lam = 0.0
+    best = (merit, q, h, p, F, res)      # the watchdog's best iterate
+    relaxed = 0                          # full steps taken since the best merit last fell
     while True:
         if res <= options.tol:
             reason = CONVERGED
@@ -573,12 +584,23 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
             reason = DIVERGED_STALL
             break
         it += 1
+        if options.watchdog and relaxed >= options.watchdog:
+            # the full steps did not lower the best merit: back to the best iterate, a safeguarded step from it
+            merit, q, h, p, F, res = best
+            relaxed = -1
+            if log is not None:
+                log(f"newton {it:3d}: watchdog: back to the best iterate (|F| {merit:.3e})")
         contact = c * h < p
         slope = law.slope(h)
         edge = (~contact) & (slope > 0.0)
         free = ~(contact | edge)
         rtol = min(options.forcing, math.sqrt(merit / max(history[0], 1e-300)))
-        ref = max(history[-options.nonmonotone:])
+        if not options.watchdog:
+            ref = max(history[-options.nonmonotone:])
+        elif relaxed < 0:
+            ref, lam = merit, max(lam, options.min_damping)
+        else:
+            ref, lam = math.inf, 0.0
         # Levenberg-Marquardt damping of the edge rows (a trust region on the zone's edge): lam -> inf
         # freezes the edge and leaves the convex contact step, lam = 0 is Newton's step
         alpha = 1.0
@@ -600,7 +622,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
             calls += 1
             Ft = _residual(ht, pt, c)
             mt = float(np.linalg.norm(Ft))
-            if mt <= (1.0 - 1e-4) * ref:
+            if mt <= (1.0 - 1e-4) * ref and math.isfinite(mt):
                 lam = lam / 4.0 if lam > options.min_damping else 0.0
                 break
             if lam >= options.max_damping:
@@ -622,9 +644,16 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
         q, h, p, F, merit = qt, ht, pt, Ft, mt
         res = float(np.max(np.abs(F))) / sigma0
         history.append(merit)
+        if options.watchdog:
+            if merit <= (1.0 - 1e-4) * best[0]:
+                best, relaxed = (merit, q, h, p, F, res), 0
+            else:
+                relaxed += 1
         if log is not None:
             log(f"newton {it:3d}: residual {res:.3e}  |F| {merit:.3e}  step {alpha:.3g} damping {lam:.3g} gmres {kit:4d} "
                 f"(info {info})  contact {int(contact.sum())}  edge {int(edge.sum())}")
+    if options.watchdog and reason != CONVERGED and best[0] < merit:
+        merit, q, h, p, F, res = best
     load = float(np.sum(q)) * problem.weight
     return NewtonResult(q, h, c * h < p if reason == CONVERGED else p > 0, load, res, reason, it, krylov, calls,
                         history, time.perf_counter() - t0)
@@ -1228,7 +1257,7 @@ class NestedResult:
 #: Options of :func:`solve_state_nested` and :func:`dhfield.bem.energy.pull_off_nested`: the merit may rise
 #: over up to 4 steps (a prolonged start sits near the state, where full semismooth steps that cross
 #: the ramp's kinks raise ``||F||`` before it falls).
-NESTED_OPTIONS = SolverOptions(nonmonotone=4)
+NESTED_OPTIONS = SolverOptions(nonmonotone=4, watchdog=4)
 
 
 def solve_state_nested(problems, delta, guess=None, options=NESTED_OPTIONS, coarse_tol=1e-6, mode="traction",
