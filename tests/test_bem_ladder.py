@@ -151,3 +151,20 @@ def test_cli_solve_takes_the_newton_route(capsys):
     rc = main(["solve", "--beta0", "1", "--mu", "1", "--n", "96", "--search", "newton", "--json", "--quiet"])
     rec = json.loads(capsys.readouterr().out)
     assert rc == 0 and rec["search"] == "newton" and rec["converged"] and rec["resolved"]
+
+
+def test_refinement_for_a_target_error_adds_finer_grids(sphere):
+    # a target no grid meets: one refinement (4/3 the cells: 96 -> 128), the error from the last two
+    r = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=1)
+    assert [g.shape[0] for g in r.grids] == [72, 96, 128]
+    assert r.answer.grid.nx == 128 and r.fine is r.grids[-1] and r.coarse is r.grids[-2]
+    assert r.converged and r.stated_error > 1e-9                # reported, not met: the cap was reached
+    # a grid the memory check refuses ends the refinement with the last error stated
+    def refuse(nx, ny):
+        raise ValueError("too big")
+
+    s = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=3, grid_check=refuse)
+    assert [g.shape[0] for g in s.grids] == [72, 96] and s.load == r.grids[1].load
+    # a target already met: no refinement
+    t = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=0.5, max_refinements=3)
+    assert len(t.grids) == 2

@@ -18,7 +18,8 @@ Usage::
     python -m verification.bench_ladder --cases b0.4826-10 --threads 2 --json /tmp/rows.json
     python -m verification.bench_ladder --cases sphere-5 --margins 1 1.5
     python -m verification.bench_ladder --cases sphere-10 --start tangent
-    python -m verification.bench_ladder --cases sphere-5 --n 256 384 512 768
+    python -m verification.bench_ladder --cases sphere-5 --n 544 720 960 1280
+    python -m verification.bench_ladder --cases sphere-5 --target 2e-3 --refinements 2
 """
 from __future__ import annotations
 
@@ -39,7 +40,7 @@ from verification.bench_nested import _problem, _reference  # noqa: E402
 from verification.bench_newton import CASES, stored  # noqa: E402
 
 
-def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None):
+def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None, target=None, refinements=0):
     """One case in this process; return a JSON-ready dict."""
     from dhfield.bem import ladder
 
@@ -55,12 +56,13 @@ def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None):
     echo(f"== beta0 {beta0} mu {mu} planned {P.grid.nx}x{P.grid.ny} grids {nc} -> {nf} margin {margin} start {start}")
     k = 2 ** 3
     fine = P.on_cells(nf, k * max(1, round(P.grid.ny * nf / P.grid.nx / k)))
-    r = ladder.ladder_pull_off(fine, nc, edge_margin=margin, threads=threads, log=echo, start=start)
+    r = ladder.ladder_pull_off(fine, nc, edge_margin=margin, threads=threads, log=echo, start=start,
+                               target_error=target, max_refinements=refinements)
     scale = P.sin_skew / (2.0 * math.pi)           # Eq. (34)
-    return {"beta0": beta0, "mu": mu, "margin": margin, "start": start, "grids": [list(r.coarse.shape), list(r.fine.shape)],
-            "states": r.coarse.states + r.fine.states,
-            "newton": r.coarse.newton_iterations + r.fine.newton_iterations,
-            "gmres": r.coarse.krylov_iterations + r.fine.krylov_iterations,
+    return {"beta0": beta0, "mu": mu, "margin": margin, "start": start, "grids": [list(g.shape) for g in r.grids],
+            "states": sum(g.states for g in r.grids),
+            "newton": sum(g.newton_iterations for g in r.grids),
+            "gmres": sum(g.krylov_iterations for g in r.grids),
             "W_star_check": r.coarse.load * scale, "W_star": r.load * scale, "stated_error": r.stated_error,
             "converged": r.converged, "reason": r.reason, "wall": time.perf_counter() - t0,
             "cpu": time.process_time() - c0,
@@ -88,6 +90,8 @@ def main(argv=None) -> int:
     ap.add_argument("--threads", type=int, default=1, help="FFTW threads per case")
     ap.add_argument("--n", type=int, nargs="*", default=[None],
                     help="smallest answer grids (cells along x; default the planned grid)")
+    ap.add_argument("--target", type=float, help="relative stated error wanted (refine the grids while above)")
+    ap.add_argument("--refinements", type=int, default=0, help="cap on refinements for --target")
     ap.add_argument("--start", choices=("nested", "tangent"), default="nested",
                     help="start of the states after each grid's first (dhfield.bem.ladder.grid_minimum)")
     ap.add_argument("--timeout", type=float, default=1800.0, help="per case [s]")
@@ -97,7 +101,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.child:
         b, m, g = args.child
-        print(json.dumps(run(float(b), float(m), float(g), args.threads, args.log, args.start, args.n[0])))
+        print(json.dumps(run(float(b), float(m), float(g), args.threads, args.log, args.start, args.n[0], args.target,
+                             args.refinements)))
         return 0
     known = {c[0]: c for c in CASES}
     print(f"{'case':<12} {'marg':>4} {'grids':<22} {'st':>3} {'newton/gmres':<12} {'wall s':>7} {'cpu s':>7} "
@@ -107,7 +112,8 @@ def main(argv=None) -> int:
         _, beta0, mu = known[name]
         for g, n in ((g, n) for g in args.margins for n in args.n):
             cmd = [sys.executable, "-m", "verification.bench_ladder", "--threads", str(args.threads), "--start", args.start,
-                   *(["--n", str(n)] if n else []),
+                   *(["--n", str(n)] if n else []), "--refinements", str(args.refinements),
+                   *(["--target", repr(args.target)] if args.target else []),
                    "--child", repr(beta0), repr(mu), repr(g)] + (["--log", args.log] if args.log else [])
             env = dict(os.environ, DHFIELD_THREADS=str(args.threads))
             try:

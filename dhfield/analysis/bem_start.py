@@ -994,12 +994,15 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
 
     The answer's grid has at least the planned cells (:func:`plan_grid`, or ``n`` x ``ny``) and
     its check grid resolves the Dugdale edge with the margin (:func:`dhfield.bem.ladder.ladder_grids`);
+    on an automatic grid, finer grids follow while the stated error exceeds
+    :data:`LADDER_TARGET_ERROR` (at most :data:`LADDER_REFINEMENTS`, each within the memory);
     the domain and the first approach are the predicted route's (:func:`predicted_problem`), or
     the analytic models' (:func:`nondimensional_problem`) where the predicted zone does not fit.
     """
     from ..bem import ladder
 
-    if n is None:
+    automatic = n is None
+    if automatic:
         plan = plan_grid(mu=mu, beta0=beta0, law="dugdale", margin=margin, max_seconds=max_seconds,
                          control="load")
         if not plan.affordable:
@@ -1015,12 +1018,19 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
     nyf = k * max(1, round(prob.grid.ny * nf / prob.grid.nx / k))
     check_grid_memory(nf, nyf)
     fine = prob.on_cells(nf, nyf)
-    res = ladder.ladder_pull_off(fine, nc, levels=LADDER_LEVELS, threads=1 if threads is None else threads)
-    return ladder.pull_off_record(fine, res)
+    res = ladder.ladder_pull_off(fine, nc, levels=LADDER_LEVELS, threads=1 if threads is None else threads,
+                                 target_error=LADDER_TARGET_ERROR, max_refinements=LADDER_REFINEMENTS if automatic else 0,
+                                 grid_check=check_grid_memory)
+    return ladder.pull_off_record(res)
 
 
 #: Grids of each first state's nested solve on the Newton route (:func:`dhfield.bem.ladder.ladder_pull_off`).
 LADDER_LEVELS = 3
+#: The Newton route refines its grids (each 4/3 times the last's cells per axis) until the stated
+#: error is at most this [-] ...
+LADDER_TARGET_ERROR = 2e-3
+#: ... at most this many times [-].
+LADDER_REFINEMENTS = 2
 
 
 def _ladder_checked(prob, res, *, n_steps, margin, options) -> PullOff:

@@ -361,6 +361,10 @@ class LadderPullOff:
         Why it stopped.
     elapsed : float
         Wall time [s].
+    answer : NondimensionalProblem
+        The answer grid's problem.
+    grids : list of GridMinimum
+        Every grid's minimum, coarsest first (the check grid and the answer's are the last two).
     """
 
     coarse: GridMinimum
@@ -371,16 +375,19 @@ class LadderPullOff:
     converged: bool
     reason: str
     elapsed: float
+    answer: object = field(repr=False, default=None)
+    grids: list = field(repr=False, default_factory=list)
 
 
 def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_margin=EDGE_MARGIN,
-                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested") -> LadderPullOff:
+                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested",
+                    target_error=None, max_refinements=0, grid_check=None) -> LadderPullOff:
     """Locate the load-control pull-off on ``problem``'s grid and on a coarser check grid.
 
     Parameters
     ----------
     problem : NondimensionalProblem
-        The answer's problem (its grid is the answer's grid).
+        The answer's problem (its grid is the answer's grid, unless refined for ``target_error``).
     n_coarse : int
         Cells along x of the check grid, below ``problem.grid.nx`` (even) [-].
     levels : int, default 3
@@ -394,16 +401,25 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
         FFTW threads.
     half_window : float, optional
         Half-width of the check grid's window [c_r^2/R]; default a quarter of the problem's
-        ``approach_step``; the answer's grid uses half of it, centred on the check grid's minimum.
+        ``approach_step``; every finer grid uses half of it, centred on the coarser grid's minimum.
     log : callable, optional
         One line per state and per grid.
     start : {"nested", "tangent"}, default "nested"
         Start of the states after each grid's first (:func:`grid_minimum`).
+    target_error : float, optional
+        Relative stated error wanted [-]: while the stated error exceeds it, a grid with
+        :data:`CHECK_RATIO` times the cells is solved and the last two grids give the error
+        again, at most ``max_refinements`` times.
+    max_refinements : int, default 0
+        Cap on those refinements [-].
+    grid_check : callable, optional
+        ``grid_check(nx, ny)`` raises ValueError for a refinement that must not be solved (memory);
+        the refinement then stops, with the last error stated.
 
     Returns
     -------
     LadderPullOff
-        Both grids' minima and the stated error (infinite when either did not converge).
+        The last two grids' minima and the stated error (infinite when either did not converge).
     """
     t0 = time.perf_counter()
     h = 0.25 * problem.approach_step if half_window is None else float(half_window)
@@ -411,7 +427,12 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
     centre = problem.pull_off_approach
     k = 2 ** levels
     ny_coarse = k * max(1, round(problem.grid.ny * int(n_coarse) / problem.grid.nx / k))
-    for j, nd in enumerate((problem.on_cells(n_coarse, ny_coarse), problem)):
+    grids = [problem.on_cells(n_coarse, ny_coarse), problem]
+    opts = dict(options.as_dict(), edge_margin=float(edge_margin))
+    err = float("inf")
+    j = 0
+    while j < len(grids):
+        nd = grids[j]
         if nd.grid.nx % k or nd.grid.ny % k:
             raise ValueError(f"{levels} levels need cells divisible by {k}; got {nd.grid.nx} x {nd.grid.ny}")
         ladder = [adhesive_problem(nd.on_cells(nd.grid.nx // 2 ** i, nd.grid.ny // 2 ** i), threads,
@@ -424,25 +445,34 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
                 f"search error {res.search_error:.2e} states {res.states} newton {res.newton_iterations} "
                 f"gmres {res.krylov_iterations} ({res.elapsed:.1f} s)")
         if not res.converged:
-            break
+            last = out[-1]
+            return LadderPullOff(out[-2] if len(out) > 1 else last, last, last.load, float("inf"), opts, False,
+                                 last.reason, time.perf_counter() - t0, nd, out)
         centre = res.approach
-    opts = dict(options.as_dict(), edge_margin=float(edge_margin))
-    if len(out) < 2 or not out[-1].converged:
-        last = out[-1]
-        return LadderPullOff(out[0], last, last.load, float("inf"), opts, False, last.reason,
-                             time.perf_counter() - t0)
-    c, f = out
-    err = max(ladder_error(f.load, c.load, f.shape[0], c.shape[0]), f.search_error) / abs(f.load)
-    return LadderPullOff(c, f, f.load, float(err), opts, True, "converged_minimum", time.perf_counter() - t0)
+        if j >= 1:
+            c, f = out[-2], out[-1]
+            err = max(ladder_error(f.load, c.load, f.shape[0], c.shape[0]), f.search_error) / abs(f.load)
+            if (j == len(grids) - 1 and target_error is not None and err > target_error
+                    and len(grids) - 2 < max_refinements):
+                nx = 8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8)
+                ny = k * max(1, round(nd.grid.ny * nx / nd.grid.nx / k))
+                try:
+                    if grid_check is not None:
+                        grid_check(nx, ny)
+                    grids.append(problem.on_cells(nx, ny))
+                except ValueError as exc:
+                    if log is not None:
+                        log(f"no refinement to {nx}x{ny}: {exc}")
+        j += 1
+    return LadderPullOff(out[-2], out[-1], out[-1].load, float(err), opts, True, "converged_minimum",
+                         time.perf_counter() - t0, grids[-1], out)
 
 
-def pull_off_record(problem: NondimensionalProblem, result: LadderPullOff) -> PullOff:
+def pull_off_record(result: LadderPullOff) -> PullOff:
     """Build the BEM's pull-off record of a two-grid Newton pull-off, in the paper's units (Eq. 34).
 
     Parameters
     ----------
-    problem : NondimensionalProblem
-        The answer's problem (``result.fine`` solved it).
     result : LadderPullOff
         The pull-off (:func:`ladder_pull_off`).
 
@@ -458,6 +488,7 @@ def pull_off_record(problem: NondimensionalProblem, result: LadderPullOff) -> Pu
         ``note`` names the check grid and its W*.
     """
     f, c = result.fine, result.coarse
+    problem = result.answer
     st = f.state
     a, b = st.contact_semi_axes()
     cc, d = st.cohesive_semi_axes()

@@ -1254,10 +1254,13 @@ class NestedResult:
         return sum(r.krylov_iterations for r in self.levels)
 
 
-#: Options of :func:`solve_state_nested` and :func:`dhfield.bem.energy.pull_off_nested`: the merit may rise
-#: over up to 4 steps (a prolonged start sits near the state, where full semismooth steps that cross
-#: the ramp's kinks raise ``||F||`` before it falls).
-NESTED_OPTIONS = SolverOptions(nonmonotone=4, watchdog=4)
+#: Options of :func:`solve_state_nested`, :func:`dhfield.bem.energy.pull_off_nested` and
+#: :mod:`dhfield.bem.ladder`: the merit may rise over up to 4 steps (a prolonged start sits near the
+#: state, where full semismooth steps that cross the ramp's kinks raise ``||F||`` before it falls), and
+#: up to 8 full steps are taken whatever their merit (the watchdog: at Tabor parameters ~10 the
+#: contact's rim moves by thousands of cells in a few full steps, by a fraction of a ring per
+#: merit-decreasing step; 4 full steps were too few on the sphere at mu = 10, 1976^2, 8 converge).
+NESTED_OPTIONS = SolverOptions(nonmonotone=4, watchdog=8)
 
 
 def solve_state_nested(problems, delta, guess=None, options=NESTED_OPTIONS, coarse_tol=1e-6, mode="traction",
