@@ -14,7 +14,7 @@ deviation from it; today's route's stored CPU time for the same case (its level-
 
 Usage::
 
-    python -m verification.bench_ladder --cases sphere-1 sphere-5 20deg-1
+    python -m verification.bench_ladder --cases sphere-1 sphere-5 20deg-1 --today
     python -m verification.bench_ladder --cases b0.4826-10 --threads 2 --json /tmp/rows.json
     python -m verification.bench_ladder --cases sphere-5 --margins 1 1.5
     python -m verification.bench_ladder --cases sphere-10 --start tangent
@@ -37,7 +37,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from verification.bench_nested import _problem, _reference  # noqa: E402
-from verification.bench_newton import CASES, stored  # noqa: E402
+from verification.bench_newton import CASES, run_today, stored  # noqa: E402
 
 
 def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None, target=None, refinements=0):
@@ -97,8 +97,14 @@ def main(argv=None) -> int:
     ap.add_argument("--timeout", type=float, default=1800.0, help="per case [s]")
     ap.add_argument("--log", help="append every state line here")
     ap.add_argument("--json", type=Path, help="write every row here")
+    ap.add_argument("--today", action="store_true",
+                    help="also run today's route (adhesive_pull_off's defaults) on each case, side by side")
     ap.add_argument("--child", nargs=3, help=argparse.SUPPRESS)
+    ap.add_argument("--today-child", nargs=2, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
+    if args.today_child:
+        print(json.dumps(run_today(float(args.today_child[0]), float(args.today_child[1]))))
+        return 0
     if args.child:
         b, m, g = args.child
         print(json.dumps(run(float(b), float(m), float(g), args.threads, args.log, args.start, args.n[0], args.target,
@@ -125,9 +131,26 @@ def main(argv=None) -> int:
             rows.append(row)
             _print_row(name, row)
             sys.stdout.flush()
+        if args.today:
+            cmd = [sys.executable, "-m", "verification.bench_ladder", "--today-child", repr(beta0), repr(mu)]
+            env = dict(os.environ, DHFIELD_THREADS=str(args.threads))
+            try:
+                p = subprocess.run(cmd, stdout=subprocess.PIPE, text=True, timeout=args.timeout, cwd=ROOT, env=env)
+                t = json.loads(p.stdout.strip().splitlines()[-1]) if p.returncode == 0 else {"error": f"exit {p.returncode}"}
+            except subprocess.TimeoutExpired:
+                t = {"error": f"over {args.timeout:.0f} s"}
+            t.update(case=name, route="today")
+            rows.append(t)
+            if "error" in t:
+                print(f"{'  today':<12} {t['error']}")
+            else:
+                print(f"{'  today':<12} {'':>4} {t['n']:<22} {'':>3} {t['iterations']:>5} CG      {t['wall']:7.1f} "
+                      f"{t['cpu']:7.1f} {t['maxrss_gib']:5.2f}  {t['W_star']:.6f} "
+                      f"{t['W_star_error'] / abs(t['W_star']):8.3%}" + ("" if t["converged"] else "  NOT converged"))
+            sys.stdout.flush()
     if args.json:
         args.json.write_text(json.dumps(rows, indent=1))
-    return 0 if all(r.get("converged") for r in rows) else 1
+    return 0 if all(r.get("converged") for r in rows if r.get("route") != "today") else 1
 
 
 if __name__ == "__main__":
