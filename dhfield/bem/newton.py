@@ -48,7 +48,8 @@ preconditioned on A by the inverse of the operator's own symbol (the hypersingul
 operator: a Calderon preconditioner, which keeps the iteration count nearly independent
 of the grid), with a relative tolerance that tightens with the residual (inexact Newton,
 superlinear).  A backtracking line search on the merit ``||F||^2`` makes every accepted
-step decrease it.  The pull-off sensitivity ``dq/d delta`` costs one more linear solve
+step decrease it, or, with the watchdog (``SolverOptions.watchdog``, [4]_), the best merit
+decrease at least once in every few steps while full steps are taken between.  The pull-off sensitivity ``dq/d delta`` costs one more linear solve
 with the same Jacobian (:func:`load_slope`).
 
 References
@@ -59,6 +60,9 @@ References
    preconditioners in the boundary element method. Adv. Comput. Math. 9:191-216.
    doi:10.1023/A:1018937506719
 .. [3] D. Maugis (1992) J. Colloid Interface Sci. 150:243-269. doi:10.1016/0021-9797(92)90288-C
+.. [4] R. M. Chamberlain, M. J. D. Powell, C. Lemarechal, H. C. Pedersen (1982) The watchdog
+   technique for forcing convergence in algorithms for constrained optimization. Math.
+   Programming Study 16:1-17. doi:10.1007/BFb0120945
 """
 from __future__ import annotations
 

@@ -486,6 +486,10 @@ def run(args) -> int:
         print(f"dhfield: solve did not converge for {where}: {' '.join(str(exc).split())}", file=sys.stderr)
         return EXIT_UNCONVERGED
     rec = _record(res)
+    # the answer's grid: the planned one, or finer where the route refined it (the Newton route)
+    grid = res.path.pull_off_state.grid if res.path is not None else None
+    solved = cells if grid is None else f"{grid.nx}" + (f" x {grid.ny}" if grid.ny != grid.nx else "")
+    where = where.replace(f"n={cells},", f"n={solved},")
     si = {}
     if params is not None:
         from ..io.solution import pull_off_si
@@ -506,7 +510,7 @@ def run(args) -> int:
         rec = {**rec, **si}
         print_json({**rec, "units": _units(rec, si_keys=tuple(si))})
     else:
-        print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {cells}, {res.law}, {res.control} control")
+        print(f"beta0 = {res.beta0:g}, mu = {res.mu:g}, N = {solved}, {res.law}, {res.control} control")
         # the stated error: the search's (load control) or the fold fit's (displacement control) plus the
         # grid's (W_star_error); infinite when the answer is not resolved
         err = (f" (stated error {res.W_star_error:.2g})" if math.isfinite(res.W_star_error)
