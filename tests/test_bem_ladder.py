@@ -168,3 +168,9 @@ def test_refinement_for_a_target_error_adds_finer_grids(sphere):
     # a target already met: no refinement
     t = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=0.5, max_refinements=3)
     assert len(t.grids) == 2
+
+
+@pytest.mark.parametrize("margin", [0.5, float("nan"), float("inf")])
+def test_edge_margin_out_of_range_is_refused(sphere, margin):
+    with pytest.raises(ValueError, match="edge_margin"):
+        ladder.adhesive_problem(sphere, 1, edge_margin=margin)

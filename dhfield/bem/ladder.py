@@ -12,14 +12,15 @@ curve.  The minimum is therefore located from the loads themselves.
 
 Algorithm
 ---------
-On each of two grids over the same domain (the answer's grid, and a coarser check grid):
+On each of two grids over the same domain (the answer's grid, and a coarser check grid), and
+on finer ones while the stated error exceeds a target:
 
 1. the first state, at the analytic prediction of the pull-off's approach (or at the check
    grid's minimum), is solved by nested iteration from the analytic cold start
    (:func:`dhfield.bem.newton.solve_state_nested` over grids halving the cells);
 2. two more states at ``delta +- h`` are solved the same way (nested iteration from the
-   analytic start: the coarse grids place the contact's rim, which a warm start from the
-   neighbouring state moves by a fraction of a cell ring per Newton step);
+   analytic start: the coarse grids place the contact's rim; from the neighbouring state
+   moved along its tangent, the Newton iteration crept at Tabor parameters ~10);
 3. while the lowest load lies at an end of the solved approaches, one more state is solved
    beyond that end, each step twice the last (a bracket);
 4. the state at the vertex of the parabola through the lowest load and its two neighbours
@@ -27,7 +28,9 @@ On each of two grids over the same domain (the answer's grid, and a coarser chec
    vertex state's load and the parabola's vertex value is the search's error.
 
 The check grid's pull-off gives the grid's error by the ladder estimate
-(:func:`dhfield.bem.pull_off.ladder_error`); the stated error is the larger of the two.
+(:func:`dhfield.bem.pull_off.ladder_error`); the stated error is the larger of it and the
+answer grid's search error.  Every state is solved with :data:`dhfield.bem.newton.NESTED_OPTIONS`
+(the watchdog: the best merit falls at least once in every nine Newton iterations).
 
 The Dugdale edge on a grid is a ramp of width w in the cell's own gap (:mod:`dhfield.bem.newton`),
 with ``w = edge_margin x`` the smallest energy-stable width, capped at 2 h0: at ``edge_margin``
@@ -38,19 +41,18 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from .newton import NESTED_OPTIONS, SolverOptions, cold_start, load_slope, solve_state, solve_state_nested, \
-    symbol_preconditioner
+from .newton import NESTED_OPTIONS, cold_start, load_slope, solve_state, solve_state_nested, symbol_preconditioner
 from ..core.records import PullOff
 from .branch import PathProgress, UnloadingPath
-from .pull_off import NondimensionalProblem, discretisation_error, ladder_error, unresolved_reasons
+from .pull_off import NondimensionalProblem, ladder_error, unresolved_reasons
 from .state import ContactState
 
-__all__ = ["GridMinimum", "LadderPullOff", "EDGE_MARGIN", "CHECK_RATIO", "TANGENT_RTOL", "adhesive_problem", "ladder_grids",
-           "grid_minimum", "ladder_pull_off", "contact_state", "pull_off_record", "NEWTON_SEARCH"]
+__all__ = ["GridMinimum", "LadderPullOff", "EDGE_MARGIN", "CHECK_RATIO", "TANGENT_RTOL", "NEWTON_SEARCH",
+           "adhesive_problem", "ladder_grids", "grid_minimum", "ladder_pull_off", "contact_state", "pull_off_record"]
 
 #: The edge's ramp width per its smallest energy-stable width (a stability margin of the
 #: discrete edge; the width still vanishes like dx ln(1/dx) under refinement) [-].
@@ -74,10 +76,14 @@ def adhesive_problem(problem: NondimensionalProblem, threads=1, edge_margin=EDGE
     AdhesiveProblem
         With ``min_spread`` widened and ``resolved``/``edge_width_ratio`` scaled by the margin.
     """
+    edge_margin = float(edge_margin)
+    if not (math.isfinite(edge_margin) and edge_margin >= 1.0):
+        raise ValueError(f"edge_margin must be a number >= 1 (ramp width per its smallest stable width); "
+                         f"got {edge_margin!r}")
     prob = problem.adhesive_problem(threads)
     if prob.widest_spread > 0.0 and prob.min_spread < prob.widest_spread:
-        prob.min_spread = min(prob.min_spread * float(edge_margin), prob.widest_spread)
-        prob.edge_width_ratio *= float(edge_margin)
+        prob.min_spread = min(prob.min_spread * edge_margin, prob.widest_spread)
+        prob.edge_width_ratio *= edge_margin
         prob.resolved = prob.edge_width_ratio <= 1.0
     return prob
 
