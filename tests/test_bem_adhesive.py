@@ -200,7 +200,7 @@ def test_bracket_search_rejects_bad_input():
     with pytest.raises(ValueError, match="start_stress"):
         unloading_path(*args, approach_guess=-0.5, start_stress=np.zeros((4, 4)))
     with pytest.raises(ValueError, match="search"):
-        adhesive_pull_off(mu=1.0, beta0=1.0, n=16, search="newton")
+        adhesive_pull_off(mu=1.0, beta0=1.0, n=16, search="gauss")
 
 
 def test_nested_warm_starts_reach_the_same_states():

@@ -174,3 +174,17 @@ def test_refinement_for_a_target_error_adds_finer_grids(sphere):
 def test_edge_margin_out_of_range_is_refused(sphere, margin):
     with pytest.raises(ValueError, match="edge_margin"):
         ladder.adhesive_problem(sphere, 1, edge_margin=margin)
+
+
+@pytest.mark.parametrize("n", [8, 16, 24])
+def test_newton_route_takes_small_grids(n):
+    # a valid n gives an answer (on at least n cells), not an error from the nested levels
+    from dhfield.bem import adhesive_pull_off
+
+    rec = adhesive_pull_off(beta0=1.0, mu=1.0, n=n, search="newton")
+    assert rec.search == "newton" and rec.n >= n and math.isfinite(rec.W_star)
+
+
+def test_too_many_levels_for_the_grid_are_refused_by_name(sphere):
+    with pytest.raises(ValueError, match="levels must leave at least 8 cells"):
+        ladder.ladder_pull_off(sphere.on_cells(32), 24, levels=3)

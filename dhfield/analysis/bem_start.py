@@ -1014,11 +1014,14 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
     except ValueError:          # the predicted zone does not fit the slender domain: the models' start
         prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
     nc, nf = ladder.ladder_grids(prob)
-    k = 2 ** LADDER_LEVELS
+    # the nested levels: up to LADDER_LEVELS, the coarsest with at least 16 cells across the check grid
+    ny_c = prob.grid.ny * nc / prob.grid.nx
+    levels = max(1, min(LADDER_LEVELS, 1 + int(math.log2(max(min(nc, ny_c) / 16.0, 1.0)))))
+    k = 2 ** levels
     nyf = k * max(1, round(prob.grid.ny * nf / prob.grid.nx / k))
     check_grid_memory(nf, nyf)
     fine = prob.on_cells(nf, nyf)
-    res = ladder.ladder_pull_off(fine, nc, levels=LADDER_LEVELS, threads=1 if threads is None else threads,
+    res = ladder.ladder_pull_off(fine, nc, levels=levels, threads=1 if threads is None else threads,
                                  target_error=LADDER_TARGET_ERROR, max_refinements=LADDER_REFINEMENTS if automatic else 0,
                                  grid_check=check_grid_memory)
     return ladder.pull_off_record(res)

@@ -441,6 +441,9 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
         nd = grids[j]
         if nd.grid.nx % k or nd.grid.ny % k:
             raise ValueError(f"{levels} levels need cells divisible by {k}; got {nd.grid.nx} x {nd.grid.ny}")
+        if min(nd.grid.nx, nd.grid.ny) // 2 ** (levels - 1) < 8:
+            raise ValueError(f"levels must leave at least 8 cells per axis on the coarsest nested grid; got "
+                             f"{levels} levels on {nd.grid.nx} x {nd.grid.ny} cells")
         ladder = [adhesive_problem(nd.on_cells(nd.grid.nx // 2 ** i, nd.grid.ny // 2 ** i), threads,
                                    edge_margin) for i in range(levels - 1, -1, -1)]
         res = grid_minimum(ladder, centre, h if j == 0 else 0.5 * h, problem.pull_off_zone, options, log=log,
