@@ -47,6 +47,7 @@ from ..core.memory import memory_limit
 from ..core.validation import check_count, check_ellipticity, check_positive
 from ..bem.laws import law_from_name
 from ..bem.operator import Grid
+from ..bem.ladder import NEWTON_SEARCH
 from ..bem.path import PathOptions
 from ..bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, LOWER_MU_RATIO, MAX_CELLS, MAX_STEPS, NESTED_MIN_N,
                             NondimensionalProblem, UnloadingStart, check_bem_pull_off, check_cells,
@@ -1241,8 +1242,6 @@ PREDICTED_TOL = 1e-4
 #: The ``search`` of :func:`adhesive_pull_off` that asks for the predicted route, also on an explicit
 #: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
 PREDICTED_SEARCH = "predicted"
-#: The Newton route's search (:func:`dhfield.bem.ladder.ladder_pull_off`).
-NEWTON_SEARCH = "newton"
 
 #: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`);
 #: it ends with :data:`WIDEST_EDGE_MARK`, which readers look for.
