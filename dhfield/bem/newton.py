@@ -180,7 +180,8 @@ class NewtonResult:
     newton_iterations, krylov_iterations, operator_calls : int
         Work spent.
     merit_history : list of float
-        ``||F||`` after each accepted step (decreasing by construction).
+        ``||F||`` after each accepted step (decreasing by construction without the watchdog; with
+        it, its running minimum falls at least once in every ``watchdog + 1`` entries).
     elapsed : float
         Wall time [s].
     """
