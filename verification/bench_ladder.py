@@ -55,7 +55,7 @@ def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None, targe
     nc, nf = ladder.ladder_grids(P, margin)
     echo(f"== beta0 {beta0} mu {mu} planned {P.grid.nx}x{P.grid.ny} grids {nc} -> {nf} margin {margin} start {start}")
     k = 2 ** 3
-    fine = P.on_cells(nf, k * max(1, round(P.grid.ny * nf / P.grid.nx / k)))
+    fine = P.on_cells(nf, P.cells_y(nf, k))
     r = ladder.ladder_pull_off(fine, nc, edge_margin=margin, threads=threads, log=echo, start=start,
                                target_error=target, max_refinements=refinements)
     scale = P.sin_skew / (2.0 * math.pi)           # Eq. (34)

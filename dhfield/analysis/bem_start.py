@@ -1019,7 +1019,7 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
     ny_c = prob.grid.ny * nc / prob.grid.nx
     levels = max(1, min(LADDER_LEVELS, 1 + int(math.log2(max(min(nc, ny_c) / 16.0, 1.0)))))
     k = 2 ** levels
-    nyf = k * max(1, round(prob.grid.ny * nf / prob.grid.nx / k))
+    nyf = prob.cells_y(nf, k)
     check_grid_memory(nf, nyf)
     fine = prob.on_cells(nf, nyf)
     res = ladder.ladder_pull_off(fine, nc, levels=levels, threads=1 if threads is None else threads,

@@ -128,7 +128,7 @@ def ladder_grids(problem: NondimensionalProblem, edge_margin=EDGE_MARGIN, ratio=
 
     nc = up(problem.grid.nx / ratio)
     while True:
-        g = problem.on_cells(nc).grid
+        g = problem.grid_on_cells(nc)
         if edge_margin * edge_width_ratio(g, problem.law) <= 1.0 or nc > 65536:
             break
         nc = up(1.05 * nc)
@@ -432,8 +432,7 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
     out = []
     centre = problem.pull_off_approach
     k = 2 ** levels
-    ny_coarse = k * max(1, round(problem.grid.ny * int(n_coarse) / problem.grid.nx / k))
-    grids = [problem.on_cells(n_coarse, ny_coarse), problem]
+    grids = [problem.on_cells(n_coarse, problem.cells_y(n_coarse, k)), problem]
     opts = dict(options.as_dict(), edge_margin=float(edge_margin))
     err = float("inf")
     j = 0
@@ -444,7 +443,8 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
         if min(nd.grid.nx, nd.grid.ny) // 2 ** (levels - 1) < 8:
             raise ValueError(f"levels must leave at least 8 cells per axis on the coarsest nested grid; got "
                              f"{levels} levels on {nd.grid.nx} x {nd.grid.ny} cells")
-        ladder = [adhesive_problem(nd.on_cells(nd.grid.nx // 2 ** i, nd.grid.ny // 2 ** i), threads,
+        # the nested grids, coarsest first; the finest is this grid's problem itself
+        ladder = [adhesive_problem(nd.on_cells(nd.grid.nx // 2 ** i, nd.grid.ny // 2 ** i) if i else nd, threads,
                                    edge_margin) for i in range(levels - 1, -1, -1)]
         res = grid_minimum(ladder, centre, h if j == 0 else 0.5 * h, problem.pull_off_zone, options, log=log,
                            start=start)
@@ -464,7 +464,7 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
             if (j == len(grids) - 1 and target_error is not None and err > target_error
                     and len(grids) - 2 < max_refinements):
                 nx = 8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8)
-                ny = k * max(1, round(nd.grid.ny * nx / nd.grid.nx / k))
+                ny = nd.cells_y(nx, k)
                 try:
                     if grid_check is not None:
                         grid_check(nx, ny)

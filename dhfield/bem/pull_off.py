@@ -223,6 +223,44 @@ class NondimensionalProblem:
         """
         return self.approach_max - self.lattice_index(approach) * (self.approach_step / LOCATE_DIVISIONS)
 
+    def cells_y(self, nx, multiple=2) -> int:
+        """Return the cells along y for ``nx`` along x that keep this grid's cell counts' ratio.
+
+        Parameters
+        ----------
+        nx : int
+            Cells along x [-].
+        multiple : int, default 2
+            The count is a multiple of it (even by default; ``2**levels`` for nested grids) [-].
+
+        Returns
+        -------
+        int
+            ``ny nx / self.nx`` rounded to a multiple of ``multiple``, at least 8 [-].
+        """
+        g, m = self.grid, int(multiple)
+        return max(m * math.ceil(8 / m), m * round(g.ny * int(nx) / g.nx / m))
+
+    def grid_on_cells(self, nx, ny=None) -> Grid:
+        """Return the grid of ``nx x ny`` cells over this problem's domain.
+
+        Parameters
+        ----------
+        nx : int
+            Cells along x (even, 8 to 65536) [-].
+        ny : int, optional
+            Cells along y (even) [-]; default :meth:`cells_y`.
+
+        Returns
+        -------
+        Grid
+            The cells over the same half-widths.
+        """
+        g = self.grid
+        nx = check_cells(nx)
+        ny = self.cells_y(nx) if ny is None else check_cells(ny, "ny")
+        return Grid.centered(nx, 0.5 * g.nx * g.dx, ny=ny, half_width_y=0.5 * g.ny * g.dy)
+
     def on_cells(self, nx, ny=None) -> "NondimensionalProblem":
         """Return this problem on ``nx x ny`` cells over the same domain.
 
@@ -231,7 +269,7 @@ class NondimensionalProblem:
         nx : int
             Cells along x (even, 8 to 65536) [-].
         ny : int, optional
-            Cells along y (even) [-]; default the cell counts' ratio kept (rounded to even).
+            Cells along y (even) [-]; default the cell counts' ratio kept (:meth:`cells_y`).
 
         Returns
         -------
@@ -239,10 +277,7 @@ class NondimensionalProblem:
             The same problem (law, start, domain, :attr:`widest_edge`) on the new grid, with its
             initial gap (Eq. 2).
         """
-        g = self.grid
-        nx = check_cells(nx)
-        ny = max(8, 2 * round(g.ny * nx / g.nx / 2)) if ny is None else check_cells(ny, "ny")
-        grid = Grid.centered(nx, 0.5 * g.nx * g.dx, ny=ny, half_width_y=0.5 * g.ny * g.dy)
+        grid = self.grid_on_cells(nx, ny)
         return replace(self, grid=grid, initial_gap=_initial_gap(grid, self.beta0))
 
     def coarser(self, n) -> "NondimensionalProblem":
