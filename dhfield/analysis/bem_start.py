@@ -60,7 +60,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
-           "next_lattice_grid",
+           "next_lattice_grid", "newton_problem",
            "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
            "pull_off_cost", "check_grid_memory", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
@@ -1010,10 +1010,7 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
             raise UnresolvableCaseError(plan)
         n, ny = plan.n_needed, plan.ny_needed
     ny = n if ny is None else ny
-    try:
-        prob = predicted_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
-    except ValueError:          # the predicted zone does not fit the slender domain: the models' start
-        prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
+    prob = newton_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
     nc, nf = ladder.ladder_grids(prob)
     # the nested levels: up to LADDER_LEVELS, the coarsest with at least 16 cells across the check grid
     ny_c = prob.grid.ny * nc / prob.grid.nx
@@ -1387,6 +1384,52 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
     prob = paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
                          start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))
     return replace(prob, widest_edge=True) if widest_edge else prob
+
+
+def newton_problem(*, beta0, mu, n, ny=None, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
+    """The paper's problem (Dugdale law) on the Newton route's domain, with its cold start.
+
+    The domain holds both analytic estimates of the pull-off's cohesive zone with the margin:
+    the predicted route's (:func:`predicted_start`: GVG's contact widened by the sphere's MD
+    zone, close to the BEM's at mu >= 5) and the analytic models' (:func:`unloading_start`:
+    the zone of the slender and low-mu contacts, whose zone is elongated with the contact and
+    which the predicted estimate undercuts, e.g. c = 2.77 against the BEM's 3.29 at
+    beta0 = 0.5, mu = 0.3).  Its half-widths are ``margin`` times the larger semi-axis of the
+    two per axis, never wider than :func:`unloading_start`'s domain.  The cold start is the
+    predicted route's where its zone lies inside that domain, else the models'.
+
+    Parameters
+    ----------
+    beta0 : float
+        Hertz ellipticity b/a in (0, 1] (Eq. 9) [-].
+    mu : float
+        Tabor parameter of Eq. (35), > 0 [-].
+    n : int
+        Cells along x (even, 8 to 65536) [-].
+    ny : int, optional
+        Cells along y [-]; default ``n``.
+    margin : float, default DOMAIN_MARGIN
+        Domain half-width per zone semi-axis, > 1 [-].
+
+    Returns
+    -------
+    NondimensionalProblem
+        :func:`dhfield.bem.pull_off.paper_problem` on that domain with that start.
+    """
+    mu = float(check_positive("mu", mu, "transition parameter of Eq. (35), dimensionless"))
+    beta0 = float(check_ellipticity("beta0", beta0))
+    margin = _check_margin(margin)
+    n = check_cells(n)
+    ny = n if ny is None else check_cells(ny, "ny")
+    check_grid_memory(n, ny)
+    base = _start(mu, beta0, DEFAULT_STEPS, margin)
+    approach, zone = _gvg_md_start(mu, beta0)
+    half_x = min(base.half_width_x, margin * max(zone[0], base.zone[0]))
+    half_y = min(base.half_width_y, margin * max(zone[1], base.zone[1]))
+    start = replace(base, half_width_x=half_x, half_width_y=half_y)
+    if zone[0] < half_x and zone[1] < half_y:
+        start = replace(start, approach=approach, zone=zone)
+    return paper_problem(mu=mu, beta0=beta0, n=n, ny=ny, start=start)
 
 
 def lower_mu_start_possible(problem) -> bool:
