@@ -1012,21 +1012,15 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
     ny = n if ny is None else ny
     prob = newton_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
     nc, nf = ladder.ladder_grids(prob)
-    # the nested levels: up to LADDER_LEVELS, the coarsest with at least 16 cells across the check grid
-    ny_c = prob.grid.ny * nc / prob.grid.nx
-    levels = max(1, min(LADDER_LEVELS, 1 + int(math.log2(max(min(nc, ny_c) / 16.0, 1.0)))))
-    k = 2 ** levels
-    nyf = prob.cells_y(nf, k)
+    nyf = prob.cells_y(nf, 8)             # (each grid's nested levels: dhfield.bem.ladder.nested_levels)
     check_grid_memory(nf, nyf)
     fine = prob.on_cells(nf, nyf)
-    res = ladder.ladder_pull_off(fine, nc, levels=levels, threads=1 if threads is None else threads,
+    res = ladder.ladder_pull_off(fine, nc, threads=1 if threads is None else threads,
                                  target_error=LADDER_TARGET_ERROR, max_refinements=LADDER_REFINEMENTS if automatic else 0,
                                  grid_check=check_grid_memory)
     return ladder.pull_off_record(res)
 
 
-#: Grids of each first state's nested solve on the Newton route (:func:`dhfield.bem.ladder.ladder_pull_off`).
-LADDER_LEVELS = 3
 #: The Newton route refines its grids (each 4/3 times the last's cells per axis) until the stated
 #: error is at most this [-] ...
 LADDER_TARGET_ERROR = 2e-3

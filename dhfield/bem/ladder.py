@@ -385,7 +385,40 @@ class LadderPullOff:
     grids: list = field(repr=False, default_factory=list)
 
 
-def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_margin=EDGE_MARGIN,
+#: Fewest cells per axis of the coarsest grid of a nested solve (:func:`nested_levels`) [-].
+NESTED_MIN_CELLS = 16
+
+
+def nested_levels(nx, ny, min_cells=NESTED_MIN_CELLS) -> int:
+    """The grids of a nested solve on ``nx`` x ``ny`` cells: halve while the halves stay even and >= ``min_cells``.
+
+    The global phase of a state (from the analytic cold start) is solved on the coarsest grid:
+    a semismooth Newton iteration moves the contact's and the zone's rims by a few cells per
+    step, so its iterations grow with the cells between the cold start's rims and the
+    solution's; on the coarsest grid that distance is a few cells whatever the finest grid.
+    (beta0 = 0.1, mu = 1 on 344 x 88 cells: from 172 x 44 the cold start did not converge in
+    60 iterations, from 86 x 22 it converged in 9-11, and each finer grid in 6-7.)
+
+    Parameters
+    ----------
+    nx, ny : int
+        Cells per axis of the finest grid [-].
+    min_cells : int
+        Fewest cells per axis of the coarsest grid [-].
+
+    Returns
+    -------
+    int
+        Grids in the ladder, >= 1 (1: the finest alone).
+    """
+    nx, ny, levels = int(nx), int(ny), 1
+    while (nx % 2 ** (levels + 1) == 0 and ny % 2 ** (levels + 1) == 0
+           and min(nx, ny) // 2 ** levels >= int(min_cells)):
+        levels += 1
+    return levels
+
+
+def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, edge_margin=EDGE_MARGIN,
                     options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested",
                     target_error=None, max_refinements=0, grid_check=None) -> LadderPullOff:
     """Locate the load-control pull-off on ``problem``'s grid and on a coarser check grid.
@@ -396,9 +429,10 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
         The answer's problem (its grid is the answer's grid, unless refined for ``target_error``).
     n_coarse : int
         Cells along x of the check grid, below ``problem.grid.nx`` (even) [-].
-    levels : int, default 3
-        Grids of each first state's nested solve (each halving the cells; both grids' cell
-        counts must be divisible by ``2**levels``, every level's counts even).
+    levels : int, optional
+        Grids of each state's nested solve (each halving the cells; every grid's cell
+        counts must be divisible by ``2**levels``, every level's counts even); default
+        :func:`nested_levels` of each grid.
     edge_margin : float
         As in :func:`adhesive_problem`.
     options : SolverOptions
@@ -431,21 +465,23 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=3, edge_
     h = 0.25 * problem.approach_step if half_window is None else float(half_window)
     out = []
     centre = problem.pull_off_approach
-    k = 2 ** levels
+    k = 8 if levels is None else 2 ** levels
     grids = [problem.on_cells(n_coarse, problem.cells_y(n_coarse, k)), problem]
     opts = dict(options.as_dict(), edge_margin=float(edge_margin))
     err = float("inf")
     j = 0
     while j < len(grids):
         nd = grids[j]
-        if nd.grid.nx % k or nd.grid.ny % k:
-            raise ValueError(f"{levels} levels need cells divisible by {k}; got {nd.grid.nx} x {nd.grid.ny}")
-        if min(nd.grid.nx, nd.grid.ny) // 2 ** (levels - 1) < 8:
+        n_levels = nested_levels(nd.grid.nx, nd.grid.ny) if levels is None else int(levels)
+        if nd.grid.nx % 2 ** n_levels or nd.grid.ny % 2 ** n_levels:
+            raise ValueError(f"{n_levels} levels need cells divisible by {2 ** n_levels}; got "
+                             f"{nd.grid.nx} x {nd.grid.ny}")
+        if min(nd.grid.nx, nd.grid.ny) // 2 ** (n_levels - 1) < 8:
             raise ValueError(f"levels must leave at least 8 cells per axis on the coarsest nested grid; got "
-                             f"{levels} levels on {nd.grid.nx} x {nd.grid.ny} cells")
+                             f"{n_levels} levels on {nd.grid.nx} x {nd.grid.ny} cells")
         # the nested grids, coarsest first; the finest is this grid's problem itself
         ladder = [adhesive_problem(nd.on_cells(nd.grid.nx // 2 ** i, nd.grid.ny // 2 ** i) if i else nd, threads,
-                                   edge_margin) for i in range(levels - 1, -1, -1)]
+                                   edge_margin) for i in range(n_levels - 1, -1, -1)]
         res = grid_minimum(ladder, centre, h if j == 0 else 0.5 * h, problem.pull_off_zone, options, log=log,
                            start=start)
         out.append(res)
