@@ -249,3 +249,28 @@ def test_nested_solve_converges_resolved_coarse_levels():
     r = solve_state_nested(probs, P.pull_off_approach, cold_start(probs[0], P.pull_off_approach, P.pull_off_zone))
     assert r.state.converged
     assert all(v.reason == "converged_residual" for v in r.levels)
+
+
+def test_the_newton_route_is_the_default_of_the_dugdale_load_pull_off_on_the_automatic_grid():
+    from dhfield.analysis.bem_start import AdhesiveOptions, takes_newton_route
+
+    assert takes_newton_route()
+    assert takes_newton_route(options=AdhesiveOptions(max_seconds=60.0, margin=1.3))   # both routes read these
+    assert not takes_newton_route(n=64)                                   # an explicit grid: the path routes
+    assert not takes_newton_route(control="displacement")
+    assert not takes_newton_route(law="exponential")
+    assert not takes_newton_route(search="located")
+    assert takes_newton_route(n=64, search="newton")
+    for path_only in (dict(n_steps=8), dict(refine_levels=0), dict(tol=1e-6), dict(max_iter=100),
+                      dict(keep_states=True), dict(nested=False), dict(widest_edge=True)):
+        assert not takes_newton_route(options=AdhesiveOptions(**path_only)), path_only
+
+
+def test_adhesive_pull_off_without_search_answers_by_the_newton_route():
+    from dhfield.bem import adhesive_pull_off
+
+    rec = adhesive_pull_off(beta0=1.0, mu=1.0)
+    assert rec.search == "newton" and rec.converged and rec.resolved
+    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 1.0, control="load").W_star)
+    assert abs(rec.W_star - md) <= rec.W_star_error + 1e-4 * abs(md)   # within its stated error (+ MD's quadrature)
+    assert adhesive_pull_off(beta0=1.0, mu=1.0, n=32).search != "newton"

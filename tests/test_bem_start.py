@@ -146,7 +146,7 @@ def test_automatic_grid_on_the_sphere_at_mu_5_is_within_1_percent_of_maugis_dugd
 
     plan = adhesive_start.plan_grid(mu=5.0, beta0=1.0)
     assert not adhesive_start._half_grid_locates(plan, "dugdale", adhesive_start.DOMAIN_MARGIN)
-    res = adhesive_start.adhesive_pull_off(mu=5.0, beta0=1.0, progress=False)
+    res = adhesive_start.adhesive_pull_off(search="located", mu=5.0, beta0=1.0, progress=False)
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 5.0, control="load").W_star)
     assert res.n == plan.n_needed and res.converged and res.resolved
     assert res.W_star == pytest.approx(md, rel=0.01)
@@ -269,7 +269,7 @@ def test_shaped_and_stretched_grids_give_the_same_slender_pull_off_within_their_
     # beta0 = 0.1806 (30 deg), mu = 1: the automatic grid (256 x 72, about square cells) and 256 x 256
     # cells stretched 3.6x along x are two discretisations of one problem (independent routes to the
     # same pull-off); each must be converged, resolved, and within the sum of their stated errors
-    shaped = adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.1806, progress=False)
+    shaped = adhesive_start.adhesive_pull_off(search="located", mu=1.0, beta0=0.1806, progress=False)
     g = shaped.path.pull_off_state.grid
     assert g.ny < g.nx and 0.8 < g.dy / g.dx <= 1.0
     stretched = adhesive_start.adhesive_pull_off(mu=1.0, beta0=0.1806, n=g.nx, progress=False)
@@ -310,12 +310,12 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
                         calls.append((prob.grid.nx, tol, opts.tol)) or answer)
     # (the start of its states: test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next)
     monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is answer
+    assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826) is answer
     plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
     # its states to PREDICTED_TOL unless a tol is given; the fall-back (relaxed) keeps DEFAULT_TOL
     assert calls == [(plan.n_needed, adhesive_start.PREDICTED_TOL, DEFAULT_TOL)] and plan.predicted
     opts = adhesive_start.AdhesiveOptions(tol=2e-6)
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826, options=opts) is answer
+    assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826, options=opts) is answer
     assert calls[-1][1:] == (2e-6, 2e-6)
     # its domain holds GVG's pull-off zone only: N = 1280 instead of 1440 on the unloading path's domain
     assert plan.n_needed < adhesive_start.plan_grid(mu=10.0, beta0=0.4826, predicted=False).n_needed
@@ -602,7 +602,7 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     assert adhesive_start.lower_mu_start_possible(prob)
     # GVG's start fails, the lower-mu start on the same lattice answers
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
-    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
+    res = adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826)
     assert calls == [(n, "cold"), (n, "lower-mu")]
     assert res.converged and res.W_star == good.W_star
     assert "from GVG's start did not converge" in res.note
@@ -611,7 +611,7 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     # both fail on the first lattice: once more on the next, from GVG's start
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(2))
-    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
+    res = adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826)
     assert calls == [(n, "cold"), (n, "lower-mu"), (n_next, "cold")]
     assert res.converged and res.W_star == good.W_star
     assert f"N = {n} lattice" in res.note and f"N = {n_next}" in res.note and "lower-mu start" in res.note
@@ -619,16 +619,16 @@ def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(
     # the same order on a slender contact
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
-    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.1)
+    adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.1)
     n_slender = adhesive_start.plan_grid(mu=10.0, beta0=0.1).n_needed
     assert calls == [(n_slender, "cold"), (n_slender, "lower-mu")]
     # a converged first try is the answer; failed ones with no affordable next lattice are reported
     calls.clear()
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(0))
-    assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826) is good and calls == [(n, "cold")]
+    assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826) is good and calls == [(n, "cold")]
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None, start="cold": failed)
     monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds, ny=None: None)
-    res = adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.4826)
+    res = adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826)
     assert not res.converged and res.W_star_error == float("inf") and "lower-mu start" in res.note
 
 

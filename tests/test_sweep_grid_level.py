@@ -111,7 +111,8 @@ def test_base_lattice_reaches_the_solver_and_the_file(tmp_path, solver_calls, an
 
     first = (calls[1]["n"] // 2, calls[1]["ny"] // 2)               # level 2 of the plan's first lattice
     assert (calls[0]["n"], calls[0]["ny"]) == tuple(2 * v for v in next_lattice_grid(*first, 1e6))
-    assert calls[0]["search"] == calls[1]["search"] == "predicted"
+    # base_lattice belongs to the predicted route (its retry lattices); without it, level 1's default route
+    assert calls[0]["search"] == "predicted" and calls[1]["search"] == "newton"
     assert done.dataset.attrs["param_bem_base_lattice"] == 1 and again.dataset.attrs["param_bem_base_lattice"] == 0
 
 
@@ -127,15 +128,18 @@ def test_unaffordable_level_is_refused_before_solving(monkeypatch):
 
 
 def test_cheap_case_end_to_end(tmp_path):
-    """beta0 = 0.1 (18 deg crossing), mu = 1: 256 x 64 and 512 x 128 cells, ~2 s in all."""
+    """beta0 = 0.1 (18 deg crossing), mu = 1: the Newton route on at least 256 x 64 and on 512 x 128 cells, ~5 s in all."""
     cfg = config_from_mapping(LEVELS)
     res = run_sweep(cfg, out=tmp_path / "lv.nc", scheduler="synchronous", progress=False)
     assert res.failed == [] and res.flagged == [] and len(res.computed) == 2
     ds = res.dataset.sel(beta0=0.1, mu=1.0).isel(law=0)
     assert ds["W_star"].dims == ("model", "grid_level")
     plan = plan_grid(beta0=0.1, mu=1.0)
-    np.testing.assert_array_equal(ds["nx"].values, [plan.n_needed, 2 * plan.n_needed])
-    np.testing.assert_array_equal(ds["ny"].values, [plan.ny_needed, 2 * plan.ny_needed])
+    # the Newton route answers on at least the planned cells (level 1: refined while its stated error
+    # exceeds 0.2 %; level k: k x the plan, as given)
+    assert (ds["nx"].values >= [plan.n_needed, 2 * plan.n_needed]).all()
+    assert (ds["ny"].values >= [plan.ny_needed, 2 * plan.ny_needed]).all()
+    assert ds["nx"].values[1] == 2 * plan.n_needed
     assert (ds["converged"].values == 1).all() and (ds["resolved"].values == 1).all()
     assert (ds["status"].values == 0).all()
     w = ds["W_star"].sel(model=tasks.ADHESIVE_MODEL).values
@@ -184,7 +188,7 @@ def test_cli_grid_level_flag(tmp_path, capsys):
                "--workers", "1", "--out", str(out), "--quiet"])
     assert rc == 0
     with xr.open_dataset(out) as ds:
-        assert int(ds["nx"].values.item()) == plan_grid(beta0=0.1, mu=1.0).n_needed
+        assert int(ds["nx"].values.item()) >= plan_grid(beta0=0.1, mu=1.0).n_needed   # (refined by the route)
     rc = main(["sweep", "--beta0", "0.1", "--mu", "1", "--grid-level", "9", "--quantities", "adhesive",
                "--out", str(tmp_path / "bad.nc")])
     err = capsys.readouterr().err.strip()
@@ -261,7 +265,7 @@ def test_max_seconds_decides_the_refusal_of_a_level_before_solving(monkeypatch, 
     assert rec["W_star"] == -0.6 and len(calls) == 1
     kw = calls[0]
     assert (kw["n"], kw["ny"]) == (grid["nx"], grid["ny"])
-    assert kw["search"] == "predicted"                       # level 1's route and domain, refined
+    assert kw["search"] == "newton"                          # level 1's route (the default), on k x its plan
     assert isinstance(kw["options"], AdhesiveOptions) and kw["options"].max_seconds == allowed
     # level 1 and an explicit n: the solver plans (and refuses) with the same allowance
     tasks.adhesive_case(0.5, 10.0, grid_level=1, max_seconds=allowed)

@@ -60,7 +60,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
-           "next_lattice_grid", "newton_problem",
+           "next_lattice_grid", "newton_problem", "takes_newton_route",
            "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
            "pull_off_cost", "check_grid_memory", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
@@ -786,7 +786,7 @@ class AdhesiveOptions:
     widest_edge: bool = False
 
 
-def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="load", search="located",
+def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="load", search=None,
                       threads=None, progress=None, options=None) -> PullOff:
     """Compute the BEM pull-off of the adhesive crossed-cylinder (elliptical) contact, paper units.
 
@@ -811,19 +811,22 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         Load control: the minimum of the unloading load.  Displacement control:
         the jump, the minimum of the approach along the branch (its fold, or
         the loss of contact; :mod:`dhfield.bem.continuation`).
-    search : {'located', 'bracket', 'march', 'predicted', 'newton'}, default 'located'
-        Load control only (the route taken is the record's ``search``).
+    search : {'newton', 'located', 'bracket', 'march', 'predicted'}, optional
+        Load control only (the route taken is the record's ``search``).  Default (None):
+        'newton' for the Dugdale law's load-control pull-off on the automatic grid with the
+        default path settings (:func:`takes_newton_route`), else 'located'.
         'newton': the semismooth Newton state solve on two grids
         (:func:`dhfield.bem.ladder.ladder_pull_off`; Dugdale law only): the answer's grid holds
         at least the planned (or given) cells, the check grid three quarters of them with the
-        Dugdale edge resolved, and the stated error is the grid ladder's.
+        Dugdale edge resolved, and the stated error is the grid ladder's; on the automatic
+        grid, finer grids follow while it exceeds :data:`LADDER_TARGET_ERROR`.
         'predicted': the high-mu route (:func:`dhfield.bem.pull_off.predicted_path`: lattice samples around
         GVG's pull-off, states to :data:`PREDICTED_TOL`, the stretch step) on its own domain,
         also on an explicit ``n`` x ``ny`` grid (no lattice retry there); Dugdale law only.
-        The default takes it by itself on automatic grids at mu >= :data:`PREDICTED_MIN_MU`
+        'located' takes it by itself on automatic grids at mu >= :data:`PREDICTED_MIN_MU`
         (:func:`takes_predicted_route`); asking for it on an explicit grid makes a refined
         grid of the same route and domain (``dhfield sweep``'s grid levels at those mu).
-        'located' (default) is 'bracket' with the minimum located on coarser
+        'located' (the default of the other cases) is 'bracket' with the minimum located on coarser
         grids first (below).  'bracket': cold-start at the analytic
         pull-off approach from its cohesive zone (:func:`unloading_start`) and
         bracket the load minimum there (a handful of states;
@@ -894,6 +897,8 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         if np.ndim(value) != 0:
             raise ValueError(f"{name} must be a scalar (one BEM case per call); got an array of shape "
                              f"{np.shape(value)}")
+    if search is None:       # the default route (takes_newton_route)
+        search = NEWTON_SEARCH if takes_newton_route(law=law, control=control, n=n, options=options) else "located"
     if search not in SEARCHES + (PREDICTED_SEARCH, NEWTON_SEARCH):
         raise ValueError(f"search must be one of {SEARCHES + (PREDICTED_SEARCH, NEWTON_SEARCH)} (load-control "
                          f"path); got {search!r}")
@@ -1239,6 +1244,43 @@ PREDICTED_SEARCH = "predicted"
 WIDEST_EDGE_NOTE = "Dugdale edge held at its cap 2 h0 on the grid of the answer (options.widest_edge)"
 #: What a record's note or message carries when it was solved with the widest edge.
 WIDEST_EDGE_MARK = "(options.widest_edge)"
+
+
+def takes_newton_route(*, law="dugdale", control="load", n=None, search=None, options=None) -> bool:
+    """Tell whether :func:`adhesive_pull_off` solves a case by the Newton route (``search='newton'``).
+
+    The Newton route (:func:`dhfield.bem.ladder.ladder_pull_off`) is the default of the Dugdale
+    law's load-control pull-off on the automatic grid: no ``n``, no ``search``, and none of the
+    settings only the path routes read (:class:`AdhesiveOptions`' ``n_steps``, ``refine_levels``,
+    ``tol``, ``max_iter``, ``keep_states``, ``nested``, ``widest_edge`` at their defaults;
+    ``margin`` and ``max_seconds`` apply to both).  Any other case takes the path routes
+    (``search='located'`` and its predicted route at high mu), as does an explicit ``search``
+    other than ``'newton'``.  :func:`adhesive_pull_off`, the command line and the sweep share
+    this rule.
+
+    Parameters
+    ----------
+    law : {'dugdale', 'exponential'}, default 'dugdale'
+        Traction law.
+    control : {'load', 'displacement'}, default 'load'
+        Loading mode.
+    n : int, optional
+        Cells along x asked for (None: the automatic grid).
+    search : str, optional
+        The search asked for (None: the default route).
+    options : AdhesiveOptions, optional
+        Numerical settings.
+
+    Returns
+    -------
+    bool
+        True where the case is solved by the Newton route.
+    """
+    if search is not None:
+        return search == NEWTON_SEARCH
+    opts = AdhesiveOptions() if options is None else options
+    path_settings = replace(opts, margin=DOMAIN_MARGIN, max_seconds=DEFAULT_MAX_SECONDS) != AdhesiveOptions()
+    return bool(law == "dugdale" and control == "load" and n is None and not path_settings)
 
 
 def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", search="located", nested=None) -> bool:

@@ -81,12 +81,12 @@ def add_parser(sub) -> None:
                         "(dhfield.analysis.bem_spring); the same branch on a coarser grid gives the grid's error; "
                         "--out then holds the branch, --search does not apply")
     p.add_argument("--search", default=None, choices=("located", "bracket", "march", "predicted", "newton"),
-                   help="load control: how the force minimum is found -- located on coarser grids first, "
-                        "then 3-4 states on this one (default); bracket: from the analytic pull-off on this "
-                        "grid; march: unload in uniform steps (slowest); predicted: lattice samples around "
-                        "GVG's pull-off on its own domain (the default's route at mu >= 7.5 on an automatic "
-                        "grid; with --n, that route refined); newton: the semismooth Newton solve on the answer's grid "
-                        "and a check grid, the stated error from the two")
+                   help="load control: how the force minimum is found -- newton: the semismooth Newton solve "
+                        "on the answer's grid and a check grid, the stated error from the two (the default of the "
+                        "Dugdale law without --n); located: on coarser grids first, then 3-4 states on this one "
+                        "(the default otherwise); bracket: from the analytic pull-off on this grid; march: unload "
+                        "in uniform steps (slowest); predicted: lattice samples around GVG's pull-off on its own "
+                        "domain (located's route at mu >= 7.5 on an automatic grid; with --n, that route refined)")
     p.add_argument("--max-seconds", type=float, default=None, metavar="S",
                    help="stop after the first state that ends past S seconds, say what was reached and exit "
                         f"{EXIT_TIME_LIMIT} (default: no limit).  Above the planner's own allowance "
@@ -437,7 +437,8 @@ def run(args) -> int:
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"threads must be an integer >= 1; got {args.threads}")
     args.threads = command_threads(args.threads)
-    from ..analysis.bem_start import AdhesiveOptions, UnresolvableCaseError, plan_grid, takes_predicted_route
+    from ..analysis.bem_start import (AdhesiveOptions, UnresolvableCaseError, plan_grid, takes_newton_route,
+                                      takes_predicted_route)
     from ..bem.branch import state_reporter
 
     check_solve_memory(args.n)
@@ -445,11 +446,15 @@ def run(args) -> int:
     if args.machine_stiffness is not None:
         _check_spring_arguments(args, params)
         k_star = _stiffness_star(args, params)
+    # the route: the Newton route by default where it applies (takes_newton_route), else the path routes
+    search = args.search or ("newton" if args.machine_stiffness is None and takes_newton_route(
+        law=args.law, control=args.control, n=args.n) else "located")
     # the plan of the domain the solve uses: the spring samples the unloading branch, never the predicted route
-    predicted = args.machine_stiffness is None and takes_predicted_route(
-        beta0=args.beta0, mu=args.mu, n=args.n, law=args.law, control=args.control, search=args.search or "located")
+    predicted = args.machine_stiffness is None and search != "newton" and takes_predicted_route(
+        beta0=args.beta0, mu=args.mu, n=args.n, law=args.law, control=args.control, search=search)
     allowance = _planner_allowance(args.max_seconds)
-    plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, predicted=predicted,
+    plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law,
+                     predicted=None if search == "newton" else predicted,    # (the Newton route's own plan)
                      control=args.control if k_star is None else "spring", machine_stiffness=k_star,
                      **({} if allowance is None else {"max_seconds": allowance}))
     if args.n is not None and plan.too_coarse:   # far too coarse: refused before minutes of unconverged states
@@ -460,7 +465,7 @@ def run(args) -> int:
     control = args.control if args.machine_stiffness is None else "spring"
     where = f"beta0={args.beta0:g}, mu={args.mu:g}, n={cells}, law={args.law}, control={control}"
     route = ("spring" if args.machine_stiffness is not None else "displacement" if args.control == "displacement"
-             else "predicted" if predicted else args.search or "located")
+             else "predicted" if predicted else search)
     if args.n is None and not plan.affordable:   # the automatic grid exceeds the memory or the time allowed
         print(f"dhfield: solve refused: {plan.message()}{_in_newtons(plan.analytic_W_star, params)}",
               file=sys.stderr)
@@ -473,7 +478,7 @@ def run(args) -> int:
                 return _run_spring(args, params, plan, where, False)
             extra = {} if allowance is None else {"options": AdhesiveOptions(max_seconds=allowance)}
             res = adhesive_pull_off(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law, control=args.control,
-                                    threads=args.threads, progress=False, search=args.search or "located", **extra)
+                                    threads=args.threads, progress=False, search=search, **extra)
     except SolveTimeLimit as exc:
         print(f"dhfield: solve stopped at --max-seconds {args.max_seconds:g} s for {where}: {exc.reached} (not a "
               f"pull-off: the solve had not finished; nothing written); {plan.advice()}"

@@ -57,10 +57,13 @@ law             cohesive law of the adhesive BEM solver      adhesive
 The ``adhesive`` quantity takes ``n`` (explicit n x n grids) or ``grid_level``, not
 both.  ``grid_level = 1`` solves each case as ``dhfield solve`` without ``--n``: on the
 grid and route :func:`dhfield.analysis.bem_start.adhesive_pull_off` plans from the expected
-cohesive-zone width (nx x ny with about square cells below beta0 = 0.45; the predicted
-route at mu >= 7.5).  ``grid_level = k >= 2`` solves the explicit grid of k times the
-cells per axis of that plan (:func:`dhfield.sweep.tasks.automatic_grid`), so
-``grid_level = [1, 2]`` is the convergence over N of every case in one sweep.
+cohesive-zone width (nx x ny with about square cells below beta0 = 0.45); for the Dugdale
+law under load control that is the Newton route, which solves the answer's grid and a check
+grid itself and states the error from the two.  ``grid_level = k >= 2`` solves the
+explicit grid of k times the cells per axis of that plan (:func:`dhfield.sweep.tasks.automatic_grid`)
+by the same route, so ``grid_level = [1, 2]`` is the convergence over N of every case in one
+sweep.  The adhesive route is in the fingerprint (:data:`ADHESIVE_ROUTE`): a store of the
+path routes' answers (before 2026-12-02) is not resumed.
 
 ``[bem] max_seconds`` (``--max-seconds``) is the estimated time an adhesive case may take
 [s], > 0 (default :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`): a level k >= 2
@@ -128,6 +131,11 @@ _MIN_BEM_CELLS = 16
 #: Finest grid level of the adhesive quantity: k^2 times the cells of the automatic grid
 #: (level 4 is 16x its cells and memory; beyond, a case would not fit a worker).
 MAX_GRID_LEVEL = 4
+#: The adhesive quantity's default route, in the fingerprint of every sweep that has it: the
+#: Newton route (:func:`dhfield.analysis.bem_start.takes_newton_route`) replaced the path routes as
+#: the default of the Dugdale law under load control, so a store of their answers is not resumed.
+ADHESIVE_ROUTE = "newton"
+
 #: Largest ``[bem] base_lattice``: the refined grid levels multiply the plan's lattice after at
 #: most this many retries (level 1 retries once, :func:`dhfield.analysis.bem_start.adhesive_pull_off`).
 MAX_BASE_LATTICE = 2
@@ -238,6 +246,8 @@ class SweepConfig:
         payload = {"axes": {k: list(v) for k, v in self.axes.items()}, "quantities": list(self.quantities),
                    "models": list(self.models), "control": self.control, "chunk_points": self.chunk_points,
                    "half_width": self.half_width, "sampling": self.sampling}
+        if "adhesive" in self.quantities:   # the adhesive cases' default route (the Newton route since 2026-12-02):
+            payload["adhesive_route"] = ADHESIVE_ROUTE    # a store of the path routes' answers is not resumed
         if self.widest_edge:      # (absent when False: the fingerprints of earlier stores stay)
             payload["widest_edge"] = True
         if self.base_lattice:     # (likewise absent when 0)

@@ -394,9 +394,11 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         if not grid["automatic"]:
             _refuse_unaffordable(beta0, mu, grid_level, grid)
             kwargs.update(n=grid["nx"], ny=grid["ny"])
-            if grid["predicted"]:        # the route and domain of level 1, refined
-                from ..analysis.bem_start import PREDICTED_SEARCH
+            from ..analysis.bem_start import PREDICTED_SEARCH, takes_newton_route
 
+            if takes_newton_route(law=law, control=control, options=kwargs.get("options")) and not base_lattice:
+                kwargs["search"] = "newton"      # level 1's route (the default), on k times its planned cells
+            elif grid["predicted"]:        # the route and domain of level 1, refined
                 kwargs["search"] = PREDICTED_SEARCH
     t0, c0 = time.perf_counter(), time.process_time()
     res = adhesive_solver(solver)(**kwargs)
