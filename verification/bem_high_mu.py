@@ -59,7 +59,7 @@ def run(mu, beta0, route, n=None, progress=False):
 
     t0, c0 = time.perf_counter(), time.process_time()
     if route == "auto":
-        res = ast.adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=progress)
+        res = ast.adhesive_pull_off(mu=mu, beta0=beta0, n=n, progress=progress, search="located")   # (the path routes)
     else:
         n = n or ast.plan_grid(mu=mu, beta0=beta0, predicted=route == "predicted").n_needed
         opts = PathOptions(progress=progress)

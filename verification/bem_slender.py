@@ -91,7 +91,8 @@ def solve_case(beta0, mu, nx, ny, *, max_iter=None, automatic=False) -> dict:
     kw = {} if max_iter is None else {"options": AdhesiveOptions(max_iter=int(max_iter))}
     t0, c0 = time.perf_counter(), time.process_time()
     if automatic:
-        res = adhesive_pull_off(mu=float(mu), beta0=float(beta0), progress=False, **kw)
+        # the route the stored set was built with (the path routes; the Newton route is the default since 2026-12-02)
+        res = adhesive_pull_off(mu=float(mu), beta0=float(beta0), progress=False, search="located", **kw)
     else:
         res = adhesive_pull_off(mu=float(mu), beta0=float(beta0), n=int(nx), ny=int(ny), progress=False, **kw)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0

@@ -107,12 +107,12 @@ def run_case(beta0, mu, n=None, ny=None, samples=7, method="smoothed", first_sta
 
 
 def run_today(beta0, mu):
-    """Today's route on the same case: ``adhesive_pull_off`` with its defaults (in this process)."""
+    """The path routes on the same case: ``adhesive_pull_off(search='located')`` (the default before the Newton route)."""
     from dhfield.analysis.bem_start import adhesive_pull_off
 
     t0 = time.perf_counter()
     c0 = time.process_time()
-    r = adhesive_pull_off(beta0=beta0, mu=mu)
+    r = adhesive_pull_off(beta0=beta0, mu=mu, search="located")
     return {"W_star": float(r.W_star), "W_star_error": float(r.W_star_error), "converged": bool(r.converged),
             "iterations": int(r.iterations), "wall": time.perf_counter() - t0, "cpu": time.process_time() - c0,
             "maxrss_gib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2 ** 20, "n": int(r.n)}
