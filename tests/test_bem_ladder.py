@@ -262,7 +262,7 @@ def test_the_newton_route_is_the_default_of_the_dugdale_load_pull_off_on_the_aut
     assert not takes_newton_route(search="located")
     assert takes_newton_route(n=64, search="newton")
     for path_only in (dict(n_steps=8), dict(refine_levels=0), dict(tol=1e-6), dict(max_iter=100),
-                      dict(keep_states=True), dict(nested=False), dict(widest_edge=True)):
+                      dict(keep_states=True), dict(nested=False)):
         assert not takes_newton_route(options=AdhesiveOptions(**path_only)), path_only
 
 

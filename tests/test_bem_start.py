@@ -370,42 +370,6 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     assert abs(res.W_star - md) <= res.W_star_error
 
 
-def test_widest_edge_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugdale():
-    # options.widest_edge: the same route with the Dugdale edge at its cap 2 h0 on every grid (here wider
-    # than the grid's own); it still solves the Dugdale law to within the answer's stated error of MD
-    # (Maugis 1992, exact on the sphere), and the record says which edge it solved
-    from dhfield.models import maugis_dugdale
-    from dhfield.bem.path import PathOptions
-
-    own = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
-    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128, widest_edge=True)
-    assert prob.widest_edge and not own.widest_edge and prob.coarser(64).widest_edge
-    wide, narrow = prob.adhesive_problem(), own.adhesive_problem()
-    assert wide.min_spread == wide.widest_spread > 1.01 * narrow.min_spread
-    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False))
-    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
-    assert res.converged and res.resolved and adhesive_start.WIDEST_EDGE_NOTE in res.note
-    assert abs(res.W_star - md) <= res.W_star_error
-
-
-def test_widest_edge_option_reaches_the_predicted_route_and_only_it(monkeypatch):
-    calls = []
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None, start="cold": calls.append(prob) or SimpleNamespace(converged=True))
-    wide = adhesive_start.AdhesiveOptions(widest_edge=True)
-    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted", options=wide)
-    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, search="predicted", options=wide)   # automatic grid
-    adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted")
-    assert [p.widest_edge for p in calls] == [True, True, False]
-    for kw in (dict(mu=1.0, beta0=0.5), dict(mu=10.0, beta0=0.5, n=96), dict(mu=10.0, beta0=0.5, control="displacement"),
-               dict(mu=10.0, beta0=0.5, n=96, search="predicted", law="exponential")):
-        with pytest.raises(ValueError, match="widest_edge=True needs the predicted route|search='predicted' needs"):
-            adhesive_start.adhesive_pull_off(**kw, options=wide)
-    with pytest.raises(ValueError, match="options.widest_edge must be True or False"):
-        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, options=adhesive_start.AdhesiveOptions(widest_edge="yes"))
-    assert len(calls) == 3
-
-
 def test_lower_mu_start_is_possible_where_the_half_grid_holds_the_edge_at_half_mu():
     # the automatic grid of the predicted route holds the edge at mu (ratio <= 1) and its half grid does
     # not (~1.8 measured): at mu/2 the ratio (~ mu^2) is 4x smaller, so the half grid holds it
@@ -678,29 +642,6 @@ def test_one_route_rule_for_the_plan_and_the_solve():
         assert not adhesive_start.takes_predicted_route(beta0=0.4826, mu=10.0, **kw), kw
     assert adhesive_start.takes_predicted_route(beta0=0.3, mu=10.0)         # shaped grids too (nx x ny)
     assert not adhesive_start.takes_predicted_route(beta0=0.4826, mu=5.0)   # below PREDICTED_MIN_MU
-
-
-def test_widest_edge_is_the_answer_grid_s_and_not_its_starts_from_other_grids():
-    # level 2 with the edge held at 2 h0: the problem on a coarser grid keeps the option (coarser()), but the
-    # starts from other grids solve their own edges: level 1's route under level 2 (CoarseRouteWarmStart) as it
-    # runs alone, and the lower-mu start (its own law)
-    from dhfield.bem.pull_off import CoarseRouteWarmStart, LowerMuWarmStart
-
-    fine = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=256, widest_edge=True)
-    level1 = fine.coarser(128)
-    assert level1.widest_edge and level1.adhesive_problem().widest_edge
-    lower = LowerMuWarmStart(level1, tol=1e-4, max_iter=10)._nested._nd
-    assert lower.mu == 1.0 and not lower.widest_edge and not lower.adhesive_problem().widest_edge
-    ws = CoarseRouteWarmStart(fine, tol=1e-4, max_iter=10)
-    assert not ws._branch.prob.widest_edge and ws._branch.prob.grid == level1.grid
-
-
-def test_widest_edge_is_refused_below_the_predicted_route_s_mu():
-    # the widened law departs from Dugdale beyond the stated error at low mu (the sphere at mu = 2: +0.41 % from
-    # MD at N = 128, 256 and 512 alike): refused there even with search='predicted', naming the option and range
-    with pytest.raises(ValueError, match=r"options.widest_edge=True needs the predicted route and mu >= 7.5"):
-        adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted",
-                                         options=adhesive_start.AdhesiveOptions(widest_edge=True))
 
 
 def test_every_bem_route_refuses_an_unaffordable_grid_before_allocating(monkeypatch):

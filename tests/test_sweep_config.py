@@ -357,69 +357,42 @@ def test_cli_error_names_the_flag_that_was_typed(tmp_path, capsys, flags, named)
     assert named in _cli_fails_before_work(tmp_path, capsys, [*axes, *flags])
 
 
-# --- [bem] widest_edge: the Dugdale edge at its cap 2 h0 on the predicted route (issue 20) ---------------------
-def test_widest_edge_from_toml(tmp_path):
-    """Parsed as a bool, default False; round-trips; in the fingerprint only when True (so the stores
-    written before the key existed keep theirs)."""
-    path = tmp_path / "t.toml"
-    path.write_text(_ADHESIVE_TOML)
-    plain = load_config(path)
-    path.write_text(_ADHESIVE_TOML + "[bem]\nwidest_edge = true\n")
-    wide = load_config(path)
-    assert wide.widest_edge is True and plain.widest_edge is False
-    assert config_from_mapping(wide.as_dict()) == wide and "widest_edge" not in plain.as_dict()["bem"]
-    assert wide.fingerprint() != plain.fingerprint()
-    path.write_text(_ADHESIVE_TOML + "[bem]\nwidest_edge = false\n")
-    assert load_config(path).fingerprint() == plain.fingerprint()
-
-
-@pytest.mark.parametrize("value", [1, 0, "true", "yes", None, [True]])
-def test_bad_widest_edge_names_the_key(value):
+# --- [bem] widest_edge and base_lattice: removed (2026-12-02) with the path routes' rescue layers ---------------
+@pytest.mark.parametrize("key, value", [("widest_edge", True), ("widest_edge", False), ("base_lattice", 1),
+                                        ("base_lattice", 0)])
+def test_removed_bem_keys_are_refused_with_the_reason(key, value):
     mapping = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
-               "bem": {"widest_edge": value}}
-    with pytest.raises(ValueError, match=r"bem\.widest_edge must be true or false"):
+               "bem": {key: value}}
+    with pytest.raises(ValueError, match=rf"config key 'bem\.{key}' was removed on 2026-12-02 .*delete the key"):
         config_from_mapping(mapping)
 
 
-@pytest.mark.parametrize("mapping", [
-    {"axes": {"beta0": [0.5], "mu": [10.0]}, "sweep": {"models": ["md"]}},                     # no adhesive case
-    {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2], "law": ["exponential"]},
-     "sweep": {"quantities": ["adhesive"]}},                                                  # not Dugdale
-    {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]},
-     "sweep": {"quantities": ["adhesive"], "control": "displacement"}},                        # not load control
-])
-def test_widest_edge_off_the_predicted_route_is_refused_before_work(mapping):
-    with pytest.raises(ValueError, match=r"bem\.widest_edge must be false unless the quantity 'adhesive'"):
-        config_from_mapping({**mapping, "bem": {"widest_edge": True}})
+def test_removed_bem_key_exits_2_with_one_line(tmp_path, capsys):
+    from dhfield.cli import main
 
-
-# --- [bem] base_lattice: the refined grid levels multiply the plan's retry lattice (issue 20) -------------------
-def test_base_lattice_from_toml(tmp_path):
-    """Parsed as an int, default 0; round-trips; in the fingerprint only when not 0."""
-    path = tmp_path / "t.toml"
-    path.write_text(_ADHESIVE_TOML)
-    plain = load_config(path)
+    path = tmp_path / "old.toml"
     path.write_text(_ADHESIVE_TOML + "[bem]\nbase_lattice = 1\n")
-    retry = load_config(path)
-    assert retry.base_lattice == 1 and plain.base_lattice == 0
-    assert config_from_mapping(retry.as_dict()) == retry and "base_lattice" not in plain.as_dict()["bem"]
-    assert retry.fingerprint() != plain.fingerprint()
-    path.write_text(_ADHESIVE_TOML + "[bem]\nbase_lattice = 0\n")
-    assert load_config(path).fingerprint() == plain.fingerprint()
+    assert main(["sweep", str(path), "--out", str(tmp_path / "o.nc"), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bem.base_lattice" in err[0] and "removed" in err[0], err
 
 
-@pytest.mark.parametrize("value", [-1, 3, 1.0, True, "1", None])
-def test_bad_base_lattice_names_the_key(value):
-    mapping = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
-               "bem": {"base_lattice": value}}
-    with pytest.raises(ValueError, match=r"bem\.base_lattice must be an integer in \[0, 2\]"):
-        config_from_mapping(mapping)
+def test_adhesive_sweeps_name_their_route_in_the_fingerprint():
+    """A store of the path routes' answers (before the Newton route was the default) is not resumed."""
+    from dhfield.sweep.config import ADHESIVE_ROUTE
 
+    adhesive = config_from_mapping({"axes": {"beta0": [0.5], "mu": [1.0], "grid_level": [1]},
+                                    "sweep": {"quantities": ["adhesive"]}})
+    payload = {"axes": {k: list(v) for k, v in adhesive.axes.items()}, "quantities": ["adhesive"],
+               "models": list(adhesive.models), "control": "load", "chunk_points": adhesive.chunk_points,
+               "half_width": None, "sampling": "average"}
+    import hashlib
+    import json
 
-def test_base_lattice_without_grid_levels_is_refused_before_work():
-    explicit = {"axes": {"beta0": [0.5], "mu": [10.0], "n": [256]}, "sweep": {"quantities": ["adhesive"]}}
-    with pytest.raises(ValueError, match=r"bem\.base_lattice must be 0 unless the quantity 'adhesive' is swept over"):
-        config_from_mapping({**explicit, "bem": {"base_lattice": 1}})
+    before = hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]   # the old rule
+    assert adhesive.fingerprint() != before and ADHESIVE_ROUTE == "newton"
+    payload["adhesive_route"] = ADHESIVE_ROUTE
+    assert adhesive.fingerprint() == hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
 
 
 def test_config_imports_nothing_from_tasks():

@@ -71,49 +71,18 @@ def test_levels_are_the_librarys_plan():
         tasks.automatic_grid(0.5, 1.0, 0)
 
 
-def test_base_lattice_makes_the_refined_levels_multiples_of_the_retry_lattice():
-    """[bem] base_lattice = j: level k >= 2 is k x the plan's lattice after j retries (next_lattice_grid);
-    level 1 stays the automatic grid; 0 is the plan's first lattice."""
-    from dhfield.analysis.bem_start import next_lattice_grid
-
-    plan = plan_grid(beta0=0.3, mu=10.0)
-    first = (plan.n_needed, plan.ny_needed)
-    retry = next_lattice_grid(*first, 1e6)
-    again = next_lattice_grid(*retry, 1e6)
-    for j, base in ((0, first), (1, retry), (2, again)):
-        two = tasks.automatic_grid(0.3, 10.0, 2, max_seconds=1e6, base_lattice=j)
-        assert (two["nx"], two["ny"]) == (2 * base[0], 2 * base[1]) and two["predicted"]
-        one = tasks.automatic_grid(0.3, 10.0, 1, max_seconds=1e6, base_lattice=j)
-        assert (one["nx"], one["ny"]) == first and one["automatic"]
-    assert retry[0] > first[0] and retry[1] > first[1]
-    for bad in (-1, 3, 1.0, True, None):
-        with pytest.raises(ValueError, match=r"base_lattice must be an integer in \[0, 2\]"):
-            tasks.automatic_grid(0.3, 10.0, 2, base_lattice=bad)
-    with pytest.raises(ValueError, match="no retry lattice 1 above"):       # the retry does not fit the time
-        tasks.automatic_grid(0.3, 10.0, 2, max_seconds=1.0, base_lattice=1)
-    with pytest.raises(ValueError, match="base_lattice=1 needs grid_level"):
-        tasks.adhesive_case(0.3, 10.0, n=256, base_lattice=1)
-
-
-def test_base_lattice_reaches_the_solver_and_the_file(tmp_path, solver_calls, any_memory):
-    """[bem] base_lattice = 1 solves level 2 on twice the retry lattice; the file says so
-    (param_bem_base_lattice); the fingerprint differs from the same sweep without it."""
+def test_refined_levels_take_the_newton_route_and_the_file_names_it(tmp_path, solver_calls, any_memory):
+    """A level k >= 2 is k x the plan by level 1's route, the Newton route (search 'newton'); the file
+    records the adhesive route (param_bem_adhesive_route)."""
     calls = solver_calls
-    base = {"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
-            "bem": {"max_seconds": 1e6}}
-    retry = config_from_mapping({**base, "bem": {**base["bem"], "base_lattice": 1}})
-    plain = config_from_mapping(base)
-    assert retry.base_lattice == 1 and plain.base_lattice == 0 and retry.fingerprint() != plain.fingerprint()
-    done = run_sweep(retry, out=tmp_path / "r.nc", scheduler="synchronous", progress=False)
-    again = run_sweep(plain, out=tmp_path / "p.nc", scheduler="synchronous", progress=False)
-    assert done.failed == [] == again.failed and len(calls) == 2
-    from dhfield.analysis.bem_start import next_lattice_grid
-
-    first = (calls[1]["n"] // 2, calls[1]["ny"] // 2)               # level 2 of the plan's first lattice
-    assert (calls[0]["n"], calls[0]["ny"]) == tuple(2 * v for v in next_lattice_grid(*first, 1e6))
-    # base_lattice belongs to the predicted route (its retry lattices); without it, level 1's default route
-    assert calls[0]["search"] == "predicted" and calls[1]["search"] == "newton"
-    assert done.dataset.attrs["param_bem_base_lattice"] == 1 and again.dataset.attrs["param_bem_base_lattice"] == 0
+    cfg = config_from_mapping({"axes": {"beta0": [0.5], "mu": [10.0], "grid_level": [2]},
+                               "sweep": {"quantities": ["adhesive"]}, "bem": {"max_seconds": 1e6}})
+    done = run_sweep(cfg, out=tmp_path / "r.nc", scheduler="synchronous", progress=False)
+    assert done.failed == [] and len(calls) == 1
+    plan = plan_grid(beta0=0.5, mu=10.0)
+    assert (calls[0]["n"], calls[0]["ny"]) == (2 * plan.n_needed, 2 * plan.ny_needed)
+    assert calls[0]["search"] == "newton"
+    assert done.dataset.attrs["param_bem_adhesive_route"] == "newton"
 
 
 def test_unaffordable_level_is_refused_before_solving(monkeypatch):
@@ -304,21 +273,3 @@ def test_a_rerun_with_more_time_solves_the_refused_level(tmp_path, solver_calls,
     assert second.dataset.attrs["param_bem_max_seconds"] == 2.0 * estimate
     default = run_sweep(config_from_mapping(base), out=tmp_path / "d", scheduler="synchronous", progress=False)
     assert default.dataset.attrs["param_bem_max_seconds"] == DEFAULT_MAX_SECONDS
-
-
-def test_widest_edge_reaches_the_solver_and_the_file(tmp_path, solver_calls, any_memory):
-    """[bem] widest_edge = true: every adhesive case gets AdhesiveOptions(widest_edge=True) (a level 2 of
-    the predicted route, search 'predicted'); the file says so (param_bem_widest_edge 1); the fingerprint
-    differs from the same sweep without it (other values), and a sweep without it passes no such keyword."""
-    calls = solver_calls
-    base = {"axes": {"beta0": [0.1], "mu": [10.0], "grid_level": [2]}, "sweep": {"quantities": ["adhesive"]},
-            "bem": {"max_seconds": 1e6}}
-    wide = config_from_mapping({**base, "bem": {**base["bem"], "widest_edge": True}})
-    plain = config_from_mapping(base)
-    assert wide.widest_edge and not plain.widest_edge and wide.fingerprint() != plain.fingerprint()
-    done = run_sweep(wide, out=tmp_path / "w.nc", scheduler="synchronous", progress=False)
-    assert done.failed == [] and len(calls) == 1
-    assert calls[0]["options"].widest_edge is True and calls[0]["search"] == "predicted"
-    assert done.dataset.attrs["param_bem_widest_edge"] == 1
-    again = run_sweep(plain, out=tmp_path / "p.nc", scheduler="synchronous", progress=False)
-    assert calls[1]["options"].widest_edge is False and again.dataset.attrs["param_bem_widest_edge"] == 0

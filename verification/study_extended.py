@@ -152,43 +152,16 @@ PARTS = {
     # worst mu = 10 case).  Run then, nothing stored: -slenderest (109c033) lost its first level-2
     # state (given up, then the lower-mu alternative gave None: since mended, Branch.race); -45deg
     # and -60deg (8cc34c8, a7442c6) lost level 1's first state under level 2 and were stopped
-    # (docs/theory/bem.rst; verification/level2_wide_edge.py measures level 2 another way)
+    # (docs/theory/bem.rst)
     "high-mu-level2-race-slenderest": ((0.1,), (10.0,), (2,)),
     "high-mu-level2-race-30deg": ((0.1806,), (10.0,), (2,)),
     "high-mu-level2-race-45deg": ((0.3,), (10.0,), (2,)),
-    # eleventh session: level 2 with the Dugdale edge held at its cap 2 h0 on the grid of the answer
-    # ([bem] widest_edge, PART_BEM): level 1's own edges are 1.9-2.0 h0 at mu = 10, so this refines at
-    # level 1's law (a stress ramp over gaps 0 to 2 h0), where the own level-2 edge (1.03-1.08 h0) stalls.
-    # -slenderest converged (5755b0d, stored); -30deg lost its second state at d8585f8 and was still
-    # racing it at 245184b when stopped for the final checks; -45deg's level-1 second state stalled
-    # (d8585f8, stopped); -60deg's level-1 first state is trapped on 1200^2 (stopped)
-    "high-mu-level2-widest-slenderest": ((0.1,), (10.0,), (2,)),
-    "high-mu-level2-widest-30deg": ((0.1806,), (10.0,), (2,)),
-    "high-mu-level2-widest-45deg": ((0.3,), (10.0,), (2,)),
-    "high-mu-level2-widest-60deg": ((0.5,), (10.0,), (2,)),
-    # twelfth session: level 2 as twice the lattice level 1 answered on ([bem] base_lattice = 1, PART_BEM):
-    # beta0 = 0.3 and 0.5 answered level 1 on their retry lattices (2048 x 854, 1280^2), so a level 2 on
-    # twice the first lattice (3840 x 1600, 2400^2) solved the lattice that trapped level 1 as its start.
-    # -widest-30deg converged this session (d9e8af5, stored); -retry-lattice-60deg (3af02d2): level 1's first
-    # state converged on 1280^2, the first level-2 state crept at 2-6e-4 (tol 1e-4) from level 1's state and
-    # from the lower-mu start, stopped after 2 h; -retry-lattice-45deg not run yet
-    # thirteenth session (01ef63c): -retry-lattice-45deg converged (4096 x 1708, 3 states, 4669 CPU s, stored);
-    # -retry-lattice-60deg again given up from level 1's state (3.7e-4 at outer 52), stopped after 49 min
-    "high-mu-level2-retry-lattice-45deg": ((0.3,), (10.0,), (2,)),
-    "high-mu-level2-retry-lattice-60deg": ((0.5,), (10.0,), (2,)),
-    # fourteenth session: beta0 = 0.5's level 2 on twice the plan's second retry lattice ([bem]
-    # base_lattice = 2: 2880^2, 2.25x level 1's 1280^2 per axis; its start, level 1's state on the grid
-    # half as fine, is then solved on 1440^2): on 2560^2 the first state crept from both starts
-    # (2.9-3.7e-4, tol 1e-4) in every session that ran it.  Converged at c1c0a2d (3 states, 4741 CPU s,
-    # stored): W* -0.653528 +- 0.0064 against level 1's -0.653600 +- 0.0145
-    "high-mu-level2-lattice2-60deg": ((0.5,), (10.0,), (2,)),
+    # eleventh to fourteenth sessions: the parts high-mu-level2-widest-* ([bem] widest_edge),
+    # high-mu-level2-retry-lattice-* and high-mu-level2-lattice2-60deg ([bem] base_lattice) solved
+    # level 2 of the mu = 10 cases with the options removed on 2026-12-02 (CHANGELOG); their cases
+    # stay in the dataset (held from the previous build, each with its commit and command)
 }
 
-#: Extra ``[bem]`` keys of a part (:func:`part_config`), recorded in its sweep output's attributes.
-PART_BEM = {**{name: {"widest_edge": True} for name in PARTS if name.startswith("high-mu-level2-widest-")},
-            **{name: {"widest_edge": True, "base_lattice": 1} for name in PARTS
-               if name.startswith("high-mu-level2-retry-lattice-")},
-            "high-mu-level2-lattice2-60deg": {"widest_edge": True, "base_lattice": 2}}
 _KEY = 6  # decimals of beta0 and mu when matching cases of different files
 
 
@@ -197,11 +170,10 @@ def part_config(name, max_seconds=None) -> str:
 
     ``max_seconds`` [s] goes to ``[bem] max_seconds`` (the estimated time allowed per case; default
     the library's): it is not in the sweep's fingerprint, so a part rerun with more resumes its store.
-    A part of :data:`PART_BEM` adds its keys (``widest_edge = true``, ``base_lattice = 1``).
     """
     beta0, mu, levels = PARTS[name]
     fmt = lambda v: "[" + ", ".join(f"{x:g}" for x in v) + "]"  # noqa: E731
-    keys = dict(PART_BEM.get(name, {}), **({} if max_seconds is None else {"max_seconds": float(max_seconds)}))
+    keys = {} if max_seconds is None else {"max_seconds": float(max_seconds)}
     value = lambda v: ("true" if v else "false") if isinstance(v, bool) else repr(v)  # noqa: E731
     bem = "".join(f"{k} = {value(v)}\n" for k, v in keys.items())
     bem = f"\n[bem]\n{bem}" if bem else ""

@@ -760,19 +760,6 @@ class AdhesiveOptions:
         Bracket search only: start every state from the same approach solved
         on a grid half as fine (:class:`dhfield.bem.pull_off.NestedWarmStart`).
         Default (None): when ``n >= 2 * NESTED_MIN_N``.
-    widest_edge : bool, default False
-        Predicted route only (:func:`takes_predicted_route`; ``search='predicted'`` on a given
-        grid): spread the Dugdale edge over its cap 2 h0 on the grid of the answer (and of a
-        lattice retry; :attr:`dhfield.bem.pull_off.NondimensionalProblem.widest_edge`)
-        instead of the grid's own width.  The starts from other grids keep theirs (level 1's
-        route under a refined level, the lower-mu starts).  h0 is the Dugdale range, a gap, not
-        a cell: the widest edge is a ramp of the stress over gaps 0 to 2 h0, another law with
-        the same work of adhesion, which does not tend to the Dugdale step under refinement.
-        At mu = 10 level 1's own edge is already 1.9-2.0 h0, so a refined level against level 1
-        refines the same law; its departure from Dugdale on the sphere is about
-        1e-4-2e-4 of W* at mu = 10 and 4e-3 at mu = 2 (hence refused below
-        :data:`PREDICTED_MIN_MU`; docs/theory/bem.rst, 'Level 2 with the edge held at its
-        widest').  The record's note says so (:data:`WIDEST_EDGE_NOTE`).
     """
 
     n_steps: int = DEFAULT_STEPS
@@ -783,7 +770,6 @@ class AdhesiveOptions:
     keep_states: bool = False
     max_seconds: float = DEFAULT_MAX_SECONDS
     nested: bool | None = None
-    widest_edge: bool = False
 
 
 def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="load", search=None,
@@ -888,10 +874,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         raise ValueError(f"options must be an AdhesiveOptions (numerical settings); got {type(options).__name__}")
     n_steps, refine_levels, tol, max_iter = options.n_steps, options.refine_levels, options.tol, options.max_iter
     margin, keep_states, max_seconds = options.margin, options.keep_states, options.max_seconds
-    nested, widest_edge = options.nested, options.widest_edge
-    if not isinstance(widest_edge, (bool, np.bool_)):
-        raise ValueError(f"options.widest_edge must be True or False (the Dugdale edge at its cap 2 h0 on the "
-                         f"predicted route); got {widest_edge!r}")
+    nested = options.nested
 
     for name, value in (("mu", mu), ("beta0", beta0)):  # one case per call: scalars only
         if np.ndim(value) != 0:
@@ -915,14 +898,6 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None on the "
                          f"automatic grid (the predicted route); got law={law!r}, control={control!r}, "
                          f"nested={nested!r}, n={n!r}")
-    if widest_edge and (mu < PREDICTED_MIN_MU or not takes_predicted_route(
-            beta0=beta0, mu=mu, n=n, law=law, control=control, search=search, nested=nested)):
-        # below PREDICTED_MIN_MU the widened law's own answer departs from Dugdale's beyond the stated error
-        # (the sphere at mu = 2: +0.41 % from MD at N = 128, 256 and 512 alike, stated errors 0.8-0.2 %)
-        raise ValueError("options.widest_edge=True needs the predicted route and mu >= "
-                         f"{PREDICTED_MIN_MU:g} (law='dugdale', control='load', options.nested None, "
-                         "search='predicted' or no n); "
-                         f"got mu={mu!r}, n={n!r}, law={law!r}, control={control!r}, search={search!r}")
     options = PathOptions(refine_levels=refine_levels, tol=DEFAULT_TOL if tol is None else tol,
                           max_iter=max_iter, threads=threads, keep_states=keep_states, progress=progress)
     if n is None:
@@ -938,8 +913,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
             # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             tol_route = PREDICTED_TOL if tol is None else tol
-            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny,
-                                     widest_edge=widest_edge)
+            prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
             # GVG's start first, then each state from the same approach at mu/2 on the grid half as fine
             # (LowerMuWarmStart) on the same lattice, where GVG's cold state wanders or stalls; lower-mu
             # first is slower where GVG's start converges (docs/theory/bem.rst)
@@ -962,8 +936,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                    f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
                    f"N = {n_next}")
             again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
-                                                          margin=margin, ny=ny_next,
-                                                          widest_edge=widest_edge),
+                                                          margin=margin, ny=ny_next),
                                         options, tol=tol_route)
             return replace(again, note="; ".join(filter(None, (*tried, why, again.note))),
                            elapsed=res.elapsed + again.elapsed)
@@ -973,8 +946,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         # state from this route's own state on the grid half as fine where that grid holds the edge at mu
         # (a refined level), else from the lower-mu start where the grid half as fine holds the edge at mu/2
         # (nested True: one of the two required, False: GVG's cold start)
-        prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny,
-                                 widest_edge=widest_edge)
+        prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
         start = ("coarse-route" if coarse_route_start_possible(prob) else
                  "lower-mu" if lower_mu_start_possible(prob) else "cold")
         if nested and start == "cold":
@@ -1239,10 +1211,12 @@ PREDICTED_TOL = 1e-4
 #: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
 PREDICTED_SEARCH = "predicted"
 
-#: The note of a record solved with the Dugdale edge at its widest (:attr:`AdhesiveOptions.widest_edge`);
-#: it ends with :data:`WIDEST_EDGE_MARK`, which readers look for.
+#: The note of a stored record solved with the Dugdale edge at its widest (the option
+#: ``AdhesiveOptions.widest_edge``, removed 2026-12-02: the cases of
+#: ``data/adhesive_ground_truth_extended.nc`` that used it carry this note in their message);
+#: it ends with :data:`WIDEST_EDGE_MARK`, which readers of those files look for.
 WIDEST_EDGE_NOTE = "Dugdale edge held at its cap 2 h0 on the grid of the answer (options.widest_edge)"
-#: What a record's note or message carries when it was solved with the widest edge.
+#: What a stored record's note or message carries when it was solved with the widest edge.
 WIDEST_EDGE_MARK = "(options.widest_edge)"
 
 
@@ -1252,7 +1226,7 @@ def takes_newton_route(*, law="dugdale", control="load", n=None, search=None, op
     The Newton route (:func:`dhfield.bem.ladder.ladder_pull_off`) is the default of the Dugdale
     law's load-control pull-off on the automatic grid: no ``n``, no ``search``, and none of the
     settings only the path routes read (:class:`AdhesiveOptions`' ``n_steps``, ``refine_levels``,
-    ``tol``, ``max_iter``, ``keep_states``, ``nested``, ``widest_edge`` at their defaults;
+    ``tol``, ``max_iter``, ``keep_states``, ``nested`` at their defaults;
     ``margin`` and ``max_seconds`` apply to both).  Any other case takes the path routes
     (``search='located'`` and its predicted route at high mu), as does an explicit ``search``
     other than ``'newton'``.  :func:`adhesive_pull_off`, the command line and the sweep share
@@ -1387,8 +1361,7 @@ def _gvg_md_start(mu, beta0):
     return approach, (ratio * float(gvg["a_star"]) + w, ratio * float(gvg["b_star"]) + w)
 
 
-def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN, ny=None,
-                      widest_edge=False) -> NondimensionalProblem:
+def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARGIN, ny=None) -> NondimensionalProblem:
     """The paper's problem (Dugdale law) on the predicted route's domain with its start (:func:`predicted_start`).
 
     Parameters
@@ -1405,8 +1378,6 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
         As in :func:`predicted_start` [-].
     ny : int, optional
         Cells along y (even, 8 to 65536) [-]; default ``n``.
-    widest_edge : bool, default False
-        The Dugdale edge at its cap 2 h0 (:attr:`AdhesiveOptions.widest_edge`).
 
     Returns
     -------
@@ -1417,9 +1388,8 @@ def predicted_problem(*, beta0, mu, n, n_steps=DEFAULT_STEPS, margin=DOMAIN_MARG
     ny = n if ny is None else check_cells(ny, "ny")
     check_grid_memory(n, ny)
     n_steps = check_count("n_steps", n_steps, 4, MAX_STEPS, "unloading steps")
-    prob = paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
+    return paper_problem(mu=mu, beta0=beta0, n=n, ny=ny,
                          start=predicted_start(mu=mu, beta0=beta0, n_steps=n_steps, margin=margin))
-    return replace(prob, widest_edge=True) if widest_edge else prob
 
 
 def newton_problem(*, beta0, mu, n, ny=None, margin=DOMAIN_MARGIN) -> NondimensionalProblem:
@@ -1559,8 +1529,6 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
           if start in starts else None)
     path = predicted_path(prob, options, warm_start=ws)
     res = pull_off_result(prob, prob.grid.nx, path, PREDICTED_SEARCH)     # the route, named as asked for
-    if prob.widest_edge:      # the record says which edge it solved (options.widest_edge)
-        res = replace(res, note="; ".join(filter(None, (WIDEST_EDGE_NOTE, res.note))))
     if res.converged:
         return res
     w = float(md_elliptic.pull_off_nondimensional(prob.beta0, prob.mu).W_star)

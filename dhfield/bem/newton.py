@@ -1190,8 +1190,7 @@ def grid_ladder(problem, levels, threads=1, relaxed_edge=False):
     out = []
     for j in range(levels - 1, 0, -1):
         nd = problem.coarser(nx // 2 ** j)
-        out.append(AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, threads, 1.0, relaxed_edge=relaxed_edge,
-                                   widest_edge=nd.widest_edge))
+        out.append(AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, threads, 1.0, relaxed_edge=relaxed_edge))
     out.append(problem.adhesive_problem(threads))
     return out
 

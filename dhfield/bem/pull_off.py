@@ -111,12 +111,6 @@ class NondimensionalProblem:
         Approach of the bracket search's cold start [c_r^2/R] (:attr:`UnloadingStart.approach`).
     pull_off_zone : (float, float)
         Semi-axes (c, d) of its cohesive zone [c_r] (:attr:`UnloadingStart.zone`).
-    widest_edge : bool, default False
-        Dugdale law only: solve this grid with the edge spread over its cap 2 h0
-        (:class:`dhfield.bem.solver.AdhesiveProblem` ``widest_edge``, built by
-        :meth:`adhesive_problem`; :meth:`coarser` keeps it).  The warm starts from other grids
-        keep their own edges (:class:`CoarseRouteWarmStart`'s level-1 route,
-        :class:`LowerMuWarmStart`'s lower mu).
     """
 
     mu: float
@@ -129,7 +123,6 @@ class NondimensionalProblem:
     approach_step: float
     pull_off_approach: float = float("nan")
     pull_off_zone: tuple = (float("nan"), float("nan"))
-    widest_edge: bool = False
 
     @property
     def has_cold_start(self) -> bool:
@@ -160,11 +153,9 @@ class NondimensionalProblem:
         Returns
         -------
         AdhesiveProblem
-            The problem's gap, grid and law in the solver's working arrays (the Dugdale edge
-            at its widest when :attr:`widest_edge`).
+            The problem's gap, grid and law in the solver's working arrays.
         """
-        return AdhesiveProblem(self.initial_gap, self.grid, self.law, None, threads, 1.0,
-                               widest_edge=self.widest_edge)
+        return AdhesiveProblem(self.initial_gap, self.grid, self.law, None, threads, 1.0)
 
     def path_start(self, prob, warm_start=None) -> PathStart:
         """Build the cold start of a path on ``prob`` (this problem's working arrays).
@@ -274,7 +265,7 @@ class NondimensionalProblem:
         Returns
         -------
         NondimensionalProblem
-            The same problem (law, start, domain, :attr:`widest_edge`) on the new grid, with its
+            The same problem (law, start, domain) on the new grid, with its
             initial gap (Eq. 2).
         """
         grid = self.grid_on_cells(nx, ny)
@@ -294,7 +285,7 @@ class NondimensionalProblem:
         Returns
         -------
         NondimensionalProblem
-            The same problem (law, start, domain, :attr:`widest_edge`) with the coarser
+            The same problem (law, start, domain) with the coarser
             grid and its initial gap.
         """
         g = self.grid
@@ -819,7 +810,7 @@ class LowerMuWarmStart(_HalfGridWarmStart):
         mu_lo = mu_ratio * problem.mu
         # the lower mu keeps its own edge (a start of another law; held at 2 h0 with level 1's, the
         # level-1 first state of beta0 = 0.1, mu = 10 under level 2 did not converge from it)
-        lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0), widest_edge=False)
+        lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0))
         self.mu = mu_lo
         self._fine_nd, self._threads, self._fine_prob = problem, threads, None
         self._nested = NestedWarmStart(lower, tol=tol, max_iter=max_iter, threads=threads)
@@ -894,10 +885,7 @@ class CoarseRouteWarmStart(_HalfGridWarmStart):
         if g.nx % 8 or g.ny % 8:
             raise ValueError(f"problem must have nx and ny multiples of 8 for warm starts from the predicted route on "
                              f"the grid half as fine; got {g.nx} x {g.ny}")
-        # level 1's route as it runs alone, with its own edge also when this grid's is held at its widest
-        # (NondimensionalProblem.widest_edge): at beta0 = 0.1, mu = 10 level 1's first state under level 2
-        # converged so (2560 x 480, own edge 1.97 h0) and did not from the same starts held at 2 h0
-        coarse = replace(problem.coarser(g.nx // 2), widest_edge=False)
+        coarse = problem.coarser(g.nx // 2)        # level 1's route as it runs alone
         self._fine_nd, self._threads, self._fine_prob = problem, threads, None
         self._tol, self._max_iter, self._alternative = tol, max_iter, None
         self._lower = LowerMuWarmStart(coarse, tol=tol, max_iter=max_iter, threads=threads)

@@ -30,8 +30,6 @@ TOML layout (every table and key optional except ``[axes]``)::
     half_width = 3.0                   # fixed domain half-width [c_r] (default 1.5 c* per case)
     sampling = "average"               # or "centre"
     max_seconds = 3600                 # adhesive: estimated time allowed per case [s] (default 1800 s)
-    widest_edge = false                # adhesive, predicted route: the Dugdale edge at its cap 2 h0
-    base_lattice = 0                   # adhesive, grid_level >= 2: k x the plan's lattice after this many retries
 
     [run]
     workers = 2                        # default: every core
@@ -75,19 +73,10 @@ never its value, so it is not part of the config's fingerprint: a refused case i
 failed, and a rerun with a larger ``max_seconds`` (the flag also overrides a config file's)
 resumes the same store and solves it.
 
-``[bem] widest_edge = true`` solves every adhesive case with the Dugdale edge spread over its
-cap 2 h0, a stress ramp over gaps 0 to 2 h0 (:attr:`dhfield.analysis.bem_start.AdhesiveOptions.widest_edge`), on the
-predicted route only (mu >= 7.5 at ``grid_level = 1``, every ``grid_level >= 2`` of such a
-case); a case off that route fails with the solver's reason.  It changes the values, so it is
-part of the fingerprint, and the output says it (attribute ``param_bem_widest_edge``, each case's note).
-
-``[bem] base_lattice = j`` (an integer in [0, 2], default 0) makes every ``grid_level = k >= 2``
-k times the cells per axis of the plan's lattice after j retries
-(:func:`dhfield.analysis.bem_start.next_lattice_grid`) instead of its first lattice: the lattice
-level 1 answers on when its first one traps a state (the level-1 record's ``nx``, ``ny`` and
-note say so), so that level 2 refines the grid of level 1's answer and not the lattice that
-trapped it.  Level 1 is the automatic grid whatever it is.  It changes the grids, so it is in
-the fingerprint when not 0 (attribute ``param_bem_base_lattice``).
+``[bem] widest_edge`` and ``[bem] base_lattice`` were removed on 2026-12-02 with the path
+routes' rescue layers they chose (the Dugdale edge held at 2 h0, the retry lattices): a file
+that sets either is refused with a line that says so.  Stored sweep outputs that recorded them
+(attributes ``param_bem_widest_edge``, ``param_bem_base_lattice``) stay readable.
 
 ``pull_off`` (analytic, every model of :data:`dhfield.analysis.compare.MODEL_NAMES`)
 reports ``a_star`` (the contact size at pull-off) as an output variable, so it
@@ -109,7 +98,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["SweepConfig", "QUANTITIES", "AXES", "load_config", "config_from_mapping", "axis_values",
-           "check_scheduler_address", "MAX_POINTS", "MAX_GRID_LEVEL", "MAX_BASE_LATTICE", "max_workers",
+           "check_scheduler_address", "MAX_POINTS", "MAX_GRID_LEVEL", "max_workers",
            "MAX_CONFIG_BYTES", "DEFAULT_SCHEDULER_PORT", "cohesive_laws"]
 
 #: Quantities a sweep can compute.
@@ -136,9 +125,13 @@ MAX_GRID_LEVEL = 4
 #: the default of the Dugdale law under load control, so a store of their answers is not resumed.
 ADHESIVE_ROUTE = "newton"
 
-#: Largest ``[bem] base_lattice``: the refined grid levels multiply the plan's lattice after at
-#: most this many retries (level 1 retries once, :func:`dhfield.analysis.bem_start.adhesive_pull_off`).
-MAX_BASE_LATTICE = 2
+#: ``[bem]`` keys removed, and why (a file that sets one is refused with this reason).
+_REMOVED_BEM_KEYS = {
+    "widest_edge": "removed on 2026-12-02 with the path routes' rescue layers (the Newton route, the default of "
+                   "the adhesive quantity, solves the Dugdale law as it is); delete the key",
+    "base_lattice": "removed on 2026-12-02 with the path routes' retry lattices (the Newton route solves "
+                    "every grid level on k times the plan); delete the key",
+}
 _SAMPLINGS = ("average", "centre")
 _CONTROLS = ("load", "displacement")
 
@@ -167,7 +160,7 @@ def max_workers() -> int:
 
 _TOP_KEYS = {"sweep", "axes", "bem", "run"}
 _SWEEP_KEYS = {"quantities", "models", "control", "chunk_points", "curve_a_star", "curve_points"}
-_BEM_KEYS = {"half_width", "sampling", "max_seconds", "widest_edge", "base_lattice"}
+_BEM_KEYS = {"half_width", "sampling", "max_seconds"}
 _RUN_KEYS = {"workers", "scheduler", "out"}
 _SPACE_KEYS = ("linspace", "geomspace")
 
@@ -206,13 +199,6 @@ class SweepConfig:
         Estimated time allowed per adhesive BEM case [s], > 0 (``[bem] max_seconds``); None:
         the library's :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`.  Not in the
         fingerprint (it decides whether a case is refused, never its value).
-    widest_edge : bool, default False
-        Adhesive cases: the Dugdale edge at its cap 2 h0 (``[bem] widest_edge``); in the
-        fingerprint when True.
-    base_lattice : int, default 0
-        Adhesive grid levels k >= 2: k times the plan's lattice after this many retries
-        (``[bem] base_lattice``, :func:`dhfield.sweep.tasks.automatic_grid`); in the fingerprint
-        when not 0.
     """
 
     axes: dict
@@ -228,8 +214,6 @@ class SweepConfig:
     scheduler: str | None = None
     out: str | None = None
     max_seconds: float | None = None
-    widest_edge: bool = False
-    base_lattice: int = 0
 
     def fingerprint(self) -> str:
         """Hash everything that determines the results (not workers, scheduler, out, max_seconds).
@@ -248,13 +232,14 @@ class SweepConfig:
                    "half_width": self.half_width, "sampling": self.sampling}
         if "adhesive" in self.quantities:   # the adhesive cases' default route (the Newton route since 2026-12-02):
             payload["adhesive_route"] = ADHESIVE_ROUTE    # a store of the path routes' answers is not resumed
-        if self.widest_edge:      # (absent when False: the fingerprints of earlier stores stay)
-            payload["widest_edge"] = True
-        if self.base_lattice:     # (likewise absent when 0)
-            payload["base_lattice"] = self.base_lattice
         if "load_curve" in self.quantities:
             payload.update(curve_a_star=list(self.curve_a_star), curve_points=self.curve_points)
         return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
+
+    @property
+    def adhesive_route(self) -> str:
+        """The adhesive quantity's default route (:data:`ADHESIVE_ROUTE`), as recorded in the output."""
+        return ADHESIVE_ROUTE
 
     def as_dict(self) -> dict:
         """Return the TOML-shaped mapping of this config.
@@ -273,10 +258,6 @@ class SweepConfig:
             out["bem"]["half_width"] = self.half_width
         if self.max_seconds is not None:
             out["bem"]["max_seconds"] = self.max_seconds
-        if self.widest_edge:
-            out["bem"]["widest_edge"] = True
-        if self.base_lattice:
-            out["bem"]["base_lattice"] = self.base_lattice
         for k in ("workers", "scheduler", "out"):
             if getattr(self, k) is not None:
                 out["run"][k] = getattr(self, k)
@@ -516,6 +497,8 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     sweep = mapping.get("sweep", {})
     _check_keys(sweep, _SWEEP_KEYS, "sweep")
     bem = mapping.get("bem", {})
+    for key in sorted(set(bem) & set(_REMOVED_BEM_KEYS)) if isinstance(bem, dict) else ():
+        raise ValueError(f"config key 'bem.{key}' was {_REMOVED_BEM_KEYS[key]}")
     _check_keys(bem, _BEM_KEYS, "bem")
     run = mapping.get("run", {})
     _check_keys(run, _RUN_KEYS, "run")
@@ -581,20 +564,6 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     if sampling not in _SAMPLINGS:
         _fail("bem.sampling", f"one of {_SAMPLINGS}", sampling)
     max_seconds = _positive_number("bem.max_seconds", bem.get("max_seconds"), _max_seconds_range)
-    widest_edge = bem.get("widest_edge", False)
-    if not isinstance(widest_edge, bool):
-        _fail("bem.widest_edge", "true or false (the adhesive Dugdale edge at its cap 2 h0)", widest_edge)
-    if widest_edge and ("adhesive" not in quantities or set(axes.get("law", ("dugdale",))) != {"dugdale"}
-                        or control != "load"):
-        _fail("bem.widest_edge", "false unless the quantity 'adhesive' is swept with law ['dugdale'] and control "
-              "'load' (the predicted route)", widest_edge)
-    base_lattice = bem.get("base_lattice", 0)
-    if isinstance(base_lattice, bool) or not isinstance(base_lattice, int) \
-            or not 0 <= base_lattice <= MAX_BASE_LATTICE:
-        _fail("bem.base_lattice", f"an integer in [0, {MAX_BASE_LATTICE}] (the refined grid levels multiply the "
-              "plan's lattice after this many retries)", base_lattice)
-    if base_lattice and ("adhesive" not in quantities or "grid_level" not in axes):
-        _fail("bem.base_lattice", "0 unless the quantity 'adhesive' is swept over axes.grid_level", base_lattice)
     workers = run.get("workers")
     if workers is not None:
         _int_at_least("run.workers", workers, 1)
@@ -610,8 +579,7 @@ def config_from_mapping(mapping: dict) -> SweepConfig:
     return SweepConfig(axes=axes, quantities=tuple(dict.fromkeys(quantities)), models=tuple(dict.fromkeys(models)),
                        control=control, chunk_points=chunk,
                        curve_a_star=(float(curve_a[0]), float(curve_a[1])), curve_points=curve_points,
-                       half_width=half_width, sampling=sampling, max_seconds=max_seconds, widest_edge=widest_edge,
-                       base_lattice=base_lattice, workers=workers,
+                       half_width=half_width, sampling=sampling, max_seconds=max_seconds, workers=workers,
                        scheduler=scheduler, out=out)
 
 

@@ -722,10 +722,6 @@ def _case_index(config: SweepConfig, quantity):
         grids, laws = config.axes[grid_axis], config.axes["law"]
         # the time allowed per case goes to adhesive_case only when the config sets one (None: the library's)
         allowed = {} if config.max_seconds is None else {"max_seconds": float(config.max_seconds)}
-        if config.widest_edge:   # (only when set: the cases of other sweeps keep their keyword arguments)
-            allowed["widest_edge"] = True
-        if config.base_lattice:   # (likewise)
-            allowed["base_lattice"] = int(config.base_lattice)
         for ib, b in enumerate(beta0):
             for im, m in enumerate(mu):
                 for i_n, g in enumerate(grids):
@@ -1170,8 +1166,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         from ..analysis.bem_start import DEFAULT_MAX_SECONDS
 
         allowed["bem_max_seconds"] = float(DEFAULT_MAX_SECONDS if config.max_seconds is None else config.max_seconds)
-        allowed["bem_widest_edge"] = int(config.widest_edge)
-        allowed["bem_base_lattice"] = int(config.base_lattice)
+        allowed["bem_adhesive_route"] = config.adhesive_route
     ds.attrs.update(provenance_attrs("dhfield sweep (Zini et al. 2018 extended double-Hertz model)",
                                      sweep_fingerprint=config.fingerprint(),
                                      sweep_quantities=" ".join(config.quantities), control=config.control,

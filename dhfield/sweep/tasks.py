@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.records import LoadCurve, PullOff
-from .config import MAX_BASE_LATTICE, MAX_GRID_LEVEL
+from .config import MAX_GRID_LEVEL
 
 __all__ = ["PULL_OFF_FIELDS", "CURVE_FIELDS", "load_curve_case", "BEM_FIELD_FIELDS", "ADHESIVE_FIELDS",
            "ADHESIVE_BEM_FIELDS", "ADHESIVE_GRID_FIELDS", "ADHESIVE_TEXT_FIELDS", "ADHESIVE_MODEL",
@@ -203,22 +203,15 @@ def adhesive_solver(name: str = "default"):
 
 
 def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "dugdale",
-                   control: str = "load", max_seconds: float | None = None, base_lattice: int = 0) -> dict:
+                   control: str = "load", max_seconds: float | None = None) -> dict:
     """The grid of an adhesive case at a grid level of the automatic plan.
 
     Level 1 is the grid :func:`dhfield.analysis.bem_start.adhesive_pull_off` plans when no ``n``
     is given (:func:`dhfield.analysis.bem_start.plan_grid`, on the domain of the route it takes);
-    level k >= 2 is k times its cells per axis, on the same domain and by the same route: where
-    level 1 takes the predicted route (mu >= 7.5, :func:`dhfield.analysis.bem_start.takes_predicted_route`)
-    the refined levels ask for it (``search='predicted'``), so that the levels differ by their
-    cells alone (before, they were solved by the located route on the larger domain of an
-    explicit grid: another route, and more cells, e.g. 2880^2 instead of 2400^2 at beta0 = 0.5).
-
-    ``base_lattice`` chooses the grid the refined levels multiply: 0 the plan's first lattice,
-    j the lattice after j retries (:func:`dhfield.analysis.bem_start.next_lattice_grid`), where
-    level 1 answers when its first lattice traps a state.  At mu = 10, beta0 = 0.3 and 0.5
-    level 1 answered on its retry lattice (2048 x 854 and 1280^2, not 1920 x 800 and 1200^2),
-    and a level 2 on twice the first lattice solved the trapping lattice again as its start.
+    level k >= 2 is k times its cells per axis, solved by the same route: the Newton route where
+    it is the default (:func:`dhfield.analysis.bem_start.takes_newton_route`), else the predicted
+    route where level 1 takes it (mu >= 7.5, :func:`dhfield.analysis.bem_start.takes_predicted_route`),
+    so that the levels differ by their cells alone.
 
     Parameters
     ----------
@@ -235,10 +228,6 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
     max_seconds : float, optional
         Estimated time allowed [s], > 0; default
         :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`.
-    base_lattice : int, default 0
-        Levels k >= 2: k times the cells per axis of the plan's lattice after this many
-        retries, 0 to :data:`dhfield.sweep.config.MAX_BASE_LATTICE` [-]; level 1 is the
-        automatic grid whatever it is.
 
     Returns
     -------
@@ -253,33 +242,20 @@ def automatic_grid(beta0: float, mu: float, grid_level: int = 1, *, law: str = "
     Raises
     ------
     ValueError
-        If ``grid_level`` is not an integer in [1, MAX_GRID_LEVEL], ``base_lattice`` not an
-        integer in [0, MAX_BASE_LATTICE] or a retry lattice does not fit in the memory and
-        time allowed, or ``max_seconds`` is not a finite number > 0.
+        If ``grid_level`` is not an integer in [1, MAX_GRID_LEVEL], or ``max_seconds`` is not
+        a finite number > 0.
     """
-    from ..analysis.bem_start import (DEFAULT_MAX_SECONDS, next_lattice_grid, plan_grid, pull_off_cost,
-                                      takes_predicted_route)
+    from ..analysis.bem_start import DEFAULT_MAX_SECONDS, plan_grid, pull_off_cost, takes_predicted_route
 
     if isinstance(grid_level, bool) or not isinstance(grid_level, (int, np.integer)) \
             or not 1 <= grid_level <= MAX_GRID_LEVEL:
         raise ValueError(f"grid_level must be an integer in [1, {MAX_GRID_LEVEL}] (1: the automatic grid); "
                          f"got {grid_level!r}")
-    if isinstance(base_lattice, bool) or not isinstance(base_lattice, (int, np.integer)) \
-            or not 0 <= base_lattice <= MAX_BASE_LATTICE:
-        raise ValueError(f"base_lattice must be an integer in [0, {MAX_BASE_LATTICE}] (0: the plan's first "
-                         f"lattice, j: the lattice after j retries); got {base_lattice!r}")
     k = int(grid_level)
     predicted = takes_predicted_route(beta0=beta0, mu=mu, law=law, control=control)
     allowed = DEFAULT_MAX_SECONDS if max_seconds is None else max_seconds
     plan = plan_grid(beta0=beta0, mu=mu, law=law, predicted=predicted, max_seconds=allowed)
-    base = (int(plan.n_needed), int(plan.ny_needed))
-    for j in range(int(base_lattice) if k > 1 else 0):     # the lattice level 1 retries on (next_lattice_grid)
-        retry = next_lattice_grid(*base, allowed)
-        if retry is None:
-            raise ValueError(f"base_lattice={base_lattice}: beta0={beta0:g}, mu={mu:g} has no retry lattice {j + 1} "
-                             f"above {base[0]} x {base[1]} cells within the memory and {allowed:g} s allowed")
-        base = retry
-    nx, ny = k * base[0], k * base[1]
+    nx, ny = k * int(plan.n_needed), k * int(plan.ny_needed)
     memory_bytes, seconds = pull_off_cost(nx, ny)
     return {"nx": nx, "ny": ny, "automatic": k == 1, "predicted": bool(plan.predicted),
             "seconds": seconds, "memory_bytes": memory_bytes, "memory_limit": plan.memory_limit,
@@ -309,8 +285,7 @@ def _git_commit() -> str:
 
 
 def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dugdale", control: str = "load", *,
-                  grid_level: int | None = None, solver: str = "default", max_seconds: float | None = None,
-                  widest_edge: bool = False, base_lattice: int = 0) -> dict:
+                  grid_level: int | None = None, solver: str = "default", max_seconds: float | None = None) -> dict:
     """Compute the adhesive BEM ground truth at pull-off of one (beta0, mu, n or grid level, law) case.
 
     The whole load path runs in this one call (each step warm-starts from the
@@ -341,13 +316,6 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         grid: its own refusal, :func:`dhfield.analysis.bem_start.plan_grid`).  Default (None):
         :data:`dhfield.analysis.bem_start.DEFAULT_MAX_SECONDS`, the solver called without options.
         An estimate checked before solving, not a wall-clock limit.
-    widest_edge : bool, default False
-        The Dugdale edge at its cap 2 h0 on the predicted route's grid of the answer
-        (:attr:`dhfield.analysis.bem_start.AdhesiveOptions.widest_edge`; ``[bem] widest_edge``);
-        the solver refuses it (ValueError) off that route.
-    base_lattice : int, default 0
-        A level k >= 2: k times the cells per axis of the plan's lattice after this many
-        retries (:func:`automatic_grid`; ``[bem] base_lattice``) [-].
 
     Returns
     -------
@@ -360,17 +328,13 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
     Raises
     ------
     ValueError
-        If neither or both of ``n`` and ``grid_level`` are given, ``base_lattice`` is given
-        with ``n`` or out of its range, ``max_seconds`` is not a finite number > 0, or
-        ``widest_edge`` is asked for off the predicted route.
+        If neither or both of ``n`` and ``grid_level`` are given, or ``max_seconds`` is not a
+        finite number > 0.
     """
     import time
 
     if (n is None) == (grid_level is None):
         raise ValueError("give n (an explicit n x n grid) or grid_level (the automatic grid), not both or neither")
-    if base_lattice and grid_level is None:
-        raise ValueError(f"base_lattice={base_lattice!r} needs grid_level (it chooses the grid the refined levels "
-                         "multiply); an explicit n has none")
     kwargs = dict(beta0=float(beta0), mu=float(mu), law=law, control=control, threads=1)
     settings = {}         # the solver's options, only those given (None: the solver called without options)
     if max_seconds is not None:
@@ -378,8 +342,6 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
 
         max_seconds = float(check_positive("max_seconds", max_seconds, "estimated time allowed per case, s"))
         settings["max_seconds"] = max_seconds
-    if widest_edge:
-        settings["widest_edge"] = True
     if settings:
         from ..analysis.bem_start import AdhesiveOptions
 
@@ -388,15 +350,14 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         kwargs["n"] = int(n)
         asked = (int(n), int(n))
     else:
-        grid = automatic_grid(float(beta0), float(mu), grid_level, law=law, control=control, max_seconds=max_seconds,
-                              base_lattice=base_lattice)
+        grid = automatic_grid(float(beta0), float(mu), grid_level, law=law, control=control, max_seconds=max_seconds)
         asked = (grid["nx"], grid["ny"])
         if not grid["automatic"]:
             _refuse_unaffordable(beta0, mu, grid_level, grid)
             kwargs.update(n=grid["nx"], ny=grid["ny"])
             from ..analysis.bem_start import PREDICTED_SEARCH, takes_newton_route
 
-            if takes_newton_route(law=law, control=control, options=kwargs.get("options")) and not base_lattice:
+            if takes_newton_route(law=law, control=control, options=kwargs.get("options")):
                 kwargs["search"] = "newton"      # level 1's route (the default), on k times its planned cells
             elif grid["predicted"]:        # the route and domain of level 1, refined
                 kwargs["search"] = PREDICTED_SEARCH
@@ -503,8 +464,7 @@ def expected_seconds(quantity: str, params: dict) -> float:
         if params.get("grid_level") is not None:   # the library's estimate of the planned grid
             return automatic_grid(float(params["beta0"]), float(params["mu"]), params["grid_level"],
                                   law=params.get("law", "dugdale"), control=params.get("control", "load"),
-                                  max_seconds=params.get("max_seconds"),
-                                  base_lattice=params.get("base_lattice", 0))["seconds"]
+                                  max_seconds=params.get("max_seconds"))["seconds"]
         ellipse = 1.2 if float(params["beta0"]) < 1.0 else 1.0
         mu_work = float(params["mu"]) ** _ADHESIVE_MU_EXPONENT + _ADHESIVE_MU_OFFSET
         return _SECONDS_ADHESIVE_256 * _grid_scale(params["n"]) * mu_work * ellipse
