@@ -200,7 +200,10 @@ def test_a_toml_integer_too_long_for_python_names_its_key(capsys, tmp_path):
 def test_the_wisdom_cache_warning_is_one_line_without_source(capsys, tmp_path, monkeypatch):
     from dhfield.bem import _wisdom
 
+    from dhfield.bem.operator import clear_operator_cache
+
     monkeypatch.setitem(_wisdom._WISDOM_STATE, "loaded", False)
+    clear_operator_cache()     # a cached operator (an earlier test's 16 x 16 solve) would not load the wisdom
     cache = tmp_path / "cache"
     cache.mkdir(exist_ok=True)
     (cache / "fftw_wisdom.bin").write_bytes(b"garbage\n")
