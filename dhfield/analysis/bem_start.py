@@ -60,7 +60,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
            "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
-           "next_lattice_grid", "newton_problem", "takes_newton_route",
+           "next_lattice_grid", "newton_problem", "newton_grids", "takes_newton_route",
            "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
            "pull_off_cost", "check_grid_memory", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
@@ -988,14 +988,33 @@ def _newton_pull_off(*, beta0, mu, n, ny, threads, margin, max_seconds) -> PullO
         n, ny = plan.n_needed, plan.ny_needed
     ny = n if ny is None else ny
     prob = newton_problem(mu=mu, beta0=beta0, n=n, ny=ny, margin=margin)
-    nc, nf = ladder.ladder_grids(prob)
-    nyf = prob.cells_y(nf, 8)             # (each grid's nested levels: dhfield.bem.ladder.nested_levels)
+    (nc, _), (nf, nyf) = newton_grids(prob)
     check_grid_memory(nf, nyf)
     fine = prob.on_cells(nf, nyf)
     res = ladder.ladder_pull_off(fine, nc, threads=1 if threads is None else threads,
                                  target_error=LADDER_TARGET_ERROR, max_refinements=LADDER_REFINEMENTS if automatic else 0,
                                  grid_check=check_grid_memory)
     return ladder.pull_off_record(res)
+
+
+def newton_grids(problem) -> tuple:
+    """The check grid and the answer's grid of the Newton route on ``problem``'s domain (before refinement).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        The route's problem (:func:`newton_problem`); its grid is the smallest answer's grid.
+
+    Returns
+    -------
+    ((int, int), (int, int))
+        Cells (nx, ny) of the check grid and of the answer's grid
+        (:func:`dhfield.bem.ladder.ladder_grids`; multiples of 8, the nested levels halve them).
+    """
+    from ..bem import ladder
+
+    nc, nf = ladder.ladder_grids(problem)
+    return (nc, problem.cells_y(nc, 8)), (nf, problem.cells_y(nf, 8))
 
 
 #: The Newton route refines its grids (each 4/3 times the last's cells per axis) until the stated

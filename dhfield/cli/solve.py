@@ -365,7 +365,7 @@ class _NoLines:
         pass
 
 
-def _progress(args, params, plan, route, header):
+def _progress(args, params, plan, route, header, answer=None):
     """The reporter of every state (:class:`dhfield.core.progress.SolveProgress`), in W* or N."""
     from ..core.geometry import sin_skew_angle
 
@@ -373,7 +373,7 @@ def _progress(args, params, plan, route, header):
     scale = float(sin_skew_angle(args.beta0)) / (2.0 * math.pi)
     if params is not None:
         scale *= float(params.load_unit)
-    return SolveProgress(scale, "W*" if params is None else "N", (plan.n, plan.ny), route,
+    return SolveProgress(scale, "W*" if params is None else "N", (plan.n, plan.ny) if answer is None else answer, route,
                          max_seconds=args.max_seconds, stream=_NoLines() if args.quiet else None, header=header)
 
 
@@ -470,8 +470,14 @@ def run(args) -> int:
         print(f"dhfield: solve refused: {plan.message()}{_in_newtons(plan.analytic_W_star, params)}",
               file=sys.stderr)
         return EXIT_UNRESOLVABLE
+    answer = (plan.n, plan.ny)
+    if route == "newton":     # the route's own grids: the check grid, then the answer's (before any refinement)
+        from ..analysis.bem_start import newton_grids, newton_problem
+
+        _, answer = newton_grids(newton_problem(beta0=args.beta0, mu=args.mu, n=plan.n, ny=plan.ny))
+    answer_cells = f"{answer[0]}" + (f" x {answer[1]}" if answer[1] != answer[0] else "")
     reporter = _progress(args, params, plan, route, f"solving {where} (states of coarser grids first where the "
-                         f"route has them, then the answer's {cells} grid)")
+                         f"route has them, then the answer's {answer_cells} grid)", answer)
     try:
         with state_reporter(reporter), _time_limit(args.max_seconds, reporter):
             if args.machine_stiffness is not None:
