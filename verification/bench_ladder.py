@@ -1,4 +1,4 @@
-"""The prototype table of issue 38: the load-control pull-off by the Newton solver on two grids, against today's route.
+"""The prototype table of issue 38: the load-control pull-off by the Newton solver on two grids, against the path routes.
 
 Each case runs in its own process (peak memory per case) under a wall-clock cap, by
 :func:`dhfield.bem.ladder.ladder_pull_off`: the check grid and the answer's grid from
@@ -10,7 +10,8 @@ case has options of its own.
 Columns: the two grids; states and Newton/GMRES iterations over both; wall and CPU time;
 peak memory; W* on the answer's grid and its stated error; the reference (Maugis-Dugdale
 for the sphere, else the stored truth of ``data/adhesive_ground_truth_extended.nc``) and the
-deviation from it; today's route's stored CPU time for the same case (its level-1 grid).
+deviation from it; the path routes' stored CPU time for the same case (its level-1 grid).  The
+problem is the route's own (:func:`dhfield.analysis.bem_start.newton_problem`).
 
 Usage::
 
@@ -40,6 +41,14 @@ from verification.bench_nested import _problem, _reference  # noqa: E402
 from verification.bench_newton import CASES, run_today, stored  # noqa: E402
 
 
+def _route_problem(beta0, mu, n=None):
+    """The Newton route's problem (:func:`dhfield.analysis.bem_start.newton_problem`) on the planned or ``n`` cells."""
+    from dhfield.analysis.bem_start import newton_problem
+
+    ref = _problem(beta0, mu, n)           # the planned cell counts (or n with the planned cell shape)
+    return newton_problem(beta0=beta0, mu=mu, n=ref.grid.nx, ny=ref.grid.ny)
+
+
 def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None, target=None, refinements=0):
     """One case in this process; return a JSON-ready dict."""
     from dhfield.bem import ladder
@@ -51,7 +60,7 @@ def run(beta0, mu, margin, threads, log_path=None, start="nested", n=None, targe
 
     t0 = time.perf_counter()
     c0 = time.process_time()
-    P = _problem(beta0, mu, n)
+    P = _route_problem(beta0, mu, n)
     nc, nf = ladder.ladder_grids(P, margin)
     echo(f"== beta0 {beta0} mu {mu} planned {P.grid.nx}x{P.grid.ny} grids {nc} -> {nf} margin {margin} start {start}")
     k = 2 ** 3
@@ -98,7 +107,8 @@ def main(argv=None) -> int:
     ap.add_argument("--log", help="append every state line here")
     ap.add_argument("--json", type=Path, help="write every row here")
     ap.add_argument("--today", action="store_true",
-                    help="also run today's route (adhesive_pull_off's defaults) on each case, side by side")
+                    help="also run the path routes (adhesive_pull_off(search='located'), the default before the "
+                         "Newton route) on each case, side by side")
     ap.add_argument("--child", nargs=3, help=argparse.SUPPRESS)
     ap.add_argument("--today-child", nargs=2, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
