@@ -131,8 +131,9 @@ def test_newton_route_answers_with_the_bem_record():
     assert 0.0 < rec.W_star_error < 0.05 * abs(rec.W_star)
     assert abs(rec.W_star - md) <= rec.W_star_error
     assert "check grid" in rec.note
-    # the path holds the answer grid's states; the reported one is the lowest
-    assert rec.path.n_steps >= 4 and rec.path.pull_off_load == pytest.approx(rec.path.load.min(), rel=1e-12)
+    # the path holds the answer grid's states; the reported one is the lowest (the path's loads are summed
+    # again from each state's fields, so they agree with the solver's to rounding, ~1e-12 relative)
+    assert rec.path.n_steps >= 4 and rec.path.pull_off_load == pytest.approx(rec.path.load.min(), rel=1e-10)
 
 
 @pytest.mark.parametrize("kw", [dict(control="displacement"), dict(law="exponential")])
@@ -155,7 +156,7 @@ def test_cli_solve_takes_the_newton_route(capsys):
 
 def test_refinement_for_a_target_error_adds_finer_grids(sphere):
     # a target no grid meets: one refinement (4/3 the cells: 96 -> 128), the error from the last two
-    r = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=1)
+    r = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=1, pre_check=False)
     assert [g.shape[0] for g in r.grids] == [72, 96, 128]
     assert r.answer.grid.nx == 128 and r.fine is r.grids[-1] and r.coarse is r.grids[-2]
     assert r.converged and r.stated_error > 1e-9                # reported, not met: the cap was reached
@@ -163,11 +164,30 @@ def test_refinement_for_a_target_error_adds_finer_grids(sphere):
     def refuse(nx, ny):
         raise ValueError("too big")
 
-    s = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=3, grid_check=refuse)
+    s = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=3, grid_check=refuse,
+                               pre_check=False)
     assert [g.shape[0] for g in s.grids] == [72, 96] and s.load == r.grids[1].load
     # a target already met: no refinement
-    t = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=0.5, max_refinements=3)
+    t = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=0.5, max_refinements=3, pre_check=False)
     assert len(t.grids) == 2
+
+
+def test_a_third_grid_bounds_the_stated_error_where_it_resolves_the_edge(sphere):
+    # 3/4 of the check grid's cells (52 of 72, a multiple of 4 for two levels) resolves the edge at mu = 1:
+    # the stated error is at least the coarser pair's ladder estimate carried to the answer's grid (x 72/96)
+    from dhfield.bem.pull_off import ladder_error
+
+    r = ladder.ladder_pull_off(sphere, 72, levels=2)
+    assert [g.shape[0] for g in r.grids] == [52, 72, 96] and r.coarse is r.grids[1] and r.fine is r.grids[2]
+    cc, c, f = r.grids
+    carried = ladder_error(c.load, cc.load, 72, 52) * 72 / 96 / abs(f.load)
+    pair = ladder_error(f.load, c.load, 96, 72) / abs(f.load)
+    assert r.stated_error == pytest.approx(max(carried, pair, f.search_error / abs(f.load)), rel=1e-12)
+    # at mu = 10 the check grid is the coarsest that resolves the edge: no third grid below it
+    P = predicted_problem(beta0=1.0, mu=10.0, n=64)
+    nc, nf = ladder.ladder_grids(P)
+    n_pre = 8 * math.floor(nc / ladder.CHECK_RATIO / 8)
+    assert 1.5 * edge_width_ratio(P.on_cells(n_pre).grid, P.law) > 1.0
 
 
 @pytest.mark.parametrize("margin", [0.5, float("nan"), float("inf")])
