@@ -294,3 +294,17 @@ def test_adhesive_pull_off_without_search_answers_by_the_newton_route():
     md = float(maugis_dugdale.pull_off_nondimensional(1.0, 1.0, control="load").W_star)
     assert abs(rec.W_star - md) <= rec.W_star_error + 1e-4 * abs(md)   # within its stated error (+ MD's quadrature)
     assert adhesive_pull_off(beta0=1.0, mu=1.0, n=32).search != "newton"
+
+
+@pytest.mark.parametrize("beta0, nx", [(0.1, 512), (0.1, 384), (1.0, 2640), (0.5, 344), (0.1806, 4624)])
+def test_nested_cells_let_the_ladder_reach_16_to_32_cells(beta0, nx):
+    # the cell counts are rounded so that nested_levels halves them down to 16-32 cells on the shorter axis
+    from dhfield.analysis.bem_start import newton_problem
+
+    P = newton_problem(beta0=beta0, mu=1.0, n=64, ny=max(8, 2 * round(64 * beta0 ** 0.75 / 2)))
+    mx, my = ladder.nested_cells(P, nx)
+    assert mx >= nx and mx - nx < mx / ladder.NESTED_MIN_CELLS + 8       # rounded up by less than a coarse cell
+    levels = ladder.nested_levels(mx, my)
+    coarsest = min(mx, my) // 2 ** (levels - 1)
+    assert ladder.NESTED_MIN_CELLS <= coarsest < 4 * ladder.NESTED_MIN_CELLS or min(mx, my) < 2 * ladder.NESTED_MIN_CELLS
+    assert ladder.nested_cells(P, nx, round_up=False)[0] <= nx

@@ -1009,12 +1009,13 @@ def newton_grids(problem) -> tuple:
     -------
     ((int, int), (int, int))
         Cells (nx, ny) of the check grid and of the answer's grid
-        (:func:`dhfield.bem.ladder.ladder_grids`; multiples of 8, the nested levels halve them).
+        (:func:`dhfield.bem.ladder.ladder_grids`, rounded by :func:`dhfield.bem.ladder.nested_cells`
+        so that their nested levels reach ~16 cells per axis).
     """
     from ..bem import ladder
 
     nc, nf = ladder.ladder_grids(problem)
-    return (nc, problem.cells_y(nc, 8)), (nf, problem.cells_y(nf, 8))
+    return ladder.nested_cells(problem, nc), ladder.nested_cells(problem, nf)
 
 
 #: The Newton route refines its grids (each 4/3 times the last's cells per axis) until the stated

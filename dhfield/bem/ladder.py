@@ -53,7 +53,8 @@ from .branch import PathProgress, UnloadingPath
 from .pull_off import NondimensionalProblem, ladder_error, unresolved_reasons
 from .state import ContactState
 
-__all__ = ["GridMinimum", "LadderPullOff", "EDGE_MARGIN", "CHECK_RATIO", "TANGENT_RTOL", "NEWTON_SEARCH",
+__all__ = ["GridMinimum", "LadderPullOff", "nested_levels", "nested_cells", "NESTED_MIN_CELLS", "EDGE_MARGIN",
+           "CHECK_RATIO", "TANGENT_RTOL", "NEWTON_SEARCH",
            "adhesive_problem", "ladder_grids", "grid_minimum", "ladder_pull_off", "contact_state", "pull_off_record"]
 
 #: The edge's ramp width per its smallest energy-stable width (a stability margin of the
@@ -420,6 +421,36 @@ def nested_levels(nx, ny, min_cells=NESTED_MIN_CELLS) -> int:
     return levels
 
 
+def nested_cells(problem: NondimensionalProblem, nx, round_up=True) -> tuple:
+    """Cells (nx, ny) near ``nx`` along x, with ``problem``'s cell ratio, that halve down to ~16 cells per axis.
+
+    Both counts are multiples of the largest power of two k >= 8 with ``min(nx, ny) / k`` still
+    at least :data:`NESTED_MIN_CELLS`, so that :func:`nested_levels` reaches a coarsest grid of
+    16-32 cells per axis (a count that is a multiple of 8 only stops the ladder at an eighth:
+    on 512 x 856 cells at 128 x 214, from which the cold start of beta0 = 0.1, mu = 0.1 diverged).
+
+    Parameters
+    ----------
+    problem : NondimensionalProblem
+        Gives the domain and the cell ratio (:meth:`~dhfield.bem.pull_off.NondimensionalProblem.cells_y`).
+    nx : int
+        Cells along x wanted [-].
+    round_up : bool, default True
+        Round ``nx`` up to the multiple (else down).
+
+    Returns
+    -------
+    (int, int)
+        Cells along x and y [-].
+    """
+    nx = int(nx)
+    k = 8
+    while min(nx, problem.cells_y(nx)) // (2 * k) >= NESTED_MIN_CELLS:
+        k *= 2
+    nx = k * (math.ceil(nx / k) if round_up else max(1, math.floor(nx / k)))
+    return nx, problem.cells_y(nx, k)
+
+
 def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, edge_margin=EDGE_MARGIN,
                     options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested",
                     target_error=None, max_refinements=0, grid_check=None, pre_check=True) -> LadderPullOff:
@@ -475,12 +506,16 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
     out = []
     centre = problem.pull_off_approach
     k = 8 if levels is None else 2 ** levels
-    grids = [problem.on_cells(n_coarse, problem.cells_y(n_coarse, k)), problem]
-    n_pre = k * math.floor(n_coarse / CHECK_RATIO / k)
-    if pre_check and n_pre >= 2 * k:
+
+    def cells(n, up=True):        # a grid's cells: its nested levels reach ~16 cells (or given levels)
+        return nested_cells(problem, n, up) if levels is None else (n, problem.cells_y(n, k))
+
+    grids = [problem.on_cells(*cells(n_coarse)), problem]
+    n_pre = cells(n_coarse / CHECK_RATIO, False)[0] if levels is None else k * math.floor(n_coarse / CHECK_RATIO / k)
+    if pre_check and 2 * k <= n_pre < grids[0].grid.nx:
         from .solver import edge_width_ratio
 
-        pre = problem.on_cells(n_pre, problem.cells_y(n_pre, k))
+        pre = problem.on_cells(*cells(n_pre))
         if edge_margin * edge_width_ratio(pre.grid, problem.law) <= 1.0:   # only a grid that resolves its edge
             grids.insert(0, pre)
     opts = dict(options.as_dict(), edge_margin=float(edge_margin))
@@ -519,8 +554,8 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
                           / abs(f.load))
             if (j == len(grids) - 1 and target_error is not None and err > target_error
                     and len(grids) - 2 < max_refinements):
-                nx = 8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8)
-                ny = nd.cells_y(nx, k)
+                nx, ny = cells(CHECK_RATIO * nd.grid.nx) if levels is None else (
+                    8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8), nd.cells_y(8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8), k))
                 try:
                     if grid_check is not None:
                         grid_check(nx, ny)
