@@ -422,7 +422,7 @@ def nested_levels(nx, ny, min_cells=NESTED_MIN_CELLS) -> int:
 
 
 def nested_cells(problem: NondimensionalProblem, nx, round_up=True) -> tuple:
-    """Cells (nx, ny) near ``nx`` along x, with ``problem``'s cell ratio, that halve down to ~16 cells per axis.
+    """Choose cells (nx, ny) near ``nx`` along x, in ``problem``'s cell ratio, that halve down to ~16 per axis.
 
     Both counts are multiples of the largest power of two k >= 8 with ``min(nx, ny) / k`` still
     at least :data:`NESTED_MIN_CELLS`, so that :func:`nested_levels` reaches a coarsest grid of
