@@ -31,8 +31,9 @@ The check grid's pull-off gives the grid's error by the ladder estimate
 (:func:`dhfield.bem.pull_off.ladder_error`); where a grid with 3/4 of the check grid's cells
 still resolves the edge, it is solved first, and the estimate of that coarser pair, carried to
 the answer's grid at first order, bounds the error too (two grids can agree by chance).  The
-stated error is the largest of these and the answer grid's search error.  Every state is solved with :data:`dhfield.bem.newton.NESTED_OPTIONS`
-(the watchdog: the best merit falls at least once in every nine Newton iterations).
+stated error is the largest of these and the answer grid's search error.  Every state is solved
+with :data:`dhfield.bem.newton.NESTED_OPTIONS` (the watchdog: the best merit falls at least once
+in every nine Newton iterations).
 
 The Dugdale edge on a grid is a ramp of width w in the cell's own gap (:mod:`dhfield.bem.newton`),
 with ``w = edge_margin x`` the smallest energy-stable width, capped at 2 h0: at ``edge_margin``
