@@ -137,6 +137,7 @@ def build(work_dir=WORK, out=OUT):
     import numpy as np
     import xarray as xr
     from dhfield.io import git_commit, write_netcdf
+    from dhfield.io.cf import variable_attrs
 
     cases = stored_cases()
     recs = {}
@@ -168,27 +169,31 @@ def build(work_dir=WORK, out=OUT):
                 num[k][i, j] = float(r[k])
         status[i, j] = ("ok" if r["converged"] and r["resolved"] else
                         "not_converged" if not r["converged"] else "unresolved")
-    units = {"W_star": "1", "W_star_error": "1", "a_star": "1", "b_star": "1", "c_star": "1", "d_star": "1",
-             "delta_star": "1", "nx": "1", "ny": "1", "states": "1", "gmres": "1", "wall_seconds": "s",
-             "cpu_seconds": "s", "peak_rss_gib": "GiB", "W_star_stored": "1", "W_star_stored_error": "1"}
-    long = {"W_star": "BEM load-control pull-off force W* (Eq. 34) by the Newton route",
-            "W_star_error": "stated error of W_star (grid ladder and search; inf: unresolved)",
-            "a_star": "contact semi-axis a/c_r at pull-off", "b_star": "contact semi-axis b/c_r at pull-off",
-            "c_star": "cohesive-zone semi-axis c/c_r at pull-off", "d_star": "cohesive-zone semi-axis d/c_r",
-            "delta_star": "approach at pull-off (Eq. 33)", "nx": "cells along x of the answer's grid",
-            "ny": "cells along y of the answer's grid", "states": "states solved over all grids",
-            "gmres": "GMRES iterations over all grids (operator products)",
-            "wall_seconds": "wall time of the case", "cpu_seconds": "CPU time of the case (1 FFTW thread)",
-            "peak_rss_gib": "peak resident memory of the case's process",
-            "W_star_stored": "stored truth W_star_truth of adhesive_ground_truth_extended.nc",
-            "W_star_stored_error": "stated error of the stored truth"}
+    # the schema's quantities take their attributes from the one table (dhfield.core.schema); the
+    # study's own numbers have theirs here
+    schema_vars = ("W_star", "a_star", "b_star", "c_star", "d_star", "delta_star")
+    own = {"W_star_error": ("1", "stated error of W_star (grid ladder and search; inf: unresolved)"),
+           "nx": ("1", "cells along x of the answer's grid"), "ny": ("1", "cells along y of the answer's grid"),
+           "states": ("1", "states solved over all grids"),
+           "gmres": ("1", "GMRES iterations over all grids (operator products)"),
+           "wall_seconds": ("s", "wall time of the case"),
+           "cpu_seconds": ("s", "CPU time of the case (1 FFTW thread)"),
+           "peak_rss_gib": ("GiB", "peak resident memory of the case's process"),
+           "W_star_stored": ("1", "stored truth W_star_truth of adhesive_ground_truth_extended.nc"),
+           "W_star_stored_error": ("1", "stated error of the stored truth")}
+
+    def attrs(k):
+        if k in schema_vars:
+            return variable_attrs(k, nondimensional=True, qualifier="BEM pull-off by the Newton route")
+        return {"units": own[k][0], "long_name": own[k][1]}
+
     dims = ("beta0", "mu")
-    data = {k: (dims, v, {"units": units[k], "long_name": long[k]}) for k, v in num.items()}
+    data = {k: (dims, v, attrs(k)) for k, v in num.items()}
     data["status"] = (dims, status.astype(str), {"long_name": "ok / not_converged / unresolved / failed / not run"})
     for k, v in text.items():
         data[k] = (dims, v.astype(str), {"long_name": f"case provenance: {k}"})
-    ds = xr.Dataset(data, coords={"beta0": ("beta0", beta0s, {"units": "1", "long_name": "Hertz ellipticity b/a"}),
-                                  "mu": ("mu", mus, {"units": "1", "long_name": "Tabor parameter (Eq. 35)"})})
+    ds = xr.Dataset(data, coords={"beta0": ("beta0", beta0s, variable_attrs("beta0")),
+                                  "mu": ("mu", mus, variable_attrs("mu"))})
     ds.attrs.update(title="Adhesive BEM ground truth recomputed by the Newton route (issue 38): Dugdale law, load "
                           "control",
                     description="Each stored case of adhesive_ground_truth_extended.nc solved as dhfield solve "

@@ -555,8 +555,11 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
                           / abs(f.load))
             if (j == len(grids) - 1 and target_error is not None and err > target_error
                     and len(grids) - 2 < max_refinements):
-                nx, ny = cells(CHECK_RATIO * nd.grid.nx) if levels is None else (
-                    8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8), nd.cells_y(8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8), k))
+                if levels is None:
+                    nx, ny = cells(CHECK_RATIO * nd.grid.nx)
+                else:
+                    nx = 8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8)
+                    ny = nd.cells_y(nx, k)
                 try:
                     if grid_check is not None:
                         grid_check(nx, ny)

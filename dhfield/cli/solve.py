@@ -450,7 +450,7 @@ def run(args) -> int:
     search = args.search or ("newton" if args.machine_stiffness is None and takes_newton_route(
         law=args.law, control=args.control, n=args.n) else "located")
     # the plan of the domain the solve uses: the spring samples the unloading branch, never the predicted route
-    predicted = args.machine_stiffness is None and search != "newton" and takes_predicted_route(
+    predicted = args.machine_stiffness is None and takes_predicted_route(
         beta0=args.beta0, mu=args.mu, n=args.n, law=args.law, control=args.control, search=search)
     allowance = _planner_allowance(args.max_seconds)
     plan = plan_grid(mu=args.mu, beta0=args.beta0, n=args.n, law=args.law,

@@ -236,11 +236,6 @@ class SweepConfig:
             payload.update(curve_a_star=list(self.curve_a_star), curve_points=self.curve_points)
         return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]
 
-    @property
-    def adhesive_route(self) -> str:
-        """The adhesive quantity's default route (:data:`ADHESIVE_ROUTE`), as recorded in the output."""
-        return ADHESIVE_ROUTE
-
     def as_dict(self) -> dict:
         """Return the TOML-shaped mapping of this config.
 

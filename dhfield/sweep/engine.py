@@ -59,7 +59,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core import schema
-from .config import SweepConfig, check_scheduler_address, scheduler_host_port
+from .config import ADHESIVE_ROUTE, SweepConfig, check_scheduler_address, scheduler_host_port
 from .store import CaseStore, case_coordinates, output_paths
 from .tasks import (ADHESIVE_BEM_FIELDS, ADHESIVE_FIELDS, ADHESIVE_GRID_FIELDS, ADHESIVE_MODEL, ADHESIVE_TEXT_FIELDS,
                     BEM_FIELD_FIELDS, CURVE_FIELDS, PULL_OFF_FIELDS, adhesive_case, adhesive_solver, bem_field_case,
@@ -1166,7 +1166,7 @@ def _consolidate(config: SweepConfig, kinds, results, store):
         from ..analysis.bem_start import DEFAULT_MAX_SECONDS
 
         allowed["bem_max_seconds"] = float(DEFAULT_MAX_SECONDS if config.max_seconds is None else config.max_seconds)
-        allowed["bem_adhesive_route"] = config.adhesive_route
+        allowed["bem_adhesive_route"] = ADHESIVE_ROUTE
     ds.attrs.update(provenance_attrs("dhfield sweep (Zini et al. 2018 extended double-Hertz model)",
                                      sweep_fingerprint=config.fingerprint(),
                                      sweep_quantities=" ".join(config.quantities), control=config.control,
