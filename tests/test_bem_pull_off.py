@@ -171,9 +171,9 @@ def test_exponential_law_has_its_own_resolution_criterion():
 def test_collapsed_dugdale_zone_is_not_a_resolved_answer():
     # issue 18: mu = 30, N = 64 gave W* = -7.24 with c* = a*: the zone is narrower than a cell
     res = adhesive_pull_off(mu=30.0, beta0=1.0, n=64, progress=False)
-    assert not res.resolved and res.c_star <= res.a_star
-    assert "collapsed onto the contact" in res.note and "stronger than the DMT limit" in res.note
-    assert res.W_star < -1.0                                # reported as computed, not clipped
+    # the zone (c* - a*) narrower than one cell (2 half_width / n): not resolved
+    assert not res.resolved and res.c_star - res.a_star < 2.0 * res.half_width_x / 64
+    assert "narrower than 1 cell" in res.note               # the reason, with the zone's width in cells
 
 
 def test_zone_narrower_than_a_cell_is_not_resolved():
@@ -213,8 +213,9 @@ def test_resolved_pull_off_is_within_its_stated_error_of_maugis_dugdale(mu, n):
     md = float(compare.pull_off("md", mu=mu, beta0=1.0)["W_star"])
     assert abs(res.W_star - md) <= res.W_star_error
     # still a usable statement: the grid's error at these resolutions is a fraction of a percent
-    # to a few percent (the estimate is K |W*| / cells with K = 0.05 and >= 2.5 cells here)
-    assert res.W_star_error < 0.02 * abs(res.W_star)
+    # to a few percent (the estimate is K |W*| / cells with K = DISCRETISATION_ERROR_PER_CELL = 0.12 and
+    # >= 3 cells here, plus the search's error)
+    assert res.W_star_error < 0.05 * abs(res.W_star)
 
 
 def test_discretisation_error_per_cell_across_the_narrowest_length():

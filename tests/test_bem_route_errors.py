@@ -15,7 +15,7 @@ from dhfield.models import maugis_dugdale
 from dhfield.analysis.bem_start import GridPlan, adhesive_pull_off, plan_grid
 from dhfield.bem.operator import Grid
 from dhfield.cli import main
-from dhfield.cli.solve import EXIT_UNRESOLVABLE, EXIT_UNRESOLVED
+from dhfield.cli.solve import EXIT_UNRESOLVABLE, EXIT_UNCONVERGED, EXIT_UNRESOLVED
 from dhfield.core.progress import PROGRESS_PREFIX
 
 
@@ -31,12 +31,14 @@ def test_spring_route_applies_the_resolution_check(k, capsys):
     """mu = 2 at n = 32: the grid does not resolve the Dugdale edge.  Load control exits 4; so must the spring
     (it said resolved, W* = -0.7724 +- 0.0021 at K* = 0, 4x its error from MD's -0.7641), with ``converged``."""
     rc, rec, err = _solve_json(["--beta0", "1", "--mu", "2", "--n", "32", "--machine-stiffness", k], capsys)
-    assert rc == EXIT_UNRESOLVED
+    # unresolved, and (the Newton solve finds no stable discrete edge there) possibly unconverged too:
+    # either way flagged, never exit 0
+    assert rc == (EXIT_UNRESOLVED if rec["converged"] else EXIT_UNCONVERGED)
     assert rec["resolved"] is False and rec["W_star_error"] is None      # inf prints as null: no error bound
     assert "converged" in rec and isinstance(rec["converged"], bool)
     # one line says why (the progress lines of the states solved, issue 40, are not part of the verdict)
     verdict = [line for line in err.strip().splitlines() if not line.startswith(PROGRESS_PREFIX)]
-    assert "traction law's edge" in err and len(verdict) == 1
+    assert "traction law's edge" in rec["note"] and len(verdict) == 1
 
 
 def test_spring_answer_lies_within_its_stated_error(capsys):
@@ -48,12 +50,16 @@ def test_spring_answer_lies_within_its_stated_error(capsys):
 
 
 # ------------------------------------------------------------------ finding 3: displacement-control errors
-@pytest.mark.parametrize("mu, n", [(0.3, 48), (1.0, 32)])
+@pytest.mark.parametrize("mu, n", [(0.3, 48), (0.3, 64), (1.0, 32)])
 def test_displacement_control_answer_lies_within_its_stated_error(mu, n):
-    """The issue's cases outside their stated error (2.15x at mu = 0.3, n = 48; 1.3x at mu = 1, n = 32)."""
+    """The issue's cases outside their stated error (2.15x at mu = 0.3, n = 48; 1.3x at mu = 1, n = 32).
+
+    An answer lies within its stated error of MD, or is flagged: at mu = 0.3, n = 48 the coarser
+    check grid (24 cells) finds no pull-off, so no error is stated (``resolved`` False)."""
     res = adhesive_pull_off(beta0=1.0, mu=mu, n=n, control="displacement", threads=1)
     ref = float(maugis_dugdale.pull_off_nondimensional(1.0, mu, control="displacement").W_star)
-    assert res.converged and res.resolved
+    assert res.converged
+    assert (not res.resolved and res.W_star_error == math.inf) if n == 48 else res.resolved
     assert abs(res.W_star - ref) <= res.W_star_error
 
 

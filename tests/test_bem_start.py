@@ -306,20 +306,18 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     calls = []
     answer = SimpleNamespace(converged=True)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None, start="cold":
+                        lambda prob, opts, tol=None:
                         calls.append((prob.grid.nx, tol, opts.tol)) or answer)
-    # (the start of its states: test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next)
-    monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", lambda prob, opts: "r")
     assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826) is answer
     plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
-    # its states to PREDICTED_TOL unless a tol is given; the fall-back (relaxed) keeps DEFAULT_TOL
+    # its states to PREDICTED_TOL unless a tol is given
     assert calls == [(plan.n_needed, adhesive_start.PREDICTED_TOL, DEFAULT_TOL)] and plan.predicted
     opts = adhesive_start.AdhesiveOptions(tol=2e-6)
     assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826, options=opts) is answer
     assert calls[-1][1:] == (2e-6, 2e-6)
     # its domain holds GVG's pull-off zone only: N = 1280 instead of 1440 on the unloading path's domain
     assert plan.n_needed < adhesive_start.plan_grid(mu=10.0, beta0=0.4826, predicted=False).n_needed
-    assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the relaxed route (measured)
+    assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the bracket search
 
 
 def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeypatch):
@@ -327,29 +325,16 @@ def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeyp
     calls = []
     answer = SimpleNamespace(converged=False)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
-                        lambda prob, opts, tol=None, start="cold": calls.append((prob, tol, start)) or answer)
+                        lambda prob, opts, tol=None: calls.append((prob, tol)) or answer)
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted") is answer
-    prob, tol, start = calls[0]
+    prob, tol = calls[0]
     ref = adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96, ny=64)
     assert (prob.grid, tol) == (ref.grid, adhesive_start.PREDICTED_TOL)        # no lattice retry on it
     assert len(calls) == 1
-    # 96 x 64 at mu = 10: the grid half as fine does not hold the edge even at mu/2, so GVG's cold start
-    assert start == "cold" and not adhesive_start.lower_mu_start_possible(ref)
-    with pytest.raises(ValueError, match="options.nested=True needs a grid whose half holds"):
-        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted",
-                                         options=adhesive_start.AdhesiveOptions(nested=True))
-    # where the half grid serves: the route's own states there (it holds the edge at mu and takes the
-    # lower-mu start itself: a refined level) by default, else the lower-mu start (128 cells: the half
-    # grid, 64, is the nested starts' smallest), the cold start with nested=False
-    calls.clear()
-    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=256, search="predicted")
-    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted")
-    adhesive_start.adhesive_pull_off(mu=2.0, beta0=1.0, n=128, search="predicted",
-                                     options=adhesive_start.AdhesiveOptions(nested=False))
-    assert [c[2] for c in calls] == ["coarse-route", "lower-mu", "cold"]
-    with pytest.raises(ValueError, match="options.nested None on the automatic grid"):
-        adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, search="predicted",
-                                         options=adhesive_start.AdhesiveOptions(nested=True))
+    for n in (None, 96):
+        with pytest.raises(ValueError, match="options.nested None"):
+            adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=n, search="predicted",
+                                             options=adhesive_start.AdhesiveOptions(nested=True))
     with pytest.raises(ValueError, match="search='predicted' needs law='dugdale'"):
         adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, law="exponential", search="predicted")
     with pytest.raises(ValueError, match="search must be one of .*'predicted'"):
@@ -370,254 +355,26 @@ def test_predicted_route_on_the_sphere_is_within_its_stated_error_of_maugis_dugd
     assert abs(res.W_star - md) <= res.W_star_error
 
 
-def test_lower_mu_start_is_possible_where_the_half_grid_holds_the_edge_at_half_mu():
-    # the automatic grid of the predicted route holds the edge at mu (ratio <= 1) and its half grid does
-    # not (~1.8 measured): at mu/2 the ratio (~ mu^2) is 4x smaller, so the half grid holds it
-    from dhfield.bem.laws import law_from_name
-    from dhfield.bem.solver import edge_width_ratio
-
-    for beta0 in (1.0, 0.5, 0.1):
-        plan = adhesive_start.plan_grid(mu=10.0, beta0=beta0, predicted=True, max_seconds=1e9)
-        level1 = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=plan.n_needed, ny=plan.ny_needed)
-        half = level1.coarser(plan.n_needed // 2)
-        assert edge_width_ratio(level1.grid, level1.law) <= 1.0 < edge_width_ratio(half.grid, half.law)
-        low = edge_width_ratio(half.grid, law_from_name("dugdale", 5.0, 1.0))
-        assert low == pytest.approx(edge_width_ratio(half.grid, half.law) / 4) and low <= 1.0
-        assert adhesive_start.lower_mu_start_possible(level1)
-        # level 2 (twice the cells): its half grid is level 1
-        fine = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=2 * plan.n_needed, ny=2 * plan.ny_needed)
-        assert fine.coarser(plan.n_needed).grid == level1.grid and adhesive_start.lower_mu_start_possible(fine)
-    # cells not multiples of 4, or a grid whose half is far too coarse even at mu/2: not possible
-    assert not adhesive_start.lower_mu_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=130))
-    assert not adhesive_start.lower_mu_start_possible(adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96,
-                                                                                       ny=64))
-
-
-def test_coarse_route_start_is_possible_on_the_refined_levels_of_the_mu_10_cases():
-    # level 2 (twice the cells per axis of the automatic grid): its half grid is level 1, which holds the
-    # edge at mu and takes the lower-mu start itself; level 1's own half grid does not hold the edge
-    for beta0 in (1.0, 0.5, 0.1):
-        plan = adhesive_start.plan_grid(mu=10.0, beta0=beta0, predicted=True, max_seconds=1e9)
-        level1 = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=plan.n_needed, ny=plan.ny_needed)
-        fine = adhesive_start.predicted_problem(mu=10.0, beta0=beta0, n=2 * plan.n_needed, ny=2 * plan.ny_needed)
-        assert adhesive_start.coarse_route_start_possible(fine)
-        assert not adhesive_start.coarse_route_start_possible(level1)
-    # cells not multiples of 8, or a half grid too small for its own lower-mu start (64 = NESTED_MIN_N)
-    for n in (260, 128):
-        assert not adhesive_start.coarse_route_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=n))
-    assert adhesive_start.coarse_route_start_possible(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=256))
-
-
-def test_coarse_route_start_is_within_its_stated_error_of_maugis_dugdale():
-    # the sphere at mu = 2 on 256^2: the first state starts from the same approach at mu = 2 solved on
-    # 128^2 by the route (itself from mu = 1 on 64^2); MD (exact on the sphere) must lie within the
-    # answer's stated error of it
-    from dhfield.models import maugis_dugdale
-    from dhfield.bem.path import PathOptions
-    from dhfield.bem.pull_off import CoarseRouteWarmStart
-
-    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=256)
-    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="coarse-route")
-    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
-    assert res.converged and res.resolved and res.path.coarse_states > 0
-    assert abs(res.W_star - md) <= res.W_star_error
-    ws = CoarseRouteWarmStart(prob, tol=1e-4, max_iter=10 ** 6)
-    d = prob.pull_off_approach
-    coarse = ws.coarse_state(d)
-    assert coarse.converged and coarse.grid.nx == 128 and coarse.law == prob.law   # the same mu, half the cells
-    assert ws.coarse_state(d) is coarse and ws.states_solved >= 2                  # once; and its lower-mu start
-    guess = ws(d)
-    assert guess.grid == prob.grid and guess.law == prob.law
-    # the race's last start: the fine grid's own lower-mu start (mu = 1 on 128^2), counted with the rest
-    before = ws.states_solved
-    alt = ws.alternative(d)
-    assert alt.grid == prob.grid and alt.law == prob.law and ws.states_solved > before
-    with pytest.raises(ValueError, match="multiples of 8"):
-        CoarseRouteWarmStart(adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=132), tol=1e-4, max_iter=10)
-
-
-@pytest.mark.parametrize("every", [False, True])
-def test_predicted_route_starts_the_first_or_every_state_from_the_external_start(every):
-    # a lower-mu start that counts what it is asked: without starts_every_state only the first state
-    # (the later ones from their neighbours), with it every state of the route
-    from dhfield.bem.path import PathOptions
-    from dhfield.bem.pull_off import LowerMuWarmStart, predicted_path
-
-    class Counting(LowerMuWarmStart):
-        starts_every_state = every
-
-        def coarse_state(self, approach):
-            asked.append(approach)
-            return super().coarse_state(approach)
-
-    asked = []
-    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
-    path = predicted_path(prob, PathOptions(progress=False).checked(),
-                          warm_start=Counting(prob, tol=1e-4, max_iter=10 ** 6))
-    solved = sorted(set(path.approach.tolist()))
-    assert path.pull_off_converged and len(solved) >= 3
-    assert sorted(set(asked)) == (solved if every else [path.approach[0]])
-
-
-@pytest.mark.parametrize("failures, expected", [
-    # the lower-mu start fails: solved again cold, with the full budget (no give-up window)
-    (1, [("ContactState", None), ("Prediction", None)]),
-    # cold fails too: the same state solved with the Dugdale edge at its widest
-    # (Branch.widest_edge_guess), which then starts the grid's own state, with the full budget
-    (2, [("ContactState", None), ("Prediction", None), ("wide", None), ("ContactState", None)]),
-])
-def test_predicted_route_races_a_lost_first_state_external_then_cold_then_wide_edge(monkeypatch, failures,
-                                                                                     expected):
-    # the route's first state from a lower-mu start; its first `failures` solves on the grid are
-    # reported unconverged; the route converges from the next start of the race
+def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
+    # a cap of one Newton iteration per state cannot converge the cold state: the record must say so
+    # (converged and resolved False, no error bound), name the analytic W* to use instead, and try
+    # no other route
     import dataclasses
 
-    from dhfield.bem import branch as branch_module
-    from dhfield.bem.path import PathOptions
-    from dhfield.bem.pull_off import LowerMuWarmStart, predicted_path
-
-    calls = []
-    real = branch_module.solve_problem
-
-    def failing(p, approach, start, *args, **kwargs):
-        st = real(p, approach, start, *args, **kwargs)
-        if p.grid.nx != prob.grid.nx:               # the lower-mu start's own states (grid half as fine)
-            return st
-        calls.append(("wide" if p.widest_edge else type(start).__name__, kwargs.get("give_up_after")))
-        own = [c for c in calls if c[0] != "wide"]               # the grid's own states solved so far
-        return dataclasses.replace(st, converged=False) if not p.widest_edge and len(own) <= failures else st
-
-    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
-    warm = LowerMuWarmStart(prob, tol=1e-4, max_iter=10 ** 6)
-    monkeypatch.setattr(branch_module, "solve_problem", failing)
-    path = predicted_path(prob, PathOptions(progress=False).checked(), warm_start=warm)
-    assert path.pull_off_converged
-    assert calls[:len(expected)] == expected
-
-
-def test_predicted_route_that_fails_says_so_and_tries_no_other_route(monkeypatch):
-    # an iteration cap of 5 CG iterations cannot converge the cold state: the record must say so
-    # (converged and resolved False, no error bound), name the analytic W* to use instead, and not
-    # fall back on the relaxed route (whose states stall at the mu this route serves)
+    import dhfield.bem.newton
     from dhfield.models import md_elliptic as elliptic_transition
     from dhfield.bem.path import PathOptions
 
-    def relaxed(*args, **kwargs):
-        raise AssertionError("the relaxed route was tried")
-
-    monkeypatch.setattr(adhesive_start, "_relaxed_pull_off", relaxed)
+    monkeypatch.setattr(dhfield.bem.newton, "NESTED_OPTIONS",
+                        dataclasses.replace(dhfield.bem.newton.NESTED_OPTIONS, max_newton=1))
+    monkeypatch.setattr(adhesive_start, "solve_pull_off",
+                        lambda *a, **k: (_ for _ in ()).throw(AssertionError("another route was tried")))
     prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
-    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False, max_iter=5))
+    res = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False))
     assert not res.converged and not res.resolved and res.W_star_error == float("inf")
     assert len(res.failures) == res.n_steps == 1
     w = float(elliptic_transition.pull_off_nondimensional(1.0, 2.0).W_star)
     assert "cold state" in res.note and f"analytic W* = {w:.4f}" in res.note
-
-
-def test_next_lattice_is_the_next_automatic_size_that_fits():
-    sizes = adhesive_start._fft_sizes()
-    for n in (1200, 1280, 512):
-        nxt = adhesive_start.next_lattice(n, max_seconds=1e9)
-        assert nxt == min(k for k in sizes if k > n) and nxt % 16 == 0
-    # the retry's time estimate (plan_grid's constants) must fit the time allowed
-    cells = 1280.0 ** 2
-    est = adhesive_start.SECONDS_PER_CELL_ITERATION * cells * adhesive_start.PULL_OFF_ITERATIONS
-    assert adhesive_start.next_lattice(1200, max_seconds=est * 0.99) is None
-    assert adhesive_start.next_lattice(1200, max_seconds=est * 1.01) == 1280
-    with pytest.raises(ValueError, match="max_seconds"):
-        adhesive_start.next_lattice(1200, max_seconds=0)
-    # a shaped lattice keeps its cells' shape: 2560 x 480 -> 2880 x 540, whose estimate must fit
-    est = adhesive_start.SECONDS_PER_CELL_ITERATION * 2880.0 * 540.0 * adhesive_start.PULL_OFF_ITERATIONS
-    assert adhesive_start.next_lattice(2560, max_seconds=est * 1.01, ny=480) == 2880
-    assert adhesive_start.next_lattice(2560, max_seconds=est * 0.99, ny=480) is None
-
-
-def test_next_lattice_grid_keeps_the_cells_shape():
-    # the retry of a shaped lattice: nx the next size, ny scaled as nx and even (2560 x 480 -> 2880 x 540;
-    # 1920 x 800 -> 2048 x 854, beta0 = 0.3's level-1 lattices at mu = 10: 800 * 2048/1920 = 853.3, up to even)
-    assert adhesive_start.next_lattice_grid(2560, 480, 1e9) == (2880, 540)
-    assert adhesive_start.next_lattice_grid(1920, 800, 1e9) == (2048, 854)
-    assert adhesive_start.next_lattice_grid(1200, 1200, 1e9) == (1280, 1280)
-    assert adhesive_start.next_lattice_grid(1200, 1200, 1e-3) is None          # nothing fits in a millisecond
-    with pytest.raises(ValueError, match="ny"):
-        adhesive_start.next_lattice_grid(1200, 0, 1e9)
-
-
-def test_predicted_route_trapped_on_its_lattice_is_solved_once_more_on_the_next(monkeypatch):
-    # the records are real BEM answers of a small sphere (mu = 2, N = 128): unconverged (5 CG
-    # iterations) and converged; the route's first tries are made to return the first
-    from dhfield.bem.path import PathOptions
-
-    small = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
-    failed = adhesive_start._predicted_pull_off(small, PathOptions(progress=False, max_iter=5))
-    good = adhesive_start._predicted_pull_off(small, PathOptions(progress=False))
-    assert not failed.converged and good.converged
-    calls = []
-
-    def route(fails):
-        def run(prob, opts, tol=None, start="cold"):
-            calls.append((prob.grid.nx, start))
-            return failed if len(calls) <= fails else good
-        return run
-
-    n = adhesive_start.plan_grid(mu=10.0, beta0=0.4826).n_needed
-    n_next = adhesive_start.next_lattice(n)
-    prob = adhesive_start.predicted_problem(mu=10.0, beta0=0.4826, n=n)
-    assert adhesive_start.lower_mu_start_possible(prob)
-    # GVG's start fails, the lower-mu start on the same lattice answers
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
-    res = adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826)
-    assert calls == [(n, "cold"), (n, "lower-mu")]
-    assert res.converged and res.W_star == good.W_star
-    assert "from GVG's start did not converge" in res.note
-    assert "solved again from the lower-mu start (mu = 5 on the grid half as fine)" in res.note
-    assert res.elapsed == pytest.approx(failed.elapsed + good.elapsed)
-    # both fail on the first lattice: once more on the next, from GVG's start
-    calls.clear()
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(2))
-    res = adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826)
-    assert calls == [(n, "cold"), (n, "lower-mu"), (n_next, "cold")]
-    assert res.converged and res.W_star == good.W_star
-    assert f"N = {n} lattice" in res.note and f"N = {n_next}" in res.note and "lower-mu start" in res.note
-    assert res.elapsed == pytest.approx(2 * failed.elapsed + good.elapsed)
-    # the same order on a slender contact
-    calls.clear()
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(1))
-    adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.1)
-    n_slender = adhesive_start.plan_grid(mu=10.0, beta0=0.1).n_needed
-    assert calls == [(n_slender, "cold"), (n_slender, "lower-mu")]
-    # a converged first try is the answer; failed ones with no affordable next lattice are reported
-    calls.clear()
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", route(0))
-    assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826) is good and calls == [(n, "cold")]
-    monkeypatch.setattr(adhesive_start, "_predicted_pull_off", lambda prob, opts, tol=None, start="cold": failed)
-    monkeypatch.setattr(adhesive_start, "next_lattice", lambda n, max_seconds, ny=None: None)
-    res = adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826)
-    assert not res.converged and res.W_star_error == float("inf") and "lower-mu start" in res.note
-
-
-def test_lower_mu_start_from_the_half_grid_agrees_with_the_cold_route():
-    # the sphere at mu = 2 on 128^2: each state starts from mu = 1 at the same approach on 64^2 (solved by
-    # nested starts); the converged answer must not depend on the start (to its stated error), and MD
-    # (exact on the sphere) must lie within that error of it
-    from dhfield.models import maugis_dugdale
-    from dhfield.bem.path import PathOptions
-    from dhfield.bem.pull_off import LowerMuWarmStart
-
-    prob = adhesive_start.predicted_problem(mu=2.0, beta0=1.0, n=128)
-    assert adhesive_start.lower_mu_start_possible(prob)
-    low = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="lower-mu")
-    cold = adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="cold")
-    md = float(maugis_dugdale.pull_off_nondimensional(1.0, 2.0, control="load").W_star)
-    assert low.converged and low.resolved and low.path.coarse_states > 0
-    assert abs(low.W_star - cold.W_star) <= low.W_star_error and abs(low.W_star - md) <= low.W_star_error
-    ws = LowerMuWarmStart(prob, tol=1e-4, max_iter=10 ** 6)
-    guess = ws(prob.pull_off_approach)
-    assert ws.mu == 1.0 and guess.law == prob.law and guess.grid == prob.grid   # the fine law, the fine grid
-    with pytest.raises(ValueError, match="mu_ratio"):
-        LowerMuWarmStart(prob, tol=1e-4, max_iter=100, mu_ratio=1.0)
-    with pytest.raises(ValueError, match="start must be one of"):
-        adhesive_start._predicted_pull_off(prob, PathOptions(progress=False), start="warm")
 
 
 @pytest.mark.parametrize("call", [lambda: adhesive_start.unloading_start(1.0, 0.9),

@@ -1,5 +1,4 @@
 """``dhfield solve``: JSON keys, netCDF output, input validation, reported non-convergence."""
-import functools
 import json
 import math
 import re
@@ -44,13 +43,13 @@ def test_solve_json_and_netcdf(tmp_path, capsys):
 
 
 def test_solve_reports_non_convergence(monkeypatch, capsys):
-    """A path whose states cannot converge (2 CG iterations each) exits 3 with one line."""
-    import dhfield.bem
+    """A path whose states cannot converge (one Newton iteration each) exits 3 with one line."""
+    import dataclasses
 
-    from dhfield.analysis.bem_start import AdhesiveOptions
+    import dhfield.bem.newton
 
-    monkeypatch.setattr(dhfield.bem, "adhesive_pull_off",
-                        functools.partial(dhfield.bem.adhesive_pull_off, options=AdhesiveOptions(max_iter=2)))
+    monkeypatch.setattr(dhfield.bem.newton, "NESTED_OPTIONS",
+                        dataclasses.replace(dhfield.bem.newton.NESTED_OPTIONS, max_newton=1))
     rc = main(["solve", "--beta0", "0.8", "--mu", "1", "--n", "16", "--json"])
     err = [ln for ln in capsys.readouterr().err.strip().splitlines() if not ln.startswith(PROGRESS_PREFIX)]
     assert rc == EXIT_UNCONVERGED

@@ -193,13 +193,3 @@ def test_report_lists_the_cases_solved_coarse_to_fine(tmp_path):
     assert sec_adhesive.coarse_to_fine_cases(ds) == [(0.5, 5.0, 32, "coarse to fine from n=16")]
     assert sec_adhesive.coarse_to_fine_cases(ds.drop_vars("route")) == []
 
-
-def test_diagnosis_script_validates_and_runs(capsys):
-    from verification import diagnose_adhesive as dg
-
-    with pytest.raises(SystemExit) as exc:
-        dg.main(["--n", "33"])
-    assert exc.value.code == 2
-    assert dg.main(["--beta0", "1", "--mu", "0.5", "--n", "16", "--starts", "dh"]) == 0
-    out = capsys.readouterr().out
-    assert "N = 16" in out and "cold start 'dh'" in out and "(c - a)/dx" in out

@@ -9,8 +9,7 @@ corrected by the sphere's MD/JKR ratio (:mod:`dhfield.models.md_elliptic`), the 
 reference of issue 20.
 
 ``--route`` forces a route of the automatic grid: ``auto`` (what ``dhfield solve`` does),
-``predicted`` (fine lattice samples around GVG's pull-off, :func:`dhfield.bem.pull_off.predicted_path`)
-or ``relaxed`` (warm starts from the relaxed half grid, :class:`dhfield.analysis.bem_start.RelaxedWarmStart`);
+or ``predicted`` (fine lattice samples around GVG's pull-off, :func:`dhfield.bem.pull_off.predicted_path`);
 ``--n`` another grid than the automatic one (same routes).  Usage::
 
     DHFIELD_THREADS=1 .venv/bin/python -m verification.bem_high_mu --beta0 1 --mu 10
@@ -63,10 +62,7 @@ def run(mu, beta0, route, n=None, progress=False):
     else:
         n = n or ast.plan_grid(mu=mu, beta0=beta0, predicted=route == "predicted").n_needed
         opts = PathOptions(progress=progress)
-        if route == "predicted":
-            res = ast._predicted_pull_off(ast.predicted_problem(mu=mu, beta0=beta0, n=n), opts)
-        else:
-            res = ast._relaxed_pull_off(ast.nondimensional_problem(mu=mu, beta0=beta0, n=n), opts)
+        res = ast._predicted_pull_off(ast.predicted_problem(mu=mu, beta0=beta0, n=n), opts)
     return res, time.perf_counter() - t0, time.process_time() - c0
 
 
@@ -75,7 +71,7 @@ def main(argv=None) -> int:
     p.add_argument("--beta0", type=float, default=1.0)
     p.add_argument("--mu", type=float, default=10.0)
     p.add_argument("--n", type=int, default=None, help="cells per axis (default: plan_grid's)")
-    p.add_argument("--route", choices=("auto", "predicted", "relaxed"), default="auto")
+    p.add_argument("--route", choices=("auto", "predicted"), default="auto")
     p.add_argument("--progress", action="store_true")
     args = p.parse_args(argv)
     load0 = os.getloadavg()[0]

@@ -74,12 +74,14 @@ def stage_operator(backend, threads) -> None:
 
 
 def stage_state(backend, beta0, mu, n, threads, skip_reference) -> None:
-    from dhfield.analysis.bem_start import PREDICTED_TOL
+    from dhfield.analysis.bem_start import PREDICTED_TOL, plan_grid, predicted_problem
     from dhfield.bem import solver
-    from dhfield.bem.pull_off import PREDICTED_STRETCH_EVERY
-    from verification.bench_stretch import predicted_cold_state
 
-    problem, delta = predicted_cold_state(beta0, mu, n)
+    # the predicted route's first state: the lattice sample nearest the predicted pull-off
+    plan = plan_grid(mu=mu, beta0=beta0)
+    problem = predicted_problem(mu=mu, beta0=beta0, n=plan.n_needed if n is None else n,
+                                ny=plan.ny_needed if n is None else None)
+    delta = problem.lattice_approach(problem.pull_off_approach)
     g = problem.grid
     print(f"  state: beta0 = {beta0:g}, mu = {mu:g}, {g.nx} x {g.ny} cells, approach {delta:+.6f}, "
           f"tol {PREDICTED_TOL:g}", flush=True)
@@ -90,10 +92,10 @@ def stage_state(backend, beta0, mu, n, threads, skip_reference) -> None:
         cold = problem.path_start(prob).stress
         t0 = time.perf_counter()
         st = solver.solve_problem(prob, delta, solver.Prediction(np.zeros_like(cold), cold.copy()), PREDICTED_TOL,
-                                  solver.DEFAULT_MAX_ITER, stretch_every=PREDICTED_STRETCH_EVERY)
+                                  solver.DEFAULT_MAX_ITER)
         wall = time.perf_counter() - t0
         loads[b] = st.load
-        print(f"    {b:6s} converged = {st.converged!s:5s} outer = {st.outer_iterations:3d} CG = {st.iterations:6d} "
+        print(f"    {b:6s} converged = {st.converged!s:5s} Newton = {st.outer_iterations:3d} GMRES = {st.iterations:6d} "
               f"residual = {st.residual:.2g}  W = {st.load:+.8f}  wall {wall:7.1f} s", flush=True)
     if len(loads) == 2:
         rel = abs(loads[backend] - loads["fftw"]) / abs(loads["fftw"])

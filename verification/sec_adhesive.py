@@ -313,10 +313,14 @@ def _rerun(ds, quick, progress):
         res = adhesive_pull_off(mu=m, beta0=b, n=n0, progress=False, search=search if search in SEARCHES else "bracket", options=AdhesiveOptions(max_iter=STUDY_MAX_ITER))
         el = time.perf_counter() - t0
         progress(f"re-run β0 = {b:g}, μ = {m:g}, N = {n0}: {el:.1f} s")
-        err = abs(res.W_star / stored - 1.0)
-        checks.append(check_le(f"re-run reproduces the stored W*max at β0 = {b:g}, μ = {m:g}, N = {n0}", err,
-                               TOL_REPRODUCE, "data/adhesive_ground_truth.nc (stored study), same solver "
-                                              "options"))
+        # the stored study is the former fixed point's (its sub-cell Dugdale edge); the re-run is the
+        # Newton solve's (its ramped edge, since 2026-12-02): two discretisations of one law, so the
+        # re-run's stated error (the grid's, K |W*| / cells) must cover the stored value
+        err = abs(res.W_star - stored)
+        checks.append(check_le(f"re-run agrees with the stored W*max within its stated error at β0 = {b:g}, "
+                               f"μ = {m:g}, N = {n0}", err, float(res.W_star_error),
+                               "data/adhesive_ground_truth.nc (stored study, the former fixed point); the "
+                               "re-run by the Newton solve"))
         berr = max(abs(res.ellipticity - float(ds["beta_ab"].sel(**sel))),
                    abs(res.adhesive_ellipticity - float(ds["beta_cd"].sel(**sel))))
         checks.append(check_le(f"re-run reproduces the stored β_ab, β_cd at β0 = {b:g}, μ = {m:g}, N = {n0}",

@@ -24,10 +24,9 @@ and time, and names the analytic value to use instead
 (:func:`dhfield.models.md_elliptic.pull_off_nondimensional`); :func:`adhesive_pull_off`
 without ``n`` uses it and refuses, before solving, a case beyond the memory or the time
 allowed (:class:`UnresolvableCaseError`).  Where the grid half as fine cannot hold the
-Dugdale edge, the states are warm-started from it with the edge relaxed
-(:class:`RelaxedWarmStart`); at mu >= :data:`PREDICTED_MIN_MU`, where the relaxed states do
-not converge either, only fine lattice samples around GVG's pull-off are solved, on a
-domain holding its zone (:func:`predicted_start`, :func:`dhfield.bem.pull_off.predicted_path`).
+Dugdale edge, the path routes search the minimum on this grid from the analytic pull-off
+(the bracket search); at mu >= :data:`PREDICTED_MIN_MU` only fine lattice samples around
+GVG's pull-off are solved, on a domain holding its zone (:func:`predicted_start`, :func:`dhfield.bem.pull_off.predicted_path`).
 
 :func:`adhesive_pull_off` and :func:`refine_pull_off`, the user-facing BEM
 pull-offs, set the problem up here and run :func:`dhfield.bem.pull_off.solve_pull_off`
@@ -49,7 +48,7 @@ from ..bem.laws import law_from_name
 from ..bem.operator import Grid
 from ..bem.ladder import NEWTON_SEARCH
 from ..bem.path import PathOptions
-from ..bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, LOWER_MU_RATIO, MAX_CELLS, MAX_STEPS, NESTED_MIN_N,
+from ..bem.pull_off import (DEFAULT_STEPS, DOMAIN_MARGIN, MAX_CELLS, MAX_STEPS, NESTED_MIN_N,
                             NondimensionalProblem, UnloadingStart, check_bem_pull_off, check_cells,
                             paper_problem, refine, solve_pull_off)
 from ..core.records import PullOff
@@ -57,11 +56,10 @@ from ..bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, edge_width_ratio
 
 __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "refine_pull_off", "GridPlan",
            "plan_grid", "analytic_pull_off", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
-           "UNSTABLE_EDGE_RATIO", "RelaxedWarmStart", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
+           "UNSTABLE_EDGE_RATIO", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
-           "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route", "next_lattice",
-           "next_lattice_grid", "newton_problem", "newton_grids", "takes_newton_route",
-           "lower_mu_start_possible", "coarse_route_start_possible", "PREDICTED_STARTS",
+           "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route",
+           "newton_problem", "newton_grids", "takes_newton_route",
            "pull_off_cost", "check_grid_memory", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
 
@@ -251,7 +249,7 @@ def pull_off_cost(nx, ny) -> tuple:
     """Estimated memory [bytes] and time [s] of one load-control pull-off on ``nx`` x ``ny`` cells.
 
     ``PATH_BYTES_PER_CELL nx ny`` and ``SECONDS_PER_CELL_ITERATION nx ny PULL_OFF_ITERATIONS``
-    (constants fitted to stored solves, docs/theory/bem.rst): the estimates of :func:`plan_grid`, :func:`next_lattice` and
+    (constants fitted to stored solves, docs/theory/bem.rst): the estimates of :func:`plan_grid` and
     :func:`dhfield.sweep.tasks.automatic_grid`.
 
     Parameters
@@ -893,11 +891,10 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
                              f"law={law!r}, control={control!r}")
         return _newton_pull_off(beta0=beta0, mu=mu, n=n, ny=ny, threads=threads, margin=margin,
                                 max_seconds=max_seconds)
-    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load"
-                                           and (nested is None or n is not None)):
-        raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None on the "
-                         f"automatic grid (the predicted route); got law={law!r}, control={control!r}, "
-                         f"nested={nested!r}, n={n!r}")
+    if search == PREDICTED_SEARCH and not (law == "dugdale" and control == "load" and nested is None):
+        raise ValueError("search='predicted' needs law='dugdale', control='load', and options.nested None (the "
+                         f"predicted route has no nested starts); got law={law!r}, control={control!r}, "
+                         f"nested={nested!r}")
     options = PathOptions(refine_levels=refine_levels, tol=DEFAULT_TOL if tol is None else tol,
                           max_iter=max_iter, threads=threads, keep_states=keep_states, progress=progress)
     if n is None:
@@ -914,53 +911,20 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
             # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             tol_route = PREDICTED_TOL if tol is None else tol
             prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-            # GVG's start first, then each state from the same approach at mu/2 on the grid half as fine
-            # (LowerMuWarmStart) on the same lattice, where GVG's cold state wanders or stalls; lower-mu
-            # first is slower where GVG's start converges (docs/theory/bem.rst)
-            res = _predicted_pull_off(prob, options, tol=tol_route)
-            tried = ()                            # why the retry on this lattice was made, for the record's note
-            if not res.converged and lower_mu_start_possible(prob):
-                tried = (f"the N = {n} lattice's states from GVG's start did not converge (worst residual "
-                         f"{res.worst_residual:.2g}, {res.iterations} CG iterations, {res.elapsed:.0f} s): solved "
-                         f"again from the lower-mu start (mu = {LOWER_MU_RATIO * mu:g} on the grid half as fine)",)
-                again = _predicted_pull_off(prob, options, tol=tol_route, start="lower-mu")
-                res = replace(again, note="; ".join(filter(None, (*tried, again.note))),
-                              elapsed=res.elapsed + again.elapsed)
-            retry = None if res.converged else next_lattice_grid(n, ny, max_seconds)
-            if retry is None:
-                return res
-            n_next, ny_next = retry
-            # a state the lattice still traps (before the stretch step: beta0 = 0.5, mu = 10 stalled at
-            # N = 1200, converged at N = 1280): once more on the next lattice, finer, so still resolved
-            why = (f"the N = {n} lattice's states did not converge (worst residual {res.worst_residual:.2g}, "
-                   f"{res.iterations} CG iterations, {res.elapsed:.0f} s): solved again on the next lattice, "
-                   f"N = {n_next}")
-            again = _predicted_pull_off(predicted_problem(mu=mu, beta0=beta0, n=n_next, n_steps=n_steps,
-                                                          margin=margin, ny=ny_next),
-                                        options, tol=tol_route)
-            return replace(again, note="; ".join(filter(None, (*tried, why, again.note))),
-                           elapsed=res.elapsed + again.elapsed)
+            return _predicted_pull_off(prob, options, tol=tol_route)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
-        # the route on the caller's grid (a refined grid of the same route and domain): no retry.  Every
-        # state from this route's own state on the grid half as fine where that grid holds the edge at mu
-        # (a refined level), else from the lower-mu start where the grid half as fine holds the edge at mu/2
-        # (nested True: one of the two required, False: GVG's cold start)
+        # the route on the caller's grid (a refined grid of the same route and domain)
         prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-        start = ("coarse-route" if coarse_route_start_possible(prob) else
-                 "lower-mu" if lower_mu_start_possible(prob) else "cold")
-        if nested and start == "cold":
-            raise ValueError(f"options.nested=True needs a grid whose half holds the Dugdale edge at mu/2, with nx and "
-                             f"ny multiples of 4 (lower_mu_start_possible); got {n} x {ny} cells at mu = {mu:g}")
-        return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol,
-                                   start="cold" if nested is False else start)
+        return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol)
     else:
         relaxed = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
     if relaxed and prob.has_cold_start:
-        # the grid half as fine cannot hold the Dugdale edge (its states do not converge,
-        # LOCATE_MAX_EDGE_RATIO): warm starts from it with the edge relaxed instead
-        return _relaxed_pull_off(prob, options)
+        # the grid half as fine cannot hold the Dugdale edge (LOCATE_MAX_EDGE_RATIO): the bracket
+        # search on this grid from the analytic pull-off, each state by nested iteration where its
+        # neighbour does not start it (dhfield.bem.solver.solve_problem)
+        search = "bracket"
     res = solve_pull_off(prob, control=control, search=search, nested=nested, options=options)
     if control == "displacement":
         res = _ladder_checked(prob, res, n_steps=n_steps, margin=margin, options=options)
@@ -1054,171 +1018,9 @@ def _ladder_checked(prob, res, *, n_steps, margin, options) -> PullOff:
     return replace(out, elapsed=res.elapsed + elapsed)
 
 
-#: Tolerance of the relaxed coarse states of :class:`RelaxedWarmStart` (warm starts only: their
-#: law is smeared anyway; the fine grid keeps ``tol``).
-RELAXED_COARSE_TOL = 1e-4
-
-
-class RelaxedWarmStart:
-    """Warm starts from the grid half as fine with the Dugdale edge relaxed (coarse to fine at high mu).
-
-    Where the grid half as fine cannot hold the Dugdale edge (its ``edge_width_ratio`` is
-    above the located search's gate), its states do not converge, and
-    :class:`dhfield.bem.pull_off.NestedWarmStart` gives nothing.  Here the coarse states
-    solve the law with the edge as wide as stability wants
-    (``AdhesiveProblem(..., relaxed_edge=True)``): they converge, and their zone is within a
-    fraction of a coarse cell of the fine grid's.  ``start(approach)`` solves the coarse
-    state at that approach (from the nearest one solved, the first from the problem's cold
-    start), carries it onto the fine grid (:func:`dhfield.bem.pull_off.interpolate_state`)
-    with the fine grid's own sub-cell zone fraction of the carried gap, and returns it as a
-    guess (never as an answer: the fine state is solved from it with the unrelaxed law).
-
-    Parameters
-    ----------
-    problem : NondimensionalProblem
-        The fine grid's problem (n divisible by 4).
-    tol : float, default RELAXED_COARSE_TOL
-        Tolerance of the coarse states [-], as in :func:`dhfield.bem.solve_adhesive`.
-    max_iter : int, default DEFAULT_MAX_ITER
-        Iteration cap per coarse state, as in :func:`dhfield.bem.solve_adhesive`.
-    threads : int, optional
-        FFTW threads, as in :func:`dhfield.bem.solve_adhesive`.
-    """
-
-    def __init__(self, problem, *, tol=RELAXED_COARSE_TOL, max_iter=DEFAULT_MAX_ITER, threads=None):
-        from ..bem.solver import AdhesiveProblem
-
-        coarse = problem.coarser(problem.grid.nx // 2)
-        self._fine_nd, self._fine_prob, self._threads = problem, None, threads
-        self._prob = AdhesiveProblem(coarse.initial_gap, coarse.grid, coarse.law, None, threads, 1.0,
-                                     relaxed_edge=True)
-        self._cold = np.clip(self._prob.to_work(coarse.start_stress()), 0.0, coarse.law.max_stress)
-        self._tol, self._max_iter = float(tol), int(max_iter)
-        self._states = {}
-        self.iterations = 0
-        self.seconds = 0.0
-
-    @property
-    def states_solved(self) -> int:
-        """Number of relaxed coarse states solved (or kept from the bracket search) so far [-]."""
-        return len(self._states)
-
-    def coarse_state(self, approach):
-        """Return the relaxed state at ``approach`` on the coarse grid (solved once).
-
-        Parameters
-        ----------
-        approach : float
-            Approach of distant points [c_r^2/R].
-
-        Returns
-        -------
-        ContactState
-            The coarse state, warm-started from the nearest converged contact state solved
-            (the problem's cold start for the first); flagged when not converged.
-        """
-        import time
-
-        from ..bem.solver import Prediction, solve_problem
-
-        d = float(approach)
-        if d not in self._states:
-            near = [s for s in self._states.values() if s.converged and s.in_contact]
-            guess = (min(near, key=lambda s: abs(s.approach - d)) if near
-                     else Prediction(np.zeros_like(self._cold), self._cold.copy()))
-            t0 = time.perf_counter()
-            st = solve_problem(self._prob, d, guess, self._tol, self._max_iter)
-            self.seconds += time.perf_counter() - t0
-            self.iterations += st.iterations
-            self._states[d] = st
-        return self._states[d]
-
-    def __call__(self, approach):
-        """Warm start on the fine grid (a guess), or None when the coarse state is not a converged contact state."""
-        from ..bem.pull_off import interpolate_state
-
-        st = self.coarse_state(approach)
-        if not (st.converged and st.in_contact):
-            return None
-        guess = interpolate_state(st, self._fine_nd.grid)
-        if self._fine_prob is None:
-            self._fine_prob = self._fine_nd.adhesive_problem(self._threads)
-        fp, law = self._fine_prob, guess.law
-        zone = fp.to_full(fp.stress_from_gap(fp.to_work(guess.gap), fp.to_work(guess.contact)) / law.max_stress)
-        return replace(guess, pressure=guess.repulsive_pressure - law.max_stress * zone,
-                       cohesive=np.where(guess.contact, 0.0, zone))
-
-
-    def locate_pull_off(self, spacing):
-        """Locate the load-control pull-off approach on the relaxed coarse grid.
-
-        The bracket search on the coarse grid (the problem's cold start, no vertex
-        refinement); its states are kept as the warm starts of the fine grid, whose lattice
-        samples ``approach_max - j spacing`` next to it :func:`dhfield.bem.pull_off.located_path`
-        then solves.  The smeared law moves the minimum by a fraction of a path step (the
-        fine samples re-locate it).
-
-        Parameters
-        ----------
-        spacing : float
-            Spacing of the fine grid's approach lattice [c_r^2/R].
-
-        Returns
-        -------
-        float
-            The coarse pull-off approach [c_r^2/R]; NaN when the bracket search finds no
-            interior minimum.
-        """
-        import time
-
-        from ..bem.branch import Branch
-        from ..bem.path import PathStart, bracket_search
-
-        nd = self._fine_nd
-        b = Branch(self._prob, self._tol, self._max_iter, progress=False, keep_states=True)
-        opts = PathOptions(refine_levels=0, tol=self._tol, max_iter=self._max_iter, threads=self._threads,
-                           keep_states=True, progress=False).checked()
-        t0 = time.perf_counter()
-        # the bracket search only: no marching fall-back (after a failed cold start it would load
-        # the whole path from first touch)
-        outcome, current = bracket_search(b, PathStart(nd.pull_off_approach, self._cold.copy()), nd.approach_step,
-                                          opts)
-        self.seconds += time.perf_counter() - t0
-        for i, st in b.states.items():
-            self.iterations += st.iterations
-            if st.converged and st.in_contact:
-                self._states.setdefault(float(st.approach), st)
-        if outcome != "interior":
-            return float("nan")
-        return float(b.load_pull_off(current).pull_off_approach)
-
-
-def _relaxed_pull_off(prob, options) -> PullOff:
-    """Load-control pull-off on ``prob`` with every state warm-started by :class:`RelaxedWarmStart`.
-
-    The minimum located on the relaxed coarse grid first, then 3-4 fine lattice samples
-    around it (:func:`dhfield.bem.pull_off.located_path`, as ``search='located'``); the
-    bracket search on this grid when that fails.
-    """
-    from ..bem.path import path_on
-    from ..bem.pull_off import pull_off_result, located_path
-
-    options = options.checked()
-    ws = RelaxedWarmStart(prob, max_iter=options.max_iter, threads=options.threads)
-    path = located_path(prob, ws, options)
-    if path is not None:
-        return pull_off_result(prob, prob.grid.nx, path, "located")
-    work = prob.adhesive_problem(options.threads)
-    path = path_on(work, prob.path_start(work, ws), prob.approach_max, prob.approach_step, control="load",
-                   options=options)
-    return pull_off_result(prob, prob.grid.nx, path, "bracket")
-
-
-#: Smallest mu at which an automatic grid whose half grid cannot hold the Dugdale edge solves
-#: only fine lattice samples around GVG's pull-off (:func:`_predicted_pull_off`) instead of
-#: warm starts from the relaxed half grid (:class:`RelaxedWarmStart`): at mu = 10 the relaxed
-#: states do not converge, at mu = 5 they do (docs/theory/bem.rst, 'Measurements behind the
-#: solver's constants').
+#: Smallest mu at which an automatic grid of the path routes whose half grid cannot hold the
+#: Dugdale edge solves only fine lattice samples around GVG's pull-off (:func:`_predicted_pull_off`)
+#: instead of the bracket search (docs/theory/bem.rst, 'Measurements behind the solver's constants').
 PREDICTED_MIN_MU = 7.5
 #: Solver tolerance of the predicted route's states when none is given (the other routes keep
 #: ``DEFAULT_TOL`` = 1e-6; the located search's coarse states already use 1e-4,
@@ -1458,65 +1260,7 @@ def newton_problem(*, beta0, mu, n, ny=None, margin=DOMAIN_MARGIN) -> Nondimensi
     return paper_problem(mu=mu, beta0=beta0, n=n, ny=ny, start=start)
 
 
-def lower_mu_start_possible(problem) -> bool:
-    """Tell whether the predicted route can start from a lower mu on the grid half as fine.
-
-    True when ``problem`` has the Dugdale law, cells per axis in multiples of 4 and at least
-    ``2 NESTED_MIN_N`` along x, and the grid half as fine resolves the Dugdale edge at ``LOWER_MU_RATIO`` mu
-    (:func:`dhfield.bem.solver.edge_width_ratio` <= 1; the ratio scales as mu^2).
-
-    Parameters
-    ----------
-    problem : NondimensionalProblem
-        The problem of the predicted route (:func:`predicted_problem`).
-
-    Returns
-    -------
-    bool
-        True: :func:`_predicted_pull_off` may take ``start='lower-mu'`` on ``problem``.
-    """
-    from ..bem.laws import DugdaleLaw
-
-    g = problem.grid
-    if g.nx % 4 or g.ny % 4 or g.nx < 2 * NESTED_MIN_N or not isinstance(problem.law, DugdaleLaw):
-        return False       # (the grid half as fine is solved by nested starts from its own half)
-    mu_lo = LOWER_MU_RATIO * problem.mu
-    return bool(edge_width_ratio(problem.coarser(g.nx // 2).grid, law_from_name("dugdale", mu_lo, 1.0)) <= 1.0)
-
-
-def coarse_route_start_possible(problem) -> bool:
-    """Tell whether the predicted route can start from its own states on the grid half as fine.
-
-    True when ``problem`` has cells per axis in multiples of 8, the grid half as fine resolves
-    the Dugdale edge at mu (:func:`dhfield.bem.solver.edge_width_ratio` <= 1: it is a grid the
-    route solves, as level 1 is for level 2), and that grid can itself take the lower-mu start
-    (:func:`lower_mu_start_possible`).
-
-    Parameters
-    ----------
-    problem : NondimensionalProblem
-        The problem of the predicted route (:func:`predicted_problem`), on a refined grid.
-
-    Returns
-    -------
-    bool
-        True: :func:`_predicted_pull_off` may take ``start='coarse-route'`` on ``problem``.
-    """
-    from ..bem.laws import DugdaleLaw
-    from ..bem.solver import edge_width_ratio
-
-    g = problem.grid
-    if g.nx % 8 or g.ny % 8 or not isinstance(problem.law, DugdaleLaw):
-        return False
-    half = problem.coarser(g.nx // 2)
-    return bool(edge_width_ratio(half.grid, problem.law) <= 1.0 and lower_mu_start_possible(half))
-
-
-#: Starts of the predicted route's states (:func:`_predicted_pull_off`).
-PREDICTED_STARTS = ("cold", "lower-mu", "coarse-route")
-
-
-def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
+def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     """Load-control pull-off at high mu from fine lattice samples around the problem's cold start.
 
     ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
@@ -1527,99 +1271,23 @@ def _predicted_pull_off(prob, options, *, tol=None, start="cold") -> PullOff:
     to use instead (:func:`dhfield.models.md_elliptic.pull_off_nondimensional`).  No other route
     is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`).
 
-    ``start`` (one of :data:`PREDICTED_STARTS`): 'cold', the first state from GVG's zone and each
-    other from its nearest solved neighbour; 'lower-mu', every state from the same approach at
-    mu/2 on the grid half as fine (:class:`dhfield.bem.pull_off.LowerMuWarmStart`, where
-    :func:`lower_mu_start_possible`); 'coarse-route', every state from the same approach at
-    the same mu solved by this route on the grid half as fine
-    (:class:`dhfield.bem.pull_off.CoarseRouteWarmStart`, where :func:`coarse_route_start_possible`:
-    a refined level).
+    The first state starts from GVG's zone, each other from its nearest solved neighbour, and
+    a state that does not converge from its start by nested iteration from the coarsest grid
+    (:func:`dhfield.bem.solver.solve_problem`).
     """
     from ..models import md_elliptic
-    from ..bem.pull_off import CoarseRouteWarmStart, LowerMuWarmStart, predicted_path, pull_off_result
+    from ..bem.pull_off import predicted_path, pull_off_result
 
-    if start not in PREDICTED_STARTS:
-        raise ValueError(f"start must be one of {PREDICTED_STARTS} (start of the predicted route's states); "
-                         f"got {start!r}")
     options = options.checked()
     if tol is not None:
         options = replace(options, tol=tol)
-    starts = {"lower-mu": LowerMuWarmStart, "coarse-route": CoarseRouteWarmStart}
-    ws = (starts[start](prob, tol=options.tol, max_iter=options.max_iter, threads=options.threads)
-          if start in starts else None)
-    path = predicted_path(prob, options, warm_start=ws)
+    path = predicted_path(prob, options)
     res = pull_off_result(prob, prob.grid.nx, path, PREDICTED_SEARCH)     # the route, named as asked for
     if res.converged:
         return res
     w = float(md_elliptic.pull_off_nondimensional(prob.beta0, prob.mu).W_star)
     return replace(res, note="; ".join(filter(None, (res.note, f"use the analytic W* = {w:.4f} "
                                                                 "(md-elliptic) instead"))))
-
-
-def _scaled_cells(ny, n, n_next) -> int:
-    """Cells along y of the lattice of ``n_next`` cells along x with the cells' shape of ``n`` x ``ny`` (even)."""
-    return int(2 * math.ceil(ny * n_next / n / 2))
-
-
-def next_lattice_grid(n, ny, max_seconds=DEFAULT_MAX_SECONDS):
-    """The retry lattice of an ``n`` x ``ny`` grid (:func:`next_lattice`) with its cells along y.
-
-    Parameters
-    ----------
-    n : int
-        Cells along x of the first lattice [-].
-    ny : int
-        Cells along y of the first lattice [-].
-    max_seconds : float, default DEFAULT_MAX_SECONDS
-        Time allowed [s] (:func:`next_lattice`).
-
-    Returns
-    -------
-    tuple of int or None
-        ``(nx, ny)`` of the next lattice, the cells' shape kept (``ny`` scaled as ``n``,
-        even); None when no lattice fits (:func:`next_lattice`).
-    """
-    n_next = next_lattice(n, max_seconds, ny=ny)
-    return None if n_next is None else (n_next, _scaled_cells(check_cells(ny, "ny"), n, n_next))
-
-
-def next_lattice(n, max_seconds=DEFAULT_MAX_SECONDS, *, ny=None):
-    """The next automatic grid size above ``n`` for a retry, or None when it does not fit.
-
-    A cold state of the predicted route can be trapped by its lattice, where the next size
-    converges (docs/theory/bem.rst, 'Measurements behind the solver's constants'): a retry,
-    not a cure.  The cure is the predicted route's stretch step
-    (:data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY`), which moves the whole zone edge at
-    once; this retry is the fall-back when a state still fails.
-    :func:`adhesive_pull_off` then solves the case once more on this lattice: finer, so as
-    resolved as ``n``.
-
-    Parameters
-    ----------
-    n : int
-        Cells per axis of the first lattice [-].
-    max_seconds : float, default DEFAULT_MAX_SECONDS
-        Time allowed [s]; the retry's estimate (as :func:`plan_grid`'s) must fit in it.
-    ny : int, optional
-        Cells along y of the first lattice [-] (default ``n``); the retry keeps the cells'
-        shape (``ny`` scaled as ``n``, even).
-
-    Returns
-    -------
-    int or None
-        The smallest size of :func:`plan_grid`'s list (2^a 3^b 5^c, a multiple of 16) above
-        ``n`` whose estimated memory and time fit; None when there is none.
-    """
-    n = check_cells(n)
-    ny = n if ny is None else check_cells(ny, "ny")
-    max_seconds = float(check_positive("max_seconds", max_seconds, "time allowed, s"))
-    nxt = next((k for k in _fft_sizes() if k > n), None)
-    if nxt is None:
-        return None
-    memory_bytes, seconds = pull_off_cost(nxt, _scaled_cells(ny, n, nxt))
-    limit = memory_limit()
-    fits = limit is None or memory_bytes <= limit
-    return nxt if fits and seconds <= max_seconds else None
 
 
 def _half_grid_locates(plan, law, margin) -> bool:

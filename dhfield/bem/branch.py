@@ -26,12 +26,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.validation import check_optional_count
 from ..core.pull_off_search import refine_sampled_minimum
-from .solver import MAX_OUTER, secant_prediction, solve_problem
+from .solver import secant_prediction, solve_problem
 from .state import ContactState
 
-__all__ = ["Branch", "UnloadingPath", "PathProgress", "state_reporter", "NOT_ON_BRANCH", "WIDEST_EDGE_MIN_GAIN"]
+__all__ = ["Branch", "UnloadingPath", "PathProgress", "state_reporter", "NOT_ON_BRANCH"]
 
 #: Phases of states that are not on the branch: re-solved from separation after the branch
 #: ended ('jump'), or a cold start that gave no converged contact state ('discarded').
@@ -265,13 +264,6 @@ class PathProgress:
             sys.stderr.flush()
 
 
-#: :meth:`Branch.widest_edge_guess` solves a wide-edge state only when the widest edge (2 h0) is at
-#: least this factor wider than the grid's own: a widening of 6 % helps (1.89 h0 -> 2 h0,
-#: beta0 = 0.5, mu = 10 on 1280^2), and a state of a law 1 % away is a state of
-#: practically the same law (the level-1 grid under level 2 of that case has 1.996 h0).
-WIDEST_EDGE_MIN_GAIN = 1.01
-
-
 class Branch:
     """The states of one problem solved along the approach, their records and their load minimum.
 
@@ -294,19 +286,6 @@ class Branch:
         ContactState, e.g. the same approach on a coarser grid) or None; its
         ``states_solved`` and ``iterations`` attributes, when present, are
         reported as ``coarse_states`` and ``coarse_iterations``.
-    stretch_every : int, optional
-        Every this many outer iterations of a state, a stretch step
-        (:func:`dhfield.bem.solver.stretch_step`; ``stretch_every`` of
-        :func:`dhfield.bem.solver.solve_problem`).  None: none.
-    anderson_memory : int, optional
-        Anderson memory of the states, mixed without periodic restarts (``anderson_memory`` of
-        :func:`dhfield.bem.solver.solve_problem`).  None: the solver's default.
-    external_fallback : bool, default False
-        False: ``warm_start`` starts every state it answers for (:meth:`guess`).  True: it
-        starts only a state without a held neighbour, and a state started from its neighbours
-        that fails is solved once more from it, the failed record marked 'discarded'
-        (:meth:`solve`; the high-mu route, whose lower-mu start is costly and, away from the
-        first state, less reliable than a converged neighbour).
 
     Attributes
     ----------
@@ -316,18 +295,11 @@ class Branch:
         Record index -> ContactState, of the states held.
     """
 
-    def __init__(self, prob, tol, max_iter, *, label="path", progress=None, keep_states=False, warm_start=None,
-                 stretch_every=None, anderson_memory=None, external_fallback=False):
+    def __init__(self, prob, tol, max_iter, *, label="path", progress=None, keep_states=False, warm_start=None):
         self.prob = prob
-        self.external_fallback = bool(external_fallback)
-        self._external_guess = None   # the last guess that came from warm_start (external_fallback)
         self.tol, self.max_iter = float(tol), int(max_iter)
-        self.stretch_every = check_optional_count("stretch_every", stretch_every,
-                                                  "outer iterations between stretch steps")
-        self.anderson_memory = check_optional_count("anderson_memory", anderson_memory)
         self.keep_states = bool(keep_states)
         self.warm_start = warm_start
-        self._widest = None           # the problem with the widest Dugdale edge (widest_edge_guess)
         self.records = []
         self.states = {}
         self._failures = []           # (record index, failure dict), as solved
@@ -363,107 +335,29 @@ class Branch:
         self._progress.update(k, st, phase)
         return k
 
-    def solve(self, approach, guess, phase, give_up_after=None):
+    def solve(self, approach, guess, phase):
         """Solve and record the state at ``approach`` from ``guess``.
+
+        The one start protocol (:func:`dhfield.bem.solver.solve_problem`): Newton from
+        ``guess`` (a converged neighbour, or the same approach on a coarser grid), else
+        nested iteration from the coarsest grid of the domain.
 
         Parameters
         ----------
         approach : float
             Approach [length].
         guess : ContactState or Prediction or None
-            Warm start (:meth:`guess`); None: from separation.
+            Warm start (:meth:`guess`); None: nested iteration from the rigid gap's zone.
         phase : str
             Phase of the record.
-        give_up_after : int, optional
-            ``give_up_after`` of :func:`dhfield.bem.solver.solve_problem` (stop a start that
-            stopped converging early).
 
         Returns
         -------
         (int, ContactState)
-            The record index and the state.  With ``external_fallback``, a state started from
-            its neighbours is a race of two starts (:meth:`race`): when it fails it is solved
-            once more from :meth:`external` when that gives a start; the failed record is
-            kept, marked 'discarded', and the second one returned.
+            The record index and the state.
         """
-        from_neighbour = (self.external_fallback and guess is not None
-                          and guess is not self._external_guess
-                          and any(self.usable(i) for i in self.states))
-        if not from_neighbour:
-            return self._solve_from(approach, guess, phase, give_up_after)
-        return self.race(approach, (lambda: guess, lambda: self.external(approach)), phase,
-                         give_up_after, give_up_last=True)
-
-    def _solve_from(self, approach, start, phase, give_up_after=None):
-        """Solve the state at ``approach`` from ``start`` once, and record it."""
-        st = solve_problem(self.prob, float(approach), start, self.tol, self.max_iter,
-                           stretch_every=self.stretch_every, anderson_memory=self.anderson_memory,
-                           give_up_after=give_up_after)
+        st = solve_problem(self.prob, float(approach), guess, self.tol, self.max_iter)
         return self.record(st, phase), st
-
-    def race(self, approach, starts, phase, give_up_after=None, give_up_last=False):
-        """Solve the state at ``approach`` from each start in turn until one converges.
-
-        A race of starts: the same state can converge from one start and stall from another
-        (docs/theory/bem.rst, 'Measurements behind the solver's constants').  A stalled start
-        creeps, setting a new best residual every few outer iterations, so the solver's stall
-        window (``STALL_OUTER``) can leave it running to its cap: ``give_up_after`` stops it.
-
-        Parameters
-        ----------
-        approach : float
-            Approach [length].
-        starts : iterable of callable
-            ``start()``: a warm start (as for :meth:`solve`), or None to skip it.  Called
-            only when the starts before it failed (a start may cost a coarser solve).
-        phase : str
-            Phase of the records.
-        give_up_after : int, optional
-            Every start but the last listed is stopped once it stops converging
-            (``give_up_after`` of :func:`dhfield.bem.solver.solve_problem`); the last one has
-            the solver's full budget unless ``give_up_last``.
-        give_up_last : bool
-            Give the last start ``give_up_after`` too (:meth:`solve`'s race of a neighbour's
-            start and the external one, where ``give_up_after`` is the caller's).
-
-        Returns
-        -------
-        (int, ContactState) or None
-            The record index and the state of the first start that converged, else of the
-            last one tried; None when every start gave None.  Each failed state followed by
-            another try is kept, marked 'discarded'.  When the last try was given up early
-            and every later start gave None, or the last start ended unconverged at a larger
-            residual than a try given up early, the try given up with the smallest residual
-            goes on from its best iterate with the full budget (a try given up while its
-            residual was still falling is not lost).
-        """
-        starts = list(starts)
-        last, window, given_up = None, None, []
-        for i, start in enumerate(starts):
-            guess = start()
-            if guess is None:
-                continue
-            if last is not None:
-                self.records[last[0]]["phase"] = "discarded"      # solved again from the next start
-            window = give_up_after if (give_up_last or i < len(starts) - 1) else None
-            last = self._solve_from(approach, guess, phase, window)
-            if last[1].converged:
-                return last
-            if window and self._given_up(last[1], window):
-                given_up.append(last)
-        if given_up and not give_up_last:
-            best = min(reversed(given_up), key=lambda t: t[1].residual)
-            if given_up[-1] is last or best[1].residual < last[1].residual:
-                # the tries given up early had no later start after all (each gave None), or the
-                # last start, with the full budget, ended farther off than one of them: the one with
-                # the smallest residual goes on from its best iterate with the full budget
-                self.records[last[0]]["phase"] = "discarded"
-                last = self._solve_from(approach, best[1], phase, None)
-        return last
-
-    def _given_up(self, st, window) -> bool:
-        """Whether an unconverged state stopped at its give-up window, not at a budget (CG, outer)."""
-        return window <= st.outer_iterations < MAX_OUTER and st.iterations < self.max_iter
 
     def kept(self) -> list:
         """Return the indices of the records not 'discarded' (a discarded state was solved again).
@@ -522,39 +416,6 @@ class Branch:
         """
         return sorted(indices, key=lambda i: -self.records[i]["approach"])
 
-    def widest_edge_guess(self, approach, guess):
-        """Solve the state at ``approach`` from ``guess`` with the Dugdale edge at its widest, as a start.
-
-        The same state on :meth:`dhfield.bem.solver.AdhesiveProblem.with_widest_edge` (built
-        once).  On a grid whose own edge is a little narrower than the widest its fixed point
-        can converge where the own edge's wanders, and the own state then converges from it;
-        where the own edge is half as wide (the mu = 10 level-2 grids) it does not help, so the
-        refined levels' race does not use it (docs/theory/bem.rst, 'The adhesive solver').  Not
-        recorded: it is a start, not a state of this branch.
-
-        Parameters
-        ----------
-        approach : float
-            Approach [length].
-        guess : ContactState or Prediction or None
-            Its own start; None: no start (None is returned).
-
-        Returns
-        -------
-        ContactState or None
-            The converged wide-edge state (a start for :meth:`solve`); None when ``guess`` is
-            None, when this grid's edge is within :data:`WIDEST_EDGE_MIN_GAIN` of its widest
-            already (at mu = 10 the level-1 grids' edges are 1.9-2.0 h0, the level-2 grids'
-            1.03-1.08 h0), or when the wide-edge state did not converge either.
-        """
-        if guess is None or (0.0 < self.prob.widest_spread < WIDEST_EDGE_MIN_GAIN * self.prob.min_spread):
-            return None                         # (this grid's edge is almost at its widest already)
-        if self._widest is None:
-            self._widest = self.prob.with_widest_edge()
-        st = solve_problem(self._widest, float(approach), guess, self.tol, self.max_iter,
-                           stretch_every=self.stretch_every)
-        return st if st.converged else None
-
     def external(self, approach):
         """Return the warm start of ``warm_start`` at ``approach`` when it is a state of this grid.
 
@@ -578,8 +439,7 @@ class Branch:
 
         The warm start of the coarser grid when there is one (:meth:`external`),
         else the secant extrapolation of ``prev`` and ``last`` when they allow it,
-        else ``last``.  With ``external_fallback`` the external start only when
-        ``last`` is None (:meth:`solve` falls back on it).
+        else ``last``.
 
         Parameters
         ----------
@@ -596,11 +456,9 @@ class Branch:
             The warm start (None: ``last`` is None or not held).
         """
         last, prev = (self.states.get(s) if isinstance(s, int) else s for s in (last, prev))
-        if not self.external_fallback or last is None:
-            g = self.external(approach)
-            if g is not None:
-                self._external_guess = g
-                return g
+        g = self.external(approach)
+        if g is not None:
+            return g
         return secant_prediction(self.prob, prev, last, approach)
 
     def nearest_usable(self, approach):

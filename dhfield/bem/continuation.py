@@ -19,14 +19,10 @@ state through the fold on the sphere at lambda = 3, N = 128), and the
 displacement-control pull-off is *interpolated* between states on both sides
 of the minimum of delta(F_a) instead of extrapolated.
 
-Algorithm (:func:`solve_at_adhesive_force`): the outer fixed point of
-:mod:`dhfield.bem.solver` (Polonsky-Keer inner problem with the adhesive stress
-as a load, Anderson mixing) on the augmented unknown (s, delta).  After each
-inner solve the gap h is shifted rigidly by the D that makes the adhesive force
-of the updated stress equal to the target (a monotone scalar root of the
-sub-cell zone fractions, no extra inner solve); D is the residual of delta.
-The fixed point is the same state as :func:`dhfield.bem.solver.solve_problem`
-gives at the returned approach.
+Algorithm (:func:`solve_at_adhesive_force`): the semismooth Newton solve of
+:mod:`dhfield.bem.newton` with the approach as an extra unknown and the force as
+an extra equation (:func:`dhfield.bem.newton.solve_state_at_force`).  The state
+is the one :func:`dhfield.bem.solver.solve_problem` gives at the returned approach.
 
 References
 ----------
@@ -40,12 +36,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..core.validation import check_count, check_finite, check_positive, check_sequence
-from .laws import DugdaleLaw, cell_fraction_below
-from .solver import (ANDERSON_RESTART, MAX_OUTER, STALL_OUTER, AdhesiveProblem, AndersonMixing, Prediction,
-                     assemble_state, extrapolated_start, solve_contact_pressure)
+from .laws import DugdaleLaw
+from .solver import AdhesiveProblem, Prediction, extrapolated_start
 from .state import ContactState
 
 __all__ = ["solve_at_adhesive_force", "adhesive_force", "fold_by_adhesive_force", "fit_fold", "FoldSearch",
@@ -63,9 +57,6 @@ FOLD_SCATTER_SIGMAS = 2.0
 #: is deeper there than this many residual standard deviations (else the error estimate
 #: spans the load of both).
 FOLD_RESOLVED_SIGMAS = 3.0
-#: Largest rigid shift D of the gap per outer iteration, in units of the law's range
-#: (bounds the root search; a larger mismatch is corrected over several iterations).
-MAX_SHIFT_RANGES = 4.0
 
 
 def adhesive_force(state: ContactState) -> float:
@@ -93,31 +84,11 @@ def adhesive_force(state: ContactState) -> float:
     return float(s.sum()) * state.cell_area
 
 
-def _shift_for_force(prob, h, contact, target):
-    """Rigid shift D of the gap (h -> h - D) that gives the adhesive force ``target``."""
-    law = prob.law
-    if isinstance(law, DugdaleLaw):
-        sx, sy = prob.gradient_spreads(h)          # a rigid shift leaves the gradients alone
-
-        def force(shift):
-            chi = cell_fraction_below(law.range - h + shift, sx, sy)
-            chi[contact] = 1.0
-            return law.max_stress * float(chi.sum()) * prob.weight
-    else:
-        def force(shift):
-            s = np.where(contact, law.max_stress, law.stress(np.maximum(h - shift, 0.0)))
-            return float(s.sum()) * prob.weight
-    lim = MAX_SHIFT_RANGES * law.range
-    lo, hi = force(-lim) - target, force(lim) - target
-    if lo >= 0.0:
-        return -lim
-    if hi <= 0.0:
-        return lim
-    return brentq(lambda d: force(d) - target, -lim, lim, xtol=1e-12 * law.range, rtol=1e-12)
-
-
 def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, max_iter) -> ContactState:
     """Adhesive state at a prescribed adhesive force, the approach being an unknown.
+
+    The semismooth Newton solve of :mod:`dhfield.bem.newton` bordered by the force
+    (:func:`dhfield.bem.newton.solve_state_at_force`), from ``guess``.
 
     Parameters
     ----------
@@ -130,62 +101,34 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
     approach : float
         First guess of the approach [length].
     tol : float
-        Tolerance [-], as in :func:`dhfield.bem.solver.solve_problem`.
+        Tolerance [-]: ``max |min(h/h0, p/sigma0)|`` and ``|F_a - force|/force``.
     max_iter : int
-        Iteration cap, as in :func:`dhfield.bem.solver.solve_problem`; the approach is
-        converged when the rigid shift of the gap that restores the force is
-        below ``tol`` times the law's range.
+        Cap on the GMRES iterations of each linear solve.
 
     Returns
     -------
     ContactState
         At the approach found (``state.approach``), flagged ``converged``.
     """
+    from dataclasses import replace as _replace
+
+    from .newton import NESTED_OPTIONS, solve_state_at_force
+    from .solver import newton_contact_state
+
     law = prob.law
     if law is None:
         raise ValueError("prob must have an adhesive law (DugdaleLaw or ExponentialLaw); got None")
     target = float(check_positive("force", force, "adhesive force, force"))
     delta = float(check_finite("approach", approach, "first guess of the approach, length"))
-    sigma0, h0 = law.max_stress, law.range
     if isinstance(guess, Prediction):
-        p, s = guess.pressure.copy(), guess.stress.copy()
-    elif isinstance(guess, ContactState) and guess.repulsive_pressure is not None:
-        p, s = prob.to_work(guess.repulsive_pressure).copy(), prob.stress_of_state(guess)
+        q0 = prob.work_array(guess.pressure) - prob.work_array(guess.stress)
+    elif isinstance(guess, ContactState):
+        q0 = prob.to_work(guess.pressure)
     else:
         raise ValueError("guess must be a solved ContactState or a Prediction of the same problem")
-    gain = min(1.0, prob.min_spread / h0) if prob.min_spread > 0.0 else 1.0
-    inner_tol = 0.1 * tol * gain
-    # weight of the approach among the stress unknowns in Anderson's least squares
-    w_delta = math.sqrt(max(np.count_nonzero(s), 1))
-    acc = AndersonMixing()
-    res = err = np.inf
-    total_it = outer = best_outer = 0
-    best = None
-    while outer < MAX_OUTER and total_it < max_iter and outer - best_outer <= STALL_OUTER:
-        outer += 1
-        itol = gain * (1e-3 if not np.isfinite(res) else min(max(0.1 * res, 0.1 * tol), 1e-2))
-        p, h, it, err = solve_contact_pressure(prob.op, prob.z - delta, p, h0, itol, max_iter - total_it,
-                                               prob.k0, stress=s)
-        total_it += it
-        contact = p > 0
-        f = prob.stress_from_gap(h, contact) - s
-        shift = _shift_for_force(prob, h, contact, target)
-        res = max(float(np.max(np.abs(f))) / sigma0, abs(shift) / h0)
-        if best is None or res < best[0]:
-            best = (res, s.copy(), p.copy(), h.copy(), err, delta)
-            best_outer = outer
-        if res <= tol and err <= tol and (err <= inner_tol or itol <= inner_tol):
-            break
-        x = np.append(s.ravel() / sigma0, delta / h0 * w_delta)
-        fx = np.append(f.ravel() / sigma0, shift / h0 * w_delta)
-        new = acc.step(x, fx)
-        s = np.clip(new[:-1].reshape(s.shape) * sigma0, 0.0, sigma0)
-        delta = float(new[-1]) * h0 / w_delta
-        if outer % ANDERSON_RESTART == 0:
-            acc.reset()
-    else:
-        res, s, p, h, err, delta = best
-    return assemble_state(prob, delta, p, s, h, total_it, max(res, err), res <= tol and err <= tol, outer)
+    options = _replace(NESTED_OPTIONS, tol=float(tol), max_krylov=int(max_iter))
+    st, delta = solve_state_at_force(prob, target, delta, q0, options)
+    return newton_contact_state(prob, delta, st, st.krylov_iterations, st.newton_iterations)
 
 
 def _secant(prob, prev, last, t):

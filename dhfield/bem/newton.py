@@ -78,7 +78,7 @@ from .laws import DugdaleLaw
 from .operator import influence_coefficients
 
 __all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
-           "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start",
+           "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start", "cold_start_on", "ramp_stress", "solve_state_at_force",
            "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE", "DIVERGED_STALL",
            "fgmres", "right_preconditioned_gmres", "contact_cg", "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport",
            "NestedResult", "solve_state_nested"]
@@ -664,6 +664,127 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
                         history, time.perf_counter() - t0)
 
 
+#: Largest relative GMRES tolerance of the bordered solve (:func:`solve_state_at_force`): the
+#: approach's step is a ratio of sums over the edge cells of both solutions, and with the forcing
+#: 0.1 of :class:`SolverOptions` it oscillated (4 of the 32 states of the branch at beta0 = 0.5,
+#: mu = 2, N = 64 unconverged after 60 Newton iterations); at 1e-3 all 32 converged in 3-4.
+BORDERED_FORCING = 1e-3
+
+
+def solve_state_at_force(problem, force, delta, guess, options=SolverOptions(), precond=None, log=None):
+    """Solve one adhesive state at a prescribed adhesive force, the approach an unknown.
+
+    The state equations of :func:`solve_state` bordered by the adhesive force
+    ``F_a = sum sigma(h) dA = force``, with the approach ``delta`` as the extra unknown.  Each
+    Newton step solves the generalised Jacobian twice (for the residual and for the approach's
+    column, whose rows are ``-c`` on the contact and ``sigma'`` on the law's ramp: a rigid
+    shift of the gap), to a relative tolerance of at most :data:`BORDERED_FORCING`, and the
+    approach's step follows from the linearised force.  A step is
+    accepted when it lowers the merit ``||F||^2 + G^2`` below the largest of the last
+    ``options.nonmonotone`` merits (G the force's residual in the units of F), else halved.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        Grid, initial gap, law and operator.
+    force : float
+        Adhesive force F_a > 0 [force].
+    delta : float
+        First guess of the approach [length].
+    guess : ndarray
+        Total traction on the working grid to start from (a state of the same branch) [stress].
+    options : SolverOptions
+        Tolerances and caps (``tol`` also bounds ``|F_a - force| / force``).
+    precond : callable, optional
+        :func:`symbol_preconditioner` of the problem (built when omitted).
+    log : callable, optional
+        One line per Newton iteration.
+
+    Returns
+    -------
+    (NewtonResult, float)
+        The state and its approach.
+    """
+    t0 = time.perf_counter()
+    law = _Law(problem.law, problem.min_spread)
+    op = problem.op
+    if precond is None:
+        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
+    sigma0, h0 = law.sigma0, law.h0
+    c = sigma0 / h0
+    target = float(force)
+    w = problem.weight
+    g_scale = 1.0 / (w * math.sqrt(problem.z.size))        # G in the units of ||F|| (stress x sqrt(cells))
+    q = np.array(guess, dtype=float, copy=True)
+    delta = float(delta)
+
+    def evaluate(q, d):
+        h, p = _state(problem, law, d, q)
+        F = _residual(h, p, c)
+        fa = float(np.sum(law.stress(h))) * w
+        return h, p, F, fa, math.hypot(float(np.linalg.norm(F)), (fa - target) * g_scale)
+
+    h, p, F, fa, merit = evaluate(q, delta)
+    history = [merit]
+    krylov = calls = it = 0
+    reason = DIVERGED_MAX_IT
+    while True:
+        res = max(float(np.max(np.abs(F))) / sigma0, abs(fa - target) / target)
+        if res <= options.tol:
+            reason = CONVERGED
+            break
+        if it >= options.max_newton:
+            break
+        it += 1
+        contact = c * h < p
+        slope = law.slope(h)
+        edge = (~contact) & (slope > 0.0)
+        free = ~(contact | edge)
+        rtol = min(options.forcing, BORDERED_FORCING, math.sqrt(merit / max(history[0], 1e-300)))
+        dq0 = np.zeros_like(q)
+        dq0[free] = -p[free]
+        y0 = op(dq0)
+        rhs0 = np.where(contact, -c * (h + y0), -p + slope * y0)
+        r1 = np.where(contact, c, -slope)            # the approach's column: a rigid shift of the gap
+        jac = _Jacobian(op, contact, edge, slope, precond, gap_scale=c, inner=options.contact_inner)
+        x0, k0, _ = _gmres(jac, rhs0.ravel()[jac.idx], rtol, options.max_krylov)
+        x1, k1, _ = _gmres(jac, r1.ravel()[jac.idx], rtol, options.max_krylov)
+        krylov += k0 + k1
+        kx0 = op(jac.scatter(x0).copy())
+        kx1 = op(jac.scatter(x1).copy())
+        calls += jac.calls + 3
+        # linearised force: fa + w sum_E (-slope) (-d_delta + y0 + K x0 + d_delta K x1) = target
+        num = fa - target - w * float(np.sum(slope * (y0 + kx0)))
+        den = w * float(np.sum(slope * (1.0 - kx1)))
+        if not (den != 0.0 and math.isfinite(num / den)):
+            reason = DIVERGED_LINEAR_SOLVE
+            break
+        dd = -num / den
+        step = dq0.copy()
+        step.ravel()[jac.idx] = x0 + dd * x1
+        ref = max(history[-options.nonmonotone:])
+        alpha = 1.0
+        while True:
+            qt, dt = q + alpha * step, delta + alpha * dd
+            ht, pt, Ft, fat, mt = evaluate(qt, dt)
+            calls += 1
+            if mt < (1.0 - 1e-4 * alpha) * ref or alpha <= 1e-3:
+                break
+            alpha *= 0.5
+        if not mt < ref:
+            reason = DIVERGED_LINE_SEARCH
+            break
+        q, delta, h, p, F, fa, merit = qt, dt, ht, pt, Ft, fat, mt
+        history.append(merit)
+        if log is not None:
+            log(f"newton {it:3d}: residual {res:.3e} merit {merit:.3e} step {alpha:.3g} approach {delta:.8f} "
+                f"gmres {k0}+{k1}")
+    load = float(np.sum(q)) * problem.weight
+    state = NewtonResult(q, h, c * h < p if reason == CONVERGED else p > 0, load, res, reason, it, krylov, calls,
+                         history, time.perf_counter() - t0)
+    return state, delta
+
+
 def _modulus(problem):
     """E* of the problem's operator [stress]."""
     return problem.op.reduced_modulus
@@ -872,6 +993,55 @@ def load_minimum(problem, approach, guess=None, half_window=None, samples=7, opt
             return result(xv, yv, err, True, CONVERGED)
         center = float(np.clip(xv, center - 2 * hw, center + 2 * hw))
     return result(center, float("nan"), float("inf"), False, "diverged_window")
+
+
+def ramp_stress(problem, gap):
+    """The adhesive stress of the grid's law (its Dugdale edge a ramp of width ``min_spread``) at ``gap``.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The problem (law and edge width).
+    gap : ndarray
+        Gap on the working grid [length].
+
+    Returns
+    -------
+    ndarray
+        The stress sigma(h) per cell [stress].
+    """
+    return _Law(problem.law, problem.min_spread).stress(gap)
+
+
+def cold_start_on(problem, delta, zone, tol=1e-3, max_iter=5000):
+    """An analytic start: sigma0 on the full-grid cells ``zone``, and the contact pressure it implies.
+
+    As :func:`cold_start`, with the zone given as a mask instead of an ellipse.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The problem.
+    delta : float
+        Approach [length].
+    zone : ndarray of bool, shape (nx, ny)
+        Cells of the start's adhesive zone (full grid).
+    tol : float
+        Tolerance of the contact solve (relative to the law's range) [-].
+    max_iter : int
+        Cap on its CG iterations.
+
+    Returns
+    -------
+    ndarray
+        The traction q on the working grid [stress].
+    """
+    from .solver import solve_contact_pressure
+
+    s = problem.to_work(problem.law.max_stress * np.asarray(zone, dtype=float))
+    sol = solve_contact_pressure(problem.op, problem.z - delta, np.zeros_like(s), problem.law.range, tol, max_iter,
+                                 problem.k0, stress=s)
+    return sol.pressure - s
 
 
 def cold_start(problem, delta, zone_semi_axes, tol=1e-3, max_iter=5000):
@@ -1154,7 +1324,7 @@ def prolong_state(state, coarse, fine, mode="gap"):
     return np.maximum(prolong(p), 0.0) - lf.stress(h)
 
 
-def grid_ladder(problem, levels, threads=1, relaxed_edge=False):
+def grid_ladder(problem, levels, threads=1):
     """The problems of a nested solve: ``problem`` on its grid and on grids 2, 4, ... times coarser.
 
     Parameters
@@ -1165,10 +1335,6 @@ def grid_ladder(problem, levels, threads=1, relaxed_edge=False):
         Grids in the ladder (1: the target only); every coarser grid halves both cell counts.
     threads : int
         FFTW threads of the operators.
-    relaxed_edge : bool, default False
-        The coarser grids' Dugdale edge as wide as their discrete stability wants, beyond its cap
-        2 h0 (``AdhesiveProblem(relaxed_edge=True)``): their states are starts, not answers.  The
-        target grid keeps its own edge.
 
     Returns
     -------
@@ -1190,7 +1356,7 @@ def grid_ladder(problem, levels, threads=1, relaxed_edge=False):
     out = []
     for j in range(levels - 1, 0, -1):
         nd = problem.coarser(nx // 2 ** j)
-        out.append(AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, threads, 1.0, relaxed_edge=relaxed_edge))
+        out.append(AdhesiveProblem(nd.initial_gap, nd.grid, nd.law, None, threads, 1.0))
     out.append(problem.adhesive_problem(threads))
     return out
 

@@ -32,11 +32,11 @@ from .branch import Branch, UnloadingPath
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
 from .path import PathOptions, PathStart, load_control_path, path_on
-from .solver import STRETCH_ANDERSON_MEMORY, AdhesiveProblem, Prediction
+from .solver import AdhesiveProblem, Prediction
 from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "UnloadingStart", "NondimensionalProblem",
-           "NestedWarmStart", "LowerMuWarmStart", "CoarseRouteWarmStart", "LOWER_MU_RATIO",
+           "NestedWarmStart",
            "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
            "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS", "pull_off_result",
            "pull_off_summary", "check_bem_pull_off", "unresolved_reasons", "discretisation_error",
@@ -388,7 +388,6 @@ class _HalfGridWarmStart:
     _fine_nd = None       # the fine grid's NondimensionalProblem
     _fine_prob = None     # its working arrays, built on first use
     _threads = None
-    starts_every_state = False   # True: the predicted route starts every state from it (predicted_path)
 
     def coarse_state(self, approach) -> ContactState:    # pragma: no cover - every subclass defines it
         raise NotImplementedError
@@ -622,25 +621,6 @@ def _vertex_path(b, problem, options):
 #: this fraction of the grid's discretisation error (:func:`discretisation_error`): below it one
 #: more fine state changes the stated error by less than this fraction.
 VERTEX_ERROR_FRACTION = 0.1
-#: The predicted route's states take a stretch step (:func:`dhfield.bem.solver.stretch_step`)
-#: every this many outer iterations while they stall (``STRETCH_STALL_RATIO``).  Without it
-#: the cold state's zone, a few cells off GVG's prediction, creeps by a fraction of a cell per
-#: outer iteration and stalls, trapped by the lattice (docs/theory/bem.rst, 'Measurements behind
-#: the solver's constants').
-PREDICTED_STRETCH_EVERY = 30
-#: A start of a raced state (:func:`_raced`, all but the last) is given up once the best residual of
-#: the last half of this many outer iterations is above ``STRETCH_STALL_RATIO`` times the best of
-#: the first half (two stretch windows: a stretch step has had its chance).  A stalled state
-#: creeps along one mode whose fixed-point contraction is 0.97-0.99 per iteration (an
-#: eigenvalue near 1; docs/theory/bem.rst).
-RACE_GIVE_UP_AFTER = 2 * PREDICTED_STRETCH_EVERY
-#: The predicted route mixes with ``STRETCH_ANDERSON_MEMORY`` (30, no periodic restart) when its
-#: states start from an external start (the lower-mu start: the retry of a failed case; the route's
-#: own state on the grid half as fine: the refined grid levels), and with the solver's default (6,
-#: restarted every 40) from GVG's cold start: the long memory converges the stalled states of the
-#: external starts and slows GVG's (docs/theory/bem.rst).
-
-
 def _dilated_start(branch, near, approach):
     """Warm start at ``approach``: the nearest solved state dilated to the contact it should have.
 
@@ -707,243 +687,27 @@ def dilate_state(state, sx, sy):
 def _predicted_solver(branch, cold):
     """``solve(approach)`` of the predicted route on ``branch``: the state there (its record index).
 
-    The first state starts from the branch's external warm start (:meth:`Branch.guess`: the
-    same approach on a coarser grid or at a lower mu) when it gives one, else cold (sigma0 on
-    the start's zone, ``cold``, working arrays); with ``external_fallback``, a first state that
-    fails from the external start is solved once more cold, and then from its wide-edge state
-    solved cold (a race, :meth:`Branch.race`; :meth:`Branch.widest_edge_guess`).  With
-    ``external_fallback`` every later state
-    starts from the nearest solved state dilated to the contact expected at its approach
-    (:func:`_dilated_start`), and the branch solves a failed one once more from the external
-    start; without it every state is raced (:meth:`Branch.race`): from the external start, and
-    when that fails from the nearest converged state dilated, then from the warm start's
-    ``alternative`` (:meth:`CoarseRouteWarmStart.alternative`), cold only when none gives a start.
+    The one start protocol: the first state from the branch's external warm start when it gives
+    one (:meth:`Branch.guess`: the same approach on a coarser grid), else cold (sigma0 on the
+    start's zone, ``cold``, working arrays); every later one from the nearest solved state
+    dilated to the contact expected at its approach (:func:`_dilated_start`).  A state that does
+    not converge from its start is solved by nested iteration from the coarsest grid
+    (:func:`dhfield.bem.solver.solve_problem`).
     """
     b = branch
-
-    def cold_start():                           # sigma0 on the start's zone, no contact yet
-        return Prediction(np.zeros_like(cold), cold.copy())
 
     def solve(d):
         done = [i for i in b.kept() if b.approach(i) == d]
         if done:
             return done[0]                      # solved already (e.g. the first sample)
         near = sorted((i for i in b.states if b.usable(i)), key=lambda i: abs(b.approach(i) - d))
-        if not b.external_fallback:             # every state from the external start: a race of starts
-            return _raced(b, near, d, cold_start)[0]
-        if not near:                            # the first state: the external start, cold, then wide-edge
-            # each with the full budget: a give-up window cut the level-1 first state of beta0 = 0.1
-            # (mu = 10, under level 2) from the lower-mu start at residual 3.6e-3 after 63 outer
-            # iterations, where the same start with the full budget converged
-            return b.race(d, (lambda: b.guess(d, None), cold_start,
-                              lambda: b.widest_edge_guess(d, cold_start())), "unloading")[0]
-        return b.solve(d, _dilated_start(b, near, d), "unloading")[0]
+        if near:
+            return b.solve(d, _dilated_start(b, near, d), "unloading")[0]
+        guess = b.guess(d, None)
+        return b.solve(d, guess if guess is not None else Prediction(np.zeros_like(cold), cold.copy()),
+                       "unloading")[0]
 
     return solve
-
-
-def _raced(b, near, d, cold_start):
-    """The state at ``d`` on ``b`` from a race of starts (:meth:`Branch.race`): the external start
-    (``b.guess``), the nearest converged state dilated (:func:`_dilated_start`), the warm start's
-    ``alternative`` when it has one (:meth:`CoarseRouteWarmStart.alternative`), else
-    ``cold_start()`` when none gave a start.  (No wide-edge start here: it does not help on the
-    refined levels; :meth:`Branch.widest_edge_guess`.)"""
-    alternative = getattr(b.warm_start, "alternative", None)
-    starts = [lambda: b.guess(d, None)]
-    if near:
-        starts.append(lambda: _dilated_start(b, near, d))
-    if alternative is not None:
-        starts.append(lambda: alternative(d))
-    return (b.race(d, starts, "unloading", give_up_after=RACE_GIVE_UP_AFTER)
-            or b.solve(d, cold_start(), "unloading"))
-
-
-#: Tabor parameter of the lower-mu start (:class:`LowerMuWarmStart`) per the problem's: mu/2 makes
-#: the Dugdale edge's ``edge_width_ratio`` (~ mu^2) 4x smaller, so that the grid half as fine of a
-#: level-1 grid of the predicted route (ratio ~1.8 at mu = 10) holds it (~0.45).
-LOWER_MU_RATIO = 0.5
-
-
-class LowerMuWarmStart(_HalfGridWarmStart):
-    """Warm starts from the same approach at a lower Tabor parameter, solved on the grid half as fine.
-
-    The predicted route's cold start is GVG's elliptical contact (corrected by the sphere's MD).
-    On a slender contact the contact's tips are not where an ellipse puts them, and at high
-    mu the fixed point moves them by a fraction of a cell per iteration, so a cold state can
-    wander.  At ``LOWER_MU_RATIO`` mu the grid half as fine holds the edge, and the state there,
-    solved by nested warm starts from coarser grids (:class:`NestedWarmStart`, the located
-    route's starts), has its contact where the grid's own solution has it.  Carried to the fine
-    grid with the fine law's zone (:func:`_carried_to_fine`), it starts the fine state
-    (docs/theory/bem.rst, 'Measurements behind the solver's constants').
-
-    Parameters
-    ----------
-    problem : NondimensionalProblem
-        The fine grid's problem (Dugdale law), with a cold start; ``nx`` and ``ny`` multiples of 4.
-    tol : float
-        Solver tolerance of the lower-mu states.
-    max_iter : int
-        Cap on CG iterations of a lower-mu state.
-    threads : int, optional
-        FFTW threads.
-    mu_ratio : float, default LOWER_MU_RATIO
-        The lower Tabor parameter per the problem's, in (0, 1) [-].
-
-    Attributes
-    ----------
-    states_solved, iterations : int
-        Lower-mu states solved (on every grid of the nest) and their CG iterations.
-    """
-
-    def __init__(self, problem, *, tol, max_iter, threads=None, mu_ratio=LOWER_MU_RATIO):
-        if not isinstance(problem, NondimensionalProblem) or not problem.has_cold_start:
-            raise ValueError("problem must be a NondimensionalProblem with a cold start")
-        if not isinstance(problem.law, DugdaleLaw):
-            raise ValueError(f"problem must have a Dugdale law for a lower-mu start; got {type(problem.law).__name__}")
-        mu_ratio = float(mu_ratio)
-        if not 0.0 < mu_ratio < 1.0:
-            raise ValueError(f"mu_ratio must be in (0, 1) (lower Tabor parameter per the problem's); got {mu_ratio!r}")
-        g = problem.grid
-        if g.nx % 4 or g.ny % 4:
-            raise ValueError(f"problem must have nx and ny multiples of 4 for warm starts from the grid half as "
-                             f"fine; got {g.nx} x {g.ny}")
-        mu_lo = mu_ratio * problem.mu
-        # the lower mu keeps its own edge (a start of another law; held at 2 h0 with level 1's, the
-        # level-1 first state of beta0 = 0.1, mu = 10 under level 2 did not converge from it)
-        lower = replace(problem, mu=mu_lo, law=law_from_name("dugdale", mu_lo, 1.0))
-        self.mu = mu_lo
-        self._fine_nd, self._threads, self._fine_prob = problem, threads, None
-        self._nested = NestedWarmStart(lower, tol=tol, max_iter=max_iter, threads=threads)
-
-    @property
-    def states_solved(self) -> int:
-        """Lower-mu states solved, over all grids."""
-        return self._nested.states_solved
-
-    @property
-    def iterations(self) -> int:
-        """CG iterations of the lower-mu states, over all grids."""
-        return self._nested.iterations
-
-    def coarse_state(self, approach) -> ContactState:
-        """Solve the lower-mu state at ``approach`` on the grid half as fine (once; later calls reuse it).
-
-        Parameters
-        ----------
-        approach : float
-            Approach [c_r^2/R].
-
-        Returns
-        -------
-        ContactState
-            The lower-mu state on the grid half as fine, converged or not.
-        """
-        return self._nested.coarse_state(approach)
-
-
-class CoarseRouteWarmStart(_HalfGridWarmStart):
-    """Warm starts from the same approach at the same mu, solved on the grid half as fine by the predicted route.
-
-    For a refined level of the predicted route (twice the cells per axis of a grid on which
-    the route converges).  The state at ``approach`` is solved on the grid half as fine as
-    the predicted route solves it there: the first from the lower-mu start one grid further
-    down (:class:`LowerMuWarmStart`), every later one from its nearest solved neighbour
-    (:func:`_predicted_solver`, with the lower-mu start as fall-back), mixed with Anderson
-    memory ``STRETCH_ANDERSON_MEMORY``; then it is carried onto the fine grid.  The fine state
-    starts with its contact and zone where the coarse grid's solution has them, at the same
-    mu, where the lower-mu start's zone is half as wide as the fine one's.  The route starts
-    every state from here (``starts_every_state``).  It shortens the fine states but does not
-    make every one converge (docs/theory/bem.rst, 'Measurements behind the solver's constants').
-
-    Parameters
-    ----------
-    problem : NondimensionalProblem
-        The fine grid's problem (Dugdale law), with a cold start; ``nx`` and ``ny`` multiples
-        of 8 (the grid half as fine takes a lower-mu start from its own half).
-    tol : float
-        Solver tolerance of the coarse states.
-    max_iter : int
-        Cap on CG iterations of a coarse state.
-    threads : int, optional
-        FFTW threads.
-
-    Attributes
-    ----------
-    states_solved, iterations : int
-        Coarse and lower-mu states solved and their CG iterations.
-    starts_every_state : bool
-        True: the predicted route starts every state from it, not only the first
-        (:func:`predicted_path`).
-    """
-
-    starts_every_state = True
-
-    def __init__(self, problem, *, tol, max_iter, threads=None):
-        if not isinstance(problem, NondimensionalProblem) or not problem.has_cold_start:
-            raise ValueError("problem must be a NondimensionalProblem with a cold start")
-        g = problem.grid
-        if g.nx % 8 or g.ny % 8:
-            raise ValueError(f"problem must have nx and ny multiples of 8 for warm starts from the predicted route on "
-                             f"the grid half as fine; got {g.nx} x {g.ny}")
-        coarse = problem.coarser(g.nx // 2)        # level 1's route as it runs alone
-        self._fine_nd, self._threads, self._fine_prob = problem, threads, None
-        self._tol, self._max_iter, self._alternative = tol, max_iter, None
-        self._lower = LowerMuWarmStart(coarse, tol=tol, max_iter=max_iter, threads=threads)
-        prob = coarse.adhesive_problem(threads)
-        self._branch = Branch(prob, tol, max_iter, progress=False, keep_states=True,
-                              stretch_every=PREDICTED_STRETCH_EVERY, anderson_memory=STRETCH_ANDERSON_MEMORY,
-                              warm_start=self._lower, external_fallback=True)
-        self._solve = _predicted_solver(self._branch, coarse.path_start(prob).stress)
-
-    @property
-    def states_solved(self) -> int:
-        """Coarse states solved, and the lower-mu states under them and under :meth:`alternative`."""
-        return len(self._branch.records) + sum(w.states_solved for w in self._lower_starts())
-
-    @property
-    def iterations(self) -> int:
-        """CG iterations of the coarse and lower-mu states."""
-        return sum(r["iterations"] for r in self._branch.records) + sum(w.iterations for w in self._lower_starts())
-
-    def _lower_starts(self):
-        return [self._lower] + ([] if self._alternative is None else [self._alternative])
-
-    def alternative(self, approach):
-        """The last start of a raced fine state: the lower-mu start of the fine grid (:class:`LowerMuWarmStart`).
-
-        The predicted route starts a fine state from here when the start from the grid half as
-        fine and the nearest converged fine state (where there is one) both failed
-        (:meth:`Branch.race`).  Built on first use.
-
-        Parameters
-        ----------
-        approach : float
-            Approach [c_r^2/R].
-
-        Returns
-        -------
-        ContactState or None
-            The fine grid's warm start, or None when the lower-mu state did not converge.
-        """
-        if self._alternative is None:
-            self._alternative = LowerMuWarmStart(self._fine_nd, tol=self._tol, max_iter=self._max_iter,
-                                                 threads=self._threads)
-        return self._alternative(float(approach))
-
-    def coarse_state(self, approach) -> ContactState:
-        """Solve the state at ``approach`` on the grid half as fine (once; later calls reuse it).
-
-        Parameters
-        ----------
-        approach : float
-            Approach [c_r^2/R].
-
-        Returns
-        -------
-        ContactState
-            The state on the grid half as fine, converged or not.
-        """
-        return self._branch.states[self._solve(float(approach))]   # (an approach solved already: its record)
 
 
 def predicted_path(problem, options, warm_start=None):
@@ -967,11 +731,9 @@ def predicted_path(problem, options, warm_start=None):
         The fine grid's problem, with a cold start (:attr:`NondimensionalProblem.has_cold_start`).
     options : PathOptions
         Checked path settings (tolerances, ``refine_levels``: no vertex state when 0).
-    warm_start : LowerMuWarmStart or CoarseRouteWarmStart, optional
-        Start the first state from the same approach solved on the grid half as fine (at a
-        lower mu, or at the same mu by this route), and a later one whose start from its
-        neighbours fails (every state when its ``starts_every_state``); a state it gives
-        nothing for starts as above.
+    warm_start : callable, optional
+        ``warm_start(approach)``: a start of the first state on this grid (e.g.
+        :class:`NestedWarmStart`), or None.
 
     Returns
     -------
@@ -986,9 +748,7 @@ def predicted_path(problem, options, warm_start=None):
     spacing = problem.approach_step / LOCATE_DIVISIONS
     prob = problem.adhesive_problem(options.threads)
     b = Branch(prob, options.tol, options.max_iter, label=f"predicted N={problem.grid.nx}",
-               progress=options.progress, keep_states=options.keep_states, stretch_every=PREDICTED_STRETCH_EVERY,
-               anderson_memory=None if warm_start is None else STRETCH_ANDERSON_MEMORY, warm_start=warm_start,
-               external_fallback=not getattr(warm_start, "starts_every_state", False))
+               progress=options.progress, keep_states=options.keep_states, warm_start=warm_start)
     solve = _predicted_solver(b, problem.path_start(prob).stress)
 
     def kept():
@@ -1117,11 +877,13 @@ ZONE_MIN_CELLS = 1.0
 #: Discretisation error of a pull-off relative to |W*|, times the cells across the narrowest
 #: length the state must resolve (:func:`discretisation_error`): an upper bound, by a factor 1.5,
 #: of |W* - W*_ref| / |W*| x cells against exact references (Maugis-Dugdale on the sphere, mu =
-#: 0.3-2, N = 16-128; the Richardson extrapolation of the stored ellipses, beta0 0.5-0.99, mu
-#: 0.3-5; docs/theory/bem.rst).  The error falls like 1/cells to 1/cells^2.  Established for the
-#: Dugdale law only (there is no exact reference for the exponential law on the sphere): applied
-#: to it unchecked, with (c*, d*) its adhesive zone's semi-axes.
-DISCRETISATION_ERROR_PER_CELL = 0.05
+#: 0.3-2, N = 16-128, the located route).  With the Newton solve's ramped Dugdale edge
+#: (2026-12-02) the worst was 0.079 (mu = 0.3, N = 16, 1.9 cells; 0.063 at mu = 0.5, N = 32),
+#: measured by ``python -m verification.calibrate_grid_error``; with the former sub-cell
+#: edge it was 0.033 (K was 0.05).  The error falls like 1/cells to 1/cells^2.  Established for
+#: the Dugdale law only (there is no exact reference for the exponential law on the sphere):
+#: applied to it unchecked, with (c*, d*) its adhesive zone's semi-axes.
+DISCRETISATION_ERROR_PER_CELL = 0.12
 
 
 def resolving_cells(axes, grid, contact=True) -> float:
@@ -1161,7 +923,7 @@ def discretisation_error(w_star, axes, grid, contact=True) -> float:
     Notes
     -----
     .. math:: \\epsilon_h = K \\frac{|W^*|}{\\min(a^*/h_x,\\ b^*/h_y,\\ (c^*-a^*)/h_x,\\ (d^*-b^*)/h_y)},
-        \\qquad K = 0.05
+        \\qquad K = 0.12
 
     (an upper bound on the errors against exact references, :data:`DISCRETISATION_ERROR_PER_CELL`).
     """

@@ -23,36 +23,23 @@ and the load ``W = sum (p - s) dx dy``.
 
 Algorithm
 ---------
-* **Inner problem** (convex): for a given adhesive stress s, the non-adhesive
-  contact with the modified gap ``g0 = z - delta - K s``, solved for the
-  pressure by the Polonsky-Keer constrained conjugate gradient (displacement
-  control: the gradient is the gap on the active set; cells that overlap are
-  added, cells that go tensile are released and conjugacy is reset; Polonsky &
-  Keer 1999).  The pressure is the unknown, so no inverse of the non-periodic
-  operator is needed.  An empty active set (no contact) is the linear case
-  ``h = g0``, returned at once.
-* **Outer problem**: a fixed point on the adhesive stress, accelerated by
-  Anderson mixing (type II, memory 6), warm-started from the previous state
-  of a path.  For the Dugdale law the unknown is the cell fraction chi in the
-  zone h < h0, so ``s = sigma0 chi``.
-* **Sub-cell zone edge** (Dugdale): a cell-wise law pins the zone edge to the
-  cell boundaries (lattice trapping: jagged load curves, pull-off biased
-  towards stronger adhesion).  Here chi of a cell is the exact area fraction
-  of the cell where the *linearly interpolated* gap is below h0
-  (:func:`dhfield.bem.laws.cell_fraction_below`, with the central-difference
-  gradient of h), so the edge moves continuously through the cells and the
-  fixed-point map is continuous.  Contact cells have chi = 1.
-* **Stable discrete edge** (found here): a discrete state is energy-stable
-  only if the spectral radius of ``|d sigma/dh| K`` is below 1, and for a
-  ring of edge cells K sums to ~(2/pi) ln(c/dx) dx/E*.  With the bare sub-cell
-  fraction the edge's gap spread |grad h| dx can be smaller than
-  sigma0 (2/pi) ln(c/dx) dx/E* (lambda >~ 2): then no discrete state is
-  stable, the outer iteration wanders and the path jumps (lattice trapping in
-  another guise; damping cannot cure it).  The fraction is therefore taken
-  over a gap spread of at least ``EDGE_WIDTH_FACTOR (1 + (2/pi) ln n) sigma0 dx/E*``
-  (capped at 2 h0, symmetric about h0 so the work of adhesion is unchanged;
-  it vanishes like dx ln(1/dx)).  Grids that would need more than 2 h0 are
-  flagged ``resolved=False``: in the paper's units that is roughly
+* **An adhesive state** is solved by the semismooth Newton (primal-dual active-set) method of
+  :mod:`dhfield.bem.newton`, the project's one adhesive solver, with one start protocol
+  (:func:`solve_problem`): Newton from the route's start (the converged neighbour, or the same
+  approach on a coarser grid), else nested iteration from the coarsest grid of the domain
+  (:func:`nested_solve`).  Before 2026-12-02 it was a fixed point (Polonsky-Keer CG inside,
+  Anderson-mixed cohesive zone outside) with a sub-cell zone edge; docs/theory/bem.rst keeps
+  why it was replaced.
+* **The non-adhesive contact** (and the contact pressure of a cold start with a given adhesive
+  stress, :func:`solve_contact_pressure`) is solved by the Polonsky-Keer constrained conjugate
+  gradient (displacement control: the gradient is the gap on the active set; cells that overlap
+  are added, cells that go tensile are released and conjugacy is reset; Polonsky & Keer 1999).
+* **Stable discrete edge**: a discrete state is energy-stable only if the spectral radius of
+  ``|d sigma/dh| K`` is below 1, and for a ring of edge cells K sums to ~(2/pi) ln(c/dx) dx/E*.
+  The Dugdale edge is therefore a ramp in the gap at least
+  ``EDGE_WIDTH_FACTOR (1 + (2/pi) ln n) sigma0 dx/E*`` wide (capped at 2 h0, symmetric about h0
+  so the work of adhesion is unchanged; it vanishes like dx ln(1/dx)).  Grids that would need
+  more than 2 h0 are flagged ``resolved=False``: in the paper's units that is roughly
   dx > 2/(kappa_n mu^2), i.e. mu = 5 needs n >~ 512.
 * **Symmetry**: when z is even in x and y (and nx, ny are even) the solver
   works on the quadrant ``x > 0, y > 0`` with the operator's symmetry mode
@@ -75,39 +62,39 @@ References
 .. [2] D. Maugis (1992) Adhesion of spheres: the JKR-DMT transition using a
    Dugdale model. J. Colloid Interface Sci. 150:243-269.
    doi:10.1016/0021-9797(92)90288-C
-.. [3] H. F. Walker, P. Ni (2011) Anderson acceleration for fixed-point
-   iterations. SIAM J. Numer. Anal. 49:1715-1735. doi:10.1137/10078356X
+.. [3] M. Hintermueller, K. Ito, K. Kunisch (2002) The primal-dual active set strategy as
+   a semismooth Newton method. SIAM J. Optim. 13:865-888. doi:10.1137/S1052623401383558
 .. [4] N. H. M. Zini et al. (2018) Tribol. Lett. 66:30. doi:10.1007/s11249-017-0976-8
 """
 from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numpy as np
 from scipy.fft import next_fast_len
 
-from ..core.validation import check_finite, check_optional_count, check_positive
-from .backend import array_module, namespace_of, to_host
+from ..core.validation import check_finite, check_positive
+from .backend import array_module, to_host
 from .laws import DugdaleLaw, cell_fraction_below, check_law
 from .operator import MIN_CELLS, Grid, get_operator, influence_coefficients, quadrant, unfold_quadrant
 from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "edge_width_ratio", "Prediction", "solve_problem", "secant_prediction",
            "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution",
-           "AndersonMixing", "assemble_state", "STRETCH_ANDERSON_MEMORY", "extrapolated_start", "stretch_step", "StretchStep"]
+           "assemble_state", "extrapolated_start", "nested_solve", "coarser_problem",
+           "newton_contact_state"]
 
-#: Default solver tolerance: complementarity error of the contact problem relative to
-#: the law's range (or |delta| without adhesion), and largest change of the zone
-#: fraction between outer iterations [-].
+#: Default solver tolerance: an adhesive state's ``max |min(h/h0, p/sigma0)|``
+#: (:attr:`dhfield.bem.newton.SolverOptions.tol`), or the non-adhesive contact's complementarity
+#: error relative to |delta| [-].
 DEFAULT_TOL = 1e-6
-#: Default cap on the inner (conjugate-gradient) iterations of one state.
+#: Default cap on the conjugate-gradient iterations of a non-adhesive state, and on the GMRES
+#: iterations of each linear solve of an adhesive one (at most ``SolverOptions.max_krylov``).
 DEFAULT_MAX_ITER = 20000
-#: Cap on outer (zone) iterations of one state.
-MAX_OUTER = 300
-#: Smallest width (in gap) of the sub-cell Dugdale edge, as a multiple of
+#: Smallest width (in gap) of the Dugdale edge's ramp, as a multiple of
 #: kappa_n sigma0 dx/E* with kappa_n = 1 + (2/pi) ln n (n cells per axis): the cell
 #: fraction is taken over at least this gap spread.  Energy stability of a discrete
 #: state needs the spectral radius of |d sigma/dh| K below 1; for a ring of edge cells
@@ -119,33 +106,6 @@ MAX_OUTER = 300
 #: unconverged states), which needs roughly dx < 2 E* h0/(kappa_n sigma0), i.e.
 #: dx < 2/(kappa_n mu^2) in the paper's units.
 EDGE_WIDTH_FACTOR = 1.25
-#: Inner tolerance per outer iteration = INNER_FACTOR x the last outer residual.
-INNER_FACTOR = 0.1
-#: A state whose outer residual has not reached a new minimum for this many outer
-#: iterations has stalled: its best iterate is returned (flagged unless within tol).
-STALL_OUTER = 60
-#: Outer iterations between Anderson restarts.
-ANDERSON_RESTART = 40
-#: Anderson memory (number of previous iterates mixed).
-ANDERSON_MEMORY = 6
-#: Anderson memory of the high-mu route's states started from an external start (the lower-mu
-#: start, or the route's own states on the grid half as fine;
-#: :data:`dhfield.bem.pull_off.PREDICTED_STRETCH_EVERY` says where), mixed without the periodic
-#: restarts (only a stretch step restarts it).  Their residual sits in a ring of ~5000 edge cells
-#: whose undulations are many slow modes, more than 6 differences span (docs/theory/bem.rst,
-#: 'Measurements behind the solver's constants').
-STRETCH_ANDERSON_MEMORY = 30
-#: Stretch step (:func:`stretch_step`): finite-difference increment of the stretch factors [-].
-STRETCH_INCREMENT = 2e-3
-#: Stretch step: largest change of a stretch factor per Broyden step [-].
-STRETCH_MAX_STEP = 1e-2
-#: Stretch step: Broyden updates after the finite-difference Jacobian (each one inner solve).
-STRETCH_BROYDEN_STEPS = 5
-#: Stretch step: taken only when the state stalls, i.e. when the best outer residual of the last
-#: half of the ``stretch_every`` window is above this fraction of the best of its first half.
-#: A converging state gains nothing from a stretch step, which costs CG iterations
-#: (docs/theory/bem.rst).
-STRETCH_STALL_RATIO = 0.5
 #: Evenness tolerance for the automatic symmetry mode (relative to max |z|).
 _EVEN_RTOL = 1e-12
 
@@ -199,15 +159,6 @@ def _edge_compliance(grid, reduced_modulus):
 class AdhesiveProblem:
     """Working arrays of one (grid, z, law) problem: full grid or even-even quadrant.
 
-    ``relaxed_edge=True`` (Dugdale only) widens the sub-cell edge to what discrete stability
-    wants even beyond its cap 2 h0 (:data:`EDGE_WIDTH_FACTOR`), so that a grid too coarse for
-    the law still has stable, converging states: they solve a smeared law and serve only as
-    warm starts of a finer grid (``resolved`` stays False).  ``widest_edge=True`` (Dugdale only)
-    spreads the edge over its cap 2 h0 whatever the grid wants (:meth:`with_widest_edge`): the
-    same work of adhesion, a smaller fixed-point gain at the edge, so that a state whose own
-    edge stalls converges there and then starts the state of the grid's own edge
-    (:meth:`dhfield.bem.branch.Branch.widest_edge_guess`).
-
     Parameters
     ----------
     initial_gap : array_like, shape (nx, ny)
@@ -222,16 +173,10 @@ class AdhesiveProblem:
         FFTW threads (None: :func:`dhfield.bem.operator.default_threads`).
     reduced_modulus : float
         E* [stress].
-    relaxed_edge : bool, default False
-        Widen the Dugdale edge beyond its cap 2 h0 (see above).
     backend : str, optional
         Array backend of the working arrays (:mod:`dhfield.bem.backend`); default
         ``$DHFIELD_BEM_BACKEND`` or ``"fftw"``.  The working arrays (``z``, and those of the
         solve) are the backend's; :meth:`to_full` returns numpy arrays.
-    widest_edge : bool, default False
-        Spread the Dugdale edge over its cap 2 h0 (see above): a warm start's law, or, by
-        choice (:attr:`dhfield.analysis.bem_start.AdhesiveOptions.widest_edge`), the law of a
-        high-mu refinement that keeps level 1's law (a stress ramp over gaps 0 to 2 h0).
 
     Raises
     ------
@@ -240,8 +185,7 @@ class AdhesiveProblem:
         shape, ``law`` is not a traction law, or ``symmetric=True`` for an uneven problem.
     """
 
-    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus, *, relaxed_edge=False,
-                 backend=None, widest_edge=False):
+    def __init__(self, initial_gap, grid, law, symmetric, threads, reduced_modulus, *, backend=None):
         if not isinstance(grid, Grid):
             raise ValueError(f"grid must be a dhfield.bem.Grid; got {type(grid).__name__}")
         z = check_finite("initial_gap", initial_gap, "initial gap z(x, y), length")
@@ -256,8 +200,7 @@ class AdhesiveProblem:
         self.symmetric = bool(symmetric)
         self.grid = grid
         self.op = get_operator(grid, reduced_modulus, symmetric=self.symmetric, threads=threads, backend=backend)
-        self._built_with = (threads, float(reduced_modulus), backend)      # (with_widest_edge)
-        self.widest_edge = bool(widest_edge)
+        self._built_with = (threads, float(reduced_modulus), backend)      # (coarser_problem)
         self.xp = self.op.xp
         self.z = self.work_array(quadrant(z) if self.symmetric else z)
         self.z_full = z
@@ -281,34 +224,7 @@ class AdhesiveProblem:
             # at most 2 h0: the smeared edge stays within h >= 0 and keeps the work of adhesion
             want = _edge_compliance(grid, e) * self.law.max_stress
             self.widest_spread = 2.0 * self.law.range
-            # relaxed_edge: the edge as wide as stability wants, beyond 2 h0 (a different law near the
-            # edge, and resolved = False: only a warm start for a finer grid, never an answer)
-            self.min_spread = want if relaxed_edge else min(want, self.widest_spread)
-            if self.widest_edge:
-                self.min_spread = max(self.min_spread, self.widest_spread)
-
-    def with_widest_edge(self) -> "AdhesiveProblem":
-        """The same problem (gap, grid, law, symmetry) with the Dugdale edge spread over its cap 2 h0.
-
-        A state that stalls with the grid's own edge can converge with the wide edge and then
-        start the grid's own state (docs/theory/bem.rst, 'The adhesive solver').
-
-        Returns
-        -------
-        AdhesiveProblem
-            ``widest_edge=True``; its states are warm starts, not answers of this problem
-            (unless this problem has ``widest_edge=True`` already).
-
-        Raises
-        ------
-        ValueError
-            If the problem's law is not a Dugdale law.
-        """
-        if not isinstance(self.law, DugdaleLaw):
-            raise ValueError(f"with_widest_edge needs a Dugdale law; got {type(self.law).__name__}")
-        threads, e, backend = self._built_with
-        return AdhesiveProblem(self.z_full, self.grid, self.law, self.symmetric, threads, e, backend=backend,
-                               widest_edge=True)
+            self.min_spread = min(want, self.widest_spread)
 
     def work_array(self, a):
         """Return an array as a contiguous float array of the working backend (moved there if need be).
@@ -824,79 +740,6 @@ def _constrained_cg(op, g0, p, scale, tol, max_iter, k0, stress, h=None, exact_g
     return p, h, it + coarse_it, err   # CG iterations on every grid (coarse ones are cheaper)
 
 
-class AndersonMixing:
-    """Anderson mixing (type II) for x = F(x); residual f = F(x) - x.
-
-    Parameters
-    ----------
-    memory : int, default ANDERSON_MEMORY
-        Number of past differences kept [-].
-    """
-
-    def __init__(self, memory=ANDERSON_MEMORY):
-        self.m = memory
-        self.reset()
-
-    def reset(self):
-        """Forget the stored history (the next step is a plain fixed-point step)."""
-        self.dx = None
-        self.df = None
-        self.gram = None         # df df^T of the stored differences, kept up to date row by row
-        self.count = 0
-        self.x_prev = self.f_prev = None
-
-    def step(self, x, f):
-        """Return the next iterate from the current one and its residual.
-
-        Parameters
-        ----------
-        x : ndarray
-            Current iterate.
-        f : ndarray
-            Its residual F(x) - x, of the shape of ``x``.
-
-        Returns
-        -------
-        ndarray
-            The mixed iterate, of the shape of ``x`` (``x + f`` without history, or after
-            a singular least-squares system, which also resets the history).
-        """
-        xf, ff = x.ravel(), f.ravel()
-        xp = namespace_of(xf)
-        if self.dx is None:
-            self.dx = xp.empty((self.m, xf.size))
-            self.df = xp.empty((self.m, xf.size))
-            self.gram = xp.zeros((self.m, self.m))
-        if self.x_prev is not None:
-            k = self.count % self.m
-            np.subtract(xf, self.x_prev, out=self.dx[k])
-            np.subtract(ff, self.f_prev, out=self.df[k])
-            self.count += 1
-            # only slot k changed: its row and column of the Gram matrix (m dot products a step, not
-            # m^2; memory 30 on 1.6e6 cells, 1 thread: 0.05 s against 0.12 s for the whole product)
-            row = self.df[:min(self.count, self.m)] @ self.df[k]
-            self.gram[k, :row.size] = row
-            self.gram[:row.size, k] = row
-        self.x_prev, self.f_prev = xf.copy(), ff.copy()
-        new = xf + ff
-        n = min(self.count, self.m)
-        if n:
-            dfm = self.df[:n]
-            dxm = self.dx[:n]
-            # small normal equations (n x n), Tikhonov-regularised relative to their scale
-            gram = self.gram[:n, :n]
-            reg = 1e-12 * max(float(np.trace(gram)), 1e-300)
-            try:
-                gamma = xp.linalg.solve(gram + reg * xp.eye(n), dfm @ ff)
-            except np.linalg.LinAlgError:
-                gamma = None
-            if gamma is None or not bool(xp.all(xp.isfinite(gamma))):   # (CuPy does not raise)
-                self.reset()
-                return new.reshape(x.shape)
-            new -= gamma @ dxm + gamma @ dfm
-        return new.reshape(x.shape)
-
-
 # ============================================================================ solver
 def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_TOL,
                    max_iter=DEFAULT_MAX_ITER, symmetric=None, threads=None,
@@ -920,12 +763,11 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
         Warm start (a state on the same grid, e.g. the previous state of a path).
         Along a path always warm-start: the adhesive states are multistable.
     tol : float, default DEFAULT_TOL
-        Tolerance on the complementarity error (relative to the law's range,
-        or to |delta| and max z without adhesion) and on the largest change of
-        the zone fraction (Dugdale) or of the stress relative to sigma0
-        (exponential) between outer iterations [-].
+        Tolerance [-]: ``max |min(h/h0, p/sigma0)|`` of an adhesive state, or the
+        complementarity error relative to |delta| and max z without adhesion.
     max_iter : int, default DEFAULT_MAX_ITER
-        Cap on the total inner conjugate-gradient iterations.
+        Cap on the conjugate-gradient iterations without adhesion, or on the GMRES
+        iterations of each linear solve of an adhesive state.
     symmetric : bool, optional
         Solve on the even-even quadrant (default: when z is even in x and y and
         nx, ny are even).
@@ -948,9 +790,9 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
 
     Notes
     -----
-    See the module docstring for the algorithm: Polonsky-Keer CG for the
-    repulsive pressure inside an Anderson-accelerated fixed point on the
-    adhesive stress, with the sub-cell Dugdale zone edge.
+    See the module docstring for the algorithm: the semismooth Newton solve of
+    :mod:`dhfield.bem.newton` from ``guess``, else by nested iteration from the coarsest
+    grid (:func:`solve_problem`); without a law the Polonsky-Keer CG.
     """
     prob = AdhesiveProblem(initial_gap, grid, law, symmetric, threads, reduced_modulus)
     delta = float(check_finite("approach", approach, "approach of distant points, length"))
@@ -962,8 +804,15 @@ def solve_adhesive(initial_gap, grid, approach, law, *, guess=None, tol=DEFAULT_
     return solve_problem(prob, delta, guess, tol, int(max_iter))
 
 
-def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, anderson_memory=None, give_up_after=None):
+def solve_problem(prob, delta, guess, tol, max_iter):
     """Solve a prepared problem at one approach (the body of :func:`solve_adhesive`).
+
+    An adhesive state is solved by the semismooth Newton method of :mod:`dhfield.bem.newton`
+    (the project's one adhesive solver), with one start protocol: Newton from ``guess`` (the
+    converged neighbour of a path, or the same approach on a coarser grid, as the route
+    supplies it); when there is none, or Newton from it does not converge, nested iteration
+    from the coarsest grid of this domain (:func:`nested_solve`).  Without a law the
+    non-adhesive contact is solved by the Polonsky-Keer conjugate gradient.
 
     Parameters
     ----------
@@ -975,252 +824,164 @@ def solve_problem(prob, delta, guess, tol, max_iter, *, stretch_every=None, ande
         Warm start: a solved state on the same grid, an extrapolated prediction, or None
         for a cold start.
     tol : float
-        Tolerance, as in :func:`solve_adhesive` [-].
+        Tolerance [-]: the non-adhesive contact's complementarity error (relative to |delta|
+        and max z); an adhesive state's ``max |min(h/h0, p/sigma0)|``
+        (:attr:`dhfield.bem.newton.SolverOptions.tol`).
     max_iter : int
-        Cap on the total inner conjugate-gradient iterations.
-    stretch_every : int, optional
-        Dugdale law only: every this many outer iterations of a state not yet converged, a
-        stretch step (:func:`stretch_step`) instead of an Anderson step when the state stalls
-        (``STRETCH_STALL_RATIO``), and Anderson's history restarts.  None (default): Anderson
-        steps only.
-    anderson_memory : int, optional
-        Anderson memory, mixed without periodic restarts (a stretch step still restarts it);
-        None (default): ``ANDERSON_MEMORY``, restarted every ``ANDERSON_RESTART`` outer
-        iterations.
-    give_up_after : int, optional
-        Stop early, flagged, once the best outer residual of the last half of this many outer
-        iterations is above ``STRETCH_STALL_RATIO`` times the best of the first half (a start
-        that stopped converging; a race of starts, :meth:`dhfield.bem.branch.Branch.race`, then
-        tries the next).  None (default): only the ``STALL_OUTER`` and ``MAX_OUTER`` limits.
+        Cap on the conjugate-gradient iterations (non-adhesive contact), or on the GMRES
+        iterations of each linear solve of an adhesive state (at most
+        :data:`dhfield.bem.newton.NESTED_OPTIONS` ``.max_krylov``).
 
     Returns
     -------
     ContactState
-        On the full grid; when the iterations run out, the best iterate, flagged
-        ``converged=False``.
+        On the full grid, flagged ``converged=False`` when the tolerance was not met
+        (``iterations``: CG or GMRES iterations; ``outer_iterations``: Newton iterations).
     """
     law = prob.law
-    op = prob.op
-    zd = prob.z - delta
     if law is None:
+        zd = prob.z - delta
         scale = max(abs(delta), float(np.max(np.abs(prob.z))) * 1e-3, 1e-300)
-    else:
-        scale = law.range
-    # gap error -> zone-fraction error: a Dugdale cell's fraction moves by dh/spread, so the
-    # inner (gap) tolerances are scaled by spread/h0 (<= 1): at N = 1024 an inner error of
-    # 1e-7 h0 moved the fraction by 4e-6 and the outer residual could not reach 1e-6.
-    gain = min(1.0, prob.min_spread / scale) if (law is not None and prob.min_spread > 0.0) else 1.0
-    inner_tol = 0.1 * tol * gain
-    if isinstance(guess, Prediction):
-        p = prob.work_array(guess.pressure).copy()
-    elif guess is not None and guess.repulsive_pressure is not None:
-        p = prob.to_work(guess.repulsive_pressure).copy()
-    else:
-        p = np.zeros_like(prob.z)
-    total_it = 0
-    if law is None:
-        # no outer loop to feed: the contact problem itself is solved to tol (converged iff err <= tol)
-        p, h, it, err = solve_contact_pressure(op, zd, p, scale, tol, max_iter, prob.k0)
-        total_it += it
-        s = np.zeros_like(p)
-        converged = err <= tol
-        return assemble_state(prob, delta, p, s, h, total_it, err, converged, 1)
-    sigma0 = law.max_stress
-    # initial adhesive stress
-    if isinstance(guess, Prediction):
-        s = prob.work_array(guess.stress).copy()
-    elif guess is not None:
-        s = prob.stress_of_state(guess)
-    else:
-        h_rigid = zd.copy()
-        s = prob.stress_from_gap(np.maximum(h_rigid, 0.0), h_rigid <= 0)
-    anderson_memory = check_optional_count("anderson_memory", anderson_memory)
-    give_up_after = check_optional_count("give_up_after", give_up_after, "outer iterations")
-    acc = AndersonMixing() if anderson_memory is None else AndersonMixing(anderson_memory)
-    restart = ANDERSON_RESTART if anderson_memory is None else 0
-    res = np.inf
-    err = np.inf
-    outer = 0
-    h = None
-    best = None
-    best_outer = 0
-    history = []
-    while outer < MAX_OUTER and total_it < max_iter and outer - best_outer <= STALL_OUTER:
-        outer += 1
-        # inexact inner solves: tighten with the outer residual (Anderson tolerates it), in units
-        # of the zone fraction (gain): a looser inner solve feeds the fixed point noise larger
-        # than its residual (at N = 1024 the contact set flipped by 3 % every iteration)
-        itol = gain * (1e-3 if not np.isfinite(res) else min(max(INNER_FACTOR * res, 0.1 * tol), 1e-2))
-        p, h, it, err = solve_contact_pressure(op, zd, p, scale, itol, max_iter - total_it, prob.k0, stress=s)
-        total_it += it
-        f = prob.stress_from_gap(h, p > 0) - s
-        res = float(np.max(np.abs(f))) / sigma0
-        if best is None or res < best[0]:
-            best = (res, s.copy(), p.copy(), h.copy(), err)
-            best_outer = outer
-        if res <= tol and err <= tol:
-            if err <= inner_tol or itol <= inner_tol:
-                break
-        history.append(res)
-        if give_up_after and outer >= give_up_after and _stalled(history, give_up_after):
-            res, s, p, h, err = best             # this start stopped converging: the best iterate, flagged
-            break
-        if (stretch_every and outer % stretch_every == 0 and isinstance(law, DugdaleLaw)
-                and _stalled(history, stretch_every)):
-            step = stretch_step(prob, delta, p, s, itol, max(max_iter - total_it, 1))
-            p, s = step.pressure, step.stress
-            total_it += step.iterations
-            acc.reset()
-            continue
-        s = np.clip(acc.step(s, f), 0.0, sigma0)
-        if restart and outer % restart == 0:
-            acc.reset()
-    else:
-        # out of iterations: report the best iterate, flagged
-        res, s, p, h, err = best
-    converged = res <= tol and err <= tol
-    return assemble_state(prob, delta, p, s, h, total_it, max(res, err), converged, outer)
+        p = prob.to_work(guess.repulsive_pressure).copy() if (
+            guess is not None and getattr(guess, "repulsive_pressure", None) is not None) else np.zeros_like(prob.z)
+        p, h, it, err = solve_contact_pressure(prob.op, zd, p, scale, tol, max_iter, prob.k0)
+        return assemble_state(prob, delta, p, np.zeros_like(p), h, it, err, err <= tol, 1)
+    from .newton import NESTED_OPTIONS, solve_state
+    from dataclasses import replace as _replace
+
+    options = _replace(NESTED_OPTIONS, tol=float(tol), max_krylov=min(int(max_iter), NESTED_OPTIONS.max_krylov))
+    st = None
+    gmres = newton = 0
+    if guess is not None:
+        if isinstance(guess, Prediction):
+            q0 = prob.work_array(guess.pressure) - prob.work_array(guess.stress)
+        else:
+            q0 = prob.to_work(guess.pressure)
+        st = solve_state(prob, delta, q0, options)
+        gmres, newton = st.krylov_iterations, st.newton_iterations
+    if st is None or not st.converged:
+        st = nested_solve(prob, delta, _zone_mask(prob, delta, guess), options)
+        gmres, newton = gmres + st.krylov_iterations, newton + st.newton_iterations
+    return newton_contact_state(prob, delta, st, gmres, newton)
 
 
-def _stalled(history, window) -> bool:
-    """True when the best residual of the last half of ``window`` outer iterations is above
-    ``STRETCH_STALL_RATIO`` times the best of its first half (a state that stopped converging)."""
-    half = window // 2
-    if len(history) < 2 * half or half < 1:
-        return False
-    return min(history[-half:]) > STRETCH_STALL_RATIO * min(history[-2 * half:-half])
+def _zone_mask(prob, delta, guess):
+    """The full-grid cells of the adhesive zone a cold start spreads sigma0 over.
 
-
-class StretchStep(NamedTuple):
-    """Result of :func:`stretch_step` (working arrays of the problem's working grid).
-
-    Parameters
-    ----------
-    pressure : ndarray
-        Repulsive pressure solved for the stretched stress [stress].
-    stress : ndarray
-        The stretched adhesive stress, in [0, sigma0] [stress].
-    factors : tuple of float
-        Stretch factors (sx, sy) along x and y of the stress returned [-].
-    iterations : int
-        Inner CG iterations spent on the search [-].
+    The guess's contact U cohesive zone when it has one, else the rigid gap's cells below
+    the law's zone gap (``z - delta < zone_gap``).
     """
-
-    pressure: np.ndarray     #: repulsive pressure solved for the stretched stress [stress]
-    stress: np.ndarray       #: the stretched adhesive stress, in [0, sigma0] [stress]
-    factors: tuple           #: stretch factors (sx, sy) [-]
-    iterations: int          #: inner CG iterations spent [-]
-
-
-def _working_axes(prob):
-    """Cell-centre x and y coordinates of the working grid (the quadrant x, y > 0 in symmetric mode)."""
-    g = prob.grid
-    if prob.symmetric:
-        return g.x[g.nx // 2:], g.y[g.ny // 2:]
-    return g.x, g.y
-
-
-def _stretched(prob, f, sx, sy):
-    """A working-grid field stretched about the centre, f(x, y) -> f(x/sx, y/sy) (bilinear, edges held)."""
-    if prob.xp is np:
-        from scipy.ndimage import map_coordinates
+    if isinstance(guess, Prediction):
+        m = prob.to_full(np.asarray(guess.stress)) > 0.5 * prob.law.max_stress
+    elif guess is not None:
+        m = guess.adhesive_zone > 0.5
     else:
-        from cupyx.scipy.ndimage import map_coordinates
-
-    g = prob.grid
-    x, y = _working_axes(prob)
-    i = (x / sx - x[0]) / g.dx
-    j = (y / sy - y[0]) / g.dy
-    ii, jj = np.meshgrid(i, j, indexing="ij")
-    return map_coordinates(f, prob.xp.asarray(np.stack([ii, jj])), order=1, mode="nearest")
+        m = None
+    if m is None or not m.any():
+        m = prob.z_full - delta < prob.law.zone_gap
+    return m
 
 
-def stretch_step(prob, delta, pressure, stress, itol, max_iter) -> StretchStep:
-    """Move the whole Dugdale zone edge at once: stretch the state along x and y (a Broyden search).
+def coarser_problem(prob, k) -> "AdhesiveProblem":
+    """The same problem on the grid with ``k`` x ``k`` cells merged (same domain, law and symmetry).
 
-    The outer fixed point moves the zone edge by a fraction of a cell per iteration: a cold
-    state whose zone is a few cells too large or too small creeps towards the solution and
-    stalls, trapped by the lattice (at mu = 10 with a zone-fraction residual of 4e-4 to 1e-2
-    after 300 outer iterations; docs/theory/bem.rst).  This step
-    stretches the stress and pressure about the centre by factors (sx, sy) chosen so that the
-    residual of the stretched state has no net second moments along x and y,
-
-    .. math:: r_x = \\frac{\\sum_i f_i x_i^2}{\\langle x^2 \\rangle_s}, \\quad
-              r_y = \\frac{\\sum_i f_i y_i^2}{\\langle y^2 \\rangle_s}, \\qquad
-              f = \\chi(h) - s/\\sigma_0,
-
-    i.e. so that it no longer asks for a larger or smaller zone along either axis, by a
-    finite-difference Jacobian (``STRETCH_INCREMENT``) and up to ``STRETCH_BROYDEN_STEPS``
-    Broyden updates (each factor moving by at most ``STRETCH_MAX_STEP`` a step).  Each
-    evaluation is one inner contact solve.  The best evaluation (smallest |r_x| + |r_y|)
-    is returned; the unstretched state is among them, so the step never makes the
-    moments worse.
+    The initial gap of a coarse cell is the mean of its ``k x k`` cells' (the cell-centre
+    samples of a smooth gap, averaged: a start's problem, not an answer's).
 
     Parameters
     ----------
     prob : AdhesiveProblem
-        The problem, with a Dugdale law.
-    delta : float
-        Approach of distant points [length].
-    pressure, stress : ndarray
-        The current iterate on the working grid: repulsive pressure (the inner solve's) and
-        the adhesive stress it was solved with [stress].
-    itol : float
-        Tolerance of the inner solves [-].
-    max_iter : int
-        Cap on the inner CG iterations of each solve.
+        The problem.
+    k : int
+        Cells merged per axis; both cell counts must be multiples of ``k`` (of ``2 k`` in
+        symmetric mode) [-].
 
     Returns
     -------
-    StretchStep
-        The stretched stress, its solved pressure, the factors and the CG iterations spent.
+    AdhesiveProblem
+        On ``(nx/k) x (ny/k)`` cells.
     """
-    law = prob.law
-    sigma0, scale = law.max_stress, law.range
-    zd = prob.z - delta
-    x, y = _working_axes(prob)
-    x2, y2 = prob.xp.asarray((x * x)[:, None]), prob.xp.asarray((y * y)[None, :])
-    w = stress / sigma0
-    total = max(float(w.sum()), 1e-300)
-    mx = max(float((w * x2).sum()) / total, 1e-300)
-    my = max(float((w * y2).sum()) / total, 1e-300)
-    spent = 0
+    g = prob.grid
+    k = int(k)
+    m = 2 * k if prob.symmetric else k
+    if k < 1 or g.nx % m or g.ny % m:
+        raise ValueError(f"k must divide the cell counts {g.nx} x {g.ny} (times 2 in symmetric mode); got {k!r}")
+    z = prob.z_full.reshape(g.nx // k, k, g.ny // k, k).mean(axis=(1, 3))
+    threads, e, backend = prob._built_with
+    return AdhesiveProblem(z, Grid(g.nx // k, g.ny // k, g.dx * k, g.dy * k), prob.law, prob.symmetric, threads, e,
+                           backend=backend)
 
-    def moments(v):
-        nonlocal spent
-        if v[0] == 1.0 and v[1] == 1.0:
-            st, p0 = stress, pressure
-        else:
-            st = np.clip(_stretched(prob, stress, v[0], v[1]), 0.0, sigma0)
-            p0 = np.maximum(_stretched(prob, pressure, v[0], v[1]), 0.0)
-        p, h, it, _ = solve_contact_pressure(prob.op, zd, p0, scale, itol, max_iter, prob.k0, stress=st)
-        spent += it
-        f = (prob.stress_from_gap(h, p > 0) - st) / sigma0
-        return np.array([float((f * x2).sum()) / mx, float((f * y2).sum()) / my]), st, p
 
-    v = np.ones(2)
-    r, st, p = moments(v)
-    best = (float(np.abs(r).sum()), st, p, (1.0, 1.0))
-    jac = np.empty((2, 2))
-    for k in range(2):
-        e = v.copy()
-        e[k] += STRETCH_INCREMENT
-        jac[:, k] = (moments(e)[0] - r) / STRETCH_INCREMENT
-    for _ in range(STRETCH_BROYDEN_STEPS):
-        try:
-            dv = -np.linalg.solve(jac, r)
-        except np.linalg.LinAlgError:
-            break
-        dv = np.clip(dv, -STRETCH_MAX_STEP, STRETCH_MAX_STEP)
-        v = v + dv
-        r_new, st, p = moments(v)
-        if float(np.abs(r_new).sum()) < best[0]:
-            best = (float(np.abs(r_new).sum()), st, p, (float(v[0]), float(v[1])))
-        jac += np.outer((r_new - r) - jac @ dv, dv) / float(dv @ dv)
-        r = r_new
-        if float(np.abs(dv).max()) < 0.05 * STRETCH_INCREMENT:
-            break
-    return StretchStep(pressure=best[2], stress=best[1], factors=best[3], iterations=spent)
+def nested_solve(prob, delta, zone, options):
+    """Solve an adhesive state by nested iteration from sigma0 on ``zone`` on the coarsest grid.
+
+    The grids halve the cells per axis down to at least
+    :data:`dhfield.bem.ladder.NESTED_MIN_CELLS` per axis (:func:`dhfield.bem.ladder.nested_levels`);
+    the coarsest starts from the adhesive stress sigma0 on ``zone`` and the contact
+    pressure it implies (:func:`dhfield.bem.newton.cold_start`), each state is prolonged to
+    start the next (:func:`dhfield.bem.newton.solve_state_nested`).
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem (the finest grid).
+    delta : float
+        Approach [length].
+    zone : ndarray of bool, shape (nx, ny)
+        Full-grid cells of the start's adhesive zone.
+    options : SolverOptions
+        Options of the finest grid.
+
+    Returns
+    -------
+    NewtonResult
+        The finest grid's state.
+    """
+    from .ladder import nested_levels
+    from .newton import cold_start_on, solve_state_nested
+
+    nx, ny = prob.grid.nx, prob.grid.ny
+    levels = nested_levels(nx, ny)
+    while levels > 1 and (nx % (2 ** levels) or ny % (2 ** levels)):
+        levels -= 1
+    ladder = [coarser_problem(prob, 2 ** j) for j in range(levels - 1, 0, -1)] + [prob]
+    k = 2 ** (levels - 1)
+    coarse_zone = zone.reshape(nx // k, k, ny // k, k).mean(axis=(1, 3)) >= 0.5
+    return solve_state_nested(ladder, float(delta), cold_start_on(ladder[0], float(delta), coarse_zone),
+                              options).state
+
+
+def newton_contact_state(prob, delta, state, gmres, newton) -> ContactState:
+    """The full-grid :class:`ContactState` of a Newton state of ``prob``.
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem it solves.
+    delta : float
+        Its approach [length].
+    state : NewtonResult
+        The state (:func:`dhfield.bem.newton.solve_state`).
+    gmres, newton : int
+        GMRES and Newton iterations spent on it (recorded as ``iterations`` and
+        ``outer_iterations``).
+
+    Returns
+    -------
+    ContactState
+        Repulsive pressure ``q + sigma(h)`` on the contact cells (zero elsewhere), the adhesive
+        stress ``sigma(h)`` of the grid's ramped law (sigma0 on the contact), the gap.
+    """
+    from .newton import ramp_stress
+
+    s = ramp_stress(prob, state.gap)
+    p = np.where(state.contact, state.traction + s, 0.0)
+    st = assemble_state(prob, delta, p, s, state.gap, gmres, state.residual, state.converged, newton)
+    if isinstance(prob.law, DugdaleLaw):
+        # the cohesive fraction of the ramped law itself (sigma/sigma0 off the contact), so that the
+        # state's adhesive force sigma0 x (contact U zone area) is the integral of its stress
+        st = replace(st, cohesive=np.where(st.contact, 0.0, prob.to_full(s) / prob.law.max_stress))
+    return st
 
 
 @dataclass
