@@ -231,6 +231,10 @@ class _Law:
         return -self.law.stress_slope(np.maximum(h, 0.0))
 
 
+#: Cap on the FFTW planning time of each transform of :func:`symbol_preconditioner` [s].
+PLANNING_SECONDS = 2.0
+
+
 def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor=True):
     """The inverse of the DC-FFT operator's own symbol, applied to a working-grid field.
 
@@ -249,7 +253,7 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor
     reduced_modulus : float
         E* [stress].
     workers : int
-        Workers of scipy.fft.
+        Threads of the transforms (FFTW in symmetric mode, scipy.fft otherwise).
     floor : bool, default True
         Raise the symbol to its smallest positive value on the highest frequencies (the row
         ``nx - 1`` and the column ``ny - 1`` of the DCT-I spectrum) everywhere.  On cells that
@@ -272,14 +276,33 @@ def symbol_preconditioner(grid, symmetric, reduced_modulus=1.0, workers=1, floor
         spec = d[:nx, :ny]
         inv = 1.0 / (np.maximum(spec, 1e-300 + 1e-12 * spec.max()) * (4.0 * nx * ny))
         qx, qy = nx // 2, ny // 2
-        buf = np.zeros((nx, ny))
+        # FFTW's REDFT10 / REDFT01 are scipy's unnormalised DCT-II / DCT-III.  The padded field is
+        # zero beyond the quadrant and only the quadrant is kept, so the transforms along y run on
+        # the quadrant's rows only (as the operator's own, :mod:`dhfield.bem.operator`)
+        import pyfftw
+
+        plan = dict(flags=("FFTW_MEASURE", "FFTW_DESTROY_INPUT"), threads=int(workers),
+                    planning_timelimit=PLANNING_SECONDS)
+        rows = pyfftw.zeros_aligned((qx, ny), dtype="float64")
+        work = pyfftw.zeros_aligned((nx, ny), dtype="float64")
+        back = pyfftw.empty_aligned((qx, ny), dtype="float64")
+        out = pyfftw.empty_aligned((qx, ny), dtype="float64")
+        y_fwd = pyfftw.FFTW(rows, work[:qx], axes=(1,), direction=["FFTW_REDFT10"], **plan)
+        x_fwd = pyfftw.FFTW(work, work, axes=(0,), direction=["FFTW_REDFT10"], **plan)
+        x_bwd = pyfftw.FFTW(work, work, axes=(0,), direction=["FFTW_REDFT01"], **plan)
+        y_bwd = pyfftw.FFTW(back, out, axes=(1,), direction=["FFTW_REDFT01"], **plan)
 
         def apply(v):
-            buf[...] = 0.0
-            buf[:qx, :qy] = v
-            t = scipy.fft.dctn(buf, type=2, workers=workers)
-            t *= inv
-            return scipy.fft.dctn(t, type=3, workers=workers)[:qx, :qy]
+            rows[...] = 0.0
+            rows[:, :qy] = v
+            work[qx:] = 0.0
+            y_fwd()
+            x_fwd()
+            work[...] *= inv
+            x_bwd()
+            back[...] = work[:qx]
+            y_bwd()
+            return out[:, :qy].copy()
 
         return apply
     full = np.empty((2 * nx, ny + 1))
