@@ -154,3 +154,55 @@ def _sphere_state(n=128, mu=2.0, delta=0.3, symmetric=None):
     prob = bem_solver.AdhesiveProblem(x * x / 2.0 + y * y / 2.0, grid, law, symmetric, 1, 1.0)
     return prob, bem_solver.solve_problem(prob, delta, None, 1e-8, 20000)
 
+
+
+# ============================================================================ the one start protocol
+def test_coarser_problem_is_the_same_domain_law_and_symmetry_with_block_averaged_gap():
+    grid = Grid.centered(32, 2.0)
+    x, y = grid.mesh()
+    z = (x * x + y * y) / 2
+    prob = bem_solver.AdhesiveProblem(z, grid, DugdaleLaw(1.0, 1.0), None, 1, 1.0)
+    coarse = bem_solver.coarser_problem(prob, 4)
+    assert coarse.grid.shape == (8, 8) and coarse.symmetric == prob.symmetric
+    assert coarse.grid.nx * coarse.grid.dx == pytest.approx(grid.nx * grid.dx)       # the same domain
+    # the mean of a quadratic over a k x k block is its centre value plus (k^2 - 1) dx^2 / 12 per axis
+    xc, yc = coarse.grid.mesh()
+    shift = 2 * (4 ** 2 - 1) * grid.dx ** 2 / 12 / 2
+    np.testing.assert_allclose(coarse.z_full, (xc * xc + yc * yc) / 2 + shift, rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match="k must divide"):
+        bem_solver.coarser_problem(prob, 3)
+
+
+def test_a_failed_start_falls_back_on_nested_iteration_to_the_same_state(monkeypatch):
+    # the sphere at lambda ~ 1, N = 64: Newton from a start that fails (here: its first solve reported
+    # diverged) goes on by nested iteration from the coarsest grid, to the state a cold solve finds
+    import dataclasses
+
+    import dhfield.bem.newton as newton
+
+    grid = Grid.centered(64, 2.6)
+    x, y = grid.mesh()
+    z = (x * x + y * y) / 2
+    law = DugdaleLaw(1.0, 1.0)
+    cold = solve_adhesive(z, grid, -0.5, law)
+    start = solve_adhesive(z, grid, 0.5, law)                 # a state with a far larger contact
+    real, calls, nested = newton.solve_state, [], []
+
+    def first_fails(*args, **kwargs):
+        st = real(*args, **kwargs)
+        calls.append(st.reason)
+        return dataclasses.replace(st, reason=newton.DIVERGED_MAX_IT) if len(calls) == 1 else st
+
+    real_nested = bem_solver.nested_solve
+
+    def counting(*args, **kwargs):
+        nested.append(1)
+        return real_nested(*args, **kwargs)
+
+    monkeypatch.setattr(newton, "solve_state", first_fails)
+    monkeypatch.setattr(bem_solver, "nested_solve", counting)
+    warm = solve_adhesive(z, grid, -0.5, law, guess=start)
+    assert nested == [1] and warm.converged and cold.converged
+    # the same discrete state, to the solver tolerance (1e-6 of the law's range in complementarity)
+    assert warm.load == pytest.approx(cold.load, rel=1e-6)
+    assert np.array_equal(warm.contact, cold.contact)

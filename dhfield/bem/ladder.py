@@ -18,9 +18,12 @@ on finer ones while the stated error exceeds a target:
 1. the first state, at the analytic prediction of the pull-off's approach (or at the check
    grid's minimum), is solved by nested iteration from the analytic cold start
    (:func:`dhfield.bem.newton.solve_state_nested` over grids halving the cells);
-2. two more states at ``delta +- h`` are solved the same way (nested iteration from the
-   analytic start: the coarse grids place the contact's rim; from the neighbouring state
-   moved along its tangent, the Newton iteration crept at Tabor parameters ~10);
+2. two more states at ``delta +- h`` are solved from the nearest converged state dilated to
+   the contact expected at their approach (:func:`dilated_neighbour`), and, where Newton does
+   not converge from it, by nested iteration as the first (the one start protocol: the
+   converged neighbour, else the coarser grids).  At beta0 = 0.8, mu = 10 on 1984^2 cells the
+   two states took 43 and 37 CPU s from the dilated neighbour against 92 and 42 by nested
+   iteration; from the neighbour moved along its tangent, the Newton iteration crept;
 3. while the lowest load lies at an end of the solved approaches, one more state is solved
    beyond that end, each step twice the last (a bracket);
 4. the state at the vertex of the parabola through the lowest load and its two neighbours
@@ -55,7 +58,7 @@ from .pull_off import NondimensionalProblem, ladder_error, unresolved_reasons
 from .state import ContactState
 
 __all__ = ["GridMinimum", "LadderPullOff", "nested_levels", "nested_cells", "NESTED_MIN_CELLS", "EDGE_MARGIN",
-           "CHECK_RATIO", "TANGENT_RTOL", "NEWTON_SEARCH",
+           "CHECK_RATIO", "TANGENT_RTOL", "NEWTON_SEARCH", "LADDER_STARTS", "dilated_neighbour",
            "adhesive_problem", "ladder_grids", "grid_minimum", "ladder_pull_off", "contact_state", "pull_off_record"]
 
 #: The edge's ramp width per its smallest energy-stable width (a stability margin of the
@@ -230,8 +233,54 @@ def _vertex(x, y):
     return float(x[0] + xv), float(np.polyval(a, xv)), float(a[0])
 
 
+#: Starts of the states after a grid's first (:func:`grid_minimum`).
+LADDER_STARTS = ("neighbour", "nested", "tangent")
+
+
+def dilated_neighbour(problem, solved, approach):
+    """A start at ``approach``: the nearest converged state, dilated to the contact expected there.
+
+    The nearest state's fields are stretched about the centre by the semi-axis change expected
+    at ``approach`` (:func:`dhfield.bem.pull_off.dilate_state`): from the two nearest states'
+    contact semi-axes per approach when there are two at different approaches, else from JKR's
+    sphere of the same mean radius, ``d delta / d a = 2 a - sqrt(2 pi / a) / 2`` in the paper's
+    units.  A neighbour carried as it is leaves its contact's rim a cell or more from the new
+    one, which the Newton iteration then moves by a fraction of a cell ring per step.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The grid's problem.
+    solved : list of (float, NewtonResult, object)
+        The converged states of the grid, as (approach, state, tangent).
+    approach : float
+        Approach of the state to start [c_r^2/R].
+
+    Returns
+    -------
+    ndarray
+        The traction on the working grid [stress].
+    """
+    from .pull_off import dilate_state
+
+    near = sorted(solved, key=lambda r: abs(r[0] - approach))[:2]
+    d0, s0 = near[0][0], near[0][1]
+    cs = contact_state(problem, d0, s0).summary()
+    a, b = cs["a"], cs["b"]
+    dd = approach - d0
+    if len(near) > 1 and near[1][0] != d0:
+        c1 = contact_state(problem, near[1][0], near[1][1]).summary()
+        da, db = (a - c1["a"]) / (d0 - near[1][0]) * dd, (b - c1["b"]) / (d0 - near[1][0]) * dd
+    else:
+        m = math.sqrt(a * b)
+        slope = 1.0 / (2.0 * m - 0.5 * math.sqrt(2.0 * math.pi / m))       # JKR sphere: da/d delta
+        da, db = slope * dd * a / m, slope * dd * b / m
+    g = dilate_state(contact_state(problem, d0, s0), 1.0 + da / a, 1.0 + db / b)
+    return problem.to_work(g.pressure)
+
+
 def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, max_moves=8, log=None,
-                 start="nested"):
+                 start="neighbour"):
     """Locate the load's minimum on the finest grid of a nested ladder.
 
     Parameters
@@ -251,11 +300,14 @@ def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, 
         Cap on the bracket's steps.
     log : callable, optional
         One line per state.
-    start : {"nested", "tangent"}, default "nested"
-        Start of every state after the first: nested iteration from the analytic cold start
-        on the coarsest grid, as the first state; or the nearest converged state moved along
-        its exact tangent ``dq/d delta`` (at Tabor parameters ~10 the Newton iteration then
-        moves the contact's rim by a fraction of a cell ring per step, and creeps).
+    start : {"neighbour", "nested", "tangent"}, default "neighbour"
+        Start of every state after the first: the nearest converged state dilated to the
+        contact expected at its approach (:func:`dilated_neighbour`), and where Newton does not
+        converge from it nested iteration as the first state's (the one start protocol); or
+        nested iteration from the analytic cold start on the coarsest grid only; or the nearest
+        converged state moved along its exact tangent ``dq/d delta`` (at Tabor parameters ~10
+        the Newton iteration then moves the contact's rim by a fraction of a cell ring per
+        step, and creeps).
 
     Returns
     -------
@@ -295,8 +347,8 @@ def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, 
         solved.append((float(d), st, tangent))
         return st
 
-    if start not in ("nested", "tangent"):
-        raise ValueError(f"start must be 'nested' or 'tangent'; got {start!r}")
+    if start not in LADDER_STARTS:
+        raise ValueError(f"start must be one of {LADDER_STARTS}; got {start!r}")
     first = solve_state_nested(problems, float(approach), cold_start(problems[0], float(approach), zone), options)
     st = first.state
     work[0] += sum(v.newton_iterations for v in first.levels[:-1])
@@ -306,16 +358,26 @@ def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, 
     if not st.converged:
         return finish(approach, st.load, float("inf"), False, st.reason, st)
 
+    def nested_at(d):
+        got = solve_state_nested(problems, d, cold_start(problems[0], d, zone), options)
+        work[0] += sum(v.newton_iterations for v in got.levels[:-1])
+        work[1] += sum(v.krylov_iterations for v in got.levels[:-1])
+        return got.state
+
     def solve_at(d):
+        kind = f"{start} start"
         if start == "tangent":
             d0, s0, t0_ = min((r for r in solved if r[1].converged), key=lambda r: abs(r[0] - d))
             st = solve_state(prob, d, s0.traction + (d - d0) * t0_, options, pre)
+        elif start == "neighbour":
+            st = solve_state(prob, d, dilated_neighbour(prob, [r for r in solved if r[1].converged], d), options, pre)
+            if not st.converged:          # the one protocol: the converged neighbour, else the coarser grids
+                work[0] += st.newton_iterations
+                work[1] += st.krylov_iterations
+                st, kind = nested_at(d), f"nested start (the neighbour's: {st.reason})"
         else:
-            got = solve_state_nested(problems, d, cold_start(problems[0], d, zone), options)
-            work[0] += sum(v.newton_iterations for v in got.levels[:-1])
-            work[1] += sum(v.krylov_iterations for v in got.levels[:-1])
-            st = got.state
-        note(d, st, f"{start} start")
+            st = nested_at(d)
+        note(d, st, kind)
         return add(d, st)
 
     # bracket: step beyond the lowest end, doubling the step, until the lowest load is interior
@@ -453,7 +515,7 @@ def nested_cells(problem: NondimensionalProblem, nx, round_up=True) -> tuple:
 
 
 def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, edge_margin=EDGE_MARGIN,
-                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested",
+                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="neighbour",
                     target_error=None, max_refinements=0, grid_check=None, pre_check=True) -> LadderPullOff:
     """Locate the load-control pull-off on ``problem``'s grid and on a coarser check grid.
 
@@ -478,7 +540,7 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
         ``approach_step``; every finer grid uses half of it, centred on the coarser grid's minimum.
     log : callable, optional
         One line per state and per grid.
-    start : {"nested", "tangent"}, default "nested"
+    start : {"neighbour", "nested", "tangent"}, default "neighbour"
         Start of the states after each grid's first (:func:`grid_minimum`).
     target_error : float, optional
         Relative stated error wanted [-]: while the stated error exceeds it, a grid with
