@@ -530,7 +530,7 @@ def run(args) -> int:
               f"d* = {res.d_star:.5f}")
         print(f"b/a = {res.ellipticity:.5f}  d/c = {res.adhesive_ellipticity:.5f}  delta* = {res.delta_star:.5f}")
         print(f"converged = {res.converged}  resolved = {rec['resolved']}  states = {res.n_steps}  "
-              f"CG iterations = {res.iterations}  search = {res.search}  ({res.elapsed:.1f} s)")
+              f"GMRES iterations = {res.iterations}  search = {res.search}  ({res.elapsed:.1f} s)")
         if si:
             _print_si(si)
         if args.out is not None:

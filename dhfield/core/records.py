@@ -169,7 +169,8 @@ class PullOff(_Record):
     law : str, optional
         Solver group: the cohesive law.
     n_steps, iterations : int, optional
-        Solver group: solved states on the path and their inner CG iterations.
+        Solver group: solved states on the path and their Krylov iterations (GMRES of the
+        Newton solve; conjugate gradient without adhesion).
     residual : float, optional
         Solver group: largest residual over the path.
     failures : tuple of dict, optional
