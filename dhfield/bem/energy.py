@@ -61,7 +61,7 @@ import numpy as np
 
 from .laws import DugdaleLaw
 from .newton import (CONVERGED, DIVERGED_LINE_SEARCH, DIVERGED_MAX_IT, NewtonResult, SolverOptions,
-                     _modulus, right_preconditioned_gmres, symbol_preconditioner)
+                     problem_preconditioner, right_preconditioned_gmres)
 
 __all__ = ["RampPotential", "solve_state_energy", "energy", "PullOff", "pull_off_search", "NestedPullOff",
            "pull_off_nested"]
@@ -301,7 +301,7 @@ def solve_state_energy(problem, delta, guess=None, options=SolverOptions(), prec
     k_final = pot.k
     pot.k = min(k_final, 1.0 / problem.k0)
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = problem_preconditioner(problem)
     sigma0 = pot.sigma0
     q = np.zeros_like(problem.z) if guess is None else np.array(guess, dtype=float, copy=True)
     u = op(q)
@@ -429,7 +429,7 @@ def load_tangent(problem, state, options=SolverOptions(), precond=None, penalty=
     """
     pot = _potential(problem, options, penalty)
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = problem_preconditioner(problem)
     contact, edge, S, M = _system(problem.op, pot, state.gap, 0.0, precond, state.contact)
     # d/d delta of the rows: contact K dq' + dq'/k = 1; ramp K dq' - dq'/|s'| = 1; others dq' = 0
     dq = np.zeros_like(state.traction)
@@ -526,7 +526,7 @@ def pull_off_search(problem, approach, guess=None, step=None, options=SolverOpti
         The minimum and its work.
     """
     t0 = time.perf_counter()
-    precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+    precond = problem_preconditioner(problem)
     if step is None:
         step = max(0.01 * abs(approach), problem.law.range)
     solved = []                       # (delta, state, slope, tangent)
@@ -628,7 +628,7 @@ def solve_state_hybrid(problem, delta, guess=None, options=SolverOptions(), prec
 
     t0 = time.perf_counter()
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem))
+        precond = problem_preconditioner(problem)
     a = solve_state_energy(problem, delta, guess, options, precond, log, stages=stages, stage_ratio=stage_ratio)
     # the contact's penetration p/k closes in the first step, which raises ||min(c h, p)|| before it falls:
     # the polish's merit is non-monotone over a few steps

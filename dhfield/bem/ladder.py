@@ -51,7 +51,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .newton import NESTED_OPTIONS, cold_start, load_slope, solve_state, solve_state_nested, symbol_preconditioner
+from .newton import NESTED_OPTIONS, cold_start, load_slope, problem_preconditioner, solve_state, solve_state_nested
 from ..core.records import PullOff
 from .branch import PathProgress, UnloadingPath
 from .pull_off import NondimensionalProblem, ladder_error, unresolved_reasons
@@ -319,7 +319,7 @@ def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, 
     shape = tuple(prob.grid.shape)
     work = [0, 0]
     solved = []                                   # (delta, state, tangent)
-    pre = symbol_preconditioner(prob.grid, prob.symmetric, prob.op.reduced_modulus, floor=options.symbol_floor)
+    pre = problem_preconditioner(prob, floor=options.symbol_floor)
 
     def note(d, st, kind):
         work[0] += st.newton_iterations

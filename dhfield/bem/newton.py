@@ -78,7 +78,7 @@ from .laws import DugdaleLaw
 from .operator import influence_coefficients
 
 __all__ = ["SolverOptions", "NewtonResult", "solve_state", "solve_state_smoothed", "load_slope",
-           "symbol_preconditioner", "load_minimum", "LoadMinimum", "cold_start", "cold_start_on", "ramp_stress", "solve_state_at_force",
+           "symbol_preconditioner", "problem_preconditioner", "load_minimum", "LoadMinimum", "cold_start", "cold_start_on", "ramp_stress", "solve_state_at_force",
            "CONVERGED", "DIVERGED_LINE_SEARCH", "DIVERGED_MAX_IT", "DIVERGED_LINEAR_SOLVE", "DIVERGED_STALL",
            "fgmres", "right_preconditioned_gmres", "contact_cg", "prolong", "prolong_state", "grid_ladder", "NESTED_OPTIONS", "LevelReport",
            "NestedResult", "solve_state_nested"]
@@ -229,6 +229,29 @@ class _Law:
             on = np.abs(h - self.h0) < 0.5 * w
             return np.where(on, self.sigma0 / w, 0.0)
         return -self.law.stress_slope(np.maximum(h, 0.0))
+
+
+def problem_preconditioner(problem, floor=True):
+    """The :func:`symbol_preconditioner` of an adhesive problem, built once per problem and floor.
+
+    Parameters
+    ----------
+    problem : AdhesiveProblem
+        The problem (grid, symmetry, E*).
+    floor : bool, default True
+        As in :func:`symbol_preconditioner`.
+
+    Returns
+    -------
+    callable
+        ``apply(v) -> ndarray`` on the problem's working grid (cached on the problem: its
+        spectrum and FFTW plans are not rebuilt for every state).
+    """
+    cache = problem.__dict__.setdefault("_symbol_preconditioners", {})
+    key = bool(floor)
+    if key not in cache:
+        cache[key] = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=key)
+    return cache[key]
 
 
 #: Cap on the FFTW planning time of each transform of :func:`symbol_preconditioner` [s].
@@ -586,7 +609,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
     law = _Law(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
+        precond = problem_preconditioner(problem, floor=options.symbol_floor)
     sigma0, h0 = law.sigma0, law.h0
     c = sigma0 / h0
     q = np.zeros_like(problem.z) if guess is None else np.array(guess, dtype=float, copy=True)
@@ -732,7 +755,7 @@ def solve_state_at_force(problem, force, delta, guess, options=SolverOptions(), 
     law = _Law(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
+        precond = problem_preconditioner(problem, floor=options.symbol_floor)
     sigma0, h0 = law.sigma0, law.h0
     c = sigma0 / h0
     target = float(force)
@@ -838,7 +861,7 @@ def load_slope(problem, state, precond=None, options=SolverOptions(), rtol=1e-10
     """
     law = _Law(problem.law, problem.min_spread)
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
+        precond = problem_preconditioner(problem, floor=options.symbol_floor)
     h = state.gap
     p = state.traction + law.stress(h)
     c = law.sigma0 / law.h0
@@ -959,7 +982,7 @@ def load_minimum(problem, approach, guess=None, half_window=None, samples=7, opt
         The minimum and its work.
     """
     t0 = time.perf_counter()
-    precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
+    precond = problem_preconditioner(problem, floor=options.symbol_floor)
     hw = 0.02 * abs(approach) if half_window is None else float(half_window)
     solved = {}
     work = [0, 0]
@@ -1201,7 +1224,7 @@ def solve_state_smoothed(problem, delta, guess=None, options=SolverOptions(), pr
     law = _SmoothLaw(problem.law, problem.min_spread)
     op = problem.op
     if precond is None:
-        precond = symbol_preconditioner(problem.grid, problem.symmetric, _modulus(problem), floor=options.symbol_floor)
+        precond = problem_preconditioner(problem, floor=options.symbol_floor)
     sigma0, h0 = law.sigma0, law.h0
     c = sigma0 / h0
     s = float(smoothing)
