@@ -118,7 +118,7 @@ class BemBranch:
         Second-moment semi-axes of the contact and of contact U cohesive zone of
         each converged state [c_r] (None: not kept, e.g. a branch built from a curve).
     iterations : int
-        Inner CG iterations over every state solved.
+        GMRES iterations over every state solved.
     residual : float
         Largest residual over every state solved.
     failed_states : tuple of dict

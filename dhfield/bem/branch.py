@@ -61,7 +61,7 @@ class UnloadingPath:
     converged : ndarray of bool
         True where the state converged, per state.
     iterations : ndarray of int
-        Inner CG iterations per state.
+        GMRES iterations per state (CG without adhesion).
     outer_iterations : ndarray of int
         Outer (cohesive-zone) iterations per state.
     residual : ndarray of float
@@ -99,7 +99,7 @@ class UnloadingPath:
         False when the grid is too coarse for the Dugdale edge (see
         ``EDGE_WIDTH_FACTOR``): the results are then not trustworthy.
     coarse_states, coarse_iterations : int
-        States and CG iterations solved on coarser grids for the warm starts
+        States and GMRES iterations solved on coarser grids for the warm starts
         (``warm_start``; 0 without), not counted in the arrays above.
     pull_off_error : float
         Error estimate of ``pull_off_load`` [force], without the grid's
@@ -245,7 +245,7 @@ class PathProgress:
         k : int
             Record index of the state.
         st : ContactState
-            The state (its approach, load and CG iterations are shown).
+            The state (its approach, load and GMRES iterations are shown).
         phase : str
             Its phase.
         """
@@ -274,7 +274,7 @@ class Branch:
     tol : float
         Solver tolerance, as in :func:`dhfield.bem.solver.solve_problem`.
     max_iter : int
-        Cap on CG iterations, as in :func:`dhfield.bem.solver.solve_problem`.
+        Cap on GMRES iterations per linear solve, as in :func:`dhfield.bem.solver.solve_problem`.
     label : str
         Label of the progress line.
     progress : bool, optional

@@ -426,14 +426,14 @@ class NestedWarmStart(_HalfGridWarmStart):
     tol : float
         Solver tolerance, as in :func:`dhfield.bem.solve_adhesive`.
     max_iter : int
-        Cap on CG iterations, as in :func:`dhfield.bem.solve_adhesive`.
+        Cap on GMRES iterations per linear solve, as in :func:`dhfield.bem.solve_adhesive`.
     threads : int, optional
         FFTW threads, as in :func:`dhfield.bem.solve_adhesive`.
 
     Attributes
     ----------
     states_solved, iterations : int
-        Coarse states solved and their CG iterations, over all levels.
+        Coarse states solved and their GMRES iterations, over all levels.
     """
 
     def __init__(self, problem, *, tol, max_iter, threads=None):
@@ -468,7 +468,7 @@ class NestedWarmStart(_HalfGridWarmStart):
 
     @property
     def iterations(self) -> int:
-        """CG iterations of the coarse states, over all levels."""
+        """GMRES iterations of the coarse states, over all levels."""
         own = sum(r["iterations"] for r in self._branch.records)
         return own + (self._inner.iterations if self._inner else 0)
 
@@ -759,7 +759,7 @@ def predicted_path(problem, options, warm_start=None):
         if bad:
             why = (f"{why} ({len(bad)} of {len(kept())} states unconverged, worst residual "
                    f"{max(r['residual'] for r in bad):.2g} > tol {b.tol:.2g} after up to "
-                   f"{max(int(r['outer_iterations']) for r in bad)} outer iterations)")
+                   f"{max(int(r['outer_iterations']) for r in bad)} Newton iterations)")
         path = b.load_pull_off(range(len(b.records)))
         return replace(path, pull_off_converged=False, pull_off_note=why)
 
@@ -1166,7 +1166,7 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
           minimum ('located', 'bracket' or 'march', also when a requested search fell
           back to it); 'continuation' under displacement control
           (:mod:`dhfield.bem.continuation`); 'refine' for :func:`refine`;
-        - ``n``, ``law``, ``n_steps``, ``iterations`` (inner CG iterations over the
+        - ``n``, ``law``, ``n_steps``, ``iterations`` (GMRES iterations over the
           path), ``residual`` (largest over the path), ``half_width_x``,
           ``half_width_y`` (domain [c_r]) and ``elapsed`` (wall time of the path [s]).
     """

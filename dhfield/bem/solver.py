@@ -842,14 +842,17 @@ def solve_problem(prob, delta, guess, tol, max_iter):
     if law is None:
         zd = prob.z - delta
         scale = max(abs(delta), float(np.max(np.abs(prob.z))) * 1e-3, 1e-300)
-        p = prob.to_work(guess.repulsive_pressure).copy() if (
-            guess is not None and getattr(guess, "repulsive_pressure", None) is not None) else np.zeros_like(prob.z)
+        if isinstance(guess, Prediction):
+            p = prob.work_array(guess.pressure).copy()
+        elif guess is not None and guess.repulsive_pressure is not None:
+            p = prob.to_work(guess.repulsive_pressure).copy()
+        else:
+            p = np.zeros_like(prob.z)
         p, h, it, err = solve_contact_pressure(prob.op, zd, p, scale, tol, max_iter, prob.k0)
         return assemble_state(prob, delta, p, np.zeros_like(p), h, it, err, err <= tol, 1)
     from .newton import NESTED_OPTIONS, solve_state
-    from dataclasses import replace as _replace
 
-    options = _replace(NESTED_OPTIONS, tol=float(tol), max_krylov=min(int(max_iter), NESTED_OPTIONS.max_krylov))
+    options = replace(NESTED_OPTIONS, tol=float(tol), max_krylov=min(int(max_iter), NESTED_OPTIONS.max_krylov))
     st = None
     gmres = newton = 0
     if guess is not None:
