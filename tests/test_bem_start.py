@@ -302,7 +302,7 @@ def test_slender_automatic_grid_resolves_the_small_dmt_side_contact(mu, beta0):
 
 def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
     # mu >= PREDICTED_MIN_MU with a half grid that cannot hold the Dugdale edge: fine lattice samples
-    # around GVG's pull-off (the relaxed half grid's states stall at mu = 10); nothing solved here
+    # around GVG's pull-off; nothing solved here
     calls = []
     answer = SimpleNamespace(converged=True)
     monkeypatch.setattr(adhesive_start, "_predicted_pull_off",
@@ -310,11 +310,11 @@ def test_high_mu_automatic_grid_takes_the_predicted_route(monkeypatch):
                         calls.append((prob.grid.nx, tol, opts.tol)) or answer)
     assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826) is answer
     plan = adhesive_start.plan_grid(mu=10.0, beta0=0.4826)
-    # its states to PREDICTED_TOL unless a tol is given
-    assert calls == [(plan.n_needed, adhesive_start.PREDICTED_TOL, DEFAULT_TOL)] and plan.predicted
+    # its states to the one default tolerance unless a tol is given
+    assert calls == [(plan.n_needed, None, DEFAULT_TOL)] and plan.predicted
     opts = adhesive_start.AdhesiveOptions(tol=2e-6)
     assert adhesive_start.adhesive_pull_off(search="located", mu=10.0, beta0=0.4826, options=opts) is answer
-    assert calls[-1][1:] == (2e-6, 2e-6)
+    assert calls[-1][1:] == (None, 2e-6)                          # the tolerance given, through the options
     # its domain holds GVG's pull-off zone only: N = 1280 instead of 1440 on the unloading path's domain
     assert plan.n_needed < adhesive_start.plan_grid(mu=10.0, beta0=0.4826, predicted=False).n_needed
     assert adhesive_start.PREDICTED_MIN_MU > 5.0                  # mu = 5 keeps the bracket search
@@ -329,7 +329,7 @@ def test_predicted_search_on_an_explicit_grid_is_that_route_on_that_grid(monkeyp
     assert adhesive_start.adhesive_pull_off(mu=10.0, beta0=0.5, n=96, ny=64, search="predicted") is answer
     prob, tol = calls[0]
     ref = adhesive_start.predicted_problem(mu=10.0, beta0=0.5, n=96, ny=64)
-    assert (prob.grid, tol) == (ref.grid, adhesive_start.PREDICTED_TOL)        # no lattice retry on it
+    assert (prob.grid, tol) == (ref.grid, None)                      # options.tol; no lattice retry on it
     assert len(calls) == 1
     for n in (None, 96):
         with pytest.raises(ValueError, match="options.nested None"):

@@ -74,7 +74,7 @@ def stage_operator(backend, threads) -> None:
 
 
 def stage_state(backend, beta0, mu, n, threads, skip_reference) -> None:
-    from dhfield.analysis.bem_start import PREDICTED_TOL, plan_grid, predicted_problem
+    from dhfield.analysis.bem_start import plan_grid, predicted_problem
     from dhfield.bem import solver
 
     # the predicted route's first state: the lattice sample nearest the predicted pull-off
@@ -84,14 +84,14 @@ def stage_state(backend, beta0, mu, n, threads, skip_reference) -> None:
     delta = problem.lattice_approach(problem.pull_off_approach)
     g = problem.grid
     print(f"  state: beta0 = {beta0:g}, mu = {mu:g}, {g.nx} x {g.ny} cells, approach {delta:+.6f}, "
-          f"tol {PREDICTED_TOL:g}", flush=True)
+          f"tol {solver.DEFAULT_TOL:g}", flush=True)
     loads = {}
     for b in ((backend,) if skip_reference else ("fftw", backend)):
         os.environ["DHFIELD_BEM_BACKEND"] = b
         prob = problem.adhesive_problem(threads)
         cold = problem.path_start(prob).stress
         t0 = time.perf_counter()
-        st = solver.solve_problem(prob, delta, solver.Prediction(np.zeros_like(cold), cold.copy()), PREDICTED_TOL,
+        st = solver.solve_problem(prob, delta, solver.Prediction(np.zeros_like(cold), cold.copy()), solver.DEFAULT_TOL,
                                   solver.DEFAULT_MAX_ITER)
         wall = time.perf_counter() - t0
         loads[b] = st.load

@@ -58,7 +58,7 @@ __all__ = ["unloading_start", "nondimensional_problem", "adhesive_pull_off", "re
            "plan_grid", "analytic_pull_off", "UnresolvableCaseError", "expected_zone_width", "AUTO_MIN_CELLS", "DEFAULT_MAX_SECONDS",
            "UNSTABLE_EDGE_RATIO", "AdhesiveOptions", "SHAPED_CELLS_MAX_BETA0",
            "AUTO_MIN_CELLS_Y", "AUTO_CONTACT_CELLS", "shaped_cells_y", "predicted_start", "predicted_problem",
-           "PREDICTED_MIN_MU", "PREDICTED_TOL", "PREDICTED_SEARCH", "takes_predicted_route",
+           "PREDICTED_MIN_MU", "PREDICTED_SEARCH", "takes_predicted_route",
            "newton_problem", "newton_grids", "takes_newton_route",
            "pull_off_cost", "check_grid_memory", "WIDEST_EDGE_NOTE", "WIDEST_EDGE_MARK"]
 
@@ -744,8 +744,7 @@ class AdhesiveOptions:
         Refinements of the pull-off bracket (0-20) [-]; see :class:`dhfield.bem.path.PathOptions`.
     tol : float, optional
         Solver tolerance [-]; see :class:`dhfield.bem.path.PathOptions`.  Default (None):
-        ``DEFAULT_TOL``, and :data:`PREDICTED_TOL` on the predicted route
-        (:func:`takes_predicted_route`).
+        ``DEFAULT_TOL`` on every route.
     max_iter : int, default DEFAULT_MAX_ITER
         Iteration cap per state [-]; see :class:`dhfield.bem.path.PathOptions`.
     margin : float, default DOMAIN_MARGIN
@@ -805,7 +804,7 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         Dugdale edge resolved, and the stated error is the grid ladder's; on the automatic
         grid, finer grids follow while it exceeds :data:`LADDER_TARGET_ERROR`.
         'predicted': the high-mu route (:func:`dhfield.bem.pull_off.predicted_path`: lattice samples around
-        GVG's pull-off, states to :data:`PREDICTED_TOL`, the stretch step) on its own domain,
+        GVG's pull-off) on its own domain,
         also on an explicit ``n`` x ``ny`` grid (no lattice retry there); Dugdale law only.
         'located' takes it by itself on automatic grids at mu >= :data:`PREDICTED_MIN_MU`
         (:func:`takes_predicted_route`); asking for it on an explicit grid makes a refined
@@ -909,14 +908,13 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         if plan.predicted:
             # high mu: neither the grid half as fine nor its relaxed states converge; only fine
             # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
-            tol_route = PREDICTED_TOL if tol is None else tol
             prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-            return _predicted_pull_off(prob, options, tol=tol_route)
+            return _predicted_pull_off(prob, options)
         relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
         # the route on the caller's grid (a refined grid of the same route and domain)
         prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
-        return _predicted_pull_off(prob, options, tol=PREDICTED_TOL if tol is None else tol)
+        return _predicted_pull_off(prob, options)
     else:
         relaxed = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
@@ -1022,13 +1020,6 @@ def _ladder_checked(prob, res, *, n_steps, margin, options) -> PullOff:
 #: Dugdale edge solves only fine lattice samples around GVG's pull-off (:func:`_predicted_pull_off`)
 #: instead of the bracket search (docs/theory/bem.rst, 'Measurements behind the solver's constants').
 PREDICTED_MIN_MU = 7.5
-#: Solver tolerance of the predicted route's states when none is given (the other routes keep
-#: ``DEFAULT_TOL`` = 1e-6; the located search's coarse states already use 1e-4,
-#: ``LOCATE_COARSE_TOL``).  Its states are the answer, each a fixed point of the zone reached in
-#: 60-80 outer iterations at 1e-6, most of them spent below a zone-fraction change of 1e-4, which
-#: moves W* by about 1e-5 relative, far less than the discretisation error the answer states
-#: (docs/theory/bem.rst).
-PREDICTED_TOL = 1e-4
 #: The ``search`` of :func:`adhesive_pull_off` that asks for the predicted route, also on an explicit
 #: grid (the refined grid levels of ``dhfield sweep`` at mu >= PREDICTED_MIN_MU).
 PREDICTED_SEARCH = "predicted"
@@ -1266,7 +1257,7 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     ``prob`` from :func:`predicted_problem`: its cold start is GVG's load-control pull-off
     (corrected by the sphere's MD), which at high mu lies within a lattice step of the BEM's;
     :func:`dhfield.bem.pull_off.predicted_path` solves the samples around it, to ``tol`` (default
-    ``options.tol``; :func:`adhesive_pull_off` passes :data:`PREDICTED_TOL` unless told).  When that
+    ``options.tol``).  When that
     fails the record says so (``converged`` False) and its ``note`` names why and the analytic W*
     to use instead (:func:`dhfield.models.md_elliptic.pull_off_nondimensional`).  No other route
     is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`).
