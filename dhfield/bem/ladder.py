@@ -18,12 +18,12 @@ on finer ones while the stated error exceeds a target:
 1. the first state, at the analytic prediction of the pull-off's approach (or at the check
    grid's minimum), is solved by nested iteration from the analytic cold start
    (:func:`dhfield.bem.newton.solve_state_nested` over grids halving the cells);
-2. two more states at ``delta +- h`` are solved from the nearest converged state dilated to
-   the contact expected at their approach (:func:`dilated_neighbour`), and, where Newton does
-   not converge from it, by nested iteration as the first (the one start protocol: the
-   converged neighbour, else the coarser grids).  At beta0 = 0.8, mu = 10 on 1984^2 cells the
-   two states took 43 and 37 CPU s from the dilated neighbour against 92 and 42 by nested
-   iteration; from the neighbour moved along its tangent, the Newton iteration crept;
+2. two more states at ``delta +- h`` are solved the same way (nested iteration from the
+   analytic start: the coarse grids place the contact's rim).  From the nearest converged state
+   dilated to the contact expected at their approach (``start="neighbour"``) they cost about
+   half (at beta0 = 0.8, mu = 10 on 1984^2: 43 and 37 CPU s against 92 and 42), but at
+   beta0 = 0.3, mu = 10 a state of the answer's grid then did not converge; from the
+   neighbouring state moved along its tangent, the Newton iteration crept;
 3. while the lowest load lies at an end of the solved approaches, one more state is solved
    beyond that end, each step twice the last (a bracket);
 4. the state at the vertex of the parabola through the lowest load and its two neighbours
@@ -234,7 +234,7 @@ def _vertex(x, y):
 
 
 #: Starts of the states after a grid's first (:func:`grid_minimum`).
-LADDER_STARTS = ("neighbour", "nested", "tangent")
+LADDER_STARTS = ("nested", "neighbour", "tangent")
 
 
 def dilated_neighbour(problem, solved, approach):
@@ -280,7 +280,7 @@ def dilated_neighbour(problem, solved, approach):
 
 
 def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, max_moves=8, log=None,
-                 start="neighbour"):
+                 start="nested"):
     """Locate the load's minimum on the finest grid of a nested ladder.
 
     Parameters
@@ -300,14 +300,15 @@ def grid_minimum(problems, approach, half_window, zone, options=NESTED_OPTIONS, 
         Cap on the bracket's steps.
     log : callable, optional
         One line per state.
-    start : {"neighbour", "nested", "tangent"}, default "neighbour"
-        Start of every state after the first: the nearest converged state dilated to the
-        contact expected at its approach (:func:`dilated_neighbour`), and where Newton does not
-        converge from it nested iteration as the first state's (the one start protocol); or
-        nested iteration from the analytic cold start on the coarsest grid only; or the nearest
-        converged state moved along its exact tangent ``dq/d delta`` (at Tabor parameters ~10
-        the Newton iteration then moves the contact's rim by a fraction of a cell ring per
-        step, and creeps).
+    start : {"nested", "neighbour", "tangent"}, default "nested"
+        Start of every state after the first: nested iteration from the analytic cold start
+        on the coarsest grid, as the first state's; or the nearest converged state dilated to
+        the contact expected at its approach (:func:`dilated_neighbour`), nested iteration where
+        Newton does not converge from it (half the GMRES iterations on five stored cases at
+        mu 0.1-5, the same W*; but at beta0 = 0.3, mu = 10 a state of the answer's grid did not
+        converge, where every state nested did); or the nearest converged state moved along its
+        exact tangent ``dq/d delta`` (at Tabor parameters ~10 the Newton iteration then moves
+        the contact's rim by a fraction of a cell ring per step, and creeps).
 
     Returns
     -------
@@ -515,7 +516,7 @@ def nested_cells(problem: NondimensionalProblem, nx, round_up=True) -> tuple:
 
 
 def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, edge_margin=EDGE_MARGIN,
-                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="neighbour",
+                    options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested",
                     target_error=None, max_refinements=0, grid_check=None, pre_check=True) -> LadderPullOff:
     """Locate the load-control pull-off on ``problem``'s grid and on a coarser check grid.
 
@@ -540,7 +541,7 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
         ``approach_step``; every finer grid uses half of it, centred on the coarser grid's minimum.
     log : callable, optional
         One line per state and per grid.
-    start : {"neighbour", "nested", "tangent"}, default "neighbour"
+    start : {"nested", "neighbour", "tangent"}, default "nested"
         Start of the states after each grid's first (:func:`grid_minimum`).
     target_error : float, optional
         Relative stated error wanted [-]: while the stated error exceeds it, a grid with
