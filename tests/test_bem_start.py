@@ -139,9 +139,9 @@ def test_explicit_grid_far_too_coarse_is_named():
 
 
 def test_automatic_grid_on_the_sphere_at_mu_5_is_within_1_percent_of_maugis_dugdale():
-    # mu = 5 (lambda = 5.64): the grid half as fine (N = 160) cannot hold the Dugdale edge, so the states
-    # start from it with the edge relaxed (RelaxedWarmStart); MD (Maugis 1992) is the closed form on the
-    # sphere; 1 % is the BEM's stated accuracy where resolved (DMT_BOUND_SLACK; measured +0.04 %)
+    # mu = 5 (lambda = 5.64): the grid half as fine (N = 160) cannot hold the Dugdale edge, so the located
+    # route is the bracket search on this grid (each state by the Newton solve); MD (Maugis 1992) is the
+    # closed form on the sphere; 1 % is the BEM's stated accuracy where resolved (DMT_BOUND_SLACK; measured +0.04 %)
     from dhfield.models import maugis_dugdale
 
     plan = adhesive_start.plan_grid(mu=5.0, beta0=1.0)
