@@ -113,21 +113,17 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
     from dataclasses import replace as _replace
 
     from .newton import NESTED_OPTIONS, solve_state_at_force
-    from .solver import newton_contact_state
+    from .solver import newton_contact_state, start_traction
 
     law = prob.law
     if law is None:
         raise ValueError("prob must have an adhesive law (DugdaleLaw or ExponentialLaw); got None")
     target = float(check_positive("force", force, "adhesive force, force"))
     delta = float(check_finite("approach", approach, "first guess of the approach, length"))
-    if isinstance(guess, Prediction):
-        q0 = prob.work_array(guess.pressure) - prob.work_array(guess.stress)
-    elif isinstance(guess, ContactState):
-        q0 = prob.to_work(guess.pressure)
-    else:
+    if not isinstance(guess, (Prediction, ContactState)):
         raise ValueError("guess must be a solved ContactState or a Prediction of the same problem")
     options = _replace(NESTED_OPTIONS, tol=float(tol), max_krylov=int(max_iter))
-    st, delta = solve_state_at_force(prob, target, delta, q0, options)
+    st, delta = solve_state_at_force(prob, target, delta, start_traction(prob, guess), options)
     return newton_contact_state(prob, delta, st, st.krylov_iterations, st.newton_iterations)
 
 

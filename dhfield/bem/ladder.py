@@ -241,10 +241,8 @@ def dilated_neighbour(problem, solved, approach):
     """A start at ``approach``: the nearest converged state, dilated to the contact expected there.
 
     The nearest state's fields are stretched about the centre by the semi-axis change expected
-    at ``approach`` (:func:`dhfield.bem.pull_off.dilate_state`): from the two nearest states'
-    contact semi-axes per approach when there are two at different approaches, else from JKR's
-    sphere of the same mean radius, ``d delta / d a = 2 a - sqrt(2 pi / a) / 2`` in the paper's
-    units.  A neighbour carried as it is leaves its contact's rim a cell or more from the new
+    at ``approach`` (:func:`dhfield.bem.pull_off.dilate_state`, with the factors of
+    :func:`dhfield.bem.pull_off.dilation_factors` from the two nearest states).  A neighbour carried as it is leaves its contact's rim a cell or more from the new
     one, which the Newton iteration then moves by a fraction of a cell ring per step.
 
     Parameters
@@ -261,21 +259,12 @@ def dilated_neighbour(problem, solved, approach):
     ndarray
         The traction on the working grid [stress].
     """
-    from .pull_off import dilate_state
+    from .pull_off import dilate_state, dilation_factors
 
     near = sorted(solved, key=lambda r: abs(r[0] - approach))[:2]
-    d0, s0 = near[0][0], near[0][1]
-    cs = contact_state(problem, d0, s0).summary()
-    a, b = cs["a"], cs["b"]
-    dd = approach - d0
-    if len(near) > 1 and near[1][0] != d0:
-        c1 = contact_state(problem, near[1][0], near[1][1]).summary()
-        da, db = (a - c1["a"]) / (d0 - near[1][0]) * dd, (b - c1["b"]) / (d0 - near[1][0]) * dd
-    else:
-        m = math.sqrt(a * b)
-        slope = 1.0 / (2.0 * m - 0.5 * math.sqrt(2.0 * math.pi / m))       # JKR sphere: da/d delta
-        da, db = slope * dd * a / m, slope * dd * b / m
-    g = dilate_state(contact_state(problem, d0, s0), 1.0 + da / a, 1.0 + db / b)
+    cs = contact_state(problem, near[0][0], near[0][1])
+    other = contact_state(problem, near[1][0], near[1][1]).summary() if len(near) > 1 else None
+    g = dilate_state(cs, *dilation_factors(cs.summary(), other, approach))
     return problem.to_work(g.pressure)
 
 

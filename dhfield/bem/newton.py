@@ -1116,15 +1116,9 @@ def cold_start(problem, delta, zone_semi_axes, tol=1e-3, max_iter=5000):
     ndarray
         The traction q on the working grid [stress].
     """
-    from .solver import solve_contact_pressure
-
     c, d = zone_semi_axes
     x, y = problem.grid.mesh()
-    s = problem.law.max_stress * ((x / c) ** 2 + (y / d) ** 2 < 1.0).astype(float)
-    s = problem.to_work(s)
-    sol = solve_contact_pressure(problem.op, problem.z - delta, np.zeros_like(s), problem.law.range, tol, max_iter,
-                                 problem.k0, stress=s)
-    return sol.pressure - s
+    return cold_start_on(problem, delta, (x / c) ** 2 + (y / d) ** 2 < 1.0, tol, max_iter)
 
 
 # ---------------------------------------------------------------------------------------------

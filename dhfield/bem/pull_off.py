@@ -36,7 +36,7 @@ from .solver import AdhesiveProblem, Prediction
 from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "UnloadingStart", "NondimensionalProblem",
-           "NestedWarmStart",
+           "NestedWarmStart", "dilation_factors",
            "interpolate_state", "richardson_extrapolation", "DISPLACEMENT_CONTROL_NOTE",
            "DOMAIN_MARGIN", "DEFAULT_STEPS", "SEARCHES", "MAX_CELLS", "MAX_STEPS", "pull_off_result",
            "pull_off_summary", "check_bem_pull_off", "unresolved_reasons", "discretisation_error",
@@ -630,22 +630,45 @@ def _dilated_start(branch, near, approach):
     the edge by a fraction of a cell each.  Here the nearest state's fields
     are stretched about the centre by the semi-axis change expected at ``approach``: from
     the two nearest states when there are two (their a*, b* per approach), else from JKR's
-    sphere of the same mean radius, d delta/d a = 2 a - sqrt(2 pi / a)/2 in the paper's
-    units (within 2 % of the BEM's slope on the sphere at mu = 5, pull-off).
+    sphere of the same mean radius (:func:`dilation_factors`).
     """
     i = near[0]
-    r = branch.records[i]
-    a, b = r["a"], r["b"]
-    dd = approach - r["approach"]
-    if len(near) > 1 and branch.records[near[1]]["approach"] != r["approach"]:
-        q = branch.records[near[1]]
-        step = r["approach"] - q["approach"]
-        da, db = (r["a"] - q["a"]) / step * dd, (r["b"] - q["b"]) / step * dd
+    other = branch.records[near[1]] if len(near) > 1 else None
+    return dilate_state(branch.states[i], *dilation_factors(branch.records[i], other, approach))
+
+
+def dilation_factors(nearest, other, approach) -> tuple:
+    """The stretch factors (sx, sy) that carry a state's contact to the one expected at ``approach``.
+
+    From the semi-axes per approach of two states when there are two at different approaches,
+    else from JKR's sphere of the same mean radius, ``d delta / d a = 2 a - sqrt(2 pi / a) / 2``
+    in the paper's units (within 2 % of the BEM's slope on the sphere at mu = 5, pull-off).
+
+    Parameters
+    ----------
+    nearest : dict
+        The summary (``approach``, contact semi-axes ``a``, ``b``) of the state to stretch
+        (:meth:`dhfield.bem.state.ContactState.summary`).
+    other : dict or None
+        The summary of a second state, or None.
+    approach : float
+        The approach to carry the state to [c_r^2/R].
+
+    Returns
+    -------
+    (float, float)
+        The stretch factors along x and y [-].
+    """
+    a, b = nearest["a"], nearest["b"]
+    dd = approach - nearest["approach"]
+    if other is not None and other["approach"] != nearest["approach"]:
+        step = nearest["approach"] - other["approach"]
+        da, db = (a - other["a"]) / step * dd, (b - other["b"]) / step * dd
     else:
         m = math.sqrt(a * b)
         slope = 1.0 / (2.0 * m - 0.5 * math.sqrt(2.0 * math.pi / m))       # JKR sphere: da/d delta
         da, db = slope * dd * a / m, slope * dd * b / m
-    return dilate_state(branch.states[i], 1.0 + da / a, 1.0 + db / b)
+    return 1.0 + da / a, 1.0 + db / b
 
 
 def dilate_state(state, sx, sy):

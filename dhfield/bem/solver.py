@@ -84,7 +84,7 @@ from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "edge_width_ratio", "Prediction", "solve_problem", "secant_prediction",
            "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution",
-           "assemble_state", "extrapolated_start", "nested_solve", "coarser_problem",
+           "assemble_state", "extrapolated_start", "nested_solve", "coarser_problem", "start_traction",
            "newton_contact_state"]
 
 #: Default solver tolerance: an adhesive state's ``max |min(h/h0, p/sigma0)|``
@@ -856,16 +856,33 @@ def solve_problem(prob, delta, guess, tol, max_iter):
     st = None
     gmres = newton = 0
     if guess is not None:
-        if isinstance(guess, Prediction):
-            q0 = prob.work_array(guess.pressure) - prob.work_array(guess.stress)
-        else:
-            q0 = prob.to_work(guess.pressure)
-        st = solve_state(prob, delta, q0, options)
+        st = solve_state(prob, delta, start_traction(prob, guess), options)
         gmres, newton = st.krylov_iterations, st.newton_iterations
     if st is None or not st.converged:
         st = nested_solve(prob, delta, _zone_mask(prob, delta, guess), options)
         gmres, newton = gmres + st.krylov_iterations, newton + st.newton_iterations
     return newton_contact_state(prob, delta, st, gmres, newton)
+
+
+def start_traction(prob, guess):
+    """The total traction (positive in compression) a warm start gives the Newton solve.
+
+    Parameters
+    ----------
+    prob : AdhesiveProblem
+        The problem.
+    guess : ContactState or Prediction
+        A solved state on the problem's grid (its pressure ``p - s``), or a prediction
+        (repulsive pressure and adhesive stress on the working grid).
+
+    Returns
+    -------
+    ndarray
+        The traction q on the working grid [stress].
+    """
+    if isinstance(guess, Prediction):
+        return prob.work_array(guess.pressure) - prob.work_array(guess.stress)
+    return prob.to_work(guess.pressure)
 
 
 def _zone_mask(prob, delta, guess):
