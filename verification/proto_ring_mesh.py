@@ -28,12 +28,17 @@ What it prints (references: Hertz's load 4/3 at delta = 1 and the uniform disc's
 1. the operator on the ring mesh against the closed forms;
 2. at mu = 1, W*(delta) along a continuation in delta on the ring mesh, beside the uniform grid's
    Newton states (N = 128) at the same approaches: the spread of W* over the window;
-3. at mu = 10, at Maugis-Dugdale's pull-off approach: the Newton iterations and W* against
-   Maugis-Dugdale, for the linear ramp and a C1 (smoothstep) ramp, and two band resolutions.
+3. at mu = 10, at Maugis-Dugdale's pull-off approach: the Newton iterations, W* against
+   Maugis-Dugdale and the state's contact rim, for seven variants (linear or C1 ramp, panels
+   across the zone, strips aligned or staggered, backtracked or full Newton steps, rays, arcs
+   drawn as chords).
+
+The measurements and the decision are in ``docs/theory/bem.rst`` ("Resolution on the cohesive
+ring").
 
 Usage::
 
-    DHFIELD_THREADS=1 .venv/bin/python -m verification.proto_ring_mesh        # ~2 min
+    DHFIELD_THREADS=1 .venv/bin/python -m verification.proto_ring_mesh        # ~2.5 min
 """
 from __future__ import annotations
 
@@ -52,9 +57,9 @@ def _w_asinh(w, t):
     return np.where(aw > 0.0, v, 0.0)
 
 
-def graded_nodes(band, fine, growth, s_max):
-    """s nodes: step ``fine`` on ``[band[0] - 4 fine, band[1] + 4 fine]``, growing by ``growth`` outside."""
-    lo, hi = band[0] - 4 * fine, band[1] + 4 * fine
+def graded_nodes(band, fine, growth, s_max, pad):
+    """s nodes: step ``fine`` on ``[band[0] - pad, band[1] + pad]``, growing by ``growth`` outside."""
+    lo, hi = band[0] - pad, band[1] + pad
     mid = np.linspace(lo, hi, max(2, int(math.ceil((hi - lo) / fine))) + 1)
     inner, s, d = [], lo, fine
     while True:
@@ -72,16 +77,28 @@ def graded_nodes(band, fine, growth, s_max):
 
 
 class RingMesh:
-    """Quadrilateral panels between scaled ellipses and elliptic-angle rays (even-even quadrant)."""
+    """Panels between scaled ellipses and elliptic-angle rays (even-even quadrant).
 
-    def __init__(self, a, b, s, n_phi):
+    ``jitter`` (n_phi x len(s)) shifts each ray strip's s nodes (staggered strips: the panels of
+    one ring no longer share their s); ``arc_segments`` draws each panel's two arcs as that many
+    chords (1: the straight-sided quadrilateral).
+    """
+
+    def __init__(self, a, b, s, n_phi, jitter=None, arc_segments=1):
         phi = np.linspace(0.0, 0.5 * np.pi, n_phi + 1)
-        S, P = np.meshgrid(s, phi, indexing="ij")
-        X, Y = S * a * np.cos(P), S * b * np.sin(P)
-        corners = np.stack([np.stack([X[:-1, :-1], Y[:-1, :-1]], -1), np.stack([X[1:, :-1], Y[1:, :-1]], -1),
-                            np.stack([X[1:, 1:], Y[1:, 1:]], -1), np.stack([X[:-1, 1:], Y[:-1, 1:]], -1)], -2)
-        self.shape = corners.shape[:2]
-        c = corners.reshape(-1, 4, 2)
+        nodes = s[None, :] + (0.0 if jitter is None else jitter)                # (n_phi, ns + 1)
+        t = np.linspace(0.0, 1.0, int(arc_segments) + 1)
+        ph = phi[:-1, None] + np.diff(phi)[:, None] * t[None, :]               # (n_phi, k + 1)
+
+        def arc(sk):
+            return np.stack([sk[..., None] * a * np.cos(ph[:, None, :]), sk[..., None] * b * np.sin(ph[:, None, :])], -1)
+
+        inner, outer = arc(nodes[:, :-1]), arc(nodes[:, 1:])
+        # counter-clockwise: out along ray k, along the outer arc, in along ray k+1, back along the inner arc
+        poly = np.concatenate([inner[..., :1, :], outer, inner[..., ::-1, :][..., :-1, :]], -2)
+        poly = poly.transpose(1, 0, 2, 3)                                        # (ns, n_phi, vertices, 2)
+        self.shape = poly.shape[:2]
+        c = poly.reshape(-1, poly.shape[2], 2)
         x, y = c[..., 0], c[..., 1]
         x1, y1 = np.roll(x, -1, 1), np.roll(y, -1, 1)
         cross = x * y1 - x1 * y
@@ -92,7 +109,7 @@ class RingMesh:
         self.corners = c
         self.n = len(self.area)
 
-    def operator(self, chunk=256):
+    def operator(self, chunk=None):
         """Dense K[i, j] [length/stress]: displacement at centroid i per unit traction on panel j and its images (E* = 1)."""
         A = self.corners
         B = np.roll(A, -1, 1)
@@ -102,6 +119,7 @@ class RingMesh:
         tx, ty = d[..., 0] / Ls, d[..., 1] / Ls
         nx, ny = ty, -tx
         K = np.zeros((self.n, self.n))
+        chunk = chunk or max(16, 1024 // A.shape[1])
         for sx in (1.0, -1.0):
             for sy in (1.0, -1.0):
                 for i0 in range(0, self.n, chunk):
@@ -147,8 +165,11 @@ def contact_start(K, z, delta, stress):
     return q, 200
 
 
-def adhesive_state(K, z, delta, q, sigma0, h0, w, smooth, tol=1e-10, max_newton=60):
-    """Semismooth Newton (dense) on min(c h, q + sigma(h)); returns (q, Newton iterations, converged)."""
+def adhesive_state(K, z, delta, q, sigma0, h0, w, smooth, tol=1e-10, max_newton=60, full_steps=False):
+    """Semismooth Newton (dense) on min(c h, q + sigma(h)); returns (q, Newton iterations, converged).
+
+    A step is backtracked until the merit falls (Armijo), or, with ``full_steps``, taken whole.
+    """
     c = sigma0 / h0
     n = len(z)
     for it in range(max_newton):
@@ -177,7 +198,7 @@ def adhesive_state(K, z, delta, q, sigma0, h0, w, smooth, tol=1e-10, max_newton=
             qn = q + t * dq
             hn = z - delta + K @ qn
             Fn = np.minimum(c * hn, qn + ramp(hn, sigma0, h0, w, smooth)[0])
-            if Fn @ Fn <= (1.0 - 1e-4 * t) * merit or t < 1e-4:
+            if full_steps or Fn @ Fn <= (1.0 - 1e-4 * t) * merit or t < 1e-4:
                 break
             t *= 0.5
         q = qn
@@ -185,16 +206,29 @@ def adhesive_state(K, z, delta, q, sigma0, h0, w, smooth, tol=1e-10, max_newton=
 
 
 class SphereCase:
-    """The sphere at mu on a ring mesh placed on Maugis-Dugdale's pull-off rims."""
+    """The sphere at mu on a ring mesh placed on Maugis-Dugdale's pull-off rims.
 
-    def __init__(self, mu, n_phi, cells_across, growth=1.3, smooth=False):
+    ``pad`` (zone widths) extends the uniform band beyond both rims; ``stagger`` shifts each ray
+    strip's nodes by a golden-ratio fraction of a band step (up to 0.45 of it); ``global_w`` takes
+    the band's widest ramp on every panel.
+    """
+
+    def __init__(self, mu, n_phi, cells_across, *, growth=1.3, smooth=False, stagger=False, pad=None,
+                 global_w=False, arc_segments=1, full_steps=False):
         from dhfield.models import maugis_dugdale
 
         self.md = maugis_dugdale.pull_off_nondimensional(1.0, mu)
         a, c = float(self.md.a_star), float(self.md.c_star)
         m = c / a
-        s = graded_nodes((1.0, m), (m - 1.0) / cells_across, growth, 1.6 * max(m, 1.0))
-        self.mesh = RingMesh(a, a, s, n_phi)
+        fine = (m - 1.0) / cells_across
+        pad = 4.0 * fine if pad is None else pad * (m - 1.0)
+        s = graded_nodes((1.0, m), fine, growth, 1.6 * max(m, 1.0), pad)
+        jitter = None
+        if stagger:
+            taper = np.clip(np.minimum(s / (1.0 - pad), (s[-1] - s) / (s[-1] - m - pad)), 0.0, 1.0)
+            xi = (np.arange(n_phi) * 0.6180339887498949) % 1.0 - 0.5
+            jitter = 0.9 * fine * xi[:, None] * taper[None, :]
+        self.mesh = RingMesh(a, a, s, n_phi, jitter, arc_segments)
         t0 = time.perf_counter()
         self.K = self.mesh.operator()
         self.assembly = time.perf_counter() - t0
@@ -202,16 +236,32 @@ class SphereCase:
         self.sigma0, self.h0 = float(mu), 1.0 / float(mu)
         factor = 1.5 * (1.5 if smooth else 1.0)                   # the smoothstep's steepest slope is 1.5/w
         self.w = np.minimum(factor * self.sigma0 * self.mesh.ring_compliance(self.K), 2.0 * self.h0)
-        self.smooth = smooth
-        self.zone = (self.mesh.cx ** 2 + self.mesh.cy ** 2 < c * c).astype(float) * self.sigma0
+        r = np.hypot(self.mesh.cx, self.mesh.cy)
+        if global_w:
+            self.w = np.full_like(self.w, float(np.max(self.w[(r > a) & (r < c)])))
+        self.band = (a * (1.0 - pad), a * (m + pad))
+        self.smooth, self.full_steps = smooth, full_steps
+        self.zone = (r < c).astype(float) * self.sigma0
+
+    @staticmethod
+    def md_at(mu):
+        from dhfield.models import maugis_dugdale
+
+        return maugis_dugdale.pull_off_nondimensional(1.0, mu)
 
     def w_star(self, q):
         return 4.0 * float(q @ self.mesh.area) / (2.0 * math.pi)   # Eq. (34), R = dgamma = 1, sphere
 
+    def contact_rim(self, delta, q):
+        """Largest centroid radius in contact [c_r]."""
+        h = self.z - delta + self.K @ q
+        return float(np.max(np.hypot(self.mesh.cx, self.mesh.cy)[h <= 0.0]))
+
     def solve(self, delta, q=None):
         if q is None:
             q, _ = contact_start(self.K, self.z, delta, self.zone)
-        return adhesive_state(self.K, self.z, delta, q, self.sigma0, self.h0, self.w, self.smooth)
+        return adhesive_state(self.K, self.z, delta, q, self.sigma0, self.h0, self.w, self.smooth,
+                              full_steps=self.full_steps)
 
 
 def uniform_w_star(mu, n, approaches):
@@ -242,7 +292,7 @@ def main(argv=None) -> int:
     print("1. The operator on the ring mesh (closed forms)")
     print(f"{'n_phi':>6} {'panels':>7} {'Hertz W(delta=1)/(4/3)-1':>26} {'max|u - (4/pi)E(r^2)|':>23}")
     for n_phi, across in ((16, 8), (32, 8), (64, 16)):
-        mesh = RingMesh(1.0, 1.0, graded_nodes((1.0, 1.05), 0.05 / across, 1.3, 2.0), n_phi)
+        mesh = RingMesh(1.0, 1.0, graded_nodes((1.0, 1.05), 0.05 / across, 1.3, 2.0, 0.2 / across), n_phi)
         K = mesh.operator()
         z = 0.5 * (mesh.cx ** 2 + mesh.cy ** 2)
         q, _ = contact_start(K, z, 1.0, np.zeros(mesh.n))
@@ -269,18 +319,31 @@ def main(argv=None) -> int:
     spread = lambda v: (np.nanmax(v) - np.nanmin(v)) / abs(md)          # noqa: E731
     print(f"spread of W* over the window / |W*_MD|: ring {spread(ring):.2%}, uniform {spread(uni):.2%}")
 
-    print("\n3. mu = 10 at Maugis-Dugdale's pull-off approach, one state from the analytic start")
-    print(f"{'ramp':>10} {'across':>6} {'panels':>6} {'w/h0':>6} {'newton':>6} {'conv':>5} {'W*':>10} {'vs MD':>9} "
-          f"{'time':>6}")
-    for smooth in (False, True):
-        for across in (8, 16):
-            t0 = time.perf_counter()
-            case = SphereCase(10.0, 32, across, smooth=smooth)
-            q, it, ok = case.solve(float(case.md.delta_star))
-            band = np.abs(case.mesh.cx - float(case.md.a_star)) < 1e-3
-            print(f"{'smoothstep' if smooth else 'linear':>10} {across:6d} {case.mesh.n:6d} "
-                  f"{float(np.min(case.w[band])) / case.h0:6.2f} {it:6d} {str(ok):>5} {case.w_star(q):10.6f} "
-                  f"{case.w_star(q) / float(case.md.W_star) - 1:+9.2e} {time.perf_counter() - t0:5.1f}s")
+    print("\n3. mu = 10 at Maugis-Dugdale's pull-off approach, one state from the analytic start "
+          f"(MD's contact rim a = {float(SphereCase.md_at(10.0).a_star):.5f})")
+    print(f"{'variant':<44} {'panels':>6} {'w/h0':>5} {'newton':>6} {'conv':>5} {'W*':>10} {'vs MD':>9} "
+          f"{'rim':>8} {'in band':>7} {'time':>6}")
+    variants = [
+        ("linear ramp, aligned, 32 rays, 8 across", dict(n_phi=32, cells_across=8)),
+        ("linear ramp, aligned, 32 rays, 16 across", dict(n_phi=32, cells_across=16)),
+        ("C1 ramp, aligned, 32 rays, 16 across", dict(n_phi=32, cells_across=16, smooth=True)),
+        ("C1 ramp, staggered, 32 rays, 16 across", dict(n_phi=32, cells_across=16, smooth=True, stagger=True)),
+        ("  + full steps, band +1 zone, one ramp", dict(n_phi=32, cells_across=16, smooth=True, stagger=True,
+                                                        full_steps=True, pad=1.0, global_w=True, growth=1.15)),
+        ("  + 16 rays", dict(n_phi=16, cells_across=16, smooth=True, stagger=True, full_steps=True, pad=1.0,
+                             global_w=True, growth=1.15)),
+        ("  + 32 rays, arcs of 4 chords", dict(n_phi=32, cells_across=16, smooth=True, stagger=True, full_steps=True,
+                                               pad=1.0, global_w=True, growth=1.15, arc_segments=4)),
+    ]
+    for name, kw in variants:
+        t0 = time.perf_counter()
+        case = SphereCase(10.0, **kw)
+        d = float(case.md.delta_star)
+        q, it, ok = case.solve(d)
+        rim = case.contact_rim(d, q)
+        print(f"{name:<44} {case.mesh.n:6d} {float(np.min(case.w)) / case.h0:5.2f} {it:6d} {str(ok):>5} "
+              f"{case.w_star(q):10.6f} {case.w_star(q) / float(case.md.W_star) - 1:+9.2e} {rim:8.5f} "
+              f"{str(case.band[0] <= rim <= case.band[1]):>7} {time.perf_counter() - t0:5.1f}s")
     print(f"\n(total {time.perf_counter() - t_all:.0f} s)")
     return 0
 
