@@ -134,6 +134,13 @@ def test_newton_route_answers_with_the_bem_record():
     # the path holds the answer grid's states; the reported one is the lowest (the path's loads are summed
     # again from each state's fields, so they agree with the solver's to rounding, ~1e-12 relative)
     assert rec.path.n_steps >= 4 and rec.path.pull_off_load == pytest.approx(rec.path.load.min(), rel=1e-10)
+    # the options of every state are recorded: NESTED_OPTIONS and the ramp's margin
+    import json
+
+    from dhfield.bem.ladder import EDGE_MARGIN
+    from dhfield.bem.newton import NESTED_OPTIONS
+
+    assert json.loads(rec.solver_options) == dict(NESTED_OPTIONS.as_dict(), edge_margin=EDGE_MARGIN)
 
 
 @pytest.mark.parametrize("kw", [dict(control="displacement"), dict(law="exponential")])

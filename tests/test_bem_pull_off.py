@@ -290,3 +290,18 @@ def test_lattice_approach_is_the_nearest_point_of_the_pull_off_lattice():
         assert abs(j - round(j)) < 1e-9 and abs(got - d) <= 0.5 * h + 1e-12 and prob.lattice_index(d) == round(j)
         assert prob.lattice_approach(got) == got and prob.coarser(320).lattice_approach(d) == got
     assert prob.lattice_approach(prob.approach_max - 3.49 * h) == pytest.approx(prob.approach_max - 3 * h)
+
+
+def test_a_path_route_records_the_options_of_its_states():
+    """The located route's record carries the Newton options every state was solved with: the
+    tolerance and GMRES cap asked for (solver.state_options), as JSON; the netCDF keeps them."""
+    import json
+
+    from dhfield.bem.solver import state_options
+    from dhfield.io.solution import pull_off_dataset
+
+    rec = adhesive_pull_off(beta0=1.0, mu=1.0, n=32, search="located", progress=False,
+                            options=AdhesiveOptions(tol=1e-7, max_iter=800))
+    assert json.loads(rec.solver_options) == state_options(1e-7, 800).as_dict()
+    assert json.loads(rec.solver_options)["max_krylov"] == 800
+    assert pull_off_dataset(rec, fields=False).attrs["solver_options"] == rec.solver_options

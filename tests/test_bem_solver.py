@@ -206,3 +206,16 @@ def test_a_failed_start_falls_back_on_nested_iteration_to_the_same_state(monkeyp
     # the same discrete state, to the solver tolerance (1e-6 of the law's range in complementarity)
     assert warm.load == pytest.approx(cold.load, rel=1e-6)
     assert np.array_equal(warm.contact, cold.contact)
+
+
+@pytest.mark.parametrize("tol, max_iter, krylov", [(1e-7, 500, 500), (1e-6, 10**6, None)])
+def test_state_options_are_the_nested_options_with_the_tolerance_and_a_capped_krylov(tol, max_iter, krylov):
+    """Every adhesive state (solve_problem, and the continuation's bordered solve) takes these options:
+    NESTED_OPTIONS with the tolerance asked for and at most NESTED_OPTIONS.max_krylov GMRES iterations."""
+    from dataclasses import replace
+
+    from dhfield.bem.newton import NESTED_OPTIONS
+
+    got = bem_solver.state_options(tol, max_iter)
+    want = replace(NESTED_OPTIONS, tol=tol, max_krylov=NESTED_OPTIONS.max_krylov if krylov is None else krylov)
+    assert got == want

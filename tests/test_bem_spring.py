@@ -130,6 +130,14 @@ def test_ellipse_limits_are_the_bem_pull_offs():
                                            + JAGGEDNESS_N64)
     assert rigid["W_star"] == pytest.approx(disp.W_star, abs=rigid["W_star_error"] + disp.W_star_error)
     assert soft["W_star"] < mid["W_star"] < rigid["W_star"]  # the spring's jump lies between the two
+    # every record carries the Newton options of the branch's states (the branch's tol and GMRES cap)
+    import json
+
+    from dhfield.analysis.bem_spring import BranchOptions
+    from dhfield.bem.solver import state_options
+
+    opts = BranchOptions()
+    assert json.loads(mid["solver_options"]) == state_options(opts.tol, opts.max_iter).as_dict()
 
 
 def test_branch_brackets_both_minima(branch_lambda_3):

@@ -86,6 +86,11 @@ def test_bem_pull_off_is_the_one_record_with_its_solver_group():
     summary = pull_off_summary(rec)
     assert tuple(summary) == tuple(rec) and isinstance(summary["failures"], list)
     json.dumps(summary)         # JSON-ready: scalars, strings and a list of dicts
+    # the options of every state are recorded: a path route's (n given), from its tolerance and cap
+    from dhfield.bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, state_options
+
+    assert rec.search != "newton"
+    assert json.loads(rec.solver_options) == state_options(DEFAULT_TOL, DEFAULT_MAX_ITER).as_dict()
     analytic = pull_off_record("md", 0.9, 1.0, {"W_star": -0.8, "a_star": 1.0, "delta_star": 0.0},
                                control="load", sin_skew=1.0, geometry="ellipse")
     with pytest.raises(ValueError, match="coarse must be a BEM pull-off"):

@@ -46,6 +46,7 @@ References
 """
 from __future__ import annotations
 
+import json
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -55,7 +56,7 @@ import numpy as np
 from ..core.validation import check_count, check_ellipticity, check_positive
 from ..bem.branch import Branch
 from ..bem.continuation import adhesive_force, fit_fold, solve_at_adhesive_force
-from ..bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start
+from ..bem.solver import DEFAULT_MAX_ITER, DEFAULT_TOL, extrapolated_start, state_options
 from .spring import spring_weight
 from ..core.geometry import sin_skew_angle
 from ..core.pull_off_search import fitted_slopes, stable_minimum_index
@@ -129,6 +130,9 @@ class BemBranch:
         The grid resolves the traction law's edge (``AdhesiveProblem.resolved``).
     failed_forces : tuple of float
         F_a of each state that did not converge (the holes in the samples).
+    solver_options : str
+        The Newton options of every state, as JSON (:func:`dhfield.bem.solver.state_options`;
+        empty for a branch built from a curve).
     """
 
     mu: float
@@ -156,6 +160,7 @@ class BemBranch:
     half_width_y: float = float("nan")
     edge_resolved: bool = True
     failed_forces: tuple = ()
+    solver_options: str = ""
 
 
 @dataclass(frozen=True)
@@ -353,7 +358,8 @@ def bem_unloading_branch(*, beta0, mu, n, landing=None, margin=None, law="dugdal
                      iterations=int(sum(r["iterations"] for r in branch.records)),
                      residual=float(max(r["residual"] for r in branch.records)), failed_states=failed,
                      half_width_x=0.5 * g.nx * g.dx, half_width_y=0.5 * g.ny * g.dy,
-                     edge_resolved=bool(prob.resolved), failed_forces=tuple(failed_forces))
+                     edge_resolved=bool(prob.resolved), failed_forces=tuple(failed_forces),
+                     solver_options=json.dumps(state_options(tol, max_iter).as_dict()))
 
 
 def bem_pull_off_under_spring(branch, machine_stiffness) -> PullOff:
@@ -565,7 +571,8 @@ def _spring_record(branch, jump, soft_w):
                    n_steps=int(np.size(branch.adhesive_force)) + int(branch.failures),
                    iterations=int(branch.iterations), residual=float(branch.residual),
                    failures=tuple(branch.failed_states), half_width_x=float(branch.half_width_x),
-                   half_width_y=float(branch.half_width_y), elapsed=float(branch.elapsed))
+                   half_width_y=float(branch.half_width_y), elapsed=float(branch.elapsed),
+                   solver_options=str(branch.solver_options))
 
 
 def _jump_out(branch, machine_stiffness):

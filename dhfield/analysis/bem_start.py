@@ -1012,7 +1012,7 @@ def _ladder_checked(prob, res, *, n_steps, margin, options) -> PullOff:
             if got.converged and np.isfinite(got.W_star):
                 w_c = float(got.W_star)
             break
-    out = pull_off_result(prob, n, res.path, res.search, coarse=(w_c, n_c))
+    out = pull_off_result(prob, n, res.path, res.search, coarse=(w_c, n_c), options=options)
     return replace(out, elapsed=res.elapsed + elapsed)
 
 
@@ -1273,7 +1273,7 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     if tol is not None:
         options = replace(options, tol=tol)
     path = predicted_path(prob, options)
-    res = pull_off_result(prob, prob.grid.nx, path, PREDICTED_SEARCH)     # the route, named as asked for
+    res = pull_off_result(prob, prob.grid.nx, path, PREDICTED_SEARCH, options=options)   # the route, named as asked for
     if res.converged:
         return res
     w = float(md_elliptic.pull_off_nondimensional(prob.beta0, prob.mu).W_star)

@@ -103,17 +103,17 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
     tol : float
         Tolerance [-]: ``max |min(h/h0, p/sigma0)|`` and ``|F_a - force|/force``.
     max_iter : int
-        Cap on the GMRES iterations of each linear solve.
+        Cap on the GMRES iterations of each linear solve (at most
+        :data:`dhfield.bem.newton.NESTED_OPTIONS` ``.max_krylov``, as every state's:
+        :func:`dhfield.bem.solver.state_options`).
 
     Returns
     -------
     ContactState
         At the approach found (``state.approach``), flagged ``converged``.
     """
-    from dataclasses import replace as _replace
-
-    from .newton import NESTED_OPTIONS, solve_state_at_force
-    from .solver import newton_contact_state, start_traction
+    from .newton import solve_state_at_force
+    from .solver import newton_contact_state, start_traction, state_options
 
     law = prob.law
     if law is None:
@@ -122,7 +122,7 @@ def solve_at_adhesive_force(prob: AdhesiveProblem, force, guess, approach, tol, 
     delta = float(check_finite("approach", approach, "first guess of the approach, length"))
     if not isinstance(guess, (Prediction, ContactState)):
         raise ValueError("guess must be a solved ContactState or a Prediction of the same problem")
-    options = _replace(NESTED_OPTIONS, tol=float(tol), max_krylov=int(max_iter))
+    options = state_options(tol, max_iter)
     st, delta = solve_state_at_force(prob, target, delta, start_traction(prob, guess), options)
     return newton_contact_state(prob, delta, st, st.krylov_iterations, st.newton_iterations)
 

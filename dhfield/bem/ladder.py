@@ -45,6 +45,7 @@ A grid resolves the edge when ``edge_margin x edge_width_ratio <= 1``.
 """
 from __future__ import annotations
 
+import json
 import math
 import time
 from dataclasses import dataclass, field
@@ -641,7 +642,8 @@ def pull_off_record(result: LadderPullOff) -> PullOff:
         pull-off is not resolved (the reasons of :func:`dhfield.bem.pull_off.unresolved_reasons`
         in ``note``); ``iterations`` the GMRES iterations and ``residual`` the largest over the
         answer grid's states; ``path`` the answer grid's states in solve order (phase 'refine');
-        ``note`` names the check grid and its W*.
+        ``note`` names the check grid and its W*; ``solver_options`` the states' options and
+        ``edge_margin``, as JSON.
     """
     f, c = result.fine, result.coarse
     problem = result.answer
@@ -682,4 +684,5 @@ def pull_off_record(result: LadderPullOff) -> PullOff:
         resolved=not reasons, note=note, search=NEWTON_SEARCH, n=int(problem.grid.nx), law=problem.law.name,
         n_steps=len(records), iterations=int(f.krylov_iterations), residual=float(max(r["residual"] for r in records)),
         failures=failures, half_width_x=0.5 * problem.grid.nx * problem.grid.dx,
-        half_width_y=0.5 * problem.grid.ny * problem.grid.dy, elapsed=float(result.elapsed), path=path)
+        half_width_y=0.5 * problem.grid.ny * problem.grid.dy, elapsed=float(result.elapsed),
+        solver_options=json.dumps(result.options), path=path)

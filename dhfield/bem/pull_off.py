@@ -20,6 +20,7 @@ record of dhfield, :class:`dhfield.core.records.PullOff` with its solver group
 """
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, field, replace
 
@@ -32,7 +33,7 @@ from .branch import Branch, UnloadingPath
 from .laws import DugdaleLaw, ExponentialLaw, check_law, law_from_name
 from .operator import Grid
 from .path import PathOptions, PathStart, load_control_path, path_on
-from .solver import AdhesiveProblem, Prediction
+from .solver import AdhesiveProblem, Prediction, state_options
 from .state import ContactState
 
 __all__ = ["solve_pull_off", "refine", "paper_problem", "UnloadingStart", "NondimensionalProblem",
@@ -863,7 +864,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
         if search == "located" and nested:
             path = located_path(problem, ws, options)
             if path is not None:
-                return pull_off_result(problem, n, path, "located")
+                return pull_off_result(problem, n, path, "located", options=options)
     start = problem.path_start(prob, ws) if cold else PathStart()
     path = path_on(prob, start, problem.approach_max, problem.approach_step, control=control, options=options)
     if control == "displacement":
@@ -872,7 +873,7 @@ def solve_pull_off(problem, *, control="load", search="located", nested=None, op
         route = "bracket"
     else:
         route = "march"     # requested, or the bracket's cold start gave no contact state
-    return pull_off_result(problem, n, path, route)
+    return pull_off_result(problem, n, path, route, options=options)
 
 
 #: Caveat carried by every displacement-control pull-off (the ``note`` of its :class:`dhfield.core.records.PullOff`).
@@ -1133,7 +1134,7 @@ def unresolved_reasons(*, law, grid, sin_skew, edge_resolved, control, w_star, s
 
 
 def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, search: str, *,
-                    coarse=None) -> PullOff:
+                    coarse=None, options=None) -> PullOff:
     """Build the BEM's pull-off record of a path in the paper's units (Eq. 34), with the semi-axes of its state.
 
     Parameters
@@ -1151,6 +1152,9 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
         (:func:`ladder_cells`) over the same domain, for the grid's error (:func:`route_error`);
         (NaN, n_c) when that grid gave none.  Default: no such grid, the zone-width floor of
         :func:`discretisation_error` alone.
+    options : PathOptions, optional
+        The path's options (default ``PathOptions()``): ``solver_options`` records the Newton
+        options of its states (:func:`dhfield.bem.solver.state_options`).
 
     Returns
     -------
@@ -1191,8 +1195,11 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
           (:mod:`dhfield.bem.continuation`); 'refine' for :func:`refine`;
         - ``n``, ``law``, ``n_steps``, ``iterations`` (GMRES iterations over the
           path), ``residual`` (largest over the path), ``half_width_x``,
-          ``half_width_y`` (domain [c_r]) and ``elapsed`` (wall time of the path [s]).
+          ``half_width_y`` (domain [c_r]) and ``elapsed`` (wall time of the path [s]);
+        - ``solver_options``: the states' Newton options, as JSON.
     """
+    options = PathOptions() if options is None else options
+    solver_options = json.dumps(state_options(options.tol, options.max_iter).as_dict())
     note = path.pull_off_note
     if path.control == "displacement":
         note = "; ".join(filter(None, (note, DISPLACEMENT_CONTROL_NOTE)))
@@ -1226,7 +1233,7 @@ def pull_off_result(prob: NondimensionalProblem, n: int, path: UnloadingPath, se
         resolved=not reasons, note=note, search=search, n=int(n), law=prob.law.name, n_steps=path.n_steps,
         iterations=int(path.iterations.sum()), residual=float(path.residual.max()), failures=path.failures,
         half_width_x=0.5 * prob.grid.nx * prob.grid.dx, half_width_y=0.5 * prob.grid.ny * prob.grid.dy,
-        elapsed=path.elapsed, path=path)
+        elapsed=path.elapsed, solver_options=solver_options, path=path)
 
 
 def check_bem_pull_off(name, value) -> PullOff:
@@ -1437,4 +1444,4 @@ def refine(problem, coarse, *, window=REFINE_WINDOW, options=PathOptions()) -> P
     converged = all(r["converged"] for r in b.records) and sm is not None and not sm.at_boundary
     path = b.to_path(control="load", load=w_po, approach=d_po, pull_off_index=k_po, converged=converged,
                      order=order, error=b.minimum_error(order, sm))
-    return pull_off_result(problem, n, path, "refine")
+    return pull_off_result(problem, n, path, "refine", options=options)

@@ -84,7 +84,7 @@ from .state import ContactState
 
 __all__ = ["solve_adhesive", "AdhesiveProblem", "edge_width_ratio", "Prediction", "solve_problem", "secant_prediction",
            "DEFAULT_TOL", "DEFAULT_MAX_ITER", "solve_contact_pressure", "ContactPressureSolution",
-           "assemble_state", "extrapolated_start", "nested_solve", "coarser_problem", "start_traction",
+           "assemble_state", "extrapolated_start", "nested_solve", "coarser_problem", "start_traction", "state_options",
            "newton_contact_state"]
 
 #: Default solver tolerance: an adhesive state's ``max |min(h/h0, p/sigma0)|``
@@ -850,9 +850,9 @@ def solve_problem(prob, delta, guess, tol, max_iter):
             p = np.zeros_like(prob.z)
         p, h, it, err = solve_contact_pressure(prob.op, zd, p, scale, tol, max_iter, prob.k0)
         return assemble_state(prob, delta, p, np.zeros_like(p), h, it, err, err <= tol, 1)
-    from .newton import NESTED_OPTIONS, solve_state
+    from .newton import solve_state
 
-    options = replace(NESTED_OPTIONS, tol=float(tol), max_krylov=min(int(max_iter), NESTED_OPTIONS.max_krylov))
+    options = state_options(tol, max_iter)
     st = None
     gmres = newton = 0
     if guess is not None:
@@ -862,6 +862,27 @@ def solve_problem(prob, delta, guess, tol, max_iter):
         st = nested_solve(prob, delta, _zone_mask(prob, delta, guess), options)
         gmres, newton = gmres + st.krylov_iterations, newton + st.newton_iterations
     return newton_contact_state(prob, delta, st, gmres, newton)
+
+
+def state_options(tol, max_iter):
+    """The Newton options of every adhesive state :func:`solve_problem` solves.
+
+    Parameters
+    ----------
+    tol : float
+        Tolerance [-] (:attr:`dhfield.bem.newton.SolverOptions.tol`).
+    max_iter : int
+        Cap on the GMRES iterations of each linear solve [-].
+
+    Returns
+    -------
+    dhfield.bem.newton.SolverOptions
+        :data:`dhfield.bem.newton.NESTED_OPTIONS` with ``tol`` and ``max_krylov`` =
+        ``min(max_iter, NESTED_OPTIONS.max_krylov)``.
+    """
+    from .newton import NESTED_OPTIONS
+
+    return replace(NESTED_OPTIONS, tol=float(tol), max_krylov=min(int(max_iter), NESTED_OPTIONS.max_krylov))
 
 
 def start_traction(prob, guess):

@@ -179,6 +179,9 @@ class PullOff(_Record):
         Solver group: domain half-widths [c_r].
     elapsed : float, optional
         Solver group: wall time of the path [s].
+    solver_options : str, optional
+        Solver group: the options every adhesive state was solved with, as JSON (the fields of
+        :class:`dhfield.bem.newton.SolverOptions`, and ``edge_margin`` on the Newton route).
     path : object, optional
         The BEM's whole path (:class:`dhfield.bem.path.UnloadingPath`); not a key.
     """
@@ -232,6 +235,7 @@ class PullOff(_Record):
     half_width_x: float = None
     half_width_y: float = None
     elapsed: float = None
+    solver_options: str = None
     path: object = field(default=None, repr=False)
 
     @property

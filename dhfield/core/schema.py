@@ -265,7 +265,8 @@ PULL_OFF_SPRING_KEYS = ("machine_stiffness_star", "separation_delta_star", "max_
 #: Keys of a numerical pull-off (the adhesive BEM, :func:`dhfield.analysis.bem_start.adhesive_pull_off`): its stated
 #: error, convergence, route and cost.
 PULL_OFF_SOLVER_KEYS = ("W_star_error", "converged", "resolved", "note", "search", "n", "law", "n_steps",
-                        "iterations", "residual", "failures", "half_width_x", "half_width_y", "elapsed")
+                        "iterations", "residual", "failures", "half_width_x", "half_width_y", "elapsed",
+                        "solver_options")
 #: Every key a :class:`dhfield.core.records.PullOff` may carry, in order; a record holds the groups it has
 #: (:data:`PULL_OFF_KEYS` always; the SI, trust, spring and solver groups where they apply).
 PULL_OFF_ALL_KEYS = (_HEAD + _SI_OUT + _SI_IN + _NONDIM + _TAIL + PULL_OFF_TRUST_KEYS + PULL_OFF_SPRING_KEYS

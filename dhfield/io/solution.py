@@ -251,7 +251,8 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
     xarray.Dataset
         The ``*_pull_off`` scalars, the path's ``*_path`` variables on
         ``step``, the flags ``resolved`` and ``converged_pull_off`` and,
-        with ``fields``, the pull-off state's fields.
+        with ``fields``, the pull-off state's fields; the attribute ``solver_options``
+        (JSON) where the record has it.
     """
     sin_skew = float(result.sin_skew)
     params = dict(beta0=result.beta0, mu=result.mu, n=result.n, control=result.control,
@@ -283,6 +284,8 @@ def pull_off_dataset(result, *, fields: bool = True) -> xr.Dataset:
                      "control": result.control, "elapsed_seconds": float(result.elapsed)})
     if getattr(result, "search", ""):
         ds.attrs["search"] = result.search      # the route that gave the pull-off
+    if getattr(result, "solver_options", None):
+        ds.attrs["solver_options"] = str(result.solver_options)     # JSON of the states' Newton options
     return cf.finalize(ds)
 
 

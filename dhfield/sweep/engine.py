@@ -1024,6 +1024,7 @@ _ADHESIVE_TEXT_ATTRS = {
     "note": "caveats of the adhesive BEM solver on the case (empty: none)",
     "commit": "git commit of the code that solved the adhesive case",
     "finished": "UTC time the adhesive case finished",
+    "solver_options": "Newton options of every state of the adhesive case, as JSON (empty: not recorded)",
     "command": "command line of the sweep run that solved the adhesive case",
 }
 _LAW_ATTRS = {"long_name": "cohesive law of the adhesive BEM solver"}  # a string label has no units

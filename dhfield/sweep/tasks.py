@@ -49,7 +49,7 @@ ADHESIVE_GRID_FIELDS = ("nx", "ny", "half_width_x", "half_width_y", "W_star_erro
 #: Text of each adhesive case: the route that gave the pull-off (the solver's ``search``), the
 #: solver's caveats (``note``), and its provenance (the git commit of the code that solved it and
 #: the UTC time it finished; the command line is added by the engine).
-ADHESIVE_TEXT_FIELDS = ("search", "note", "commit", "finished")
+ADHESIVE_TEXT_FIELDS = ("search", "note", "commit", "finished", "solver_options")
 #: Name of the adhesive ground truth on the ``model`` dimension of a sweep.
 ADHESIVE_MODEL = "bem-adhesive"
 
@@ -391,6 +391,7 @@ def adhesive_case(beta0: float, mu: float, n: int | None = None, law: str = "dug
         message = f"{len(failures)} state(s) of the load path did not converge; largest residual {residual:.3g}"
     out["message"] = message
     out.update(search=str(getattr(res, "search", "") or ""), note=note, commit=_git_commit(),
+               solver_options=str(getattr(res, "solver_options", "") or ""),
                finished=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()))
     return out
 
