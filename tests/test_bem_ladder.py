@@ -119,6 +119,12 @@ def test_contact_state_carries_the_newton_state(sphere):
     (a, _), (c, _) = cs.contact_semi_axes(), cs.cohesive_semi_axes()
     assert 0.0 < a < c
     assert cs.converged and cs.residual == st.residual
+    # the zone is the ramped law's own: sigma0 x (contact U zone area) is the integral of the adhesive
+    # stress (the path routes' states, solver.newton_contact_state, say the same)
+    stress = newton.ramp_stress(prob, st.gap)
+    adhesive_force = float(np.sum(stress)) * prob.weight
+    assert prob.law.max_stress * cs.adhesive_area == pytest.approx(adhesive_force, rel=1e-12)
+    assert cs.outer_iterations == st.newton_iterations and cs.iterations == st.krylov_iterations
 
 
 def test_newton_route_answers_with_the_bem_record():

@@ -158,19 +158,14 @@ def contact_state(problem, delta, state) -> ContactState:
     Returns
     -------
     ContactState
-        Repulsive pressure ``q + sigma(h)`` on the contact cells (zero elsewhere), the
-        adhesive stress ``sigma(h)`` of the grid's ramped law (sigma0 on the contact: the
-        pressure ``p - sigma`` is the traction q), the gap, and the solve's record
-        (GMRES iterations as ``iterations``, Newton iterations as ``outer_iterations``).
+        :func:`dhfield.bem.solver.newton_contact_state` of the state, with its own GMRES and
+        Newton iterations (``iterations``, ``outer_iterations``): the repulsive pressure
+        ``q + sigma(h)`` on the contact cells, the adhesive stress ``sigma(h)`` of the grid's
+        ramped law, the gap, and (Dugdale) the cohesive fraction ``sigma/sigma0`` off the contact.
     """
-    from .newton import _Law
-    from .solver import assemble_state
+    from .solver import newton_contact_state
 
-    law = _Law(problem.law, problem.min_spread)
-    s = law.stress(state.gap)
-    p = np.where(state.contact, state.traction + s, 0.0)
-    return assemble_state(problem, delta, p, s, state.gap, state.krylov_iterations, state.residual,
-                          state.converged, state.newton_iterations)
+    return newton_contact_state(problem, delta, state, state.krylov_iterations, state.newton_iterations)
 
 
 @dataclass
