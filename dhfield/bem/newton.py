@@ -582,6 +582,28 @@ def _residual(h, p, c):
     return np.minimum(c * h, p)
 
 
+def _active_sets(law, h, p, c):
+    """The Newton step's cell sets of a state: (contact, edge, free, slope).
+
+    Contact ``c h < p``; edge: off the contact, on the law's ramp (``slope = -sigma'(h) > 0``);
+    free: the rest (the law's plateau, or zero stress).
+    """
+    contact = c * h < p
+    slope = law.slope(h)
+    edge = (~contact) & (slope > 0.0)
+    return contact, edge, ~(contact | edge), slope
+
+
+def _step_rhs(contact, slope, h, p, c, y0):
+    """Right-hand side of the Newton rows, ``y0 = K dq`` of the free cells' step already moved."""
+    return np.where(contact, -c * (h + y0), -p + slope * y0)
+
+
+def _approach_column(contact, slope, c):
+    """The rows' derivative in the approach (a rigid shift of the gap): ``c`` on the contact, ``-slope`` elsewhere."""
+    return np.where(contact, c, -slope)
+
+
 def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=None, log=None):
     """Solve one adhesive state at the approach ``delta`` (displacement control).
 
@@ -641,10 +663,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
             relaxed = -1
             if log is not None:
                 log(f"newton {it:3d}: watchdog: back to the best iterate (|F| {merit:.3e})")
-        contact = c * h < p
-        slope = law.slope(h)
-        edge = (~contact) & (slope > 0.0)
-        free = ~(contact | edge)
+        contact, edge, free, slope = _active_sets(law, h, p, c)
         rtol = min(options.forcing, math.sqrt(merit / max(history[0], 1e-300)))
         if not options.watchdog:
             ref = max(history[-options.nonmonotone:])
@@ -661,7 +680,7 @@ def solve_state(problem, delta, guess=None, options=SolverOptions(), precond=Non
             dq[free] = -p[free] / (1.0 + lam)
             y0 = op(dq)
             calls += 1
-            rhs_full = np.where(contact, -c * (h + y0), -p + slope * y0)
+            rhs_full = _step_rhs(contact, slope, h, p, c, y0)
             jac = _Jacobian(op, contact, edge, slope, precond, damping=lam, gap_scale=c, inner=options.contact_inner)
             x, kit, info = _gmres(jac, rhs_full.ravel()[jac.idx], rtol, options.max_krylov)
             krylov += kit
@@ -782,16 +801,13 @@ def solve_state_at_force(problem, force, delta, guess, options=SolverOptions(), 
         if it >= options.max_newton:
             break
         it += 1
-        contact = c * h < p
-        slope = law.slope(h)
-        edge = (~contact) & (slope > 0.0)
-        free = ~(contact | edge)
+        contact, edge, free, slope = _active_sets(law, h, p, c)
         rtol = min(options.forcing, BORDERED_FORCING, math.sqrt(merit / max(history[0], 1e-300)))
         dq0 = np.zeros_like(q)
         dq0[free] = -p[free]
         y0 = op(dq0)
-        rhs0 = np.where(contact, -c * (h + y0), -p + slope * y0)
-        r1 = np.where(contact, c, -slope)            # the approach's column: a rigid shift of the gap
+        rhs0 = _step_rhs(contact, slope, h, p, c, y0)
+        r1 = _approach_column(contact, slope, c)
         jac = _Jacobian(op, contact, edge, slope, precond, gap_scale=c, inner=options.contact_inner)
         x0, k0, _ = _gmres(jac, rhs0.ravel()[jac.idx], rtol, options.max_krylov)
         x1, k1, _ = _gmres(jac, r1.ravel()[jac.idx], rtol, options.max_krylov)
@@ -865,12 +881,10 @@ def load_slope(problem, state, precond=None, options=SolverOptions(), rtol=1e-10
     h = state.gap
     p = state.traction + law.stress(h)
     c = law.sigma0 / law.h0
-    contact = c * h < p
-    slope = law.slope(h)
-    edge = (~contact) & (slope > 0.0)
+    contact, edge, _, slope = _active_sets(law, h, p, c)
     jac = _Jacobian(problem.op, contact, edge, slope, precond, gap_scale=c, inner=options.contact_inner)
     # d/d delta of the rows: A: h' = -1 + K dq = 0; E: dq - |s'| (K dq - 1) = 0; others: dq = 0
-    rhs_full = np.where(contact, c, -slope)
+    rhs_full = _approach_column(contact, slope, c)
     rhs = rhs_full.ravel()[jac.idx]
     x, kit, info = _gmres(jac, rhs, rtol, options.max_krylov)
     dq = np.zeros_like(state.traction)
