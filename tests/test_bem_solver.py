@@ -208,6 +208,37 @@ def test_a_failed_start_falls_back_on_nested_iteration_to_the_same_state(monkeyp
     assert np.array_equal(warm.contact, cold.contact)
 
 
+def test_an_analytic_zone_start_is_solved_by_nested_iteration_at_once(monkeypatch):
+    # a Prediction with a zone and no contact pressure is an analytic start, not a solved state: the
+    # state is solved by nested iteration from it (sigma0 on its zone), with no Newton try from it first
+    import dhfield.bem.newton as newton
+    from dhfield.bem.solver import Prediction
+
+    grid = Grid.centered(64, 2.6)
+    x, y = grid.mesh()
+    z = (x * x + y * y) / 2
+    law = DugdaleLaw(1.0, 1.0)
+    prob = bem_solver.AdhesiveProblem(z, grid, law, None, 1, 1.0)
+    zone = prob.to_work(law.max_stress * (x * x + y * y < 1.7 ** 2))
+    real, shapes, nested = newton.solve_state, [], []
+
+    def recording(problem, *args, **kwargs):
+        shapes.append(problem.grid.shape)
+        return real(problem, *args, **kwargs)
+
+    real_nested = bem_solver.nested_solve
+
+    def counting(*args, **kwargs):
+        nested.append(1)
+        return real_nested(*args, **kwargs)
+
+    monkeypatch.setattr(newton, "solve_state", recording)
+    monkeypatch.setattr(bem_solver, "nested_solve", counting)
+    st = bem_solver.solve_problem(prob, -0.8, Prediction(np.zeros_like(zone), zone), 1e-6, 2000)
+    assert st.converged and nested == [1]
+    assert shapes.count(grid.shape) == 1            # the full grid solved once: nested iteration's last level
+
+
 @pytest.mark.parametrize("tol, max_iter, krylov", [(1e-7, 500, 500), (1e-6, 10**6, None)])
 def test_state_options_are_the_nested_options_with_the_tolerance_and_a_capped_krylov(tol, max_iter, krylov):
     """Every adhesive state (solve_problem, and the continuation's bordered solve) takes these options:
