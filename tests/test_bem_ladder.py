@@ -185,6 +185,18 @@ def test_refinement_for_a_target_error_adds_finer_grids(sphere):
     assert len(t.grids) == 2
 
 
+def test_the_pre_check_grid_is_not_a_refinement_and_the_time_allowed_bounds_them(sphere):
+    # with the third grid (52) below the check grid, max_refinements=1 still adds one refinement (96 -> 128)
+    r = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=1)
+    assert [g.shape[0] for g in r.grids] == [52, 72, 96, 128]
+    # a refinement predicted to take longer than the time left is not started: the last error is stated
+    lines = []
+    s = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=3, max_seconds=1e-6,
+                               log=lines.append)
+    assert [g.shape[0] for g in s.grids] == [52, 72, 96] and s.converged and np.isfinite(s.stated_error)
+    assert any("no refinement" in line and "allowed" in line for line in lines)
+
+
 def test_a_third_grid_bounds_the_stated_error_where_it_resolves_the_edge(sphere):
     # 3/4 of the check grid's cells (52 of 72, a multiple of 4 for two levels) resolves the edge at mu = 1:
     # the stated error is at least the coarser pair's ladder estimate carried to the answer's grid (x 72/96)

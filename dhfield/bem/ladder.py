@@ -502,7 +502,8 @@ def nested_cells(problem: NondimensionalProblem, nx, round_up=True) -> tuple:
 
 def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, edge_margin=EDGE_MARGIN,
                     options=NESTED_OPTIONS, threads=1, half_window=None, log=None, start="nested",
-                    target_error=None, max_refinements=0, grid_check=None, pre_check=True) -> LadderPullOff:
+                    target_error=None, max_refinements=0, grid_check=None, pre_check=True,
+                    max_seconds=None) -> LadderPullOff:
     """Locate the load-control pull-off on ``problem``'s grid and on a coarser check grid.
 
     Parameters
@@ -537,6 +538,10 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
     grid_check : callable, optional
         ``grid_check(nx, ny)`` raises ValueError for a refinement that must not be solved (memory);
         the refinement then stops, with the last error stated.
+    max_seconds : float, optional
+        Time allowed [s]: a refinement is not started when the time spent so far plus its
+        predicted time (the last grid's, times the ratio of cells, times 1.2 for the longer
+        transforms and the extra state a finer lattice may take) would exceed it.
     pre_check : bool, default True
         Also solve a third grid with 3/4 of the check grid's cells per axis, where it resolves
         the edge with the margin, so that the stated error is the larger of the last two pairs'
@@ -569,7 +574,7 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
             grids.insert(0, pre)
     opts = dict(options.as_dict(), edge_margin=float(edge_margin))
     err = float("inf")
-    j = 0
+    j = refinements = 0          # refinements: grids added for target_error (the pre-check grid is not one)
     while j < len(grids):
         nd = grids[j]
         n_levels = nested_levels(nd.grid.nx, nd.grid.ny) if levels is None else int(levels)
@@ -602,16 +607,21 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
                 err = max(err, ladder_error(c.load, cc.load, c.shape[0], cc.shape[0]) * c.shape[0] / f.shape[0]
                           / abs(f.load))
             if (j == len(grids) - 1 and target_error is not None and err > target_error
-                    and len(grids) - 2 < max_refinements):
+                    and refinements < max_refinements):
                 if levels is None:
                     nx, ny = cells(CHECK_RATIO * nd.grid.nx)
                 else:
                     nx = 8 * math.ceil(CHECK_RATIO * nd.grid.nx / 8)
                     ny = nd.cells_y(nx, k)
+                predicted = f.elapsed * (nx * ny) / (f.shape[0] * f.shape[1]) * 1.2
                 try:
                     if grid_check is not None:
                         grid_check(nx, ny)
+                    if max_seconds is not None and time.perf_counter() - t0 + predicted > max_seconds:
+                        raise ValueError(f"it would take ~{predicted:.0f} s more, past the {max_seconds:.0f} s "
+                                         "allowed")
                     grids.append(problem.on_cells(nx, ny))
+                    refinements += 1
                 except ValueError as exc:
                     if log is not None:
                         log(f"no refinement to {nx}x{ny}: {exc}")
