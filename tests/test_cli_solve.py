@@ -208,6 +208,28 @@ def test_progress_lines_off_a_terminal(monkeypatch, capsys):
     assert PROGRESS_PREFIX not in capsys.readouterr().err
 
 
+def test_a_refinement_is_announced_and_the_eta_counts_the_new_grid():
+    """The Newton route's refinements (a finer answer's grid while the stated error is above its target)
+    are said on a progress line, and the ETA then counts the states expected on the new grid."""
+    import io
+
+    from dhfield.bem.branch import answer_grid_changed, state_reporter
+    from dhfield.core.progress import EXPECTED_STATES, SolveProgress
+
+    stream = io.StringIO()
+    rep = SolveProgress(1.0, "W*", (64, 64), "newton", stream=stream)
+    rep.cells_done, rep.answer_states = 10 * 64 * 64, EXPECTED_STATES["newton"]   # the first answer grid done
+    with state_reporter(rep):
+        answer_grid_changed((128, 128), "stated error 1.00% above the target 0.20%")
+    assert rep.answer_grid == (128, 128) and rep.answer_states == 0
+    line = stream.getvalue().strip()
+    assert line.startswith(PROGRESS_PREFIX + "refining: the answer's grid is now 128 x 128 (stated error 1.00%")
+    # the ETA: the states expected on the new grid, each at the seconds per cell so far times its cells
+    per_cell = rep.elapsed() / rep.cells_done
+    assert rep.eta() == pytest.approx(EXPECTED_STATES["newton"] * 128 * 128 * per_cell, rel=0.5)
+    answer_grid_changed((256, 256))            # outside a reporter's block: nothing to tell, no error
+
+
 def test_progress_in_newtons_for_si_input(capsys):
     """SI input: each state's load in N, W* times the load unit 2 pi R dgamma/sin theta_skew (Eq. 34)."""
     from dhfield.analysis.dimensional import contact_parameters

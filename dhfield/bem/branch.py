@@ -30,7 +30,7 @@ from ..core.pull_off_search import refine_sampled_minimum
 from .solver import secant_prediction, solve_problem
 from .state import ContactState
 
-__all__ = ["Branch", "UnloadingPath", "PathProgress", "state_reporter", "NOT_ON_BRANCH"]
+__all__ = ["Branch", "UnloadingPath", "PathProgress", "state_reporter", "answer_grid_changed", "NOT_ON_BRANCH"]
 
 #: Phases of states that are not on the branch: re-solved from separation after the branch
 #: ended ('jump'), or a cold start that gave no converged contact state ('discarded').
@@ -215,6 +215,21 @@ def state_reporter(report):
         yield report
     finally:
         _STATE_REPORTER.reset(token)
+
+
+def answer_grid_changed(shape, reason=""):
+    """Tell the reporter of :func:`state_reporter` that the answer's grid is now ``shape`` (a refinement).
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Cells (nx, ny) of the new answer's grid [-].
+    reason : str, optional
+        Why (e.g. the stated error above its target), for the reporter's line.
+    """
+    report = _STATE_REPORTER.get()
+    if report is not None and hasattr(report, "set_answer_grid"):
+        report.set_answer_grid(shape, reason)
 
 
 class PathProgress:

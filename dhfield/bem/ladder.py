@@ -54,7 +54,7 @@ import numpy as np
 
 from .newton import NESTED_OPTIONS, cold_start, load_slope, problem_preconditioner, solve_state, solve_state_nested
 from ..core.records import PullOff
-from .branch import PathProgress, UnloadingPath
+from .branch import PathProgress, UnloadingPath, answer_grid_changed
 from .pull_off import NondimensionalProblem, ladder_error, unresolved_reasons
 from .state import ContactState
 
@@ -622,6 +622,7 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
                                          "allowed")
                     grids.append(problem.on_cells(nx, ny))
                     refinements += 1
+                    answer_grid_changed((nx, ny), f"stated error {err:.2%} above the target {target_error:.2%}")
                 except ValueError as exc:
                     if log is not None:
                         log(f"no refinement to {nx}x{ny}: {exc}")

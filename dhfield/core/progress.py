@@ -13,7 +13,10 @@ A state costs about the same per cell on every grid, so the seconds per cell of 
 solved so far, times the cells of the answer's grid, times the states still expected on it,
 is the time left.  A route solves a typical number of states on the answer's grid
 (:data:`EXPECTED_STATES`: 3-4 on the located route, a handful on the bracket search); past
-that number the ETA is that of one more state.  It is an estimate, written ``~``.
+that number the ETA is that of one more state.  A route that refines its answer's grid (the
+Newton route, while its stated error is above its target) says so on a line of its own
+(:meth:`SolveProgress.set_answer_grid`, through :func:`dhfield.bem.branch.answer_grid_changed`),
+and the ETA counts the new grid from then on.  It is an estimate, written ``~``.
 """
 from __future__ import annotations
 
@@ -135,6 +138,28 @@ class SolveProgress:
         self.stream.flush()
         if self.max_seconds is not None and self.elapsed() > self.max_seconds:
             raise SolveTimeLimit(self.reached())
+
+    def set_answer_grid(self, shape, reason=""):
+        """Take ``shape`` as the answer's grid from now on (a route that refines), and say so.
+
+        The ETA then counts the states expected on the new grid; the lowest load on the answer's
+        grid is that of the new grid.
+
+        Parameters
+        ----------
+        shape : (int, int)
+            Cells (nx, ny) of the new answer's grid [-].
+        reason : str, optional
+            Why, appended to the line.
+        """
+        self.answer_grid = (int(shape[0]), int(shape[1]))
+        self.answer_cells = self.answer_grid[0] * self.answer_grid[1]
+        self.answer_states = 0
+        self.lowest = math.inf
+        why = f" ({reason})" if reason else ""
+        self.stream.write(f"{PROGRESS_PREFIX}refining: the answer's grid is now {self.answer_grid[0]} x "
+                          f"{self.answer_grid[1]}{why}; elapsed {self.elapsed():.1f} s, ETA ~{self.eta():.1f} s\n")
+        self.stream.flush()
 
     def reached(self) -> str:
         """Say what was reached: the states solved, the time, the lowest load on the answer's grid.
