@@ -197,6 +197,30 @@ def test_the_pre_check_grid_is_not_a_refinement_and_the_time_allowed_bounds_them
     assert any("no refinement" in line and "allowed" in line for line in lines)
 
 
+def test_a_refinement_that_does_not_converge_leaves_the_last_converged_answer(sphere, monkeypatch):
+    # the refinements for a target error are optional: one whose search does not converge leaves the answer
+    # and the stated error of the last converged pair, and the record's note says so
+    import dataclasses
+
+    real = ladder.grid_minimum
+
+    def refinement_fails(problems, *args, **kwargs):
+        res = real(problems, *args, **kwargs)
+        return dataclasses.replace(res, converged=False, reason="diverged_max_it") if res.shape[0] == 128 else res
+
+    plain = ladder.ladder_pull_off(sphere, 72, levels=2)
+    monkeypatch.setattr(ladder, "grid_minimum", refinement_fails)
+    r = ladder.ladder_pull_off(sphere, 72, levels=2, target_error=1e-9, max_refinements=1)
+    assert [g.shape[0] for g in r.grids] == [52, 72, 96] and r.converged
+    assert r.load == plain.load and r.stated_error == plain.stated_error and r.answer.grid.nx == 96
+    rec = ladder.pull_off_record(r)
+    assert rec.converged and rec.n == 96 and "refinement to 128 x 128 cells did not converge" in rec.note
+    # an answer grid (not a refinement) that does not converge is still no answer
+    monkeypatch.setattr(ladder, "grid_minimum", lambda problems, *a, **k: dataclasses.replace(
+        real(problems, *a, **k), converged=False, reason="diverged_max_it"))
+    assert not ladder.ladder_pull_off(sphere, 72, levels=2).converged
+
+
 def test_a_third_grid_bounds_the_stated_error_where_it_resolves_the_edge(sphere):
     # 3/4 of the check grid's cells (52 of 72, a multiple of 4 for two levels) resolves the edge at mu = 1:
     # the stated error is at least the coarser pair's ladder estimate carried to the answer's grid (x 72/96)

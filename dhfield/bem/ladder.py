@@ -423,6 +423,8 @@ class LadderPullOff:
         The answer grid's problem.
     grids : list of GridMinimum
         Every grid's minimum, coarsest first (the check grid and the answer's are the last two).
+    note : str
+        What the caller should know (a refinement that did not converge) [-].
     """
 
     coarse: GridMinimum
@@ -435,6 +437,7 @@ class LadderPullOff:
     elapsed: float
     answer: object = field(repr=False, default=None)
     grids: list = field(repr=False, default_factory=list)
+    note: str = ""
 
 
 #: Fewest cells per axis of the coarsest grid of a nested solve (:func:`nested_levels`) [-].
@@ -596,6 +599,14 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
                 f"gmres {res.krylov_iterations} ({res.elapsed:.1f} s)")
         if not res.converged:
             last = out[-1]
+            if refinements and j == len(grids) - 1 and np.isfinite(err):
+                # a refinement for the target error that did not converge: the answer stays the last
+                # converged pair's, with its stated error (the refinement was optional)
+                return LadderPullOff(out[-3], out[-2], out[-2].load, float(err), opts, True, "converged_minimum",
+                                     time.perf_counter() - t0, grids[j - 1], out[:-1],
+                                     f"the refinement to {res.shape[0]} x {res.shape[1]} cells did not converge "
+                                     f"({res.reason}): the answer is the {out[-2].shape[0]} x {out[-2].shape[1]} "
+                                     "grid's")
             return LadderPullOff(out[-2] if len(out) > 1 else last, last, last.load, float("inf"), opts, False,
                                  last.reason, time.perf_counter() - t0, nd, out)
         centre = res.approach
@@ -668,6 +679,7 @@ def pull_off_record(result: LadderPullOff) -> PullOff:
             if c is not f else "")
     if not result.converged:
         note = "; ".join(filter(None, (note, f"the search stopped: {result.reason}")))
+    note = "; ".join(filter(None, (note, result.note)))
     if reasons or not np.isfinite(error):
         error = float("inf")
     if reasons:
