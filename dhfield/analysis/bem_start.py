@@ -906,19 +906,19 @@ def adhesive_pull_off(*, beta0, mu, n=None, ny=None, law="dugdale", control="loa
         n = plan.n_needed
         ny = plan.ny_needed if ny is None else ny
         if plan.predicted:
-            # high mu: neither the grid half as fine nor its relaxed states converge; only fine
-            # lattice samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
+            # high mu: the grid half as fine cannot hold the Dugdale edge; only fine lattice
+            # samples around GVG's pull-off, on a domain holding its zone (nx x ny cells)
             prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
             return _predicted_pull_off(prob, options)
-        relaxed = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
+        bracket_here = coarse_route and n % 4 == 0 and ny % 4 == 0 and not _half_grid_locates(plan, law, margin)
     elif search == PREDICTED_SEARCH:
         # the route on the caller's grid (a refined grid of the same route and domain)
         prob = predicted_problem(mu=mu, beta0=beta0, n=n, n_steps=n_steps, margin=margin, ny=ny)
         return _predicted_pull_off(prob, options)
     else:
-        relaxed = False
+        bracket_here = False
     prob = nondimensional_problem(mu=mu, beta0=beta0, n=n, law=law, n_steps=n_steps, margin=margin, ny=ny)
-    if relaxed and prob.has_cold_start:
+    if bracket_here and prob.has_cold_start:
         # the grid half as fine cannot hold the Dugdale edge (LOCATE_MAX_EDGE_RATIO): the bracket
         # search on this grid from the analytic pull-off, each state by nested iteration where its
         # neighbour does not start it (dhfield.bem.solver.solve_problem)
@@ -1104,8 +1104,7 @@ def takes_predicted_route(*, beta0, mu, n=None, law="dugdale", control="load", s
     bool
         True for an automatic grid under the default load-control search with the Dugdale law
         at mu >= :data:`PREDICTED_MIN_MU`, at every beta0 (slender contacts on shaped nx x ny
-        grids too: their coarse-to-fine route's relaxed states do not converge at mu = 10
-        either).
+        grids too).
     """
     if search == PREDICTED_SEARCH:      # asked for (adhesive_pull_off refuses it with another law or control)
         return bool(law == "dugdale" and control == "load" and nested is None)
@@ -1262,7 +1261,7 @@ def _predicted_pull_off(prob, options, *, tol=None) -> PullOff:
     ``options.tol``).  When that
     fails the record says so (``converged`` False) and its ``note`` names why and the analytic W*
     to use instead (:func:`dhfield.models.md_elliptic.pull_off_nondimensional`).  No other route
-    is tried: at these mu the relaxed route's states stall (:data:`PREDICTED_MIN_MU`).
+    is tried (:data:`PREDICTED_MIN_MU`).
 
     The first state starts from GVG's zone, each other from its nearest solved neighbour, and
     a state that does not converge from its start by nested iteration from the coarsest grid

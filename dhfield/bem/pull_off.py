@@ -738,7 +738,7 @@ def predicted_path(problem, options, warm_start=None):
     """The load-control pull-off from fine lattice samples around the problem's cold start, or None.
 
     For grids whose coarser levels cannot locate the minimum (high mu: the grid half as
-    fine cannot hold the Dugdale edge, and its relaxed states do not converge), the
+    fine cannot hold the Dugdale edge), the
     caller's predicted pull-off (:attr:`NondimensionalProblem.pull_off_approach`, e.g.
     the JKR limit's) stands in for the coarse search: the lattice sample
     ``approach_max - j approach_step / LOCATE_DIVISIONS`` nearest it is solved first from
@@ -766,8 +766,8 @@ def predicted_path(problem, options, warm_start=None):
         samples' path flagged ``pull_off_converged=False``, its ``pull_off_note`` saying why
         (the cold state did not converge, a sample did not, or the minimum stayed at an end);
         its pull-off is the load minimum of the converged samples, NaN when there is none.
-        No other route is tried: at the mu this route serves, the relaxed and bracket routes'
-        states do not converge either, and would spend many times the planned time first.
+        No other route is tried: the record says what failed (and the caller names the analytic
+        W* to use instead).
     """
     spacing = problem.approach_step / LOCATE_DIVISIONS
     prob = problem.adhesive_problem(options.threads)
