@@ -231,14 +231,17 @@ AUTO_MIN_CELLS = 256
 #: of an automatic grid (the resolved flag wants >= ZONE_MIN_CELLS = 1 at pull-off; the edge
 #: criterion below gives ~2 at mu >= 5, so this rarely binds).
 AUTO_ZONE_CELLS = 2.0
-#: Memory of one load-control pull-off per cell of the full grid [bytes]: one state solve's
-#: operator, CG and Anderson arrays, the states a path holds, and the high-mu route's Anderson
-#: memory (docs/theory/bem.rst, 'Measurements behind the solver's constants').
+#: Memory of one load-control pull-off per cell of the full grid [bytes]: measured with the
+#: former fixed-point solver (its operator, CG and Anderson arrays and the states a path holds;
+#: docs/theory/bem.rst, 'Measurements behind the solver's constants').  It still bounds the
+#: Newton route: ``dhfield solve --beta0 0.047 --mu 5`` peaked at 748 MB with 4848 x 480 cells as
+#: its largest grid, 320 bytes per cell with the interpreter's own.
 PATH_BYTES_PER_CELL = 550.0
-#: Wall time per cell of the full grid and per CG iteration [s] (median of the stored ground
-#: truth on a shared 2-core machine; docs/theory/bem.rst).
+#: Wall time per cell of the full grid and per iteration [s] (median of the stored ground truth
+#: on a shared 2-core machine, in conjugate-gradient iterations of the former fixed point;
+#: docs/theory/bem.rst).
 SECONDS_PER_CELL_ITERATION = 6e-8
-#: CG iterations of one pull-off at a resolved grid (3000-9300 at mu = 5).  With the two
+#: Iterations of one pull-off at a resolved grid (3000-9300 CG iterations at mu = 5).  With the two
 #: constants above the time estimate is a rough one (a factor 2-3 either way on a loaded machine).
 PULL_OFF_ITERATIONS = 6000
 #: Default time a pull-off with an automatic grid may be estimated to take before it is refused [s].
