@@ -541,10 +541,6 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
     grid_check : callable, optional
         ``grid_check(nx, ny)`` raises ValueError for a refinement that must not be solved (memory);
         the refinement then stops, with the last error stated.
-    max_seconds : float, optional
-        Time allowed [s]: a refinement is not started when the time spent so far plus its
-        predicted time (the last grid's, times the ratio of cells, times 1.2 for the longer
-        transforms and the extra state a finer lattice may take) would exceed it.
     pre_check : bool, default True
         Also solve a third grid with 3/4 of the check grid's cells per axis, where it resolves
         the edge with the margin, so that the stated error is the larger of the last two pairs'
@@ -552,6 +548,10 @@ def ladder_pull_off(problem: NondimensionalProblem, n_coarse, *, levels=None, ed
         grid converges erratically at the 1e-4 level as the rims cross cells, and two grids can
         agree by chance: at beta0 = 0.5, mu = 0.1 W* was -0.853637, -0.852967 and -0.852971 on
         144^2, 192^2 and 256^2 (so 2.4e-5 stated from the last two) and -0.852407 on 768^2.
+    max_seconds : float, optional
+        Time allowed [s]: a refinement is not started when the time spent so far plus its
+        predicted time (the last grid's, times the ratio of cells, times 1.2 for the longer
+        transforms and the extra state a finer lattice may take) would exceed it.
 
     Returns
     -------
