@@ -180,8 +180,9 @@ class PullOff(_Record):
     elapsed : float, optional
         Solver group: wall time of the path [s].
     solver_options : str, optional
-        Solver group: the options every adhesive state was solved with, as JSON (the fields of
-        :class:`dhfield.bem.newton.SolverOptions`, and ``edge_margin`` on the Newton route).
+        Solver group: the options the states of the answer's grid were solved with, as JSON (the
+        fields of :class:`dhfield.bem.newton.SolverOptions`, and ``edge_margin`` on the Newton
+        route; a route's coarser grids, which only start them, may take a looser tolerance).
     path : object, optional
         The BEM's whole path (:class:`dhfield.bem.path.UnloadingPath`); not a key.
     """
