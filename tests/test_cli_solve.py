@@ -230,6 +230,29 @@ def test_a_refinement_is_announced_and_the_eta_counts_the_new_grid():
     answer_grid_changed((256, 256))            # outside a reporter's block: nothing to tell, no error
 
 
+def test_the_eta_takes_the_cost_per_cell_of_the_finest_grid_so_far(monkeypatch):
+    """A state on a finer grid needs more iterations: the ETA's seconds per cell are at least those of
+    the last state on the finest grid solved so far (here 20 s for 64 x 64 after 0.01 s for 16 x 16)."""
+    import io
+    from types import SimpleNamespace
+
+    import dhfield.core.progress as progress
+
+    clock = [100.0]
+    monkeypatch.setattr(progress.time, "perf_counter", lambda: clock[0])
+    rep = progress.SolveProgress(1.0, "W*", (64, 64), "newton", stream=io.StringIO())
+
+    def state(n):
+        return SimpleNamespace(grid=SimpleNamespace(nx=n, ny=n), load=-1.0, converged=True)
+
+    clock[0] += 0.01
+    rep("coarse", 0, state(16), "refine")
+    clock[0] += 20.0
+    rep("answer", 1, state(64), "refine")
+    left = progress.EXPECTED_STATES["newton"] - 1
+    assert rep.eta() == pytest.approx(left * 64 * 64 * (20.0 / (64 * 64)), rel=1e-12)   # not 20.01 s / 4352 cells
+
+
 def test_progress_in_newtons_for_si_input(capsys):
     """SI input: each state's load in N, W* times the load unit 2 pi R dgamma/sin theta_skew (Eq. 34)."""
     from dhfield.analysis.dimensional import contact_parameters

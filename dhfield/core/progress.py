@@ -11,7 +11,8 @@ The ETA
 -------
 A state costs about the same per cell on every grid, so the seconds per cell of the states
 solved so far, times the cells of the answer's grid, times the states still expected on it,
-is the time left.  A route solves a typical number of states on the answer's grid
+is the time left; on the finer grids a state needs more iterations, so the seconds per cell are
+at least those of the last state on the finest grid solved so far.  A route solves a typical number of states on the answer's grid
 (:data:`EXPECTED_STATES`: 3-4 on the located route, a handful on the bracket search); past
 that number the ETA is that of one more state.  A route that refines its answer's grid (the
 Newton route, while its stated error is above its target) says so on a line of its own
@@ -86,6 +87,7 @@ class SolveProgress:
         self.states = 0
         self.answer_states = 0
         self.cells_done = 0
+        self.finest = (0, 0.0)        # (cells, seconds per cell) of the last state on the finest grid so far
         self.lowest = math.inf        # the lowest load on the answer's grid, in the result's unit
         self.lowest_any = math.inf    # on any grid
 
@@ -113,14 +115,16 @@ class SolveProgress:
         """
         if self.cells_done == 0:
             return math.nan
-        per_cell = self.elapsed() / self.cells_done
+        per_cell = max(self.elapsed() / self.cells_done, self.finest[1])
         left = max(self.expected - self.answer_states, 1 if self.answer_states >= self.expected else 0)
         return left * self.answer_cells * per_cell
 
     def __call__(self, label, k, st, phase):
         now = time.perf_counter()
-        self._last = now
         nx, ny = int(st.grid.nx), int(st.grid.ny)
+        if nx * ny >= self.finest[0]:
+            self.finest = (nx * ny, (now - self._last) / (nx * ny))
+        self._last = now
         self.states += 1
         self.cells_done += nx * ny
         value = float(st.load) * self.load_scale
