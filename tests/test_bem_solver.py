@@ -173,6 +173,25 @@ def test_coarser_problem_is_the_same_domain_law_and_symmetry_with_block_averaged
         bem_solver.coarser_problem(prob, 3)
 
 
+def _sphere_64():
+    """The sphere at lambda ~ 1 on 64^2 cells: (grid, x, y, z, law)."""
+    grid = Grid.centered(64, 2.6)
+    x, y = grid.mesh()
+    return grid, x, y, (x * x + y * y) / 2, DugdaleLaw(1.0, 1.0)
+
+
+def _count_nested_solves(monkeypatch):
+    """Wrap solver.nested_solve; the returned list gains one entry per call."""
+    real, calls = bem_solver.nested_solve, []
+
+    def counting(*args, **kwargs):
+        calls.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(bem_solver, "nested_solve", counting)
+    return calls
+
+
 def test_a_failed_start_falls_back_on_nested_iteration_to_the_same_state(monkeypatch):
     # the sphere at lambda ~ 1, N = 64: Newton from a start that fails (here: its first solve reported
     # diverged) goes on by nested iteration from the coarsest grid, to the state a cold solve finds
@@ -180,27 +199,18 @@ def test_a_failed_start_falls_back_on_nested_iteration_to_the_same_state(monkeyp
 
     import dhfield.bem.newton as newton
 
-    grid = Grid.centered(64, 2.6)
-    x, y = grid.mesh()
-    z = (x * x + y * y) / 2
-    law = DugdaleLaw(1.0, 1.0)
+    grid, x, y, z, law = _sphere_64()
     cold = solve_adhesive(z, grid, -0.5, law)
     start = solve_adhesive(z, grid, 0.5, law)                 # a state with a far larger contact
-    real, calls, nested = newton.solve_state, [], []
+    real, calls = newton.solve_state, []
 
     def first_fails(*args, **kwargs):
         st = real(*args, **kwargs)
         calls.append(st.reason)
         return dataclasses.replace(st, reason=newton.DIVERGED_MAX_IT) if len(calls) == 1 else st
 
-    real_nested = bem_solver.nested_solve
-
-    def counting(*args, **kwargs):
-        nested.append(1)
-        return real_nested(*args, **kwargs)
-
     monkeypatch.setattr(newton, "solve_state", first_fails)
-    monkeypatch.setattr(bem_solver, "nested_solve", counting)
+    nested = _count_nested_solves(monkeypatch)
     warm = solve_adhesive(z, grid, -0.5, law, guess=start)
     assert nested == [1] and warm.converged and cold.converged
     # the same discrete state, to the solver tolerance (1e-6 of the law's range in complementarity)
@@ -214,26 +224,17 @@ def test_an_analytic_zone_start_is_solved_by_nested_iteration_at_once(monkeypatc
     import dhfield.bem.newton as newton
     from dhfield.bem.solver import Prediction
 
-    grid = Grid.centered(64, 2.6)
-    x, y = grid.mesh()
-    z = (x * x + y * y) / 2
-    law = DugdaleLaw(1.0, 1.0)
+    grid, x, y, z, law = _sphere_64()
     prob = bem_solver.AdhesiveProblem(z, grid, law, None, 1, 1.0)
     zone = prob.to_work(law.max_stress * (x * x + y * y < 1.7 ** 2))
-    real, shapes, nested = newton.solve_state, [], []
+    real, shapes = newton.solve_state, []
 
     def recording(problem, *args, **kwargs):
         shapes.append(problem.grid.shape)
         return real(problem, *args, **kwargs)
 
-    real_nested = bem_solver.nested_solve
-
-    def counting(*args, **kwargs):
-        nested.append(1)
-        return real_nested(*args, **kwargs)
-
     monkeypatch.setattr(newton, "solve_state", recording)
-    monkeypatch.setattr(bem_solver, "nested_solve", counting)
+    nested = _count_nested_solves(monkeypatch)
     st = bem_solver.solve_problem(prob, -0.8, Prediction(np.zeros_like(zone), zone), 1e-6, 2000)
     assert st.converged and nested == [1]
     assert shapes.count(grid.shape) == 1            # the full grid solved once: nested iteration's last level
